@@ -1,0 +1,297 @@
+//! `#[lagrange(...)]` attributes and struct fields → [`ast::System`].
+//!
+//! Parsing is syntactic only: names are not resolved here (that is `lower`'s job),
+//! but every item keeps its tokens so later errors can point at them.
+
+use proc_macro2::Span;
+use syn::parse::{Parse, ParseStream};
+use syn::punctuated::Punctuated;
+use syn::spanned::Spanned;
+use syn::{Data, DeriveInput, Expr, Fields, GenericParam, Ident, Token, Type};
+
+use crate::ast::{
+    Definition, Force, GeneralizedForce, Parameter, Point, Scalar, System,
+};
+use crate::ctxt::Ctxt;
+
+/// Keys accepted at the top level of `#[lagrange(...)]`, for the "unknown key" message.
+const KEYS: &str = "coordinates, define, point, gravity, potential, force, generalized_force, dissipation";
+
+/// One top-level item of the attribute.
+enum Item {
+    Coordinates(Vec<Ident>),
+    Define(Vec<Definition>),
+    Point(Point),
+    Gravity(Ident, Expr),
+    Potential(Ident, Expr),
+    Dissipation(Ident, Expr),
+    Force(Force),
+    GeneralizedForce(Vec<GeneralizedForce>),
+}
+
+impl Parse for Item {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let key: Ident = input.parse()?;
+        match key.to_string().as_str() {
+            "coordinates" => {
+                let content;
+                syn::parenthesized!(content in input);
+                let names = Punctuated::<Ident, Token![,]>::parse_terminated(&content)?;
+                Ok(Item::Coordinates(names.into_iter().collect()))
+            }
+            "define" => {
+                let content;
+                syn::parenthesized!(content in input);
+                let defs = Punctuated::<NameValue, Token![,]>::parse_terminated(&content)?;
+                Ok(Item::Define(
+                    defs.into_iter()
+                        .map(|NameValue(name, value)| Definition { name, value })
+                        .collect(),
+                ))
+            }
+            "point" => parse_point(input, key).map(Item::Point),
+            "gravity" | "potential" | "dissipation" => {
+                input.parse::<Token![=]>()?;
+                let value: Expr = input.parse()?;
+                Ok(match key.to_string().as_str() {
+                    "gravity" => Item::Gravity(key, value),
+                    "potential" => Item::Potential(key, value),
+                    _ => Item::Dissipation(key, value),
+                })
+            }
+            "force" => {
+                let content;
+                syn::parenthesized!(content in input);
+                let point: Ident = content.parse()?;
+                content.parse::<Token![,]>()?;
+                let value: Expr = content.parse()?;
+                let _ = content.parse::<Option<Token![,]>>()?;
+                if !content.is_empty() {
+                    return Err(content.error("expected `force(point, [fx, fy, fz])`"));
+                }
+                Ok(Item::Force(Force { point, value }))
+            }
+            "generalized_force" => {
+                let content;
+                syn::parenthesized!(content in input);
+                let items = Punctuated::<NameValue, Token![,]>::parse_terminated(&content)?;
+                Ok(Item::GeneralizedForce(
+                    items
+                        .into_iter()
+                        .map(|NameValue(coordinate, value)| GeneralizedForce { coordinate, value })
+                        .collect(),
+                ))
+            }
+            other => Err(syn::Error::new(
+                key.span(),
+                format!("unknown key `{other}` in #[lagrange(...)]; expected one of: {KEYS}"),
+            )),
+        }
+    }
+}
+
+/// `name = expr`
+struct NameValue(Ident, Expr);
+
+impl Parse for NameValue {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let name: Ident = input.parse()?;
+        input.parse::<Token![=]>()?;
+        let value: Expr = input.parse()?;
+        Ok(NameValue(name, value))
+    }
+}
+
+/// `point(name, mass = m, at = [x, y, z])`, keys in any order.
+fn parse_point(input: ParseStream, key: Ident) -> syn::Result<Point> {
+    let content;
+    syn::parenthesized!(content in input);
+    let name: Ident = content.parse()?;
+    let mut mass = None;
+    let mut at = None;
+    while !content.is_empty() {
+        content.parse::<Token![,]>()?;
+        if content.is_empty() {
+            break;
+        }
+        let NameValue(k, v) = content.parse()?;
+        let slot = match k.to_string().as_str() {
+            "mass" => &mut mass,
+            "at" => &mut at,
+            other => {
+                return Err(syn::Error::new(
+                    k.span(),
+                    format!("unknown key `{other}` in point `{name}`; expected `mass = ...` or `at = [...]`"),
+                ));
+            }
+        };
+        if slot.is_some() {
+            return Err(syn::Error::new(k.span(), format!("`{k}` given twice for point `{name}`")));
+        }
+        *slot = Some(v);
+    }
+    let Some(at) = at else {
+        return Err(syn::Error::new(
+            name.span(),
+            format!("point `{name}` has no position: add `at = [x, y]` or `at = [x, y, z]`"),
+        ));
+    };
+    let Some(mass) = mass else {
+        return Err(syn::Error::new(
+            name.span(),
+            format!("point `{name}` has no mass: add `mass = ...`"),
+        ));
+    };
+    let _ = key;
+    Ok(Point { name, mass, at })
+}
+
+/// Reads the struct and its `#[lagrange(...)]` attributes. Returns `None` only when
+/// the input is not something we can describe at all (not a struct with named fields).
+pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
+    let fields = match &input.data {
+        Data::Struct(s) => match &s.fields {
+            Fields::Named(named) => Some(named),
+            Fields::Unit => None,
+            Fields::Unnamed(_) => {
+                cx.error_spanned_by(
+                    &s.fields,
+                    "#[derive(Lagrangian)] needs named fields (the parameters are referred to by name)",
+                );
+                return None;
+            }
+        },
+        _ => {
+            cx.error_at(
+                input.ident.span(),
+                "#[derive(Lagrangian)] applies to structs whose fields are the physical parameters",
+            );
+            return None;
+        }
+    };
+
+    let (scalar, parameters) = parse_fields(cx, input, fields);
+    let mut system = System {
+        ident: input.ident.clone(),
+        generics: input.generics.clone(),
+        scalar,
+        parameters,
+        coordinates: Vec::new(),
+        definitions: Vec::new(),
+        points: Vec::new(),
+        gravity: None,
+        potential: None,
+        dissipation: None,
+        forces: Vec::new(),
+        generalized_forces: Vec::new(),
+        span: input.ident.span(),
+    };
+
+    let mut seen_attr = false;
+    for attr in input.attrs.iter().filter(|a| a.path().is_ident("lagrange")) {
+        seen_attr = true;
+        match attr.parse_args_with(Punctuated::<Item, Token![,]>::parse_terminated) {
+            Ok(items) => {
+                for item in items {
+                    add_item(cx, &mut system, item);
+                }
+            }
+            Err(e) => cx.syn_error(e),
+        }
+    }
+    if !seen_attr {
+        cx.error_at(
+            input.ident.span(),
+            "missing #[lagrange(coordinates(...), point(...), ...)] describing the system",
+        );
+    }
+    Some(system)
+}
+
+fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
+    match item {
+        Item::Coordinates(names) => system.coordinates.extend(names),
+        Item::Define(defs) => system.definitions.extend(defs),
+        Item::Point(p) => system.points.push(p),
+        Item::Force(f) => system.forces.push(f),
+        Item::GeneralizedForce(g) => system.generalized_forces.extend(g),
+        Item::Gravity(k, v) => set_once(cx, &mut system.gravity, k, v),
+        Item::Potential(k, v) => set_once(cx, &mut system.potential, k, v),
+        Item::Dissipation(k, v) => set_once(cx, &mut system.dissipation, k, v),
+    }
+}
+
+fn set_once(cx: &Ctxt, slot: &mut Option<Expr>, key: Ident, value: Expr) {
+    if slot.is_some() {
+        cx.error_at(key.span(), format!("`{key}` given twice; write it once (sums are allowed)"));
+    } else {
+        *slot = Some(value);
+    }
+}
+
+/// The fields must all be of one float type: `f64`, `f32`, or a type parameter of
+/// the struct. That type is the scalar of the generated code.
+fn parse_fields(
+    cx: &Ctxt,
+    input: &DeriveInput,
+    fields: Option<&syn::FieldsNamed>,
+) -> (Scalar, Vec<Parameter>) {
+    let type_params: Vec<&Ident> = input
+        .generics
+        .params
+        .iter()
+        .filter_map(|p| match p {
+            GenericParam::Type(t) => Some(&t.ident),
+            _ => None,
+        })
+        .collect();
+    let mut scalar: Option<(Scalar, Span)> = None;
+    let mut parameters = Vec::new();
+    for field in fields.into_iter().flat_map(|f| f.named.iter()) {
+        let Some(name) = field.ident.clone() else { continue };
+        let Some(this) = scalar_of(&field.ty, &type_params) else {
+            cx.error_spanned_by(
+                &field.ty,
+                format!(
+                    "parameter field `{name}` must be a float (f64, f32, or the struct's scalar type parameter)"
+                ),
+            );
+            continue;
+        };
+        match &scalar {
+            None => scalar = Some((this, field.ty.span())),
+            Some((s, _)) if *s != this => cx.error_spanned_by(
+                &field.ty,
+                format!("parameter field `{name}` has a different float type from the first field; use one scalar type for all parameters"),
+            ),
+            Some(_) => {}
+        }
+        parameters.push(Parameter { name });
+    }
+    let scalar = match scalar {
+        Some((s, _)) => s,
+        // No fields: a single type parameter is the scalar, otherwise f64.
+        None => match type_params.as_slice() {
+            [t] => Scalar::Generic((*t).clone()),
+            _ => Scalar::F64,
+        },
+    };
+    (scalar, parameters)
+}
+
+fn scalar_of(ty: &Type, type_params: &[&Ident]) -> Option<Scalar> {
+    let Type::Path(p) = ty else { return None };
+    if p.qself.is_some() {
+        return None;
+    }
+    let ident = p.path.get_ident()?;
+    if ident == "f64" {
+        Some(Scalar::F64)
+    } else if ident == "f32" {
+        Some(Scalar::F32)
+    } else if type_params.iter().any(|t| *t == ident) {
+        Some(Scalar::Generic(ident.clone()))
+    } else {
+        None
+    }
+}

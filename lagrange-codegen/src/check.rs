@@ -1,0 +1,140 @@
+//! Structural rules on the parsed description, one `check_*` per rule. Every rule
+//! reports through the [`Ctxt`] and carries on, so all violations surface together.
+//! Rules that need expressions resolved (unknown symbols, velocities in positions)
+//! live in `lower`, where the names are known.
+
+use std::collections::BTreeMap;
+
+use syn::{Expr, Ident};
+
+use crate::ast::System;
+use crate::ctxt::Ctxt;
+
+/// Names the expression language gives a meaning of its own.
+const RESERVED: &[&str] = &["t", "pi", "PI", "dot", "self"];
+
+pub fn check(cx: &Ctxt, system: &System) {
+    check_has_coordinates(cx, system);
+    check_has_points(cx, system);
+    check_unique_names(cx, system);
+    check_dimensions(cx, system);
+    check_force_targets(cx, system);
+}
+
+fn check_has_coordinates(cx: &Ctxt, system: &System) {
+    if system.coordinates.is_empty() {
+        cx.error_at(
+            system.span,
+            "no generalized coordinates: add `coordinates(q1, q2, ...)` to #[lagrange(...)]",
+        );
+    }
+}
+
+fn check_has_points(cx: &Ctxt, system: &System) {
+    if system.points.is_empty() {
+        cx.error_at(
+            system.span,
+            "no point masses: the kinetic energy would be zero; add `point(name, mass = m, at = [x, y, z])`",
+        );
+    }
+}
+
+/// Coordinates, parameters, definitions and points share one namespace.
+fn check_unique_names(cx: &Ctxt, system: &System) {
+    let mut seen: BTreeMap<String, &'static str> = BTreeMap::new();
+    let mut declare = |name: &Ident, what: &'static str| {
+        let key = name.to_string();
+        if RESERVED.contains(&key.as_str()) {
+            cx.error_at(
+                name.span(),
+                format!("`{key}` is reserved in #[lagrange] expressions; rename this {what}"),
+            );
+        } else if let Some(prev) = seen.get(&key) {
+            cx.error_at(
+                name.span(),
+                format!("duplicate name `{key}`: already used as a {prev}"),
+            );
+        } else {
+            seen.insert(key, what);
+        }
+    };
+    for p in &system.parameters {
+        declare(&p.name, "parameter");
+    }
+    for q in &system.coordinates {
+        declare(q, "coordinate");
+    }
+    for d in &system.definitions {
+        declare(&d.name, "definition");
+    }
+    for p in &system.points {
+        declare(&p.name, "point");
+    }
+}
+
+/// Number of components of a `[..]` vector expression, or an error at it.
+pub fn vector_len(cx: &Ctxt, expr: &Expr, what: &str) -> Option<usize> {
+    match expr {
+        Expr::Array(a) => {
+            let n = a.elems.len();
+            if n == 2 || n == 3 {
+                Some(n)
+            } else {
+                cx.error_spanned_by(
+                    expr,
+                    format!("{what} has {n} components; expected 2 (planar) or 3 (spatial)"),
+                );
+                None
+            }
+        }
+        _ => {
+            cx.error_spanned_by(expr, format!("{what} must be a vector `[x, y]` or `[x, y, z]`"));
+            None
+        }
+    }
+}
+
+/// All points, gravity and forces live in one space: 2-D or 3-D, fixed by the first point.
+fn check_dimensions(cx: &Ctxt, system: &System) {
+    let mut dim: Option<(usize, String)> = None;
+    let mut agree = |expr: &Expr, what: String| {
+        if let Some(n) = vector_len(cx, expr, &what) {
+            match &dim {
+                None => dim = Some((n, what)),
+                Some((d, first)) if *d != n => cx.error_spanned_by(
+                    expr,
+                    format!("{what} has {n} components but {first} has {d}; a system is either planar or spatial"),
+                ),
+                Some(_) => {}
+            }
+        }
+    };
+    for p in &system.points {
+        agree(&p.at, format!("the position of point `{}`", p.name));
+    }
+    if let Some(g) = &system.gravity {
+        agree(g, "gravity".to_string());
+    }
+    for f in &system.forces {
+        agree(&f.value, format!("the force on `{}`", f.point));
+    }
+}
+
+fn check_force_targets(cx: &Ctxt, system: &System) {
+    for f in &system.forces {
+        if !system.points.iter().any(|p| p.name == f.point) {
+            cx.error_at(
+                f.point.span(),
+                format!("force on unknown point `{}`; points are declared with `point(name, ...)`", f.point),
+            );
+        }
+    }
+    for g in &system.generalized_forces {
+        if !system.coordinates.contains(&g.coordinate) {
+            cx.error_at(
+                g.coordinate.span(),
+                format!("generalized force for unknown coordinate `{}`", g.coordinate),
+            );
+        }
+    }
+}

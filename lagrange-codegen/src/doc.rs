@@ -1,0 +1,44 @@
+//! The derived equations as text, for rustdoc and the `EQUATIONS` constant.
+
+use std::fmt::Write;
+
+use crate::mechanics::{BiasRoute, Model};
+
+pub fn equations(model: &Model) -> String {
+    let ctx = &model.ctx;
+    let n = model.dof();
+    let mut s = String::new();
+    let args = if model.rheonomic { "q, t" } else { "q" };
+    let _ = writeln!(s, "M({args}) q'' + h({args}, q') = Q({args}, q')");
+    let _ = writeln!(s, "q = ({})", model.coordinates.join(", "));
+    let _ = writeln!(
+        s,
+        "{}",
+        if model.rheonomic {
+            "rheonomic: the position maps depend on t; conserved (if forces are conservative): Jacobi integral T2 - T0 + V"
+        } else {
+            "scleronomic: conserved (if forces are conservative): T + V"
+        }
+    );
+    let _ = writeln!(s);
+    for i in 0..n {
+        for j in i..n {
+            let _ = writeln!(s, "M[{i}][{j}] = {}", ctx.display(model.mass[i][j]));
+        }
+    }
+    let route = match model.bias_route {
+        BiasRoute::Projection => "d'Alembert projection",
+        BiasRoute::Christoffel => "Christoffel symbols",
+    };
+    let _ = writeln!(s, "\nh (by {route}):");
+    for (i, h) in model.bias.iter().enumerate() {
+        let _ = writeln!(s, "h[{i}] = {}", ctx.display(*h));
+    }
+    let _ = writeln!(s, "\nQ:");
+    for (i, f) in model.forces.iter().enumerate() {
+        let _ = writeln!(s, "Q[{i}] = {}", ctx.display(*f));
+    }
+    let _ = writeln!(s, "\nT = {}", ctx.display(model.kinetic));
+    let _ = writeln!(s, "V = {}", ctx.display(model.potential));
+    s
+}

@@ -1,0 +1,398 @@
+//! `syn::Expr` → symbolic expressions.
+//!
+//! Resolves names (coordinates, parameters, definitions, `t`), maps the operators
+//! and functions a mechanics user writes onto the expression engine, and enforces
+//! the rules that need resolved names: unknown symbols, unsupported functions,
+//! velocities where only positions make sense, `^` precedence traps. Every error
+//! points at the offending token.
+
+use std::collections::BTreeMap;
+
+use lagrange_symbolic::{Context, Expr as Sym, Func};
+use syn::spanned::Spanned;
+use syn::{BinOp, Expr, Ident, Lit, UnOp};
+
+use crate::ctxt::Ctxt;
+
+/// What an expression is allowed to depend on.
+#[derive(Copy, Clone, PartialEq, Eq, Debug)]
+pub enum Mode {
+    /// Positions ξ(q, t) and potentials: coordinates, time, parameters; no velocities.
+    Configuration,
+    /// Forces and dissipation: velocities allowed too.
+    State,
+    /// Masses: parameters and literals only.
+    Constant,
+}
+
+impl Mode {
+    fn describe(self) -> &'static str {
+        match self {
+            Mode::Configuration => "a position, a gravity vector or a potential",
+            Mode::State => "this expression",
+            Mode::Constant => "a mass",
+        }
+    }
+}
+
+#[derive(Copy, Clone, Debug)]
+enum Binding {
+    Coordinate(Sym),
+    Parameter(Sym),
+    Definition { value: Sym, has_velocity: bool, has_state: bool },
+}
+
+/// Names in scope and the context the expressions are built in.
+pub struct Lowerer<'a> {
+    pub ctx: Context,
+    cx: &'a Ctxt,
+    scope: BTreeMap<String, Binding>,
+}
+
+const FUNCTIONS: &str =
+    "sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, exp, ln, log, sqrt, abs, pow, powi, powf, dot";
+
+impl<'a> Lowerer<'a> {
+    pub fn new(cx: &'a Ctxt) -> Self {
+        let mut ctx = Context::new();
+        ctx.time();
+        Lowerer { ctx, cx, scope: BTreeMap::new() }
+    }
+
+    pub fn declare_coordinate(&mut self, name: &Ident) -> Sym {
+        let q = self.ctx.coordinate(&name.to_string());
+        self.scope.insert(name.to_string(), Binding::Coordinate(q));
+        q
+    }
+
+    pub fn declare_parameter(&mut self, name: &Ident) -> Sym {
+        let p = self.ctx.parameter(&name.to_string());
+        self.scope.insert(name.to_string(), Binding::Parameter(p));
+        p
+    }
+
+    /// Lowers a definition (velocities allowed) and brings it into scope for later items.
+    pub fn declare_definition(&mut self, name: &Ident, value: &Expr) {
+        if let Some(v) = self.expr(value, Mode::State) {
+            let velocities = self.ctx.velocities();
+            let has_velocity = velocities.iter().any(|&qd| self.ctx.depends_on(v, qd));
+            let mut state = self.ctx.coordinates();
+            state.extend(velocities);
+            state.push(self.ctx.time());
+            let has_state = state.iter().any(|&s| self.ctx.depends_on(v, s));
+            self.scope.insert(
+                name.to_string(),
+                Binding::Definition { value: v, has_velocity, has_state },
+            );
+        }
+    }
+
+    /// Lowers `[a, b, c]` into its components.
+    pub fn vector(&mut self, e: &Expr, mode: Mode) -> Option<Vec<Sym>> {
+        let Expr::Array(a) = e else { return None };
+        let parts: Vec<Option<Sym>> = a.elems.iter().map(|x| self.expr(x, mode)).collect();
+        parts.into_iter().collect()
+    }
+
+    pub fn expr(&mut self, e: &Expr, mode: Mode) -> Option<Sym> {
+        match e {
+            Expr::Lit(l) => self.literal(&l.lit),
+            Expr::Paren(p) => self.expr(&p.expr, mode),
+            Expr::Group(g) => self.expr(&g.expr, mode),
+            Expr::Path(p) => match p.path.get_ident() {
+                Some(id) => self.name(id, mode),
+                None => self.unsupported(e, "a path; use a plain name"),
+            },
+            Expr::Field(f) => self.self_field(f, mode),
+            Expr::Unary(u) => match u.op {
+                UnOp::Neg(_) => {
+                    let a = self.expr(&u.expr, mode)?;
+                    Some(self.ctx.neg(a))
+                }
+                _ => self.unsupported(e, "this unary operator"),
+            },
+            Expr::Binary(b) => self.binary(b, mode),
+            Expr::Call(c) => self.call(c, mode),
+            Expr::MethodCall(m) => self.method(m, mode),
+            Expr::Array(_) => {
+                self.cx.error_spanned_by(e, "a vector is not allowed here; expected a scalar expression");
+                None
+            }
+            _ => self.unsupported(e, "this kind of expression"),
+        }
+    }
+
+    fn unsupported(&self, e: &Expr, what: &str) -> Option<Sym> {
+        self.cx.error_spanned_by(
+            e,
+            format!("{what} is not supported in #[lagrange] expressions (use numbers, names, + - * / ^, and functions: {FUNCTIONS})"),
+        );
+        None
+    }
+
+    fn name(&mut self, id: &Ident, mode: Mode) -> Option<Sym> {
+        let key = id.to_string();
+        match key.as_str() {
+            "t" => {
+                if mode == Mode::Constant {
+                    self.cx.error_at(id.span(), "a mass must be constant: it cannot depend on time `t`");
+                    return None;
+                }
+                return Some(self.ctx.time());
+            }
+            "pi" | "PI" => return Some(self.ctx.float(std::f64::consts::PI)),
+            _ => {}
+        }
+        match self.scope.get(&key).copied() {
+            Some(Binding::Parameter(p)) => Some(p),
+            Some(Binding::Coordinate(q)) => {
+                if mode == Mode::Constant {
+                    self.cx.error_at(id.span(), format!("a mass must be constant: it cannot depend on the coordinate `{key}`"));
+                    return None;
+                }
+                Some(q)
+            }
+            Some(Binding::Definition { value, has_velocity, has_state }) => {
+                if mode == Mode::Configuration && has_velocity {
+                    self.cx.error_at(
+                        id.span(),
+                        format!("`{key}` depends on velocities and cannot be used in {}", mode.describe()),
+                    );
+                    return None;
+                }
+                if mode == Mode::Constant && has_state {
+                    self.cx.error_at(id.span(), format!("a mass must be constant, but `{key}` depends on the state or time"));
+                    return None;
+                }
+                Some(value)
+            }
+            None => {
+                let msg = format!(
+                    "unknown symbol `{key}`: not a coordinate, a parameter field, a definition, or `t`"
+                );
+                self.cx.error_at(id.span(), msg);
+                None
+            }
+        }
+    }
+
+    /// `self.m` is accepted as a spelling of the parameter `m`.
+    fn self_field(&mut self, f: &syn::ExprField, mode: Mode) -> Option<Sym> {
+        let is_self = matches!(&*f.base, Expr::Path(p) if p.path.is_ident("self"));
+        match (&f.member, is_self) {
+            (syn::Member::Named(id), true) => match self.scope.get(&id.to_string()) {
+                Some(Binding::Parameter(p)) => Some(*p),
+                _ => {
+                    self.cx.error_at(id.span(), format!("`self.{id}` is not a parameter field of the struct"));
+                    None
+                }
+            },
+            _ => self.unsupported(&Expr::Field(f.clone()), "a field access other than `self.param`"),
+        }
+        .or_else(|| {
+            let _ = mode;
+            None
+        })
+    }
+
+    fn literal(&mut self, lit: &Lit) -> Option<Sym> {
+        match lit {
+            Lit::Int(i) => match i.base10_parse::<i64>() {
+                Ok(v) => Some(self.ctx.int(v)),
+                Err(e) => {
+                    self.cx.syn_error(e);
+                    None
+                }
+            },
+            Lit::Float(f) => Some(decimal(&mut self.ctx, f.base10_digits()).unwrap_or_else(|| {
+                let v = f.base10_parse::<f64>().unwrap_or(f64::NAN);
+                self.ctx.float(v)
+            })),
+            other => {
+                self.cx.error_spanned_by(other, "expected a number");
+                None
+            }
+        }
+    }
+
+    fn binary(&mut self, b: &syn::ExprBinary, mode: Mode) -> Option<Sym> {
+        if let BinOp::BitXor(op) = &b.op {
+            // `^` binds looser than + - * / in Rust: `a + b^2` parses as `(a + b)^2`
+            // and `x^2 + y` as `x^(2 + y)`. Rather than silently compute the wrong
+            // power, insist on parentheses when an operand is itself an operation.
+            for side in [&*b.left, &*b.right] {
+                if matches!(side, Expr::Binary(_)) {
+                    self.cx.error_spanned_by(
+                        side,
+                        format!(
+                            "`^` binds looser than `+ - * /` in Rust, so this operand of `^` would be `{}`; add parentheses, e.g. `a + (b^2)`, or write `pow(b, 2)`",
+                            quote::ToTokens::to_token_stream(side)
+                        ),
+                    );
+                    let _ = op;
+                    return None;
+                }
+            }
+        }
+        let l = self.expr(&b.left, mode);
+        let r = self.expr(&b.right, mode);
+        let (l, r) = (l?, r?);
+        match &b.op {
+            BinOp::Add(_) => Some(self.ctx.add(l, r)),
+            BinOp::Sub(_) => Some(self.ctx.sub(l, r)),
+            BinOp::Mul(_) => Some(self.ctx.mul(l, r)),
+            BinOp::Div(_) => Some(self.ctx.div(l, r)),
+            BinOp::BitXor(_) => Some(self.ctx.pow(l, r)),
+            _ => {
+                self.cx.error_spanned_by(
+                    b.op,
+                    "unsupported operator in #[lagrange] expressions; use + - * / and ^ (power)",
+                );
+                None
+            }
+        }
+    }
+
+    fn call(&mut self, c: &syn::ExprCall, mode: Mode) -> Option<Sym> {
+        let Expr::Path(p) = &*c.func else {
+            return self.unsupported(&c.func, "calling this");
+        };
+        let Some(fname) = p.path.get_ident() else {
+            return self.unsupported(&c.func, "a path call");
+        };
+        let args: Vec<&Expr> = c.args.iter().collect();
+        let name = fname.to_string();
+        if name == "dot" {
+            return self.velocity(fname, &args, mode);
+        }
+        let Some(arity) = arity(&name) else {
+            self.cx.error_at(
+                fname.span(),
+                format!("unsupported function `{name}`; supported: {FUNCTIONS}"),
+            );
+            return None;
+        };
+        if args.len() != arity {
+            self.cx.error_spanned_by(
+                c,
+                format!("`{name}` takes {arity} argument{}, found {}", if arity == 1 { "" } else { "s" }, args.len()),
+            );
+            return None;
+        }
+        let lowered: Vec<Option<Sym>> = args.iter().map(|a| self.expr(a, mode)).collect();
+        let lowered: Vec<Sym> = lowered.into_iter().collect::<Option<_>>()?;
+        Some(self.apply(&name, &lowered))
+    }
+
+    /// `x.sin()`, `x.powi(2)`, `y.atan2(x)`: Rust method spelling of the same functions.
+    fn method(&mut self, m: &syn::ExprMethodCall, mode: Mode) -> Option<Sym> {
+        let name = m.method.to_string();
+        let Some(arity) = arity(&name) else {
+            self.cx.error_at(
+                m.method.span(),
+                format!("unsupported function `{name}`; supported: {FUNCTIONS}"),
+            );
+            return None;
+        };
+        if m.args.len() + 1 != arity {
+            self.cx.error_spanned_by(
+                m,
+                format!("`.{name}()` takes {} argument{}", arity - 1, if arity == 2 { "" } else { "s" }),
+            );
+            return None;
+        }
+        let recv = self.expr(&m.receiver, mode);
+        let rest: Vec<Option<Sym>> = m.args.iter().map(|a| self.expr(a, mode)).collect();
+        let mut all = vec![recv?];
+        for r in rest {
+            all.push(r?);
+        }
+        Some(self.apply(&name, &all))
+    }
+
+    fn apply(&mut self, name: &str, a: &[Sym]) -> Sym {
+        let f = match name {
+            "sin" => Func::Sin,
+            "cos" => Func::Cos,
+            "tan" => Func::Tan,
+            "asin" => Func::Asin,
+            "acos" => Func::Acos,
+            "atan" => Func::Atan,
+            "sinh" => Func::Sinh,
+            "cosh" => Func::Cosh,
+            "tanh" => Func::Tanh,
+            "exp" => Func::Exp,
+            "ln" | "log" => Func::Ln,
+            "sqrt" => Func::Sqrt,
+            "abs" => Func::Abs,
+            "atan2" => return self.ctx.atan2(a[0], a[1]),
+            // pow, powi, powf
+            _ => return self.ctx.pow(a[0], a[1]),
+        };
+        self.ctx.func(f, a[0])
+    }
+
+    /// `dot(q)`: the generalized velocity of coordinate `q`.
+    fn velocity(&mut self, fname: &Ident, args: &[&Expr], mode: Mode) -> Option<Sym> {
+        let target = match args {
+            [Expr::Path(p)] => p.path.get_ident(),
+            _ => None,
+        };
+        let Some(target) = target else {
+            self.cx.error_at(fname.span(), "`dot(...)` takes one coordinate name, e.g. `dot(theta)`");
+            return None;
+        };
+        let Some(Binding::Coordinate(q)) = self.scope.get(&target.to_string()).copied() else {
+            self.cx.error_at(
+                target.span(),
+                format!("`dot({target})`: `{target}` is not a generalized coordinate"),
+            );
+            return None;
+        };
+        if mode != Mode::State {
+            self.cx.error_at(
+                fname.span().join(target.span()).unwrap_or(fname.span()),
+                format!("velocity `dot({target})` cannot appear in {}: it must depend on coordinates, parameters and `t` only", mode.describe()),
+            );
+            return None;
+        }
+        self.ctx.velocity(q)
+    }
+}
+
+fn arity(name: &str) -> Option<usize> {
+    Some(match name {
+        "sin" | "cos" | "tan" | "asin" | "acos" | "atan" | "sinh" | "cosh" | "tanh" | "exp"
+        | "ln" | "log" | "sqrt" | "abs" => 1,
+        "atan2" | "pow" | "powi" | "powf" => 2,
+        _ => return None,
+    })
+}
+
+/// A decimal literal as an exact rational: `9.81` → 981/100, `1e-3` → 1/1000.
+/// Exactness matters: `0.1 * 10` must fold to 1, not to 1.0000000000000002.
+fn decimal(ctx: &mut Context, digits: &str) -> Option<Sym> {
+    let (mantissa, exp) = match digits.find(['e', 'E']) {
+        Some(i) => (&digits[..i], digits[i + 1..].parse::<i32>().ok()?),
+        None => (digits, 0),
+    };
+    let (int_part, frac_part) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let all: String = format!("{int_part}{frac_part}");
+    let mut num: i64 = all.parse().ok()?;
+    let mut scale = exp - frac_part.len() as i32;
+    let mut den: i64 = 1;
+    while scale > 0 {
+        num = num.checked_mul(10)?;
+        scale -= 1;
+    }
+    while scale < 0 {
+        den = den.checked_mul(10)?;
+        scale += 1;
+    }
+    Some(ctx.rational(num, den))
+}
+
+/// The span of an expression, for errors raised after lowering.
+pub fn span_of(e: &Expr) -> proc_macro2::Span {
+    e.span()
+}

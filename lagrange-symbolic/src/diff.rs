@@ -1,0 +1,237 @@
+//! Calculus and structural queries: partial and total time derivatives,
+//! substitution, polynomial degree.
+
+use std::collections::HashMap;
+
+use crate::context::Context;
+use crate::node::{Expr, Func, Node, SymbolKind};
+use crate::rational::Num;
+
+impl Context {
+    /// `∂e/∂wrt`. `wrt` must be a symbol expression (otherwise the result is
+    /// zero). Memoised per `(e, wrt)`; subtrees not containing `wrt` are
+    /// skipped in O(log n). Products stay factored (product rule, no
+    /// expansion).
+    pub fn diff(&mut self, e: Expr, wrt: Expr) -> Expr {
+        if !self.depends_on(e, wrt) {
+            return self.int(0);
+        }
+        if let Some(&d) = self.diff_memo.get(&(e, wrt)) {
+            return d;
+        }
+        let d = self.diff_node(e, wrt);
+        self.diff_memo.insert((e, wrt), d);
+        d
+    }
+
+    fn diff_node(&mut self, e: Expr, wrt: Expr) -> Expr {
+        match self.node(e).clone() {
+            Node::Const(_) | Node::Float(_) => self.int(0),
+            Node::Sym(_) => self.int(if e == wrt { 1 } else { 0 }),
+            Node::Add(terms) => {
+                let ds: Vec<Expr> = terms.iter().map(|&t| self.diff(t, wrt)).collect();
+                self.sum(&ds)
+            }
+            Node::Mul(factors) => {
+                let mut terms = Vec::new();
+                for (i, &f) in factors.iter().enumerate() {
+                    if !self.depends_on(f, wrt) {
+                        continue;
+                    }
+                    let mut parts = factors.to_vec();
+                    parts[i] = self.diff(f, wrt);
+                    terms.push(self.product(&parts));
+                }
+                self.sum(&terms)
+            }
+            Node::Pow(b, x) => self.diff_pow(b, x, wrt),
+            Node::Call(f, u) => {
+                let du = self.diff(u, wrt);
+                let outer = self.func_derivative(f, u);
+                self.mul(outer, du)
+            }
+            Node::Atan2(y, x) => {
+                // d atan2(y, x) = (x dy - y dx) / (x² + y²)
+                let (dy, dx) = (self.diff(y, wrt), self.diff(x, wrt));
+                let a = self.mul(x, dy);
+                let b = self.mul(y, dx);
+                let num = self.sub(a, b);
+                let (x2, y2) = (self.powi(x, 2), self.powi(y, 2));
+                let den = self.add(x2, y2);
+                self.div(num, den)
+            }
+        }
+    }
+
+    fn diff_pow(&mut self, b: Expr, x: Expr, wrt: Expr) -> Expr {
+        let db = self.diff(b, wrt);
+        if !self.depends_on(x, wrt) {
+            // d b^x = x b^(x-1) db
+            let one = self.int(1);
+            let xm1 = self.sub(x, one);
+            let p = self.pow(b, xm1);
+            return self.product(&[x, p, db]);
+        }
+        // d b^x = b^x (dx ln b + x db / b)
+        let dx = self.diff(x, wrt);
+        let ln_b = self.func(Func::Ln, b);
+        let t1 = self.mul(dx, ln_b);
+        let q = self.div(db, b);
+        let t2 = self.mul(x, q);
+        let s = self.add(t1, t2);
+        let p = self.pow(b, x);
+        self.mul(p, s)
+    }
+
+    /// `f'(u)` as an expression in `u`.
+    fn func_derivative(&mut self, f: Func, u: Expr) -> Expr {
+        let one = self.int(1);
+        let half = self.rational(1, 2);
+        let m_half = self.rational(-1, 2);
+        match f {
+            Func::Sin => self.cos(u),
+            Func::Cos => {
+                let s = self.sin(u);
+                self.neg(s)
+            }
+            Func::Tan => {
+                let t = self.func(Func::Tan, u);
+                let t2 = self.powi(t, 2);
+                self.add(one, t2)
+            }
+            Func::Asin | Func::Acos => {
+                let u2 = self.powi(u, 2);
+                let r = self.sub(one, u2);
+                let d = self.pow(r, m_half);
+                if f == Func::Asin { d } else { self.neg(d) }
+            }
+            Func::Atan => {
+                let u2 = self.powi(u, 2);
+                let r = self.add(one, u2);
+                self.powi(r, -1)
+            }
+            Func::Sinh => self.func(Func::Cosh, u),
+            Func::Cosh => self.func(Func::Sinh, u),
+            Func::Tanh => {
+                let t = self.func(Func::Tanh, u);
+                let t2 = self.powi(t, 2);
+                self.sub(one, t2)
+            }
+            Func::Exp => self.func(Func::Exp, u),
+            Func::Ln => self.powi(u, -1),
+            Func::Sqrt => {
+                let p = self.pow(u, m_half);
+                self.mul(half, p)
+            }
+            Func::Abs => {
+                // sign(u) = u / |u| (undefined at 0, like the derivative)
+                let a = self.func(Func::Abs, u);
+                self.div(u, a)
+            }
+        }
+    }
+
+    /// The total time derivative `d/dt = ∂/∂t + Σ q̇ ∂/∂q + Σ q̈ ∂/∂q̇`.
+    ///
+    /// Accelerations are treated as having zero derivative (there is no jerk
+    /// symbol); mechanics never differentiates an expression containing `q̈`.
+    pub fn time_derivative(&mut self, e: Expr) -> Expr {
+        let syms: Vec<_> = self.free_slice(e).to_vec();
+        let mut terms = Vec::new();
+        for s in syms {
+            let x = self.symbol_expr(s);
+            let rate = match self.symbol_kind(s) {
+                SymbolKind::Time => Some(self.int(1)),
+                SymbolKind::Coordinate(_) => self.velocity(x),
+                SymbolKind::Velocity(i) => self.accelerations().get(i).copied(),
+                _ => None,
+            };
+            if let Some(rate) = rate {
+                let d = self.diff(e, x);
+                terms.push(self.mul(rate, d));
+            }
+        }
+        self.sum(&terms)
+    }
+
+    /// Replace symbols: each `(symbol expr, replacement)` pair in `map`.
+    /// Non-symbol keys are ignored. Subtrees without any mapped symbol are
+    /// returned as they are.
+    pub fn substitute(&mut self, e: Expr, map: &[(Expr, Expr)]) -> Expr {
+        let table: HashMap<Expr, Expr> = map
+            .iter()
+            .filter(|(k, _)| self.as_symbol(*k).is_some())
+            .copied()
+            .collect();
+        if table.is_empty() {
+            return e;
+        }
+        let keys: Vec<_> = table.keys().filter_map(|&k| self.as_symbol(k)).collect();
+        let mut memo = HashMap::new();
+        self.substitute_in(e, &table, &keys, &mut memo)
+    }
+
+    fn substitute_in(
+        &mut self,
+        e: Expr,
+        table: &HashMap<Expr, Expr>,
+        keys: &[crate::Symbol],
+        memo: &mut HashMap<Expr, Expr>,
+    ) -> Expr {
+        if let Some(&r) = table.get(&e) {
+            return r;
+        }
+        let free = self.free_slice(e);
+        if !keys.iter().any(|k| free.binary_search(k).is_ok()) {
+            return e;
+        }
+        if let Some(&r) = memo.get(&e) {
+            return r;
+        }
+        let r = self.rebuild(e, |cx, c| cx.substitute_in(c, table, keys, memo));
+        memo.insert(e, r);
+        r
+    }
+
+    /// Total polynomial degree of `e` in the symbols `syms`; `None` if `e` is
+    /// not a polynomial in them (a symbol under a function, a negative or
+    /// fractional power, or a symbolic exponent).
+    pub fn degree_in(&self, e: Expr, syms: &[Expr]) -> Option<u32> {
+        let wanted: Vec<_> = syms.iter().filter_map(|&s| self.as_symbol(s)).collect();
+        let mut memo = HashMap::new();
+        self.degree(e, &wanted, &mut memo)
+    }
+
+    fn degree(
+        &self,
+        e: Expr,
+        wanted: &[crate::Symbol],
+        memo: &mut HashMap<Expr, Option<u32>>,
+    ) -> Option<u32> {
+        let free = self.free_slice(e);
+        if !wanted.iter().any(|s| free.binary_search(s).is_ok()) {
+            return Some(0);
+        }
+        if let Some(&d) = memo.get(&e) {
+            return d;
+        }
+        let d = match self.node(e) {
+            Node::Const(_) | Node::Float(_) => Some(0),
+            Node::Sym(_) => Some(1),
+            Node::Add(ts) => ts
+                .iter()
+                .try_fold(0u32, |acc, &t| Some(acc.max(self.degree(t, wanted, memo)?))),
+            Node::Mul(fs) => fs.iter().try_fold(0u32, |acc, &f| {
+                acc.checked_add(self.degree(f, wanted, memo)?)
+            }),
+            &Node::Pow(b, x) => {
+                let n = self.num(x).and_then(Num::as_integer).filter(|n| *n >= 0)?;
+                self.degree(b, wanted, memo)?
+                    .checked_mul(u32::try_from(n).ok()?)
+            }
+            Node::Call(..) | Node::Atan2(..) => None,
+        };
+        memo.insert(e, d);
+        d
+    }
+}

@@ -1,0 +1,213 @@
+//! Straight-line programs: cost model, sharing, emission, and the target
+//! workload (the n-link planar pendulum).
+
+use lagrange_symbolic::{Context, EmitConfig, Expr, Program, Symbol};
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// Mass matrix (upper triangle, row-major) and bias `h = Σ m Jᵀ κ + ∂V/∂q`
+/// of an n-link planar pendulum with absolute angles, built the way the
+/// mechanics stage does (Jacobians by `diff`, κ by `time_derivative`).
+fn pendulum(cx: &mut Context, n: usize) -> (Vec<Expr>, Vec<Expr>) {
+    let q: Vec<Expr> = (0..n)
+        .map(|i| cx.coordinate(&format!("theta{i}")))
+        .collect();
+    let m: Vec<Expr> = (0..n).map(|i| cx.parameter(&format!("m{i}"))).collect();
+    let l: Vec<Expr> = (0..n).map(|i| cx.parameter(&format!("l{i}"))).collect();
+    let g = cx.parameter("g");
+    let accel_zero: Vec<(Expr, Expr)> = {
+        let z = cx.zero();
+        cx.accelerations().into_iter().map(|a| (a, z)).collect()
+    };
+    let (mut xs, mut ys) = (Vec::new(), Vec::new());
+    let (mut x, mut y) = (cx.zero(), cx.zero());
+    for i in 0..n {
+        let s = cx.sin(q[i]);
+        let c = cx.cos(q[i]);
+        let ls = cx.mul(l[i], s);
+        let lc = cx.mul(l[i], c);
+        x = cx.add(x, ls);
+        y = cx.sub(y, lc);
+        xs.push(x);
+        ys.push(y);
+    }
+    let mut mass = Vec::new();
+    for i in 0..n {
+        for j in i..n {
+            let mut terms = Vec::new();
+            for nu in 0..n {
+                let (jxi, jxj) = (cx.diff(xs[nu], q[i]), cx.diff(xs[nu], q[j]));
+                let (jyi, jyj) = (cx.diff(ys[nu], q[i]), cx.diff(ys[nu], q[j]));
+                let a = cx.mul(jxi, jxj);
+                let b = cx.mul(jyi, jyj);
+                let s = cx.add(a, b);
+                terms.push(cx.mul(m[nu], s));
+            }
+            let e = cx.sum(&terms);
+            mass.push(e);
+        }
+    }
+    let mut bias = Vec::new();
+    for &qi in &q {
+        let mut terms = Vec::new();
+        for nu in 0..n {
+            for pos in [xs[nu], ys[nu]] {
+                let v = cx.time_derivative(pos);
+                let a = cx.time_derivative(v);
+                let kappa = cx.substitute(a, &accel_zero);
+                let jac = cx.diff(pos, qi);
+                let t = cx.product(&[m[nu], jac, kappa]);
+                terms.push(t);
+            }
+            let dy = cx.diff(ys[nu], qi);
+            terms.push(cx.product(&[m[nu], g, dy]));
+        }
+        bias.push(cx.sum(&terms));
+    }
+    (mass, bias)
+}
+
+fn env(s: Symbol) -> f64 {
+    0.3 + 0.17 * (s.index() as f64 * 1.3).sin() + 0.05 * s.index() as f64
+}
+
+fn assert_close(a: f64, b: f64) {
+    assert!(
+        (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs())),
+        "{a} vs {b}"
+    );
+}
+
+fn optimised(cx: &mut Context, exprs: &[Expr]) -> Vec<Expr> {
+    exprs
+        .iter()
+        .map(|&e| {
+            let t = cx.expand_trig(e);
+            let s = cx.simplify(t);
+            cx.collect(s)
+        })
+        .collect()
+}
+
+fn check_chain(n: usize) -> (usize, usize, usize) {
+    let mut cx = Context::new();
+    let (mass, bias) = pendulum(&mut cx, n);
+    let raw: Vec<Expr> = mass.iter().chain(&bias).copied().collect();
+    let naive = Program::new(&cx, &raw).op_count();
+    let opt = optimised(&mut cx, &raw);
+    let mass_prog = Program::new(&cx, &opt[..mass.len()]);
+    let prog = Program::new(&cx, &opt);
+    let want: Vec<f64> = raw.iter().map(|&e| cx.eval(e, &env)).collect();
+    for (a, b) in prog.eval(&cx, &env).into_iter().zip(want) {
+        assert_close(a, b);
+    }
+    let ops = prog.op_count();
+    assert_eq!(
+        ops.call,
+        2 * n,
+        "one sin and one cos per coordinate: {ops:?}"
+    );
+    (mass_prog.op_count().total(), ops.total(), naive.total())
+}
+
+#[test]
+fn three_link_pendulum_is_cheap_and_exact() {
+    let (mass, all, naive) = check_chain(3);
+    eprintln!("3-link: M {mass} ops, M + h {all} ops (uncollected {naive})");
+    assert!(mass <= 40, "M: {mass}");
+    assert!(all <= 100, "M + h: {all}");
+}
+
+#[test]
+fn ten_link_pendulum_lands_near_target() {
+    let (mass, all, naive) = check_chain(10);
+    eprintln!("10-link: M {mass} ops, M + h {all} ops (uncollected {naive})");
+    assert!(mass <= 400, "M: {mass}");
+    assert!(all <= 700, "M + h: {all}");
+}
+
+#[test]
+fn cost_model() {
+    let mut cx = Context::new();
+    let x = cx.free_symbol("x");
+    let y = cx.free_symbol("y");
+    let x4 = cx.powi(x, 4);
+    let x3 = cx.powi(x, 3);
+    let x2 = cx.powi(x, 2);
+    // x^2, x^3, x^4 share the square: 3 multiplications in all
+    let p = Program::new(&cx, &[x2, x3, x4]);
+    assert_eq!(p.op_count().mul, 3);
+    // x - y is one subtraction, -x one negation, x/y one division
+    let d = cx.sub(x, y);
+    let n = cx.neg(x);
+    let q = cx.div(x, y);
+    let p = Program::new(&cx, &[d, n, q]);
+    let c = p.op_count();
+    assert_eq!((c.add, c.mul, c.div, c.call), (2, 0, 1, 0));
+    // 3·x·y: one multiply by the literal; y - 3xy shares 3xy
+    let three = cx.int(3);
+    let t = cx.product(&[three, x, y]);
+    let u = cx.sub(y, t);
+    let p = Program::new(&cx, &[t, u]);
+    assert_eq!(p.op_count().total(), 3);
+    // sqrt and its reciprocal
+    let r = cx.sqrt(x);
+    let ri = cx.powi(r, -1);
+    let p = Program::new(&cx, &[r, ri]);
+    let c = p.op_count();
+    assert_eq!((c.call, c.div), (1, 1));
+    let vals = p.eval(&cx, &|_| 4.0);
+    assert_eq!(vals, vec![2.0, 0.5]);
+    // constants and symbols cost nothing
+    let p = Program::new(&cx, &[x, three]);
+    assert_eq!(p.op_count().total(), 0);
+}
+
+#[test]
+fn emission_is_deterministic_and_reads_well() {
+    let build = || {
+        let mut cx = Context::new();
+        let th = cx.coordinate("theta");
+        let l = cx.parameter("l");
+        let m = cx.parameter("m");
+        let s = cx.sin(th);
+        let c = cx.cos(th);
+        let ls = cx.mul(l, s);
+        let half = cx.rational(1, 2);
+        let e1 = cx.product(&[half, m, ls, ls]);
+        let e2 = cx.sub(ls, c);
+        let e3 = cx.neg(c);
+        let prog = Program::new(&cx, &[e1, e2, e3, m]);
+        let symbol = |s: Symbol| match s.index() {
+            0 => quote!(q[0]),
+            i => {
+                let id = proc_macro2::Ident::new(&format!("p{i}"), proc_macro2::Span::call_site());
+                quote!(self.#id)
+            }
+        };
+        let constant = |v: f64| {
+            let lit = proc_macro2::Literal::f64_suffixed(v);
+            quote!(#lit)
+        };
+        let function: TokenStream = quote!(::lagrange::__private::func);
+        let cfg = EmitConfig {
+            symbol: &symbol,
+            constant: &constant,
+            function: &function,
+            temp_prefix: "_t",
+        };
+        let (body, outs) = prog.emit(&cx, &cfg);
+        let outs: Vec<String> = outs.iter().map(|o| o.to_string()).collect();
+        (body.to_string(), outs)
+    };
+    let (body, outs) = build();
+    assert_eq!(build(), (body.clone(), outs.clone()));
+    assert_eq!(
+        body,
+        "let _t0 = self . p3 * self . p3 ; let _t1 = :: lagrange :: __private :: func :: sin (q [0]) ; \
+         let _t2 = _t1 * _t1 ; let _t3 = self . p4 * _t0 ; let _t4 = _t2 * _t3 ; let _t5 = 0.5f64 * _t4 ; \
+         let _t6 = self . p3 * _t1 ; let _t7 = :: lagrange :: __private :: func :: cos (q [0]) ; \
+         let _t8 = _t6 - _t7 ; let _t9 = - _t7 ;"
+    );
+    assert_eq!(outs, vec!["_t5", "_t8", "_t9", "self . p4"]);
+}

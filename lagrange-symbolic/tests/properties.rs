@@ -1,0 +1,187 @@
+//! Property tests over random expression trees: derivatives against finite
+//! differences, value preservation of every rewrite, hash-consing.
+
+use lagrange_symbolic::{Context, Expr, Func, Program, Symbol};
+use proptest::prelude::*;
+
+/// A random expression over three symbols. Domains are kept safe by
+/// construction: logarithms, roots and denominators see `u² + 1`.
+#[derive(Clone, Debug)]
+enum Tree {
+    Sym(usize),
+    Int(i64),
+    Half,
+    Add(Box<Tree>, Box<Tree>),
+    Sub(Box<Tree>, Box<Tree>),
+    Mul(Box<Tree>, Box<Tree>),
+    DivSafe(Box<Tree>, Box<Tree>),
+    Powi(Box<Tree>, i64),
+    Call(Func, Box<Tree>),
+    SqrtSafe(Box<Tree>),
+    LnSafe(Box<Tree>),
+    Atan2Safe(Box<Tree>, Box<Tree>),
+}
+
+fn tree() -> impl Strategy<Value = Tree> {
+    let leaf = prop_oneof![
+        (0usize..3).prop_map(Tree::Sym),
+        (-3i64..=3).prop_map(Tree::Int),
+        Just(Tree::Half),
+    ];
+    leaf.prop_recursive(4, 24, 2, |inner| {
+        let b = || inner.clone().prop_map(Box::new);
+        prop_oneof![
+            (b(), b()).prop_map(|(a, c)| Tree::Add(a, c)),
+            (b(), b()).prop_map(|(a, c)| Tree::Sub(a, c)),
+            (b(), b()).prop_map(|(a, c)| Tree::Mul(a, c)),
+            (b(), b()).prop_map(|(a, c)| Tree::DivSafe(a, c)),
+            (b(), -2i64..=3).prop_map(|(a, n)| Tree::Powi(a, n)),
+            (
+                prop_oneof![
+                    Just(Func::Sin),
+                    Just(Func::Cos),
+                    Just(Func::Atan),
+                    Just(Func::Tanh)
+                ],
+                b()
+            )
+                .prop_map(|(f, a)| Tree::Call(f, a)),
+            b().prop_map(Tree::SqrtSafe),
+            b().prop_map(Tree::LnSafe),
+            (b(), b()).prop_map(|(a, c)| Tree::Atan2Safe(a, c)),
+        ]
+    })
+}
+
+fn safe(cx: &mut Context, u: Expr) -> Expr {
+    let u2 = cx.powi(u, 2);
+    let one = cx.one();
+    cx.add(u2, one)
+}
+
+fn build(cx: &mut Context, syms: &[Expr], t: &Tree) -> Expr {
+    match t {
+        Tree::Sym(i) => syms[*i],
+        Tree::Int(v) => cx.int(*v),
+        Tree::Half => cx.rational(1, 2),
+        Tree::Add(a, b) => {
+            let (a, b) = (build(cx, syms, a), build(cx, syms, b));
+            cx.add(a, b)
+        }
+        Tree::Sub(a, b) => {
+            let (a, b) = (build(cx, syms, a), build(cx, syms, b));
+            cx.sub(a, b)
+        }
+        Tree::Mul(a, b) => {
+            let (a, b) = (build(cx, syms, a), build(cx, syms, b));
+            cx.mul(a, b)
+        }
+        Tree::DivSafe(a, b) => {
+            let (a, b) = (build(cx, syms, a), build(cx, syms, b));
+            let d = safe(cx, b);
+            cx.div(a, d)
+        }
+        Tree::Powi(a, n) => {
+            let a = build(cx, syms, a);
+            if *n < 0 {
+                let d = safe(cx, a);
+                cx.powi(d, *n)
+            } else {
+                cx.powi(a, *n)
+            }
+        }
+        Tree::Call(f, a) => {
+            let a = build(cx, syms, a);
+            cx.func(*f, a)
+        }
+        Tree::SqrtSafe(a) => {
+            let a = build(cx, syms, a);
+            let d = safe(cx, a);
+            cx.sqrt(d)
+        }
+        Tree::LnSafe(a) => {
+            let a = build(cx, syms, a);
+            let d = safe(cx, a);
+            cx.func(Func::Ln, d)
+        }
+        Tree::Atan2Safe(a, b) => {
+            let (a, b) = (build(cx, syms, a), build(cx, syms, b));
+            let d = safe(cx, b);
+            cx.atan2(a, d)
+        }
+    }
+}
+
+fn setup() -> (Context, Vec<Expr>) {
+    let mut cx = Context::new();
+    let q = cx.coordinate("q");
+    let p = cx.parameter("p");
+    let x = cx.free_symbol("x");
+    (cx, vec![q, p, x])
+}
+
+fn point(cx: &Context, syms: &[Expr], vals: [f64; 3]) -> impl Fn(Symbol) -> f64 + use<> {
+    let ids: Vec<Symbol> = syms.iter().map(|&s| cx.as_symbol(s).unwrap()).collect();
+    move |s| ids.iter().position(|&i| i == s).map_or(0.0, |k| vals[k])
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    if !a.is_finite() || !b.is_finite() || a.abs() > 1e8 || b.abs() > 1e8 {
+        return true;
+    }
+    (a - b).abs() <= tol * (1.0 + a.abs().max(b.abs()))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, .. ProptestConfig::default() })]
+
+    #[test]
+    fn diff_matches_finite_differences(t in tree(), vals in prop::array::uniform3(-2.0f64..2.0), k in 0usize..3) {
+        let (mut cx, syms) = setup();
+        let e = build(&mut cx, &syms, &t);
+        let d = cx.diff(e, syms[k]);
+        let h = 1e-5;
+        let mut plus = vals;
+        plus[k] += h;
+        let mut minus = vals;
+        minus[k] -= h;
+        let fd = (cx.eval(e, &point(&cx, &syms, plus)) - cx.eval(e, &point(&cx, &syms, minus))) / (2.0 * h);
+        let exact = cx.eval(d, &point(&cx, &syms, vals));
+        prop_assert!(close(exact, fd, 1e-4), "d/d{k} {} = {} -> {exact} vs fd {fd}", cx.display(e), cx.display(d));
+    }
+
+    #[test]
+    fn rewrites_and_programs_preserve_value(t in tree(), vals in prop::array::uniform3(-2.0f64..2.0)) {
+        let (mut cx, syms) = setup();
+        let e = build(&mut cx, &syms, &t);
+        let env = point(&cx, &syms, vals);
+        let v = cx.eval(e, &env);
+        let rewritten = [cx.simplify(e), cx.collect(e), cx.expand_trig(e), cx.expand(e)];
+        for r in rewritten {
+            let w = cx.eval(r, &env);
+            prop_assert!(close(v, w, 1e-7), "{} = {v} but {} = {w}", cx.display(e), cx.display(r));
+        }
+        let de = cx.diff(e, syms[0]);
+        let prog = Program::new(&cx, &[e, de, rewritten[1]]);
+        let out = prog.eval(&cx, &env);
+        prop_assert!(close(out[0], v, 1e-9), "program {} vs {v}", out[0]);
+        prop_assert!(close(out[1], cx.eval(de, &env), 1e-9));
+        prop_assert!(close(out[2], v, 1e-7));
+    }
+
+    #[test]
+    fn hash_consing_and_determinism(t in tree()) {
+        let (mut cx, syms) = setup();
+        let a = build(&mut cx, &syms, &t);
+        let n = cx.len();
+        let b = build(&mut cx, &syms, &t);
+        prop_assert_eq!(a, b);
+        prop_assert_eq!(cx.len(), n, "rebuilding must not create nodes");
+        let (mut cx2, syms2) = setup();
+        let c = build(&mut cx2, &syms2, &t);
+        prop_assert_eq!(a, c);
+        prop_assert_eq!(cx.display(a), cx2.display(c));
+        let (p1, p2) = (Program::new(&cx, &[a]), Program::new(&cx2, &[c]));
+        prop_assert_eq!(format!("{:?}", p1), format!("{:?}", p2));
+    }
+}
