@@ -15,7 +15,10 @@ fn derive(c: &mut Criterion) {
     for n in 1..=10 {
         let input: syn::DeriveInput = syn::parse_str(&n_link_source(n)).expect("source parses");
         let model = lagrange_codegen::model(&input).expect("derivation succeeds");
-        let mut outputs: Vec<_> = (0..n).flat_map(|i| (i..n).map(move |j| (i, j))).map(|(i, j)| model.mass[i][j]).collect();
+        let mut outputs: Vec<_> = (0..n)
+            .flat_map(|i| (i..n).map(move |j| (i, j)))
+            .map(|(i, j)| model.mass[i][j])
+            .collect();
         outputs.extend(&model.rhs);
         let ops = Program::new(&model.ctx, &outputs).op_count();
         println!(

@@ -9,13 +9,12 @@ use syn::punctuated::Punctuated;
 use syn::spanned::Spanned;
 use syn::{Data, DeriveInput, Expr, Fields, GenericParam, Ident, Token, Type};
 
-use crate::ast::{
-    Definition, Force, GeneralizedForce, Parameter, Point, Scalar, System,
-};
+use crate::ast::{Definition, Force, GeneralizedForce, Parameter, Point, Scalar, System};
 use crate::ctxt::Ctxt;
 
 /// Keys accepted at the top level of `#[lagrange(...)]`, for the "unknown key" message.
-const KEYS: &str = "coordinates, define, point, gravity, potential, force, generalized_force, dissipation";
+const KEYS: &str =
+    "coordinates, define, point, gravity, potential, force, generalized_force, dissipation";
 
 /// One top-level item of the attribute.
 enum Item {
@@ -121,12 +120,17 @@ fn parse_point(input: ParseStream, key: Ident) -> syn::Result<Point> {
             other => {
                 return Err(syn::Error::new(
                     k.span(),
-                    format!("unknown key `{other}` in point `{name}`; expected `mass = ...` or `at = [...]`"),
+                    format!(
+                        "unknown key `{other}` in point `{name}`; expected `mass = ...` or `at = [...]`"
+                    ),
                 ));
             }
         };
         if slot.is_some() {
-            return Err(syn::Error::new(k.span(), format!("`{k}` given twice for point `{name}`")));
+            return Err(syn::Error::new(
+                k.span(),
+                format!("`{k}` given twice for point `{name}`"),
+            ));
         }
         *slot = Some(v);
     }
@@ -223,7 +227,10 @@ fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
 
 fn set_once(cx: &Ctxt, slot: &mut Option<Expr>, key: Ident, value: Expr) {
     if slot.is_some() {
-        cx.error_at(key.span(), format!("`{key}` given twice; write it once (sums are allowed)"));
+        cx.error_at(
+            key.span(),
+            format!("`{key}` given twice; write it once (sums are allowed)"),
+        );
     } else {
         *slot = Some(value);
     }
@@ -248,7 +255,9 @@ fn parse_fields(
     let mut scalar: Option<(Scalar, Span)> = None;
     let mut parameters = Vec::new();
     for field in fields.into_iter().flat_map(|f| f.named.iter()) {
-        let Some(name) = field.ident.clone() else { continue };
+        let Some(name) = field.ident.clone() else {
+            continue;
+        };
         let Some(this) = scalar_of(&field.ty, &type_params) else {
             cx.error_spanned_by(
                 &field.ty,
@@ -289,7 +298,7 @@ fn scalar_of(ty: &Type, type_params: &[&Ident]) -> Option<Scalar> {
         Some(Scalar::F64)
     } else if ident == "f32" {
         Some(Scalar::F32)
-    } else if type_params.iter().any(|t| *t == ident) {
+    } else if type_params.contains(&ident) {
         Some(Scalar::Generic(ident.clone()))
     } else {
         None

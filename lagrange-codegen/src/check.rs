@@ -88,7 +88,10 @@ pub fn vector_len(cx: &Ctxt, expr: &Expr, what: &str) -> Option<usize> {
             }
         }
         _ => {
-            cx.error_spanned_by(expr, format!("{what} must be a vector `[x, y]` or `[x, y, z]`"));
+            cx.error_spanned_by(
+                expr,
+                format!("{what} must be a vector `[x, y]` or `[x, y, z]`"),
+            );
             None
         }
     }
@@ -125,7 +128,10 @@ fn check_force_targets(cx: &Ctxt, system: &System) {
         if !system.points.iter().any(|p| p.name == f.point) {
             cx.error_at(
                 f.point.span(),
-                format!("force on unknown point `{}`; points are declared with `point(name, ...)`", f.point),
+                format!(
+                    "force on unknown point `{}`; points are declared with `point(name, ...)`",
+                    f.point
+                ),
             );
         }
     }
@@ -133,7 +139,10 @@ fn check_force_targets(cx: &Ctxt, system: &System) {
         if !system.coordinates.contains(&g.coordinate) {
             cx.error_at(
                 g.coordinate.span(),
-                format!("generalized force for unknown coordinate `{}`", g.coordinate),
+                format!(
+                    "generalized force for unknown coordinate `{}`",
+                    g.coordinate
+                ),
             );
         }
     }

@@ -40,7 +40,12 @@ impl Ctxt {
 
     /// All errors collected so far, combined into one (in the order they were found).
     pub fn take(&self) -> Option<syn::Error> {
-        let mut errors = self.errors.borrow_mut().drain(..).collect::<Vec<_>>().into_iter();
+        let mut errors = self
+            .errors
+            .borrow_mut()
+            .drain(..)
+            .collect::<Vec<_>>()
+            .into_iter();
         let mut first = errors.next()?;
         for e in errors {
             first.combine(e);
@@ -50,6 +55,8 @@ impl Ctxt {
 
     /// The errors as `compile_error!` invocations.
     pub fn to_compile_errors(&self) -> TokenStream {
-        self.take().map(|e| e.to_compile_error()).unwrap_or_default()
+        self.take()
+            .map(|e| e.to_compile_error())
+            .unwrap_or_default()
     }
 }

@@ -71,13 +71,20 @@ impl Emitter<'_> {
             }
             // Lowering never lets accelerations or free symbols into the model.
             SymbolKind::Acceleration(_) | SymbolKind::Free => {
-                quote!(::core::compile_error!("internal: unexpected symbol in generated code"))
+                quote!(::core::compile_error!(
+                    "internal: unexpected symbol in generated code"
+                ))
             }
         };
         let scalar = self.scalar;
         let constant = |v: f64| constant(scalar, v);
         let function = quote!(::lagrange::__private::func);
-        let cfg = EmitConfig { symbol: &symbol, constant: &constant, function: &function, temp_prefix: "_t" };
+        let cfg = EmitConfig {
+            symbol: &symbol,
+            constant: &constant,
+            function: &function,
+            temp_prefix: "_t",
+        };
         program.emit(ctx, &cfg)
     }
 
@@ -101,7 +108,10 @@ impl Emitter<'_> {
 
     fn upper(&self) -> Vec<Sym> {
         let n = self.model.dof();
-        (0..n).flat_map(|i| (i..n).map(move |j| (i, j))).map(|(i, j)| self.model.mass[i][j]).collect()
+        (0..n)
+            .flat_map(|i| (i..n).map(move |j| (i, j)))
+            .map(|(i, j)| self.model.mass[i][j])
+            .collect()
     }
 
     fn vector_body(&self, outputs: &[Sym], s: &TokenStream, n: &Literal) -> TokenStream {
@@ -114,7 +124,10 @@ impl Emitter<'_> {
 }
 
 pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
-    let e = Emitter { model, scalar: &system.scalar };
+    let e = Emitter {
+        model,
+        scalar: &system.scalar,
+    };
     let s = scalar_tokens(&system.scalar);
     let n = model.dof();
     let nl = Literal::usize_unsuffixed(n);
@@ -143,7 +156,8 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let (impl_generics, ty_generics, where_clause) = system.generics.split_for_impl();
     let where_clause = real_bound(system, where_clause);
     let docs = doc::equations(model);
-    let impl_doc = format!("Equations of motion derived by `#[derive(Lagrangian)]`.\n\n```text\n{docs}```");
+    let impl_doc =
+        format!("Equations of motion derived by `#[derive(Lagrangian)]`.\n\n```text\n{docs}```");
 
     let vec_t = quote!(::lagrange::__private::SVector<#s, #nl>);
     let mat_t = quote!(::lagrange::__private::SMatrix<#s, #nl, #nl>);
@@ -216,7 +230,9 @@ fn real_bound(system: &System, where_clause: Option<&syn::WhereClause>) -> Token
     });
     match &system.scalar {
         Scalar::Generic(t) => {
-            let sep = preds.as_ref().map(|p| if p.is_empty() { quote!() } else { quote!(,) });
+            let sep = preds
+                .as_ref()
+                .map(|p| if p.is_empty() { quote!() } else { quote!(,) });
             quote!(where #preds #sep #t: ::lagrange::__private::Real)
         }
         _ => match where_clause {

@@ -12,8 +12,8 @@
 //! `compile_error!`s plus a stub impl, never a panic.
 
 pub mod ast;
-pub mod chain;
 pub mod attr;
+pub mod chain;
 pub mod check;
 pub mod ctxt;
 pub mod doc;
@@ -64,7 +64,10 @@ pub fn model(input: &DeriveInput) -> Result<Model, syn::Error> {
     match (model, cx.take()) {
         (Some(m), None) => Ok(m),
         (_, Some(e)) => Err(e),
-        (None, None) => Err(syn::Error::new(input.ident.span(), "could not derive the equations")),
+        (None, None) => Err(syn::Error::new(
+            input.ident.span(),
+            "could not derive the equations",
+        )),
     }
 }
 
@@ -93,12 +96,25 @@ fn lower_system(cx: &Ctxt, system: &ast::System) -> Option<Lowered> {
         let mass = lw.expr(&p.mass, Mode::Constant);
         let position = lw.vector(&p.at, Mode::Configuration);
         if let (Some(mass), Some(position)) = (mass, position) {
-            points.push(PointModel { name: p.name.to_string(), mass, position });
+            points.push(PointModel {
+                name: p.name.to_string(),
+                mass,
+                position,
+            });
         }
     }
-    let gravity = system.gravity.as_ref().and_then(|g| lw.vector(g, Mode::Configuration));
-    let potential = system.potential.as_ref().and_then(|v| lw.expr(v, Mode::Configuration));
-    let dissipation = system.dissipation.as_ref().and_then(|d| lw.expr(d, Mode::State));
+    let gravity = system
+        .gravity
+        .as_ref()
+        .and_then(|g| lw.vector(g, Mode::Configuration));
+    let potential = system
+        .potential
+        .as_ref()
+        .and_then(|v| lw.expr(v, Mode::Configuration));
+    let dissipation = system
+        .dissipation
+        .as_ref()
+        .and_then(|d| lw.expr(d, Mode::State));
     let mut forces = Vec::new();
     for f in &system.forces {
         let target = system.points.iter().position(|p| p.name == f.point);
@@ -119,7 +135,11 @@ fn lower_system(cx: &Ctxt, system: &ast::System) -> Option<Lowered> {
     Some(Lowered {
         ctx: lw.ctx,
         coordinates: system.coordinates.iter().map(|c| c.to_string()).collect(),
-        parameters: system.parameters.iter().map(|p| p.name.to_string()).collect(),
+        parameters: system
+            .parameters
+            .iter()
+            .map(|p| p.name.to_string())
+            .collect(),
         points,
         gravity,
         potential,

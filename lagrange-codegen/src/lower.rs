@@ -39,7 +39,11 @@ impl Mode {
 enum Binding {
     Coordinate(Sym),
     Parameter(Sym),
-    Definition { value: Sym, has_velocity: bool, has_state: bool },
+    Definition {
+        value: Sym,
+        has_velocity: bool,
+        has_state: bool,
+    },
 }
 
 /// Names in scope and the context the expressions are built in.
@@ -49,14 +53,17 @@ pub struct Lowerer<'a> {
     scope: BTreeMap<String, Binding>,
 }
 
-const FUNCTIONS: &str =
-    "sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, exp, ln, log, sqrt, abs, pow, powi, powf, dot";
+const FUNCTIONS: &str = "sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, exp, ln, log, sqrt, abs, pow, powi, powf, dot";
 
 impl<'a> Lowerer<'a> {
     pub fn new(cx: &'a Ctxt) -> Self {
         let mut ctx = Context::new();
         ctx.time();
-        Lowerer { ctx, cx, scope: BTreeMap::new() }
+        Lowerer {
+            ctx,
+            cx,
+            scope: BTreeMap::new(),
+        }
     }
 
     pub fn declare_coordinate(&mut self, name: &Ident) -> Sym {
@@ -82,7 +89,11 @@ impl<'a> Lowerer<'a> {
             let has_state = state.iter().any(|&s| self.ctx.depends_on(v, s));
             self.scope.insert(
                 name.to_string(),
-                Binding::Definition { value: v, has_velocity, has_state },
+                Binding::Definition {
+                    value: v,
+                    has_velocity,
+                    has_state,
+                },
             );
         }
     }
@@ -115,7 +126,10 @@ impl<'a> Lowerer<'a> {
             Expr::Call(c) => self.call(c, mode),
             Expr::MethodCall(m) => self.method(m, mode),
             Expr::Array(_) => {
-                self.cx.error_spanned_by(e, "a vector is not allowed here; expected a scalar expression");
+                self.cx.error_spanned_by(
+                    e,
+                    "a vector is not allowed here; expected a scalar expression",
+                );
                 None
             }
             _ => self.unsupported(e, "this kind of expression"),
@@ -135,7 +149,10 @@ impl<'a> Lowerer<'a> {
         match key.as_str() {
             "t" => {
                 if mode == Mode::Constant {
-                    self.cx.error_at(id.span(), "a mass must be constant: it cannot depend on time `t`");
+                    self.cx.error_at(
+                        id.span(),
+                        "a mass must be constant: it cannot depend on time `t`",
+                    );
                     return None;
                 }
                 return Some(self.ctx.time());
@@ -147,21 +164,38 @@ impl<'a> Lowerer<'a> {
             Some(Binding::Parameter(p)) => Some(p),
             Some(Binding::Coordinate(q)) => {
                 if mode == Mode::Constant {
-                    self.cx.error_at(id.span(), format!("a mass must be constant: it cannot depend on the coordinate `{key}`"));
+                    self.cx.error_at(
+                        id.span(),
+                        format!(
+                            "a mass must be constant: it cannot depend on the coordinate `{key}`"
+                        ),
+                    );
                     return None;
                 }
                 Some(q)
             }
-            Some(Binding::Definition { value, has_velocity, has_state }) => {
+            Some(Binding::Definition {
+                value,
+                has_velocity,
+                has_state,
+            }) => {
                 if mode == Mode::Configuration && has_velocity {
                     self.cx.error_at(
                         id.span(),
-                        format!("`{key}` depends on velocities and cannot be used in {}", mode.describe()),
+                        format!(
+                            "`{key}` depends on velocities and cannot be used in {}",
+                            mode.describe()
+                        ),
                     );
                     return None;
                 }
                 if mode == Mode::Constant && has_state {
-                    self.cx.error_at(id.span(), format!("a mass must be constant, but `{key}` depends on the state or time"));
+                    self.cx.error_at(
+                        id.span(),
+                        format!(
+                            "a mass must be constant, but `{key}` depends on the state or time"
+                        ),
+                    );
                     return None;
                 }
                 Some(value)
@@ -183,11 +217,17 @@ impl<'a> Lowerer<'a> {
             (syn::Member::Named(id), true) => match self.scope.get(&id.to_string()) {
                 Some(Binding::Parameter(p)) => Some(*p),
                 _ => {
-                    self.cx.error_at(id.span(), format!("`self.{id}` is not a parameter field of the struct"));
+                    self.cx.error_at(
+                        id.span(),
+                        format!("`self.{id}` is not a parameter field of the struct"),
+                    );
                     None
                 }
             },
-            _ => self.unsupported(&Expr::Field(f.clone()), "a field access other than `self.param`"),
+            _ => self.unsupported(
+                &Expr::Field(f.clone()),
+                "a field access other than `self.param`",
+            ),
         }
         .or_else(|| {
             let _ = mode;
@@ -204,10 +244,12 @@ impl<'a> Lowerer<'a> {
                     None
                 }
             },
-            Lit::Float(f) => Some(decimal(&mut self.ctx, f.base10_digits()).unwrap_or_else(|| {
-                let v = f.base10_parse::<f64>().unwrap_or(f64::NAN);
-                self.ctx.float(v)
-            })),
+            Lit::Float(f) => Some(
+                decimal(&mut self.ctx, f.base10_digits()).unwrap_or_else(|| {
+                    let v = f.base10_parse::<f64>().unwrap_or(f64::NAN);
+                    self.ctx.float(v)
+                }),
+            ),
             other => {
                 self.cx.error_spanned_by(other, "expected a number");
                 None
@@ -275,7 +317,11 @@ impl<'a> Lowerer<'a> {
         if args.len() != arity {
             self.cx.error_spanned_by(
                 c,
-                format!("`{name}` takes {arity} argument{}, found {}", if arity == 1 { "" } else { "s" }, args.len()),
+                format!(
+                    "`{name}` takes {arity} argument{}, found {}",
+                    if arity == 1 { "" } else { "s" },
+                    args.len()
+                ),
             );
             return None;
         }
@@ -297,7 +343,11 @@ impl<'a> Lowerer<'a> {
         if m.args.len() + 1 != arity {
             self.cx.error_spanned_by(
                 m,
-                format!("`.{name}()` takes {} argument{}", arity - 1, if arity == 2 { "" } else { "s" }),
+                format!(
+                    "`.{name}()` takes {} argument{}",
+                    arity - 1,
+                    if arity == 2 { "" } else { "s" }
+                ),
             );
             return None;
         }
@@ -339,7 +389,10 @@ impl<'a> Lowerer<'a> {
             _ => None,
         };
         let Some(target) = target else {
-            self.cx.error_at(fname.span(), "`dot(...)` takes one coordinate name, e.g. `dot(theta)`");
+            self.cx.error_at(
+                fname.span(),
+                "`dot(...)` takes one coordinate name, e.g. `dot(theta)`",
+            );
             return None;
         };
         let Some(Binding::Coordinate(q)) = self.scope.get(&target.to_string()).copied() else {

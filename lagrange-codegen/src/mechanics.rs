@@ -118,10 +118,19 @@ pub fn derive(lowered: Lowered) -> Model {
                     ctx.substitute(a, &zero_acc)
                 })
                 .collect();
-            Kinematics { mass: p.mass, velocity, jacobian, partial_t, kappa, position }
+            Kinematics {
+                mass: p.mass,
+                velocity,
+                jacobian,
+                partial_t,
+                kappa,
+                position,
+            }
         })
         .collect();
-    let rheonomic = kin.iter().any(|k| k.partial_t.iter().any(|&x| !ctx.is_zero(x)));
+    let rheonomic = kin
+        .iter()
+        .any(|k| k.partial_t.iter().any(|&x| !ctx.is_zero(x)));
 
     let mass = mass_matrix(&mut ctx, &kin, n);
     let projection = bias_projection(&mut ctx, &kin, n);
@@ -201,7 +210,8 @@ pub fn derive(lowered: Lowered) -> Model {
                         .jacobian
                         .iter()
                         .map(|row| {
-                            let ts: Vec<Sym> = row.iter().zip(&qd).map(|(&j, &v)| ctx.mul(j, v)).collect();
+                            let ts: Vec<Sym> =
+                                row.iter().zip(&qd).map(|(&j, &v)| ctx.mul(j, v)).collect();
                             ctx.sum(&ts)
                         })
                         .collect();

@@ -10,7 +10,10 @@ use lagrange_symbolic::{Symbol, SymbolKind};
 struct Lcg(u64);
 impl Lcg {
     fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         ((self.0 >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
     }
 }
@@ -46,7 +49,11 @@ fn random_point(model: &Model, rng: &mut Lcg) -> Point {
         q: (0..n).map(|_| 1.5 * rng.next()).collect(),
         v: (0..n).map(|_| 2.0 * rng.next()).collect(),
         t: 1.5 + rng.next(),
-        params: model.parameters.iter().map(|_| 1.0 + 0.5 * rng.next()).collect(),
+        params: model
+            .parameters
+            .iter()
+            .map(|_| 1.0 + 0.5 * rng.next())
+            .collect(),
     }
 }
 
@@ -73,7 +80,12 @@ fn check_model(src: &str) {
         // 2. M is the Hessian of T in the velocities (T is quadratic in q̇, so central
         // differences are exact up to rounding).
         let kin = |v: &[f64]| {
-            let pp = Point { q: p.q.clone(), v: v.to_vec(), t: p.t, params: p.params.clone() };
+            let pp = Point {
+                q: p.q.clone(),
+                v: v.to_vec(),
+                t: p.t,
+                params: p.params.clone(),
+            };
             eval(&model, model.kinetic, &pp)
         };
         let d = 1e-3;
@@ -96,7 +108,12 @@ fn check_model(src: &str) {
             let pot = |dq: f64| {
                 let mut q = p.q.clone();
                 q[i] += dq;
-                let pp = Point { q, v: p.v.clone(), t: p.t, params: p.params.clone() };
+                let pp = Point {
+                    q,
+                    v: p.v.clone(),
+                    t: p.t,
+                    params: p.params.clone(),
+                };
                 eval(&model, model.potential, &pp)
             };
             let h = 1e-5;
@@ -164,5 +181,9 @@ fn pendulum_mass_matrix_is_simplified() {
     );
     let text = model.ctx.display(model.mass[0][0]);
     assert!(!text.contains("sin") && !text.contains("cos"), "M = {text}");
-    assert!(model.ctx.is_zero(model.bias[0]), "h = {}", model.ctx.display(model.bias[0]));
+    assert!(
+        model.ctx.is_zero(model.bias[0]),
+        "h = {}",
+        model.ctx.display(model.bias[0])
+    );
 }

@@ -1,0 +1,122 @@
+//! Typed errors of the runtime.
+//!
+//! Every variant says *what* went wrong and *where*: the time and, for failures of
+//! the dynamics, the generalized coordinates. Scalars are converted to `f64` so
+//! that the error type does not depend on the scalar the system is computed in.
+
+/// Everything that can go wrong while evaluating the dynamics or integrating.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The mass matrix is not positive definite (its Cholesky factorisation
+    /// breaks down) or is numerically singular: the smallest squared pivot of the
+    /// factorisation divided by the largest one, `ratio`, fell below the singular
+    /// tolerance. Typically a chart singularity, e.g. the pole θ = 0 of a spherical
+    /// pendulum in (θ, φ).
+    #[error(
+        "mass matrix singular or not positive definite at t = {t}, q = {q:?} \
+         (pivot ratio min L_ii^2 / max L_ii^2 = {ratio:e}); the coordinates are \
+         probably at a chart singularity"
+    )]
+    SingularMassMatrix {
+        /// Time of the failed evaluation.
+        t: f64,
+        /// Generalized coordinates at which the mass matrix was evaluated.
+        q: Vec<f64>,
+        /// min_i L_ii² / max_i L_ii² of the Cholesky factor (≤ 0 when a pivot is not positive).
+        ratio: f64,
+    },
+
+    /// A state, a mass matrix, a right-hand side or an acceleration contains a NaN
+    /// or an infinity (non-finite parameters, overflow, a division by zero in the
+    /// user's expressions).
+    #[error("non-finite state or dynamics at t = {t}, q = {q:?}, v = {v:?}")]
+    NonFiniteState {
+        /// Time of the failed evaluation.
+        t: f64,
+        /// Generalized coordinates.
+        q: Vec<f64>,
+        /// Generalized velocities.
+        v: Vec<f64>,
+    },
+
+    /// The adaptive step size became negligible relative to the time: the
+    /// problem is probably stiff or singular near `t`.
+    #[error("step size underflow at t = {t}: h = {h:e} is negligible relative to t")]
+    StepSizeUnderflow {
+        /// Time reached.
+        t: f64,
+        /// The step size that was too small.
+        h: f64,
+    },
+
+    /// The integrator exceeded its step budget before reaching the end time.
+    #[error("more than {max_steps} steps needed; stopped at t = {t}")]
+    TooManySteps {
+        /// Time reached.
+        t: f64,
+        /// The configured budget.
+        max_steps: usize,
+    },
+
+    /// The settings or the initial value problem are invalid (non-positive
+    /// tolerance, empty or reversed time span, non-finite initial state, ...).
+    #[error("invalid settings: {0}")]
+    InvalidSettings(String),
+
+    /// Writing output (CSV) failed.
+    #[error("i/o error: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+use crate::real::Real;
+use nalgebra::SVector;
+
+/// Converts a state vector to `f64`s for an error report.
+pub(crate) fn to_vec<T: Real, const N: usize>(x: &SVector<T, N>) -> Vec<f64> {
+    x.iter().map(|&c| c.to_f64()).collect()
+}
+
+impl Error {
+    /// A [`Error::NonFiniteState`] for the given time and state.
+    pub(crate) fn non_finite<T: Real, const N: usize>(
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Self {
+        Error::NonFiniteState {
+            t: t.to_f64(),
+            q: to_vec(q),
+            v: to_vec(v),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_name_time_and_coordinates() {
+        let e = Error::SingularMassMatrix {
+            t: 0.5,
+            q: vec![1e-9, 2.0],
+            ratio: 1e-18,
+        };
+        let s = e.to_string();
+        assert!(s.contains("t = 0.5"), "{s}");
+        assert!(s.contains("[1e-9, 2.0]"), "{s}");
+        assert!(s.contains("1e-18"), "{s}");
+        let e = Error::non_finite(
+            1.5_f64,
+            &SVector::<f64, 1>::new(f64::NAN),
+            &SVector::<f64, 1>::new(0.0),
+        );
+        assert!(
+            e.to_string().contains("t = 1.5, q = [NaN], v = [0.0]"),
+            "{e}"
+        );
+        let e: Error = std::io::Error::other("disk full").into();
+        assert!(e.to_string().contains("disk full"));
+    }
+}

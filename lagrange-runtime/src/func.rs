@@ -1,0 +1,102 @@
+//! Scalar functions called by generated code.
+//!
+//! The derive macro emits calls such as `func::sin(x)` instead of method calls so
+//! that the emitted tokens do not depend on which traits are in scope at the
+//! user's site, and so that `abs`, which both `ComplexField` and `num_traits::Signed`
+//! provide for a `RealField`, is never ambiguous. All of them are `#[inline(always)]`:
+//! they cost nothing over the method call.
+
+use crate::real::Real;
+use nalgebra::{ComplexField, RealField};
+
+macro_rules! unary {
+    ($($(#[$doc:meta])* $name:ident;)*) => {$(
+        $(#[$doc])*
+        #[inline(always)]
+        pub fn $name<T: Real>(x: T) -> T {
+            ComplexField::$name(x)
+        }
+    )*};
+}
+
+unary! {
+    /// Sine.
+    sin;
+    /// Cosine.
+    cos;
+    /// Tangent.
+    tan;
+    /// Arcsine.
+    asin;
+    /// Arccosine.
+    acos;
+    /// Arctangent.
+    atan;
+    /// Hyperbolic sine.
+    sinh;
+    /// Hyperbolic cosine.
+    cosh;
+    /// Hyperbolic tangent.
+    tanh;
+    /// Exponential.
+    exp;
+    /// Natural logarithm.
+    ln;
+    /// Square root.
+    sqrt;
+    /// Absolute value.
+    abs;
+}
+
+/// Four-quadrant arctangent of `y / x`.
+#[inline(always)]
+pub fn atan2<T: Real>(y: T, x: T) -> T {
+    RealField::atan2(y, x)
+}
+
+/// `x` raised to an integer power.
+#[inline(always)]
+pub fn powi<T: Real>(x: T, n: i32) -> T {
+    ComplexField::powi(x, n)
+}
+
+/// `x` raised to a real power.
+#[inline(always)]
+pub fn powf<T: Real>(x: T, y: T) -> T {
+    ComplexField::powf(x, y)
+}
+
+/// A literal constant in the scalar type.
+#[inline(always)]
+pub fn lit<T: Real>(x: f64) -> T {
+    T::lit(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn agree_with_std_for_f64_and_f32() {
+        let x = 0.3_f64;
+        assert_eq!(sin(x), x.sin());
+        assert_eq!(cos(x), x.cos());
+        assert_eq!(tan(x), x.tan());
+        assert_eq!(asin(x), x.asin());
+        assert_eq!(acos(x), x.acos());
+        assert_eq!(atan(x), x.atan());
+        assert_eq!(sinh(x), x.sinh());
+        assert_eq!(cosh(x), x.cosh());
+        assert_eq!(tanh(x), x.tanh());
+        assert_eq!(exp(x), x.exp());
+        assert_eq!(ln(x), x.ln());
+        assert_eq!(sqrt(x), x.sqrt());
+        assert_eq!(abs(-x), x);
+        assert_eq!(atan2(1.0, -1.0), 1.0_f64.atan2(-1.0));
+        assert_eq!(powi(x, 3), x.powi(3));
+        assert_eq!(powf(x, 2.5), x.powf(2.5));
+        assert_eq!(lit::<f64>(0.1), 0.1);
+        assert_eq!(lit::<f32>(0.1), 0.1_f32);
+        assert_eq!(sin(0.5_f32), 0.5_f32.sin());
+    }
+}

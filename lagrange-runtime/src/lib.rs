@@ -1,0 +1,38 @@
+//! Runtime of `lagrange`: the trait the derive macro implements, forward
+//! dynamics, integrators and trajectories.
+//!
+//! A system implements [`Lagrangian`] (the macro writes this; a hand-written
+//! implementation works the same), which gives the equations of motion
+//! M(q,t) q̈ + h(q,q̇,t) = Q(q,q̇,t). [`Dynamics`] solves them for q̈ by a
+//! Cholesky factorisation on the stack and reports a singular mass matrix (a chart
+//! singularity) or a non-finite state as a typed [`Error`], never as a silent NaN.
+//! The integrators in [`ode`] step the second-order system without allocating per
+//! step, and [`Simulation`] ties it together:
+//!
+//! ```text
+//! let traj = Simulation::new(&sys).integrator(Dopri5::tol(1e-10)).run(q0, v0, 0.0..10.0)?;
+//! let periods = traj.crossings(|_, q, _| q[0]);
+//! println!("energy drift {:e}", traj.integral_drift());
+//! traj.save_csv("out.csv", &Pendulum::COORDINATES)?;
+//! ```
+//!
+//! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
+//! number of degrees of freedom `N`, a type-level constant.
+
+mod dynamics;
+mod error;
+pub mod func;
+pub mod ode;
+mod real;
+mod root;
+mod simulation;
+mod system;
+mod trajectory;
+
+pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
+pub use error::Error;
+pub use ode::{DenseSegment, Dopri5, Integrator, Rk4, SecondOrder, Stats};
+pub use real::Real;
+pub use simulation::Simulation;
+pub use system::Lagrangian;
+pub use trajectory::Trajectory;

@@ -1,0 +1,118 @@
+//! Dense output: a polynomial in θ = (t − t₀)/h over one accepted step.
+
+use super::Pair;
+use crate::real::Real;
+use nalgebra::SVector;
+
+/// The continuous extension of one accepted step [t₀, t₁], in Hairer's nested form
+///
+/// ```text
+/// y(t₀ + θh) = r₁ + θ (r₂ + (1−θ) (r₃ + θ (r₄ + (1−θ) r₅)))
+/// ```
+///
+/// for both q and v. DOPRI5 fills r₅ with Shampine's coefficients (a 4th-order
+/// interpolant, local error O(h⁵)); the fixed-step methods leave r₅ = 0, which makes
+/// it the cubic Hermite interpolant through the values and derivatives at both ends
+/// (local error O(h⁴), so 3rd order uniformly).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DenseSegment<T: Real, const N: usize> {
+    t0: T,
+    t1: T,
+    h: T,
+    r: [Pair<T, N>; 5],
+}
+
+impl<T: Real, const N: usize> DenseSegment<T, N> {
+    /// A segment from its coefficients. `h` is the step size the coefficients were
+    /// computed with; `t1` the recorded end time (t₀ + h up to rounding).
+    pub(crate) fn new(t0: T, t1: T, h: T, r: [Pair<T, N>; 5]) -> Self {
+        Self { t0, t1, h, r }
+    }
+
+    /// The cubic Hermite interpolant from the states `y0`, `y1` and their
+    /// derivatives `f0`, `f1` (derivative = (v, a)).
+    pub(crate) fn hermite(
+        t0: T,
+        t1: T,
+        y0: &Pair<T, N>,
+        f0: &Pair<T, N>,
+        y1: &Pair<T, N>,
+        f1: &Pair<T, N>,
+    ) -> Self {
+        let h = t1 - t0;
+        let (r1, r2, r3, r4) = Self::cubic_part(h, y0, f0, y1, f1);
+        Self::new(t0, t1, h, [r1, r2, r3, r4, Pair::zeros()])
+    }
+
+    /// r₁..r₄, shared by Hermite and DOPRI5: r₁ = y₀, r₂ = y₁ − y₀,
+    /// r₃ = h f₀ − r₂, r₄ = r₂ − h f₁ − r₃.
+    pub(crate) fn cubic_part(
+        h: T,
+        y0: &Pair<T, N>,
+        f0: &Pair<T, N>,
+        y1: &Pair<T, N>,
+        f1: &Pair<T, N>,
+    ) -> (Pair<T, N>, Pair<T, N>, Pair<T, N>, Pair<T, N>) {
+        let r2 = y1.sub(y0);
+        let r3 = f0.scale(h).sub(&r2);
+        let r4 = r2.sub(&f1.scale(h)).sub(&r3);
+        (*y0, r2, r3, r4)
+    }
+
+    /// Start of the step.
+    pub fn start(&self) -> T {
+        self.t0
+    }
+
+    /// End of the step.
+    pub fn end(&self) -> T {
+        self.t1
+    }
+
+    /// Whether `t` lies in [start, end].
+    pub fn contains(&self, t: T) -> bool {
+        self.t0 <= t && t <= self.t1
+    }
+
+    /// The interpolated (q, v) at `t` (meaningful for t in [start, end]).
+    pub fn eval(&self, t: T) -> (SVector<T, N>, SVector<T, N>) {
+        let th = (t - self.t0) / self.h;
+        let th1 = T::one() - th;
+        let poly = |part: fn(&Pair<T, N>) -> &SVector<T, N>| {
+            let [r1, r2, r3, r4, r5] = self.r.each_ref().map(part);
+            SVector::<T, N>::from_fn(|i, _| {
+                r1[i] + th * (r2[i] + th1 * (r3[i] + th * (r4[i] + th1 * r5[i])))
+            })
+        };
+        (poly(|p| &p.q), poly(|p| &p.v))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hermite_reproduces_cubics() {
+        // q(t) = t³ − 2t, v = q̇ = 3t² − 2, a = 6t: q is cubic, so exact; v is
+        // quadratic, also exact.
+        let q = |t: f64| t * t * t - 2.0 * t;
+        let v = |t: f64| 3.0 * t * t - 2.0;
+        let a = |t: f64| 6.0 * t;
+        let p = |x: f64| SVector::<f64, 1>::new(x);
+        let (t0, t1) = (0.5, 1.25);
+        let y0 = Pair::new(p(q(t0)), p(v(t0)));
+        let y1 = Pair::new(p(q(t1)), p(v(t1)));
+        let f0 = Pair::new(p(v(t0)), p(a(t0)));
+        let f1 = Pair::new(p(v(t1)), p(a(t1)));
+        let s = DenseSegment::hermite(t0, t1, &y0, &f0, &y1, &f1);
+        for i in 0..=10 {
+            let t = t0 + (t1 - t0) * f64::from(i) / 10.0;
+            let (qi, vi) = s.eval(t);
+            assert!((qi[0] - q(t)).abs() < 1e-14, "{t}");
+            assert!((vi[0] - v(t)).abs() < 1e-14, "{t}");
+        }
+        assert!(s.contains(t0) && s.contains(t1) && !s.contains(2.0));
+        assert_eq!((s.start(), s.end()), (t0, t1));
+    }
+}

@@ -1,0 +1,470 @@
+//! Dormand–Prince 5(4), following Hairer & Wanner's DOPRI5 (Hairer, Nørsett,
+//! Wanner, *Solving ODEs I*, 2nd ed., §II.4–II.6 and the Fortran code `dopri5.f`).
+//!
+//! What is kept from DOPRI5: the tableau with FSAL (the 7th stage is the next
+//! step's 1st), the error norm over all 2N components, the PI step-size
+//! controller with Lund stabilisation (see [`controller`](super::controller)), the
+//! `hinit` starting step, the rule that a step following a rejection may not grow,
+//! the "stretch the last step by up to 1 %" rule, and Shampine's continuous
+//! extension for dense output. What is left out: DOPRI5's stiffness detection and
+//! per-component tolerances.
+
+use super::controller::PiController;
+use super::{DenseSegment, Integrator, Pair, SecondOrder, Stats, check_problem};
+use crate::error::Error;
+use crate::func::{abs, sqrt};
+use crate::real::Real;
+use crate::trajectory::Trajectory;
+use nalgebra::SVector;
+
+/// Adaptive Dormand–Prince 5(4) with dense output of order 4.
+///
+/// ```
+/// use lagrange_runtime::Dopri5;
+/// let method = Dopri5::tol(1e-10).hmax(0.1).max_steps(1_000_000);
+/// # let _ = method;
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dopri5 {
+    rtol: f64,
+    atol: f64,
+    h0: Option<f64>,
+    hmax: Option<f64>,
+    max_steps: usize,
+}
+
+impl Default for Dopri5 {
+    /// rtol = atol = 1e-8.
+    fn default() -> Self {
+        Self::tol(1e-8)
+    }
+}
+
+impl Dopri5 {
+    /// Relative and absolute tolerance both equal to `tol`.
+    pub fn tol(tol: f64) -> Self {
+        Self::new(tol, tol)
+    }
+
+    /// Relative tolerance `rtol` and absolute tolerance `atol`. A component is
+    /// accurate enough when its local error is below atol + rtol·|y|.
+    pub fn new(rtol: f64, atol: f64) -> Self {
+        Self {
+            rtol,
+            atol,
+            h0: None,
+            hmax: None,
+            max_steps: 100_000,
+        }
+    }
+
+    /// Sets the relative tolerance (must be > 0).
+    pub fn rtol(mut self, rtol: f64) -> Self {
+        self.rtol = rtol;
+        self
+    }
+
+    /// Sets the absolute tolerance (must be ≥ 0).
+    pub fn atol(mut self, atol: f64) -> Self {
+        self.atol = atol;
+        self
+    }
+
+    /// Sets the initial step size; by default Hairer's `hinit` estimates it.
+    pub fn h0(mut self, h0: f64) -> Self {
+        self.h0 = Some(h0);
+        self
+    }
+
+    /// Sets the largest step size; by default the length of the time span.
+    pub fn hmax(mut self, hmax: f64) -> Self {
+        self.hmax = Some(hmax);
+        self
+    }
+
+    /// Sets the budget of attempted steps (accepted + rejected); default 100 000.
+    pub fn max_steps(mut self, n: usize) -> Self {
+        self.max_steps = n;
+        self
+    }
+
+    fn validate(&self) -> Result<(), Error> {
+        let bad =
+            |what: &str, x: f64| Err(Error::InvalidSettings(format!("DOPRI5: {what}, got {x}")));
+        if !(self.rtol.is_finite() && self.rtol > 0.0) {
+            return bad("rtol must be positive and finite", self.rtol);
+        }
+        if !(self.atol.is_finite() && self.atol >= 0.0) {
+            return bad("atol must be non-negative and finite", self.atol);
+        }
+        for (name, x) in [("h0", self.h0), ("hmax", self.hmax)] {
+            if let Some(x) = x.filter(|x| !(x.is_finite() && *x > 0.0)) {
+                return bad(&format!("{name} must be positive and finite"), x);
+            }
+        }
+        if self.max_steps == 0 {
+            return Err(Error::InvalidSettings(
+                "DOPRI5: max_steps must be positive".into(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The Dormand–Prince tableau (1980) and Shampine's dense-output weights (1986).
+mod tableau {
+    pub const C2: f64 = 0.2;
+    pub const C3: f64 = 0.3;
+    pub const C4: f64 = 0.8;
+    pub const C5: f64 = 8.0 / 9.0;
+    pub const A21: f64 = 0.2;
+    pub const A31: f64 = 3.0 / 40.0;
+    pub const A32: f64 = 9.0 / 40.0;
+    pub const A41: f64 = 44.0 / 45.0;
+    pub const A42: f64 = -56.0 / 15.0;
+    pub const A43: f64 = 32.0 / 9.0;
+    pub const A51: f64 = 19372.0 / 6561.0;
+    pub const A52: f64 = -25360.0 / 2187.0;
+    pub const A53: f64 = 64448.0 / 6561.0;
+    pub const A54: f64 = -212.0 / 729.0;
+    pub const A61: f64 = 9017.0 / 3168.0;
+    pub const A62: f64 = -355.0 / 33.0;
+    pub const A63: f64 = 46732.0 / 5247.0;
+    pub const A64: f64 = 49.0 / 176.0;
+    pub const A65: f64 = -5103.0 / 18656.0;
+    // The 5th-order weights, which are also the 7th stage's row (FSAL).
+    pub const A71: f64 = 35.0 / 384.0;
+    pub const A73: f64 = 500.0 / 1113.0;
+    pub const A74: f64 = 125.0 / 192.0;
+    pub const A75: f64 = -2187.0 / 6784.0;
+    pub const A76: f64 = 11.0 / 84.0;
+    // Difference between the 5th- and 4th-order weights: the error estimate.
+    pub const E1: f64 = 71.0 / 57600.0;
+    pub const E3: f64 = -71.0 / 16695.0;
+    pub const E4: f64 = 71.0 / 1920.0;
+    pub const E5: f64 = -17253.0 / 339200.0;
+    pub const E6: f64 = 22.0 / 525.0;
+    pub const E7: f64 = -1.0 / 40.0;
+    pub const D1: f64 = -12715105075.0 / 11282082432.0;
+    pub const D3: f64 = 87487479700.0 / 32700410799.0;
+    pub const D4: f64 = -10690763975.0 / 1880347072.0;
+    pub const D5: f64 = 701980252875.0 / 199316789632.0;
+    pub const D6: f64 = -1453857185.0 / 822651844.0;
+    pub const D7: f64 = 69997945.0 / 29380423.0;
+}
+
+/// The tableau converted once per run to the system's scalar.
+struct Coefficients<T> {
+    c: [T; 4],
+    a2: [T; 1],
+    a3: [T; 2],
+    a4: [T; 3],
+    a5: [T; 4],
+    a6: [T; 5],
+    a7: [T; 5],
+    e: [T; 6],
+    d: [T; 6],
+}
+
+impl<T: Real> Coefficients<T> {
+    fn new() -> Self {
+        use tableau::*;
+        fn lits<T: Real, const K: usize>(xs: [f64; K]) -> [T; K] {
+            xs.map(T::lit)
+        }
+        Self {
+            c: lits([C2, C3, C4, C5]),
+            a2: lits([A21]),
+            a3: lits([A31, A32]),
+            a4: lits([A41, A42, A43]),
+            a5: lits([A51, A52, A53, A54]),
+            a6: lits([A61, A62, A63, A64, A65]),
+            a7: lits([A71, A73, A74, A75, A76]),
+            e: lits([E1, E3, E4, E5, E6, E7]),
+            d: lits([D1, D3, D4, D5, D6, D7]),
+        }
+    }
+}
+
+impl Integrator for Dopri5 {
+    fn integrate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+        &self,
+        rhs: &F,
+        t0: T,
+        t1: T,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+    ) -> Result<Trajectory<T, N>, Error> {
+        self.validate()?;
+        check_problem(t0, t1, &q0, &v0)?;
+        let co = Coefficients::<T>::new();
+        let (rtol, atol) = (T::lit(self.rtol), T::lit(self.atol));
+        let hmax = self.hmax.map_or(t1 - t0, T::lit);
+        let underflow = T::lit(16.0) * T::default_epsilon();
+        let stretch = T::lit(1.01);
+
+        let mut stats = Stats::default();
+        let mut y = Pair::new(q0, v0);
+        let mut k1 = y.derivative(rhs, t0, &mut stats.evaluations)?;
+        let mut h = match self.h0 {
+            Some(h0) => T::lit(h0).min(hmax),
+            None => hinit(rhs, t0, &y, &k1, hmax, rtol, atol, &mut stats.evaluations)?,
+        };
+        let mut ctrl = PiController::<T>::dopri5();
+        let mut traj = Trajectory::start(t0, q0, v0, rhs.integral(t0, &q0, &v0));
+        let mut t = t0;
+        let mut reject = false;
+        loop {
+            if stats.steps() >= self.max_steps {
+                return Err(Error::TooManySteps {
+                    t: t.to_f64(),
+                    max_steps: self.max_steps,
+                });
+            }
+            if h <= underflow * abs(t) || !h.is_finite() {
+                return Err(Error::StepSizeUnderflow {
+                    t: t.to_f64(),
+                    h: h.to_f64(),
+                });
+            }
+            // Stretch the last step by up to 1 % rather than leave a sliver.
+            let last = t + stretch * h - t1 > T::zero();
+            if last {
+                h = t1 - t;
+            }
+            let t_new = if last { t1 } else { t + h };
+
+            let ev = &mut stats.evaluations;
+            let [c2, c3, c4, c5] = co.c;
+            let k2 = y
+                .add_combination(h, co.a2, [&k1])
+                .derivative(rhs, t + c2 * h, ev)?;
+            let k3 = y
+                .add_combination(h, co.a3, [&k1, &k2])
+                .derivative(rhs, t + c3 * h, ev)?;
+            let k4 =
+                y.add_combination(h, co.a4, [&k1, &k2, &k3])
+                    .derivative(rhs, t + c4 * h, ev)?;
+            let k5 = y
+                .add_combination(h, co.a5, [&k1, &k2, &k3, &k4])
+                .derivative(rhs, t + c5 * h, ev)?;
+            let y6 = y.add_combination(h, co.a6, [&k1, &k2, &k3, &k4, &k5]);
+            let k6 = y6.derivative(rhs, t_new, ev)?;
+            let y_new = y.add_combination(h, co.a7, [&k1, &k3, &k4, &k5, &k6]);
+            let k7 = y_new.derivative(rhs, t_new, ev)?;
+            let err_vec = Pair::combination(h, co.e, [&k1, &k3, &k4, &k5, &k6, &k7]);
+            let err = error_norm(&err_vec, &y, &y_new, atol, rtol);
+            if err.partial_cmp(&T::zero()).is_none() {
+                // NaN (unordered): only a right-hand side
+                // that returns NaN without an error gets here.
+                return Err(Error::non_finite(t_new, &y_new.q, &y_new.v));
+            }
+            let mut h_new = ctrl.propose(h, err);
+            if err <= T::one() {
+                ctrl.accept(err);
+                stats.accepted += 1;
+                let (r1, r2, r3, r4) = DenseSegment::cubic_part(h, &y, &k1, &y_new, &k7);
+                let r5 = Pair::combination(h, co.d, [&k1, &k3, &k4, &k5, &k6, &k7]);
+                let segment = DenseSegment::new(t, t_new, h, [r1, r2, r3, r4, r5]);
+                traj.push(
+                    segment,
+                    y_new.q,
+                    y_new.v,
+                    rhs.integral(t_new, &y_new.q, &y_new.v),
+                );
+                (t, y, k1) = (t_new, y_new, k7);
+                if last {
+                    break;
+                }
+                h_new = h_new.min(hmax);
+                if reject {
+                    h_new = h_new.min(h);
+                }
+                reject = false;
+            } else {
+                h_new = ctrl.reject(h);
+                reject = true;
+                stats.rejected += 1;
+            }
+            h = h_new;
+        }
+        traj.set_stats(stats);
+        Ok(traj)
+    }
+}
+
+/// Hairer's norm sqrt(1/n Σ (e_i / (atol + rtol·max(|y_i|, |y_new_i|)))²) over all
+/// 2N components.
+fn error_norm<T: Real, const N: usize>(
+    e: &Pair<T, N>,
+    y: &Pair<T, N>,
+    y_new: &Pair<T, N>,
+    atol: T,
+    rtol: T,
+) -> T {
+    let mut sum = T::zero();
+    let parts = [(&e.q, &y.q, &y_new.q), (&e.v, &y.v, &y_new.v)];
+    for (e, y, y_new) in parts {
+        for ((&e, &y), &y_new) in e.as_slice().iter().zip(y.as_slice()).zip(y_new.as_slice()) {
+            let sk = atol + rtol * abs(y).max(abs(y_new));
+            let r = e / sk;
+            sum += r * r;
+        }
+    }
+    sqrt(sum / T::lit((2 * N) as f64))
+}
+
+/// Hairer's starting step: make an explicit Euler step small compared with the
+/// solution (h = 0.01 ‖y‖/‖f‖), estimate the second derivative from one more
+/// evaluation, and choose h so that h⁵ · max(‖f‖, ‖y''‖) = 0.01. The norms are
+/// unnormalised sums, as in `dopri5.f`.
+#[allow(clippy::too_many_arguments)]
+fn hinit<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    rhs: &F,
+    t0: T,
+    y: &Pair<T, N>,
+    f0: &Pair<T, N>,
+    hmax: T,
+    rtol: T,
+    atol: T,
+    evaluations: &mut usize,
+) -> Result<T, Error> {
+    let sk = |x: T| atol + rtol * abs(x);
+    let weighted = |a: &Pair<T, N>, b: Option<&Pair<T, N>>| {
+        let mut s = T::zero();
+        for (a, b, y) in [(&a.q, b.map(|b| &b.q), &y.q), (&a.v, b.map(|b| &b.v), &y.v)] {
+            for i in 0..N {
+                let x = b.map_or(a[i], |b| a[i] - b[i]) / sk(y[i]);
+                s += x * x;
+            }
+        }
+        s
+    };
+    let dnf = weighted(f0, None);
+    let dny = weighted(y, None);
+    let tiny = T::lit(1e-10);
+    let mut h = if dnf <= tiny || dny <= tiny {
+        T::lit(1e-6)
+    } else {
+        sqrt(dny / dnf) * T::lit(0.01)
+    };
+    h = h.min(hmax);
+    let y1 = y.add_combination(h, [T::one()], [f0]);
+    let f1 = y1.derivative(rhs, t0 + h, evaluations)?;
+    let der2 = sqrt(weighted(&f1, Some(f0))) / h;
+    let der12 = abs(der2).max(sqrt(dnf));
+    let h1 = if der12 <= T::lit(1e-15) {
+        T::lit(1e-6).max(abs(h) * T::lit(1e-3))
+    } else {
+        (T::lit(0.01) / der12).powf(T::lit(0.2))
+    };
+    Ok((T::lit(100.0) * h).min(h1).min(hmax))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ode::test_problems::Oscillator;
+    use nalgebra::Vector1;
+
+    fn run(tol: f64) -> (f64, Stats) {
+        let osc = Oscillator { omega: 2.0 };
+        let tr = Dopri5::tol(tol)
+            .integrate(&osc, 0.0, 10.0, Vector1::new(1.0), Vector1::new(0.0))
+            .unwrap();
+        let (q, v) = tr.final_state();
+        let (qe, ve) = osc.exact(10.0);
+        ((q[0] - qe).abs().max((v[0] - ve).abs()), *tr.stats())
+    }
+
+    #[test]
+    fn error_scales_with_tolerance() {
+        let mut prev = f64::INFINITY;
+        for tol in [1e-4, 1e-6, 1e-8, 1e-10, 1e-12] {
+            let (err, stats) = run(tol);
+            // Global error within a modest multiple of tol, and decreasing.
+            assert!(err < 100.0 * tol, "tol {tol}: err {err}");
+            assert!(err < prev, "tol {tol}: err {err} not below {prev}");
+            assert_eq!(stats.evaluations, 2 + 6 * stats.steps());
+            prev = err;
+        }
+    }
+
+    #[test]
+    fn settings_are_validated() {
+        let osc = Oscillator { omega: 1.0 };
+        let go = |m: Dopri5| m.integrate(&osc, 0.0, 1.0, Vector1::new(1.0), Vector1::new(0.0));
+        for m in [
+            Dopri5::tol(0.0),
+            Dopri5::tol(-1.0),
+            Dopri5::tol(f64::NAN),
+            Dopri5::tol(1e-6).atol(-1.0),
+            Dopri5::tol(1e-6).h0(0.0),
+            Dopri5::tol(1e-6).hmax(f64::INFINITY),
+            Dopri5::tol(1e-6).max_steps(0),
+        ] {
+            assert!(matches!(go(m), Err(Error::InvalidSettings(_))), "{m:?}");
+        }
+        assert!(matches!(
+            go(Dopri5::tol(1e-12).max_steps(5)),
+            Err(Error::TooManySteps { max_steps: 5, .. })
+        ));
+    }
+
+    /// q̈ = 1/(1 − t)²: v = 1/(1 − t) − 1 blows up at t = 1.
+    struct BlowUp;
+    impl SecondOrder<f64, 1> for BlowUp {
+        fn acceleration(
+            &self,
+            t: f64,
+            _q: &Vector1<f64>,
+            _v: &Vector1<f64>,
+        ) -> Result<Vector1<f64>, Error> {
+            Ok(Vector1::new((1.0 - t).powi(-2)))
+        }
+    }
+
+    #[test]
+    fn step_size_underflow_near_a_blow_up() {
+        let e =
+            Dopri5::tol(1e-6).integrate(&BlowUp, 0.0, 2.0, Vector1::new(0.0), Vector1::new(0.0));
+        match e {
+            Err(Error::StepSizeUnderflow { t, h }) => {
+                assert!(
+                    (t - 1.0).abs() < 1e-6 && h <= 16.0 * f64::EPSILON * t,
+                    "t {t}, h {h}"
+                );
+            }
+            other => panic!("expected StepSizeUnderflow, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn silent_nan_is_an_error() {
+        let e = Dopri5::tol(1e-6).integrate(
+            &crate::ode::rk4::tests::Poisoned,
+            0.0,
+            1.0,
+            Vector1::new(1.0),
+            Vector1::new(0.0),
+        );
+        assert!(matches!(e, Err(Error::NonFiniteState { .. })), "{e:?}");
+    }
+
+    #[test]
+    fn hmax_and_h0_are_respected() {
+        let osc = Oscillator { omega: 1.0 };
+        let tr = Dopri5::tol(1e-3)
+            .h0(1e-3)
+            .hmax(0.05)
+            .integrate(&osc, 0.0, 1.0, Vector1::new(1.0), Vector1::new(0.0))
+            .unwrap();
+        assert!((tr.times()[1] - 1e-3).abs() < 1e-18);
+        assert!(
+            tr.times()
+                .windows(2)
+                .all(|w| w[1] - w[0] <= 0.05 * (1.0 + 1e-12))
+        );
+        assert_eq!(*tr.times().last().unwrap(), 1.0);
+    }
+}

@@ -1,0 +1,265 @@
+//! Integrators for the second-order system q̇ = v, v̇ = a(t, q, v).
+//!
+//! The state is the pair (q, v) of `SVector<T, N>`: a `2N` vector cannot be named
+//! with const generics on stable Rust, so Runge–Kutta stages are pairs too. All
+//! stages live on the stack; an integration allocates only the growing
+//! [`Trajectory`].
+//!
+//! - [`Rk4`]: classic fixed-step Runge–Kutta of order 4.
+//! - [`Dopri5`]: Dormand–Prince 5(4) with Hairer's step-size control and dense output.
+//!
+//! New integrators implement [`Integrator`].
+
+mod controller;
+mod dense;
+mod dopri5;
+mod rk4;
+
+pub use dense::DenseSegment;
+pub use dopri5::Dopri5;
+pub use rk4::Rk4;
+
+use crate::error::Error;
+use crate::real::Real;
+use crate::trajectory::Trajectory;
+use nalgebra::SVector;
+
+/// The right-hand side of a second-order system q̈ = a(t, q, q̇).
+///
+/// Implemented by [`Dynamics`](crate::Dynamics); tests and users can implement it
+/// directly for any second-order ODE.
+pub trait SecondOrder<T: Real, const N: usize> {
+    /// The acceleration a(t, q, v).
+    ///
+    /// # Errors
+    /// Whatever the right-hand side cannot evaluate: a singular mass matrix, a
+    /// non-finite state.
+    fn acceleration(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<SVector<T, N>, Error>;
+
+    /// A quantity recorded at every accepted step as an accuracy diagnostic (the
+    /// energy or Jacobi integral). Zero unless overridden.
+    fn integral(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
+        let _ = (t, q, v);
+        T::zero()
+    }
+}
+
+/// A method that integrates a [`SecondOrder`] system over a time span.
+///
+/// The integrator's settings are plain `f64`s (a tolerance needs no more), converted
+/// to the system's scalar when a run starts.
+pub trait Integrator {
+    /// Integrates from (t0, q0, v0) to t1 > t0 and records every accepted step.
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] for invalid settings, a span that is empty,
+    /// reversed or not finite, or a non-finite initial state; any error of the
+    /// right-hand side; [`Error::StepSizeUnderflow`] and [`Error::TooManySteps`] for
+    /// adaptive methods.
+    fn integrate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+        &self,
+        rhs: &F,
+        t0: T,
+        t1: T,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+    ) -> Result<Trajectory<T, N>, Error>;
+}
+
+/// Work done by one integration.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Accepted steps.
+    pub accepted: usize,
+    /// Rejected steps (all of them, including those before the first acceptance,
+    /// which Hairer's DOPRI5 does not count).
+    pub rejected: usize,
+    /// Evaluations of the right-hand side (accelerations).
+    pub evaluations: usize,
+}
+
+impl Stats {
+    /// Attempted steps: accepted + rejected.
+    pub fn steps(&self) -> usize {
+        self.accepted + self.rejected
+    }
+}
+
+/// A point of the phase space, or a derivative of one (then `q` holds q̇ = v and
+/// `v` holds v̇ = a).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Pair<T: Real, const N: usize> {
+    pub q: SVector<T, N>,
+    pub v: SVector<T, N>,
+}
+
+impl<T: Real, const N: usize> Pair<T, N> {
+    pub fn new(q: SVector<T, N>, v: SVector<T, N>) -> Self {
+        Self { q, v }
+    }
+
+    pub fn zeros() -> Self {
+        Self::new(SVector::zeros(), SVector::zeros())
+    }
+
+    /// The derivative (v, a(t, q, v)) of this state.
+    pub fn derivative<F: SecondOrder<T, N>>(
+        &self,
+        rhs: &F,
+        t: T,
+        evaluations: &mut usize,
+    ) -> Result<Self, Error> {
+        *evaluations += 1;
+        Ok(Self::new(self.v, rhs.acceleration(t, &self.q, &self.v)?))
+    }
+
+    /// self + h Σ_j c_j k_j, the Runge–Kutta stage combination.
+    ///
+    /// Written as plain loops over slices: the same expression with nalgebra
+    /// operators builds a temporary per term, which dominates debug builds.
+    #[inline]
+    pub fn add_combination<const K: usize>(&self, h: T, c: [T; K], k: [&Self; K]) -> Self {
+        let mut out = *self;
+        combine(out.q.as_mut_slice(), h, &c, &k.map(|p| p.q.as_slice()));
+        combine(out.v.as_mut_slice(), h, &c, &k.map(|p| p.v.as_slice()));
+        out
+    }
+
+    /// h Σ_j c_j k_j.
+    #[inline]
+    pub fn combination<const K: usize>(h: T, c: [T; K], k: [&Self; K]) -> Self {
+        Self::zeros().add_combination(h, c, k)
+    }
+
+    pub fn sub(&self, other: &Self) -> Self {
+        Self::new(self.q - other.q, self.v - other.v)
+    }
+
+    pub fn scale(&self, s: T) -> Self {
+        Self::new(self.q * s, self.v * s)
+    }
+
+    pub fn is_finite(&self) -> bool {
+        self.q.iter().chain(self.v.iter()).all(|x| x.is_finite())
+    }
+}
+
+#[inline]
+fn combine<T: Real, const K: usize>(out: &mut [T], h: T, c: &[T; K], k: &[&[T]; K]) {
+    for (i, o) in out.iter_mut().enumerate() {
+        let mut s = T::zero();
+        for j in 0..K {
+            s += c[j] * k[j][i];
+        }
+        *o += h * s;
+    }
+}
+
+/// Checks what every integrator needs: a finite, non-empty, forward time span and
+/// a finite initial state.
+pub(crate) fn check_problem<T: Real, const N: usize>(
+    t0: T,
+    t1: T,
+    q0: &SVector<T, N>,
+    v0: &SVector<T, N>,
+) -> Result<(), Error> {
+    if !(t0.is_finite() && t1.is_finite()) {
+        return Err(Error::InvalidSettings(format!(
+            "time span {}..{} is not finite",
+            t0.to_f64(),
+            t1.to_f64()
+        )));
+    }
+    if t1 <= t0 {
+        return Err(Error::InvalidSettings(format!(
+            "time span {}..{} is empty or reversed; the end must be after the start",
+            t0.to_f64(),
+            t1.to_f64()
+        )));
+    }
+    if !Pair::new(*q0, *v0).is_finite() {
+        return Err(Error::InvalidSettings(format!(
+            "initial state is not finite: q0 = {:?}, v0 = {:?}",
+            crate::error::to_vec(q0),
+            crate::error::to_vec(v0)
+        )));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+pub(crate) mod test_problems {
+    //! Right-hand sides with known solutions, shared by the integrator tests.
+    use super::*;
+
+    /// q̈ = −ω² q: q = cos ωt, v = −ω sin ωt from (1, 0).
+    pub struct Oscillator {
+        pub omega: f64,
+    }
+
+    impl SecondOrder<f64, 1> for Oscillator {
+        fn acceleration(
+            &self,
+            _t: f64,
+            q: &SVector<f64, 1>,
+            _v: &SVector<f64, 1>,
+        ) -> Result<SVector<f64, 1>, Error> {
+            Ok(q * -(self.omega * self.omega))
+        }
+        fn integral(&self, _t: f64, q: &SVector<f64, 1>, v: &SVector<f64, 1>) -> f64 {
+            0.5 * (v[0] * v[0] + self.omega * self.omega * q[0] * q[0])
+        }
+    }
+
+    impl Oscillator {
+        pub fn exact(&self, t: f64) -> (f64, f64) {
+            ((self.omega * t).cos(), -self.omega * (self.omega * t).sin())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn combination_matches_operators() {
+        let a = Pair::new(
+            SVector::<f64, 2>::new(1.0, 2.0),
+            SVector::<f64, 2>::new(3.0, 4.0),
+        );
+        let b = Pair::new(
+            SVector::<f64, 2>::new(-1.0, 0.5),
+            SVector::<f64, 2>::new(0.25, 8.0),
+        );
+        let y = a.add_combination(0.5, [2.0, -3.0], [&a, &b]);
+        let q = a.q + (a.q * 2.0 + b.q * -3.0) * 0.5;
+        let v = a.v + (a.v * 2.0 + b.v * -3.0) * 0.5;
+        assert_eq!(y, Pair::new(q, v));
+    }
+
+    #[test]
+    fn problem_checks() {
+        let z = SVector::<f64, 1>::zeros();
+        assert!(check_problem(0.0, 1.0, &z, &z).is_ok());
+        for (t0, t1) in [
+            (1.0, 1.0),
+            (1.0, 0.0),
+            (0.0, f64::INFINITY),
+            (f64::NAN, 1.0),
+        ] {
+            assert!(matches!(
+                check_problem(t0, t1, &z, &z),
+                Err(Error::InvalidSettings(_))
+            ));
+        }
+        let nan = SVector::<f64, 1>::new(f64::NAN);
+        let e = check_problem(0.0, 1.0, &nan, &z).unwrap_err();
+        assert!(e.to_string().contains("initial state"), "{e}");
+    }
+}

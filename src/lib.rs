@@ -1,0 +1,72 @@
+//! # lagrange
+//!
+//! Describe a mechanical system declaratively; get its equations of motion compiled
+//! into specialised Rust at build time; integrate them at run time.
+//!
+//! ```
+//! use lagrange::prelude::*;
+//!
+//! /// A spherical pendulum in the chart (θ, φ), θ measured from the downward vertical.
+//! #[derive(Lagrangian)]
+//! #[lagrange(
+//!     coordinates(theta, phi),
+//!     point(bob, mass = m, at = [l * sin(theta) * cos(phi),
+//!                                l * sin(theta) * sin(phi),
+//!                                -l * cos(theta)]),
+//!     gravity = [0, 0, -g],
+//! )]
+//! pub struct SphericalPendulum { pub m: f64, pub l: f64, pub g: f64 }
+//!
+//! let sys = SphericalPendulum { m: 1.0, l: 2.0, g: 9.81 };
+//! let traj = Simulation::new(&sys)
+//!     .integrator(Dopri5::tol(1e-10))
+//!     .run(Vector2::new(1.0, 0.0), Vector2::new(0.0, 1.0), 0.0..10.0)
+//!     .unwrap();
+//! assert!(traj.integral_drift() < 1e-8);
+//! ```
+//!
+//! ## The description language
+//!
+//! All items go in `#[lagrange(...)]` (several such attributes are concatenated).
+//! The struct's fields are the physical parameters; they must all be of one float
+//! type — `f64`, `f32`, or a type parameter `T` — and the generated code computes in
+//! that type.
+//!
+//! | item | meaning |
+//! |---|---|
+//! | `coordinates(q1, q2, ...)` | generalized coordinates, in order |
+//! | `define(r = expr, ...)` | intermediate definitions, usable by later expressions |
+//! | `point(name, mass = m, at = [x, y(, z)])` | a point mass at ξ(q, t); planar or spatial |
+//! | `gravity = [gx, gy(, gz)]` | uniform gravity acting on every point |
+//! | `potential = expr` | potential energy V(q, t) |
+//! | `force(point, [fx, fy(, fz)])` | a Cartesian force at a point; may depend on q, `dot(q)`, t |
+//! | `generalized_force(q = expr)` | a generalized force on one coordinate |
+//! | `dissipation = expr` | Rayleigh dissipation function D(q, q̇), Q −= ∂D/∂q̇ |
+//!
+//! Expressions use numbers (decimals are exact rationals), the names above, time
+//! `t`, `pi`, velocities `dot(q)`, `+ - * /`, powers `pow(x, n)` or `x^n` (Rust
+//! parses `a + b^2` as `(a + b)^2`, so an operand of `^` that is itself an
+//! operation must be parenthesised — the macro rejects the ambiguous form), and the
+//! functions `sin cos tan asin acos atan atan2 sinh cosh tanh exp ln sqrt abs`
+//! (also in method form: `x.sin()`, `x.powi(2)`). Positions, gravity and the
+//! potential cannot depend on velocities.
+
+pub use lagrange_macros::Lagrangian;
+pub use lagrange_runtime::*;
+pub use nalgebra;
+
+/// Everything a typical program needs: the derive, the trait, the simulation
+/// builder, the integrators and nalgebra's fixed-size vectors.
+pub mod prelude {
+    pub use lagrange_macros::Lagrangian;
+    pub use lagrange_runtime::{Dopri5, Error, Lagrangian, Real, Rk4, Simulation, Trajectory};
+    pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
+}
+
+/// Paths the generated code uses; not a public API.
+#[doc(hidden)]
+pub mod __private {
+    pub use lagrange_runtime::func;
+    pub use lagrange_runtime::{Lagrangian, Real};
+    pub use nalgebra::{SMatrix, SVector};
+}

@@ -1,0 +1,13 @@
+use lagrange::Lagrangian;
+
+#[derive(Lagrangian)]
+#[lagrange(
+    coordinates(theta),
+    point(bob, mass = m, at = [l * sec(theta), l * cos(theta)]),
+)]
+struct Pendulum {
+    m: f64,
+    l: f64,
+}
+
+fn main() {}
