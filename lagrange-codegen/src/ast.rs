@@ -19,12 +19,13 @@ pub struct Parameter {
     pub name: Ident,
 }
 
-/// `point(name, mass = m, at = [x, y, z])`.
+/// `point(name, mass = m, at = [x, y, z])`. Both keys are required; a missing one
+/// is reported by `check`, which keeps the point so its name still resolves.
 #[derive(Clone, Debug)]
 pub struct Point {
     pub name: Ident,
-    pub mass: Expr,
-    pub at: Expr,
+    pub mass: Option<Expr>,
+    pub at: Option<Expr>,
 }
 
 /// `force(point, [fx, fy, fz])`: a Cartesian force applied at a point.

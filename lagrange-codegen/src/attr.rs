@@ -48,7 +48,7 @@ impl Parse for Item {
                         .collect(),
                 ))
             }
-            "point" => parse_point(input, key).map(Item::Point),
+            "point" => parse_point(input).map(Item::Point),
             "gravity" | "potential" | "dissipation" => {
                 input.parse::<Token![=]>()?;
                 let value: Expr = input.parse()?;
@@ -102,7 +102,7 @@ impl Parse for NameValue {
 }
 
 /// `point(name, mass = m, at = [x, y, z])`, keys in any order.
-fn parse_point(input: ParseStream, key: Ident) -> syn::Result<Point> {
+fn parse_point(input: ParseStream) -> syn::Result<Point> {
     let content;
     syn::parenthesized!(content in input);
     let name: Ident = content.parse()?;
@@ -134,19 +134,6 @@ fn parse_point(input: ParseStream, key: Ident) -> syn::Result<Point> {
         }
         *slot = Some(v);
     }
-    let Some(at) = at else {
-        return Err(syn::Error::new(
-            name.span(),
-            format!("point `{name}` has no position: add `at = [x, y]` or `at = [x, y, z]`"),
-        ));
-    };
-    let Some(mass) = mass else {
-        return Err(syn::Error::new(
-            name.span(),
-            format!("point `{name}` has no mass: add `mass = ...`"),
-        ));
-    };
-    let _ = key;
     Ok(Point { name, mass, at })
 }
 
@@ -194,13 +181,20 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
     let mut seen_attr = false;
     for attr in input.attrs.iter().filter(|a| a.path().is_ident("lagrange")) {
         seen_attr = true;
-        match attr.parse_args_with(Punctuated::<Item, Token![,]>::parse_terminated) {
-            Ok(items) => {
-                for item in items {
-                    add_item(cx, &mut system, item);
-                }
+        let tokens = match &attr.meta {
+            syn::Meta::List(list) => list.tokens.clone(),
+            other => {
+                cx.error_spanned_by(other, "expected #[lagrange(...)]");
+                continue;
             }
-            Err(e) => cx.syn_error(e),
+        };
+        // Each top-level item is parsed on its own, so one malformed item is one
+        // error and the rest of the description is still checked.
+        for chunk in split_top_level_commas(tokens) {
+            match syn::parse2::<Item>(chunk) {
+                Ok(item) => add_item(cx, &mut system, item),
+                Err(e) => cx.syn_error(e),
+            }
         }
     }
     if !seen_attr {
@@ -210,6 +204,25 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
         );
     }
     Some(system)
+}
+
+/// Splits `a, b(c, d), e` into `a`, `b(c, d)`, `e`: commas inside groups are
+/// inside one token tree, so only the top-level ones separate items.
+fn split_top_level_commas(tokens: proc_macro2::TokenStream) -> Vec<proc_macro2::TokenStream> {
+    let mut items = Vec::new();
+    let mut current = proc_macro2::TokenStream::new();
+    for tt in tokens {
+        match &tt {
+            proc_macro2::TokenTree::Punct(p) if p.as_char() == ',' => {
+                items.push(std::mem::take(&mut current));
+            }
+            _ => current.extend([tt]),
+        }
+    }
+    if !current.is_empty() {
+        items.push(current);
+    }
+    items.into_iter().filter(|c| !c.is_empty()).collect()
 }
 
 fn add_item(cx: &Ctxt, system: &mut System, item: Item) {

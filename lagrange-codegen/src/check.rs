@@ -16,6 +16,7 @@ const RESERVED: &[&str] = &["t", "pi", "PI", "dot", "self"];
 pub fn check(cx: &Ctxt, system: &System) {
     check_has_coordinates(cx, system);
     check_has_points(cx, system);
+    check_point_keys(cx, system);
     check_unique_names(cx, system);
     check_dimensions(cx, system);
     check_force_targets(cx, system);
@@ -36,6 +37,26 @@ fn check_has_points(cx: &Ctxt, system: &System) {
             system.span,
             "no point masses: the kinetic energy would be zero; add `point(name, mass = m, at = [x, y, z])`",
         );
+    }
+}
+
+fn check_point_keys(cx: &Ctxt, system: &System) {
+    for p in &system.points {
+        if p.at.is_none() {
+            cx.error_at(
+                p.name.span(),
+                format!(
+                    "point `{}` has no position: add `at = [x, y]` or `at = [x, y, z]`",
+                    p.name
+                ),
+            );
+        }
+        if p.mass.is_none() {
+            cx.error_at(
+                p.name.span(),
+                format!("point `{}` has no mass: add `mass = ...`", p.name),
+            );
+        }
     }
 }
 
@@ -113,7 +134,9 @@ fn check_dimensions(cx: &Ctxt, system: &System) {
         }
     };
     for p in &system.points {
-        agree(&p.at, format!("the position of point `{}`", p.name));
+        if let Some(at) = &p.at {
+            agree(at, format!("the position of point `{}`", p.name));
+        }
     }
     if let Some(g) = &system.gravity {
         agree(g, "gravity".to_string());

@@ -93,8 +93,11 @@ fn lower_system(cx: &Ctxt, system: &ast::System) -> Option<Lowered> {
     }
     let mut points = Vec::new();
     for p in &system.points {
-        let mass = lw.expr(&p.mass, Mode::Constant);
-        let position = lw.vector(&p.at, Mode::Configuration);
+        let (Some(mass), Some(at)) = (&p.mass, &p.at) else {
+            continue;
+        };
+        let mass = lw.expr(mass, Mode::Constant);
+        let position = lw.vector(at, Mode::Configuration);
         if let (Some(mass), Some(position)) = (mass, position) {
             points.push(PointModel {
                 name: p.name.to_string(),
