@@ -9,7 +9,6 @@
 use std::collections::BTreeMap;
 
 use lagrange_symbolic::{Context, Expr as Sym, Func};
-use syn::spanned::Spanned;
 use syn::{BinOp, Expr, Ident, Lit, UnOp};
 
 use crate::ctxt::Ctxt;
@@ -114,7 +113,7 @@ impl<'a> Lowerer<'a> {
                 Some(id) => self.name(id, mode),
                 None => self.unsupported(e, "a path; use a plain name"),
             },
-            Expr::Field(f) => self.self_field(f, mode),
+            Expr::Field(f) => self.self_field(f),
             Expr::Unary(u) => match u.op {
                 UnOp::Neg(_) => {
                     let a = self.expr(&u.expr, mode)?;
@@ -211,28 +210,26 @@ impl<'a> Lowerer<'a> {
     }
 
     /// `self.m` is accepted as a spelling of the parameter `m`.
-    fn self_field(&mut self, f: &syn::ExprField, mode: Mode) -> Option<Sym> {
+    fn self_field(&mut self, f: &syn::ExprField) -> Option<Sym> {
         let is_self = matches!(&*f.base, Expr::Path(p) if p.path.is_ident("self"));
-        match (&f.member, is_self) {
-            (syn::Member::Named(id), true) => match self.scope.get(&id.to_string()) {
-                Some(Binding::Parameter(p)) => Some(*p),
-                _ => {
-                    self.cx.error_at(
-                        id.span(),
-                        format!("`self.{id}` is not a parameter field of the struct"),
-                    );
-                    None
-                }
-            },
-            _ => self.unsupported(
-                &Expr::Field(f.clone()),
-                "a field access other than `self.param`",
-            ),
+        let name = match (&f.member, is_self) {
+            (syn::Member::Named(id), true) => id,
+            _ => {
+                self.cx
+                    .error_spanned_by(f, "only `self.<parameter>` field accesses are supported");
+                return None;
+            }
+        };
+        match self.scope.get(&name.to_string()) {
+            Some(Binding::Parameter(p)) => Some(*p),
+            _ => {
+                self.cx.error_at(
+                    name.span(),
+                    format!("`self.{name}` is not a parameter field of the struct"),
+                );
+                None
+            }
         }
-        .or_else(|| {
-            let _ = mode;
-            None
-        })
     }
 
     fn literal(&mut self, lit: &Lit) -> Option<Sym> {
@@ -258,7 +255,7 @@ impl<'a> Lowerer<'a> {
     }
 
     fn binary(&mut self, b: &syn::ExprBinary, mode: Mode) -> Option<Sym> {
-        if let BinOp::BitXor(op) = &b.op {
+        if let BinOp::BitXor(_) = &b.op {
             // `^` binds looser than + - * / in Rust: `a + b^2` parses as `(a + b)^2`
             // and `x^2 + y` as `x^(2 + y)`. Rather than silently compute the wrong
             // power, insist on parentheses when an operand is itself an operation.
@@ -271,7 +268,6 @@ impl<'a> Lowerer<'a> {
                             quote::ToTokens::to_token_stream(side)
                         ),
                     );
-                    let _ = op;
                     return None;
                 }
             }
@@ -443,9 +439,4 @@ fn decimal(ctx: &mut Context, digits: &str) -> Option<Sym> {
         scale += 1;
     }
     Some(ctx.rational(num, den))
-}
-
-/// The span of an expression, for errors raised after lowering.
-pub fn span_of(e: &Expr) -> proc_macro2::Span {
-    e.span()
 }
