@@ -3,7 +3,7 @@
 
 use crate::error::Error;
 use crate::func::abs;
-use crate::ode::{DenseSegment, Stats};
+use crate::ode::{DenseSegment, Sample, Stats};
 use crate::real::Real;
 use crate::root::brent;
 use nalgebra::SVector;
@@ -19,47 +19,56 @@ pub struct Trajectory<T: Real, const N: usize> {
     q: Vec<SVector<T, N>>,
     v: Vec<SVector<T, N>>,
     integral: Vec<T>,
+    residual: Vec<[T; 2]>,
     segments: Vec<DenseSegment<T, N>>,
     stats: Stats,
 }
 
 impl<T: Real, const N: usize> Trajectory<T, N> {
     /// A trajectory holding only the initial point.
-    pub(crate) fn start(t0: T, q0: SVector<T, N>, v0: SVector<T, N>, integral0: T) -> Self {
+    pub fn start(t0: T, q0: SVector<T, N>, v0: SVector<T, N>, sample: Sample<T>) -> Self {
         Self {
             times: vec![t0],
             q: vec![q0],
             v: vec![v0],
-            integral: vec![integral0],
+            integral: vec![sample.integral],
+            residual: vec![sample.residuals],
             segments: Vec::new(),
             stats: Stats::default(),
         }
     }
 
-    pub(crate) fn reserve(&mut self, steps: usize) {
+    /// Reserves room for `steps` more points.
+    pub fn reserve(&mut self, steps: usize) {
         self.times.reserve(steps);
         self.q.reserve(steps);
         self.v.reserve(steps);
         self.integral.reserve(steps);
+        self.residual.reserve(steps);
         self.segments.reserve(steps);
     }
 
     /// Appends an accepted step ending at `segment.end()`.
-    pub(crate) fn push(
+    ///
+    /// Integrators outside this crate build their trajectories with
+    /// [`start`](Self::start), `push` and [`set_stats`](Self::set_stats).
+    pub fn push(
         &mut self,
         segment: DenseSegment<T, N>,
         q: SVector<T, N>,
         v: SVector<T, N>,
-        integral: T,
+        sample: Sample<T>,
     ) {
         self.times.push(segment.end());
         self.q.push(q);
         self.v.push(v);
-        self.integral.push(integral);
+        self.integral.push(sample.integral);
+        self.residual.push(sample.residuals);
         self.segments.push(segment);
     }
 
-    pub(crate) fn set_stats(&mut self, stats: Stats) {
+    /// Records the work done by the integration.
+    pub fn set_stats(&mut self, stats: Stats) {
         self.stats = stats;
     }
 
@@ -92,6 +101,19 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     /// The conserved quantity (energy or Jacobi integral) at [`times`](Self::times).
     pub fn integrals(&self) -> &[T] {
         &self.integral
+    }
+
+    /// Constraint residuals [|Φ|∞, |G q̇ + g|∞] at [`times`](Self::times); zeros for
+    /// an unconstrained system.
+    pub fn residuals(&self) -> &[[T; 2]] {
+        &self.residual
+    }
+
+    /// The largest position and velocity constraint residuals along the run.
+    pub fn max_residuals(&self) -> [T; 2] {
+        self.residual
+            .iter()
+            .fold([T::zero(); 2], |m, r| [m[0].max(r[0]), m[1].max(r[1])])
     }
 
     /// Dense output, one segment per accepted step.

@@ -44,6 +44,26 @@ impl<T: Real, const N: usize> DenseSegment<T, N> {
         Self::new(t0, t1, h, [r1, r2, r3, r4, Pair::zeros()])
     }
 
+    /// The cubic Hermite interpolant through (q0, v0) and (q1, v1) with the
+    /// accelerations a0, a1 at the ends: the dense output of any one-step method
+    /// that has no continuous extension of its own.
+    #[allow(clippy::too_many_arguments)]
+    pub fn cubic_hermite(
+        t0: T,
+        t1: T,
+        (q0, v0, a0): (&SVector<T, N>, &SVector<T, N>, &SVector<T, N>),
+        (q1, v1, a1): (&SVector<T, N>, &SVector<T, N>, &SVector<T, N>),
+    ) -> Self {
+        Self::hermite(
+            t0,
+            t1,
+            &Pair::new(*q0, *v0),
+            &Pair::new(*v0, *a0),
+            &Pair::new(*q1, *v1),
+            &Pair::new(*v1, *a1),
+        )
+    }
+
     /// r₁..r₄, shared by Hermite and DOPRI5: r₁ = y₀, r₂ = y₁ − y₀,
     /// r₃ = h f₀ − r₂, r₄ = r₂ − h f₁ − r₃.
     pub(crate) fn cubic_part(

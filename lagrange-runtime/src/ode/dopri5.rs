@@ -10,7 +10,7 @@
 //! per-component tolerances.
 
 use super::controller::PiController;
-use super::{DenseSegment, Integrator, Pair, SecondOrder, Stats, check_problem};
+use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::Error;
 use crate::func::{abs, sqrt};
 use crate::real::Real;
@@ -211,7 +211,7 @@ impl Integrator for Dopri5 {
             None => hinit(rhs, t0, &y, &k1, hmax, rtol, atol, &mut stats.evaluations)?,
         };
         let mut ctrl = PiController::<T>::dopri5();
-        let mut traj = Trajectory::start(t0, q0, v0, rhs.integral(t0, &q0, &v0));
+        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         let mut t = t0;
         let mut reject = false;
         loop {
@@ -266,12 +266,15 @@ impl Integrator for Dopri5 {
                 let (r1, r2, r3, r4) = DenseSegment::cubic_part(h, &y, &k1, &y_new, &k7);
                 let r5 = Pair::combination(h, co.d, [&k1, &k3, &k4, &k5, &k6, &k7]);
                 let segment = DenseSegment::new(t, t_new, h, [r1, r2, r3, r4, r5]);
-                traj.push(
-                    segment,
-                    y_new.q,
-                    y_new.v,
-                    rhs.integral(t_new, &y_new.q, &y_new.v),
-                );
+                // A projection moves the end point by about the local error; the
+                // dense output keeps the unprojected polynomial, and the first stage
+                // of the next step (FSAL) is re-evaluated at the projected state.
+                let (mut y_new, mut k7) = (y_new, k7);
+                if rhs.project(t_new, &mut y_new.q, &mut y_new.v)? {
+                    k7 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
+                }
+                let sample = Sample::of(rhs, t_new, &y_new.q, &y_new.v);
+                traj.push(segment, y_new.q, y_new.v, sample);
                 (t, y, k1) = (t_new, y_new, k7);
                 if last {
                     break;

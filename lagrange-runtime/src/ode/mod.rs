@@ -47,6 +47,50 @@ pub trait SecondOrder<T: Real, const N: usize> {
         let _ = (t, q, v);
         T::zero()
     }
+
+    /// Constraint residuals recorded at every accepted step: the largest position
+    /// residual |Φ(q,t)|∞ and the largest velocity residual |G q̇ + g|∞. Zero for an
+    /// unconstrained system.
+    fn residuals(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> [T; 2] {
+        let _ = (t, q, v);
+        [T::zero(); 2]
+    }
+
+    /// Called by every integrator after each accepted step: may move the state back
+    /// onto a manifold (projection onto the constraints, or recomputing dependent
+    /// velocities in a reduced nonholonomic form). Returns whether the state was
+    /// changed, so that integrators that reuse the last stage (FSAL) re-evaluate it.
+    ///
+    /// # Errors
+    /// A projection that does not converge, or a right-hand side failure.
+    fn project(&self, t: T, q: &mut SVector<T, N>, v: &mut SVector<T, N>) -> Result<bool, Error> {
+        let _ = (t, q, v);
+        Ok(false)
+    }
+}
+
+/// What a trajectory records at each point besides the state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample<T> {
+    /// The conserved quantity ([`SecondOrder::integral`]).
+    pub integral: T,
+    /// Position and velocity constraint residuals ([`SecondOrder::residuals`]).
+    pub residuals: [T; 2],
+}
+
+impl<T: Real> Sample<T> {
+    /// Samples `rhs` at (t, q, v).
+    pub fn of<const N: usize, F: SecondOrder<T, N>>(
+        rhs: &F,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Self {
+        Self {
+            integral: rhs.integral(t, q, v),
+            residuals: rhs.residuals(t, q, v),
+        }
+    }
 }
 
 /// A method that integrates a [`SecondOrder`] system over a time span.
@@ -162,7 +206,7 @@ fn combine<T: Real, const K: usize>(out: &mut [T], h: T, c: &[T; K], k: &[&[T]; 
 
 /// Checks what every integrator needs: a finite, non-empty, forward time span and
 /// a finite initial state.
-pub(crate) fn check_problem<T: Real, const N: usize>(
+pub fn check_problem<T: Real, const N: usize>(
     t0: T,
     t1: T,
     q0: &SVector<T, N>,

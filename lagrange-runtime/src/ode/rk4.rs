@@ -1,6 +1,6 @@
 //! The classic fourth-order Runge–Kutta method with a fixed step.
 
-use super::{DenseSegment, Integrator, Pair, SecondOrder, Stats, check_problem};
+use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::Error;
 use crate::real::Real;
 use crate::trajectory::Trajectory;
@@ -74,7 +74,7 @@ impl Integrator for Rk4 {
         let mut stats = Stats::default();
         let mut y = Pair::new(q0, v0);
         let mut f = y.derivative(rhs, t0, &mut stats.evaluations)?;
-        let mut traj = Trajectory::start(t0, q0, v0, rhs.integral(t0, &q0, &v0));
+        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         traj.reserve(n);
         let mut t = t0;
         let half = T::lit(0.5);
@@ -109,14 +109,12 @@ impl Integrator for Rk4 {
                 // Only a right-hand side that returns NaN or ∞ without an error gets here.
                 return Err(Error::non_finite(t_next, &y_next.q, &y_next.v));
             }
+            let mut y_next = y_next;
+            rhs.project(t_next, &mut y_next.q, &mut y_next.v)?;
             let f_next = y_next.derivative(rhs, t_next, ev)?;
             let segment = DenseSegment::hermite(t, t_next, &y, &f, &y_next, &f_next);
-            traj.push(
-                segment,
-                y_next.q,
-                y_next.v,
-                rhs.integral(t_next, &y_next.q, &y_next.v),
-            );
+            let sample = Sample::of(rhs, t_next, &y_next.q, &y_next.v);
+            traj.push(segment, y_next.q, y_next.v, sample);
             stats.accepted += 1;
             (t, y, f) = (t_next, y_next, f_next);
         }
