@@ -59,7 +59,9 @@ pub use nalgebra;
 /// builder, the integrators and nalgebra's fixed-size vectors.
 pub mod prelude {
     pub use lagrange_macros::Lagrangian;
-    pub use lagrange_runtime::{Dopri5, Error, Lagrangian, Real, Rk4, Simulation, Trajectory};
+    pub use lagrange_runtime::{
+        Constrained, Dopri5, Error, Lagrangian, Real, Reduced, Rk4, Simulation, Trajectory,
+    };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }
 
@@ -67,6 +69,6 @@ pub mod prelude {
 #[doc(hidden)]
 pub mod __private {
     pub use lagrange_runtime::func;
-    pub use lagrange_runtime::{Lagrangian, Real};
+    pub use lagrange_runtime::{Constrained, Lagrangian, Real, Reduced};
     pub use nalgebra::{SMatrix, SVector};
 }

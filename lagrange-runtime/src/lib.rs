@@ -34,5 +34,5 @@ pub use error::Error;
 pub use ode::{DenseSegment, Dopri5, Integrator, Rk4, Sample, SecondOrder, Stats};
 pub use real::Real;
 pub use simulation::Simulation;
-pub use system::Lagrangian;
+pub use system::{Constrained, Lagrangian, Reduced};
 pub use trajectory::Trajectory;

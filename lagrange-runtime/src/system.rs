@@ -54,3 +54,86 @@ pub trait Lagrangian<T: Real, const N: usize> {
     /// It is the runtime's accuracy diagnostic.
     fn integral(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> T;
 }
+
+/// Constraints kept with multipliers: K rows of
+///
+/// ```text
+/// G(q,t) q̇ + g(q,t) = 0,        G = [Φ_q; A],  g = [Φ_t; b]
+/// ```
+///
+/// The first [`HOLONOMIC`](Self::HOLONOMIC) rows are holonomic, Φ(q,t) = 0 at the
+/// position level; the rest are nonholonomic, linear in the velocities. The
+/// equations of motion become
+///
+/// ```text
+/// M q̈ + h = Q + Gᵀ ν,     G q̈ = γ(q,q̇,t)
+/// ```
+///
+/// with γ = −(Ġ q̇ + ġ) and the multipliers ν = [λ; μ].
+pub trait Constrained<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
+    /// Names of the constraints, in row order.
+    const CONSTRAINTS: [&'static str; K];
+    /// How many of the K rows (the first ones) are holonomic.
+    const HOLONOMIC: usize;
+
+    /// Φ(q,t) in the holonomic rows, zero in the nonholonomic rows.
+    fn constraint_positions(&self, q: &SVector<T, N>, t: T) -> SVector<T, K>;
+
+    /// G(q,t) = [Φ_q; A] and g(q,t) = [Φ_t; b].
+    fn constraint_jacobian(&self, q: &SVector<T, N>, t: T) -> (SMatrix<T, K, N>, SVector<T, K>);
+
+    /// γ(q,q̇,t) = −(Ġ q̇ + ġ), the right-hand side of G q̈ = γ.
+    fn constraint_rhs(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, K>;
+
+    /// M, Q − h, G and γ in one pass (shared subexpressions evaluated once): what
+    /// the constrained dynamics call.
+    #[allow(clippy::type_complexity)]
+    fn constrained_system(
+        &self,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        t: T,
+    ) -> (
+        SMatrix<T, N, N>,
+        SVector<T, N>,
+        SMatrix<T, K, N>,
+        SVector<T, K>,
+    );
+}
+
+/// A nonholonomic system reduced to K independent speeds u (independent
+/// velocities or quasi-velocities; Maggi, Voronets, Gibbs–Appell):
+///
+/// ```text
+/// u = U(q,t) q̇ + u₀(q,t),     q̇ = W(q,t) u + w(q,t)
+/// M*(q,t) u̇ = F*(q,u,t),      M* = Wᵀ M W,   F* = Wᵀ (Q − h − M (Ẇ u + ẇ))
+/// ```
+///
+/// The velocity constraints A q̇ + b = 0 hold identically for every u (A W = 0,
+/// A w + b = 0), so there are no multipliers and no velocity drift. The state the
+/// integrators carry is still (q, q̇); the dynamics re-derive q̇ from u after each
+/// step.
+pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
+    /// Names of the independent speeds.
+    const SPEEDS: [&'static str; K];
+
+    /// u = U(q,t) q̇ + u₀(q,t).
+    fn speeds(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, K>;
+
+    /// q̇ = W(q,t) u + w(q,t).
+    fn velocities(&self, q: &SVector<T, N>, u: &SVector<T, K>, t: T) -> SVector<T, N>;
+
+    /// M*, F*, W and κ = Ẇ u + ẇ, so that q̈ = W u̇ + κ.
+    #[allow(clippy::type_complexity)]
+    fn reduced_system(
+        &self,
+        q: &SVector<T, N>,
+        u: &SVector<T, K>,
+        t: T,
+    ) -> (
+        SMatrix<T, K, K>,
+        SVector<T, K>,
+        SMatrix<T, N, K>,
+        SVector<T, N>,
+    );
+}
