@@ -19,13 +19,54 @@ pub struct Parameter {
     pub name: Ident,
 }
 
-/// `point(name, mass = m, at = [x, y, z])`. Both keys are required; a missing one
-/// is reported by `check`, which keeps the point so its name still resolves.
+/// `point(name, mass = m, at = [x, y, z])`, or `point(name, on = body, at = [..])`
+/// for a point fixed in a body (coordinates in the body frame, mass optional: a
+/// contact or attachment point). A missing key is reported by `check`, which keeps
+/// the point so its name still resolves.
 #[derive(Clone, Debug)]
 pub struct Point {
     pub name: Ident,
     pub mass: Option<Expr>,
     pub at: Option<Expr>,
+    pub on: Option<Ident>,
+}
+
+/// `body(name, mass = m, inertia = [A, B, C], at = [x, y, z], rotation = R)`: a rigid
+/// body with its centre of mass at `at`, principal (or full, six entries
+/// `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`) inertia about the centre in the body frame,
+/// and orientation R(q,t) mapping body to world coordinates.
+#[derive(Clone, Debug)]
+pub struct Body {
+    pub name: Ident,
+    pub mass: Option<Expr>,
+    pub inertia: Option<Expr>,
+    pub at: Option<Expr>,
+    pub rotation: Option<Expr>,
+}
+
+/// A named constraint: `holonomic(name = f(q, t))` or `nonholonomic(name = a(q,t)·q̇ + b)`.
+#[derive(Clone, Debug)]
+pub struct Constraint {
+    pub name: Ident,
+    pub value: Expr,
+}
+
+/// How constrained equations are emitted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Formulation {
+    /// M q̈ + h = Q + Gᵀν with G q̈ = γ: gives reactions.
+    Multipliers,
+    /// Projected onto independent speeds (Maggi / Gibbs–Appell): no multipliers.
+    Reduced,
+}
+
+/// Optional outputs a scene asks for with `emit(...)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Extra {
+    /// Cartesian reactions on points and bodies from the multipliers.
+    Reactions,
+    /// The Coriolis matrix C(q, q̇) with h = C q̇ (+ rheonomic terms).
+    Coriolis,
 }
 
 /// `force(point, [fx, fy, fz])`: a Cartesian force applied at a point.
@@ -59,6 +100,14 @@ pub struct System {
     pub coordinates: Vec<Ident>,
     pub definitions: Vec<Definition>,
     pub points: Vec<Point>,
+    pub bodies: Vec<Body>,
+    pub holonomic: Vec<Constraint>,
+    pub nonholonomic: Vec<Constraint>,
+    /// `speeds(u = expr, ...)`: independent speeds of the reduced form.
+    pub speeds: Vec<Definition>,
+    /// `formulation(...)`; empty means the default (multipliers when there are constraints).
+    pub formulations: Vec<(Ident, Formulation)>,
+    pub extras: Vec<(Ident, Extra)>,
     pub gravity: Option<Expr>,
     pub potential: Option<Expr>,
     pub dissipation: Option<Expr>,

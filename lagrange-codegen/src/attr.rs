@@ -9,18 +9,26 @@ use syn::punctuated::Punctuated;
 use syn::spanned::Spanned;
 use syn::{Data, DeriveInput, Expr, Fields, GenericParam, Ident, Token, Type};
 
-use crate::ast::{Definition, Force, GeneralizedForce, Parameter, Point, Scalar, System};
+use crate::ast::{
+    Body, Constraint, Definition, Extra, Force, Formulation, GeneralizedForce, Parameter, Point,
+    Scalar, System,
+};
 use crate::ctxt::Ctxt;
 
 /// Keys accepted at the top level of `#[lagrange(...)]`, for the "unknown key" message.
-const KEYS: &str =
-    "coordinates, define, point, gravity, potential, force, generalized_force, dissipation";
+const KEYS: &str = "coordinates, define, point, body, gravity, potential, force, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit";
 
 /// One top-level item of the attribute.
 enum Item {
     Coordinates(Vec<Ident>),
     Define(Vec<Definition>),
     Point(Point),
+    Body(Box<Body>),
+    Holonomic(Vec<Constraint>),
+    Nonholonomic(Vec<Constraint>),
+    Speeds(Vec<Definition>),
+    Formulation(Vec<(Ident, Formulation)>),
+    Emit(Vec<(Ident, Extra)>),
     Gravity(Ident, Expr),
     Potential(Ident, Expr),
     Dissipation(Ident, Expr),
@@ -49,6 +57,70 @@ impl Parse for Item {
                 ))
             }
             "point" => parse_point(input).map(Item::Point),
+            "body" => parse_body(input).map(|b| Item::Body(Box::new(b))),
+            "holonomic" | "nonholonomic" | "speeds" => {
+                let content;
+                syn::parenthesized!(content in input);
+                let items = Punctuated::<NameValue, Token![,]>::parse_terminated(&content)?;
+                let items = items.into_iter().map(|NameValue(n, v)| (n, v));
+                Ok(match key.to_string().as_str() {
+                    "holonomic" => Item::Holonomic(
+                        items
+                            .map(|(name, value)| Constraint { name, value })
+                            .collect(),
+                    ),
+                    "nonholonomic" => Item::Nonholonomic(
+                        items
+                            .map(|(name, value)| Constraint { name, value })
+                            .collect(),
+                    ),
+                    _ => Item::Speeds(
+                        items
+                            .map(|(name, value)| Definition { name, value })
+                            .collect(),
+                    ),
+                })
+            }
+            "formulation" => {
+                let names = parse_names(input)?;
+                let mut out = Vec::new();
+                for n in names {
+                    let f = match n.to_string().as_str() {
+                        "multipliers" => Formulation::Multipliers,
+                        "reduced" => Formulation::Reduced,
+                        other => {
+                            return Err(syn::Error::new(
+                                n.span(),
+                                format!(
+                                    "unknown formulation `{other}`; expected `multipliers` or `reduced`"
+                                ),
+                            ));
+                        }
+                    };
+                    out.push((n, f));
+                }
+                Ok(Item::Formulation(out))
+            }
+            "emit" => {
+                let names = parse_names(input)?;
+                let mut out = Vec::new();
+                for n in names {
+                    let e = match n.to_string().as_str() {
+                        "reactions" => Extra::Reactions,
+                        "coriolis" => Extra::Coriolis,
+                        other => {
+                            return Err(syn::Error::new(
+                                n.span(),
+                                format!(
+                                    "unknown output `{other}`; expected `reactions` or `coriolis`"
+                                ),
+                            ));
+                        }
+                    };
+                    out.push((n, e));
+                }
+                Ok(Item::Emit(out))
+            }
             "gravity" | "potential" | "dissipation" => {
                 input.parse::<Token![=]>()?;
                 let value: Expr = input.parse()?;
@@ -101,40 +173,82 @@ impl Parse for NameValue {
     }
 }
 
-/// `point(name, mass = m, at = [x, y, z])`, keys in any order.
-fn parse_point(input: ParseStream) -> syn::Result<Point> {
+/// `(a, b, c)`: a parenthesised list of names.
+fn parse_names(input: ParseStream) -> syn::Result<Vec<Ident>> {
+    let content;
+    syn::parenthesized!(content in input);
+    let names = Punctuated::<Ident, Token![,]>::parse_terminated(&content)?;
+    Ok(names.into_iter().collect())
+}
+
+/// `(name, key = value, ...)` with keys from `keys`, each at most once, in any order.
+fn parse_keyed(
+    input: ParseStream,
+    what: &str,
+    keys: &[&str],
+) -> syn::Result<(Ident, Vec<Option<Expr>>)> {
     let content;
     syn::parenthesized!(content in input);
     let name: Ident = content.parse()?;
-    let mut mass = None;
-    let mut at = None;
+    let mut slots: Vec<Option<Expr>> = vec![None; keys.len()];
     while !content.is_empty() {
         content.parse::<Token![,]>()?;
         if content.is_empty() {
             break;
         }
         let NameValue(k, v) = content.parse()?;
-        let slot = match k.to_string().as_str() {
-            "mass" => &mut mass,
-            "at" => &mut at,
-            other => {
-                return Err(syn::Error::new(
-                    k.span(),
-                    format!(
-                        "unknown key `{other}` in point `{name}`; expected `mass = ...` or `at = [...]`"
-                    ),
-                ));
-            }
-        };
-        if slot.is_some() {
+        let Some(i) = keys.iter().position(|key| k == key) else {
+            let expected: Vec<String> = keys.iter().map(|k| format!("`{k} = ...`")).collect();
             return Err(syn::Error::new(
                 k.span(),
-                format!("`{k}` given twice for point `{name}`"),
+                format!(
+                    "unknown key `{k}` in {what} `{name}`; expected {}",
+                    expected.join(", ")
+                ),
+            ));
+        };
+        if slots[i].is_some() {
+            return Err(syn::Error::new(
+                k.span(),
+                format!("`{k}` given twice for {what} `{name}`"),
             ));
         }
-        *slot = Some(v);
+        slots[i] = Some(v);
     }
-    Ok(Point { name, mass, at })
+    Ok((name, slots))
+}
+
+/// `point(name, mass = m, at = [x, y, z])` or `point(name, on = body, at = [..])`.
+fn parse_point(input: ParseStream) -> syn::Result<Point> {
+    let (name, mut s) = parse_keyed(input, "point", &["mass", "at", "on"])?;
+    let on = match s[2].take() {
+        None => None,
+        Some(Expr::Path(p)) if p.path.get_ident().is_some() => p.path.get_ident().cloned(),
+        Some(other) => {
+            return Err(syn::Error::new_spanned(
+                other,
+                "`on = ...` names the body the point is fixed in",
+            ));
+        }
+    };
+    Ok(Point {
+        name,
+        mass: s[0].take(),
+        at: s[1].take(),
+        on,
+    })
+}
+
+/// `body(name, mass = m, inertia = [..], at = [..], rotation = R)`.
+fn parse_body(input: ParseStream) -> syn::Result<Body> {
+    let (name, mut s) = parse_keyed(input, "body", &["mass", "inertia", "at", "rotation"])?;
+    Ok(Body {
+        name,
+        mass: s[0].take(),
+        inertia: s[1].take(),
+        at: s[2].take(),
+        rotation: s[3].take(),
+    })
 }
 
 /// Reads the struct and its `#[lagrange(...)]` attributes. Returns `None` only when
@@ -170,6 +284,12 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
         coordinates: Vec::new(),
         definitions: Vec::new(),
         points: Vec::new(),
+        bodies: Vec::new(),
+        holonomic: Vec::new(),
+        nonholonomic: Vec::new(),
+        speeds: Vec::new(),
+        formulations: Vec::new(),
+        extras: Vec::new(),
         gravity: None,
         potential: None,
         dissipation: None,
@@ -230,6 +350,12 @@ fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
         Item::Coordinates(names) => system.coordinates.extend(names),
         Item::Define(defs) => system.definitions.extend(defs),
         Item::Point(p) => system.points.push(p),
+        Item::Body(b) => system.bodies.push(*b),
+        Item::Holonomic(c) => system.holonomic.extend(c),
+        Item::Nonholonomic(c) => system.nonholonomic.extend(c),
+        Item::Speeds(s) => system.speeds.extend(s),
+        Item::Formulation(f) => system.formulations.extend(f),
+        Item::Emit(e) => system.extras.extend(e),
         Item::Force(f) => system.forces.push(f),
         Item::GeneralizedForce(g) => system.generalized_forces.extend(g),
         Item::Gravity(k, v) => set_once(cx, &mut system.gravity, k, v),

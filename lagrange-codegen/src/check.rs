@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 
 use syn::{Expr, Ident};
 
-use crate::ast::System;
+use crate::ast::{Extra, Formulation, System};
 use crate::ctxt::Ctxt;
 
 /// Names the expression language gives a meaning of its own.
@@ -17,9 +17,104 @@ pub fn check(cx: &Ctxt, system: &System) {
     check_has_coordinates(cx, system);
     check_has_points(cx, system);
     check_point_keys(cx, system);
+    check_body_keys(cx, system);
     check_unique_names(cx, system);
     check_dimensions(cx, system);
     check_force_targets(cx, system);
+    check_formulation(cx, system);
+}
+
+/// The formulations a system is emitted in: what `formulation(...)` asks for, or by
+/// default multipliers when there are constraints and the reduced form when
+/// `speeds(...)` are given.
+pub fn formulations(system: &System) -> Vec<Formulation> {
+    if !system.formulations.is_empty() {
+        let mut out: Vec<Formulation> = system.formulations.iter().map(|(_, f)| *f).collect();
+        out.dedup();
+        return out;
+    }
+    let constrained = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
+    let mut out = Vec::new();
+    if constrained && system.speeds.is_empty() {
+        out.push(Formulation::Multipliers);
+    }
+    if !system.speeds.is_empty() {
+        out.push(Formulation::Reduced);
+    }
+    out
+}
+
+fn check_formulation(cx: &Ctxt, system: &System) {
+    let constrained = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
+    for (name, f) in &system.formulations {
+        match f {
+            Formulation::Multipliers if !constrained => cx.error_at(
+                name.span(),
+                "`multipliers` needs constraints: add `holonomic(...)` or `nonholonomic(...)`",
+            ),
+            Formulation::Reduced if !constrained && system.speeds.is_empty() => cx.error_at(
+                name.span(),
+                "`reduced` needs nonholonomic constraints or `speeds(...)` (quasi-velocities) to reduce to",
+            ),
+            _ => {}
+        }
+    }
+    let chosen = formulations(system);
+    for (name, e) in &system.extras {
+        if *e == Extra::Reactions && !chosen.contains(&Formulation::Multipliers) {
+            cx.error_at(
+                name.span(),
+                "`reactions` come from the multipliers: constraints are needed, in the `multipliers` formulation",
+            );
+        }
+    }
+}
+
+fn check_body_keys(cx: &Ctxt, system: &System) {
+    for b in &system.bodies {
+        let missing = [
+            (b.mass.is_none(), "mass = m"),
+            (b.inertia.is_none(), "inertia = [A, B, C]"),
+            (b.at.is_none(), "at = [x, y, z] (the centre of mass)"),
+            (
+                b.rotation.is_none(),
+                "rotation = rot_z(psi) * rot_x(theta) * ...",
+            ),
+        ];
+        for (is_missing, key) in missing {
+            if is_missing {
+                cx.error_at(b.name.span(), format!("body `{}` needs `{key}`", b.name));
+            }
+        }
+        if let Some(at) = &b.at
+            && let Expr::Array(a) = at
+            && a.elems.len() == 2
+        {
+            cx.error_spanned_by(
+                at,
+                format!("body `{}` is a spatial rigid body: give its centre as `[x, y, z]` (for a planar scene use z = 0 and `rot_z(angle)`)", b.name),
+            );
+        }
+        if let Some(inertia) = &b.inertia {
+            let n = match inertia {
+                Expr::Array(a) => Some(a.elems.len()),
+                _ => None,
+            };
+            if !matches!(n, Some(3 | 6)) {
+                cx.error_spanned_by(
+                    inertia,
+                    format!(
+                        "inertia of body `{}` has {}; expected the principal moments `[A, B, C]` or the six entries `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`",
+                        b.name,
+                        match n {
+                            Some(k) => format!("{k} entries"),
+                            None => "no `[...]` list".to_string(),
+                        }
+                    ),
+                );
+            }
+        }
+    }
 }
 
 fn check_has_coordinates(cx: &Ctxt, system: &System) {
@@ -32,7 +127,8 @@ fn check_has_coordinates(cx: &Ctxt, system: &System) {
 }
 
 fn check_has_points(cx: &Ctxt, system: &System) {
-    if system.points.is_empty() {
+    let has_mass = !(system.points.is_empty() && system.bodies.is_empty());
+    if !has_mass {
         cx.error_at(
             system.span,
             "no point masses: the kinetic energy would be zero; add `point(name, mass = m, at = [x, y, z])`",
@@ -42,6 +138,14 @@ fn check_has_points(cx: &Ctxt, system: &System) {
 
 fn check_point_keys(cx: &Ctxt, system: &System) {
     for p in &system.points {
+        if let Some(body) = &p.on
+            && !system.bodies.iter().any(|b| b.name == *body)
+        {
+            cx.error_at(
+                body.span(),
+                format!("point `{}` is on unknown body `{body}`; bodies are declared with `body(name, ...)`", p.name),
+            );
+        }
         if p.at.is_none() {
             cx.error_at(
                 p.name.span(),
@@ -51,7 +155,7 @@ fn check_point_keys(cx: &Ctxt, system: &System) {
                 ),
             );
         }
-        if p.mass.is_none() {
+        if p.mass.is_none() && p.on.is_none() {
             cx.error_at(
                 p.name.span(),
                 format!("point `{}` has no mass: add `mass = ...`", p.name),
@@ -90,6 +194,18 @@ fn check_unique_names(cx: &Ctxt, system: &System) {
     }
     for p in &system.points {
         declare(&p.name, "point");
+    }
+    for b in &system.bodies {
+        declare(&b.name, "body");
+    }
+    for c in &system.holonomic {
+        declare(&c.name, "constraint");
+    }
+    for c in &system.nonholonomic {
+        declare(&c.name, "constraint");
+    }
+    for u in &system.speeds {
+        declare(&u.name, "speed");
     }
 }
 
@@ -133,6 +249,11 @@ fn check_dimensions(cx: &Ctxt, system: &System) {
             }
         }
     };
+    for b in &system.bodies {
+        if let Some(at) = &b.at {
+            agree(at, format!("the centre of body `{}`", b.name));
+        }
+    }
     for p in &system.points {
         if let Some(at) = &p.at {
             agree(at, format!("the position of point `{}`", p.name));
@@ -148,11 +269,13 @@ fn check_dimensions(cx: &Ctxt, system: &System) {
 
 fn check_force_targets(cx: &Ctxt, system: &System) {
     for f in &system.forces {
-        if !system.points.iter().any(|p| p.name == f.point) {
+        let known = system.points.iter().any(|p| p.name == f.point)
+            || system.bodies.iter().any(|b| b.name == f.point);
+        if !known {
             cx.error_at(
                 f.point.span(),
                 format!(
-                    "force on unknown point `{}`; points are declared with `point(name, ...)`",
+                    "force on unknown point `{}`; points are declared with `point(name, ...)` and bodies with `body(name, ...)`",
                     f.point
                 ),
             );

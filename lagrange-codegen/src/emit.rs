@@ -9,7 +9,7 @@ use lagrange_symbolic::{EmitConfig, Expr as Sym, Program, SymbolKind};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::ast::{Scalar, System};
+use crate::ast::{Extra, Formulation, Scalar, System};
 use crate::doc;
 use crate::mechanics::Model;
 
@@ -69,8 +69,18 @@ impl Emitter<'_> {
                 let f = format_ident!("{}", params[i]);
                 quote!(self.#f)
             }
-            // Lowering never lets accelerations or free symbols into the model.
-            SymbolKind::Acceleration(_) | SymbolKind::Free => {
+            // The reduced form's speeds are the only free symbols that reach emission.
+            SymbolKind::Free => match self.speed_index(s) {
+                Some(i) => {
+                    let i = Literal::usize_unsuffixed(i);
+                    quote!(u[#i])
+                }
+                None => quote!(::core::compile_error!(
+                    "internal: unexpected symbol in generated code"
+                )),
+            },
+            // Lowering never lets accelerations into the model.
+            SymbolKind::Acceleration(_) => {
                 quote!(::core::compile_error!(
                     "internal: unexpected symbol in generated code"
                 ))
@@ -86,6 +96,26 @@ impl Emitter<'_> {
             temp_prefix: "_t",
         };
         program.emit(ctx, &cfg)
+    }
+
+    fn speed_index(&self, s: lagrange_symbolic::Symbol) -> Option<usize> {
+        let r = self.model.reduced.as_ref()?;
+        r.speed_symbols
+            .iter()
+            .position(|&u| self.model.ctx.as_symbol(u) == Some(s))
+    }
+
+    /// `let mut <name> = zeros; <name>[(i, j)] = ...;` for a dense matrix whose
+    /// entries are `outs` in row-major order.
+    fn fill_dense(&self, name: &TokenStream, outs: &[TokenStream], cols: usize) -> TokenStream {
+        let sets = outs.iter().enumerate().map(|(k, o)| {
+            let (i, j) = (
+                Literal::usize_unsuffixed(k / cols),
+                Literal::usize_unsuffixed(k % cols),
+            );
+            quote!(#name[(#i, #j)] = #o;)
+        });
+        quote!(#(#sets)*)
     }
 
     fn fill_matrix(&self, outs: &[TokenStream], n: usize) -> TokenStream {
@@ -161,6 +191,10 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
 
     let vec_t = quote!(::lagrange::__private::SVector<#s, #nl>);
     let mat_t = quote!(::lagrange::__private::SMatrix<#s, #nl, #nl>);
+    let frame = Frame::new(system, n);
+    let constrained = impl_constrained(&e, &frame, model);
+    let extras = extras(&e, &frame, model, system);
+    let reduced = impl_reduced(&e, &frame, model);
     quote! {
         #[doc = #impl_doc]
         #[automatically_derived]
@@ -218,8 +252,273 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
         impl #impl_generics #ident #ty_generics #where_clause {
             /// The derived equations of motion as text: M, h, Q and the energies.
             pub const EQUATIONS: &'static str = #docs;
+            #extras
+        }
+
+        #constrained
+        #reduced
+    }
+}
+
+/// The pieces every impl block needs: scalar, sizes, generics.
+struct Frame<'a> {
+    s: TokenStream,
+    n: Literal,
+    ident: &'a syn::Ident,
+    impl_generics: syn::ImplGenerics<'a>,
+    ty_generics: syn::TypeGenerics<'a>,
+    where_clause: TokenStream,
+}
+
+impl<'a> Frame<'a> {
+    fn new(system: &'a System, n: usize) -> Self {
+        let (impl_generics, ty_generics, where_clause) = system.generics.split_for_impl();
+        Frame {
+            s: scalar_tokens(&system.scalar),
+            n: Literal::usize_unsuffixed(n),
+            ident: &system.ident,
+            impl_generics,
+            ty_generics,
+            where_clause: real_bound(system, where_clause),
         }
     }
+
+    fn vec(&self, k: &Literal) -> TokenStream {
+        let s = &self.s;
+        quote!(::lagrange::__private::SVector<#s, #k>)
+    }
+
+    fn mat(&self, r: &Literal, c: &Literal) -> TokenStream {
+        let s = &self.s;
+        quote!(::lagrange::__private::SMatrix<#s, #r, #c>)
+    }
+}
+
+/// `impl Constrained`: Φ, (G, g), γ and all of them with M and Q − h in one pass.
+fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    let Some(c) = &model.constraints else {
+        return quote!();
+    };
+    let n = model.dof();
+    let k = c.names.len();
+    let kl = Literal::usize_unsuffixed(k);
+    let (s, nl) = (&f.s, &f.n);
+    let (vec_n, vec_k) = (f.vec(nl), f.vec(&kl));
+    let (mat_nn, mat_kn) = (f.mat(nl, nl), f.mat(&kl, nl));
+    let g_flat: Vec<Sym> = c.jacobian.iter().flatten().copied().collect();
+
+    let (phi_lets, phi_outs) = e.program(&c.phi);
+    let mut jac = g_flat.clone();
+    jac.extend(&c.velocity_term);
+    let (jac_lets, jac_outs) = e.program(&jac);
+    let g_fill = e.fill_dense(&quote!(g), &jac_outs[..n * k], n);
+    let g0 = &jac_outs[n * k..];
+    let (gamma_lets, gamma_outs) = e.program(&c.gamma);
+
+    let upper = e.upper();
+    let mut all = upper.clone();
+    all.extend(&model.rhs);
+    all.extend(&g_flat);
+    all.extend(&c.gamma);
+    let (all_lets, all_outs) = e.program(&all);
+    let (mu, rest) = all_outs.split_at(upper.len());
+    let (rhs, rest) = rest.split_at(n);
+    let (gs, gamma) = rest.split_at(n * k);
+    let m_fill = e.fill_matrix(mu, n);
+    let g_fill_all = e.fill_dense(&quote!(g), gs, n);
+
+    let names = &c.names;
+    let holonomic = c.holonomic;
+    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    quote! {
+        #[automatically_derived]
+        #[allow(unused_variables, clippy::all)]
+        impl #ig ::lagrange::__private::Constrained<#s, #nl, #kl> for #ident #tg #wc {
+            const CONSTRAINTS: [&'static str; #kl] = [#(#names),*];
+            const HOLONOMIC: usize = #holonomic;
+
+            #[inline]
+            fn constraint_positions(&self, q: &#vec_n, t: #s) -> #vec_k {
+                #phi_lets
+                <#vec_k>::from([#(#phi_outs),*])
+            }
+
+            #[inline]
+            fn constraint_jacobian(&self, q: &#vec_n, t: #s) -> (#mat_kn, #vec_k) {
+                #jac_lets
+                let mut g = <#mat_kn>::zeros();
+                #g_fill
+                (g, <#vec_k>::from([#(#g0),*]))
+            }
+
+            #[inline]
+            fn constraint_rhs(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_k {
+                #gamma_lets
+                <#vec_k>::from([#(#gamma_outs),*])
+            }
+
+            #[inline]
+            fn constrained_system(&self, q: &#vec_n, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) {
+                #all_lets
+                let mut m = <#mat_nn>::zeros();
+                #m_fill
+                let mut g = <#mat_kn>::zeros();
+                #g_fill_all
+                (m, <#vec_n>::from([#(#rhs),*]), g, <#vec_k>::from([#(#gamma),*]))
+            }
+        }
+    }
+}
+
+/// `impl Reduced`: u(q, q̇), q̇(q, u), and M*, F*, W, κ in one pass.
+fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    let Some(r) = &model.reduced else {
+        return quote!();
+    };
+    let n = model.dof();
+    let k = r.names.len();
+    let kl = Literal::usize_unsuffixed(k);
+    let (s, nl) = (&f.s, &f.n);
+    let (vec_n, vec_k) = (f.vec(nl), f.vec(&kl));
+    let (mat_kk, mat_nk) = (f.mat(&kl, &kl), f.mat(nl, &kl));
+
+    let (u_lets, u_outs) = e.program(&r.speeds);
+    let (v_lets, v_outs) = e.program(&r.velocities);
+    let mut all: Vec<Sym> = r.mass.iter().flatten().copied().collect();
+    all.extend(&r.rhs);
+    all.extend(r.w_matrix.iter().flatten());
+    all.extend(&r.kappa);
+    let (all_lets, all_outs) = e.program(&all);
+    let (ms, rest) = all_outs.split_at(k * k);
+    let (fs, rest) = rest.split_at(k);
+    let (ws, kappa) = rest.split_at(n * k);
+    let m_fill = e.fill_dense(&quote!(m), ms, k);
+    let w_fill = e.fill_dense(&quote!(w), ws, k);
+    let names = &r.names;
+    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    quote! {
+        #[automatically_derived]
+        #[allow(unused_variables, clippy::all)]
+        impl #ig ::lagrange::__private::Reduced<#s, #nl, #kl> for #ident #tg #wc {
+            const SPEEDS: [&'static str; #kl] = [#(#names),*];
+
+            #[inline]
+            fn speeds(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_k {
+                #u_lets
+                <#vec_k>::from([#(#u_outs),*])
+            }
+
+            #[inline]
+            fn velocities(&self, q: &#vec_n, u: &#vec_k, t: #s) -> #vec_n {
+                #v_lets
+                <#vec_n>::from([#(#v_outs),*])
+            }
+
+            #[inline]
+            fn reduced_system(&self, q: &#vec_n, u: &#vec_k, t: #s) -> (#mat_kk, #vec_k, #mat_nk, #vec_n) {
+                #all_lets
+                let mut m = <#mat_kk>::zeros();
+                #m_fill
+                let mut w = <#mat_nk>::zeros();
+                #w_fill
+                (m, <#vec_k>::from([#(#fs),*]), w, <#vec_n>::from([#(#kappa),*]))
+            }
+        }
+    }
+}
+
+/// Inherent methods for the optional outputs: reactions and the Coriolis matrix.
+fn extras(e: &Emitter, f: &Frame, model: &Model, system: &System) -> TokenStream {
+    let mut out = TokenStream::new();
+    let (s, nl) = (&f.s, &f.n);
+    let vec_n = f.vec(nl);
+    let wants = |x: Extra| system.extras.iter().any(|(_, e)| *e == x);
+    if wants(Extra::Reactions)
+        && let Some(c) = &model.constraints
+    {
+        let k = c.names.len();
+        let kl = Literal::usize_unsuffixed(k);
+        let p = c.reactions.len();
+        let pl = Literal::usize_unsuffixed(p);
+        let dim = c.reactions.first().map_or(3, |(_, r)| r.len());
+        let dl = Literal::usize_unsuffixed(dim);
+        let vec_k = f.vec(&kl);
+        let vec_d = f.vec(&dl);
+        let coeffs: Vec<Sym> = c
+            .reactions
+            .iter()
+            .flat_map(|(_, r)| r.iter().flatten().copied())
+            .collect();
+        let (lets, outs) = e.program(&coeffs);
+        let zero = constant(&system.scalar, 0.0);
+        let mut it = outs.iter();
+        let mut idx = 0;
+        let vectors: Vec<TokenStream> = c
+            .reactions
+            .iter()
+            .map(|(_, r)| {
+                let comps: Vec<TokenStream> = r
+                    .iter()
+                    .map(|row| {
+                        let terms: Vec<TokenStream> = row
+                            .iter()
+                            .enumerate()
+                            .filter_map(|(j, &coef)| {
+                                let o = it.next();
+                                idx += 1;
+                                let o = o?;
+                                if model.ctx.is_zero(coef) {
+                                    return None;
+                                }
+                                let j = Literal::usize_unsuffixed(j);
+                                Some(quote!(#o * nu[#j]))
+                            })
+                            .collect();
+                        if terms.is_empty() {
+                            zero.clone()
+                        } else {
+                            quote!(#(#terms)+*)
+                        }
+                    })
+                    .collect();
+                quote!(<#vec_d>::from([#(#comps),*]))
+            })
+            .collect();
+        let names: Vec<&String> = c.reactions.iter().map(|(n, _)| n).collect();
+        out.extend(quote! {
+            /// Points and bodies that constraints act on, in the order of [`Self::reactions`].
+            pub const REACTION_POINTS: [&'static str; #pl] = [#(#names),*];
+
+            /// Cartesian constraint reactions R = Σ_α ν_α ∂f_α/∂ξ on each of
+            /// [`Self::REACTION_POINTS`], from the multipliers ν the constrained
+            /// dynamics compute. Constraints written in generalized coordinates only
+            /// do not act on a point and do not appear here.
+            #[allow(unused_variables, clippy::all)]
+            pub fn reactions(&self, q: &#vec_n, v: &#vec_n, t: #s, nu: &#vec_k) -> [#vec_d; #pl] {
+                #lets
+                [#(#vectors),*]
+            }
+        });
+    }
+    if let Some(cm) = &model.coriolis {
+        let n = model.dof();
+        let flat: Vec<Sym> = cm.iter().flatten().copied().collect();
+        let (lets, outs) = e.program(&flat);
+        let fill = e.fill_dense(&quote!(c), &outs, n);
+        let mat = f.mat(nl, nl);
+        out.extend(quote! {
+            /// The Coriolis matrix C(q, q̇, t), C_ij = Σ_k Γ_ijk q̇_k, with Γ the Christoffel
+            /// symbols of M: Ṁ − 2C is skew-symmetric, and C q̇ is the quadratic part of h.
+            #[allow(unused_variables, clippy::all)]
+            pub fn coriolis_matrix(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #mat {
+                #lets
+                let mut c = <#mat>::zeros();
+                #fill
+                c
+            }
+        });
+    }
+    out
 }
 
 /// The where clause with `T: Real` added for a generic scalar.
@@ -257,6 +556,7 @@ pub fn stub_impl(system: &System) -> TokenStream {
     let names: Vec<String> = system.coordinates.iter().map(|c| c.to_string()).collect();
     let vec_t = quote!(::lagrange::__private::SVector<#s, #nl>);
     let mat_t = quote!(::lagrange::__private::SMatrix<#s, #nl, #nl>);
+    let constrained = stub_constraint_impls(system);
     quote! {
         #[allow(unused_variables)]
         impl #impl_generics ::lagrange::__private::Lagrangian<#s, #nl> for #ident #ty_generics #where_clause {
@@ -270,5 +570,61 @@ pub fn stub_impl(system: &System) -> TokenStream {
             fn potential_energy(&self, q: &#vec_t, t: #s) -> #s { ::core::unreachable!() }
             fn integral(&self, q: &#vec_t, v: &#vec_t, t: #s) -> #s { ::core::unreachable!() }
         }
+        #constrained
     }
+}
+
+/// Stub impls of the constraint traits the description asks for, so that a
+/// `run_constrained` or `run_reduced` call site does not add a cascade of errors.
+fn stub_constraint_impls(system: &System) -> TokenStream {
+    let n = system.coordinates.len();
+    let m = system.holonomic.len() + system.nonholonomic.len();
+    let f = Frame::new(system, n);
+    let (s, nl) = (&f.s, &f.n);
+    let vec_n = f.vec(nl);
+    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let mut out = TokenStream::new();
+    let chosen = crate::check::formulations(system);
+    if chosen.contains(&Formulation::Multipliers) && m > 0 {
+        let kl = Literal::usize_unsuffixed(m);
+        let (vec_k, mat_kn, mat_nn) = (f.vec(&kl), f.mat(&kl, nl), f.mat(nl, nl));
+        let names: Vec<String> = system
+            .holonomic
+            .iter()
+            .chain(&system.nonholonomic)
+            .map(|c| c.name.to_string())
+            .collect();
+        let h = system.holonomic.len();
+        out.extend(quote! {
+            #[allow(unused_variables)]
+            impl #ig ::lagrange::__private::Constrained<#s, #nl, #kl> for #ident #tg #wc {
+                const CONSTRAINTS: [&'static str; #kl] = [#(#names),*];
+                const HOLONOMIC: usize = #h;
+                fn constraint_positions(&self, q: &#vec_n, t: #s) -> #vec_k { ::core::unreachable!() }
+                fn constraint_jacobian(&self, q: &#vec_n, t: #s) -> (#mat_kn, #vec_k) { ::core::unreachable!() }
+                fn constraint_rhs(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_k { ::core::unreachable!() }
+                fn constrained_system(&self, q: &#vec_n, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) { ::core::unreachable!() }
+            }
+        });
+    }
+    if chosen.contains(&Formulation::Reduced) {
+        let k = if system.speeds.is_empty() {
+            n.saturating_sub(m)
+        } else {
+            system.speeds.len()
+        };
+        let kl = Literal::usize_unsuffixed(k);
+        let (vec_k, mat_kk, mat_nk) = (f.vec(&kl), f.mat(&kl, &kl), f.mat(nl, &kl));
+        let names: Vec<String> = (0..k).map(|i| format!("u{i}")).collect();
+        out.extend(quote! {
+            #[allow(unused_variables)]
+            impl #ig ::lagrange::__private::Reduced<#s, #nl, #kl> for #ident #tg #wc {
+                const SPEEDS: [&'static str; #kl] = [#(#names),*];
+                fn speeds(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_k { ::core::unreachable!() }
+                fn velocities(&self, q: &#vec_n, u: &#vec_k, t: #s) -> #vec_n { ::core::unreachable!() }
+                fn reduced_system(&self, q: &#vec_n, u: &#vec_k, t: #s) -> (#mat_kk, #vec_k, #mat_nk, #vec_n) { ::core::unreachable!() }
+            }
+        });
+    }
+    out
 }

@@ -4,8 +4,10 @@
 //!
 //! 1. [`attr`]: attributes and fields → [`ast::System`] (syntax, spans kept);
 //! 2. [`check`]: structural rules (names, dimensions, targets);
-//! 3. [`lower`]: `syn::Expr` → symbolic expressions (names resolved, velocity rules);
-//! 4. [`mechanics`]: M, h, Q, energies as expressions ([`mechanics::Model`]);
+//! 3. [`scene`] (with [`lower`] for expressions and [`rotation`] for bodies):
+//!    `syn::Expr` → symbolic expressions (names resolved, velocity and linearity rules);
+//! 4. [`mechanics`]: M, h, Q, energies as expressions ([`mechanics::Model`]), with
+//!    [`constraint`] for the multiplier and reduced forms;
 //! 5. [`emit`]: straight-line Rust for each method of the runtime's trait.
 //!
 //! Errors are collected in a [`ctxt::Ctxt`] across stages; on error the output is
@@ -15,18 +17,20 @@ pub mod ast;
 pub mod attr;
 pub mod chain;
 pub mod check;
+pub mod constraint;
 pub mod ctxt;
 pub mod doc;
 pub mod emit;
 pub mod lower;
 pub mod mechanics;
+pub mod rotation;
+pub mod scene;
 
 use proc_macro2::TokenStream;
 use syn::DeriveInput;
 
 use ctxt::Ctxt;
-use lower::{Lowerer, Mode};
-use mechanics::{Lowered, Model, PointModel};
+use mechanics::Model;
 
 /// Parses and expands; the entry point of the proc macro.
 pub fn derive(input: TokenStream) -> TokenStream {
@@ -73,81 +77,16 @@ pub fn model(input: &DeriveInput) -> Result<Model, syn::Error> {
 
 fn build(cx: &Ctxt, system: &ast::System) -> Option<Model> {
     check::check(cx, system);
-    let lowered = lower_system(cx, system);
+    let lowered = scene::lower(cx, system);
     if cx.has_errors() {
         return None;
     }
-    lowered.map(mechanics::derive)
-}
-
-fn lower_system(cx: &Ctxt, system: &ast::System) -> Option<Lowered> {
-    let mut lw = Lowerer::new(cx);
-    for p in &system.parameters {
-        lw.declare_parameter(&p.name);
-    }
-    for q in &system.coordinates {
-        lw.declare_coordinate(q);
-    }
-    for d in &system.definitions {
-        lw.declare_definition(&d.name, &d.value);
-    }
-    let mut points = Vec::new();
-    for p in &system.points {
-        let (Some(mass), Some(at)) = (&p.mass, &p.at) else {
-            continue;
-        };
-        let mass = lw.expr(mass, Mode::Constant);
-        let position = lw.vector(at, Mode::Configuration);
-        if let (Some(mass), Some(position)) = (mass, position) {
-            points.push(PointModel {
-                name: p.name.to_string(),
-                mass,
-                position,
-            });
+    match mechanics::derive(lowered?) {
+        Ok(model) => Some(model),
+        Err(msg) => {
+            let span = system.speeds.first().map_or(system.span, |u| u.name.span());
+            cx.error_at(span, msg);
+            None
         }
     }
-    let gravity = system
-        .gravity
-        .as_ref()
-        .and_then(|g| lw.vector(g, Mode::Configuration));
-    let potential = system
-        .potential
-        .as_ref()
-        .and_then(|v| lw.expr(v, Mode::Configuration));
-    let dissipation = system
-        .dissipation
-        .as_ref()
-        .and_then(|d| lw.expr(d, Mode::State));
-    let mut forces = Vec::new();
-    for f in &system.forces {
-        let target = system.points.iter().position(|p| p.name == f.point);
-        if let (Some(i), Some(v)) = (target, lw.vector(&f.value, Mode::State)) {
-            forces.push((i, v));
-        }
-    }
-    let mut generalized_forces = Vec::new();
-    for g in &system.generalized_forces {
-        let target = system.coordinates.iter().position(|c| *c == g.coordinate);
-        if let (Some(i), Some(v)) = (target, lw.expr(&g.value, Mode::State)) {
-            generalized_forces.push((i, v));
-        }
-    }
-    if cx.has_errors() {
-        return None;
-    }
-    Some(Lowered {
-        ctx: lw.ctx,
-        coordinates: system.coordinates.iter().map(|c| c.to_string()).collect(),
-        parameters: system
-            .parameters
-            .iter()
-            .map(|p| p.name.to_string())
-            .collect(),
-        points,
-        gravity,
-        potential,
-        dissipation,
-        forces,
-        generalized_forces,
-    })
 }

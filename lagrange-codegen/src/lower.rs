@@ -38,6 +38,8 @@ impl Mode {
 enum Binding {
     Coordinate(Sym),
     Parameter(Sym),
+    /// A point or a body: index into `Lowerer::frames`.
+    Frame(usize),
     Definition {
         value: Sym,
         has_velocity: bool,
@@ -45,11 +47,35 @@ enum Binding {
     },
 }
 
+/// What `P.x`, `dot(P.x)` and `B.omega_x` refer to: a point, or a body's centre
+/// and angular velocity.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    pub name: String,
+    pub position: Vec<Sym>,
+    /// World- and body-frame angular velocity, for bodies.
+    pub omega: Option<[[Sym; 3]; 2]>,
+}
+
+/// A Cartesian coordinate (or velocity) of a point that appeared in a constraint,
+/// kept as a free symbol so the reaction Σ λ ∂f/∂ξ can be taken before composing
+/// with ξ(q,t).
+#[derive(Copy, Clone, Debug)]
+pub struct CartesianRef {
+    pub symbol: Sym,
+    pub frame: usize,
+    pub component: usize,
+    pub velocity: bool,
+}
+
 /// Names in scope and the context the expressions are built in.
 pub struct Lowerer<'a> {
     pub ctx: Context,
-    cx: &'a Ctxt,
+    pub(crate) cx: &'a Ctxt,
     scope: BTreeMap<String, Binding>,
+    pub frames: Vec<Frame>,
+    /// When set, point coordinates lower to free symbols recorded here.
+    pub cartesian: Option<Vec<CartesianRef>>,
 }
 
 const FUNCTIONS: &str = "sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, exp, ln, log, sqrt, abs, pow, powi, powf, dot";
@@ -62,6 +88,24 @@ impl<'a> Lowerer<'a> {
             ctx,
             cx,
             scope: BTreeMap::new(),
+            frames: Vec::new(),
+            cartesian: None,
+        }
+    }
+
+    /// Brings a point or body into scope for `P.x`, `dot(P.x)`, `B.omega_x`.
+    pub fn declare_frame(&mut self, name: &Ident, frame: Frame) -> usize {
+        let i = self.frames.len();
+        self.frames.push(frame);
+        self.scope.insert(name.to_string(), Binding::Frame(i));
+        i
+    }
+
+    /// The frame a name refers to, if it is a point or body in scope.
+    pub fn frame_of(&self, name: &Ident) -> Option<usize> {
+        match self.scope.get(&name.to_string()) {
+            Some(Binding::Frame(i)) => Some(*i),
+            _ => None,
         }
     }
 
@@ -113,7 +157,7 @@ impl<'a> Lowerer<'a> {
                 Some(id) => self.name(id, mode),
                 None => self.unsupported(e, "a path; use a plain name"),
             },
-            Expr::Field(f) => self.self_field(f),
+            Expr::Field(f) => self.field(f, mode),
             Expr::Unary(u) => match u.op {
                 UnOp::Neg(_) => {
                     let a = self.expr(&u.expr, mode)?;
@@ -199,6 +243,13 @@ impl<'a> Lowerer<'a> {
                 }
                 Some(value)
             }
+            Some(Binding::Frame(_)) => {
+                self.cx.error_at(
+                    id.span(),
+                    format!("`{key}` is a point or body, not a number; use its coordinates `{key}.x`, `{key}.y`, `{key}.z`"),
+                );
+                None
+            }
             None => {
                 let msg = format!(
                     "unknown symbol `{key}`: not a coordinate, a parameter field, a definition, or `t`"
@@ -209,17 +260,136 @@ impl<'a> Lowerer<'a> {
         }
     }
 
-    /// `self.m` is accepted as a spelling of the parameter `m`.
-    fn self_field(&mut self, f: &syn::ExprField) -> Option<Sym> {
-        let is_self = matches!(&*f.base, Expr::Path(p) if p.path.is_ident("self"));
-        let name = match (&f.member, is_self) {
-            (syn::Member::Named(id), true) => id,
-            _ => {
-                self.cx
-                    .error_spanned_by(f, "only `self.<parameter>` field accesses are supported");
-                return None;
-            }
+    /// `self.m` (the parameter `m`), `P.x` (a coordinate of a point or body centre),
+    /// `B.omega_x` / `B.omega_1` (world / body components of a body's angular velocity).
+    fn field(&mut self, f: &syn::ExprField, mode: Mode) -> Option<Sym> {
+        let base = match &*f.base {
+            Expr::Path(p) => p.path.get_ident(),
+            _ => None,
         };
+        let (Some(base), syn::Member::Named(member)) = (base, &f.member) else {
+            self.cx.error_spanned_by(
+                f,
+                "only `self.<parameter>`, `<point>.x` and `<body>.omega_x` field accesses are supported",
+            );
+            return None;
+        };
+        if base == "self" {
+            return self.self_field(member);
+        }
+        let Some(frame) = self.frame_of(base) else {
+            self.cx.error_at(
+                base.span(),
+                format!("unknown point or body `{base}` (points and bodies are declared before the items that use them)"),
+            );
+            return None;
+        };
+        let m = member.to_string();
+        if let Some(c) = component(&m) {
+            return self.coordinate_of(frame, c, false, base, member, mode);
+        }
+        let omega = match m.as_str() {
+            "omega_x" => Some((0, 0)),
+            "omega_y" => Some((0, 1)),
+            "omega_z" => Some((0, 2)),
+            "omega_1" => Some((1, 0)),
+            "omega_2" => Some((1, 1)),
+            "omega_3" => Some((1, 2)),
+            _ => None,
+        };
+        let Some((which, c)) = omega else {
+            self.cx.error_at(
+                member.span(),
+                format!("`{base}.{m}`: expected a coordinate `x`, `y`, `z`, or for a body `omega_x`/`omega_y`/`omega_z` (world frame) or `omega_1`/`omega_2`/`omega_3` (body frame)"),
+            );
+            return None;
+        };
+        let Some(w) = self.frames[frame].omega else {
+            self.cx.error_at(
+                member.span(),
+                format!("`{base}` is a point; only bodies have an angular velocity"),
+            );
+            return None;
+        };
+        if mode != Mode::State {
+            self.cx.error_at(
+                member.span(),
+                format!(
+                    "the angular velocity `{base}.{m}` cannot appear in {}",
+                    mode.describe()
+                ),
+            );
+            return None;
+        }
+        Some(w[which][c])
+    }
+
+    /// A Cartesian coordinate (or, with `velocity`, its rate) of a frame: the
+    /// expression itself, or a recorded free symbol while lowering a constraint.
+    fn coordinate_of(
+        &mut self,
+        frame: usize,
+        c: usize,
+        velocity: bool,
+        base: &Ident,
+        member: &Ident,
+        mode: Mode,
+    ) -> Option<Sym> {
+        let f = &self.frames[frame];
+        if c >= f.position.len() {
+            self.cx.error_at(
+                member.span(),
+                format!("`{base}.{member}`: the scene is planar, `{base}` has only `x` and `y`"),
+            );
+            return None;
+        }
+        if mode == Mode::Constant {
+            self.cx.error_at(
+                base.span(),
+                format!("a mass must be constant: it cannot depend on the position of `{base}`"),
+            );
+            return None;
+        }
+        if velocity && mode != Mode::State {
+            self.cx.error_at(
+                base.span(),
+                format!(
+                    "velocity `dot({base}.{member})` cannot appear in {}",
+                    mode.describe()
+                ),
+            );
+            return None;
+        }
+        let x = f.position[c];
+        let value = if velocity {
+            self.ctx.time_derivative(x)
+        } else {
+            x
+        };
+        let name = if velocity {
+            format!("dot({base}.{member})")
+        } else {
+            format!("{base}.{member}")
+        };
+        match &mut self.cartesian {
+            None => Some(value),
+            Some(refs) => {
+                let symbol = self.ctx.free_symbol(&name);
+                if !refs.iter().any(|r| r.symbol == symbol) {
+                    refs.push(CartesianRef {
+                        symbol,
+                        frame,
+                        component: c,
+                        velocity,
+                    });
+                }
+                Some(symbol)
+            }
+        }
+    }
+
+    /// `self.m` is accepted as a spelling of the parameter `m`.
+    fn self_field(&mut self, name: &Ident) -> Option<Sym> {
         match self.scope.get(&name.to_string()) {
             Some(Binding::Parameter(p)) => Some(*p),
             _ => {
@@ -380,6 +550,15 @@ impl<'a> Lowerer<'a> {
 
     /// `dot(q)`: the generalized velocity of coordinate `q`.
     fn velocity(&mut self, fname: &Ident, args: &[&Expr], mode: Mode) -> Option<Sym> {
+        if let [Expr::Field(f)] = args
+            && let Expr::Path(p) = &*f.base
+            && let Some(base) = p.path.get_ident()
+            && let syn::Member::Named(member) = &f.member
+            && let Some(frame) = self.frame_of(base)
+            && let Some(c) = component(&member.to_string())
+        {
+            return self.coordinate_of(frame, c, true, base, member, mode);
+        }
         let target = match args {
             [Expr::Path(p)] => p.path.get_ident(),
             _ => None,
@@ -406,6 +585,16 @@ impl<'a> Lowerer<'a> {
             return None;
         }
         self.ctx.velocity(q)
+    }
+}
+
+/// `x`, `y`, `z` → 0, 1, 2.
+fn component(name: &str) -> Option<usize> {
+    match name {
+        "x" => Some(0),
+        "y" => Some(1),
+        "z" => Some(2),
+        _ => None,
     }
 }
 

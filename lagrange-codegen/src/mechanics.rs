@@ -10,11 +10,22 @@
 
 use lagrange_symbolic::{Context, Expr as Sym, Program};
 
-/// A point mass after lowering.
+use crate::constraint::{ConstraintModel, ConstraintSet, Reduction};
+use crate::rotation::Mat3;
+
+/// A point mass (or a body's centre of mass) after lowering.
 pub struct PointModel {
     pub name: String,
     pub mass: Sym,
     pub position: Vec<Sym>,
+}
+
+/// The rotational part of a rigid body: inertia about the centre in body axes and
+/// the body-frame angular velocity ω(q, q̇, t).
+pub struct SpinModel {
+    pub name: String,
+    pub inertia: Mat3,
+    pub omega: [Sym; 3],
 }
 
 /// The lowered description: everything as expressions, names resolved.
@@ -23,13 +34,23 @@ pub struct Lowered {
     pub coordinates: Vec<String>,
     pub parameters: Vec<String>,
     pub points: Vec<PointModel>,
+    pub spins: Vec<SpinModel>,
     pub gravity: Option<Vec<Sym>>,
     pub potential: Option<Sym>,
     pub dissipation: Option<Sym>,
-    /// (point index, Cartesian force)
-    pub forces: Vec<(usize, Vec<Sym>)>,
+    /// (position of the point of application, Cartesian force)
+    pub forces: Vec<(Vec<Sym>, Vec<Sym>)>,
     /// (coordinate index, generalized force)
     pub generalized_forces: Vec<(usize, Sym)>,
+    pub holonomic: Vec<ConstraintModel>,
+    pub nonholonomic: Vec<ConstraintModel>,
+    /// The reduced form, if asked for: with the user's speeds (name, u(q, q̇, t)), or
+    /// `Some(None)` to choose independent velocities automatically.
+    pub speeds: Option<Option<Vec<(String, Sym)>>>,
+    /// Whether to build the multiplier form.
+    pub multipliers: bool,
+    /// Whether to build the Coriolis matrix.
+    pub coriolis: bool,
 }
 
 /// Which derivation of h the emitted code uses.
@@ -59,6 +80,12 @@ pub struct Model {
     pub bias_route: BiasRoute,
     /// The route not chosen, kept so tests can check the two agree.
     pub bias_other: Vec<Sym>,
+    /// Constraint terms for the multiplier form.
+    pub constraints: Option<ConstraintSet>,
+    /// The reduced (Maggi / Gibbs–Appell) form.
+    pub reduced: Option<Reduction>,
+    /// C(q, q̇) with C_ij = Σ_k Γ_ijk q̇_k, if asked for.
+    pub coriolis: Option<Vec<Vec<Sym>>>,
 }
 
 impl Model {
@@ -77,17 +104,36 @@ struct Kinematics {
     position: Vec<Sym>,
 }
 
-pub fn derive(lowered: Lowered) -> Model {
+/// Per-body rotational kinematics: ω = W q̇ + w_t, W = ∂ω/∂q̇, and κ_ω = ω̇ − W q̈.
+struct Spin {
+    inertia: Mat3,
+    omega: [Sym; 3],
+    jacobian: Vec<[Sym; 3]>, // [coordinate][component]
+    kappa: [Sym; 3],
+}
+
+/// Derives the model.
+///
+/// # Errors
+/// A reduced form that cannot be built (speeds and constraints that do not
+/// determine the velocities), as a message for the whole description.
+pub fn derive(lowered: Lowered) -> Result<Model, String> {
     let Lowered {
         mut ctx,
         coordinates,
         parameters,
         points,
+        spins,
         gravity,
         potential,
         dissipation,
         forces,
         generalized_forces,
+        holonomic,
+        nonholonomic,
+        speeds,
+        multipliers,
+        coriolis,
     } = lowered;
     let q = ctx.coordinates();
     let qd = ctx.velocities();
@@ -128,21 +174,52 @@ pub fn derive(lowered: Lowered) -> Model {
             }
         })
         .collect();
+    let zero_vel: Vec<(Sym, Sym)> = {
+        let z = ctx.zero();
+        qd.iter().map(|&v| (v, z)).collect()
+    };
+    let spin: Vec<Spin> = spins
+        .iter()
+        .map(|b| {
+            let omega = b.omega.map(|w| ctx.expand_trig(w));
+            let jacobian = qd.iter().map(|&v| omega.map(|w| ctx.diff(w, v))).collect();
+            let kappa = omega.map(|w| {
+                let a = ctx.time_derivative(w);
+                ctx.substitute(a, &zero_acc)
+            });
+            Spin {
+                inertia: b.inertia,
+                omega,
+                jacobian,
+                kappa,
+            }
+        })
+        .collect();
     let rheonomic = kin
         .iter()
-        .any(|k| k.partial_t.iter().any(|&x| !ctx.is_zero(x)));
+        .any(|k| k.partial_t.iter().any(|&x| !ctx.is_zero(x)))
+        || spin.iter().any(|s| {
+            s.omega.iter().any(|&w| {
+                let w0 = ctx.substitute(w, &zero_vel);
+                !ctx.is_zero(w0)
+            })
+        });
 
-    let mass = mass_matrix(&mut ctx, &kin, n);
-    let projection = bias_projection(&mut ctx, &kin, n);
+    let mass = mass_matrix(&mut ctx, &kin, &spin, n);
+    let projection = bias_projection(&mut ctx, &kin, &spin, n);
 
     let kinetic = {
-        let terms: Vec<Sym> = kin
+        let mut terms: Vec<Sym> = kin
             .iter()
             .map(|k| {
                 let sq = dot(&mut ctx, &k.velocity, &k.velocity);
                 ctx.mul(k.mass, sq)
             })
             .collect();
+        for s in &spin {
+            let iw = mat_vec(&mut ctx, &s.inertia, &s.omega);
+            terms.push(dot(&mut ctx, &s.omega, &iw));
+        }
         let s = ctx.sum(&terms);
         let half = ctx.rational(1, 2);
         let e = ctx.mul(half, s);
@@ -185,7 +262,6 @@ pub fn derive(lowered: Lowered) -> Model {
 
     let generalized = generalized_forces_of(
         &mut ctx,
-        &kin,
         &q,
         &qd,
         potential_total,
@@ -201,40 +277,21 @@ pub fn derive(lowered: Lowered) -> Model {
         .collect();
 
     let integral = if rheonomic {
-        // Jacobi integral T2 − T0 + V (Suslov 32.56).
+        // Jacobi integral T2 − T0 + V (Suslov 32.56), with T2 = ½ q̇ᵀ M q̇ and
+        // T0 = T at q̇ = 0.
         let t2 = {
-            let terms: Vec<Sym> = kin
-                .iter()
-                .map(|k| {
-                    let jv: Vec<Sym> = k
-                        .jacobian
-                        .iter()
-                        .map(|row| {
-                            let ts: Vec<Sym> =
-                                row.iter().zip(&qd).map(|(&j, &v)| ctx.mul(j, v)).collect();
-                            ctx.sum(&ts)
-                        })
-                        .collect();
-                    let sq = dot(&mut ctx, &jv, &jv);
-                    ctx.mul(k.mass, sq)
-                })
-                .collect();
+            let mut terms = Vec::new();
+            for i in 0..n {
+                for j in 0..n {
+                    let mv = ctx.mul(mass[i][j], qd[j]);
+                    terms.push(ctx.mul(qd[i], mv));
+                }
+            }
             let s = ctx.sum(&terms);
             let half = ctx.rational(1, 2);
             ctx.mul(half, s)
         };
-        let t0 = {
-            let terms: Vec<Sym> = kin
-                .iter()
-                .map(|k| {
-                    let sq = dot(&mut ctx, &k.partial_t, &k.partial_t);
-                    ctx.mul(k.mass, sq)
-                })
-                .collect();
-            let s = ctx.sum(&terms);
-            let half = ctx.rational(1, 2);
-            ctx.mul(half, s)
-        };
+        let t0 = ctx.substitute(kinetic, &zero_vel);
         let e = ctx.sub(t2, t0);
         let e = ctx.add(e, potential_total);
         ctx.collect(e)
@@ -243,7 +300,36 @@ pub fn derive(lowered: Lowered) -> Model {
         ctx.collect(e)
     };
 
-    Model {
+    let coriolis = coriolis.then(|| coriolis_matrix(&mut ctx, &mass, &q, &qd));
+    let constraints = multipliers
+        .then(|| crate::constraint::multiplier_form(&mut ctx, &holonomic, &nonholonomic));
+    let reduced = match speeds {
+        None => None,
+        Some(speeds) => {
+            let speeds = match speeds {
+                Some(s) => s,
+                None => crate::constraint::default_speeds(
+                    &mut ctx,
+                    &holonomic,
+                    &nonholonomic,
+                    &coordinates,
+                )?,
+            };
+            Some(crate::constraint::reduce(
+                &mut ctx,
+                &crate::constraint::Dynamics {
+                    mass: &mass,
+                    rhs: &rhs,
+                },
+                &holonomic,
+                &nonholonomic,
+                &speeds,
+                &coordinates,
+            )?)
+        }
+    };
+
+    Ok(Model {
         ctx,
         coordinates,
         parameters,
@@ -257,7 +343,51 @@ pub fn derive(lowered: Lowered) -> Model {
         integral,
         bias_route,
         bias_other,
-    }
+        constraints,
+        reduced,
+        coriolis,
+    })
+}
+
+/// C_ij = Σ_k Γ_ijk q̇_k with Γ_ijk = ½(∂M_ij/∂q_k + ∂M_ik/∂q_j − ∂M_jk/∂q_i): the
+/// factorisation of the Christoffel terms for which Ṁ − 2C is skew-symmetric.
+fn coriolis_matrix(ctx: &mut Context, mass: &[Vec<Sym>], q: &[Sym], qd: &[Sym]) -> Vec<Vec<Sym>> {
+    let n = q.len();
+    let half = ctx.rational(1, 2);
+    (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let terms: Vec<Sym> = (0..n)
+                        .map(|k| {
+                            let a = ctx.diff(mass[i][j], q[k]);
+                            let b = ctx.diff(mass[i][k], q[j]);
+                            let c = ctx.diff(mass[j][k], q[i]);
+                            let g = ctx.add(a, b);
+                            let g = ctx.sub(g, c);
+                            let g = ctx.mul(half, g);
+                            ctx.mul(g, qd[k])
+                        })
+                        .collect();
+                    let s = ctx.sum(&terms);
+                    ctx.collect(s)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+fn mat_vec(ctx: &mut Context, a: &Mat3, v: &[Sym; 3]) -> [Sym; 3] {
+    [0, 1, 2].map(|i| dot(ctx, &a[i], v))
+}
+
+fn cross(ctx: &mut Context, a: &[Sym; 3], b: &[Sym; 3]) -> [Sym; 3] {
+    [0, 1, 2].map(|i| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let p = ctx.mul(a[j], b[k]);
+        let m = ctx.mul(a[k], b[j]);
+        ctx.sub(p, m)
+    })
 }
 
 fn dot(ctx: &mut Context, a: &[Sym], b: &[Sym]) -> Sym {
@@ -265,12 +395,13 @@ fn dot(ctx: &mut Context, a: &[Sym], b: &[Sym]) -> Sym {
     ctx.sum(&terms)
 }
 
-/// M_ij = Σ_ν m_ν (J_ν)_·iᵀ (J_ν)_·j, then factored so common factors are computed once.
-fn mass_matrix(ctx: &mut Context, kin: &[Kinematics], n: usize) -> Vec<Vec<Sym>> {
+/// M_ij = Σ_ν m_ν (J_ν)_·iᵀ (J_ν)_·j + Σ_bodies W_iᵀ I W_j, then factored so common
+/// factors are computed once.
+fn mass_matrix(ctx: &mut Context, kin: &[Kinematics], spin: &[Spin], n: usize) -> Vec<Vec<Sym>> {
     let mut m = vec![vec![ctx.zero(); n]; n];
     for i in 0..n {
         for j in i..n {
-            let terms: Vec<Sym> = kin
+            let mut terms: Vec<Sym> = kin
                 .iter()
                 .map(|k| {
                     let ci: Vec<Sym> = k.jacobian.iter().map(|row| row[i]).collect();
@@ -279,6 +410,10 @@ fn mass_matrix(ctx: &mut Context, kin: &[Kinematics], n: usize) -> Vec<Vec<Sym>>
                     ctx.mul(k.mass, d)
                 })
                 .collect();
+            for s in spin {
+                let iw = mat_vec(ctx, &s.inertia, &s.jacobian[j]);
+                terms.push(dot(ctx, &s.jacobian[i], &iw));
+            }
             let s = ctx.sum(&terms);
             let s = ctx.collect(s);
             m[i][j] = s;
@@ -288,11 +423,21 @@ fn mass_matrix(ctx: &mut Context, kin: &[Kinematics], n: usize) -> Vec<Vec<Sym>>
     m
 }
 
-/// h_i = Σ_ν m_ν (J_ν)_·iᵀ κ_ν.
-fn bias_projection(ctx: &mut Context, kin: &[Kinematics], n: usize) -> Vec<Sym> {
+/// h_i = Σ_ν m_ν (J_ν)_·iᵀ κ_ν + Σ_bodies W_iᵀ (I κ_ω + ω × I ω) (Euler's equations
+/// projected onto the coordinates).
+fn bias_projection(ctx: &mut Context, kin: &[Kinematics], spin: &[Spin], n: usize) -> Vec<Sym> {
+    let euler: Vec<[Sym; 3]> = spin
+        .iter()
+        .map(|s| {
+            let ik = mat_vec(ctx, &s.inertia, &s.kappa);
+            let iw = mat_vec(ctx, &s.inertia, &s.omega);
+            let gyro = cross(ctx, &s.omega, &iw);
+            [0, 1, 2].map(|c| ctx.add(ik[c], gyro[c]))
+        })
+        .collect();
     (0..n)
         .map(|i| {
-            let terms: Vec<Sym> = kin
+            let mut terms: Vec<Sym> = kin
                 .iter()
                 .map(|k| {
                     let ci: Vec<Sym> = k.jacobian.iter().map(|row| row[i]).collect();
@@ -300,6 +445,9 @@ fn bias_projection(ctx: &mut Context, kin: &[Kinematics], n: usize) -> Vec<Sym> 
                     ctx.mul(k.mass, d)
                 })
                 .collect();
+            for (s, e) in spin.iter().zip(&euler) {
+                terms.push(dot(ctx, &s.jacobian[i], e));
+            }
             let s = ctx.sum(&terms);
             ctx.collect(s)
         })
@@ -307,15 +455,13 @@ fn bias_projection(ctx: &mut Context, kin: &[Kinematics], n: usize) -> Vec<Sym> 
 }
 
 /// Q = −∂V/∂q + Σ_ν J_νᵀ F_ν − ∂D/∂q̇ + explicit generalized forces (Suslov 32.28–32.31).
-#[allow(clippy::too_many_arguments)]
 fn generalized_forces_of(
     ctx: &mut Context,
-    kin: &[Kinematics],
     q: &[Sym],
     qd: &[Sym],
     potential: Sym,
     dissipation: Option<Sym>,
-    forces: &[(usize, Vec<Sym>)],
+    forces: &[(Vec<Sym>, Vec<Sym>)],
     generalized: &[(usize, Sym)],
 ) -> Vec<Sym> {
     (0..q.len())
@@ -323,8 +469,8 @@ fn generalized_forces_of(
             let mut terms = Vec::new();
             let dv = ctx.diff(potential, q[i]);
             terms.push(ctx.neg(dv));
-            for (p, f) in forces {
-                let ci: Vec<Sym> = kin[*p].jacobian.iter().map(|row| row[i]).collect();
+            for (at, f) in forces {
+                let ci: Vec<Sym> = at.iter().map(|&x| ctx.diff(x, q[i])).collect();
                 terms.push(dot(ctx, &ci, f));
             }
             if let Some(d) = dissipation {

@@ -3,67 +3,8 @@
 //! generalized forces of a potential are −∂V/∂q — all at random states, against
 //! central finite differences of the symbolic energies.
 
-use lagrange_codegen::mechanics::Model;
-use lagrange_symbolic::{Symbol, SymbolKind};
-
-/// A deterministic pseudo-random sequence (no dependency needed for a handful of points).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
-    }
-}
-
-struct Point {
-    q: Vec<f64>,
-    v: Vec<f64>,
-    t: f64,
-    params: Vec<f64>,
-}
-
-fn env<'a>(model: &'a Model, p: &'a Point) -> impl Fn(Symbol) -> f64 + 'a {
-    move |s| match model.ctx.symbol_kind(s) {
-        SymbolKind::Coordinate(i) => p.q[i],
-        SymbolKind::Velocity(i) => p.v[i],
-        SymbolKind::Time => p.t,
-        SymbolKind::Parameter(i) => p.params[i],
-        SymbolKind::Acceleration(_) | SymbolKind::Free => f64::NAN,
-    }
-}
-
-fn model(src: &str) -> Model {
-    let input: syn::DeriveInput = syn::parse_str(src).expect("test input parses");
-    match lagrange_codegen::model(&input) {
-        Ok(m) => m,
-        Err(e) => panic!("derivation failed: {e}"),
-    }
-}
-
-fn random_point(model: &Model, rng: &mut Lcg) -> Point {
-    let n = model.dof();
-    Point {
-        q: (0..n).map(|_| 1.5 * rng.next()).collect(),
-        v: (0..n).map(|_| 2.0 * rng.next()).collect(),
-        t: 1.5 + rng.next(),
-        params: model
-            .parameters
-            .iter()
-            .map(|_| 1.0 + 0.5 * rng.next())
-            .collect(),
-    }
-}
-
-fn eval(model: &Model, e: lagrange_symbolic::Expr, p: &Point) -> f64 {
-    model.ctx.eval(e, &env(model, p))
-}
-
-fn close(a: f64, b: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol * (1.0 + a.abs().max(b.abs()))
-}
+mod common;
+use common::{Lcg, Point, close, eval, model, random_point};
 
 fn check_model(src: &str) {
     let model = model(src);
@@ -85,6 +26,7 @@ fn check_model(src: &str) {
                 v: v.to_vec(),
                 t: p.t,
                 params: p.params.clone(),
+                u: Vec::new(),
             };
             eval(&model, model.kinetic, &pp)
         };
@@ -113,6 +55,7 @@ fn check_model(src: &str) {
                     v: p.v.clone(),
                     t: p.t,
                     params: p.params.clone(),
+                    u: Vec::new(),
                 };
                 eval(&model, model.potential, &pp)
             };
@@ -185,5 +128,41 @@ fn pendulum_mass_matrix_is_simplified() {
         model.ctx.is_zero(model.bias[0]),
         "h = {}",
         model.ctx.display(model.bias[0])
+    );
+}
+
+/// A heavy symmetric top in Suslov's Euler angles: body rotation terms in M and h.
+#[test]
+fn heavy_top_euler_zxz() {
+    check_model(
+        "#[lagrange(coordinates(psi, theta, phi),
+           body(top, mass = m, inertia = [a, a, c], at = [l*sin(theta)*sin(psi), -l*sin(theta)*cos(psi), l*cos(theta)],
+                rotation = euler_zxz(psi, theta, phi)),
+           gravity = [0, 0, -g])]
+         struct S { m: f64, a: f64, c: f64, l: f64, g: f64 }",
+    );
+}
+
+/// A full inertia tensor, a yaw–pitch–roll rotation and an explicit matrix factor.
+#[test]
+fn body_with_full_tensor_and_explicit_matrix() {
+    check_model(
+        "#[lagrange(coordinates(x, a, b, c),
+           body(blk, mass = m, inertia = [i1, i2, i3, p, 0.1, -0.2], at = [x, 0, 0],
+                rotation = euler_zyx(a, b, 0) * [[1, 0, 0], [0, cos(c), -sin(c)], [0, sin(c), cos(c)]]),
+           potential = k * (x^2) / 2)]
+         struct S { m: f64, i1: f64, i2: f64, i3: f64, p: f64, k: f64 }",
+    );
+}
+
+/// A rotation driven in time (rheonomic): T1 and T0 terms from the spin.
+#[test]
+fn body_on_a_turntable() {
+    check_model(
+        "#[lagrange(coordinates(r, theta),
+           body(disk, mass = m, inertia = [a, a, c], at = [r*cos(w*t), r*sin(w*t), 0],
+                rotation = rot_z(w*t) * rot_x(theta)),
+           potential = k * (r^2) / 2)]
+         struct S { m: f64, a: f64, c: f64, w: f64, k: f64 }",
     );
 }

@@ -1,0 +1,317 @@
+//! The whole description lowered: parameters, coordinates, definitions, bodies and
+//! points (in that order, so each item can use the ones before it), forces,
+//! constraints and speeds. Produces [`Lowered`] for `mechanics`.
+
+use lagrange_symbolic::Expr as Sym;
+use syn::{BinOp, Expr, Ident};
+
+use crate::ast::{Extra, Formulation, System};
+use crate::check;
+use crate::constraint::ConstraintModel;
+use crate::ctxt::Ctxt;
+use crate::lower::{CartesianRef, Frame, Lowerer, Mode};
+use crate::mechanics::{Lowered, PointModel, SpinModel};
+
+pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
+    let mut lw = Lowerer::new(cx);
+    for p in &system.parameters {
+        lw.declare_parameter(&p.name);
+    }
+    for q in &system.coordinates {
+        lw.declare_coordinate(q);
+    }
+    for d in &system.definitions {
+        lw.declare_definition(&d.name, &d.value);
+    }
+    let mut points = Vec::new();
+    let mut spins = Vec::new();
+    let mut rotations = Vec::new();
+    for b in &system.bodies {
+        let (Some(mass), Some(inertia), Some(at), Some(rotation)) =
+            (&b.mass, &b.inertia, &b.at, &b.rotation)
+        else {
+            continue;
+        };
+        let mass = lw.expr(mass, Mode::Constant);
+        let inertia = inertia_matrix(&mut lw, inertia);
+        let centre = lw.vector(at, Mode::Configuration);
+        let rotation = lw.rotation(rotation);
+        let (Some(mass), Some(inertia), Some(centre), Some(rotation)) =
+            (mass, inertia, centre, rotation)
+        else {
+            continue;
+        };
+        lw.declare_frame(
+            &b.name,
+            Frame {
+                name: b.name.to_string(),
+                position: centre.clone(),
+                omega: Some([rotation.omega_world, rotation.omega_body]),
+            },
+        );
+        rotations.push((b.name.clone(), rotation.matrix, centre.clone()));
+        points.push(PointModel {
+            name: b.name.to_string(),
+            mass,
+            position: centre,
+        });
+        spins.push(SpinModel {
+            name: b.name.to_string(),
+            inertia,
+            omega: rotation.omega_body,
+        });
+    }
+    for p in &system.points {
+        let Some(at) = &p.at else { continue };
+        let local = lw.vector(at, Mode::Configuration);
+        let mass = p.mass.as_ref().map(|m| lw.expr(m, Mode::Constant));
+        let position = match (&p.on, local) {
+            (_, None) => continue,
+            (None, Some(x)) => x,
+            (Some(body), Some(local)) => {
+                let Some((_, r, c)) = rotations.iter().find(|(n, _, _)| n == body) else {
+                    continue;
+                };
+                let (r, c) = (*r, c.clone());
+                let rb = lw.mat_vec(&r, &local);
+                (0..3).map(|i| lw.ctx.add(c[i], rb[i])).collect()
+            }
+        };
+        lw.declare_frame(
+            &p.name,
+            Frame {
+                name: p.name.to_string(),
+                position: position.clone(),
+                omega: None,
+            },
+        );
+        match mass {
+            Some(Some(mass)) => points.push(PointModel {
+                name: p.name.to_string(),
+                mass,
+                position,
+            }),
+            Some(None) => continue,
+            None => {}
+        }
+    }
+    let gravity = system
+        .gravity
+        .as_ref()
+        .and_then(|g| lw.vector(g, Mode::Configuration));
+    let potential = system
+        .potential
+        .as_ref()
+        .and_then(|v| lw.expr(v, Mode::Configuration));
+    let dissipation = system
+        .dissipation
+        .as_ref()
+        .and_then(|d| lw.expr(d, Mode::State));
+    let mut forces = Vec::new();
+    for f in &system.forces {
+        let at = lw.frame_of(&f.point).map(|i| lw.frames[i].position.clone());
+        if let (Some(at), Some(v)) = (at, lw.vector(&f.value, Mode::State)) {
+            forces.push((at, v));
+        }
+    }
+    let mut generalized_forces = Vec::new();
+    for g in &system.generalized_forces {
+        let target = system.coordinates.iter().position(|c| *c == g.coordinate);
+        if let (Some(i), Some(v)) = (target, lw.expr(&g.value, Mode::State)) {
+            generalized_forces.push((i, v));
+        }
+    }
+    let holonomic: Vec<ConstraintModel> = system
+        .holonomic
+        .iter()
+        .filter_map(|c| constraint(&mut lw, &c.name, &c.value, Mode::Configuration))
+        .collect();
+    let nonholonomic: Vec<ConstraintModel> = system
+        .nonholonomic
+        .iter()
+        .filter_map(|c| {
+            let m = constraint(&mut lw, &c.name, &c.value, Mode::State)?;
+            linear_in_velocities(
+                &mut lw,
+                &c.value,
+                m.value,
+                &format!("nonholonomic constraint `{}`", c.name),
+            )
+            .then_some(m)
+        })
+        .collect();
+    let formulations = check::formulations(system);
+    let speeds = if formulations.contains(&Formulation::Reduced) {
+        if system.speeds.is_empty() {
+            Some(None)
+        } else {
+            let mut out = Vec::new();
+            for u in &system.speeds {
+                let Some(e) = lw.expr(&u.value, Mode::State) else {
+                    continue;
+                };
+                if linear_in_velocities(&mut lw, &u.value, e, &format!("speed `{}`", u.name)) {
+                    out.push((u.name.to_string(), e));
+                }
+            }
+            Some(Some(out))
+        }
+    } else {
+        None
+    };
+    if cx.has_errors() {
+        return None;
+    }
+    Some(Lowered {
+        ctx: lw.ctx,
+        coordinates: system.coordinates.iter().map(|c| c.to_string()).collect(),
+        parameters: system
+            .parameters
+            .iter()
+            .map(|p| p.name.to_string())
+            .collect(),
+        points,
+        spins,
+        gravity,
+        potential,
+        dissipation,
+        forces,
+        generalized_forces,
+        holonomic,
+        nonholonomic,
+        speeds,
+        multipliers: formulations.contains(&Formulation::Multipliers),
+        coriolis: system.extras.iter().any(|(_, e)| *e == Extra::Coriolis),
+    })
+}
+
+/// `[A, B, C]` → diag(A, B, C); `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]` → the symmetric tensor.
+fn inertia_matrix(lw: &mut Lowerer, e: &Expr) -> Option<[[Sym; 3]; 3]> {
+    let entries = lw.vector(e, Mode::Constant)?;
+    // `check` has reported any other length.
+    if !(entries.len() == 3 || entries.len() == 6) {
+        return None;
+    }
+    let zero = lw.ctx.zero();
+    let mut m = [[zero; 3]; 3];
+    for i in 0..3 {
+        m[i][i] = entries[i];
+    }
+    if entries.len() == 6 {
+        for (k, (i, j)) in [(0, 1), (0, 2), (1, 2)].into_iter().enumerate() {
+            m[i][j] = entries[3 + k];
+            m[j][i] = entries[3 + k];
+        }
+    }
+    Some(m)
+}
+
+/// Lowers a constraint with point coordinates kept symbolic, takes ∂f/∂ξ (or ∂f/∂ξ̇)
+/// for the reactions, then composes with ξ(q,t).
+fn constraint(lw: &mut Lowerer, name: &Ident, value: &Expr, mode: Mode) -> Option<ConstraintModel> {
+    lw.cartesian = Some(Vec::new());
+    let raw = lw.expr(value, mode);
+    let refs = lw.cartesian.take().unwrap_or_default();
+    let raw = raw?;
+    // Reactions: a holonomic constraint pushes along ∂f/∂ξ, a nonholonomic one
+    // along ∂f/∂ξ̇; references of the other kind do not contribute.
+    let wanted_velocity = mode == Mode::State;
+    let mut cartesian: Vec<(String, Vec<Sym>)> = Vec::new();
+    for r in refs.iter().filter(|r| r.velocity == wanted_velocity) {
+        let frame = &lw.frames[r.frame];
+        let (fname, dim) = (frame.name.clone(), frame.position.len());
+        let partial = lw.ctx.diff(raw, r.symbol);
+        let partial = compose(lw, partial, &refs);
+        let entry = match cartesian.iter().position(|(n, _)| *n == fname) {
+            Some(i) => i,
+            None => {
+                let zero = lw.ctx.zero();
+                cartesian.push((fname, vec![zero; dim]));
+                cartesian.len() - 1
+            }
+        };
+        cartesian[entry].1[r.component] = partial;
+    }
+    let value = compose(lw, raw, &refs);
+    Some(ConstraintModel {
+        name: name.to_string(),
+        value,
+        cartesian,
+    })
+}
+
+/// Replaces recorded point coordinates (and velocities) by their expressions in q.
+fn compose(lw: &mut Lowerer, e: Sym, refs: &[CartesianRef]) -> Sym {
+    let map: Vec<(Sym, Sym)> = refs
+        .iter()
+        .map(|r| {
+            let x = lw.frames[r.frame].position[r.component];
+            let x = if r.velocity {
+                lw.ctx.time_derivative(x)
+            } else {
+                x
+            };
+            (r.symbol, x)
+        })
+        .collect();
+    if map.is_empty() {
+        e
+    } else {
+        lw.ctx.substitute(e, &map)
+    }
+}
+
+/// Whether `value` (lowered from `syntax`) is at most linear in the velocities;
+/// if not, reports the smallest offending term of `syntax`.
+fn linear_in_velocities(lw: &mut Lowerer, syntax: &Expr, value: Sym, what: &str) -> bool {
+    if is_linear(lw, value) {
+        return true;
+    }
+    let culprit = nonlinear_term(lw, syntax);
+    lw.cx.error_spanned_by(
+        culprit,
+        format!(
+            "{what} must be linear in the velocities, but `{}` is not",
+            quote::ToTokens::to_token_stream(culprit)
+        ),
+    );
+    false
+}
+
+fn is_linear(lw: &mut Lowerer, e: Sym) -> bool {
+    let qd = lw.ctx.velocities();
+    qd.iter().all(|&v| {
+        let d = lw.ctx.diff(e, v);
+        let d = lw.ctx.simplify(d);
+        qd.iter().all(|&w| !lw.ctx.depends_on(d, w))
+    })
+}
+
+/// The smallest subexpression of `e` that is nonlinear in the velocities (e itself
+/// if no operand is). Re-lowering a subexpression that lowered once cannot fail.
+fn nonlinear_term<'e>(lw: &mut Lowerer, e: &'e Expr) -> &'e Expr {
+    let children: Vec<&Expr> = match e {
+        Expr::Paren(p) => vec![&p.expr],
+        Expr::Group(g) => vec![&g.expr],
+        Expr::Unary(u) => vec![&u.expr],
+        Expr::Binary(b) if matches!(b.op, BinOp::Add(_) | BinOp::Sub(_)) => {
+            vec![&b.left, &b.right]
+        }
+        Expr::Binary(b) => vec![&b.left, &b.right],
+        Expr::Call(c) => c.args.iter().collect(),
+        Expr::MethodCall(m) => std::iter::once(&*m.receiver).chain(m.args.iter()).collect(),
+        _ => Vec::new(),
+    };
+    for c in children {
+        lw.cartesian = Some(Vec::new());
+        let v = lw.expr(c, Mode::State);
+        let refs = lw.cartesian.take().unwrap_or_default();
+        if let Some(v) = v {
+            let v = compose(lw, v, &refs);
+            if !is_linear(lw, v) {
+                return nonlinear_term(lw, c);
+            }
+        }
+    }
+    e
+}
