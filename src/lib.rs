@@ -42,6 +42,25 @@
 //! | `force(point, [fx, fy(, fz)])` | a Cartesian force at a point; may depend on q, `dot(q)`, t |
 //! | `generalized_force(q = expr)` | a generalized force on one coordinate |
 //! | `dissipation = expr` | Rayleigh dissipation function D(q, q̇), Q −= ∂D/∂q̇ |
+//! | `body(name, mass = m, inertia = [A, B, C], at = [x, y, z], rotation = R)` | a rigid body: centre of mass, principal moments (or six entries `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`) in body axes, orientation R(q, t) body → world |
+//! | `point(name, on = body, at = [bx, by, bz])` | a point fixed in a body, in body coordinates; `mass = m` optional |
+//! | `holonomic(name = f, ...)` | constraints f(q, t) = 0, kept with multipliers λ |
+//! | `nonholonomic(name = e, ...)` | constraints e = a(q, t)·q̇ + b(q, t) = 0; must be linear in the velocities |
+//! | `speeds(u = expr, ...)` | independent speeds / quasi-velocities u = U(q, t) q̇ + u₀ for the reduced form |
+//! | `formulation(multipliers, reduced)` | which constrained equations to emit (default: multipliers, or reduced when `speeds` are given; `reduced` alone picks independent velocities itself) |
+//! | `emit(reactions, coriolis)` | optional outputs: `reactions(q, v, t, ν)` per point, `coriolis_matrix(q, v, t)` |
+//!
+//! Rotations are products of `rot_x(a)`, `rot_y(a)`, `rot_z(a)`,
+//! `euler_zxz(ψ, θ, φ)` (= rot_z(ψ)·rot_x(θ)·rot_z(φ), Suslov's precession, nutation,
+//! spin), `euler_zyx(yaw, pitch, roll)` and explicit 3×3 matrices `[[..], [..], [..]]`.
+//! In expressions, `P.x`, `P.y`, `P.z` are the world coordinates of a point or a
+//! body's centre, `dot(P.x)` their rates, and `B.omega_x/y/z` (world axes) and
+//! `B.omega_1/2/3` (body axes) a body's angular velocity. Constraints written in
+//! point coordinates give Cartesian reactions R = Σ ν ∂f/∂ξ on those points.
+//!
+//! A constrained system implements [`Constrained`] (multipliers: run it with
+//! [`Simulation::run_constrained`]) and/or [`Reduced`] (Maggi / Gibbs–Appell
+//! equations on the speeds: [`Simulation::run_reduced`]).
 //!
 //! Expressions use numbers (decimals are exact rationals), the names above, time
 //! `t`, `pi`, velocities `dot(q)`, `+ - * /`, powers `pow(x, n)` or `x^n` (Rust

@@ -159,3 +159,4 @@ pub struct DrivenPendulum {
     pub w: f64,
     pub f: f64,
 }
+pub mod constrained;

@@ -1,0 +1,280 @@
+//! Catalog systems with constraints, rigid bodies and quasi-velocities (issue 3):
+//! C1 and C3 with multipliers, C4–C6, C8, C9, the rolling disk and the Chaplygin
+//! sleigh.
+
+use lagrange::Lagrangian;
+
+/// C1 in Cartesian coordinates: the bob on a thread of length `l`, kept by a
+/// multiplier (Lagrange's equations of the first kind, seed 001 §12). No chart, no
+/// pole; the thread tension is the reaction on the bob.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, z),
+    point(bob, mass = m, at = [x, y, z]),
+    gravity = [0, 0, -g],
+    holonomic(thread = (bob.x^2) + (bob.y^2) + (bob.z^2) - (l^2)),
+    emit(reactions),
+)]
+pub struct CartesianSphericalPendulum {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+/// C3 with the rod as a constraint between two free particles (Suslov ex. 96/100).
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x1, y1, z1, x2, y2, z2),
+    point(p1, mass = m1, at = [x1, y1, z1]),
+    point(p2, mass = m2, at = [x2, y2, z2]),
+    gravity = [gx, gy, gz],
+    holonomic(rod = ((p1.x - p2.x)^2) + ((p1.y - p2.y)^2) + ((p1.z - p2.z)^2) - (l^2)),
+    emit(reactions),
+)]
+pub struct RodPair {
+    pub m1: f64,
+    pub m2: f64,
+    pub l: f64,
+    pub gx: f64,
+    pub gy: f64,
+    pub gz: f64,
+}
+
+/// C4, Suslov ex. 97: a free rigid body as three particles fixed in a massless
+/// frame (Euler angles z-x-z: precession ψ, nutation θ, spin φ). Body coordinates
+/// of the particles are parameters; their centre of mass must be the origin.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, z, psi, theta, phi),
+    body(frame, mass = 0, inertia = [0, 0, 0], at = [x, y, z],
+         rotation = euler_zxz(psi, theta, phi)),
+    point(p1, on = frame, mass = m1, at = [a1, b1, c1]),
+    point(p2, on = frame, mass = m2, at = [a2, b2, c2]),
+    point(p3, on = frame, mass = m3, at = [a3, b3, c3]),
+    gravity = [0, 0, -g],
+)]
+pub struct ThreeParticleBody {
+    pub m1: f64,
+    pub m2: f64,
+    pub m3: f64,
+    pub a1: f64,
+    pub b1: f64,
+    pub c1: f64,
+    pub a2: f64,
+    pub b2: f64,
+    pub c2: f64,
+    pub a3: f64,
+    pub b3: f64,
+    pub c3: f64,
+    pub g: f64,
+}
+
+/// C4: the same body given by its mass and inertia tensor about the centre of mass.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, z, psi, theta, phi),
+    body(b, mass = m, inertia = [ixx, iyy, izz, ixy, ixz, iyz], at = [x, y, z],
+         rotation = euler_zxz(psi, theta, phi)),
+    gravity = [0, 0, -g],
+)]
+pub struct InertiaBody {
+    pub m: f64,
+    pub ixx: f64,
+    pub iyy: f64,
+    pub izz: f64,
+    pub ixy: f64,
+    pub ixz: f64,
+    pub iyz: f64,
+    pub g: f64,
+}
+
+impl ThreeParticleBody {
+    /// The rigid-body description of the same particles: total mass and
+    /// I = Σ m (|r|² 1 − r rᵀ) (the particles' centre of mass is the origin).
+    pub fn as_body(&self) -> InertiaBody {
+        let parts = [
+            (self.m1, [self.a1, self.b1, self.c1]),
+            (self.m2, [self.a2, self.b2, self.c2]),
+            (self.m3, [self.a3, self.b3, self.c3]),
+        ];
+        let i = |j: usize, k: usize| -> f64 {
+            parts
+                .iter()
+                .map(|(m, r)| {
+                    let rr: f64 = r.iter().map(|x| x * x).sum();
+                    m * (if j == k { rr } else { 0.0 } - r[j] * r[k])
+                })
+                .sum()
+        };
+        InertiaBody {
+            m: self.m1 + self.m2 + self.m3,
+            ixx: i(0, 0),
+            iyy: i(1, 1),
+            izz: i(2, 2),
+            ixy: i(0, 1),
+            ixz: i(0, 2),
+            iyz: i(1, 2),
+            g: self.g,
+        }
+    }
+}
+
+/// C5, Suslov ex. 98: a homogeneous sphere (radius `a`, J = 2/5 m a²) rolling without
+/// slipping on the horizontal plane z = 0: the finite constraint z = a and two
+/// nonholonomic ones (the material point at the contact has zero velocity), kept
+/// with multipliers.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, z, psi, theta, phi),
+    body(ball, mass = m, inertia = [j, j, j], at = [x, y, z],
+         rotation = euler_zxz(psi, theta, phi)),
+    gravity = [0, 0, -g],
+    holonomic(height = ball.z - a),
+    nonholonomic(slip_x = dot(ball.x) - a * ball.omega_y,
+                 slip_y = dot(ball.y) + a * ball.omega_x),
+    emit(reactions),
+)]
+pub struct RollingSphere {
+    pub m: f64,
+    pub j: f64,
+    pub a: f64,
+    pub g: f64,
+}
+
+/// C5 reduced: z = a built into the coordinates, the two rolling constraints
+/// eliminated (independent speeds ψ̇, θ̇, φ̇ chosen by the macro).
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, psi, theta, phi),
+    body(ball, mass = m, inertia = [j, j, j], at = [x, y, a],
+         rotation = euler_zxz(psi, theta, phi)),
+    gravity = [0, 0, -g],
+    nonholonomic(slip_x = dot(ball.x) - a * ball.omega_y,
+                 slip_y = dot(ball.y) + a * ball.omega_x),
+    formulation(reduced),
+)]
+pub struct RollingSphereReduced {
+    pub m: f64,
+    pub j: f64,
+    pub a: f64,
+    pub g: f64,
+}
+
+/// C6, Suslov ex. 99: two heavy symmetric bodies on fixed pivots, joined by an
+/// untwistable thread along their axes: the spins cancel,
+/// ψ̇1 + cos θ1 φ̇1 + ψ̇2 + cos θ2 φ̇2 = 0 (φ precession, θ nutation, ψ spin).
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(phi1, theta1, psi1, phi2, theta2, psi2),
+    body(top1, mass = m, inertia = [a, a, c],
+         at = [l * sin(theta1) * sin(phi1), -l * sin(theta1) * cos(phi1), l * cos(theta1)],
+         rotation = euler_zxz(phi1, theta1, psi1)),
+    body(top2, mass = m, inertia = [a, a, c],
+         at = [d + l * sin(theta2) * sin(phi2), -l * sin(theta2) * cos(phi2), l * cos(theta2)],
+         rotation = euler_zxz(phi2, theta2, psi2)),
+    gravity = [0, 0, -g],
+    nonholonomic(thread = dot(psi1) + cos(theta1) * dot(phi1) + dot(psi2) + cos(theta2) * dot(phi2)),
+)]
+pub struct ThreadedTops {
+    pub m: f64,
+    pub a: f64,
+    pub c: f64,
+    pub l: f64,
+    pub d: f64,
+    pub g: f64,
+}
+
+/// C8, seed 003 (Pars 13.1): a particle in the plane in polar coordinates, with the
+/// quasi-velocity w = x ẏ − y ẋ = r² θ̇. Radial force `-k r`, transverse force `s`.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(r, theta),
+    point(p, mass = m, at = [r * cos(theta), r * sin(theta)]),
+    force(p, [-k * r * cos(theta) - s * sin(theta), -k * r * sin(theta) + s * cos(theta)]),
+    speeds(rdot = dot(r), w = p.x * dot(p.y) - p.y * dot(p.x)),
+)]
+pub struct PolarQuasiVelocity {
+    pub m: f64,
+    pub k: f64,
+    pub s: f64,
+}
+
+/// C8's reference: the same particle and forces in Cartesian coordinates.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y),
+    define(r = sqrt((x^2) + (y^2))),
+    point(p, mass = m, at = [x, y]),
+    force(p, [-k * x - s * y / r, -k * y + s * x / r]),
+)]
+pub struct PlanarParticle {
+    pub m: f64,
+    pub k: f64,
+    pub s: f64,
+}
+
+/// C9, seed 003 (Pars 13.5): a homogeneous sphere rolling on a plane that turns at
+/// the constant rate Ω about the vertical axis through the origin: the contact
+/// point moves with the plane, v_contact = Ω e_z × (x, y, 0).
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, psi, theta, phi),
+    body(ball, mass = m, inertia = [j, j, j], at = [x, y, a],
+         rotation = euler_zxz(psi, theta, phi)),
+    gravity = [0, 0, -g],
+    nonholonomic(slip_x = dot(ball.x) - a * ball.omega_y + big_omega * ball.y,
+                 slip_y = dot(ball.y) + a * ball.omega_x - big_omega * ball.x),
+    formulation(reduced),
+)]
+pub struct SphereOnTurntable {
+    pub m: f64,
+    pub j: f64,
+    pub a: f64,
+    pub g: f64,
+    pub big_omega: f64,
+}
+
+/// A thin disk (radius `a`, axial moment `c`, diametral `b`) rolling on the plane:
+/// (x, y) is the contact point, ψ the heading, θ the tilt from the vertical, φ the
+/// spin about the axle (body y axis).
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, psi, theta, phi),
+    body(disk, mass = m, inertia = [b, c, b],
+         at = [x + a * sin(theta) * sin(psi), y - a * sin(theta) * cos(psi), a * cos(theta)],
+         rotation = rot_z(psi) * rot_x(theta) * rot_y(phi)),
+    gravity = [0, 0, -g],
+    // The material point at the contact, centre − a u with u = (sθ sψ, −sθ cψ, cθ) the
+    // disk's "up" direction, has zero velocity: v_centre − a ω × u = 0.
+    nonholonomic(
+        roll_x = dot(disk.x) - a * (disk.omega_y * cos(theta) + disk.omega_z * sin(theta) * cos(psi)),
+        roll_y = dot(disk.y) - a * (disk.omega_z * sin(theta) * sin(psi) - disk.omega_x * cos(theta))
+    ),
+    formulation(reduced, multipliers),
+)]
+pub struct RollingDisk {
+    pub m: f64,
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+    pub g: f64,
+}
+
+/// The Chaplygin sleigh: a planar body on a knife edge at distance `b` behind its
+/// centre of mass; the edge cannot move sideways. Speeds: forward speed of the edge
+/// and the turning rate.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, theta),
+    body(sled, mass = m, inertia = [0, 0, i], at = [x + b * cos(theta), y + b * sin(theta), 0],
+         rotation = rot_z(theta)),
+    point(blade, on = sled, at = [-b, 0, 0]),
+    nonholonomic(sideways = -sin(theta) * dot(blade.x) + cos(theta) * dot(blade.y)),
+    speeds(forward = cos(theta) * dot(blade.x) + sin(theta) * dot(blade.y), turn = dot(theta)),
+    formulation(reduced, multipliers),
+)]
+pub struct ChaplyginSleigh {
+    pub m: f64,
+    pub i: f64,
+    pub b: f64,
+}
