@@ -19,20 +19,25 @@
 //! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
 //! number of degrees of freedom `N`, a type-level constant.
 
+mod cholesky;
+pub mod constraint;
 mod dynamics;
 mod error;
 pub mod func;
 pub mod ode;
 mod real;
+mod reduced;
 mod root;
 mod simulation;
 mod system;
 mod trajectory;
 
+pub use constraint::{ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent};
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use error::Error;
 pub use ode::{DenseSegment, Dopri5, Integrator, Rk4, Sample, SecondOrder, Stats};
 pub use real::Real;
+pub use reduced::ReducedDynamics;
 pub use simulation::Simulation;
 pub use system::{Constrained, Lagrangian, Reduced};
 pub use trajectory::Trajectory;
