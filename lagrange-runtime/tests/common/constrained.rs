@@ -285,3 +285,111 @@ impl Reduced<f64, 3, 2> for Sleigh {
         (mstar, fstar, w, kappa)
     }
 }
+
+/// A pendulum whose rod length is driven, l(t) = l0 + e sin(w t): the rheonomic
+/// constraint x² + y² − l(t)² = 0 with g = Φ_t = −2 l l̇ ≠ 0 and
+/// γ = −2 |v|² + 2 (l̇² + l l̈).
+pub struct DrivenPendulum {
+    pub g: f64,
+    pub l0: f64,
+    pub e: f64,
+    pub w: f64,
+}
+
+impl DrivenPendulum {
+    pub fn standard() -> Self {
+        Self {
+            g: 9.81,
+            l0: 1.0,
+            e: 0.2,
+            w: 3.0,
+        }
+    }
+
+    /// l, l̇, l̈ at time t.
+    pub fn length(&self, t: f64) -> [f64; 3] {
+        let (s, c) = (self.w * t).sin_cos();
+        [
+            self.l0 + self.e * s,
+            self.e * self.w * c,
+            -self.e * self.w * self.w * s,
+        ]
+    }
+
+    /// The Cartesian state at angle θ (from the downward vertical), rate θ̇, time t.
+    pub fn state(&self, theta: f64, theta_dot: f64, t: f64) -> (Vector2<f64>, Vector2<f64>) {
+        let [l, ld, _] = self.length(t);
+        let (s, c) = theta.sin_cos();
+        (
+            Vector2::new(l * s, -l * c),
+            Vector2::new(ld * s + l * c * theta_dot, -ld * c + l * s * theta_dot),
+        )
+    }
+}
+
+impl Lagrangian<f64, 2> for DrivenPendulum {
+    const COORDINATES: [&'static str; 2] = ["x", "y"];
+    const RHEONOMIC: bool = false;
+
+    fn mass_matrix(&self, _q: &Vector2<f64>, _t: f64) -> Matrix2<f64> {
+        Matrix2::identity()
+    }
+    fn bias(&self, _q: &Vector2<f64>, _v: &Vector2<f64>, _t: f64) -> Vector2<f64> {
+        Vector2::zeros()
+    }
+    fn generalized_forces(&self, _q: &Vector2<f64>, _v: &Vector2<f64>, _t: f64) -> Vector2<f64> {
+        Vector2::new(0.0, -self.g)
+    }
+    fn mass_matrix_and_rhs(
+        &self,
+        q: &Vector2<f64>,
+        v: &Vector2<f64>,
+        t: f64,
+    ) -> (Matrix2<f64>, Vector2<f64>) {
+        (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+    }
+    fn kinetic_energy(&self, _q: &Vector2<f64>, v: &Vector2<f64>, _t: f64) -> f64 {
+        0.5 * v.norm_squared()
+    }
+    fn potential_energy(&self, q: &Vector2<f64>, _t: f64) -> f64 {
+        self.g * q[1]
+    }
+    fn integral(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64) -> f64 {
+        self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+    }
+}
+
+impl Constrained<f64, 2, 1> for DrivenPendulum {
+    const CONSTRAINTS: [&'static str; 1] = ["driven_rod"];
+    const HOLONOMIC: usize = 1;
+
+    fn constraint_positions(&self, q: &Vector2<f64>, t: f64) -> Vector1<f64> {
+        let l = self.length(t)[0];
+        Vector1::new(q.norm_squared() - l * l)
+    }
+    fn constraint_jacobian(&self, q: &Vector2<f64>, t: f64) -> (Matrix1x2<f64>, Vector1<f64>) {
+        let [l, ld, _] = self.length(t);
+        (
+            Matrix1x2::new(2.0 * q[0], 2.0 * q[1]),
+            Vector1::new(-2.0 * l * ld),
+        )
+    }
+    fn constraint_rhs(&self, _q: &Vector2<f64>, v: &Vector2<f64>, t: f64) -> Vector1<f64> {
+        let [l, ld, ldd] = self.length(t);
+        Vector1::new(-2.0 * v.norm_squared() + 2.0 * (ld * ld + l * ldd))
+    }
+    fn constrained_system(
+        &self,
+        q: &Vector2<f64>,
+        v: &Vector2<f64>,
+        t: f64,
+    ) -> (Matrix2<f64>, Vector2<f64>, Matrix1x2<f64>, Vector1<f64>) {
+        let (m, f) = self.mass_matrix_and_rhs(q, v, t);
+        (
+            m,
+            f,
+            self.constraint_jacobian(q, t).0,
+            self.constraint_rhs(q, v, t),
+        )
+    }
+}
