@@ -41,14 +41,15 @@ pub enum Error {
     },
 
     /// The constraints are redundant: some rows of the constraint Jacobian G are
-    /// (numerically) linear combinations of the others, so the multipliers are not
-    /// unique. Detected by a pivoted Cholesky factorisation of G M⁻¹ Gᵀ whose
+    /// (numerically) linear combinations of the others, or vanish (a constraint
+    /// whose gradient is zero at q, such as x² + y² − l² at the origin), so the
+    /// multipliers are not unique. Detected by a pivoted Cholesky factorisation of G M⁻¹ Gᵀ whose
     /// pivot ratio fell below the redundancy tolerance. Remove the dependent
     /// constraints, or opt into least squares (minimum-norm multipliers).
     #[error(
         "redundant constraints at t = {t}, q = {}: {dependent:?} depend on the other \
-         constraints (pivot ratio of G M^-1 G^T = {ratio:e}); remove them or enable \
-         least squares",
+         constraints or have a vanishing gradient there (pivot ratio of G M^-1 G^T = \
+         {ratio:e}); remove them or enable least squares",
         named(coordinates, q)
     )]
     RedundantConstraints {
