@@ -79,7 +79,8 @@ pub use nalgebra;
 pub mod prelude {
     pub use lagrange_macros::Lagrangian;
     pub use lagrange_runtime::{
-        Constrained, Dopri5, Error, Lagrangian, Real, Reduced, Rk4, Simulation, Trajectory,
+        Constrained, ConstrainedDynamics, Dopri5, Drift, Error, Lagrangian, Real, Reduced,
+        ReducedDynamics, Rk4, Simulation, Trajectory,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }

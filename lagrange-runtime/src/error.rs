@@ -40,6 +40,82 @@ pub enum Error {
         v: Vec<f64>,
     },
 
+    /// The constraints are redundant: some rows of the constraint Jacobian G are
+    /// (numerically) linear combinations of the others, or vanish (a constraint
+    /// whose gradient is zero at q, such as x² + y² − l² at the origin), so the
+    /// multipliers are not unique. Detected by a pivoted Cholesky factorisation of G M⁻¹ Gᵀ whose
+    /// pivot ratio fell below the redundancy tolerance. Remove the dependent
+    /// constraints, or opt into least squares (minimum-norm multipliers).
+    #[error(
+        "redundant constraints at t = {t}, q = {}: {dependent:?} depend on the other \
+         constraints or have a vanishing gradient there (pivot ratio of G M^-1 G^T = \
+         {ratio:e}); remove them or enable least squares",
+        named(coordinates, q)
+    )]
+    RedundantConstraints {
+        /// Time of the failed evaluation.
+        t: f64,
+        /// Generalized coordinates.
+        q: Vec<f64>,
+        /// Their names.
+        coordinates: Vec<&'static str>,
+        /// Pivot ratio at which the factorisation stopped (≤ 0 for a zero pivot).
+        ratio: f64,
+        /// Names of the constraints found to depend on the others (which ones of a
+        /// dependent set are named depends on the pivoting order).
+        dependent: Vec<&'static str>,
+    },
+
+    /// The initial state violates the constraints: Φ(q0, t0) ≠ 0 or
+    /// G q̇0 + g ≠ 0 beyond the tolerance. Project it first (the runtime can do it:
+    /// `Simulation::project_initial(true)` or `project_consistent`).
+    #[error(
+        "inconsistent initial conditions at t = {t}, q = {}: |Phi| = {position_residual:e}, \
+         |G v + g| = {velocity_residual:e}, tolerance {tolerance:e}; worst constraint: \
+         {constraint}",
+        named(coordinates, q)
+    )]
+    InconsistentInitialConditions {
+        /// Initial time.
+        t: f64,
+        /// Initial coordinates.
+        q: Vec<f64>,
+        /// Their names.
+        coordinates: Vec<&'static str>,
+        /// max |Φ_i| over the holonomic rows.
+        position_residual: f64,
+        /// max |(G q̇ + g)_i| over all rows.
+        velocity_residual: f64,
+        /// The tolerance both residuals must meet.
+        tolerance: f64,
+        /// The constraint with the largest residual at the first level that fails
+        /// (positions before velocities).
+        constraint: &'static str,
+    },
+
+    /// Gauss–Newton projection onto Φ(q, t) = 0 did not reach the tolerance in the
+    /// allowed number of iterations (the tolerance may be below the round-off level
+    /// of Φ, or the state far from the constraint manifold).
+    #[error(
+        "projection onto the constraints did not converge at t = {t}, q = {}: \
+         |Phi| = {residual:e} after {iterations} iterations, tolerance {tolerance:e}",
+        named(coordinates, q)
+    )]
+    ProjectionFailed {
+        /// Time of the projection.
+        t: f64,
+        /// Coordinates reached.
+        q: Vec<f64>,
+        /// Their names.
+        coordinates: Vec<&'static str>,
+        /// max |Φ_i| reached.
+        residual: f64,
+        /// Iterations done.
+        iterations: usize,
+        /// The tolerance asked for.
+        tolerance: f64,
+    },
+
     /// The adaptive step size became negligible relative to the time: the
     /// problem is probably stiff or singular near `t`.
     #[error("step size underflow at t = {t}: h = {h:e} is negligible relative to t")]
@@ -75,6 +151,19 @@ use nalgebra::SVector;
 /// Converts a state vector to `f64`s for an error report.
 pub(crate) fn to_vec<T: Real, const N: usize>(x: &SVector<T, N>) -> Vec<f64> {
     x.iter().map(|&c| c.to_f64()).collect()
+}
+
+/// "(x = 1, y = -2)" when the names fit, else the bare numbers.
+fn named(names: &[&str], q: &[f64]) -> String {
+    if names.len() != q.len() {
+        return format!("{q:?}");
+    }
+    let parts: Vec<String> = names
+        .iter()
+        .zip(q)
+        .map(|(n, x)| format!("{n} = {x:?}"))
+        .collect();
+    format!("({})", parts.join(", "))
 }
 
 impl Error {
@@ -116,6 +205,16 @@ mod tests {
             e.to_string().contains("t = 1.5, q = [NaN], v = [0.0]"),
             "{e}"
         );
+        let e = Error::RedundantConstraints {
+            t: 2.0,
+            q: vec![0.5, -1.0],
+            coordinates: vec!["x", "y"],
+            ratio: 1e-17,
+            dependent: vec!["rod2"],
+        };
+        let s = e.to_string();
+        assert!(s.contains("t = 2, q = (x = 0.5, y = -1.0)"), "{s}");
+        assert!(s.contains("[\"rod2\"]") && s.contains("1e-17"), "{s}");
         let e: Error = std::io::Error::other("disk full").into();
         assert!(e.to_string().contains("disk full"));
     }

@@ -16,23 +16,44 @@
 //! traj.save_csv("out.csv", &Pendulum::COORDINATES)?;
 //! ```
 //!
+//! Constrained systems come in two forms. A [`Constrained`] system keeps its
+//! constraints with multipliers: [`ConstrainedDynamics`] solves the saddle-point
+//! system for q̈ and ν (redundant constraints are a typed error, or least squares
+//! on request), [`Drift`] chooses the drift control (none, Baumgarte, projection),
+//! and initial conditions are checked or projected ([`check_consistency`],
+//! [`project_consistent`]). A [`Reduced`] system is written in independent speeds
+//! and needs no multipliers: [`ReducedDynamics`].
+//!
+//! ```text
+//! let traj = Simulation::new(&sys)
+//!     .integrator(Dopri5::tol(1e-10))
+//!     .drift(Drift::projection())
+//!     .run_constrained(q0, v0, 0.0..10.0)?;
+//! let [phi, vel] = traj.max_residuals();
+//! ```
+//!
 //! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
 //! number of degrees of freedom `N`, a type-level constant.
 
+mod cholesky;
+pub mod constraint;
 mod dynamics;
 mod error;
 pub mod func;
 pub mod ode;
 mod real;
+mod reduced;
 mod root;
 mod simulation;
 mod system;
 mod trajectory;
 
+pub use constraint::{ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent};
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use error::Error;
 pub use ode::{DenseSegment, Dopri5, Integrator, Rk4, Sample, SecondOrder, Stats};
 pub use real::Real;
+pub use reduced::ReducedDynamics;
 pub use simulation::Simulation;
 pub use system::{Constrained, Lagrangian, Reduced};
 pub use trajectory::Trajectory;

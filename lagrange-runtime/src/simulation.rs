@@ -1,10 +1,14 @@
 //! The user-facing entry point: system + integrator + initial state → trajectory.
 
+use crate::constraint::{
+    ConstrainedDynamics, DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE, Drift,
+};
 use crate::dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics};
 use crate::error::Error;
-use crate::ode::{Dopri5, Integrator};
+use crate::ode::{Dopri5, Integrator, check_problem};
 use crate::real::Real;
-use crate::system::Lagrangian;
+use crate::reduced::ReducedDynamics;
+use crate::system::{Constrained, Lagrangian, Reduced};
 use crate::trajectory::Trajectory;
 use nalgebra::SVector;
 use std::ops::Range;
@@ -43,11 +47,39 @@ use std::ops::Range;
 /// assert_eq!(coarse.len(), 101);
 /// # Ok::<(), lagrange_runtime::Error>(())
 /// ```
+///
+/// Constrained systems run with [`run_constrained`](Self::run_constrained) (the
+/// multiplier form) or [`run_reduced`](Self::run_reduced) (independent speeds);
+/// the constraint settings ([`drift`](Self::drift),
+/// [`least_squares`](Self::least_squares), ...) only affect those.
 #[derive(Debug)]
 pub struct Simulation<'a, S, I = Dopri5> {
     system: &'a S,
     integrator: I,
     singular_tolerance: f64,
+    constraints: ConstraintSettings,
+}
+
+/// The settings that only matter to [`Simulation::run_constrained`].
+#[derive(Clone, Copy, Debug)]
+struct ConstraintSettings {
+    drift: Drift,
+    least_squares: bool,
+    redundant_tolerance: f64,
+    consistency_tolerance: f64,
+    project_initial: bool,
+}
+
+impl Default for ConstraintSettings {
+    fn default() -> Self {
+        Self {
+            drift: Drift::None,
+            least_squares: false,
+            redundant_tolerance: DEFAULT_REDUNDANT_TOLERANCE,
+            consistency_tolerance: DEFAULT_CONSISTENCY_TOLERANCE,
+            project_initial: false,
+        }
+    }
 }
 
 impl<S, I: Clone> Clone for Simulation<'_, S, I> {
@@ -56,6 +88,7 @@ impl<S, I: Clone> Clone for Simulation<'_, S, I> {
             system: self.system,
             integrator: self.integrator.clone(),
             singular_tolerance: self.singular_tolerance,
+            constraints: self.constraints,
         }
     }
 }
@@ -68,6 +101,7 @@ impl<'a, S> Simulation<'a, S> {
             system,
             integrator: Dopri5::default(),
             singular_tolerance: DEFAULT_SINGULAR_TOLERANCE,
+            constraints: ConstraintSettings::default(),
         }
     }
 }
@@ -79,6 +113,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
             system: self.system,
             integrator,
             singular_tolerance: self.singular_tolerance,
+            constraints: self.constraints,
         }
     }
 
@@ -89,9 +124,147 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         self
     }
 
+    /// Chooses the drift control of [`run_constrained`](Self::run_constrained)
+    /// (default [`Drift::None`]).
+    pub fn drift(mut self, drift: Drift) -> Self {
+        self.constraints.drift = drift;
+        self
+    }
+
+    /// With `true`, redundant constraints are accepted with minimum-norm
+    /// multipliers instead of stopping with [`Error::RedundantConstraints`].
+    pub fn least_squares(mut self, on: bool) -> Self {
+        self.constraints.least_squares = on;
+        self
+    }
+
+    /// Sets the pivot ratio of G M⁻¹ Gᵀ below which constraints count as
+    /// redundant (default 1e-12).
+    pub fn redundant_tolerance(mut self, tolerance: f64) -> Self {
+        self.constraints.redundant_tolerance = tolerance;
+        self
+    }
+
+    /// Sets the absolute tolerance of the initial-condition check on max |Φ| and
+    /// max |G q̇ + g| (default 1e-10).
+    pub fn consistency_tolerance(mut self, tolerance: f64) -> Self {
+        self.constraints.consistency_tolerance = tolerance;
+        self
+    }
+
+    /// With `true`, [`run_constrained`](Self::run_constrained) projects an
+    /// inconsistent initial state onto the constraints (with the projection
+    /// settings of the drift control, or the defaults) instead of stopping with
+    /// [`Error::InconsistentInitialConditions`].
+    pub fn project_initial(mut self, on: bool) -> Self {
+        self.constraints.project_initial = on;
+        self
+    }
+
     /// The forward dynamics this simulation integrates.
     pub fn dynamics<T: Real>(&self) -> Dynamics<'a, S, T> {
         Dynamics::new(self.system).with_singular_tolerance(T::lit(self.singular_tolerance))
+    }
+
+    /// The constrained forward dynamics [`run_constrained`](Self::run_constrained)
+    /// integrates.
+    pub fn constrained_dynamics<T: Real, const K: usize>(
+        &self,
+    ) -> ConstrainedDynamics<'a, S, T, K> {
+        let c = &self.constraints;
+        ConstrainedDynamics::new(self.system)
+            .with_singular_tolerance(T::lit(self.singular_tolerance))
+            .with_redundant_tolerance(T::lit(c.redundant_tolerance))
+            .least_squares(c.least_squares)
+            .drift(c.drift)
+    }
+
+    /// The reduced forward dynamics [`run_reduced`](Self::run_reduced) integrates.
+    pub fn reduced_dynamics<T: Real, const K: usize>(&self) -> ReducedDynamics<'a, S, T, K> {
+        ReducedDynamics::new(self.system).with_singular_tolerance(T::lit(self.singular_tolerance))
+    }
+
+    fn check_tolerances(&self) -> Result<(), Error> {
+        let c = &self.constraints;
+        for (name, tol) in [
+            ("singular tolerance", self.singular_tolerance),
+            ("redundant tolerance", c.redundant_tolerance),
+            ("consistency tolerance", c.consistency_tolerance),
+        ] {
+            if !(tol.is_finite() && tol >= 0.0) {
+                return Err(Error::InvalidSettings(format!(
+                    "{name} must be non-negative and finite, got {tol}"
+                )));
+            }
+        }
+        c.drift.check()
+    }
+
+    /// Integrates a [`Constrained`] system (multiplier form) from (q0, v0) at
+    /// `span.start` to `span.end`, with the drift control chosen by
+    /// [`drift`](Self::drift).
+    ///
+    /// The initial state must satisfy the constraints to the consistency tolerance
+    /// at both levels; with [`project_initial`](Self::project_initial) it is
+    /// projected onto them instead (the trajectory then starts at the projected
+    /// state).
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] for bad settings, time span or initial state;
+    /// [`Error::InconsistentInitialConditions`]; [`Error::ProjectionFailed`];
+    /// otherwise what the dynamics or the integrator report
+    /// ([`Error::RedundantConstraints`], [`Error::SingularMassMatrix`],
+    /// [`Error::NonFiniteState`], ...).
+    pub fn run_constrained<T: Real, const N: usize, const K: usize>(
+        &self,
+        q0: impl Into<SVector<T, N>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<Trajectory<T, N>, Error>
+    where
+        S: Constrained<T, N, K>,
+    {
+        self.check_tolerances()?;
+        let (q0, v0) = (q0.into(), v0.into());
+        check_problem(span.start, span.end, &q0, &v0)?;
+        let dynamics = self.constrained_dynamics::<T, K>();
+        let t0 = span.start;
+        let (q0, v0) = if self.constraints.project_initial {
+            dynamics.consistent_state(t0, q0, v0)?
+        } else {
+            let tol = T::lit(self.constraints.consistency_tolerance);
+            dynamics.check_consistency(t0, &q0, &v0, tol)?;
+            (q0, v0)
+        };
+        self.integrator.integrate(&dynamics, t0, span.end, q0, v0)
+    }
+
+    /// Integrates a [`Reduced`] system (independent speeds) from (q0, v0) at
+    /// `span.start` to `span.end`. v0 is first replaced by
+    /// velocities(q0, speeds(q0, v0)), the admissible velocity with the same
+    /// speeds; after every step v is rebuilt the same way.
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] for bad settings, time span or initial state;
+    /// otherwise what the dynamics or the integrator report
+    /// ([`Error::SingularMassMatrix`] for a singular M*, [`Error::NonFiniteState`],
+    /// ...).
+    pub fn run_reduced<T: Real, const N: usize, const K: usize>(
+        &self,
+        q0: impl Into<SVector<T, N>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<Trajectory<T, N>, Error>
+    where
+        S: Reduced<T, N, K>,
+    {
+        self.check_tolerances()?;
+        let (q0, v0) = (q0.into(), v0.into());
+        check_problem(span.start, span.end, &q0, &v0)?;
+        let dynamics = self.reduced_dynamics::<T, K>();
+        let v0 = dynamics.consistent_velocities(span.start, &q0, &v0);
+        self.integrator
+            .integrate(&dynamics, span.start, span.end, q0, v0)
     }
 
     /// Integrates from (q0, v0) at `span.start` to `span.end`.

@@ -1,6 +1,8 @@
 //! Hand-written `Lagrangian` implementations and closed forms shared by the tests.
 #![allow(dead_code)] // each test binary uses a different subset
 
+pub mod constrained;
+
 use lagrange_runtime::{Lagrangian, Real, func};
 use nalgebra::{Matrix2, SMatrix, SVector, Vector1, Vector2};
 

@@ -1,0 +1,121 @@
+//! The saddle-point system
+//!
+//! ```text
+//! [ M  Gᵀ ] [ x  ]   [ f ]
+//! [ G  0  ] [ −ν ] = [ γ ]
+//! ```
+//!
+//! by the range-space method: with M = L Lᵀ, Y = L⁻¹ Gᵀ and z = L⁻¹ f, the Schur
+//! complement S = G M⁻¹ Gᵀ = Yᵀ Y gives S ν = γ − Yᵀ z, then x = L⁻ᵀ (z + Y ν).
+//! M is symmetric positive definite for a regular chart, so this only needs two
+//! Cholesky factorisations, of sizes N and K; a symmetric indefinite factorisation
+//! of the whole (N+K)² matrix would cost more and hide which block is singular.
+//!
+//! The same solve serves the dynamics (f = Q − h) and the projections (f = 0, where
+//! x = M⁻¹ Gᵀ S⁻¹ γ is the M-weighted minimum-norm correction).
+
+use crate::cholesky::{Cholesky, PivotedCholesky};
+use crate::real::Real;
+use nalgebra::{SMatrix, SVector};
+
+/// How the Schur complement is factorised.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Schur<T> {
+    /// Pivot ratio of S below which rows count as dependent.
+    pub tolerance: T,
+    /// Accept dependent rows and return the minimum-norm multipliers.
+    pub least_squares: bool,
+}
+
+/// Dependent rows of G: the pivot ratio that stopped the factorisation and the
+/// row indices.
+#[derive(Clone, Debug)]
+pub(crate) struct Dependent<T> {
+    pub ratio: T,
+    pub rows: Vec<usize>,
+}
+
+/// Solves the saddle-point system restricted to the first `rows` rows of G (the
+/// others, and γ's, are ignored and their multipliers are zero). Returns (x, ν).
+pub(crate) fn range_space<T: Real, const N: usize, const K: usize>(
+    m: &Cholesky<T, N>,
+    g: &SMatrix<T, K, N>,
+    rows: usize,
+    mut f: SVector<T, N>,
+    gamma: &SVector<T, K>,
+    schur: Schur<T>,
+) -> Result<(SVector<T, N>, SVector<T, K>), Dependent<T>> {
+    m.solve_lower(&mut f);
+    let z = f;
+    let mut y = SMatrix::<T, N, K>::zeros();
+    for j in 0..rows {
+        let mut col = g.row(j).transpose();
+        m.solve_lower(&mut col);
+        y.set_column(j, &col);
+    }
+    let s = y.tr_mul(&y);
+    let mut b = *gamma - y.tr_mul(&z);
+    for x in b.iter_mut().skip(rows) {
+        *x = T::zero();
+    }
+    let factor = PivotedCholesky::new(s, rows, schur.tolerance);
+    if !factor.is_full_rank() && !schur.least_squares {
+        return Err(Dependent {
+            ratio: factor.ratio(),
+            rows: factor.dependent_rows().to_vec(),
+        });
+    }
+    let nu = factor.solve_min_norm(&b).ok_or_else(|| Dependent {
+        ratio: factor.ratio(),
+        rows: factor.dependent_rows().to_vec(),
+    })?;
+    let mut x = z + y * nu;
+    m.solve_upper(&mut x);
+    Ok((x, nu))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Matrix2x3, Matrix3, Vector2, Vector3};
+
+    fn schur(least_squares: bool) -> Schur<f64> {
+        Schur {
+            tolerance: 1e-12,
+            least_squares,
+        }
+    }
+
+    #[test]
+    fn solves_the_kkt_system() {
+        let m = Matrix3::new(4.0, 1.0, 0.5, 1.0, 3.0, 0.2, 0.5, 0.2, 2.0);
+        let g = Matrix2x3::new(1.0, 2.0, 0.0, 0.0, 1.0, -1.0);
+        let f = Vector3::new(1.0, -1.0, 2.0);
+        let gamma = Vector2::new(0.5, -0.25);
+        let chol = Cholesky::new(m, 1e-12).unwrap();
+        let (x, nu) = range_space(&chol, &g, 2, f, &gamma, schur(false)).unwrap();
+        assert!((m * x - f - g.transpose() * nu).amax() < 1e-14);
+        assert!((g * x - gamma).amax() < 1e-14);
+        // Only the first row: the second multiplier is zero and row 2 is ignored.
+        let (x, nu) = range_space(&chol, &g, 1, f, &gamma, schur(false)).unwrap();
+        assert_eq!(nu[1], 0.0);
+        assert!((m * x - f - g.transpose() * nu).amax() < 1e-14);
+        assert!(((g * x)[0] - gamma[0]).abs() < 1e-14);
+    }
+
+    #[test]
+    fn duplicated_row_is_dependent_unless_least_squares() {
+        let m = Matrix3::from_diagonal(&Vector3::new(1.0, 2.0, 3.0));
+        let g = Matrix2x3::new(1.0, 2.0, 0.0, 1.0, 2.0, 0.0);
+        let f = Vector3::new(1.0, -1.0, 2.0);
+        let gamma = Vector2::new(0.5, 0.5);
+        let chol = Cholesky::new(m, 1e-12).unwrap();
+        let e = range_space(&chol, &g, 2, f, &gamma, schur(false)).unwrap_err();
+        assert_eq!(e.rows, vec![1]);
+        let (x, nu) = range_space(&chol, &g, 2, f, &gamma, schur(true)).unwrap();
+        // The single-row solution, its multiplier split evenly.
+        let (x1, nu1) = range_space(&chol, &g, 1, f, &gamma, schur(false)).unwrap();
+        assert!((x - x1).amax() < 1e-14, "{x} {x1}");
+        assert!((nu[0] - 0.5 * nu1[0]).abs() < 1e-14 && (nu[1] - nu[0]).abs() < 1e-14);
+    }
+}
