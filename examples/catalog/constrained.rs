@@ -160,16 +160,17 @@ pub struct RollingSphereReduced {
     pub g: f64,
 }
 
-/// C6, Suslov ex. 99: two heavy symmetric bodies on fixed pivots, joined by an
-/// untwistable thread along their axes: the spins cancel,
+/// C6, Suslov ex. 99: two heavy bodies on fixed pivots (principal moments a, b, c,
+/// the pivot on the c axis), joined by an untwistable thread along those axes: the
+/// spins cancel,
 /// ψ̇1 + cos θ1 φ̇1 + ψ̇2 + cos θ2 φ̇2 = 0 (φ precession, θ nutation, ψ spin).
 #[derive(Lagrangian, Clone, Copy, Debug)]
 #[lagrange(
     coordinates(phi1, theta1, psi1, phi2, theta2, psi2),
-    body(top1, mass = m, inertia = [a, a, c],
+    body(top1, mass = m, inertia = [a, b, c],
          at = [l * sin(theta1) * sin(phi1), -l * sin(theta1) * cos(phi1), l * cos(theta1)],
          rotation = euler_zxz(phi1, theta1, psi1)),
-    body(top2, mass = m, inertia = [a, a, c],
+    body(top2, mass = m, inertia = [b, a, c],
          at = [d + l * sin(theta2) * sin(phi2), -l * sin(theta2) * cos(phi2), l * cos(theta2)],
          rotation = euler_zxz(phi2, theta2, psi2)),
     gravity = [0, 0, -g],
@@ -178,6 +179,7 @@ pub struct RollingSphereReduced {
 pub struct ThreadedTops {
     pub m: f64,
     pub a: f64,
+    pub b: f64,
     pub c: f64,
     pub l: f64,
     pub d: f64,
