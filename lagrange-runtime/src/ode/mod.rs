@@ -12,10 +12,12 @@
 
 mod controller;
 mod dense;
+mod dop853;
 mod dopri5;
 mod rk4;
 
 pub use dense::DenseSegment;
+pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use rk4::Rk4;
 
@@ -123,8 +125,18 @@ pub struct Stats {
     /// Rejected steps (all of them, including those before the first acceptance,
     /// which Hairer's DOPRI5 does not count).
     pub rejected: usize,
-    /// Evaluations of the right-hand side (accelerations).
+    /// Evaluations of the right-hand side (accelerations), including those spent
+    /// on finite-difference Jacobians.
     pub evaluations: usize,
+    /// Jacobian evaluations (analytic or by finite differences) of the implicit
+    /// methods; zero for explicit ones.
+    pub jacobians: usize,
+    /// LU factorisations of the implicit methods' iteration matrices (a complex
+    /// factorisation counts as one); zero for explicit ones.
+    pub factorizations: usize,
+    /// Wall-clock time of the integration, measured around the whole run
+    /// (trajectory recording included).
+    pub wall_time: std::time::Duration,
 }
 
 impl Stats {
