@@ -31,7 +31,9 @@ mod trajectory;
 
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use error::Error;
-pub use ode::{DenseSegment, Dop853, Dopri5, Integrator, Rk4, Sample, SecondOrder, Stats};
+pub use ode::{
+    DenseSegment, Dop853, Dopri5, Integrator, Rk4, Sample, SecondOrder, Stats, StormerVerlet,
+};
 pub use real::Real;
 pub use simulation::Simulation;
 pub use system::{Constrained, Lagrangian, Reduced};

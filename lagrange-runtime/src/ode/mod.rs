@@ -15,11 +15,13 @@ mod dense;
 mod dop853;
 mod dopri5;
 mod rk4;
+mod verlet;
 
 pub use dense::DenseSegment;
 pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use rk4::Rk4;
+pub use verlet::StormerVerlet;
 
 use crate::error::Error;
 use crate::real::Real;
