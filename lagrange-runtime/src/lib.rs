@@ -32,8 +32,8 @@ mod trajectory;
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use error::Error;
 pub use ode::{
-    DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Rk4, Sample, SecondOrder, Stats,
-    StormerVerlet,
+    DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Rk4, Sample, SecondOrder,
+    Stats, StormerVerlet,
 };
 pub use real::Real;
 pub use simulation::Simulation;

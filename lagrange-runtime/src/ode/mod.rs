@@ -17,6 +17,7 @@ mod dopri5;
 mod gauss;
 mod linalg;
 mod mechanical;
+mod radau5;
 mod rk4;
 mod verlet;
 
@@ -25,6 +26,7 @@ pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use gauss::Gauss;
 pub use mechanical::Mechanical;
+pub use radau5::Radau5;
 pub use rk4::Rk4;
 pub use verlet::StormerVerlet;
 
