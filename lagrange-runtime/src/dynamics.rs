@@ -116,6 +116,10 @@ where
     fn integral(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
         self.system.integral(q, v, t)
     }
+
+    fn mechanical(&self) -> Option<&dyn crate::ode::Mechanical<T, N>> {
+        Some(self)
+    }
 }
 
 /// The generalized accelerations of `sys` at (q, v, t) with the default singular

@@ -135,6 +135,23 @@ pub enum Error {
         max_steps: usize,
     },
 
+    /// The Newton iteration for the stages of an implicit method did not
+    /// converge within its iteration budget, even after the step was reduced (the
+    /// adaptive methods) or at the given step (the fixed-step methods): the step is
+    /// too large for the nonlinearity, or the system is singular there.
+    #[error(
+        "implicit stage equations did not converge at t = {t} with step h = {h:e} \
+         after {iterations} Newton iterations; try a smaller step"
+    )]
+    NewtonFailure {
+        /// Start of the failed step.
+        t: f64,
+        /// Its step size.
+        h: f64,
+        /// Newton iterations done in the last attempt.
+        iterations: usize,
+    },
+
     /// The settings or the initial value problem are invalid (non-positive
     /// tolerance, empty or reversed time span, non-finite initial state, ...).
     #[error("invalid settings: {0}")]

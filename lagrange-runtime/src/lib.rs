@@ -51,7 +51,10 @@ mod trajectory;
 pub use constraint::{ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent};
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use error::Error;
-pub use ode::{DenseSegment, Dopri5, Integrator, Rk4, Sample, SecondOrder, Stats};
+pub use ode::{
+    DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Rk4, Sample, SecondOrder,
+    Stats, StormerVerlet,
+};
 pub use real::Real;
 pub use reduced::ReducedDynamics;
 pub use simulation::Simulation;

@@ -53,6 +53,32 @@ pub trait Lagrangian<T: Real, const N: usize> {
     /// scleronomic system, the Jacobi integral T2 − T0 + V for a rheonomic one.
     /// It is the runtime's accuracy diagnostic.
     fn integral(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> T;
+
+    /// The generalized momentum p = ∂L/∂q̇ = M(q,t) q̇ + a(q,t), with a the
+    /// coefficient of T1 = aᵀq̇. The default, M q̇, is right for scleronomic
+    /// systems (a = 0); a rheonomic implementation must override it.
+    fn momentum(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, N> {
+        self.mass_matrix(q, t) * v
+    }
+
+    /// The kinetic-energy gradient ∂T/∂q at fixed q̇, or `None` if the
+    /// implementation does not provide it (the default).
+    ///
+    /// With it the equations of motion take Hamilton's form in (q, p):
+    /// ṗ = ∂T/∂q + Q, q̇ = M⁻¹(p − a), which is what the symplectic
+    /// [`Gauss`](crate::Gauss) integrator needs for a configuration-dependent
+    /// mass matrix. (∂T/∂q rather than ∂L/∂q = ∂T/∂q − ∂V/∂q: −∂V/∂q is already
+    /// part of [`generalized_forces`](Self::generalized_forces), and the form
+    /// ṗ = ∂T/∂q + Q also covers forces that have no potential.)
+    fn kinetic_gradient(
+        &self,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        t: T,
+    ) -> Option<SVector<T, N>> {
+        let _ = (q, v, t);
+        None
+    }
 }
 
 /// Constraints kept with multipliers: K rows of

@@ -34,6 +34,20 @@ impl<T: Real> PiController<T> {
         Self::new(0.9, 0.2, 10.0, 0.04)
     }
 
+    /// Hairer's DOP853 defaults: safe = 0.9, fac1 = 0.333, fac2 = 6, β = 0, and the
+    /// exponent 1/8 − 0.2β that belongs to its 8th-order error estimate.
+    pub fn dop853() -> Self {
+        let beta = 0.0;
+        Self::new(0.9, 0.333, 6.0, beta).with_exponent(1.0 / 8.0 - 0.2 * beta)
+    }
+
+    /// Replaces the integral exponent 1/5 − 0.75β chosen by [`new`](Self::new)
+    /// (DOPRI5's) with `expo1`.
+    pub fn with_exponent(mut self, expo1: f64) -> Self {
+        self.expo1 = T::lit(expo1);
+        self
+    }
+
     pub fn new(safe: f64, fac1: f64, fac2: f64, beta: f64) -> Self {
         Self {
             safe: T::lit(safe),

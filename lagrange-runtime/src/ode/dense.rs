@@ -7,26 +7,40 @@ use nalgebra::SVector;
 /// The continuous extension of one accepted step [t₀, t₁], in Hairer's nested form
 ///
 /// ```text
-/// y(t₀ + θh) = r₁ + θ (r₂ + (1−θ) (r₃ + θ (r₄ + (1−θ) r₅)))
+/// y(t₀ + θh) = r₁ + θ (r₂ + (1−θ) (r₃ + θ (r₄ + (1−θ) (r₅ + θ (r₆ + (1−θ) (r₇ + θ r₈))))))
 /// ```
 ///
-/// for both q and v. DOPRI5 fills r₅ with Shampine's coefficients (a 4th-order
-/// interpolant, local error O(h⁵)); the fixed-step methods leave r₅ = 0, which makes
-/// it the cubic Hermite interpolant through the values and derivatives at both ends
-/// (local error O(h⁴), so 3rd order uniformly).
+/// for both q and v. DOP853 fills r₅..r₈ (its 7th-order continuous extension);
+/// DOPRI5 fills r₅ with Shampine's coefficients (a 4th-order interpolant, local
+/// error O(h⁵)) and leaves r₆..r₈ = 0; the methods without an extension of their
+/// own stop at r₄, the cubic Hermite interpolant through the values and
+/// derivatives at both ends (local error O(h⁴), so 3rd order uniformly). Only the
+/// coefficients in use are evaluated.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DenseSegment<T: Real, const N: usize> {
     t0: T,
     t1: T,
     h: T,
-    r: [Pair<T, N>; 5],
+    r: [Pair<T, N>; 8],
+    /// How many of the r's are in use (4, 5 or 8).
+    used: usize,
 }
 
 impl<T: Real, const N: usize> DenseSegment<T, N> {
-    /// A segment from its coefficients. `h` is the step size the coefficients were
-    /// computed with; `t1` the recorded end time (t₀ + h up to rounding).
-    pub(crate) fn new(t0: T, t1: T, h: T, r: [Pair<T, N>; 5]) -> Self {
-        Self { t0, t1, h, r }
+    /// A segment from its first K ≤ 8 coefficients. `h` is the step size the
+    /// coefficients were computed with; `t1` the recorded end time (t₀ + h up to
+    /// rounding).
+    pub(crate) fn new<const K: usize>(t0: T, t1: T, h: T, coefficients: [Pair<T, N>; K]) -> Self {
+        const { assert!(K >= 1 && K <= 8) };
+        let mut r = [Pair::zeros(); 8];
+        r[..K].copy_from_slice(&coefficients);
+        Self {
+            t0,
+            t1,
+            h,
+            r,
+            used: K,
+        }
     }
 
     /// The cubic Hermite interpolant from the states `y0`, `y1` and their
@@ -41,7 +55,7 @@ impl<T: Real, const N: usize> DenseSegment<T, N> {
     ) -> Self {
         let h = t1 - t0;
         let (r1, r2, r3, r4) = Self::cubic_part(h, y0, f0, y1, f1);
-        Self::new(t0, t1, h, [r1, r2, r3, r4, Pair::zeros()])
+        Self::new(t0, t1, h, [r1, r2, r3, r4])
     }
 
     /// The cubic Hermite interpolant through (q0, v0) and (q1, v1) with the
@@ -98,10 +112,17 @@ impl<T: Real, const N: usize> DenseSegment<T, N> {
     pub fn eval(&self, t: T) -> (SVector<T, N>, SVector<T, N>) {
         let th = (t - self.t0) / self.h;
         let th1 = T::one() - th;
+        let r = &self.r[..self.used];
+        // Horner from the innermost coefficient outwards; the factor in front of
+        // r_k (k ≥ 2, 1-based) is θ for even k and 1 − θ for odd k.
         let poly = |part: fn(&Pair<T, N>) -> &SVector<T, N>| {
-            let [r1, r2, r3, r4, r5] = self.r.each_ref().map(part);
             SVector::<T, N>::from_fn(|i, _| {
-                r1[i] + th * (r2[i] + th1 * (r3[i] + th * (r4[i] + th1 * r5[i])))
+                let mut acc = T::zero();
+                for (k, rk) in r.iter().enumerate().skip(1).rev() {
+                    let factor = if k % 2 == 1 { th } else { th1 };
+                    acc = factor * (part(rk)[i] + acc);
+                }
+                part(&r[0])[i] + acc
             })
         };
         (poly(|p| &p.q), poly(|p| &p.v))

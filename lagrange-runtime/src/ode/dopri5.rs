@@ -203,12 +203,23 @@ impl Integrator for Dopri5 {
         let underflow = T::lit(16.0) * T::default_epsilon();
         let stretch = T::lit(1.01);
 
+        let started = std::time::Instant::now();
         let mut stats = Stats::default();
         let mut y = Pair::new(q0, v0);
         let mut k1 = y.derivative(rhs, t0, &mut stats.evaluations)?;
         let mut h = match self.h0 {
             Some(h0) => T::lit(h0).min(hmax),
-            None => hinit(rhs, t0, &y, &k1, hmax, rtol, atol, &mut stats.evaluations)?,
+            None => hinit(
+                rhs,
+                t0,
+                &y,
+                &k1,
+                hmax,
+                rtol,
+                atol,
+                5,
+                &mut stats.evaluations,
+            )?,
         };
         let mut ctrl = PiController::<T>::dopri5();
         let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
@@ -291,6 +302,7 @@ impl Integrator for Dopri5 {
             }
             h = h_new;
         }
+        stats.wall_time = started.elapsed();
         traj.set_stats(stats);
         Ok(traj)
     }
@@ -319,10 +331,10 @@ fn error_norm<T: Real, const N: usize>(
 
 /// Hairer's starting step: make an explicit Euler step small compared with the
 /// solution (h = 0.01 ‖y‖/‖f‖), estimate the second derivative from one more
-/// evaluation, and choose h so that h⁵ · max(‖f‖, ‖y''‖) = 0.01. The norms are
-/// unnormalised sums, as in `dopri5.f`.
+/// evaluation, and choose h so that h^order · max(‖f‖, ‖y''‖) = 0.01 (order 5 for
+/// DOPRI5, 8 for DOP853). The norms are unnormalised sums, as in `dopri5.f`.
 #[allow(clippy::too_many_arguments)]
-fn hinit<T: Real, const N: usize, F: SecondOrder<T, N>>(
+pub(super) fn hinit<T: Real, const N: usize, F: SecondOrder<T, N>>(
     rhs: &F,
     t0: T,
     y: &Pair<T, N>,
@@ -330,6 +342,7 @@ fn hinit<T: Real, const N: usize, F: SecondOrder<T, N>>(
     hmax: T,
     rtol: T,
     atol: T,
+    order: u32,
     evaluations: &mut usize,
 ) -> Result<T, Error> {
     let sk = |x: T| atol + rtol * abs(x);
@@ -359,7 +372,7 @@ fn hinit<T: Real, const N: usize, F: SecondOrder<T, N>>(
     let h1 = if der12 <= T::lit(1e-15) {
         T::lit(1e-6).max(abs(h) * T::lit(1e-3))
     } else {
-        (T::lit(0.01) / der12).powf(T::lit(0.2))
+        (T::lit(0.01) / der12).powf(T::lit(1.0 / f64::from(order)))
     };
     Ok((T::lit(100.0) * h).min(h1).min(hmax))
 }

@@ -12,17 +12,28 @@
 
 mod controller;
 mod dense;
+mod dop853;
 mod dopri5;
+mod gauss;
+mod linalg;
+mod mechanical;
+mod radau5;
 mod rk4;
+mod verlet;
 
 pub use dense::DenseSegment;
+pub use dop853::Dop853;
 pub use dopri5::Dopri5;
+pub use gauss::Gauss;
+pub use mechanical::Mechanical;
+pub use radau5::Radau5;
 pub use rk4::Rk4;
+pub use verlet::StormerVerlet;
 
 use crate::error::Error;
 use crate::real::Real;
 use crate::trajectory::Trajectory;
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
 /// The right-hand side of a second-order system q̈ = a(t, q, q̇).
 ///
@@ -66,6 +77,27 @@ pub trait SecondOrder<T: Real, const N: usize> {
     fn project(&self, t: T, q: &mut SVector<T, N>, v: &mut SVector<T, N>) -> Result<bool, Error> {
         let _ = (t, q, v);
         Ok(false)
+    }
+
+    /// The same system in Hamilton's form, if it has one: what the symplectic
+    /// [`Gauss`] integrator needs. `None` unless overridden;
+    /// [`Dynamics`](crate::Dynamics) returns itself.
+    fn mechanical(&self) -> Option<&dyn Mechanical<T, N>> {
+        None
+    }
+
+    /// The Jacobian blocks (∂a/∂q, ∂a/∂v) at (t, q, v), if the system can compute
+    /// them; `None` (the default) makes the implicit integrators use finite
+    /// differences.
+    #[allow(clippy::type_complexity)]
+    fn jacobian(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Option<Result<(SMatrix<T, N, N>, SMatrix<T, N, N>), Error>> {
+        let _ = (t, q, v);
+        None
     }
 }
 
@@ -123,8 +155,18 @@ pub struct Stats {
     /// Rejected steps (all of them, including those before the first acceptance,
     /// which Hairer's DOPRI5 does not count).
     pub rejected: usize,
-    /// Evaluations of the right-hand side (accelerations).
+    /// Evaluations of the right-hand side (accelerations), including those spent
+    /// on finite-difference Jacobians.
     pub evaluations: usize,
+    /// Jacobian evaluations (analytic or by finite differences) of the implicit
+    /// methods; zero for explicit ones.
+    pub jacobians: usize,
+    /// LU factorisations of the implicit methods' iteration matrices (a complex
+    /// factorisation counts as one); zero for explicit ones.
+    pub factorizations: usize,
+    /// Wall-clock time of the integration, measured around the whole run
+    /// (trajectory recording included).
+    pub wall_time: std::time::Duration,
 }
 
 impl Stats {

@@ -71,6 +71,7 @@ impl Integrator for Rk4 {
         }
         let n = n as usize;
 
+        let started = std::time::Instant::now();
         let mut stats = Stats::default();
         let mut y = Pair::new(q0, v0);
         let mut f = y.derivative(rhs, t0, &mut stats.evaluations)?;
@@ -118,6 +119,7 @@ impl Integrator for Rk4 {
             stats.accepted += 1;
             (t, y, f) = (t_next, y_next, f_next);
         }
+        stats.wall_time = started.elapsed();
         traj.set_stats(stats);
         Ok(traj)
     }

@@ -1,0 +1,352 @@
+//! Gauss–Legendre collocation in (q, p): symplectic for any mass matrix M(q).
+
+// Index loops mirror the block-matrix formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+use super::linalg::{lu_factor, lu_solve};
+use super::mechanical::Mechanical;
+use super::verlet::fixed_step_count;
+use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
+use crate::error::Error;
+use crate::func::abs;
+use crate::real::Real;
+use crate::trajectory::Trajectory;
+use nalgebra::{DMatrix, SVector};
+
+/// Gauss–Legendre collocation with a fixed step: s = 2 stages (order 4, the
+/// default) or s = 1 (the implicit midpoint rule, order 2).
+///
+/// The method is applied to Hamilton's equations in (q, p), p = ∂L/∂q̇,
+/// q̇ = M(q)⁻¹(p − a), ṗ = ∂T/∂q + Q (see [`Mechanical`]), where it is
+/// symplectic and symmetric for *any* configuration-dependent mass matrix: the
+/// energy error of a conservative system stays bounded over very long runs, and
+/// quadratic invariants (angular momentum) are conserved to round-off. Applied to
+/// (q, q̇) instead it would not be symplectic unless M is constant.
+///
+/// The system must provide that form: [`SecondOrder::mechanical`] must return
+/// `Some` — [`Dynamics`](crate::Dynamics) does when the system implements
+/// [`Lagrangian::kinetic_gradient`](crate::Lagrangian::kinetic_gradient).
+///
+/// The stage equations are solved by simplified Newton with a finite-difference
+/// Jacobian of (q̇, ṗ) evaluated once per step (2N + 1 evaluations, counted in
+/// [`Stats::jacobians`] and [`Stats::evaluations`]) and one LU factorisation of
+/// the 2sN × 2sN iteration matrix per step, iterating until the correction
+/// reaches round-off. Failure to converge within [`max_iterations`](Self::max_iterations)
+/// is [`Error::NewtonFailure`]. The dense output is the cubic Hermite
+/// interpolant in (q, q̇, q̈).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Gauss {
+    h: f64,
+    stages: usize,
+    max_steps: usize,
+    max_iterations: usize,
+}
+
+impl Gauss {
+    /// The 2-stage, order-4 method with step size `h`.
+    pub fn step(h: f64) -> Self {
+        Self {
+            h,
+            stages: 2,
+            max_steps: 10_000_000,
+            max_iterations: 50,
+        }
+    }
+
+    /// The implicit midpoint rule (1 stage, order 2) with step size `h`.
+    pub fn midpoint(h: f64) -> Self {
+        Self {
+            stages: 1,
+            ..Self::step(h)
+        }
+    }
+
+    /// Refuses spans that need more than `n` steps (default 10⁷), before starting.
+    pub fn max_steps(mut self, n: usize) -> Self {
+        self.max_steps = n;
+        self
+    }
+
+    /// Newton iterations allowed per step (default 50).
+    pub fn max_iterations(mut self, n: usize) -> Self {
+        self.max_iterations = n;
+        self
+    }
+
+    /// The step size.
+    pub fn step_size(&self) -> f64 {
+        self.h
+    }
+
+    /// The number of stages (1 or 2).
+    pub fn stages(&self) -> usize {
+        self.stages
+    }
+}
+
+impl Integrator for Gauss {
+    fn integrate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+        &self,
+        rhs: &F,
+        t0: T,
+        t1: T,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+    ) -> Result<Trajectory<T, N>, Error> {
+        check_problem(t0, t1, &q0, &v0)?;
+        if self.max_iterations == 0 {
+            return Err(Error::InvalidSettings(
+                "Gauss: max_iterations must be positive".into(),
+            ));
+        }
+        let n = fixed_step_count("Gauss", self.h, self.max_steps, t0, t1)?;
+        let Some(mech) = rhs.mechanical() else {
+            return Err(Error::InvalidSettings(
+                "Gauss needs the system in Hamilton's form (momentum, mass matrix and \
+                 ∂T/∂q): SecondOrder::mechanical returned None"
+                    .into(),
+            ));
+        };
+        let s3 = 3f64.sqrt() / 6.0;
+        match self.stages {
+            1 => self.run(rhs, mech, t0, t1, q0, v0, n, [[0.5]], [1.0], [0.5]),
+            2 => self.run(
+                rhs,
+                mech,
+                t0,
+                t1,
+                q0,
+                v0,
+                n,
+                [[0.25, 0.25 - s3], [0.25 + s3, 0.25]],
+                [0.5, 0.5],
+                [0.5 - s3, 0.5 + s3],
+            ),
+            s => Err(Error::InvalidSettings(format!(
+                "Gauss: {s} stages are not implemented (1 or 2)"
+            ))),
+        }
+    }
+}
+
+/// The workspace of one run: sized once, reused at every step.
+struct Work<T: Real> {
+    /// Jacobian of (q̇, ṗ) with respect to (q, p), 2N × 2N.
+    jac: DMatrix<T>,
+    /// The LU factors of I − h A ⊗ J, 2sN × 2sN.
+    lu: DMatrix<T>,
+    pivots: Vec<usize>,
+    /// Right-hand side and solution of the Newton system.
+    b: Vec<T>,
+}
+
+/// Component k of the 2N vector (q, p) stored as a pair.
+#[inline]
+fn get<T: Real, const N: usize>(z: &Pair<T, N>, k: usize) -> T {
+    if k < N { z.q[k] } else { z.v[k - N] }
+}
+
+#[inline]
+fn get_mut<T: Real, const N: usize>(z: &mut Pair<T, N>, k: usize) -> &mut T {
+    if k < N { &mut z.q[k] } else { &mut z.v[k - N] }
+}
+
+/// (q̇, ṗ) at (t, q, p), counting one evaluation.
+fn hamilton<T: Real, const N: usize>(
+    mech: &dyn Mechanical<T, N>,
+    t: T,
+    z: &Pair<T, N>,
+    evaluations: &mut usize,
+) -> Result<Pair<T, N>, Error> {
+    *evaluations += 1;
+    let v = mech.velocity(t, &z.q, &z.v)?;
+    let pdot = mech.momentum_rate(t, &z.q, &v)?;
+    Ok(Pair::new(v, pdot))
+}
+
+impl Gauss {
+    #[allow(clippy::too_many_arguments)]
+    fn run<T: Real, const N: usize, const S: usize, F: SecondOrder<T, N>>(
+        &self,
+        rhs: &F,
+        mech: &dyn Mechanical<T, N>,
+        t0: T,
+        t1: T,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+        n: usize,
+        a: [[f64; S]; S],
+        b: [f64; S],
+        c: [f64; S],
+    ) -> Result<Trajectory<T, N>, Error> {
+        let started = std::time::Instant::now();
+        let (a, b, c) = (a.map(|r| r.map(T::lit)), b.map(T::lit), c.map(T::lit));
+        let dim = 2 * N;
+        let mut work = Work {
+            jac: DMatrix::zeros(dim, dim),
+            lu: DMatrix::zeros(S * dim, S * dim),
+            pivots: vec![0; S * dim],
+            b: vec![T::zero(); S * dim],
+        };
+        let h = T::lit(self.h);
+        let mut stats = Stats::default();
+        let (mut t, mut q, mut v) = (t0, q0, v0);
+        let mut p = mech.momentum(t, &q, &v)?;
+        stats.evaluations += 1;
+        let mut acc = rhs.acceleration(t, &q, &v)?;
+        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        traj.reserve(n);
+        for k in 1..=n {
+            let t_next = if k == n {
+                t1
+            } else {
+                t0 + h * T::lit(k as f64)
+            };
+            let hk = t_next - t;
+            let z0 = Pair::new(q, p);
+            let z1 = self.advance(mech, t, hk, &z0, &a, &b, &c, &mut work, &mut stats)?;
+            let (mut q1, p1) = (z1.q, z1.v);
+            let mut v1 = mech.velocity(t_next, &q1, &p1)?;
+            stats.evaluations += 1;
+            let mut acc1 = rhs.acceleration(t_next, &q1, &v1)?;
+            let segment = DenseSegment::cubic_hermite(t, t_next, (&q, &v, &acc), (&q1, &v1, &acc1));
+            let mut p1 = p1;
+            if rhs.project(t_next, &mut q1, &mut v1)? {
+                p1 = mech.momentum(t_next, &q1, &v1)?;
+                stats.evaluations += 1;
+                acc1 = rhs.acceleration(t_next, &q1, &v1)?;
+            }
+            let sample = Sample::of(rhs, t_next, &q1, &v1);
+            traj.push(segment, q1, v1, sample);
+            stats.accepted += 1;
+            (t, q, v, p, acc) = (t_next, q1, v1, p1, acc1);
+        }
+        stats.wall_time = started.elapsed();
+        traj.set_stats(stats);
+        Ok(traj)
+    }
+
+    /// One step from z0 = (q, p) at t: returns (q, p) at t + h.
+    #[allow(clippy::too_many_arguments)]
+    fn advance<T: Real, const N: usize, const S: usize>(
+        &self,
+        mech: &dyn Mechanical<T, N>,
+        t: T,
+        h: T,
+        z0: &Pair<T, N>,
+        a: &[[T; S]; S],
+        b: &[T; S],
+        c: &[T; S],
+        work: &mut Work<T>,
+        stats: &mut Stats,
+    ) -> Result<Pair<T, N>, Error> {
+        let dim = 2 * N;
+        let eps = T::default_epsilon();
+        let f0 = hamilton(mech, t, z0, &mut stats.evaluations)?;
+        self.jacobian(mech, t, z0, &f0, &mut work.jac, &mut stats.evaluations)?;
+        stats.jacobians += 1;
+        // I − h A ⊗ J.
+        for i in 0..S {
+            for j in 0..S {
+                for r in 0..dim {
+                    for col in 0..dim {
+                        let delta = if i == j && r == col {
+                            T::one()
+                        } else {
+                            T::zero()
+                        };
+                        work.lu[(i * dim + r, j * dim + col)] =
+                            delta - h * a[i][j] * work.jac[(r, col)];
+                    }
+                }
+            }
+        }
+        stats.factorizations += 1;
+        if lu_factor(&mut work.lu, &mut work.pivots).is_err() {
+            return Err(Error::NewtonFailure {
+                t: t.to_f64(),
+                h: h.to_f64(),
+                iterations: 0,
+            });
+        }
+        // Stage increments Z_i = z(t + c_i h) − z0, started on the tangent.
+        let mut zs: [Pair<T, N>; S] = std::array::from_fn(|i| f0.scale(c[i] * h));
+        let mut fs = [Pair::<T, N>::zeros(); S];
+        let mut previous = T::max_value().unwrap_or(T::one() / eps);
+        for iteration in 1..=self.max_iterations {
+            for i in 0..S {
+                let zi = z0.add_combination(T::one(), [T::one()], [&zs[i]]);
+                fs[i] = hamilton(mech, t + c[i] * h, &zi, &mut stats.evaluations)?;
+            }
+            // Newton right-hand side −G = h Σ_j a_ij F_j − Z_i.
+            for i in 0..S {
+                for r in 0..dim {
+                    let mut s = T::zero();
+                    for j in 0..S {
+                        s += a[i][j] * get(&fs[j], r);
+                    }
+                    work.b[i * dim + r] = h * s - get(&zs[i], r);
+                }
+            }
+            lu_solve(&work.lu, &work.pivots, &mut work.b);
+            let mut size = T::zero();
+            for i in 0..S {
+                for r in 0..dim {
+                    let d = work.b[i * dim + r];
+                    *get_mut(&mut zs[i], r) += d;
+                    size = size.max(abs(d) / (T::one() + abs(get(z0, r))));
+                }
+            }
+            if !size.is_finite() {
+                break;
+            }
+            // Converged at round-off, or stagnating there (the correction no
+            // longer shrinks although it is already tiny).
+            let floor = T::lit(10.0) * eps;
+            let stagnant = size >= previous && size <= T::lit(1e3) * eps;
+            if size <= floor || stagnant {
+                // One more evaluation would only move the result by round-off:
+                // update with the stage derivatives of the last iterate.
+                let mut z1 = *z0;
+                for j in 0..S {
+                    z1 = z1.add_combination(h, [b[j]], [&fs[j]]);
+                }
+                return Ok(z1);
+            }
+            previous = size;
+            if iteration == self.max_iterations {
+                break;
+            }
+        }
+        Err(Error::NewtonFailure {
+            t: t.to_f64(),
+            h: h.to_f64(),
+            iterations: self.max_iterations,
+        })
+    }
+
+    /// Forward-difference Jacobian of (q̇, ṗ) at z0 (f0 = its value there), with
+    /// Hairer's increment sqrt(ε · max(1e-5, |z_k|)).
+    fn jacobian<T: Real, const N: usize>(
+        &self,
+        mech: &dyn Mechanical<T, N>,
+        t: T,
+        z0: &Pair<T, N>,
+        f0: &Pair<T, N>,
+        jac: &mut DMatrix<T>,
+        evaluations: &mut usize,
+    ) -> Result<(), Error> {
+        let eps = T::default_epsilon();
+        for col in 0..2 * N {
+            let mut z = *z0;
+            let zk = get(z0, col);
+            let delta = (eps * T::lit(1e-5).max(abs(zk))).sqrt();
+            *get_mut(&mut z, col) = zk + delta;
+            let f = hamilton(mech, t, &z, evaluations)?;
+            for r in 0..2 * N {
+                jac[(r, col)] = (get(&f, r) - get(f0, r)) / delta;
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,89 @@
+//! The Hamiltonian view of a mechanical system, for the symplectic integrators.
+
+use super::SecondOrder;
+use crate::dynamics::Dynamics;
+use crate::error::{Error, to_vec};
+use crate::real::Real;
+use crate::system::Lagrangian;
+use nalgebra::{SMatrix, SVector};
+
+/// A second-order system that can also be written in Hamilton's form
+///
+/// ```text
+/// p = ∂L/∂q̇ = M(q,t) q̇ + a(q,t),     ṗ = ∂T/∂q + Q(q,q̇,t)
+/// ```
+///
+/// which a symplectic method ([`Gauss`](crate::Gauss)) integrates in (q, p). The
+/// velocity is recovered from the momentum by q̇ = M⁻¹(p − a), and a is the
+/// momentum at zero velocity (p is affine in q̇).
+pub trait Mechanical<T: Real, const N: usize>: SecondOrder<T, N> {
+    /// The mass matrix M(q,t).
+    ///
+    /// # Errors
+    /// Whatever prevents its evaluation.
+    fn mass_matrix(&self, t: T, q: &SVector<T, N>) -> Result<SMatrix<T, N, N>, Error>;
+
+    /// The momentum p = ∂L/∂q̇.
+    ///
+    /// # Errors
+    /// Whatever prevents its evaluation.
+    fn momentum(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error>;
+
+    /// ṗ = ∂T/∂q + Q: the kinetic-energy gradient plus all generalized forces.
+    ///
+    /// # Errors
+    /// Whatever prevents its evaluation, or a system that cannot provide ∂T/∂q.
+    fn momentum_rate(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<SVector<T, N>, Error>;
+
+    /// The velocity q̇ = M⁻¹(p − a) with the momentum p at (t, q).
+    ///
+    /// # Errors
+    /// [`Error::SingularMassMatrix`] if M is not positive definite.
+    fn velocity(&self, t: T, q: &SVector<T, N>, p: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+        let a = self.momentum(t, q, &SVector::zeros())?;
+        let m = self.mass_matrix(t, q)?;
+        let chol = nalgebra::Cholesky::new(m).ok_or_else(|| Error::SingularMassMatrix {
+            t: t.to_f64(),
+            q: to_vec(q),
+            ratio: 0.0,
+        })?;
+        Ok(chol.solve(&(p - a)))
+    }
+}
+
+impl<S, T, const N: usize> Mechanical<T, N> for Dynamics<'_, S, T>
+where
+    S: Lagrangian<T, N>,
+    T: Real,
+{
+    fn mass_matrix(&self, t: T, q: &SVector<T, N>) -> Result<SMatrix<T, N, N>, Error> {
+        Ok(self.system().mass_matrix(q, t))
+    }
+
+    fn momentum(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+        Ok(self.system().momentum(q, v, t))
+    }
+
+    fn momentum_rate(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<SVector<T, N>, Error> {
+        let sys = self.system();
+        let grad = sys.kinetic_gradient(q, v, t).ok_or_else(|| {
+            Error::InvalidSettings(
+                "the symplectic integrator needs ∂T/∂q, but this system's \
+                 Lagrangian::kinetic_gradient returns None; implement it (and \
+                 Lagrangian::momentum for a rheonomic system) or choose another integrator"
+                    .into(),
+            )
+        })?;
+        Ok(grad + sys.generalized_forces(q, v, t))
+    }
+}

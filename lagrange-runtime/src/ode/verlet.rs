@@ -1,0 +1,202 @@
+//! Störmer–Verlet in its velocity form, with a fixed step.
+
+use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
+use crate::error::Error;
+use crate::real::Real;
+use crate::trajectory::Trajectory;
+use nalgebra::SVector;
+
+/// Velocity Verlet with a fixed step `h`:
+///
+/// ```text
+/// v½ = v + h/2 · a(t, q, v)
+/// q₁ = q + h · v½
+/// v₁ = v½ + h/2 · a(t + h, q₁, v½)
+/// ```
+///
+/// One evaluation per step: the acceleration at the end of a step is the next
+/// step's first one.
+///
+/// **Assumption.** The method is symplectic, time-reversible and of order 2 —
+/// hence its energy error stays bounded (O(h²)) over very long runs instead of
+/// drifting — for systems q̈ = −M⁻¹∇V(q) with a *constant* mass matrix and
+/// *velocity-independent* forces (particles in Cartesian coordinates, a pendulum
+/// in its angle, a chain of springs). It runs on any [`SecondOrder`] system, but
+/// with a configuration-dependent mass matrix (so Coriolis terms in the
+/// acceleration) or velocity-dependent forces (damping, gyroscopic terms) the
+/// end-of-step acceleration is evaluated at the half-step velocity v½, and the
+/// method is then neither symplectic nor guaranteed to be second order. For a
+/// general M(q) use [`Gauss`](crate::Gauss), which is symplectic in (q, p).
+///
+/// Like [`Rk4`](crate::Rk4), step k ends at t₀ + k·h and the last step is shortened
+/// to land on the end time; the dense output is the cubic Hermite interpolant
+/// through (q, v, a) at both ends of each step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StormerVerlet {
+    h: f64,
+    max_steps: usize,
+}
+
+impl StormerVerlet {
+    /// Velocity Verlet with step size `h`.
+    pub fn step(h: f64) -> Self {
+        Self {
+            h,
+            max_steps: 10_000_000,
+        }
+    }
+
+    /// Refuses spans that need more than `n` steps (default 10⁷), before starting.
+    pub fn max_steps(mut self, n: usize) -> Self {
+        self.max_steps = n;
+        self
+    }
+
+    /// The step size.
+    pub fn step_size(&self) -> f64 {
+        self.h
+    }
+}
+
+/// The number of fixed steps of size `h` covering [t0, t1], refusing more than
+/// `max_steps`. A span that is a whole number of steps up to rounding is not
+/// followed by a sliver of a step.
+pub(super) fn fixed_step_count<T: Real>(
+    name: &str,
+    h: f64,
+    max_steps: usize,
+    t0: T,
+    t1: T,
+) -> Result<usize, Error> {
+    if !(h.is_finite() && h > 0.0) {
+        return Err(Error::InvalidSettings(format!(
+            "{name}: step size must be positive and finite, got {h}"
+        )));
+    }
+    let ratio = ((t1 - t0) / T::lit(h)).to_f64();
+    let n = (ratio - 1e-9 * ratio.max(1.0)).ceil().max(1.0);
+    if n > max_steps as f64 {
+        return Err(Error::TooManySteps {
+            t: t0.to_f64(),
+            max_steps,
+        });
+    }
+    Ok(n as usize)
+}
+
+impl Integrator for StormerVerlet {
+    fn integrate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+        &self,
+        rhs: &F,
+        t0: T,
+        t1: T,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+    ) -> Result<Trajectory<T, N>, Error> {
+        check_problem(t0, t1, &q0, &v0)?;
+        let n = fixed_step_count("Störmer–Verlet", self.h, self.max_steps, t0, t1)?;
+        let started = std::time::Instant::now();
+        let h = T::lit(self.h);
+        let half = T::lit(0.5);
+
+        let mut stats = Stats::default();
+        let (mut t, mut q, mut v) = (t0, q0, v0);
+        stats.evaluations += 1;
+        let mut a = rhs.acceleration(t, &q, &v)?;
+        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        traj.reserve(n);
+        for k in 1..=n {
+            let t_next = if k == n {
+                t1
+            } else {
+                t0 + h * T::lit(k as f64)
+            };
+            let hk = t_next - t;
+            let v_half = v + a * (half * hk);
+            let mut q_next = q + v_half * hk;
+            stats.evaluations += 1;
+            let mut a_next = rhs.acceleration(t_next, &q_next, &v_half)?;
+            let mut v_next = v_half + a_next * (half * hk);
+            if !Pair::new(q_next, v_next).is_finite() {
+                return Err(Error::non_finite(t_next, &q_next, &v_next));
+            }
+            let segment =
+                DenseSegment::cubic_hermite(t, t_next, (&q, &v, &a), (&q_next, &v_next, &a_next));
+            if rhs.project(t_next, &mut q_next, &mut v_next)? {
+                stats.evaluations += 1;
+                a_next = rhs.acceleration(t_next, &q_next, &v_next)?;
+            }
+            let sample = Sample::of(rhs, t_next, &q_next, &v_next);
+            traj.push(segment, q_next, v_next, sample);
+            stats.accepted += 1;
+            (t, q, v, a) = (t_next, q_next, v_next, a_next);
+        }
+        stats.wall_time = started.elapsed();
+        traj.set_stats(stats);
+        Ok(traj)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ode::test_problems::Oscillator;
+    use nalgebra::Vector1;
+
+    fn error_at(h: f64) -> f64 {
+        let osc = Oscillator { omega: 1.0 };
+        let tr = StormerVerlet::step(h)
+            .integrate(&osc, 0.0, 10.0, Vector1::new(1.0), Vector1::new(0.0))
+            .unwrap();
+        let (q, v) = tr.final_state();
+        let (qe, ve) = osc.exact(10.0);
+        (q[0] - qe).abs().max((v[0] - ve).abs())
+    }
+
+    #[test]
+    fn second_order() {
+        let ratio = error_at(0.02) / error_at(0.01);
+        assert!((ratio - 4.0).abs() < 0.1, "ratio {ratio}");
+    }
+
+    #[test]
+    fn one_evaluation_per_step_and_lands_on_end() {
+        let osc = Oscillator { omega: 1.0 };
+        let tr = StormerVerlet::step(0.3)
+            .integrate(&osc, 0.0, 1.0, Vector1::new(1.0), Vector1::new(0.0))
+            .unwrap();
+        assert_eq!(tr.times().last(), Some(&1.0));
+        assert_eq!(tr.len(), 5);
+        assert_eq!(tr.stats().evaluations, 1 + 4);
+        for h in [0.0, -1.0, f64::INFINITY] {
+            let e = StormerVerlet::step(h).integrate(
+                &osc,
+                0.0,
+                1.0,
+                Vector1::new(1.0),
+                Vector1::new(0.0),
+            );
+            assert!(matches!(e, Err(Error::InvalidSettings(_))), "{e:?}");
+        }
+        let e = StormerVerlet::step(1e-3).max_steps(10).integrate(
+            &osc,
+            0.0,
+            1.0,
+            Vector1::new(1.0),
+            Vector1::new(0.0),
+        );
+        assert!(matches!(e, Err(Error::TooManySteps { max_steps: 10, .. })));
+    }
+
+    #[test]
+    fn silent_nan_is_an_error() {
+        let e = StormerVerlet::step(0.1).integrate(
+            &crate::ode::rk4::tests::Poisoned,
+            0.0,
+            1.0,
+            Vector1::new(1.0),
+            Vector1::new(0.0),
+        );
+        assert!(matches!(e, Err(Error::NonFiniteState { .. })), "{e:?}");
+    }
+}
