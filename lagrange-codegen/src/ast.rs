@@ -67,6 +67,10 @@ pub enum Extra {
     Reactions,
     /// The Coriolis matrix C(q, q̇) with h = C q̇ (+ rheonomic terms).
     Coriolis,
+    /// Jacobians of the right-hand side, for the implicit integrators.
+    Jacobians,
+    /// Hamilton's form: the momentum ∂T/∂q̇ and ∂T/∂q, for the symplectic integrators.
+    Hamiltonian,
 }
 
 /// `force(point, [fx, fy, fz])`: a Cartesian force applied at a point.

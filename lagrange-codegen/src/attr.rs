@@ -108,11 +108,13 @@ impl Parse for Item {
                     let e = match n.to_string().as_str() {
                         "reactions" => Extra::Reactions,
                         "coriolis" => Extra::Coriolis,
+                        "jacobians" => Extra::Jacobians,
+                        "hamiltonian" => Extra::Hamiltonian,
                         other => {
                             return Err(syn::Error::new(
                                 n.span(),
                                 format!(
-                                    "unknown output `{other}`; expected `reactions` or `coriolis`"
+                                    "unknown output `{other}`; expected `reactions`, `coriolis`, `jacobians` or `hamiltonian`"
                                 ),
                             ));
                         }

@@ -79,11 +79,11 @@ impl Emitter<'_> {
                     "internal: unexpected symbol in generated code"
                 )),
             },
-            // Lowering never lets accelerations into the model.
-            SymbolKind::Acceleration(_) => {
-                quote!(::core::compile_error!(
-                    "internal: unexpected symbol in generated code"
-                ))
+            // Accelerations appear only in the right-hand-side Jacobians, which
+            // take the current q̈ as `a`.
+            SymbolKind::Acceleration(i) => {
+                let i = Literal::usize_unsuffixed(i);
+                quote!(a[#i])
             }
         };
         let scalar = self.scalar;
@@ -192,6 +192,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let vec_t = quote!(::lagrange::__private::SVector<#s, #nl>);
     let mat_t = quote!(::lagrange::__private::SMatrix<#s, #nl, #nl>);
     let frame = Frame::new(system, n);
+    let hamiltonian = optional_methods(&e, &frame, model);
     let constrained = impl_constrained(&e, &frame, model);
     let extras = extras(&e, &frame, model, system);
     let reduced = impl_reduced(&e, &frame, model);
@@ -246,6 +247,8 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
                 #i_lets
                 #i_out
             }
+
+            #hamiltonian
         }
 
         #[automatically_derived]
@@ -292,6 +295,54 @@ impl<'a> Frame<'a> {
         let s = &self.s;
         quote!(::lagrange::__private::SMatrix<#s, #r, #c>)
     }
+}
+
+/// The optional `Lagrangian` methods: momentum and ∂T/∂q (Hamilton's form) and
+/// the right-hand-side Jacobians, when the model has them.
+fn optional_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    let (s, nl) = (&f.s, &f.n);
+    let n = model.dof();
+    let (vec_n, mat) = (f.vec(nl), f.mat(nl, nl));
+    let mut out = TokenStream::new();
+    if let Some(p) = &model.momentum {
+        let (lets, outs) = e.program(p);
+        out.extend(quote! {
+            #[inline]
+            fn momentum(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_n {
+                #lets
+                <#vec_n>::from([#(#outs),*])
+            }
+        });
+    }
+    if let Some(g) = &model.kinetic_gradient {
+        let (lets, outs) = e.program(g);
+        out.extend(quote! {
+            #[inline]
+            fn kinetic_gradient(&self, q: &#vec_n, v: &#vec_n, t: #s) -> ::core::option::Option<#vec_n> {
+                #lets
+                ::core::option::Option::Some(<#vec_n>::from([#(#outs),*]))
+            }
+        });
+    }
+    if let Some([jq, jv]) = &model.jacobians {
+        let mut all: Vec<Sym> = jq.iter().flatten().copied().collect();
+        all.extend(jv.iter().flatten());
+        let (lets, outs) = e.program(&all);
+        let fq = e.fill_dense(&quote!(jq), &outs[..n * n], n);
+        let fv = e.fill_dense(&quote!(jv), &outs[n * n..], n);
+        out.extend(quote! {
+            #[inline]
+            fn rhs_jacobians(&self, q: &#vec_n, v: &#vec_n, a: &#vec_n, t: #s) -> ::core::option::Option<(#mat, #mat)> {
+                #lets
+                let mut jq = <#mat>::zeros();
+                #fq
+                let mut jv = <#mat>::zeros();
+                #fv
+                ::core::option::Option::Some((jq, jv))
+            }
+        });
+    }
+    out
 }
 
 /// `impl Constrained`: Φ, (G, g), γ and all of them with M and Q − h in one pass.

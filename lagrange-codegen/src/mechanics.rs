@@ -10,6 +10,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym, Program};
 
+use crate::ast::Extra;
 use crate::constraint::{ConstraintModel, ConstraintSet, Reduction};
 use crate::rotation::Mat3;
 
@@ -49,8 +50,8 @@ pub struct Lowered {
     pub speeds: Option<Option<Vec<(String, Sym)>>>,
     /// Whether to build the multiplier form.
     pub multipliers: bool,
-    /// Whether to build the Coriolis matrix.
-    pub coriolis: bool,
+    /// Optional outputs asked for with `emit(...)`.
+    pub extras: Vec<Extra>,
 }
 
 /// Which derivation of h the emitted code uses.
@@ -86,6 +87,14 @@ pub struct Model {
     pub reduced: Option<Reduction>,
     /// C(q, q̇) with C_ij = Σ_k Γ_ijk q̇_k, if asked for.
     pub coriolis: Option<Vec<Vec<Sym>>>,
+    /// (J_q, J_v) of the right-hand side at the accelerations q̈ (acceleration
+    /// symbols): J_q = ∂(Q − h)/∂q − [∂M/∂q_k q̈]_k, J_v = ∂(Q − h)/∂q̇; if asked for.
+    pub jacobians: Option<[Vec<Vec<Sym>>; 2]>,
+    /// The momentum ∂T/∂q̇ (emitted when asked for, and always for a rheonomic
+    /// system, where the runtime's default M q̇ would be wrong).
+    pub momentum: Option<Vec<Sym>>,
+    /// ∂T/∂q at fixed q̇, if asked for.
+    pub kinetic_gradient: Option<Vec<Sym>>,
 }
 
 impl Model {
@@ -133,7 +142,7 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
         nonholonomic,
         speeds,
         multipliers,
-        coriolis,
+        extras,
     } = lowered;
     let q = ctx.coordinates();
     let qd = ctx.velocities();
@@ -300,7 +309,26 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
         ctx.collect(e)
     };
 
-    let coriolis = coriolis.then(|| coriolis_matrix(&mut ctx, &mass, &q, &qd));
+    let wants = |e: Extra| extras.contains(&e);
+    let coriolis = wants(Extra::Coriolis).then(|| coriolis_matrix(&mut ctx, &mass, &q, &qd));
+    let jacobians = wants(Extra::Jacobians).then(|| rhs_jacobians(&mut ctx, &mass, &rhs));
+    let hamiltonian = wants(Extra::Hamiltonian);
+    let momentum = (hamiltonian || rheonomic).then(|| {
+        qd.iter()
+            .map(|&v| {
+                let p = ctx.diff(kinetic, v);
+                ctx.collect(p)
+            })
+            .collect()
+    });
+    let kinetic_gradient = hamiltonian.then(|| {
+        q.iter()
+            .map(|&x| {
+                let g = ctx.diff(kinetic, x);
+                ctx.collect(g)
+            })
+            .collect()
+    });
     let constraints = multipliers
         .then(|| crate::constraint::multiplier_form(&mut ctx, &holonomic, &nonholonomic));
     let reduced = match speeds {
@@ -346,7 +374,46 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
         constraints,
         reduced,
         coriolis,
+        jacobians,
+        momentum,
+        kinetic_gradient,
     })
+}
+
+/// J_q = ∂(Q − h)/∂q − [∂M/∂q_k q̈]_k and J_v = ∂(Q − h)/∂q̇, with q̈ left as the
+/// acceleration symbols (the runtime passes the current q̈).
+fn rhs_jacobians(ctx: &mut Context, mass: &[Vec<Sym>], rhs: &[Sym]) -> [Vec<Vec<Sym>>; 2] {
+    let q = ctx.coordinates();
+    let qd = ctx.velocities();
+    let qdd = ctx.accelerations();
+    let n = q.len();
+    let jq = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|k| {
+                    let mut terms = vec![ctx.diff(rhs[i], q[k])];
+                    for j in 0..n {
+                        let dm = ctx.diff(mass[i][j], q[k]);
+                        let t = ctx.mul(dm, qdd[j]);
+                        terms.push(ctx.neg(t));
+                    }
+                    let s = ctx.sum(&terms);
+                    ctx.collect(s)
+                })
+                .collect()
+        })
+        .collect();
+    let jv = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|k| {
+                    let d = ctx.diff(rhs[i], qd[k]);
+                    ctx.collect(d)
+                })
+                .collect()
+        })
+        .collect();
+    [jq, jv]
 }
 
 /// C_ij = Σ_k Γ_ijk q̇_k with Γ_ijk = ½(∂M_ij/∂q_k + ∂M_ik/∂q_j − ∂M_jk/∂q_i): the

@@ -5,7 +5,7 @@
 use lagrange_symbolic::Expr as Sym;
 use syn::{BinOp, Expr, Ident};
 
-use crate::ast::{Extra, Formulation, System};
+use crate::ast::{Formulation, System};
 use crate::check;
 use crate::constraint::ConstraintModel;
 use crate::ctxt::Ctxt;
@@ -181,7 +181,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         nonholonomic,
         speeds,
         multipliers: formulations.contains(&Formulation::Multipliers),
-        coriolis: system.extras.iter().any(|(_, e)| *e == Extra::Coriolis),
+        extras: system.extras.iter().map(|(_, e)| *e).collect(),
     })
 }
 

@@ -4,12 +4,12 @@
 //! pivot ratio tells a *near*-singular mass matrix (a chart singularity such as the
 //! pole of a spherical pendulum) from a healthy one.
 
-use crate::cholesky::cholesky_solve;
+use crate::cholesky::{Cholesky, cholesky_solve};
 use crate::error::{Error, to_vec};
 use crate::ode::SecondOrder;
 use crate::real::Real;
 use crate::system::Lagrangian;
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
 /// Default threshold on min_i L_ii² / max_i L_ii² below which the mass matrix is
 /// declared singular.
@@ -119,6 +119,44 @@ where
 
     fn mechanical(&self) -> Option<&dyn crate::ode::Mechanical<T, N>> {
         Some(self)
+    }
+
+    /// ∂q̈/∂q = M⁻¹ J_q and ∂q̈/∂q̇ = M⁻¹ J_v from the system's
+    /// [`rhs_jacobians`](Lagrangian::rhs_jacobians), when it has them.
+    fn jacobian(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Option<Result<(SMatrix<T, N, N>, SMatrix<T, N, N>), Error>> {
+        let a = match Dynamics::acceleration(self, t, q, v) {
+            Ok(a) => a,
+            Err(e) => return Some(Err(e)),
+        };
+        let (jq, jv) = self.system.rhs_jacobians(q, v, &a, t)?;
+        let m = self.system.mass_matrix(q, t);
+        let chol = match Cholesky::new(m, self.singular_tolerance) {
+            Ok(c) => c,
+            Err(ratio) => {
+                return Some(Err(Error::SingularMassMatrix {
+                    t: t.to_f64(),
+                    q: to_vec(q),
+                    ratio: ratio.to_f64(),
+                }));
+            }
+        };
+        let solve = |j: SMatrix<T, N, N>| {
+            let mut out = j;
+            for (k, col) in j.column_iter().enumerate() {
+                out.set_column(k, &chol.solve(col.into_owned()));
+            }
+            out
+        };
+        let (dq, dv) = (solve(jq), solve(jv));
+        if !(all_finite(dq.as_slice()) && all_finite(dv.as_slice())) {
+            return Some(Err(Error::non_finite(t, q, v)));
+        }
+        Some(Ok((dq, dv)))
     }
 }
 

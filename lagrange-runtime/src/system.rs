@@ -79,6 +79,27 @@ pub trait Lagrangian<T: Real, const N: usize> {
         let _ = (q, v, t);
         None
     }
+
+    /// The Jacobians of the right-hand side at the acceleration `a` = q̈:
+    ///
+    /// ```text
+    /// J_q = ∂(Q − h)/∂q − [∂M/∂q_1 a, …, ∂M/∂q_N a],    J_v = ∂(Q − h)/∂q̇
+    /// ```
+    ///
+    /// so that ∂q̈/∂q = M⁻¹ J_q and ∂q̈/∂q̇ = M⁻¹ J_v. `None` (the default) makes the
+    /// implicit integrators fall back to finite differences; `#[derive(Lagrangian)]`
+    /// emits them with `emit(jacobians)`.
+    #[allow(clippy::type_complexity)]
+    fn rhs_jacobians(
+        &self,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        a: &SVector<T, N>,
+        t: T,
+    ) -> Option<(SMatrix<T, N, N>, SMatrix<T, N, N>)> {
+        let _ = (q, v, a, t);
+        None
+    }
 }
 
 /// Constraints kept with multipliers: K rows of
