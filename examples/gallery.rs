@@ -1,6 +1,6 @@
-//! The main job: simulate every catalog system that runs today on built-in
-//! defaults and print, per system, the integrator's work, the drift of its
-//! conserved quantity and the wall time.
+//! The main job: simulate every catalog system on built-in defaults and print, per
+//! system, the integrator's work, the drift of its conserved quantity, the
+//! constraint residuals and the wall time.
 //!
 //!     cargo run --release --example gallery
 
@@ -8,6 +8,7 @@ mod catalog;
 
 use std::time::Instant;
 
+use catalog::constrained::*;
 use catalog::*;
 use lagrange::prelude::*;
 
@@ -19,10 +20,41 @@ struct Row {
     rejected: usize,
     evaluations: usize,
     drift: Option<f64>,
+    residuals: Option<[f64; 2]>,
     note: String,
     wall_ms: f64,
 }
 
+/// One gallery row from a run of any formulation (the closure integrates).
+fn row<const N: usize>(
+    system: &'static str,
+    span: std::ops::Range<f64>,
+    conservative: bool,
+    integrate: impl FnOnce() -> Result<Trajectory<f64, N>, Error>,
+    note: impl FnOnce(&Trajectory<f64, N>) -> String,
+) -> Result<Row, Error> {
+    let start = Instant::now();
+    let traj = integrate()?;
+    let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    let stats = traj.stats();
+    let residuals = traj.max_residuals();
+    Ok(Row {
+        system,
+        dof: N,
+        span: span.end - span.start,
+        accepted: stats.accepted,
+        rejected: stats.rejected,
+        evaluations: stats.evaluations,
+        drift: conservative.then(|| traj.integral_drift()),
+        residuals: (residuals != [0.0; 2]).then_some(residuals),
+        note: note(&traj),
+        wall_ms,
+    })
+}
+
+const TOL: f64 = 1e-10;
+
+/// An unconstrained system with DOPRI5.
 fn run<S, const N: usize>(
     system: &'static str,
     sys: &S,
@@ -35,25 +67,18 @@ fn run<S, const N: usize>(
 where
     S: Lagrangian<f64, N>,
 {
-    let start = Instant::now();
-    let traj = Simulation::new(sys).integrator(Dopri5::tol(1e-10)).run(
-        SVector::from(q0),
-        SVector::from(v0),
-        span.clone(),
-    )?;
-    let wall_ms = start.elapsed().as_secs_f64() * 1e3;
-    let stats = traj.stats();
-    Ok(Row {
+    let run_span = span.clone();
+    row(
         system,
-        dof: N,
-        span: span.end - span.start,
-        accepted: stats.accepted,
-        rejected: stats.rejected,
-        evaluations: stats.evaluations,
-        drift: conservative.then(|| traj.integral_drift()),
-        note: note(&traj),
-        wall_ms,
-    })
+        span,
+        conservative,
+        || {
+            Simulation::new(sys)
+                .integrator(Dopri5::tol(TOL))
+                .run(q0, v0, run_span)
+        },
+        note,
+    )
 }
 
 fn main() -> Result<(), Error> {
@@ -201,19 +226,33 @@ fn main() -> Result<(), Error> {
         |tr| format!("θ(20) = {:.6}", tr.final_state().0[0]),
     )?);
 
+    constrained_rows(&mut rows)?;
+
     println!("lagrange gallery — DOPRI5 at rtol = atol = 1e-10, f64\n");
     println!(
-        "| {:<36} | {:>3} | {:>5} | {:>6} | {:>5} | {:>7} | {:>11} | {:>8} | note",
-        "system", "dof", "span", "steps", "rej", "f evals", "drift", "wall ms"
+        "| {:<40} | {:>3} | {:>5} | {:>6} | {:>5} | {:>7} | {:>9} | {:>17} | {:>8} | note",
+        "system",
+        "dof",
+        "span",
+        "steps",
+        "rej",
+        "f evals",
+        "drift",
+        "residuals |Φ|,|Gv|",
+        "wall ms"
     );
-    println!("|{}|", "-".repeat(120));
+    println!("|{}|", "-".repeat(140));
     for r in &rows {
         let drift = r
             .drift
             .map(|d| format!("{d:.2e}"))
             .unwrap_or_else(|| "—".to_string());
+        let res = r
+            .residuals
+            .map(|[p, v]| format!("{p:.1e}, {v:.1e}"))
+            .unwrap_or_else(|| "—".to_string());
         println!(
-            "| {:<36} | {:>3} | {:>5.1} | {:>6} | {:>5} | {:>7} | {:>11} | {:>8.2} | {}",
+            "| {:<40} | {:>3} | {:>5.1} | {:>6} | {:>5} | {:>7} | {:>9} | {:>17} | {:>8.2} | {}",
             r.system,
             r.dof,
             r.span,
@@ -221,6 +260,7 @@ fn main() -> Result<(), Error> {
             r.rejected,
             r.evaluations,
             drift,
+            res,
             r.wall_ms,
             r.note
         );
@@ -228,5 +268,302 @@ fn main() -> Result<(), Error> {
     println!(
         "\ndrift: max |I(t) − I(0)| / |I(0)| of the conserved quantity (T + V, or the Jacobi integral)."
     );
+    println!(
+        "residuals: largest |Φ| and |G q̇ + g| along the run (multiplier form with projection), or"
+    );
+    println!("|q̇ − W u − w| (reduced form); — for unconstrained systems.");
+    Ok(())
+}
+
+/// Constrained systems, rigid bodies and quasi-velocities (issue 3).
+fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
+    let cart = CartesianSphericalPendulum {
+        m: 1.0,
+        l: 1.0,
+        g: 9.81,
+    };
+    let (th, thd, phd) = (1.0f64, 0.0, 2.0);
+    let x0 = [th.sin(), 0.0, -th.cos()];
+    let v0 = [th.cos() * thd, th.sin() * phd, th.sin() * thd];
+    rows.push(row(
+        "C1 spherical pendulum, Cartesian + λ",
+        0.0..20.0,
+        true,
+        || {
+            Simulation::new(&cart)
+                .integrator(Dopri5::tol(TOL))
+                .drift(Drift::projection())
+                .run_constrained(x0, v0, 0.0..20.0)
+        },
+        |tr| {
+            let (x, v) = tr.final_state();
+            let dynamics = ConstrainedDynamics::new(&cart);
+            match dynamics.solve(20.0, &x, &v) {
+                Ok(sol) => format!(
+                    "tension(20) = {:.6}",
+                    cart.reactions(&x, &v, 20.0, &sol.multipliers)[0].norm()
+                ),
+                Err(e) => e.to_string(),
+            }
+        },
+    )?);
+
+    let pair = RodPair {
+        m1: 1.0,
+        m2: 2.0,
+        l: 1.0,
+        gx: 0.0,
+        gy: 0.0,
+        gz: -9.81,
+    };
+    rows.push(row(
+        "C3 rod as a constraint (6 coords + λ)",
+        0.0..1.5,
+        true,
+        || {
+            Simulation::new(&pair)
+                .integrator(Dopri5::tol(TOL))
+                .drift(Drift::projection())
+                .run_constrained(
+                    [0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+                    [1.0, 0.0, 2.0, 1.0, 1.0, 2.0],
+                    0.0..1.5,
+                )
+        },
+        |_| String::new(),
+    )?);
+
+    let (m1, m2, m3) = (1.0, 2.0, 1.5);
+    let (r1, r2) = ([0.5, 0.1, -0.2], [-0.1, 0.4, 0.3]);
+    let r3 = [0, 1, 2].map(|i| -(m1 * r1[i] + m2 * r2[i]) / m3);
+    let particles = ThreeParticleBody {
+        m1,
+        m2,
+        m3,
+        a1: r1[0],
+        b1: r1[1],
+        c1: r1[2],
+        a2: r2[0],
+        b2: r2[1],
+        c2: r2[2],
+        a3: r3[0],
+        b3: r3[1],
+        c3: r3[2],
+        g: 9.81,
+    };
+    let body = particles.as_body();
+    let (q0, v0) = (
+        [0.0, 0.0, 1.0, 0.3, 1.1, -0.4],
+        [0.2, 0.1, 3.0, 0.7, -0.5, 2.0],
+    );
+    let reference = Simulation::new(&body)
+        .integrator(Dopri5::tol(TOL))
+        .run(q0, v0, 0.0..2.0)?;
+    rows.push(run(
+        "C4 body as three particles",
+        &particles,
+        q0,
+        v0,
+        0.0..2.0,
+        true,
+        |tr| {
+            let gap = (tr.final_state().0 - reference.final_state().0).amax();
+            format!("vs inertia-tensor body: {gap:.1e}")
+        },
+    )?);
+
+    let (m, a) = (2.0, 0.3);
+    let sphere = RollingSphere {
+        m,
+        j: 0.4 * m * a * a,
+        a,
+        g: 9.81,
+    };
+    let reduced = RollingSphereReduced {
+        m,
+        j: sphere.j,
+        a,
+        g: 9.81,
+    };
+    let speeds = [1.5, -0.7, 4.0];
+    let start = [0.0, 0.0, 0.2, 0.9, 0.1];
+    let reduced_traj = Simulation::new(&reduced)
+        .integrator(Dopri5::tol(TOL))
+        .run_reduced(
+            start,
+            [0.0, 0.0, speeds[0], speeds[1], speeds[2]],
+            0.0..10.0,
+        )?;
+    let v5 = reduced_traj.velocities()[0];
+    rows.push(row(
+        "C5 rolling sphere, multipliers",
+        0.0..10.0,
+        true,
+        || {
+            Simulation::new(&sphere)
+                .integrator(Dopri5::tol(TOL))
+                .drift(Drift::projection())
+                .run_constrained(
+                    [0.0, 0.0, a, start[2], start[3], start[4]],
+                    [v5[0], v5[1], 0.0, v5[2], v5[3], v5[4]],
+                    0.0..10.0,
+                )
+        },
+        |tr| {
+            let (qf, _) = tr.final_state();
+            let (qr, _) = reduced_traj.final_state();
+            let gap = (0..2)
+                .map(|i| (qf[i] - qr[i]).abs())
+                .chain((2..5).map(|i| (qf[i + 1] - qr[i]).abs()))
+                .fold(0.0, f64::max);
+            format!("vs reduced form: {gap:.1e}")
+        },
+    )?);
+    rows.push(row(
+        "C5 rolling sphere, reduced (Maggi)",
+        0.0..10.0,
+        true,
+        || {
+            Simulation::new(&reduced)
+                .integrator(Dopri5::tol(TOL))
+                .run_reduced(
+                    start,
+                    [0.0, 0.0, speeds[0], speeds[1], speeds[2]],
+                    0.0..10.0,
+                )
+        },
+        |tr| {
+            let (q, _) = tr.final_state();
+            format!("centre ({:.4}, {:.4}), straight line", q[0], q[1])
+        },
+    )?);
+
+    let tops = ThreadedTops {
+        m: 1.0,
+        a: 0.3,
+        b: 0.2,
+        c: 0.5,
+        l: 0.4,
+        d: 2.0,
+        g: 9.81,
+    };
+    let (th1, th2) = (0.4f64, 0.7f64);
+    rows.push(row(
+        "C6 tops joined by an untwistable thread",
+        0.0..5.0,
+        true,
+        || {
+            Simulation::new(&tops)
+                .integrator(Dopri5::tol(TOL))
+                .drift(Drift::projection())
+                .run_constrained(
+                    [0.0, th1, 0.0, 0.5, th2, 0.0],
+                    [
+                        1.0,
+                        0.2,
+                        10.0 - th1.cos(),
+                        -0.5,
+                        -0.1,
+                        -10.0 + 0.5 * th2.cos(),
+                    ],
+                    0.0..5.0,
+                )
+        },
+        |_| String::new(),
+    )?);
+
+    let polar = PolarQuasiVelocity {
+        m: 1.3,
+        k: 2.0,
+        s: 0.4,
+    };
+    rows.push(row(
+        "C8 polar, quasi-velocity x ẏ − y ẋ",
+        0.0..5.0,
+        false,
+        || {
+            Simulation::new(&polar)
+                .integrator(Dopri5::tol(TOL))
+                .run_reduced([1.0, 0.3], [0.2, 0.9], 0.0..5.0)
+        },
+        |_| "Gibbs–Appell; transverse force: no integral".to_string(),
+    )?);
+
+    let (m, a, big_omega) = (1.0, 0.2, 3.0);
+    let turntable = SphereOnTurntable {
+        m,
+        j: 0.4 * m * a * a,
+        a,
+        g: 9.81,
+        big_omega,
+    };
+    rows.push(row(
+        "C9 sphere on a turning plane",
+        0.0..10.0,
+        false,
+        || {
+            Simulation::new(&turntable)
+                .integrator(Dopri5::tol(TOL))
+                .run_reduced(
+                    [1.0, 0.5, 0.3, 1.2, 0.0],
+                    [0.0, 0.0, 0.8, -0.4, 2.0],
+                    0.0..10.0,
+                )
+        },
+        |tr| {
+            let v = tr.velocities();
+            let (v0, v1) = (v[0], v[v.len() - 1]);
+            let turned =
+                (v1[1].atan2(v1[0]) - v0[1].atan2(v0[0])).rem_euclid(std::f64::consts::TAU);
+            let expected = (2.0 * big_omega / 7.0 * 10.0).rem_euclid(std::f64::consts::TAU);
+            format!("velocity turned {turned:.6} rad (2Ωt/7: {expected:.6})")
+        },
+    )?);
+
+    let (m, a) = (1.0, 0.5);
+    let disk = RollingDisk {
+        m,
+        a,
+        b: m * a * a / 4.0,
+        c: m * a * a / 2.0,
+        g: 9.81,
+    };
+    let (theta0, big_omega) = (0.3f64, 2.0);
+    let (s, c) = (theta0.sin(), theta0.cos());
+    let omega_a = (disk.b * big_omega * big_omega * s * c - m * disk.g * a * s)
+        / ((disk.c + m * a * a) * big_omega * c);
+    let phid = omega_a - big_omega * s;
+    rows.push(row(
+        "rolling disk, steady circle",
+        0.0..3.0,
+        true,
+        || {
+            Simulation::new(&disk)
+                .integrator(Dopri5::tol(TOL))
+                .run_reduced(
+                    [0.0, 0.0, 0.0, theta0, 0.0],
+                    [0.0, 0.0, big_omega, 0.0, phid],
+                    0.0..3.0,
+                )
+        },
+        |tr| format!("tilt(3) − tilt(0) = {:.1e}", tr.final_state().0[3] - theta0),
+    )?);
+
+    let sleigh = ChaplyginSleigh {
+        m: 1.0,
+        i: 0.2,
+        b: 0.5,
+    };
+    rows.push(row(
+        "Chaplygin sleigh",
+        0.0..60.0,
+        true,
+        || {
+            Simulation::new(&sleigh)
+                .integrator(Dopri5::tol(TOL))
+                .run_reduced([0.0, 0.0, 0.0], [0.3, 0.0, 2.0], 0.0..60.0)
+        },
+        |tr| format!("turn rate(60) = {:.1e}", tr.final_state().1[2]),
+    )?);
     Ok(())
 }
