@@ -33,10 +33,29 @@ use ctxt::Ctxt;
 use mechanics::Model;
 
 /// Parses and expands; the entry point of the proc macro.
+///
+/// A panic anywhere in the pipeline is a bug, but it must not surface as rustc's
+/// bare "proc-macro derive panicked": it is caught and turned into an error at the
+/// struct's name that says what happened.
 pub fn derive(input: TokenStream) -> TokenStream {
-    match syn::parse2::<DeriveInput>(input) {
-        Ok(input) => expand(&input),
-        Err(e) => e.to_compile_error(),
+    let input = match syn::parse2::<DeriveInput>(input) {
+        Ok(input) => input,
+        Err(e) => return e.to_compile_error(),
+    };
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| expand(&input))) {
+        Ok(tokens) => tokens,
+        Err(payload) => {
+            let what = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".to_string());
+            syn::Error::new(
+                input.ident.span(),
+                format!("internal error in #[derive(Lagrangian)] ({what}); this is a bug in lagrange, please report it with this description"),
+            )
+            .to_compile_error()
+        }
     }
 }
 

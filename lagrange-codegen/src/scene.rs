@@ -41,6 +41,10 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         else {
             continue;
         };
+        // `check` has reported a centre that is not [x, y, z].
+        if centre.len() != 3 {
+            continue;
+        }
         lw.declare_frame(
             &b.name,
             Frame {
@@ -72,6 +76,10 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
                 let Some((_, r, c)) = rotations.iter().find(|(n, _, _)| n == body) else {
                     continue;
                 };
+                // `check` has reported body coordinates that are not [x, y, z].
+                if local.len() != 3 {
+                    continue;
+                }
                 let (r, c) = (*r, c.clone());
                 let rb = lw.mat_vec(&r, &local);
                 (0..3).map(|i| lw.ctx.add(c[i], rb[i])).collect()
