@@ -333,24 +333,7 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
         |_| String::new(),
     )?);
 
-    let (m1, m2, m3) = (1.0, 2.0, 1.5);
-    let (r1, r2) = ([0.5, 0.1, -0.2], [-0.1, 0.4, 0.3]);
-    let r3 = [0, 1, 2].map(|i| -(m1 * r1[i] + m2 * r2[i]) / m3);
-    let particles = ThreeParticleBody {
-        m1,
-        m2,
-        m3,
-        a1: r1[0],
-        b1: r1[1],
-        c1: r1[2],
-        a2: r2[0],
-        b2: r2[1],
-        c2: r2[2],
-        a3: r3[0],
-        b3: r3[1],
-        c3: r3[2],
-        g: 9.81,
-    };
+    let particles = ThreeParticleBody::example(9.81);
     let body = particles.as_body();
     let (q0, v0) = (
         [0.0, 0.0, 1.0, 0.3, 1.1, -0.4],
@@ -528,11 +511,8 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
         c: m * a * a / 2.0,
         g: 9.81,
     };
-    let (theta0, big_omega) = (0.3f64, 2.0);
-    let (s, c) = (theta0.sin(), theta0.cos());
-    let omega_a = (disk.b * big_omega * big_omega * s * c - m * disk.g * a * s)
-        / ((disk.c + m * a * a) * big_omega * c);
-    let phid = omega_a - big_omega * s;
+    let theta0 = 0.3;
+    let (q0, v0) = disk.steady_circle(theta0, 2.0);
     rows.push(row(
         "rolling disk, steady circle",
         0.0..3.0,
@@ -540,11 +520,7 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
         || {
             Simulation::new(&disk)
                 .integrator(Dopri5::tol(TOL))
-                .run_reduced(
-                    [0.0, 0.0, 0.0, theta0, 0.0],
-                    [0.0, 0.0, big_omega, 0.0, phid],
-                    0.0..3.0,
-                )
+                .run_reduced(q0, v0, 0.0..3.0)
         },
         |tr| format!("tilt(3) − tilt(0) = {:.1e}", tr.final_state().0[3] - theta0),
     )?);

@@ -214,25 +214,7 @@ fn rod_constraint_matches_minimal_dumbbell_and_reaction() {
 /// inertia tensor move identically.
 #[test]
 fn three_particles_equal_their_rigid_body() {
-    // Body coordinates with the centre of mass at the origin.
-    let (m1, m2, m3) = (1.0, 2.0, 1.5);
-    let (r1, r2) = ([0.5, 0.1, -0.2], [-0.1, 0.4, 0.3]);
-    let r3 = [0, 1, 2].map(|i| -(m1 * r1[i] + m2 * r2[i]) / m3);
-    let particles = ThreeParticleBody {
-        m1,
-        m2,
-        m3,
-        a1: r1[0],
-        b1: r1[1],
-        c1: r1[2],
-        a2: r2[0],
-        b2: r2[1],
-        c2: r2[2],
-        a3: r3[0],
-        b3: r3[1],
-        c3: r3[2],
-        g: 9.81,
-    };
+    let particles = ThreeParticleBody::example(9.81);
     let body = particles.as_body();
     let q0 = SVector::<f64, 6>::from([0.0, 0.0, 1.0, 0.3, 1.1, -0.4]);
     let v0 = SVector::<f64, 6>::from([0.2, 0.1, 3.0, 0.7, -0.5, 2.0]);
@@ -429,9 +411,8 @@ fn sphere_on_turntable_circles_at_two_sevenths() {
     }
 }
 
-/// The rolling disk: from the steady-motion condition
-/// A Ω² sinθ cosθ − (C + m a²) Ω ω_a cosθ − m g a sinθ = 0, with ω_a = Ω sinθ + φ̇ the
-/// spin about the axle, a circular motion at tilt θ0 and heading rate Ω stays steady.
+/// The rolling disk: a circular motion started from the steady-motion condition
+/// (see [`RollingDisk::steady_circle`]) stays steady.
 #[test]
 fn rolling_disk_steady_circle() {
     let (m, a) = (1.0, 0.5);
@@ -442,13 +423,9 @@ fn rolling_disk_steady_circle() {
         c: m * a * a / 2.0,
         g: 9.81,
     };
-    let (theta0, big_omega) = (0.3f64, 2.0);
-    let (s, c) = (theta0.sin(), theta0.cos());
-    let omega_a = (sys.b * big_omega * big_omega * s * c - m * sys.g * a * s)
-        / ((sys.c + m * a * a) * big_omega * c);
-    let phid = omega_a - big_omega * s;
-    let q0 = SVector::<f64, 5>::from([0.0, 0.0, 0.0, theta0, 0.0]);
-    let v0 = SVector::<f64, 5>::from([0.0, 0.0, big_omega, 0.0, phid]);
+    let (theta0, big_omega) = (0.3, 2.0);
+    let (q0, v0) = sys.steady_circle(theta0, big_omega);
+    let phid = v0[4];
     let traj = Simulation::new(&sys)
         .integrator(Dopri5::tol(1e-12))
         .run_reduced(q0, v0, 0.0..3.0)

@@ -89,6 +89,29 @@ pub struct InertiaBody {
 }
 
 impl ThreeParticleBody {
+    /// Three particles (masses 1, 2, 1.5) at fixed body coordinates, the third placed
+    /// so that their centre of mass is the origin of the body frame.
+    pub fn example(g: f64) -> Self {
+        let (m1, m2, m3) = (1.0, 2.0, 1.5);
+        let (r1, r2) = ([0.5, 0.1, -0.2], [-0.1, 0.4, 0.3]);
+        let r3 = [0, 1, 2].map(|i| -(m1 * r1[i] + m2 * r2[i]) / m3);
+        ThreeParticleBody {
+            m1,
+            m2,
+            m3,
+            a1: r1[0],
+            b1: r1[1],
+            c1: r1[2],
+            a2: r2[0],
+            b2: r2[1],
+            c2: r2[2],
+            a3: r3[0],
+            b3: r3[1],
+            c3: r3[2],
+            g,
+        }
+    }
+
     /// The rigid-body description of the same particles: total mass and
     /// I = Σ m (|r|² 1 − r rᵀ) (the particles' centre of mass is the origin).
     pub fn as_body(&self) -> InertiaBody {
@@ -260,6 +283,30 @@ pub struct RollingDisk {
     pub b: f64,
     pub c: f64,
     pub g: f64,
+}
+
+impl RollingDisk {
+    /// The state of steady circular motion at tilt θ0 and heading rate Ω, from the
+    /// condition (derived by hand from the angular momentum about the centre, which
+    /// turns with Ω about the vertical, and the torque of the contact force):
+    ///
+    /// ```text
+    /// B Ω² sinθ cosθ − (C + m a²) Ω ω_a cosθ − m g a sinθ = 0,   ω_a = Ω sinθ + φ̇
+    /// ```
+    ///
+    /// with B the diametral and C the axial moment. Returns (q0, q̇0); the contact
+    /// velocities are left at zero for the reduced form to fill in.
+    pub fn steady_circle(&self, theta0: f64, big_omega: f64) -> ([f64; 5], [f64; 5]) {
+        let (s, c) = (theta0.sin(), theta0.cos());
+        let (m, a) = (self.m, self.a);
+        let omega_a = (self.b * big_omega * big_omega * s * c - m * self.g * a * s)
+            / ((self.c + m * a * a) * big_omega * c);
+        let phid = omega_a - big_omega * s;
+        (
+            [0.0, 0.0, 0.0, theta0, 0.0],
+            [0.0, 0.0, big_omega, 0.0, phid],
+        )
+    }
 }
 
 /// The Chaplygin sleigh: a planar body on a knife edge at distance `b` behind its
