@@ -40,5 +40,47 @@ pub fn equations(model: &Model) -> String {
     }
     let _ = writeln!(s, "\nT = {}", ctx.display(model.kinetic));
     let _ = writeln!(s, "V = {}", ctx.display(model.potential));
+    if let Some(c) = &model.constraints {
+        let _ = writeln!(
+            s,
+            "\nconstraints (multipliers): G q' + g = 0, G q'' = gamma; the first {} holonomic",
+            c.holonomic
+        );
+        for (k, name) in c.names.iter().enumerate() {
+            if k < c.holonomic {
+                let _ = writeln!(s, "{name}: Phi = {}", ctx.display(c.phi[k]));
+            }
+            let row: Vec<String> = c.jacobian[k].iter().map(|&e| ctx.display(e)).collect();
+            let _ = writeln!(
+                s,
+                "{name}: G = [{}], g = {}",
+                row.join(", "),
+                ctx.display(c.velocity_term[k])
+            );
+            let _ = writeln!(s, "{name}: gamma = {}", ctx.display(c.gamma[k]));
+        }
+    }
+    if let Some(r) = &model.reduced {
+        let _ = writeln!(
+            s,
+            "\nreduced form on the speeds u = ({}):",
+            r.names.join(", ")
+        );
+        for (k, name) in r.names.iter().enumerate() {
+            let _ = writeln!(s, "{name} = {}", ctx.display(r.speeds[k]));
+        }
+        for (i, q) in model.coordinates.iter().enumerate() {
+            let _ = writeln!(s, "dot({q}) = {}", ctx.display(r.velocities[i]));
+        }
+        let k = r.names.len();
+        for a in 0..k {
+            for b in a..k {
+                let _ = writeln!(s, "M*[{a}][{b}] = {}", ctx.display(r.mass[a][b]));
+            }
+        }
+        for (a, f) in r.rhs.iter().enumerate() {
+            let _ = writeln!(s, "F*[{a}] = {}", ctx.display(*f));
+        }
+    }
     s
 }

@@ -107,14 +107,24 @@ impl Emitter<'_> {
 
     /// `let mut <name> = zeros; <name>[(i, j)] = ...;` for a dense matrix whose
     /// entries are `outs` in row-major order.
+    /// Whether an output is the literal zero: the matrices start as zeros, so
+    /// those entries are not written again.
+    fn is_zero(&self, o: &TokenStream) -> bool {
+        o.to_string() == constant(self.scalar, 0.0).to_string()
+    }
+
     fn fill_dense(&self, name: &TokenStream, outs: &[TokenStream], cols: usize) -> TokenStream {
-        let sets = outs.iter().enumerate().map(|(k, o)| {
-            let (i, j) = (
-                Literal::usize_unsuffixed(k / cols),
-                Literal::usize_unsuffixed(k % cols),
-            );
-            quote!(#name[(#i, #j)] = #o;)
-        });
+        let sets = outs
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| !self.is_zero(o))
+            .map(|(k, o)| {
+                let (i, j) = (
+                    Literal::usize_unsuffixed(k / cols),
+                    Literal::usize_unsuffixed(k % cols),
+                );
+                quote!(#name[(#i, #j)] = #o;)
+            });
         quote!(#(#sets)*)
     }
 
@@ -125,6 +135,9 @@ impl Emitter<'_> {
             for j in i..n {
                 let o = &outs[k];
                 k += 1;
+                if self.is_zero(o) {
+                    continue;
+                }
                 let (li, lj) = (Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(j));
                 if i == j {
                     sets.push(quote!(m[(#li, #lj)] = #o;));

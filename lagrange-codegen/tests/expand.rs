@@ -25,3 +25,21 @@ fn expansion_is_deterministic() {
     let b = lagrange_codegen::expand(&input).to_string();
     assert_eq!(a, b);
 }
+
+/// A constrained system with a body and every optional output: pins the shape of
+/// the `Constrained` impl, the reactions and the Hamiltonian methods.
+#[test]
+fn constrained_body_expansion() {
+    let input: syn::DeriveInput = syn::parse_str(
+        "#[lagrange(coordinates(x, y, th),
+           body(sled, mass = m, inertia = [0, 0, i], at = [x, y, 0], rotation = rot_z(th)),
+           point(blade, on = sled, at = [-b, 0, 0]),
+           nonholonomic(sideways = -sin(th) * dot(blade.x) + cos(th) * dot(blade.y)),
+           emit(reactions, hamiltonian))]
+         pub struct Sleigh { pub m: f64, pub i: f64, pub b: f64 }",
+    )
+    .unwrap();
+    let tokens = lagrange_codegen::expand(&input);
+    let file: syn::File = syn::parse2(tokens).expect("expansion parses as a file");
+    insta::assert_snapshot!(prettyplease::unparse(&file));
+}
