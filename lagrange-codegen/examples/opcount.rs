@@ -1,12 +1,77 @@
 //! Prints, for the generic n-link planar pendulum (n = 1..10), the size of the
-//! emitted M + (Q − h) program and how long the derivation took.
+//! emitted M + (Q − h) program and how long the derivation took; then the same for
+//! every system of the catalog (read from `examples/catalog/*.rs` and derived
+//! here), with the sizes of the constrained and reduced programs.
 //!
 //!     cargo run --release -p lagrange-codegen --example opcount
 
 use std::time::Instant;
 
 use lagrange_codegen::chain::n_link_source;
-use lagrange_symbolic::Program;
+use lagrange_codegen::mechanics::Model;
+use lagrange_symbolic::{Expr, Program};
+
+const CATALOG: [(&str, &str); 2] = [
+    ("mod.rs", include_str!("../../examples/catalog/mod.rs")),
+    ("constrained.rs", include_str!("../../examples/catalog/constrained.rs")),
+];
+
+fn ops(model: &Model, outputs: &[Expr]) -> usize {
+    Program::new(&model.ctx, outputs).op_count().total()
+}
+
+/// Every `#[derive(Lagrangian)]` struct of the catalog: derivation time and the
+/// operation counts of the programs the impls evaluate per step.
+fn catalog() {
+    println!("\n| system | N | derive + emit (ms) | M, Q − h | + G, γ (multipliers) | M*, F*, W, κ (reduced) |");
+    println!("|---|---|---|---|---|---|");
+    for (file, src) in CATALOG {
+        let Ok(parsed) = syn::parse_file(src) else {
+            println!("| {file}: does not parse |");
+            continue;
+        };
+        for item in parsed.items {
+            let syn::Item::Struct(s) = item else { continue };
+            let derives = s.attrs.iter().any(|a| {
+                a.path().is_ident("derive") && quote::quote!(#a).to_string().contains("Lagrangian")
+            });
+            if !derives {
+                continue;
+            }
+            let input: syn::DeriveInput = s.into();
+            let start = Instant::now();
+            std::hint::black_box(lagrange_codegen::expand(&input));
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let Ok(model) = lagrange_codegen::model(&input) else {
+                println!("| {} | derivation failed |", input.ident);
+                continue;
+            };
+            let n = model.dof();
+            let mut core: Vec<Expr> = model.mass.iter().flatten().copied().collect();
+            core.extend(&model.rhs);
+            let multipliers = model.constraints.as_ref().map(|c| {
+                let mut all = core.clone();
+                all.extend(c.jacobian.iter().flatten());
+                all.extend(&c.gamma);
+                ops(&model, &all).to_string()
+            });
+            let reduced = model.reduced.as_ref().map(|r| {
+                let mut all: Vec<Expr> = r.mass.iter().flatten().copied().collect();
+                all.extend(&r.rhs);
+                all.extend(r.w_matrix.iter().flatten());
+                all.extend(&r.kappa);
+                ops(&model, &all).to_string()
+            });
+            println!(
+                "| {} | {n} | {ms:.1} | {} | {} | {} |",
+                input.ident,
+                ops(&model, &core),
+                multipliers.unwrap_or_else(|| "—".into()),
+                reduced.unwrap_or_else(|| "—".into()),
+            );
+        }
+    }
+}
 
 fn main() {
     println!("| n | derive + emit (ms) | ops | add | mul | div | sin/cos/... | route for h |");
@@ -34,4 +99,5 @@ fn main() {
             model.bias_route
         );
     }
+    catalog();
 }
