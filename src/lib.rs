@@ -62,6 +62,36 @@
 //! [`Simulation::run_constrained`]) and/or [`Reduced`] (Maggi / Gibbs–Appell
 //! equations on the speeds: [`Simulation::run_reduced`]).
 //!
+//! ```
+//! use lagrange::prelude::*;
+//!
+//! /// The spherical pendulum in Cartesian coordinates: no chart, no pole; the
+//! /// thread is a constraint and its tension a reaction.
+//! #[derive(Lagrangian)]
+//! #[lagrange(
+//!     coordinates(x, y, z),
+//!     point(bob, mass = m, at = [x, y, z]),
+//!     gravity = [0, 0, -g],
+//!     holonomic(thread = (bob.x^2) + (bob.y^2) + (bob.z^2) - (l^2)),
+//!     emit(reactions),
+//! )]
+//! pub struct Bob { pub m: f64, pub l: f64, pub g: f64 }
+//!
+//! let sys = Bob { m: 1.0, l: 1.0, g: 9.81 };
+//! let traj = Simulation::new(&sys)
+//!     .integrator(Dopri5::tol(1e-10))
+//!     .drift(Drift::projection())
+//!     .run_constrained([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 0.0..5.0)
+//!     .unwrap();
+//! assert!(traj.max_residuals()[0] < 1e-11);
+//!
+//! // Released horizontally at rest length: the tension is m v²/l = 1 N at t = 0.
+//! let (q, v) = (traj.positions()[0], traj.velocities()[0]);
+//! let nu = ConstrainedDynamics::new(&sys).solve(0.0, &q, &v).unwrap().multipliers;
+//! let tension = sys.reactions(&q, &v, 0.0, &nu)[0].norm();
+//! assert!((tension - 1.0).abs() < 1e-12);
+//! ```
+//!
 //! Expressions use numbers (decimals are exact rationals), the names above, time
 //! `t`, `pi`, velocities `dot(q)`, `+ - * /`, powers `pow(x, n)` or `x^n` (Rust
 //! parses `a + b^2` as `(a + b)^2`, so an operand of `^` that is itself an
