@@ -13,7 +13,10 @@ use lagrange_symbolic::{Expr, Program};
 
 const CATALOG: [(&str, &str); 2] = [
     ("mod.rs", include_str!("../../examples/catalog/mod.rs")),
-    ("constrained.rs", include_str!("../../examples/catalog/constrained.rs")),
+    (
+        "constrained.rs",
+        include_str!("../../examples/catalog/constrained.rs"),
+    ),
 ];
 
 fn ops(model: &Model, outputs: &[Expr]) -> usize {
@@ -23,7 +26,9 @@ fn ops(model: &Model, outputs: &[Expr]) -> usize {
 /// Every `#[derive(Lagrangian)]` struct of the catalog: derivation time and the
 /// operation counts of the programs the impls evaluate per step.
 fn catalog() {
-    println!("\n| system | N | derive + emit (ms) | M, Q − h | + G, γ (multipliers) | M*, F*, W, κ (reduced) |");
+    println!(
+        "\n| system | N | derive + emit (ms) | M, Q − h | + G, γ (multipliers) | M*, F*, W, κ (reduced) |"
+    );
     println!("|---|---|---|---|---|---|");
     for (file, src) in CATALOG {
         let Ok(parsed) = syn::parse_file(src) else {

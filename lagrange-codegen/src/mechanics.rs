@@ -95,6 +95,12 @@ pub struct Model {
     pub momentum: Option<Vec<Sym>>,
     /// ∂T/∂q at fixed q̇, if asked for.
     pub kinetic_gradient: Option<Vec<Sym>>,
+    /// (mass, position ξ(q, t)) of every point mass and body centre, for tools and
+    /// tests that form other functions of the motion (the Gibbs function, say).
+    pub particles: Vec<(Sym, Vec<Sym>)>,
+    /// Whether any body has rotational inertia (then `particles` alone does not
+    /// give T).
+    pub has_spin: bool,
 }
 
 impl Model {
@@ -377,6 +383,8 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
         jacobians,
         momentum,
         kinetic_gradient,
+        particles: kin.iter().map(|k| (k.mass, k.position.clone())).collect(),
+        has_spin: !spin.is_empty(),
     })
 }
 
