@@ -297,6 +297,16 @@ fn rolling_sphere_both_forms() {
     let qf5 = SVector::<f64, 5>::from([qf[0], qf[1], qf[3], qf[4], qf[5]]);
     assert!((qr - qf5).amax() < 1e-8, "{:e}", (qr - qf5).amax());
     assert!((qf[2] - a).abs() < 1e-12);
+
+    // The six-coordinate model in its own reduced form (z kept, ż = 0 imposed at
+    // the velocity level): the same motion, and z never leaves a.
+    let t6 = Simulation::new(&full)
+        .integrator(Dopri5::tol(1e-12))
+        .run_reduced(q6, v6, 0.0..10.0)
+        .unwrap();
+    let (q, _) = t6.final_state();
+    assert!((q - qf).amax() < 1e-8, "{:e}", (q - qf).amax());
+    assert!(t6.positions().iter().all(|q| (q[2] - a).abs() < 1e-14));
 }
 
 /// C6: the untwistable thread between two tops: energy conserved, thread kept, and

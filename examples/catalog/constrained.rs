@@ -155,6 +155,9 @@ impl ThreeParticleBody {
     holonomic(height = ball.z - a),
     nonholonomic(slip_x = dot(ball.x) - a * ball.omega_y,
                  slip_y = dot(ball.y) + a * ball.omega_x),
+    // Both forms: the reduced one also eliminates ż through the velocity form of
+    // the finite constraint.
+    formulation(multipliers, reduced),
     emit(reactions),
 )]
 pub struct RollingSphere {
