@@ -8,7 +8,7 @@
 mod catalog;
 
 use catalog::constrained::{CartesianSphericalPendulum, RollingSphereReduced};
-use catalog::extremes::{ConstantMetric, HeavyTop, SpringPendulum};
+use catalog::extremes::{HeavyTop, SpringPendulum};
 use catalog::{DoublePendulum, Pendulum, SphericalPendulum};
 use lagrange::ode::Integrator;
 use lagrange::prelude::*;
@@ -404,13 +404,12 @@ const INF: f64 = f64::INFINITY;
 /// method needs Hamilton's form (Gauss), which those forms do not offer.
 fn non_finite_inputs<I: Integrator + Clone>(method: I, unconstrained_only: bool) {
     let t0 = 0.25;
-    let pendulum = |m: f64, g: f64| ConstantMetric(Pendulum::<f64> { m, l: 1.0, g });
-    let run =
-        |sys: &ConstantMetric<Pendulum<f64>>, q0: f64, v0: f64, span: std::ops::Range<f64>| {
-            Simulation::new(sys)
-                .integrator(method.clone())
-                .run([q0], [v0], span)
-        };
+    let pendulum = |m: f64, g: f64| Pendulum::<f64> { m, l: 1.0, g };
+    let run = |sys: &Pendulum<f64>, q0: f64, v0: f64, span: std::ops::Range<f64>| {
+        Simulation::new(sys)
+            .integrator(method.clone())
+            .run([q0], [v0], span)
+    };
     let ok = pendulum(1.0, 9.81);
     assert!(run(&ok, 0.5, 0.0, t0..1.0).is_ok());
     stops_at_start(

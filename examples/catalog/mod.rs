@@ -14,6 +14,8 @@ use lagrange::Lagrangian;
     coordinates(theta),
     point(bob, mass = m, at = [l * sin(theta), -l * cos(theta)]),
     gravity = [0, -g],
+    // Hamilton's form (p and ∂T/∂q), for the symplectic Gauss method.
+    emit(hamiltonian),
 )]
 pub struct Pendulum<T> {
     pub m: T,
