@@ -39,6 +39,7 @@ mod cholesky;
 pub mod constraint;
 mod dynamics;
 mod error;
+pub mod event;
 pub mod func;
 pub mod ode;
 mod real;
@@ -51,12 +52,13 @@ mod trajectory;
 pub use constraint::{ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent};
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use error::Error;
+pub use event::{Direction, Event, EventRun, Events, Occurrence};
 pub use ode::{
     DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Rk4, Sample, SecondOrder,
     Stats, StormerVerlet,
 };
 pub use real::Real;
 pub use reduced::ReducedDynamics;
-pub use simulation::Simulation;
+pub use simulation::{EventSimulation, Simulation};
 pub use system::{Constrained, Lagrangian, Reduced};
 pub use trajectory::Trajectory;

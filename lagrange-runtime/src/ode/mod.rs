@@ -79,6 +79,32 @@ pub trait SecondOrder<T: Real, const N: usize> {
         Ok(false)
     }
 
+    /// Called by every integrator after each accepted step, once
+    /// [`project`](Self::project) has run: `segment` is the step's dense output and
+    /// (q, v) the state recorded at its end. Returning `Ok(true)` ends the
+    /// integration after this step, so the trajectory ends at `segment.end()`
+    /// instead of the requested end time; an error aborts the run. The default
+    /// never stops.
+    ///
+    /// This is the event layer's hook ([`Events`](crate::Events)): it watches the
+    /// event functions on each step and stops the integrator at the first step
+    /// that holds an event which changes the state or ends the run. A hook rather
+    /// than chunked re-integration, because the integrator must not step past an
+    /// impact: beyond it the state may be meaningless (outside a wall, past a
+    /// chart singularity).
+    ///
+    /// # Errors
+    /// Whatever the observer cannot evaluate (a non-finite event function).
+    fn after_step(
+        &self,
+        segment: &DenseSegment<T, N>,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<bool, Error> {
+        let _ = (segment, q, v);
+        Ok(false)
+    }
+
     /// The same system in Hamilton's form, if it has one: what the symplectic
     /// [`Gauss`] integrator needs. `None` unless overridden;
     /// [`Dynamics`](crate::Dynamics) returns itself.
@@ -170,6 +196,16 @@ pub struct Stats {
 }
 
 impl Stats {
+    /// Adds the work of another run (the pieces of a run restarted at events).
+    pub fn add(&mut self, other: &Stats) {
+        self.accepted += other.accepted;
+        self.rejected += other.rejected;
+        self.evaluations += other.evaluations;
+        self.jacobians += other.jacobians;
+        self.factorizations += other.factorizations;
+        self.wall_time += other.wall_time;
+    }
+
     /// Attempted steps: accepted + rejected.
     pub fn steps(&self) -> usize {
         self.accepted + self.rejected
