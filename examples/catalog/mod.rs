@@ -159,4 +159,5 @@ pub struct DrivenPendulum {
     pub w: f64,
     pub f: f64,
 }
+pub mod cavity;
 pub mod constrained;

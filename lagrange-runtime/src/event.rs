@@ -102,6 +102,15 @@ impl Direction {
 
 type EventFn<'a, T, const N: usize> = Box<dyn Fn(T, &SVector<T, N>, &SVector<T, N>) -> T + 'a>;
 type ActionFn<'a, T, const N: usize> = Box<dyn Fn(T, &mut SVector<T, N>, &mut SVector<T, N>) + 'a>;
+type TestFn<'a, T, const N: usize> = Box<dyn Fn(T, &SVector<T, N>, &SVector<T, N>) -> bool + 'a>;
+
+/// When an occurrence ends the run.
+enum Terminal<'a, T, const N: usize> {
+    Never,
+    Always,
+    /// When the test holds for the state after the action.
+    If(TestFn<'a, T, N>),
+}
 
 /// An event: the zero crossings of g(t, q, v) in a [`Direction`], optionally
 /// with an action that maps the state at the crossing to a new one (an impact
@@ -121,7 +130,7 @@ pub struct Event<'a, T: Real, const N: usize> {
     name: Option<String>,
     g: EventFn<'a, T, N>,
     direction: Direction,
-    terminal: bool,
+    terminal: Terminal<'a, T, N>,
     action: Option<ActionFn<'a, T, N>>,
 }
 
@@ -130,7 +139,14 @@ impl<T: Real, const N: usize> fmt::Debug for Event<'_, T, N> {
         f.debug_struct("Event")
             .field("name", &self.name)
             .field("direction", &self.direction)
-            .field("terminal", &self.terminal)
+            .field(
+                "terminal",
+                &match self.terminal {
+                    Terminal::Never => "never",
+                    Terminal::Always => "always",
+                    Terminal::If(_) => "if",
+                },
+            )
             .field("action", &self.action.is_some())
             .finish()
     }
@@ -144,7 +160,7 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
             name: None,
             g: Box::new(g),
             direction: Direction::Both,
-            terminal: false,
+            terminal: Terminal::Never,
             action: None,
         }
     }
@@ -168,7 +184,19 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
     /// The run ends at the first occurrence of this event (after its action, if
     /// it has one).
     pub fn terminal(mut self) -> Self {
-        self.terminal = true;
+        self.terminal = Terminal::Always;
+        self
+    }
+
+    /// The run ends at an occurrence where `test(t, q, v)` holds for the state
+    /// after the action (if any): e.g. an impact that leaves too little normal
+    /// velocity to bounce again, so the caller can switch to a resting or
+    /// sliding contact model. Replaces [`terminal`](Self::terminal).
+    pub fn terminal_if(
+        mut self,
+        test: impl Fn(T, &SVector<T, N>, &SVector<T, N>) -> bool + 'a,
+    ) -> Self {
+        self.terminal = Terminal::If(Box::new(test));
         self
     }
 
@@ -199,14 +227,25 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
         self.direction
     }
 
-    /// Whether the event ends the run.
+    /// Whether the event may end the run ([`terminal`](Self::terminal) or
+    /// [`terminal_if`](Self::terminal_if)).
     pub fn is_terminal(&self) -> bool {
-        self.terminal
+        !matches!(self.terminal, Terminal::Never)
     }
 
-    /// Whether an occurrence stops the integrator (it has an action or ends the run).
+    /// Whether an occurrence stops the integrator (it has an action or may end
+    /// the run).
     fn stops(&self) -> bool {
-        self.terminal || self.action.is_some()
+        self.is_terminal() || self.action.is_some()
+    }
+
+    /// Whether the occurrence at t with the state (q, v) after the action ends the run.
+    fn ends(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> bool {
+        match &self.terminal {
+            Terminal::Never => false,
+            Terminal::Always => true,
+            Terminal::If(test) => test(t, q, v),
+        }
     }
 
     fn label(&self, index: usize) -> String {
@@ -353,6 +392,7 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
             events: &self.events,
             state: RefCell::new(WatchState {
                 last: Vec::with_capacity(self.events.len()),
+                fired: None,
                 found: Vec::new(),
                 stop: None,
             }),
@@ -390,7 +430,7 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
                 q_after: qa,
                 v_after: va,
             });
-            if event.terminal {
+            if event.ends(stop.t, &qa, &va) {
                 terminated_by = Some(stop.event);
                 break;
             }
@@ -456,6 +496,9 @@ struct WatchState<T: Real, const N: usize> {
     /// Each event function at the last recorded state; zero means "sign not
     /// known yet" (exactly zero there), and the next sample sets it.
     last: Vec<T>,
+    /// The event that fired at the start of this integrator run, until its
+    /// first step is checked: its start value is the forced pre-crossing sign.
+    fired: Option<usize>,
     found: Vec<Occurrence<T, N>>,
     stop: Option<Stop<T, N>>,
 }
@@ -482,6 +525,7 @@ impl<F: SecondOrder<T, N>, T: Real, const N: usize> Watch<'_, '_, F, T, N> {
     ) -> Result<(), Error> {
         let mut st = self.state.borrow_mut();
         st.last.clear();
+        st.fired = fired.map(|(k, _)| k);
         for (i, event) in self.events.iter().enumerate() {
             let mut g = event.value(i, t, q, v)?;
             if let Some((k, before)) = fired
@@ -507,25 +551,57 @@ fn same_sign<T: Real>(a: T, b: T) -> bool {
 
 /// The crossings of one event inside one step: up to two, one per half step.
 /// `samples` are (t, g) at the start, the midpoint and the end.
+///
+/// `fired`: the event fired at the start of the step (the restart point) and
+/// its start value is only the sign it had before. Right after that root the
+/// function is below its round-off level, and a bracket reaching down to the
+/// start would find noise there instead of a genuine second crossing (a small
+/// bounce inside the first half step). So the left end is moved to the
+/// furthest point start + (mid − start)/2^k where the function shows the old
+/// sign; if there is none, the action did not resolve the event and the
+/// crossing is reported right after the start (the driver then stops with
+/// [`Error::EventsAccumulate`]).
 fn crossings<T: Real, const N: usize>(
     event: &Event<'_, T, N>,
     segment: &DenseSegment<T, N>,
     samples: [(T, T); 3],
+    fired: bool,
 ) -> [Option<(T, T)>; 2] {
+    let on_segment = |s: T| {
+        let (q, v) = segment.eval(s);
+        (event.g)(s, &q, &v)
+    };
     let mut out = [None; 2];
     for (k, pair) in samples.windows(2).enumerate() {
-        let ((ta, ga), (tb, gb)) = (pair[0], pair[1]);
+        let ((mut ta, mut ga), (tb, gb)) = (pair[0], pair[1]);
         // A zero start has no sign: the later sample sets it, no crossing.
         if ga == T::zero() || same_sign(ga, gb) || !event.direction.admits(ga) {
             continue;
         }
+        if fired && k == 0 {
+            let before = ga;
+            let mut offset = (tb - ta) * T::lit(0.5);
+            let mut found = false;
+            for _ in 0..60 {
+                let s = ta + offset;
+                if s <= ta {
+                    break;
+                }
+                let gs = on_segment(s);
+                if same_sign(gs, before) {
+                    (ta, ga, found) = (s, gs, true);
+                    break;
+                }
+                offset *= T::lit(0.5);
+            }
+            if !found {
+                out[k] = Some((ta + offset.max(T::default_epsilon() * abs(ta)), before));
+                continue;
+            }
+        }
         let t = if gb == T::zero() {
             tb
         } else {
-            let on_segment = |s: T| {
-                let (q, v) = segment.eval(s);
-                (event.g)(s, &q, &v)
-            };
             let (b, fb, c, fc) = brent_bracket(on_segment, ta, tb, ga, gb);
             // The end of the final bracket on the old side of the crossing.
             if same_sign(fb, ga) || fb == T::zero() || !same_sign(fc, ga) {
@@ -592,13 +668,18 @@ impl<F: SecondOrder<T, N>, T: Real, const N: usize> SecondOrder<T, N> for Watch<
         let tm = ta + (tb - ta) * T::lit(0.5);
         let (qm, vm) = segment.eval(tm);
         let first_new = st.found.len();
+        let fired = st.fired.take();
         let mut stop: Option<Stop<T, N>> = None;
         for (i, event) in self.events.iter().enumerate() {
             let gm = event.value(i, tm, &qm, &vm)?;
             let gb = event.value(i, tb, q, v)?;
             let samples = [(ta, st.last[i]), (tm, gm), (tb, gb)];
             st.last[i] = gb;
-            for (t, before) in crossings(event, segment, samples).into_iter().flatten() {
+            let fresh = fired == Some(i);
+            for (t, before) in crossings(event, segment, samples, fresh)
+                .into_iter()
+                .flatten()
+            {
                 let (qc, vc) = if t == tb { (*q, *v) } else { segment.eval(t) };
                 if event.stops() {
                     // Only the first crossing of a stopping event matters.
