@@ -54,8 +54,8 @@ pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use error::Error;
 pub use event::{Direction, Event, EventRun, Events, Occurrence};
 pub use ode::{
-    DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Rk4, Sample, SecondOrder,
-    Stats, StormerVerlet,
+    DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Rattle, Rk4, Sample,
+    SecondOrder, Stats, StormerVerlet,
 };
 pub use real::Real;
 pub use reduced::ReducedDynamics;

@@ -7,6 +7,8 @@
 //!
 //! - [`Rk4`]: classic fixed-step Runge–Kutta of order 4.
 //! - [`Dopri5`]: Dormand–Prince 5(4) with Hairer's step-size control and dense output.
+//! - [`Rattle`]: RATTLE for [`Constrained`](crate::Constrained) systems with
+//!   holonomic constraints (its own entry point: it needs Φ, not only a).
 //!
 //! New integrators implement [`Integrator`].
 
@@ -18,6 +20,7 @@ mod gauss;
 mod linalg;
 mod mechanical;
 mod radau5;
+mod rattle;
 mod rk4;
 mod verlet;
 
@@ -27,6 +30,7 @@ pub use dopri5::Dopri5;
 pub use gauss::Gauss;
 pub use mechanical::Mechanical;
 pub use radau5::Radau5;
+pub use rattle::Rattle;
 pub use rk4::Rk4;
 pub use verlet::StormerVerlet;
 
