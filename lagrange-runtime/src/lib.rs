@@ -32,6 +32,20 @@
 //! let [phi, vel] = traj.max_residuals();
 //! ```
 //!
+//! Events ([`Event`]: zero crossings of g(t, q, v), located on the dense output,
+//! with an optional action such as an impact law, optionally terminal) are
+//! watched with [`Simulation::event`]; see [`event`] for the design.
+//!
+//! ```text
+//! let run = Simulation::new(&ball)
+//!     .event(Event::new(|_, q, _| q[0]).falling().action(|_, _, v| *v *= -0.9))
+//!     .run(q0, v0, 0.0..5.0)?;
+//! println!("{} impacts", run.occurrences.len());
+//! ```
+//!
+//! [`Rattle`] integrates holonomic constraints with a constant mass matrix
+//! symplectically, keeping Φ = 0 and Φ_q q̇ = 0 to round-off.
+//!
 //! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
 //! number of degrees of freedom `N`, a type-level constant.
 

@@ -401,3 +401,32 @@ fn events_on_a_plain_second_order_system() {
         assert!((t - exact).abs() < 1e-10, "{t} vs {exact}");
     }
 }
+
+/// `terminal_if` ends the run at the first impact whose rebound speed is below
+/// a threshold (here 1 m/s): with e = 0.8 from 1.5 m (first impact at 5.42 m/s)
+/// that is impact k with 5.42·0.8^(k+1) < 1, k = 7; and the small bounces
+/// before it, shorter than the integrator's restart step, are all seen.
+#[test]
+fn terminal_if_decides_after_the_action() {
+    let (g, e, h0) = (9.81, 0.8, 1.5);
+    let run = Simulation::new(&Ball { g })
+        .integrator(Dopri5::tol(1e-10))
+        .event(
+            Event::new(|_, q: &SVector<f64, 1>, _| q[0])
+                .falling()
+                .action(move |_, _, v| *v *= -e)
+                .terminal_if(|_, _, v| v[0] < 1.0),
+        )
+        .run([h0], [0.0], 0.0..10.0)
+        .unwrap();
+    assert_eq!(run.terminated_by, Some(0));
+    assert_eq!(run.occurrences.len(), 8);
+    let (tk, _, _) = closed_form(h0, g, e, 7);
+    assert!((run.occurrences[7].t - tk).abs() < 1e-9);
+    assert_eq!(
+        *run.trajectory.times().last().unwrap(),
+        run.occurrences[7].t
+    );
+    let (_, v) = run.trajectory.final_state();
+    assert!(v[0] < 1.0 && v[0] > 0.0);
+}
