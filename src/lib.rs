@@ -109,8 +109,8 @@ pub use nalgebra;
 pub mod prelude {
     pub use lagrange_macros::Lagrangian;
     pub use lagrange_runtime::{
-        Constrained, ConstrainedDynamics, Dopri5, Drift, Error, Lagrangian, Real, Reduced,
-        ReducedDynamics, Rk4, Simulation, Trajectory,
+        Constrained, ConstrainedDynamics, Direction, Dopri5, Drift, Error, Event, EventRun,
+        Lagrangian, Occurrence, Real, Reduced, ReducedDynamics, Rk4, Simulation, Trajectory,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }

@@ -161,5 +161,6 @@ pub struct DrivenPendulum {
     pub w: f64,
     pub f: f64,
 }
+pub mod cavity;
 pub mod constrained;
 pub mod extremes;

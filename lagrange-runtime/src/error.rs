@@ -152,6 +152,51 @@ pub enum Error {
         iterations: usize,
     },
 
+    /// An event function returned NaN or an infinity.
+    #[error("event function `{event}` is not finite at t = {t}, q = {q:?}, v = {v:?}")]
+    EventFunction {
+        /// The event's name (its own, or `event #k` by position).
+        event: String,
+        /// Time of the failed evaluation.
+        t: f64,
+        /// Generalized coordinates.
+        q: Vec<f64>,
+        /// Generalized velocities.
+        v: Vec<f64>,
+    },
+
+    /// More events that restart the integration (actions) than the budget
+    /// allows: usually impacts accumulating (Zeno behaviour, a ball coming to
+    /// rest with restitution e < 1). Raise the budget, or model the resting
+    /// contact as a constraint.
+    #[error(
+        "more than {max_events} events stopped the integration; the last one,          `{event}`, at t = {t} (impacts accumulating?)"
+    )]
+    TooManyEvents {
+        /// Time of the last event.
+        t: f64,
+        /// Name of the last event.
+        event: String,
+        /// The configured budget.
+        max_events: usize,
+    },
+
+    /// Events fired repeatedly without the integration advancing: an action
+    /// that does not resolve its event (the state after it still crosses at
+    /// once, e.g. an impact law that does not reverse the normal velocity), or
+    /// impacts accumulating at round-off scale (Zeno point).
+    #[error(
+        "event `{event}` fired {count} times in a row at t = {t} without the          integration advancing: its action does not resolve the event, or          impacts accumulate there (Zeno point)"
+    )]
+    EventsAccumulate {
+        /// Time where the events pile up.
+        t: f64,
+        /// Name of the event.
+        event: String,
+        /// Consecutive events without progress.
+        count: usize,
+    },
+
     /// The settings or the initial value problem are invalid (non-positive
     /// tolerance, empty or reversed time span, non-finite initial state, ...).
     #[error("invalid settings: {0}")]

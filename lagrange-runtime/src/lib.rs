@@ -32,6 +32,20 @@
 //! let [phi, vel] = traj.max_residuals();
 //! ```
 //!
+//! Events ([`Event`]: zero crossings of g(t, q, v), located on the dense output,
+//! with an optional action such as an impact law, optionally terminal) are
+//! watched with [`Simulation::event`]; see [`event`] for the design.
+//!
+//! ```text
+//! let run = Simulation::new(&ball)
+//!     .event(Event::new(|_, q, _| q[0]).falling().action(|_, _, v| *v *= -0.9))
+//!     .run(q0, v0, 0.0..5.0)?;
+//! println!("{} impacts", run.occurrences.len());
+//! ```
+//!
+//! [`Rattle`] integrates holonomic constraints with a constant mass matrix
+//! symplectically, keeping Φ = 0 and Φ_q q̇ = 0 to round-off.
+//!
 //! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
 //! number of degrees of freedom `N`, a type-level constant.
 
@@ -39,6 +53,7 @@ mod cholesky;
 pub mod constraint;
 mod dynamics;
 mod error;
+pub mod event;
 pub mod func;
 pub mod ode;
 mod real;
@@ -51,12 +66,13 @@ mod trajectory;
 pub use constraint::{ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent};
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use error::Error;
+pub use event::{Direction, Event, EventRun, Events, Occurrence};
 pub use ode::{
-    DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Rk4, Sample, SecondOrder,
-    Stats, StormerVerlet,
+    DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Rattle, Rk4, Sample,
+    SecondOrder, Stats, StormerVerlet,
 };
 pub use real::Real;
 pub use reduced::ReducedDynamics;
-pub use simulation::Simulation;
+pub use simulation::{EventSimulation, Simulation};
 pub use system::{Constrained, Lagrangian, Reduced};
 pub use trajectory::Trajectory;

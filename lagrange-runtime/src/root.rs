@@ -10,13 +10,21 @@ use crate::real::Real;
 /// Inverse quadratic interpolation when it behaves, bisection when it does not, so
 /// the bracket shrinks at least geometrically and converges superlinearly on smooth
 /// functions: a dozen evaluations of a dense-output polynomial typically.
-pub(crate) fn brent<T: Real>(
+pub(crate) fn brent<T: Real>(f: impl FnMut(T) -> T, a: T, b: T, fa: T, fb: T) -> T {
+    brent_bracket(f, a, b, fa, fb).0
+}
+
+/// [`brent`] returning the final bracket: `(b, fb, c, fc)` with b the best
+/// estimate of the root and c the other end of the bracket, |b − c| within the
+/// tolerance and f(c) of the opposite sign of f(b) unless f(b) = 0. The event
+/// layer uses it to stop on the chosen side of a crossing.
+pub(crate) fn brent_bracket<T: Real>(
     mut f: impl FnMut(T) -> T,
     mut a: T,
     mut b: T,
     mut fa: T,
     mut fb: T,
-) -> T {
+) -> (T, T, T, T) {
     let eps = T::default_epsilon();
     // Zero for f32 (underflow); the loop is bounded anyway.
     let floor = T::lit(f64::MIN_POSITIVE);
@@ -41,7 +49,7 @@ pub(crate) fn brent<T: Real>(
         let tol = two * eps * abs(b) + floor;
         let xm = half * (c - b);
         if abs(xm) <= tol || fb == T::zero() {
-            return b;
+            return (b, fb, c, fc);
         }
         if abs(e) >= tol && abs(fa) > abs(fb) {
             let s = fb / fa;
@@ -84,7 +92,7 @@ pub(crate) fn brent<T: Real>(
         };
         fb = f(b);
     }
-    b
+    (b, fb, c, fc)
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@ use crate::constraint::{
 };
 use crate::dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics};
 use crate::error::Error;
+use crate::event::{Event, EventRun, Events};
 use crate::ode::{Dopri5, Integrator, check_problem};
 use crate::real::Real;
 use crate::reduced::ReducedDynamics;
@@ -184,6 +185,16 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         ReducedDynamics::new(self.system).with_singular_tolerance(T::lit(self.singular_tolerance))
     }
 
+    fn check_singular_tolerance(&self) -> Result<(), Error> {
+        let tol = self.singular_tolerance;
+        if !(tol.is_finite() && tol >= 0.0) {
+            return Err(Error::InvalidSettings(format!(
+                "singular tolerance must be non-negative and finite, got {tol}"
+            )));
+        }
+        Ok(())
+    }
+
     fn check_tolerances(&self) -> Result<(), Error> {
         let c = &self.constraints;
         for (name, tol) in [
@@ -224,11 +235,33 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     where
         S: Constrained<T, N, K>,
     {
-        self.check_tolerances()?;
         let (q0, v0) = (q0.into(), v0.into());
         check_problem(span.start, span.end, &q0, &v0)?;
+        let (dynamics, q0, v0) = self.prepare_constrained::<T, N, K>(span.start, q0, v0)?;
+        self.integrator
+            .integrate(&dynamics, span.start, span.end, q0, v0)
+    }
+
+    /// The constrained dynamics and the checked (or projected) initial state.
+    #[allow(clippy::type_complexity)]
+    fn prepare_constrained<T: Real, const N: usize, const K: usize>(
+        &self,
+        t0: T,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+    ) -> Result<
+        (
+            ConstrainedDynamics<'a, S, T, K>,
+            SVector<T, N>,
+            SVector<T, N>,
+        ),
+        Error,
+    >
+    where
+        S: Constrained<T, N, K>,
+    {
+        self.check_tolerances()?;
         let dynamics = self.constrained_dynamics::<T, K>();
-        let t0 = span.start;
         let (q0, v0) = if self.constraints.project_initial {
             dynamics.consistent_state(t0, q0, v0)?
         } else {
@@ -236,7 +269,53 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
             dynamics.check_consistency(t0, &q0, &v0, tol)?;
             (q0, v0)
         };
-        self.integrator.integrate(&dynamics, t0, span.end, q0, v0)
+        Ok((dynamics, q0, v0))
+    }
+
+    /// Watches `event` during the run: the first of a list of events (add more
+    /// with [`EventSimulation::event`]). The run then returns an [`EventRun`]:
+    /// the trajectory and the occurrences. See [`crate::event`] for how events
+    /// are detected, located and acted on.
+    ///
+    /// ```
+    /// # use lagrange_runtime::{Event, SecondOrder, Lagrangian, Simulation, Dopri5};
+    /// # use nalgebra::{SMatrix, SVector, Vector1, Matrix1};
+    /// # struct Fall;
+    /// # impl Lagrangian<f64, 1> for Fall {
+    /// #     const COORDINATES: [&'static str; 1] = ["z"];
+    /// #     const RHEONOMIC: bool = false;
+    /// #     fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> { Matrix1::new(1.0) }
+    /// #     fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+    /// #     fn generalized_forces(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::new(-9.81) }
+    /// #     fn mass_matrix_and_rhs(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> (Matrix1<f64>, Vector1<f64>) {
+    /// #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+    /// #     }
+    /// #     fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 { 0.5 * v[0] * v[0] }
+    /// #     fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 { 9.81 * q[0] }
+    /// #     fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
+    /// #         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+    /// #     }
+    /// # }
+    /// // A ball dropped from 1 m bounces with restitution 0.9 (coming to rest
+    /// // at 8.6 s); the apexes are where v falls through zero.
+    /// let run = Simulation::new(&Fall)
+    ///     .integrator(Dopri5::tol(1e-10))
+    ///     .event(Event::new(|_, q: &SVector<f64, 1>, _| q[0]).falling().action(|_, _, v| *v *= -0.9))
+    ///     .event(Event::new(|_, _, v: &SVector<f64, 1>| v[0]).falling())
+    ///     .run([1.0], [0.0], 0.0..5.0)?;
+    /// let bounces = run.times(0);
+    /// assert!((bounces[0] - (2.0f64 / 9.81).sqrt()).abs() < 1e-12);
+    /// assert_eq!(run.times(1).len(), bounces.len());
+    /// # Ok::<(), lagrange_runtime::Error>(())
+    /// ```
+    pub fn event<'e, T: Real, const N: usize>(
+        self,
+        event: Event<'e, T, N>,
+    ) -> EventSimulation<'a, 'e, S, I, T, N> {
+        EventSimulation {
+            simulation: self,
+            events: Events::new().with(event),
+        }
     }
 
     /// Integrates a [`Reduced`] system (independent speeds) from (q0, v0) at
@@ -283,13 +362,84 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     where
         S: Lagrangian<T, N>,
     {
-        let tol = self.singular_tolerance;
-        if !(tol.is_finite() && tol >= 0.0) {
-            return Err(Error::InvalidSettings(format!(
-                "singular tolerance must be non-negative and finite, got {tol}"
-            )));
-        }
+        self.check_singular_tolerance()?;
         self.integrator
             .integrate(&self.dynamics(), span.start, span.end, q0.into(), v0.into())
+    }
+}
+
+/// A [`Simulation`] with events, built by [`Simulation::event`].
+#[derive(Debug)]
+pub struct EventSimulation<'a, 'e, S, I, T: Real, const N: usize> {
+    simulation: Simulation<'a, S, I>,
+    events: Events<'e, T, N>,
+}
+
+impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, S, I, T, N> {
+    /// Adds another event; occurrences name events by the order they were added
+    /// (the first one, given to [`Simulation::event`], is 0).
+    pub fn event(mut self, event: Event<'e, T, N>) -> Self {
+        self.events = self.events.with(event);
+        self
+    }
+
+    /// Sets how many events may stop and restart the integration (default
+    /// [`DEFAULT_MAX_EVENTS`](crate::event::DEFAULT_MAX_EVENTS)).
+    pub fn max_events(mut self, n: usize) -> Self {
+        self.events = self.events.max_events(n);
+        self
+    }
+
+    /// The simulation without its events.
+    pub fn simulation(&self) -> &Simulation<'a, S, I> {
+        &self.simulation
+    }
+
+    /// [`Simulation::run`] watching the events.
+    ///
+    /// # Errors
+    /// As [`Simulation::run`] and [`Events::integrate`].
+    pub fn run(
+        &self,
+        q0: impl Into<SVector<T, N>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<EventRun<T, N>, Error>
+    where
+        S: Lagrangian<T, N>,
+    {
+        let sim = &self.simulation;
+        sim.check_singular_tolerance()?;
+        self.events.integrate(
+            &sim.integrator,
+            &sim.dynamics(),
+            span.start,
+            span.end,
+            q0.into(),
+            v0.into(),
+        )
+    }
+
+    /// [`Simulation::run_constrained`] watching the events; after an action
+    /// the state is projected onto the constraints if the drift control
+    /// projects.
+    ///
+    /// # Errors
+    /// As [`Simulation::run_constrained`] and [`Events::integrate`].
+    pub fn run_constrained<const K: usize>(
+        &self,
+        q0: impl Into<SVector<T, N>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<EventRun<T, N>, Error>
+    where
+        S: Constrained<T, N, K>,
+    {
+        let sim = &self.simulation;
+        let (q0, v0) = (q0.into(), v0.into());
+        check_problem(span.start, span.end, &q0, &v0)?;
+        let (dynamics, q0, v0) = sim.prepare_constrained::<T, N, K>(span.start, q0, v0)?;
+        self.events
+            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
     }
 }

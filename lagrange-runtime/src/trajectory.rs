@@ -72,6 +72,56 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         self.stats = stats;
     }
 
+    /// Cuts the last step at `t` (between its start and its end, the time of an
+    /// event) and records (q, v) as the state there. When `t` is the start of the
+    /// last step, the step is dropped and the state recorded at its start is
+    /// replaced instead.
+    pub(crate) fn truncate_last(
+        &mut self,
+        t: T,
+        q: SVector<T, N>,
+        v: SVector<T, N>,
+        sample: Sample<T>,
+    ) {
+        let last = self.len() - 1;
+        if last > 0 && self.times[last - 1] >= t {
+            self.times.pop();
+            self.q.pop();
+            self.v.pop();
+            self.integral.pop();
+            self.residual.pop();
+            self.segments.pop();
+        } else if let Some(segment) = self.segments.last_mut() {
+            segment.truncate(t);
+        }
+        let last = self.len() - 1;
+        self.times[last] = t;
+        self.q[last] = q;
+        self.v[last] = v;
+        self.integral[last] = sample.integral;
+        self.residual[last] = sample.residuals;
+    }
+
+    /// Appends `other`, which starts where `self` ends (same time): its first
+    /// point replaces the last one of `self` (after an event action the two
+    /// differ, and the trajectory records the state after it), and the work
+    /// statistics add up.
+    pub(crate) fn append(&mut self, other: Trajectory<T, N>) {
+        debug_assert_eq!(self.times.last(), other.times.first());
+        let last = self.len() - 1;
+        self.q[last] = other.q[0];
+        self.v[last] = other.v[0];
+        self.integral[last] = other.integral[0];
+        self.residual[last] = other.residual[0];
+        self.times.extend_from_slice(&other.times[1..]);
+        self.q.extend_from_slice(&other.q[1..]);
+        self.v.extend_from_slice(&other.v[1..]);
+        self.integral.extend_from_slice(&other.integral[1..]);
+        self.residual.extend_from_slice(&other.residual[1..]);
+        self.segments.extend_from_slice(&other.segments);
+        self.stats.add(&other.stats);
+    }
+
     /// Number of recorded points: accepted steps + 1 (the initial point).
     pub fn len(&self) -> usize {
         self.times.len()

@@ -93,6 +93,13 @@ impl<T: Real, const N: usize> DenseSegment<T, N> {
         (*y0, r2, r3, r4)
     }
 
+    /// Ends the segment at `t1` (inside the step): the polynomial is unchanged,
+    /// only the recorded end moves, which is how a step is cut at an event.
+    pub(crate) fn truncate(&mut self, t1: T) {
+        debug_assert!(self.t0 <= t1 && t1 <= self.t1);
+        self.t1 = t1;
+    }
+
     /// Start of the step.
     pub fn start(&self) -> T {
         self.t0

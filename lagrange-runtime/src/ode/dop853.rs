@@ -527,9 +527,10 @@ impl Integrator for Dop853 {
                     k13 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
                 }
                 let sample = Sample::of(rhs, t_new, &y_new.q, &y_new.v);
+                let stop = rhs.after_step(&segment, &y_new.q, &y_new.v)?;
                 traj.push(segment, y_new.q, y_new.v, sample);
                 (t, y, k1) = (t_new, y_new, k13);
-                if last {
+                if last || stop {
                     break;
                 }
                 h_new = h_new.min(hmax);

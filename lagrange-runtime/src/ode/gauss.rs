@@ -217,9 +217,13 @@ impl Gauss {
                 acc1 = rhs.acceleration(t_next, &q1, &v1)?;
             }
             let sample = Sample::of(rhs, t_next, &q1, &v1);
+            let stop = rhs.after_step(&segment, &q1, &v1)?;
             traj.push(segment, q1, v1, sample);
             stats.accepted += 1;
             (t, q, v, p, acc) = (t_next, q1, v1, p1, acc1);
+            if stop {
+                break;
+            }
         }
         stats.wall_time = started.elapsed();
         traj.set_stats(stats);

@@ -7,6 +7,8 @@
 //!
 //! - [`Rk4`]: classic fixed-step Runge–Kutta of order 4.
 //! - [`Dopri5`]: Dormand–Prince 5(4) with Hairer's step-size control and dense output.
+//! - [`Rattle`]: RATTLE for [`Constrained`](crate::Constrained) systems with
+//!   holonomic constraints (its own entry point: it needs Φ, not only a).
 //!
 //! New integrators implement [`Integrator`].
 
@@ -18,6 +20,7 @@ mod gauss;
 mod linalg;
 mod mechanical;
 mod radau5;
+mod rattle;
 mod rk4;
 mod verlet;
 
@@ -27,6 +30,7 @@ pub use dopri5::Dopri5;
 pub use gauss::Gauss;
 pub use mechanical::Mechanical;
 pub use radau5::Radau5;
+pub use rattle::Rattle;
 pub use rk4::Rk4;
 pub use verlet::StormerVerlet;
 
@@ -76,6 +80,32 @@ pub trait SecondOrder<T: Real, const N: usize> {
     /// A projection that does not converge, or a right-hand side failure.
     fn project(&self, t: T, q: &mut SVector<T, N>, v: &mut SVector<T, N>) -> Result<bool, Error> {
         let _ = (t, q, v);
+        Ok(false)
+    }
+
+    /// Called by every integrator after each accepted step, once
+    /// [`project`](Self::project) has run: `segment` is the step's dense output and
+    /// (q, v) the state recorded at its end. Returning `Ok(true)` ends the
+    /// integration after this step, so the trajectory ends at `segment.end()`
+    /// instead of the requested end time; an error aborts the run. The default
+    /// never stops.
+    ///
+    /// This is the event layer's hook ([`Events`](crate::Events)): it watches the
+    /// event functions on each step and stops the integrator at the first step
+    /// that holds an event which changes the state or ends the run. A hook rather
+    /// than chunked re-integration, because the integrator must not step past an
+    /// impact: beyond it the state may be meaningless (outside a wall, past a
+    /// chart singularity).
+    ///
+    /// # Errors
+    /// Whatever the observer cannot evaluate (a non-finite event function).
+    fn after_step(
+        &self,
+        segment: &DenseSegment<T, N>,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<bool, Error> {
+        let _ = (segment, q, v);
         Ok(false)
     }
 
@@ -170,6 +200,16 @@ pub struct Stats {
 }
 
 impl Stats {
+    /// Adds the work of another run (the pieces of a run restarted at events).
+    pub fn add(&mut self, other: &Stats) {
+        self.accepted += other.accepted;
+        self.rejected += other.rejected;
+        self.evaluations += other.evaluations;
+        self.jacobians += other.jacobians;
+        self.factorizations += other.factorizations;
+        self.wall_time += other.wall_time;
+    }
+
     /// Attempted steps: accepted + rejected.
     pub fn steps(&self) -> usize {
         self.accepted + self.rejected

@@ -520,9 +520,10 @@ impl Integrator for Radau5 {
                     rhs_into::<T, N, F>(rhs, t, &y, &mut y0, &mut stats.evaluations)?;
                 }
                 set_scal(&mut w.scal, &y);
+                let stop = rhs.after_step(&segment, &p.q, &p.v)?;
                 traj.push(segment, p.q, p.v, Sample::of(rhs, t, &p.q, &p.v));
                 caljac = false;
-                if last {
+                if last || stop {
                     break;
                 }
                 hnew = hnew.min(hmaxn);

@@ -115,9 +115,13 @@ impl Integrator for Rk4 {
             let f_next = y_next.derivative(rhs, t_next, ev)?;
             let segment = DenseSegment::hermite(t, t_next, &y, &f, &y_next, &f_next);
             let sample = Sample::of(rhs, t_next, &y_next.q, &y_next.v);
+            let stop = rhs.after_step(&segment, &y_next.q, &y_next.v)?;
             traj.push(segment, y_next.q, y_next.v, sample);
             stats.accepted += 1;
             (t, y, f) = (t_next, y_next, f_next);
+            if stop {
+                break;
+            }
         }
         stats.wall_time = started.elapsed();
         traj.set_stats(stats);

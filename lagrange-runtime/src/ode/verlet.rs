@@ -127,9 +127,13 @@ impl Integrator for StormerVerlet {
                 a_next = rhs.acceleration(t_next, &q_next, &v_next)?;
             }
             let sample = Sample::of(rhs, t_next, &q_next, &v_next);
+            let stop = rhs.after_step(&segment, &q_next, &v_next)?;
             traj.push(segment, q_next, v_next, sample);
             stats.accepted += 1;
             (t, q, v, a) = (t_next, q_next, v_next, a_next);
+            if stop {
+                break;
+            }
         }
         stats.wall_time = started.elapsed();
         traj.set_stats(stats);
