@@ -229,6 +229,21 @@ fn named(names: &[&str], q: &[f64]) -> String {
 }
 
 impl Error {
+    /// Whether the right-hand side failed because of the state it was evaluated
+    /// at (a chart singularity, an overflow, dependent constraint rows there).
+    /// An adaptive integrator that meets such a failure in a *trial* stage rejects
+    /// the step and retries smaller: the trial state may be far off the solution
+    /// (a stiff transient, an overshoot). If the step underflows the error is
+    /// reported as it is, not as a step-size underflow.
+    pub fn is_state_dependent(&self) -> bool {
+        matches!(
+            self,
+            Error::SingularMassMatrix { .. }
+                | Error::NonFiniteState { .. }
+                | Error::RedundantConstraints { .. }
+        )
+    }
+
     /// A [`Error::NonFiniteState`] for the given time and state.
     pub(crate) fn non_finite<T: Real, const N: usize>(
         t: T,

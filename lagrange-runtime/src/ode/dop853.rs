@@ -467,36 +467,53 @@ impl Integrator for Dop853 {
             let t_new = if last { t1 } else { t + h };
 
             let ev = &mut stats.evaluations;
-            let stage = |a: Pair<T, N>, ci: T, ev: &mut usize| a.derivative(rhs, t + ci * h, ev);
-            let k2 = stage(y.add_combination(h, co.a2, [&k1]), c[1], ev)?;
-            let k3 = stage(y.add_combination(h, co.a3, [&k1, &k2]), c[2], ev)?;
-            let k4 = stage(y.add_combination(h, co.a4, [&k1, &k3]), c[3], ev)?;
-            let k5 = stage(y.add_combination(h, co.a5, [&k1, &k3, &k4]), c[4], ev)?;
-            let k6 = stage(y.add_combination(h, co.a6, [&k1, &k4, &k5]), c[5], ev)?;
-            let k7 = stage(y.add_combination(h, co.a7, [&k1, &k4, &k5, &k6]), c[6], ev)?;
-            let k8 = stage(
-                y.add_combination(h, co.a8, [&k1, &k4, &k5, &k6, &k7]),
-                c[7],
-                ev,
-            )?;
-            let k9 = stage(
-                y.add_combination(h, co.a9, [&k1, &k4, &k5, &k6, &k7, &k8]),
-                c[8],
-                ev,
-            )?;
-            let k10 = stage(
-                y.add_combination(h, co.a10, [&k1, &k4, &k5, &k6, &k7, &k8, &k9]),
-                c[9],
-                ev,
-            )?;
-            let k11 = stage(
-                y.add_combination(h, co.a11, [&k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10]),
-                c[10],
-                ev,
-            )?;
-            let k12 = y
-                .add_combination(h, co.a12, [&k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10, &k11])
-                .derivative(rhs, t_new, ev)?;
+            let stages = (|| {
+                let stage =
+                    |a: Pair<T, N>, ci: T, ev: &mut usize| a.derivative(rhs, t + ci * h, ev);
+                let k2 = stage(y.add_combination(h, co.a2, [&k1]), c[1], ev)?;
+                let k3 = stage(y.add_combination(h, co.a3, [&k1, &k2]), c[2], ev)?;
+                let k4 = stage(y.add_combination(h, co.a4, [&k1, &k3]), c[3], ev)?;
+                let k5 = stage(y.add_combination(h, co.a5, [&k1, &k3, &k4]), c[4], ev)?;
+                let k6 = stage(y.add_combination(h, co.a6, [&k1, &k4, &k5]), c[5], ev)?;
+                let k7 = stage(y.add_combination(h, co.a7, [&k1, &k4, &k5, &k6]), c[6], ev)?;
+                let k8 = stage(
+                    y.add_combination(h, co.a8, [&k1, &k4, &k5, &k6, &k7]),
+                    c[7],
+                    ev,
+                )?;
+                let k9 = stage(
+                    y.add_combination(h, co.a9, [&k1, &k4, &k5, &k6, &k7, &k8]),
+                    c[8],
+                    ev,
+                )?;
+                let k10 = stage(
+                    y.add_combination(h, co.a10, [&k1, &k4, &k5, &k6, &k7, &k8, &k9]),
+                    c[9],
+                    ev,
+                )?;
+                let k11 = stage(
+                    y.add_combination(h, co.a11, [&k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10]),
+                    c[10],
+                    ev,
+                )?;
+                let k12 = y
+                    .add_combination(h, co.a12, [&k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10, &k11])
+                    .derivative(rhs, t_new, ev)?;
+                Ok::<_, Error>((k6, k7, k8, k9, k10, k11, k12))
+            })();
+            let (k6, k7, k8, k9, k10, k11, k12) = match stages {
+                Ok(k) => k,
+                Err(e) if e.is_state_dependent() => {
+                    // A trial state the right-hand side cannot evaluate: reject and
+                    // retry smaller (see `retry_smaller`).
+                    let floor = underflow * abs(t).max(abs(t1 - t0));
+                    h = super::dopri5::retry_smaller(h, floor, e)?;
+                    reject = true;
+                    stats.rejected += 1;
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
             let main = [&k1, &k6, &k7, &k8, &k9, &k10, &k11, &k12];
             // Σ b_i k_i, kept without the factor h for the 3rd-order estimate.
             let slope = Pair::combination(T::one(), co.b, main);

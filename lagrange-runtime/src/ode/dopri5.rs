@@ -247,22 +247,37 @@ impl Integrator for Dopri5 {
 
             let ev = &mut stats.evaluations;
             let [c2, c3, c4, c5] = co.c;
-            let k2 = y
-                .add_combination(h, co.a2, [&k1])
-                .derivative(rhs, t + c2 * h, ev)?;
-            let k3 = y
-                .add_combination(h, co.a3, [&k1, &k2])
-                .derivative(rhs, t + c3 * h, ev)?;
-            let k4 =
-                y.add_combination(h, co.a4, [&k1, &k2, &k3])
-                    .derivative(rhs, t + c4 * h, ev)?;
-            let k5 = y
-                .add_combination(h, co.a5, [&k1, &k2, &k3, &k4])
-                .derivative(rhs, t + c5 * h, ev)?;
-            let y6 = y.add_combination(h, co.a6, [&k1, &k2, &k3, &k4, &k5]);
-            let k6 = y6.derivative(rhs, t_new, ev)?;
-            let y_new = y.add_combination(h, co.a7, [&k1, &k3, &k4, &k5, &k6]);
-            let k7 = y_new.derivative(rhs, t_new, ev)?;
+            let stages = (|| {
+                let k2 = y
+                    .add_combination(h, co.a2, [&k1])
+                    .derivative(rhs, t + c2 * h, ev)?;
+                let k3 = y
+                    .add_combination(h, co.a3, [&k1, &k2])
+                    .derivative(rhs, t + c3 * h, ev)?;
+                let k4 =
+                    y.add_combination(h, co.a4, [&k1, &k2, &k3])
+                        .derivative(rhs, t + c4 * h, ev)?;
+                let k5 = y
+                    .add_combination(h, co.a5, [&k1, &k2, &k3, &k4])
+                    .derivative(rhs, t + c5 * h, ev)?;
+                let y6 = y.add_combination(h, co.a6, [&k1, &k2, &k3, &k4, &k5]);
+                let k6 = y6.derivative(rhs, t_new, ev)?;
+                let y_new = y.add_combination(h, co.a7, [&k1, &k3, &k4, &k5, &k6]);
+                let k7 = y_new.derivative(rhs, t_new, ev)?;
+                Ok::<_, Error>((k3, k4, k5, k6, y_new, k7))
+            })();
+            let (k3, k4, k5, k6, y_new, k7) = match stages {
+                Ok(k) => k,
+                Err(e) if e.is_state_dependent() => {
+                    // Relative to the span as well as to t, so that t = 0 has a floor.
+                    let floor = underflow * abs(t).max(abs(t1 - t0));
+                    h = retry_smaller(h, floor, e)?;
+                    reject = true;
+                    stats.rejected += 1;
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
             let err_vec = Pair::combination(h, co.e, [&k1, &k3, &k4, &k5, &k6, &k7]);
             let err = error_norm(&err_vec, &y, &y_new, atol, rtol);
             if err.partial_cmp(&T::zero()).is_none() {
@@ -307,6 +322,14 @@ impl Integrator for Dopri5 {
         traj.set_stats(stats);
         Ok(traj)
     }
+}
+
+/// After a trial stage failed at its state: a quarter of the step, or the failure
+/// itself once the step would be below `floor` (so a genuine singularity on the
+/// solution is reported as what it is, after about 25 retries from h = 1).
+pub(crate) fn retry_smaller<T: Real>(h: T, floor: T, e: Error) -> Result<T, Error> {
+    let h = h * T::lit(0.25);
+    if h <= floor { Err(e) } else { Ok(h) }
 }
 
 /// Hairer's norm sqrt(1/n Σ (e_i / (atol + rtol·max(|y_i|, |y_new_i|)))²) over all

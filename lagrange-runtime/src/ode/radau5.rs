@@ -289,6 +289,9 @@ impl Integrator for Radau5 {
         let mut hold = h;
         let mut faccon = T::one();
         let (mut reject, mut first) = (false, true);
+        // A state-dependent failure of the right-hand side inside a Newton iteration,
+        // kept so that repeated failures down to underflow report it.
+        let mut pending_error: Option<Error> = None;
         let mut t = t0;
         let mut y: Vec<T> = q0.iter().chain(v0.iter()).copied().collect();
         let set_scal = |scal: &mut [T], y: &[T]| {
@@ -348,6 +351,9 @@ impl Integrator for Radau5 {
                 return Err(too_many(t, self.max_steps));
             }
             if T::lit(0.1) * abs(h) <= abs(t) * uround || !h.is_finite() {
+                if let Some(e) = pending_error.take() {
+                    return Err(e);
+                }
                 return Err(Error::StepSizeUnderflow {
                     t: t.to_f64(),
                     h: h.to_f64(),
@@ -380,6 +386,7 @@ impl Integrator for Radau5 {
             faccon = faccon.max(uround).powf(T::lit(0.8));
             theta = abs(thet);
             let (mut dynold, mut thqold) = (T::zero(), T::zero());
+            let mut stage_error: Option<Error> = None;
             let outcome = loop {
                 if newt >= nit {
                     break Newton::Failed;
@@ -391,7 +398,22 @@ impl Integrator for Radau5 {
                     }
                     let ts = if s == 2 { xph } else { t + cs[s] * h };
                     let (tmp, zs) = (&w.tmp, &mut w.z[s]);
-                    rhs_into::<T, N, F>(rhs, ts, tmp, zs, &mut stats.evaluations)?;
+                    match rhs_into::<T, N, F>(rhs, ts, tmp, zs, &mut stats.evaluations) {
+                        Ok(()) => {}
+                        // A Newton iterate the right-hand side cannot evaluate (far
+                        // off the solution) is a failed iteration, as in RADAU5's
+                        // handling of a diverging Newton: halve the step. If the
+                        // steps underflow, this error is the one reported.
+                        Err(e) if e.is_state_dependent() => {
+                            stage_error = Some(e);
+                            break;
+                        }
+                        Err(e) => return Err(e),
+                    }
+                }
+                if let Some(e) = stage_error.take() {
+                    pending_error = Some(e);
+                    break Newton::Failed;
                 }
                 for i in 0..n {
                     let a = [w.z[0][i], w.z[1][i], w.z[2][i]];
@@ -478,6 +500,7 @@ impl Integrator for Radau5 {
             if err < T::one() {
                 first = false;
                 stats.accepted += 1;
+                pending_error = None;
                 if stats.accepted > 1 {
                     let facgus = (hacc / h) * (err * err / erracc).powf(T::lit(0.25)) / safe;
                     let facgus = facr.max(facl.min(facgus));
