@@ -9,20 +9,6 @@ use catalog::*;
 use lagrange::prelude::*;
 use nalgebra::{Vector2, Vector3};
 
-/// Complete elliptic integral of the first kind, K(k) = π / (2 AGM(1, √(1−k²))).
-fn elliptic_k(k: f64) -> f64 {
-    let (mut a, mut b) = (1.0f64, (1.0 - k * k).sqrt());
-    for _ in 0..60 {
-        let (an, bn) = ((a + b) / 2.0, (a * b).sqrt());
-        a = an;
-        b = bn;
-        if (a - b).abs() < 1e-17 {
-            break;
-        }
-    }
-    std::f64::consts::PI / (2.0 * a)
-}
-
 /// Large-amplitude pendulum: T = 4√(l/g) K(sin(θ0/2)), measured on the dense output
 /// from the zero crossings of θ, to 1e-9 relative up to θ0 = 179°.
 #[test]

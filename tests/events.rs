@@ -5,23 +5,9 @@
 #[path = "../examples/catalog/mod.rs"]
 mod catalog;
 
-use catalog::Pendulum;
+use catalog::{Pendulum, elliptic_k};
 use lagrange::Dop853;
 use lagrange::prelude::*;
-
-/// Complete elliptic integral of the first kind, K(k) = π / (2 AGM(1, √(1−k²))).
-fn elliptic_k(k: f64) -> f64 {
-    let (mut a, mut b) = (1.0f64, (1.0 - k * k).sqrt());
-    for _ in 0..60 {
-        let (an, bn) = ((a + b) / 2.0, (a * b).sqrt());
-        a = an;
-        b = bn;
-        if (a - b).abs() < 1e-17 {
-            break;
-        }
-    }
-    std::f64::consts::PI / (2.0 * a)
-}
 
 /// Rising crossings of θ (non-terminal, no action) are one period apart:
 /// 4√(l/g) K(sin(θ0/2)) to 1e-9 relative, up to θ0 = 175°.

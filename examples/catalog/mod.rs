@@ -7,6 +7,21 @@
 
 use lagrange::Lagrangian;
 
+/// Complete elliptic integral of the first kind, K(k) = π / (2 AGM(1, √(1−k²))):
+/// the pendulum's closed-form period is 4 √(l/g) K(sin(θ0/2)).
+pub fn elliptic_k(k: f64) -> f64 {
+    let (mut a, mut b) = (1.0f64, (1.0 - k * k).sqrt());
+    for _ in 0..60 {
+        let (an, bn) = ((a + b) / 2.0, (a * b).sqrt());
+        a = an;
+        b = bn;
+        if (a - b).abs() < 1e-17 {
+            break;
+        }
+    }
+    std::f64::consts::PI / (2.0 * a)
+}
+
 /// Simple pendulum, θ from the downward vertical. Generic over the scalar, so the
 /// same description runs in `f64` and `f32`.
 #[derive(Lagrangian, Clone, Copy, Debug)]
