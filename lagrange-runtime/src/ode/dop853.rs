@@ -19,6 +19,7 @@
 
 use super::controller::PiController;
 use super::dopri5::hinit;
+use super::settings::{StepControl, step_control_builders};
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::Error;
 use crate::func::{abs, sqrt};
@@ -45,11 +46,7 @@ use nalgebra::SVector;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dop853 {
-    rtol: f64,
-    atol: f64,
-    h0: Option<f64>,
-    hmax: Option<f64>,
-    max_steps: usize,
+    control: StepControl,
     dense7: bool,
 }
 
@@ -70,44 +67,12 @@ impl Dop853 {
     /// accurate enough when its local error is below atol + rtol·|y|.
     pub fn new(rtol: f64, atol: f64) -> Self {
         Self {
-            rtol,
-            atol,
-            h0: None,
-            hmax: None,
-            max_steps: 100_000,
+            control: StepControl::new(rtol, atol),
             dense7: true,
         }
     }
 
-    /// Sets the relative tolerance (must be > 0).
-    pub fn rtol(mut self, rtol: f64) -> Self {
-        self.rtol = rtol;
-        self
-    }
-
-    /// Sets the absolute tolerance (must be ≥ 0).
-    pub fn atol(mut self, atol: f64) -> Self {
-        self.atol = atol;
-        self
-    }
-
-    /// Sets the initial step size; by default Hairer's `hinit` estimates it.
-    pub fn h0(mut self, h0: f64) -> Self {
-        self.h0 = Some(h0);
-        self
-    }
-
-    /// Sets the largest step size; by default the length of the time span.
-    pub fn hmax(mut self, hmax: f64) -> Self {
-        self.hmax = Some(hmax);
-        self
-    }
-
-    /// Sets the budget of attempted steps (accepted + rejected); default 100 000.
-    pub fn max_steps(mut self, n: usize) -> Self {
-        self.max_steps = n;
-        self
-    }
+    step_control_builders!("Hairer's `hinit` estimates it");
 
     /// Replaces the 7th-order continuous extension by the cubic Hermite
     /// interpolant, saving 3 of the 15 evaluations per accepted step when only
@@ -118,25 +83,7 @@ impl Dop853 {
     }
 
     fn validate(&self) -> Result<(), Error> {
-        let bad =
-            |what: &str, x: f64| Err(Error::InvalidSettings(format!("DOP853: {what}, got {x}")));
-        if !(self.rtol.is_finite() && self.rtol > 0.0) {
-            return bad("rtol must be positive and finite", self.rtol);
-        }
-        if !(self.atol.is_finite() && self.atol >= 0.0) {
-            return bad("atol must be non-negative and finite", self.atol);
-        }
-        for (name, x) in [("h0", self.h0), ("hmax", self.hmax)] {
-            if let Some(x) = x.filter(|x| !(x.is_finite() && *x > 0.0)) {
-                return bad(&format!("{name} must be positive and finite"), x);
-            }
-        }
-        if self.max_steps == 0 {
-            return Err(Error::InvalidSettings(
-                "DOP853: max_steps must be positive".into(),
-            ));
-        }
-        Ok(())
+        self.control.validate("DOP853", 0.0, false)
     }
 }
 
@@ -420,15 +367,15 @@ impl Integrator for Dop853 {
         check_problem(t0, t1, &q0, &v0)?;
         let started = std::time::Instant::now();
         let co = Coefficients::<T>::new();
-        let (rtol, atol) = (T::lit(self.rtol), T::lit(self.atol));
-        let hmax = self.hmax.map_or(t1 - t0, T::lit);
+        let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
+        let hmax = self.control.hmax.map_or(t1 - t0, T::lit);
         let underflow = T::lit(16.0) * T::default_epsilon();
         let stretch = T::lit(1.01);
 
         let mut stats = Stats::default();
         let mut y = Pair::new(q0, v0);
         let mut k1 = y.derivative(rhs, t0, &mut stats.evaluations)?;
-        let mut h = match self.h0 {
+        let mut h = match self.control.h0 {
             Some(h0) => T::lit(h0).min(hmax),
             None => hinit(
                 rhs,
@@ -448,10 +395,10 @@ impl Integrator for Dop853 {
         let mut reject = false;
         let c = co.c;
         loop {
-            if stats.steps() >= self.max_steps {
+            if stats.steps() >= self.control.max_steps {
                 return Err(Error::TooManySteps {
                     t: t.to_f64(),
-                    max_steps: self.max_steps,
+                    max_steps: self.control.max_steps,
                 });
             }
             if h <= underflow * abs(t) || !h.is_finite() {

@@ -10,6 +10,7 @@
 //! per-component tolerances.
 
 use super::controller::PiController;
+use super::settings::{StepControl, step_control_builders};
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::Error;
 use crate::func::{abs, sqrt};
@@ -26,11 +27,7 @@ use nalgebra::SVector;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dopri5 {
-    rtol: f64,
-    atol: f64,
-    h0: Option<f64>,
-    hmax: Option<f64>,
-    max_steps: usize,
+    control: StepControl,
 }
 
 impl Default for Dopri5 {
@@ -50,64 +47,14 @@ impl Dopri5 {
     /// accurate enough when its local error is below atol + rtol·|y|.
     pub fn new(rtol: f64, atol: f64) -> Self {
         Self {
-            rtol,
-            atol,
-            h0: None,
-            hmax: None,
-            max_steps: 100_000,
+            control: StepControl::new(rtol, atol),
         }
     }
 
-    /// Sets the relative tolerance (must be > 0).
-    pub fn rtol(mut self, rtol: f64) -> Self {
-        self.rtol = rtol;
-        self
-    }
-
-    /// Sets the absolute tolerance (must be ≥ 0).
-    pub fn atol(mut self, atol: f64) -> Self {
-        self.atol = atol;
-        self
-    }
-
-    /// Sets the initial step size; by default Hairer's `hinit` estimates it.
-    pub fn h0(mut self, h0: f64) -> Self {
-        self.h0 = Some(h0);
-        self
-    }
-
-    /// Sets the largest step size; by default the length of the time span.
-    pub fn hmax(mut self, hmax: f64) -> Self {
-        self.hmax = Some(hmax);
-        self
-    }
-
-    /// Sets the budget of attempted steps (accepted + rejected); default 100 000.
-    pub fn max_steps(mut self, n: usize) -> Self {
-        self.max_steps = n;
-        self
-    }
+    step_control_builders!("Hairer's `hinit` estimates it");
 
     fn validate(&self) -> Result<(), Error> {
-        let bad =
-            |what: &str, x: f64| Err(Error::InvalidSettings(format!("DOPRI5: {what}, got {x}")));
-        if !(self.rtol.is_finite() && self.rtol > 0.0) {
-            return bad("rtol must be positive and finite", self.rtol);
-        }
-        if !(self.atol.is_finite() && self.atol >= 0.0) {
-            return bad("atol must be non-negative and finite", self.atol);
-        }
-        for (name, x) in [("h0", self.h0), ("hmax", self.hmax)] {
-            if let Some(x) = x.filter(|x| !(x.is_finite() && *x > 0.0)) {
-                return bad(&format!("{name} must be positive and finite"), x);
-            }
-        }
-        if self.max_steps == 0 {
-            return Err(Error::InvalidSettings(
-                "DOPRI5: max_steps must be positive".into(),
-            ));
-        }
-        Ok(())
+        self.control.validate("DOPRI5", 0.0, false)
     }
 }
 
@@ -198,8 +145,8 @@ impl Integrator for Dopri5 {
         self.validate()?;
         check_problem(t0, t1, &q0, &v0)?;
         let co = Coefficients::<T>::new();
-        let (rtol, atol) = (T::lit(self.rtol), T::lit(self.atol));
-        let hmax = self.hmax.map_or(t1 - t0, T::lit);
+        let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
+        let hmax = self.control.hmax.map_or(t1 - t0, T::lit);
         let underflow = T::lit(16.0) * T::default_epsilon();
         let stretch = T::lit(1.01);
 
@@ -207,7 +154,7 @@ impl Integrator for Dopri5 {
         let mut stats = Stats::default();
         let mut y = Pair::new(q0, v0);
         let mut k1 = y.derivative(rhs, t0, &mut stats.evaluations)?;
-        let mut h = match self.h0 {
+        let mut h = match self.control.h0 {
             Some(h0) => T::lit(h0).min(hmax),
             None => hinit(
                 rhs,
@@ -226,10 +173,10 @@ impl Integrator for Dopri5 {
         let mut t = t0;
         let mut reject = false;
         loop {
-            if stats.steps() >= self.max_steps {
+            if stats.steps() >= self.control.max_steps {
                 return Err(Error::TooManySteps {
                     t: t.to_f64(),
-                    max_steps: self.max_steps,
+                    max_steps: self.control.max_steps,
                 });
             }
             if h <= underflow * abs(t) || !h.is_finite() {

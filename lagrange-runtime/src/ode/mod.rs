@@ -22,6 +22,7 @@ mod mechanical;
 mod radau5;
 mod rattle;
 mod rk4;
+mod settings;
 mod verlet;
 
 pub use dense::DenseSegment;

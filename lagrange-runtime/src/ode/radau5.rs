@@ -5,6 +5,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::linalg::{lu_factor, lu_solve};
+use super::settings::{StepControl, step_control_builders};
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::Error;
 use crate::func::{abs, sqrt};
@@ -39,11 +40,7 @@ use nalgebra::{DMatrix, SVector};
 /// The dense output is the cubic Hermite interpolant between accepted steps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Radau5 {
-    rtol: f64,
-    atol: f64,
-    h0: Option<f64>,
-    hmax: Option<f64>,
-    max_steps: usize,
+    control: StepControl,
     max_newton: usize,
 }
 
@@ -64,32 +61,12 @@ impl Radau5 {
     /// `radau5.f`, before its internal transformation).
     pub fn new(rtol: f64, atol: f64) -> Self {
         Self {
-            rtol,
-            atol,
-            h0: None,
-            hmax: None,
-            max_steps: 100_000,
+            control: StepControl::new(rtol, atol),
             max_newton: 7,
         }
     }
 
-    /// Sets the initial step size (default 1e-6, as in `radau5.f`).
-    pub fn h0(mut self, h0: f64) -> Self {
-        self.h0 = Some(h0);
-        self
-    }
-
-    /// Sets the largest step size; by default the length of the time span.
-    pub fn hmax(mut self, hmax: f64) -> Self {
-        self.hmax = Some(hmax);
-        self
-    }
-
-    /// Sets the budget of attempted steps; default 100 000.
-    pub fn max_steps(mut self, n: usize) -> Self {
-        self.max_steps = n;
-        self
-    }
+    step_control_builders!("1e-6, as in `radau5.f`");
 
     /// Sets the Newton iterations allowed per attempt (NIT, default 7).
     pub fn max_newton(mut self, n: usize) -> Self {
@@ -98,22 +75,10 @@ impl Radau5 {
     }
 
     fn validate(&self) -> Result<(), Error> {
-        let bad =
-            |what: &str, x: f64| Err(Error::InvalidSettings(format!("RADAU5: {what}, got {x}")));
-        if !(self.rtol.is_finite() && self.rtol > 1e-15) {
-            return bad("rtol must be finite and above 1e-15", self.rtol);
-        }
-        if !(self.atol.is_finite() && self.atol > 0.0) {
-            return bad("atol must be positive and finite", self.atol);
-        }
-        for (name, x) in [("h0", self.h0), ("hmax", self.hmax)] {
-            if let Some(x) = x.filter(|x| !(x.is_finite() && *x > 0.0)) {
-                return bad(&format!("{name} must be positive and finite"), x);
-            }
-        }
-        if self.max_steps == 0 || self.max_newton == 0 {
+        self.control.validate("RADAU5", 1e-15, true)?;
+        if self.max_newton == 0 {
             return Err(Error::InvalidSettings(
-                "RADAU5: max_steps and max_newton must be positive".into(),
+                "RADAU5: max_newton must be positive".into(),
             ));
         }
         Ok(())
@@ -268,8 +233,11 @@ impl Integrator for Radau5 {
         };
         // radau5.f's tolerance transformation and Newton stopping criterion.
         let uround = T::default_epsilon();
-        let rtol_t = 0.1 * self.rtol.powf(2.0 / 3.0);
-        let (rtol, atol) = (T::lit(rtol_t), T::lit(rtol_t * self.atol / self.rtol));
+        let rtol_t = 0.1 * self.control.rtol.powf(2.0 / 3.0);
+        let (rtol, atol) = (
+            T::lit(rtol_t),
+            T::lit(rtol_t * self.control.atol / self.control.rtol),
+        );
         let fnewt = (T::lit(10.0) * uround / rtol).max(T::lit(0.03f64.min(rtol_t.sqrt())));
         let nit = self.max_newton;
         let safe = T::lit(0.9);
@@ -279,8 +247,8 @@ impl Integrator for Radau5 {
         let cfac = safe * T::lit((1 + 2 * nit) as f64);
 
         let mut stats = Stats::default();
-        let hmaxn = self.hmax.map_or(t1 - t0, T::lit).min(t1 - t0);
-        let mut h = T::lit(self.h0.unwrap_or(1e-6)).min(hmaxn);
+        let hmaxn = self.control.hmax.map_or(t1 - t0, T::lit).min(t1 - t0);
+        let mut h = T::lit(self.control.h0.unwrap_or(1e-6)).min(hmaxn);
         let mut last = false;
         if t0 + h * T::lit(1.0001) - t1 >= T::zero() {
             h = t1 - t0;
@@ -347,8 +315,8 @@ impl Integrator for Radau5 {
                 }
             }
             // Label 30: a new attempt with the current factorisation.
-            if stats.steps() >= self.max_steps {
-                return Err(too_many(t, self.max_steps));
+            if stats.steps() >= self.control.max_steps {
+                return Err(too_many(t, self.control.max_steps));
             }
             if T::lit(0.1) * abs(h) <= abs(t) * uround || !h.is_finite() {
                 if let Some(e) = pending_error.take() {

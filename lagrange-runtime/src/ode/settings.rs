@@ -1,0 +1,104 @@
+//! Step-size settings shared by the adaptive integrators (DOPRI5, DOP853,
+//! RADAU5): tolerances, initial and largest step, and the step budget, with one
+//! validation and one set of builder methods instead of a copy per method.
+
+use crate::error::Error;
+
+/// Tolerances and step limits of an adaptive method.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct StepControl {
+    pub rtol: f64,
+    pub atol: f64,
+    pub h0: Option<f64>,
+    pub hmax: Option<f64>,
+    pub max_steps: usize,
+}
+
+impl StepControl {
+    /// The given tolerances, no step limits, 100 000 attempted steps.
+    pub fn new(rtol: f64, atol: f64) -> Self {
+        Self {
+            rtol,
+            atol,
+            h0: None,
+            hmax: None,
+            max_steps: 100_000,
+        }
+    }
+
+    /// rtol must exceed `min_rtol`; atol must be ≥ 0 (> 0 with `positive_atol`);
+    /// h0 and hmax, if set, positive and finite; the step budget positive.
+    pub fn validate(&self, method: &str, min_rtol: f64, positive_atol: bool) -> Result<(), Error> {
+        let bad = |what: String, x: f64| {
+            Err(Error::InvalidSettings(format!("{method}: {what}, got {x}")))
+        };
+        if !(self.rtol.is_finite() && self.rtol > min_rtol) {
+            return bad(
+                format!("rtol must be finite and above {min_rtol}"),
+                self.rtol,
+            );
+        }
+        let atol_ok = if positive_atol {
+            self.atol > 0.0
+        } else {
+            self.atol >= 0.0
+        };
+        if !(self.atol.is_finite() && atol_ok) {
+            let what = if positive_atol {
+                "positive"
+            } else {
+                "non-negative"
+            };
+            return bad(format!("atol must be {what} and finite"), self.atol);
+        }
+        for (name, x) in [("h0", self.h0), ("hmax", self.hmax)] {
+            if let Some(x) = x.filter(|x| !(x.is_finite() && *x > 0.0)) {
+                return bad(format!("{name} must be positive and finite"), x);
+            }
+        }
+        if self.max_steps == 0 {
+            return Err(Error::InvalidSettings(format!(
+                "{method}: max_steps must be positive"
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// The builder methods of [`StepControl`] for an integrator with a `control`
+/// field; `$h0` documents what happens when no initial step is given.
+macro_rules! step_control_builders {
+    ($h0:literal) => {
+        /// Sets the relative tolerance (must be > 0).
+        pub fn rtol(mut self, rtol: f64) -> Self {
+            self.control.rtol = rtol;
+            self
+        }
+
+        /// Sets the absolute tolerance (must be ≥ 0).
+        pub fn atol(mut self, atol: f64) -> Self {
+            self.control.atol = atol;
+            self
+        }
+
+        #[doc = concat!("Sets the initial step size; by default ", $h0, ".")]
+        pub fn h0(mut self, h0: f64) -> Self {
+            self.control.h0 = Some(h0);
+            self
+        }
+
+        /// Sets the largest step size; by default the length of the time span.
+        pub fn hmax(mut self, hmax: f64) -> Self {
+            self.control.hmax = Some(hmax);
+            self
+        }
+
+        /// Sets the budget of attempted steps (accepted + rejected); default 100 000.
+        pub fn max_steps(mut self, n: usize) -> Self {
+            self.control.max_steps = n;
+            self
+        }
+    };
+}
+
+pub(crate) use step_control_builders;
