@@ -80,7 +80,7 @@ pub mod prelude {
     pub use lagrange_macros::Lagrangian;
     pub use lagrange_runtime::{
         Constrained, ConstrainedDynamics, Dopri5, Drift, Error, Lagrangian, Real, Reduced,
-        ReducedDynamics, Rk4, Simulation, Trajectory,
+        ReducedDynamics, Rk4, Simulation, Study, Sweep, Trajectory, WorkPrecision,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }

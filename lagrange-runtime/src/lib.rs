@@ -32,6 +32,10 @@
 //! let [phi, vel] = traj.max_residuals();
 //! ```
 //!
+//! [`study`] runs work-precision studies: integrators × tolerances or step sizes
+//! on one problem, each run's error against a closed form or a DOP853 reference
+//! and its cost, as a markdown/CSV table and (feature `plot`) a log-log PNG.
+//!
 //! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
 //! number of degrees of freedom `N`, a type-level constant.
 
@@ -45,6 +49,7 @@ mod real;
 mod reduced;
 mod root;
 mod simulation;
+pub mod study;
 mod system;
 mod trajectory;
 
@@ -58,5 +63,6 @@ pub use ode::{
 pub use real::Real;
 pub use reduced::ReducedDynamics;
 pub use simulation::Simulation;
+pub use study::{Study, Sweep, WorkPrecision};
 pub use system::{Constrained, Lagrangian, Reduced};
 pub use trajectory::Trajectory;
