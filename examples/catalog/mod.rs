@@ -160,3 +160,4 @@ pub struct DrivenPendulum {
     pub f: f64,
 }
 pub mod constrained;
+pub mod study;
