@@ -315,7 +315,8 @@ fn lyapunov(sys: &DoublePendulum, q0: [f64; 2], t_end: f64) -> Result<(f64, f64,
         .iter()
         .find(|(_, x)| *x > 1e-2)
         .map_or(f64::INFINITY, |p| p.0);
-    let mut table = String::from("| t | max |q(tol 1e-13) − q(tol 1e-14)| |\n|---|---|\n");
+    let mut table =
+        String::from("| t | max_i \\|q_i(tol 1e-13) − q_i(tol 1e-14)\\| |\n|---|---|\n");
     for &(t, x) in d.iter().step_by(50) {
         table += &format!("| {t:.0} | {x:.1e} |\n");
     }
