@@ -110,7 +110,8 @@ pub mod prelude {
     pub use lagrange_macros::Lagrangian;
     pub use lagrange_runtime::{
         Constrained, ConstrainedDynamics, Direction, Dopri5, Drift, Error, Event, EventRun,
-        Lagrangian, Occurrence, Real, Reduced, ReducedDynamics, Rk4, Simulation, Trajectory,
+        Lagrangian, Occurrence, Real, Reduced, ReducedDynamics, Rk4, Simulation, Study, Sweep,
+        Trajectory, WorkPrecision,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }

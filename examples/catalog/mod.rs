@@ -47,6 +47,7 @@ pub struct Pendulum<T> {
                                l * sin(theta) * sin(phi),
                                -l * cos(theta)]),
     gravity = [0, 0, -g],
+    emit(hamiltonian),
 )]
 pub struct SphericalPendulum {
     pub m: f64,
@@ -118,6 +119,7 @@ pub struct HeavyParticle {
     point(b1, mass = m1, at = [x1, y1]),
     point(b2, mass = m2, at = [x1 + l2 * sin(th2), y1 - l2 * cos(th2)]),
     gravity = [0, -g],
+    emit(hamiltonian),
 )]
 pub struct DoublePendulum {
     pub m1: f64,
@@ -179,3 +181,4 @@ pub struct DrivenPendulum {
 pub mod cavity;
 pub mod constrained;
 pub mod extremes;
+pub mod study;

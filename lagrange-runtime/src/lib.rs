@@ -46,6 +46,10 @@
 //! [`Rattle`] integrates holonomic constraints with a constant mass matrix
 //! symplectically, keeping Φ = 0 and Φ_q q̇ = 0 to round-off.
 //!
+//! [`study`] runs work-precision studies: integrators × tolerances or step sizes
+//! on one problem, each run's error against a closed form or a DOP853 reference
+//! and its cost, as a markdown/CSV table and (feature `plot`) a log-log PNG.
+//!
 //! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
 //! number of degrees of freedom `N`, a type-level constant.
 
@@ -60,6 +64,7 @@ mod real;
 mod reduced;
 mod root;
 mod simulation;
+pub mod study;
 mod system;
 mod trajectory;
 
@@ -74,5 +79,6 @@ pub use ode::{
 pub use real::Real;
 pub use reduced::ReducedDynamics;
 pub use simulation::{EventSimulation, Simulation};
+pub use study::{Study, Sweep, WorkPrecision};
 pub use system::{Constrained, Lagrangian, Reduced};
 pub use trajectory::Trajectory;

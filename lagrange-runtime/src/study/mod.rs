@@ -1,0 +1,441 @@
+//! Work-precision studies: how much accuracy each integrator buys, and at what cost.
+//!
+//! A study sweeps integrators × settings (tolerances or step sizes) over one
+//! initial value problem and measures, for every run,
+//!
+//! - the error of the positions at the final time against a reference (max norm),
+//! - the largest relative drift of the conserved quantity along the run,
+//! - the cost: right-hand-side evaluations, steps and wall time.
+//!
+//! The core knows nothing about systems: it takes a closure that runs one
+//! configuration, so the same study drives [`Simulation::run`],
+//! [`run_constrained`] and [`run_reduced`] alike. The reference is a closed form
+//! q(t) when the problem has one, a trajectory the caller computed, or by default
+//! a DOP853 run of the same closure at tolerance 1e-14 — checked against a second
+//! run at 1e-13, whose distance estimates the reference's own error (beyond a
+//! chaotic system's predictability horizon that estimate is large, and says that
+//! no method's error can be measured there).
+//!
+//! A run that fails (a step budget exhausted on a stiff problem, a Newton
+//! failure, a chart singularity) becomes a row holding its typed [`Error`]: a
+//! failure is a result of the study, not a reason to stop it.
+//!
+//! ```
+//! use lagrange_runtime::study::{Sweep, WorkPrecision};
+//! use lagrange_runtime::{Dopri5, Lagrangian, Rk4, Simulation};
+//! # use nalgebra::{Matrix1, Vector1};
+//! # struct Oscillator;
+//! # impl Lagrangian<f64, 1> for Oscillator {
+//! #     const COORDINATES: [&'static str; 1] = ["x"];
+//! #     const RHEONOMIC: bool = false;
+//! #     fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> { Matrix1::new(1.0) }
+//! #     fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+//! #     fn generalized_forces(&self, q: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { -q }
+//! #     fn mass_matrix_and_rhs(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> (Matrix1<f64>, Vector1<f64>) {
+//! #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+//! #     }
+//! #     fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 { 0.5 * v[0] * v[0] }
+//! #     fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 { 0.5 * q[0] * q[0] }
+//! #     fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
+//! #         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+//! #     }
+//! # }
+//! let sys = Oscillator; // x'' = -x, x(0) = 1, x'(0) = 0
+//! let study = WorkPrecision::new(|m| Simulation::new(&sys).integrator(m).run([1.0], [0.0], 0.0..10.0))
+//!     .exact(|t| Vector1::new(t.cos()))
+//!     .sweep(Sweep::steps("RK4", &[0.1, 0.01], Rk4::step))
+//!     .sweep(Sweep::tolerances("DOPRI5", &[1e-6, 1e-10], Dopri5::tol))
+//!     .run()?;
+//! println!("{}", study.to_markdown());
+//! let best = study.cheapest(1e-8).unwrap();
+//! assert!(best.measurement().unwrap().error <= 1e-8);
+//! # Ok::<(), lagrange_runtime::Error>(())
+//! ```
+//!
+//! [`Simulation::run`]: crate::Simulation::run
+//! [`run_constrained`]: crate::Simulation::run_constrained
+//! [`run_reduced`]: crate::Simulation::run_reduced
+
+mod method;
+#[cfg(feature = "plot")]
+mod plot;
+mod report;
+
+pub use method::{Method, Setting, Sweep};
+
+use crate::error::Error;
+use crate::ode::{Dop853, Stats};
+use crate::real::Real;
+use crate::trajectory::Trajectory;
+use nalgebra::SVector;
+use std::time::{Duration, Instant};
+
+/// Tolerance of the default reference run (DOP853).
+pub const REFERENCE_TOLERANCE: f64 = 1e-14;
+
+/// Step budget of the default reference runs: generous, since a reference that
+/// stops early leaves the whole study without a yardstick.
+const REFERENCE_MAX_STEPS: usize = 50_000_000;
+
+/// The closure that runs one configuration.
+type RunFn<'a, T, const N: usize> = Box<dyn Fn(Method) -> Result<Trajectory<T, N>, Error> + 'a>;
+
+/// The progress callback.
+type RowFn<'a> = Box<dyn FnMut(&Row) + 'a>;
+
+/// Where the reference positions come from.
+enum Reference<'a, const N: usize> {
+    /// DOP853 at the given tolerance through the study's own closure.
+    Computed { tolerance: f64, check: bool },
+    /// A closed form q(t).
+    Exact(Box<dyn Fn(f64) -> SVector<f64, N> + 'a>),
+    /// A trajectory the caller computed (e.g. in f64 for an f32 study).
+    Given(Trajectory<f64, N>),
+}
+
+/// A work-precision study under construction: the closure that runs one
+/// configuration, the reference, the sweeps. [`run`](Self::run) measures it.
+///
+/// `T` is the scalar the runs compute in; errors and costs are reported in f64.
+pub struct WorkPrecision<'a, T: Real, const N: usize> {
+    run: RunFn<'a, T, N>,
+    reference: Reference<'a, N>,
+    sweeps: Vec<Sweep>,
+    repeats: usize,
+    repeat_budget: Duration,
+    conservative: bool,
+    on_row: Option<RowFn<'a>>,
+}
+
+impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
+    /// A study of the problem that `run` integrates with the method it is given.
+    /// The closure must integrate the same initial value problem every time; only
+    /// the method changes.
+    ///
+    /// Defaults: a DOP853 reference at [`REFERENCE_TOLERANCE`] (checked against
+    /// 1e-13), up to 5 timed repeats per run within 0.2 s, and a conserved
+    /// integral (its drift is measured).
+    pub fn new(run: impl Fn(Method) -> Result<Trajectory<T, N>, Error> + 'a) -> Self {
+        Self {
+            run: Box::new(run),
+            reference: Reference::Computed {
+                tolerance: REFERENCE_TOLERANCE,
+                check: true,
+            },
+            sweeps: Vec::new(),
+            repeats: 5,
+            repeat_budget: Duration::from_millis(200),
+            conservative: true,
+            on_row: None,
+        }
+    }
+
+    /// Uses a closed form: `exact(t)` is the exact q(t). It is evaluated only at
+    /// the runs' final time, so a solution known only there will do (a periodic
+    /// motion after a whole number of periods is back at its initial state).
+    pub fn exact(mut self, exact: impl Fn(f64) -> SVector<f64, N> + 'a) -> Self {
+        self.reference = Reference::Exact(Box::new(exact));
+        self
+    }
+
+    /// Uses a reference trajectory computed by the caller (positions at the final
+    /// time are read from its dense output). The way to give an f32 study an
+    /// f64 reference.
+    pub fn reference(mut self, reference: Trajectory<f64, N>) -> Self {
+        self.reference = Reference::Given(reference);
+        self
+    }
+
+    /// Computes the reference with DOP853 at `tolerance` through the study's
+    /// closure (the default, at [`REFERENCE_TOLERANCE`]); with `check`, a second
+    /// run at 10 × `tolerance` estimates the reference's own error.
+    pub fn computed_reference(mut self, tolerance: f64, check: bool) -> Self {
+        self.reference = Reference::Computed { tolerance, check };
+        self
+    }
+
+    /// Adds a method's sweep.
+    pub fn sweep(mut self, sweep: Sweep) -> Self {
+        self.sweeps.push(sweep);
+        self
+    }
+
+    /// Times each run up to `repeats` times (at least once), repeating only while
+    /// the time spent on that run stays below `budget`; the reported wall time is
+    /// the median. Cheap runs are noisy, expensive ones are not.
+    pub fn repeats(mut self, repeats: usize, budget: Duration) -> Self {
+        self.repeats = repeats;
+        self.repeat_budget = budget;
+        self
+    }
+
+    /// Whether the system has a conserved integral (energy or Jacobi integral).
+    /// With `false` no drift is reported (a dissipative or driven system).
+    pub fn conservative(mut self, conservative: bool) -> Self {
+        self.conservative = conservative;
+        self
+    }
+
+    /// Calls `f` with every row as soon as it is measured (progress reports).
+    pub fn on_row(mut self, f: impl FnMut(&Row) + 'a) -> Self {
+        self.on_row = Some(Box::new(f));
+        self
+    }
+
+    /// Runs the reference and every sweep.
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] for zero repeats or a non-positive reference
+    /// tolerance; whatever the reference run reports if it fails (the study
+    /// has no yardstick then). A failing *method* run is not an error: its row
+    /// holds the error.
+    pub fn run(mut self) -> Result<Study, Error> {
+        if self.repeats == 0 {
+            return Err(Error::InvalidSettings(
+                "work-precision study: repeats must be at least 1".into(),
+            ));
+        }
+        let (reference_at, reference) = self.prepare_reference()?;
+        let mut rows = Vec::new();
+        for sweep in std::mem::take(&mut self.sweeps) {
+            for &(setting, method) in sweep.runs() {
+                let outcome = self.measure(method, &reference_at);
+                let row = Row {
+                    method: sweep.name().to_string(),
+                    setting,
+                    outcome,
+                };
+                if let Some(f) = self.on_row.as_mut() {
+                    f(&row);
+                }
+                rows.push(row);
+            }
+        }
+        Ok(Study { reference, rows })
+    }
+
+    /// The reference positions as a function of the final time, and its
+    /// description.
+    #[allow(clippy::type_complexity)]
+    fn prepare_reference(
+        &mut self,
+    ) -> Result<
+        (
+            Box<dyn Fn(f64) -> Option<SVector<f64, N>> + 'a>,
+            ReferenceKind,
+        ),
+        Error,
+    > {
+        match std::mem::replace(
+            &mut self.reference,
+            Reference::Computed {
+                tolerance: REFERENCE_TOLERANCE,
+                check: false,
+            },
+        ) {
+            Reference::Exact(f) => Ok((Box::new(move |t| Some(f(t))), ReferenceKind::Exact)),
+            Reference::Given(traj) => Ok((
+                Box::new(move |t| traj.state_at(t).map(|(q, _)| q)),
+                ReferenceKind::Given,
+            )),
+            Reference::Computed { tolerance, check } => {
+                if !(tolerance.is_finite() && tolerance > 0.0) {
+                    return Err(Error::InvalidSettings(format!(
+                        "work-precision study: reference tolerance must be positive, got {tolerance}"
+                    )));
+                }
+                let dop853 = |tol| Method::Dop853(Dop853::tol(tol).max_steps(REFERENCE_MAX_STEPS));
+                let started = Instant::now();
+                let traj = (self.run)(dop853(tolerance))?;
+                let wall_time = started.elapsed();
+                let uncertainty = if check {
+                    let coarse = (self.run)(dop853(10.0 * tolerance))?;
+                    Some(max_distance(&traj.final_state().0, &coarse.final_state().0))
+                } else {
+                    None
+                };
+                let kind = ReferenceKind::Computed {
+                    tolerance,
+                    evaluations: traj.stats().evaluations,
+                    wall_time,
+                    uncertainty,
+                };
+                let at = move |t: f64| traj.state_at(T::lit(t)).map(|(q, _)| q.map(|x| x.to_f64()));
+                Ok((Box::new(at), kind))
+            }
+        }
+    }
+
+    /// Runs one configuration (repeated for timing) and measures it.
+    fn measure(
+        &self,
+        method: Method,
+        reference_at: &dyn Fn(f64) -> Option<SVector<f64, N>>,
+    ) -> Result<Measurement, Error> {
+        let started = Instant::now();
+        let traj = (self.run)(method)?;
+        let first = started.elapsed();
+        let mut times = vec![first];
+        let mut spent = first;
+        while times.len() < self.repeats && spent < self.repeat_budget {
+            let started = Instant::now();
+            // The runs are deterministic: only the time of a repeat is new.
+            drop((self.run)(method)?);
+            let elapsed = started.elapsed();
+            times.push(elapsed);
+            spent += elapsed;
+        }
+        times.sort();
+        let wall_time = times[times.len() / 2];
+
+        let t_end = traj.times()[traj.len() - 1].to_f64();
+        let exact = reference_at(t_end).ok_or_else(|| {
+            Error::InvalidSettings(format!(
+                "work-precision study: the run ends at t = {t_end}, outside the reference"
+            ))
+        })?;
+        let q = traj.final_state().0.map(|x| x.to_f64());
+        Ok(Measurement {
+            error: max_distance(&q, &exact),
+            drift: self.conservative.then(|| traj.integral_drift().to_f64()),
+            stats: *traj.stats(),
+            wall_time,
+        })
+    }
+}
+
+/// max_i |a_i − b_i|, NaN-propagating (a NaN must not pass for a small error).
+fn max_distance<T: Real, const N: usize>(a: &SVector<T, N>, b: &SVector<T, N>) -> f64 {
+    a.iter().zip(b.iter()).fold(0.0, |m: f64, (x, y)| {
+        let d = (*x - *y).to_f64().abs();
+        if d.is_nan() || m.is_nan() {
+            f64::NAN
+        } else {
+            m.max(d)
+        }
+    })
+}
+
+/// Where a study's reference came from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ReferenceKind {
+    /// A closed form.
+    Exact,
+    /// A trajectory given by the caller.
+    Given,
+    /// DOP853 through the study's closure.
+    Computed {
+        /// Its tolerance.
+        tolerance: f64,
+        /// Its right-hand-side evaluations.
+        evaluations: usize,
+        /// Its wall time.
+        wall_time: Duration,
+        /// max |q_ref(t_end) − q_check(t_end)| against the run at 10 × tolerance,
+        /// if checked: an estimate of the reference's own error. Errors below it
+        /// are not resolved.
+        uncertainty: Option<f64>,
+    },
+}
+
+impl ReferenceKind {
+    /// The estimated error of the reference itself, if known (zero for a closed
+    /// form).
+    pub fn uncertainty(&self) -> Option<f64> {
+        match *self {
+            ReferenceKind::Exact => Some(0.0),
+            ReferenceKind::Given => None,
+            ReferenceKind::Computed { uncertainty, .. } => uncertainty,
+        }
+    }
+}
+
+/// What one successful run measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Measurement {
+    /// max_i |q_i(t_end) − q_ref,i(t_end)|.
+    pub error: f64,
+    /// max over the run of |I(t) − I(t0)| / |I(t0)| for the conserved integral I
+    /// (energy or Jacobi integral); `None` for a study of a non-conservative system.
+    pub drift: Option<f64>,
+    /// The integrator's counters (its own `wall_time` covers the integration
+    /// alone, without the closure's setup).
+    pub stats: Stats,
+    /// Median wall time of the closure over the timed repeats.
+    pub wall_time: Duration,
+}
+
+/// One run of a study: which method, which setting, and what came out.
+#[derive(Debug)]
+pub struct Row {
+    /// The sweep's name.
+    pub method: String,
+    /// The step size or tolerance.
+    pub setting: Setting,
+    /// The measurement, or the typed error the run stopped with.
+    pub outcome: Result<Measurement, Error>,
+}
+
+impl Row {
+    /// The measurement of a successful run.
+    pub fn measurement(&self) -> Option<&Measurement> {
+        self.outcome.as_ref().ok()
+    }
+}
+
+/// The measured study: the reference's description and one row per run, in the
+/// order of the sweeps and their settings.
+#[derive(Debug)]
+pub struct Study {
+    reference: ReferenceKind,
+    rows: Vec<Row>,
+}
+
+impl Study {
+    /// Where the reference came from.
+    pub fn reference(&self) -> &ReferenceKind {
+        &self.reference
+    }
+
+    /// All rows.
+    pub fn rows(&self) -> &[Row] {
+        &self.rows
+    }
+
+    /// The fastest successful run (by wall time) whose final error is at most
+    /// `max_error`, if any.
+    pub fn cheapest(&self, max_error: f64) -> Option<&Row> {
+        self.rows
+            .iter()
+            .filter(|r| r.measurement().is_some_and(|m| m.error <= max_error))
+            .min_by_key(|r| r.measurement().map(|m| m.wall_time))
+    }
+
+    /// The fastest successful run of each method whose final error is at most
+    /// `max_error`, fastest first.
+    pub fn cheapest_per_method(&self, max_error: f64) -> Vec<&Row> {
+        let mut best: Vec<&Row> = Vec::new();
+        for row in &self.rows {
+            let Some(m) = row.measurement().filter(|m| m.error <= max_error) else {
+                continue;
+            };
+            match best.iter_mut().find(|b| b.method == row.method) {
+                Some(b) if b.measurement().is_some_and(|bm| bm.wall_time > m.wall_time) => *b = row,
+                Some(_) => {}
+                None => best.push(row),
+            }
+        }
+        best.sort_by_key(|r| r.measurement().map(|m| m.wall_time));
+        best
+    }
+
+    /// Appends the rows of `other` (a study of the same problem, e.g. in another
+    /// scalar type); the reference description of `self` is kept.
+    pub fn merge(mut self, other: Study) -> Study {
+        self.rows.extend(other.rows);
+        self
+    }
+}
+
+#[cfg(test)]
+mod tests;

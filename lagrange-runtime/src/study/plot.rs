@@ -1,0 +1,205 @@
+//! Work-precision diagrams as PNG, with plotters and a bundled font.
+//!
+//! plotters' default text rendering asks the system for fonts (fontconfig); many
+//! build machines and containers have none, so the `plot` feature enables
+//! plotters' `ab_glyph` text backend and registers DejaVu Sans, shipped in
+//! `fonts/` with its licence, as the "sans-serif" family.
+
+use super::{Measurement, Row, Study};
+use crate::error::Error;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::OnceLock;
+
+const FONT: &[u8] = include_bytes!("../../fonts/DejaVuSans.ttf");
+
+/// Errors and drifts below this are drawn at it: a log axis has no zero, and
+/// nothing below f64 round-off is meaningful anyway.
+const FLOOR: f64 = 1e-17;
+
+/// Tableau 10: distinguishable, and legible on white.
+const COLORS: [RGBColor; 10] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(23, 190, 207),
+];
+
+/// Registers the bundled font once per process; the outcome is remembered, so a
+/// failure is reported on every call rather than only the first.
+fn register_font() -> Result<(), Error> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok = *REGISTERED.get_or_init(|| {
+        plotters::style::register_font("sans-serif", FontStyle::Normal, FONT).is_ok()
+    });
+    if ok {
+        Ok(())
+    } else {
+        Err(plot_error(
+            "the bundled font DejaVuSans.ttf could not be parsed",
+        ))
+    }
+}
+
+fn plot_error(e: impl std::fmt::Display) -> Error {
+    Error::Io(std::io::Error::other(format!("plot: {e}")))
+}
+
+/// One panel: which cost on x, which accuracy measure on y.
+struct Panel {
+    x_label: &'static str,
+    y_label: &'static str,
+    x: fn(&Measurement) -> f64,
+    y: fn(&Measurement) -> Option<f64>,
+}
+
+const PANELS: [Panel; 3] = [
+    Panel {
+        x_label: "RHS evaluations",
+        y_label: "max |q - q_ref| at t_end",
+        x: |m| m.stats.evaluations as f64,
+        y: |m| Some(m.error),
+    },
+    Panel {
+        x_label: "wall time [s]",
+        y_label: "max |q - q_ref| at t_end",
+        x: |m| m.wall_time.as_secs_f64(),
+        y: |m| Some(m.error),
+    },
+    Panel {
+        x_label: "wall time [s]",
+        y_label: "max relative drift of the integral",
+        x: |m| m.wall_time.as_secs_f64(),
+        y: |m| m.drift,
+    },
+];
+
+impl Study {
+    /// Draws the study as a log-log PNG of 1500 × 500 pixels: final-time
+    /// position error against RHS evaluations and against wall time, and the
+    /// drift of the conserved integral against wall time (left empty for a
+    /// non-conservative study). One colour per method, its settings joined in
+    /// sweep order; failed runs are not drawn, the legend counts them.
+    ///
+    /// # Errors
+    /// [`Error::Io`] if the font cannot be loaded or the file not written.
+    pub fn plot_png(&self, path: impl AsRef<Path>, title: &str) -> Result<(), Error> {
+        register_font()?;
+        let root = BitMapBackend::new(path.as_ref(), (1500, 500)).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_error)?;
+        let body = root.titled(title, ("sans-serif", 22)).map_err(plot_error)?;
+        let groups = self.by_method();
+        for (k, (area, panel)) in body.split_evenly((1, 3)).iter().zip(&PANELS).enumerate() {
+            draw_panel(area, panel, &groups, k == 0)?;
+        }
+        root.present().map_err(plot_error)
+    }
+
+    /// The rows grouped by method, in order of first appearance.
+    fn by_method(&self) -> Vec<(&str, Vec<&Row>)> {
+        let mut groups: Vec<(&str, Vec<&Row>)> = Vec::new();
+        for row in &self.rows {
+            match groups.iter_mut().find(|(name, _)| *name == row.method) {
+                Some((_, rows)) => rows.push(row),
+                None => groups.push((&row.method, vec![row])),
+            }
+        }
+        groups
+    }
+}
+
+/// The points of one method on one panel, in sweep order.
+fn points(rows: &[&Row], panel: &Panel) -> Vec<(f64, f64)> {
+    rows.iter()
+        .filter_map(|r| r.measurement())
+        .filter_map(|m| Some(((panel.x)(m), (panel.y)(m)?)))
+        .filter(|(x, y)| x.is_finite() && *x > 0.0 && y.is_finite())
+        .map(|(x, y)| (x, y.max(FLOOR)))
+        .collect()
+}
+
+/// A log range covering `values` with some margin; (1, 10) when there are none.
+fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
+    let (lo, hi) = values.fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    });
+    if !(lo.is_finite() && hi > 0.0) {
+        return 1.0..10.0;
+    }
+    // A factor 2 on each side keeps markers off the frame; a single point
+    // still gets a decade.
+    let (lo, hi) = (lo / 2.0, hi * 2.0);
+    if hi / lo < 10.0 {
+        lo / 3.0..hi * 3.0
+    } else {
+        lo..hi
+    }
+}
+
+fn draw_panel(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    panel: &Panel,
+    groups: &[(&str, Vec<&Row>)],
+    legend: bool,
+) -> Result<(), Error> {
+    let series: Vec<Vec<(f64, f64)>> = groups.iter().map(|(_, rows)| points(rows, panel)).collect();
+    let all = || series.iter().flatten();
+    let x_range = log_range(all().map(|p| p.0));
+    let y_range = log_range(all().map(|p| p.1));
+    let mut chart = ChartBuilder::on(area)
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())
+        .map_err(plot_error)?;
+    chart
+        .configure_mesh()
+        .x_desc(panel.x_label)
+        .y_desc(panel.y_label)
+        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .label_style(("sans-serif", 13))
+        .axis_desc_style(("sans-serif", 15))
+        // Only the decades: the minor lines of a log mesh triple the PNG's size
+        // and add nothing a reader of orders of magnitude needs.
+        .light_line_style(TRANSPARENT)
+        .draw()
+        .map_err(plot_error)?;
+    for (k, ((name, rows), pts)) in groups.iter().zip(&series).enumerate() {
+        let color = COLORS[k % COLORS.len()];
+        let failed = rows.iter().filter(|r| r.outcome.is_err()).count();
+        let label = if failed > 0 {
+            format!("{name} ({failed} failed)")
+        } else {
+            name.to_string()
+        };
+        chart
+            .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
+            .map_err(plot_error)?
+            .label(label)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+        chart
+            .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
+            .map_err(plot_error)?;
+    }
+    if legend {
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerLeft)
+            .label_font(("sans-serif", 13))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(plot_error)?;
+    }
+    Ok(())
+}
