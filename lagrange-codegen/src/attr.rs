@@ -1,4 +1,4 @@
-//! `#[lagrange(...)]` attributes and struct fields → [`ast::System`].
+//! `#[lagrange(...)]` attributes and struct fields → [`crate::ast::System`].
 //!
 //! Parsing is syntactic only: names are not resolved here (that is `lower`'s job),
 //! but every item keeps its tokens so later errors can point at them.

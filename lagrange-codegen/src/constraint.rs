@@ -38,7 +38,7 @@ pub struct ConstraintSet {
     pub velocity_term: Vec<Sym>,
     /// γ = −(Ġ q̇ + ġ).
     pub gamma: Vec<Sym>,
-    /// Per point or body: [component][row] coefficients; R = Σ_row coefficient · ν_row.
+    /// Per point or body: coefficients indexed `[component][row]`; R = Σ_row coefficient · ν_row.
     pub reactions: Vec<(String, Vec<Vec<Sym>>)>,
 }
 

@@ -62,6 +62,7 @@ mod plot;
 mod report;
 
 pub use method::{Method, Setting, Sweep};
+pub use report::{CSV_COLUMNS, MARKDOWN_COLUMNS};
 
 use crate::error::Error;
 use crate::ode::{Dop853, Stats};
