@@ -120,6 +120,6 @@ pub mod prelude {
 #[doc(hidden)]
 pub mod __private {
     pub use lagrange_runtime::func;
-    pub use lagrange_runtime::{Constrained, Lagrangian, Real, Reduced};
+    pub use lagrange_runtime::{Constrained, Driven, Lagrangian, Real, Reduced};
     pub use nalgebra::{SMatrix, SVector};
 }

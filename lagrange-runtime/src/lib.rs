@@ -80,5 +80,5 @@ pub use real::Real;
 pub use reduced::ReducedDynamics;
 pub use simulation::{EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};
-pub use system::{Constrained, Lagrangian, Reduced};
+pub use system::{Constrained, Driven, Lagrangian, Reduced};
 pub use trajectory::Trajectory;

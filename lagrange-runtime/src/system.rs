@@ -146,6 +146,38 @@ pub trait Constrained<T: Real, const N: usize, const K: usize>: Lagrangian<T, N>
         SMatrix<T, K, N>,
         SVector<T, K>,
     );
+
+    /// Derivatives of the constraint terms at the accelerations `a` = q̈ and the
+    /// multipliers `nu` = ν, for linearising the constrained dynamics:
+    ///
+    /// ```text
+    /// ( ∂(Gᵀν)/∂q   (N × N),
+    ///   ∂(γ − G a)/∂q (K × N),
+    ///   ∂γ/∂q̇        (K × N),
+    ///   ∂(G q̇ + g)/∂q (K × N) )
+    /// ```
+    ///
+    /// with a and ν held fixed. Differentiating M q̈ + h = Q + Gᵀν and G q̈ = γ
+    /// then gives the first-order change of q̈ and ν from the saddle-point matrix
+    /// alone. `None` (the default) means the system does not provide them;
+    /// `#[derive(Lagrangian)]` emits them with `emit(jacobians)`.
+    #[allow(clippy::type_complexity)]
+    fn constraint_derivatives(
+        &self,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        a: &SVector<T, N>,
+        nu: &SVector<T, K>,
+        t: T,
+    ) -> Option<(
+        SMatrix<T, N, N>,
+        SMatrix<T, K, N>,
+        SMatrix<T, K, N>,
+        SMatrix<T, K, N>,
+    )> {
+        let _ = (q, v, a, nu, t);
+        None
+    }
 }
 
 /// A nonholonomic system reduced to K independent speeds u (independent
@@ -183,4 +215,102 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
         SMatrix<T, N, K>,
         SVector<T, N>,
     );
+
+    /// Derivatives of the reduced equations for linearisation, at the speed rates
+    /// `du` = u̇ and with an extra generalized force `e` added to Q (the forces of
+    /// the inputs at the operating point; zero without inputs), so that
+    /// F*(e) = Wᵀ (Q − h − M κ + e):
+    ///
+    /// ```text
+    /// ( ∂(F* − M* u̇)/∂q (K × N),   ∂F*/∂u (K × K),   ∂(W u + w)/∂q (N × N) )
+    /// ```
+    ///
+    /// at fixed u, u̇ and e. `None` (the default) means the system does not
+    /// provide them; `#[derive(Lagrangian)]` emits them with `emit(jacobians)`.
+    #[allow(clippy::type_complexity)]
+    fn reduced_derivatives(
+        &self,
+        q: &SVector<T, N>,
+        u: &SVector<T, K>,
+        du: &SVector<T, K>,
+        e: &SVector<T, N>,
+        t: T,
+    ) -> Option<(SMatrix<T, K, N>, SMatrix<T, K, K>, SMatrix<T, N, N>)> {
+        let _ = (q, u, du, e, t);
+        None
+    }
+}
+
+/// A system driven by P named inputs u ∈ Rᴾ (forces, torques, set-points)
+/// supplied at run time:
+///
+/// ```text
+/// M(q,t) q̈ + h(q,q̇,t) = Q(q,q̇,u,t)
+/// ```
+///
+/// `#[derive(Lagrangian)]` implements it for a description with `inputs(...)`.
+/// The [`Lagrangian`] methods of such a system are its equations with every
+/// input at zero (the unforced system, energies included); the inputs enter
+/// through [`input_forces`](Self::input_forces), which the runtime adds to Q − h
+/// wherever a controller or an input signal drives the system. Inputs never
+/// enter M, h or the constraints, so the multiplier and reduced forms are driven
+/// the same way.
+///
+/// Every [`Lagrangian`] system is `Driven` with P = 0 (no inputs), so code
+/// written for driven systems (linearisation, controlled simulation) also
+/// takes undriven ones.
+pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
+    /// Names of the inputs, in order.
+    const INPUTS: [&'static str; P];
+
+    /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t): the generalized forces the inputs add.
+    fn input_forces(
+        &self,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        u: &SVector<T, P>,
+        t: T,
+    ) -> SVector<T, N>;
+
+    /// The input Jacobians at (q, q̇, u, t):
+    ///
+    /// ```text
+    /// ( ∂Q/∂u (N × P),   ∂ΔQ/∂q (N × N),   ∂ΔQ/∂q̇ (N × N) )
+    /// ```
+    ///
+    /// ∂Q/∂u = ∂(Q − h)/∂u since h does not depend on u; the other two are what
+    /// the inputs add to the right-hand-side Jacobians when u ≠ 0.
+    #[allow(clippy::type_complexity)]
+    fn input_jacobians(
+        &self,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        u: &SVector<T, P>,
+        t: T,
+    ) -> (SMatrix<T, N, P>, SMatrix<T, N, N>, SMatrix<T, N, N>);
+}
+
+/// Every system is driven by zero inputs.
+impl<T: Real, const N: usize, S: Lagrangian<T, N> + ?Sized> Driven<T, N, 0> for S {
+    const INPUTS: [&'static str; 0] = [];
+
+    fn input_forces(
+        &self,
+        _: &SVector<T, N>,
+        _: &SVector<T, N>,
+        _: &SVector<T, 0>,
+        _: T,
+    ) -> SVector<T, N> {
+        SVector::zeros()
+    }
+
+    fn input_jacobians(
+        &self,
+        _: &SVector<T, N>,
+        _: &SVector<T, N>,
+        _: &SVector<T, 0>,
+        _: T,
+    ) -> (SMatrix<T, N, 0>, SMatrix<T, N, N>, SMatrix<T, N, N>) {
+        (SMatrix::zeros(), SMatrix::zeros(), SMatrix::zeros())
+    }
 }
