@@ -32,7 +32,8 @@ pub struct Point {
 }
 
 /// `body(name, mass = m, inertia = [A, B, C], at = [x, y, z], rotation = R)`: a rigid
-/// body with its centre of mass at `at`, principal (or full, six entries
+/// body with its reference point at `at` (the centre of mass, unless `com` places
+/// it in body coordinates), principal (or full, six entries
 /// `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`) inertia about the centre in the body frame,
 /// and orientation R(q,t) mapping body to world coordinates.
 #[derive(Clone, Debug)]
@@ -41,6 +42,9 @@ pub struct Body {
     pub mass: Option<Expr>,
     pub inertia: Option<Expr>,
     pub at: Option<Expr>,
+    /// `com = [bx, by, bz]`: the centre of mass in body coordinates relative to
+    /// the reference point `at`; absent, `at` is the centre of mass.
+    pub com: Option<Expr>,
     pub rotation: Option<Expr>,
 }
 

@@ -241,15 +241,16 @@ fn parse_point(input: ParseStream) -> syn::Result<Point> {
     })
 }
 
-/// `body(name, mass = m, inertia = [..], at = [..], rotation = R)`.
+/// `body(name, mass = m, inertia = [..], at = [..], rotation = R, com = [..])`.
 fn parse_body(input: ParseStream) -> syn::Result<Body> {
-    let (name, mut s) = parse_keyed(input, "body", &["mass", "inertia", "at", "rotation"])?;
+    let (name, mut s) = parse_keyed(input, "body", &["mass", "inertia", "at", "rotation", "com"])?;
     Ok(Body {
         name,
         mass: s[0].take(),
         inertia: s[1].take(),
         at: s[2].take(),
         rotation: s[3].take(),
+        com: s[4].take(),
     })
 }
 

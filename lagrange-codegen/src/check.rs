@@ -75,7 +75,10 @@ fn check_body_keys(cx: &Ctxt, system: &System) {
         let missing = [
             (b.mass.is_none(), "mass = m"),
             (b.inertia.is_none(), "inertia = [A, B, C]"),
-            (b.at.is_none(), "at = [x, y, z] (the centre of mass)"),
+            (
+                b.at.is_none(),
+                "at = [x, y, z] (the centre of mass, or the reference point with `com`)",
+            ),
             (
                 b.rotation.is_none(),
                 "rotation = rot_z(psi) * rot_x(theta) * ...",
@@ -93,6 +96,14 @@ fn check_body_keys(cx: &Ctxt, system: &System) {
             cx.error_spanned_by(
                 at,
                 format!("body `{}` is a spatial rigid body: give its centre as `[x, y, z]` (for a planar scene use z = 0 and `rot_z(angle)`)", b.name),
+            );
+        }
+        if let Some(com) = &b.com
+            && !matches!(com, Expr::Array(a) if a.elems.len() == 3)
+        {
+            cx.error_spanned_by(
+                com,
+                format!("`com` of body `{}` is the centre of mass in body coordinates relative to `at`: write `com = [bx, by, bz]`", b.name),
             );
         }
         if let Some(inertia) = &b.inertia {

@@ -23,6 +23,7 @@ pub mod doc;
 pub mod emit;
 pub mod lower;
 pub mod mechanics;
+pub mod order;
 pub mod rotation;
 pub mod scene;
 

@@ -280,7 +280,7 @@ impl<'a> Lowerer<'a> {
         let Some(frame) = self.frame_of(base) else {
             self.cx.error_at(
                 base.span(),
-                format!("unknown point or body `{base}` (points and bodies are declared before the items that use them)"),
+                format!("unknown point or body `{base}`; declare it with `point({base}, ...)` or `body({base}, ...)`"),
             );
             return None;
         };

@@ -1,6 +1,6 @@
-//! The whole description lowered: parameters, coordinates, definitions, bodies and
-//! points (in that order, so each item can use the ones before it), forces,
-//! constraints and speeds. Produces [`Lowered`] for `mechanics`.
+//! The whole description lowered: parameters and coordinates, then definitions,
+//! bodies and points in dependency order (see `order`), then forces, constraints
+//! and speeds. Produces [`Lowered`] for `mechanics`.
 
 use lagrange_symbolic::Expr as Sym;
 use syn::{BinOp, Expr, Ident};
@@ -11,6 +11,7 @@ use crate::constraint::ConstraintModel;
 use crate::ctxt::Ctxt;
 use crate::lower::{CartesianRef, Frame, Lowerer, Mode};
 use crate::mechanics::{Lowered, PointModel, SpinModel};
+use crate::order::Item;
 
 pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     let mut lw = Lowerer::new(cx);
@@ -20,89 +21,22 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     for q in &system.coordinates {
         lw.declare_coordinate(q);
     }
-    for d in &system.definitions {
-        lw.declare_definition(&d.name, &d.value);
-    }
-    let mut points = Vec::new();
-    let mut spins = Vec::new();
-    let mut rotations = Vec::new();
-    for b in &system.bodies {
-        let (Some(mass), Some(inertia), Some(at), Some(rotation)) =
-            (&b.mass, &b.inertia, &b.at, &b.rotation)
-        else {
-            continue;
-        };
-        let mass = lw.expr(mass, Mode::Constant);
-        let inertia = inertia_matrix(&mut lw, inertia);
-        let centre = lw.vector(at, Mode::Configuration);
-        let rotation = lw.rotation(rotation);
-        let (Some(mass), Some(inertia), Some(centre), Some(rotation)) =
-            (mass, inertia, centre, rotation)
-        else {
-            continue;
-        };
-        // `check` has reported a centre that is not [x, y, z].
-        if centre.len() != 3 {
-            continue;
-        }
-        lw.declare_frame(
-            &b.name,
-            Frame {
-                name: b.name.to_string(),
-                position: centre.clone(),
-                omega: Some([rotation.omega_world, rotation.omega_body]),
-            },
-        );
-        rotations.push((b.name.clone(), rotation.matrix, centre.clone()));
-        points.push(PointModel {
-            name: b.name.to_string(),
-            mass,
-            position: centre,
-        });
-        spins.push(SpinModel {
-            name: b.name.to_string(),
-            inertia,
-            omega: rotation.omega_body,
-        });
-    }
-    for p in &system.points {
-        let Some(at) = &p.at else { continue };
-        let local = lw.vector(at, Mode::Configuration);
-        let mass = p.mass.as_ref().map(|m| lw.expr(m, Mode::Constant));
-        let position = match (&p.on, local) {
-            (_, None) => continue,
-            (None, Some(x)) => x,
-            (Some(body), Some(local)) => {
-                let Some((_, r, c)) = rotations.iter().find(|(n, _, _)| n == body) else {
-                    continue;
-                };
-                // `check` has reported body coordinates that are not [x, y, z].
-                if local.len() != 3 {
-                    continue;
-                }
-                let (r, c) = (*r, c.clone());
-                let rb = lw.mat_vec(&r, &local);
-                (0..3).map(|i| lw.ctx.add(c[i], rb[i])).collect()
+    let mut items = Items::default();
+    for item in crate::order::lowering_order(cx, system) {
+        match item {
+            Item::Definition(i) => {
+                let d = &system.definitions[i];
+                lw.declare_definition(&d.name, &d.value);
             }
-        };
-        lw.declare_frame(
-            &p.name,
-            Frame {
-                name: p.name.to_string(),
-                position: position.clone(),
-                omega: None,
-            },
-        );
-        match mass {
-            Some(Some(mass)) => points.push(PointModel {
-                name: p.name.to_string(),
-                mass,
-                position,
-            }),
-            Some(None) => continue,
-            None => {}
+            Item::Body(i) => lower_body(&mut lw, &system.bodies[i], &mut items),
+            Item::Point(i) => lower_point(&mut lw, &system.points[i], &mut items),
         }
     }
+    let Items {
+        points,
+        spins,
+        rotations: _,
+    } = items;
     let gravity = system
         .gravity
         .as_ref()
@@ -191,6 +125,118 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         multipliers: formulations.contains(&Formulation::Multipliers),
         extras: system.extras.iter().map(|(_, e)| *e).collect(),
     })
+}
+
+/// Point masses, spins and body frames lowered so far.
+#[derive(Default)]
+struct Items {
+    points: Vec<PointModel>,
+    spins: Vec<SpinModel>,
+    /// (body, rotation matrix, reference point) for the points fixed in bodies.
+    rotations: Vec<(Ident, crate::rotation::Mat3, Vec<Sym>)>,
+}
+
+/// A rigid body: its frame (for `B.x`, `B.omega_x` and points on it), its centre
+/// of mass as a point mass, and its spin. The reference point is `at`; the centre
+/// of mass is at + R·com when `com` is given.
+fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
+    let (Some(mass), Some(inertia), Some(at), Some(rotation)) =
+        (&b.mass, &b.inertia, &b.at, &b.rotation)
+    else {
+        return;
+    };
+    let mass = lw.expr(mass, Mode::Constant);
+    let inertia = inertia_matrix(lw, inertia);
+    let reference = lw.vector(at, Mode::Configuration);
+    let com = b.com.as_ref().map(|c| lw.vector(c, Mode::Constant));
+    let rotation = lw.rotation(rotation);
+    let (Some(mass), Some(inertia), Some(reference), Some(rotation)) =
+        (mass, inertia, reference, rotation)
+    else {
+        return;
+    };
+    // `check` has reported a reference point or `com` that is not [x, y, z].
+    if reference.len() != 3 {
+        return;
+    }
+    let centre = match com {
+        None => reference.clone(),
+        Some(Some(offset)) if offset.len() == 3 => {
+            offset_in_body(lw, &rotation.matrix, &reference, &offset)
+        }
+        Some(_) => return,
+    };
+    lw.declare_frame(
+        &b.name,
+        Frame {
+            name: b.name.to_string(),
+            position: reference.clone(),
+            omega: Some([rotation.omega_world, rotation.omega_body]),
+        },
+    );
+    items
+        .rotations
+        .push((b.name.clone(), rotation.matrix, reference));
+    items.points.push(PointModel {
+        name: b.name.to_string(),
+        mass,
+        position: centre,
+    });
+    items.spins.push(SpinModel {
+        name: b.name.to_string(),
+        inertia,
+        omega: rotation.omega_body,
+    });
+}
+
+/// origin + R·local: a point given in body coordinates.
+fn offset_in_body(
+    lw: &mut Lowerer,
+    r: &crate::rotation::Mat3,
+    origin: &[Sym],
+    local: &[Sym],
+) -> Vec<Sym> {
+    let rb = lw.mat_vec(r, local);
+    (0..3).map(|i| lw.ctx.add(origin[i], rb[i])).collect()
+}
+
+/// A point: in world coordinates, or fixed in a body (`on = B`, coordinates
+/// relative to the body's reference point in its axes); a point mass if it has
+/// a mass.
+fn lower_point(lw: &mut Lowerer, p: &crate::ast::Point, items: &mut Items) {
+    let Some(at) = &p.at else { return };
+    let local = lw.vector(at, Mode::Configuration);
+    let mass = p.mass.as_ref().map(|m| lw.expr(m, Mode::Constant));
+    let position = match (&p.on, local) {
+        (_, None) => return,
+        (None, Some(x)) => x,
+        (Some(body), Some(local)) => {
+            let Some((_, r, c)) = items.rotations.iter().find(|(n, _, _)| n == body) else {
+                return;
+            };
+            // `check` has reported body coordinates that are not [x, y, z].
+            if local.len() != 3 {
+                return;
+            }
+            let (r, c) = (*r, c.clone());
+            offset_in_body(lw, &r, &c, &local)
+        }
+    };
+    lw.declare_frame(
+        &p.name,
+        Frame {
+            name: p.name.to_string(),
+            position: position.clone(),
+            omega: None,
+        },
+    );
+    if let Some(Some(mass)) = mass {
+        items.points.push(PointModel {
+            name: p.name.to_string(),
+            mass,
+            position,
+        });
+    }
 }
 
 /// `[A, B, C]` → diag(A, B, C); `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]` → the symmetric tensor.
