@@ -178,6 +178,7 @@ pub struct DrivenPendulum {
     pub w: f64,
     pub f: f64,
 }
+pub mod bicycle;
 pub mod cavity;
 pub mod constrained;
 pub mod extremes;
