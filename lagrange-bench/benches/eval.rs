@@ -2,7 +2,7 @@
 //! of the planar double pendulum, evaluated in the same run, so the ratio is
 //! meaningful on a shared machine.
 
-#[path = "../examples/catalog/mod.rs"]
+#[path = "../../examples/catalog/mod.rs"]
 mod catalog;
 
 use criterion::{Criterion, criterion_group, criterion_main};

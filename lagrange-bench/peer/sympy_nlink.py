@@ -35,7 +35,7 @@ default (like the macro's `gravity = [0, -g]`, which is a generalized force);
 `--gravity potential` puts V = sum m_k g y_k into the Lagrangian instead.
 
 Usage:
-    python3 benches/peer/sympy_nlink.py [N ...] [--quick] [--gravity force|potential]
+    python3 lagrange-bench/peer/sympy_nlink.py [N ...] [--quick] [--gravity force|potential]
                                          [--no-check] [--no-lower] [--dynamic-ops]
 Default N list: 1 2 3 5 10.  --quick: 1 2 3 5.
 """
