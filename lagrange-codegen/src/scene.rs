@@ -9,7 +9,7 @@ use crate::ast::{Formulation, System};
 use crate::check;
 use crate::constraint::ConstraintModel;
 use crate::ctxt::Ctxt;
-use crate::lower::{CartesianRef, Frame, Lowerer, Mode};
+use crate::lower::{CartesianRef, Frame, Lowerer, Mode, NoInputs};
 use crate::mechanics::{Lowered, PointModel, SpinModel};
 
 pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
@@ -19,6 +19,9 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     }
     for q in &system.coordinates {
         lw.declare_coordinate(q);
+    }
+    for u in &system.inputs {
+        lw.declare_input(u);
     }
     for d in &system.definitions {
         lw.declare_definition(&d.name, &d.value);
@@ -32,10 +35,12 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         else {
             continue;
         };
-        let mass = lw.expr(mass, Mode::Constant);
-        let inertia = inertia_matrix(&mut lw, inertia);
-        let centre = lw.vector(at, Mode::Configuration);
-        let rotation = lw.rotation(rotation);
+        let mass = lw.without_inputs(NoInputs::MASS, |lw| lw.expr(mass, Mode::Constant));
+        let inertia = lw.without_inputs(NoInputs::INERTIA, |lw| inertia_matrix(lw, inertia));
+        let centre = lw.without_inputs(NoInputs::POSITION, |lw| {
+            lw.vector(at, Mode::Configuration)
+        });
+        let rotation = lw.without_inputs(NoInputs::ROTATION, |lw| lw.rotation(rotation));
         let (Some(mass), Some(inertia), Some(centre), Some(rotation)) =
             (mass, inertia, centre, rotation)
         else {
@@ -67,8 +72,12 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     }
     for p in &system.points {
         let Some(at) = &p.at else { continue };
-        let local = lw.vector(at, Mode::Configuration);
-        let mass = p.mass.as_ref().map(|m| lw.expr(m, Mode::Constant));
+        let local = lw.without_inputs(NoInputs::POSITION, |lw| {
+            lw.vector(at, Mode::Configuration)
+        });
+        let mass = p.mass.as_ref().map(|m| {
+            lw.without_inputs(NoInputs::MASS, |lw| lw.expr(m, Mode::Constant))
+        });
         let position = match (&p.on, local) {
             (_, None) => continue,
             (None, Some(x)) => x,
@@ -106,7 +115,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     let gravity = system
         .gravity
         .as_ref()
-        .and_then(|g| lw.vector(g, Mode::Configuration));
+        .and_then(|g| lw.without_inputs(NoInputs::GRAVITY, |lw| lw.vector(g, Mode::Configuration)));
     let potential = system
         .potential
         .as_ref()
@@ -132,13 +141,19 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     let holonomic: Vec<ConstraintModel> = system
         .holonomic
         .iter()
-        .filter_map(|c| constraint(&mut lw, &c.name, &c.value, Mode::Configuration))
+        .filter_map(|c| {
+            lw.without_inputs(NoInputs::HOLONOMIC, |lw| {
+                constraint(lw, &c.name, &c.value, Mode::Configuration)
+            })
+        })
         .collect();
     let nonholonomic: Vec<ConstraintModel> = system
         .nonholonomic
         .iter()
         .filter_map(|c| {
-            let m = constraint(&mut lw, &c.name, &c.value, Mode::State)?;
+            let m = lw.without_inputs(NoInputs::NONHOLONOMIC, |lw| {
+                constraint(lw, &c.name, &c.value, Mode::State)
+            })?;
             linear_in_velocities(
                 &mut lw,
                 &c.value,
@@ -155,7 +170,9 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         } else {
             let mut out = Vec::new();
             for u in &system.speeds {
-                let Some(e) = lw.expr(&u.value, Mode::State) else {
+                let lowered =
+                    lw.without_inputs(NoInputs::SPEED, |lw| lw.expr(&u.value, Mode::State));
+                let Some(e) = lowered else {
                     continue;
                 };
                 if linear_in_velocities(&mut lw, &u.value, e, &format!("speed `{}`", u.name)) {
@@ -173,6 +190,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     Some(Lowered {
         ctx: lw.ctx,
         coordinates: system.coordinates.iter().map(|c| c.to_string()).collect(),
+        inputs: system.inputs.iter().map(|u| u.to_string()).collect(),
         parameters: system
             .parameters
             .iter()
