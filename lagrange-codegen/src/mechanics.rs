@@ -452,14 +452,6 @@ fn split_inputs(
     };
     let q0: Vec<Sym> = total.iter().map(|&e| unforced(ctx, e)).collect();
     let v0 = unforced(ctx, potential);
-    let forces: Vec<Sym> = total
-        .iter()
-        .zip(&q0)
-        .map(|(&full, &base)| {
-            let d = ctx.sub(full, base);
-            ctx.collect(d)
-        })
-        .collect();
     let jacobian = |ctx: &mut Context, rows: &[Sym], wrt: &[Sym]| -> Vec<Vec<Sym>> {
         rows.iter()
             .map(|&r| {
@@ -472,11 +464,34 @@ fn split_inputs(
             })
             .collect()
     };
+    let jacobian_u = jacobian(ctx, &total, &u);
+    // Where Q is affine in u (forces proportional to the inputs, set-points in
+    // a quadratic potential), ΔQ = Σ u_j ∂Q/∂u_j: the derivatives have already
+    // dropped every term without an input, whereas Q(u) − Q(0) would keep them
+    // nested in factored sums that only cancel numerically.
+    let forces: Vec<Sym> = (0..total.len())
+        .map(|i| {
+            let affine = jacobian_u[i]
+                .iter()
+                .all(|&d| u.iter().all(|&x| !ctx.depends_on(d, x)));
+            let d = if affine {
+                let terms: Vec<Sym> = jacobian_u[i]
+                    .iter()
+                    .zip(&u)
+                    .map(|(&d, &x)| ctx.mul(x, d))
+                    .collect();
+                ctx.sum(&terms)
+            } else {
+                ctx.sub(total[i], q0[i])
+            };
+            ctx.collect(d)
+        })
+        .collect();
     let model = InputModel {
         names,
-        jacobian_u: jacobian(ctx, &total, &u),
         jacobian_q: jacobian(ctx, &forces, &q),
         jacobian_v: jacobian(ctx, &forces, &qd),
+        jacobian_u,
         symbols: u,
         total,
         forces,
