@@ -96,11 +96,7 @@ impl Lcg {
     }
 }
 
-fn close<const R: usize, const C: usize>(
-    a: &SMatrix<f64, R, C>,
-    b: &SMatrix<f64, R, C>,
-    tol: f64,
-) {
+fn close<const R: usize, const C: usize>(a: &SMatrix<f64, R, C>, b: &SMatrix<f64, R, C>, tol: f64) {
     let scale = b.amax().max(1.0);
     assert!((a - b).amax() <= tol * scale, "{a} vs {b}");
 }

@@ -6,8 +6,8 @@
 
 #![allow(clippy::needless_range_loop)] // index loops mirror the formulas
 
-use lagrange::prelude::*;
 use lagrange::Driven;
+use lagrange::prelude::*;
 use nalgebra::{SMatrix, SVector, Vector2};
 
 #[derive(Lagrangian, Clone, Copy, Debug)]
@@ -171,7 +171,10 @@ fn lagrangian_methods_are_the_unforced_system() {
         close(&m1, &m2, 1e-14);
         close(&r1, &r2, 1e-14);
         let e = |a: f64, b: f64| assert!((a - b).abs() <= 1e-13 * b.abs().max(1.0), "{a} vs {b}");
-        e(SYS.kinetic_energy(&q, &v, t), BASE.kinetic_energy(&q, &v, t));
+        e(
+            SYS.kinetic_energy(&q, &v, t),
+            BASE.kinetic_energy(&q, &v, t),
+        );
         e(SYS.potential_energy(&q, t), BASE.potential_energy(&q, t));
         e(SYS.integral(&q, &v, t), BASE.integral(&q, &v, t));
         let (jq1, jv1) = SYS.rhs_jacobians(&q, &v, &a, t).expect("emitted");
@@ -199,9 +202,16 @@ fn driven_trait_constants() {
 /// M⁻¹ ΔQ, and ∂q̈/∂u = M⁻¹ ∂Q/∂u.
 #[test]
 fn driven_accelerations() {
-    fn acceleration<S: Driven<f64, 2, 5>>(sys: &S, q: &Vector2<f64>, v: &Vector2<f64>, u: &U) -> Vector2<f64> {
+    fn acceleration<S: Driven<f64, 2, 5>>(
+        sys: &S,
+        q: &Vector2<f64>,
+        v: &Vector2<f64>,
+        u: &U,
+    ) -> Vector2<f64> {
         let (m, rhs) = sys.mass_matrix_and_rhs(q, v, 0.0);
-        m.cholesky().unwrap().solve(&(rhs + sys.input_forces(q, v, u, 0.0)))
+        m.cholesky()
+            .unwrap()
+            .solve(&(rhs + sys.input_forces(q, v, u, 0.0)))
     }
     for (q, v, u, _) in states() {
         let (m, _) = SYS.mass_matrix_and_rhs(&q, &v, 0.0);

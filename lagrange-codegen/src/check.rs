@@ -178,7 +178,9 @@ fn check_unique_names(cx: &Ctxt, system: &System) {
             );
         } else if let Some(prev) = seen.get(&key) {
             let msg = if what == "input" {
-                format!("duplicate name `{key}`: already used as a {prev}; give the input another name (names of inputs, coordinates, parameters, definitions, points, bodies and speeds must all differ)")
+                format!(
+                    "duplicate name `{key}`: already used as a {prev}; give the input another name (names of inputs, coordinates, parameters, definitions, points, bodies and speeds must all differ)"
+                )
             } else {
                 format!("duplicate name `{key}`: already used as a {prev}")
             };

@@ -72,7 +72,11 @@ impl<'a> Emitter<'a> {
                 add(&d.force_symbols, "e");
             }
         }
-        if let Some(d) = model.constraints.as_ref().and_then(|c| c.derivatives.as_ref()) {
+        if let Some(d) = model
+            .constraints
+            .as_ref()
+            .and_then(|c| c.derivatives.as_ref())
+        {
             add(&d.nu_symbols, "nu");
         }
         Emitter {

@@ -80,7 +80,8 @@ impl NoInputs {
         why: "the reduced equations differentiate the speeds in time, which would need the input's time derivative, not supplied at run time",
     };
 
-    const FIX: &'static str = "apply the input as a force (`force`, `generalized_force`, `potential` or `dissipation`)";
+    const FIX: &'static str =
+        "apply the input as a force (`force`, `generalized_force`, `potential` or `dissipation`)";
 
     fn message(self, input: &str, via: Option<&str>) -> String {
         let (place, why, fix) = (self.place, self.why, Self::FIX);
@@ -323,9 +324,13 @@ impl<'a> Lowerer<'a> {
                 input,
             }) => {
                 if let (Some(place), Some(u)) = (self.no_inputs, input) {
-                    let name = self.ctx.as_symbol(u).map(|s| self.ctx.symbol_name(s).to_string());
+                    let name = self
+                        .ctx
+                        .as_symbol(u)
+                        .map(|s| self.ctx.symbol_name(s).to_string());
                     let name = name.unwrap_or_default();
-                    self.cx.error_at(id.span(), place.message(&name, Some(&key)));
+                    self.cx
+                        .error_at(id.span(), place.message(&name, Some(&key)));
                     return None;
                 }
                 if mode == Mode::Configuration && has_velocity {

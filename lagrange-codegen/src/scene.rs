@@ -37,9 +37,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         };
         let mass = lw.without_inputs(NoInputs::MASS, |lw| lw.expr(mass, Mode::Constant));
         let inertia = lw.without_inputs(NoInputs::INERTIA, |lw| inertia_matrix(lw, inertia));
-        let centre = lw.without_inputs(NoInputs::POSITION, |lw| {
-            lw.vector(at, Mode::Configuration)
-        });
+        let centre = lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration));
         let rotation = lw.without_inputs(NoInputs::ROTATION, |lw| lw.rotation(rotation));
         let (Some(mass), Some(inertia), Some(centre), Some(rotation)) =
             (mass, inertia, centre, rotation)
@@ -72,12 +70,11 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     }
     for p in &system.points {
         let Some(at) = &p.at else { continue };
-        let local = lw.without_inputs(NoInputs::POSITION, |lw| {
-            lw.vector(at, Mode::Configuration)
-        });
-        let mass = p.mass.as_ref().map(|m| {
-            lw.without_inputs(NoInputs::MASS, |lw| lw.expr(m, Mode::Constant))
-        });
+        let local = lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration));
+        let mass = p
+            .mass
+            .as_ref()
+            .map(|m| lw.without_inputs(NoInputs::MASS, |lw| lw.expr(m, Mode::Constant)));
         let position = match (&p.on, local) {
             (_, None) => continue,
             (None, Some(x)) => x,

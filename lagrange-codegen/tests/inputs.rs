@@ -35,22 +35,31 @@ fn rejected(items: &str, place: &str) {
 #[test]
 fn rejected_wherever_the_derivation_differentiates_in_time() {
     let p = "point(p, mass = m, at = [x, 0, 0])";
-    rejected(&format!("point(p, mass = m, at = [x + u, 0, 0])"), "a position map");
+    rejected("point(p, mass = m, at = [x + u, 0, 0])", "a position map");
     rejected(
-        &format!("{p}, body(b, mass = m, inertia = [l, l, l], at = [x, u, 0], rotation = rot_z(a))"),
+        &format!(
+            "{p}, body(b, mass = m, inertia = [l, l, l], at = [x, u, 0], rotation = rot_z(a))"
+        ),
         "a position map",
     );
     rejected(
-        &format!("{p}, body(b, mass = m, inertia = [l, l, l], at = [x, 0, 0], rotation = rot_z(a + u))"),
+        &format!(
+            "{p}, body(b, mass = m, inertia = [l, l, l], at = [x, 0, 0], rotation = rot_z(a + u))"
+        ),
         "a rotation",
     );
     rejected(
-        &format!("{p}, body(b, mass = m, inertia = [l, u, l], at = [x, 0, 0], rotation = rot_z(a))"),
+        &format!(
+            "{p}, body(b, mass = m, inertia = [l, u, l], at = [x, 0, 0], rotation = rot_z(a))"
+        ),
         "an inertia",
     );
     rejected("point(p, mass = m * u, at = [x, a, 0])", "a mass");
     rejected(&format!("{p}, gravity = [0, 0, -u]"), "gravity");
-    rejected(&format!("{p}, holonomic(c = x - u * a)"), "a holonomic constraint");
+    rejected(
+        &format!("{p}, holonomic(c = x - u * a)"),
+        "a holonomic constraint",
+    );
     rejected(
         &format!("{p}, nonholonomic(c = dot(x) - u * dot(a))"),
         "a nonholonomic constraint",
@@ -88,7 +97,11 @@ fn accepted_in_forces() {
     assert_eq!(inputs.jacobian_u[0].len(), 1);
     // The unforced system has no input left in it.
     let u = inputs.symbols[0];
-    let all = m.forces.iter().chain(&m.rhs).chain([&m.potential, &m.integral]);
+    let all = m
+        .forces
+        .iter()
+        .chain(&m.rhs)
+        .chain([&m.potential, &m.integral]);
     for &e in all {
         assert!(!m.ctx.depends_on(e, u));
     }
@@ -96,7 +109,8 @@ fn accepted_in_forces() {
 
 #[test]
 fn no_inputs_no_input_model() {
-    let m = model("#[lagrange(coordinates(x), point(p, mass = m, at = [x, 0]))] struct S { m: f64 }");
+    let m =
+        model("#[lagrange(coordinates(x), point(p, mass = m, at = [x, 0]))] struct S { m: f64 }");
     assert!(m.inputs.is_none());
 }
 
@@ -106,12 +120,19 @@ fn names_clash_at_the_input() {
         ("inputs(x), point(p, mass = m, at = [x, 0])", "coordinate"),
         ("inputs(m), point(p, mass = m, at = [x, 0])", "parameter"),
         ("inputs(p), point(p, mass = m, at = [x, 0])", "point"),
-        ("inputs(d), define(d = 2 * x), point(p, mass = m, at = [x, 0])", "definition"),
+        (
+            "inputs(d), define(d = 2 * x), point(p, mass = m, at = [x, 0])",
+            "definition",
+        ),
     ] {
-        let errs = errors(&format!("#[lagrange(coordinates(x), {items})] struct S {{ m: f64 }}"));
+        let errs = errors(&format!(
+            "#[lagrange(coordinates(x), {items})] struct S {{ m: f64 }}"
+        ));
         assert_eq!(errs.len(), 1, "{items}: {errs:?}");
         assert!(
-            errs[0].contains(&format!("already used as a {what}; give the input another name")),
+            errs[0].contains(&format!(
+                "already used as a {what}; give the input another name"
+            )),
             "{}",
             errs[0]
         );
