@@ -266,3 +266,25 @@ fn nonlinear_input() {
         assert!((unforced - gravity - sys.l * c * drag(-xd)).abs() < 1e-13);
     }
 }
+
+/// A generic scalar: the `Driven` impl carries the struct's type parameter.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x),
+    inputs(push),
+    point(cart, mass = m, at = [x, 0]),
+    generalized_force(x = push * x),
+)]
+struct Generic<T> {
+    m: T,
+}
+
+#[test]
+fn generic_scalar() {
+    let sys = Generic { m: 2.0f32 };
+    let (q, v) = (SVector::<f32, 1>::new(0.5), SVector::<f32, 1>::new(1.0));
+    let u = SVector::<f32, 1>::new(4.0);
+    assert_eq!(sys.input_forces(&q, &v, &u, 0.0)[0], 2.0);
+    let (du, dq, _) = sys.input_jacobians(&q, &v, &u, 0.0);
+    assert_eq!((du[(0, 0)], dq[(0, 0)]), (0.5, 4.0));
+}
