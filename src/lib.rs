@@ -35,6 +35,7 @@
 //! | item | meaning |
 //! |---|---|
 //! | `coordinates(q1, q2, ...)` | generalized coordinates, in order |
+//! | `inputs(u1, u2, ...)` | named signals supplied at run time (forces, torques, set-points): the system implements [`Driven`]; allowed in `force`, `generalized_force`, `potential`, `dissipation` and the `define`s used there, an error in positions, rotations, masses, inertias, gravity, constraints and speeds (which would need the input's time derivative) |
 //! | `define(r = expr, ...)` | intermediate definitions, usable by later expressions |
 //! | `point(name, mass = m, at = [x, y(, z)])` | a point mass at ξ(q, t); planar or spatial |
 //! | `gravity = [gx, gy(, gz)]` | uniform gravity acting on every point |
@@ -48,7 +49,7 @@
 //! | `nonholonomic(name = e, ...)` | constraints e = a(q, t)·q̇ + b(q, t) = 0; must be linear in the velocities |
 //! | `speeds(u = expr, ...)` | independent speeds / quasi-velocities u = U(q, t) q̇ + u₀ for the reduced form |
 //! | `formulation(multipliers, reduced)` | which constrained equations to emit (default: multipliers, or reduced when `speeds` are given; `reduced` alone picks independent velocities itself) |
-//! | `emit(reactions, coriolis, jacobians, hamiltonian)` | optional outputs: `reactions(q, v, t, ν)` per point; `coriolis_matrix(q, v, t)`; [`Lagrangian::rhs_jacobians`] (used by [`Radau5`] instead of finite differences); [`Lagrangian::momentum`] and [`Lagrangian::kinetic_gradient`] (Hamilton's form, needed by the symplectic [`Gauss`] method) |
+//! | `emit(reactions, coriolis, jacobians, hamiltonian)` | optional outputs: `reactions(q, v, t, ν)` per point; `coriolis_matrix(q, v, t)`; [`Lagrangian::rhs_jacobians`] (used by [`Radau5`] instead of finite differences) and, for the constrained forms, [`Constrained::constraint_derivatives`] and [`Reduced::reduced_derivatives`] (linearisation); [`Lagrangian::momentum`] and [`Lagrangian::kinetic_gradient`] (Hamilton's form, needed by the symplectic [`Gauss`] method) |
 //!
 //! Rotations are products of `rot_x(a)`, `rot_y(a)`, `rot_z(a)`,
 //! `euler_zxz(ψ, θ, φ)` (= rot_z(ψ)·rot_x(θ)·rot_z(φ), Suslov's precession, nutation,
@@ -90,6 +91,36 @@
 //! let nu = ConstrainedDynamics::new(&sys).solve(0.0, &q, &v).unwrap().multipliers;
 //! let tension = sys.reactions(&q, &v, 0.0, &nu)[0].norm();
 //! assert!((tension - 1.0).abs() < 1e-12);
+//! ```
+//!
+//! With `inputs(u1, ...)` the derive implements [`Driven`]:
+//! [`Driven::input_forces`] is ΔQ = Q(u) − Q(0), [`Driven::input_jacobians`]
+//! gives ∂Q/∂u, ∂ΔQ/∂q and ∂ΔQ/∂q̇, and the [`Lagrangian`] methods are the
+//! unforced system (every input at zero).
+//!
+//! ```
+//! use lagrange::prelude::*;
+//! use lagrange::Driven;
+//!
+//! /// A cart on a spring whose anchor `xs` is moved, pushed by `push`.
+//! #[derive(Lagrangian)]
+//! #[lagrange(
+//!     coordinates(x),
+//!     inputs(push, xs),
+//!     point(cart, mass = m, at = [x, 0]),
+//!     potential = k / 2 * ((x - xs)^2),
+//!     generalized_force(x = push),
+//! )]
+//! pub struct Cart { pub m: f64, pub k: f64 }
+//!
+//! let sys = Cart { m: 2.0, k: 3.0 };
+//! let (q, v) = (Vector1::new(0.5), Vector1::new(0.0));
+//! let u = Vector2::new(1.0, 0.2);
+//! // Q(u) − Q(0) = push + k xs; the unforced Q is −k x.
+//! assert_eq!(sys.input_forces(&q, &v, &u, 0.0)[0], 1.0 + 3.0 * 0.2);
+//! assert_eq!(sys.generalized_forces(&q, &v, 0.0)[0], -1.5);
+//! let (dq_du, _, _) = sys.input_jacobians(&q, &v, &u, 0.0);
+//! assert_eq!(dq_du, SMatrix::<f64, 1, 2>::new(1.0, 3.0));
 //! ```
 //!
 //! Expressions use numbers (decimals are exact rationals), the names above, time

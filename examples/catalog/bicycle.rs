@@ -66,6 +66,9 @@ use lagrange::Lagrangian;
         front_x = dot(front_hub.x) + front_wheel.omega_y * d_z - front_wheel.omega_z * d_y,
         front_y = dot(front_hub.y) + front_wheel.omega_z * d_x - front_wheel.omega_x * d_z
     ),
+    // Symbolic derivatives of the constrained dynamics, for the linearisation
+    // about upright straight rolling.
+    emit(jacobians),
 )]
 pub struct Bicycle {
     pub w: f64,

@@ -279,6 +279,8 @@ pub struct SphereOnTurntable {
         roll_y = dot(disk.y) - a * (disk.omega_z * sin(theta) * sin(psi) - disk.omega_x * cos(theta))
     ),
     formulation(reduced, multipliers),
+    // Symbolic derivatives for linearising (critical spin of upright rolling).
+    emit(jacobians),
 )]
 pub struct RollingDisk {
     pub m: f64,

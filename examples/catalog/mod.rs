@@ -181,5 +181,6 @@ pub struct DrivenPendulum {
 pub mod bicycle;
 pub mod cavity;
 pub mod constrained;
+pub mod control;
 pub mod extremes;
 pub mod study;

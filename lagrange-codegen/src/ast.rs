@@ -106,6 +106,9 @@ pub struct System {
     pub scalar: Scalar,
     pub parameters: Vec<Parameter>,
     pub coordinates: Vec<Ident>,
+    /// `inputs(u1, u2, ...)`: named scalar signals supplied at run time, allowed
+    /// in forces, generalized forces, the potential and the dissipation.
+    pub inputs: Vec<Ident>,
     pub definitions: Vec<Definition>,
     pub points: Vec<Point>,
     pub bodies: Vec<Body>,

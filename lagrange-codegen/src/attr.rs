@@ -16,11 +16,12 @@ use crate::ast::{
 use crate::ctxt::Ctxt;
 
 /// Keys accepted at the top level of `#[lagrange(...)]`, for the "unknown key" message.
-const KEYS: &str = "coordinates, define, point, body, gravity, potential, force, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit";
+const KEYS: &str = "coordinates, inputs, define, point, body, gravity, potential, force, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit";
 
 /// One top-level item of the attribute.
 enum Item {
     Coordinates(Vec<Ident>),
+    Inputs(Vec<Ident>),
     Define(Vec<Definition>),
     Point(Point),
     Body(Box<Body>),
@@ -46,6 +47,7 @@ impl Parse for Item {
                 let names = Punctuated::<Ident, Token![,]>::parse_terminated(&content)?;
                 Ok(Item::Coordinates(names.into_iter().collect()))
             }
+            "inputs" => parse_names(input).map(Item::Inputs),
             "define" => {
                 let content;
                 syn::parenthesized!(content in input);
@@ -285,6 +287,7 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
         scalar,
         parameters,
         coordinates: Vec::new(),
+        inputs: Vec::new(),
         definitions: Vec::new(),
         points: Vec::new(),
         bodies: Vec::new(),
@@ -351,6 +354,7 @@ fn split_top_level_commas(tokens: proc_macro2::TokenStream) -> Vec<proc_macro2::
 fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
     match item {
         Item::Coordinates(names) => system.coordinates.extend(names),
+        Item::Inputs(names) => system.inputs.extend(names),
         Item::Define(defs) => system.definitions.extend(defs),
         Item::Point(p) => system.points.push(p),
         Item::Body(b) => system.bodies.push(*b),

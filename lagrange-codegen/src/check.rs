@@ -175,7 +175,9 @@ fn check_point_keys(cx: &Ctxt, system: &System) {
     }
 }
 
-/// Coordinates, parameters, definitions and points share one namespace.
+/// Coordinates, parameters, inputs, definitions and points share one namespace.
+/// Inputs are declared last, so a clash involving an input is reported at the
+/// input's name.
 fn check_unique_names(cx: &Ctxt, system: &System) {
     let mut seen: BTreeMap<String, &'static str> = BTreeMap::new();
     let mut declare = |name: &Ident, what: &'static str| {
@@ -186,10 +188,14 @@ fn check_unique_names(cx: &Ctxt, system: &System) {
                 format!("`{key}` is reserved in #[lagrange] expressions; rename this {what}"),
             );
         } else if let Some(prev) = seen.get(&key) {
-            cx.error_at(
-                name.span(),
-                format!("duplicate name `{key}`: already used as a {prev}"),
-            );
+            let msg = if what == "input" {
+                format!(
+                    "duplicate name `{key}`: already used as a {prev}; give the input another name (names of inputs, coordinates, parameters, definitions, points, bodies and speeds must all differ)"
+                )
+            } else {
+                format!("duplicate name `{key}`: already used as a {prev}")
+            };
+            cx.error_at(name.span(), msg);
         } else {
             seen.insert(key, what);
         }
@@ -217,6 +223,9 @@ fn check_unique_names(cx: &Ctxt, system: &System) {
     }
     for u in &system.speeds {
         declare(&u.name, "speed");
+    }
+    for u in &system.inputs {
+        declare(u, "input");
     }
 }
 

@@ -40,6 +40,82 @@ pub struct ConstraintSet {
     pub gamma: Vec<Sym>,
     /// Per point or body: coefficients indexed `[component][row]`; R = Σ_row coefficient · ν_row.
     pub reactions: Vec<(String, Vec<Vec<Sym>>)>,
+    /// Derivatives for linearisation, if asked for (`emit(jacobians)`).
+    pub derivatives: Option<ConstraintDerivatives>,
+}
+
+/// Derivatives of the multiplier form's terms with the accelerations a = q̈
+/// (the acceleration symbols) and the multipliers ν (free symbols) held fixed.
+pub struct ConstraintDerivatives {
+    /// Free symbols standing for ν (emitted as `nu[k]`).
+    pub nu_symbols: Vec<Sym>,
+    /// ∂(Gᵀν)/∂q (N × N).
+    pub force_q: Vec<Vec<Sym>>,
+    /// ∂(γ − G a)/∂q (K × N).
+    pub acceleration_q: Vec<Vec<Sym>>,
+    /// ∂γ/∂q̇ (K × N).
+    pub gamma_v: Vec<Vec<Sym>>,
+    /// ∂(G q̇ + g)/∂q (K × N).
+    pub velocity_q: Vec<Vec<Sym>>,
+}
+
+/// ∂e/∂x for every (e, x), collected: one row per expression.
+fn jacobian(ctx: &mut Context, rows: &[Sym], wrt: &[Sym]) -> Vec<Vec<Sym>> {
+    rows.iter()
+        .map(|&r| {
+            wrt.iter()
+                .map(|&x| {
+                    let d = ctx.diff(r, x);
+                    ctx.collect(d)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Σ_j a_j x_j.
+fn linear(ctx: &mut Context, a: &[Sym], x: &[Sym]) -> Sym {
+    let terms: Vec<Sym> = a.iter().zip(x).map(|(&a, &x)| ctx.mul(a, x)).collect();
+    ctx.sum(&terms)
+}
+
+/// The derivatives of Gᵀν, γ − G a, γ and G q̇ + g that linearising
+/// M q̈ + h = Q + Gᵀν, G q̈ = γ needs.
+pub fn constraint_derivatives(ctx: &mut Context, c: &ConstraintSet) -> ConstraintDerivatives {
+    let q = ctx.coordinates();
+    let qd = ctx.velocities();
+    let qdd = ctx.accelerations();
+    let (n, k) = (q.len(), c.names.len());
+    let nu_symbols: Vec<Sym> = c
+        .names
+        .iter()
+        .map(|name| ctx.free_symbol(&format!("nu:{name}")))
+        .collect();
+    let generalized: Vec<Sym> = (0..n)
+        .map(|i| {
+            let column: Vec<Sym> = (0..k).map(|r| c.jacobian[r][i]).collect();
+            linear(ctx, &column, &nu_symbols)
+        })
+        .collect();
+    let residual: Vec<Sym> = (0..k)
+        .map(|r| {
+            let ga = linear(ctx, &c.jacobian[r], &qdd);
+            ctx.sub(c.gamma[r], ga)
+        })
+        .collect();
+    let velocity: Vec<Sym> = (0..k)
+        .map(|r| {
+            let gv = linear(ctx, &c.jacobian[r], &qd);
+            ctx.add(gv, c.velocity_term[r])
+        })
+        .collect();
+    ConstraintDerivatives {
+        force_q: jacobian(ctx, &generalized, &q),
+        acceleration_q: jacobian(ctx, &residual, &q),
+        gamma_v: jacobian(ctx, &c.gamma, &qd),
+        velocity_q: jacobian(ctx, &velocity, &q),
+        nu_symbols,
+    }
 }
 
 /// The reduced form on K independent speeds.
@@ -59,6 +135,59 @@ pub struct Reduction {
     pub mass: Vec<Vec<Sym>>,
     /// F* = Wᵀ (Q − h − M κ).
     pub rhs: Vec<Sym>,
+    /// Derivatives for linearisation, if asked for (`emit(jacobians)`).
+    pub derivatives: Option<ReducedDerivatives>,
+}
+
+/// Derivatives of the reduced equations at fixed u, u̇ and an extra generalized
+/// force e, with F*(e) = Wᵀ (Q − h − M κ + e).
+pub struct ReducedDerivatives {
+    /// Free symbols standing for u̇ (emitted as `du[k]`).
+    pub rate_symbols: Vec<Sym>,
+    /// Free symbols standing for e (emitted as `e[i]`).
+    pub force_symbols: Vec<Sym>,
+    /// ∂(F*(e) − M* u̇)/∂q (K × N).
+    pub dynamics_q: Vec<Vec<Sym>>,
+    /// ∂F*/∂u (K × K).
+    pub force_u: Vec<Vec<Sym>>,
+    /// ∂(W u + w)/∂q (N × N).
+    pub velocities_q: Vec<Vec<Sym>>,
+}
+
+/// The derivatives of the reduced equations that linearising
+/// M* u̇ = F*, q̇ = W u + w needs.
+pub fn reduced_derivatives(
+    ctx: &mut Context,
+    r: &Reduction,
+    coordinates: &[String],
+) -> ReducedDerivatives {
+    let q = ctx.coordinates();
+    let (n, k) = (q.len(), r.names.len());
+    let rate_symbols: Vec<Sym> = r
+        .names
+        .iter()
+        .map(|name| ctx.free_symbol(&format!("du:{name}")))
+        .collect();
+    let force_symbols: Vec<Sym> = coordinates
+        .iter()
+        .map(|name| ctx.free_symbol(&format!("e:{name}")))
+        .collect();
+    let residual: Vec<Sym> = (0..k)
+        .map(|a| {
+            let column: Vec<Sym> = (0..n).map(|i| r.w_matrix[i][a]).collect();
+            let we = linear(ctx, &column, &force_symbols);
+            let mu = linear(ctx, &r.mass[a], &rate_symbols);
+            let f = ctx.add(r.rhs[a], we);
+            ctx.sub(f, mu)
+        })
+        .collect();
+    ReducedDerivatives {
+        dynamics_q: jacobian(ctx, &residual, &q),
+        force_u: jacobian(ctx, &r.rhs, &r.speed_symbols),
+        velocities_q: jacobian(ctx, &r.velocities, &q),
+        rate_symbols,
+        force_symbols,
+    }
 }
 
 /// The unconstrained equations the reduced form projects.
@@ -176,6 +305,7 @@ pub fn multiplier_form(
         velocity_term: rows.iter().map(|r| r.g0).collect(),
         gamma,
         reactions,
+        derivatives: None,
     }
 }
 
@@ -419,5 +549,6 @@ pub fn reduce(
         kappa,
         mass,
         rhs,
+        derivatives: None,
     })
 }

@@ -9,8 +9,25 @@ pub fn equations(model: &Model) -> String {
     let n = model.dof();
     let mut s = String::new();
     let args = if model.rheonomic { "q, t" } else { "q" };
-    let _ = writeln!(s, "M({args}) q'' + h({args}, q') = Q({args}, q')");
+    match &model.inputs {
+        None => {
+            let _ = writeln!(s, "M({args}) q'' + h({args}, q') = Q({args}, q')");
+        }
+        Some(_) => {
+            let _ = writeln!(
+                s,
+                "M({args}) q'' + h({args}, q') = Q({args}, q', u) = Q({args}, q', 0) + dQ({args}, q', u)"
+            );
+        }
+    }
     let _ = writeln!(s, "q = ({})", model.coordinates.join(", "));
+    if let Some(inputs) = &model.inputs {
+        let _ = writeln!(
+            s,
+            "u = ({}): inputs supplied at run time; M, h, Q and the energies below are at u = 0",
+            inputs.names.join(", ")
+        );
+    }
     let _ = writeln!(
         s,
         "{}",
@@ -37,6 +54,19 @@ pub fn equations(model: &Model) -> String {
     let _ = writeln!(s, "\nQ:");
     for (i, f) in model.forces.iter().enumerate() {
         let _ = writeln!(s, "Q[{i}] = {}", ctx.display(*f));
+    }
+    if let Some(inputs) = &model.inputs {
+        let _ = writeln!(s, "\ninputs: dQ = Q(u) - Q(0):");
+        for (i, f) in inputs.forces.iter().enumerate() {
+            let _ = writeln!(s, "dQ[{i}] = {}", ctx.display(*f));
+        }
+        let _ = writeln!(s, "dQ/du:");
+        for (i, row) in inputs.jacobian_u.iter().enumerate() {
+            for (j, d) in row.iter().enumerate() {
+                let name = &inputs.names[j];
+                let _ = writeln!(s, "dQ[{i}]/d{name} = {}", ctx.display(*d));
+            }
+        }
     }
     let _ = writeln!(s, "\nT = {}", ctx.display(model.kinetic));
     let _ = writeln!(s, "V = {}", ctx.display(model.potential));

@@ -5,7 +5,7 @@
 //! partial sums of masses) are computed once. Generated code uses absolute paths
 //! through `::lagrange::__private`, allocates nothing and is deterministic.
 
-use lagrange_symbolic::{EmitConfig, Expr as Sym, Program, SymbolKind};
+use lagrange_symbolic::{EmitConfig, Expr as Sym, Program, Symbol, SymbolKind};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
@@ -47,9 +47,45 @@ fn constant(scalar: &Scalar, v: f64) -> TokenStream {
 struct Emitter<'a> {
     model: &'a Model,
     scalar: &'a Scalar,
+    /// The free symbols that reach emission and what they are in the generated
+    /// method: the reduced form's speeds `u[k]`, and the values the
+    /// linearisation methods hold fixed, `nu[k]`, `du[k]`, `e[i]`.
+    free: Vec<(Symbol, TokenStream)>,
 }
 
-impl Emitter<'_> {
+impl<'a> Emitter<'a> {
+    fn new(model: &'a Model, scalar: &'a Scalar) -> Self {
+        let mut free = Vec::new();
+        let mut add = |symbols: &[Sym], array: &str| {
+            let array = format_ident!("{array}");
+            for (i, &e) in symbols.iter().enumerate() {
+                if let Some(s) = model.ctx.as_symbol(e) {
+                    let i = Literal::usize_unsuffixed(i);
+                    free.push((s, quote!(#array[#i])));
+                }
+            }
+        };
+        if let Some(r) = &model.reduced {
+            add(&r.speed_symbols, "u");
+            if let Some(d) = &r.derivatives {
+                add(&d.rate_symbols, "du");
+                add(&d.force_symbols, "e");
+            }
+        }
+        if let Some(d) = model
+            .constraints
+            .as_ref()
+            .and_then(|c| c.derivatives.as_ref())
+        {
+            add(&d.nu_symbols, "nu");
+        }
+        Emitter {
+            model,
+            scalar,
+            free,
+        }
+    }
+
     /// `let` statements and output expressions for a set of outputs.
     fn program(&self, outputs: &[Sym]) -> (TokenStream, Vec<TokenStream>) {
         let ctx = &self.model.ctx;
@@ -69,18 +105,19 @@ impl Emitter<'_> {
                 let f = format_ident!("{}", params[i]);
                 quote!(self.#f)
             }
-            // The reduced form's speeds are the only free symbols that reach emission.
-            SymbolKind::Free => match self.speed_index(s) {
-                Some(i) => {
-                    let i = Literal::usize_unsuffixed(i);
-                    quote!(u[#i])
-                }
+            // Inputs reach only the `Driven` methods, which take them as `u`.
+            SymbolKind::Input(i) => {
+                let i = Literal::usize_unsuffixed(i);
+                quote!(u[#i])
+            }
+            SymbolKind::Free => match self.free.iter().find(|(f, _)| *f == s) {
+                Some((_, tokens)) => tokens.clone(),
                 None => quote!(::core::compile_error!(
                     "internal: unexpected symbol in generated code"
                 )),
             },
-            // Accelerations appear only in the right-hand-side Jacobians, which
-            // take the current q̈ as `a`.
+            // Accelerations appear only in the Jacobians, which take the
+            // current q̈ as `a`.
             SymbolKind::Acceleration(i) => {
                 let i = Literal::usize_unsuffixed(i);
                 quote!(a[#i])
@@ -96,13 +133,6 @@ impl Emitter<'_> {
             temp_prefix: "_t",
         };
         program.emit(ctx, &cfg)
-    }
-
-    fn speed_index(&self, s: lagrange_symbolic::Symbol) -> Option<usize> {
-        let r = self.model.reduced.as_ref()?;
-        r.speed_symbols
-            .iter()
-            .position(|&u| self.model.ctx.as_symbol(u) == Some(s))
     }
 
     /// `let mut <name> = zeros; <name>[(i, j)] = ...;` for a dense matrix whose
@@ -157,6 +187,31 @@ impl Emitter<'_> {
             .collect()
     }
 
+    /// One program for several dense matrices: `let mut <name> = zeros;` and
+    /// the nonzero entries of each, sharing subexpressions across all of them.
+    /// Each matrix is (name, rows, type); rows may be empty for a zero-row matrix.
+    fn dense_matrices(&self, mats: &[(&str, &[Vec<Sym>], TokenStream)]) -> TokenStream {
+        let all: Vec<Sym> = mats
+            .iter()
+            .flat_map(|(_, rows, _)| rows.iter().flatten().copied())
+            .collect();
+        let (lets, outs) = self.program(&all);
+        let mut rest = &outs[..];
+        let mut fills = TokenStream::new();
+        for (name, rows, ty) in mats {
+            let cols = rows.first().map_or(0, Vec::len);
+            let (mine, tail) = rest.split_at(rows.len() * cols);
+            rest = tail;
+            let name = format_ident!("{name}");
+            let fill = self.fill_dense(&quote!(#name), mine, cols.max(1));
+            fills.extend(quote! {
+                let mut #name = <#ty>::zeros();
+                #fill
+            });
+        }
+        quote!(#lets #fills)
+    }
+
     fn vector_body(&self, outputs: &[Sym], s: &TokenStream, n: &Literal) -> TokenStream {
         let (lets, outs) = self.program(outputs);
         quote! {
@@ -167,10 +222,7 @@ impl Emitter<'_> {
 }
 
 pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
-    let e = Emitter {
-        model,
-        scalar: &system.scalar,
-    };
+    let e = Emitter::new(model, &system.scalar);
     let s = scalar_tokens(&system.scalar);
     let n = model.dof();
     let nl = Literal::usize_unsuffixed(n);
@@ -209,6 +261,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let constrained = impl_constrained(&e, &frame, model);
     let extras = extras(&e, &frame, model, system);
     let reduced = impl_reduced(&e, &frame, model);
+    let driven = impl_driven(&e, &frame, model);
     quote! {
         #[doc = #impl_doc]
         #[automatically_derived]
@@ -273,6 +326,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
 
         #constrained
         #reduced
+        #driven
     }
 }
 
@@ -391,6 +445,24 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let m_fill = e.fill_matrix(mu, n);
     let g_fill_all = e.fill_dense(&quote!(g), gs, n);
 
+    let derivatives = match &c.derivatives {
+        None => quote!(),
+        Some(d) => {
+            let body = e.dense_matrices(&[
+                ("dgnu", &d.force_q, mat_nn.clone()),
+                ("dres", &d.acceleration_q, mat_kn.clone()),
+                ("dgamma", &d.gamma_v, mat_kn.clone()),
+                ("dvel", &d.velocity_q, mat_kn.clone()),
+            ]);
+            quote! {
+                #[inline]
+                fn constraint_derivatives(&self, q: &#vec_n, v: &#vec_n, a: &#vec_n, nu: &#vec_k, t: #s) -> ::core::option::Option<(#mat_nn, #mat_kn, #mat_kn, #mat_kn)> {
+                    #body
+                    ::core::option::Option::Some((dgnu, dres, dgamma, dvel))
+                }
+            }
+        }
+    };
     let names = &c.names;
     let holonomic = c.holonomic;
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
@@ -430,6 +502,8 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
                 #g_fill_all
                 (m, <#vec_n>::from([#(#rhs),*]), g, <#vec_k>::from([#(#gamma),*]))
             }
+
+            #derivatives
         }
     }
 }
@@ -458,6 +532,24 @@ fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let (ws, kappa) = rest.split_at(n * k);
     let m_fill = e.fill_dense(&quote!(m), ms, k);
     let w_fill = e.fill_dense(&quote!(w), ws, k);
+    let derivatives = match &r.derivatives {
+        None => quote!(),
+        Some(d) => {
+            let (mat_kn, mat_nn) = (f.mat(&kl, nl), f.mat(nl, nl));
+            let body = e.dense_matrices(&[
+                ("dres", &d.dynamics_q, mat_kn.clone()),
+                ("dforce", &d.force_u, mat_kk.clone()),
+                ("dvel", &d.velocities_q, mat_nn.clone()),
+            ]);
+            quote! {
+                #[inline]
+                fn reduced_derivatives(&self, q: &#vec_n, u: &#vec_k, du: &#vec_k, e: &#vec_n, t: #s) -> ::core::option::Option<(#mat_kn, #mat_kk, #mat_nn)> {
+                    #body
+                    ::core::option::Option::Some((dres, dforce, dvel))
+                }
+            }
+        }
+    };
     let names = &r.names;
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     quote! {
@@ -486,6 +578,47 @@ fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
                 let mut w = <#mat_nk>::zeros();
                 #w_fill
                 (m, <#vec_k>::from([#(#fs),*]), w, <#vec_n>::from([#(#kappa),*]))
+            }
+
+            #derivatives
+        }
+    }
+}
+
+/// `impl Driven` for a description with inputs: ΔQ and its Jacobians, with the
+/// inputs taken as `u`.
+fn impl_driven(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    let Some(inputs) = &model.inputs else {
+        return quote!();
+    };
+    let p = inputs.names.len();
+    let pl = Literal::usize_unsuffixed(p);
+    let (s, nl) = (&f.s, &f.n);
+    let (vec_n, vec_p) = (f.vec(nl), f.vec(&pl));
+    let (mat_np, mat_nn) = (f.mat(nl, &pl), f.mat(nl, nl));
+    let forces = e.vector_body(&inputs.forces, s, nl);
+    let body = e.dense_matrices(&[
+        ("du", &inputs.jacobian_u, mat_np.clone()),
+        ("dq", &inputs.jacobian_q, mat_nn.clone()),
+        ("dv", &inputs.jacobian_v, mat_nn.clone()),
+    ]);
+    let names = &inputs.names;
+    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    quote! {
+        #[automatically_derived]
+        #[allow(unused_variables, clippy::all)]
+        impl #ig ::lagrange::__private::Driven<#s, #nl, #pl> for #ident #tg #wc {
+            const INPUTS: [&'static str; #pl] = [#(#names),*];
+
+            #[inline]
+            fn input_forces(&self, q: &#vec_n, v: &#vec_n, u: &#vec_p, t: #s) -> #vec_n {
+                #forces
+            }
+
+            #[inline]
+            fn input_jacobians(&self, q: &#vec_n, v: &#vec_n, u: &#vec_p, t: #s) -> (#mat_np, #mat_nn, #mat_nn) {
+                #body
+                (du, dq, dv)
             }
         }
     }
@@ -638,8 +771,9 @@ pub fn stub_impl(system: &System) -> TokenStream {
     }
 }
 
-/// Stub impls of the constraint traits the description asks for, so that a
-/// `run_constrained` or `run_reduced` call site does not add a cascade of errors.
+/// Stub impls of the constraint traits the description asks for (and of
+/// `Driven` when it declares inputs), so that a `run_constrained`,
+/// `run_reduced` or `input_forces` call site does not add a cascade of errors.
 fn stub_constraint_impls(system: &System) -> TokenStream {
     let n = system.coordinates.len();
     let m = system.holonomic.len() + system.nonholonomic.len();
@@ -648,6 +782,20 @@ fn stub_constraint_impls(system: &System) -> TokenStream {
     let vec_n = f.vec(nl);
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     let mut out = TokenStream::new();
+    if !system.inputs.is_empty() {
+        let p = system.inputs.len();
+        let pl = Literal::usize_unsuffixed(p);
+        let (vec_p, mat_np, mat_nn) = (f.vec(&pl), f.mat(nl, &pl), f.mat(nl, nl));
+        let names: Vec<String> = system.inputs.iter().map(|u| u.to_string()).collect();
+        out.extend(quote! {
+            #[allow(unused_variables)]
+            impl #ig ::lagrange::__private::Driven<#s, #nl, #pl> for #ident #tg #wc {
+                const INPUTS: [&'static str; #pl] = [#(#names),*];
+                fn input_forces(&self, q: &#vec_n, v: &#vec_n, u: &#vec_p, t: #s) -> #vec_n { ::core::unreachable!() }
+                fn input_jacobians(&self, q: &#vec_n, v: &#vec_n, u: &#vec_p, t: #s) -> (#mat_np, #mat_nn, #mat_nn) { ::core::unreachable!() }
+            }
+        });
+    }
     let chosen = crate::check::formulations(system);
     if chosen.contains(&Formulation::Multipliers) && m > 0 {
         let kl = Literal::usize_unsuffixed(m);

@@ -34,16 +34,80 @@ impl Mode {
     }
 }
 
+/// A place of the description that inputs may not reach, with the reason the
+/// error gives. Inputs have no known time derivative, so they are kept out of
+/// everything the derivation differentiates in time.
+#[derive(Copy, Clone, Debug)]
+pub struct NoInputs {
+    pub place: &'static str,
+    pub why: &'static str,
+}
+
+const NO_RATE: &str =
+    "the equations of motion would need its time derivative, which is not supplied at run time";
+
+impl NoInputs {
+    pub const POSITION: NoInputs = NoInputs {
+        place: "a position map",
+        why: NO_RATE,
+    };
+    pub const ROTATION: NoInputs = NoInputs {
+        place: "a rotation",
+        why: NO_RATE,
+    };
+    pub const MASS: NoInputs = NoInputs {
+        place: "a mass",
+        why: "a mass is constant, and the equations of motion would need its time derivative, which is not supplied at run time",
+    };
+    pub const INERTIA: NoInputs = NoInputs {
+        place: "an inertia",
+        why: "an inertia is constant, and the equations of motion would need its time derivative, which is not supplied at run time",
+    };
+    pub const GRAVITY: NoInputs = NoInputs {
+        place: "gravity",
+        why: "gravity is a fixed field of the unforced system, part of its conserved energy",
+    };
+    pub const HOLONOMIC: NoInputs = NoInputs {
+        place: "a holonomic constraint",
+        why: "the constraint is differentiated twice in time, which would need the input's time derivatives, not supplied at run time",
+    };
+    pub const NONHOLONOMIC: NoInputs = NoInputs {
+        place: "a nonholonomic constraint",
+        why: "the constraint is differentiated in time, which would need the input's time derivative, not supplied at run time",
+    };
+    pub const SPEED: NoInputs = NoInputs {
+        place: "a speed",
+        why: "the reduced equations differentiate the speeds in time, which would need the input's time derivative, not supplied at run time",
+    };
+
+    const FIX: &'static str =
+        "apply the input as a force (`force`, `generalized_force`, `potential` or `dissipation`)";
+
+    fn message(self, input: &str, via: Option<&str>) -> String {
+        let (place, why, fix) = (self.place, self.why, Self::FIX);
+        match via {
+            None => format!("input `{input}` cannot appear in {place}: {why}; {fix}"),
+            Some(d) => format!(
+                "`{d}` uses the input `{input}`, which cannot appear in {place}: {why}; {fix}"
+            ),
+        }
+    }
+}
+
 #[derive(Copy, Clone, Debug)]
 enum Binding {
     Coordinate(Sym),
     Parameter(Sym),
+    /// An input signal (`inputs(...)`).
+    Input(Sym),
     /// A point or a body: index into `Lowerer::frames`.
     Frame(usize),
     Definition {
         value: Sym,
         has_velocity: bool,
         has_state: bool,
+        /// The first input the definition uses, if any.
+        input: Option<Sym>,
     },
 }
 
@@ -76,6 +140,8 @@ pub struct Lowerer<'a> {
     pub frames: Vec<Frame>,
     /// When set, point coordinates lower to free symbols recorded here.
     pub cartesian: Option<Vec<CartesianRef>>,
+    /// When set, inputs are an error here (see [`Lowerer::without_inputs`]).
+    no_inputs: Option<NoInputs>,
 }
 
 const FUNCTIONS: &str = "sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, exp, ln, log, sqrt, abs, pow, powi, powf, dot";
@@ -90,7 +156,28 @@ impl<'a> Lowerer<'a> {
             scope: BTreeMap::new(),
             frames: Vec::new(),
             cartesian: None,
+            no_inputs: None,
         }
+    }
+
+    /// Runs `f` with inputs forbidden: an input (or a definition that uses
+    /// one) is reported at its token with `place`'s reason.
+    pub fn without_inputs<R>(&mut self, place: NoInputs, f: impl FnOnce(&mut Self) -> R) -> R {
+        let outer = self.no_inputs.replace(place);
+        let r = f(self);
+        self.no_inputs = outer;
+        r
+    }
+
+    /// Brings an input into scope, unless its name is already taken (`check`
+    /// reports the clash at the input; the earlier meaning stays, so uses of
+    /// the name do not add errors of their own).
+    pub fn declare_input(&mut self, name: &Ident) -> Sym {
+        let u = self.ctx.input(&name.to_string());
+        self.scope
+            .entry(name.to_string())
+            .or_insert(Binding::Input(u));
+        u
     }
 
     /// Brings a point or body into scope for `P.x`, `dot(P.x)`, `B.omega_x`.
@@ -130,12 +217,18 @@ impl<'a> Lowerer<'a> {
             state.extend(velocities);
             state.push(self.ctx.time());
             let has_state = state.iter().any(|&s| self.ctx.depends_on(v, s));
+            let input = self
+                .ctx
+                .inputs()
+                .into_iter()
+                .find(|&u| self.ctx.depends_on(v, u));
             self.scope.insert(
                 name.to_string(),
                 Binding::Definition {
                     value: v,
                     has_velocity,
                     has_state,
+                    input,
                 },
             );
         }
@@ -217,11 +310,29 @@ impl<'a> Lowerer<'a> {
                 }
                 Some(q)
             }
+            Some(Binding::Input(u)) => {
+                if let Some(place) = self.no_inputs {
+                    self.cx.error_at(id.span(), place.message(&key, None));
+                    return None;
+                }
+                Some(u)
+            }
             Some(Binding::Definition {
                 value,
                 has_velocity,
                 has_state,
+                input,
             }) => {
+                if let (Some(place), Some(u)) = (self.no_inputs, input) {
+                    let name = self
+                        .ctx
+                        .as_symbol(u)
+                        .map(|s| self.ctx.symbol_name(s).to_string());
+                    let name = name.unwrap_or_default();
+                    self.cx
+                        .error_at(id.span(), place.message(&name, Some(&key)));
+                    return None;
+                }
                 if mode == Mode::Configuration && has_velocity {
                     self.cx.error_at(
                         id.span(),

@@ -33,6 +33,8 @@ pub struct SpinModel {
 pub struct Lowered {
     pub ctx: Context,
     pub coordinates: Vec<String>,
+    /// Names of the inputs, in the order of their symbols (`Context::inputs`).
+    pub inputs: Vec<String>,
     pub parameters: Vec<String>,
     pub points: Vec<PointModel>,
     pub spins: Vec<SpinModel>,
@@ -63,7 +65,27 @@ pub enum BiasRoute {
     Christoffel,
 }
 
+/// How the inputs u enter: Q(q, q̇, u, t) = Q(q, q̇, 0, t) + ΔQ.
+pub struct InputModel {
+    pub names: Vec<String>,
+    /// The input symbols, in order (emitted as `u[i]`).
+    pub symbols: Vec<Sym>,
+    /// Q with the inputs, Q(q, q̇, u, t).
+    pub total: Vec<Sym>,
+    /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t).
+    pub forces: Vec<Sym>,
+    /// ∂Q/∂u (N × P), row-major.
+    pub jacobian_u: Vec<Vec<Sym>>,
+    /// ∂ΔQ/∂q (N × N).
+    pub jacobian_q: Vec<Vec<Sym>>,
+    /// ∂ΔQ/∂q̇ (N × N).
+    pub jacobian_v: Vec<Vec<Sym>>,
+}
+
 /// The equations of motion M q̈ + h = Q and the energies, as expressions.
+///
+/// With inputs, everything here but [`Model::inputs`] is the unforced system
+/// (every input at zero); the inputs' share of Q is in [`InputModel`].
 pub struct Model {
     pub ctx: Context,
     pub coordinates: Vec<String>,
@@ -81,6 +103,8 @@ pub struct Model {
     pub bias_route: BiasRoute,
     /// The route not chosen, kept so tests can check the two agree.
     pub bias_other: Vec<Sym>,
+    /// The inputs' generalized forces and their Jacobians, if inputs were declared.
+    pub inputs: Option<InputModel>,
     /// Constraint terms for the multiplier form.
     pub constraints: Option<ConstraintSet>,
     /// The reduced (Maggi / Gibbs–Appell) form.
@@ -136,6 +160,7 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
     let Lowered {
         mut ctx,
         coordinates,
+        inputs: input_names,
         parameters,
         points,
         spins,
@@ -284,6 +309,9 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
         &forces,
         &generalized_forces,
     );
+    // The `Lagrangian` methods are the unforced system: every input at zero.
+    let (generalized, potential_total, inputs) =
+        split_inputs(&mut ctx, input_names, generalized, potential_total);
     let rhs: Vec<Sym> = (0..n)
         .map(|i| {
             let r = ctx.sub(generalized[i], bias[i]);
@@ -335,8 +363,13 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
             })
             .collect()
     });
-    let constraints = multipliers
-        .then(|| crate::constraint::multiplier_form(&mut ctx, &holonomic, &nonholonomic));
+    let constraints = multipliers.then(|| {
+        let mut c = crate::constraint::multiplier_form(&mut ctx, &holonomic, &nonholonomic);
+        if wants(Extra::Jacobians) {
+            c.derivatives = Some(crate::constraint::constraint_derivatives(&mut ctx, &c));
+        }
+        c
+    });
     let reduced = match speeds {
         None => None,
         Some(speeds) => {
@@ -349,7 +382,7 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
                     &coordinates,
                 )?,
             };
-            Some(crate::constraint::reduce(
+            let mut r = crate::constraint::reduce(
                 &mut ctx,
                 &crate::constraint::Dynamics {
                     mass: &mass,
@@ -359,7 +392,15 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
                 &nonholonomic,
                 &speeds,
                 &coordinates,
-            )?)
+            )?;
+            if wants(Extra::Jacobians) {
+                r.derivatives = Some(crate::constraint::reduced_derivatives(
+                    &mut ctx,
+                    &r,
+                    &coordinates,
+                ));
+            }
+            Some(r)
         }
     };
 
@@ -377,6 +418,7 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
         integral,
         bias_route,
         bias_other,
+        inputs,
         constraints,
         reduced,
         coriolis,
@@ -386,6 +428,75 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
         particles: kin.iter().map(|k| (k.mass, k.position.clone())).collect(),
         has_spin: !spin.is_empty(),
     })
+}
+
+/// Splits Q(u) and V(u) into the unforced Q(0), V(0) and the inputs' part ΔQ
+/// with its Jacobians. Without inputs, Q and V are returned untouched.
+fn split_inputs(
+    ctx: &mut Context,
+    names: Vec<String>,
+    total: Vec<Sym>,
+    potential: Sym,
+) -> (Vec<Sym>, Sym, Option<InputModel>) {
+    let u = ctx.inputs();
+    if u.is_empty() {
+        return (total, potential, None);
+    }
+    let q = ctx.coordinates();
+    let qd = ctx.velocities();
+    let zero = ctx.zero();
+    let at_zero: Vec<(Sym, Sym)> = u.iter().map(|&x| (x, zero)).collect();
+    let unforced = |ctx: &mut Context, e: Sym| {
+        let e = ctx.substitute(e, &at_zero);
+        ctx.collect(e)
+    };
+    let q0: Vec<Sym> = total.iter().map(|&e| unforced(ctx, e)).collect();
+    let v0 = unforced(ctx, potential);
+    let jacobian = |ctx: &mut Context, rows: &[Sym], wrt: &[Sym]| -> Vec<Vec<Sym>> {
+        rows.iter()
+            .map(|&r| {
+                wrt.iter()
+                    .map(|&x| {
+                        let d = ctx.diff(r, x);
+                        ctx.collect(d)
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let jacobian_u = jacobian(ctx, &total, &u);
+    // Where Q is affine in u (forces proportional to the inputs, set-points in
+    // a quadratic potential), ΔQ = Σ u_j ∂Q/∂u_j: the derivatives have already
+    // dropped every term without an input, whereas Q(u) − Q(0) would keep them
+    // nested in factored sums that only cancel numerically.
+    let forces: Vec<Sym> = (0..total.len())
+        .map(|i| {
+            let affine = jacobian_u[i]
+                .iter()
+                .all(|&d| u.iter().all(|&x| !ctx.depends_on(d, x)));
+            let d = if affine {
+                let terms: Vec<Sym> = jacobian_u[i]
+                    .iter()
+                    .zip(&u)
+                    .map(|(&d, &x)| ctx.mul(x, d))
+                    .collect();
+                ctx.sum(&terms)
+            } else {
+                ctx.sub(total[i], q0[i])
+            };
+            ctx.collect(d)
+        })
+        .collect();
+    let model = InputModel {
+        names,
+        jacobian_q: jacobian(ctx, &forces, &q),
+        jacobian_v: jacobian(ctx, &forces, &qd),
+        jacobian_u,
+        symbols: u,
+        total,
+        forces,
+    };
+    (q0, v0, Some(model))
 }
 
 /// J_q = ∂(Q − h)/∂q − [∂M/∂q_k q̈]_k and J_v = ∂(Q − h)/∂q̇, with q̈ left as the

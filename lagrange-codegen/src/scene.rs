@@ -9,7 +9,7 @@ use crate::ast::{Formulation, System};
 use crate::check;
 use crate::constraint::ConstraintModel;
 use crate::ctxt::Ctxt;
-use crate::lower::{CartesianRef, Frame, Lowerer, Mode};
+use crate::lower::{CartesianRef, Frame, Lowerer, Mode, NoInputs};
 use crate::mechanics::{Lowered, PointModel, SpinModel};
 use crate::order::Item;
 
@@ -20,6 +20,9 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     }
     for q in &system.coordinates {
         lw.declare_coordinate(q);
+    }
+    for u in &system.inputs {
+        lw.declare_input(u);
     }
     let mut items = Items::default();
     for item in crate::order::lowering_order(cx, system) {
@@ -40,7 +43,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     let gravity = system
         .gravity
         .as_ref()
-        .and_then(|g| lw.vector(g, Mode::Configuration));
+        .and_then(|g| lw.without_inputs(NoInputs::GRAVITY, |lw| lw.vector(g, Mode::Configuration)));
     let potential = system
         .potential
         .as_ref()
@@ -66,13 +69,19 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     let holonomic: Vec<ConstraintModel> = system
         .holonomic
         .iter()
-        .filter_map(|c| constraint(&mut lw, &c.name, &c.value, Mode::Configuration))
+        .filter_map(|c| {
+            lw.without_inputs(NoInputs::HOLONOMIC, |lw| {
+                constraint(lw, &c.name, &c.value, Mode::Configuration)
+            })
+        })
         .collect();
     let nonholonomic: Vec<ConstraintModel> = system
         .nonholonomic
         .iter()
         .filter_map(|c| {
-            let m = constraint(&mut lw, &c.name, &c.value, Mode::State)?;
+            let m = lw.without_inputs(NoInputs::NONHOLONOMIC, |lw| {
+                constraint(lw, &c.name, &c.value, Mode::State)
+            })?;
             linear_in_velocities(
                 &mut lw,
                 &c.value,
@@ -89,7 +98,9 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         } else {
             let mut out = Vec::new();
             for u in &system.speeds {
-                let Some(e) = lw.expr(&u.value, Mode::State) else {
+                let lowered =
+                    lw.without_inputs(NoInputs::SPEED, |lw| lw.expr(&u.value, Mode::State));
+                let Some(e) = lowered else {
                     continue;
                 };
                 if linear_in_velocities(&mut lw, &u.value, e, &format!("speed `{}`", u.name)) {
@@ -107,6 +118,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     Some(Lowered {
         ctx: lw.ctx,
         coordinates: system.coordinates.iter().map(|c| c.to_string()).collect(),
+        inputs: system.inputs.iter().map(|u| u.to_string()).collect(),
         parameters: system
             .parameters
             .iter()
@@ -145,11 +157,14 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
     else {
         return;
     };
-    let mass = lw.expr(mass, Mode::Constant);
-    let inertia = inertia_matrix(lw, inertia);
-    let reference = lw.vector(at, Mode::Configuration);
-    let com = b.com.as_ref().map(|c| lw.vector(c, Mode::Constant));
-    let rotation = lw.rotation(rotation);
+    let mass = lw.without_inputs(NoInputs::MASS, |lw| lw.expr(mass, Mode::Constant));
+    let inertia = lw.without_inputs(NoInputs::INERTIA, |lw| inertia_matrix(lw, inertia));
+    let reference = lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration));
+    let com = b
+        .com
+        .as_ref()
+        .map(|c| lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(c, Mode::Constant)));
+    let rotation = lw.without_inputs(NoInputs::ROTATION, |lw| lw.rotation(rotation));
     let (Some(mass), Some(inertia), Some(reference), Some(rotation)) =
         (mass, inertia, reference, rotation)
     else {
@@ -205,8 +220,11 @@ fn offset_in_body(
 /// a mass.
 fn lower_point(lw: &mut Lowerer, p: &crate::ast::Point, items: &mut Items) {
     let Some(at) = &p.at else { return };
-    let local = lw.vector(at, Mode::Configuration);
-    let mass = p.mass.as_ref().map(|m| lw.expr(m, Mode::Constant));
+    let local = lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration));
+    let mass = p
+        .mass
+        .as_ref()
+        .map(|m| lw.without_inputs(NoInputs::MASS, |lw| lw.expr(m, Mode::Constant)));
     let position = match (&p.on, local) {
         (_, None) => return,
         (None, Some(x)) => x,

@@ -43,3 +43,20 @@ fn constrained_body_expansion() {
     let file: syn::File = syn::parse2(tokens).expect("expansion parses as a file");
     insta::assert_snapshot!(prettyplease::unparse(&file));
 }
+
+/// A driven cart with a set-point spring: pins the shape of the `Driven` impl
+/// (inputs emitted as `u[i]`) and of the unforced `Lagrangian` methods.
+#[test]
+fn driven_expansion() {
+    let input: syn::DeriveInput = syn::parse_str(
+        "#[lagrange(coordinates(x), inputs(push, xs),
+           point(cart, mass = m, at = [x, 0]),
+           potential = k / 2 * ((x - xs)^2),
+           generalized_force(x = push * cos(x)))]
+         pub struct Cart { pub m: f64, pub k: f64 }",
+    )
+    .unwrap();
+    let tokens = lagrange_codegen::expand(&input);
+    let file: syn::File = syn::parse2(tokens).expect("expansion parses as a file");
+    insta::assert_snapshot!(prettyplease::unparse(&file));
+}

@@ -27,6 +27,7 @@ fn expr() -> impl Strategy<Value = String> {
         Just("b.x".to_string()),
         Just("nope".to_string()),
         Just("self.m".to_string()),
+        Just("f".to_string()),
     ];
     leaf.prop_recursive(4, 24, 2, |inner| {
         prop_oneof![
@@ -76,7 +77,7 @@ proptest! {
     #[test]
     fn expand_never_panics(position in (expr(), expr()), extra in items()) {
         let src = format!(
-            "#[lagrange(coordinates(x, y, a),
+            "#[lagrange(coordinates(x, y, a), inputs(f),
                body(b, mass = m, inertia = [l, l, m], at = [x, y, 0], rotation = rot_z(a)),
                point(p, mass = m, at = [{}, {}, 0]),
                gravity = [0, 0, -9.81], {})]

@@ -34,6 +34,7 @@ pub struct Context {
     symbols: Vec<SymbolInfo>,
     coords: Vec<CoordinateSymbols>,
     params: Vec<Expr>,
+    inputs: Vec<Expr>,
     time: Option<Expr>,
     pub(crate) diff_memo: HashMap<(Expr, Expr), Expr>,
     pub(crate) trig_memo: HashMap<Expr, Expr>,
@@ -57,6 +58,7 @@ impl Context {
             symbols: Vec::new(),
             coords: Vec::new(),
             params: Vec::new(),
+            inputs: Vec::new(),
             time: None,
             diff_memo: HashMap::new(),
             trig_memo: HashMap::new(),
@@ -211,6 +213,23 @@ impl Context {
     /// All parameters in declaration order.
     pub fn parameters(&self) -> Vec<Expr> {
         self.params.clone()
+    }
+
+    /// Declare (or look up) the input `name`, a signal supplied at run time;
+    /// indices follow declaration order. Inputs have no known rate: see
+    /// [`time_derivative`](Self::time_derivative).
+    pub fn input(&mut self, name: &str) -> Expr {
+        if let Some(e) = self.find_symbol(name, |k| matches!(k, SymbolKind::Input(_))) {
+            return e;
+        }
+        let e = self.new_symbol(name, SymbolKind::Input(self.inputs.len()));
+        self.inputs.push(e);
+        e
+    }
+
+    /// All inputs in declaration order.
+    pub fn inputs(&self) -> Vec<Expr> {
+        self.inputs.clone()
     }
 
     /// Declare (or look up) a free symbol `name`.
@@ -378,6 +397,18 @@ mod tests {
             SymbolKind::Parameter(0)
         );
         assert_ne!(cx.free_symbol("m"), m);
+        let u = cx.input("u");
+        assert_eq!(cx.input("u"), u);
+        assert_eq!(
+            cx.symbol_kind(cx.as_symbol(u).unwrap()),
+            SymbolKind::Input(0)
+        );
+        assert_eq!(cx.inputs(), vec![u]);
+        assert_ne!(cx.parameter("u"), u);
+        // No rate: d/dt (u q) = u q̇, not u q̇ + u̇ q.
+        let uq = cx.mul(u, a);
+        let d = cx.time_derivative(uq);
+        assert_eq!(d, cx.mul(u, da));
     }
 
     #[test]

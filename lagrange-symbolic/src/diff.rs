@@ -135,6 +135,9 @@ impl Context {
     ///
     /// Accelerations are treated as having zero derivative (there is no jerk
     /// symbol); mechanics never differentiates an expression containing `q̈`.
+    /// Inputs ([`SymbolKind::Input`]) have no known rate either and are
+    /// treated the same way, which is why the description language forbids
+    /// them wherever the derivation differentiates in time.
     pub fn time_derivative(&mut self, e: Expr) -> Expr {
         let syms: Vec<_> = self.free_slice(e).to_vec();
         let mut terms = Vec::new();

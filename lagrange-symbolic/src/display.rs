@@ -136,7 +136,7 @@ impl Context {
             Node::Sym(s) => {
                 let rank = match self.symbol_kind(*s) {
                     SymbolKind::Parameter(_) => 0,
-                    SymbolKind::Free => 1,
+                    SymbolKind::Free | SymbolKind::Input(_) => 1,
                     SymbolKind::Time => 2,
                     SymbolKind::Coordinate(_) => 3,
                     SymbolKind::Velocity(_) => 4,

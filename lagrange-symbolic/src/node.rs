@@ -42,6 +42,13 @@ pub enum SymbolKind {
     Time,
     /// Physical parameter (a field of the user's struct).
     Parameter(usize),
+    /// Input signal `u_i` supplied at run time (a force, a torque, a set-point).
+    /// Its time derivative is unknown, so [`Context::time_derivative`]
+    /// treats it as having no rate: an input must not reach an expression
+    /// that is differentiated in time.
+    ///
+    /// [`Context::time_derivative`]: crate::Context::time_derivative
+    Input(usize),
     /// Any other symbol (scratch variables, multipliers, ...).
     Free,
 }

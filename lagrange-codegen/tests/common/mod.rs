@@ -41,7 +41,7 @@ pub fn env<'a>(model: &'a Model, p: &'a Point) -> impl Fn(Symbol) -> f64 + 'a {
                     .position(|&u| model.ctx.as_symbol(u) == Some(s))
             })
             .map_or(f64::NAN, |k| p.u[k]),
-        SymbolKind::Acceleration(_) => f64::NAN,
+        SymbolKind::Acceleration(_) | SymbolKind::Input(_) => f64::NAN,
     }
 }
 

@@ -1,0 +1,205 @@
+//! The linearisation derivatives `emit(jacobians)` adds to the constrained forms:
+//! `Constrained::constraint_derivatives` and `Reduced::reduced_derivatives`, each
+//! against central differences of what the always-emitted methods compute, at
+//! random states (which need not satisfy the constraints: the derivatives are
+//! identities in q, q̇).
+
+#![allow(clippy::needless_range_loop)] // index loops mirror the formulas
+
+use lagrange::prelude::*;
+use nalgebra::{SMatrix, SVector};
+
+/// A spherical pendulum in Cartesian coordinates whose thread length oscillates
+/// (so g = Φ_t ≠ 0 and γ has time terms), with some damping.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, z),
+    point(bob, mass = m, at = [x, y, z]),
+    gravity = [0, 0, -g],
+    dissipation = c * ((dot(x)^2) + (dot(y)^2)) / 2,
+    holonomic(thread = (bob.x^2) + (bob.y^2) + (bob.z^2) - ((l + a * sin(w * t))^2)),
+    emit(jacobians),
+)]
+struct Bob {
+    m: f64,
+    g: f64,
+    c: f64,
+    l: f64,
+    a: f64,
+    w: f64,
+}
+
+const BOB: Bob = Bob {
+    m: 1.3,
+    g: 9.81,
+    c: 0.2,
+    l: 1.1,
+    a: 0.15,
+    w: 2.0,
+};
+
+/// The Chaplygin sleigh in a harmonic well, with a damped turn: nonholonomic,
+/// in both forms.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, theta),
+    body(sled, mass = m, inertia = [0, 0, i], at = [x + b * cos(theta), y + b * sin(theta), 0],
+         rotation = rot_z(theta)),
+    point(blade, on = sled, at = [-b, 0, 0]),
+    potential = k * (sled.x^2) / 2 + k * (sled.y^2) / 2,
+    dissipation = c * (dot(theta)^2) / 2,
+    nonholonomic(sideways = -sin(theta) * dot(blade.x) + cos(theta) * dot(blade.y)),
+    speeds(forward = cos(theta) * dot(blade.x) + sin(theta) * dot(blade.y), turn = dot(theta)),
+    formulation(reduced, multipliers),
+    emit(jacobians),
+)]
+struct Sleigh {
+    m: f64,
+    i: f64,
+    b: f64,
+    k: f64,
+    c: f64,
+}
+
+const SLEIGH: Sleigh = Sleigh {
+    m: 2.0,
+    i: 0.4,
+    b: 0.3,
+    k: 1.5,
+    c: 0.1,
+};
+
+/// The same pendulum without `emit(jacobians)`: the runtime's default, `None`.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, z),
+    point(bob, mass = m, at = [x, y, z]),
+    holonomic(thread = (bob.x^2) + (bob.y^2) + (bob.z^2) - 1),
+)]
+struct Plain {
+    m: f64,
+}
+
+/// A deterministic pseudo-random sequence in [−1, 1).
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
+    }
+
+    fn vector<const D: usize>(&mut self, scale: f64) -> SVector<f64, D> {
+        SVector::from_fn(|_, _| scale * self.next())
+    }
+}
+
+fn close<const R: usize, const C: usize>(a: &SMatrix<f64, R, C>, b: &SMatrix<f64, R, C>, tol: f64) {
+    let scale = b.amax().max(1.0);
+    assert!((a - b).amax() <= tol * scale, "{a} vs {b}");
+}
+
+/// Central differences of `f` at `x`, one column per component of `x`.
+fn fd<const R: usize, const C: usize>(
+    f: impl Fn(&SVector<f64, C>) -> SVector<f64, R>,
+    x: &SVector<f64, C>,
+) -> SMatrix<f64, R, C> {
+    let h = 1e-6;
+    SMatrix::from_fn(|i, j| {
+        let mut e = SVector::<f64, C>::zeros();
+        e[j] = h;
+        (f(&(x + e))[i] - f(&(x - e))[i]) / (2.0 * h)
+    })
+}
+
+/// Gᵀν, γ − G a, γ and G q̇ + g from `constraint_jacobian` and `constraint_rhs`,
+/// differentiated numerically, against `constraint_derivatives`.
+fn check_constraint_derivatives<S, const N: usize, const K: usize>(sys: &S, seed: u64)
+where
+    S: Constrained<f64, N, K>,
+{
+    let mut rng = Lcg(seed);
+    for _ in 0..8 {
+        let q: SVector<f64, N> = rng.vector(1.5);
+        let v: SVector<f64, N> = rng.vector(2.0);
+        let a: SVector<f64, N> = rng.vector(3.0);
+        let nu: SVector<f64, K> = rng.vector(2.0);
+        let t = rng.next();
+        let (d_gnu, d_res, d_gamma, d_vel) = sys
+            .constraint_derivatives(&q, &v, &a, &nu, t)
+            .expect("emitted with emit(jacobians)");
+        let g = |q: &SVector<f64, N>| sys.constraint_jacobian(q, t);
+        close(&d_gnu, &fd(|q| g(q).0.transpose() * nu, &q), 1e-6);
+        close(
+            &d_res,
+            &fd(|q| sys.constraint_rhs(q, &v, t) - g(q).0 * a, &q),
+            1e-6,
+        );
+        close(&d_gamma, &fd(|v| sys.constraint_rhs(&q, v, t), &v), 1e-6);
+        close(
+            &d_vel,
+            &fd(
+                |q| {
+                    let (gm, g0) = g(q);
+                    gm * v + g0
+                },
+                &q,
+            ),
+            1e-6,
+        );
+    }
+}
+
+#[test]
+fn holonomic_constraint_derivatives() {
+    check_constraint_derivatives(&BOB, 1);
+}
+
+#[test]
+fn nonholonomic_constraint_derivatives() {
+    check_constraint_derivatives(&SLEIGH, 2);
+}
+
+#[test]
+fn without_emit_jacobians_there_are_none() {
+    let p = Plain { m: 1.0 };
+    let (q, v) = (SVector::<f64, 3>::new(1.0, 0.0, 0.0), SVector::zeros());
+    let nu = SVector::<f64, 1>::zeros();
+    assert!(p.constraint_derivatives(&q, &v, &v, &nu, 0.0).is_none());
+}
+
+/// ∂(F*(e) − M* u̇)/∂q, ∂F*/∂u and ∂(W u + w)/∂q from `reduced_system` and
+/// `velocities`, with F*(e) = F* + Wᵀ e, e ≠ 0.
+#[test]
+fn reduced_derivatives_match_central_differences() {
+    let sys = SLEIGH;
+    let mut rng = Lcg(3);
+    for _ in 0..8 {
+        let q: SVector<f64, 3> = rng.vector(1.5);
+        let u: SVector<f64, 2> = rng.vector(2.0);
+        let du: SVector<f64, 2> = rng.vector(3.0);
+        let e: SVector<f64, 3> = rng.vector(2.0);
+        let t = rng.next();
+        let (d_res, d_force, d_vel) = sys
+            .reduced_derivatives(&q, &u, &du, &e, t)
+            .expect("emitted with emit(jacobians)");
+        let residual = |q: &SVector<f64, 3>, u: &SVector<f64, 2>| {
+            let (m, f, w, _) = sys.reduced_system(q, u, t);
+            f + w.transpose() * e - m * du
+        };
+        close(&d_res, &fd(|q| residual(q, &u), &q), 1e-6);
+        close(&d_force, &fd(|u| sys.reduced_system(&q, u, t).1, &u), 1e-6);
+        close(&d_vel, &fd(|q| sys.velocities(q, &u, t), &q), 1e-6);
+        // The e-term matters: without it ∂/∂q differs (W depends on θ).
+        let without = fd(
+            |q| {
+                let (m, f, _, _) = sys.reduced_system(q, &u, t);
+                f - m * du
+            },
+            &q,
+        );
+        assert!((d_res - without).amax() > 1e-3);
+    }
+}
