@@ -261,7 +261,15 @@ where
         let mut ends_on_break = false;
         let (mut t, mut q, mut v) = (t0, q0, v0);
         loop {
-            let end = match self.source.next_break(t0, t) {
+            // A piece cut by an event a round-off before its end leaves t
+            // just short of a break: that break is this instant.
+            let mut next = self.source.next_break(t0, t);
+            while let Some(b) = next
+                && b - t <= eps
+            {
+                next = self.source.next_break(t0, b);
+            }
+            let end = match next {
                 Some(b) if b < t1 - eps => b,
                 Some(b) => {
                     ends_on_break = b <= t1 + eps;
