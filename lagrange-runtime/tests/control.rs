@@ -463,19 +463,19 @@ fn hold_table_is_exact_for_piecewise_constant_input() {
     // Propagate the closed form interval by interval.
     let exact = |t: f64| {
         let (mut x, mut v, mut ta) = (x0, v0, 0.0);
-        for i in 0..times.len() {
+        for (i, &f) in forces.iter().enumerate() {
             let tb = times.get(i + 1).copied().unwrap_or(f64::INFINITY);
             if t <= tb {
-                return spring_constant_force(&s, forces[i], ta, x, v, t);
+                return spring_constant_force(&s, f, ta, x, v, t);
             }
-            (x, v) = spring_constant_force(&s, forces[i], ta, x, v, tb);
+            (x, v) = spring_constant_force(&s, f, ta, x, v, tb);
             ta = tb;
         }
         unreachable!()
     };
-    for integrator in [Dopri5::tol(1e-12)] {
+    {
         let run = Simulation::new(&s)
-            .integrator(integrator)
+            .integrator(Dopri5::tol(1e-12))
             .control(&table)
             .run([x0], [v0], 0.0..5.0)
             .unwrap();
