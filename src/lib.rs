@@ -140,9 +140,9 @@ pub use nalgebra;
 pub mod prelude {
     pub use lagrange_macros::Lagrangian;
     pub use lagrange_runtime::{
-        Constrained, ConstrainedDynamics, Direction, Dopri5, Drift, Error, Event, EventRun,
-        Lagrangian, Occurrence, Real, Reduced, ReducedDynamics, Rk4, Simulation, Study, Sweep,
-        Trajectory, WorkPrecision,
+        Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation, Direction, Dopri5,
+        Drift, Driven, Error, Event, EventRun, InputTable, Interpolation, Lagrangian, Occurrence,
+        Real, Reduced, ReducedDynamics, Rk4, Simulation, Study, Sweep, Trajectory, WorkPrecision,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }

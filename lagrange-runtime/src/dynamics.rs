@@ -1,10 +1,12 @@
-//! Forward dynamics: q̈ = M⁻¹ (Q − h).
+//! Forward dynamics: q̈ = M⁻¹ (Q − h + ΔQ), ΔQ an optional [`Forcing`]
+//! (the inputs of a driven system; nothing by default).
 //!
 //! The mass matrix is factorised by the stack Cholesky of [`crate::cholesky`], whose
 //! pivot ratio tells a *near*-singular mass matrix (a chart singularity such as the
 //! pole of a spherical pendulum) from a healthy one.
 
 use crate::cholesky::{Cholesky, cholesky_solve};
+use crate::control::{Forcing, NoForcing};
 use crate::error::{Error, to_vec};
 use crate::ode::SecondOrder;
 use crate::real::Real;
@@ -18,31 +20,55 @@ pub const DEFAULT_SINGULAR_TOLERANCE: f64 = 1e-12;
 /// The forward dynamics of a [`Lagrangian`] system, as a right-hand side for the
 /// integrators.
 ///
+/// `F` is an extra generalized force ΔQ(t, q, q̇) added to Q − h, e.g. the
+/// forces of a controller's inputs ([`InputForces`](crate::InputForces)); set it
+/// with [`with_forcing`](Self::with_forcing). The default, [`NoForcing`], adds
+/// nothing and costs nothing (the branch is removed at compile time).
+///
 /// The singularity test compares the squared pivots of the Cholesky factor. It is a
 /// cheap lower bound on the conditioning, not the condition number itself, and it is
 /// not invariant under rescaling a single coordinate: for coordinates with very
 /// different units (metres and radians, say) choose the tolerance accordingly.
 #[derive(Debug)]
-pub struct Dynamics<'a, S, T> {
+pub struct Dynamics<'a, S, T, F = NoForcing> {
     system: &'a S,
     singular_tolerance: T,
+    forcing: F,
 }
 
 // Manual impls: derive would demand `S: Clone`, but only a reference is held.
-impl<S, T: Copy> Clone for Dynamics<'_, S, T> {
+impl<S, T: Copy, F: Copy> Clone for Dynamics<'_, S, T, F> {
     fn clone(&self) -> Self {
         *self
     }
 }
-impl<S, T: Copy> Copy for Dynamics<'_, S, T> {}
+impl<S, T: Copy, F: Copy> Copy for Dynamics<'_, S, T, F> {}
 
 impl<'a, S, T: Real> Dynamics<'a, S, T> {
-    /// Dynamics of `system` with the default singular tolerance (1e-12).
+    /// Dynamics of `system` with the default singular tolerance (1e-12), unforced.
     pub fn new(system: &'a S) -> Self {
         Self {
             system,
             singular_tolerance: T::lit(DEFAULT_SINGULAR_TOLERANCE),
+            forcing: NoForcing,
         }
+    }
+}
+
+impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
+    /// The same dynamics with the generalized force `forcing` added to Q − h
+    /// (replacing any forcing set before).
+    pub fn with_forcing<G>(self, forcing: G) -> Dynamics<'a, S, T, G> {
+        Dynamics {
+            system: self.system,
+            singular_tolerance: self.singular_tolerance,
+            forcing,
+        }
+    }
+
+    /// The forcing in use.
+    pub fn forcing(&self) -> &F {
+        &self.forcing
     }
 
     /// Sets the threshold on min L_ii² / max L_ii² below which the mass matrix is
@@ -65,9 +91,10 @@ impl<'a, S, T: Real> Dynamics<'a, S, T> {
     /// The generalized accelerations q̈ at (t, q, v).
     ///
     /// # Errors
-    /// [`Error::NonFiniteState`] if the state, M, Q − h or the result is not finite;
-    /// [`Error::SingularMassMatrix`] if M is not positive definite or its pivot
-    /// ratio is below the singular tolerance.
+    /// [`Error::NonFiniteState`] if the state, M, Q − h (+ ΔQ) or the result is not
+    /// finite; [`Error::SingularMassMatrix`] if M is not positive definite or its
+    /// pivot ratio is below the singular tolerance; whatever the forcing reports
+    /// (e.g. [`Error::NonFiniteInput`]).
     pub fn acceleration<const N: usize>(
         &self,
         t: T,
@@ -76,11 +103,15 @@ impl<'a, S, T: Real> Dynamics<'a, S, T> {
     ) -> Result<SVector<T, N>, Error>
     where
         S: Lagrangian<T, N>,
+        F: Forcing<T, N>,
     {
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
-        let (m, rhs) = self.system.mass_matrix_and_rhs(q, v, t);
+        let (m, mut rhs) = self.system.mass_matrix_and_rhs(q, v, t);
+        if F::ACTIVE {
+            rhs += self.forcing.force(t, q, v)?;
+        }
         if !(all_finite(m.as_slice()) && all_finite(rhs.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
@@ -99,10 +130,11 @@ impl<'a, S, T: Real> Dynamics<'a, S, T> {
     }
 }
 
-impl<S, T, const N: usize> SecondOrder<T, N> for Dynamics<'_, S, T>
+impl<S, T, F, const N: usize> SecondOrder<T, N> for Dynamics<'_, S, T, F>
 where
     S: Lagrangian<T, N>,
     T: Real,
+    F: Forcing<T, N>,
 {
     fn acceleration(
         &self,
@@ -122,13 +154,19 @@ where
     }
 
     /// ∂q̈/∂q = M⁻¹ J_q and ∂q̈/∂q̇ = M⁻¹ J_v from the system's
-    /// [`rhs_jacobians`](Lagrangian::rhs_jacobians), when it has them.
+    /// [`rhs_jacobians`](Lagrangian::rhs_jacobians), when it has them and the
+    /// dynamics are unforced (a forcing's dependence on the state, such as a
+    /// feedback law, is unknown here: forced dynamics fall back to finite
+    /// differences).
     fn jacobian(
         &self,
         t: T,
         q: &SVector<T, N>,
         v: &SVector<T, N>,
     ) -> Option<Result<(SMatrix<T, N, N>, SMatrix<T, N, N>), Error>> {
+        if F::ACTIVE {
+            return None;
+        }
         let a = match Dynamics::acceleration(self, t, q, v) {
             Ok(a) => a,
             Err(e) => return Some(Err(e)),

@@ -197,6 +197,27 @@ pub enum Error {
         count: usize,
     },
 
+    /// An input (from a controller, an open-loop signal or a table) is NaN or
+    /// infinite. Reported where it was computed, never passed on to the
+    /// dynamics as a NaN force.
+    #[error(
+        "input `{input}` is not finite ({value}) at t = {t}, q = {q:?}, v = {v:?}; \
+         the controller or input signal produced it"
+    )]
+    NonFiniteInput {
+        /// Time of the evaluation (for a sampled controller, the sample instant).
+        t: f64,
+        /// The input's name (from [`Driven::INPUTS`](crate::Driven::INPUTS)); the
+        /// first non-finite one.
+        input: &'static str,
+        /// Its value (NaN or ±∞).
+        value: f64,
+        /// Generalized coordinates the controller was given.
+        q: Vec<f64>,
+        /// Generalized velocities the controller was given.
+        v: Vec<f64>,
+    },
+
     /// The settings or the initial value problem are invalid (non-positive
     /// tolerance, empty or reversed time span, non-finite initial state, ...).
     #[error("invalid settings: {0}")]

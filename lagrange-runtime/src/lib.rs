@@ -43,6 +43,18 @@
 //! println!("{} impacts", run.occurrences.len());
 //! ```
 //!
+//! Systems with inputs ([`Driven`]) are driven by a controller or a signal:
+//! continuous feedback, sampled feedback with zero-order hold, open-loop
+//! closures or [`InputTable`]s, in all three forms; see [`control`].
+//!
+//! ```text
+//! let run = Simulation::new(&cart)
+//!     .integrator(Dopri5::tol(1e-10))
+//!     .sampled(0.01, |_, q, v| [-k1 * q[0] - k2 * v[0]])
+//!     .run(q0, v0, 0.0..5.0)?;
+//! run.save_csv("cart.csv")?;   // t, coordinates, velocities, inputs
+//! ```
+//!
 //! [`Rattle`] integrates holonomic constraints with a constant mass matrix
 //! symplectically, keeping Φ = 0 and Φ_q q̇ = 0 to round-off.
 //!
@@ -55,6 +67,7 @@
 
 mod cholesky;
 pub mod constraint;
+pub mod control;
 mod dynamics;
 mod error;
 pub mod event;
@@ -69,6 +82,10 @@ mod system;
 mod trajectory;
 
 pub use constraint::{ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent};
+pub use control::{
+    ControlRun, ControlledSimulation, Feedback, Forcing, InputForces, InputSource, InputTable,
+    Interpolation, IntoInput, NoForcing, OpenLoop, Sampled,
+};
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use error::Error;
 pub use event::{Direction, Event, EventRun, Events, Occurrence};

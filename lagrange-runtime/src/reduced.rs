@@ -9,6 +9,7 @@
 //! FSAL integrator an evaluation, only when q̇ moved by more than a few ulps).
 
 use crate::cholesky::Cholesky;
+use crate::control::{Forcing, NoForcing};
 use crate::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
 use crate::error::{Error, to_vec};
 use crate::func::abs;
@@ -19,27 +20,50 @@ use nalgebra::SVector;
 
 /// The forward dynamics of a [`Reduced`] system with K independent speeds:
 /// u = speeds(q, q̇), M* u̇ = F* by Cholesky, q̈ = W u̇ + κ.
+///
+/// `F` is an extra generalized force ΔQ(t, q, q̇) (see
+/// [`Dynamics`](crate::Dynamics) and [`with_forcing`](Self::with_forcing)),
+/// projected onto the speeds: F* += Wᵀ ΔQ. The default [`NoForcing`] adds nothing.
 #[derive(Debug)]
-pub struct ReducedDynamics<'a, S, T, const K: usize> {
+pub struct ReducedDynamics<'a, S, T, const K: usize, F = NoForcing> {
     system: &'a S,
     singular_tolerance: T,
+    forcing: F,
 }
 
 // Manual impls: derive would demand `S: Clone`, but only a reference is held.
-impl<S, T: Copy, const K: usize> Clone for ReducedDynamics<'_, S, T, K> {
+impl<S, T: Copy, const K: usize, F: Copy> Clone for ReducedDynamics<'_, S, T, K, F> {
     fn clone(&self) -> Self {
         *self
     }
 }
-impl<S, T: Copy, const K: usize> Copy for ReducedDynamics<'_, S, T, K> {}
+impl<S, T: Copy, const K: usize, F: Copy> Copy for ReducedDynamics<'_, S, T, K, F> {}
 
 impl<'a, S, T: Real, const K: usize> ReducedDynamics<'a, S, T, K> {
-    /// Dynamics of `system` with the default singular tolerance (1e-12).
+    /// Dynamics of `system` with the default singular tolerance (1e-12), unforced.
     pub fn new(system: &'a S) -> Self {
         Self {
             system,
             singular_tolerance: T::lit(DEFAULT_SINGULAR_TOLERANCE),
+            forcing: NoForcing,
         }
+    }
+}
+
+impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
+    /// The same dynamics with the generalized force `forcing` added to Q − h, so
+    /// that F* gains Wᵀ ΔQ (replacing any forcing set before).
+    pub fn with_forcing<G>(self, forcing: G) -> ReducedDynamics<'a, S, T, K, G> {
+        ReducedDynamics {
+            system: self.system,
+            singular_tolerance: self.singular_tolerance,
+            forcing,
+        }
+    }
+
+    /// The forcing in use.
+    pub fn forcing(&self) -> &F {
+        &self.forcing
     }
 
     /// Sets the threshold on the pivot ratio of M* below which it is reported as
@@ -59,7 +83,8 @@ impl<'a, S, T: Real, const K: usize> ReducedDynamics<'a, S, T, K> {
     /// # Errors
     /// [`Error::NonFiniteState`] if the state, the reduced system or the result is
     /// not finite; [`Error::SingularMassMatrix`] if M* is not positive definite or
-    /// its pivot ratio is below the singular tolerance.
+    /// its pivot ratio is below the singular tolerance; whatever the forcing
+    /// reports (e.g. [`Error::NonFiniteInput`]).
     pub fn solve<const N: usize>(
         &self,
         t: T,
@@ -68,12 +93,16 @@ impl<'a, S, T: Real, const K: usize> ReducedDynamics<'a, S, T, K> {
     ) -> Result<(SVector<T, K>, SVector<T, N>), Error>
     where
         S: Reduced<T, N, K>,
+        F: Forcing<T, N>,
     {
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
         let u = self.system.speeds(q, v, t);
-        let (m, f, w, kappa) = self.system.reduced_system(q, &u, t);
+        let (m, mut f, w, kappa) = self.system.reduced_system(q, &u, t);
+        if F::ACTIVE {
+            f += w.tr_mul(&self.forcing.force(t, q, v)?);
+        }
         let parts = [
             u.as_slice(),
             m.as_slice(),
@@ -114,10 +143,11 @@ impl<'a, S, T: Real, const K: usize> ReducedDynamics<'a, S, T, K> {
     }
 }
 
-impl<S, T, const N: usize, const K: usize> SecondOrder<T, N> for ReducedDynamics<'_, S, T, K>
+impl<S, T, F, const N: usize, const K: usize> SecondOrder<T, N> for ReducedDynamics<'_, S, T, K, F>
 where
     S: Reduced<T, N, K>,
     T: Real,
+    F: Forcing<T, N>,
 {
     fn acceleration(
         &self,

@@ -55,8 +55,8 @@ use std::ops::Range;
 /// [`least_squares`](Self::least_squares), ...) only affect those.
 #[derive(Debug)]
 pub struct Simulation<'a, S, I = Dopri5> {
-    system: &'a S,
-    integrator: I,
+    pub(crate) system: &'a S,
+    pub(crate) integrator: I,
     singular_tolerance: f64,
     constraints: ConstraintSettings,
 }
@@ -185,7 +185,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         ReducedDynamics::new(self.system).with_singular_tolerance(T::lit(self.singular_tolerance))
     }
 
-    fn check_singular_tolerance(&self) -> Result<(), Error> {
+    pub(crate) fn check_singular_tolerance(&self) -> Result<(), Error> {
         let tol = self.singular_tolerance;
         if !(tol.is_finite() && tol >= 0.0) {
             return Err(Error::InvalidSettings(format!(
@@ -195,7 +195,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         Ok(())
     }
 
-    fn check_tolerances(&self) -> Result<(), Error> {
+    pub(crate) fn check_tolerances(&self) -> Result<(), Error> {
         let c = &self.constraints;
         for (name, tol) in [
             ("singular tolerance", self.singular_tolerance),
@@ -244,7 +244,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
 
     /// The constrained dynamics and the checked (or projected) initial state.
     #[allow(clippy::type_complexity)]
-    fn prepare_constrained<T: Real, const N: usize, const K: usize>(
+    pub(crate) fn prepare_constrained<T: Real, const N: usize, const K: usize>(
         &self,
         t0: T,
         q0: SVector<T, N>,

@@ -12,7 +12,7 @@ use crate::real::Real;
 use crate::system::Constrained;
 use nalgebra::SVector;
 
-impl<S, T: Real, const K: usize> ConstrainedDynamics<'_, S, T, K> {
+impl<S, T: Real, const K: usize, F> ConstrainedDynamics<'_, S, T, K, F> {
     /// The residual vectors: Φ(q, t) on the holonomic rows (zero on the others) and
     /// G v + g on all rows.
     pub fn constraint_residuals<const N: usize>(

@@ -79,6 +79,7 @@ mod saddle;
 pub use consistency::{check_consistency, project_consistent};
 
 use crate::cholesky::Cholesky;
+use crate::control::{Forcing, NoForcing};
 use crate::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
 use crate::error::{Error, to_vec};
 use crate::ode::SecondOrder;
@@ -199,26 +200,31 @@ pub struct Solution<T: Real, const N: usize, const K: usize> {
 /// [`Dynamics`](crate::Dynamics)), then a pivoted Cholesky of the Schur complement
 /// G M⁻¹ Gᵀ, whose pivot ratio detects redundant constraints. Everything lives on
 /// the stack; nothing is allocated per evaluation except an error.
+///
+/// `F` is an extra generalized force ΔQ(t, q, q̇) added to Q − h before the
+/// solve (see [`Dynamics`](crate::Dynamics) and
+/// [`with_forcing`](Self::with_forcing)); the default [`NoForcing`] adds nothing.
 #[derive(Debug)]
-pub struct ConstrainedDynamics<'a, S, T, const K: usize> {
+pub struct ConstrainedDynamics<'a, S, T, const K: usize, F = NoForcing> {
     system: &'a S,
     singular_tolerance: T,
     redundant_tolerance: T,
     least_squares: bool,
     drift: Drift,
+    forcing: F,
 }
 
 // Manual impls: derive would demand `S: Clone`, but only a reference is held.
-impl<S, T: Copy, const K: usize> Clone for ConstrainedDynamics<'_, S, T, K> {
+impl<S, T: Copy, const K: usize, F: Copy> Clone for ConstrainedDynamics<'_, S, T, K, F> {
     fn clone(&self) -> Self {
         *self
     }
 }
-impl<S, T: Copy, const K: usize> Copy for ConstrainedDynamics<'_, S, T, K> {}
+impl<S, T: Copy, const K: usize, F: Copy> Copy for ConstrainedDynamics<'_, S, T, K, F> {}
 
 impl<'a, S, T: Real, const K: usize> ConstrainedDynamics<'a, S, T, K> {
-    /// Dynamics of `system` with the default tolerances, no least squares and
-    /// [`Drift::None`].
+    /// Dynamics of `system` with the default tolerances, no least squares,
+    /// [`Drift::None`] and no forcing.
     pub fn new(system: &'a S) -> Self {
         Self {
             system,
@@ -226,7 +232,29 @@ impl<'a, S, T: Real, const K: usize> ConstrainedDynamics<'a, S, T, K> {
             redundant_tolerance: T::lit(DEFAULT_REDUNDANT_TOLERANCE),
             least_squares: false,
             drift: Drift::None,
+            forcing: NoForcing,
         }
+    }
+}
+
+impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
+    /// The same dynamics with the generalized force `forcing` added to Q − h
+    /// (replacing any forcing set before). Inputs never change M, h or the
+    /// constraints, so drift control and projections are unaffected.
+    pub fn with_forcing<G>(self, forcing: G) -> ConstrainedDynamics<'a, S, T, K, G> {
+        ConstrainedDynamics {
+            system: self.system,
+            singular_tolerance: self.singular_tolerance,
+            redundant_tolerance: self.redundant_tolerance,
+            least_squares: self.least_squares,
+            drift: self.drift,
+            forcing,
+        }
+    }
+
+    /// The forcing in use.
+    pub fn forcing(&self) -> &F {
+        &self.forcing
     }
 
     /// Sets the threshold on the mass matrix's pivot ratio (see
@@ -282,7 +310,7 @@ impl<'a, S, T: Real, const K: usize> ConstrainedDynamics<'a, S, T, K> {
     /// are not finite; [`Error::SingularMassMatrix`] if M is not positive definite
     /// or its pivot ratio is below the singular tolerance;
     /// [`Error::RedundantConstraints`] if rows of G are dependent and least squares
-    /// is off.
+    /// is off; whatever the forcing reports (e.g. [`Error::NonFiniteInput`]).
     pub fn solve<const N: usize>(
         &self,
         t: T,
@@ -291,11 +319,15 @@ impl<'a, S, T: Real, const K: usize> ConstrainedDynamics<'a, S, T, K> {
     ) -> Result<Solution<T, N, K>, Error>
     where
         S: Constrained<T, N, K>,
+        F: Forcing<T, N>,
     {
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
-        let (m, f, g, mut gamma) = self.system.constrained_system(q, v, t);
+        let (m, mut f, g, mut gamma) = self.system.constrained_system(q, v, t);
+        if F::ACTIVE {
+            f += self.forcing.force(t, q, v)?;
+        }
         if let Drift::Baumgarte { alpha, beta } = self.drift {
             let (_, g0) = self.system.constraint_jacobian(q, t);
             let phi = self.system.constraint_positions(q, t);
@@ -338,6 +370,7 @@ impl<'a, S, T: Real, const K: usize> ConstrainedDynamics<'a, S, T, K> {
     ) -> Result<SVector<T, N>, Error>
     where
         S: Constrained<T, N, K>,
+        F: Forcing<T, N>,
     {
         Ok(self.solve(t, q, v)?.reactions)
     }
@@ -377,10 +410,12 @@ fn redundant<S: Constrained<T, N, K>, T: Real, const N: usize, const K: usize>(
     }
 }
 
-impl<S, T, const N: usize, const K: usize> SecondOrder<T, N> for ConstrainedDynamics<'_, S, T, K>
+impl<S, T, F, const N: usize, const K: usize> SecondOrder<T, N>
+    for ConstrainedDynamics<'_, S, T, K, F>
 where
     S: Constrained<T, N, K>,
     T: Real,
+    F: Forcing<T, N>,
 {
     fn acceleration(
         &self,

@@ -20,7 +20,7 @@ use crate::real::Real;
 use crate::system::Constrained;
 use nalgebra::SVector;
 
-impl<S, T: Real, const K: usize> ConstrainedDynamics<'_, S, T, K> {
+impl<S, T: Real, const K: usize, F> ConstrainedDynamics<'_, S, T, K, F> {
     /// Projects (q, v) onto Φ = 0 (holonomic rows) and G v + g = 0 (all rows) to
     /// the absolute tolerance `tol`. Returns whether the state changed.
     pub(crate) fn project_state<const N: usize>(

@@ -1,6 +1,7 @@
 //! The Hamiltonian view of a mechanical system, for the symplectic integrators.
 
 use super::SecondOrder;
+use crate::control::Forcing;
 use crate::dynamics::Dynamics;
 use crate::error::{Error, to_vec};
 use crate::real::Real;
@@ -29,7 +30,8 @@ pub trait Mechanical<T: Real, const N: usize>: SecondOrder<T, N> {
     /// Whatever prevents its evaluation.
     fn momentum(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error>;
 
-    /// ṗ = ∂T/∂q + Q: the kinetic-energy gradient plus all generalized forces.
+    /// ṗ = ∂T/∂q + Q: the kinetic-energy gradient plus all generalized forces
+    /// (a forcing's ΔQ included).
     ///
     /// # Errors
     /// Whatever prevents its evaluation, or a system that cannot provide ∂T/∂q.
@@ -56,10 +58,11 @@ pub trait Mechanical<T: Real, const N: usize>: SecondOrder<T, N> {
     }
 }
 
-impl<S, T, const N: usize> Mechanical<T, N> for Dynamics<'_, S, T>
+impl<S, T, F, const N: usize> Mechanical<T, N> for Dynamics<'_, S, T, F>
 where
     S: Lagrangian<T, N>,
     T: Real,
+    F: Forcing<T, N>,
 {
     fn mass_matrix(&self, t: T, q: &SVector<T, N>) -> Result<SMatrix<T, N, N>, Error> {
         Ok(self.system().mass_matrix(q, t))
@@ -84,6 +87,10 @@ where
                     .into(),
             )
         })?;
-        Ok(grad + sys.generalized_forces(q, v, t))
+        let q_total = sys.generalized_forces(q, v, t);
+        if F::ACTIVE {
+            return Ok(grad + q_total + self.forcing().force(t, q, v)?);
+        }
+        Ok(grad + q_total)
     }
 }
