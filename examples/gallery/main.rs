@@ -4,7 +4,9 @@
 //!
 //!     cargo run --release --example gallery
 
+#[path = "../catalog/mod.rs"]
 mod catalog;
+mod control;
 
 use std::time::Instant;
 
@@ -12,7 +14,7 @@ use catalog::constrained::*;
 use catalog::*;
 use lagrange::prelude::*;
 
-struct Row {
+pub(crate) struct Row {
     system: &'static str,
     dof: usize,
     span: f64,
@@ -26,7 +28,7 @@ struct Row {
 }
 
 /// One gallery row from a run of any formulation (the closure integrates).
-fn row<const N: usize>(
+pub(crate) fn row<const N: usize>(
     system: &'static str,
     span: std::ops::Range<f64>,
     conservative: bool,
@@ -52,7 +54,7 @@ fn row<const N: usize>(
     })
 }
 
-const TOL: f64 = 1e-10;
+pub(crate) const TOL: f64 = 1e-10;
 
 /// An unconstrained system with DOPRI5.
 fn run<S, const N: usize>(
@@ -241,6 +243,7 @@ fn main() -> Result<(), Error> {
     )?);
 
     constrained_rows(&mut rows)?;
+    control::rows(&mut rows)?;
 
     println!("lagrange gallery — DOPRI5 at rtol = atol = 1e-10, f64\n");
     println!(
