@@ -3,7 +3,9 @@
 #[path = "../examples/catalog/mod.rs"]
 mod catalog;
 
-use catalog::bicycle::Bicycle;
+use catalog::bicycle::{Bicycle, published};
+use lagrange::linear::{Verdict, sweep};
+use lagrange::nalgebra::{DMatrix, SMatrix};
 use lagrange::prelude::*;
 
 #[test]
@@ -50,4 +52,120 @@ fn self_stable_at_5_unstable_at_3() {
     let (early, late) = roll_perturbation(3.0, 4.0);
     eprintln!("3 m/s: {early:.3e} -> {late:.3e}");
     assert!(late > 2.0 * early);
+}
+
+/// Published matrices in our sign convention: the steer angle is positive to
+/// the left here (to the right in the paper), which flips the off-diagonal
+/// entries.
+fn published_in_our_signs(m: [[f64; 2]; 2]) -> DMatrix<f64> {
+    let s = [1.0, -1.0];
+    DMatrix::from_fn(2, 2, |i, j| s[i] * s[j] * m[i][j])
+}
+
+/// The derived model's linearisation is the benchmark's: A = [[0, I],
+/// [−M⁻¹K, −M⁻¹C]] with the published M, C = v C1, K = g K0 + v² K2, at three
+/// speeds (the v and v² dependences are then both checked).
+#[test]
+fn lateral_dynamics_match_the_published_matrices() {
+    let b = Bicycle::benchmark();
+    let m = published_in_our_signs(published::M);
+    let minv = m.clone().try_inverse().unwrap();
+    for v in [1.0, 5.0, 8.0] {
+        let lin = b.lateral(v).unwrap();
+        assert_eq!(lin.states(), ["phi", "delta", "phi'", "delta'"]);
+        let c = published_in_our_signs(published::C1) * v;
+        let k = published_in_our_signs(published::K0) * b.g
+            + published_in_our_signs(published::K2) * (v * v);
+        let a = lin.a();
+        let a21 = -(&minv * &k);
+        let a22 = -(&minv * &c);
+        let err21 = (a.view((2, 0), (2, 2)) - &a21).abs().max() / a21.abs().max();
+        let err22 = (a.view((2, 2), (2, 2)) - &a22).abs().max() / a22.abs().max();
+        eprintln!("v = {v}: A21 rel. error {err21:.1e}, A22 {err22:.1e}");
+        // M11 is published to 7 significant digits, the rest to 15.
+        assert!(err21 < 1e-7 && err22 < 1e-7, "{a}");
+        if let Some(so) = lin.second_order() {
+            let em = (&so.m - &m).abs().max() / m.abs().max();
+            assert!(em < 1e-7, "M = {} vs {m}", so.m);
+        }
+    }
+}
+
+/// Weave and capsize speeds from the eigenvalues of the derived model: the
+/// stability boundaries of a sweep over the forward speed, refined by Brent.
+#[test]
+fn weave_and_capsize_speeds_match_the_benchmark() {
+    let b = Bicycle::benchmark();
+    let speeds: Vec<f64> = (1..=20).map(|i| 0.5 * i as f64).collect();
+    let eigen = sweep(&speeds, |v| b.lateral(v)).unwrap();
+    let found = eigen.boundaries(|v| b.lateral(v), 1e-12, 1e-13).unwrap();
+    assert_eq!(found.len(), 2, "{found:?}");
+    let (weave, capsize) = (found[0], found[1]);
+    assert!(weave.oscillatory && !weave.destabilising);
+    assert!(!capsize.oscillatory && capsize.destabilising);
+    let rel = |x: f64, y: f64| (x - y).abs() / y;
+    eprintln!(
+        "weave {:.12} ({:.1e}), capsize {:.12} ({:.1e})",
+        weave.parameter,
+        rel(weave.parameter, published::WEAVE_SPEED),
+        capsize.parameter,
+        rel(capsize.parameter, published::CAPSIZE_SPEED)
+    );
+    assert!(rel(weave.parameter, published::WEAVE_SPEED) < 1e-8);
+    assert!(rel(capsize.parameter, published::CAPSIZE_SPEED) < 1e-8);
+    // Self-stable in between, unstable outside.
+    let verdict = |v: f64| b.lateral(v).unwrap().stability(1e-12).verdict;
+    assert_eq!(verdict(5.0), Verdict::AsymptoticallyStable);
+    assert_eq!(verdict(3.0), Verdict::Unstable);
+    assert_eq!(verdict(7.0), Verdict::Unstable);
+}
+
+/// The independent speeds that fix the forward speed, and the rolling
+/// constraints' dependence on roll and steer (which makes the dependent
+/// velocities vary with the coordinates about a steady motion), checked against
+/// central differences of the nonlinear multiplier-form dynamics: perturb one
+/// lateral state, complete the dependent pitch (Newton) and velocities (the
+/// constraints), solve the saddle-point system.
+#[test]
+fn lateral_dynamics_match_central_differences() {
+    let b = Bicycle::benchmark();
+    let speed = 4.0;
+    let lin = b.lateral(speed).unwrap();
+    let accel = |x: [f64; 4]| -> [f64; 2] {
+        let (q0, v0) = b.upright(speed);
+        let (mut q, mut v) = (SVector::<f64, 8>::from(q0), SVector::<f64, 8>::from(v0));
+        q[3] = x[0];
+        q[6] = x[1];
+        v[3] = x[2];
+        v[6] = x[3];
+        let (q, v) = lagrange::linear::Linearizer::new()
+            .coordinates(&["x", "y", "psi", "phi", "theta_r", "delta", "theta_f"])
+            .speeds(&["phi", "theta_r", "delta"])
+            .complete_state::<_, f64, 8, 5>(&b, q, v, 0.0)
+            .unwrap();
+        let a = ConstrainedDynamics::<_, f64, 5>::new(&b)
+            .solve(0.0, &q, &v)
+            .unwrap()
+            .accelerations;
+        [a[3], a[6]]
+    };
+    let h = 1e-5;
+    let mut fd = SMatrix::<f64, 2, 4>::zeros();
+    for j in 0..4 {
+        let (mut xp, mut xm) = ([0.0; 4], [0.0; 4]);
+        xp[j] = h;
+        xm[j] = -h;
+        let (fp, fm) = (accel(xp), accel(xm));
+        for i in 0..2 {
+            fd[(i, j)] = (fp[i] - fm[i]) / (2.0 * h);
+        }
+    }
+    let sym = lin.a().view((2, 0), (2, 4)).into_owned();
+    let err = (0..2)
+        .flat_map(|i| (0..4).map(move |j| (i, j)))
+        .map(|(i, j)| (sym[(i, j)] - fd[(i, j)]).abs())
+        .fold(0.0f64, f64::max)
+        / sym.abs().max();
+    eprintln!("symbolic vs central differences: {err:.1e}");
+    assert!(err < 1e-7, "{sym} vs {fd}");
 }

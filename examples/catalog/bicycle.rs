@@ -17,6 +17,8 @@
 //! fork): each body is placed at a point of the one before.
 
 use lagrange::Lagrangian;
+use lagrange::linear::{Linear, Linearizer, OperatingPoint};
+use lagrange::nalgebra::SVector;
 
 /// The Whipple bicycle; see the module docs. The fields are the benchmark's
 /// parameters with heights measured up from the ground (the paper's z_B = −0.9
@@ -143,4 +145,39 @@ impl Bicycle {
             [v, 0.0, 0.0, 0.0, 0.0, v / self.r_r, 0.0, v / self.r_f],
         )
     }
+
+    /// The linearised lateral dynamics about upright straight rolling at forward
+    /// speed `v`, in the benchmark's states (roll φ, steer δ and their rates).
+    ///
+    /// The multiplier form is linearised in the independent coordinates (all
+    /// but the pitch, which the front contact fixes) and the independent speeds
+    /// (roll, rear wheel and steer rates); position, heading, wheel angles and
+    /// the forward speed do not feed the lateral motion and are dropped.
+    pub fn lateral(&self, v: f64) -> Result<Linear, lagrange::Error> {
+        let (q, qd) = self.upright(v);
+        let op = OperatingPoint::new(SVector::from(q), SVector::from(qd));
+        Linearizer::new()
+            .coordinates(&["x", "y", "psi", "phi", "theta_r", "delta", "theta_f"])
+            .speeds(&["phi", "theta_r", "delta"])
+            .constrained(self, &op)?
+            .select(&["phi", "delta", "phi'", "delta'"])
+    }
+}
+
+/// The benchmark's published coefficient matrices (Meijaard et al. 2007, eq. (A 21)
+/// ff.) for M q̈ + v C1 q̇ + (g K0 + v² K2) q = f, q = (φ, δ), in the paper's
+/// sign convention (steer positive to the right).
+pub mod published {
+    /// M.
+    pub const M: [[f64; 2]; 2] = [[80.81722, 2.31941332208709], [2.31941332208709, 0.29784188199686]];
+    /// C1.
+    pub const C1: [[f64; 2]; 2] = [[0.0, 33.86641391492494], [-0.85035641456978, 1.68540397397560]];
+    /// K0.
+    pub const K0: [[f64; 2]; 2] = [[-80.95, -2.59951685249872], [-2.59951685249872, -0.80329488458618]];
+    /// K2.
+    pub const K2: [[f64; 2]; 2] = [[0.0, 76.59734589573222], [0.0, 2.65431523794604]];
+    /// The weave speed, where the oscillatory mode turns stable (m/s).
+    pub const WEAVE_SPEED: f64 = 4.2923825363;
+    /// The capsize speed, where the capsize mode turns unstable (m/s).
+    pub const CAPSIZE_SPEED: f64 = 6.0242620154;
 }
