@@ -59,6 +59,7 @@ mod dynamics;
 mod error;
 pub mod event;
 pub mod func;
+pub mod linear;
 pub mod ode;
 mod real;
 mod reduced;
@@ -72,6 +73,10 @@ pub use constraint::{ConstrainedDynamics, Drift, Solution, check_consistency, pr
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use error::Error;
 pub use event::{Direction, Event, EventRun, Events, Occurrence};
+pub use linear::{
+    Linear, LinearError, Linearizer, OperatingPoint, complete_state, linearize,
+    linearize_constrained, linearize_reduced,
+};
 pub use ode::{
     DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Rattle, Rk4, Sample,
     SecondOrder, Stats, StormerVerlet,
