@@ -475,16 +475,27 @@ impl Linearizer {
         let (g, _) = sys.constraint_jacobian(&q, t);
         let part = self.partition::<S, T, N, K>(&dm(&g), &q, t)?;
         let mut iterations = 0;
+        // Once within the tolerance, one more step polishes Φ to round-off (it is
+        // kept only if it does not increase the residual).
+        let mut polish: Option<(SVector<T, N>, f64)> = None;
         loop {
             let phi = dv(&sys.constraint_positions(&q, t)).rows(0, h).into_owned();
             if !phi.iter().all(|x| x.is_finite()) {
                 return Err(non_finite(&q, &v));
             }
             let residual = phi.amax();
-            if residual <= self.newton_tolerance {
+            if let Some((q_prev, r_prev)) = polish {
+                if !(residual <= r_prev) {
+                    q = q_prev;
+                }
                 break;
             }
-            if iterations == self.newton_iterations {
+            if residual <= self.newton_tolerance {
+                if residual == 0.0 {
+                    break;
+                }
+                polish = Some((q, residual));
+            } else if iterations == self.newton_iterations {
                 return Err(Error::ProjectionFailed {
                     t: t.to_f64(),
                     q: to_vec(&q),
@@ -632,7 +643,7 @@ impl Linearizer {
             Some(names) => {
                 let ci = indices::<S, T, N>("coordinates", names, N - h)?;
                 let cd = complement(&ci);
-                check_square::<S, T, N>("coordinates", &phi_q.select_columns(cd.iter()), &cd, tol)?;
+                check_square::<S, T, N>("coordinates", &phi_q, &cd, tol)?;
                 (ci, cd)
             }
             None => {
@@ -649,7 +660,7 @@ impl Linearizer {
             Some(names) => {
                 let si = indices::<S, T, N>("speeds", names, N.saturating_sub(K))?;
                 let sd = complement(&si);
-                check_square::<S, T, N>("speeds", &g.select_columns(sd.iter()), &sd, tol)?;
+                check_square::<S, T, N>("speeds", g, &sd, tol)?;
                 (si, sd)
             }
             None => {
@@ -676,7 +687,7 @@ impl Linearizer {
                 sd.extend(chosen.iter().map(|&j| ci[j]));
                 sd.sort_unstable();
                 let si: Vec<usize> = ci.iter().copied().filter(|i| !sd.contains(i)).collect();
-                check_square::<S, T, N>("speeds", &g.select_columns(sd.iter()), &sd, tol)?;
+                check_square::<S, T, N>("speeds", g, &sd, tol)?;
                 (si, sd)
             }
         };
@@ -765,9 +776,12 @@ where
     Ok(out)
 }
 
+/// Checks that the columns `dependent` of `full` form a square matrix whose
+/// smallest singular value is at least `tol` times the largest singular value of
+/// `full` (relative to the whole Jacobian, so that a 1 × 1 block is judged too).
 fn check_square<S, T, const N: usize>(
     what: &'static str,
-    m: &DMatrix<f64>,
+    full: &DMatrix<f64>,
     dependent: &[usize],
     tol: f64,
 ) -> Result<(), Error>
@@ -775,7 +789,14 @@ where
     S: crate::Lagrangian<T, N>,
     T: Real,
 {
-    let (ratio, _) = condition(m);
+    let m = full.select_columns(dependent.iter());
+    let ratio = if m.is_empty() {
+        1.0
+    } else {
+        let big = full.clone().singular_values().max();
+        let small = m.clone().singular_values().min();
+        if big > 0.0 { small / big } else { 0.0 }
+    };
     if m.nrows() == m.ncols() && ratio >= tol {
         return Ok(());
     }
