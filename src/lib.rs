@@ -108,6 +108,7 @@ pub use nalgebra;
 /// builder, the integrators and nalgebra's fixed-size vectors.
 pub mod prelude {
     pub use lagrange_macros::Lagrangian;
+    pub use lagrange_runtime::linear::{Linear, Linearizer, OperatingPoint, Verdict};
     pub use lagrange_runtime::{
         Constrained, ConstrainedDynamics, Direction, Dopri5, Drift, Error, Event, EventRun,
         Lagrangian, Occurrence, Real, Reduced, ReducedDynamics, Rk4, Simulation, Study, Sweep,

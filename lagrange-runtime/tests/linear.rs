@@ -110,7 +110,12 @@ fn double_pendulum_second_order_form_and_names() {
     let k = DMatrix::from_row_slice(
         2,
         2,
-        &[(sys.m1 + sys.m2) * sys.g * sys.l1, 0.0, 0.0, sys.m2 * sys.g * sys.l2],
+        &[
+            (sys.m1 + sys.m2) * sys.g * sys.l1,
+            0.0,
+            0.0,
+            sys.m2 * sys.g * sys.l2,
+        ],
     );
     assert!((&so.stiffness - &k).amax() < 1e-14);
     assert!((&so.damping - DMatrix::identity(2, 2) * sys.d).amax() < 1e-15);
@@ -207,12 +212,18 @@ fn rod_matches_finite_differences_in_independent_coordinates() {
                 .complete_state(&sys, guess.0, guess.1, 0.0)
                 .unwrap();
             let forced = Forced { sys: &sys, u };
-            let sol = ConstrainedDynamics::new(&forced).solve(0.0, &qc, &vc).unwrap();
+            let sol = ConstrainedDynamics::new(&forced)
+                .solve(0.0, &qc, &vc)
+                .unwrap();
             DVector::from_vec(vec![vc[0], sol.accelerations[0]])
         };
         let x0 = DVector::from_vec(vec![q[0], v[0]]);
         let a_fd = jacobian(|x| rhs(x, u), &x0, 1e-6);
-        let b_fd = jacobian(|w| rhs(&x0, Vector1::new(w[0])), &DVector::from_element(1, u[0]), 1e-6);
+        let b_fd = jacobian(
+            |w| rhs(&x0, Vector1::new(w[0])),
+            &DVector::from_element(1, u[0]),
+            1e-6,
+        );
         worst[0] = worst[0].max(rel_diff(lin.a(), &a_fd));
         worst[1] = worst[1].max(rel_diff(lin.b(), &b_fd));
     }
@@ -263,7 +274,10 @@ fn complete_state_holds_the_independent_coordinate() {
             residual,
             ..
         } => {
-            assert_eq!(iterations, lagrange_runtime::linear::DEFAULT_NEWTON_ITERATIONS);
+            assert_eq!(
+                iterations,
+                lagrange_runtime::linear::DEFAULT_NEWTON_ITERATIONS
+            );
             assert!(residual > 0.1);
         }
         other => panic!("{other:?}"),
@@ -306,7 +320,11 @@ fn sled_multiplier_form_matches_finite_differences() {
         };
         let x0 = DVector::from_vec(vec![q[0], q[1], q[2], v[0], v[2]]);
         let a_fd = jacobian(|x| rhs(x, u), &x0, 1e-6);
-        let b_fd = jacobian(|w| rhs(&x0, sv::<3>(w, 0)), &DVector::from_column_slice(u.as_slice()), 1e-6);
+        let b_fd = jacobian(
+            |w| rhs(&x0, sv::<3>(w, 0)),
+            &DVector::from_column_slice(u.as_slice()),
+            1e-6,
+        );
         worst[0] = worst[0].max(rel_diff(lin.a(), &a_fd));
         worst[1] = worst[1].max(rel_diff(lin.b(), &b_fd));
     }
@@ -347,7 +365,11 @@ fn sled_reduced_form_matches_finite_differences() {
         };
         let x0 = DVector::from_vec(vec![q[0], q[1], q[2], speeds[0], speeds[1]]);
         let a_fd = jacobian(|x| rhs(x, u), &x0, 1e-6);
-        let b_fd = jacobian(|w| rhs(&x0, sv::<3>(w, 0)), &DVector::from_column_slice(u.as_slice()), 1e-6);
+        let b_fd = jacobian(
+            |w| rhs(&x0, sv::<3>(w, 0)),
+            &DVector::from_column_slice(u.as_slice()),
+            1e-6,
+        );
         worst[0] = worst[0].max(rel_diff(lin.a(), &a_fd));
         worst[1] = worst[1].max(rel_diff(lin.b(), &b_fd));
     }
@@ -416,7 +438,12 @@ fn bicycle(v: f64) -> Result<Linear, Error> {
     let m = DMatrix::from_row_slice(
         2,
         2,
-        &[80.81722, 2.31941332208709, 2.31941332208709, 0.29784188199686],
+        &[
+            80.81722,
+            2.31941332208709,
+            2.31941332208709,
+            0.29784188199686,
+        ],
     );
     let c1 = DMatrix::from_row_slice(
         2,
@@ -426,7 +453,12 @@ fn bicycle(v: f64) -> Result<Linear, Error> {
     let k0 = DMatrix::from_row_slice(
         2,
         2,
-        &[-80.95, -2.59951685249872, -2.59951685249872, -0.80329488458618],
+        &[
+            -80.95,
+            -2.59951685249872,
+            -2.59951685249872,
+            -0.80329488458618,
+        ],
     );
     let k2 = DMatrix::from_row_slice(2, 2, &[0.0, 76.59734589573222, 0.0, 2.65431523794604]);
     let g = 9.81;
@@ -466,8 +498,14 @@ fn bicycle_weave_and_capsize_speeds() {
     );
     assert!(rel(bounds[0].parameter, weave) < 1e-8);
     assert!(rel(bounds[1].parameter, capsize) < 1e-8);
-    assert!(bounds[0].oscillatory && !bounds[0].destabilising, "weave: a pair stabilises");
-    assert!(!bounds[1].oscillatory && bounds[1].destabilising, "capsize: a real root");
+    assert!(
+        bounds[0].oscillatory && !bounds[0].destabilising,
+        "weave: a pair stabilises"
+    );
+    assert!(
+        !bounds[1].oscillatory && bounds[1].destabilising,
+        "capsize: a real root"
+    );
     assert!((bounds[0].bracket.1 - bounds[0].bracket.0) <= 1e-12 * weave);
     // Stable in between, unstable outside.
     let verdict = |v: f64| bicycle(v).unwrap().stability(1e-12).verdict;
@@ -477,7 +515,13 @@ fn bicycle_weave_and_capsize_speeds() {
     // Published eigenvalues at v = 5 m/s (Meijaard et al. 2007, table 2 area):
     // weave −0.7751 ± 4.4648i? Checked only through the sign here; the boundary
     // speeds above are the quantitative check.
-    assert!(bicycle(5.0).unwrap().eigenvalues().iter().all(|z| z.re < 0.0));
+    assert!(
+        bicycle(5.0)
+            .unwrap()
+            .eigenvalues()
+            .iter()
+            .all(|z| z.re < 0.0)
+    );
 }
 
 // ------------------------------------------------------------------------ LQR
@@ -508,7 +552,14 @@ fn lqr_random_stabilisable_system() {
     let l = DMatrix::from_fn(4, 4, |_, _| rng.uniform(-1.0, 1.0));
     let q = &l * l.transpose() + DMatrix::identity(4, 4) * 0.1;
     let r = DMatrix::from_row_slice(2, 2, &[2.0, 0.3, 0.3, 1.0]);
-    let open = Linear::new(a.clone(), b.clone(), &["a", "b", "c", "d"], &["u1", "u2"], 0).unwrap();
+    let open = Linear::new(
+        a.clone(),
+        b.clone(),
+        &["a", "b", "c", "d"],
+        &["u1", "u2"],
+        0,
+    )
+    .unwrap();
     let design = open.lqr(&q, &r).unwrap();
     let p = &design.riccati;
     let s = &b * r.clone().try_inverse().unwrap() * b.transpose();
@@ -586,8 +637,11 @@ fn singular_mass_matrix_is_reported() {
         m2: 0.0,
         ..DoublePendulum::standard()
     };
-    let e = linearize(&sys, &OperatingPoint::<f64, 2, 3>::new(Vector2::zeros(), Vector2::zeros()))
-        .unwrap_err();
+    let e = linearize(
+        &sys,
+        &OperatingPoint::<f64, 2, 3>::new(Vector2::zeros(), Vector2::zeros()),
+    )
+    .unwrap_err();
     assert!(matches!(e, Error::SingularMassMatrix { .. }), "{e:?}");
 }
 
@@ -599,18 +653,27 @@ fn missing_derivatives_ask_for_emit_jacobians() {
     let e = linearize_constrained(&pendulum, &OperatingPoint::<f64, 2, 0>::new(q, v)).unwrap_err();
     let msg = e.to_string();
     eprintln!("{msg}");
-    assert!(msg.contains("emit(jacobians)") && msg.contains("rhs_jacobians"), "{msg}");
+    assert!(
+        msg.contains("emit(jacobians)") && msg.contains("rhs_jacobians"),
+        "{msg}"
+    );
     let sleigh = common::constrained::Sleigh::standard();
-    let (q, v) = (Vector3::new(0.0, 0.0, 0.3), Vector3::new(0.3f64.cos(), 0.3f64.sin(), 1.0));
+    let (q, v) = (
+        Vector3::new(0.0, 0.0, 0.3),
+        Vector3::new(0.3f64.cos(), 0.3f64.sin(), 1.0),
+    );
     let e = linearize_reduced(&sleigh, &OperatingPoint::<f64, 3, 0>::new(q, v)).unwrap_err();
     assert!(matches!(
         e,
-        Error::MissingDerivatives { method: "Reduced::reduced_derivatives", .. }
+        Error::MissingDerivatives {
+            method: "Reduced::reduced_derivatives",
+            ..
+        }
     ));
-    let e = linearize(&common::Oscillator { m: 1.0, k: 4.0 }, &OperatingPoint::<f64, 1, 0>::new(
-        SVector::from_element(0.1),
-        SVector::zeros(),
-    ))
+    let e = linearize(
+        &common::Oscillator { m: 1.0, k: 4.0 },
+        &OperatingPoint::<f64, 1, 0>::new(SVector::from_element(0.1), SVector::zeros()),
+    )
     .unwrap_err();
     assert!(e.to_string().contains("emit(jacobians)"));
 }
@@ -625,24 +688,42 @@ fn redundant_constraints_and_bad_partitions_are_reported() {
     // At θ = π/2 (x = l, y = 0) y cannot be the dependent coordinate.
     let (q, v) = sys.state(std::f64::consts::FRAC_PI_2, 0.0);
     let op = OperatingPoint::<f64, 2, 1>::new(q, v);
-    let e = Linearizer::new().coordinates(&["x"]).constrained(&sys, &op).unwrap_err();
+    let e = Linearizer::new()
+        .coordinates(&["x"])
+        .constrained(&sys, &op)
+        .unwrap_err();
     eprintln!("{e}");
-    assert!(matches!(e, Error::Linear(LinearError::SingularPartition { .. })), "{e:?}");
+    assert!(
+        matches!(e, Error::Linear(LinearError::SingularPartition { .. })),
+        "{e:?}"
+    );
     // ... but the automatic choice takes y as independent there.
     let lin = linearize_constrained(&sys, &op).unwrap();
     assert_eq!(lin.states(), ["y", "y'"]);
-    let e = Linearizer::new().coordinates(&["z"]).constrained(&sys, &op).unwrap_err();
-    assert!(matches!(e, Error::Linear(LinearError::InvalidPartition { .. })), "{e:?}");
+    let e = Linearizer::new()
+        .coordinates(&["z"])
+        .constrained(&sys, &op)
+        .unwrap_err();
+    assert!(
+        matches!(e, Error::Linear(LinearError::InvalidPartition { .. })),
+        "{e:?}"
+    );
 }
 
 #[test]
 fn select_refuses_a_coupled_state_and_keeps_a_decoupled_block() {
     let sys = DoublePendulum::standard();
-    let lin = linearize(&sys, &OperatingPoint::<f64, 2, 3>::new(Vector2::zeros(), Vector2::zeros()))
-        .unwrap();
+    let lin = linearize(
+        &sys,
+        &OperatingPoint::<f64, 2, 3>::new(Vector2::zeros(), Vector2::zeros()),
+    )
+    .unwrap();
     let e = lin.select(&["theta1", "theta1'"]).unwrap_err();
     eprintln!("{e}");
-    assert!(matches!(e, Error::Linear(LinearError::CoupledStates { .. })));
+    assert!(matches!(
+        e,
+        Error::Linear(LinearError::CoupledStates { .. })
+    ));
     let e = lin.select(&["theta3"]).unwrap_err();
     assert!(matches!(e, Error::Linear(LinearError::UnknownState { .. })));
     // Block-diagonal: two uncoupled oscillators, one kept.
@@ -655,5 +736,8 @@ fn select_refuses_a_coupled_state_and_keeps_a_decoupled_block() {
     let so = one.second_order().unwrap();
     assert_eq!((so.mass[(0, 0)], so.stiffness[(0, 0)]), (2.0, 8.0));
     let ev = one.eigenvalues();
-    assert!((ev[0] - Complex::new(-0.05, (4.0f64 - 0.0025).sqrt())).norm() < 1e-14, "{ev:?}");
+    assert!(
+        (ev[0] - Complex::new(-0.05, (4.0f64 - 0.0025).sqrt())).norm() < 1e-14,
+        "{ev:?}"
+    );
 }

@@ -562,7 +562,8 @@ impl Linearizer {
         };
         let parts = [&ev.m, &ev.g];
         let vecs = [&ev.f, &ev.g0, &ev.gamma, &ev.phi];
-        if !(parts.iter().all(|m| finite(m)) && vecs.iter().all(|x| x.iter().all(|y| y.is_finite())))
+        if !(parts.iter().all(|m| finite(m))
+            && vecs.iter().all(|x| x.iter().all(|y| y.is_finite())))
         {
             return Err(Error::non_finite(t, q, v));
         }
@@ -612,14 +613,16 @@ impl Linearizer {
         S: Constrained<T, N, K>,
         T: Real,
     {
-        Saddle::new(&ev.m, &ev.g, self.singular_tolerance, self.redundant_tolerance).map_err(
-            |e| match e {
-                SaddleError::Mass(ratio) => singular(t, q, ratio),
-                SaddleError::Redundant(ratio, rows) => {
-                    redundant::<S, T, N, K>(t, q, ratio, rows)
-                }
-            },
+        Saddle::new(
+            &ev.m,
+            &ev.g,
+            self.singular_tolerance,
+            self.redundant_tolerance,
         )
+        .map_err(|e| match e {
+            SaddleError::Mass(ratio) => singular(t, q, ratio),
+            SaddleError::Redundant(ratio, rows) => redundant::<S, T, N, K>(t, q, ratio, rows),
+        })
     }
 
     /// The independent/dependent split of the coordinates and speeds at G.
@@ -636,9 +639,8 @@ impl Linearizer {
         let h = holonomic::<S, T, N, K>();
         let tol = self.redundant_tolerance;
         let phi_q = g.rows(0, h).into_owned();
-        let complement = |chosen: &[usize]| -> Vec<usize> {
-            (0..N).filter(|i| !chosen.contains(i)).collect()
-        };
+        let complement =
+            |chosen: &[usize]| -> Vec<usize> { (0..N).filter(|i| !chosen.contains(i)).collect() };
         let (ci, cd) = match &self.coordinates {
             Some(names) => {
                 let ci = indices::<S, T, N>("coordinates", names, N - h)?;

@@ -29,9 +29,9 @@ pub(crate) fn cholesky(
     let c = nalgebra::Cholesky::new(m.clone()).ok_or(0.0)?;
     let l = c.l_dirty();
     let d: Vec<f64> = (0..m.nrows()).map(|i| l[(i, i)] * l[(i, i)]).collect();
-    let (lo, hi) = d
-        .iter()
-        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+    let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), &x| {
+        (lo.min(x), hi.max(x))
+    });
     if !d.is_empty() && !(lo >= tol * hi) {
         return Err(if hi > 0.0 { lo / hi } else { 0.0 });
     }

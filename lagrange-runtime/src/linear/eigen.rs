@@ -88,8 +88,9 @@ impl Linear {
                     lu = shifted(&ac, shift).lu();
                 }
                 // A generic start: every eigenvector has a component along it.
-                let mut x: DVector<Complex<f64>> =
-                    DVector::from_fn(n, |i, _| Complex::new(1.0 + 0.37 * i as f64, 0.11 * i as f64));
+                let mut x: DVector<Complex<f64>> = DVector::from_fn(n, |i, _| {
+                    Complex::new(1.0 + 0.37 * i as f64, 0.11 * i as f64)
+                });
                 for _ in 0..3 {
                     let y = lu.solve(&x).unwrap_or_else(|| {
                         shift += Complex::new(1e-10 * scale, 1e-10 * scale);
@@ -130,7 +131,11 @@ fn stability_of(ev: &[Complex<f64>], tol: f64) -> Stability {
     };
     Stability {
         verdict,
-        max_real: if ev.is_empty() { f64::NEG_INFINITY } else { max },
+        max_real: if ev.is_empty() {
+            f64::NEG_INFINITY
+        } else {
+            max
+        },
         critical,
         tolerance: tol,
     }
@@ -146,10 +151,13 @@ fn shifted(a: &DMatrix<Complex<f64>>, s: Complex<f64>) -> DMatrix<Complex<f64>> 
 
 /// x scaled so that its largest component is exactly 1.
 fn normalise(x: DVector<Complex<f64>>) -> DVector<Complex<f64>> {
-    let (i, _) = x
-        .iter()
-        .enumerate()
-        .fold((0, 0.0), |(bi, bn), (i, z)| if z.norm() > bn { (i, z.norm()) } else { (bi, bn) });
+    let (i, _) = x.iter().enumerate().fold((0, 0.0), |(bi, bn), (i, z)| {
+        if z.norm() > bn {
+            (i, z.norm())
+        } else {
+            (bi, bn)
+        }
+    });
     let p = x[i];
     if p.norm() == 0.0 || !p.norm().is_finite() {
         return x;
@@ -262,7 +270,7 @@ impl EigenSweep {
         let mut out = Vec::new();
         for w in self.points.windows(2) {
             let (fa, fb) = (w[0].max_real() - tol, w[1].max_real() - tol);
-            if !((fa > 0.0) != (fb > 0.0)) {
+            if (fa > 0.0) == (fb > 0.0) {
                 continue;
             }
             let (a, b) = (w[0].parameter, w[1].parameter);

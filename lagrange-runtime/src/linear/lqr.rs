@@ -4,7 +4,7 @@
 //! AᵀP + PA − P B R⁻¹ Bᵀ P + Q = 0
 //! ```
 //!
-//! by the matrix sign function of the Hamiltonian H = [[A, −S], [−Q, −Aᵀ]],
+//! by the matrix sign function of the Hamiltonian `H = [[A, −S], [−Q, −Aᵀ]]`,
 //! S = B R⁻¹ Bᵀ (Roberts 1971; Byers 1987 determinant scaling): the stable
 //! invariant subspace of H is the null space of sign(H) + I and equals the range
 //! of [I; P], so P solves the overdetermined [W₁₂; W₂₂ + I] P = −[W₁₁ + I; W₂₁]
@@ -85,16 +85,17 @@ pub fn lqr(
     shape("R", r, m, m)?;
     let symmetric = |x: &DMatrix<f64>| (x - x.transpose()).amax() <= 1e-12 * x.amax();
     if !symmetric(q) || !symmetric(r) {
-        return Err(Error::InvalidSettings("LQR: Q and R must be symmetric".into()));
+        return Err(Error::InvalidSettings(
+            "LQR: Q and R must be symmetric".into(),
+        ));
     }
     if n > 0 && q.clone().symmetric_eigenvalues().min() < -1e-12 * q.amax().max(1.0) {
         return Err(Error::InvalidSettings(
             "LQR: Q must be positive semidefinite".into(),
         ));
     }
-    let r_chol = nalgebra::Cholesky::new(r.clone()).ok_or_else(|| {
-        Error::InvalidSettings("LQR: R must be positive definite".into())
-    })?;
+    let r_chol = nalgebra::Cholesky::new(r.clone())
+        .ok_or_else(|| Error::InvalidSettings("LQR: R must be positive definite".into()))?;
     if n == 0 {
         return Ok(Lqr {
             gain: DMatrix::zeros(m, 0),
@@ -116,13 +117,15 @@ pub fn lqr(
 
     let (w, iterations) = sign(h)?;
     let mut lhs = DMatrix::zeros(2 * n, n);
-    lhs.view_mut((0, 0), (n, n)).copy_from(&w.view((0, n), (n, n)));
+    lhs.view_mut((0, 0), (n, n))
+        .copy_from(&w.view((0, n), (n, n)));
     lhs.view_mut((n, 0), (n, n))
         .copy_from(&(w.view((n, n), (n, n)) + DMatrix::identity(n, n)));
     let mut rhs = DMatrix::zeros(2 * n, n);
     rhs.view_mut((0, 0), (n, n))
         .copy_from(&-(w.view((0, 0), (n, n)) + DMatrix::identity(n, n)));
-    rhs.view_mut((n, 0), (n, n)).copy_from(&-w.view((n, 0), (n, n)));
+    rhs.view_mut((n, 0), (n, n))
+        .copy_from(&-w.view((n, 0), (n, n)));
     let svd = lhs.svd(true, true);
     let sv = &svd.singular_values;
     if !(sv.min() > 1e-12 * sv.max()) {
@@ -200,7 +203,11 @@ fn residual(
     let psp = p * s * p;
     let r = &atp + atp.transpose() - &psp + q;
     let scale = q.norm() + 2.0 * atp.norm() + psp.norm();
-    let rel = if scale > 0.0 { r.norm() / scale } else { r.norm() };
+    let rel = if scale > 0.0 {
+        r.norm() / scale
+    } else {
+        r.norm()
+    };
     (r, rel)
 }
 

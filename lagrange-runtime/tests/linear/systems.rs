@@ -74,7 +74,8 @@ impl Lagrangian<f64, 2> for DoublePendulum {
         0.5 * v.dot(&(self.mass_matrix(q, t) * v))
     }
     fn potential_energy(&self, q: &Vector2<f64>, _t: f64) -> f64 {
-        -(self.m1 + self.m2) * self.g * self.l1 * q[0].cos() - self.m2 * self.g * self.l2 * q[1].cos()
+        -(self.m1 + self.m2) * self.g * self.l1 * q[0].cos()
+            - self.m2 * self.g * self.l2 * q[1].cos()
     }
     fn integral(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64) -> f64 {
         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
@@ -245,12 +246,7 @@ impl Constrained<f64, 2, 1> for Rod {
         a: &Vector2<f64>,
         nu: &Vector1<f64>,
         _t: f64,
-    ) -> Option<(
-        Matrix2<f64>,
-        Matrix1x2<f64>,
-        Matrix1x2<f64>,
-        Matrix1x2<f64>,
-    )> {
+    ) -> Option<(Matrix2<f64>, Matrix1x2<f64>, Matrix1x2<f64>, Matrix1x2<f64>)> {
         Some((
             Matrix2::identity() * (2.0 * nu[0]),
             Matrix1x2::new(-2.0 * a[0], -2.0 * a[1]),
@@ -418,12 +414,7 @@ impl Constrained<f64, 3, 1> for Sled {
         acc: &Vector3<f64>,
         nu: &Vector1<f64>,
         _t: f64,
-    ) -> Option<(
-        Matrix3<f64>,
-        Matrix1x3<f64>,
-        Matrix1x3<f64>,
-        Matrix1x3<f64>,
-    )> {
+    ) -> Option<(Matrix3<f64>, Matrix1x3<f64>, Matrix1x3<f64>, Matrix1x3<f64>)> {
         let (s, c) = q[2].sin_cos();
         let mut dgn = Matrix3::zeros();
         dgn[(0, 2)] = -c * nu[0];
