@@ -512,9 +512,8 @@ fn bicycle_weave_and_capsize_speeds() {
     assert_eq!(verdict(5.0), Verdict::AsymptoticallyStable);
     assert_eq!(verdict(3.0), Verdict::Unstable);
     assert_eq!(verdict(7.0), Verdict::Unstable);
-    // Published eigenvalues at v = 5 m/s (Meijaard et al. 2007, table 2 area):
-    // weave −0.7751 ± 4.4648i? Checked only through the sign here; the boundary
-    // speeds above are the quantitative check.
+    // Inside the stable band every eigenvalue is in the left half-plane (the
+    // boundary speeds above are the quantitative check).
     assert!(
         bicycle(5.0)
             .unwrap()
