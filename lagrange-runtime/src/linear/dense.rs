@@ -157,3 +157,45 @@ impl Saddle {
         (x, y)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pivoting_picks_the_best_conditioned_columns() {
+        // Column 2 is largest; after removing its direction, column 0 is left
+        // with more than the nearly parallel column 1.
+        let m = DMatrix::from_row_slice(2, 3, &[1.0, 0.1, 3.0, 0.0, 0.0, 1.0]);
+        let (chosen, ratio) = pivot_columns(&m, 2);
+        assert_eq!(chosen[0], 2);
+        assert_eq!(chosen[1], 0);
+        // Left of column 0: (1, 0) − 0.3 (3, 1) = (0.1, −0.3), against |column 2| = √10.
+        assert!((ratio - 0.1).abs() < 1e-15, "{ratio}");
+        // Rank one: the second pivot vanishes.
+        let r1 = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 4.0]);
+        let (_, ratio) = pivot_columns(&r1, 2);
+        assert!(ratio < 1e-15, "{ratio}");
+    }
+
+    #[test]
+    fn saddle_solves_and_detects_dependent_rows() {
+        let m = DMatrix::from_row_slice(3, 3, &[4.0, 1.0, 0.5, 1.0, 3.0, 0.2, 0.5, 0.2, 2.0]);
+        let g = DMatrix::from_row_slice(2, 3, &[1.0, 2.0, 0.0, 0.0, 1.0, -1.0]);
+        let f = DMatrix::from_column_slice(3, 1, &[1.0, -1.0, 2.0]);
+        let r = DMatrix::from_column_slice(2, 1, &[0.5, -0.25]);
+        let s = Saddle::new(&m, &g, 1e-12, 1e-12).ok().unwrap();
+        let (x, y) = s.solve(&f, &r);
+        assert!((&m * &x - g.transpose() * &y - &f).amax() < 1e-14);
+        assert!((&g * &x - &r).amax() < 1e-14);
+        let twice = DMatrix::from_row_slice(2, 3, &[1.0, 2.0, 0.0, 1.0, 2.0, 0.0]);
+        assert!(matches!(
+            Saddle::new(&m, &twice, 1e-12, 1e-12),
+            Err(SaddleError::Redundant(_, _))
+        ));
+        assert!(matches!(
+            Saddle::new(&DMatrix::zeros(3, 3), &g, 1e-12, 1e-12),
+            Err(SaddleError::Mass(_))
+        ));
+    }
+}
