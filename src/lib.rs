@@ -139,6 +139,7 @@ pub use nalgebra;
 /// builder, the integrators and nalgebra's fixed-size vectors.
 pub mod prelude {
     pub use lagrange_macros::Lagrangian;
+    pub use lagrange_runtime::linear::{Linear, Linearizer, OperatingPoint, Verdict};
     pub use lagrange_runtime::{
         Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation, Direction, Dopri5,
         Drift, Driven, Error, Event, EventRun, InputTable, Interpolation, Lagrangian, Occurrence,

@@ -223,6 +223,26 @@ pub enum Error {
     #[error("invalid settings: {0}")]
     InvalidSettings(String),
 
+    /// A method the computation needs is not provided by the system (a trait
+    /// method whose default returns `None`). Linearisation uses symbolic
+    /// derivatives only, never silent finite differences: derive the system with
+    /// `emit(jacobians)`, or implement the method by hand.
+    #[error(
+        "{needed_for} needs `{method}`, which this system does not provide; add \
+         `emit(jacobians)` to its #[derive(Lagrangian)] (or implement `{method}` by hand)"
+    )]
+    MissingDerivatives {
+        /// The trait method that returned `None`, e.g. `Lagrangian::rhs_jacobians`.
+        method: &'static str,
+        /// What needed it, e.g. `linearisation`.
+        needed_for: &'static str,
+    },
+
+    /// Linearisation, eigen-analysis or LQR design failed; see
+    /// [`LinearError`](crate::linear::LinearError).
+    #[error(transparent)]
+    Linear(#[from] crate::linear::LinearError),
+
     /// Writing output (CSV) failed.
     #[error("i/o error: {0}")]
     Io(#[from] std::io::Error),

@@ -72,6 +72,7 @@ mod dynamics;
 mod error;
 pub mod event;
 pub mod func;
+pub mod linear;
 pub mod ode;
 mod real;
 mod reduced;
@@ -89,6 +90,10 @@ pub use control::{
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use error::Error;
 pub use event::{Direction, Event, EventRun, Events, Occurrence};
+pub use linear::{
+    Linear, LinearError, Linearizer, OperatingPoint, complete_state, linearize,
+    linearize_constrained, linearize_reduced,
+};
 pub use ode::{
     DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Rattle, Rk4, Sample,
     SecondOrder, Stats, StormerVerlet,

@@ -1,0 +1,930 @@
+//! Building a [`Linear`] model from a system at an operating point.
+
+use super::dense::{Saddle, SaddleError, cholesky, condition, dm, dv, finite, pivot_columns};
+use super::{Linear, LinearError, SecondOrderForm};
+use crate::constraint::DEFAULT_CONSISTENCY_TOLERANCE;
+use crate::dynamics::DEFAULT_SINGULAR_TOLERANCE;
+use crate::error::{Error, to_vec};
+use crate::real::Real;
+use crate::system::{Constrained, Driven, Reduced};
+use nalgebra::{DMatrix, DVector, SVector};
+
+/// Default absolute tolerance on max |Φ| of the Newton iteration in
+/// [`Linearizer::complete_state`].
+pub const DEFAULT_NEWTON_TOLERANCE: f64 = 1e-12;
+/// Default limit on Newton iterations in [`Linearizer::complete_state`].
+pub const DEFAULT_NEWTON_ITERATIONS: usize = 20;
+
+/// An operating point (q0, q̇0, u0, t0) with P inputs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OperatingPoint<T: Real, const N: usize, const P: usize> {
+    /// Coordinates q0.
+    pub q: SVector<T, N>,
+    /// Velocities q̇0.
+    pub v: SVector<T, N>,
+    /// Inputs u0.
+    pub u: SVector<T, P>,
+    /// Time t0.
+    pub t: T,
+}
+
+impl<T: Real, const N: usize, const P: usize> OperatingPoint<T, N, P> {
+    /// The point (q, v) at t = 0 with all inputs zero.
+    pub fn new(q: SVector<T, N>, v: SVector<T, N>) -> Self {
+        Self {
+            q,
+            v,
+            u: SVector::zeros(),
+            t: T::zero(),
+        }
+    }
+
+    /// Sets the inputs u0.
+    pub fn input(mut self, u: SVector<T, P>) -> Self {
+        self.u = u;
+        self
+    }
+
+    /// Sets the time t0.
+    pub fn time(mut self, t: T) -> Self {
+        self.t = t;
+        self
+    }
+}
+
+/// Settings of a linearisation: the independent coordinates and speeds of a
+/// constrained system and the tolerances.
+///
+/// **Automatic choice** (when no names are given): the dependent coordinates are
+/// the columns of Φ_q chosen by QR with column pivoting (largest remaining column
+/// norm first, the later coordinate on ties), so Φ_{q_d} is as well conditioned
+/// as this greedy rule gets; the dependent speeds are the rates of the dependent
+/// coordinates plus, for the nonholonomic rows, the columns chosen by the same
+/// pivoting on those rows restricted to the holonomic motions,
+/// A_i − A_d Φ_{q_d}⁻¹ Φ_{q_i}. The independent speeds are then rates of
+/// independent coordinates, so the second-order form is always available. Names
+/// keep the order they are given in; automatic ones follow the coordinates'.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Linearizer {
+    coordinates: Option<Vec<String>>,
+    speeds: Option<Vec<String>>,
+    consistency_tolerance: f64,
+    singular_tolerance: f64,
+    redundant_tolerance: f64,
+    newton_tolerance: f64,
+    newton_iterations: usize,
+}
+
+impl Default for Linearizer {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Independent and dependent coordinate and speed indices.
+#[derive(Clone, Debug)]
+struct Partition {
+    ci: Vec<usize>,
+    cd: Vec<usize>,
+    si: Vec<usize>,
+    sd: Vec<usize>,
+}
+
+/// M, Q − h + ΔQ, G, g, γ and Φ (holonomic rows) at one state, as f64.
+struct Evaluated {
+    m: DMatrix<f64>,
+    f: DVector<f64>,
+    g: DMatrix<f64>,
+    g0: DVector<f64>,
+    gamma: DVector<f64>,
+    phi: DVector<f64>,
+}
+
+impl Linearizer {
+    /// Automatic choice of independent coordinates and speeds; consistency
+    /// tolerance 1e-10, singular and redundancy tolerances 1e-12, Newton to 1e-12
+    /// in at most 20 iterations.
+    pub fn new() -> Self {
+        Self {
+            coordinates: None,
+            speeds: None,
+            consistency_tolerance: DEFAULT_CONSISTENCY_TOLERANCE,
+            singular_tolerance: DEFAULT_SINGULAR_TOLERANCE,
+            redundant_tolerance: crate::constraint::DEFAULT_REDUNDANT_TOLERANCE,
+            newton_tolerance: DEFAULT_NEWTON_TOLERANCE,
+            newton_iterations: DEFAULT_NEWTON_ITERATIONS,
+        }
+    }
+
+    /// Names the independent coordinates (N − HOLONOMIC of them), in the order the
+    /// states will have.
+    pub fn coordinates(mut self, names: &[&str]) -> Self {
+        self.coordinates = Some(names.iter().map(|s| s.to_string()).collect());
+        self
+    }
+
+    /// Names the independent speeds (N − K of them) by the coordinates whose rates
+    /// they are, in the order the states will have.
+    pub fn speeds(mut self, names: &[&str]) -> Self {
+        self.speeds = Some(names.iter().map(|s| s.to_string()).collect());
+        self
+    }
+
+    /// Absolute tolerance on max |Φ| and max |G q̇ + g| at the operating point
+    /// (default 1e-10).
+    pub fn consistency_tolerance(mut self, tol: f64) -> Self {
+        self.consistency_tolerance = tol;
+        self
+    }
+
+    /// Threshold on the mass matrix's Cholesky pivot ratio (default 1e-12).
+    pub fn singular_tolerance(mut self, tol: f64) -> Self {
+        self.singular_tolerance = tol;
+        self
+    }
+
+    /// Threshold on σ_min/σ_max (or the pivot ratio) below which constraint rows,
+    /// Φ_{q_d} or G_d count as singular (default 1e-12).
+    pub fn redundant_tolerance(mut self, tol: f64) -> Self {
+        self.redundant_tolerance = tol;
+        self
+    }
+
+    /// Tolerance on max |Φ| and iteration limit of the Newton iteration of
+    /// [`complete_state`](Self::complete_state).
+    pub fn newton(mut self, tol: f64, max_iter: usize) -> Self {
+        self.newton_tolerance = tol;
+        self.newton_iterations = max_iter;
+        self
+    }
+
+    /// Linearises an unconstrained (possibly driven) system about `op`:
+    /// q̈0 = M⁻¹(Q − h + ΔQ(u0)), then
+    ///
+    /// ```text
+    /// A = [[0, I], [M⁻¹(J_q + ∂ΔQ/∂q), M⁻¹(J_v + ∂ΔQ/∂q̇)]],   B = [[0], [M⁻¹ ∂Q/∂u]]
+    /// ```
+    ///
+    /// with J_q, J_v the system's [`rhs_jacobians`](crate::Lagrangian::rhs_jacobians)
+    /// at a = q̈0. The second-order form has C = −(J_v + ∂ΔQ/∂q̇),
+    /// K = −(J_q + ∂ΔQ/∂q), B_u = ∂Q/∂u. States `q…`, `q…'`.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteState`]; [`Error::SingularMassMatrix`];
+    /// [`Error::MissingDerivatives`] if the system has no `rhs_jacobians`.
+    pub fn unconstrained<S, T, const N: usize, const P: usize>(
+        &self,
+        sys: &S,
+        op: &OperatingPoint<T, N, P>,
+    ) -> Result<Linear, Error>
+    where
+        S: Driven<T, N, P>,
+        T: Real,
+    {
+        let (q, v, u, t) = (&op.q, &op.v, &op.u, op.t);
+        let non_finite = || Error::non_finite(t, q, v);
+        let (m_s, rhs) = sys.mass_matrix_and_rhs(q, v, t);
+        let rhs = rhs + sys.input_forces(q, v, u, t);
+        let m = dm(&m_s);
+        if !(finite(&m) && finite(&dm(&rhs)) && finite(&dm(q)) && finite(&dm(v))) {
+            return Err(non_finite());
+        }
+        let chol = cholesky(&m, self.singular_tolerance).map_err(|ratio| singular(t, q, ratio))?;
+        let a0 = chol.solve(&dv(&rhs));
+        let acc: SVector<T, N> = SVector::from_fn(|i, _| T::lit(a0[i]));
+        let (jq, jv) = sys
+            .rhs_jacobians(q, v, &acc, t)
+            .ok_or(missing("Lagrangian::rhs_jacobians"))?;
+        let (bu, dqq, dqv) = sys.input_jacobians(q, v, u, t);
+        let k = -(dm(&jq) + dm(&dqq));
+        let c = -(dm(&jv) + dm(&dqv));
+        let bu = dm(&bu);
+        if !(finite(&k) && finite(&c) && finite(&bu)) {
+            return Err(non_finite());
+        }
+        let (a21, a22, b2) = (chol.solve(&-&k), chol.solve(&-&c), chol.solve(&bu));
+        let mut a = DMatrix::zeros(2 * N, 2 * N);
+        a.view_mut((0, N), (N, N)).fill_with_identity();
+        a.view_mut((N, 0), (N, N)).copy_from(&a21);
+        a.view_mut((N, N), (N, N)).copy_from(&a22);
+        let mut b = DMatrix::zeros(2 * N, P);
+        b.view_mut((N, 0), (N, P)).copy_from(&b2);
+        let names: Vec<String> = S::COORDINATES.iter().map(|s| s.to_string()).collect();
+        let mut states = names.clone();
+        states.extend(names.iter().map(|s| format!("{s}'")));
+        Ok(Linear::from_parts(
+            a,
+            b,
+            states,
+            S::INPUTS.iter().map(|s| s.to_string()).collect(),
+            N,
+            Some(SecondOrderForm {
+                mass: m,
+                damping: c,
+                stiffness: k,
+                input: bu,
+                coordinates: names.clone(),
+                speeds: names,
+            }),
+        ))
+    }
+
+    /// Linearises a constrained system (multiplier form) in independent
+    /// coordinates and speeds about a consistent `op`.
+    ///
+    /// q̈0 and ν0 solve M q̈ − Gᵀν = Q − h + ΔQ, G q̈ = γ. Differentiating both
+    /// equations at fixed (q̈0, ν0) gives the first-order changes δq̈, δν from
+    ///
+    /// ```text
+    /// [ M  −Gᵀ ] [ δq̈ ]   [ (J_q + ∂ΔQ/∂q + ∂(Gᵀν)/∂q) δq + (J_v + ∂ΔQ/∂q̇) δq̇ + ∂Q/∂u δu ]
+    /// [ G   0  ] [ δν ] = [ ∂(γ − G q̈)/∂q δq + ∂γ/∂q̇ δq̇                                     ]
+    /// ```
+    ///
+    /// (J_q at q̈0). The admissible variations are δq = C_q δq_i with the rows of the
+    /// dependent coordinates −Φ_{q_d}⁻¹ Φ_{q_i} (holonomic rows), and
+    /// δq̇ = C_v δq̇_s + C_vq δq_i from ∂(G q̇ + g)/∂q δq + G δq̇ = 0 (the δq term matters
+    /// about a steady motion): rows d of C_v = −G_d⁻¹ G_s, of C_vq = −G_d⁻¹ ∂(Gq̇+g)/∂q C_q.
+    /// With x = (δq_i, δq̇_s):
+    ///
+    /// ```text
+    /// A = [[ C_vq[i],                    C_v[i]      ],
+    ///      [ (X_q C_q + X_v C_vq)[s],     (X_v C_v)[s] ]],   B = [[0], [X_u[s]]]
+    /// ```
+    ///
+    /// with δq̈ = X_q δq + X_v δq̇ + X_u δu. States are named `q_i…`, `q_s…'`. When the
+    /// independent speeds are rates of independent coordinates the second-order
+    /// form has M_r = C_vᵀ M C_v, C = −M_r A₂₂, K = −M_r A₂₁, B_u = M_r B₂.
+    ///
+    /// # Errors
+    /// [`LinearError::InconsistentOperatingPoint`] naming the residuals and the
+    /// worst constraint; [`LinearError::InvalidPartition`],
+    /// [`LinearError::SingularPartition`] for a bad choice of independent
+    /// coordinates or speeds; [`Error::RedundantConstraints`];
+    /// [`Error::SingularMassMatrix`]; [`Error::NonFiniteState`];
+    /// [`Error::MissingDerivatives`] without `rhs_jacobians` or
+    /// `constraint_derivatives`.
+    pub fn constrained<S, T, const N: usize, const K: usize, const P: usize>(
+        &self,
+        sys: &S,
+        op: &OperatingPoint<T, N, P>,
+    ) -> Result<Linear, Error>
+    where
+        S: Constrained<T, N, K> + Driven<T, N, P>,
+        T: Real,
+    {
+        let (q, v, u, t) = (&op.q, &op.v, &op.u, op.t);
+        let ev = self.evaluate(sys, q, v, u, t)?;
+        self.check_consistent::<S, T, N, K>(&ev, q, v, t)?;
+        let part = self.partition::<S, T, N, K>(&ev.g, q, t)?;
+        let saddle = self.saddle::<S, T, N, K>(&ev, q, t)?;
+        let (a0, nu0) = saddle.solve(
+            &DMatrix::from_column_slice(N, 1, ev.f.as_slice()),
+            &DMatrix::from_column_slice(K, 1, ev.gamma.as_slice()),
+        );
+        let acc: SVector<T, N> = SVector::from_fn(|i, _| T::lit(a0[i]));
+        let nu: SVector<T, K> = SVector::from_fn(|i, _| T::lit(nu0[i]));
+        let (jq, jv) = sys
+            .rhs_jacobians(q, v, &acc, t)
+            .ok_or(missing("Lagrangian::rhs_jacobians"))?;
+        let (dgn, dga, dgv, dvel) = sys
+            .constraint_derivatives(q, v, &acc, &nu, t)
+            .ok_or(missing("Constrained::constraint_derivatives"))?;
+        let (bu, dqq, dqv) = sys.input_jacobians(q, v, u, t);
+        let rq = dm(&jq) + dm(&dqq) + dm(&dgn);
+        let rv = dm(&jv) + dm(&dqv);
+        let bu = dm(&bu);
+        let (dga, dgv, dvel) = (dm(&dga), dm(&dgv), dm(&dvel));
+        let all = [&rq, &rv, &bu, &dga, &dgv, &dvel];
+        if !all.iter().all(|m| finite(m)) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        // δq̈ = X_q δq + X_v δq̇ + X_u δu, all right-hand sides at once.
+        let mut f = DMatrix::zeros(N, 2 * N + P);
+        f.view_mut((0, 0), (N, N)).copy_from(&rq);
+        f.view_mut((0, N), (N, N)).copy_from(&rv);
+        f.view_mut((0, 2 * N), (N, P)).copy_from(&bu);
+        let mut r = DMatrix::zeros(K, 2 * N + P);
+        r.view_mut((0, 0), (K, N)).copy_from(&dga);
+        r.view_mut((0, N), (K, N)).copy_from(&dgv);
+        let (x, _) = saddle.solve(&f, &r);
+        let xq = x.columns(0, N).into_owned();
+        let xv = x.columns(N, N).into_owned();
+        let xu = x.columns(2 * N, P).into_owned();
+
+        let (cq, cv, cvq) = embeddings(&part, &ev.g, &dvel, holonomic::<S, T, N, K>());
+        let (ni, ns) = (part.ci.len(), part.si.len());
+        let a21 = (&xq * &cq + &xv * &cvq).select_rows(part.si.iter());
+        let a22 = (&xv * &cv).select_rows(part.si.iter());
+        let b2 = xu.select_rows(part.si.iter());
+        let mut a = DMatrix::zeros(ni + ns, ni + ns);
+        a.view_mut((0, 0), (ni, ni))
+            .copy_from(&cvq.select_rows(part.ci.iter()));
+        a.view_mut((0, ni), (ni, ns))
+            .copy_from(&cv.select_rows(part.ci.iter()));
+        a.view_mut((ni, 0), (ns, ni)).copy_from(&a21);
+        a.view_mut((ni, ni), (ns, ns)).copy_from(&a22);
+        let mut b = DMatrix::zeros(ni + ns, P);
+        b.view_mut((ni, 0), (ns, P)).copy_from(&b2);
+        if !(finite(&a) && finite(&b)) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        let coordinates: Vec<String> = part.ci.iter().map(|&i| S::COORDINATES[i].into()).collect();
+        let speeds: Vec<String> = part.si.iter().map(|&i| S::COORDINATES[i].into()).collect();
+        let mut states = coordinates.clone();
+        states.extend(speeds.iter().map(|s| format!("{s}'")));
+        let second_order = part.si.iter().all(|s| part.ci.contains(s)).then(|| {
+            let mr = cv.transpose() * &ev.m * &cv;
+            SecondOrderForm {
+                damping: -&mr * &a22,
+                stiffness: -&mr * &a21,
+                input: &mr * &b2,
+                mass: mr,
+                coordinates,
+                speeds,
+            }
+        });
+        Ok(Linear::from_parts(
+            a,
+            b,
+            states,
+            S::INPUTS.iter().map(|s| s.to_string()).collect(),
+            ni,
+            second_order,
+        ))
+    }
+
+    /// Linearises a reduced system (independent speeds u, q̇ = W u + w,
+    /// M* u̇ = F*) about `op`, state (δq, δu):
+    ///
+    /// ```text
+    /// δq̇ = ∂(Wu + w)/∂q δq + W δu
+    /// M* δu̇ = [∂(F* − M* u̇)/∂q + Wᵀ(∂ΔQ/∂q + ∂ΔQ/∂q̇ ∂(Wu+w)/∂q)] δq
+    ///        + [∂F*/∂u + Wᵀ ∂ΔQ/∂q̇ W] δu + Wᵀ ∂Q/∂u δu_in
+    /// ```
+    ///
+    /// with the inputs' forces e = ΔQ(u0) included in F* (the system's
+    /// [`reduced_derivatives`](crate::Reduced::reduced_derivatives) at u̇0 and e).
+    /// States are the coordinates' names then the speeds' names. No second-order
+    /// form.
+    ///
+    /// # Errors
+    /// [`LinearError::InconsistentOperatingPoint`] if q̇0 ≠ W u0 + w beyond the
+    /// tolerance (u0 = speeds(q0, q̇0)); [`Error::SingularMassMatrix`] (M*);
+    /// [`Error::NonFiniteState`]; [`Error::MissingDerivatives`] without
+    /// `reduced_derivatives`.
+    pub fn reduced<S, T, const N: usize, const K: usize, const P: usize>(
+        &self,
+        sys: &S,
+        op: &OperatingPoint<T, N, P>,
+    ) -> Result<Linear, Error>
+    where
+        S: Reduced<T, N, K> + Driven<T, N, P>,
+        T: Real,
+    {
+        let (q, v, uin, t) = (&op.q, &op.v, &op.u, op.t);
+        if !(t.is_finite() && finite(&dm(q)) && finite(&dm(v))) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        let u = sys.speeds(q, v, t);
+        let d = dv(&(sys.velocities(q, &u, t) - v));
+        let res = d.amax();
+        if !(res <= self.consistency_tolerance) {
+            return Err(LinearError::InconsistentOperatingPoint {
+                t: t.to_f64(),
+                q: to_vec(q),
+                coordinates: S::COORDINATES.to_vec(),
+                position_residual: 0.0,
+                velocity_residual: res,
+                tolerance: self.consistency_tolerance,
+                worst: format!(
+                    "velocity of `{}` differs from W u + w",
+                    S::COORDINATES[d.iamax()]
+                ),
+            }
+            .into());
+        }
+        let (ms, fs, w, _) = sys.reduced_system(q, &u, t);
+        let e = sys.input_forces(q, v, uin, t);
+        let (ms, w_d) = (dm(&ms), dm(&w));
+        let f = dv(&fs) + w_d.transpose() * dv(&e);
+        if !(finite(&ms) && finite(&w_d) && f.iter().all(|x| x.is_finite())) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        let chol = cholesky(&ms, self.singular_tolerance).map_err(|ratio| singular(t, q, ratio))?;
+        let du0 = chol.solve(&f);
+        let du: SVector<T, K> = SVector::from_fn(|i, _| T::lit(du0[i]));
+        let (dq, dfu, wq) = sys
+            .reduced_derivatives(q, &u, &du, &e, t)
+            .ok_or(missing("Reduced::reduced_derivatives"))?;
+        let (bu, dqq, dqv) = sys.input_jacobians(q, v, uin, t);
+        let (dq, dfu, wq) = (dm(&dq), dm(&dfu), dm(&wq));
+        let (bu, dqq, dqv) = (dm(&bu), dm(&dqq), dm(&dqv));
+        let wt = w_d.transpose();
+        let rq = dq + &wt * (dqq + &dqv * &wq);
+        let ru = dfu + &wt * &dqv * &w_d;
+        let rb = &wt * bu;
+        let mut a = DMatrix::zeros(N + K, N + K);
+        a.view_mut((0, 0), (N, N)).copy_from(&wq);
+        a.view_mut((0, N), (N, K)).copy_from(&w_d);
+        a.view_mut((N, 0), (K, N)).copy_from(&chol.solve(&rq));
+        a.view_mut((N, N), (K, K)).copy_from(&chol.solve(&ru));
+        let mut b = DMatrix::zeros(N + K, P);
+        b.view_mut((N, 0), (K, P)).copy_from(&chol.solve(&rb));
+        if !(finite(&a) && finite(&b)) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        let mut states: Vec<String> = S::COORDINATES.iter().map(|s| s.to_string()).collect();
+        states.extend(S::SPEEDS.iter().map(|s| s.to_string()));
+        Ok(Linear::from_parts(
+            a,
+            b,
+            states,
+            S::INPUTS.iter().map(|s| s.to_string()).collect(),
+            N,
+            None,
+        ))
+    }
+
+    /// A consistent state from the independent coordinates and speeds of (q, v):
+    /// the dependent coordinates by Newton on Φ(q, t) = 0 with the independent ones
+    /// held fixed (starting from the dependent values in `q`), then the dependent
+    /// velocities from G q̇ + g = 0 with the independent speeds held fixed. The
+    /// partition is the named one, or the automatic one at the given q.
+    ///
+    /// # Errors
+    /// [`Error::ProjectionFailed`] (where, the residual, the iterations) if Newton
+    /// does not reach the tolerance; [`LinearError::InvalidPartition`],
+    /// [`LinearError::SingularPartition`], [`Error::RedundantConstraints`] for the
+    /// partition; [`Error::NonFiniteState`].
+    pub fn complete_state<S, T, const N: usize, const K: usize>(
+        &self,
+        sys: &S,
+        mut q: SVector<T, N>,
+        mut v: SVector<T, N>,
+        t: T,
+    ) -> Result<(SVector<T, N>, SVector<T, N>), Error>
+    where
+        S: Constrained<T, N, K>,
+        T: Real,
+    {
+        let h = holonomic::<S, T, N, K>();
+        let non_finite = |q: &SVector<T, N>, v: &SVector<T, N>| Error::non_finite(t, q, v);
+        if !(t.is_finite() && finite(&dm(&q)) && finite(&dm(&v))) {
+            return Err(non_finite(&q, &v));
+        }
+        let (g, _) = sys.constraint_jacobian(&q, t);
+        let part = self.partition::<S, T, N, K>(&dm(&g), &q, t)?;
+        let mut iterations = 0;
+        // Once within the tolerance, one more step polishes Φ to round-off (it is
+        // kept only if it does not increase the residual).
+        let mut polish: Option<(SVector<T, N>, f64)> = None;
+        loop {
+            let phi = dv(&sys.constraint_positions(&q, t)).rows(0, h).into_owned();
+            if !phi.iter().all(|x| x.is_finite()) {
+                return Err(non_finite(&q, &v));
+            }
+            let residual = phi.amax();
+            if let Some((q_prev, r_prev)) = polish {
+                if !(residual <= r_prev) {
+                    q = q_prev;
+                }
+                break;
+            }
+            if residual <= self.newton_tolerance {
+                if residual == 0.0 {
+                    break;
+                }
+                polish = Some((q, residual));
+            } else if iterations == self.newton_iterations {
+                return Err(Error::ProjectionFailed {
+                    t: t.to_f64(),
+                    q: to_vec(&q),
+                    coordinates: S::COORDINATES.to_vec(),
+                    residual,
+                    iterations,
+                    tolerance: self.newton_tolerance,
+                });
+            }
+            let (g, _) = sys.constraint_jacobian(&q, t);
+            let jd = dm(&g).rows(0, h).select_columns(part.cd.iter());
+            let step = jd.lu().solve(&-phi).ok_or_else(|| non_finite(&q, &v))?;
+            for (k, &i) in part.cd.iter().enumerate() {
+                q[i] += T::lit(step[k]);
+            }
+            iterations += 1;
+        }
+        let (g, g0) = sys.constraint_jacobian(&q, t);
+        let g = dm(&g);
+        for &i in &part.sd {
+            v[i] = T::zero();
+        }
+        let r = &g * dv(&v) + dv(&g0);
+        let gd = g.select_columns(part.sd.iter());
+        let dvd = gd.lu().solve(&-r).ok_or_else(|| non_finite(&q, &v))?;
+        for (k, &i) in part.sd.iter().enumerate() {
+            v[i] = T::lit(dvd[k]);
+        }
+        if !(finite(&dm(&q)) && finite(&dm(&v))) {
+            return Err(non_finite(&q, &v));
+        }
+        Ok((q, v))
+    }
+
+    fn evaluate<S, T, const N: usize, const K: usize, const P: usize>(
+        &self,
+        sys: &S,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        u: &SVector<T, P>,
+        t: T,
+    ) -> Result<Evaluated, Error>
+    where
+        S: Constrained<T, N, K> + Driven<T, N, P>,
+        T: Real,
+    {
+        if !(t.is_finite() && finite(&dm(q)) && finite(&dm(v)) && finite(&dm(u))) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        let (m, f, g, gamma) = sys.constrained_system(q, v, t);
+        let f = f + sys.input_forces(q, v, u, t);
+        let (_, g0) = sys.constraint_jacobian(q, t);
+        let mut phi = dv(&sys.constraint_positions(q, t));
+        for x in phi.iter_mut().skip(holonomic::<S, T, N, K>()) {
+            *x = 0.0;
+        }
+        let ev = Evaluated {
+            m: dm(&m),
+            f: dv(&f),
+            g: dm(&g),
+            g0: dv(&g0),
+            gamma: dv(&gamma),
+            phi,
+        };
+        let parts = [&ev.m, &ev.g];
+        let vecs = [&ev.f, &ev.g0, &ev.gamma, &ev.phi];
+        if !(parts.iter().all(|m| finite(m))
+            && vecs.iter().all(|x| x.iter().all(|y| y.is_finite())))
+        {
+            return Err(Error::non_finite(t, q, v));
+        }
+        Ok(ev)
+    }
+
+    fn check_consistent<S, T, const N: usize, const K: usize>(
+        &self,
+        ev: &Evaluated,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        t: T,
+    ) -> Result<(), Error>
+    where
+        S: Constrained<T, N, K>,
+        T: Real,
+    {
+        let vel = &ev.g * dv(v) + &ev.g0;
+        let res = [ev.phi.amax(), vel.amax()];
+        let tol = self.consistency_tolerance;
+        let worst = if !(res[0] <= tol) {
+            ev.phi.iamax()
+        } else if !(res[1] <= tol) {
+            vel.iamax()
+        } else {
+            return Ok(());
+        };
+        Err(LinearError::InconsistentOperatingPoint {
+            t: t.to_f64(),
+            q: to_vec(q),
+            coordinates: S::COORDINATES.to_vec(),
+            position_residual: res[0],
+            velocity_residual: res[1],
+            tolerance: tol,
+            worst: format!("constraint `{}`", S::CONSTRAINTS[worst]),
+        }
+        .into())
+    }
+
+    fn saddle<S, T, const N: usize, const K: usize>(
+        &self,
+        ev: &Evaluated,
+        q: &SVector<T, N>,
+        t: T,
+    ) -> Result<Saddle, Error>
+    where
+        S: Constrained<T, N, K>,
+        T: Real,
+    {
+        Saddle::new(
+            &ev.m,
+            &ev.g,
+            self.singular_tolerance,
+            self.redundant_tolerance,
+        )
+        .map_err(|e| match e {
+            SaddleError::Mass(ratio) => singular(t, q, ratio),
+            SaddleError::Redundant(ratio, rows) => redundant::<S, T, N, K>(t, q, ratio, rows),
+        })
+    }
+
+    /// The independent/dependent split of the coordinates and speeds at G.
+    fn partition<S, T, const N: usize, const K: usize>(
+        &self,
+        g: &DMatrix<f64>,
+        q: &SVector<T, N>,
+        t: T,
+    ) -> Result<Partition, Error>
+    where
+        S: Constrained<T, N, K>,
+        T: Real,
+    {
+        let h = holonomic::<S, T, N, K>();
+        let tol = self.redundant_tolerance;
+        let phi_q = g.rows(0, h).into_owned();
+        let complement =
+            |chosen: &[usize]| -> Vec<usize> { (0..N).filter(|i| !chosen.contains(i)).collect() };
+        let (ci, cd) = match &self.coordinates {
+            Some(names) => {
+                let ci = indices::<S, T, N>("coordinates", names, N - h)?;
+                let cd = complement(&ci);
+                check_square::<S, T, N>("coordinates", &phi_q, &cd, tol)?;
+                (ci, cd)
+            }
+            None => {
+                let (mut cd, ratio) = pivot_columns(&phi_q, h);
+                if h > 0 && !(ratio >= tol) {
+                    let (_, null) = condition(&phi_q.transpose());
+                    return Err(redundant::<S, T, N, K>(t, q, ratio, big_entries(&null)));
+                }
+                cd.sort_unstable();
+                (complement(&cd), cd)
+            }
+        };
+        let (si, sd) = match &self.speeds {
+            Some(names) => {
+                let si = indices::<S, T, N>("speeds", names, N.saturating_sub(K))?;
+                let sd = complement(&si);
+                check_square::<S, T, N>("speeds", g, &sd, tol)?;
+                (si, sd)
+            }
+            None => {
+                // The rates of the dependent coordinates, then pivoting on the
+                // nonholonomic rows restricted to the holonomic motions.
+                let phi_d = phi_q.select_columns(cd.iter());
+                let phi_i = phi_q.select_columns(ci.iter());
+                let nh = g.rows(h, K - h);
+                let e = if h > 0 {
+                    let x = phi_d.clone().lu().solve(&phi_i).unwrap_or_else(|| {
+                        DMatrix::from_element(phi_i.nrows(), phi_i.ncols(), f64::NAN)
+                    });
+                    nh.select_columns(ci.iter()) - nh.select_columns(cd.iter()) * x
+                } else {
+                    nh.select_columns(ci.iter())
+                };
+                let (chosen, ratio) = pivot_columns(&e, K - h);
+                if K > h && !(ratio >= tol) {
+                    let (_, null) = condition(&e.transpose());
+                    let rows = big_entries(&null).iter().map(|r| r + h).collect();
+                    return Err(redundant::<S, T, N, K>(t, q, ratio, rows));
+                }
+                let mut sd = cd.clone();
+                sd.extend(chosen.iter().map(|&j| ci[j]));
+                sd.sort_unstable();
+                let si: Vec<usize> = ci.iter().copied().filter(|i| !sd.contains(i)).collect();
+                check_square::<S, T, N>("speeds", g, &sd, tol)?;
+                (si, sd)
+            }
+        };
+        Ok(Partition { ci, cd, si, sd })
+    }
+}
+
+/// C_q (N × n_i), C_v (N × n_s) and C_vq (N × n_i): δq = C_q δq_i and
+/// δq̇ = C_v δq̇_s + C_vq δq_i on the linearised constraints.
+fn embeddings(
+    part: &Partition,
+    g: &DMatrix<f64>,
+    dvel: &DMatrix<f64>,
+    h: usize,
+) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
+    let n = g.ncols();
+    let (ni, ns) = (part.ci.len(), part.si.len());
+    let mut cq = DMatrix::zeros(n, ni);
+    for (k, &i) in part.ci.iter().enumerate() {
+        cq[(i, k)] = 1.0;
+    }
+    if h > 0 {
+        let phi_q = g.rows(0, h);
+        let lu = phi_q.select_columns(part.cd.iter()).lu();
+        let x = lu
+            .solve(&-phi_q.select_columns(part.ci.iter()))
+            .unwrap_or_else(|| DMatrix::from_element(h, ni, f64::NAN));
+        for (k, &i) in part.cd.iter().enumerate() {
+            cq.row_mut(i).copy_from(&x.row(k));
+        }
+    }
+    let mut cv = DMatrix::zeros(n, ns);
+    let mut cvq = DMatrix::zeros(n, ni);
+    for (k, &i) in part.si.iter().enumerate() {
+        cv[(i, k)] = 1.0;
+    }
+    if !part.sd.is_empty() {
+        let lu = g.select_columns(part.sd.iter()).lu();
+        let nan = |r, c| DMatrix::from_element(r, c, f64::NAN);
+        let kd = part.sd.len();
+        let xs = lu
+            .solve(&-g.select_columns(part.si.iter()))
+            .unwrap_or_else(|| nan(kd, ns));
+        let xq = lu.solve(&-(dvel * &cq)).unwrap_or_else(|| nan(kd, ni));
+        for (k, &i) in part.sd.iter().enumerate() {
+            cv.row_mut(i).copy_from(&xs.row(k));
+            cvq.row_mut(i).copy_from(&xq.row(k));
+        }
+    }
+    (cq, cv, cvq)
+}
+
+/// Coordinate indices of the given names, checked: known, distinct, `count` of them.
+fn indices<S, T, const N: usize>(
+    what: &'static str,
+    names: &[String],
+    count: usize,
+) -> Result<Vec<usize>, Error>
+where
+    S: crate::Lagrangian<T, N>,
+    T: Real,
+{
+    let bad = |reason: String| Error::from(LinearError::InvalidPartition { what, reason });
+    if names.len() != count {
+        return Err(bad(format!(
+            "{count} expected, got {} ({names:?})",
+            names.len()
+        )));
+    }
+    let mut out = Vec::with_capacity(count);
+    for name in names {
+        let i = S::COORDINATES
+            .iter()
+            .position(|c| c == name)
+            .ok_or_else(|| {
+                bad(format!(
+                    "no coordinate `{name}`; the coordinates are {:?}",
+                    S::COORDINATES
+                ))
+            })?;
+        if out.contains(&i) {
+            return Err(bad(format!("`{name}` named twice")));
+        }
+        out.push(i);
+    }
+    Ok(out)
+}
+
+/// Checks that the columns `dependent` of `full` form a square matrix whose
+/// smallest singular value is at least `tol` times the largest singular value of
+/// `full` (relative to the whole Jacobian, so that a 1 × 1 block is judged too).
+fn check_square<S, T, const N: usize>(
+    what: &'static str,
+    full: &DMatrix<f64>,
+    dependent: &[usize],
+    tol: f64,
+) -> Result<(), Error>
+where
+    S: crate::Lagrangian<T, N>,
+    T: Real,
+{
+    let m = full.select_columns(dependent.iter());
+    let ratio = if m.is_empty() {
+        1.0
+    } else {
+        let big = full.clone().singular_values().max();
+        let small = m.clone().singular_values().min();
+        if big > 0.0 { small / big } else { 0.0 }
+    };
+    if m.nrows() == m.ncols() && ratio >= tol {
+        return Ok(());
+    }
+    Err(LinearError::SingularPartition {
+        what,
+        dependent: dependent
+            .iter()
+            .map(|&i| S::COORDINATES[i].to_string())
+            .collect(),
+        ratio,
+    }
+    .into())
+}
+
+fn big_entries(x: &DVector<f64>) -> Vec<usize> {
+    let big = x.amax();
+    (0..x.len()).filter(|&i| x[i].abs() > 0.1 * big).collect()
+}
+
+fn holonomic<S: Constrained<T, N, K>, T: Real, const N: usize, const K: usize>() -> usize {
+    S::HOLONOMIC.min(K)
+}
+
+fn missing(method: &'static str) -> Error {
+    Error::MissingDerivatives {
+        method,
+        needed_for: "linearisation",
+    }
+}
+
+fn singular<T: Real, const N: usize>(t: T, q: &SVector<T, N>, ratio: f64) -> Error {
+    Error::SingularMassMatrix {
+        t: t.to_f64(),
+        q: to_vec(q),
+        ratio,
+    }
+}
+
+fn redundant<S, T, const N: usize, const K: usize>(
+    t: T,
+    q: &SVector<T, N>,
+    ratio: f64,
+    rows: Vec<usize>,
+) -> Error
+where
+    S: Constrained<T, N, K>,
+    T: Real,
+{
+    Error::RedundantConstraints {
+        t: t.to_f64(),
+        q: to_vec(q),
+        coordinates: S::COORDINATES.to_vec(),
+        ratio,
+        dependent: rows.iter().map(|&i| S::CONSTRAINTS[i]).collect(),
+    }
+}
+
+/// [`Linearizer::unconstrained`] with the default settings.
+///
+/// # Errors
+/// As [`Linearizer::unconstrained`].
+pub fn linearize<S, T, const N: usize, const P: usize>(
+    sys: &S,
+    op: &OperatingPoint<T, N, P>,
+) -> Result<Linear, Error>
+where
+    S: Driven<T, N, P>,
+    T: Real,
+{
+    Linearizer::new().unconstrained(sys, op)
+}
+
+/// [`Linearizer::constrained`] with the default settings (automatic independent
+/// coordinates and speeds).
+///
+/// # Errors
+/// As [`Linearizer::constrained`].
+pub fn linearize_constrained<S, T, const N: usize, const K: usize, const P: usize>(
+    sys: &S,
+    op: &OperatingPoint<T, N, P>,
+) -> Result<Linear, Error>
+where
+    S: Constrained<T, N, K> + Driven<T, N, P>,
+    T: Real,
+{
+    Linearizer::new().constrained(sys, op)
+}
+
+/// [`Linearizer::reduced`] with the default settings.
+///
+/// # Errors
+/// As [`Linearizer::reduced`].
+pub fn linearize_reduced<S, T, const N: usize, const K: usize, const P: usize>(
+    sys: &S,
+    op: &OperatingPoint<T, N, P>,
+) -> Result<Linear, Error>
+where
+    S: Reduced<T, N, K> + Driven<T, N, P>,
+    T: Real,
+{
+    Linearizer::new().reduced(sys, op)
+}
+
+/// [`Linearizer::complete_state`] with the given independent coordinates and
+/// speeds (empty slices for the automatic choice) and default tolerances.
+///
+/// # Errors
+/// As [`Linearizer::complete_state`].
+pub fn complete_state<S, T, const N: usize, const K: usize>(
+    sys: &S,
+    q: SVector<T, N>,
+    v: SVector<T, N>,
+    t: T,
+    coordinates: &[&str],
+    speeds: &[&str],
+) -> Result<(SVector<T, N>, SVector<T, N>), Error>
+where
+    S: Constrained<T, N, K>,
+    T: Real,
+{
+    let mut lin = Linearizer::new();
+    if !coordinates.is_empty() {
+        lin = lin.coordinates(coordinates);
+    }
+    if !speeds.is_empty() {
+        lin = lin.speeds(speeds);
+    }
+    lin.complete_state(sys, q, v, t)
+}

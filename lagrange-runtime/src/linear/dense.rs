@@ -1,0 +1,201 @@
+//! Dense f64 linear algebra for the linearisation: conversions from the
+//! system's stack matrices, a checked Cholesky, the saddle-point solve, rank
+//! tests and column pivoting.
+
+use crate::real::Real;
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+
+/// A stack matrix in any scalar as a dense f64 matrix.
+pub(crate) fn dm<T: Real, const R: usize, const C: usize>(m: &SMatrix<T, R, C>) -> DMatrix<f64> {
+    DMatrix::from_fn(R, C, |i, j| m[(i, j)].to_f64())
+}
+
+/// A stack vector in any scalar as a dense f64 vector.
+pub(crate) fn dv<T: Real, const R: usize>(x: &SVector<T, R>) -> DVector<f64> {
+    DVector::from_fn(R, |i, _| x[i].to_f64())
+}
+
+pub(crate) fn finite(m: &DMatrix<f64>) -> bool {
+    m.iter().all(|x| x.is_finite())
+}
+
+/// Cholesky of a symmetric positive definite matrix with the pivot-ratio test of
+/// the runtime's stack Cholesky: `Err(ratio)` if it breaks down or
+/// min L_ii² / max L_ii² < `tol`.
+pub(crate) fn cholesky(
+    m: &DMatrix<f64>,
+    tol: f64,
+) -> Result<nalgebra::Cholesky<f64, nalgebra::Dyn>, f64> {
+    let c = nalgebra::Cholesky::new(m.clone()).ok_or(0.0)?;
+    let l = c.l_dirty();
+    let d: Vec<f64> = (0..m.nrows()).map(|i| l[(i, i)] * l[(i, i)]).collect();
+    let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), &x| {
+        (lo.min(x), hi.max(x))
+    });
+    if !d.is_empty() && !(lo >= tol * hi) {
+        return Err(if hi > 0.0 { lo / hi } else { 0.0 });
+    }
+    Ok(c)
+}
+
+/// σ_min / σ_max of a matrix (1 for an empty one), and the right singular vector
+/// of σ_min (the direction it nearly annihilates) when the matrix is square or
+/// wide, else the left one.
+pub(crate) fn condition(m: &DMatrix<f64>) -> (f64, DVector<f64>) {
+    if m.is_empty() {
+        return (1.0, DVector::zeros(0));
+    }
+    let svd = m.clone().svd(true, true);
+    let s = &svd.singular_values;
+    let (imin, smin) = s.argmin();
+    let smax = s.max();
+    let ratio = if smax > 0.0 { smin / smax } else { 0.0 };
+    let vec = if m.ncols() >= m.nrows() {
+        svd.v_t.as_ref().map(|vt| vt.row(imin).transpose())
+    } else {
+        svd.u.as_ref().map(|u| u.column(imin).into_owned())
+    };
+    (ratio, vec.unwrap_or_else(|| DVector::zeros(m.ncols())))
+}
+
+/// Columns chosen by QR with column pivoting (Businger–Golub): `count` times, the
+/// column of largest norm after orthogonalising against the columns already
+/// chosen (the later column on ties). Returns the chosen column indices in
+/// order and the ratio of the last chosen norm to the largest initial one (how
+/// far from rank deficient the choice is).
+pub(crate) fn pivot_columns(m: &DMatrix<f64>, count: usize) -> (Vec<usize>, f64) {
+    let mut cols: Vec<DVector<f64>> = (0..m.ncols()).map(|j| m.column(j).into_owned()).collect();
+    let first = cols.iter().map(|c| c.norm()).fold(0.0, f64::max);
+    let mut chosen = Vec::with_capacity(count);
+    let mut ratio = 1.0;
+    for _ in 0..count {
+        let mut best: Option<(usize, f64)> = None;
+        for (j, c) in cols.iter().enumerate() {
+            if chosen.contains(&j) {
+                continue;
+            }
+            let n = c.norm();
+            if best.is_none_or(|(_, b)| n >= b) {
+                best = Some((j, n));
+            }
+        }
+        let Some((j, n)) = best else { break };
+        chosen.push(j);
+        ratio = if first > 0.0 { n / first } else { 0.0 };
+        if n > 0.0 {
+            let e = &cols[j] / n;
+            for c in cols.iter_mut() {
+                let p = e.dot(c);
+                c.axpy(-p, &e, 1.0);
+            }
+        }
+    }
+    (chosen, ratio)
+}
+
+/// The saddle-point system of the multiplier form,
+///
+/// ```text
+/// M x − Gᵀ y = f,    G x = r
+/// ```
+///
+/// by the range-space method: y = S⁻¹ (r − G M⁻¹ f) with S = G M⁻¹ Gᵀ, then
+/// x = M⁻¹ (f + Gᵀ y).
+pub(crate) struct Saddle {
+    chol: nalgebra::Cholesky<f64, nalgebra::Dyn>,
+    g: DMatrix<f64>,
+    minv_gt: DMatrix<f64>,
+    s: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
+}
+
+/// Why a saddle-point system cannot be factorised.
+pub(crate) enum SaddleError {
+    /// M singular: the pivot ratio.
+    Mass(f64),
+    /// G rank deficient: σ_min/σ_max of S and the rows involved in the null
+    /// direction.
+    Redundant(f64, Vec<usize>),
+}
+
+impl Saddle {
+    pub(crate) fn new(
+        m: &DMatrix<f64>,
+        g: &DMatrix<f64>,
+        singular_tol: f64,
+        redundant_tol: f64,
+    ) -> Result<Self, SaddleError> {
+        let chol = cholesky(m, singular_tol).map_err(SaddleError::Mass)?;
+        let minv_gt = chol.solve(&g.transpose());
+        let s = g * &minv_gt;
+        let (ratio, null) = condition(&s);
+        if g.nrows() > 0 && !(ratio >= redundant_tol) {
+            let big = null.amax();
+            let rows = (0..null.len())
+                .filter(|&i| null[i].abs() > 0.1 * big)
+                .collect();
+            return Err(SaddleError::Redundant(ratio, rows));
+        }
+        Ok(Self {
+            chol,
+            g: g.clone(),
+            minv_gt,
+            s: s.lu(),
+        })
+    }
+
+    /// Solves for several right-hand sides at once (columns of f and r).
+    pub(crate) fn solve(&self, f: &DMatrix<f64>, r: &DMatrix<f64>) -> (DMatrix<f64>, DMatrix<f64>) {
+        let minv_f = self.chol.solve(f);
+        let y = if self.g.nrows() == 0 {
+            DMatrix::zeros(0, f.ncols())
+        } else {
+            self.s
+                .solve(&(r - &self.g * &minv_f))
+                .unwrap_or_else(|| DMatrix::from_element(r.nrows(), r.ncols(), f64::NAN))
+        };
+        let x = minv_f + &self.minv_gt * &y;
+        (x, y)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pivoting_picks_the_best_conditioned_columns() {
+        // Column 2 is largest; after removing its direction, column 0 is left
+        // with more than the nearly parallel column 1.
+        let m = DMatrix::from_row_slice(2, 3, &[1.0, 0.1, 3.0, 0.0, 0.0, 1.0]);
+        let (chosen, ratio) = pivot_columns(&m, 2);
+        assert_eq!(chosen[0], 2);
+        assert_eq!(chosen[1], 0);
+        // Left of column 0: (1, 0) − 0.3 (3, 1) = (0.1, −0.3), against |column 2| = √10.
+        assert!((ratio - 0.1).abs() < 1e-15, "{ratio}");
+        // Rank one: the second pivot vanishes.
+        let r1 = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 4.0]);
+        let (_, ratio) = pivot_columns(&r1, 2);
+        assert!(ratio < 1e-15, "{ratio}");
+    }
+
+    #[test]
+    fn saddle_solves_and_detects_dependent_rows() {
+        let m = DMatrix::from_row_slice(3, 3, &[4.0, 1.0, 0.5, 1.0, 3.0, 0.2, 0.5, 0.2, 2.0]);
+        let g = DMatrix::from_row_slice(2, 3, &[1.0, 2.0, 0.0, 0.0, 1.0, -1.0]);
+        let f = DMatrix::from_column_slice(3, 1, &[1.0, -1.0, 2.0]);
+        let r = DMatrix::from_column_slice(2, 1, &[0.5, -0.25]);
+        let s = Saddle::new(&m, &g, 1e-12, 1e-12).ok().unwrap();
+        let (x, y) = s.solve(&f, &r);
+        assert!((&m * &x - g.transpose() * &y - &f).amax() < 1e-14);
+        assert!((&g * &x - &r).amax() < 1e-14);
+        let twice = DMatrix::from_row_slice(2, 3, &[1.0, 2.0, 0.0, 1.0, 2.0, 0.0]);
+        assert!(matches!(
+            Saddle::new(&m, &twice, 1e-12, 1e-12),
+            Err(SaddleError::Redundant(_, _))
+        ));
+        assert!(matches!(
+            Saddle::new(&DMatrix::zeros(3, 3), &g, 1e-12, 1e-12),
+            Err(SaddleError::Mass(_))
+        ));
+    }
+}

@@ -1,0 +1,308 @@
+//! Linear-quadratic regulator: the continuous-time algebraic Riccati equation
+//!
+//! ```text
+//! AᵀP + PA − P B R⁻¹ Bᵀ P + Q = 0
+//! ```
+//!
+//! by the matrix sign function of the Hamiltonian `H = [[A, −S], [−Q, −Aᵀ]]`,
+//! S = B R⁻¹ Bᵀ (Roberts 1971; Byers 1987 determinant scaling): the stable
+//! invariant subspace of H is the null space of sign(H) + I and equals the range
+//! of [I; P], so P solves the overdetermined [W₁₂; W₂₂ + I] P = −[W₁₁ + I; W₂₁]
+//! (least squares by SVD). Up to three Newton (Kleinman) steps, each a Lyapunov
+//! equation solved through its Kronecker form for n ≤ 30, then polish P to
+//! round-off. No maintained Rust crate solves the CARE on nalgebra 0.35, hence
+//! this implementation.
+
+use super::{Linear, LinearError};
+use crate::error::Error;
+use nalgebra::{Complex, DMatrix};
+
+/// Largest relative residual accepted for the Riccati solution.
+pub const RICCATI_TOLERANCE: f64 = 1e-8;
+
+/// An LQR design: the gain, the Riccati solution and the checks made on them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lqr {
+    /// K = R⁻¹ Bᵀ P (inputs × states): the control law u = −K x.
+    pub gain: DMatrix<f64>,
+    /// P, the stabilising solution of the Riccati equation (symmetric).
+    pub riccati: DMatrix<f64>,
+    /// ‖AᵀP + PA − PSP + Q‖_F / (‖Q‖_F + 2‖AᵀP‖_F + ‖PSP‖_F).
+    pub residual: f64,
+    /// Eigenvalues of A − BK, sorted by decreasing real part.
+    pub closed_loop: Vec<Complex<f64>>,
+    /// Sign-function iterations done.
+    pub iterations: usize,
+    /// Newton refinement steps accepted.
+    pub newton_steps: usize,
+}
+
+impl Linear {
+    /// The LQR design for this model's (A, B); see [`lqr`].
+    ///
+    /// # Errors
+    /// As [`lqr`].
+    pub fn lqr(&self, q: &DMatrix<f64>, r: &DMatrix<f64>) -> Result<Lqr, Error> {
+        lqr(self.a(), self.b(), q, r)
+    }
+}
+
+/// The infinite-horizon LQR gain minimising ∫ xᵀQx + uᵀRu dt for ẋ = Ax + Bu:
+/// K = R⁻¹BᵀP with P the stabilising solution of the algebraic Riccati equation
+/// (see the module notes for the method). The residual is computed and reported;
+/// A − BK is checked to be Hurwitz.
+///
+/// # Errors
+/// [`Error::InvalidSettings`] for inconsistent sizes, non-finite entries, Q not
+/// symmetric positive semidefinite or R not symmetric positive definite;
+/// [`LinearError::NotStabilisable`] if the PBH test finds an uncontrollable mode
+/// with Re λ ≥ 0 or the closed loop is not Hurwitz; [`LinearError::Riccati`] if
+/// the sign iteration fails (eigenvalues of H on the imaginary axis: (Q, A) not
+/// detectable, or not stabilisable) or the residual exceeds
+/// [`RICCATI_TOLERANCE`].
+pub fn lqr(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    q: &DMatrix<f64>,
+    r: &DMatrix<f64>,
+) -> Result<Lqr, Error> {
+    let n = a.nrows();
+    let m = b.ncols();
+    let shape = |name: &str, x: &DMatrix<f64>, rows: usize, cols: usize| {
+        if x.nrows() != rows || x.ncols() != cols || !x.iter().all(|v| v.is_finite()) {
+            Err(Error::InvalidSettings(format!(
+                "LQR: {name} must be a finite {rows}x{cols} matrix, got {}x{}",
+                x.nrows(),
+                x.ncols()
+            )))
+        } else {
+            Ok(())
+        }
+    };
+    shape("A", a, n, n)?;
+    shape("B", b, n, m)?;
+    shape("Q", q, n, n)?;
+    shape("R", r, m, m)?;
+    let symmetric = |x: &DMatrix<f64>| (x - x.transpose()).amax() <= 1e-12 * x.amax();
+    if !symmetric(q) || !symmetric(r) {
+        return Err(Error::InvalidSettings(
+            "LQR: Q and R must be symmetric".into(),
+        ));
+    }
+    if n > 0 && q.clone().symmetric_eigenvalues().min() < -1e-12 * q.amax().max(1.0) {
+        return Err(Error::InvalidSettings(
+            "LQR: Q must be positive semidefinite".into(),
+        ));
+    }
+    let r_chol = nalgebra::Cholesky::new(r.clone())
+        .ok_or_else(|| Error::InvalidSettings("LQR: R must be positive definite".into()))?;
+    if n == 0 {
+        return Ok(Lqr {
+            gain: DMatrix::zeros(m, 0),
+            riccati: DMatrix::zeros(0, 0),
+            residual: 0.0,
+            closed_loop: vec![],
+            iterations: 0,
+            newton_steps: 0,
+        });
+    }
+    pbh(a, b)?;
+
+    let s = b * r_chol.solve(&b.transpose());
+    let mut h = DMatrix::zeros(2 * n, 2 * n);
+    h.view_mut((0, 0), (n, n)).copy_from(a);
+    h.view_mut((0, n), (n, n)).copy_from(&-&s);
+    h.view_mut((n, 0), (n, n)).copy_from(&-q);
+    h.view_mut((n, n), (n, n)).copy_from(&-a.transpose());
+
+    let (w, iterations) = sign(h)?;
+    let mut lhs = DMatrix::zeros(2 * n, n);
+    lhs.view_mut((0, 0), (n, n))
+        .copy_from(&w.view((0, n), (n, n)));
+    lhs.view_mut((n, 0), (n, n))
+        .copy_from(&(w.view((n, n), (n, n)) + DMatrix::identity(n, n)));
+    let mut rhs = DMatrix::zeros(2 * n, n);
+    rhs.view_mut((0, 0), (n, n))
+        .copy_from(&-(w.view((0, 0), (n, n)) + DMatrix::identity(n, n)));
+    rhs.view_mut((n, 0), (n, n))
+        .copy_from(&-w.view((n, 0), (n, n)));
+    let svd = lhs.svd(true, true);
+    let sv = &svd.singular_values;
+    if !(sv.min() > 1e-12 * sv.max()) {
+        return Err(LinearError::Riccati {
+            reason: "the stable invariant subspace of the Hamiltonian is not a graph [I; P] \
+                     (no stabilising solution)"
+                .into(),
+            residual: f64::NAN,
+        }
+        .into());
+    }
+    let x = svd.solve(&rhs, 0.0).map_err(|e| LinearError::Riccati {
+        reason: format!("least-squares solve failed: {e}"),
+        residual: f64::NAN,
+    })?;
+    let mut p = (&x + x.transpose()) * 0.5;
+    let mut res = residual(a, &s, q, &p);
+    let mut newton_steps = 0;
+    if n <= 30 {
+        for _ in 0..3 {
+            if res.1 <= 4.0 * f64::EPSILON {
+                break;
+            }
+            let ak = a - &s * &p;
+            let Some(dp) = lyapunov(&ak, &res.0) else {
+                break;
+            };
+            let cand = &p + (&dp + dp.transpose()) * 0.5;
+            let cres = residual(a, &s, q, &cand);
+            if !(cres.1 < res.1) {
+                break;
+            }
+            p = cand;
+            res = cres;
+            newton_steps += 1;
+        }
+    }
+    if !(res.1 <= RICCATI_TOLERANCE) {
+        return Err(LinearError::Riccati {
+            reason: "residual above the acceptance tolerance".into(),
+            residual: res.1,
+        }
+        .into());
+    }
+    let gain = r_chol.solve(&(b.transpose() * &p));
+    let closed = a - b * &gain;
+    let mut closed_loop: Vec<Complex<f64>> = closed.complex_eigenvalues().iter().copied().collect();
+    closed_loop.sort_by(|x, y| y.re.total_cmp(&x.re).then(y.im.total_cmp(&x.im)));
+    if let Some(z) = closed_loop.first().filter(|z| !(z.re < 0.0)) {
+        return Err(LinearError::NotStabilisable {
+            re: z.re,
+            im: z.im,
+            ratio: z.re,
+        }
+        .into());
+    }
+    Ok(Lqr {
+        gain,
+        riccati: p,
+        residual: res.1,
+        closed_loop,
+        iterations,
+        newton_steps,
+    })
+}
+
+/// The Riccati residual matrix and its relative size.
+fn residual(
+    a: &DMatrix<f64>,
+    s: &DMatrix<f64>,
+    q: &DMatrix<f64>,
+    p: &DMatrix<f64>,
+) -> (DMatrix<f64>, f64) {
+    let atp = a.transpose() * p;
+    let psp = p * s * p;
+    let r = &atp + atp.transpose() - &psp + q;
+    let scale = q.norm() + 2.0 * atp.norm() + psp.norm();
+    let rel = if scale > 0.0 {
+        r.norm() / scale
+    } else {
+        r.norm()
+    };
+    (r, rel)
+}
+
+/// PBH test: every eigenvalue λ of A with Re λ ≥ −1e-9 (1 + ‖A‖) must keep
+/// [A − λI, B] at full row rank.
+fn pbh(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Result<(), Error> {
+    let n = a.nrows();
+    let scale = 1.0 + a.amax();
+    for z in a.complex_eigenvalues().iter() {
+        if z.re < -1e-9 * scale {
+            continue;
+        }
+        let mut mtx = DMatrix::<Complex<f64>>::zeros(n, n + b.ncols());
+        for i in 0..n {
+            for j in 0..n {
+                mtx[(i, j)] = Complex::new(a[(i, j)], 0.0);
+            }
+            mtx[(i, i)] -= z;
+            for j in 0..b.ncols() {
+                mtx[(i, n + j)] = Complex::new(b[(i, j)], 0.0);
+            }
+        }
+        let sv = mtx.singular_values();
+        let ratio = sv.min() / sv.max();
+        if !(ratio > 1e-9) {
+            return Err(LinearError::NotStabilisable {
+                re: z.re,
+                im: z.im,
+                ratio,
+            }
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// The matrix sign function by the scaled Newton iteration
+/// Z ← (Z/c + c Z⁻¹)/2, c = |det Z|^(1/n) while the change is large.
+fn sign(mut z: DMatrix<f64>) -> Result<(DMatrix<f64>, usize), Error> {
+    let n = z.nrows();
+    let mut scaling = true;
+    let mut finishing = false;
+    for k in 1..=100 {
+        let lu = z.clone().lu();
+        let inv = lu.try_inverse().filter(|x| x.iter().all(|v| v.is_finite()));
+        let Some(inv) = inv else {
+            return Err(sign_failed(
+                "the Hamiltonian has eigenvalues on the imaginary axis ((A, B) not \
+                 stabilisable or (Q, A) not detectable)",
+            ));
+        };
+        let c = if scaling {
+            let log_det: f64 = lu.u().diagonal().iter().map(|d| d.abs().ln()).sum();
+            (log_det / n as f64).exp()
+        } else {
+            1.0
+        };
+        let next = (&z / c + inv * c) * 0.5;
+        let change = (&next - &z).norm() / next.norm();
+        z = next;
+        if change < 1e-2 {
+            scaling = false;
+        }
+        // Quadratic convergence: one more step after a change of 1e-9 reaches
+        // round-off.
+        if finishing || change <= 1e-14 * (n as f64) {
+            return Ok((z, k));
+        }
+        finishing = change <= 1e-9;
+        if !change.is_finite() {
+            break;
+        }
+    }
+    Err(sign_failed(
+        "the matrix sign iteration did not converge in 100 steps (eigenvalues of the \
+         Hamiltonian on or near the imaginary axis)",
+    ))
+}
+
+fn sign_failed(reason: &str) -> Error {
+    LinearError::Riccati {
+        reason: reason.into(),
+        residual: f64::NAN,
+    }
+    .into()
+}
+
+/// X with Akᵀ X + X Ak = −R, through the Kronecker form
+/// (I ⊗ Akᵀ + Akᵀ ⊗ I) vec X = −vec R (column-major vec).
+fn lyapunov(ak: &DMatrix<f64>, r: &DMatrix<f64>) -> Option<DMatrix<f64>> {
+    let n = ak.nrows();
+    let at = ak.transpose();
+    let id = DMatrix::<f64>::identity(n, n);
+    let big = id.kronecker(&at) + at.kronecker(&id);
+    let rhs = nalgebra::DVector::from_column_slice((-r).as_slice());
+    let x = big.lu().solve(&rhs)?;
+    Some(DMatrix::from_column_slice(n, n, x.as_slice()))
+}

@@ -1,0 +1,574 @@
+//! Linearisation about an operating point, eigen-analysis, stability boundaries
+//! and LQR design.
+//!
+//! # Which formulation when
+//!
+//! - **Unconstrained** ([`linearize`], a [`Lagrangian`](crate::Lagrangian) or
+//!   [`Driven`](crate::Driven) system in minimal coordinates): the state is
+//!   (δq, δq̇), `A = [[0, I], [M⁻¹(J_q + ∂ΔQ/∂q), M⁻¹(J_v + ∂ΔQ/∂q̇)]]` with J_q taken at
+//!   the acceleration q̈0 of the operating point (the ∂M/∂q q̈0 term matters about a
+//!   steady motion), `B = [[0], [M⁻¹ ∂Q/∂u]]`; the second-order form
+//!   M δq̈ + C δq̇ + K δq = B_u δu comes with it.
+//! - **Multiplier form** ([`linearize_constrained`], a
+//!   [`Constrained`](crate::Constrained) system): holonomic and nonholonomic
+//!   constraints kept with multipliers, linearised by differentiating the
+//!   saddle-point system and then eliminating the dependent coordinates (position
+//!   level) and the dependent speeds (velocity level, linearised in both δq and
+//!   δq̇), as SymPy's `Linearizer` (Peterson, Gede & Hubbard 2015) does. The state is
+//!   (δq_i, δq̇_s): independent coordinates and independent speeds, named by the
+//!   user or chosen by column pivoting ([`Linearizer`] documents the rule). Use it
+//!   for closed loops, rolling contact, published benchmarks (the bicycle).
+//! - **Reduced form** ([`linearize_reduced`], a [`Reduced`](crate::Reduced)
+//!   system): the state is (δq, δu) with the system's own independent speeds u;
+//!   no elimination is needed, the speeds' equations are linearised directly.
+//!
+//! All three need the symbolic derivatives `#[derive(Lagrangian)]` emits with
+//! `emit(jacobians)`; a system without them is an [`Error::MissingDerivatives`]
+//! (never silent finite differences). The result is a [`Linear`]: A, B, state and
+//! input names, the second-order form when there is one. [`Linear::select`] drops
+//! ignorable states (heading, position, wheel angles) before a stability analysis;
+//! [`Linear::eigenvalues`], [`Linear::modes`] and [`Linear::stability`] analyse it;
+//! [`sweep`] follows the eigenvalues over a parameter and
+//! [`EigenSweep::boundaries`] locates where the stability changes; [`Linear::lqr`]
+//! designs a linear-quadratic regulator.
+//!
+//! ```
+//! use lagrange_runtime::linear::{Linear, Verdict, sweep};
+//! use nalgebra::DMatrix;
+//!
+//! // m ẍ + c ẋ + k x = 0 with a "negative damping" c = 0.5 − p: stable for p < 0.5.
+//! let model = |p: f64| {
+//!     let m = DMatrix::from_element(1, 1, 1.0);
+//!     let c = DMatrix::from_element(1, 1, 0.5 - p);
+//!     let k = DMatrix::from_element(1, 1, 4.0);
+//!     Linear::from_second_order(m, c, k, DMatrix::zeros(1, 0), &["x"], &[])
+//! };
+//! assert_eq!(model(0.0)?.stability(1e-12).verdict, Verdict::AsymptoticallyStable);
+//! let params: Vec<f64> = (0..=10).map(|i| 0.1 * i as f64).collect();
+//! let eigen = sweep(&params, model)?;
+//! let boundaries = eigen.boundaries(model, 1e-12, 1e-12)?;
+//! assert_eq!(boundaries.len(), 1);
+//! assert!((boundaries[0].parameter - 0.5).abs() < 1e-11);
+//! assert!(boundaries[0].oscillatory && boundaries[0].destabilising);
+//! # Ok::<(), lagrange_runtime::Error>(())
+//! ```
+//!
+//! With a system (sketch; `sys` a `Constrained<f64, 2, 1>` Cartesian pendulum
+//! derived with `emit(jacobians)`):
+//!
+//! ```text
+//! let op = OperatingPoint::new(Vector2::new(0.0, -1.0), Vector2::zeros());
+//! let lin = Linearizer::new().coordinates(&["x"]).speeds(&["x"]).constrained(&sys, &op)?;
+//! // states ["x", "x'"], eigenvalues ±i √(g/l)
+//! let (q, v) = Linearizer::new().coordinates(&["x"]).complete_state(&sys, q_guess, v_guess, 0.0)?;
+//! ```
+
+// Tolerance tests are written `!(x <= tol)` on purpose: a NaN residual fails them.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+mod build;
+mod dense;
+mod eigen;
+mod lqr;
+
+pub use build::{
+    DEFAULT_NEWTON_ITERATIONS, DEFAULT_NEWTON_TOLERANCE, Linearizer, OperatingPoint,
+    complete_state, linearize, linearize_constrained, linearize_reduced,
+};
+pub use eigen::{Boundary, EigenSweep, Mode, Stability, SweepPoint, Verdict, sweep};
+pub use lqr::{Lqr, RICCATI_TOLERANCE, lqr};
+
+use crate::error::Error;
+use nalgebra::DMatrix;
+
+/// Default tolerance of [`Linear::select`]: a kept state may depend on a dropped
+/// one by at most this much relative to the largest entry of A.
+pub const DEFAULT_COUPLING_TOLERANCE: f64 = 1e-10;
+
+/// Failures specific to linearisation, eigen-analysis and LQR design (wrapped in
+/// [`Error::Linear`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum LinearError {
+    /// The operating point violates the constraints: Φ(q0, t0) ≠ 0 or
+    /// G q̇0 + g ≠ 0 (or, for a reduced system, q̇0 is not W u + w) beyond the
+    /// tolerance. Complete it with [`Linearizer::complete_state`] first.
+    #[error(
+        "inconsistent operating point at t = {t}, q = {q:?} ({coordinates:?}): |Phi| = \
+         {position_residual:e}, |G v + g| = {velocity_residual:e}, tolerance {tolerance:e}; \
+         worst: {worst}; complete the state from the independent coordinates and speeds \
+         first (Linearizer::complete_state)"
+    )]
+    InconsistentOperatingPoint {
+        /// Time of the operating point.
+        t: f64,
+        /// Its coordinates.
+        q: Vec<f64>,
+        /// Their names.
+        coordinates: Vec<&'static str>,
+        /// max |Φ_i| over the holonomic rows.
+        position_residual: f64,
+        /// max |(G q̇ + g)_i| (reduced systems: max |q̇ − W u − w|).
+        velocity_residual: f64,
+        /// The tolerance both must meet.
+        tolerance: f64,
+        /// The worst constraint (or, for a reduced system, the worst velocity).
+        worst: String,
+    },
+
+    /// The named independent coordinates or speeds are not a valid choice:
+    /// unknown or repeated names, or the wrong number of them.
+    #[error("invalid choice of independent {what}: {reason}")]
+    InvalidPartition {
+        /// `coordinates` or `speeds`.
+        what: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+
+    /// The dependent coordinates (speeds) left by the choice of independent ones
+    /// cannot be solved for: Φ_{q_d} (G_d) is singular at the operating point.
+    #[error(
+        "the dependent {what} {dependent:?} cannot be solved for at the operating point \
+         (condition ratio sigma_min / sigma_max = {ratio:e}); choose other independent {what}"
+    )]
+    SingularPartition {
+        /// `coordinates` or `speeds`.
+        what: &'static str,
+        /// The dependent ones.
+        dependent: Vec<String>,
+        /// Smallest over largest singular value of Φ_{q_d} (G_d).
+        ratio: f64,
+    },
+
+    /// A state name given to [`Linear::select`] does not exist.
+    #[error("no state named `{name}`; the states are {states:?}")]
+    UnknownState {
+        /// The name asked for.
+        name: String,
+        /// The available names.
+        states: Vec<String>,
+    },
+
+    /// [`Linear::select`] would drop a state that a kept one depends on.
+    #[error(
+        "cannot drop `{dropped}`: kept state `{kept}` depends on it (A[{kept}, {dropped}] = \
+         {coupling:e}, tolerance {tolerance:e})"
+    )]
+    CoupledStates {
+        /// The kept state.
+        kept: String,
+        /// The dropped state it depends on.
+        dropped: String,
+        /// The coupling entry of A.
+        coupling: f64,
+        /// The absolute tolerance it exceeds.
+        tolerance: f64,
+    },
+
+    /// A stability boundary could not be resolved to the requested tolerance.
+    #[error(
+        "stability boundary between p = {lo} and p = {hi} not resolved to relative \
+         tolerance {tolerance:e}"
+    )]
+    BoundaryNotResolved {
+        /// Lower end of the final bracket.
+        lo: f64,
+        /// Upper end of the final bracket.
+        hi: f64,
+        /// The relative tolerance asked for.
+        tolerance: f64,
+    },
+
+    /// (A, B) is not stabilisable: an eigenvalue of A with Re λ ≥ 0 is
+    /// uncontrollable (PBH test: [A − λI, B] loses rank), or the Riccati solution
+    /// does not stabilise A − BK.
+    #[error(
+        "(A, B) is not stabilisable: the mode with eigenvalue {re} + {im}i cannot be \
+         moved by the inputs (rank ratio {ratio:e})"
+    )]
+    NotStabilisable {
+        /// Real part of the offending eigenvalue.
+        re: f64,
+        /// Imaginary part.
+        im: f64,
+        /// σ_min / σ_max of [A − λI, B] (or, for a closed loop that is not
+        /// Hurwitz, the largest closed-loop Re λ).
+        ratio: f64,
+    },
+
+    /// The Riccati iteration failed or its residual is too large.
+    #[error("Riccati equation not solved: {reason} (relative residual {residual:e})")]
+    Riccati {
+        /// What went wrong.
+        reason: String,
+        /// The relative residual reached (NaN if none).
+        residual: f64,
+    },
+}
+
+/// The second-order form of a linearisation:
+///
+/// ```text
+/// M δq̈_s + C δq̇_s + K δq_c = B_u δu
+/// ```
+///
+/// with δq_c the coordinate states (columns of K) and δq̇_s the speed states, each
+/// the rate of one of the coordinates (rows of every matrix, columns of M and C).
+/// Without nonholonomic constraints the two sets coincide and M, C, K are square.
+/// For a constrained linearisation M is the projected mass matrix
+/// M_r = C_vᵀ M C_v (C_v the velocity embedding), C = −M_r A₂₂, K = −M_r A₂₁ and
+/// B_u = M_r B₂, the form published linearisations (the bicycle's M, C, K) use.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SecondOrderForm {
+    /// M (speeds × speeds).
+    pub mass: DMatrix<f64>,
+    /// C (speeds × speeds): damping plus gyroscopic terms.
+    pub damping: DMatrix<f64>,
+    /// K (speeds × coordinates): stiffness plus circulatory terms.
+    pub stiffness: DMatrix<f64>,
+    /// B_u (speeds × inputs).
+    pub input: DMatrix<f64>,
+    /// Names of the coordinates (columns of K).
+    pub coordinates: Vec<String>,
+    /// Names of the speeds, each the name of the coordinate whose rate it is.
+    pub speeds: Vec<String>,
+}
+
+fn sym(m: &DMatrix<f64>) -> DMatrix<f64> {
+    (m + m.transpose()) * 0.5
+}
+
+fn skew(m: &DMatrix<f64>) -> DMatrix<f64> {
+    (m - m.transpose()) * 0.5
+}
+
+impl SecondOrderForm {
+    /// The damping matrix, the symmetric part (C + Cᵀ)/2 of C.
+    pub fn symmetric_damping(&self) -> DMatrix<f64> {
+        sym(&self.damping)
+    }
+
+    /// The gyroscopic matrix, the skew part (C − Cᵀ)/2 of C.
+    pub fn gyroscopic(&self) -> DMatrix<f64> {
+        skew(&self.damping)
+    }
+
+    /// K restricted to the coordinates whose rates are the speeds (square, in the
+    /// speeds' order); `None` if one of those coordinates is not among the
+    /// coordinate states.
+    pub fn square_stiffness(&self) -> Option<DMatrix<f64>> {
+        let cols: Option<Vec<usize>> = self
+            .speeds
+            .iter()
+            .map(|s| self.coordinates.iter().position(|c| c == s))
+            .collect();
+        Some(self.stiffness.select_columns(cols?.iter()))
+    }
+
+    /// The stiffness matrix, the symmetric part of [`square_stiffness`](Self::square_stiffness).
+    pub fn symmetric_stiffness(&self) -> Option<DMatrix<f64>> {
+        self.square_stiffness().map(|k| sym(&k))
+    }
+
+    /// The circulatory matrix, the skew part of [`square_stiffness`](Self::square_stiffness).
+    pub fn circulatory(&self) -> Option<DMatrix<f64>> {
+        self.square_stiffness().map(|k| skew(&k))
+    }
+}
+
+/// A linear model ẋ = A x + B u about an operating point.
+///
+/// The states are the coordinate states first (`n_coordinates` of them, named by
+/// coordinate, e.g. `phi`, `delta`), then the speed states (named by the
+/// coordinate whose rate they are with a prime, `phi'`, or by the reduced
+/// system's speed name).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Linear {
+    a: DMatrix<f64>,
+    b: DMatrix<f64>,
+    states: Vec<String>,
+    inputs: Vec<String>,
+    n_coordinates: usize,
+    second_order: Option<SecondOrderForm>,
+}
+
+impl Linear {
+    /// A linear model from its matrices and names; the first `n_coordinates`
+    /// states are coordinates, the others speeds (this only matters to
+    /// [`select`](Self::select) and the second-order form, which this constructor
+    /// does not provide).
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] if the sizes disagree or an entry is not finite.
+    pub fn new(
+        a: DMatrix<f64>,
+        b: DMatrix<f64>,
+        states: &[&str],
+        inputs: &[&str],
+        n_coordinates: usize,
+    ) -> Result<Self, Error> {
+        let n = states.len();
+        check_shape("A", &a, n, n)?;
+        check_shape("B", &b, n, inputs.len())?;
+        if n_coordinates > n {
+            return Err(Error::InvalidSettings(format!(
+                "{n_coordinates} coordinate states out of {n} states"
+            )));
+        }
+        Ok(Self {
+            a,
+            b,
+            states: states.iter().map(|s| s.to_string()).collect(),
+            inputs: inputs.iter().map(|s| s.to_string()).collect(),
+            n_coordinates,
+            second_order: None,
+        })
+    }
+
+    /// The linear model of M q̈ + C q̇ + K q = B_u u in the coordinates named
+    /// `coordinates`: state (q, q̇), `A = [[0, I], [−M⁻¹K, −M⁻¹C]]`,
+    /// `B = [[0], [M⁻¹B_u]]`. Builds a model from published matrices (the bicycle's).
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] if the sizes disagree or an entry is not finite;
+    /// [`Error::SingularMassMatrix`] if M is not invertible.
+    pub fn from_second_order(
+        mass: DMatrix<f64>,
+        damping: DMatrix<f64>,
+        stiffness: DMatrix<f64>,
+        input: DMatrix<f64>,
+        coordinates: &[&str],
+        inputs: &[&str],
+    ) -> Result<Self, Error> {
+        let n = coordinates.len();
+        check_shape("M", &mass, n, n)?;
+        check_shape("C", &damping, n, n)?;
+        check_shape("K", &stiffness, n, n)?;
+        check_shape("B_u", &input, n, inputs.len())?;
+        let lu = mass.clone().full_piv_lu();
+        let singular = || Error::SingularMassMatrix {
+            t: 0.0,
+            q: vec![],
+            ratio: 0.0,
+        };
+        let minv_k = lu.solve(&stiffness).ok_or_else(singular)?;
+        let minv_c = lu.solve(&damping).ok_or_else(singular)?;
+        let minv_b = lu.solve(&input).ok_or_else(singular)?;
+        let mut a = DMatrix::zeros(2 * n, 2 * n);
+        a.view_mut((0, n), (n, n)).fill_with_identity();
+        a.view_mut((n, 0), (n, n)).copy_from(&-minv_k);
+        a.view_mut((n, n), (n, n)).copy_from(&-minv_c);
+        let mut b = DMatrix::zeros(2 * n, inputs.len());
+        b.view_mut((n, 0), (n, inputs.len())).copy_from(&minv_b);
+        let names: Vec<String> = coordinates.iter().map(|s| s.to_string()).collect();
+        let mut states = names.clone();
+        states.extend(names.iter().map(|s| format!("{s}'")));
+        Ok(Self {
+            a,
+            b,
+            states,
+            inputs: inputs.iter().map(|s| s.to_string()).collect(),
+            n_coordinates: n,
+            second_order: Some(SecondOrderForm {
+                mass,
+                damping,
+                stiffness,
+                input,
+                coordinates: names.clone(),
+                speeds: names,
+            }),
+        })
+    }
+
+    pub(crate) fn from_parts(
+        a: DMatrix<f64>,
+        b: DMatrix<f64>,
+        states: Vec<String>,
+        inputs: Vec<String>,
+        n_coordinates: usize,
+        second_order: Option<SecondOrderForm>,
+    ) -> Self {
+        Self {
+            a,
+            b,
+            states,
+            inputs,
+            n_coordinates,
+            second_order,
+        }
+    }
+
+    /// The state matrix A.
+    pub fn a(&self) -> &DMatrix<f64> {
+        &self.a
+    }
+
+    /// The input matrix B (states × inputs).
+    pub fn b(&self) -> &DMatrix<f64> {
+        &self.b
+    }
+
+    /// The state names, in order.
+    pub fn states(&self) -> &[String] {
+        &self.states
+    }
+
+    /// The input names, in order.
+    pub fn inputs(&self) -> &[String] {
+        &self.inputs
+    }
+
+    /// How many of the states (the first ones) are coordinates.
+    pub fn n_coordinates(&self) -> usize {
+        self.n_coordinates
+    }
+
+    /// The second-order form, when the speed states are rates of coordinate
+    /// states.
+    pub fn second_order(&self) -> Option<&SecondOrderForm> {
+        self.second_order.as_ref()
+    }
+
+    /// The index of the state named `name`.
+    pub fn state_index(&self, name: &str) -> Option<usize> {
+        self.states.iter().position(|s| s == name)
+    }
+
+    /// Keeps the named states (in their original order), with the default
+    /// tolerance [`DEFAULT_COUPLING_TOLERANCE`]; see
+    /// [`select_with_tolerance`](Self::select_with_tolerance).
+    ///
+    /// # Errors
+    /// As [`select_with_tolerance`](Self::select_with_tolerance).
+    pub fn select(&self, names: &[&str]) -> Result<Linear, Error> {
+        self.select_with_tolerance(names, DEFAULT_COUPLING_TOLERANCE)
+    }
+
+    /// Keeps the named states (in their original order), dropping the others:
+    /// ignorable coordinates (heading, position, wheel angles) and decoupled
+    /// neutral speeds. Valid only if no kept state depends on a dropped one:
+    /// |A[kept, dropped]| ≤ `tol` · max |A_ij| (an absolute tolerance `tol` when A
+    /// is zero).
+    ///
+    /// The second-order form survives if every kept speed's coordinate is kept:
+    /// the submatrices when the mass matrix does not couple kept and dropped
+    /// speeds, otherwise M restricted to the kept speeds with C, K, B_u
+    /// recomputed from the selected A (C = −M A₂₂, K = −M A₂₁, B_u = M B₂).
+    ///
+    /// # Errors
+    /// [`LinearError::UnknownState`] for a name that is not a state;
+    /// [`LinearError::CoupledStates`] naming the largest coupling to a dropped
+    /// state.
+    pub fn select_with_tolerance(&self, names: &[&str], tol: f64) -> Result<Linear, Error> {
+        let mut keep = vec![false; self.states.len()];
+        for &name in names {
+            let i = self
+                .state_index(name)
+                .ok_or_else(|| LinearError::UnknownState {
+                    name: name.to_string(),
+                    states: self.states.clone(),
+                })?;
+            keep[i] = true;
+        }
+        let kept: Vec<usize> = (0..keep.len()).filter(|&i| keep[i]).collect();
+        let dropped: Vec<usize> = (0..keep.len()).filter(|&i| !keep[i]).collect();
+        let scale = self.a.amax();
+        let abs_tol = if scale > 0.0 { tol * scale } else { tol };
+        let mut worst: Option<(usize, usize, f64)> = None;
+        for &i in &kept {
+            for &j in &dropped {
+                let x = self.a[(i, j)];
+                if x.abs() > abs_tol && worst.is_none_or(|w| x.abs() > w.2.abs()) {
+                    worst = Some((i, j, x));
+                }
+            }
+        }
+        if let Some((i, j, x)) = worst {
+            return Err(LinearError::CoupledStates {
+                kept: self.states[i].clone(),
+                dropped: self.states[j].clone(),
+                coupling: x,
+                tolerance: abs_tol,
+            }
+            .into());
+        }
+        let a = self.a.select_rows(kept.iter()).select_columns(kept.iter());
+        let b = self.b.select_rows(kept.iter());
+        let states: Vec<String> = kept.iter().map(|&i| self.states[i].clone()).collect();
+        let n_coordinates = kept.iter().filter(|&&i| i < self.n_coordinates).count();
+        let second_order = self
+            .second_order
+            .as_ref()
+            .and_then(|so| self.select_second_order(so, &kept, &a, &b, n_coordinates));
+        Ok(Linear::from_parts(
+            a,
+            b,
+            states,
+            self.inputs.clone(),
+            n_coordinates,
+            second_order,
+        ))
+    }
+
+    fn select_second_order(
+        &self,
+        so: &SecondOrderForm,
+        kept: &[usize],
+        a: &DMatrix<f64>,
+        b: &DMatrix<f64>,
+        nc: usize,
+    ) -> Option<SecondOrderForm> {
+        let n0 = self.n_coordinates;
+        let kc: Vec<usize> = kept.iter().copied().filter(|&i| i < n0).collect();
+        let ks: Vec<usize> = kept.iter().filter(|&&i| i >= n0).map(|&i| i - n0).collect();
+        let coordinates: Vec<String> = kc.iter().map(|&i| so.coordinates[i].clone()).collect();
+        let speeds: Vec<String> = ks.iter().map(|&j| so.speeds[j].clone()).collect();
+        if !speeds.iter().all(|s| coordinates.contains(s)) {
+            return None;
+        }
+        let mass = so.mass.select_rows(ks.iter()).select_columns(ks.iter());
+        let decoupled = ks.iter().all(|&i| {
+            (0..so.speeds.len())
+                .filter(|j| !ks.contains(j))
+                .all(|j| so.mass[(i, j)] == 0.0)
+        });
+        let (damping, stiffness, input) = if decoupled {
+            (
+                so.damping.select_rows(ks.iter()).select_columns(ks.iter()),
+                so.stiffness
+                    .select_rows(ks.iter())
+                    .select_columns(kc.iter()),
+                so.input.select_rows(ks.iter()),
+            )
+        } else {
+            let ns = ks.len();
+            let a21 = a.view((nc, 0), (ns, nc));
+            let a22 = a.view((nc, nc), (ns, ns));
+            let b2 = b.view((nc, 0), (ns, b.ncols()));
+            (-&mass * a22, -&mass * a21, &mass * b2)
+        };
+        Some(SecondOrderForm {
+            mass,
+            damping,
+            stiffness,
+            input,
+            coordinates,
+            speeds,
+        })
+    }
+}
+
+fn check_shape(name: &str, m: &DMatrix<f64>, rows: usize, cols: usize) -> Result<(), Error> {
+    if m.nrows() != rows || m.ncols() != cols {
+        return Err(Error::InvalidSettings(format!(
+            "{name} is {}x{}, expected {rows}x{cols}",
+            m.nrows(),
+            m.ncols()
+        )));
+    }
+    if !m.iter().all(|x| x.is_finite()) {
+        return Err(Error::InvalidSettings(format!("{name} is not finite")));
+    }
+    Ok(())
+}
