@@ -6,7 +6,7 @@ mod catalog;
 
 use catalog::control::{CartPole, TwoLinkArm};
 use lagrange::linear::{Lqr, OperatingPoint, linearize};
-use lagrange::nalgebra::{DMatrix, Vector4};
+use lagrange::nalgebra::DMatrix;
 use lagrange::prelude::*;
 
 /// The reference the arm tracks: q_d(t), q̇_d(t), q̈_d(t).
@@ -74,7 +74,7 @@ fn cart_pole_lqr(cp: &CartPole) -> Lqr {
     let b = DMatrix::from_column_slice(4, 1, &[0.0, 0.0, 1.0 / mc, -1.0 / (mc * l)]);
     assert!((lin.a() - &a).abs().max() < 1e-14, "{}", lin.a());
     assert!((lin.b() - &b).abs().max() < 1e-14, "{}", lin.b());
-    let q = DMatrix::from_diagonal(&Vector4::new(10.0, 100.0, 1.0, 1.0));
+    let q = DMatrix::from_diagonal(&lagrange::nalgebra::DVector::from_vec(vec![10.0, 100.0, 1.0, 1.0]));
     let r = DMatrix::from_element(1, 1, 0.1);
     let design = lin.lqr(&q, &r).unwrap();
     assert!(design.residual < 1e-12, "Riccati residual {:e}", design.residual);
