@@ -87,7 +87,11 @@ fn lateral_dynamics_match_the_published_matrices() {
         // The projected second-order form is the paper's, term by term.
         let so = lin.second_order().expect("speeds are rates of coordinates");
         let rel = |x: &DMatrix<f64>, y: &DMatrix<f64>| (x - y).abs().max() / y.abs().max();
-        let (em, ec, ek) = (rel(&so.mass, &m), rel(&so.damping, &c), rel(&so.stiffness, &k));
+        let (em, ec, ek) = (
+            rel(&so.mass, &m),
+            rel(&so.damping, &c),
+            rel(&so.stiffness, &k),
+        );
         eprintln!("v = {v}: M {em:.1e}, C {ec:.1e}, K {ek:.1e}");
         assert!(em < 1e-7 && ec < 1e-7 && ek < 1e-7, "{so:?}");
     }

@@ -65,19 +65,37 @@ fn cart_pole_lqr(cp: &CartPole) -> Lqr {
         4,
         4,
         &[
-            0.0, 0.0, 1.0, 0.0, //
-            0.0, 0.0, 0.0, 1.0, //
-            0.0, -mp * g / mc, 0.0, 0.0, //
-            0.0, (mc + mp) * g / (mc * l), 0.0, 0.0,
+            0.0,
+            0.0,
+            1.0,
+            0.0, //
+            0.0,
+            0.0,
+            0.0,
+            1.0, //
+            0.0,
+            -mp * g / mc,
+            0.0,
+            0.0, //
+            0.0,
+            (mc + mp) * g / (mc * l),
+            0.0,
+            0.0,
         ],
     );
     let b = DMatrix::from_column_slice(4, 1, &[0.0, 0.0, 1.0 / mc, -1.0 / (mc * l)]);
     assert!((lin.a() - &a).abs().max() < 1e-14, "{}", lin.a());
     assert!((lin.b() - &b).abs().max() < 1e-14, "{}", lin.b());
-    let q = DMatrix::from_diagonal(&lagrange::nalgebra::DVector::from_vec(vec![10.0, 100.0, 1.0, 1.0]));
+    let q = DMatrix::from_diagonal(&lagrange::nalgebra::DVector::from_vec(vec![
+        10.0, 100.0, 1.0, 1.0,
+    ]));
     let r = DMatrix::from_element(1, 1, 0.1);
     let design = lin.lqr(&q, &r).unwrap();
-    assert!(design.residual < 1e-12, "Riccati residual {:e}", design.residual);
+    assert!(
+        design.residual < 1e-12,
+        "Riccati residual {:e}",
+        design.residual
+    );
     assert!(design.closed_loop.iter().all(|l| l.re < 0.0));
     design
 }
@@ -111,7 +129,9 @@ fn cart_pole_lqr_at_100_hz_with_zero_order_hold() {
     let k = cart_pole_lqr(&cp).gain;
     let run = Simulation::new(&cp)
         .integrator(Dopri5::tol(1e-10))
-        .sampled(0.01, |_, q: &Vector2<f64>, v: &Vector2<f64>| [-(&k * state(q, v))[0]])
+        .sampled(0.01, |_, q: &Vector2<f64>, v: &Vector2<f64>| {
+            [-(&k * state(q, v))[0]]
+        })
         .run([0.0, 0.3], [0.0, 0.0], 0.0..10.0)
         .unwrap();
     let (q, v) = run.trajectory().final_state();
@@ -123,7 +143,10 @@ fn cart_pole_lqr_at_100_hz_with_zero_order_hold() {
         let ((t0, t1), (u0, u1)) = ((w.0[0], w.0[1]), (w.1[0], w.1[1]));
         let sample = (t1 / 0.01).round() * 0.01;
         if u0 != u1 {
-            assert!((t1 - sample).abs() < 1e-9 && t1 > t0, "input changed at {t1}");
+            assert!(
+                (t1 - sample).abs() < 1e-9 && t1 > t0,
+                "input changed at {t1}"
+            );
         }
     }
 }

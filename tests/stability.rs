@@ -93,7 +93,11 @@ fn central_differences(d: &RollingDisk, q0: Vector5<f64>, v0: Vector5<f64>) -> D
             .solve(0.0, &q, &v)
             .unwrap()
             .accelerations;
-        idx_c.iter().map(|&i| v[i]).chain(idx_s.iter().map(|&i| a[i])).collect()
+        idx_c
+            .iter()
+            .map(|&i| v[i])
+            .chain(idx_s.iter().map(|&i| a[i]))
+            .collect()
     };
     let h = 1e-6;
     let mut out = DMatrix::zeros(8, 8);

@@ -1,13 +1,161 @@
 //! Gallery rows of driven systems: controllers through closures, models from the
 //! linearisation.
 
-use crate::catalog::control::TwoLinkArm;
+use crate::catalog::bicycle::{Bicycle, published};
+use crate::catalog::constrained::RollingDisk;
+use crate::catalog::control::{CartPole, TwoLinkArm};
 use crate::{Row, TOL, row};
+use lagrange::linear::{Linear, Linearizer, OperatingPoint, linearize, sweep};
+use lagrange::nalgebra::{DMatrix, DVector};
 use lagrange::prelude::*;
 
 pub fn rows(rows: &mut Vec<Row>) -> Result<(), Error> {
     rows.push(arm()?);
+    let gain = cart_pole_gain()?;
+    rows.push(cart_pole(&gain, None)?);
+    rows.push(cart_pole(&gain, Some(0.01))?);
+    rows.push(disk()?);
+    rows.push(bicycle()?);
     Ok(())
+}
+
+/// LQR gain of the cart-pole about upright, from the symbolic linearisation.
+fn cart_pole_gain() -> Result<DMatrix<f64>, Error> {
+    let op = OperatingPoint::new(Vector2::zeros(), Vector2::zeros()).input(Vector1::zeros());
+    let lin = linearize(&CartPole::standard(), &op)?;
+    let q = DMatrix::from_diagonal(&DVector::from_vec(vec![10.0, 100.0, 1.0, 1.0]));
+    Ok(lin.lqr(&q, &DMatrix::from_element(1, 1, 0.1))?.gain)
+}
+
+/// The cart-pole caught from a 0.3 rad tilt by u = −K x, continuously or
+/// sampled with zero-order hold.
+fn cart_pole(gain: &DMatrix<f64>, period: Option<f64>) -> Result<Row, Error> {
+    let cp = CartPole::standard();
+    let law = |q: &Vector2<f64>, v: &Vector2<f64>| {
+        let x = DVector::from_vec(vec![q[0], q[1], v[0], v[1]]);
+        [-(gain * x)[0]]
+    };
+    let name = match period {
+        None => "cart-pole, LQR from the linearisation",
+        Some(_) => "cart-pole, LQR sampled at 100 Hz (ZOH)",
+    };
+    row(
+        name,
+        0.0..10.0,
+        false,
+        || {
+            let sim = Simulation::new(&cp).integrator(Dopri5::tol(TOL));
+            let run = match period {
+                None => sim
+                    .feedback(|_, q, v| law(q, v))
+                    .run([0.0, 0.3], [0.0; 2], 0.0..10.0),
+                Some(h) => sim
+                    .sampled(h, |_, q, v| law(q, v))
+                    .run([0.0, 0.3], [0.0; 2], 0.0..10.0),
+            };
+            run.map(|r| r.into_trajectory())
+        },
+        |tr| {
+            let (q, _) = tr.final_state();
+            format!("from θ = 0.3: x(10) = {:.1e}, θ(10) = {:.1e}", q[0], q[1])
+        },
+    )
+}
+
+/// A thin disk: diametral moment m a²/4, axial m a²/2.
+fn thin_disk() -> RollingDisk {
+    let (m, a) = (1.0, 0.5);
+    RollingDisk {
+        m,
+        a,
+        b: m * a * a / 4.0,
+        c: m * a * a / 2.0,
+        g: 9.81,
+    }
+}
+
+/// Tilt dynamics about upright rolling at spin Ω.
+fn disk_upright(d: &RollingDisk, spin: f64) -> Result<Linear, Error> {
+    let v = Vector5::new(d.a * spin, 0.0, 0.0, 0.0, spin);
+    Linearizer::new()
+        .coordinates(&["x", "y", "psi", "theta", "phi"])
+        .speeds(&["psi", "theta", "phi"])
+        .constrained(d, &OperatingPoint::new(Vector5::zeros(), v))?
+        .select(&["theta", "psi'", "theta'"])
+}
+
+/// The critical spin of upright rolling from the eigenvalues, then the
+/// nonlinear disk at 1.2 Ω_c kicked by a tilt rate: it wobbles and stays up.
+fn disk() -> Result<Row, Error> {
+    let d = thin_disk();
+    let spins: Vec<f64> = (1..=20).map(|i| 0.25 * i as f64).collect();
+    let critical = sweep(&spins, |w| disk_upright(&d, w))?
+        .boundaries(|w| disk_upright(&d, w), 1e-6, 1e-14)?
+        .first()
+        .map_or(f64::NAN, |b| b.parameter);
+    let exact = (d.g / (3.0 * d.a)).sqrt();
+    let spin = 1.2 * critical;
+    row(
+        "rolling disk upright, critical spin",
+        0.0..10.0,
+        true,
+        || {
+            Simulation::new(&d)
+                .integrator(Dopri5::tol(TOL))
+                .drift(Drift::projection())
+                .project_initial(true)
+                .run_constrained([0.0; 5], [d.a * spin, 0.0, 0.0, 0.05, spin], 0.0..10.0)
+        },
+        |tr| {
+            let tilt = tr
+                .positions()
+                .iter()
+                .map(|q| q[3].abs())
+                .fold(0.0, f64::max);
+            format!(
+                "Ω_c = {critical:.10} (√(g/3a): {:.0e}); at 1.2 Ω_c max tilt {tilt:.3}",
+                (critical - exact).abs() / exact
+            )
+        },
+    )
+}
+
+/// The benchmark bicycle: self-stable speeds from the eigenvalues, and the
+/// nonlinear machine at 5 m/s recovering from a roll-rate kick.
+fn bicycle() -> Result<Row, Error> {
+    let b = Bicycle::benchmark();
+    let speeds: Vec<f64> = (1..=20).map(|i| 0.5 * i as f64).collect();
+    let found = sweep(&speeds, |v| b.lateral(v))?.boundaries(|v| b.lateral(v), 1e-12, 1e-13)?;
+    let speed_of = |oscillatory: bool| {
+        found
+            .iter()
+            .find(|x| x.oscillatory == oscillatory)
+            .map_or(f64::NAN, |x| x.parameter)
+    };
+    let (weave, capsize) = (speed_of(true), speed_of(false));
+    let (q0, mut v0) = b.upright(5.0);
+    v0[3] = 0.5;
+    row(
+        "Whipple bicycle at 5 m/s, roll-rate kick",
+        0.0..8.0,
+        true,
+        || {
+            Simulation::new(&b)
+                .integrator(Dopri5::tol(TOL))
+                .drift(Drift::projection())
+                .project_initial(true)
+                .run_constrained(q0, v0, 0.0..8.0)
+        },
+        |tr| {
+            let (q, _) = tr.final_state();
+            format!(
+                "weave {weave:.6} m/s ({:.0e}), capsize {capsize:.6} ({:.0e}); roll(8) = {:.1e}",
+                (weave - published::WEAVE_SPEED).abs() / published::WEAVE_SPEED,
+                (capsize - published::CAPSIZE_SPEED).abs() / published::CAPSIZE_SPEED,
+                q[3]
+            )
+        },
+    )
 }
 
 /// The arm's reference: shoulder and elbow swinging at 1 and 1.5 rad/s.
