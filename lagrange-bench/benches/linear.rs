@@ -55,7 +55,9 @@ fn central_differences(b: &Bicycle, h: f64) -> Result<DMatrix<f64>, Error> {
 fn published_a(b: &Bicycle) -> DMatrix<f64> {
     let s = [1.0, -1.0];
     let m = |x: [[f64; 2]; 2]| DMatrix::from_fn(2, 2, |i, j| s[i] * s[j] * x[i][j]);
-    let minv = m(published::M).try_inverse().expect("published M is regular");
+    let minv = m(published::M)
+        .try_inverse()
+        .expect("published M is regular");
     let k = m(published::K0) * b.g + m(published::K2) * (SPEED * SPEED);
     let c = m(published::C1) * SPEED;
     let mut a = DMatrix::zeros(4, 4);
