@@ -265,7 +265,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     quote! {
         #[doc = #impl_doc]
         #[automatically_derived]
-        #[allow(unused_variables, clippy::all)]
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
         impl #impl_generics ::lagrange::__private::Lagrangian<#s, #nl> for #ident #ty_generics #where_clause {
             const COORDINATES: [&'static str; #nl] = [#(#names),*];
             const RHEONOMIC: bool = #rheonomic;
@@ -468,7 +468,7 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     quote! {
         #[automatically_derived]
-        #[allow(unused_variables, clippy::all)]
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
         impl #ig ::lagrange::__private::Constrained<#s, #nl, #kl> for #ident #tg #wc {
             const CONSTRAINTS: [&'static str; #kl] = [#(#names),*];
             const HOLONOMIC: usize = #holonomic;
@@ -554,7 +554,7 @@ fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     quote! {
         #[automatically_derived]
-        #[allow(unused_variables, clippy::all)]
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
         impl #ig ::lagrange::__private::Reduced<#s, #nl, #kl> for #ident #tg #wc {
             const SPEEDS: [&'static str; #kl] = [#(#names),*];
 
@@ -606,7 +606,7 @@ fn impl_driven(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     quote! {
         #[automatically_derived]
-        #[allow(unused_variables, clippy::all)]
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
         impl #ig ::lagrange::__private::Driven<#s, #nl, #pl> for #ident #tg #wc {
             const INPUTS: [&'static str; #pl] = [#(#names),*];
 
@@ -690,7 +690,7 @@ fn extras(e: &Emitter, f: &Frame, model: &Model, system: &System) -> TokenStream
             /// [`Self::REACTION_POINTS`], from the multipliers ν the constrained
             /// dynamics compute. Constraints written in generalized coordinates only
             /// do not act on a point and do not appear here.
-            #[allow(unused_variables, clippy::all)]
+            #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
             pub fn reactions(&self, q: &#vec_n, v: &#vec_n, t: #s, nu: &#vec_k) -> [#vec_d; #pl] {
                 #lets
                 [#(#vectors),*]
@@ -706,7 +706,7 @@ fn extras(e: &Emitter, f: &Frame, model: &Model, system: &System) -> TokenStream
         out.extend(quote! {
             /// The Coriolis matrix C(q, q̇, t), C_ij = Σ_k Γ_ijk q̇_k, with Γ the Christoffel
             /// symbols of M: Ṁ − 2C is skew-symmetric, and C q̇ is the quadratic part of h.
-            #[allow(unused_variables, clippy::all)]
+            #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
             pub fn coriolis_matrix(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #mat {
                 #lets
                 let mut c = <#mat>::zeros();

@@ -1,5 +1,13 @@
-//! Rust tokens for a [`Program`]: one `let` per operation, symbols and
+//! Rust tokens for a [`Program`]: one assignment per operation, symbols and
 //! constants inlined where they are used.
+//!
+//! Temporaries live in a small set of reused variables (registers allocated by
+//! liveness: a value's variable is free again after its last use), declared
+//! once at the top. One `let` per operation would nest one lexical scope per
+//! operation, and rustc walks those scopes recursively when it emits debug
+//! information: the ~6,000 temporaries of a bicycle's right-hand-side Jacobians
+//! overflowed its stack in a debug build. The optimiser sees the same SSA values
+//! either way.
 
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
@@ -26,62 +34,134 @@ pub struct EmitConfig<'a> {
 }
 
 impl Program {
-    /// The program as Rust: the `let` statements, and one expression per
-    /// output (a temporary, or an inlined symbol or constant).
+    /// The program as Rust: the declarations and assignments, and one expression
+    /// per output (a variable, or an inlined symbol or constant).
     pub fn emit(&self, _ctx: &Context, cfg: &EmitConfig) -> (TokenStream, Vec<TokenStream>) {
+        let last_use = self.last_uses();
+        let mut registers = Registers::default();
+        // For each value: how it is read (an inlined symbol or constant, or the
+        // register holding it) and, for temporaries, the register index.
         let mut operand: Vec<TokenStream> = Vec::with_capacity(self.ops.len());
+        let mut register_of: Vec<Option<usize>> = Vec::with_capacity(self.ops.len());
         let mut body = TokenStream::new();
-        let mut temps = 0usize;
-        for op in &self.ops {
-            let o = |v: Value| &operand[v as usize];
-            let f = cfg.function;
-            let expr = match *op {
-                Op::Sym(s) => {
-                    operand.push((cfg.symbol)(s));
+        for (i, op) in self.ops.iter().enumerate() {
+            let expr = match self.expression(op, &operand, cfg) {
+                Ok(expr) => expr,
+                Err(inline) => {
+                    operand.push(inline);
+                    register_of.push(None);
                     continue;
-                }
-                Op::Const(b) => {
-                    operand.push((cfg.constant)(f64::from_bits(b)));
-                    continue;
-                }
-                Op::Add(a, b) => binary(o(a), quote!(+), o(b)),
-                Op::Sub(a, b) => binary(o(a), quote!(-), o(b)),
-                Op::Mul(a, b) => binary(o(a), quote!(*), o(b)),
-                Op::Div(a, b) => binary(o(a), quote!(/), o(b)),
-                Op::Neg(a) => {
-                    let a = o(a);
-                    quote!(-#a)
-                }
-                Op::Call(func, a) => {
-                    let name = Ident::new(func.name(), Span::call_site());
-                    let a = o(a);
-                    quote!(#f::#name(#a))
-                }
-                Op::Atan2(y, x) => {
-                    let (y, x) = (o(y), o(x));
-                    quote!(#f::atan2(#y, #x))
-                }
-                Op::Powf(a, b) => {
-                    let (a, b) = (o(a), o(b));
-                    quote!(#f::powf(#a, #b))
-                }
-                Op::Powi(a, n) => {
-                    let a = o(a);
-                    quote!(#f::powi(#a, #n))
                 }
             };
-            let name = Ident::new(&format!("{}{temps}", cfg.temp_prefix), Span::call_site());
-            temps += 1;
-            body.extend(quote!(let #name = #expr;));
+            // Operands read here for the last time give their registers back
+            // before the result takes one: `_t3 = _t3 * _t5` is fine.
+            for v in op.operands() {
+                if last_use[v as usize] == i
+                    && let Some(r) = register_of[v as usize]
+                {
+                    registers.release(r);
+                }
+            }
+            let r = registers.take();
+            let name = register_name(cfg, r);
+            body.extend(quote!(#name = #expr;));
             operand.push(quote!(#name));
+            register_of.push(Some(r));
         }
+        let declarations = (0..registers.count).map(|r| {
+            let name = register_name(cfg, r);
+            quote!(let mut #name;)
+        });
         let outputs = self
             .outputs
             .iter()
             .map(|&v| operand[v as usize].clone())
             .collect();
-        (body, outputs)
+        (quote!(#(#declarations)* #body), outputs)
     }
+
+    /// The index of the last operation reading each value (`usize::MAX` for
+    /// outputs, which are read after the program).
+    fn last_uses(&self) -> Vec<usize> {
+        let mut last = vec![0usize; self.ops.len()];
+        for (i, op) in self.ops.iter().enumerate() {
+            for v in op.operands() {
+                last[v as usize] = i;
+            }
+        }
+        for &v in &self.outputs {
+            last[v as usize] = usize::MAX;
+        }
+        last
+    }
+
+    /// The expression computing `op`, or `Err` with the inlined spelling of a
+    /// symbol or constant (which need no temporary).
+    fn expression(
+        &self,
+        op: &Op,
+        operand: &[TokenStream],
+        cfg: &EmitConfig,
+    ) -> Result<TokenStream, TokenStream> {
+        let o = |v: Value| &operand[v as usize];
+        let f = cfg.function;
+        Ok(match *op {
+            Op::Sym(s) => return Err((cfg.symbol)(s)),
+            Op::Const(b) => return Err((cfg.constant)(f64::from_bits(b))),
+            Op::Add(a, b) => binary(o(a), quote!(+), o(b)),
+            Op::Sub(a, b) => binary(o(a), quote!(-), o(b)),
+            Op::Mul(a, b) => binary(o(a), quote!(*), o(b)),
+            Op::Div(a, b) => binary(o(a), quote!(/), o(b)),
+            Op::Neg(a) => {
+                let a = o(a);
+                quote!(-#a)
+            }
+            Op::Call(func, a) => {
+                let name = Ident::new(func.name(), Span::call_site());
+                let a = o(a);
+                quote!(#f::#name(#a))
+            }
+            Op::Atan2(y, x) => {
+                let (y, x) = (o(y), o(x));
+                quote!(#f::atan2(#y, #x))
+            }
+            Op::Powf(a, b) => {
+                let (a, b) = (o(a), o(b));
+                quote!(#f::powf(#a, #b))
+            }
+            Op::Powi(a, n) => {
+                let a = o(a);
+                quote!(#f::powi(#a, #n))
+            }
+        })
+    }
+}
+
+/// Free registers, lowest first, so the output is deterministic.
+#[derive(Default)]
+struct Registers {
+    count: usize,
+    free: std::collections::BTreeSet<usize>,
+}
+
+impl Registers {
+    fn take(&mut self) -> usize {
+        match self.free.pop_first() {
+            Some(r) => r,
+            None => {
+                self.count += 1;
+                self.count - 1
+            }
+        }
+    }
+
+    fn release(&mut self, r: usize) {
+        self.free.insert(r);
+    }
+}
+
+fn register_name(cfg: &EmitConfig, r: usize) -> Ident {
+    Ident::new(&format!("{}{r}", cfg.temp_prefix), Span::call_site())
 }
 
 fn binary(a: &TokenStream, op: TokenStream, b: &TokenStream) -> TokenStream {

@@ -60,6 +60,19 @@ pub(crate) enum Op {
     Powi(Value, i32),
 }
 
+impl Op {
+    /// The values this operation reads.
+    pub(crate) fn operands(&self) -> impl Iterator<Item = Value> {
+        let (a, b) = match *self {
+            Op::Sym(_) | Op::Const(_) => (None, None),
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => (Some(a), Some(b)),
+            Op::Atan2(a, b) | Op::Powf(a, b) => (Some(a), Some(b)),
+            Op::Neg(a) | Op::Call(_, a) | Op::Powi(a, _) => (Some(a), None),
+        };
+        a.into_iter().chain(b)
+    }
+}
+
 /// Integer powers above this use `powi` instead of a multiplication chain.
 const MAX_UNROLLED_POWER: u64 = 64;
 
