@@ -259,6 +259,11 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
 /// Every [`Lagrangian`] system is `Driven` with P = 0 (no inputs), so code
 /// written for driven systems (linearisation, controlled simulation) also
 /// takes undriven ones.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not driven by {P} input(s): a controller, input signal or operating point supplies a different number of inputs than `inputs(...)` declares",
+    label = "{P} input(s) supplied here",
+    note = "a controller returns `[T; P]` or `SVector<T, P>` with P the number of names in `inputs(...)`; a system without inputs takes P = 0"
+)]
 pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
     /// Names of the inputs, in order.
     const INPUTS: [&'static str; P];

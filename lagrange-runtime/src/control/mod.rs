@@ -128,6 +128,11 @@ impl<T: Real, const N: usize> Forcing<T, N> for NoForcing {
 ///
 /// P is fixed by the system's [`Driven`] implementation, so a controller that
 /// returns the wrong number of inputs is a compile error, not a run-time one.
+#[diagnostic::on_unimplemented(
+    message = "a controller must return the system's {P} input(s), as `[T; {P}]` or `SVector<T, {P}>`; this one returns `{Self}`",
+    label = "returns `{Self}`, expected {P} input(s)",
+    note = "the inputs are the ones declared in `inputs(...)`, in that order"
+)]
 pub trait IntoInput<T, const P: usize> {
     /// The inputs as a vector.
     fn into_input(self) -> SVector<T, P>;
