@@ -93,6 +93,29 @@
 //! assert!((tension - 1.0).abs() < 1e-12);
 //! ```
 //!
+//! A constrained system cannot be run as if it were free: `Simulation::run` (and
+//! anything else built on the unconstrained [`Dynamics`]) on it is a compile
+//! error ("this system has constraints, which the unconstrained dynamics would
+//! ignore: run it with `run_constrained` ... or `run_reduced` ..."), reported
+//! when the code is built (`cargo build`/`cargo test`; `cargo check` does not
+//! instantiate generic code and so does not see it):
+//!
+//! ```compile_fail,E0080
+//! use lagrange::prelude::*;
+//!
+//! #[derive(Lagrangian)]
+//! #[lagrange(
+//!     coordinates(x, y),
+//!     point(bob, mass = m, at = [x, y]),
+//!     gravity = [0, -g],
+//!     holonomic(rod = (x^2) + (y^2) - 1),
+//! )]
+//! pub struct Bob { pub m: f64, pub g: f64 }
+//!
+//! let bob = Bob { m: 1.0, g: 9.81 };
+//! let traj = Simulation::new(&bob).run([1.0, 0.0], [0.0, 0.0], 0.0..1.0);
+//! ```
+//!
 //! With `inputs(u1, ...)` the derive implements [`Driven`]:
 //! [`Driven::input_forces`] is ΔQ = Q(u) − Q(0), [`Driven::input_jacobians`]
 //! gives ∂Q/∂u, ∂ΔQ/∂q and ∂ΔQ/∂q̇, and the [`Lagrangian`] methods are the

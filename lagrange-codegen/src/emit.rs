@@ -247,6 +247,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
 
     let names = &model.coordinates;
     let rheonomic = model.rheonomic;
+    let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
     let ident = &system.ident;
     let (impl_generics, ty_generics, where_clause) = system.generics.split_for_impl();
     let where_clause = real_bound(system, where_clause);
@@ -269,6 +270,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
         impl #impl_generics ::lagrange::__private::Lagrangian<#s, #nl> for #ident #ty_generics #where_clause {
             const COORDINATES: [&'static str; #nl] = [#(#names),*];
             const RHEONOMIC: bool = #rheonomic;
+            const CONSTRAINED: bool = #has_constraints;
 
             #[inline]
             fn mass_matrix(&self, q: &#vec_t, t: #s) -> #mat_t {

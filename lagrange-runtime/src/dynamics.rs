@@ -105,6 +105,7 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
         S: Lagrangian<T, N>,
         F: Forcing<T, N>,
     {
+        refuse_constrained::<S, T, N>();
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
@@ -210,6 +211,19 @@ pub fn accelerations<S: Lagrangian<T, N>, T: Real, const N: usize>(
     t: T,
 ) -> Result<SVector<T, N>, Error> {
     Dynamics::new(sys).acceleration(t, q, v)
+}
+
+/// Refuses at compile time a system whose constraints these dynamics would
+/// ignore (see [`Lagrangian::CONSTRAINED`]): the error appears where the
+/// unconstrained dynamics of such a system is instantiated.
+#[inline(always)]
+pub(crate) fn refuse_constrained<S: Lagrangian<T, N>, T: Real, const N: usize>() {
+    const {
+        assert!(
+            !<S as Lagrangian<T, N>>::CONSTRAINED,
+            "this system has constraints, which the unconstrained dynamics would ignore: run it with `run_constrained` (multipliers) or `run_reduced` (independent speeds)"
+        )
+    };
 }
 
 pub(crate) fn all_finite<T: Real>(xs: &[T]) -> bool {

@@ -23,6 +23,16 @@ pub trait Lagrangian<T: Real, const N: usize> {
     /// Whether a position map depends explicitly on time. When it does, the
     /// conserved quantity (if any) is the Jacobi integral T2 − T0 + V, not T + V.
     const RHEONOMIC: bool;
+    /// Whether the system has constraints (holonomic or nonholonomic) that its
+    /// equations in these coordinates do not contain. Such a system must be run
+    /// with its constraints ([`Simulation::run_constrained`](crate::Simulation::run_constrained)
+    /// or [`run_reduced`](crate::Simulation::run_reduced)): integrating
+    /// M q̈ + h = Q alone would let it move as if unconstrained, so the
+    /// unconstrained forward dynamics ([`Dynamics`](crate::Dynamics), hence
+    /// `Simulation::run`, the integrators' `integrate` on it, and unconstrained
+    /// linearisation) refuse it at compile time. `#[derive(Lagrangian)]` sets it;
+    /// a hand-written [`Constrained`] or [`Reduced`] system should set it too.
+    const CONSTRAINED: bool = false;
 
     /// Mass matrix M(q,t): symmetric, positive definite where the chart is regular.
     fn mass_matrix(&self, q: &SVector<T, N>, t: T) -> SMatrix<T, N, N>;

@@ -181,6 +181,12 @@ impl Linearizer {
         S: Driven<T, N, P>,
         T: Real,
     {
+        const {
+            assert!(
+                !<S as crate::Lagrangian<T, N>>::CONSTRAINED,
+                "this system has constraints, which an unconstrained linearisation would ignore: use `Linearizer::constrained` (multipliers) or `Linearizer::reduced`"
+            )
+        };
         let (q, v, u, t) = (&op.q, &op.v, &op.u, op.t);
         let non_finite = || Error::non_finite(t, q, v);
         let (m_s, rhs) = sys.mass_matrix_and_rhs(q, v, t);

@@ -65,6 +65,7 @@ where
     F: Forcing<T, N>,
 {
     fn mass_matrix(&self, t: T, q: &SVector<T, N>) -> Result<SMatrix<T, N, N>, Error> {
+        crate::dynamics::refuse_constrained::<S, T, N>();
         Ok(self.system().mass_matrix(q, t))
     }
 
