@@ -5,35 +5,21 @@
 mod catalog;
 
 use catalog::control::{CartPole, TwoLinkArm};
-use lagrange::linear::{Lqr, OperatingPoint, linearize};
+use lagrange::linear::Lqr;
 use lagrange::nalgebra::DMatrix;
 use lagrange::prelude::*;
-
-/// The reference the arm tracks: q_d(t), q̇_d(t), q̈_d(t).
-fn reference(t: f64) -> [Vector2<f64>; 3] {
-    [
-        Vector2::new(0.5 * t.sin(), 0.8 + 0.4 * (1.5 * t).cos()),
-        Vector2::new(0.5 * t.cos(), -0.6 * (1.5 * t).sin()),
-        Vector2::new(-0.5 * t.sin(), -0.9 * (1.5 * t).cos()),
-    ]
-}
 
 /// Computed torque τ = M (q̈_d + K_d ė + K_p e) − (Q − h)|_{u=0}: with the
 /// exact model every joint error obeys ë + K_d ė + K_p e = 0.
 #[test]
 fn arm_computed_torque_tracks_with_the_designed_error_dynamics() {
     let arm = TwoLinkArm::standard();
-    let (kp, kd) = (100.0, 20.0); // critically damped at ω = 10 rad/s
+    let gains = (100.0, 20.0); // critically damped at ω = 10 rad/s
     let e0 = Vector2::new(0.1, -0.1);
-    let [qd0, vd0, _] = reference(0.0);
+    let [qd0, vd0, _] = TwoLinkArm::reference(0.0);
     let run = Simulation::new(&arm)
         .integrator(Dopri5::tol(1e-11))
-        .feedback(|t, q: &Vector2<f64>, v: &Vector2<f64>| {
-            let [qd, vd, ad] = reference(t);
-            let a = ad + (vd - v) * kd + (qd - q) * kp;
-            let (m, unforced) = arm.mass_matrix_and_rhs(q, v, t);
-            m * a - unforced
-        })
+        .feedback(|t, q, v| arm.computed_torque(gains, t, q, v))
         .run(qd0 + e0, vd0, 0.0..3.0)
         .unwrap();
     let traj = run.trajectory();
@@ -41,12 +27,12 @@ fn arm_computed_torque_tracks_with_the_designed_error_dynamics() {
     for (t, q) in traj.times().iter().zip(traj.positions()) {
         // e(t) = e0 (1 + ω t) e^{−ω t} with ė(0) = 0.
         let exact = e0 * (1.0 + 10.0 * t) * (-10.0 * t).exp();
-        let e = reference(*t)[0] - q;
+        let e = TwoLinkArm::reference(*t)[0] - q;
         worst = worst.max((e + exact).abs().max());
     }
     assert!(worst < 1e-8, "error dynamics off by {worst:e}");
     let (q_end, _) = traj.final_state();
-    let tracking = (reference(3.0)[0] - q_end).abs().max();
+    let tracking = (TwoLinkArm::reference(3.0)[0] - q_end).abs().max();
     assert!(tracking < 1e-9, "tracking error at 3 s: {tracking:e}");
     // One recorded torque pair per stored state.
     assert_eq!(run.inputs().len(), traj.len());
@@ -55,8 +41,7 @@ fn arm_computed_torque_tracks_with_the_designed_error_dynamics() {
 /// The LQR design for the cart-pole about upright, from the symbolic
 /// linearisation: Q = diag(10, 100, 1, 1), R = 0.1.
 fn cart_pole_lqr(cp: &CartPole) -> Lqr {
-    let op = OperatingPoint::new(Vector2::zeros(), Vector2::zeros()).input(Vector1::zeros());
-    let lin = linearize(cp, &op).unwrap();
+    let lin = cp.upright().unwrap();
     assert_eq!(lin.states(), ["x", "theta", "x'", "theta'"]);
     assert_eq!(lin.inputs(), ["force"]);
     // The textbook linear model: θ̈ = ((M + m) g θ − F) / (M l), ẍ = (F − m g θ) / M.
@@ -100,10 +85,6 @@ fn cart_pole_lqr(cp: &CartPole) -> Lqr {
     design
 }
 
-fn state(q: &Vector2<f64>, v: &Vector2<f64>) -> DMatrix<f64> {
-    DMatrix::from_column_slice(4, 1, &[q[0], q[1], v[0], v[1]])
-}
-
 /// Continuous LQR feedback u = −K x from a 0.3 rad tilt: the pole is caught
 /// and the cart returns to the origin.
 #[test]
@@ -112,7 +93,7 @@ fn cart_pole_lqr_settles_from_a_tilt() {
     let k = cart_pole_lqr(&cp).gain;
     let run = Simulation::new(&cp)
         .integrator(Dopri5::tol(1e-10))
-        .feedback(|_, q: &Vector2<f64>, v: &Vector2<f64>| [-(&k * state(q, v))[0]])
+        .feedback(|_, q, v| CartPole::state_feedback(&k, q, v))
         .run([0.0, 0.3], [0.0, 0.0], 0.0..10.0)
         .unwrap();
     let (q, v) = run.trajectory().final_state();
@@ -129,9 +110,7 @@ fn cart_pole_lqr_at_100_hz_with_zero_order_hold() {
     let k = cart_pole_lqr(&cp).gain;
     let run = Simulation::new(&cp)
         .integrator(Dopri5::tol(1e-10))
-        .sampled(0.01, |_, q: &Vector2<f64>, v: &Vector2<f64>| {
-            [-(&k * state(q, v))[0]]
-        })
+        .sampled(0.01, |_, q, v| CartPole::state_feedback(&k, q, v))
         .run([0.0, 0.3], [0.0, 0.0], 0.0..10.0)
         .unwrap();
     let (q, v) = run.trajectory().final_state();

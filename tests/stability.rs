@@ -6,34 +6,15 @@
 mod catalog;
 
 use catalog::constrained::RollingDisk;
-use lagrange::linear::{Linear, Linearizer, OperatingPoint, Verdict, sweep};
+use lagrange::linear::{Linearizer, OperatingPoint, Verdict, sweep};
 use lagrange::nalgebra::DMatrix;
 use lagrange::prelude::*;
 
 const COORDINATES: [&str; 5] = ["x", "y", "psi", "theta", "phi"];
 const SPEEDS: [&str; 3] = ["psi", "theta", "phi"];
 
-/// A thin uniform disk: diametral moment m a²/4, axial m a²/2.
 fn disk() -> RollingDisk {
-    let (m, a) = (1.0, 0.5);
-    RollingDisk {
-        m,
-        a,
-        b: m * a * a / 4.0,
-        c: m * a * a / 2.0,
-        g: 9.81,
-    }
-}
-
-/// Tilt, heading rate and tilt rate about upright rolling straight ahead at
-/// spin Ω (contact moving at a Ω along x).
-fn upright(d: &RollingDisk, spin: f64) -> Result<Linear, Error> {
-    let v = Vector5::new(d.a * spin, 0.0, 0.0, 0.0, spin);
-    Linearizer::new()
-        .coordinates(&COORDINATES)
-        .speeds(&SPEEDS)
-        .constrained(d, &OperatingPoint::new(Vector5::zeros(), v))?
-        .select(&["theta", "psi'", "theta'"])
+    RollingDisk::thin(1.0, 0.5, 9.81)
 }
 
 /// The classical condition for upright rolling, Ω² > m g a B / (C (C + m a²)),
@@ -55,8 +36,8 @@ fn critical_spin_of_upright_rolling() {
     // moves the crossing by only τ²/κ: τ = 1e-6 sits above the round-off and
     // still locates Ω_c to 2.3e-10.
     let tol = 1e-6;
-    let eigen = sweep(&spins, |w| upright(&d, w)).unwrap();
-    let found = eigen.boundaries(|w| upright(&d, w), tol, 1e-14).unwrap();
+    let eigen = sweep(&spins, |w| d.upright_tilt(w)).unwrap();
+    let found = eigen.boundaries(|w| d.upright_tilt(w), tol, 1e-14).unwrap();
     assert_eq!(found.len(), 1, "{found:?}");
     let rel = (found[0].parameter - exact).abs() / exact;
     eprintln!(
@@ -65,7 +46,7 @@ fn critical_spin_of_upright_rolling() {
     );
     assert!(rel < 1e-9);
     assert!(!found[0].destabilising);
-    let verdict = |w: f64| upright(&d, w).unwrap().stability(tol).verdict;
+    let verdict = |w: f64| d.upright_tilt(w).unwrap().stability(tol).verdict;
     assert_eq!(verdict(0.9 * exact), Verdict::Unstable);
     assert_eq!(verdict(1.1 * exact), Verdict::Marginal);
 }

@@ -3,6 +3,8 @@
 //! sleigh.
 
 use lagrange::Lagrangian;
+use lagrange::linear::{Linear, Linearizer, OperatingPoint};
+use lagrange::nalgebra::{SVector, Vector5};
 
 /// C1 in Cartesian coordinates: the bob on a thread of length `l`, kept by a
 /// multiplier (Lagrange's equations of the first kind, seed 001 §12). No chart, no
@@ -291,6 +293,30 @@ pub struct RollingDisk {
 }
 
 impl RollingDisk {
+    /// A thin uniform disk of mass `m` and radius `a`: diametral moment m a²/4,
+    /// axial m a²/2 (its upright critical spin is √(g / 3a)).
+    pub fn thin(m: f64, a: f64, g: f64) -> Self {
+        RollingDisk {
+            m,
+            a,
+            b: m * a * a / 4.0,
+            c: m * a * a / 2.0,
+            g,
+        }
+    }
+
+    /// The linearised tilt dynamics (tilt, heading rate, tilt rate) about
+    /// upright rolling straight ahead at spin Ω, the contact moving at a Ω along
+    /// x; position, heading, spin angle and spin rate do not feed them.
+    pub fn upright_tilt(&self, spin: f64) -> Result<Linear, lagrange::Error> {
+        let v = Vector5::new(self.a * spin, 0.0, 0.0, 0.0, spin);
+        Linearizer::new()
+            .coordinates(&["x", "y", "psi", "theta", "phi"])
+            .speeds(&["psi", "theta", "phi"])
+            .constrained(self, &OperatingPoint::new(SVector::zeros(), v))?
+            .select(&["theta", "psi'", "theta'"])
+    }
+
     /// The state of steady circular motion at tilt θ0 and heading rate Ω, from the
     /// condition (derived by hand from the angular momentum about the centre, which
     /// turns with Ω about the vertical, and the torque of the contact force):

@@ -1,6 +1,8 @@
 //! Systems driven by inputs: what controllers are designed for.
 
 use lagrange::Lagrangian;
+use lagrange::linear::{Linear, OperatingPoint, linearize};
+use lagrange::nalgebra::{DMatrix, DVector, Vector1, Vector2};
 
 /// A cart on a horizontal rail carrying an inverted pendulum (a point mass at
 /// the end of a massless rod); θ is measured from the upward vertical, so the
@@ -31,6 +33,27 @@ impl CartPole {
             l: 0.5,
             g: 9.81,
         }
+    }
+
+    /// The linearisation about upright at rest with zero force (states x, θ,
+    /// ẋ, θ̇; input the force).
+    pub fn upright(&self) -> Result<Linear, lagrange::Error> {
+        let op = OperatingPoint::new(Vector2::zeros(), Vector2::zeros()).input(Vector1::zeros());
+        linearize(self, &op)
+    }
+
+    /// The LQR weights used in the catalog: Q = diag(10, 100, 1, 1), R = 0.1.
+    pub fn lqr_weights() -> (DMatrix<f64>, DMatrix<f64>) {
+        (
+            DMatrix::from_diagonal(&DVector::from_vec(vec![10.0, 100.0, 1.0, 1.0])),
+            DMatrix::from_element(1, 1, 0.1),
+        )
+    }
+
+    /// u = −K x for the state (q, q̇).
+    pub fn state_feedback(gain: &DMatrix<f64>, q: &Vector2<f64>, v: &Vector2<f64>) -> [f64; 1] {
+        let x = DVector::from_vec(vec![q[0], q[1], v[0], v[1]]);
+        [-(gain * x)[0]]
     }
 }
 
@@ -65,5 +88,31 @@ impl TwoLinkArm {
             l2: 0.4,
             g: 9.81,
         }
+    }
+
+    /// The reference the catalog's arm tracks, shoulder and elbow swinging at 1
+    /// and 1.5 rad/s: q_d(t), q̇_d(t), q̈_d(t).
+    pub fn reference(t: f64) -> [Vector2<f64>; 3] {
+        [
+            Vector2::new(0.5 * t.sin(), 0.8 + 0.4 * (1.5 * t).cos()),
+            Vector2::new(0.5 * t.cos(), -0.6 * (1.5 * t).sin()),
+            Vector2::new(-0.5 * t.sin(), -0.9 * (1.5 * t).cos()),
+        ]
+    }
+
+    /// Computed torque τ = M (q̈_d + K_d ė + K_p e) − (Q − h)|_{τ=0}, e = q_d − q:
+    /// with the exact model each joint error obeys ë + K_d ė + K_p e = 0 (the
+    /// torques are the generalized forces of q1 and q2 one to one).
+    pub fn computed_torque(
+        &self,
+        gains: (f64, f64),
+        t: f64,
+        q: &Vector2<f64>,
+        v: &Vector2<f64>,
+    ) -> Vector2<f64> {
+        let (kp, kd) = gains;
+        let [qd, vd, ad] = Self::reference(t);
+        let (m, unforced) = self.mass_matrix_and_rhs(q, v, t);
+        m * (ad + (vd - v) * kd + (qd - q) * kp) - unforced
     }
 }

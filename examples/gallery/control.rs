@@ -5,8 +5,8 @@ use crate::catalog::bicycle::{Bicycle, published};
 use crate::catalog::constrained::RollingDisk;
 use crate::catalog::control::{CartPole, TwoLinkArm};
 use crate::{Row, TOL, row};
-use lagrange::linear::{Linear, Linearizer, OperatingPoint, linearize, sweep};
-use lagrange::nalgebra::{DMatrix, DVector};
+use lagrange::linear::sweep;
+use lagrange::nalgebra::DMatrix;
 use lagrange::prelude::*;
 
 pub fn rows(rows: &mut Vec<Row>) -> Result<(), Error> {
@@ -21,20 +21,15 @@ pub fn rows(rows: &mut Vec<Row>) -> Result<(), Error> {
 
 /// LQR gain of the cart-pole about upright, from the symbolic linearisation.
 fn cart_pole_gain() -> Result<DMatrix<f64>, Error> {
-    let op = OperatingPoint::new(Vector2::zeros(), Vector2::zeros()).input(Vector1::zeros());
-    let lin = linearize(&CartPole::standard(), &op)?;
-    let q = DMatrix::from_diagonal(&DVector::from_vec(vec![10.0, 100.0, 1.0, 1.0]));
-    Ok(lin.lqr(&q, &DMatrix::from_element(1, 1, 0.1))?.gain)
+    let (q, r) = CartPole::lqr_weights();
+    Ok(CartPole::standard().upright()?.lqr(&q, &r)?.gain)
 }
 
 /// The cart-pole caught from a 0.3 rad tilt by u = −K x, continuously or
 /// sampled with zero-order hold.
 fn cart_pole(gain: &DMatrix<f64>, period: Option<f64>) -> Result<Row, Error> {
     let cp = CartPole::standard();
-    let law = |q: &Vector2<f64>, v: &Vector2<f64>| {
-        let x = DVector::from_vec(vec![q[0], q[1], v[0], v[1]]);
-        [-(gain * x)[0]]
-    };
+    let law = |q: &Vector2<f64>, v: &Vector2<f64>| CartPole::state_feedback(gain, q, v);
     let name = match period {
         None => "cart-pole, LQR from the linearisation",
         Some(_) => "cart-pole, LQR sampled at 100 Hz (ZOH)",
@@ -62,35 +57,13 @@ fn cart_pole(gain: &DMatrix<f64>, period: Option<f64>) -> Result<Row, Error> {
     )
 }
 
-/// A thin disk: diametral moment m a²/4, axial m a²/2.
-fn thin_disk() -> RollingDisk {
-    let (m, a) = (1.0, 0.5);
-    RollingDisk {
-        m,
-        a,
-        b: m * a * a / 4.0,
-        c: m * a * a / 2.0,
-        g: 9.81,
-    }
-}
-
-/// Tilt dynamics about upright rolling at spin Ω.
-fn disk_upright(d: &RollingDisk, spin: f64) -> Result<Linear, Error> {
-    let v = Vector5::new(d.a * spin, 0.0, 0.0, 0.0, spin);
-    Linearizer::new()
-        .coordinates(&["x", "y", "psi", "theta", "phi"])
-        .speeds(&["psi", "theta", "phi"])
-        .constrained(d, &OperatingPoint::new(Vector5::zeros(), v))?
-        .select(&["theta", "psi'", "theta'"])
-}
-
 /// The critical spin of upright rolling from the eigenvalues, then the
 /// nonlinear disk at 1.2 Ω_c kicked by a tilt rate: it wobbles and stays up.
 fn disk() -> Result<Row, Error> {
-    let d = thin_disk();
+    let d = RollingDisk::thin(1.0, 0.5, 9.81);
     let spins: Vec<f64> = (1..=20).map(|i| 0.25 * i as f64).collect();
-    let critical = sweep(&spins, |w| disk_upright(&d, w))?
-        .boundaries(|w| disk_upright(&d, w), 1e-6, 1e-14)?
+    let critical = sweep(&spins, |w| d.upright_tilt(w))?
+        .boundaries(|w| d.upright_tilt(w), 1e-6, 1e-14)?
         .first()
         .map_or(f64::NAN, |b| b.parameter);
     let exact = (d.g / (3.0 * d.a)).sqrt();
@@ -158,21 +131,11 @@ fn bicycle() -> Result<Row, Error> {
     )
 }
 
-/// The arm's reference: shoulder and elbow swinging at 1 and 1.5 rad/s.
-fn reference(t: f64) -> [Vector2<f64>; 3] {
-    [
-        Vector2::new(0.5 * t.sin(), 0.8 + 0.4 * (1.5 * t).cos()),
-        Vector2::new(0.5 * t.cos(), -0.6 * (1.5 * t).sin()),
-        Vector2::new(-0.5 * t.sin(), -0.9 * (1.5 * t).cos()),
-    ]
-}
-
 /// Computed-torque tracking from a 0.1 rad error: τ = M (q̈_d + K_d ė + K_p e)
 /// − (Q − h) at zero torque.
 fn arm() -> Result<Row, Error> {
     let arm = TwoLinkArm::standard();
-    let (kp, kd) = (100.0, 20.0);
-    let [q0, v0, _] = reference(0.0);
+    let [q0, v0, _] = TwoLinkArm::reference(0.0);
     row(
         "two-link arm, computed-torque tracking",
         0.0..5.0,
@@ -180,11 +143,7 @@ fn arm() -> Result<Row, Error> {
         || {
             Simulation::new(&arm)
                 .integrator(Dopri5::tol(TOL))
-                .feedback(|t, q: &Vector2<f64>, v: &Vector2<f64>| {
-                    let [qd, vd, ad] = reference(t);
-                    let (m, unforced) = arm.mass_matrix_and_rhs(q, v, t);
-                    m * (ad + (vd - v) * kd + (qd - q) * kp) - unforced
-                })
+                .feedback(|t, q, v| arm.computed_torque((100.0, 20.0), t, q, v))
                 .run(q0 + Vector2::new(0.1, -0.1), v0, 0.0..5.0)
                 .map(|run| run.into_trajectory())
         },
@@ -194,7 +153,7 @@ fn arm() -> Result<Row, Error> {
                     .iter()
                     .zip(tr.positions())
                     .filter(|(t, _)| **t >= from)
-                    .map(|(t, q)| (reference(*t)[0] - q).abs().max())
+                    .map(|(t, q)| (TwoLinkArm::reference(*t)[0] - q).abs().max())
                     .fold(0.0f64, f64::max)
             };
             format!(
