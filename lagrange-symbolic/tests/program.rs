@@ -202,12 +202,14 @@ fn emission_is_deterministic_and_reads_well() {
     };
     let (body, outs) = build();
     assert_eq!(build(), (body.clone(), outs.clone()));
+    // Three reused variables: a value's variable is free after its last read.
     assert_eq!(
         body,
-        "let _t0 = self . p3 * self . p3 ; let _t1 = :: lagrange :: __private :: func :: sin (q [0]) ; \
-         let _t2 = _t1 * _t1 ; let _t3 = self . p4 * _t0 ; let _t4 = _t2 * _t3 ; let _t5 = 0.5f64 * _t4 ; \
-         let _t6 = self . p3 * _t1 ; let _t7 = :: lagrange :: __private :: func :: cos (q [0]) ; \
-         let _t8 = _t6 - _t7 ; let _t9 = - _t7 ;"
+        "let mut _t0 ; let mut _t1 ; let mut _t2 ; \
+         _t0 = self . p3 * self . p3 ; _t1 = :: lagrange :: __private :: func :: sin (q [0]) ; \
+         _t2 = _t1 * _t1 ; _t0 = self . p4 * _t0 ; _t0 = _t2 * _t0 ; _t0 = 0.5f64 * _t0 ; \
+         _t1 = self . p3 * _t1 ; _t2 = :: lagrange :: __private :: func :: cos (q [0]) ; \
+         _t1 = _t1 - _t2 ; _t2 = - _t2 ;"
     );
-    assert_eq!(outs, vec!["_t5", "_t8", "_t9", "self . p4"]);
+    assert_eq!(outs, vec!["_t0", "_t1", "_t2", "self . p4"]);
 }
