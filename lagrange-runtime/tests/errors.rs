@@ -101,3 +101,37 @@ fn csv_parses_back() {
     let e = tr.save_csv("/nonexistent-dir/x.csv", &[]).unwrap_err();
     assert!(matches!(e, Error::Io(_)), "{e:?}");
 }
+
+/// A tolerance the scalar cannot resolve is a settings error at once, naming
+/// the scalar, not a step-size collapse later (f32 at 1e-14 used to end in
+/// `TooManySteps` at t = 0.03).
+#[test]
+fn tolerance_below_the_scalar_precision_is_a_settings_error() {
+    use lagrange_runtime::{Dop853, Integrator, Radau5};
+    let sys = Pendulum::<f32> {
+        m: 1.0,
+        l: 1.0,
+        g: 9.81,
+    };
+    fn run<I: Integrator>(sys: &Pendulum<f32>, m: I) -> Result<f32, Error> {
+        let tr = Simulation::new(sys)
+            .integrator(m)
+            .run([0.5f32], [0.0f32], 0.0..1.0)?;
+        Ok(tr.final_state().0[0])
+    }
+    for case in [
+        run(&sys, Dopri5::tol(1e-14)),
+        run(&sys, Dop853::tol(1e-14)),
+        run(&sys, Radau5::tol(1e-14)),
+    ] {
+        match case {
+            Err(Error::InvalidSettings(msg)) => {
+                assert!(msg.contains("f32") && msg.contains("rtol"), "{msg}")
+            }
+            other => panic!("expected InvalidSettings, got {other:?}"),
+        }
+    }
+    // What f32 can resolve still runs.
+    assert!(run(&sys, Dopri5::tol(1e-5)).is_ok());
+    assert!(run(&sys, Dop853::tol(1e-5)).is_ok());
+}

@@ -364,6 +364,7 @@ impl Integrator for Dop853 {
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Error> {
         self.validate()?;
+        self.control.check_precision::<T>("DOP853")?;
         check_problem(t0, t1, &q0, &v0)?;
         let started = std::time::Instant::now();
         let co = Coefficients::<T>::new();

@@ -143,6 +143,7 @@ impl Integrator for Dopri5 {
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Error> {
         self.validate()?;
+        self.control.check_precision::<T>("DOPRI5")?;
         check_problem(t0, t1, &q0, &v0)?;
         let co = Coefficients::<T>::new();
         let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));

@@ -212,6 +212,7 @@ impl Integrator for Radau5 {
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Error> {
         self.validate()?;
+        self.control.check_precision::<T>("RADAU5")?;
         check_problem(t0, t1, &q0, &v0)?;
         let started = std::time::Instant::now();
         let k = constants::<T>();

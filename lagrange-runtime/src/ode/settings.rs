@@ -65,6 +65,25 @@ impl StepControl {
     }
 }
 
+impl StepControl {
+    /// The relative tolerance must be one the scalar can resolve: below 2 ε
+    /// (2.4e-7 in f32, 4.4e-16 in f64) the error estimate is round-off and the
+    /// step size collapses (f32 at 1e-14 used to end in `TooManySteps` at
+    /// t = 0.03), so it is a settings error up front.
+    pub fn check_precision<T: crate::real::Real>(&self, method: &str) -> Result<(), Error> {
+        let floor = 2.0 * T::default_epsilon().to_f64();
+        if self.rtol < floor {
+            return Err(Error::InvalidSettings(format!(
+                "{method}: rtol = {:e} is below what {} can resolve (2 ε = {floor:.1e}); \
+                 loosen the tolerance or compute in a wider type",
+                self.rtol,
+                std::any::type_name::<T>()
+            )));
+        }
+        Ok(())
+    }
+}
+
 /// The builder methods of [`StepControl`] for an integrator with a `control`
 /// field; `$h0` documents what happens when no initial step is given.
 macro_rules! step_control_builders {
