@@ -127,6 +127,11 @@ pub trait Lagrangian<T: Real, const N: usize> {
 /// ```
 ///
 /// with γ = −(Ġ q̇ + ġ) and the multipliers ν = [λ; μ].
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` has no multiplier form with these constraint rows: `run_constrained` and the constrained linearisation need constraints (`holonomic(...)`, `nonholonomic(...)`) in the `multipliers` formulation",
+    label = "needs the multiplier form",
+    note = "the multiplier form is the default when a description has constraints and no `speeds(...)`; `formulation(multipliers, reduced)` emits both"
+)]
 pub trait Constrained<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
     /// Names of the constraints, in row order.
     const CONSTRAINTS: [&'static str; K];
@@ -202,6 +207,11 @@ pub trait Constrained<T: Real, const N: usize, const K: usize>: Lagrangian<T, N>
 /// A w + b = 0), so there are no multipliers and no velocity drift. The state the
 /// integrators carry is still (q, q̇); the dynamics re-derive q̇ from u after each
 /// step.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` has no reduced form: `run_reduced` and the reduced linearisation need `formulation(reduced)` in its #[lagrange(...)]",
+    label = "needs the reduced form",
+    note = "add `formulation(reduced)` (with `speeds(...)` to choose the independent speeds, or let the macro pick velocities); `formulation(multipliers, reduced)` emits both"
+)]
 pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
     /// Names of the independent speeds.
     const SPEEDS: [&'static str; K];
