@@ -386,7 +386,7 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
                 "events: max_events must be positive".into(),
             ));
         }
-        let started = std::time::Instant::now();
+        let started = crate::clock::Stopwatch::start();
         let watch = Watch {
             rhs,
             events: &self.events,

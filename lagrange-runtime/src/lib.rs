@@ -66,6 +66,7 @@
 //! number of degrees of freedom `N`, a type-level constant.
 
 mod cholesky;
+mod clock;
 pub mod constraint;
 pub mod control;
 mod dynamics;

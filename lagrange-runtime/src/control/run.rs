@@ -247,7 +247,7 @@ where
         v0: SVector<T, N>,
     ) -> Result<ControlRun<T, N, P>, Error> {
         self.source.check()?;
-        let started = std::time::Instant::now();
+        let started = crate::clock::Stopwatch::start();
         let (t0, t1) = (span.start, span.end);
         let system: &'s S = self.simulation.system;
         let integrator = &self.simulation.integrator;

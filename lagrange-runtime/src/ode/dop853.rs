@@ -366,7 +366,7 @@ impl Integrator for Dop853 {
         self.validate()?;
         self.control.check_precision::<T>("DOP853")?;
         check_problem(t0, t1, &q0, &v0)?;
-        let started = std::time::Instant::now();
+        let started = crate::clock::Stopwatch::start();
         let co = Coefficients::<T>::new();
         let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
         let hmax = self.control.hmax.map_or(t1 - t0, T::lit);

@@ -151,7 +151,7 @@ impl Integrator for Dopri5 {
         let underflow = T::lit(16.0) * T::default_epsilon();
         let stretch = T::lit(1.01);
 
-        let started = std::time::Instant::now();
+        let started = crate::clock::Stopwatch::start();
         let mut stats = Stats::default();
         let mut y = Pair::new(q0, v0);
         let mut k1 = y.derivative(rhs, t0, &mut stats.evaluations)?;

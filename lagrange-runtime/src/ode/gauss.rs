@@ -179,7 +179,7 @@ impl Gauss {
         b: [f64; S],
         c: [f64; S],
     ) -> Result<Trajectory<T, N>, Error> {
-        let started = std::time::Instant::now();
+        let started = crate::clock::Stopwatch::start();
         let (a, b, c) = (a.map(|r| r.map(T::lit)), b.map(T::lit), c.map(T::lit));
         let dim = 2 * N;
         let mut work = Work {

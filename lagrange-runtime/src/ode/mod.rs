@@ -196,7 +196,8 @@ pub struct Stats {
     /// factorisation counts as one); zero for explicit ones.
     pub factorizations: usize,
     /// Wall-clock time of the integration, measured around the whole run
-    /// (trajectory recording included).
+    /// (trajectory recording included); zero on targets without a clock
+    /// (`wasm32-unknown-unknown`), where everything else runs the same.
     pub wall_time: std::time::Duration,
 }
 

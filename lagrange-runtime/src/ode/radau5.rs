@@ -214,7 +214,7 @@ impl Integrator for Radau5 {
         self.validate()?;
         self.control.check_precision::<T>("RADAU5")?;
         check_problem(t0, t1, &q0, &v0)?;
-        let started = std::time::Instant::now();
+        let started = crate::clock::Stopwatch::start();
         let k = constants::<T>();
         let n = 2 * N;
         let nv = |x: T| vec![x; n];

@@ -134,7 +134,7 @@ impl Rattle {
         let dynamics = ConstrainedDynamics::<S, T, K>::new(system);
         dynamics.check_consistency(t0, &q0, &v0, T::lit(tol))?;
 
-        let started = std::time::Instant::now();
+        let started = crate::clock::Stopwatch::start();
         let m0 = system.mass_matrix(&q0, t0);
         let chol = Cholesky::new(m0).ok_or_else(|| Error::SingularMassMatrix {
             t: t0.to_f64(),

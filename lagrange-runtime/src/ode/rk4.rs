@@ -71,7 +71,7 @@ impl Integrator for Rk4 {
         }
         let n = n as usize;
 
-        let started = std::time::Instant::now();
+        let started = crate::clock::Stopwatch::start();
         let mut stats = Stats::default();
         let mut y = Pair::new(q0, v0);
         let mut f = y.derivative(rhs, t0, &mut stats.evaluations)?;

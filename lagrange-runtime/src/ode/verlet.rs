@@ -95,7 +95,7 @@ impl Integrator for StormerVerlet {
     ) -> Result<Trajectory<T, N>, Error> {
         check_problem(t0, t1, &q0, &v0)?;
         let n = fixed_step_count("Störmer–Verlet", self.h, self.max_steps, t0, t1)?;
-        let started = std::time::Instant::now();
+        let started = crate::clock::Stopwatch::start();
         let h = T::lit(self.h);
         let half = T::lit(0.5);
 

@@ -69,7 +69,7 @@ use crate::ode::{Dop853, Stats};
 use crate::real::Real;
 use crate::trajectory::Trajectory;
 use nalgebra::SVector;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Tolerance of the default reference run (DOP853).
 pub const REFERENCE_TOLERANCE: f64 = 1e-14;
@@ -246,7 +246,7 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
                     )));
                 }
                 let dop853 = |tol| Method::Dop853(Dop853::tol(tol).max_steps(REFERENCE_MAX_STEPS));
-                let started = Instant::now();
+                let started = crate::clock::Stopwatch::start();
                 let traj = (self.run)(dop853(tolerance))?;
                 let wall_time = started.elapsed();
                 let uncertainty = if check {
@@ -273,13 +273,13 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
         method: Method,
         reference_at: &dyn Fn(f64) -> Option<SVector<f64, N>>,
     ) -> Result<Measurement, Error> {
-        let started = Instant::now();
+        let started = crate::clock::Stopwatch::start();
         let traj = (self.run)(method)?;
         let first = started.elapsed();
         let mut times = vec![first];
         let mut spent = first;
         while times.len() < self.repeats && spent < self.repeat_budget {
-            let started = Instant::now();
+            let started = crate::clock::Stopwatch::start();
             // The runs are deterministic: only the time of a repeat is new.
             drop((self.run)(method)?);
             let elapsed = started.elapsed();
