@@ -126,6 +126,26 @@ pub enum Error {
         h: f64,
     },
 
+    /// An explicit method detected stiffness, as Hairer's DOPRI5 and DOP853 do:
+    /// h·|λ|, with |λ| estimated from the last stage of accepted steps, stayed
+    /// beyond the method's stability boundary (3.25 for DOPRI5, 6.1 for DOP853)
+    /// for 15 tests, so the step is held down by stability, not accuracy.
+    #[error(
+        "{method}: the problem seems stiff at t = {t} (h |lambda| = {h_lambda:.2} beyond the \
+         stability boundary in {tests} tests): integrate it with Radau5, or switch the test \
+         off with `.stiffness_test(0)`"
+    )]
+    ProbablyStiff {
+        /// The method that stopped.
+        method: &'static str,
+        /// Time reached.
+        t: f64,
+        /// The last estimate of h·|λ|.
+        h_lambda: f64,
+        /// Consecutive tests beyond the boundary.
+        tests: usize,
+    },
+
     /// The integrator exceeded its step budget before reaching the end time.
     #[error("more than {max_steps} steps needed; stopped at t = {t}")]
     TooManySteps {

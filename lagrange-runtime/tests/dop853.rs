@@ -268,3 +268,47 @@ fn settings_and_failures_are_typed() {
         Err(Error::TooManySteps { max_steps: 3, .. })
     ));
 }
+
+/// Hairer's stiffness test: on van der Pol with ε = 1e-6 both explicit methods
+/// stop early with `ProbablyStiff` naming Radau5 (where they used to creep at
+/// the stability limit to the step budget); with the test off they run into
+/// the budget; on the non-stiff ε = 1e-3 (above) the test never fires and the
+/// step counts stay Hairer's.
+#[test]
+fn stiffness_is_detected_as_hairer_does() {
+    let vdp = VanDerPol { eps: 1e-6 };
+    let run = |m: &dyn Fn() -> Result<lagrange_runtime::Trajectory<f64, 1>, Error>| m();
+    let (q0, v0) = (Vector1::new(2.0), Vector1::new(-0.66));
+    for (name, result) in [
+        (
+            "DOPRI5",
+            run(&|| Dopri5::tol(1e-6).integrate(&vdp, 0.0, 2.0, q0, v0)),
+        ),
+        (
+            "DOP853",
+            run(&|| Dop853::tol(1e-6).integrate(&vdp, 0.0, 2.0, q0, v0)),
+        ),
+    ] {
+        match result {
+            Err(
+                e @ Error::ProbablyStiff {
+                    method,
+                    t,
+                    h_lambda,
+                    ..
+                },
+            ) => {
+                eprintln!("{name}: {e}");
+                assert_eq!(method, name);
+                assert!(t < 2.0 && h_lambda > 3.0);
+                assert!(e.to_string().contains("Radau5"));
+            }
+            other => panic!("{name}: expected ProbablyStiff, got {other:?}"),
+        }
+    }
+    let off = Dopri5::tol(1e-6)
+        .stiffness_test(0)
+        .max_steps(20_000)
+        .integrate(&vdp, 0.0, 2.0, q0, v0);
+    assert!(matches!(off, Err(Error::TooManySteps { .. })), "{off:?}");
+}

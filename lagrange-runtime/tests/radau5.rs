@@ -148,10 +148,26 @@ fn stiff_spring_pendulum_radau_completes_dopri_hits_budget() {
     // this problem is not understood yet), against the ≈ 6000 steps that
     // stability alone imposes on DOPRI5.
     assert!(tr.stats().steps() < 1500, "{:?}", tr.stats());
-    // The explicit method is held to h ≈ 3.3/ω by stability: it runs out of its
-    // budget instead of hanging.
+    // The explicit method is held to h ≈ 3.3/ω by stability: Hairer's
+    // stiffness test stops it after 1000 accepted steps and 15 tests, naming
+    // Radau5; with the test off it runs out of its budget instead of hanging.
     let e = Dopri5::tol(1e-6)
         .max_steps(2000)
+        .integrate(&StiffSpringPendulum, 0.0, 2.0, q0, v0)
+        .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::ProbablyStiff {
+                method: "DOPRI5",
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let e = Dopri5::tol(1e-6)
+        .max_steps(2000)
+        .stiffness_test(0)
         .integrate(&StiffSpringPendulum, 0.0, 2.0, q0, v0)
         .unwrap_err();
     assert!(

@@ -14,8 +14,9 @@
 //! β = 0 and exponent 1/8, the `hinit` starting step for order 8, the rule that a
 //! step following a rejection may not grow, the "stretch the last step by up to
 //! 1 %" rule, and the 7th-order continuous extension (three extra evaluations per
-//! accepted step). What is left out: the stiffness detection and per-component
-//! tolerances.
+//! accepted step), and the stiffness test (every 1000 accepted steps, then at
+//! every step while h·|λ| stays beyond 6.1; 15 times ends the run with
+//! [`Error::ProbablyStiff`]). What is left out: per-component tolerances.
 
 use super::controller::PiController;
 use super::dopri5::hinit;
@@ -48,6 +49,7 @@ use nalgebra::SVector;
 pub struct Dop853 {
     control: StepControl,
     dense7: bool,
+    stiffness_test: usize,
 }
 
 impl Default for Dop853 {
@@ -69,10 +71,20 @@ impl Dop853 {
         Self {
             control: StepControl::new(rtol, atol),
             dense7: true,
+            stiffness_test: 1000,
         }
     }
 
     step_control_builders!("Hairer's `hinit` estimates it");
+
+    /// Tests for stiffness every `n` accepted steps (Hairer's NSTIFF, default
+    /// 1000); 0 switches the test off. A stiff problem then ends in
+    /// [`Error::ProbablyStiff`], which names Radau5, instead of creeping to the
+    /// step budget at the stability limit.
+    pub fn stiffness_test(mut self, n: usize) -> Self {
+        self.stiffness_test = n;
+        self
+    }
 
     /// Replaces the 7th-order continuous extension by the cubic Hermite
     /// interpolant, saving 3 of the 15 evaluations per accepted step when only
@@ -391,6 +403,7 @@ impl Integrator for Dop853 {
             )?,
         };
         let mut ctrl = PiController::<T>::dop853();
+        let mut stiffness = super::StiffnessTest::new("DOP853", self.stiffness_test, 6.1);
         let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         let mut t = t0;
         let mut reject = false;
@@ -444,12 +457,12 @@ impl Integrator for Dop853 {
                     c[10],
                     ev,
                 )?;
-                let k12 = y
-                    .add_combination(h, co.a12, [&k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10, &k11])
-                    .derivative(rhs, t_new, ev)?;
-                Ok::<_, Error>((k6, k7, k8, k9, k10, k11, k12))
+                let y12 =
+                    y.add_combination(h, co.a12, [&k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10, &k11]);
+                let k12 = y12.derivative(rhs, t_new, ev)?;
+                Ok::<_, Error>((k6, k7, k8, k9, k10, k11, y12, k12))
             })();
-            let (k6, k7, k8, k9, k10, k11, k12) = match stages {
+            let (k6, k7, k8, k9, k10, k11, y12, k12) = match stages {
                 Ok(k) => k,
                 Err(e) if e.is_state_dependent() => {
                     // A trial state the right-hand side cannot evaluate: reject and
@@ -479,6 +492,7 @@ impl Integrator for Dop853 {
                 ctrl.accept(err);
                 stats.accepted += 1;
                 let k13 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
+                stiffness.check(stats.accepted, t_new, h, [&y_new, &y12, &k13, &k12])?;
                 let segment = if self.dense7 {
                     let ks = [&k1, &k6, &k7, &k8, &k9, &k10, &k11, &k12];
                     self.dense(rhs, &co, t, h, &y, &y_new, ks, &k13, &mut stats)?

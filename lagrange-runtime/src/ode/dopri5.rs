@@ -6,8 +6,9 @@
 //! controller with Lund stabilisation (see [`controller`](super::controller)), the
 //! `hinit` starting step, the rule that a step following a rejection may not grow,
 //! the "stretch the last step by up to 1 %" rule, and Shampine's continuous
-//! extension for dense output. What is left out: DOPRI5's stiffness detection and
-//! per-component tolerances.
+//! extension for dense output, and the stiffness test (every 1000 accepted steps,
+//! then at every step while h·|λ| stays beyond 3.25; 15 times ends the run with
+//! [`Error::ProbablyStiff`]). What is left out: per-component tolerances.
 
 use super::controller::PiController;
 use super::settings::{StepControl, step_control_builders};
@@ -28,6 +29,7 @@ use nalgebra::SVector;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dopri5 {
     control: StepControl,
+    stiffness_test: usize,
 }
 
 impl Default for Dopri5 {
@@ -48,10 +50,20 @@ impl Dopri5 {
     pub fn new(rtol: f64, atol: f64) -> Self {
         Self {
             control: StepControl::new(rtol, atol),
+            stiffness_test: 1000,
         }
     }
 
     step_control_builders!("Hairer's `hinit` estimates it");
+
+    /// Tests for stiffness every `n` accepted steps (Hairer's NSTIFF, default
+    /// 1000); 0 switches the test off. A stiff problem then ends in
+    /// [`Error::ProbablyStiff`], which names Radau5, instead of creeping to the
+    /// step budget at the stability limit.
+    pub fn stiffness_test(mut self, n: usize) -> Self {
+        self.stiffness_test = n;
+        self
+    }
 
     fn validate(&self) -> Result<(), Error> {
         self.control.validate("DOPRI5", 0.0, false)
@@ -170,6 +182,7 @@ impl Integrator for Dopri5 {
             )?,
         };
         let mut ctrl = PiController::<T>::dopri5();
+        let mut stiffness = super::StiffnessTest::new("DOPRI5", self.stiffness_test, 3.25);
         let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         let mut t = t0;
         let mut reject = false;
@@ -212,9 +225,9 @@ impl Integrator for Dopri5 {
                 let k6 = y6.derivative(rhs, t_new, ev)?;
                 let y_new = y.add_combination(h, co.a7, [&k1, &k3, &k4, &k5, &k6]);
                 let k7 = y_new.derivative(rhs, t_new, ev)?;
-                Ok::<_, Error>((k3, k4, k5, k6, y_new, k7))
+                Ok::<_, Error>((k3, k4, k5, k6, y6, y_new, k7))
             })();
-            let (k3, k4, k5, k6, y_new, k7) = match stages {
+            let (k3, k4, k5, k6, y6, y_new, k7) = match stages {
                 Ok(k) => k,
                 Err(e) if e.is_state_dependent() => {
                     // Relative to the span as well as to t, so that t = 0 has a floor.
@@ -237,6 +250,7 @@ impl Integrator for Dopri5 {
             if err <= T::one() {
                 ctrl.accept(err);
                 stats.accepted += 1;
+                stiffness.check(stats.accepted, t_new, h, [&y_new, &y6, &k7, &k6])?;
                 let (r1, r2, r3, r4) = DenseSegment::cubic_part(h, &y, &k1, &y_new, &k7);
                 let r5 = Pair::combination(h, co.d, [&k1, &k3, &k4, &k5, &k6, &k7]);
                 let segment = DenseSegment::new(t, t_new, h, [r1, r2, r3, r4, r5]);
