@@ -131,7 +131,7 @@ pub enum Error {
     /// beyond the method's stability boundary (3.25 for DOPRI5, 6.1 for DOP853)
     /// for 15 tests, so the step is held down by stability, not accuracy.
     #[error(
-        "{method}: the problem seems stiff at t = {t} (h |lambda| = {h_lambda:.2} beyond the \
+        "{method}: the problem seems stiff at t = {t} (h·λ = {h_lambda:.2} beyond the \
          stability boundary in {tests} tests): integrate it with Radau5, or switch the test \
          off with `.stiffness_test(0)`"
     )]
