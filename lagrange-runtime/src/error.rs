@@ -146,6 +146,28 @@ pub enum Error {
         tests: usize,
     },
 
+    /// The reduced form cannot be evaluated at a finite state: its solution of
+    /// the velocity constraints for the dependent velocities (W and w in
+    /// q̇ = W u + w, chosen symbolically) divides by a pivot that vanishes there,
+    /// although the constraints themselves may be regular (a knife edge solved
+    /// for ẋ at cos θ = 0), or a parameter is not finite.
+    #[error(
+        "the reduced form breaks down at t = {t}, q = {}: solving the velocity constraints \
+         for the dependent velocities divides by a pivot that vanishes here (or a parameter is \
+         not finite); integrate the multiplier form (`run_constrained`, with \
+         `formulation(multipliers, reduced)`) or name `speeds(...)` whose dependent \
+         velocities stay solvable here",
+        named(coordinates, q)
+    )]
+    ReducedFormBreakdown {
+        /// Time of the evaluation.
+        t: f64,
+        /// Generalized coordinates.
+        q: Vec<f64>,
+        /// Their names.
+        coordinates: Vec<&'static str>,
+    },
+
     /// The integrator exceeded its step budget before reaching the end time.
     #[error("more than {max_steps} steps needed; stopped at t = {t}")]
     TooManySteps {

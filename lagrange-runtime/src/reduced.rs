@@ -103,14 +103,12 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         if F::ACTIVE {
             f += w.tr_mul(&self.forcing.force(t, q, v)?);
         }
-        let parts = [
-            u.as_slice(),
-            m.as_slice(),
-            f.as_slice(),
-            w.as_slice(),
-            kappa.as_slice(),
-        ];
-        if !parts.iter().all(|x| all_finite(x)) {
+        // The state is finite here: a non-finite W or κ is the reduction's
+        // own pivot vanishing, not the user's input.
+        if !(all_finite(u.as_slice()) && all_finite(w.as_slice()) && all_finite(kappa.as_slice())) {
+            return Err(breakdown::<S, T, N, K>(t, q));
+        }
+        if !(all_finite(m.as_slice()) && all_finite(f.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
         let du = Cholesky::new(m, self.singular_tolerance)
@@ -140,6 +138,35 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     {
         let u = self.system.speeds(q, v, t);
         self.system.velocities(q, &u, t)
+    }
+
+    /// The admissible initial velocities with the speeds of v, checked: they
+    /// must be finite and reproduce those speeds (u = U W u + U w + u₀) to 1e-8
+    /// relative. A symbolic pivot of the reduction that vanishes at q (a knife
+    /// edge solved for ẋ heading along y, where cos θ = 6e-17 is not quite zero)
+    /// fails the round trip, and the run stops before it starts instead of
+    /// collapsing its step size on velocities of 1e16.
+    ///
+    /// # Errors
+    /// [`Error::ReducedFormBreakdown`].
+    pub fn initial_velocities<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<SVector<T, N>, Error>
+    where
+        S: Reduced<T, N, K>,
+    {
+        let u = self.system.speeds(q, v, t);
+        let w = self.system.velocities(q, &u, t);
+        let back = self.system.speeds(q, &w, t);
+        let scale = u.iter().fold(T::one(), |m, &x| m.max(abs(x)));
+        let off = (back - u).iter().fold(T::zero(), |m, &x| m.max(abs(x)));
+        if !(all_finite(w.as_slice()) && off <= T::lit(1e-8) * scale) {
+            return Err(breakdown::<S, T, N, K>(t, q));
+        }
+        Ok(w)
     }
 }
 
@@ -186,5 +213,17 @@ where
         }
         *v = w;
         Ok(true)
+    }
+}
+
+/// The typed error for a reduced form that cannot be evaluated at a finite state.
+pub(crate) fn breakdown<S: Reduced<T, N, K>, T: Real, const N: usize, const K: usize>(
+    t: T,
+    q: &SVector<T, N>,
+) -> Error {
+    Error::ReducedFormBreakdown {
+        t: t.to_f64(),
+        q: to_vec(q),
+        coordinates: S::COORDINATES.to_vec(),
     }
 }
