@@ -427,7 +427,7 @@ impl StiffnessTest {
         h: T,
         [y_new, y_stage, f_new, f_stage]: [&Pair<T, N>; 4],
     ) -> Result<(), Error> {
-        if self.every == 0 || !(accepted % self.every == 0 || self.suspicious > 0) {
+        if self.every == 0 || !(accepted.is_multiple_of(self.every) || self.suspicious > 0) {
             return Ok(());
         }
         let num = squared_distance(f_new, f_stage);
