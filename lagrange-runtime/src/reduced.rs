@@ -104,9 +104,9 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
             f += w.tr_mul(&self.forcing.force(t, q, v)?);
         }
         // The state is finite here: a non-finite W or κ is the reduction's
-        // own pivot vanishing, not the user's input.
+        // own pivot vanishing, unless the parameters are not finite.
         if !(all_finite(u.as_slice()) && all_finite(w.as_slice()) && all_finite(kappa.as_slice())) {
-            return Err(breakdown::<S, T, N, K>(t, q));
+            return Err(self.non_finite_reduction(t, q, v));
         }
         if !(all_finite(m.as_slice()) && all_finite(f.as_slice())) {
             return Err(Error::non_finite(t, q, v));
@@ -140,6 +140,25 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         self.system.velocities(q, &u, t)
     }
 
+    /// Why the reduction is not finite at a finite state: non-finite parameters
+    /// show in the mass matrix too (the user's input), a vanishing pivot does
+    /// not (the reduction's own breakdown).
+    fn non_finite_reduction<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Error
+    where
+        S: Reduced<T, N, K>,
+    {
+        if all_finite(self.system.mass_matrix(q, t).as_slice()) {
+            breakdown::<S, T, N, K>(t, q)
+        } else {
+            Error::non_finite(t, q, v)
+        }
+    }
+
     /// The admissible initial velocities with the speeds of v, checked: they
     /// must be finite and reproduce those speeds (u = U W u + U w + u₀) to 1e-8
     /// relative. A symbolic pivot of the reduction that vanishes at q (a knife
@@ -163,7 +182,10 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         let back = self.system.speeds(q, &w, t);
         let scale = u.iter().fold(T::one(), |m, &x| m.max(abs(x)));
         let off = (back - u).iter().fold(T::zero(), |m, &x| m.max(abs(x)));
-        if !(all_finite(w.as_slice()) && off <= T::lit(1e-8) * scale) {
+        if !all_finite(w.as_slice()) {
+            return Err(self.non_finite_reduction(t, q, v));
+        }
+        if !(off <= T::lit(1e-8) * scale) {
             return Err(breakdown::<S, T, N, K>(t, q));
         }
         Ok(w)
