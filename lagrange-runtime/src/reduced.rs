@@ -185,7 +185,7 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         if !all_finite(w.as_slice()) {
             return Err(self.non_finite_reduction(t, q, v));
         }
-        if off.is_nan() || off > T::lit(1e-8) * scale {
+        if !off.is_finite() || off > T::lit(1e-8) * scale {
             return Err(breakdown::<S, T, N, K>(t, q));
         }
         Ok(w)
