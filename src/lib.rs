@@ -41,9 +41,9 @@
 //! | `gravity = [gx, gy(, gz)]` | uniform gravity acting on every point |
 //! | `potential = expr` | potential energy V(q, t) |
 //! | `force(point, [fx, fy(, fz)])` | a Cartesian force at a point; may depend on q, `dot(q)`, t |
-//! | `generalized_force(q = expr)` | a generalized force on one coordinate |
+//! | `generalized_force(q = expr)` | a generalized force on one coordinate; several entries on one coordinate are added |
 //! | `dissipation = expr` | Rayleigh dissipation function D(q, q̇), Q −= ∂D/∂q̇ |
-//! | `body(name, mass = m, inertia = [A, B, C], at = [x, y, z], rotation = R)` | a rigid body: centre of mass, principal moments (or six entries `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`) in body axes, orientation R(q, t) body → world |
+//! | `body(name, mass = m, inertia = [A, B, C], at = [x, y, z], rotation = R, com = [..])` | a rigid body: reference point `at` (the centre of mass unless `com = [bx, by, bz]` places it in body axes), principal moments (or six entries `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`, entries of the inertia tensor about the centre of mass: I_xy = −∫xy dm) in body axes, orientation R(q, t) body → world |
 //! | `point(name, on = body, at = [bx, by, bz])` | a point fixed in a body, in body coordinates; `mass = m` optional |
 //! | `holonomic(name = f, ...)` | constraints f(q, t) = 0, kept with multipliers λ |
 //! | `nonholonomic(name = e, ...)` | constraints e = a(q, t)·q̇ + b(q, t) = 0; must be linear in the velocities |

@@ -115,7 +115,7 @@ fn check_body_keys(cx: &Ctxt, system: &System) {
                 cx.error_spanned_by(
                     inertia,
                     format!(
-                        "inertia of body `{}` has {}; expected the principal moments `[A, B, C]` or the six entries `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`",
+                        "inertia of body `{}` has {}; expected the principal moments `[A, B, C]` or the six entries `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]` of the inertia tensor about the centre of mass (products with the tensor's sign: I_xy = -∫xy dm)",
                         b.name,
                         match n {
                             Some(k) => format!("{k} entries"),
