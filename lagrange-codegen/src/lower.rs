@@ -560,6 +560,18 @@ impl<'a> Lowerer<'a> {
             BinOp::Add(_) => Some(self.ctx.add(l, r)),
             BinOp::Sub(_) => Some(self.ctx.sub(l, r)),
             BinOp::Mul(_) => Some(self.ctx.mul(l, r)),
+            BinOp::Div(_) if self.ctx.is_zero(r) => {
+                // The engine would fold `m / 0` to an infinity and the equations
+                // would carry it silently.
+                self.cx.error_spanned_by(
+                    &b.right,
+                    format!(
+                        "division by zero: `{}` is the constant 0",
+                        quote::ToTokens::to_token_stream(&*b.right)
+                    ),
+                );
+                None
+            }
             BinOp::Div(_) => Some(self.ctx.div(l, r)),
             BinOp::BitXor(_) => Some(self.ctx.pow(l, r)),
             _ => {
