@@ -1,8 +1,8 @@
 //! The linearisation derivatives `emit(jacobians)` adds to the constrained forms:
-//! `Constrained::constraint_derivatives` and `Reduced::reduced_derivatives`, each
+//! `Constrained::constraint_derivatives` and `Reduced::row_derivatives`, each
 //! against central differences of what the always-emitted methods compute, at
 //! random states (which need not satisfy the constraints: the derivatives are
-//! identities in q, q̇).
+//! identities in q, q̇), and the reduced linearisation composed from them.
 
 #![allow(clippy::needless_range_loop)] // index loops mirror the formulas
 
@@ -170,36 +170,80 @@ fn without_emit_jacobians_there_are_none() {
     assert!(p.constraint_derivatives(&q, &v, &v, &nu, 0.0).is_none());
 }
 
-/// ∂(F*(e) − M* u̇)/∂q, ∂F*/∂u and ∂(W u + w)/∂q from `reduced_system` and
-/// `velocities`, with F*(e) = F* + Wᵀ e, e ≠ 0.
+/// Aᵀν, c − A a, c and A q̇ + b from `velocity_rows` and `row_rates`,
+/// differentiated numerically, against `row_derivatives`.
 #[test]
-fn reduced_derivatives_match_central_differences() {
+fn reduced_row_derivatives_match_central_differences() {
     let sys = SLEIGH;
     let mut rng = Lcg(3);
     for _ in 0..8 {
         let q: SVector<f64, 3> = rng.vector(1.5);
-        let u: SVector<f64, 2> = rng.vector(2.0);
-        let du: SVector<f64, 2> = rng.vector(3.0);
-        let e: SVector<f64, 3> = rng.vector(2.0);
+        let v: SVector<f64, 3> = rng.vector(2.0);
+        let a: SVector<f64, 3> = rng.vector(3.0);
+        let nu: SVector<f64, 3> = rng.vector(2.0);
         let t = rng.next();
-        let (d_res, d_force, d_vel) = sys
-            .reduced_derivatives(&q, &u, &du, &e, t)
+        let (d_anu, d_res, d_rate, d_vel) = sys
+            .row_derivatives(&q, &v, &a, &nu, t)
             .expect("emitted with emit(jacobians)");
-        let residual = |q: &SVector<f64, 3>, u: &SVector<f64, 2>| {
-            let (m, f, w, _) = sys.reduced_system(q, u, t);
-            f + w.transpose() * e - m * du
-        };
-        close(&d_res, &fd(|q| residual(q, &u), &q), 1e-6);
-        close(&d_force, &fd(|u| sys.reduced_system(&q, u, t).1, &u), 1e-6);
-        close(&d_vel, &fd(|q| sys.velocities(q, &u, t), &q), 1e-6);
-        // The e-term matters: without it ∂/∂q differs (W depends on θ).
-        let without = fd(
-            |q| {
-                let (m, f, _, _) = sys.reduced_system(q, &u, t);
-                f - m * du
-            },
-            &q,
+        let rows = |q: &SVector<f64, 3>| sys.velocity_rows(q, t);
+        close(&d_anu, &fd(|q| rows(q).0.transpose() * nu, &q), 1e-6);
+        close(
+            &d_res,
+            &fd(|q| sys.row_rates(q, &v, t) - rows(q).0 * a, &q),
+            1e-6,
         );
-        assert!((d_res - without).amax() > 1e-3);
+        close(&d_rate, &fd(|v| sys.row_rates(&q, v, t), &v), 1e-6);
+        close(
+            &d_vel,
+            &fd(
+                |q| {
+                    let (am, b) = rows(q);
+                    am * v + b
+                },
+                &q,
+            ),
+            1e-6,
+        );
+    }
+}
+
+/// The reduced linearisation, composed at run time from `rhs_jacobians` and
+/// `row_derivatives` through the pivoted solve of the rows, against central
+/// differences of (q, u) ↦ (q̇, u̇) away from equilibrium, at headings that
+/// include θ = 0, π/2 and π (where a symbolic solve for ẋ or ẏ divides by zero).
+#[test]
+fn reduced_linearisation_matches_central_differences() {
+    let sys = SLEIGH;
+    let dynamics = ReducedDynamics::<_, f64, 2>::new(&sys);
+    let mut rng = Lcg(5);
+    let headings = [
+        0.0,
+        std::f64::consts::FRAC_PI_2,
+        std::f64::consts::PI,
+        0.7,
+        -2.1,
+    ];
+    for theta in headings {
+        let q = SVector::<f64, 3>::new(rng.next(), rng.next(), theta);
+        let u: SVector<f64, 2> = rng.vector(2.0);
+        let v = dynamics.velocities(0.0, &q, &u).unwrap();
+        let lin = Linearizer::new()
+            .reduced(&sys, &OperatingPoint::<f64, 3, 0>::new(q, v))
+            .unwrap();
+        let flow = |x: &SVector<f64, 5>| {
+            let (q, u) = (
+                x.fixed_rows::<3>(0).into_owned(),
+                x.fixed_rows::<2>(3).into_owned(),
+            );
+            let v = dynamics.velocities(0.0, &q, &u).unwrap();
+            let (du, _) = dynamics.solve(0.0, &q, &v).unwrap();
+            let mut out = SVector::<f64, 5>::zeros();
+            out.fixed_rows_mut::<3>(0).copy_from(&v);
+            out.fixed_rows_mut::<2>(3).copy_from(&du);
+            out
+        };
+        let x = SVector::<f64, 5>::new(q[0], q[1], q[2], u[0], u[1]);
+        let a = SMatrix::<f64, 5, 5>::from_fn(|i, j| lin.a()[(i, j)]);
+        close(&a, &fd(flow, &x), 1e-6);
     }
 }

@@ -187,10 +187,10 @@ fn eval(c: &mut Criterion) {
         a,
         g: 9.81,
     };
-    let rd = lagrange::ReducedDynamics::new(&reduced);
+    let rd = lagrange::ReducedDynamics::<_, f64, 3>::new(&reduced);
     let q5 = nalgebra::SVector::<f64, 5>::from([0.1, 0.2, 0.2, 0.9, 0.1]);
     let u = nalgebra::SVector::<f64, 3>::from([1.5, -0.7, 4.0]);
-    let v5 = lagrange::Reduced::velocities(&reduced, &q5, &u, 0.0);
+    let v5 = rd.velocities(0.0, &q5, &u).expect("regular rows");
     let q6 = nalgebra::SVector::<f64, 6>::from([q5[0], q5[1], a, q5[2], q5[3], q5[4]]);
     let v6 = nalgebra::SVector::<f64, 6>::from([v5[0], v5[1], 0.0, v5[2], v5[3], v5[4]]);
     let cd = lagrange::ConstrainedDynamics::new(&full);

@@ -7,10 +7,13 @@
 //!
 //! - Multipliers: G, g, Φ and γ = −(Ġ q̇ + ġ), the right-hand side of G q̈ = γ; the
 //!   runtime solves the saddle-point system for q̈ and ν.
-//! - Reduced: with K speeds u = U q̇ + u₀ chosen so that [U; G] is invertible,
-//!   q̇ = W u + w solves [U; G] q̇ = [u − u₀; −g] symbolically. Projecting
-//!   M q̈ + h = Q + Gᵀν onto W (G W = 0 removes ν) with q̈ = W u̇ + κ gives
-//!   Wᵀ M W u̇ = Wᵀ (Q − h − M κ), which is what the Gibbs function S = ½ Σ m |ξ̈|²
+//! - Reduced: with K speeds u = U q̇ + u₀, the stacked rows A = [U; G], b = [u₀; g]
+//!   read A q̇ + b = (u, 0), and their rates c = −(Ȧ q̇ + ḃ) give A q̈ = (u̇, 0) + c.
+//!   The runtime solves A with pivoting at each state, so that W = A⁻¹[I; 0],
+//!   κ = A⁻¹ c and Wᵀ M W u̇ = Wᵀ (Q − h − M κ) stay finite wherever A is regular.
+//!   Solving A symbolically instead divides by pivots chosen once for all states,
+//!   which vanish at regular states (a knife edge heading along y gets
+//!   ẋ = (…)/cos θ). The projection is what the Gibbs function S = ½ Σ m |ξ̈|²
 //!   yields when the dependent accelerations are eliminated (a test checks that).
 
 use lagrange_symbolic::{Context, Expr as Sym};
@@ -82,119 +85,82 @@ fn linear(ctx: &mut Context, a: &[Sym], x: &[Sym]) -> Sym {
 /// The derivatives of Gᵀν, γ − G a, γ and G q̇ + g that linearising
 /// M q̈ + h = Q + Gᵀν, G q̈ = γ needs.
 pub fn constraint_derivatives(ctx: &mut Context, c: &ConstraintSet) -> ConstraintDerivatives {
+    row_derivatives(ctx, "nu", &c.names, &c.jacobian, &c.velocity_term, &c.gamma)
+}
+
+/// ∂(Gᵀν)/∂q, ∂(γ − G a)/∂q, ∂γ/∂q̇ and ∂(G q̇ + g)/∂q for velocity rows
+/// G q̇ + g with rates γ; ν are free symbols named `{prefix}:{row}`.
+fn row_derivatives(
+    ctx: &mut Context,
+    prefix: &str,
+    names: &[String],
+    g: &[Vec<Sym>],
+    g0: &[Sym],
+    gamma: &[Sym],
+) -> ConstraintDerivatives {
     let q = ctx.coordinates();
     let qd = ctx.velocities();
     let qdd = ctx.accelerations();
-    let (n, k) = (q.len(), c.names.len());
-    let nu_symbols: Vec<Sym> = c
-        .names
+    let (n, k) = (q.len(), names.len());
+    let nu_symbols: Vec<Sym> = names
         .iter()
-        .map(|name| ctx.free_symbol(&format!("nu:{name}")))
+        .map(|name| ctx.free_symbol(&format!("{prefix}:{name}")))
         .collect();
     let generalized: Vec<Sym> = (0..n)
         .map(|i| {
-            let column: Vec<Sym> = (0..k).map(|r| c.jacobian[r][i]).collect();
+            let column: Vec<Sym> = (0..k).map(|r| g[r][i]).collect();
             linear(ctx, &column, &nu_symbols)
         })
         .collect();
     let residual: Vec<Sym> = (0..k)
         .map(|r| {
-            let ga = linear(ctx, &c.jacobian[r], &qdd);
-            ctx.sub(c.gamma[r], ga)
+            let ga = linear(ctx, &g[r], &qdd);
+            ctx.sub(gamma[r], ga)
         })
         .collect();
     let velocity: Vec<Sym> = (0..k)
         .map(|r| {
-            let gv = linear(ctx, &c.jacobian[r], &qd);
-            ctx.add(gv, c.velocity_term[r])
+            let gv = linear(ctx, &g[r], &qd);
+            ctx.add(gv, g0[r])
         })
         .collect();
     ConstraintDerivatives {
         force_q: jacobian(ctx, &generalized, &q),
         acceleration_q: jacobian(ctx, &residual, &q),
-        gamma_v: jacobian(ctx, &c.gamma, &qd),
+        gamma_v: jacobian(ctx, gamma, &qd),
         velocity_q: jacobian(ctx, &velocity, &q),
         nu_symbols,
     }
 }
 
-/// The reduced form on K independent speeds.
+/// The reduced form on K independent speeds: the N stacked velocity rows
+/// A = [U; G], b = [u₀; g] (A q̇ + b = (u, 0)) and their rates c = −(Ȧ q̇ + ḃ)
+/// (A q̈ = (u̇, 0) + c). The runtime solves them; nothing here divides.
 pub struct Reduction {
+    /// The speeds' names.
     pub names: Vec<String>,
-    /// Free symbols standing for u in `velocities`, `kappa`, `mass`, `rhs`.
-    pub speed_symbols: Vec<Sym>,
     /// u(q, q̇, t) = U q̇ + u₀.
     pub speeds: Vec<Sym>,
-    /// q̇(q, u, t) = W u + w.
-    pub velocities: Vec<Sym>,
-    /// W (N × K).
-    pub w_matrix: Vec<Vec<Sym>>,
-    /// κ = Ẇ u + ẇ, so that q̈ = W u̇ + κ.
-    pub kappa: Vec<Sym>,
-    /// M* = Wᵀ M W (K × K).
-    pub mass: Vec<Vec<Sym>>,
-    /// F* = Wᵀ (Q − h − M κ).
-    pub rhs: Vec<Sym>,
-    /// Derivatives for linearisation, if asked for (`emit(jacobians)`).
-    pub derivatives: Option<ReducedDerivatives>,
+    /// The rows' names: the speeds, then the constraints.
+    pub rows: Vec<String>,
+    /// A (N × N), row-major.
+    pub matrix: Vec<Vec<Sym>>,
+    /// b.
+    pub free: Vec<Sym>,
+    /// c = −(Ȧ q̇ + ḃ).
+    pub rates: Vec<Sym>,
+    /// Whether the macro picked the speeds (velocities), so that the runtime
+    /// may use other free velocities where the constraints fix these.
+    pub free_speeds: bool,
+    /// The rows' derivatives for linearisation, if asked for (`emit(jacobians)`):
+    /// ∂(Aᵀν)/∂q, ∂(c − A a)/∂q, ∂c/∂q̇, ∂(A q̇ + b)/∂q.
+    pub derivatives: Option<ConstraintDerivatives>,
 }
 
-/// Derivatives of the reduced equations at fixed u, u̇ and an extra generalized
-/// force e, with F*(e) = Wᵀ (Q − h − M κ + e).
-pub struct ReducedDerivatives {
-    /// Free symbols standing for u̇ (emitted as `du[k]`).
-    pub rate_symbols: Vec<Sym>,
-    /// Free symbols standing for e (emitted as `e[i]`).
-    pub force_symbols: Vec<Sym>,
-    /// ∂(F*(e) − M* u̇)/∂q (K × N).
-    pub dynamics_q: Vec<Vec<Sym>>,
-    /// ∂F*/∂u (K × K).
-    pub force_u: Vec<Vec<Sym>>,
-    /// ∂(W u + w)/∂q (N × N).
-    pub velocities_q: Vec<Vec<Sym>>,
-}
-
-/// The derivatives of the reduced equations that linearising
-/// M* u̇ = F*, q̇ = W u + w needs.
-pub fn reduced_derivatives(
-    ctx: &mut Context,
-    r: &Reduction,
-    coordinates: &[String],
-) -> ReducedDerivatives {
-    let q = ctx.coordinates();
-    let (n, k) = (q.len(), r.names.len());
-    let rate_symbols: Vec<Sym> = r
-        .names
-        .iter()
-        .map(|name| ctx.free_symbol(&format!("du:{name}")))
-        .collect();
-    let force_symbols: Vec<Sym> = coordinates
-        .iter()
-        .map(|name| ctx.free_symbol(&format!("e:{name}")))
-        .collect();
-    let residual: Vec<Sym> = (0..k)
-        .map(|a| {
-            let column: Vec<Sym> = (0..n).map(|i| r.w_matrix[i][a]).collect();
-            let we = linear(ctx, &column, &force_symbols);
-            let mu = linear(ctx, &r.mass[a], &rate_symbols);
-            let f = ctx.add(r.rhs[a], we);
-            ctx.sub(f, mu)
-        })
-        .collect();
-    ReducedDerivatives {
-        dynamics_q: jacobian(ctx, &residual, &q),
-        force_u: jacobian(ctx, &r.rhs, &r.speed_symbols),
-        velocities_q: jacobian(ctx, &r.velocities, &q),
-        rate_symbols,
-        force_symbols,
-    }
-}
-
-/// The unconstrained equations the reduced form projects.
-pub struct Dynamics<'a> {
-    pub mass: &'a [Vec<Sym>],
-    /// Q − h.
-    pub rhs: &'a [Sym],
+/// The derivatives of the stacked rows that linearising the reduced form needs
+/// (the runtime composes them with W and M).
+pub fn reduced_derivatives(ctx: &mut Context, r: &Reduction) -> ConstraintDerivatives {
+    row_derivatives(ctx, "mu", &r.rows, &r.matrix, &r.free, &r.rates)
 }
 
 /// A velocity-level row: G row, g, and (holonomic) Φ.
@@ -246,30 +212,34 @@ fn rows(
     out
 }
 
+/// γ = −d/dt(G q̇ + g) at q̈ = 0 for each row.
+fn rates(ctx: &mut Context, rows: &[Row]) -> Vec<Sym> {
+    let qd = ctx.velocities();
+    let zero_acc: Vec<(Sym, Sym)> = {
+        let z = ctx.zero();
+        ctx.accelerations().into_iter().map(|a| (a, z)).collect()
+    };
+    rows.iter()
+        .map(|r| {
+            let e = linear(ctx, &r.g, &qd);
+            let e = ctx.add(e, r.g0);
+            let d = ctx.time_derivative(e);
+            let d = ctx.substitute(d, &zero_acc);
+            let d = ctx.neg(d);
+            ctx.collect(d)
+        })
+        .collect()
+}
+
 /// G, g, Φ, γ and the reaction coefficients.
 pub fn multiplier_form(
     ctx: &mut Context,
     holonomic: &[ConstraintModel],
     nonholonomic: &[ConstraintModel],
 ) -> ConstraintSet {
-    let qd = ctx.velocities();
-    let zero_acc: Vec<(Sym, Sym)> = {
-        let z = ctx.zero();
-        ctx.accelerations().into_iter().map(|a| (a, z)).collect()
-    };
     let rows = rows(ctx, holonomic, nonholonomic);
     let k = rows.len();
-    let mut gamma = Vec::with_capacity(k);
-    for r in &rows {
-        // γ = −d/dt(G q̇ + g) at q̈ = 0.
-        let terms: Vec<Sym> = r.g.iter().zip(&qd).map(|(&a, &v)| ctx.mul(a, v)).collect();
-        let mut e = ctx.sum(&terms);
-        e = ctx.add(e, r.g0);
-        let d = ctx.time_derivative(e);
-        let d = ctx.substitute(d, &zero_acc);
-        let d = ctx.neg(d);
-        gamma.push(ctx.collect(d));
-    }
+    let gamma = rates(ctx, &rows);
     let zero = ctx.zero();
     let phi = rows
         .iter()
@@ -341,7 +311,7 @@ pub fn default_speeds(
         };
         used[p] = true;
         dependent.push(col);
-        eliminate(ctx, &mut a, p, col, &mut []);
+        eliminate(ctx, &mut a, p, col);
     }
     let qd = ctx.velocities();
     Ok((0..n)
@@ -361,9 +331,8 @@ fn choose_pivot(ctx: &Context, a: &[Vec<Sym>], col: usize, used: &[bool]) -> Opt
         })
 }
 
-/// Eliminates column `col` from every row but `p`, applying the same operations
-/// to the right-hand sides `b` (one vector per row).
-fn eliminate(ctx: &mut Context, a: &mut [Vec<Sym>], p: usize, col: usize, b: &mut [Vec<Sym>]) {
+/// Eliminates column `col` from every row but `p`.
+fn eliminate(ctx: &mut Context, a: &mut [Vec<Sym>], p: usize, col: usize) {
     let pivot = a[p][col];
     for r in 0..a.len() {
         if r == p || ctx.is_zero(a[r][col]) {
@@ -376,179 +345,111 @@ fn eliminate(ctx: &mut Context, a: &mut [Vec<Sym>], p: usize, col: usize, b: &mu
             let d = ctx.sub(a[r][j], s);
             a[r][j] = ctx.simplify(d);
         }
-        if !b.is_empty() {
-            for j in 0..b[r].len() {
-                let s = ctx.mul(f, b[p][j]);
-                let d = ctx.sub(b[r][j], s);
-                b[r][j] = ctx.simplify(d);
-            }
-        }
     }
 }
 
-/// The reduced equations on the given speeds.
+/// The reduced form on the given speeds: the stacked rows and their rates.
+///
+/// # Errors
+/// If speeds and constraints do not number the velocities, a speed is not
+/// linear in them, or no assignment of rows to velocities exists (A singular
+/// at every state, whatever the values).
 pub fn reduce(
     ctx: &mut Context,
-    dynamics: &Dynamics,
     holonomic: &[ConstraintModel],
     nonholonomic: &[ConstraintModel],
     speeds: &[(String, Sym)],
     coordinates: &[String],
 ) -> Result<Reduction, String> {
-    let qd = ctx.velocities();
-    let n = qd.len();
+    let n = coordinates.len();
     let k = speeds.len();
-    let zero_vel: Vec<(Sym, Sym)> = {
-        let z = ctx.zero();
-        qd.iter().map(|&v| (v, z)).collect()
-    };
-    let rows = rows(ctx, holonomic, nonholonomic);
-    if k + rows.len() != n {
+    let constraints = rows(ctx, holonomic, nonholonomic);
+    if k + constraints.len() != n {
         return Err(format!(
             "{k} speed{} and {} constraint{} do not make the {n} velocities: the reduced form needs speeds + constraints = degrees of freedom",
             if k == 1 { "" } else { "s" },
-            rows.len(),
-            if rows.len() == 1 { "" } else { "s" },
+            constraints.len(),
+            if constraints.len() == 1 { "" } else { "s" },
         ));
     }
-    let speed_symbols: Vec<Sym> = speeds
-        .iter()
-        .map(|(name, _)| ctx.free_symbol(&format!("u:{name}")))
-        .collect();
-
-    // [U; G] q̇ = [u − u₀; −g], solved by Gauss–Jordan elimination. Right-hand sides
-    // are stored as K + 1 columns: the coefficients of u and the constant part.
-    let (zero, one) = (ctx.zero(), ctx.one());
-    let mut a: Vec<Vec<Sym>> = Vec::with_capacity(n);
-    let mut b: Vec<Vec<Sym>> = Vec::with_capacity(n);
-    for (i, (_, u)) in speeds.iter().enumerate() {
-        let row: Vec<Sym> = qd
-            .iter()
-            .map(|&v| {
-                let d = ctx.diff(*u, v);
-                ctx.simplify(d)
-            })
-            .collect();
-        if row
-            .iter()
-            .any(|&e| qd.iter().any(|&v| ctx.depends_on(e, v)))
-        {
-            return Err(format!(
-                "speed `{}` must be linear in the velocities",
-                speeds[i].0
-            ));
-        }
-        a.push(row);
-        let u0 = ctx.substitute(*u, &zero_vel);
-        let mut rhs = vec![zero; k + 1];
-        rhs[i] = one;
-        rhs[k] = ctx.neg(u0);
-        b.push(rhs);
+    let mut stacked = speed_rows(ctx, speeds)?;
+    stacked.extend(constraints);
+    let matrix: Vec<Vec<Sym>> = stacked.iter().map(|r| r.g.clone()).collect();
+    if let Some(col) = unassignable_column(ctx, &matrix) {
+        return Err(format!(
+            "the speeds and the constraints do not determine the velocity `dot({})`: choose speeds independent of the constraints",
+            coordinates[col]
+        ));
     }
-    for r in &rows {
-        a.push(r.g.clone());
-        let mut rhs = vec![zero; k + 1];
-        rhs[k] = ctx.neg(r.g0);
-        b.push(rhs);
-    }
-    let mut used = vec![false; n];
-    let mut pivot_of_col = vec![0; n];
-    for col in 0..n {
-        let Some(p) = choose_pivot(ctx, &a, col, &used) else {
-            return Err(format!(
-                "the speeds and the constraints do not determine the velocity `dot({})`: choose speeds independent of the constraints",
-                coordinates[col]
-            ));
-        };
-        used[p] = true;
-        pivot_of_col[col] = p;
-        eliminate(ctx, &mut a, p, col, &mut b);
-    }
-    // Now a is diagonal up to row order: q̇_col = b[p] / a[p][col].
-    let mut w_matrix = vec![vec![zero; k]; n];
-    let mut w_vec = vec![zero; n];
-    for col in 0..n {
-        let p = pivot_of_col[col];
-        let d = a[p][col];
-        for j in 0..k {
-            let e = ctx.div(b[p][j], d);
-            w_matrix[col][j] = ctx.simplify(e);
-        }
-        let e = ctx.div(b[p][k], d);
-        w_vec[col] = ctx.simplify(e);
-    }
-    let velocities: Vec<Sym> = (0..n)
-        .map(|i| {
-            let mut terms: Vec<Sym> = (0..k)
-                .map(|j| ctx.mul(w_matrix[i][j], speed_symbols[j]))
-                .collect();
-            terms.push(w_vec[i]);
-            let s = ctx.sum(&terms);
-            ctx.collect(s)
-        })
-        .collect();
-    let to_speeds: Vec<(Sym, Sym)> = qd.iter().copied().zip(velocities.iter().copied()).collect();
-
-    // κ = d/dt (W u + w) at fixed u, with q̇ = W u + w.
-    let kappa: Vec<Sym> = velocities
-        .iter()
-        .map(|&v| {
-            let d = ctx.time_derivative(v);
-            let d = ctx.substitute(d, &to_speeds);
-            ctx.collect(d)
-        })
-        .collect();
-    let rhs_full: Vec<Sym> = dynamics
-        .rhs
-        .iter()
-        .map(|&r| ctx.substitute(r, &to_speeds))
-        .collect();
-    // F = Q − h − M κ, then projected.
-    let force: Vec<Sym> = (0..n)
-        .map(|i| {
-            let terms: Vec<Sym> = (0..n)
-                .map(|j| ctx.mul(dynamics.mass[i][j], kappa[j]))
-                .collect();
-            let mk = ctx.sum(&terms);
-            ctx.sub(rhs_full[i], mk)
-        })
-        .collect();
-    let rhs: Vec<Sym> = (0..k)
-        .map(|a_| {
-            let terms: Vec<Sym> = (0..n).map(|i| ctx.mul(w_matrix[i][a_], force[i])).collect();
-            let s = ctx.sum(&terms);
-            ctx.collect(s)
-        })
-        .collect();
-    let mut mass = vec![vec![zero; k]; k];
-    for a_ in 0..k {
-        for c in a_..k {
-            let mut terms = Vec::new();
-            for i in 0..n {
-                if ctx.is_zero(w_matrix[i][a_]) {
-                    continue;
-                }
-                for j in 0..n {
-                    let mw = ctx.mul(dynamics.mass[i][j], w_matrix[j][c]);
-                    terms.push(ctx.mul(w_matrix[i][a_], mw));
-                }
-            }
-            let s = ctx.sum(&terms);
-            let s = ctx.simplify(s);
-            let s = ctx.collect(s);
-            mass[a_][c] = s;
-            mass[c][a_] = s;
-        }
-    }
+    let rates = rates(ctx, &stacked);
+    let mut rows: Vec<String> = speeds.iter().map(|(name, _)| name.clone()).collect();
+    rows.extend(holonomic.iter().chain(nonholonomic).map(|c| c.name.clone()));
     Ok(Reduction {
-        names: speeds.iter().map(|(n, _)| n.clone()).collect(),
-        speed_symbols,
+        names: speeds.iter().map(|(name, _)| name.clone()).collect(),
         speeds: speeds.iter().map(|&(_, u)| ctx.collect(u)).collect(),
-        velocities,
-        w_matrix,
-        kappa,
-        mass,
-        rhs,
+        rows,
+        matrix,
+        free: stacked.iter().map(|r| r.g0).collect(),
+        rates,
+        free_speeds: false,
         derivatives: None,
     })
+}
+
+/// The rows u = U q̇ + u₀ of the speeds.
+fn speed_rows(ctx: &mut Context, speeds: &[(String, Sym)]) -> Result<Vec<Row>, String> {
+    let qd = ctx.velocities();
+    let zero = ctx.zero();
+    let zero_vel: Vec<(Sym, Sym)> = qd.iter().map(|&v| (v, zero)).collect();
+    speeds
+        .iter()
+        .map(|(name, u)| {
+            let g: Vec<Sym> = qd
+                .iter()
+                .map(|&v| {
+                    let d = ctx.diff(*u, v);
+                    ctx.collect(d)
+                })
+                .collect();
+            if g.iter().any(|&e| qd.iter().any(|&v| ctx.depends_on(e, v))) {
+                return Err(format!("speed `{name}` must be linear in the velocities"));
+            }
+            let g0 = ctx.substitute(*u, &zero_vel);
+            let g0 = ctx.collect(g0);
+            Ok(Row { g, g0, phi: None })
+        })
+        .collect()
+}
+
+/// A column of the square matrix `a` that no row can be assigned to, if any
+/// (by augmenting paths over the nonzero entries): the matrix is then singular
+/// whatever its entries' values.
+fn unassignable_column(ctx: &Context, a: &[Vec<Sym>]) -> Option<usize> {
+    let n = a.len();
+    let mut row_of: Vec<Option<usize>> = vec![None; n];
+    fn augment(
+        ctx: &Context,
+        a: &[Vec<Sym>],
+        col: usize,
+        seen: &mut [bool],
+        row_of: &mut [Option<usize>],
+    ) -> bool {
+        for r in 0..a.len() {
+            if seen[r] || ctx.is_zero(a[r][col]) {
+                continue;
+            }
+            seen[r] = true;
+            // Row r is free, or the column holding it can move to another row.
+            let free = match row_of[r] {
+                None => true,
+                Some(other) => augment(ctx, a, other, seen, row_of),
+            };
+            if free {
+                row_of[r] = Some(col);
+                return true;
+            }
+        }
+        false
+    }
+    (0..n).find(|&col| !augment(ctx, a, col, &mut vec![false; n], &mut row_of))
 }

@@ -99,17 +99,19 @@ pub fn equations(model: &Model) -> String {
         for (k, name) in r.names.iter().enumerate() {
             let _ = writeln!(s, "{name} = {}", ctx.display(r.speeds[k]));
         }
-        for (i, q) in model.coordinates.iter().enumerate() {
-            let _ = writeln!(s, "dot({q}) = {}", ctx.display(r.velocities[i]));
-        }
-        let k = r.names.len();
-        for a in 0..k {
-            for b in a..k {
-                let _ = writeln!(s, "M*[{a}][{b}] = {}", ctx.display(r.mass[a][b]));
-            }
-        }
-        for (a, f) in r.rhs.iter().enumerate() {
-            let _ = writeln!(s, "F*[{a}] = {}", ctx.display(*f));
+        let _ = writeln!(
+            s,
+            "rows A q' + b = (u, 0), solved with pivoting at run time:"
+        );
+        for (k, name) in r.rows.iter().enumerate() {
+            let row: Vec<String> = r.matrix[k].iter().map(|&e| ctx.display(e)).collect();
+            let _ = writeln!(
+                s,
+                "{name}: A = [{}], b = {}",
+                row.join(", "),
+                ctx.display(r.free[k])
+            );
+            let _ = writeln!(s, "{name}: c = {}", ctx.display(r.rates[k]));
         }
     }
     s

@@ -48,8 +48,8 @@ struct Emitter<'a> {
     model: &'a Model,
     scalar: &'a Scalar,
     /// The free symbols that reach emission and what they are in the generated
-    /// method: the reduced form's speeds `u[k]`, and the values the
-    /// linearisation methods hold fixed, `nu[k]`, `du[k]`, `e[i]`.
+    /// method: the weights the linearisation methods hold fixed, `nu[k]` (the
+    /// multipliers' and the reduced rows' symbols are distinct).
     free: Vec<(Symbol, TokenStream)>,
 }
 
@@ -65,12 +65,8 @@ impl<'a> Emitter<'a> {
                 }
             }
         };
-        if let Some(r) = &model.reduced {
-            add(&r.speed_symbols, "u");
-            if let Some(d) = &r.derivatives {
-                add(&d.rate_symbols, "du");
-                add(&d.force_symbols, "e");
-            }
+        if let Some(d) = model.reduced.as_ref().and_then(|r| r.derivatives.as_ref()) {
+            add(&d.nu_symbols, "nu");
         }
         if let Some(d) = model
             .constraints
@@ -510,76 +506,70 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     }
 }
 
-/// `impl Reduced`: u(q, q̇), q̇(q, u), and M*, F*, W, κ in one pass.
+/// `impl Reduced`: the speeds, the stacked rows A = [U; G] with b, and their
+/// rates c; the runtime solves them (W, κ, M*, F*) with pivoting.
 fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let Some(r) = &model.reduced else {
         return quote!();
     };
     let n = model.dof();
-    let k = r.names.len();
-    let kl = Literal::usize_unsuffixed(k);
+    let kl = Literal::usize_unsuffixed(r.names.len());
     let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_k) = (f.vec(nl), f.vec(&kl));
-    let (mat_kk, mat_nk) = (f.mat(&kl, &kl), f.mat(nl, &kl));
+    let (vec_n, vec_k, mat_nn) = (f.vec(nl), f.vec(&kl), f.mat(nl, nl));
 
     let (u_lets, u_outs) = e.program(&r.speeds);
-    let (v_lets, v_outs) = e.program(&r.velocities);
-    let mut all: Vec<Sym> = r.mass.iter().flatten().copied().collect();
-    all.extend(&r.rhs);
-    all.extend(r.w_matrix.iter().flatten());
-    all.extend(&r.kappa);
-    let (all_lets, all_outs) = e.program(&all);
-    let (ms, rest) = all_outs.split_at(k * k);
-    let (fs, rest) = rest.split_at(k);
-    let (ws, kappa) = rest.split_at(n * k);
-    let m_fill = e.fill_dense(&quote!(m), ms, k);
-    let w_fill = e.fill_dense(&quote!(w), ws, k);
+    let mut rows: Vec<Sym> = r.matrix.iter().flatten().copied().collect();
+    rows.extend(&r.free);
+    let (row_lets, row_outs) = e.program(&rows);
+    let (a_outs, b_outs) = row_outs.split_at(n * n);
+    let a_fill = e.fill_dense(&quote!(a), a_outs, n);
+    let (rate_lets, rate_outs) = e.program(&r.rates);
     let derivatives = match &r.derivatives {
         None => quote!(),
         Some(d) => {
-            let (mat_kn, mat_nn) = (f.mat(&kl, nl), f.mat(nl, nl));
             let body = e.dense_matrices(&[
-                ("dres", &d.dynamics_q, mat_kn.clone()),
-                ("dforce", &d.force_u, mat_kk.clone()),
-                ("dvel", &d.velocities_q, mat_nn.clone()),
+                ("danu", &d.force_q, mat_nn.clone()),
+                ("dres", &d.acceleration_q, mat_nn.clone()),
+                ("drate", &d.gamma_v, mat_nn.clone()),
+                ("dvel", &d.velocity_q, mat_nn.clone()),
             ]);
             quote! {
                 #[inline]
-                fn reduced_derivatives(&self, q: &#vec_n, u: &#vec_k, du: &#vec_k, e: &#vec_n, t: #s) -> ::core::option::Option<(#mat_kn, #mat_kk, #mat_nn)> {
+                fn row_derivatives(&self, q: &#vec_n, v: &#vec_n, a: &#vec_n, nu: &#vec_n, t: #s) -> ::core::option::Option<(#mat_nn, #mat_nn, #mat_nn, #mat_nn)> {
                     #body
-                    ::core::option::Option::Some((dres, dforce, dvel))
+                    ::core::option::Option::Some((danu, dres, drate, dvel))
                 }
             }
         }
     };
-    let names = &r.names;
+    let (names, row_names, free) = (&r.names, &r.rows, r.free_speeds);
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
         impl #ig ::lagrange::__private::Reduced<#s, #nl, #kl> for #ident #tg #wc {
             const SPEEDS: [&'static str; #kl] = [#(#names),*];
+            const ROWS: [&'static str; #nl] = [#(#row_names),*];
+            const FREE_SPEEDS: bool = #free;
+
+            #[inline]
+            fn velocity_rows(&self, q: &#vec_n, t: #s) -> (#mat_nn, #vec_n) {
+                #row_lets
+                let mut a = <#mat_nn>::zeros();
+                #a_fill
+                (a, <#vec_n>::from([#(#b_outs),*]))
+            }
+
+            #[inline]
+            fn row_rates(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_n {
+                #rate_lets
+                <#vec_n>::from([#(#rate_outs),*])
+            }
 
             #[inline]
             fn speeds(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_k {
                 #u_lets
                 <#vec_k>::from([#(#u_outs),*])
-            }
-
-            #[inline]
-            fn velocities(&self, q: &#vec_n, u: &#vec_k, t: #s) -> #vec_n {
-                #v_lets
-                <#vec_n>::from([#(#v_outs),*])
-            }
-
-            #[inline]
-            fn reduced_system(&self, q: &#vec_n, u: &#vec_k, t: #s) -> (#mat_kk, #vec_k, #mat_nk, #vec_n) {
-                #all_lets
-                let mut m = <#mat_kk>::zeros();
-                #m_fill
-                let mut w = <#mat_nk>::zeros();
-                #w_fill
-                (m, <#vec_k>::from([#(#fs),*]), w, <#vec_n>::from([#(#kappa),*]))
             }
 
             #derivatives
@@ -828,15 +818,16 @@ fn stub_constraint_impls(system: &System) -> TokenStream {
             system.speeds.len()
         };
         let kl = Literal::usize_unsuffixed(k);
-        let (vec_k, mat_kk, mat_nk) = (f.vec(&kl), f.mat(&kl, &kl), f.mat(nl, &kl));
         let names: Vec<String> = (0..k).map(|i| format!("u{i}")).collect();
+        let rows: Vec<String> = (0..n).map(|i| format!("r{i}")).collect();
+        let mat_nn = f.mat(nl, nl);
         out.extend(quote! {
             #[allow(unused_variables)]
             impl #ig ::lagrange::__private::Reduced<#s, #nl, #kl> for #ident #tg #wc {
                 const SPEEDS: [&'static str; #kl] = [#(#names),*];
-                fn speeds(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_k { ::core::unreachable!() }
-                fn velocities(&self, q: &#vec_n, u: &#vec_k, t: #s) -> #vec_n { ::core::unreachable!() }
-                fn reduced_system(&self, q: &#vec_n, u: &#vec_k, t: #s) -> (#mat_kk, #vec_k, #mat_nk, #vec_n) { ::core::unreachable!() }
+                const ROWS: [&'static str; #nl] = [#(#rows),*];
+                fn velocity_rows(&self, q: &#vec_n, t: #s) -> (#mat_nn, #vec_n) { ::core::unreachable!() }
+                fn row_rates(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_n { ::core::unreachable!() }
             }
         });
     }

@@ -373,6 +373,7 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
     let reduced = match speeds {
         None => None,
         Some(speeds) => {
+            let free_speeds = speeds.is_none();
             let speeds = match speeds {
                 Some(s) => s,
                 None => crate::constraint::default_speeds(
@@ -384,21 +385,14 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
             };
             let mut r = crate::constraint::reduce(
                 &mut ctx,
-                &crate::constraint::Dynamics {
-                    mass: &mass,
-                    rhs: &rhs,
-                },
                 &holonomic,
                 &nonholonomic,
                 &speeds,
                 &coordinates,
             )?;
+            r.free_speeds = free_speeds;
             if wants(Extra::Jacobians) {
-                r.derivatives = Some(crate::constraint::reduced_derivatives(
-                    &mut ctx,
-                    &r,
-                    &coordinates,
-                ));
+                r.derivatives = Some(crate::constraint::reduced_derivatives(&mut ctx, &r));
             }
             Some(r)
         }

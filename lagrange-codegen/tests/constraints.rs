@@ -112,25 +112,10 @@ fn reduced_form_equals_multiplier_form() {
     let mut rng = Lcg(99);
     for _ in 0..10 {
         let mut p = random_point(&reduced, &mut rng);
-        // q̇ = W u + w, then the reduced accelerations.
-        let v: Vec<f64> = r
-            .velocities
-            .iter()
-            .map(|&e| eval(&reduced, e, &p))
-            .collect();
-        p.v = v.clone();
-        let k = r.names.len();
-        let ms = DMatrix::from_fn(k, k, |i, j| eval(&reduced, r.mass[i][j], &p));
-        let fs = DVector::from_fn(k, |i, _| eval(&reduced, r.rhs[i], &p));
-        let ud = ms.lu().solve(&fs).expect("M* regular");
-        let qdd: Vec<f64> = (0..5)
-            .map(|i| {
-                let w: f64 = (0..k)
-                    .map(|j| eval(&reduced, r.w_matrix[i][j], &p) * ud[j])
-                    .sum();
-                w + eval(&reduced, r.kappa[i], &p)
-            })
-            .collect();
+        let f = reduced_at(&reduced, &mut p);
+        let v = p.v.clone();
+        let ud = f.mass.clone().lu().solve(&f.force).expect("M* regular");
+        let qdd = &f.w * ud + &f.kappa;
         // The same state in the full model: z = a, ż = 0. Parameters are in the
         // same order (m, j, a, g).
         let a = p.params[2];
@@ -193,21 +178,17 @@ fn quasi_velocity_gibbs_appell() {
            speeds(rdot = dot(r), w = p.x*dot(p.y) - p.y*dot(p.x)))]
          struct S { mass: f64, fr: f64, fs: f64 }",
     );
-    let r = m.reduced.as_ref().expect("reduced form");
     let mut rng = Lcg(3);
     for _ in 0..10 {
         let mut p = random_point(&m, &mut rng);
         p.q[0] = 0.5 + p.q[0].abs();
         let (mass, fr, fs) = (p.params[0], p.params[1], p.params[2]);
         let (radius, rdot, w) = (p.q[0], p.u[0], p.u[1]);
-        let ms = [
-            [eval(&m, r.mass[0][0], &p), eval(&m, r.mass[0][1], &p)],
-            [eval(&m, r.mass[1][0], &p), eval(&m, r.mass[1][1], &p)],
-        ];
-        let f = [eval(&m, r.rhs[0], &p), eval(&m, r.rhs[1], &p)];
-        assert!(ms[0][1].abs() < 1e-14 && ms[1][0].abs() < 1e-14);
-        let rdd = f[0] / ms[0][0];
-        let wd = f[1] / ms[1][1];
+        let red = reduced_at(&m, &mut p);
+        let (ms, f) = (&red.mass, &red.force);
+        assert!(ms[(0, 1)].abs() < 1e-14 && ms[(1, 0)].abs() < 1e-14);
+        let rdd = f[0] / ms[(0, 0)];
+        let wd = f[1] / ms[(1, 1)];
         assert!(close(mass * (rdd - w * w / radius.powi(3)), fr, 1e-12));
         assert!(
             close(mass * wd, radius * fs, 1e-12),
@@ -215,9 +196,39 @@ fn quasi_velocity_gibbs_appell() {
             radius * fs
         );
         // The kinematics: θ̇ = w / r².
-        let thd = eval(&m, r.velocities[1], &p);
-        assert!(close(thd, w / (radius * radius), 1e-14));
-        assert!(close(eval(&m, r.velocities[0], &p), rdot, 1e-14));
+        assert!(close(p.v[1], w / (radius * radius), 1e-14));
+        assert!(close(p.v[0], rdot, 1e-14));
+    }
+}
+
+/// The reduced form at p with the speeds p.u, as the runtime computes it from
+/// the emitted rows: q̇ = A⁻¹((u, 0) − b) (stored in p.v), W = A⁻¹[I; 0],
+/// κ = A⁻¹ c, M* = Wᵀ M W, F* = Wᵀ (Q − h − M κ).
+struct NumericReduced {
+    w: DMatrix<f64>,
+    kappa: DVector<f64>,
+    mass: DMatrix<f64>,
+    force: DVector<f64>,
+}
+
+fn reduced_at(m: &Model, p: &mut Point) -> NumericReduced {
+    let r = m.reduced.as_ref().expect("reduced form");
+    let (n, k) = (m.dof(), r.names.len());
+    let a = DMatrix::from_fn(n, n, |i, j| eval(m, r.matrix[i][j], p));
+    let b = DVector::from_fn(n, |i, _| eval(m, r.free[i], p));
+    let inv = a.try_inverse().expect("regular rows");
+    let target = DVector::from_fn(n, |i, _| if i < k { p.u[i] } else { 0.0 }) - b;
+    p.v = (&inv * target).iter().copied().collect();
+    let c = DVector::from_fn(n, |i, _| eval(m, r.rates[i], p));
+    let mm = DMatrix::from_fn(n, n, |i, j| eval(m, m.mass[i][j], p));
+    let rhs = DVector::from_fn(n, |i, _| eval(m, m.rhs[i], p));
+    let w = inv.columns(0, k).into_owned();
+    let kappa = &inv * c;
+    NumericReduced {
+        mass: w.transpose() * &mm * &w,
+        force: w.transpose() * (rhs - &mm * &kappa),
+        w,
+        kappa,
     }
 }
 
@@ -258,77 +269,52 @@ fn coriolis_matrix_properties() {
 }
 
 /// Gibbs–Appell against the projection: the Gibbs function S = ½ Σ m |ξ̈|², with
-/// q̈ = W u̇ + κ and q̇ = W u + w substituted, must give M* = ∂²S/∂u̇² and
-/// F* = Wᵀ Q − ∂S/∂u̇ at u̇ = 0. Two derivations share nothing but W.
+/// q̈ = W u̇ + κ, must give M* = ∂²S/∂u̇² = Σ m (J W)ᵀ (J W) and
+/// F* = Wᵀ Q − ∂S/∂u̇ at u̇ = 0, where ξ̈ = J q̈ + ξ̈₀ is taken from the particles'
+/// positions differentiated twice in time. Two derivations share nothing but W
+/// and κ.
 fn check_gibbs_appell(src: &str) {
     let mut m = model(src);
     assert!(!m.has_spin, "the Gibbs function here covers particles only");
-    let r = m.reduced.as_ref().expect("reduced form");
-    let (w, kappa, vel) = (r.w_matrix.clone(), r.kappa.clone(), r.velocities.clone());
-    let (k, n) = (r.names.len(), m.dof());
-    let (rmass, rrhs) = (r.mass.clone(), r.rhs.clone());
-    let ctx = &mut m.ctx;
-    let ud: Vec<_> = (0..k).map(|j| ctx.free_symbol(&format!("ud{j}"))).collect();
-    let mut map = Vec::new();
-    for (i, (&qdd, &qd)) in ctx
-        .accelerations()
-        .iter()
-        .zip(&ctx.velocities())
-        .enumerate()
-    {
-        let mut terms: Vec<_> = (0..k).map(|j| ctx.mul(w[i][j], ud[j])).collect();
-        terms.push(kappa[i]);
-        map.push((qdd, ctx.sum(&terms)));
-        map.push((qd, vel[i]));
-    }
-    let mut terms = Vec::new();
+    let n = m.dof();
+    let qdd = m.ctx.accelerations();
+    let zero = m.ctx.zero();
+    let at_rest: Vec<_> = qdd.iter().map(|&a| (a, zero)).collect();
+    // Per particle component: (mass, J row, ξ̈ at q̈ = 0).
+    let mut components = Vec::new();
     for (mass, position) in m.particles.clone() {
         for x in position {
-            let v = ctx.time_derivative(x);
-            let a = ctx.time_derivative(v);
-            let a = ctx.substitute(a, &map);
-            let sq = ctx.mul(a, a);
-            terms.push(ctx.mul(mass, sq));
+            let v = m.ctx.time_derivative(x);
+            let a = m.ctx.time_derivative(v);
+            let row: Vec<_> = qdd.iter().map(|&d| m.ctx.diff(a, d)).collect();
+            let a0 = m.ctx.substitute(a, &at_rest);
+            components.push((mass, row, a0));
         }
     }
-    let s = ctx.sum(&terms);
-    let half = ctx.rational(1, 2);
-    let s = ctx.mul(half, s);
-    let zero = ctx.zero();
-    let at_rest: Vec<_> = ud.iter().map(|&u| (u, zero)).collect();
-    let grad: Vec<_> = ud
-        .iter()
-        .map(|&u| {
-            let g = ctx.diff(s, u);
-            ctx.substitute(g, &at_rest)
-        })
-        .collect();
-    let hess: Vec<Vec<_>> = ud
-        .iter()
-        .map(|&a| {
-            let ga = ctx.diff(s, a);
-            ud.iter().map(|&b| ctx.diff(ga, b)).collect()
-        })
-        .collect();
-    let forces: Vec<_> = m
-        .forces
-        .clone()
-        .iter()
-        .map(|&f| ctx.substitute(f, &map))
-        .collect();
     let mut rng = Lcg(11);
     for _ in 0..10 {
         let mut p = random_point(&m, &mut rng);
         p.q[0] = 0.5 + p.q[0].abs();
+        let red = reduced_at(&m, &mut p);
+        let k = red.w.ncols();
+        let mut hess = DMatrix::zeros(k, k);
+        let mut grad = DVector::zeros(k);
+        for (mass, row, a0) in &components {
+            let mass = eval(&m, *mass, &p);
+            let j = DMatrix::from_fn(1, n, |_, i| eval(&m, row[i], &p));
+            let jw = &j * &red.w;
+            let a = (&j * &red.kappa)[0] + eval(&m, *a0, &p);
+            hess += mass * jw.transpose() * &jw;
+            grad += mass * a * jw.transpose().column(0);
+        }
+        let q = DVector::from_fn(n, |i, _| eval(&m, m.forces[i], &p));
+        let wq = red.w.transpose() * q;
         for a in 0..k {
             for b in 0..k {
-                let (x, y) = (eval(&m, hess[a][b], &p), eval(&m, rmass[a][b], &p));
+                let (x, y) = (hess[(a, b)], red.mass[(a, b)]);
                 assert!(close(x, y, 1e-10), "M*[{a}][{b}]: {x} vs {y}");
             }
-            let wq: f64 = (0..n)
-                .map(|i| eval(&m, w[i][a], &p) * eval(&m, forces[i], &p))
-                .sum();
-            let (x, y) = (wq - eval(&m, grad[a], &p), eval(&m, rrhs[a], &p));
+            let (x, y) = (wq[a] - grad[a], red.force[a]);
             assert!(close(x, y, 1e-10), "F*[{a}]: {x} vs {y}");
         }
     }

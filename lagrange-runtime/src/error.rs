@@ -146,17 +146,16 @@ pub enum Error {
         tests: usize,
     },
 
-    /// The reduced form cannot be evaluated at a finite state: its solution of
-    /// the velocity constraints for the dependent velocities (W and w in
-    /// q̇ = W u + w, chosen symbolically) divides by a pivot that vanishes there,
-    /// although the constraints themselves may be regular (a knife edge solved
-    /// for ẋ at cos θ = 0), or a parameter is not finite.
+    /// The reduced form's stacked velocity rows A = [U; G] (the speeds, then the
+    /// constraints) are dependent at this state: the speeds do not determine the
+    /// velocities here (a speed parallel to a constraint, two constraints
+    /// alike). A regular state never gives this error, whatever the pivots a
+    /// symbolic solution would have chosen.
     #[error(
-        "the reduced form breaks down at t = {t}, q = {}: solving the velocity constraints \
-         for the dependent velocities divides by a pivot that vanishes here (or a parameter is \
-         not finite); integrate the multiplier form (`run_constrained`, with \
-         `formulation(multipliers, reduced)`) or name `speeds(...)` whose dependent \
-         velocities stay solvable here",
+        "the reduced form's velocity rows {rows:?} are linearly dependent at t = {t}, q = {} \
+         (pivot ratio {ratio:e}): the speeds do not determine the velocities here; name \
+         `speeds(...)` independent of the constraints at this state, or integrate the \
+         multiplier form (`run_constrained`, with `formulation(multipliers, reduced)`)",
         named(coordinates, q)
     )]
     ReducedFormBreakdown {
@@ -166,6 +165,10 @@ pub enum Error {
         q: Vec<f64>,
         /// Their names.
         coordinates: Vec<&'static str>,
+        /// The speeds and constraints in the dependency.
+        rows: Vec<&'static str>,
+        /// The largest pivot left over the first when elimination stopped.
+        ratio: f64,
     },
 
     /// The integrator exceeded its step budget before reaching the end time.
@@ -324,6 +327,7 @@ impl Error {
             Error::SingularMassMatrix { .. }
                 | Error::NonFiniteState { .. }
                 | Error::RedundantConstraints { .. }
+                | Error::ReducedFormBreakdown { .. }
         )
     }
 

@@ -75,6 +75,7 @@ pub mod event;
 pub mod func;
 pub mod linear;
 pub mod ode;
+mod pivot;
 mod real;
 mod reduced;
 mod root;
@@ -100,7 +101,7 @@ pub use ode::{
     SecondOrder, Stats, StormerVerlet,
 };
 pub use real::Real;
-pub use reduced::ReducedDynamics;
+pub use reduced::{ReducedDynamics, ReducedForm};
 pub use simulation::{EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::{Constrained, Driven, Lagrangian, Reduced};

@@ -3,10 +3,21 @@
 //! The integrators carry (q, q̇), not (q, u): the reduced form then plugs into every
 //! integrator unchanged, and trajectories look the same whichever form produced
 //! them. The price is that a Runge–Kutta combination of q̇'s need not lie in the
-//! image of W u + w when W depends on q; u = U q̇ + u₀ reads off the speeds anyway,
-//! and [`SecondOrder::project`] rebuilds q̇ from them after every step, which keeps
+//! image of W u + w when W depends on q, and [`SecondOrder::project`] rebuilds q̇
+//! from its independent part after every step, which keeps
 //! the velocity constraints at round-off (it reports a change, and so costs an
 //! FSAL integrator an evaluation, only when q̇ moved by more than a few ulps).
+//!
+//! W and κ come from the stacked rows A = [U; G] solved at each state by
+//! Gauss–Jordan elimination with complete pivoting (module `pivot`): the form
+//! on your speeds ([`ReducedDynamics::form`], the linearisation, the initial
+//! velocities) is finite wherever A is regular, and where it is not the
+//! dependent rows are named ([`Error::ReducedFormBreakdown`]). Along the motion
+//! the accelerations do not depend on which speeds complete the constraints,
+//! so the solve and the projection use the velocities the constraints leave
+//! free at each state (coordinate partitioning): they are finite wherever the
+//! constraints are independent, and a speed that is nearly dependent on them
+//! costs no digits.
 
 use crate::cholesky::Cholesky;
 use crate::control::{Forcing, NoForcing};
@@ -14,9 +25,10 @@ use crate::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
 use crate::error::{Error, to_vec};
 use crate::func::abs;
 use crate::ode::SecondOrder;
+use crate::pivot::{Dependent, free_columns, invert};
 use crate::real::Real;
 use crate::system::Reduced;
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
 /// The forward dynamics of a [`Reduced`] system with K independent speeds:
 /// u = speeds(q, q̇), M* u̇ = F* by Cholesky, q̈ = W u̇ + κ.
@@ -80,11 +92,19 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
 
     /// The speed derivatives u̇ and the accelerations q̈ at (t, q, v).
     ///
+    /// q̈ does not depend on which speeds complete the constraints, so the
+    /// solve uses the best conditioned ones at q: the K velocities left free
+    /// when the constraint rows are eliminated with complete pivoting
+    /// (coordinate partitioning). Speeds that are dependent on the constraints
+    /// at q, or nearly so, then cost neither finiteness nor digits, and u̇ is
+    /// read back from A q̈ = (u̇, 0) + c.
+    ///
     /// # Errors
-    /// [`Error::NonFiniteState`] if the state, the reduced system or the result is
-    /// not finite; [`Error::SingularMassMatrix`] if M* is not positive definite or
-    /// its pivot ratio is below the singular tolerance; whatever the forcing
-    /// reports (e.g. [`Error::NonFiniteInput`]).
+    /// [`Error::NonFiniteState`] if the state, the system's terms or the result
+    /// are not finite; [`Error::ReducedFormBreakdown`] if the constraint rows are
+    /// dependent at q; [`Error::SingularMassMatrix`] if M* is not positive
+    /// definite or its pivot ratio is below the singular tolerance; whatever the
+    /// forcing reports (e.g. [`Error::NonFiniteInput`]).
     pub fn solve<const N: usize>(
         &self,
         t: T,
@@ -95,80 +115,80 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         S: Reduced<T, N, K>,
         F: Forcing<T, N>,
     {
-        if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
-            return Err(Error::non_finite(t, q, v));
-        }
-        let u = self.system.speeds(q, v, t);
-        let (m, mut f, w, kappa) = self.system.reduced_system(q, &u, t);
+        check_state(t, q, v)?;
+        let rows = self.rows(t, q)?;
+        let free = self.free_rows(t, q, &rows)?;
+        let inverse = self.invert_rows(t, q, &free.a)?;
+        let (mut form, rates) = self.assemble(t, q, &free, inverse, &free.speeds(v), false)?;
         if F::ACTIVE {
-            f += w.tr_mul(&self.forcing.force(t, q, v)?);
+            form.force += form.w.tr_mul(&self.forcing.force(t, q, v)?);
         }
-        // The state is finite here: a non-finite W or κ is the reduction's
-        // own pivot vanishing, unless the parameters are not finite.
-        if !(all_finite(u.as_slice()) && all_finite(w.as_slice()) && all_finite(kappa.as_slice())) {
-            return Err(self.non_finite_reduction(t, q, v));
-        }
-        if !(all_finite(m.as_slice()) && all_finite(f.as_slice())) {
+        if !all_finite(form.force.as_slice()) {
             return Err(Error::non_finite(t, q, v));
         }
-        let du = Cholesky::new(m, self.singular_tolerance)
+        let dw = Cholesky::new(form.mass, self.singular_tolerance)
             .map_err(|ratio| Error::SingularMassMatrix {
                 t: t.to_f64(),
                 q: to_vec(q),
                 ratio: ratio.to_f64(),
             })?
-            .solve(f);
-        let a = w * du + kappa;
+            .solve(form.force);
+        let a = form.w * dw + form.kappa;
+        let du = (rows.a * a - rates).fixed_rows::<K>(0).into_owned();
         if !(all_finite(du.as_slice()) && all_finite(a.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
         Ok((du, a))
     }
 
-    /// The velocities that satisfy the constraints with the speeds of v:
-    /// velocities(q, speeds(q, v)).
-    pub fn consistent_velocities<const N: usize>(
-        &self,
-        t: T,
-        q: &SVector<T, N>,
-        v: &SVector<T, N>,
-    ) -> SVector<T, N>
-    where
-        S: Reduced<T, N, K>,
-    {
-        let u = self.system.speeds(q, v, t);
-        self.system.velocities(q, &u, t)
-    }
-
-    /// Why the reduction is not finite at a finite state: non-finite parameters
-    /// show in the mass matrix too (the user's input), a vanishing pivot does
-    /// not (the reduction's own breakdown).
-    fn non_finite_reduction<const N: usize>(
-        &self,
-        t: T,
-        q: &SVector<T, N>,
-        v: &SVector<T, N>,
-    ) -> Error
-    where
-        S: Reduced<T, N, K>,
-    {
-        if all_finite(self.system.mass_matrix(q, t).as_slice()) {
-            breakdown::<S, T, N, K>(t, q)
-        } else {
-            Error::non_finite(t, q, v)
-        }
-    }
-
-    /// The admissible initial velocities with the speeds of v, checked: they
-    /// must be finite and reproduce those speeds (u = U W u + U w + u₀) to 1e-8
-    /// relative. A symbolic pivot of the reduction that vanishes at q (a knife
-    /// edge solved for ẋ heading along y, where cos θ = 6e-17 is not quite zero)
-    /// fails the round trip, and the run stops before it starts instead of
-    /// collapsing its step size on velocities of 1e16.
+    /// The reduced form at (t, q) with the speeds u: W, κ, q̇ = W u + w,
+    /// M* and F* (without the forcing).
     ///
     /// # Errors
-    /// [`Error::ReducedFormBreakdown`].
-    pub fn initial_velocities<const N: usize>(
+    /// [`Error::ReducedFormBreakdown`] if the stacked rows are dependent at q;
+    /// [`Error::NonFiniteState`] if the system's terms are not finite.
+    pub fn form<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        u: &SVector<T, K>,
+    ) -> Result<ReducedForm<T, N, K>, Error>
+    where
+        S: Reduced<T, N, K>,
+    {
+        let rows = self.rows(t, q)?;
+        let inverse = self.invert_rows(t, q, &rows.a)?;
+        Ok(self.assemble(t, q, &rows, inverse, u, true)?.0)
+    }
+
+    /// q̇ = W u + w at (t, q): the velocities with the speeds u that satisfy
+    /// the constraints.
+    ///
+    /// # Errors
+    /// [`Error::ReducedFormBreakdown`] if the stacked rows are dependent at q;
+    /// [`Error::NonFiniteState`] if they are not finite.
+    pub fn velocities<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        u: &SVector<T, K>,
+    ) -> Result<SVector<T, N>, Error>
+    where
+        S: Reduced<T, N, K>,
+    {
+        let rows = self.rows(t, q)?;
+        let inverse = self.invert_rows(t, q, &rows.a)?;
+        Ok(rows.velocities(&inverse, u))
+    }
+
+    /// The velocities that satisfy the constraints with the speeds of v:
+    /// velocities(q, speeds(q, v)). Speeds the macro chose
+    /// ([`Reduced::FREE_SPEEDS`]) give way, where the constraints fix them, to
+    /// the velocities the constraints leave free at q; speeds you named do not.
+    ///
+    /// # Errors
+    /// As [`velocities`](Self::velocities).
+    pub fn consistent_velocities<const N: usize>(
         &self,
         t: T,
         q: &SVector<T, N>,
@@ -177,19 +197,198 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     where
         S: Reduced<T, N, K>,
     {
-        let u = self.system.speeds(q, v, t);
-        let w = self.system.velocities(q, &u, t);
-        let back = self.system.speeds(q, &w, t);
-        let scale = u.iter().fold(T::one(), |m, &x| m.max(abs(x)));
-        let off = (back - u).iter().fold(T::zero(), |m, &x| m.max(abs(x)));
-        if !all_finite(w.as_slice()) {
-            return Err(self.non_finite_reduction(t, q, v));
-        }
-        if !off.is_finite() || off > T::lit(1e-8) * scale {
-            return Err(breakdown::<S, T, N, K>(t, q));
-        }
-        Ok(w)
+        self.projected(t, q, v, !S::FREE_SPEEDS)
     }
+
+    /// v projected onto the constraints keeping its speeds (`keep_speeds`), or
+    /// keeping the velocities the constraints leave free at q (see
+    /// [`solve`](Self::solve)).
+    fn projected<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        keep_speeds: bool,
+    ) -> Result<SVector<T, N>, Error>
+    where
+        S: Reduced<T, N, K>,
+    {
+        check_state(t, q, v)?;
+        let rows = self.rows(t, q)?;
+        let rows = if keep_speeds {
+            rows
+        } else {
+            self.free_rows(t, q, &rows)?
+        };
+        let inverse = self.invert_rows(t, q, &rows.a)?;
+        Ok(rows.velocities(&inverse, &rows.speeds(v)))
+    }
+
+    /// The stacked rows at (t, q), checked finite.
+    fn rows<const N: usize>(&self, t: T, q: &SVector<T, N>) -> Result<Rows<T, N, K>, Error>
+    where
+        S: Reduced<T, N, K>,
+    {
+        let (a, b) = self.system.velocity_rows(q, t);
+        if !(all_finite(a.as_slice()) && all_finite(b.as_slice())) {
+            return Err(Error::non_finite(t, q, &SVector::<T, N>::zeros()));
+        }
+        Ok(Rows { a, b })
+    }
+
+    /// A⁻¹, or the breakdown naming the dependent rows.
+    fn invert_rows<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        a: &SMatrix<T, N, N>,
+    ) -> Result<SMatrix<T, N, N>, Error>
+    where
+        S: Reduced<T, N, K>,
+    {
+        invert(a, self.singular_tolerance).map_err(|d| self.breakdown(t, q, d))
+    }
+
+    /// The rows with the speeds replaced by the K velocities the constraints
+    /// leave free at q (unit rows, zero rates): regular whenever the
+    /// constraint rows are independent.
+    fn free_rows<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        rows: &Rows<T, N, K>,
+    ) -> Result<Rows<T, N, K>, Error>
+    where
+        S: Reduced<T, N, K>,
+    {
+        let free = free_columns(&rows.a, K..N, self.singular_tolerance)
+            .map_err(|d| self.breakdown(t, q, d))?;
+        let mut a = rows.a;
+        let mut b = rows.b;
+        for (r, j) in (0..N).filter(|&j| free[j]).enumerate() {
+            a.row_mut(r).fill(T::zero());
+            a[(r, j)] = T::one();
+            b[r] = T::zero();
+        }
+        Ok(Rows { a, b })
+    }
+
+    /// W, κ, q̇, M* and F* from the inverted rows at the speeds u, and the
+    /// system's rates c at q̇. `speed_rates` is false for unit speed rows, whose
+    /// own rates are zero.
+    fn assemble<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        rows: &Rows<T, N, K>,
+        inverse: SMatrix<T, N, N>,
+        u: &SVector<T, K>,
+        speed_rates: bool,
+    ) -> Result<(ReducedForm<T, N, K>, SVector<T, N>), Error>
+    where
+        S: Reduced<T, N, K>,
+    {
+        let velocities = rows.velocities(&inverse, u);
+        let (mass, rhs) = self.system.mass_matrix_and_rhs(q, &velocities, t);
+        let system_rates = self.system.row_rates(q, &velocities, t);
+        let mut rates = system_rates;
+        if !speed_rates {
+            rates.fixed_rows_mut::<K>(0).fill(T::zero());
+        }
+        if !(all_finite(mass.as_slice())
+            && all_finite(rhs.as_slice())
+            && all_finite(rates.as_slice()))
+        {
+            return Err(Error::non_finite(t, q, &velocities));
+        }
+        let w: SMatrix<T, N, K> = inverse.fixed_columns::<K>(0).into_owned();
+        let kappa = inverse * rates;
+        let mw = mass * w;
+        let form = ReducedForm {
+            speeds: *u,
+            velocities,
+            force: w.tr_mul(&(rhs - mass * kappa)),
+            mass: w.tr_mul(&mw),
+            w,
+            kappa,
+            rows_inverse: inverse,
+            full_mass: mass,
+            rhs,
+        };
+        Ok((form, system_rates))
+    }
+
+    fn breakdown<const N: usize>(&self, t: T, q: &SVector<T, N>, d: Dependent) -> Error
+    where
+        S: Reduced<T, N, K>,
+    {
+        Error::ReducedFormBreakdown {
+            t: t.to_f64(),
+            q: to_vec(q),
+            coordinates: S::COORDINATES.to_vec(),
+            rows: d.rows.iter().map(|&i| S::ROWS[i]).collect(),
+            ratio: d.ratio,
+        }
+    }
+}
+
+/// A finite time and state, or the typed error.
+fn check_state<T: Real, const N: usize>(
+    t: T,
+    q: &SVector<T, N>,
+    v: &SVector<T, N>,
+) -> Result<(), Error> {
+    if t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice()) {
+        Ok(())
+    } else {
+        Err(Error::non_finite(t, q, v))
+    }
+}
+
+/// Stacked velocity rows A q̇ + b = (u, 0).
+struct Rows<T: Real, const N: usize, const K: usize> {
+    a: SMatrix<T, N, N>,
+    b: SVector<T, N>,
+}
+
+impl<T: Real, const N: usize, const K: usize> Rows<T, N, K> {
+    /// u = (A v + b) in the first K rows.
+    fn speeds(&self, v: &SVector<T, N>) -> SVector<T, K> {
+        (self.a * v + self.b).fixed_rows::<K>(0).into_owned()
+    }
+
+    /// q̇ = A⁻¹ ((u, 0) − b).
+    fn velocities(&self, inverse: &SMatrix<T, N, N>, u: &SVector<T, K>) -> SVector<T, N> {
+        let mut target = -self.b;
+        for (x, &ui) in target.iter_mut().zip(u.iter()) {
+            *x += ui;
+        }
+        inverse * target
+    }
+}
+
+/// The reduced form evaluated at one state (t, q, u), as
+/// [`ReducedDynamics::form`] computes it.
+#[derive(Clone, Copy, Debug)]
+pub struct ReducedForm<T: Real, const N: usize, const K: usize> {
+    /// The speeds u.
+    pub speeds: SVector<T, K>,
+    /// q̇ = W u + w.
+    pub velocities: SVector<T, N>,
+    /// W = A⁻¹[I; 0] (N × K).
+    pub w: SMatrix<T, N, K>,
+    /// κ = A⁻¹ c, so that q̈ = W u̇ + κ.
+    pub kappa: SVector<T, N>,
+    /// M* = Wᵀ M W.
+    pub mass: SMatrix<T, K, K>,
+    /// F* = Wᵀ (Q − h − M κ).
+    pub force: SVector<T, K>,
+    /// A⁻¹ of the stacked rows.
+    pub rows_inverse: SMatrix<T, N, N>,
+    /// M at (q, q̇).
+    pub full_mass: SMatrix<T, N, N>,
+    /// Q − h at (q, q̇).
+    pub rhs: SVector<T, N>,
 }
 
 impl<S, T, F, const N: usize, const K: usize> SecondOrder<T, N> for ReducedDynamics<'_, S, T, K, F>
@@ -215,16 +414,22 @@ where
     /// the velocity residual is the distance of v from the admissible velocities,
     /// max |v − velocities(q, speeds(q, v))|, zero exactly when the velocity
     /// constraints hold (for U W = I).
+    ///
+    /// States the trajectory records were accepted, so the rows were regular
+    /// there; at a state where they are not, the residual is undefined (NaN).
     fn residuals(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> [T; 2] {
-        let d = self.consistent_velocities(t, q, v) - v;
-        [T::zero(), d.iter().fold(T::zero(), |m, &x| m.max(abs(x)))]
+        match self.projected(t, q, v, false) {
+            Ok(w) => [
+                T::zero(),
+                (w - v).iter().fold(T::zero(), |m, &x| m.max(abs(x))),
+            ],
+            Err(_) => [T::zero(), T::lit(f64::NAN)],
+        }
     }
 
     fn project(&self, t: T, q: &mut SVector<T, N>, v: &mut SVector<T, N>) -> Result<bool, Error> {
-        let w = self.consistent_velocities(t, q, v);
-        if !all_finite(w.as_slice()) {
-            return Err(Error::non_finite(t, q, v));
-        }
+        // Along the motion any independent velocities serve, as in `solve`.
+        let w = self.projected(t, q, v, false)?;
         // A round trip through the speeds moves an admissible v by a few ulps;
         // taking that as a change would cost FSAL integrators an evaluation per
         // step for nothing, so only a change beyond round-off counts.
@@ -235,17 +440,5 @@ where
         }
         *v = w;
         Ok(true)
-    }
-}
-
-/// The typed error for a reduced form that cannot be evaluated at a finite state.
-pub(crate) fn breakdown<S: Reduced<T, N, K>, T: Real, const N: usize, const K: usize>(
-    t: T,
-    q: &SVector<T, N>,
-) -> Error {
-    Error::ReducedFormBreakdown {
-        t: t.to_f64(),
-        q: to_vec(q),
-        coordinates: S::COORDINATES.to_vec(),
     }
 }

@@ -341,7 +341,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         let (q0, v0) = (q0.into(), v0.into());
         check_problem(span.start, span.end, &q0, &v0)?;
         let dynamics = self.reduced_dynamics::<T, K>();
-        let v0 = dynamics.initial_velocities(span.start, &q0, &v0)?;
+        let v0 = dynamics.consistent_velocities(span.start, &q0, &v0)?;
         self.integrator
             .integrate(&dynamics, span.start, span.end, q0, v0)
     }

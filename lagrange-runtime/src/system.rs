@@ -196,17 +196,29 @@ pub trait Constrained<T: Real, const N: usize, const K: usize>: Lagrangian<T, N>
 }
 
 /// A nonholonomic system reduced to K independent speeds u (independent
-/// velocities or quasi-velocities; Maggi, Voronets, Gibbs–Appell):
+/// velocities or quasi-velocities; Maggi, Voronets, Gibbs–Appell).
+///
+/// The speeds u = U(q,t) q̇ + u₀(q,t) and the velocity constraints
+/// G(q,t) q̇ + g(q,t) = 0 stack into N rows
 ///
 /// ```text
-/// u = U(q,t) q̇ + u₀(q,t),     q̇ = W(q,t) u + w(q,t)
-/// M*(q,t) u̇ = F*(q,u,t),      M* = Wᵀ M W,   F* = Wᵀ (Q − h − M (Ẇ u + ẇ))
+/// A q̇ + b = (u, 0),    A = [U; G],  b = [u₀; g]
+/// A q̈ = (u̇, 0) + c,    c = −(Ȧ q̇ + ḃ)
 /// ```
 ///
-/// The velocity constraints A q̇ + b = 0 hold identically for every u (A W = 0,
-/// A w + b = 0), so there are no multipliers and no velocity drift. The state the
-/// integrators carry is still (q, q̇); the dynamics re-derive q̇ from u after each
-/// step.
+/// and the runtime ([`ReducedDynamics`](crate::ReducedDynamics)) solves them with
+/// pivoting at each state: q̇ = W u + w with W = A⁻¹[I; 0], q̈ = W u̇ + κ with
+/// κ = A⁻¹ c, and
+///
+/// ```text
+/// M* u̇ = F*,    M* = Wᵀ M W,   F* = Wᵀ (Q − h − M κ)
+/// ```
+///
+/// The velocity constraints hold identically for every u (G W = 0), so there are
+/// no multipliers and no velocity drift. The form is finite wherever A is
+/// regular; where it is not, the speeds do not determine the velocities and the
+/// runtime names the dependent rows. The state the integrators carry is still
+/// (q, q̇); the dynamics re-derive q̇ from u after each step.
 #[diagnostic::on_unimplemented(
     message = "`{Self}` has no reduced form: `run_reduced` and the reduced linearisation need `formulation(reduced)` in its #[lagrange(...)]",
     label = "needs the reduced form",
@@ -216,47 +228,52 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
     /// Names of the independent speeds.
     const SPEEDS: [&'static str; K];
 
-    /// u = U(q,t) q̇ + u₀(q,t).
-    fn speeds(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, K>;
+    /// Names of the N stacked rows: the speeds, then the constraints.
+    const ROWS: [&'static str; N];
 
-    /// q̇ = W(q,t) u + w(q,t).
-    fn velocities(&self, q: &SVector<T, N>, u: &SVector<T, K>, t: T) -> SVector<T, N>;
+    /// Whether the speeds are velocities picked for you (no `speeds(...)`), so
+    /// that any other velocities the constraints leave free serve as well: the
+    /// runtime then keeps those where the constraints fix the picked ones (a
+    /// knife edge heading north fixes ẋ). Speeds you name are kept or refused.
+    const FREE_SPEEDS: bool = false;
 
-    /// M*, F*, W and κ = Ẇ u + ẇ, so that q̈ = W u̇ + κ.
-    #[allow(clippy::type_complexity)]
-    fn reduced_system(
-        &self,
-        q: &SVector<T, N>,
-        u: &SVector<T, K>,
-        t: T,
-    ) -> (
-        SMatrix<T, K, K>,
-        SVector<T, K>,
-        SMatrix<T, N, K>,
-        SVector<T, N>,
-    );
+    /// A = [U; G] and b = [u₀; g], so that A q̇ + b = (u, 0).
+    fn velocity_rows(&self, q: &SVector<T, N>, t: T) -> (SMatrix<T, N, N>, SVector<T, N>);
 
-    /// Derivatives of the reduced equations for linearisation, at the speed rates
-    /// `du` = u̇ and with an extra generalized force `e` added to Q (the forces of
-    /// the inputs at the operating point; zero without inputs), so that
-    /// F*(e) = Wᵀ (Q − h − M κ + e):
+    /// c = −(Ȧ q̇ + ḃ), so that A q̈ = (u̇, 0) + c.
+    fn row_rates(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, N>;
+
+    /// u = U(q,t) q̇ + u₀(q,t): the first K rows of A q̇ + b.
+    fn speeds(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, K> {
+        let (a, b) = self.velocity_rows(q, t);
+        (a * v + b).fixed_rows::<K>(0).into_owned()
+    }
+
+    /// Derivatives of the stacked rows at the accelerations `a` = q̈ and the
+    /// weights `nu`, for linearising the reduced form:
     ///
     /// ```text
-    /// ( ∂(F* − M* u̇)/∂q (K × N),   ∂F*/∂u (K × K),   ∂(W u + w)/∂q (N × N) )
+    /// ( ∂(Aᵀν)/∂q, ∂(c − A a)/∂q, ∂c/∂q̇, ∂(A q̇ + b)/∂q )    (each N × N)
     /// ```
     ///
-    /// at fixed u, u̇ and e. `None` (the default) means the system does not
-    /// provide them; `#[derive(Lagrangian)]` emits them with `emit(jacobians)`.
+    /// with a and ν held fixed; the runtime composes them with W and M. `None`
+    /// (the default) means the system does not provide them;
+    /// `#[derive(Lagrangian)]` emits them with `emit(jacobians)`.
     #[allow(clippy::type_complexity)]
-    fn reduced_derivatives(
+    fn row_derivatives(
         &self,
         q: &SVector<T, N>,
-        u: &SVector<T, K>,
-        du: &SVector<T, K>,
-        e: &SVector<T, N>,
+        v: &SVector<T, N>,
+        a: &SVector<T, N>,
+        nu: &SVector<T, N>,
         t: T,
-    ) -> Option<(SMatrix<T, K, N>, SMatrix<T, K, K>, SMatrix<T, N, N>)> {
-        let _ = (q, u, du, e, t);
+    ) -> Option<(
+        SMatrix<T, N, N>,
+        SMatrix<T, N, N>,
+        SMatrix<T, N, N>,
+        SMatrix<T, N, N>,
+    )> {
+        let _ = (q, v, a, nu, t);
         None
     }
 }

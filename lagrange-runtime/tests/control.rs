@@ -3,6 +3,8 @@
 //! hand-written (`Lagrangian` + `Driven`), and every check is against a closed
 //! form or an independent formulation.
 
+mod common;
+use common::constrained::{knife_edge_rates, knife_edge_rows};
 use lagrange_runtime::{
     Constrained, Dopri5, Drift, Driven, Error, Event, InputTable, Lagrangian, Reduced, Rk4,
     Simulation,
@@ -335,28 +337,12 @@ impl Constrained<f64, 3, 1> for Skate {
 
 impl Reduced<f64, 3, 2> for Skate {
     const SPEEDS: [&'static str; 2] = ["forward", "turn"];
-    fn speeds(&self, q: &Vector3<f64>, v: &Vector3<f64>, _: f64) -> Vector2<f64> {
-        let (s, c) = q[2].sin_cos();
-        Vector2::new(v[0] * c + v[1] * s, v[2])
+    const ROWS: [&'static str; 3] = ["forward", "turn", "no_side_slip"];
+    fn velocity_rows(&self, q: &Vector3<f64>, _: f64) -> (Matrix3<f64>, Vector3<f64>) {
+        (knife_edge_rows(q), Vector3::zeros())
     }
-    fn velocities(&self, q: &Vector3<f64>, u: &Vector2<f64>, _: f64) -> Vector3<f64> {
-        let (s, c) = q[2].sin_cos();
-        Vector3::new(u[0] * c, u[0] * s, u[1])
-    }
-    /// M* = diag(m, j); F* = −Wᵀ M κ = 0 with κ = Ẇ u.
-    fn reduced_system(
-        &self,
-        q: &Vector3<f64>,
-        u: &Vector2<f64>,
-        _: f64,
-    ) -> (Matrix2<f64>, Vector2<f64>, Matrix3x2<f64>, Vector3<f64>) {
-        let (s, c) = q[2].sin_cos();
-        let w = Matrix3x2::new(c, 0.0, s, 0.0, 0.0, 1.0);
-        let kappa = Vector3::new(-s * u[1] * u[0], c * u[1] * u[0], 0.0);
-        let m = Matrix3::from_diagonal(&Vector3::new(self.m, self.m, self.j));
-        let mstar = w.transpose() * m * w;
-        let fstar = -(w.transpose() * (m * kappa));
-        (mstar, fstar, w, kappa)
+    fn row_rates(&self, q: &Vector3<f64>, v: &Vector3<f64>, _: f64) -> Vector3<f64> {
+        knife_edge_rates(q, v)
     }
 }
 

@@ -14,8 +14,8 @@ use lagrange_runtime::linear::{
     EigenSweep, Linear, LinearError, Linearizer, OperatingPoint, Verdict, lqr, sweep,
 };
 use lagrange_runtime::{
-    ConstrainedDynamics, Dynamics, Error, Reduced, ReducedDynamics, linearize,
-    linearize_constrained, linearize_reduced,
+    ConstrainedDynamics, Dynamics, Error, ReducedDynamics, linearize, linearize_constrained,
+    linearize_reduced,
 };
 use nalgebra::{Complex, DMatrix, DVector, SVector, Vector1, Vector2, Vector3};
 use systems::{DoublePendulum, Forced, Rod, Sled};
@@ -348,7 +348,8 @@ fn sled_reduced_form_matches_finite_differences() {
             rng.uniform(-3.0, 3.0),
         );
         let speeds = Vector2::new(rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0));
-        let v = sys.velocities(&q, &speeds, 0.0);
+        let reduced = ReducedDynamics::<_, f64, 2>::new(&sys);
+        let v = reduced.velocities(0.0, &q, &speeds).unwrap();
         let u = Vector3::new(
             rng.uniform(-1.0, 1.0),
             rng.uniform(-1.0, 1.0),
@@ -358,7 +359,7 @@ fn sled_reduced_form_matches_finite_differences() {
         assert_eq!(lin.states(), ["x", "y", "theta", "sigma", "omega"]);
         let rhs = |x: &DVector<f64>, u: Vector3<f64>| {
             let q = sv::<3>(x, 0);
-            let v = sys.velocities(&q, &sv::<2>(x, 3), 0.0);
+            let v = reduced.velocities(0.0, &q, &sv::<2>(x, 3)).unwrap();
             let forced = Forced { sys: &sys, u };
             let (du, _) = ReducedDynamics::new(&forced).solve(0.0, &q, &v).unwrap();
             DVector::from_vec(vec![v[0], v[1], v[2], du[0], du[1]])
@@ -665,7 +666,7 @@ fn missing_derivatives_ask_for_emit_jacobians() {
     assert!(matches!(
         e,
         Error::MissingDerivatives {
-            method: "Reduced::reduced_derivatives",
+            method: "Lagrangian::rhs_jacobians",
             ..
         }
     ));

@@ -102,6 +102,30 @@ fn reduced_accelerations_satisfy_the_multiplier_equations() {
     }
 }
 
+/// The runtime's pivoted solve of the rows [U; G] against the reduced form by
+/// hand, at every heading: θ = 0, π/2, π are where a symbolic solve for ẋ or ẏ
+/// divides by cos θ or sin θ.
+#[test]
+fn pivoted_reduction_equals_the_closed_form_at_every_heading() {
+    let sys = Sleigh::standard();
+    let d = ReducedDynamics::<_, f64, 2>::new(&sys);
+    let u = Vector2::new(1.3, -0.4);
+    let mut worst: f64 = 0.0;
+    for k in 0..=16 {
+        let theta = k as f64 * std::f64::consts::PI / 8.0;
+        let q = Vector3::new(0.2, -0.1, theta);
+        let form = d.form(0.0, &q, &u).unwrap();
+        let (m, f, w, kappa) = sys.closed_form(&q, &u);
+        worst = worst
+            .max((form.mass - m).amax())
+            .max((form.force - f).amax())
+            .max((form.w - w).amax())
+            .max((form.kappa - kappa).amax())
+            .max((form.velocities - w * u).amax());
+    }
+    assert!(worst < 1e-14, "{worst}");
+}
+
 #[test]
 fn reduced_run_projects_the_initial_velocity_and_stays_admissible() {
     let sys = Sleigh::standard();

@@ -22,7 +22,7 @@ pub struct Point {
     pub v: Vec<f64>,
     pub t: f64,
     pub params: Vec<f64>,
-    /// Values of the reduced form's speed symbols, if any.
+    /// Values for the reduced form's speeds, if any.
     pub u: Vec<f64>,
 }
 
@@ -32,16 +32,7 @@ pub fn env<'a>(model: &'a Model, p: &'a Point) -> impl Fn(Symbol) -> f64 + 'a {
         SymbolKind::Velocity(i) => p.v[i],
         SymbolKind::Time => p.t,
         SymbolKind::Parameter(i) => p.params[i],
-        SymbolKind::Free => model
-            .reduced
-            .as_ref()
-            .and_then(|r| {
-                r.speed_symbols
-                    .iter()
-                    .position(|&u| model.ctx.as_symbol(u) == Some(s))
-            })
-            .map_or(f64::NAN, |k| p.u[k]),
-        SymbolKind::Acceleration(_) | SymbolKind::Input(_) => f64::NAN,
+        SymbolKind::Free | SymbolKind::Acceleration(_) | SymbolKind::Input(_) => f64::NAN,
     }
 }
 

@@ -233,7 +233,7 @@ where
         let (q0, v0) = (q0.into(), v0.into());
         check_problem(span.start, span.end, &q0, &v0)?;
         let dynamics = sim.reduced_dynamics::<T, K>();
-        let v0 = dynamics.initial_velocities(span.start, &q0, &v0)?;
+        let v0 = dynamics.consistent_velocities(span.start, &q0, &v0)?;
         self.drive(|f| dynamics.with_forcing(f), span, q0, v0)
     }
 

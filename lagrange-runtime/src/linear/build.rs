@@ -6,6 +6,7 @@ use crate::constraint::DEFAULT_CONSISTENCY_TOLERANCE;
 use crate::dynamics::DEFAULT_SINGULAR_TOLERANCE;
 use crate::error::{Error, to_vec};
 use crate::real::Real;
+use crate::reduced::{ReducedDynamics, ReducedForm};
 use crate::system::{Constrained, Driven, Reduced};
 use nalgebra::{DMatrix, DVector, SVector};
 
@@ -368,16 +369,20 @@ impl Linearizer {
     ///        + [∂F*/∂u + Wᵀ ∂ΔQ/∂q̇ W] δu + Wᵀ ∂Q/∂u δu_in
     /// ```
     ///
-    /// with the inputs' forces e = ΔQ(u0) included in F* (the system's
-    /// [`reduced_derivatives`](crate::Reduced::reduced_derivatives) at u̇0 and e).
+    /// with the inputs' forces e = ΔQ(u0) included in F*, at the speed rates u̇0
+    /// of the operating point (the derivatives are composed from the system's
+    /// [`rhs_jacobians`](crate::Lagrangian::rhs_jacobians) and
+    /// [`row_derivatives`](crate::Reduced::row_derivatives); see
+    /// `reduced_jacobians` in the source for the chain rule).
     /// States are the coordinates' names then the speeds' names. No second-order
     /// form.
     ///
     /// # Errors
     /// [`LinearError::InconsistentOperatingPoint`] if q̇0 ≠ W u0 + w beyond the
     /// tolerance (u0 = speeds(q0, q̇0)); [`Error::SingularMassMatrix`] (M*);
-    /// [`Error::NonFiniteState`]; [`Error::MissingDerivatives`] without
-    /// `reduced_derivatives`.
+    /// [`Error::NonFiniteState`]; [`Error::ReducedFormBreakdown`] if the
+    /// stacked rows are dependent at q0; [`Error::MissingDerivatives`] without
+    /// `rhs_jacobians` or `row_derivatives` (`emit(jacobians)`).
     pub fn reduced<S, T, const N: usize, const K: usize, const P: usize>(
         &self,
         sys: &S,
@@ -392,7 +397,10 @@ impl Linearizer {
             return Err(Error::non_finite(t, q, v));
         }
         let u = sys.speeds(q, v, t);
-        let d = dv(&(sys.velocities(q, &u, t) - v));
+        let form = ReducedDynamics::new(sys)
+            .with_singular_tolerance(T::lit(self.singular_tolerance))
+            .form(t, q, &u)?;
+        let d = dv(&(form.velocities - v));
         let res = d.amax();
         if !(res <= self.consistency_tolerance) {
             return Err(LinearError::InconsistentOperatingPoint {
@@ -409,21 +417,17 @@ impl Linearizer {
             }
             .into());
         }
-        let (ms, fs, w, _) = sys.reduced_system(q, &u, t);
         let e = sys.input_forces(q, v, uin, t);
-        let (ms, w_d) = (dm(&ms), dm(&w));
-        let f = dv(&fs) + w_d.transpose() * dv(&e);
+        let (ms, w_d) = (dm(&form.mass), dm(&form.w));
+        let f = dv(&form.force) + w_d.transpose() * dv(&e);
         if !(finite(&ms) && finite(&w_d) && f.iter().all(|x| x.is_finite())) {
             return Err(Error::non_finite(t, q, v));
         }
         let chol = cholesky(&ms, self.singular_tolerance).map_err(|ratio| singular(t, q, ratio))?;
         let du0 = chol.solve(&f);
         let du: SVector<T, K> = SVector::from_fn(|i, _| T::lit(du0[i]));
-        let (dq, dfu, wq) = sys
-            .reduced_derivatives(q, &u, &du, &e, t)
-            .ok_or(missing("Reduced::reduced_derivatives"))?;
+        let (dq, dfu, wq) = reduced_jacobians(sys, q, &form, &du, &e, t)?;
         let (bu, dqq, dqv) = sys.input_jacobians(q, v, uin, t);
-        let (dq, dfu, wq) = (dm(&dq), dm(&dfu), dm(&wq));
         let (bu, dqq, dqv) = (dm(&bu), dm(&dqq), dm(&dqv));
         let wt = w_d.transpose();
         let rq = dq + &wt * (dqq + &dqv * &wq);
@@ -933,4 +937,52 @@ where
         lin = lin.speeds(speeds);
     }
     lin.complete_state(sys, q, v, t)
+}
+
+/// ∂(F*(e) − M* u̇)/∂q (K × N), ∂F*/∂u (K × K) and ∂(W u + w)/∂q (N × N) at
+/// fixed u, u̇ and e, by the chain rule through A q̇ + b = (u, 0) and
+/// A q̈ = (u̇, 0) + c (A⁻¹ from the form, V_q = ∂q̇/∂q, a = q̈):
+///
+/// ```text
+/// V_q = −A⁻¹ ∂(A q̇ + b)/∂q
+/// ∂a/∂q = A⁻¹ (∂(c − A a)/∂q + ∂c/∂q̇ V_q)
+/// ∂(Wᵀ z)/∂q = Wᵀ (∂z/∂q − ∂(Aᵀμ)/∂q),   z = Q − h + e − M a,  μ = A⁻ᵀ z
+/// ∂z/∂q = J_q + J_v V_q − M ∂a/∂q
+/// ∂F*/∂u = Wᵀ (J_v − M A⁻¹ ∂c/∂q̇) W
+/// ```
+///
+/// where Wᵀ z = Eᵀ μ (W = A⁻¹ E) is differentiated through Aᵀ μ = z, and J_q,
+/// J_v are the system's `rhs_jacobians` at a.
+#[allow(clippy::type_complexity)]
+fn reduced_jacobians<S, T, const N: usize, const K: usize>(
+    sys: &S,
+    q: &SVector<T, N>,
+    form: &ReducedForm<T, N, K>,
+    du: &SVector<T, K>,
+    e: &SVector<T, N>,
+    t: T,
+) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>), Error>
+where
+    S: Reduced<T, N, K>,
+    T: Real,
+{
+    let v = &form.velocities;
+    let accel = form.w * du + form.kappa;
+    let z = form.rhs + e - form.full_mass * accel;
+    let mu = form.rows_inverse.tr_mul(&z);
+    let (jq, jv) = sys
+        .rhs_jacobians(q, v, &accel, t)
+        .ok_or(missing("Lagrangian::rhs_jacobians"))?;
+    let (tq, sq, cv, rq) = sys
+        .row_derivatives(q, v, &accel, &mu, t)
+        .ok_or(missing("Reduced::row_derivatives"))?;
+    let (inv, w, m) = (dm(&form.rows_inverse), dm(&form.w), dm(&form.full_mass));
+    let (jq, jv, tq, sq, cv, rq) = (dm(&jq), dm(&jv), dm(&tq), dm(&sq), dm(&cv), dm(&rq));
+    let vq = -&inv * rq;
+    let aq = &inv * (sq + &cv * &vq);
+    let zq = jq + &jv * &vq - &m * aq;
+    let wt = w.transpose();
+    let dres = &wt * (zq - tq);
+    let dforce = &wt * (jv - &m * &inv * cv) * &w;
+    Ok((dres, dforce, vq))
 }

@@ -257,20 +257,39 @@ impl Constrained<f64, 3, 1> for Sleigh {
 
 impl Reduced<f64, 3, 2> for Sleigh {
     const SPEEDS: [&'static str; 2] = ["sigma", "omega"];
+    const ROWS: [&'static str; 3] = ["sigma", "omega", "no_side_slip"];
 
-    fn speeds(&self, q: &Vector3<f64>, v: &Vector3<f64>, _t: f64) -> Vector2<f64> {
-        let (s, c) = q[2].sin_cos();
-        Vector2::new(c * v[0] + s * v[1], v[2])
+    fn velocity_rows(&self, q: &Vector3<f64>, _t: f64) -> (Matrix3<f64>, Vector3<f64>) {
+        (knife_edge_rows(q), Vector3::zeros())
     }
-    fn velocities(&self, q: &Vector3<f64>, u: &Vector2<f64>, _t: f64) -> Vector3<f64> {
-        let (s, c) = q[2].sin_cos();
-        Vector3::new(c * u[0], s * u[0], u[1])
+    fn row_rates(&self, q: &Vector3<f64>, v: &Vector3<f64>, _t: f64) -> Vector3<f64> {
+        knife_edge_rates(q, v)
     }
-    fn reduced_system(
+}
+
+/// The stacked rows of a knife edge at (x, y) heading θ = q[2], on the speeds
+/// (forward = cos θ ẋ + sin θ ẏ, turn = θ̇), then the no-side-slip row.
+pub fn knife_edge_rows(q: &Vector3<f64>) -> Matrix3<f64> {
+    let (s, c) = q[2].sin_cos();
+    Matrix3::new(c, s, 0.0, 0.0, 0.0, 1.0, -s, c, 0.0)
+}
+
+/// Their rates c = −Ȧ q̇, with Ȧ = θ̇ ∂A/∂θ.
+pub fn knife_edge_rates(q: &Vector3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+    let (s, c) = q[2].sin_cos();
+    Vector3::new(
+        v[2] * (s * v[0] - c * v[1]),
+        0.0,
+        v[2] * (c * v[0] + s * v[1]),
+    )
+}
+
+impl Sleigh {
+    /// The reduced form on (σ, ω) in closed form, by hand: M*, F*, W, κ.
+    pub fn closed_form(
         &self,
         q: &Vector3<f64>,
         u: &Vector2<f64>,
-        _t: f64,
     ) -> (Matrix2<f64>, Vector2<f64>, Matrix3x2<f64>, Vector3<f64>) {
         let (s, c) = q[2].sin_cos();
         let (m, a, gs) = (self.m, self.a, self.gs);

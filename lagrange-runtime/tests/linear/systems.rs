@@ -2,10 +2,10 @@
 //! `emit(jacobians)` generates), and a wrapper that adds the inputs' forces so
 //! the existing nonlinear solvers give the driven forward dynamics.
 
+use crate::common::constrained::{knife_edge_rates, knife_edge_rows};
 use lagrange_runtime::{Constrained, Driven, Lagrangian, Reduced};
 use nalgebra::{
-    Matrix1x2, Matrix1x3, Matrix2, Matrix2x3, Matrix3, Matrix3x2, SMatrix, SVector, Vector1,
-    Vector2, Vector3,
+    Matrix1x2, Matrix1x3, Matrix2, Matrix2x3, Matrix3, SMatrix, SVector, Vector1, Vector2, Vector3,
 };
 
 /// A double pendulum in absolute angles θ1, θ2 from the downward vertical, with
@@ -432,58 +432,57 @@ impl Constrained<f64, 3, 1> for Sled {
 
 impl Reduced<f64, 3, 2> for Sled {
     const SPEEDS: [&'static str; 2] = ["sigma", "omega"];
+    const ROWS: [&'static str; 3] = ["sigma", "omega", "no_side_slip"];
 
-    fn speeds(&self, q: &Vector3<f64>, v: &Vector3<f64>, _t: f64) -> Vector2<f64> {
-        let (s, c) = q[2].sin_cos();
-        Vector2::new(c * v[0] + s * v[1], v[2])
+    fn velocity_rows(&self, q: &Vector3<f64>, _t: f64) -> (Matrix3<f64>, Vector3<f64>) {
+        (knife_edge_rows(q), Vector3::zeros())
     }
-    fn velocities(&self, q: &Vector3<f64>, u: &Vector2<f64>, _t: f64) -> Vector3<f64> {
-        let (s, c) = q[2].sin_cos();
-        Vector3::new(c * u[0], s * u[0], u[1])
+    fn row_rates(&self, q: &Vector3<f64>, v: &Vector3<f64>, _t: f64) -> Vector3<f64> {
+        knife_edge_rates(q, v)
     }
-    fn reduced_system(
+    fn row_derivatives(
         &self,
         q: &Vector3<f64>,
-        u: &Vector2<f64>,
+        v: &Vector3<f64>,
+        acc: &Vector3<f64>,
+        nu: &Vector3<f64>,
         _t: f64,
-    ) -> (Matrix2<f64>, Vector2<f64>, Matrix3x2<f64>, Vector3<f64>) {
+    ) -> Option<(Matrix3<f64>, Matrix3<f64>, Matrix3<f64>, Matrix3<f64>)> {
         let (s, c) = q[2].sin_cos();
-        let (m, a, gs) = (self.m, self.a, self.gs);
-        let (sigma, omega) = (u[0], u[1]);
-        (
-            Matrix2::new(m, 0.0, 0.0, self.ic + m * a * a),
-            Vector2::new(
-                m * gs * c + m * a * omega * omega,
-                -m * a * (sigma * omega + gs * s),
-            ),
-            Matrix3x2::new(c, 0.0, s, 0.0, 0.0, 1.0),
-            Vector3::new(-s * omega * sigma, c * omega * sigma, 0.0),
-        )
-    }
-    fn reduced_derivatives(
-        &self,
-        q: &Vector3<f64>,
-        u: &Vector2<f64>,
-        _du: &Vector2<f64>,
-        e: &Vector3<f64>,
-        _t: f64,
-    ) -> Option<(Matrix2x3<f64>, Matrix2<f64>, Matrix3<f64>)> {
-        let (s, c) = q[2].sin_cos();
-        let (m, a, gs) = (self.m, self.a, self.gs);
-        let (sigma, omega) = (u[0], u[1]);
-        let dq = Matrix2x3::new(
+        let w = v[2];
+        // Only θ moves A and c; each q-derivative is its θ column.
+        let column = |x: Vector3<f64>| {
+            let mut m = Matrix3::zeros();
+            m.set_column(2, &x);
+            m
+        };
+        let danu = column(Vector3::new(
+            -s * nu[0] - c * nu[2],
+            c * nu[0] - s * nu[2],
+            0.0,
+        ));
+        let dres = column(Vector3::new(
+            w * (c * v[0] + s * v[1]) + s * acc[0] - c * acc[1],
+            0.0,
+            w * (-s * v[0] + c * v[1]) + c * acc[0] + s * acc[1],
+        ));
+        let drate = Matrix3::new(
+            w * s,
+            -w * c,
+            s * v[0] - c * v[1],
             0.0,
             0.0,
-            -m * gs * s - s * e[0] + c * e[1],
             0.0,
-            0.0,
-            -m * a * gs * c,
+            w * c,
+            w * s,
+            c * v[0] + s * v[1],
         );
-        let du = Matrix2::new(0.0, 2.0 * m * a * omega, -m * a * omega, -m * a * sigma);
-        let mut wq = Matrix3::zeros();
-        wq[(0, 2)] = -s * sigma;
-        wq[(1, 2)] = c * sigma;
-        Some((dq, du, wq))
+        let dvel = column(Vector3::new(
+            -s * v[0] + c * v[1],
+            0.0,
+            -c * v[0] - s * v[1],
+        ));
+        Some((danu, dres, drate, dvel))
     }
 }
 
@@ -611,27 +610,12 @@ where
     S: Reduced<f64, N, K> + Driven<f64, N, P>,
 {
     const SPEEDS: [&'static str; K] = S::SPEEDS;
+    const ROWS: [&'static str; N] = S::ROWS;
 
-    fn speeds(&self, q: &SVector<f64, N>, v: &SVector<f64, N>, t: f64) -> SVector<f64, K> {
-        self.sys.speeds(q, v, t)
+    fn velocity_rows(&self, q: &SVector<f64, N>, t: f64) -> (SMatrix<f64, N, N>, SVector<f64, N>) {
+        self.sys.velocity_rows(q, t)
     }
-    fn velocities(&self, q: &SVector<f64, N>, u: &SVector<f64, K>, t: f64) -> SVector<f64, N> {
-        self.sys.velocities(q, u, t)
-    }
-    fn reduced_system(
-        &self,
-        q: &SVector<f64, N>,
-        u: &SVector<f64, K>,
-        t: f64,
-    ) -> (
-        SMatrix<f64, K, K>,
-        SVector<f64, K>,
-        SMatrix<f64, N, K>,
-        SVector<f64, N>,
-    ) {
-        let (m, f, w, kappa) = self.sys.reduced_system(q, u, t);
-        let v = self.sys.velocities(q, u, t);
-        let e = self.sys.input_forces(q, &v, &self.u, t);
-        (m, f + w.transpose() * e, w, kappa)
+    fn row_rates(&self, q: &SVector<f64, N>, v: &SVector<f64, N>, t: f64) -> SVector<f64, N> {
+        self.sys.row_rates(q, v, t)
     }
 }
