@@ -107,7 +107,9 @@ impl<T: Real, const N: usize> Elimination<T, N> {
             if step == 0 {
                 first = size;
             }
-            if !(size > tolerance * first) {
+            // A NaN size fails too: it is not above the threshold.
+            let above = size > tolerance * first;
+            if !above {
                 return Err(dependency(
                     &self.ops,
                     &self.column_of,
