@@ -68,6 +68,9 @@ use lagrange::nalgebra::SVector;
         front_x = dot(front_hub.x) + front_wheel.omega_y * d_z - front_wheel.omega_z * d_y,
         front_y = dot(front_hub.y) + front_wheel.omega_z * d_x - front_wheel.omega_x * d_z
     ),
+    // Both forms: the reduced one on the roll, rear wheel and steer rates.
+    speeds(roll = dot(phi), rear = dot(theta_r), steer = dot(delta)),
+    formulation(multipliers, reduced),
     // Symbolic derivatives of the constrained dynamics, for the linearisation
     // about upright straight rolling.
     emit(jacobians),
