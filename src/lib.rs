@@ -49,7 +49,7 @@
 //! | `nonholonomic(name = e, ...)` | constraints e = a(q, t)·q̇ + b(q, t) = 0; must be linear in the velocities |
 //! | `speeds(u = expr, ...)` | independent speeds / quasi-velocities u = U(q, t) q̇ + u₀ for the reduced form |
 //! | `formulation(multipliers, reduced)` | which constrained equations to emit (default: multipliers, or reduced when `speeds` are given; `reduced` alone picks independent velocities itself) |
-//! | `emit(reactions, coriolis, jacobians, hamiltonian)` | optional outputs: `reactions(q, v, t, ν)` per point; `coriolis_matrix(q, v, t)`; [`Lagrangian::rhs_jacobians`] (used by [`Radau5`] instead of finite differences) and, for the constrained forms, [`Constrained::constraint_derivatives`] and [`Reduced::reduced_derivatives`] (linearisation); [`Lagrangian::momentum`] and [`Lagrangian::kinetic_gradient`] (Hamilton's form, needed by the symplectic [`Gauss`] method) |
+//! | `emit(reactions, coriolis, jacobians, hamiltonian)` | optional outputs: `reactions(q, v, t, ν)` per point; `coriolis_matrix(q, v, t)`; [`Lagrangian::rhs_jacobians`] (used by [`Radau5`] instead of finite differences) and, for the constrained forms, [`Constrained::constraint_derivatives`] and [`Reduced::row_derivatives`] (linearisation); [`Lagrangian::momentum`] and [`Lagrangian::kinetic_gradient`] (Hamilton's form, needed by the symplectic [`Gauss`] method) |
 //!
 //! Rotations are products of `rot_x(a)`, `rot_y(a)`, `rot_z(a)`,
 //! `euler_zxz(ψ, θ, φ)` (= rot_z(ψ)·rot_x(θ)·rot_z(φ), Suslov's precession, nutation,

@@ -40,11 +40,18 @@ enum Item {
 impl Parse for Item {
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let key: Ident = input.parse()?;
+        expect_list(input, &key)?;
         match key.to_string().as_str() {
             "coordinates" => {
                 let content;
                 syn::parenthesized!(content in input);
                 let names = Punctuated::<Ident, Token![,]>::parse_terminated(&content)?;
+                if names.is_empty() {
+                    return Err(syn::Error::new(
+                        key.span(),
+                        "`coordinates()` lists no coordinate: name them, `coordinates(q1, q2, ...)`",
+                    ));
+                }
                 Ok(Item::Coordinates(names.into_iter().collect()))
             }
             "inputs" => parse_names(input).map(Item::Inputs),
@@ -159,10 +166,78 @@ impl Parse for Item {
             }
             other => Err(syn::Error::new(
                 key.span(),
-                format!("unknown key `{other}` in #[lagrange(...)]; expected one of: {KEYS}"),
+                match closest(other, KEYS.split(", ")) {
+                    Some(k) => format!(
+                        "unknown key `{other}` in #[lagrange(...)]; did you mean `{k}`? (keys: {KEYS})"
+                    ),
+                    None => {
+                        format!(
+                            "unknown key `{other}` in #[lagrange(...)]; expected one of: {KEYS}"
+                        )
+                    }
+                },
             )),
         }
     }
+}
+
+/// The candidate within two edits of `word` (a typo), if one is.
+fn closest<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+    candidates
+        .map(|c| (edit_distance(word, c), c))
+        .filter(|&(d, _)| d <= 2)
+        .min_by_key(|&(d, _)| d)
+        .map(|(_, c)| c)
+}
+
+/// Levenshtein distance, by the two-row dynamic programme.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut row = vec![i + 1];
+        for (j, &cb) in b.iter().enumerate() {
+            let substitute = prev[j] + usize::from(ca != cb);
+            row.push(substitute.min(prev[j + 1] + 1).min(row[j] + 1));
+        }
+        prev = row;
+    }
+    prev[b.len()]
+}
+
+/// The form each list key takes, for the error when it is written `key = ...`.
+const LISTS: [(&str, &str); 12] = [
+    ("coordinates", "coordinates(q1, q2, ...)"),
+    ("inputs", "inputs(u1, u2, ...)"),
+    ("define", "define(name = expr, ...)"),
+    ("point", "point(name, mass = m, at = [x, y, z])"),
+    (
+        "body",
+        "body(name, mass = m, inertia = [..], at = [..], rotation = ..)",
+    ),
+    ("holonomic", "holonomic(name = f(q, t), ...)"),
+    ("nonholonomic", "nonholonomic(name = a(q, t)·q̇ + b, ...)"),
+    ("speeds", "speeds(name = expr, ...)"),
+    ("formulation", "formulation(multipliers, reduced)"),
+    ("emit", "emit(reactions, coriolis, jacobians, hamiltonian)"),
+    ("force", "force(point, [fx, fy, fz])"),
+    ("generalized_force", "generalized_force(q = expr, ...)"),
+];
+
+/// A list key written as an assignment (`coordinates = [x, y]`) is one error
+/// at the `=` that shows the list form.
+fn expect_list(input: ParseStream, key: &Ident) -> syn::Result<()> {
+    let Some((_, form)) = LISTS.iter().find(|(k, _)| key == k) else {
+        return Ok(());
+    };
+    if input.peek(Token![=]) {
+        let eq: Token![=] = input.parse()?;
+        return Err(syn::Error::new(
+            eq.span,
+            format!("`{key}` takes its entries in parentheses, not `=`: write `{form}`"),
+        ));
+    }
+    Ok(())
 }
 
 /// `name = expr`

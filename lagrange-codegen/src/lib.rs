@@ -96,6 +96,12 @@ pub fn model(input: &DeriveInput) -> Result<Model, syn::Error> {
 }
 
 fn build(cx: &Ctxt, system: &ast::System) -> Option<Model> {
+    // An item that did not parse may have declared names (a misspelt
+    // `coordinates`, a malformed `define`): checking the rest would report
+    // every use of those names as well, so parse errors are reported alone.
+    if cx.has_errors() {
+        return None;
+    }
     check::check(cx, system);
     let lowered = scene::lower(cx, system);
     if cx.has_errors() {

@@ -102,6 +102,9 @@ enum Binding {
     Input(Sym),
     /// A point or a body: index into `Lowerer::frames`.
     Frame(usize),
+    /// A definition whose expression failed (its error is reported already):
+    /// its uses report nothing more.
+    Failed,
     Definition {
         value: Sym,
         has_velocity: bool,
@@ -231,6 +234,8 @@ impl<'a> Lowerer<'a> {
                     input,
                 },
             );
+        } else {
+            self.scope.insert(name.to_string(), Binding::Failed);
         }
     }
 
@@ -361,6 +366,7 @@ impl<'a> Lowerer<'a> {
                 );
                 None
             }
+            Some(Binding::Failed) => None,
             None => {
                 let msg = format!(
                     "unknown symbol `{key}`: not a coordinate, a parameter field, a definition, or `t`"
