@@ -14,7 +14,7 @@
 use crate::func::abs;
 use crate::real::Real;
 use core::ops::Range;
-use nalgebra::SMatrix;
+use nalgebra::{SMatrix, SVector};
 
 /// The rows of a matrix found linearly dependent.
 #[derive(Clone, Debug, PartialEq)]
@@ -46,21 +46,70 @@ pub(crate) fn invert<T: Real, const N: usize>(
     Ok(inverse)
 }
 
-/// The columns left without a pivot when the rows `rows` of `a` are
-/// eliminated with complete pivoting: a set of columns whose unknowns those
-/// rows leave free (`true`), or the dependent rows among them.
-pub(crate) fn free_columns<T: Real, const N: usize>(
-    a: &SMatrix<T, N, N>,
+/// Rows `rows` of a matrix eliminated with complete pivoting, as
+/// constraints G x = r on N unknowns: each row fixes one pivot unknown in
+/// terms of the unknowns left free (coordinate partitioning).
+pub(crate) struct Partition<T: Real, const N: usize> {
+    elimination: Elimination<T, N>,
     rows: Range<usize>,
-    tolerance: T,
-) -> Result<[bool; N], Dependent> {
-    let mut e = Elimination::new(a, rows.clone())?;
-    e.run(rows.clone(), tolerance)?;
-    let mut free = [true; N];
-    for i in rows {
-        free[e.column_of[i]] = false;
+}
+
+impl<T: Real, const N: usize> Partition<T, N> {
+    /// Eliminates rows `rows` of `a`, or names the dependent ones among them.
+    pub(crate) fn new(
+        a: &SMatrix<T, N, N>,
+        rows: Range<usize>,
+        tolerance: T,
+    ) -> Result<Self, Dependent> {
+        let mut elimination = Elimination::new(a, rows.clone())?;
+        elimination.run(rows.clone(), tolerance)?;
+        Ok(Self { elimination, rows })
     }
-    Ok(free)
+
+    /// Whether each unknown is left free by the rows.
+    pub(crate) fn free(&self) -> [bool; N] {
+        let mut free = [true; N];
+        for i in self.rows.clone() {
+            free[self.elimination.column_of[i]] = false;
+        }
+        free
+    }
+
+    /// Overwrites the pivot unknowns of x so that the rows hold with the
+    /// right-hand sides r (indexed by row; only the eliminated rows are read),
+    /// keeping the free unknowns of x.
+    pub(crate) fn complete(&self, x: &mut SVector<T, N>, r: &SVector<T, N>) {
+        let e = &self.elimination;
+        for i in self.rows.clone() {
+            // Row i of the eliminated system: x_p + Σ_free m[i][j] x_j = (ops D r)_i.
+            let mut value = T::zero();
+            for k in self.rows.clone() {
+                value += e.ops[(i, k)] * e.scale[k] * r[k];
+            }
+            // The other pivot columns of row i are exactly zero after
+            // Gauss–Jordan (each was cleared by subtracting itself times 1).
+            let p = e.column_of[i];
+            for j in (0..N).filter(|&j| j != p) {
+                value -= e.m[(i, j)] * x[j];
+            }
+            x[p] = value;
+        }
+    }
+
+    /// A basis of the null space of the rows: column c is the c-th free unknown
+    /// set to 1, the others to 0, and the pivot unknowns completed.
+    pub(crate) fn basis<const K: usize>(&self) -> SMatrix<T, N, K> {
+        let e = &self.elimination;
+        let mut w = SMatrix::<T, N, K>::zeros();
+        let free = self.free();
+        for (c, j) in (0..N).filter(|&j| free[j]).take(K).enumerate() {
+            w[(j, c)] = T::one();
+            for i in self.rows.clone() {
+                w[(e.column_of[i], c)] = -e.m[(i, j)];
+            }
+        }
+        w
+    }
 }
 
 /// Gauss–Jordan elimination in progress on the row-scaled matrix D A.
@@ -232,13 +281,38 @@ mod tests {
     }
 
     #[test]
-    fn free_columns_of_a_knife_edge_row() {
+    fn partition_of_a_knife_edge_row() {
         // Rows 0, 1 are speeds (ignored); row 2 is the constraint −ẋ + 0 ẏ
         // heading north: ẋ is fixed by it, ẏ and θ̇ are free.
         let a = Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0, 6e-17, 0.0);
-        assert_eq!(free_columns(&a, 2..3, 1e-12).unwrap(), [false, true, true]);
+        let p = Partition::new(&a, 2..3, 1e-12).unwrap();
+        assert_eq!(p.free(), [false, true, true]);
         let z = Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
-        assert_eq!(free_columns(&z, 2..3, 1e-12).unwrap_err().rows, vec![2]);
+        assert_eq!(Partition::new(&z, 2..3, 1e-12).err().unwrap().rows, vec![2]);
+    }
+
+    #[test]
+    fn partition_completes_and_spans_the_null_space() {
+        // Two constraint rows (1, 2) on four unknowns, row 0 ignored.
+        let a = nalgebra::Matrix4::new(
+            9.0, 9.0, 9.0, 9.0, //
+            1.0, 2.0, 0.5, -1.0, //
+            0.0, 3.0, 1.0, 2.0, //
+            0.0, 0.0, 0.0, 0.0,
+        );
+        let p = Partition::new(&a, 1..3, 1e-12).unwrap();
+        let g = a.fixed_rows::<2>(1);
+        let w: nalgebra::SMatrix<f64, 4, 2> = p.basis();
+        assert!((g * w).amax() < 1e-15);
+        assert!(w.rank(1e-12) == 2);
+        let r = nalgebra::Vector4::new(0.0, 0.7, -1.1, 0.0);
+        let mut x = nalgebra::Vector4::new(0.3, 0.2, -0.4, 0.9);
+        let keep = x;
+        p.complete(&mut x, &r);
+        assert!((g * x - r.fixed_rows::<2>(1)).amax() < 1e-15);
+        for j in (0..4).filter(|&j| p.free()[j]) {
+            assert_eq!(x[j], keep[j]);
+        }
     }
 
     #[test]

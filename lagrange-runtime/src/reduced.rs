@@ -25,7 +25,7 @@ use crate::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
 use crate::error::{Error, to_vec};
 use crate::func::abs;
 use crate::ode::SecondOrder;
-use crate::pivot::{Dependent, free_columns, invert};
+use crate::pivot::{Dependent, Partition, invert};
 use crate::real::Real;
 use crate::system::Reduced;
 use nalgebra::{SMatrix, SVector};
@@ -117,9 +117,8 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     {
         check_state(t, q, v)?;
         let rows = self.rows(t, q)?;
-        let free = self.free_rows(t, q, &rows)?;
-        let inverse = self.invert_rows(t, q, &free.a)?;
-        let (mut form, rates) = self.assemble(t, q, &free, inverse, &free.speeds(v), false)?;
+        let part = self.partition(t, q, &rows)?;
+        let (mut form, rates) = self.partitioned_form(t, q, &rows, &part, v)?;
         if F::ACTIVE {
             form.force += form.w.tr_mul(&self.forcing.force(t, q, v)?);
         }
@@ -158,7 +157,7 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     {
         let rows = self.rows(t, q)?;
         let inverse = self.invert_rows(t, q, &rows.a)?;
-        Ok(self.assemble(t, q, &rows, inverse, u, true)?.0)
+        self.assemble(t, q, &rows, inverse, u)
     }
 
     /// q̇ = W u + w at (t, q): the velocities with the speeds u that satisfy
@@ -215,13 +214,14 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     {
         check_state(t, q, v)?;
         let rows = self.rows(t, q)?;
-        let rows = if keep_speeds {
-            rows
-        } else {
-            self.free_rows(t, q, &rows)?
-        };
-        let inverse = self.invert_rows(t, q, &rows.a)?;
-        Ok(rows.velocities(&inverse, &rows.speeds(v)))
+        if keep_speeds {
+            let inverse = self.invert_rows(t, q, &rows.a)?;
+            return Ok(rows.velocities(&inverse, &rows.speeds(v)));
+        }
+        let part = self.partition(t, q, &rows)?;
+        let mut w = *v;
+        part.complete(&mut w, &-rows.b);
+        Ok(w)
     }
 
     /// The stacked rows at (t, q), checked finite.
@@ -249,33 +249,57 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         invert(a, self.singular_tolerance).map_err(|d| self.breakdown(t, q, d))
     }
 
-    /// The rows with the speeds replaced by the K velocities the constraints
-    /// leave free at q (unit rows, zero rates): regular whenever the
-    /// constraint rows are independent.
-    fn free_rows<const N: usize>(
+    /// The constraint rows eliminated with complete pivoting: which K
+    /// velocities they leave free at q, and the others in terms of those.
+    fn partition<const N: usize>(
         &self,
         t: T,
         q: &SVector<T, N>,
         rows: &Rows<T, N, K>,
-    ) -> Result<Rows<T, N, K>, Error>
+    ) -> Result<Partition<T, N>, Error>
     where
         S: Reduced<T, N, K>,
     {
-        let free = free_columns(&rows.a, K..N, self.singular_tolerance)
-            .map_err(|d| self.breakdown(t, q, d))?;
-        let mut a = rows.a;
-        let mut b = rows.b;
-        for (r, j) in (0..N).filter(|&j| free[j]).enumerate() {
-            a.row_mut(r).fill(T::zero());
-            a[(r, j)] = T::one();
-            b[r] = T::zero();
-        }
-        Ok(Rows { a, b })
+        Partition::new(&rows.a, K..N, self.singular_tolerance).map_err(|d| self.breakdown(t, q, d))
     }
 
-    /// W, κ, q̇, M* and F* from the inverted rows at the speeds u, and the
-    /// system's rates c at q̇. `speed_rates` is false for unit speed rows, whose
-    /// own rates are zero.
+    /// The reduced form on the free velocities of the partition: q̇ keeps the
+    /// free velocities of v, W spans the constraints' null space with a unit
+    /// entry per free velocity, κ solves G κ = γ with its free entries zero.
+    /// Also returns the system's rates c (all rows) at q̇.
+    fn partitioned_form<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        rows: &Rows<T, N, K>,
+        part: &Partition<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<(Partitioned<T, N, K>, SVector<T, N>), Error>
+    where
+        S: Reduced<T, N, K>,
+    {
+        let mut velocities = *v;
+        part.complete(&mut velocities, &-rows.b);
+        let (mass, rhs) = self.system.mass_matrix_and_rhs(q, &velocities, t);
+        let rates = self.system.row_rates(q, &velocities, t);
+        if !(all_finite(mass.as_slice()) && all_finite(rhs.as_slice()) && all_finite(rates.as_slice()))
+        {
+            return Err(Error::non_finite(t, q, &velocities));
+        }
+        let w: SMatrix<T, N, K> = part.basis();
+        let mut kappa = SVector::<T, N>::zeros();
+        part.complete(&mut kappa, &rates);
+        let mw = mass * w;
+        let form = Partitioned {
+            force: w.tr_mul(&(rhs - mass * kappa)),
+            mass: w.tr_mul(&mw),
+            w,
+            kappa,
+        };
+        Ok((form, rates))
+    }
+
+    /// W, κ, q̇, M* and F* from the inverted rows at the speeds u.
     fn assemble<const N: usize>(
         &self,
         t: T,
@@ -283,18 +307,13 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         rows: &Rows<T, N, K>,
         inverse: SMatrix<T, N, N>,
         u: &SVector<T, K>,
-        speed_rates: bool,
-    ) -> Result<(ReducedForm<T, N, K>, SVector<T, N>), Error>
+    ) -> Result<ReducedForm<T, N, K>, Error>
     where
         S: Reduced<T, N, K>,
     {
         let velocities = rows.velocities(&inverse, u);
         let (mass, rhs) = self.system.mass_matrix_and_rhs(q, &velocities, t);
-        let system_rates = self.system.row_rates(q, &velocities, t);
-        let mut rates = system_rates;
-        if !speed_rates {
-            rates.fixed_rows_mut::<K>(0).fill(T::zero());
-        }
+        let rates = self.system.row_rates(q, &velocities, t);
         if !(all_finite(mass.as_slice())
             && all_finite(rhs.as_slice())
             && all_finite(rates.as_slice()))
@@ -304,7 +323,7 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         let w: SMatrix<T, N, K> = inverse.fixed_columns::<K>(0).into_owned();
         let kappa = inverse * rates;
         let mw = mass * w;
-        let form = ReducedForm {
+        Ok(ReducedForm {
             speeds: *u,
             velocities,
             force: w.tr_mul(&(rhs - mass * kappa)),
@@ -314,8 +333,7 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
             rows_inverse: inverse,
             full_mass: mass,
             rhs,
-        };
-        Ok((form, system_rates))
+        })
     }
 
     fn breakdown<const N: usize>(&self, t: T, q: &SVector<T, N>, d: Dependent) -> Error
@@ -343,6 +361,14 @@ fn check_state<T: Real, const N: usize>(
     } else {
         Err(Error::non_finite(t, q, v))
     }
+}
+
+/// The reduced form on the free velocities of a partition (see `solve`).
+struct Partitioned<T: Real, const N: usize, const K: usize> {
+    w: SMatrix<T, N, K>,
+    kappa: SVector<T, N>,
+    mass: SMatrix<T, K, K>,
+    force: SVector<T, K>,
 }
 
 /// Stacked velocity rows A q̇ + b = (u, 0).
