@@ -128,6 +128,29 @@ fn check_body_keys(cx: &Ctxt, system: &System) {
     }
 }
 
+/// A coordinate that no mass or inertia moves with leaves a zero row in M: the
+/// unconstrained and multiplier forms factor M, so that is an error at the
+/// coordinate, not a singular matrix at run time. (The reduced form alone may
+/// still be regular, M* = WᵀMW, when the constraints fix that coordinate's
+/// velocity, so it is left to the run-time check there.)
+pub fn mass_rows(cx: &Ctxt, system: &System, model: &crate::mechanics::Model) {
+    if formulations(system) == [Formulation::Reduced] {
+        return;
+    }
+    for (i, name) in system.coordinates.iter().enumerate() {
+        if model.mass[i].iter().all(|&e| model.ctx.is_zero(e)) {
+            cx.error_at(
+                name.span(),
+                format!(
+                    "no mass or inertia moves with `{name}`: its row of the mass matrix is zero, so \
+                     its acceleration is undetermined; place a point or body whose position or \
+                     rotation depends on `{name}`, or remove it from `coordinates(...)`"
+                ),
+            );
+        }
+    }
+}
+
 fn check_has_coordinates(cx: &Ctxt, system: &System) {
     if system.coordinates.is_empty() {
         cx.error_at(

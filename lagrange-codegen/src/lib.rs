@@ -108,7 +108,10 @@ fn build(cx: &Ctxt, system: &ast::System) -> Option<Model> {
         return None;
     }
     match mechanics::derive(lowered?) {
-        Ok(model) => Some(model),
+        Ok(model) => {
+            check::mass_rows(cx, system, &model);
+            (!cx.has_errors()).then_some(model)
+        }
         Err(msg) => {
             let span = system.speeds.first().map_or(system.span, |u| u.name.span());
             cx.error_at(span, msg);

@@ -76,9 +76,11 @@ fn cartesian_pendulum_terms() {
 #[test]
 fn rheonomic_and_nonholonomic_terms() {
     // A bead on a wire turning at rate w, and a knife edge: both kinds of rows, with t.
+    // (The second point gives th inertia: a coordinate nothing moves with is an error.)
     check_constraint_terms(
         "#[lagrange(coordinates(x, y, th),
            point(p, mass = m, at = [x, y]),
+           point(tip, mass = m, at = [x + cos(th), y + sin(th)]),
            holonomic(wire = y*cos(w*t) - x*sin(w*t) - d),
            nonholonomic(blade = -sin(th)*dot(x) + cos(th)*dot(y) + c*t*dot(th)))]
          struct S { m: f64, w: f64, d: f64, c: f64 }",

@@ -282,7 +282,9 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         part.complete(&mut velocities, &-rows.b);
         let (mass, rhs) = self.system.mass_matrix_and_rhs(q, &velocities, t);
         let rates = self.system.row_rates(q, &velocities, t);
-        if !(all_finite(mass.as_slice()) && all_finite(rhs.as_slice()) && all_finite(rates.as_slice()))
+        if !(all_finite(mass.as_slice())
+            && all_finite(rhs.as_slice())
+            && all_finite(rates.as_slice()))
         {
             return Err(Error::non_finite(t, q, &velocities));
         }
