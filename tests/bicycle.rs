@@ -189,8 +189,8 @@ fn reduced_form_agrees_with_the_multiplier_form() {
     let mut worst: f64 = 0.0;
     for (psi, phi, delta) in [
         (0.0, 0.0, 0.0),
-        (1.5707963267948966, 0.0, 0.0),
-        (3.14159, 0.1, 0.0),
+        (std::f64::consts::FRAC_PI_2, 0.0, 0.0),
+        (std::f64::consts::PI, 0.1, 0.0),
     ] {
         let (mut q, mut v) = b.upright(4.0);
         (q[2], q[3], q[6], v[3], v[6]) = (psi, phi, delta, 0.3, -0.2);
