@@ -43,7 +43,7 @@
 //! | `force(point, [fx, fy(, fz)])` | a Cartesian force at a point; may depend on q, `dot(q)`, t |
 //! | `generalized_force(q = expr)` | a generalized force on one coordinate; several entries on one coordinate are added |
 //! | `dissipation = expr` | Rayleigh dissipation function D(q, q̇), Q −= ∂D/∂q̇ |
-//! | `body(name, mass = m, inertia = [A, B, C], at = [x, y, z], rotation = R, com = [..])` | a rigid body: reference point `at` (the centre of mass unless `com = [bx, by, bz]` places it in body axes), principal moments (or six entries `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`, entries of the inertia tensor about the centre of mass: I_xy = −∫xy dm) in body axes, orientation R(q, t) body → world |
+//! | `body(name, mass = m, inertia = [A, B, C], at = [x, y, z], rotation = R, com = [..], about = [..])` | a rigid body: reference point `at` (the centre of mass unless `com = [bx, by, bz]` places it in body axes), principal moments (or six entries `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`, entries of the inertia tensor: I_xy = −∫xy dm) in body axes about the centre of mass, or about the body point `about = [ax, ay, az]` (relative to `at`; the macro applies the parallel-axis theorem), orientation R(q, t) body → world |
 //! | `point(name, on = body, at = [bx, by, bz])` | a point fixed in a body, in body coordinates; `mass = m` optional |
 //! | `holonomic(name = f, ...)` | constraints f(q, t) = 0, kept with multipliers λ |
 //! | `nonholonomic(name = e, ...)` | constraints e = a(q, t)·q̇ + b(q, t) = 0; must be linear in the velocities |
@@ -55,8 +55,10 @@
 //! `euler_zxz(ψ, θ, φ)` (= rot_z(ψ)·rot_x(θ)·rot_z(φ), Suslov's precession, nutation,
 //! spin), `euler_zyx(yaw, pitch, roll)` and explicit 3×3 matrices `[[..], [..], [..]]`.
 //! In expressions, `P.x`, `P.y`, `P.z` are the world coordinates of a point or a
-//! body's centre, `dot(P.x)` their rates, and `B.omega_x/y/z` (world axes) and
-//! `B.omega_1/2/3` (body axes) a body's angular velocity. Constraints written in
+//! body's centre, `dot(P.x)` their rates, `B.omega_x/y/z` (world axes) and
+//! `B.omega_1/2/3` (body axes) a body's angular velocity, and `B.axis_x.x` …
+//! `B.axis_z.z` the world components of a body's unit axes (R_ij =
+//! `B.axis_<j>.<i>`, for attachments and contacts). Constraints written in
 //! point coordinates give Cartesian reactions R = Σ ν ∂f/∂ξ on those points.
 //!
 //! A constrained system implements [`Constrained`] (multipliers: run it with

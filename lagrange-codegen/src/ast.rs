@@ -45,6 +45,10 @@ pub struct Body {
     /// `com = [bx, by, bz]`: the centre of mass in body coordinates relative to
     /// the reference point `at`; absent, `at` is the centre of mass.
     pub com: Option<Expr>,
+    /// `about = [ax, ay, az]`: the point (body coordinates relative to `at`)
+    /// the inertia tensor is given about; absent, the centre of mass. The
+    /// macro moves it to the centre of mass by the parallel-axis theorem.
+    pub about: Option<Expr>,
     pub rotation: Option<Expr>,
 }
 

@@ -320,7 +320,8 @@ fn parse_point(input: ParseStream) -> syn::Result<Point> {
 
 /// `body(name, mass = m, inertia = [..], at = [..], rotation = R, com = [..])`.
 fn parse_body(input: ParseStream) -> syn::Result<Body> {
-    let (name, mut s) = parse_keyed(input, "body", &["mass", "inertia", "at", "rotation", "com"])?;
+    let keys = ["mass", "inertia", "at", "rotation", "com", "about"];
+    let (name, mut s) = parse_keyed(input, "body", &keys)?;
     Ok(Body {
         name,
         mass: s[0].take(),
@@ -328,6 +329,7 @@ fn parse_body(input: ParseStream) -> syn::Result<Body> {
         at: s[2].take(),
         rotation: s[3].take(),
         com: s[4].take(),
+        about: s[5].take(),
     })
 }
 

@@ -106,6 +106,14 @@ fn check_body_keys(cx: &Ctxt, system: &System) {
                 format!("`com` of body `{}` is the centre of mass in body coordinates relative to `at`: write `com = [bx, by, bz]`", b.name),
             );
         }
+        if let Some(about) = &b.about
+            && !matches!(about, Expr::Array(a) if a.elems.len() == 3)
+        {
+            cx.error_spanned_by(
+                about,
+                format!("`about` of body `{}` is the point its inertia is given about, in body coordinates relative to `at`: write `about = [ax, ay, az]`", b.name),
+            );
+        }
         if let Some(inertia) = &b.inertia {
             let n = match inertia {
                 Expr::Array(a) => Some(a.elems.len()),

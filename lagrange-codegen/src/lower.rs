@@ -122,6 +122,9 @@ pub struct Frame {
     pub position: Vec<Sym>,
     /// World- and body-frame angular velocity, for bodies.
     pub omega: Option<[[Sym; 3]; 2]>,
+    /// The rotation matrix R (body to world), for bodies: column j is the
+    /// body's j-th axis in world components.
+    pub axes: Option<crate::rotation::Mat3>,
 }
 
 /// A Cartesian coordinate (or velocity) of a point that appeared in a constraint,
@@ -380,6 +383,9 @@ impl<'a> Lowerer<'a> {
     /// `self.m` (the parameter `m`), `P.x` (a coordinate of a point or body centre),
     /// `B.omega_x` / `B.omega_1` (world / body components of a body's angular velocity).
     fn field(&mut self, f: &syn::ExprField, mode: Mode) -> Option<Sym> {
+        if let Expr::Field(inner) = &*f.base {
+            return self.axis_component(inner, &f.member, mode);
+        }
         let base = match &*f.base {
             Expr::Path(p) => p.path.get_ident(),
             _ => None,
@@ -417,7 +423,7 @@ impl<'a> Lowerer<'a> {
         let Some((which, c)) = omega else {
             self.cx.error_at(
                 member.span(),
-                format!("`{base}.{m}`: expected a coordinate `x`, `y`, `z`, or for a body `omega_x`/`omega_y`/`omega_z` (world frame) or `omega_1`/`omega_2`/`omega_3` (body frame)"),
+                format!("`{base}.{m}`: expected a coordinate `x`, `y`, `z`, or for a body `omega_x`/`omega_y`/`omega_z` (world frame), `omega_1`/`omega_2`/`omega_3` (body frame) or an axis component `axis_x.x` … `axis_z.z`"),
             );
             return None;
         };
@@ -439,6 +445,59 @@ impl<'a> Lowerer<'a> {
             return None;
         }
         Some(w[which][c])
+    }
+
+    /// `B.axis_x.y`: a world component of one of a body's unit axes, that is
+    /// an entry of its rotation matrix (R_ij = `B.axis_<j>.<i>`).
+    fn axis_component(
+        &mut self,
+        inner: &syn::ExprField,
+        member: &syn::Member,
+        mode: Mode,
+    ) -> Option<Sym> {
+        let usage = "write `<body>.axis_x.x` (… `axis_z.z`): the world components of a body's axes";
+        let base = match &*inner.base {
+            Expr::Path(p) => p.path.get_ident(),
+            _ => None,
+        };
+        let axis = match &inner.member {
+            syn::Member::Named(m) => ["axis_x", "axis_y", "axis_z"].iter().position(|a| m == a),
+            syn::Member::Unnamed(_) => None,
+        };
+        let component = match member {
+            syn::Member::Named(m) => component(&m.to_string()),
+            syn::Member::Unnamed(_) => None,
+        };
+        let (Some(base), Some(axis), Some(c)) = (base, axis, component) else {
+            self.cx
+                .error_spanned_by(inner, format!("unsupported field access: {usage}"));
+            return None;
+        };
+        let Some(frame) = self.frame_of(base) else {
+            self.cx.error_at(
+                base.span(),
+                format!("unknown body `{base}`; declare it with `body({base}, ...)`"),
+            );
+            return None;
+        };
+        let Some(r) = self.frames[frame].axes else {
+            self.cx.error_at(
+                base.span(),
+                format!("`{base}` is a point; only bodies have axes"),
+            );
+            return None;
+        };
+        if mode == Mode::Constant {
+            self.cx.error_spanned_by(
+                inner,
+                format!(
+                    "a body's axes depend on the configuration and cannot appear in {}",
+                    mode.describe()
+                ),
+            );
+            return None;
+        }
+        Some(r[c][axis])
     }
 
     /// A Cartesian coordinate (or, with `velocity`, its rate) of a frame: the

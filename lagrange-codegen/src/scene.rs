@@ -164,11 +164,27 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
         .com
         .as_ref()
         .map(|c| lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(c, Mode::Constant)));
+    let about = b
+        .about
+        .as_ref()
+        .map(|a| lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(a, Mode::Constant)));
     let rotation = lw.without_inputs(NoInputs::ROTATION, |lw| lw.rotation(rotation));
     let (Some(mass), Some(inertia), Some(reference), Some(rotation)) =
         (mass, inertia, reference, rotation)
     else {
         return;
+    };
+    let inertia = match about {
+        None => inertia,
+        Some(Some(point)) if point.len() == 3 => {
+            let zero = lw.ctx.zero();
+            let com = match &com {
+                Some(Some(c)) if c.len() == 3 => c.clone(),
+                _ => vec![zero; 3],
+            };
+            to_centre_of_mass(lw, inertia, mass, &point, &com)
+        }
+        Some(_) => return,
     };
     // `check` has reported a reference point or `com` that is not [x, y, z].
     if reference.len() != 3 {
@@ -187,6 +203,7 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
             name: b.name.to_string(),
             position: reference.clone(),
             omega: Some([rotation.omega_world, rotation.omega_body]),
+            axes: Some(rotation.matrix),
         },
     );
     items
@@ -202,6 +219,36 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
         inertia,
         omega: rotation.omega_body,
     });
+}
+
+/// The parallel-axis theorem: an inertia tensor about the body point `about`
+/// moved to the centre of mass `com` (both in body coordinates),
+/// I_com = I_about − m (|d|² E − d dᵀ) with d = com − about.
+fn to_centre_of_mass(
+    lw: &mut Lowerer,
+    about_point: [[Sym; 3]; 3],
+    mass: Sym,
+    about: &[Sym],
+    com: &[Sym],
+) -> [[Sym; 3]; 3] {
+    let d: Vec<Sym> = (0..3).map(|i| lw.ctx.sub(com[i], about[i])).collect();
+    let squares: Vec<Sym> = d.iter().map(|&x| lw.ctx.mul(x, x)).collect();
+    let norm = lw.ctx.sum(&squares);
+    let mut out = about_point;
+    for i in 0..3 {
+        for j in 0..3 {
+            let outer = lw.ctx.mul(d[i], d[j]);
+            let shift = if i == j {
+                lw.ctx.sub(norm, outer)
+            } else {
+                lw.ctx.neg(outer)
+            };
+            let shift = lw.ctx.mul(mass, shift);
+            let entry = lw.ctx.sub(out[i][j], shift);
+            out[i][j] = lw.ctx.collect(entry);
+        }
+    }
+    out
 }
 
 /// origin + R·local: a point given in body coordinates.
@@ -246,6 +293,7 @@ fn lower_point(lw: &mut Lowerer, p: &crate::ast::Point, items: &mut Items) {
             name: p.name.to_string(),
             position: position.clone(),
             omega: None,
+            axes: None,
         },
     );
     if let Some(Some(mass)) = mass {
