@@ -7,15 +7,31 @@
 
 use std::time::Instant;
 
-use lagrange_codegen::chain::n_link_source;
+use lagrange_codegen::chain::{n_link_source, spatial_chain_source};
 use lagrange_codegen::mechanics::Model;
 use lagrange_symbolic::{Expr, Program};
 
-const CATALOG: [(&str, &str); 2] = [
+const CATALOG: [(&str, &str); 6] = [
     ("mod.rs", include_str!("../../examples/catalog/mod.rs")),
     (
         "constrained.rs",
         include_str!("../../examples/catalog/constrained.rs"),
+    ),
+    (
+        "cavity.rs",
+        include_str!("../../examples/catalog/cavity.rs"),
+    ),
+    (
+        "extremes.rs",
+        include_str!("../../examples/catalog/extremes.rs"),
+    ),
+    (
+        "control.rs",
+        include_str!("../../examples/catalog/control.rs"),
+    ),
+    (
+        "bicycle.rs",
+        include_str!("../../examples/catalog/bicycle.rs"),
     ),
 ];
 
@@ -27,9 +43,9 @@ fn ops(model: &Model, outputs: &[Expr]) -> usize {
 /// operation counts of the programs the impls evaluate per step.
 fn catalog() {
     println!(
-        "\n| system | N | derive + emit (ms) | M, Q − h | + G, γ (multipliers) | + A, b, c (reduced) |"
+        "\n| system | N | derive + emit (ms) | expansion (KiB) | M, Q − h | + G, γ (multipliers) | + A, b, c (reduced) |"
     );
-    println!("|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|");
     for (file, src) in CATALOG {
         let Ok(parsed) = syn::parse_file(src) else {
             println!("| {file}: does not parse |");
@@ -45,8 +61,9 @@ fn catalog() {
             }
             let input: syn::DeriveInput = s.into();
             let start = Instant::now();
-            std::hint::black_box(lagrange_codegen::expand(&input));
+            let tokens = std::hint::black_box(lagrange_codegen::expand(&input));
             let ms = start.elapsed().as_secs_f64() * 1e3;
+            let kib = tokens.to_string().len() as f64 / 1024.0;
             let Ok(model) = lagrange_codegen::model(&input) else {
                 println!("| {} | derivation failed |", input.ident);
                 continue;
@@ -69,7 +86,7 @@ fn catalog() {
                 ops(&model, &all).to_string()
             });
             println!(
-                "| {} | {n} | {ms:.1} | {} | {} | {} |",
+                "| {} | {n} | {ms:.1} | {kib:.0} | {} | {} | {} |",
                 input.ident,
                 ops(&model, &core),
                 multipliers.unwrap_or_else(|| "—".into()),
@@ -105,5 +122,33 @@ fn main() {
             model.bias_route
         );
     }
+    spatial();
     catalog();
+}
+
+/// The spatial chain (issue 10's robot-arm shape): derivation time, operation
+/// count of M and Q − h, and the size of the expansion, by n.
+fn spatial() {
+    println!(
+        "\n| spatial n | derive + emit (ms) | ops (M, Q − h) | expansion (KiB) | EQUATIONS (KiB) |"
+    );
+    println!("|---|---|---|---|---|");
+    let sizes: Vec<usize> = std::env::args()
+        .nth(1)
+        .map(|a| a.split(',').filter_map(|x| x.parse().ok()).collect())
+        .unwrap_or_else(|| vec![2, 4, 6, 8]);
+    for n in sizes {
+        let input: syn::DeriveInput =
+            syn::parse_str(&spatial_chain_source(n)).expect("source parses");
+        let start = Instant::now();
+        let tokens = lagrange_codegen::expand(&input);
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        let kib = tokens.to_string().len() as f64 / 1024.0;
+        let model = lagrange_codegen::model(&input).expect("derivation succeeds");
+        let mut outputs: Vec<Expr> = model.mass.iter().flatten().copied().collect();
+        outputs.extend(&model.rhs);
+        let ops = Program::new(&model.ctx, &outputs).op_count().total();
+        let eq = lagrange_codegen::doc::equations(&model).len() as f64 / 1024.0;
+        println!("| {n} | {ms:.0} | {ops} | {kib:.0} | {eq:.0} |");
+    }
 }

@@ -33,3 +33,41 @@ pub fn n_link_source(n: usize) -> String {
     s += "pub g: f64 }";
     s
 }
+
+/// `#[lagrange(...)] struct SpatialChain { m0.., l0.., r, g }`: n rigid rods,
+/// rod k along its body x axis from its joint (centre of mass at l_k/2,
+/// slender-cylinder moments of radius r), joint k+1 at the tip of rod k, the
+/// rotation of rod k the product rot_z(q1)·rot_y(q2)·… up to its own joint
+/// (axes alternating z, y), gravity along −z: the shape of a robot arm, the
+/// scaling workload of issue 10's comparison with Pinocchio.
+pub fn spatial_chain_source(n: usize) -> String {
+    let coords: Vec<String> = (1..=n).map(|k| format!("q{k}")).collect();
+    let mut s = format!("#[lagrange(coordinates({}), ", coords.join(", "));
+    let mut rotation = String::new();
+    for k in 0..n {
+        let axis = if k % 2 == 0 { "z" } else { "y" };
+        if k > 0 {
+            rotation += " * ";
+        }
+        let _ = write!(rotation, "rot_{axis}(q{})", k + 1);
+        let at = if k == 0 {
+            "[0, 0, 0]".to_string()
+        } else {
+            format!("[j{k}.x, j{k}.y, j{k}.z]")
+        };
+        let _ = write!(
+            s,
+            "body(rod{k}, mass = m{k}, inertia = [m{k} * (r^2) / 2, m{k} * (3 * (r^2) + (l{k}^2)) / 12, \
+             m{k} * (3 * (r^2) + (l{k}^2)) / 12], at = {at}, com = [l{k} / 2, 0, 0], rotation = {rotation}), "
+        );
+        if k + 1 < n {
+            let _ = write!(s, "point(j{}, on = rod{k}, at = [l{k}, 0, 0]), ", k + 1);
+        }
+    }
+    s += "gravity = [0, 0, -g])] pub struct SpatialChain { ";
+    for k in 0..n {
+        let _ = write!(s, "pub m{k}: f64, pub l{k}: f64, ");
+    }
+    s += "pub r: f64, pub g: f64 }";
+    s
+}

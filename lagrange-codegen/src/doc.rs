@@ -1,12 +1,17 @@
-//! The derived equations as text, for rustdoc and the `EQUATIONS` constant.
+//! The derived equations as text, for rustdoc and the `EQUATIONS` constant:
+//! a header that says what the symbols are, then every nonzero entry as one
+//! straight-line listing, each shared intermediate written once as `x<k> = …`
+//! (see `Program::listing`): the text grows with the program, not with the
+//! expression trees.
 
 use std::fmt::Write;
+
+use lagrange_symbolic::{Expr as Sym, Program};
 
 use crate::mechanics::{BiasRoute, Model};
 
 pub fn equations(model: &Model) -> String {
     let ctx = &model.ctx;
-    let n = model.dof();
     let mut s = String::new();
     let args = if model.rheonomic { "q, t" } else { "q" };
     match &model.inputs {
@@ -37,82 +42,150 @@ pub fn equations(model: &Model) -> String {
             "scleronomic: conserved (if forces are conservative): T + V"
         }
     );
-    let _ = writeln!(s);
-    for i in 0..n {
-        for j in i..n {
-            let _ = writeln!(s, "M[{i}][{j}] = {}", ctx.display(model.mass[i][j]));
-        }
-    }
     let route = match model.bias_route {
         BiasRoute::Projection => "d'Alembert projection",
         BiasRoute::Christoffel => "Christoffel symbols",
     };
-    let _ = writeln!(s, "\nh (by {route}):");
-    for (i, h) in model.bias.iter().enumerate() {
-        let _ = writeln!(s, "h[{i}] = {}", ctx.display(*h));
-    }
-    let _ = writeln!(s, "\nQ:");
-    for (i, f) in model.forces.iter().enumerate() {
-        let _ = writeln!(s, "Q[{i}] = {}", ctx.display(*f));
-    }
-    if let Some(inputs) = &model.inputs {
-        let _ = writeln!(s, "\ninputs: dQ = Q(u) - Q(0):");
-        for (i, f) in inputs.forces.iter().enumerate() {
-            let _ = writeln!(s, "dQ[{i}] = {}", ctx.display(*f));
-        }
-        let _ = writeln!(s, "dQ/du:");
-        for (i, row) in inputs.jacobian_u.iter().enumerate() {
-            for (j, d) in row.iter().enumerate() {
-                let name = &inputs.names[j];
-                let _ = writeln!(s, "dQ[{i}]/d{name} = {}", ctx.display(*d));
-            }
-        }
-    }
-    let _ = writeln!(s, "\nT = {}", ctx.display(model.kinetic));
-    let _ = writeln!(s, "V = {}", ctx.display(model.potential));
+    let _ = writeln!(s, "h by {route}; T kinetic, V potential energy.");
+    let outputs = outputs(model);
     if let Some(c) = &model.constraints {
         let _ = writeln!(
             s,
-            "\nconstraints (multipliers): G q' + g = 0, G q'' = gamma; the first {} holonomic",
+            "constraints (multipliers): G q' + g = 0, G q'' = gamma, rows ({}); the first {} holonomic (Phi = 0)",
+            c.names.join(", "),
             c.holonomic
         );
-        for (k, name) in c.names.iter().enumerate() {
-            if k < c.holonomic {
-                let _ = writeln!(s, "{name}: Phi = {}", ctx.display(c.phi[k]));
-            }
-            let row: Vec<String> = c.jacobian[k].iter().map(|&e| ctx.display(e)).collect();
-            let _ = writeln!(
-                s,
-                "{name}: G = [{}], g = {}",
-                row.join(", "),
-                ctx.display(c.velocity_term[k])
-            );
-            let _ = writeln!(s, "{name}: gamma = {}", ctx.display(c.gamma[k]));
-        }
     }
     if let Some(r) = &model.reduced {
         let _ = writeln!(
             s,
-            "\nreduced form on the speeds u = ({}):",
-            r.names.join(", ")
+            "reduced form on the speeds u = ({}): rows A q' + b = (u, 0), rates c (A q'' = (u', 0) + c), rows ({}), solved with pivoting at run time",
+            r.names.join(", "),
+            r.rows.join(", ")
         );
-        for (k, name) in r.names.iter().enumerate() {
-            let _ = writeln!(s, "{name} = {}", ctx.display(r.speeds[k]));
+    }
+    let exprs: Vec<Sym> = outputs.iter().map(|(_, e)| *e).collect();
+    if tree_size(ctx, &exprs) <= TREE_LIMIT {
+        let _ = writeln!(s, "\nEntries not listed are zero.\n");
+        for (name, e) in &outputs {
+            let _ = writeln!(s, "{name} = {}", ctx.display(*e));
         }
+    } else {
         let _ = writeln!(
             s,
-            "rows A q' + b = (u, 0), solved with pivoting at run time:"
+            "\nShared intermediates are named x<k>; entries not listed are zero.\n"
         );
-        for (k, name) in r.rows.iter().enumerate() {
-            let row: Vec<String> = r.matrix[k].iter().map(|&e| ctx.display(e)).collect();
-            let _ = writeln!(
-                s,
-                "{name}: A = [{}], b = {}",
-                row.join(", "),
-                ctx.display(r.free[k])
-            );
-            let _ = writeln!(s, "{name}: c = {}", ctx.display(r.rates[k]));
-        }
+        let names: Vec<String> = outputs.into_iter().map(|(n, _)| n).collect();
+        s.push_str(&Program::new(ctx, &exprs).listing(ctx, &names));
     }
     s
+}
+
+/// Up to this many tree nodes (counted with repetition) the equations are
+/// printed as formulas, which read best; beyond it as the shared listing,
+/// whose size grows with the program instead of the trees.
+const TREE_LIMIT: u64 = 20_000;
+
+/// The number of nodes of the outputs written out as trees (a shared node
+/// counted at every use), saturating: what printing them as formulas costs.
+fn tree_size(ctx: &lagrange_symbolic::Context, outputs: &[Sym]) -> u64 {
+    fn size(
+        ctx: &lagrange_symbolic::Context,
+        e: Sym,
+        memo: &mut std::collections::HashMap<Sym, u64>,
+    ) -> u64 {
+        if let Some(&n) = memo.get(&e) {
+            return n;
+        }
+        let mut n: u64 = 1;
+        for c in ctx.node(e).children() {
+            n = n.saturating_add(size(ctx, c, memo));
+        }
+        memo.insert(e, n);
+        n
+    }
+    let mut memo = std::collections::HashMap::new();
+    outputs.iter().fold(0u64, |total, &e| {
+        total.saturating_add(size(ctx, e, &mut memo))
+    })
+}
+
+/// Above this size the rustdoc shows a summary and points to `EQUATIONS`.
+pub const DOC_CAP: usize = 256 * 1024;
+
+/// The rustdoc text: the equations in a code block, or for a listing beyond
+/// [`DOC_CAP`] its header and size, with where the full text is.
+pub fn rustdoc(equations: &str, ident: &str) -> Option<String> {
+    if equations.len() <= DOC_CAP {
+        return None;
+    }
+    let header: String = equations
+        .lines()
+        .take_while(|l| !l.is_empty())
+        .map(|l| format!("{l}\n"))
+        .collect();
+    Some(format!(
+        "Equations of motion derived by `#[derive(Lagrangian)]`.\n\n```text\n{header}```\n\n\
+         The listing has {} lines ({} KiB), more than these docs show; \
+         `{ident}::EQUATIONS` holds it.",
+        equations.lines().count(),
+        equations.len() / 1024
+    ))
+}
+
+/// The named, nonzero expressions the listing shows, in order: M, h, Q, T, V,
+/// the inputs' forces, the multiplier form's rows, the reduced form's rows.
+fn outputs(model: &Model) -> Vec<(String, Sym)> {
+    let ctx = &model.ctx;
+    let n = model.dof();
+    let mut out = Vec::new();
+    let mut push = |name: String, e: Sym| {
+        if !ctx.is_zero(e) {
+            out.push((name, e));
+        }
+    };
+    for i in 0..n {
+        for j in i..n {
+            push(format!("M[{i}][{j}]"), model.mass[i][j]);
+        }
+    }
+    model
+        .bias
+        .iter()
+        .enumerate()
+        .for_each(|(i, &h)| push(format!("h[{i}]"), h));
+    model
+        .forces
+        .iter()
+        .enumerate()
+        .for_each(|(i, &f)| push(format!("Q[{i}]"), f));
+    push("T".into(), model.kinetic);
+    push("V".into(), model.potential);
+    if let Some(inputs) = &model.inputs {
+        for (i, row) in inputs.jacobian_u.iter().enumerate() {
+            for (j, &d) in row.iter().enumerate() {
+                push(format!("dQ[{i}]/d{}", inputs.names[j]), d);
+            }
+        }
+    }
+    if let Some(c) = &model.constraints {
+        for (k, name) in c.names.iter().enumerate() {
+            push(format!("Phi[{name}]"), c.phi[k]);
+            for (j, &g) in c.jacobian[k].iter().enumerate() {
+                push(format!("G[{name}][{j}]"), g);
+            }
+            push(format!("g[{name}]"), c.velocity_term[k]);
+            push(format!("gamma[{name}]"), c.gamma[k]);
+        }
+    }
+    if let Some(r) = &model.reduced {
+        for (k, name) in r.rows.iter().enumerate() {
+            for (j, &a) in r.matrix[k].iter().enumerate() {
+                push(format!("A[{name}][{j}]"), a);
+            }
+            push(format!("b[{name}]"), r.free[k]);
+            push(format!("c[{name}]"), r.rates[k]);
+        }
+    }
+    out
 }

@@ -247,9 +247,18 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let ident = &system.ident;
     let (impl_generics, ty_generics, where_clause) = system.generics.split_for_impl();
     let where_clause = real_bound(system, where_clause);
+    // The text is emitted once, in a macro both the rustdoc and `EQUATIONS`
+    // expand (a summary replaces it in the rustdoc beyond the cap).
     let docs = doc::equations(model);
-    let impl_doc =
-        format!("Equations of motion derived by `#[derive(Lagrangian)]`.\n\n```text\n{docs}```");
+    let docs_macro = format_ident!("__lagrange_equations_{}", system.ident);
+    let impl_doc = match doc::rustdoc(&docs, &system.ident.to_string()) {
+        Some(summary) => quote!(#[doc = #summary]),
+        None => quote! {
+            #[doc = "Equations of motion derived by `#[derive(Lagrangian)]`.\n\n```text"]
+            #[doc = #docs_macro!()]
+            #[doc = "```"]
+        },
+    };
 
     let vec_t = quote!(::lagrange::__private::SVector<#s, #nl>);
     let mat_t = quote!(::lagrange::__private::SMatrix<#s, #nl, #nl>);
@@ -260,7 +269,14 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let reduced = impl_reduced(&e, &frame, model);
     let driven = impl_driven(&e, &frame, model);
     quote! {
-        #[doc = #impl_doc]
+        macro_rules! #docs_macro {
+            () => {
+                #docs
+            };
+        }
+
+        /// The system as `#[derive(Lagrangian)]` derived it; the equations are
+        /// on the type's inherent impl (`EQUATIONS`).
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
         impl #impl_generics ::lagrange::__private::Lagrangian<#s, #nl> for #ident #ty_generics #where_clause {
@@ -315,10 +331,13 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
             #hamiltonian
         }
 
+        #impl_doc
         #[automatically_derived]
         impl #impl_generics #ident #ty_generics #where_clause {
-            /// The derived equations of motion as text: M, h, Q and the energies.
-            pub const EQUATIONS: &'static str = #docs;
+            /// The derived equations of motion as text: M, h, Q, the energies
+            /// and the constraint rows, as one listing with shared
+            /// intermediates named.
+            pub const EQUATIONS: &'static str = #docs_macro!();
             #extras
         }
 

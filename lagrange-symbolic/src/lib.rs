@@ -32,6 +32,7 @@ mod diff;
 mod display;
 mod emit;
 mod eval;
+mod listing;
 mod node;
 mod program;
 mod rational;

@@ -1,0 +1,155 @@
+//! A straight-line program as readable text: each value the program computes
+//! once and uses more than once becomes a named line `x12 = …`; values used
+//! once are written inline where they are used. The text grows with the
+//! program (which CSE keeps small), not with the expression trees, which may
+//! repeat a subexpression thousands of times.
+
+use std::fmt::Write;
+
+use crate::context::Context;
+use crate::program::{Op, Program, Value};
+
+/// Binding strength of a written value, to know when to parenthesise it.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Prec {
+    Sum,
+    Product,
+    Unary,
+    Atom,
+}
+
+impl Program {
+    /// The program as text: shared intermediates first, in computation order,
+    /// as `x<k> = …`, then one line `name = …` per output (`names` must have
+    /// one entry per output).
+    pub fn listing(&self, ctx: &Context, names: &[String]) -> String {
+        assert_eq!(names.len(), self.outputs.len(), "one name per output");
+        let uses = self.uses();
+        let named: Vec<bool> = (0..self.ops.len())
+            .map(|v| uses[v] > 1 && !matches!(self.ops[v], Op::Sym(_) | Op::Const(_)))
+            .collect();
+        let mut text: Vec<Option<(String, Prec)>> = vec![None; self.ops.len()];
+        let mut out = String::new();
+        for v in 0..self.ops.len() {
+            let written = self.write(ctx, v as Value, &text);
+            if named[v] {
+                let _ = writeln!(out, "x{v} = {}", written.0);
+                text[v] = Some((format!("x{v}"), Prec::Atom));
+            } else {
+                text[v] = Some(written);
+            }
+        }
+        for (name, &v) in names.iter().zip(&self.outputs) {
+            let value = text[v as usize].as_ref().map_or("?", |(s, _)| s.as_str());
+            let _ = writeln!(out, "{name} = {value}");
+        }
+        out
+    }
+
+    /// How many times each value is read, by operations and as an output.
+    fn uses(&self) -> Vec<usize> {
+        let mut uses = vec![0usize; self.ops.len()];
+        for op in &self.ops {
+            for a in op.operands() {
+                uses[a as usize] += 1;
+            }
+        }
+        for &v in &self.outputs {
+            uses[v as usize] += 1;
+        }
+        uses
+    }
+
+    /// The text of value v from the texts of its operands.
+    fn write(&self, ctx: &Context, v: Value, text: &[Option<(String, Prec)>]) -> (String, Prec) {
+        let at = |a: Value, min: Prec| -> String {
+            let (s, p) = text[a as usize].clone().unwrap_or(("?".into(), Prec::Atom));
+            if p < min { format!("({s})") } else { s }
+        };
+        match self.ops[v as usize] {
+            Op::Sym(s) => (ctx.symbol_name(s).to_string(), Prec::Atom),
+            Op::Const(bits) => {
+                let x = f64::from_bits(bits);
+                let p = if x < 0.0 { Prec::Unary } else { Prec::Atom };
+                (format!("{x:?}"), p)
+            }
+            Op::Add(a, b) => (
+                format!("{} + {}", at(a, Prec::Sum), at(b, Prec::Sum)),
+                Prec::Sum,
+            ),
+            Op::Sub(a, b) => (
+                format!("{} - {}", at(a, Prec::Sum), at(b, Prec::Product)),
+                Prec::Sum,
+            ),
+            Op::Mul(a, b) => (
+                format!("{}*{}", at(a, Prec::Product), at(b, Prec::Unary)),
+                Prec::Product,
+            ),
+            Op::Div(a, b) => (
+                format!("{}/{}", at(a, Prec::Product), at(b, Prec::Atom)),
+                Prec::Product,
+            ),
+            Op::Neg(a) => (format!("-{}", at(a, Prec::Unary)), Prec::Unary),
+            Op::Call(f, a) => (format!("{}({})", f.name(), at(a, Prec::Sum)), Prec::Atom),
+            Op::Atan2(a, b) => (
+                format!("atan2({}, {})", at(a, Prec::Sum), at(b, Prec::Sum)),
+                Prec::Atom,
+            ),
+            Op::Powf(a, b) => (
+                format!("{}^{}", at(a, Prec::Atom), at(b, Prec::Atom)),
+                Prec::Unary,
+            ),
+            Op::Powi(a, n) => (format!("{}^{n}", at(a, Prec::Atom)), Prec::Unary),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::Context;
+    use crate::Program;
+
+    #[test]
+    fn shared_values_are_named_once_and_single_uses_inlined() {
+        let mut cx = Context::new();
+        let q = cx.coordinate("q");
+        let s = cx.sin(q);
+        let c = cx.cos(q);
+        let sc = cx.mul(s, c);
+        let two = cx.int(2);
+        let a = cx.add(sc, two);
+        let p = Program::new(&cx, &[a, s]);
+        let text = p.listing(&cx, &["A".into(), "S".into()]);
+        // sin(q) is read by the product and as an output: one named line;
+        // cos(q) is read once: written where it is used.
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 3, "{text}");
+        assert!(lines[0].ends_with(" = sin(q)"), "{text}");
+        let x = lines[0].split(' ').next().unwrap();
+        assert_eq!(lines[1], format!("A = 2.0 + {x}*cos(q)"), "{text}");
+        assert_eq!(lines[2], format!("S = {x}"), "{text}");
+    }
+
+    #[test]
+    fn the_listing_evaluates_like_the_program() {
+        // Parenthesisation: (a + b)·(a − b) and a − (b − c) must survive.
+        let mut cx = Context::new();
+        let (a, b, c) = (cx.coordinate("a"), cx.coordinate("b"), cx.coordinate("c"));
+        let s = cx.add(a, b);
+        let d = cx.sub(a, b);
+        let p1 = cx.mul(s, d);
+        let bc = cx.sub(b, c);
+        let p2 = cx.sub(a, bc);
+        let p = Program::new(&cx, &[p1, p2]);
+        let text = p.listing(&cx, &["P".into(), "R".into()]);
+        let line = |name: &str| {
+            let prefix = format!("{name} = ");
+            text.lines()
+                .find(|l| l.starts_with(&prefix))
+                .unwrap()
+                .to_string()
+        };
+        assert!(line("P").contains('('), "{text}");
+        assert!(!line("R").contains("a - b - c"), "{text}");
+    }
+}
