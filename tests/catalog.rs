@@ -389,3 +389,21 @@ fn equations_are_documented() {
     assert!(text.contains("T + V"));
     assert!(GrowingEllipsoid::EQUATIONS.contains("Jacobi integral"));
 }
+
+/// The LaTeX export: one `aligned` block with the same entries.
+#[test]
+fn equations_in_latex() {
+    let text = SphericalPendulum::EQUATIONS_LATEX;
+    assert!(text.starts_with("\\begin{aligned}\n") && text.ends_with("\\end{aligned}\n"));
+    assert!(text.contains("M_{1, 1} &= "), "{text}");
+    assert!(text.contains("\\sin"), "{text}");
+    assert_eq!(
+        text.lines().count() - 2,
+        SphericalPendulum::EQUATIONS
+            .lines()
+            .skip_while(|l| !l.starts_with("Entries not listed"))
+            .filter(|l| l.contains(" = "))
+            .count(),
+        "{text}"
+    );
+}

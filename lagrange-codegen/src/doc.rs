@@ -6,7 +6,7 @@
 
 use std::fmt::Write;
 
-use lagrange_symbolic::{Expr as Sym, Program};
+use lagrange_symbolic::{Expr as Sym, ListingStyle, Program};
 
 use crate::mechanics::{BiasRoute, Model};
 
@@ -131,6 +131,63 @@ pub fn rustdoc(equations: &str, ident: &str) -> Option<String> {
         equations.lines().count(),
         equations.len() / 1024
     ))
+}
+
+/// The equations as LaTeX: the nonzero entries of M, h, Q, the energies, the
+/// inputs' force Jacobian and the constraint rows as the lines of one
+/// `aligned` block; beyond the size where formulas read well, the shared
+/// listing with intermediates x_{k}.
+pub fn latex(model: &Model) -> String {
+    let ctx = &model.ctx;
+    let outputs = outputs(model);
+    let exprs: Vec<Sym> = outputs.iter().map(|(_, e)| *e).collect();
+    let names: Vec<String> = outputs.iter().map(|(n, _)| latex_label(n)).collect();
+    let mut s = String::from("\\begin{aligned}\n");
+    if tree_size(ctx, &exprs) <= TREE_LIMIT {
+        for (name, e) in names.iter().zip(&exprs) {
+            let _ = writeln!(s, "{name} &= {} \\\\", ctx.latex(*e));
+        }
+    } else {
+        s.push_str(&Program::new(ctx, &exprs).listing_in(ctx, &names, ListingStyle::Latex));
+    }
+    s.push_str("\\end{aligned}\n");
+    s
+}
+
+/// `M[0][1]` → `M_{0 1}`, `G[rear_x][2]` → `G_{\mathrm{rear\_x}, 2}`, `dQ[1]/du` →
+/// `\partial Q_{1} / \partial u`.
+fn latex_label(name: &str) -> String {
+    if let Some((q, u)) = name.split_once("/d") {
+        return format!(
+            "\\partial {} / \\partial \\mathrm{{{}}}",
+            latex_label(q),
+            escape(u)
+        );
+    }
+    let Some((base, rest)) = name.split_once('[') else {
+        return name.to_string();
+    };
+    let base = match base {
+        "Phi" => "\\Phi",
+        "gamma" => "\\gamma",
+        other => other,
+    };
+    let indices: Vec<String> = rest
+        .trim_end_matches(']')
+        .split("][")
+        .map(|i| {
+            if i.chars().all(|c| c.is_ascii_digit()) {
+                i.to_string()
+            } else {
+                format!("\\mathrm{{{}}}", escape(i))
+            }
+        })
+        .collect();
+    format!("{base}_{{{}}}", indices.join(", "))
+}
+
+fn escape(name: &str) -> String {
+    name.replace('_', "\\_")
 }
 
 /// The named, nonzero expressions the listing shows, in order: M, h, Q, T, V,

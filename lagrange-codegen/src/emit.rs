@@ -250,6 +250,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     // The text is emitted once, in a macro both the rustdoc and `EQUATIONS`
     // expand (a summary replaces it in the rustdoc beyond the cap).
     let docs = doc::equations(model);
+    let latex = doc::latex(model);
     let docs_macro = format_ident!("__lagrange_equations_{}", system.ident);
     let impl_doc = match doc::rustdoc(&docs, &system.ident.to_string()) {
         Some(summary) => quote!(#[doc = #summary]),
@@ -338,6 +339,11 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
             /// and the constraint rows, as one listing with shared
             /// intermediates named.
             pub const EQUATIONS: &'static str = #docs_macro!();
+            /// The same equations as LaTeX: the lines of an `aligned` block
+            /// (`M_{0 1} &= …`, `h_{0}`, `Q_{0}`, `T`, `V`, and `\Phi`, `G`, `g`,
+            /// `\gamma`, `A`, `b`, `c` per constraint or speed row), ready for
+            /// `$$ … $$` in a document or a notebook.
+            pub const EQUATIONS_LATEX: &'static str = #latex;
             #extras
         }
 

@@ -337,7 +337,7 @@ const GREEK: &[&str] = &[
 
 /// `theta1 -> \theta_{1}`, `dot(phi) -> \dot{\phi}`, `m_a -> m_{a}`,
 /// `mass -> \mathrm{mass}`.
-fn latex_name(name: &str) -> String {
+pub(crate) fn latex_name(name: &str) -> String {
     for (prefix, accent) in [("ddot(", "\\ddot"), ("dot(", "\\dot")] {
         if let Some(inner) = name.strip_prefix(prefix).and_then(|r| r.strip_suffix(')')) {
             return format!("{accent}{{{}}}", latex_name(inner));

@@ -40,6 +40,7 @@ mod trig;
 
 pub use context::Context;
 pub use emit::EmitConfig;
+pub use listing::ListingStyle;
 pub use node::{Expr, Func, Node, Symbol, SymbolKind};
 pub use program::{OpCount, Program};
 pub use rational::Rational;

@@ -7,6 +7,7 @@
 use std::fmt::Write;
 
 use crate::context::Context;
+use crate::display::latex_name;
 use crate::program::{Op, Program, Value};
 
 /// Binding strength of a written value, to know when to parenthesise it.
@@ -18,11 +19,26 @@ enum Prec {
     Atom,
 }
 
+/// How a listing is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ListingStyle {
+    /// Plain text: `x12 = m*l^2*sin(q)`.
+    Text,
+    /// LaTeX lines of an `aligned` block: `x_{12} &= m\,l^{2}\,\sin q \\`.
+    Latex,
+}
+
 impl Program {
-    /// The program as text: shared intermediates first, in computation order,
-    /// as `x<k> = …`, then one line `name = …` per output (`names` must have
-    /// one entry per output).
+    /// The program as plain text: shared intermediates first, in computation
+    /// order, as `x<k> = …`, then one line `name = …` per output (`names` must
+    /// have one entry per output).
     pub fn listing(&self, ctx: &Context, names: &[String]) -> String {
+        self.listing_in(ctx, names, ListingStyle::Text)
+    }
+
+    /// The listing in the given style; LaTeX output names are written as
+    /// given (they are LaTeX already).
+    pub fn listing_in(&self, ctx: &Context, names: &[String], style: ListingStyle) -> String {
         assert_eq!(names.len(), self.outputs.len(), "one name per output");
         let uses = self.uses();
         let named: Vec<bool> = (0..self.ops.len())
@@ -30,18 +46,26 @@ impl Program {
             .collect();
         let mut text: Vec<Option<(String, Prec)>> = vec![None; self.ops.len()];
         let mut out = String::new();
+        let (eq, end) = match style {
+            ListingStyle::Text => (" = ", ""),
+            ListingStyle::Latex => (" &= ", " \\\\"),
+        };
         for v in 0..self.ops.len() {
-            let written = self.write(ctx, v as Value, &text);
+            let written = self.write(ctx, v as Value, &text, style);
             if named[v] {
-                let _ = writeln!(out, "x{v} = {}", written.0);
-                text[v] = Some((format!("x{v}"), Prec::Atom));
+                let name = match style {
+                    ListingStyle::Text => format!("x{v}"),
+                    ListingStyle::Latex => format!("x_{{{v}}}"),
+                };
+                let _ = writeln!(out, "{name}{eq}{}{end}", written.0);
+                text[v] = Some((name, Prec::Atom));
             } else {
                 text[v] = Some(written);
             }
         }
         for (name, &v) in names.iter().zip(&self.outputs) {
             let value = text[v as usize].as_ref().map_or("?", |(s, _)| s.as_str());
-            let _ = writeln!(out, "{name} = {value}");
+            let _ = writeln!(out, "{name}{eq}{value}{end}");
         }
         out
     }
@@ -61,13 +85,33 @@ impl Program {
     }
 
     /// The text of value v from the texts of its operands.
-    fn write(&self, ctx: &Context, v: Value, text: &[Option<(String, Prec)>]) -> (String, Prec) {
+    fn write(
+        &self,
+        ctx: &Context,
+        v: Value,
+        text: &[Option<(String, Prec)>],
+        style: ListingStyle,
+    ) -> (String, Prec) {
+        let latex = style == ListingStyle::Latex;
         let at = |a: Value, min: Prec| -> String {
             let (s, p) = text[a as usize].clone().unwrap_or(("?".into(), Prec::Atom));
-            if p < min { format!("({s})") } else { s }
+            match (p < min, latex) {
+                (false, _) => s,
+                (true, false) => format!("({s})"),
+                (true, true) => format!("\\left({s}\\right)"),
+            }
         };
+        let plain = |a: Value| text[a as usize].clone().map_or("?".into(), |(s, _)| s);
         match self.ops[v as usize] {
-            Op::Sym(s) => (ctx.symbol_name(s).to_string(), Prec::Atom),
+            Op::Sym(s) => {
+                let name = ctx.symbol_name(s);
+                let name = if latex {
+                    latex_name(name)
+                } else {
+                    name.to_string()
+                };
+                (name, Prec::Atom)
+            }
             Op::Const(bits) => {
                 let x = f64::from_bits(bits);
                 let p = if x < 0.0 { Prec::Unary } else { Prec::Atom };
@@ -81,26 +125,55 @@ impl Program {
                 format!("{} - {}", at(a, Prec::Sum), at(b, Prec::Product)),
                 Prec::Sum,
             ),
-            Op::Mul(a, b) => (
-                format!("{}*{}", at(a, Prec::Product), at(b, Prec::Unary)),
-                Prec::Product,
+            Op::Mul(a, b) => {
+                let sep = if latex { "\\," } else { "*" };
+                (
+                    format!("{}{sep}{}", at(a, Prec::Product), at(b, Prec::Unary)),
+                    Prec::Product,
+                )
+            }
+            Op::Div(a, b) if latex => (
+                format!("\\frac{{{}}}{{{}}}", plain(a), plain(b)),
+                Prec::Atom,
             ),
             Op::Div(a, b) => (
                 format!("{}/{}", at(a, Prec::Product), at(b, Prec::Atom)),
                 Prec::Product,
             ),
             Op::Neg(a) => (format!("-{}", at(a, Prec::Unary)), Prec::Unary),
+            Op::Call(f, a) if latex => (latex_call(f.name(), &plain(a)), Prec::Atom),
             Op::Call(f, a) => (format!("{}({})", f.name(), at(a, Prec::Sum)), Prec::Atom),
-            Op::Atan2(a, b) => (
-                format!("atan2({}, {})", at(a, Prec::Sum), at(b, Prec::Sum)),
-                Prec::Atom,
+            Op::Atan2(a, b) => {
+                let name = if latex {
+                    "\\operatorname{atan2}"
+                } else {
+                    "atan2"
+                };
+                (format!("{name}({}, {})", plain(a), plain(b)), Prec::Atom)
+            }
+            Op::Powf(a, b) if latex => (
+                format!("{{{}}}^{{{}}}", at(a, Prec::Atom), plain(b)),
+                Prec::Unary,
             ),
             Op::Powf(a, b) => (
                 format!("{}^{}", at(a, Prec::Atom), at(b, Prec::Atom)),
                 Prec::Unary,
             ),
+            Op::Powi(a, n) if latex => (format!("{{{}}}^{{{n}}}", at(a, Prec::Atom)), Prec::Unary),
             Op::Powi(a, n) => (format!("{}^{n}", at(a, Prec::Atom)), Prec::Unary),
         }
+    }
+}
+
+/// A function call in LaTeX: `\sin\left(x\right)`, `\sqrt{x}`, `\left|x\right|`.
+fn latex_call(name: &str, arg: &str) -> String {
+    match name {
+        "sqrt" => format!("\\sqrt{{{arg}}}"),
+        "abs" => format!("\\left|{arg}\\right|"),
+        "sin" | "cos" | "tan" | "sinh" | "cosh" | "tanh" | "exp" | "ln" | "log" => {
+            format!("\\{name}\\left({arg}\\right)")
+        }
+        other => format!("\\operatorname{{{other}}}\\left({arg}\\right)"),
     }
 }
 
@@ -128,6 +201,22 @@ mod tests {
         let x = lines[0].split(' ').next().unwrap();
         assert_eq!(lines[1], format!("A = 2.0 + {x}*cos(q)"), "{text}");
         assert_eq!(lines[2], format!("S = {x}"), "{text}");
+    }
+
+    #[test]
+    fn latex_listing_names_and_fractions() {
+        let mut cx = Context::new();
+        let q = cx.coordinate("theta");
+        let s = cx.sin(q);
+        let two = cx.int(2);
+        let h = cx.div(s, two);
+        let p = Program::new(&cx, &[h, s]);
+        let text = p.listing_in(&cx, &["H".into(), "S".into()], super::ListingStyle::Latex);
+        assert!(
+            text.contains("&= \\sin\\left(\\theta\\right) \\\\"),
+            "{text}"
+        );
+        assert!(text.contains("x_{"), "{text}");
     }
 
     #[test]
