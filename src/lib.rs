@@ -205,10 +205,12 @@ pub use nalgebra;
 pub mod prelude {
     pub use lagrange_macros::Lagrangian;
     pub use lagrange_runtime::linear::{Linear, Linearizer, OperatingPoint, Verdict};
+    pub use lagrange_runtime::study::{Method, Sweep};
     pub use lagrange_runtime::{
-        Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation, Direction, Dopri5,
-        Drift, Driven, Error, Event, EventRun, InputTable, Interpolation, Lagrangian, Occurrence,
-        Real, Reduced, ReducedDynamics, Rk4, Simulation, Study, Sweep, Trajectory, WorkPrecision,
+        Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation, Direction, Dop853,
+        Dopri5, Drift, Driven, Error, Event, EventRun, Gauss, InputTable, Integrator,
+        Interpolation, Lagrangian, Occurrence, Radau5, Rattle, Real, Reduced, ReducedDynamics,
+        ReducedForm, Rk4, Simulation, StormerVerlet, Study, Trajectory, WorkPrecision,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }
