@@ -158,7 +158,9 @@ fn stiff_spring() {
     // and rejected trial stages of the explicit methods reach r ~ 10⁶ (see the
     // notes in docs/extremes.md): the check is switched off, M is regular for r ≠ 0.
     let sim = Simulation::new(&sys).singular_tolerance(0.0);
-    let row = |name: &str, r: Result<Trajectory<f64, 2>, Error>, wall: Duration| match r {
+    let row = |name: &str,
+               r: Result<Trajectory<f64, 2>, Failure<Trajectory<f64, 2>>>,
+               wall: Duration| match r {
         Ok(traj) => {
             let s = traj.stats();
             println!(
@@ -173,11 +175,20 @@ fn stiff_spring() {
                 wall.as_secs_f64() * 1e3
             )
         }
-        Err(e) => println!(
-            "| {name} | {} | | | | | | | | {:.1} ms |",
-            short(&e),
-            wall.as_secs_f64() * 1e3
-        ),
+        // The steps accepted before the failure come back with it.
+        Err(f) => {
+            let s = f.partial.stats();
+            println!(
+                "| {name} | {} | {} | {} | {} | {} | {} | | | {:.1} ms |",
+                short(&f.error),
+                s.accepted,
+                s.rejected,
+                s.evaluations,
+                s.jacobians,
+                s.factorizations,
+                wall.as_secs_f64() * 1e3
+            )
+        }
     };
     macro_rules! timed {
         ($name:expr, $method:expr) => {
@@ -276,8 +287,8 @@ fn long_constrained<F: SecondOrder<f64, N>, const N: usize>(
         let (t0, t1) = (w[0] as f64 * period, w[1] as f64 * period);
         let traj = match method.integrate(dynamics, t0, t1, q, v) {
             Ok(traj) => traj,
-            Err(e) => {
-                run.error = Some(short(&e));
+            Err(f) => {
+                run.error = Some(short(&f.error));
                 break;
             }
         };

@@ -208,7 +208,7 @@ pub mod prelude {
     pub use lagrange_runtime::study::{Method, Sweep};
     pub use lagrange_runtime::{
         Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation, Direction, Dop853,
-        Dopri5, Drift, Driven, Error, Event, EventRun, Gauss, InputTable, Integrator,
+        Dopri5, Drift, Driven, Error, Event, EventRun, Failure, Gauss, InputTable, Integrator,
         Interpolation, Lagrangian, Occurrence, Radau5, Rattle, Real, Reduced, ReducedDynamics,
         ReducedForm, Rk4, Simulation, StormerVerlet, Study, Trajectory, WorkPrecision,
     };

@@ -104,7 +104,13 @@ fn cartesian_pendulum_passes_the_pole() {
     // At the bottom (θ = 0, the pole of this chart), moving sideways.
     let err = Simulation::new(&chart).run([0.0, 0.3], [0.5, 0.0], 0.0..1.0);
     assert!(
-        matches!(err, Err(Error::SingularMassMatrix { .. })),
+        matches!(
+            err,
+            Err(Failure {
+                error: Error::SingularMassMatrix { .. },
+                ..
+            })
+        ),
         "{err:?}"
     );
     let x0 = Vector3::new(0.0, 0.0, -1.0);
@@ -218,7 +224,7 @@ fn three_particles_equal_their_rigid_body() {
     let body = particles.as_body();
     let q0 = SVector::<f64, 6>::from([0.0, 0.0, 1.0, 0.3, 1.1, -0.4]);
     let v0 = SVector::<f64, 6>::from([0.2, 0.1, 3.0, 0.7, -0.5, 2.0]);
-    let run = |traj: Result<Trajectory<f64, 6>, Error>| traj.unwrap();
+    let run = |traj: Result<Trajectory<f64, 6>, Failure<Trajectory<f64, 6>>>| traj.unwrap();
     let ta = run(Simulation::new(&particles)
         .integrator(Dopri5::tol(1e-13))
         .run(q0, v0, 0.0..2.0));
@@ -503,7 +509,13 @@ fn typed_errors_for_bad_constraint_input() {
     let (x0, v0) = ([0.6, -0.8], [0.8, 0.6]);
     let err = Simulation::new(&twice).run_constrained(x0, v0, 0.0..1.0);
     assert!(
-        matches!(err, Err(Error::RedundantConstraints { .. })),
+        matches!(
+            err,
+            Err(Failure {
+                error: Error::RedundantConstraints { .. },
+                ..
+            })
+        ),
         "{err:?}"
     );
     let ls = Simulation::new(&twice)
@@ -532,7 +544,13 @@ fn typed_errors_for_bad_constraint_input() {
     };
     let err = Simulation::new(&cart).run_constrained([0.5, 0.0, -0.5], [0.0, 0.0, 0.0], 0.0..1.0);
     assert!(
-        matches!(err, Err(Error::InconsistentInitialConditions { .. })),
+        matches!(
+            err,
+            Err(Failure {
+                error: Error::InconsistentInitialConditions { .. },
+                ..
+            })
+        ),
         "{err:?}"
     );
     let fixed = Simulation::new(&cart)

@@ -185,7 +185,10 @@ fn pole_run<I: Integrator>(
             assert!(worst < 1e-6, "θ0 = {th0:e}: p_φ drift {worst:e}");
             "ok"
         }
-        Err(Error::SingularMassMatrix { q, ratio, .. }) => {
+        Err(Failure {
+            error: Error::SingularMassMatrix { q, ratio, .. },
+            ..
+        }) => {
             assert!(q.iter().all(|x| x.is_finite()) && ratio < singular_tolerance.max(1e-300));
             "singular"
         }
@@ -224,7 +227,10 @@ fn spherical_pendulum_near_the_pole() {
     }
     // The 10⁻⁸ stop is at the initial state, before any step.
     match Simulation::new(&sys).run([1e-8, 0.0], [0.0, 2.0], 0.0..1.0) {
-        Err(Error::SingularMassMatrix { t, .. }) => assert_eq!(t, 0.0),
+        Err(Failure {
+            error: Error::SingularMassMatrix { t, .. },
+            ..
+        }) => assert_eq!(t, 0.0),
         other => panic!("{other:?}"),
     }
 }
@@ -247,9 +253,17 @@ fn stiff_spring_pendulum() {
     // Static stretch along the rod, so the fast mode starts (nearly) at rest.
     let q0 = [sys.l0 + sys.m * sys.g * th0.cos() / sys.k, th0];
     let span = 0.0..2.0;
-    let capped = |e: Result<Trajectory<f64, 2>, Error>| match e {
-        Err(Error::TooManySteps { t, .. }) | Err(Error::StepSizeUnderflow { t, .. }) => {
+    // The failure hands back the steps accepted before it: they end where the
+    // error says the run stopped, and every state in them is finite.
+    let capped = |e: Result<Trajectory<f64, 2>, Failure<Trajectory<f64, 2>>>| match e {
+        Err(Failure {
+            error: Error::TooManySteps { t, .. } | Error::StepSizeUnderflow { t, .. },
+            partial,
+        }) => {
             assert!(t < span.end, "stopped at {t}");
+            assert_eq!(*partial.times().last().unwrap(), t);
+            assert!(partial.times().windows(2).all(|w| w[0] < w[1]));
+            assert!(all_states_finite(&partial));
             t
         }
         other => panic!("expected a step-budget error, got {other:?}"),
@@ -288,7 +302,13 @@ fn stiff_spring_pendulum() {
     assert!(
         matches!(
             e,
-            Err(Error::NonFiniteState { .. }) | Err(Error::SingularMassMatrix { .. })
+            Err(Failure {
+                error: Error::NonFiniteState { .. },
+                ..
+            }) | Err(Failure {
+                error: Error::SingularMassMatrix { .. },
+                ..
+            })
         ),
         "{e:?}"
     );
@@ -388,17 +408,28 @@ fn fast_heavy_top_conserves_energy_and_momenta() {
 }
 
 /// A non-finite parameter must stop the run at its first evaluation, at t0.
-fn stops_at_start<const N: usize>(what: &str, r: Result<Trajectory<f64, N>, Error>, t0: f64) {
+fn stops_at_start<const N: usize>(
+    what: &str,
+    r: Result<Trajectory<f64, N>, Failure<Trajectory<f64, N>>>,
+    t0: f64,
+) {
     match r {
-        Err(Error::NonFiniteState { t, .. }) => assert_eq!(t, t0, "{what}"),
+        Err(Failure {
+            error: Error::NonFiniteState { t, .. },
+            partial,
+        }) => {
+            assert_eq!(t, t0, "{what}");
+            // Nothing was accepted: the partial trajectory is the initial state.
+            assert_eq!(partial.times(), [t0], "{what}");
+        }
         other => panic!("{what}: expected NonFiniteState at t0, got {other:?}"),
     }
 }
 
 /// A non-finite initial state or time span is refused before any step.
-fn refused<const N: usize>(what: &str, r: Result<Trajectory<f64, N>, Error>) {
+fn refused<const N: usize>(what: &str, r: Result<Trajectory<f64, N>, Failure<Trajectory<f64, N>>>) {
     assert!(
-        matches!(r, Err(Error::InvalidSettings(_))),
+        matches!(&r, Err(Failure { error: Error::InvalidSettings(_), partial }) if partial.len() == 1),
         "{what}: expected InvalidSettings, got {r:?}"
     );
 }
@@ -486,7 +517,13 @@ fn non_finite_inputs<I: Integrator + Clone>(method: I, unconstrained_only: bool)
     assert!(
         matches!(
             r,
-            Err(Error::InvalidSettings(_)) | Err(Error::NonFiniteState { .. })
+            Err(Failure {
+                error: Error::InvalidSettings(_),
+                ..
+            }) | Err(Failure {
+                error: Error::NonFiniteState { .. },
+                ..
+            })
         ),
         "run_reduced, NaN radius: {r:?}"
     );

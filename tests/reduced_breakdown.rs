@@ -51,7 +51,11 @@ pub struct DefaultKnife {
 fn dependent_rows_are_a_typed_error_naming_them() {
     let ray = Ray { m: 1.0, g: 9.81 };
     match Simulation::new(&ray).run_reduced([0.0, 1.0], [0.0, 0.5], 0.0..1.0) {
-        Err(e @ Error::ReducedFormBreakdown { .. }) => {
+        Err(Failure {
+            error: e @ Error::ReducedFormBreakdown { .. },
+            partial,
+        }) => {
+            assert_eq!(partial.len(), 1, "refused before the first step");
             let msg = e.to_string();
             assert!(
                 msg.contains("x = 0") && msg.contains("run_constrained"),

@@ -118,7 +118,7 @@ fn gauss_runs_on_the_derived_spherical_pendulum() {
         .integrator(Gauss::step(0.01))
         .run([0.0, 0.0], [1.0, 1.0], 0.0..1.0)
         .unwrap_err();
-    assert!(matches!(e, Error::InvalidSettings(ref m) if m.contains("kinetic_gradient")));
+    assert!(matches!(e.error, Error::InvalidSettings(ref m) if m.contains("kinetic_gradient")));
 }
 
 /// The study API end to end on a derived system with a closed form: the

@@ -28,15 +28,15 @@ pub(crate) struct Row {
 }
 
 /// One gallery row from a run of any formulation (the closure integrates).
-pub(crate) fn row<const N: usize>(
+pub(crate) fn row<const N: usize, E: Into<Error>>(
     system: &'static str,
     span: std::ops::Range<f64>,
     conservative: bool,
-    integrate: impl FnOnce() -> Result<Trajectory<f64, N>, Error>,
+    integrate: impl FnOnce() -> Result<Trajectory<f64, N>, E>,
     note: impl FnOnce(&Trajectory<f64, N>) -> String,
 ) -> Result<Row, Error> {
     let start = Instant::now();
-    let traj = integrate()?;
+    let traj = integrate().map_err(Into::into)?;
     let wall_ms = start.elapsed().as_secs_f64() * 1e3;
     let stats = traj.stats();
     let residuals = traj.max_residuals();
@@ -107,7 +107,7 @@ fn main() -> Result<(), Error> {
             if let [a, b, ..] = run.times(0)[..] {
                 period.set(b - a);
             }
-            Ok(run.trajectory)
+            Ok::<_, Error>(run.trajectory)
         },
         |_| {
             format!(

@@ -383,3 +383,70 @@ mod tests {
         assert!(e.to_string().contains("disk full"));
     }
 }
+
+/// A run that stopped before its end: the typed error, and everything computed
+/// before it (`partial`: the accepted steps, their dense output and the run's
+/// statistics), as DifferentialEquations.jl's return codes keep the solution.
+///
+/// `?` turns it into the bare [`Error`] where a function returns
+/// `Result<_, Error>`; match on `error` to tell the cases apart:
+///
+/// ```
+/// # use lagrange_runtime::{Error, Failure, Trajectory};
+/// fn report(result: Result<Trajectory<f64, 1>, Failure<Trajectory<f64, 1>>>) {
+///     match result {
+///         Ok(traj) => println!("reached t = {:?}", traj.times().last()),
+///         Err(Failure { error: Error::TooManySteps { .. }, partial }) => {
+///             println!("out of steps at t = {:?}", partial.times().last())
+///         }
+///         Err(failure) => println!("{failure}"),
+///     }
+/// }
+/// ```
+#[derive(Debug)]
+pub struct Failure<P> {
+    /// What went wrong, where and when.
+    pub error: Error,
+    /// What was computed before it: for a trajectory, every step accepted up
+    /// to the failure (at least the initial state), with its statistics.
+    /// Boxed, so that a `Result` carrying it is no larger than its `Ok`.
+    pub partial: Box<P>,
+}
+
+impl<P> Failure<P> {
+    /// The failure of a run that got as far as `partial`.
+    pub fn new(error: Error, partial: P) -> Self {
+        Self {
+            error,
+            partial: Box::new(partial),
+        }
+    }
+
+    /// The error and the partial result.
+    pub fn into_parts(self) -> (Error, P) {
+        (self.error, *self.partial)
+    }
+
+    /// The partial result mapped (e.g. a trajectory into a run record).
+    pub fn map<Q>(self, f: impl FnOnce(P) -> Q) -> Failure<Q> {
+        Failure::new(self.error, f(*self.partial))
+    }
+}
+
+impl<P> std::fmt::Display for Failure<P> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.error.fmt(f)
+    }
+}
+
+impl<P: std::fmt::Debug> std::error::Error for Failure<P> {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        std::error::Error::source(&self.error)
+    }
+}
+
+impl<P> From<Failure<P>> for Error {
+    fn from(f: Failure<P>) -> Self {
+        f.error
+    }
+}

@@ -67,7 +67,7 @@
 //! event functions and actions are boxed closures, called through one
 //! indirection.
 
-use crate::error::{Error, to_vec};
+use crate::error::{Error, Failure, to_vec};
 use crate::func::abs;
 use crate::ode::{DenseSegment, Integrator, Mechanical, Sample, SecondOrder, check_problem};
 use crate::real::Real;
@@ -300,6 +300,16 @@ pub struct EventRun<T: Real, const N: usize> {
 }
 
 impl<T: Real, const N: usize> EventRun<T, N> {
+    /// A run that stopped before its first step: the initial state, no
+    /// occurrences.
+    pub(crate) fn unstarted(trajectory: Trajectory<T, N>) -> Self {
+        Self {
+            trajectory,
+            occurrences: Vec::new(),
+            terminated_by: None,
+        }
+    }
+
     /// The occurrences of event `event`, in time order.
     pub fn of(&self, event: usize) -> impl Iterator<Item = &Occurrence<T, N>> {
         self.occurrences.iter().filter(move |o| o.event == event)
@@ -379,13 +389,7 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
-    ) -> Result<EventRun<T, N>, Error> {
-        check_problem(t0, t1, &q0, &v0)?;
-        if self.max_events == 0 {
-            return Err(Error::InvalidSettings(
-                "events: max_events must be positive".into(),
-            ));
-        }
+    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>> {
         let started = crate::clock::Stopwatch::start();
         let watch = Watch {
             rhs,
@@ -397,80 +401,103 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
                 stop: None,
             }),
         };
-        watch.reset(t0, &q0, &v0, None)?;
-        // Two restarts closer than this are "no progress".
-        let eps = T::default_epsilon();
-        let stalled_within = T::lit(64.0) * eps * (abs(t0) + abs(t1));
-        let (mut t, mut q, mut v) = (t0, q0, v0);
         let mut trajectory: Option<Trajectory<T, N>> = None;
         let mut terminated_by = None;
-        let (mut restarts, mut stalled) = (0usize, 0usize);
-        loop {
-            let mut piece = integrator.integrate(&watch, t, t1, q, v)?;
-            let Some(stop) = watch.state.borrow_mut().stop.take() else {
-                join(&mut trajectory, piece);
-                break;
-            };
-            let event = &self.events[stop.event];
-            let (mut qa, mut va) = (stop.q, stop.v);
-            if let Some(action) = &event.action {
-                action(stop.t, &mut qa, &mut va);
-                if !qa.iter().chain(va.iter()).all(|x| x.is_finite()) {
-                    return Err(Error::non_finite(stop.t, &qa, &va));
+        // Everything computed before a failure (the pieces so far, the failed
+        // piece's accepted steps, the occurrences) goes back with it.
+        let outcome = (|| -> Result<(), Error> {
+            check_problem(t0, t1, &q0, &v0)?;
+            if self.max_events == 0 {
+                return Err(Error::InvalidSettings(
+                    "events: max_events must be positive".into(),
+                ));
+            }
+            watch.reset(t0, &q0, &v0, None)?;
+            // Two restarts closer than this are "no progress".
+            let eps = T::default_epsilon();
+            let stalled_within = T::lit(64.0) * eps * (abs(t0) + abs(t1));
+            let (mut t, mut q, mut v) = (t0, q0, v0);
+            let (mut restarts, mut stalled) = (0usize, 0usize);
+            loop {
+                let mut piece = match integrator.integrate(&watch, t, t1, q, v) {
+                    Ok(piece) => piece,
+                    Err(failure) => {
+                        join(&mut trajectory, *failure.partial);
+                        return Err(failure.error);
+                    }
+                };
+                let Some(stop) = watch.state.borrow_mut().stop.take() else {
+                    join(&mut trajectory, piece);
+                    break;
+                };
+                let event = &self.events[stop.event];
+                let (mut qa, mut va) = (stop.q, stop.v);
+                if let Some(action) = &event.action {
+                    action(stop.t, &mut qa, &mut va);
+                    if !qa.iter().chain(va.iter()).all(|x| x.is_finite()) {
+                        join(&mut trajectory, piece);
+                        return Err(Error::non_finite(stop.t, &qa, &va));
+                    }
+                    rhs.project(stop.t, &mut qa, &mut va)?;
                 }
-                rhs.project(stop.t, &mut qa, &mut va)?;
-            }
-            piece.truncate_last(stop.t, qa, va, Sample::of(rhs, stop.t, &qa, &va));
-            join(&mut trajectory, piece);
-            watch.state.borrow_mut().found.push(Occurrence {
-                event: stop.event,
-                t: stop.t,
-                q: stop.q,
-                v: stop.v,
-                q_after: qa,
-                v_after: va,
-            });
-            if event.ends(stop.t, &qa, &va) {
-                terminated_by = Some(stop.event);
-                break;
-            }
-            restarts += 1;
-            if restarts > self.max_events {
-                return Err(Error::TooManyEvents {
-                    t: stop.t.to_f64(),
-                    event: event.label(stop.event),
-                    max_events: self.max_events,
+                piece.truncate_last(stop.t, qa, va, Sample::of(rhs, stop.t, &qa, &va));
+                join(&mut trajectory, piece);
+                watch.state.borrow_mut().found.push(Occurrence {
+                    event: stop.event,
+                    t: stop.t,
+                    q: stop.q,
+                    v: stop.v,
+                    q_after: qa,
+                    v_after: va,
                 });
+                if event.ends(stop.t, &qa, &va) {
+                    terminated_by = Some(stop.event);
+                    break;
+                }
+                restarts += 1;
+                if restarts > self.max_events {
+                    return Err(Error::TooManyEvents {
+                        t: stop.t.to_f64(),
+                        event: event.label(stop.event),
+                        max_events: self.max_events,
+                    });
+                }
+                stalled = if stop.t - t <= stalled_within {
+                    stalled + 1
+                } else {
+                    0
+                };
+                if stalled >= 3 {
+                    return Err(Error::EventsAccumulate {
+                        t: stop.t.to_f64(),
+                        event: event.label(stop.event),
+                        count: stalled,
+                    });
+                }
+                // An event on the end time (up to round-off) leaves nothing to
+                // integrate: a restart would only fail on a vanishing step.
+                if t1 - stop.t <= stalled_within {
+                    break;
+                }
+                watch.reset(stop.t, &qa, &va, Some((stop.event, stop.before)))?;
+                (t, q, v) = (stop.t, qa, va);
             }
-            stalled = if stop.t - t <= stalled_within {
-                stalled + 1
-            } else {
-                0
-            };
-            if stalled >= 3 {
-                return Err(Error::EventsAccumulate {
-                    t: stop.t.to_f64(),
-                    event: event.label(stop.event),
-                    count: stalled,
-                });
-            }
-            // An event on the end time (up to round-off) leaves nothing to
-            // integrate: a restart would only fail on a vanishing step.
-            if t1 - stop.t <= stalled_within {
-                break;
-            }
-            watch.reset(stop.t, &qa, &va, Some((stop.event, stop.before)))?;
-            (t, q, v) = (stop.t, qa, va);
-        }
-        let mut trajectory = trajectory.expect("the loop runs the integrator at least once");
+            Ok(())
+        })();
+        let mut trajectory = trajectory
+            .unwrap_or_else(|| Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0)));
         let mut stats = *trajectory.stats();
         stats.wall_time = started.elapsed();
         trajectory.set_stats(stats);
-        Ok(EventRun {
+        let run = EventRun {
             trajectory,
             occurrences: watch.state.into_inner().found,
             terminated_by,
-        })
+        };
+        match outcome {
+            Ok(()) => Ok(run),
+            Err(error) => Err(Failure::new(error, run)),
+        }
     }
 }
 

@@ -90,7 +90,7 @@ pub use control::{
     Interpolation, IntoInput, NoForcing, OpenLoop, Sampled,
 };
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
-pub use error::Error;
+pub use error::{Error, Failure};
 pub use event::{Direction, Event, EventRun, Events, Occurrence};
 pub use linear::{
     Linear, LinearError, Linearizer, OperatingPoint, complete_state, linearize,

@@ -4,9 +4,9 @@ use crate::constraint::{
     ConstrainedDynamics, DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE, Drift,
 };
 use crate::dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics};
-use crate::error::Error;
+use crate::error::{Error, Failure};
 use crate::event::{Event, EventRun, Events};
-use crate::ode::{Dopri5, Integrator, check_problem};
+use crate::ode::{Dopri5, Integrator, check_problem, failed_at_start};
 use crate::real::Real;
 use crate::reduced::ReducedDynamics;
 use crate::system::{Constrained, Lagrangian, Reduced};
@@ -231,13 +231,17 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         q0: impl Into<SVector<T, N>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<Trajectory<T, N>, Error>
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>
     where
         S: Constrained<T, N, K>,
     {
         let (q0, v0) = (q0.into(), v0.into());
-        check_problem(span.start, span.end, &q0, &v0)?;
-        let (dynamics, q0, v0) = self.prepare_constrained::<T, N, K>(span.start, q0, v0)?;
+        let start =
+            |e| failed_at_start(&self.constrained_dynamics::<T, K>(), span.start, q0, v0, e);
+        check_problem(span.start, span.end, &q0, &v0).map_err(start)?;
+        let (dynamics, q0, v0) = self
+            .prepare_constrained::<T, N, K>(span.start, q0, v0)
+            .map_err(start)?;
         self.integrator
             .integrate(&dynamics, span.start, span.end, q0, v0)
     }
@@ -333,15 +337,18 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         q0: impl Into<SVector<T, N>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<Trajectory<T, N>, Error>
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>
     where
         S: Reduced<T, N, K>,
     {
-        self.check_tolerances()?;
         let (q0, v0) = (q0.into(), v0.into());
-        check_problem(span.start, span.end, &q0, &v0)?;
         let dynamics = self.reduced_dynamics::<T, K>();
-        let v0 = dynamics.consistent_velocities(span.start, &q0, &v0)?;
+        let start = |e| failed_at_start(&dynamics, span.start, q0, v0, e);
+        self.check_tolerances().map_err(start)?;
+        check_problem(span.start, span.end, &q0, &v0).map_err(start)?;
+        let v0 = dynamics
+            .consistent_velocities(span.start, &q0, &v0)
+            .map_err(start)?;
         self.integrator
             .integrate(&dynamics, span.start, span.end, q0, v0)
     }
@@ -358,13 +365,16 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         q0: impl Into<SVector<T, N>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<Trajectory<T, N>, Error>
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>
     where
         S: Lagrangian<T, N>,
     {
-        self.check_singular_tolerance()?;
+        let (q0, v0) = (q0.into(), v0.into());
+        let dynamics = self.dynamics();
+        self.check_singular_tolerance()
+            .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
         self.integrator
-            .integrate(&self.dynamics(), span.start, span.end, q0.into(), v0.into())
+            .integrate(&dynamics, span.start, span.end, q0, v0)
     }
 }
 
@@ -404,20 +414,18 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
         q0: impl Into<SVector<T, N>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<EventRun<T, N>, Error>
+    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>>
     where
         S: Lagrangian<T, N>,
     {
         let sim = &self.simulation;
-        sim.check_singular_tolerance()?;
-        self.events.integrate(
-            &sim.integrator,
-            &sim.dynamics(),
-            span.start,
-            span.end,
-            q0.into(),
-            v0.into(),
-        )
+        let (q0, v0) = (q0.into(), v0.into());
+        let dynamics = sim.dynamics();
+        sim.check_singular_tolerance().map_err(|e| {
+            failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
+        })?;
+        self.events
+            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
     }
 
     /// [`Simulation::run_constrained`] watching the events; after an action
@@ -431,14 +439,20 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
         q0: impl Into<SVector<T, N>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<EventRun<T, N>, Error>
+    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>>
     where
         S: Constrained<T, N, K>,
     {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
-        check_problem(span.start, span.end, &q0, &v0)?;
-        let (dynamics, q0, v0) = sim.prepare_constrained::<T, N, K>(span.start, q0, v0)?;
+        let start = |e| {
+            let dynamics = sim.constrained_dynamics::<T, K>();
+            failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
+        };
+        check_problem(span.start, span.end, &q0, &v0).map_err(start)?;
+        let (dynamics, q0, v0) = sim
+            .prepare_constrained::<T, N, K>(span.start, q0, v0)
+            .map_err(start)?;
         self.events
             .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
     }

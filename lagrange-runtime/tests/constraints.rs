@@ -6,6 +6,7 @@ mod common;
 
 use common::constrained::{CartesianPendulum, DrivenPendulum};
 use common::{Pendulum, pendulum_period, sv};
+use lagrange_runtime::Failure;
 use lagrange_runtime::{
     ConstrainedDynamics, Dopri5, Drift, Error, Integrator, Rk4, SecondOrder, Simulation,
     Trajectory, check_consistency, project_consistent,
@@ -171,7 +172,7 @@ fn redundant_constraints_are_an_error_unless_least_squares() {
     let e = Simulation::new(&twice)
         .run_constrained(q0, v0, 0.0..1.0)
         .unwrap_err();
-    match &e {
+    match &e.error {
         Error::RedundantConstraints {
             t,
             coordinates,
@@ -232,7 +233,7 @@ fn inconsistent_initial_conditions() {
     let e = Simulation::new(&sys)
         .run_constrained(q_bad, v, 0.0..1.0)
         .unwrap_err();
-    match &e {
+    match &e.error {
         Error::InconsistentInitialConditions {
             position_residual,
             tolerance,
@@ -316,7 +317,7 @@ fn projection_that_cannot_converge_is_an_error() {
         })
         .run_constrained(q, v, 0.0..1.0)
         .unwrap_err();
-    assert!(matches!(e, Error::InvalidSettings(_)), "{e:?}");
+    assert!(matches!(e.error, Error::InvalidSettings(_)), "{e:?}");
 }
 
 #[test]
@@ -332,7 +333,10 @@ fn non_finite_states_are_typed_errors() {
             .drift(drift)
             .run_constrained(q, v, 0.0..1.0)
         {
-            Err(Error::NonFiniteState { t, .. }) => assert_eq!(t, 0.0),
+            Err(Failure {
+                error: Error::NonFiniteState { t, .. },
+                ..
+            }) => assert_eq!(t, 0.0),
             other => panic!("expected NonFiniteState, got {other:?}"),
         }
     }
@@ -360,7 +364,10 @@ fn non_finite_states_are_typed_errors() {
     // A NaN initial state is an invalid problem, as for unconstrained runs.
     assert!(matches!(
         Simulation::new(&sys).run_constrained(bad, v, 0.0..1.0),
-        Err(Error::InvalidSettings(_))
+        Err(Failure {
+            error: Error::InvalidSettings(_),
+            ..
+        })
     ));
 }
 

@@ -777,20 +777,20 @@ fn checks_of_the_plain_simulation_still_apply() {
         .run_constrained([0.7, -0.7], [0.0, 0.0], 0.0..1.0)
         .unwrap_err();
     assert!(
-        matches!(e, Error::InconsistentInitialConditions { .. }),
+        matches!(e.error, Error::InconsistentInitialConditions { .. }),
         "{e}"
     );
     let e = Simulation::new(&SPRING)
         .feedback(|_, _, _| [0.0])
         .run([f64::NAN], [0.0], 0.0..1.0)
         .unwrap_err();
-    assert!(matches!(e, Error::InvalidSettings(_)), "{e}");
+    assert!(matches!(e.error, Error::InvalidSettings(_)), "{e}");
     let e = Simulation::new(&SPRING)
         .singular_tolerance(-1.0)
         .feedback(|_, _, _| [0.0])
         .run([0.0], [0.0], 0.0..1.0)
         .unwrap_err();
-    assert!(matches!(e, Error::InvalidSettings(_)), "{e}");
+    assert!(matches!(e.error, Error::InvalidSettings(_)), "{e}");
 }
 
 // ---------------------------------------------------------------------------
@@ -806,7 +806,7 @@ fn non_finite_inputs_are_typed_errors() {
         .feedback(|t, _, _| [if t > 0.5 { f64::NAN } else { 0.0 }])
         .run([1.0], [0.0], 0.0..1.0)
         .unwrap_err();
-    match &e {
+    match &e.error {
         Error::NonFiniteInput {
             t, input, value, q, ..
         } => {
@@ -828,7 +828,7 @@ fn non_finite_inputs_are_typed_errors() {
         })
         .run([1.0], [0.0], 0.0..1.0)
         .unwrap_err();
-    match e {
+    match e.error {
         Error::NonFiniteInput {
             t, input, value, ..
         } => {
@@ -845,7 +845,7 @@ fn non_finite_inputs_are_typed_errors() {
         .run_constrained(Vector3::zeros(), Vector3::zeros(), 0.0..1.0)
         .unwrap_err();
     assert!(
-        matches!(e, Error::NonFiniteInput { input: "torque", t, .. } if t >= 0.5),
+        matches!(e.error, Error::NonFiniteInput { input: "torque", t, .. } if t >= 0.5),
         "{e}"
     );
 }
@@ -858,7 +858,7 @@ fn bad_periods_are_invalid_settings() {
             .run([1.0], [0.0], 0.0..1.0)
             .unwrap_err();
         assert!(
-            matches!(&e, Error::InvalidSettings(m) if m.contains("period")),
+            matches!(&e.error, Error::InvalidSettings(m) if m.contains("period")),
             "{h}: {e}"
         );
     }

@@ -4,6 +4,7 @@
 
 mod common;
 
+use lagrange_runtime::Failure;
 use lagrange_runtime::{Dop853, Dopri5, Error, Integrator, SecondOrder};
 use nalgebra::{Vector1, Vector2};
 
@@ -261,11 +262,23 @@ fn settings_and_failures_are_typed() {
         Dop853::tol(1e-6).hmax(0.0),
         Dop853::tol(1e-6).max_steps(0),
     ] {
-        assert!(matches!(go(m), Err(Error::InvalidSettings(_))), "{m:?}");
+        assert!(
+            matches!(
+                go(m),
+                Err(Failure {
+                    error: Error::InvalidSettings(_),
+                    ..
+                })
+            ),
+            "{m:?}"
+        );
     }
     assert!(matches!(
         go(Dop853::tol(1e-14).max_steps(3)),
-        Err(Error::TooManySteps { max_steps: 3, .. })
+        Err(Failure {
+            error: Error::TooManySteps { max_steps: 3, .. },
+            ..
+        })
     ));
 }
 
@@ -277,7 +290,10 @@ fn settings_and_failures_are_typed() {
 #[test]
 fn stiffness_is_detected_as_hairer_does() {
     let vdp = VanDerPol { eps: 1e-6 };
-    let run = |m: &dyn Fn() -> Result<lagrange_runtime::Trajectory<f64, 1>, Error>| m();
+    let run = |m: &dyn Fn() -> Result<
+        lagrange_runtime::Trajectory<f64, 1>,
+        Failure<lagrange_runtime::Trajectory<f64, 1>>,
+    >| m();
     let (q0, v0) = (Vector1::new(2.0), Vector1::new(-0.66));
     for (name, result) in [
         (
@@ -290,14 +306,18 @@ fn stiffness_is_detected_as_hairer_does() {
         ),
     ] {
         match result {
-            Err(
-                e @ Error::ProbablyStiff {
-                    method,
-                    t,
-                    h_lambda,
-                    ..
-                },
-            ) => {
+            Err(Failure {
+                error:
+                    e @ Error::ProbablyStiff {
+                        method,
+                        t,
+                        h_lambda,
+                        ..
+                    },
+                partial,
+            }) => {
+                // The steps before the test gave up come back with it.
+                assert_eq!(*partial.times().last().unwrap(), t);
                 eprintln!("{name}: {e}");
                 assert_eq!(method, name);
                 assert!(t < 2.0 && h_lambda > 3.0);
@@ -310,5 +330,14 @@ fn stiffness_is_detected_as_hairer_does() {
         .stiffness_test(0)
         .max_steps(20_000)
         .integrate(&vdp, 0.0, 2.0, q0, v0);
-    assert!(matches!(off, Err(Error::TooManySteps { .. })), "{off:?}");
+    assert!(
+        matches!(
+            off,
+            Err(Failure {
+                error: Error::TooManySteps { .. },
+                ..
+            })
+        ),
+        "{off:?}"
+    );
 }

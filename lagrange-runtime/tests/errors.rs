@@ -3,6 +3,7 @@
 mod common;
 
 use common::{Pendulum, SphericalPendulum, sv};
+use lagrange_runtime::Failure;
 use lagrange_runtime::{Dopri5, Error, Lagrangian, Rk4, Simulation, accelerations};
 
 #[test]
@@ -19,7 +20,10 @@ fn nan_parameters_give_non_finite_state() {
             .run(sv([0.1]), sv([0.0]), 0.0..1.0),
     ] {
         match result {
-            Err(Error::NonFiniteState { t, q, v }) => {
+            Err(Failure {
+                error: Error::NonFiniteState { t, q, v },
+                ..
+            }) => {
                 assert_eq!((t, q, v), (0.0, vec![0.1], vec![0.0]))
             }
             other => panic!("expected NonFiniteState, got {other:?}"),
@@ -48,7 +52,10 @@ fn invalid_settings() {
     ];
     for case in cases {
         match case {
-            Err(Error::InvalidSettings(msg)) => assert!(!msg.is_empty()),
+            Err(Failure {
+                error: Error::InvalidSettings(msg),
+                ..
+            }) => assert!(!msg.is_empty()),
             other => panic!("expected InvalidSettings, got {other:?}"),
         }
     }

@@ -5,6 +5,7 @@
 mod common;
 
 use common::{Pendulum, pendulum_period, sv};
+use lagrange_runtime::Failure;
 use lagrange_runtime::{
     Direction, Dop853, Dopri5, Error, Event, Events, Gauss, Integrator, Lagrangian, Radau5, Rk4,
     SecondOrder, Simulation, StormerVerlet,
@@ -314,7 +315,7 @@ fn misbehaving_events_are_typed_errors() {
         .run([1.0], [0.0], 0.0..2.0)
         .unwrap_err();
     assert!(
-        matches!(&stuck, Error::EventsAccumulate { event, t, .. } if event == "floor" && (t - (2.0f64 / 9.81).sqrt()).abs() < 1e-9),
+        matches!(&stuck.error, Error::EventsAccumulate { event, t, .. } if event == "floor" && (t - (2.0f64 / 9.81).sqrt()).abs() < 1e-9),
         "{stuck}"
     );
     // A ball with e < 1 comes to rest after infinitely many impacts in finite
@@ -332,7 +333,7 @@ fn misbehaving_events_are_typed_errors() {
         .run([h0], [0.0], 0.0..5.0)
         .unwrap_err();
     assert!(
-        matches!(&rest, Error::EventsAccumulate { t, .. } if (t - t_rest).abs() < 1e-6),
+        matches!(&rest.error, Error::EventsAccumulate { t, .. } if (t - t_rest).abs() < 1e-6),
         "{rest} (Zeno point {t_rest})"
     );
     let zeno = sim
@@ -346,7 +347,7 @@ fn misbehaving_events_are_typed_errors() {
         .run([1.0], [0.0], 0.0..10.0)
         .unwrap_err();
     assert!(
-        matches!(&zeno, Error::TooManyEvents { event, max_events: 20, .. } if event == "event #0"),
+        matches!(&zeno.error, Error::TooManyEvents { event, max_events: 20, .. } if event == "event #0"),
         "{zeno}"
     );
     let nan = sim
@@ -358,7 +359,7 @@ fn misbehaving_events_are_typed_errors() {
         .run([1.0], [0.0], 0.0..1.0)
         .unwrap_err();
     assert!(
-        matches!(&nan, Error::EventFunction { event, t, .. } if event == "sensor" && *t > 0.3),
+        matches!(&nan.error, Error::EventFunction { event, t, .. } if event == "sensor" && *t > 0.3),
         "{nan}"
     );
     assert!(nan.to_string().contains("`sensor` is not finite"), "{nan}");
@@ -366,7 +367,7 @@ fn misbehaving_events_are_typed_errors() {
         .event(Event::new(|_, q: &SVector<f64, 1>, _| q[0]).action(|_, q, _| q[0] = f64::NAN))
         .run([1.0], [0.0], 0.0..1.0)
         .unwrap_err();
-    assert!(matches!(bad, Error::NonFiniteState { .. }), "{bad}");
+    assert!(matches!(bad.error, Error::NonFiniteState { .. }), "{bad}");
     let zero = Events::new()
         .with(Event::new(|_, q: &SVector<f64, 1>, _| q[0]))
         .max_events(0)
@@ -378,7 +379,13 @@ fn misbehaving_events_are_typed_errors() {
             sv([1.0]),
             sv([0.0]),
         );
-    assert!(matches!(zero, Err(Error::InvalidSettings(_))));
+    assert!(matches!(
+        zero,
+        Err(Failure {
+            error: Error::InvalidSettings(_),
+            ..
+        })
+    ));
 }
 
 /// Events drive any `SecondOrder` system, not only `Lagrangian` ones.

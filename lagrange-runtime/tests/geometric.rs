@@ -240,7 +240,7 @@ fn gauss_failures_are_typed() {
         .run(sv([1.0]), sv([0.0]), 0.0..1.0)
         .unwrap_err();
     assert!(
-        matches!(&e, Error::InvalidSettings(m) if m.contains("kinetic_gradient")),
+        matches!(&e.error, Error::InvalidSettings(m) if m.contains("kinetic_gradient")),
         "{e}"
     );
     // A step far too large for the nonlinearity with a small iteration budget.
@@ -249,7 +249,7 @@ fn gauss_failures_are_typed() {
         .run(sv([3.0]), sv([5.0]), 0.0..10.0)
         .unwrap_err();
     assert!(
-        matches!(e, Error::NewtonFailure { iterations: 4, .. }),
+        matches!(e.error, Error::NewtonFailure { iterations: 4, .. }),
         "{e}"
     );
     assert!(e.to_string().contains("did not converge"), "{e}");

@@ -4,6 +4,7 @@
 mod common;
 
 use common::constrained::Sleigh;
+use lagrange_runtime::Failure;
 use lagrange_runtime::{
     ConstrainedDynamics, Dopri5, Drift, Error, ReducedDynamics, Rk4, SecondOrder, Simulation,
 };
@@ -203,9 +204,13 @@ fn velocity_projection_for_a_purely_nonholonomic_system() {
     // Inconsistent sideways velocity: an error, or projected away on request.
     let side = Vector3::new(-q0[2].sin(), q0[2].cos(), 0.0) * 0.3;
     match Simulation::new(&sys).run_constrained(q0, v0 + side, 0.0..1.0) {
-        Err(Error::InconsistentInitialConditions {
-            velocity_residual,
-            constraint,
+        Err(Failure {
+            error:
+                Error::InconsistentInitialConditions {
+                    velocity_residual,
+                    constraint,
+                    ..
+                },
             ..
         }) => {
             assert!((velocity_residual - 0.3).abs() < 1e-15);
@@ -234,7 +239,10 @@ fn reduced_typed_errors() {
     };
     let (q0, v0) = start();
     match Simulation::new(&flat).run_reduced(q0, v0, 0.0..1.0) {
-        Err(Error::SingularMassMatrix { t, ratio, .. }) => {
+        Err(Failure {
+            error: Error::SingularMassMatrix { t, ratio, .. },
+            ..
+        }) => {
             assert_eq!(t, 0.0);
             assert!(ratio <= 0.0);
         }
@@ -249,7 +257,13 @@ fn reduced_typed_errors() {
         Simulation::new(&nan).run_constrained(q0, v0, 0.0..1.0),
     ] {
         assert!(
-            matches!(result, Err(Error::NonFiniteState { t: 0.0, .. })),
+            matches!(
+                result,
+                Err(Failure {
+                    error: Error::NonFiniteState { t: 0.0, .. },
+                    ..
+                })
+            ),
             "{result:?}"
         );
     }

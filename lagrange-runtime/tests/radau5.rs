@@ -157,7 +157,7 @@ fn stiff_spring_pendulum_radau_completes_dopri_hits_budget() {
         .unwrap_err();
     assert!(
         matches!(
-            e,
+            e.error,
             Error::ProbablyStiff {
                 method: "DOPRI5",
                 ..
@@ -172,7 +172,7 @@ fn stiff_spring_pendulum_radau_completes_dopri_hits_budget() {
         .unwrap_err();
     assert!(
         matches!(
-            e,
+            e.error,
             Error::TooManySteps {
                 max_steps: 2000,
                 ..

@@ -98,33 +98,33 @@ fn typed_errors() {
         .integrate(&sys, 0.0, 1.0, q0 * 1.01, v0)
         .unwrap_err();
     assert!(
-        matches!(e, Error::InconsistentInitialConditions { .. }),
+        matches!(e.error, Error::InconsistentInitialConditions { .. }),
         "{e}"
     );
     for h in [0.0, -0.1, f64::NAN] {
         let e = Rattle::step(h)
             .integrate(&sys, 0.0, 1.0, q0, v0)
             .unwrap_err();
-        assert!(matches!(e, Error::InvalidSettings(_)), "{e}");
+        assert!(matches!(e.error, Error::InvalidSettings(_)), "{e}");
     }
     let e = Rattle::step(0.01)
         .max_iterations(0)
         .integrate(&sys, 0.0, 1.0, q0, v0)
         .unwrap_err();
-    assert!(matches!(e, Error::InvalidSettings(_)), "{e}");
+    assert!(matches!(e.error, Error::InvalidSettings(_)), "{e}");
     // A step so large that the position constraint has no solution along
     // M⁻¹Φ_qᵀ(qₙ) (the pendulum would turn by more than a quarter turn).
     let (q1, v1) = sys.state(0.0, 20.0);
     let e = Rattle::step(0.5)
         .integrate(&sys, 0.0, 1.0, q1, v1)
         .unwrap_err();
-    assert!(matches!(e, Error::NewtonFailure { .. }), "{e}");
+    assert!(matches!(e.error, Error::NewtonFailure { .. }), "{e}");
     // The same rod twice: Φ_q M⁻¹ Φ_qᵀ is singular.
     let twice = CartesianPendulum::<2>::standard();
     let e = Rattle::step(0.01)
         .integrate(&twice, 0.0, 1.0, q0, v0)
         .unwrap_err();
-    assert!(matches!(e, Error::RedundantConstraints { .. }), "{e}");
+    assert!(matches!(e.error, Error::RedundantConstraints { .. }), "{e}");
     // Nonholonomic rows have no position level.
     let e = Rattle::step(0.01)
         .integrate(

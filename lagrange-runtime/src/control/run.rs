@@ -1,10 +1,10 @@
 //! Controlled simulation: the builder, the piecewise driver and its result.
 
 use super::{Feedback, InputForces, InputSource, IntoInput, OpenLoop, Sampled, check_input};
-use crate::error::Error;
+use crate::error::{Error, Failure};
 use crate::event::{Event, Events, Occurrence};
 use crate::func::abs;
-use crate::ode::{Integrator, SecondOrder, check_problem};
+use crate::ode::{Integrator, Sample, SecondOrder, check_problem};
 use crate::real::Real;
 use crate::simulation::Simulation;
 use crate::system::{Constrained, Driven, Lagrangian, Reduced};
@@ -185,13 +185,21 @@ where
         q0: impl Into<SVector<T, N>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<ControlRun<T, N, P>, Error> {
+    ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>> {
         let sim = &self.simulation;
-        sim.check_singular_tolerance()?;
         let (q0, v0) = (q0.into(), v0.into());
-        check_problem(span.start, span.end, &q0, &v0)?;
         let dynamics = sim.dynamics::<T>();
-        self.drive(|f| dynamics.with_forcing(f), span, q0, v0)
+        let prepare = || {
+            sim.check_singular_tolerance()?;
+            check_problem(span.start, span.end, &q0, &v0)?;
+            Ok((q0, v0))
+        };
+        self.drive(
+            |f| dynamics.with_forcing(f),
+            span.clone(),
+            (q0, v0),
+            prepare,
+        )
     }
 
     /// [`Simulation::run_constrained`] with the inputs applied: the same
@@ -204,15 +212,24 @@ where
         q0: impl Into<SVector<T, N>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<ControlRun<T, N, P>, Error>
+    ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>>
     where
         S: Constrained<T, N, K>,
     {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
-        check_problem(span.start, span.end, &q0, &v0)?;
-        let (dynamics, q0, v0) = sim.prepare_constrained::<T, N, K>(span.start, q0, v0)?;
-        self.drive(|f| dynamics.with_forcing(f), span, q0, v0)
+        let dynamics = sim.constrained_dynamics::<T, K>();
+        let prepare = || {
+            check_problem(span.start, span.end, &q0, &v0)?;
+            let (_, q0, v0) = sim.prepare_constrained::<T, N, K>(span.start, q0, v0)?;
+            Ok((q0, v0))
+        };
+        self.drive(
+            |f| dynamics.with_forcing(f),
+            span.clone(),
+            (q0, v0),
+            prepare,
+        )
     }
 
     /// [`Simulation::run_reduced`] with the inputs applied: F* gains Wᵀ ΔQ.
@@ -224,40 +241,94 @@ where
         q0: impl Into<SVector<T, N>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<ControlRun<T, N, P>, Error>
+    ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>>
     where
         S: Reduced<T, N, K>,
     {
         let sim = &self.simulation;
-        sim.check_tolerances()?;
         let (q0, v0) = (q0.into(), v0.into());
-        check_problem(span.start, span.end, &q0, &v0)?;
         let dynamics = sim.reduced_dynamics::<T, K>();
-        let v0 = dynamics.consistent_velocities(span.start, &q0, &v0)?;
-        self.drive(|f| dynamics.with_forcing(f), span, q0, v0)
+        let prepare = || {
+            sim.check_tolerances()?;
+            check_problem(span.start, span.end, &q0, &v0)?;
+            let v0 = dynamics.consistent_velocities(span.start, &q0, &v0)?;
+            Ok((q0, v0))
+        };
+        self.drive(
+            |f| dynamics.with_forcing(f),
+            span.clone(),
+            (q0, v0),
+            prepare,
+        )
     }
 
     /// Integrates piece by piece between the source's breaks (one piece when it
     /// has none), each piece with the dynamics `make` builds from its forcing.
+    /// `prepare` checks the settings and gives the initial state to start from
+    /// (projected, for the constrained forms). On a failure the run so far (the
+    /// pieces, the failed piece's accepted steps, their inputs, the
+    /// occurrences; the given initial state alone if none) goes back with the
+    /// error.
     fn drive<'s, D: SecondOrder<T, N>>(
         &'s self,
         make: impl Fn(InputForces<'s, S, Piece<'s, C, T, P>, P>) -> D,
         span: Range<T>,
+        (q0, v0): (SVector<T, N>, SVector<T, N>),
+        prepare: impl FnOnce() -> Result<(SVector<T, N>, SVector<T, N>), Error>,
+    ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>> {
+        let started = crate::clock::Stopwatch::start();
+        let mut record = Record {
+            whole: None,
+            inputs: Vec::new(),
+            occurrences: Vec::new(),
+            terminated_by: None,
+        };
+        let outcome =
+            prepare().and_then(|(q, v)| self.pieces(&make, span.clone(), q, v, &mut record));
+        let mut trajectory = match record.whole {
+            Some(w) => w,
+            None => {
+                let rhs = make(InputForces::new(
+                    self.simulation.system,
+                    Piece::Live(&self.source),
+                ));
+                record.inputs = vec![self.source.input(span.start, &q0, &v0)];
+                Trajectory::start(span.start, q0, v0, Sample::of(&rhs, span.start, &q0, &v0))
+            }
+        };
+        let mut stats = *trajectory.stats();
+        stats.wall_time = started.elapsed();
+        trajectory.set_stats(stats);
+        let run = ControlRun {
+            trajectory,
+            inputs: record.inputs,
+            occurrences: record.occurrences,
+            terminated_by: record.terminated_by,
+            coordinates: S::COORDINATES,
+            input_names: S::INPUTS,
+        };
+        match outcome {
+            Ok(()) => Ok(run),
+            Err(error) => Err(Failure::new(error, run)),
+        }
+    }
+
+    /// The pieces of [`drive`](Self::drive), recorded into `record`.
+    fn pieces<'s, D: SecondOrder<T, N>>(
+        &'s self,
+        make: &impl Fn(InputForces<'s, S, Piece<'s, C, T, P>, P>) -> D,
+        span: Range<T>,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
-    ) -> Result<ControlRun<T, N, P>, Error> {
+        record: &mut Record<T, N, P>,
+    ) -> Result<(), Error> {
         self.source.check()?;
-        let started = crate::clock::Stopwatch::start();
         let (t0, t1) = (span.start, span.end);
         let system: &'s S = self.simulation.system;
         let integrator = &self.simulation.integrator;
         // Breaks within this of each other (or of t1) are one instant.
         let eps = T::lit(64.0) * T::default_epsilon() * (abs(t0) + abs(t1));
         let held = self.source.held();
-        let mut whole: Option<Trajectory<T, N>> = None;
-        let mut inputs: Vec<SVector<T, P>> = Vec::new();
-        let mut occurrences = Vec::new();
-        let mut terminated_by = None;
         let mut ends_on_break = false;
         let (mut t, mut q, mut v) = (t0, q0, v0);
         loop {
@@ -286,36 +357,31 @@ where
             };
             let rhs = make(InputForces::new(system, piece_source));
             let (piece, stop) = if self.events.events().is_empty() {
-                (integrator.integrate(&rhs, t, end, q, v)?, None)
-            } else {
-                let run = self.events.integrate(integrator, &rhs, t, end, q, v)?;
-                occurrences.extend(run.occurrences);
-                (run.trajectory, run.terminated_by)
-            };
-            // The piece's first point replaces the last point recorded so far.
-            if whole.is_some() {
-                inputs.pop();
-            }
-            inputs.reserve(piece.len());
-            match piece_source {
-                Piece::Held(u) => inputs.extend(std::iter::repeat_n(u, piece.len())),
-                Piece::Live(_) => {
-                    let points = piece.times().iter().zip(piece.positions());
-                    for ((&tk, qk), vk) in points.zip(piece.velocities()) {
-                        let u = self.source.input(tk, qk, vk);
-                        check_input::<S, T, N, P>(tk, qk, vk, &u)?;
-                        inputs.push(u);
+                match integrator.integrate(&rhs, t, end, q, v) {
+                    Ok(piece) => (piece, None),
+                    Err(f) => {
+                        self.record(*f.partial, piece_source, record, false)?;
+                        return Err(f.error);
                     }
                 }
-            }
+            } else {
+                match self.events.integrate(integrator, &rhs, t, end, q, v) {
+                    Ok(run) => {
+                        record.occurrences.extend(run.occurrences);
+                        (run.trajectory, run.terminated_by)
+                    }
+                    Err(f) => {
+                        record.occurrences.extend(f.partial.occurrences);
+                        self.record(f.partial.trajectory, piece_source, record, false)?;
+                        return Err(f.error);
+                    }
+                }
+            };
             (q, v) = piece.final_state();
             let reached = *piece.times().last().expect("a trajectory holds its start");
-            match &mut whole {
-                Some(w) => w.append(piece),
-                None => whole = Some(piece),
-            }
+            self.record(piece, piece_source, record, true)?;
             if stop.is_some() {
-                terminated_by = stop;
+                record.terminated_by = stop;
                 break;
             }
             if end >= t1 {
@@ -323,26 +389,65 @@ where
             }
             t = reached;
         }
-        let mut trajectory = whole.expect("the loop integrates at least one piece");
-        if held && ends_on_break && terminated_by.is_none() {
+        if held && ends_on_break && record.terminated_by.is_none() {
             // The end time is a sample instant: record the new sample there.
+            let trajectory = record
+                .whole
+                .as_ref()
+                .expect("the loop integrates at least one piece");
             let (q, v) = trajectory.final_state();
             let u = self.source.input(t1, &q, &v);
             check_input::<S, T, N, P>(t1, &q, &v, &u)?;
-            *inputs.last_mut().expect("one input per point") = u;
+            *record.inputs.last_mut().expect("one input per point") = u;
         }
-        let mut stats = *trajectory.stats();
-        stats.wall_time = started.elapsed();
-        trajectory.set_stats(stats);
-        Ok(ControlRun {
-            trajectory,
-            inputs,
-            occurrences,
-            terminated_by,
-            coordinates: S::COORDINATES,
-            input_names: S::INPUTS,
-        })
+        Ok(())
     }
+
+    /// Appends a piece and its inputs (one per point; the piece's first point
+    /// replaces the last one recorded). With `check` a non-finite input is the
+    /// error (after the piece is recorded); a failed piece's inputs are
+    /// recorded as they are.
+    fn record(
+        &self,
+        piece: Trajectory<T, N>,
+        source: Piece<'_, C, T, P>,
+        record: &mut Record<T, N, P>,
+        check: bool,
+    ) -> Result<(), Error> {
+        if record.whole.is_some() {
+            record.inputs.pop();
+        }
+        record.inputs.reserve(piece.len());
+        let mut refused = Ok(());
+        match source {
+            Piece::Held(u) => record.inputs.extend(std::iter::repeat_n(u, piece.len())),
+            Piece::Live(_) => {
+                let points = piece.times().iter().zip(piece.positions());
+                for ((&tk, qk), vk) in points.zip(piece.velocities()) {
+                    let u = self.source.input(tk, qk, vk);
+                    if check && refused.is_ok() {
+                        refused = check_input::<S, T, N, P>(tk, qk, vk, &u);
+                    }
+                    record.inputs.push(u);
+                }
+            }
+        }
+        // The piece is recorded even when one of its inputs is refused: the
+        // failure hands back everything computed, one input per point.
+        match &mut record.whole {
+            Some(w) => w.append(piece),
+            None => record.whole = Some(piece),
+        }
+        refused
+    }
+}
+
+/// A controlled run as it is recorded, piece by piece.
+struct Record<T: Real, const N: usize, const P: usize> {
+    whole: Option<Trajectory<T, N>>,
+    inputs: Vec<SVector<T, P>>,
+    occurrences: Vec<Occurrence<T, N>>,
+    terminated_by: Option<usize>,
 }
 
 /// The source of one piece of a controlled run: a held sample or the source

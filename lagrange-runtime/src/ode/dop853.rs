@@ -22,7 +22,7 @@ use super::controller::PiController;
 use super::dopri5::hinit;
 use super::settings::{StepControl, step_control_builders};
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
-use crate::error::Error;
+use crate::error::{Error, Failure};
 use crate::func::{abs, sqrt};
 use crate::real::Real;
 use crate::trajectory::Trajectory;
@@ -374,159 +374,168 @@ impl Integrator for Dop853 {
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Error> {
-        self.validate()?;
-        self.control.check_precision::<T>("DOP853")?;
-        check_problem(t0, t1, &q0, &v0)?;
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         let started = crate::clock::Stopwatch::start();
-        let co = Coefficients::<T>::new();
-        let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
-        let hmax = self.control.hmax.map_or(t1 - t0, T::lit);
-        let underflow = T::lit(16.0) * T::default_epsilon();
-        let stretch = T::lit(1.01);
-
         let mut stats = Stats::default();
-        let mut y = Pair::new(q0, v0);
-        let mut k1 = y.derivative(rhs, t0, &mut stats.evaluations)?;
-        let mut h = match self.control.h0 {
-            Some(h0) => T::lit(h0).min(hmax),
-            None => hinit(
-                rhs,
-                t0,
-                &y,
-                &k1,
-                hmax,
-                rtol,
-                atol,
-                8,
-                &mut stats.evaluations,
-            )?,
-        };
-        let mut ctrl = PiController::<T>::dop853();
-        let mut stiffness = super::StiffnessTest::new("DOP853", self.stiffness_test, 6.1);
         let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
-        let mut t = t0;
-        let mut reject = false;
-        let c = co.c;
-        loop {
-            if stats.steps() >= self.control.max_steps {
-                return Err(Error::TooManySteps {
-                    t: t.to_f64(),
-                    max_steps: self.control.max_steps,
-                });
-            }
-            if h <= underflow * abs(t) || !h.is_finite() {
-                return Err(Error::StepSizeUnderflow {
-                    t: t.to_f64(),
-                    h: h.to_f64(),
-                });
-            }
-            let last = t + stretch * h - t1 > T::zero();
-            if last {
-                h = t1 - t;
-            }
-            let t_new = if last { t1 } else { t + h };
+        // Everything computed before a failure goes back with it.
+        let outcome = (|| -> Result<(), Error> {
+            self.validate()?;
+            self.control.check_precision::<T>("DOP853")?;
+            check_problem(t0, t1, &q0, &v0)?;
+            let co = Coefficients::<T>::new();
+            let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
+            let hmax = self.control.hmax.map_or(t1 - t0, T::lit);
+            let underflow = T::lit(16.0) * T::default_epsilon();
+            let stretch = T::lit(1.01);
 
-            let ev = &mut stats.evaluations;
-            let stages = (|| {
-                let stage =
-                    |a: Pair<T, N>, ci: T, ev: &mut usize| a.derivative(rhs, t + ci * h, ev);
-                let k2 = stage(y.add_combination(h, co.a2, [&k1]), c[1], ev)?;
-                let k3 = stage(y.add_combination(h, co.a3, [&k1, &k2]), c[2], ev)?;
-                let k4 = stage(y.add_combination(h, co.a4, [&k1, &k3]), c[3], ev)?;
-                let k5 = stage(y.add_combination(h, co.a5, [&k1, &k3, &k4]), c[4], ev)?;
-                let k6 = stage(y.add_combination(h, co.a6, [&k1, &k4, &k5]), c[5], ev)?;
-                let k7 = stage(y.add_combination(h, co.a7, [&k1, &k4, &k5, &k6]), c[6], ev)?;
-                let k8 = stage(
-                    y.add_combination(h, co.a8, [&k1, &k4, &k5, &k6, &k7]),
-                    c[7],
-                    ev,
-                )?;
-                let k9 = stage(
-                    y.add_combination(h, co.a9, [&k1, &k4, &k5, &k6, &k7, &k8]),
-                    c[8],
-                    ev,
-                )?;
-                let k10 = stage(
-                    y.add_combination(h, co.a10, [&k1, &k4, &k5, &k6, &k7, &k8, &k9]),
-                    c[9],
-                    ev,
-                )?;
-                let k11 = stage(
-                    y.add_combination(h, co.a11, [&k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10]),
-                    c[10],
-                    ev,
-                )?;
-                let y12 =
-                    y.add_combination(h, co.a12, [&k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10, &k11]);
-                let k12 = y12.derivative(rhs, t_new, ev)?;
-                Ok::<_, Error>((k6, k7, k8, k9, k10, k11, y12, k12))
-            })();
-            let (k6, k7, k8, k9, k10, k11, y12, k12) = match stages {
-                Ok(k) => k,
-                Err(e) if e.is_state_dependent() => {
-                    // A trial state the right-hand side cannot evaluate: reject and
-                    // retry smaller (see `retry_smaller`).
-                    let floor = underflow * abs(t).max(abs(t1 - t0));
-                    h = super::dopri5::retry_smaller(h, floor, e)?;
+            let mut y = Pair::new(q0, v0);
+            let mut k1 = y.derivative(rhs, t0, &mut stats.evaluations)?;
+            let mut h = match self.control.h0 {
+                Some(h0) => T::lit(h0).min(hmax),
+                None => hinit(
+                    rhs,
+                    t0,
+                    &y,
+                    &k1,
+                    hmax,
+                    rtol,
+                    atol,
+                    8,
+                    &mut stats.evaluations,
+                )?,
+            };
+            let mut ctrl = PiController::<T>::dop853();
+            let mut stiffness = super::StiffnessTest::new("DOP853", self.stiffness_test, 6.1);
+            let mut t = t0;
+            let mut reject = false;
+            let c = co.c;
+            loop {
+                if stats.steps() >= self.control.max_steps {
+                    return Err(Error::TooManySteps {
+                        t: t.to_f64(),
+                        max_steps: self.control.max_steps,
+                    });
+                }
+                if h <= underflow * abs(t) || !h.is_finite() {
+                    return Err(Error::StepSizeUnderflow {
+                        t: t.to_f64(),
+                        h: h.to_f64(),
+                    });
+                }
+                let last = t + stretch * h - t1 > T::zero();
+                if last {
+                    h = t1 - t;
+                }
+                let t_new = if last { t1 } else { t + h };
+
+                let ev = &mut stats.evaluations;
+                let stages = (|| {
+                    let stage =
+                        |a: Pair<T, N>, ci: T, ev: &mut usize| a.derivative(rhs, t + ci * h, ev);
+                    let k2 = stage(y.add_combination(h, co.a2, [&k1]), c[1], ev)?;
+                    let k3 = stage(y.add_combination(h, co.a3, [&k1, &k2]), c[2], ev)?;
+                    let k4 = stage(y.add_combination(h, co.a4, [&k1, &k3]), c[3], ev)?;
+                    let k5 = stage(y.add_combination(h, co.a5, [&k1, &k3, &k4]), c[4], ev)?;
+                    let k6 = stage(y.add_combination(h, co.a6, [&k1, &k4, &k5]), c[5], ev)?;
+                    let k7 = stage(y.add_combination(h, co.a7, [&k1, &k4, &k5, &k6]), c[6], ev)?;
+                    let k8 = stage(
+                        y.add_combination(h, co.a8, [&k1, &k4, &k5, &k6, &k7]),
+                        c[7],
+                        ev,
+                    )?;
+                    let k9 = stage(
+                        y.add_combination(h, co.a9, [&k1, &k4, &k5, &k6, &k7, &k8]),
+                        c[8],
+                        ev,
+                    )?;
+                    let k10 = stage(
+                        y.add_combination(h, co.a10, [&k1, &k4, &k5, &k6, &k7, &k8, &k9]),
+                        c[9],
+                        ev,
+                    )?;
+                    let k11 = stage(
+                        y.add_combination(h, co.a11, [&k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10]),
+                        c[10],
+                        ev,
+                    )?;
+                    let y12 = y.add_combination(
+                        h,
+                        co.a12,
+                        [&k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10, &k11],
+                    );
+                    let k12 = y12.derivative(rhs, t_new, ev)?;
+                    Ok::<_, Error>((k6, k7, k8, k9, k10, k11, y12, k12))
+                })();
+                let (k6, k7, k8, k9, k10, k11, y12, k12) = match stages {
+                    Ok(k) => k,
+                    Err(e) if e.is_state_dependent() => {
+                        // A trial state the right-hand side cannot evaluate: reject and
+                        // retry smaller (see `retry_smaller`).
+                        let floor = underflow * abs(t).max(abs(t1 - t0));
+                        h = super::dopri5::retry_smaller(h, floor, e)?;
+                        reject = true;
+                        stats.rejected += 1;
+                        continue;
+                    }
+                    Err(e) => return Err(e),
+                };
+                let main = [&k1, &k6, &k7, &k8, &k9, &k10, &k11, &k12];
+                // Σ b_i k_i, kept without the factor h for the 3rd-order estimate.
+                let slope = Pair::combination(T::one(), co.b, main);
+                let y_new = y.add_combination(h, [T::one()], [&slope]);
+                let e5 = Pair::combination(T::one(), co.er, main);
+                let e3 = slope.add_combination(-T::one(), co.bhh, [&k1, &k9, &k12]);
+                let err = error_norm(h, &e5, &e3, &y, &y_new, atol, rtol);
+                if err.partial_cmp(&T::zero()).is_none() {
+                    // NaN (unordered): only a right-hand side that returns NaN without
+                    // an error gets here.
+                    return Err(Error::non_finite(t_new, &y_new.q, &y_new.v));
+                }
+                let mut h_new = ctrl.propose(h, err);
+                if err <= T::one() {
+                    ctrl.accept(err);
+                    stats.accepted += 1;
+                    let k13 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
+                    // The step is accepted: a stiffness verdict is reported after it
+                    // is recorded, so the partial trajectory ends where the error says.
+                    let stiff =
+                        stiffness.check(stats.accepted, t_new, h, [&y_new, &y12, &k13, &k12]);
+                    let segment = if self.dense7 {
+                        let ks = [&k1, &k6, &k7, &k8, &k9, &k10, &k11, &k12];
+                        self.dense(rhs, &co, t, h, &y, &y_new, ks, &k13, &mut stats)?
+                    } else {
+                        DenseSegment::hermite(t, t_new, &y, &k1, &y_new, &k13)
+                    };
+                    // As in DOPRI5: the dense output keeps the unprojected polynomial;
+                    // the next first stage is re-evaluated at the projected state.
+                    let (mut y_new, mut k13) = (y_new, k13);
+                    if rhs.project(t_new, &mut y_new.q, &mut y_new.v)? {
+                        k13 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
+                    }
+                    let sample = Sample::of(rhs, t_new, &y_new.q, &y_new.v);
+                    let stop = rhs.after_step(&segment, &y_new.q, &y_new.v)?;
+                    traj.push(segment, y_new.q, y_new.v, sample);
+                    stiff?;
+                    (t, y, k1) = (t_new, y_new, k13);
+                    if last || stop {
+                        break;
+                    }
+                    h_new = h_new.min(hmax);
+                    if reject {
+                        h_new = h_new.min(h);
+                    }
+                    reject = false;
+                } else {
+                    h_new = ctrl.reject(h);
                     reject = true;
                     stats.rejected += 1;
-                    continue;
                 }
-                Err(e) => return Err(e),
-            };
-            let main = [&k1, &k6, &k7, &k8, &k9, &k10, &k11, &k12];
-            // Σ b_i k_i, kept without the factor h for the 3rd-order estimate.
-            let slope = Pair::combination(T::one(), co.b, main);
-            let y_new = y.add_combination(h, [T::one()], [&slope]);
-            let e5 = Pair::combination(T::one(), co.er, main);
-            let e3 = slope.add_combination(-T::one(), co.bhh, [&k1, &k9, &k12]);
-            let err = error_norm(h, &e5, &e3, &y, &y_new, atol, rtol);
-            if err.partial_cmp(&T::zero()).is_none() {
-                // NaN (unordered): only a right-hand side that returns NaN without
-                // an error gets here.
-                return Err(Error::non_finite(t_new, &y_new.q, &y_new.v));
+                h = h_new;
             }
-            let mut h_new = ctrl.propose(h, err);
-            if err <= T::one() {
-                ctrl.accept(err);
-                stats.accepted += 1;
-                let k13 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
-                stiffness.check(stats.accepted, t_new, h, [&y_new, &y12, &k13, &k12])?;
-                let segment = if self.dense7 {
-                    let ks = [&k1, &k6, &k7, &k8, &k9, &k10, &k11, &k12];
-                    self.dense(rhs, &co, t, h, &y, &y_new, ks, &k13, &mut stats)?
-                } else {
-                    DenseSegment::hermite(t, t_new, &y, &k1, &y_new, &k13)
-                };
-                // As in DOPRI5: the dense output keeps the unprojected polynomial;
-                // the next first stage is re-evaluated at the projected state.
-                let (mut y_new, mut k13) = (y_new, k13);
-                if rhs.project(t_new, &mut y_new.q, &mut y_new.v)? {
-                    k13 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
-                }
-                let sample = Sample::of(rhs, t_new, &y_new.q, &y_new.v);
-                let stop = rhs.after_step(&segment, &y_new.q, &y_new.v)?;
-                traj.push(segment, y_new.q, y_new.v, sample);
-                (t, y, k1) = (t_new, y_new, k13);
-                if last || stop {
-                    break;
-                }
-                h_new = h_new.min(hmax);
-                if reject {
-                    h_new = h_new.min(h);
-                }
-                reject = false;
-            } else {
-                h_new = ctrl.reject(h);
-                reject = true;
-                stats.rejected += 1;
-            }
-            h = h_new;
-        }
-        stats.wall_time = started.elapsed();
-        traj.set_stats(stats);
-        Ok(traj)
+            Ok(())
+        })();
+        super::finish(traj, stats, started, outcome)
     }
 }
 

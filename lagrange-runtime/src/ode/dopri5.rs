@@ -13,7 +13,7 @@
 use super::controller::PiController;
 use super::settings::{StepControl, step_control_builders};
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
-use crate::error::Error;
+use crate::error::{Error, Failure};
 use crate::func::{abs, sqrt};
 use crate::real::Real;
 use crate::trajectory::Trajectory;
@@ -153,136 +153,143 @@ impl Integrator for Dopri5 {
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Error> {
-        self.validate()?;
-        self.control.check_precision::<T>("DOPRI5")?;
-        check_problem(t0, t1, &q0, &v0)?;
-        let co = Coefficients::<T>::new();
-        let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
-        let hmax = self.control.hmax.map_or(t1 - t0, T::lit);
-        let underflow = T::lit(16.0) * T::default_epsilon();
-        let stretch = T::lit(1.01);
-
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         let started = crate::clock::Stopwatch::start();
         let mut stats = Stats::default();
-        let mut y = Pair::new(q0, v0);
-        let mut k1 = y.derivative(rhs, t0, &mut stats.evaluations)?;
-        let mut h = match self.control.h0 {
-            Some(h0) => T::lit(h0).min(hmax),
-            None => hinit(
-                rhs,
-                t0,
-                &y,
-                &k1,
-                hmax,
-                rtol,
-                atol,
-                5,
-                &mut stats.evaluations,
-            )?,
-        };
-        let mut ctrl = PiController::<T>::dopri5();
-        let mut stiffness = super::StiffnessTest::new("DOPRI5", self.stiffness_test, 3.25);
         let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
-        let mut t = t0;
-        let mut reject = false;
-        loop {
-            if stats.steps() >= self.control.max_steps {
-                return Err(Error::TooManySteps {
-                    t: t.to_f64(),
-                    max_steps: self.control.max_steps,
-                });
-            }
-            if h <= underflow * abs(t) || !h.is_finite() {
-                return Err(Error::StepSizeUnderflow {
-                    t: t.to_f64(),
-                    h: h.to_f64(),
-                });
-            }
-            // Stretch the last step by up to 1 % rather than leave a sliver.
-            let last = t + stretch * h - t1 > T::zero();
-            if last {
-                h = t1 - t;
-            }
-            let t_new = if last { t1 } else { t + h };
+        // Everything computed before a failure goes back with it.
+        let outcome = (|| -> Result<(), Error> {
+            self.validate()?;
+            self.control.check_precision::<T>("DOPRI5")?;
+            check_problem(t0, t1, &q0, &v0)?;
+            let co = Coefficients::<T>::new();
+            let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
+            let hmax = self.control.hmax.map_or(t1 - t0, T::lit);
+            let underflow = T::lit(16.0) * T::default_epsilon();
+            let stretch = T::lit(1.01);
 
-            let ev = &mut stats.evaluations;
-            let [c2, c3, c4, c5] = co.c;
-            let stages = (|| {
-                let k2 = y
-                    .add_combination(h, co.a2, [&k1])
-                    .derivative(rhs, t + c2 * h, ev)?;
-                let k3 = y
-                    .add_combination(h, co.a3, [&k1, &k2])
-                    .derivative(rhs, t + c3 * h, ev)?;
-                let k4 =
-                    y.add_combination(h, co.a4, [&k1, &k2, &k3])
-                        .derivative(rhs, t + c4 * h, ev)?;
-                let k5 = y
-                    .add_combination(h, co.a5, [&k1, &k2, &k3, &k4])
-                    .derivative(rhs, t + c5 * h, ev)?;
-                let y6 = y.add_combination(h, co.a6, [&k1, &k2, &k3, &k4, &k5]);
-                let k6 = y6.derivative(rhs, t_new, ev)?;
-                let y_new = y.add_combination(h, co.a7, [&k1, &k3, &k4, &k5, &k6]);
-                let k7 = y_new.derivative(rhs, t_new, ev)?;
-                Ok::<_, Error>((k3, k4, k5, k6, y6, y_new, k7))
-            })();
-            let (k3, k4, k5, k6, y6, y_new, k7) = match stages {
-                Ok(k) => k,
-                Err(e) if e.is_state_dependent() => {
-                    // Relative to the span as well as to t, so that t = 0 has a floor.
-                    let floor = underflow * abs(t).max(abs(t1 - t0));
-                    h = retry_smaller(h, floor, e)?;
+            let mut y = Pair::new(q0, v0);
+            let mut k1 = y.derivative(rhs, t0, &mut stats.evaluations)?;
+            let mut h = match self.control.h0 {
+                Some(h0) => T::lit(h0).min(hmax),
+                None => hinit(
+                    rhs,
+                    t0,
+                    &y,
+                    &k1,
+                    hmax,
+                    rtol,
+                    atol,
+                    5,
+                    &mut stats.evaluations,
+                )?,
+            };
+            let mut ctrl = PiController::<T>::dopri5();
+            let mut stiffness = super::StiffnessTest::new("DOPRI5", self.stiffness_test, 3.25);
+            let mut t = t0;
+            let mut reject = false;
+            loop {
+                if stats.steps() >= self.control.max_steps {
+                    return Err(Error::TooManySteps {
+                        t: t.to_f64(),
+                        max_steps: self.control.max_steps,
+                    });
+                }
+                if h <= underflow * abs(t) || !h.is_finite() {
+                    return Err(Error::StepSizeUnderflow {
+                        t: t.to_f64(),
+                        h: h.to_f64(),
+                    });
+                }
+                // Stretch the last step by up to 1 % rather than leave a sliver.
+                let last = t + stretch * h - t1 > T::zero();
+                if last {
+                    h = t1 - t;
+                }
+                let t_new = if last { t1 } else { t + h };
+
+                let ev = &mut stats.evaluations;
+                let [c2, c3, c4, c5] = co.c;
+                let stages = (|| {
+                    let k2 = y
+                        .add_combination(h, co.a2, [&k1])
+                        .derivative(rhs, t + c2 * h, ev)?;
+                    let k3 =
+                        y.add_combination(h, co.a3, [&k1, &k2])
+                            .derivative(rhs, t + c3 * h, ev)?;
+                    let k4 = y.add_combination(h, co.a4, [&k1, &k2, &k3]).derivative(
+                        rhs,
+                        t + c4 * h,
+                        ev,
+                    )?;
+                    let k5 = y
+                        .add_combination(h, co.a5, [&k1, &k2, &k3, &k4])
+                        .derivative(rhs, t + c5 * h, ev)?;
+                    let y6 = y.add_combination(h, co.a6, [&k1, &k2, &k3, &k4, &k5]);
+                    let k6 = y6.derivative(rhs, t_new, ev)?;
+                    let y_new = y.add_combination(h, co.a7, [&k1, &k3, &k4, &k5, &k6]);
+                    let k7 = y_new.derivative(rhs, t_new, ev)?;
+                    Ok::<_, Error>((k3, k4, k5, k6, y6, y_new, k7))
+                })();
+                let (k3, k4, k5, k6, y6, y_new, k7) = match stages {
+                    Ok(k) => k,
+                    Err(e) if e.is_state_dependent() => {
+                        // Relative to the span as well as to t, so that t = 0 has a floor.
+                        let floor = underflow * abs(t).max(abs(t1 - t0));
+                        h = retry_smaller(h, floor, e)?;
+                        reject = true;
+                        stats.rejected += 1;
+                        continue;
+                    }
+                    Err(e) => return Err(e),
+                };
+                let err_vec = Pair::combination(h, co.e, [&k1, &k3, &k4, &k5, &k6, &k7]);
+                let err = error_norm(&err_vec, &y, &y_new, atol, rtol);
+                if err.partial_cmp(&T::zero()).is_none() {
+                    // NaN (unordered): only a right-hand side
+                    // that returns NaN without an error gets here.
+                    return Err(Error::non_finite(t_new, &y_new.q, &y_new.v));
+                }
+                let mut h_new = ctrl.propose(h, err);
+                if err <= T::one() {
+                    ctrl.accept(err);
+                    stats.accepted += 1;
+                    // The step is accepted: a stiffness verdict is reported after it
+                    // is recorded, so the partial trajectory ends where the error says.
+                    let stiff = stiffness.check(stats.accepted, t_new, h, [&y_new, &y6, &k7, &k6]);
+                    let (r1, r2, r3, r4) = DenseSegment::cubic_part(h, &y, &k1, &y_new, &k7);
+                    let r5 = Pair::combination(h, co.d, [&k1, &k3, &k4, &k5, &k6, &k7]);
+                    let segment = DenseSegment::new(t, t_new, h, [r1, r2, r3, r4, r5]);
+                    // A projection moves the end point by about the local error; the
+                    // dense output keeps the unprojected polynomial, and the first stage
+                    // of the next step (FSAL) is re-evaluated at the projected state.
+                    let (mut y_new, mut k7) = (y_new, k7);
+                    if rhs.project(t_new, &mut y_new.q, &mut y_new.v)? {
+                        k7 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
+                    }
+                    let sample = Sample::of(rhs, t_new, &y_new.q, &y_new.v);
+                    let stop = rhs.after_step(&segment, &y_new.q, &y_new.v)?;
+                    traj.push(segment, y_new.q, y_new.v, sample);
+                    stiff?;
+                    (t, y, k1) = (t_new, y_new, k7);
+                    if last || stop {
+                        break;
+                    }
+                    h_new = h_new.min(hmax);
+                    if reject {
+                        h_new = h_new.min(h);
+                    }
+                    reject = false;
+                } else {
+                    h_new = ctrl.reject(h);
                     reject = true;
                     stats.rejected += 1;
-                    continue;
                 }
-                Err(e) => return Err(e),
-            };
-            let err_vec = Pair::combination(h, co.e, [&k1, &k3, &k4, &k5, &k6, &k7]);
-            let err = error_norm(&err_vec, &y, &y_new, atol, rtol);
-            if err.partial_cmp(&T::zero()).is_none() {
-                // NaN (unordered): only a right-hand side
-                // that returns NaN without an error gets here.
-                return Err(Error::non_finite(t_new, &y_new.q, &y_new.v));
+                h = h_new;
             }
-            let mut h_new = ctrl.propose(h, err);
-            if err <= T::one() {
-                ctrl.accept(err);
-                stats.accepted += 1;
-                stiffness.check(stats.accepted, t_new, h, [&y_new, &y6, &k7, &k6])?;
-                let (r1, r2, r3, r4) = DenseSegment::cubic_part(h, &y, &k1, &y_new, &k7);
-                let r5 = Pair::combination(h, co.d, [&k1, &k3, &k4, &k5, &k6, &k7]);
-                let segment = DenseSegment::new(t, t_new, h, [r1, r2, r3, r4, r5]);
-                // A projection moves the end point by about the local error; the
-                // dense output keeps the unprojected polynomial, and the first stage
-                // of the next step (FSAL) is re-evaluated at the projected state.
-                let (mut y_new, mut k7) = (y_new, k7);
-                if rhs.project(t_new, &mut y_new.q, &mut y_new.v)? {
-                    k7 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
-                }
-                let sample = Sample::of(rhs, t_new, &y_new.q, &y_new.v);
-                let stop = rhs.after_step(&segment, &y_new.q, &y_new.v)?;
-                traj.push(segment, y_new.q, y_new.v, sample);
-                (t, y, k1) = (t_new, y_new, k7);
-                if last || stop {
-                    break;
-                }
-                h_new = h_new.min(hmax);
-                if reject {
-                    h_new = h_new.min(h);
-                }
-                reject = false;
-            } else {
-                h_new = ctrl.reject(h);
-                reject = true;
-                stats.rejected += 1;
-            }
-            h = h_new;
-        }
-        stats.wall_time = started.elapsed();
-        traj.set_stats(stats);
-        Ok(traj)
+            Ok(())
+        })();
+        super::finish(traj, stats, started, outcome)
     }
 }
 
@@ -405,11 +412,23 @@ mod tests {
             Dopri5::tol(1e-6).hmax(f64::INFINITY),
             Dopri5::tol(1e-6).max_steps(0),
         ] {
-            assert!(matches!(go(m), Err(Error::InvalidSettings(_))), "{m:?}");
+            assert!(
+                matches!(
+                    go(m),
+                    Err(Failure {
+                        error: Error::InvalidSettings(_),
+                        ..
+                    })
+                ),
+                "{m:?}"
+            );
         }
         assert!(matches!(
             go(Dopri5::tol(1e-12).max_steps(5)),
-            Err(Error::TooManySteps { max_steps: 5, .. })
+            Err(Failure {
+                error: Error::TooManySteps { max_steps: 5, .. },
+                ..
+            })
         ));
     }
 
@@ -431,7 +450,10 @@ mod tests {
         let e =
             Dopri5::tol(1e-6).integrate(&BlowUp, 0.0, 2.0, Vector1::new(0.0), Vector1::new(0.0));
         match e {
-            Err(Error::StepSizeUnderflow { t, h }) => {
+            Err(Failure {
+                error: Error::StepSizeUnderflow { t, h },
+                ..
+            }) => {
                 assert!(
                     (t - 1.0).abs() < 1e-6 && h <= 16.0 * f64::EPSILON * t,
                     "t {t}, h {h}"
@@ -450,7 +472,16 @@ mod tests {
             Vector1::new(1.0),
             Vector1::new(0.0),
         );
-        assert!(matches!(e, Err(Error::NonFiniteState { .. })), "{e:?}");
+        assert!(
+            matches!(
+                e,
+                Err(Failure {
+                    error: Error::NonFiniteState { .. },
+                    ..
+                })
+            ),
+            "{e:?}"
+        );
     }
 
     #[test]

@@ -7,7 +7,7 @@ use super::linalg::{lu_factor, lu_solve};
 use super::mechanical::Mechanical;
 use super::verlet::fixed_step_count;
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
-use crate::error::Error;
+use crate::error::{Error, Failure};
 use crate::func::abs;
 use crate::real::Real;
 use crate::trajectory::Trajectory;
@@ -92,7 +92,25 @@ impl Integrator for Gauss {
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Error> {
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+        let started = crate::clock::Stopwatch::start();
+        let mut stats = Stats::default();
+        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        let run = (&mut traj, &mut stats);
+        let outcome = self.run_stages(rhs, (t0, t1, q0, v0), run);
+        super::finish(traj, stats, started, outcome)
+    }
+}
+
+impl Gauss {
+    /// Checks the settings and runs the method with the chosen stages,
+    /// recording into `run`.
+    fn run_stages<T: Real, const N: usize, F: SecondOrder<T, N>>(
+        &self,
+        rhs: &F,
+        (t0, t1, q0, v0): (T, T, SVector<T, N>, SVector<T, N>),
+        run: (&mut Trajectory<T, N>, &mut Stats),
+    ) -> Result<(), Error> {
         check_problem(t0, t1, &q0, &v0)?;
         if self.max_iterations == 0 {
             return Err(Error::InvalidSettings(
@@ -109,18 +127,16 @@ impl Integrator for Gauss {
         };
         let s3 = 3f64.sqrt() / 6.0;
         match self.stages {
-            1 => self.run(rhs, mech, t0, t1, q0, v0, n, [[0.5]], [1.0], [0.5]),
+            1 => self.run(rhs, mech, (t0, t1, q0, v0), n, [[0.5]], [1.0], [0.5], run),
             2 => self.run(
                 rhs,
                 mech,
-                t0,
-                t1,
-                q0,
-                v0,
+                (t0, t1, q0, v0),
                 n,
                 [[0.25, 0.25 - s3], [0.25 + s3, 0.25]],
                 [0.5, 0.5],
                 [0.5 - s3, 0.5 + s3],
+                run,
             ),
             s => Err(Error::InvalidSettings(format!(
                 "Gauss: {s} stages are not implemented (1 or 2)"
@@ -170,16 +186,13 @@ impl Gauss {
         &self,
         rhs: &F,
         mech: &dyn Mechanical<T, N>,
-        t0: T,
-        t1: T,
-        q0: SVector<T, N>,
-        v0: SVector<T, N>,
+        (t0, t1, q0, v0): (T, T, SVector<T, N>, SVector<T, N>),
         n: usize,
         a: [[f64; S]; S],
         b: [f64; S],
         c: [f64; S],
-    ) -> Result<Trajectory<T, N>, Error> {
-        let started = crate::clock::Stopwatch::start();
+        (traj, stats): (&mut Trajectory<T, N>, &mut Stats),
+    ) -> Result<(), Error> {
         let (a, b, c) = (a.map(|r| r.map(T::lit)), b.map(T::lit), c.map(T::lit));
         let dim = 2 * N;
         let mut work = Work {
@@ -189,12 +202,10 @@ impl Gauss {
             b: vec![T::zero(); S * dim],
         };
         let h = T::lit(self.h);
-        let mut stats = Stats::default();
         let (mut t, mut q, mut v) = (t0, q0, v0);
         let mut p = mech.momentum(t, &q, &v)?;
         stats.evaluations += 1;
         let mut acc = rhs.acceleration(t, &q, &v)?;
-        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         traj.reserve(n);
         for k in 1..=n {
             let t_next = if k == n {
@@ -204,7 +215,7 @@ impl Gauss {
             };
             let hk = t_next - t;
             let z0 = Pair::new(q, p);
-            let z1 = self.advance(mech, t, hk, &z0, &a, &b, &c, &mut work, &mut stats)?;
+            let z1 = self.advance(mech, t, hk, &z0, &a, &b, &c, &mut work, stats)?;
             let (mut q1, p1) = (z1.q, z1.v);
             let mut v1 = mech.velocity(t_next, &q1, &p1)?;
             stats.evaluations += 1;
@@ -225,9 +236,7 @@ impl Gauss {
                 break;
             }
         }
-        stats.wall_time = started.elapsed();
-        traj.set_stats(stats);
-        Ok(traj)
+        Ok(())
     }
 
     /// One step from z0 = (q, p) at t: returns (q, p) at t + h.

@@ -35,7 +35,7 @@ pub use rattle::Rattle;
 pub use rk4::Rk4;
 pub use verlet::StormerVerlet;
 
-use crate::error::Error;
+use crate::error::{Error, Failure};
 use crate::real::Real;
 use crate::trajectory::Trajectory;
 use nalgebra::{SMatrix, SVector};
@@ -164,6 +164,8 @@ pub trait Integrator {
     /// Integrates from (t0, q0, v0) to t1 > t0 and records every accepted step.
     ///
     /// # Errors
+    /// A [`Failure`] holding the error and the trajectory up to the last
+    /// accepted step (at least the initial state). The error is
     /// [`Error::InvalidSettings`] for invalid settings, a span that is empty,
     /// reversed or not finite, or a non-finite initial state; any error of the
     /// right-hand side; [`Error::StepSizeUnderflow`] and [`Error::TooManySteps`] for
@@ -175,7 +177,7 @@ pub trait Integrator {
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Error>;
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>;
 }
 
 /// Work done by one integration.
@@ -463,4 +465,36 @@ fn squared_distance<T: Real, const N: usize>(a: &Pair<T, N>, b: &Pair<T, N>) -> 
         .chain(d.v.iter())
         .map(|x| x.to_f64() * x.to_f64())
         .sum()
+}
+
+/// The end of a run whose accepted steps are in `traj`: the trajectory, or the
+/// failure with it as the partial result; the statistics (with the wall time)
+/// are set either way.
+pub(crate) fn finish<T: Real, const N: usize>(
+    mut traj: Trajectory<T, N>,
+    mut stats: Stats,
+    started: crate::clock::Stopwatch,
+    outcome: Result<(), Error>,
+) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+    stats.wall_time = started.elapsed();
+    traj.set_stats(stats);
+    match outcome {
+        Ok(()) => Ok(traj),
+        Err(error) => Err(Failure::new(error, traj)),
+    }
+}
+
+/// The failure of a run that stopped before its first step: the partial
+/// result is the initial state alone.
+pub(crate) fn failed_at_start<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    rhs: &F,
+    t0: T,
+    q0: SVector<T, N>,
+    v0: SVector<T, N>,
+    error: Error,
+) -> Failure<Trajectory<T, N>> {
+    Failure::new(
+        error,
+        Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0)),
+    )
 }

@@ -7,7 +7,7 @@
 use super::linalg::{lu_factor, lu_solve};
 use super::settings::{StepControl, step_control_builders};
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
-use crate::error::Error;
+use crate::error::{Error, Failure};
 use crate::func::{abs, sqrt};
 use crate::real::Real;
 use crate::trajectory::Trajectory;
@@ -210,350 +210,353 @@ impl Integrator for Radau5 {
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Error> {
-        self.validate()?;
-        self.control.check_precision::<T>("RADAU5")?;
-        check_problem(t0, t1, &q0, &v0)?;
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         let started = crate::clock::Stopwatch::start();
-        let k = constants::<T>();
-        let n = 2 * N;
-        let nv = |x: T| vec![x; n];
-        let mut w = Work {
-            n,
-            jac: DMatrix::zeros(n, n),
-            e1: DMatrix::zeros(n, n),
-            e2: DMatrix::zeros(2 * n, 2 * n),
-            ip1: vec![0; n],
-            ip2: vec![0; 2 * n],
-            z: [nv(T::zero()), nv(T::zero()), nv(T::zero())],
-            f: [nv(T::zero()), nv(T::zero()), nv(T::zero())],
-            c2: vec![T::zero(); 2 * n],
-            cont: [nv(T::zero()), nv(T::zero()), nv(T::zero())],
-            scal: nv(T::zero()),
-            tmp: nv(T::zero()),
-        };
-        // radau5.f's tolerance transformation and Newton stopping criterion.
-        let uround = T::default_epsilon();
-        let rtol_t = 0.1 * self.control.rtol.powf(2.0 / 3.0);
-        let (rtol, atol) = (
-            T::lit(rtol_t),
-            T::lit(rtol_t * self.control.atol / self.control.rtol),
-        );
-        let fnewt = (T::lit(10.0) * uround / rtol).max(T::lit(0.03f64.min(rtol_t.sqrt())));
-        let nit = self.max_newton;
-        let safe = T::lit(0.9);
-        let thet = T::lit(0.001);
-        let (quot1, quot2) = (T::one(), T::lit(1.2));
-        let (facl, facr) = (T::lit(5.0), T::lit(0.125));
-        let cfac = safe * T::lit((1 + 2 * nit) as f64);
-
         let mut stats = Stats::default();
-        let hmaxn = self.control.hmax.map_or(t1 - t0, T::lit).min(t1 - t0);
-        let mut h = T::lit(self.control.h0.unwrap_or(1e-6)).min(hmaxn);
-        let mut last = false;
-        if t0 + h * T::lit(1.0001) - t1 >= T::zero() {
-            h = t1 - t0;
-            last = true;
-        }
-        let mut hold = h;
-        let mut faccon = T::one();
-        let (mut reject, mut first) = (false, true);
-        // A state-dependent failure of the right-hand side inside a Newton iteration,
-        // kept so that repeated failures down to underflow report it.
-        let mut pending_error: Option<Error> = None;
-        let mut t = t0;
-        let mut y: Vec<T> = q0.iter().chain(v0.iter()).copied().collect();
-        let set_scal = |scal: &mut [T], y: &[T]| {
-            for i in 0..n {
-                scal[i] = atol + rtol * abs(y[i]);
-            }
-        };
-        set_scal(&mut w.scal, &y);
-        let mut y0 = nv(T::zero());
-        rhs_into(rhs, t, &y, &mut y0, &mut stats.evaluations)?;
         let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
-        let (mut hacc, mut erracc) = (h, T::lit(1e-2));
-        let mut theta: T;
+        // Everything computed before a failure goes back with it.
+        let outcome = (|| -> Result<(), Error> {
+            self.validate()?;
+            self.control.check_precision::<T>("RADAU5")?;
+            check_problem(t0, t1, &q0, &v0)?;
+            let k = constants::<T>();
+            let n = 2 * N;
+            let nv = |x: T| vec![x; n];
+            let mut w = Work {
+                n,
+                jac: DMatrix::zeros(n, n),
+                e1: DMatrix::zeros(n, n),
+                e2: DMatrix::zeros(2 * n, 2 * n),
+                ip1: vec![0; n],
+                ip2: vec![0; 2 * n],
+                z: [nv(T::zero()), nv(T::zero()), nv(T::zero())],
+                f: [nv(T::zero()), nv(T::zero()), nv(T::zero())],
+                c2: vec![T::zero(); 2 * n],
+                cont: [nv(T::zero()), nv(T::zero()), nv(T::zero())],
+                scal: nv(T::zero()),
+                tmp: nv(T::zero()),
+            };
+            // radau5.f's tolerance transformation and Newton stopping criterion.
+            let uround = T::default_epsilon();
+            let rtol_t = 0.1 * self.control.rtol.powf(2.0 / 3.0);
+            let (rtol, atol) = (
+                T::lit(rtol_t),
+                T::lit(rtol_t * self.control.atol / self.control.rtol),
+            );
+            let fnewt = (T::lit(10.0) * uround / rtol).max(T::lit(0.03f64.min(rtol_t.sqrt())));
+            let nit = self.max_newton;
+            let safe = T::lit(0.9);
+            let thet = T::lit(0.001);
+            let (quot1, quot2) = (T::one(), T::lit(1.2));
+            let (facl, facr) = (T::lit(5.0), T::lit(0.125));
+            let cfac = safe * T::lit((1 + 2 * nit) as f64);
 
-        // The goto structure of radau5.f as a small state machine: where the
-        // next attempt starts.
-        #[derive(PartialEq)]
-        enum Entry {
-            Jacobian,
-            Factorise,
-            Step,
-        }
-        let mut entry = Entry::Jacobian;
-        let mut caljac = false;
-        loop {
-            if entry == Entry::Jacobian {
-                self.jacobian(rhs, t, &y, &y0, &mut w.jac, &mut stats)?;
-                stats.jacobians += 1;
-                caljac = true;
-                entry = Entry::Factorise;
+            let hmaxn = self.control.hmax.map_or(t1 - t0, T::lit).min(t1 - t0);
+            let mut h = T::lit(self.control.h0.unwrap_or(1e-6)).min(hmaxn);
+            let mut last = false;
+            if t0 + h * T::lit(1.0001) - t1 >= T::zero() {
+                h = t1 - t0;
+                last = true;
             }
-            let (fac1, alphn, betan) = (k.u1 / h, k.alph / h, k.beta / h);
-            if entry == Entry::Factorise {
-                stats.factorizations += 1;
-                if !decompose(&mut w, fac1, alphn, betan) {
-                    // Singular iteration matrix: halve the step (label 78).
-                    h *= T::lit(0.5);
-                    reject = true;
-                    last = false;
-                    entry = if caljac {
-                        Entry::Factorise
-                    } else {
-                        Entry::Jacobian
-                    };
-                    if abs(h) <= abs(t) * uround {
-                        return Err(Error::NewtonFailure {
-                            t: t.to_f64(),
-                            h: h.to_f64(),
-                            iterations: 0,
-                        });
-                    }
-                    continue;
-                }
-            }
-            // Label 30: a new attempt with the current factorisation.
-            if stats.steps() >= self.control.max_steps {
-                return Err(too_many(t, self.control.max_steps));
-            }
-            if T::lit(0.1) * abs(h) <= abs(t) * uround || !h.is_finite() {
-                if let Some(e) = pending_error.take() {
-                    return Err(e);
-                }
-                return Err(Error::StepSizeUnderflow {
-                    t: t.to_f64(),
-                    h: h.to_f64(),
-                });
-            }
-            let xph = t + h;
-            // Starting values: zero, or the previous collocation polynomial
-            // extrapolated.
-            if first {
-                for s in 0..3 {
-                    w.z[s].fill(T::zero());
-                    w.f[s].fill(T::zero());
-                }
-            } else {
-                let c3q = h / hold;
-                let cq = [k.c1 * c3q, k.c2 * c3q, c3q];
+            let mut hold = h;
+            let mut faccon = T::one();
+            let (mut reject, mut first) = (false, true);
+            // A state-dependent failure of the right-hand side inside a Newton iteration,
+            // kept so that repeated failures down to underflow report it.
+            let mut pending_error: Option<Error> = None;
+            let mut t = t0;
+            let mut y: Vec<T> = q0.iter().chain(v0.iter()).copied().collect();
+            let set_scal = |scal: &mut [T], y: &[T]| {
                 for i in 0..n {
-                    let (ak1, ak2, ak3) = (w.cont[0][i], w.cont[1][i], w.cont[2][i]);
-                    let zi = cq.map(|c| c * (ak1 + (c - k.c2m1) * (ak2 + (c - k.c1m1) * ak3)));
-                    for s in 0..3 {
-                        w.z[s][i] = zi[s];
-                    }
-                    for s in 0..3 {
-                        w.f[s][i] = k.ti[s][0] * zi[0] + k.ti[s][1] * zi[1] + k.ti[s][2] * zi[2];
-                    }
-                }
-            }
-            // Simplified Newton.
-            let mut newt = 0;
-            faccon = faccon.max(uround).powf(T::lit(0.8));
-            theta = abs(thet);
-            let (mut dynold, mut thqold) = (T::zero(), T::zero());
-            let mut stage_error: Option<Error> = None;
-            let outcome = loop {
-                if newt >= nit {
-                    break Newton::Failed;
-                }
-                let cs = [k.c1, k.c2, T::one()];
-                for s in 0..3 {
-                    for i in 0..n {
-                        w.tmp[i] = y[i] + w.z[s][i];
-                    }
-                    let ts = if s == 2 { xph } else { t + cs[s] * h };
-                    let (tmp, zs) = (&w.tmp, &mut w.z[s]);
-                    match rhs_into::<T, N, F>(rhs, ts, tmp, zs, &mut stats.evaluations) {
-                        Ok(()) => {}
-                        // A Newton iterate the right-hand side cannot evaluate (far
-                        // off the solution) is a failed iteration, as in RADAU5's
-                        // handling of a diverging Newton: halve the step. If the
-                        // steps underflow, this error is the one reported.
-                        Err(e) if e.is_state_dependent() => {
-                            stage_error = Some(e);
-                            break;
-                        }
-                        Err(e) => return Err(e),
-                    }
-                }
-                if let Some(e) = stage_error.take() {
-                    pending_error = Some(e);
-                    break Newton::Failed;
-                }
-                for i in 0..n {
-                    let a = [w.z[0][i], w.z[1][i], w.z[2][i]];
-                    for s in 0..3 {
-                        w.z[s][i] = k.ti[s][0] * a[0] + k.ti[s][1] * a[1] + k.ti[s][2] * a[2];
-                    }
-                }
-                solve_stages(&mut w, fac1, alphn, betan);
-                newt += 1;
-                let mut dyno = T::zero();
-                for i in 0..n {
-                    for s in 0..3 {
-                        let r = w.z[s][i] / w.scal[i];
-                        dyno += r * r;
-                    }
-                }
-                dyno = sqrt(dyno / T::lit((3 * n) as f64));
-                if !dyno.is_finite() {
-                    break Newton::Failed;
-                }
-                if newt > 1 && newt < nit {
-                    let thq = dyno / dynold;
-                    theta = if newt == 2 { thq } else { sqrt(thq * thqold) };
-                    thqold = thq;
-                    if theta < T::lit(0.99) {
-                        faccon = theta / (T::one() - theta);
-                        let dyth = faccon * dyno * theta.powi((nit - 1 - newt) as i32) / fnewt;
-                        if dyth >= T::one() {
-                            let qnewt = T::lit(1e-4).max(T::lit(20.0).min(dyth));
-                            let expo = -T::one() / T::lit((4 + nit - 1 - newt) as f64);
-                            break Newton::Slow(T::lit(0.8) * qnewt.powf(expo));
-                        }
-                    } else {
-                        break Newton::Failed;
-                    }
-                }
-                dynold = dyno.max(uround);
-                for i in 0..n {
-                    let fi = [0, 1, 2].map(|s| w.f[s][i] + w.z[s][i]);
-                    for s in 0..3 {
-                        w.f[s][i] = fi[s];
-                    }
-                    for s in 0..3 {
-                        w.z[s][i] = k.t[s][0] * fi[0] + k.t[s][1] * fi[1] + k.t[s][2] * fi[2];
-                    }
-                }
-                if faccon * dyno <= fnewt {
-                    break Newton::Converged;
+                    scal[i] = atol + rtol * abs(y[i]);
                 }
             };
-            match outcome {
-                Newton::Converged => {}
-                Newton::Slow(hhfac) => {
-                    h *= hhfac;
-                    reject = true;
-                    last = false;
-                    stats.rejected += 1;
-                    entry = if caljac {
-                        Entry::Factorise
-                    } else {
-                        Entry::Jacobian
-                    };
-                    continue;
-                }
-                Newton::Failed => {
-                    h *= T::lit(0.5);
-                    reject = true;
-                    last = false;
-                    stats.rejected += 1;
-                    // Repeated failures shrink h until the underflow test
-                    // reports them.
-                    entry = if caljac {
-                        Entry::Factorise
-                    } else {
-                        Entry::Jacobian
-                    };
-                    continue;
-                }
+            set_scal(&mut w.scal, &y);
+            let mut y0 = nv(T::zero());
+            rhs_into(rhs, t, &y, &mut y0, &mut stats.evaluations)?;
+            let (mut hacc, mut erracc) = (h, T::lit(1e-2));
+            let mut theta: T;
+
+            // The goto structure of radau5.f as a small state machine: where the
+            // next attempt starts.
+            #[derive(PartialEq)]
+            enum Entry {
+                Jacobian,
+                Factorise,
+                Step,
             }
-            let err = estimate(rhs, &k, &mut w, t, h, &y, &y0, first || reject, &mut stats)?;
-            let fac = safe.min(cfac / T::lit((newt + 2 * nit) as f64));
-            let mut quot = facr.max(facl.min(err.powf(T::lit(0.25)) / fac));
-            let mut hnew = h / quot;
-            if err < T::one() {
-                first = false;
-                stats.accepted += 1;
-                pending_error = None;
-                if stats.accepted > 1 {
-                    let facgus = (hacc / h) * (err * err / erracc).powf(T::lit(0.25)) / safe;
-                    let facgus = facr.max(facl.min(facgus));
-                    quot = quot.max(facgus);
-                    hnew = h / quot;
+            let mut entry = Entry::Jacobian;
+            let mut caljac = false;
+            loop {
+                if entry == Entry::Jacobian {
+                    self.jacobian(rhs, t, &y, &y0, &mut w.jac, &mut stats)?;
+                    stats.jacobians += 1;
+                    caljac = true;
+                    entry = Entry::Factorise;
                 }
-                hacc = h;
-                erracc = T::lit(1e-2).max(err);
-                hold = h;
-                let y_old = to_pair::<T, N>(&y);
-                let f_old = to_pair::<T, N>(&y0);
-                for i in 0..n {
-                    y[i] += w.z[2][i];
-                    let (z1, z2, z3) = (w.z[0][i], w.z[1][i], w.z[2][i]);
-                    w.cont[0][i] = (z2 - z3) / k.c2m1;
-                    let ak = (z1 - z2) / k.c1mc2;
-                    let acont3 = (ak - z1 / k.c1) / k.c2;
-                    w.cont[1][i] = (ak - w.cont[0][i]) / k.c1m1;
-                    w.cont[2][i] = w.cont[1][i] - acont3;
-                }
-                let t_prev = t;
-                t = xph;
-                if last {
-                    t = t1;
-                }
-                let mut p = to_pair::<T, N>(&y);
-                if !p.is_finite() {
-                    return Err(Error::non_finite(t, &p.q, &p.v));
-                }
-                // The derivative at the new point: the next step's y0 and the
-                // Hermite end slope.
-                rhs_into::<T, N, F>(rhs, t, &y, &mut y0, &mut stats.evaluations)?;
-                let segment =
-                    DenseSegment::hermite(t_prev, t, &y_old, &f_old, &p, &to_pair::<T, N>(&y0));
-                if rhs.project(t, &mut p.q, &mut p.v)? {
-                    for i in 0..N {
-                        y[i] = p.q[i];
-                        y[N + i] = p.v[i];
-                    }
-                    rhs_into::<T, N, F>(rhs, t, &y, &mut y0, &mut stats.evaluations)?;
-                }
-                set_scal(&mut w.scal, &y);
-                let stop = rhs.after_step(&segment, &p.q, &p.v)?;
-                traj.push(segment, p.q, p.v, Sample::of(rhs, t, &p.q, &p.v));
-                caljac = false;
-                if last || stop {
-                    break;
-                }
-                hnew = hnew.min(hmaxn);
-                if reject {
-                    hnew = hnew.min(h);
-                }
-                reject = false;
-                if t + hnew / quot1 - t1 >= T::zero() {
-                    h = t1 - t;
-                    last = true;
-                } else {
-                    let qt = hnew / h;
-                    if theta <= thet && qt >= quot1 && qt <= quot2 {
-                        entry = Entry::Step;
+                let (fac1, alphn, betan) = (k.u1 / h, k.alph / h, k.beta / h);
+                if entry == Entry::Factorise {
+                    stats.factorizations += 1;
+                    if !decompose(&mut w, fac1, alphn, betan) {
+                        // Singular iteration matrix: halve the step (label 78).
+                        h *= T::lit(0.5);
+                        reject = true;
+                        last = false;
+                        entry = if caljac {
+                            Entry::Factorise
+                        } else {
+                            Entry::Jacobian
+                        };
+                        if abs(h) <= abs(t) * uround {
+                            return Err(Error::NewtonFailure {
+                                t: t.to_f64(),
+                                h: h.to_f64(),
+                                iterations: 0,
+                            });
+                        }
                         continue;
                     }
-                    h = hnew;
                 }
-                entry = if theta <= thet {
-                    Entry::Factorise
+                // Label 30: a new attempt with the current factorisation.
+                if stats.steps() >= self.control.max_steps {
+                    return Err(too_many(t, self.control.max_steps));
+                }
+                if T::lit(0.1) * abs(h) <= abs(t) * uround || !h.is_finite() {
+                    if let Some(e) = pending_error.take() {
+                        return Err(e);
+                    }
+                    return Err(Error::StepSizeUnderflow {
+                        t: t.to_f64(),
+                        h: h.to_f64(),
+                    });
+                }
+                let xph = t + h;
+                // Starting values: zero, or the previous collocation polynomial
+                // extrapolated.
+                if first {
+                    for s in 0..3 {
+                        w.z[s].fill(T::zero());
+                        w.f[s].fill(T::zero());
+                    }
                 } else {
-                    Entry::Jacobian
+                    let c3q = h / hold;
+                    let cq = [k.c1 * c3q, k.c2 * c3q, c3q];
+                    for i in 0..n {
+                        let (ak1, ak2, ak3) = (w.cont[0][i], w.cont[1][i], w.cont[2][i]);
+                        let zi = cq.map(|c| c * (ak1 + (c - k.c2m1) * (ak2 + (c - k.c1m1) * ak3)));
+                        for s in 0..3 {
+                            w.z[s][i] = zi[s];
+                        }
+                        for s in 0..3 {
+                            w.f[s][i] =
+                                k.ti[s][0] * zi[0] + k.ti[s][1] * zi[1] + k.ti[s][2] * zi[2];
+                        }
+                    }
+                }
+                // Simplified Newton.
+                let mut newt = 0;
+                faccon = faccon.max(uround).powf(T::lit(0.8));
+                theta = abs(thet);
+                let (mut dynold, mut thqold) = (T::zero(), T::zero());
+                let mut stage_error: Option<Error> = None;
+                let outcome = loop {
+                    if newt >= nit {
+                        break Newton::Failed;
+                    }
+                    let cs = [k.c1, k.c2, T::one()];
+                    for s in 0..3 {
+                        for i in 0..n {
+                            w.tmp[i] = y[i] + w.z[s][i];
+                        }
+                        let ts = if s == 2 { xph } else { t + cs[s] * h };
+                        let (tmp, zs) = (&w.tmp, &mut w.z[s]);
+                        match rhs_into::<T, N, F>(rhs, ts, tmp, zs, &mut stats.evaluations) {
+                            Ok(()) => {}
+                            // A Newton iterate the right-hand side cannot evaluate (far
+                            // off the solution) is a failed iteration, as in RADAU5's
+                            // handling of a diverging Newton: halve the step. If the
+                            // steps underflow, this error is the one reported.
+                            Err(e) if e.is_state_dependent() => {
+                                stage_error = Some(e);
+                                break;
+                            }
+                            Err(e) => return Err(e),
+                        }
+                    }
+                    if let Some(e) = stage_error.take() {
+                        pending_error = Some(e);
+                        break Newton::Failed;
+                    }
+                    for i in 0..n {
+                        let a = [w.z[0][i], w.z[1][i], w.z[2][i]];
+                        for s in 0..3 {
+                            w.z[s][i] = k.ti[s][0] * a[0] + k.ti[s][1] * a[1] + k.ti[s][2] * a[2];
+                        }
+                    }
+                    solve_stages(&mut w, fac1, alphn, betan);
+                    newt += 1;
+                    let mut dyno = T::zero();
+                    for i in 0..n {
+                        for s in 0..3 {
+                            let r = w.z[s][i] / w.scal[i];
+                            dyno += r * r;
+                        }
+                    }
+                    dyno = sqrt(dyno / T::lit((3 * n) as f64));
+                    if !dyno.is_finite() {
+                        break Newton::Failed;
+                    }
+                    if newt > 1 && newt < nit {
+                        let thq = dyno / dynold;
+                        theta = if newt == 2 { thq } else { sqrt(thq * thqold) };
+                        thqold = thq;
+                        if theta < T::lit(0.99) {
+                            faccon = theta / (T::one() - theta);
+                            let dyth = faccon * dyno * theta.powi((nit - 1 - newt) as i32) / fnewt;
+                            if dyth >= T::one() {
+                                let qnewt = T::lit(1e-4).max(T::lit(20.0).min(dyth));
+                                let expo = -T::one() / T::lit((4 + nit - 1 - newt) as f64);
+                                break Newton::Slow(T::lit(0.8) * qnewt.powf(expo));
+                            }
+                        } else {
+                            break Newton::Failed;
+                        }
+                    }
+                    dynold = dyno.max(uround);
+                    for i in 0..n {
+                        let fi = [0, 1, 2].map(|s| w.f[s][i] + w.z[s][i]);
+                        for s in 0..3 {
+                            w.f[s][i] = fi[s];
+                        }
+                        for s in 0..3 {
+                            w.z[s][i] = k.t[s][0] * fi[0] + k.t[s][1] * fi[1] + k.t[s][2] * fi[2];
+                        }
+                    }
+                    if faccon * dyno <= fnewt {
+                        break Newton::Converged;
+                    }
                 };
-            } else {
-                reject = true;
-                last = false;
-                stats.rejected += 1;
-                h = if first { h * T::lit(0.1) } else { hnew };
-                entry = if caljac {
-                    Entry::Factorise
+                match outcome {
+                    Newton::Converged => {}
+                    Newton::Slow(hhfac) => {
+                        h *= hhfac;
+                        reject = true;
+                        last = false;
+                        stats.rejected += 1;
+                        entry = if caljac {
+                            Entry::Factorise
+                        } else {
+                            Entry::Jacobian
+                        };
+                        continue;
+                    }
+                    Newton::Failed => {
+                        h *= T::lit(0.5);
+                        reject = true;
+                        last = false;
+                        stats.rejected += 1;
+                        // Repeated failures shrink h until the underflow test
+                        // reports them.
+                        entry = if caljac {
+                            Entry::Factorise
+                        } else {
+                            Entry::Jacobian
+                        };
+                        continue;
+                    }
+                }
+                let err = estimate(rhs, &k, &mut w, t, h, &y, &y0, first || reject, &mut stats)?;
+                let fac = safe.min(cfac / T::lit((newt + 2 * nit) as f64));
+                let mut quot = facr.max(facl.min(err.powf(T::lit(0.25)) / fac));
+                let mut hnew = h / quot;
+                if err < T::one() {
+                    first = false;
+                    stats.accepted += 1;
+                    pending_error = None;
+                    if stats.accepted > 1 {
+                        let facgus = (hacc / h) * (err * err / erracc).powf(T::lit(0.25)) / safe;
+                        let facgus = facr.max(facl.min(facgus));
+                        quot = quot.max(facgus);
+                        hnew = h / quot;
+                    }
+                    hacc = h;
+                    erracc = T::lit(1e-2).max(err);
+                    hold = h;
+                    let y_old = to_pair::<T, N>(&y);
+                    let f_old = to_pair::<T, N>(&y0);
+                    for i in 0..n {
+                        y[i] += w.z[2][i];
+                        let (z1, z2, z3) = (w.z[0][i], w.z[1][i], w.z[2][i]);
+                        w.cont[0][i] = (z2 - z3) / k.c2m1;
+                        let ak = (z1 - z2) / k.c1mc2;
+                        let acont3 = (ak - z1 / k.c1) / k.c2;
+                        w.cont[1][i] = (ak - w.cont[0][i]) / k.c1m1;
+                        w.cont[2][i] = w.cont[1][i] - acont3;
+                    }
+                    let t_prev = t;
+                    t = xph;
+                    if last {
+                        t = t1;
+                    }
+                    let mut p = to_pair::<T, N>(&y);
+                    if !p.is_finite() {
+                        return Err(Error::non_finite(t, &p.q, &p.v));
+                    }
+                    // The derivative at the new point: the next step's y0 and the
+                    // Hermite end slope.
+                    rhs_into::<T, N, F>(rhs, t, &y, &mut y0, &mut stats.evaluations)?;
+                    let segment =
+                        DenseSegment::hermite(t_prev, t, &y_old, &f_old, &p, &to_pair::<T, N>(&y0));
+                    if rhs.project(t, &mut p.q, &mut p.v)? {
+                        for i in 0..N {
+                            y[i] = p.q[i];
+                            y[N + i] = p.v[i];
+                        }
+                        rhs_into::<T, N, F>(rhs, t, &y, &mut y0, &mut stats.evaluations)?;
+                    }
+                    set_scal(&mut w.scal, &y);
+                    let stop = rhs.after_step(&segment, &p.q, &p.v)?;
+                    traj.push(segment, p.q, p.v, Sample::of(rhs, t, &p.q, &p.v));
+                    caljac = false;
+                    if last || stop {
+                        break;
+                    }
+                    hnew = hnew.min(hmaxn);
+                    if reject {
+                        hnew = hnew.min(h);
+                    }
+                    reject = false;
+                    if t + hnew / quot1 - t1 >= T::zero() {
+                        h = t1 - t;
+                        last = true;
+                    } else {
+                        let qt = hnew / h;
+                        if theta <= thet && qt >= quot1 && qt <= quot2 {
+                            entry = Entry::Step;
+                            continue;
+                        }
+                        h = hnew;
+                    }
+                    entry = if theta <= thet {
+                        Entry::Factorise
+                    } else {
+                        Entry::Jacobian
+                    };
                 } else {
-                    Entry::Jacobian
-                };
+                    reject = true;
+                    last = false;
+                    stats.rejected += 1;
+                    h = if first { h * T::lit(0.1) } else { hnew };
+                    entry = if caljac {
+                        Entry::Factorise
+                    } else {
+                        Entry::Jacobian
+                    };
+                }
             }
-        }
-        stats.wall_time = started.elapsed();
-        traj.set_stats(stats);
-        Ok(traj)
+            Ok(())
+        })();
+        super::finish(traj, stats, started, outcome)
     }
 }
 

@@ -33,7 +33,7 @@
 use super::verlet::fixed_step_count;
 use super::{DenseSegment, Sample, Stats, check_problem};
 use crate::constraint::ConstrainedDynamics;
-use crate::error::{Error, to_vec};
+use crate::error::{Error, Failure, to_vec};
 use crate::real::Real;
 use crate::system::Constrained;
 use crate::trajectory::Trajectory;
@@ -106,103 +106,106 @@ impl Rattle {
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Error>
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>
     where
         S: Constrained<T, N, K>,
     {
-        check_problem(t0, t1, &q0, &v0)?;
-        let n = fixed_step_count("RATTLE", self.h, self.max_steps, t0, t1)?;
-        if S::HOLONOMIC != K {
-            return Err(Error::InvalidSettings(format!(
-                "RATTLE handles holonomic constraints only; {} of the {K} constraints \
-                 ({:?}) are nonholonomic",
-                K - S::HOLONOMIC,
-                &S::CONSTRAINTS[S::HOLONOMIC..]
-            )));
-        }
-        if self.max_iterations == 0 {
-            return Err(Error::InvalidSettings(
-                "RATTLE: max_iterations must be positive".into(),
-            ));
-        }
-        let tol = self.consistency_tolerance;
-        if !(tol.is_finite() && tol > 0.0) {
-            return Err(Error::InvalidSettings(format!(
-                "RATTLE: consistency tolerance must be positive and finite, got {tol}"
-            )));
-        }
-        let dynamics = ConstrainedDynamics::<S, T, K>::new(system);
-        dynamics.check_consistency(t0, &q0, &v0, T::lit(tol))?;
-
         let started = crate::clock::Stopwatch::start();
-        let m0 = system.mass_matrix(&q0, t0);
-        let chol = Cholesky::new(m0).ok_or_else(|| Error::SingularMassMatrix {
-            t: t0.to_f64(),
-            q: to_vec(&q0),
-            ratio: 0.0,
-        })?;
         let mut stats = Stats::default();
+        let dynamics = ConstrainedDynamics::<S, T, K>::new(system);
         let mut traj = Trajectory::start(t0, q0, v0, Sample::of(&dynamics, t0, &q0, &v0));
-        traj.reserve(n);
-        let h = T::lit(self.h);
-        let half = T::lit(0.5);
-        let (mut t, mut q, mut v) = (t0, q0, v0);
-        let (_, mut f) = system.mass_matrix_and_rhs(&q, &v, t);
-        stats.evaluations += 1;
-        // Φ_q at the current point: computed once, at the end of the step that
-        // reaches it.
-        let (mut g_n, _) = system.constraint_jacobian(&q, t);
-        for k in 1..=n {
-            let t_next = if k == n {
-                t1
-            } else {
-                t0 + h * T::lit(k as f64)
-            };
-            let hk = t_next - t;
-            // M⁻¹ Φ_q(qₙ)ᵀ, one column per constraint.
-            let minv_gt = chol.solve(&g_n.transpose());
-            // Position step: q(Λ) = q̂ + M⁻¹ Φ_q(qₙ)ᵀ Λ with Λ = h²/2 λ.
-            let a_free = chol.solve(&f);
-            let q_hat = q + v * hk + a_free * (half * hk * hk);
-            let (q_next, lambda) = self.solve_positions(system, t, hk, t_next, &q_hat, &minv_gt)?;
-            let v_half = (q_next - q) / hk;
-            // The constraint force over the first half step, as an acceleration.
-            let a_start = a_free + minv_gt * (lambda * (T::lit(2.0) / (hk * hk)));
-            let (m_next, f_next) = system.mass_matrix_and_rhs(&q_next, &v_half, t_next);
-            stats.evaluations += 1;
-            check_constant_mass(&m0, &m_next, t_next, &q_next)?;
-            // Velocity step: G (v̂ + M⁻¹ Gᵀ Μ) + g = 0, linear in Μ = h/2 μ.
-            let (g_next, g_t) = system.constraint_jacobian(&q_next, t_next);
-            let minv_gt_next = chol.solve(&g_next.transpose());
-            let a_free_next = chol.solve(&f_next);
-            let v_hat = v_half + a_free_next * (half * hk);
-            let schur = g_next * minv_gt_next;
-            let rhs = -(g_next * v_hat + g_t);
-            let mu = solve_square(schur, &rhs)
-                .ok_or_else(|| redundant::<S, T, N, K>(t_next, &q_next))?;
-            let v_next = v_hat + minv_gt_next * mu;
-            let a_end = a_free_next + minv_gt_next * (mu * (T::lit(2.0) / hk));
-            if !(all_finite(&q_next) && all_finite(&v_next)) {
-                return Err(Error::non_finite(t_next, &q_next, &v_next));
+        // Everything computed before a failure goes back with it.
+        let outcome = (|| -> Result<(), Error> {
+            check_problem(t0, t1, &q0, &v0)?;
+            let n = fixed_step_count("RATTLE", self.h, self.max_steps, t0, t1)?;
+            if S::HOLONOMIC != K {
+                return Err(Error::InvalidSettings(format!(
+                    "RATTLE handles holonomic constraints only; {} of the {K} constraints \
+                     ({:?}) are nonholonomic",
+                    K - S::HOLONOMIC,
+                    &S::CONSTRAINTS[S::HOLONOMIC..]
+                )));
             }
-            let segment = DenseSegment::cubic_hermite(
-                t,
-                t_next,
-                (&q, &v, &a_start),
-                (&q_next, &v_next, &a_end),
-            );
-            let sample = Sample::of(&dynamics, t_next, &q_next, &v_next);
-            traj.push(segment, q_next, v_next, sample);
-            stats.accepted += 1;
-            // F at the end of the step with the final velocity: the next
-            // step's first kick.
-            f = system.mass_matrix_and_rhs(&q_next, &v_next, t_next).1;
+            if self.max_iterations == 0 {
+                return Err(Error::InvalidSettings(
+                    "RATTLE: max_iterations must be positive".into(),
+                ));
+            }
+            let tol = self.consistency_tolerance;
+            if !(tol.is_finite() && tol > 0.0) {
+                return Err(Error::InvalidSettings(format!(
+                    "RATTLE: consistency tolerance must be positive and finite, got {tol}"
+                )));
+            }
+            dynamics.check_consistency(t0, &q0, &v0, T::lit(tol))?;
+
+            let m0 = system.mass_matrix(&q0, t0);
+            let chol = Cholesky::new(m0).ok_or_else(|| Error::SingularMassMatrix {
+                t: t0.to_f64(),
+                q: to_vec(&q0),
+                ratio: 0.0,
+            })?;
+            traj.reserve(n);
+            let h = T::lit(self.h);
+            let half = T::lit(0.5);
+            let (mut t, mut q, mut v) = (t0, q0, v0);
+            let (_, mut f) = system.mass_matrix_and_rhs(&q, &v, t);
             stats.evaluations += 1;
-            (t, q, v, g_n) = (t_next, q_next, v_next, g_next);
-        }
-        stats.wall_time = started.elapsed();
-        traj.set_stats(stats);
-        Ok(traj)
+            // Φ_q at the current point: computed once, at the end of the step that
+            // reaches it.
+            let (mut g_n, _) = system.constraint_jacobian(&q, t);
+            for k in 1..=n {
+                let t_next = if k == n {
+                    t1
+                } else {
+                    t0 + h * T::lit(k as f64)
+                };
+                let hk = t_next - t;
+                // M⁻¹ Φ_q(qₙ)ᵀ, one column per constraint.
+                let minv_gt = chol.solve(&g_n.transpose());
+                // Position step: q(Λ) = q̂ + M⁻¹ Φ_q(qₙ)ᵀ Λ with Λ = h²/2 λ.
+                let a_free = chol.solve(&f);
+                let q_hat = q + v * hk + a_free * (half * hk * hk);
+                let (q_next, lambda) =
+                    self.solve_positions(system, t, hk, t_next, &q_hat, &minv_gt)?;
+                let v_half = (q_next - q) / hk;
+                // The constraint force over the first half step, as an acceleration.
+                let a_start = a_free + minv_gt * (lambda * (T::lit(2.0) / (hk * hk)));
+                let (m_next, f_next) = system.mass_matrix_and_rhs(&q_next, &v_half, t_next);
+                stats.evaluations += 1;
+                check_constant_mass(&m0, &m_next, t_next, &q_next)?;
+                // Velocity step: G (v̂ + M⁻¹ Gᵀ Μ) + g = 0, linear in Μ = h/2 μ.
+                let (g_next, g_t) = system.constraint_jacobian(&q_next, t_next);
+                let minv_gt_next = chol.solve(&g_next.transpose());
+                let a_free_next = chol.solve(&f_next);
+                let v_hat = v_half + a_free_next * (half * hk);
+                let schur = g_next * minv_gt_next;
+                let rhs = -(g_next * v_hat + g_t);
+                let mu = solve_square(schur, &rhs)
+                    .ok_or_else(|| redundant::<S, T, N, K>(t_next, &q_next))?;
+                let v_next = v_hat + minv_gt_next * mu;
+                let a_end = a_free_next + minv_gt_next * (mu * (T::lit(2.0) / hk));
+                if !(all_finite(&q_next) && all_finite(&v_next)) {
+                    return Err(Error::non_finite(t_next, &q_next, &v_next));
+                }
+                let segment = DenseSegment::cubic_hermite(
+                    t,
+                    t_next,
+                    (&q, &v, &a_start),
+                    (&q_next, &v_next, &a_end),
+                );
+                let sample = Sample::of(&dynamics, t_next, &q_next, &v_next);
+                traj.push(segment, q_next, v_next, sample);
+                stats.accepted += 1;
+                // F at the end of the step with the final velocity: the next
+                // step's first kick.
+                f = system.mass_matrix_and_rhs(&q_next, &v_next, t_next).1;
+                stats.evaluations += 1;
+                (t, q, v, g_n) = (t_next, q_next, v_next, g_next);
+            }
+            Ok(())
+        })();
+        super::finish(traj, stats, started, outcome)
     }
 
     /// Newton on Φ(q̂ + M⁻¹Gₙᵀ Λ, t₁) = 0 with the exact Jacobian

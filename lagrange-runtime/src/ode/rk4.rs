@@ -1,7 +1,7 @@
 //! The classic fourth-order Runge–Kutta method with a fixed step.
 
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
-use crate::error::Error;
+use crate::error::{Error, Failure};
 use crate::real::Real;
 use crate::trajectory::Trajectory;
 use nalgebra::SVector;
@@ -50,82 +50,84 @@ impl Integrator for Rk4 {
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Error> {
-        if !(self.h.is_finite() && self.h > 0.0) {
-            return Err(Error::InvalidSettings(format!(
-                "RK4 step size must be positive and finite, got {}",
-                self.h
-            )));
-        }
-        check_problem(t0, t1, &q0, &v0)?;
-        let h = T::lit(self.h);
-        // Round the step count so that a span that is a whole number of steps up to
-        // rounding is not followed by a sliver of a step.
-        let ratio = ((t1 - t0) / h).to_f64();
-        let n = (ratio - 1e-9 * ratio.max(1.0)).ceil().max(1.0);
-        if n > self.max_steps as f64 {
-            return Err(Error::TooManySteps {
-                t: t0.to_f64(),
-                max_steps: self.max_steps,
-            });
-        }
-        let n = n as usize;
-
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         let started = crate::clock::Stopwatch::start();
         let mut stats = Stats::default();
-        let mut y = Pair::new(q0, v0);
-        let mut f = y.derivative(rhs, t0, &mut stats.evaluations)?;
         let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
-        traj.reserve(n);
-        let mut t = t0;
-        let half = T::lit(0.5);
-        let two = T::lit(2.0);
-        for k in 1..=n {
-            let t_next = if k == n {
-                t1
-            } else {
-                t0 + h * T::lit(k as f64)
-            };
-            let hk = t_next - t;
-            let ev = &mut stats.evaluations;
-            let k2 = y.add_combination(hk * half, [T::one()], [&f]).derivative(
-                rhs,
-                t + hk * half,
-                ev,
-            )?;
-            let k3 = y.add_combination(hk * half, [T::one()], [&k2]).derivative(
-                rhs,
-                t + hk * half,
-                ev,
-            )?;
-            let k4 = y
-                .add_combination(hk, [T::one()], [&k3])
-                .derivative(rhs, t_next, ev)?;
-            let y_next = y.add_combination(
-                hk / T::lit(6.0),
-                [T::one(), two, two, T::one()],
-                [&f, &k2, &k3, &k4],
-            );
-            if !y_next.is_finite() {
-                // Only a right-hand side that returns NaN or ∞ without an error gets here.
-                return Err(Error::non_finite(t_next, &y_next.q, &y_next.v));
+        // Everything computed before a failure goes back with it.
+        let outcome = (|| -> Result<(), Error> {
+            if !(self.h.is_finite() && self.h > 0.0) {
+                return Err(Error::InvalidSettings(format!(
+                    "RK4 step size must be positive and finite, got {}",
+                    self.h
+                )));
             }
-            let mut y_next = y_next;
-            rhs.project(t_next, &mut y_next.q, &mut y_next.v)?;
-            let f_next = y_next.derivative(rhs, t_next, ev)?;
-            let segment = DenseSegment::hermite(t, t_next, &y, &f, &y_next, &f_next);
-            let sample = Sample::of(rhs, t_next, &y_next.q, &y_next.v);
-            let stop = rhs.after_step(&segment, &y_next.q, &y_next.v)?;
-            traj.push(segment, y_next.q, y_next.v, sample);
-            stats.accepted += 1;
-            (t, y, f) = (t_next, y_next, f_next);
-            if stop {
-                break;
+            check_problem(t0, t1, &q0, &v0)?;
+            let h = T::lit(self.h);
+            // Round the step count so that a span that is a whole number of steps up to
+            // rounding is not followed by a sliver of a step.
+            let ratio = ((t1 - t0) / h).to_f64();
+            let n = (ratio - 1e-9 * ratio.max(1.0)).ceil().max(1.0);
+            if n > self.max_steps as f64 {
+                return Err(Error::TooManySteps {
+                    t: t0.to_f64(),
+                    max_steps: self.max_steps,
+                });
             }
-        }
-        stats.wall_time = started.elapsed();
-        traj.set_stats(stats);
-        Ok(traj)
+            let n = n as usize;
+
+            let mut y = Pair::new(q0, v0);
+            let mut f = y.derivative(rhs, t0, &mut stats.evaluations)?;
+            traj.reserve(n);
+            let mut t = t0;
+            let half = T::lit(0.5);
+            let two = T::lit(2.0);
+            for k in 1..=n {
+                let t_next = if k == n {
+                    t1
+                } else {
+                    t0 + h * T::lit(k as f64)
+                };
+                let hk = t_next - t;
+                let ev = &mut stats.evaluations;
+                let k2 = y.add_combination(hk * half, [T::one()], [&f]).derivative(
+                    rhs,
+                    t + hk * half,
+                    ev,
+                )?;
+                let k3 = y.add_combination(hk * half, [T::one()], [&k2]).derivative(
+                    rhs,
+                    t + hk * half,
+                    ev,
+                )?;
+                let k4 = y
+                    .add_combination(hk, [T::one()], [&k3])
+                    .derivative(rhs, t_next, ev)?;
+                let y_next = y.add_combination(
+                    hk / T::lit(6.0),
+                    [T::one(), two, two, T::one()],
+                    [&f, &k2, &k3, &k4],
+                );
+                if !y_next.is_finite() {
+                    // Only a right-hand side that returns NaN or ∞ without an error gets here.
+                    return Err(Error::non_finite(t_next, &y_next.q, &y_next.v));
+                }
+                let mut y_next = y_next;
+                rhs.project(t_next, &mut y_next.q, &mut y_next.v)?;
+                let f_next = y_next.derivative(rhs, t_next, ev)?;
+                let segment = DenseSegment::hermite(t, t_next, &y, &f, &y_next, &f_next);
+                let sample = Sample::of(rhs, t_next, &y_next.q, &y_next.v);
+                let stop = rhs.after_step(&segment, &y_next.q, &y_next.v)?;
+                traj.push(segment, y_next.q, y_next.v, sample);
+                stats.accepted += 1;
+                (t, y, f) = (t_next, y_next, f_next);
+                if stop {
+                    break;
+                }
+            }
+            Ok(())
+        })();
+        super::finish(traj, stats, started, outcome)
     }
 }
 
@@ -188,7 +190,7 @@ pub(crate) mod tests {
     fn silent_nan_is_an_error() {
         let e = Rk4::step(0.1).integrate(&Poisoned, 0.0, 1.0, Vector1::new(1.0), Vector1::new(0.0));
         assert!(
-            matches!(e, Err(Error::NonFiniteState { t, .. }) if (t - 0.5).abs() < 1e-12),
+            matches!(e, Err(Failure { error: Error::NonFiniteState { t, .. }, .. }) if (t - 0.5).abs() < 1e-12),
             "{e:?}"
         );
     }
@@ -198,7 +200,13 @@ pub(crate) mod tests {
         let osc = Oscillator { omega: 1.0 };
         for h in [0.0, -1.0, f64::NAN] {
             let e = Rk4::step(h).integrate(&osc, 0.0, 1.0, Vector1::new(1.0), Vector1::new(0.0));
-            assert!(matches!(e, Err(Error::InvalidSettings(_))));
+            assert!(matches!(
+                e,
+                Err(Failure {
+                    error: Error::InvalidSettings(_),
+                    ..
+                })
+            ));
         }
         let e = Rk4::step(1e-3).max_steps(10).integrate(
             &osc,
@@ -207,6 +215,12 @@ pub(crate) mod tests {
             Vector1::new(1.0),
             Vector1::new(0.0),
         );
-        assert!(matches!(e, Err(Error::TooManySteps { max_steps: 10, .. })));
+        assert!(matches!(
+            e,
+            Err(Failure {
+                error: Error::TooManySteps { max_steps: 10, .. },
+                ..
+            })
+        ));
     }
 }

@@ -1,7 +1,7 @@
 //! Störmer–Verlet in its velocity form, with a fixed step.
 
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
-use crate::error::Error;
+use crate::error::{Error, Failure};
 use crate::real::Real;
 use crate::trajectory::Trajectory;
 use nalgebra::SVector;
@@ -92,52 +92,58 @@ impl Integrator for StormerVerlet {
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Error> {
-        check_problem(t0, t1, &q0, &v0)?;
-        let n = fixed_step_count("Störmer–Verlet", self.h, self.max_steps, t0, t1)?;
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         let started = crate::clock::Stopwatch::start();
-        let h = T::lit(self.h);
-        let half = T::lit(0.5);
-
         let mut stats = Stats::default();
-        let (mut t, mut q, mut v) = (t0, q0, v0);
-        stats.evaluations += 1;
-        let mut a = rhs.acceleration(t, &q, &v)?;
         let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
-        traj.reserve(n);
-        for k in 1..=n {
-            let t_next = if k == n {
-                t1
-            } else {
-                t0 + h * T::lit(k as f64)
-            };
-            let hk = t_next - t;
-            let v_half = v + a * (half * hk);
-            let mut q_next = q + v_half * hk;
+        // Everything computed before a failure goes back with it.
+        let outcome = (|| -> Result<(), Error> {
+            check_problem(t0, t1, &q0, &v0)?;
+            let n = fixed_step_count("Störmer–Verlet", self.h, self.max_steps, t0, t1)?;
+            let h = T::lit(self.h);
+            let half = T::lit(0.5);
+
+            let (mut t, mut q, mut v) = (t0, q0, v0);
             stats.evaluations += 1;
-            let mut a_next = rhs.acceleration(t_next, &q_next, &v_half)?;
-            let mut v_next = v_half + a_next * (half * hk);
-            if !Pair::new(q_next, v_next).is_finite() {
-                return Err(Error::non_finite(t_next, &q_next, &v_next));
-            }
-            let segment =
-                DenseSegment::cubic_hermite(t, t_next, (&q, &v, &a), (&q_next, &v_next, &a_next));
-            if rhs.project(t_next, &mut q_next, &mut v_next)? {
+            let mut a = rhs.acceleration(t, &q, &v)?;
+            traj.reserve(n);
+            for k in 1..=n {
+                let t_next = if k == n {
+                    t1
+                } else {
+                    t0 + h * T::lit(k as f64)
+                };
+                let hk = t_next - t;
+                let v_half = v + a * (half * hk);
+                let mut q_next = q + v_half * hk;
                 stats.evaluations += 1;
-                a_next = rhs.acceleration(t_next, &q_next, &v_next)?;
+                let mut a_next = rhs.acceleration(t_next, &q_next, &v_half)?;
+                let mut v_next = v_half + a_next * (half * hk);
+                if !Pair::new(q_next, v_next).is_finite() {
+                    return Err(Error::non_finite(t_next, &q_next, &v_next));
+                }
+                let segment = DenseSegment::cubic_hermite(
+                    t,
+                    t_next,
+                    (&q, &v, &a),
+                    (&q_next, &v_next, &a_next),
+                );
+                if rhs.project(t_next, &mut q_next, &mut v_next)? {
+                    stats.evaluations += 1;
+                    a_next = rhs.acceleration(t_next, &q_next, &v_next)?;
+                }
+                let sample = Sample::of(rhs, t_next, &q_next, &v_next);
+                let stop = rhs.after_step(&segment, &q_next, &v_next)?;
+                traj.push(segment, q_next, v_next, sample);
+                stats.accepted += 1;
+                (t, q, v, a) = (t_next, q_next, v_next, a_next);
+                if stop {
+                    break;
+                }
             }
-            let sample = Sample::of(rhs, t_next, &q_next, &v_next);
-            let stop = rhs.after_step(&segment, &q_next, &v_next)?;
-            traj.push(segment, q_next, v_next, sample);
-            stats.accepted += 1;
-            (t, q, v, a) = (t_next, q_next, v_next, a_next);
-            if stop {
-                break;
-            }
-        }
-        stats.wall_time = started.elapsed();
-        traj.set_stats(stats);
-        Ok(traj)
+            Ok(())
+        })();
+        super::finish(traj, stats, started, outcome)
     }
 }
 
@@ -180,7 +186,16 @@ mod tests {
                 Vector1::new(1.0),
                 Vector1::new(0.0),
             );
-            assert!(matches!(e, Err(Error::InvalidSettings(_))), "{e:?}");
+            assert!(
+                matches!(
+                    e,
+                    Err(Failure {
+                        error: Error::InvalidSettings(_),
+                        ..
+                    })
+                ),
+                "{e:?}"
+            );
         }
         let e = StormerVerlet::step(1e-3).max_steps(10).integrate(
             &osc,
@@ -189,7 +204,13 @@ mod tests {
             Vector1::new(1.0),
             Vector1::new(0.0),
         );
-        assert!(matches!(e, Err(Error::TooManySteps { max_steps: 10, .. })));
+        assert!(matches!(
+            e,
+            Err(Failure {
+                error: Error::TooManySteps { max_steps: 10, .. },
+                ..
+            })
+        ));
     }
 
     #[test]
@@ -201,6 +222,15 @@ mod tests {
             Vector1::new(1.0),
             Vector1::new(0.0),
         );
-        assert!(matches!(e, Err(Error::NonFiniteState { .. })), "{e:?}");
+        assert!(
+            matches!(
+                e,
+                Err(Failure {
+                    error: Error::NonFiniteState { .. },
+                    ..
+                })
+            ),
+            "{e:?}"
+        );
     }
 }

@@ -2,7 +2,7 @@
 //! a study can hand "the configuration to run" to a closure: [`Integrator`] has a
 //! generic method and cannot be a trait object.
 
-use crate::error::Error;
+use crate::error::Failure;
 use crate::ode::{Dop853, Dopri5, Gauss, Integrator, Radau5, Rk4, SecondOrder, StormerVerlet};
 use crate::real::Real;
 use crate::trajectory::Trajectory;
@@ -48,7 +48,7 @@ impl Integrator for Method {
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Error> {
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         match self {
             Method::Rk4(m) => m.integrate(rhs, t0, t1, q0, v0),
             Method::Dopri5(m) => m.integrate(rhs, t0, t1, q0, v0),

@@ -116,9 +116,13 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
     /// Defaults: a DOP853 reference at [`REFERENCE_TOLERANCE`] (checked against
     /// 1e-13), up to 5 timed repeats per run within 0.2 s, and a conserved
     /// integral (its drift is measured).
-    pub fn new(run: impl Fn(Method) -> Result<Trajectory<T, N>, Error> + 'a) -> Self {
+    ///
+    /// The closure may return any error that converts into [`Error`], such as
+    /// the [`Failure`](crate::Failure) of `Simulation::run`: a failed run is a
+    /// row with its error, its partial trajectory is not measured.
+    pub fn new<E: Into<Error>>(run: impl Fn(Method) -> Result<Trajectory<T, N>, E> + 'a) -> Self {
         Self {
-            run: Box::new(run),
+            run: Box::new(move |m| run(m).map_err(Into::into)),
             reference: Reference::Computed {
                 tolerance: REFERENCE_TOLERANCE,
                 check: true,
