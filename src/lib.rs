@@ -195,6 +195,25 @@
 //! functions `sin cos tan asin acos atan atan2 sinh cosh tanh exp ln sqrt abs`
 //! (also in method form: `x.sin()`, `x.powi(2)`). Positions, gravity and the
 //! potential cannot depend on velocities.
+//!
+//! Piecewise forms: `sign(x)` (−1, 0 at 0, 1), `min(a, b)`, `max(a, b)` (both give
+//! `a` at a tie), `clamp(x, lo, hi)` = min(max(x, lo), hi), and Rust's own
+//! conditional, `if a > b { x } else { y }` with `>`, `<`, `>=`, `<=` and
+//! `else if` chains (`==` is refused: floats are not compared exactly). They are
+//! differentiated branch by branch (d sign = 0, d|x| = sign x, 0 at 0), so Coulomb
+//! friction `-mu * m * g * sign(dot(x))`, a saturated actuator
+//! `clamp(-k * x, -f, f)` or a one-sided contact spring `k * (min(x, 0)^2) / 2`
+//! need no `tanh` smoothing.
+//!
+//! **Switches and events.** An adaptive integrator that steps across a
+//! discontinuous force sees both sides in one step: it shrinks the step around
+//! the switch (costly), and a force that flips with the motion, like friction at
+//! rest, chatters. Where that matters, put an [`Event`] on the switching surface
+//! (`Event::new(|_, _, v| v[0]).falling().terminal()` for a block coming to rest,
+//! or an action that changes the mode) so each smooth piece is integrated on its
+//! own; `tests/piecewise.rs` locates the stop of a block under Coulomb friction
+//! this way within 1e-9 of v0/(μg). A force that is continuous with a kink (the
+//! contact spring, a saturation) needs no event: the error control handles it.
 
 pub use lagrange_macros::Lagrangian;
 pub use lagrange_runtime::*;

@@ -150,7 +150,7 @@ pub struct Lowerer<'a> {
     no_inputs: Option<NoInputs>,
 }
 
-const FUNCTIONS: &str = "sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, exp, ln, log, sqrt, abs, pow, powi, powf, dot";
+const FUNCTIONS: &str = "sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, exp, ln, log, sqrt, abs, sign, min, max, clamp, pow, powi, powf, dot; and `if a > b { .. } else { .. }`";
 
 impl<'a> Lowerer<'a> {
     pub fn new(cx: &'a Ctxt) -> Self {
@@ -267,6 +267,7 @@ impl<'a> Lowerer<'a> {
                 _ => self.unsupported(e, "this unary operator"),
             },
             Expr::Binary(b) => self.binary(b, mode),
+            Expr::If(i) => self.conditional(i, mode),
             Expr::Call(c) => self.call(c, mode),
             Expr::MethodCall(m) => self.method(m, mode),
             Expr::Array(_) => {
@@ -649,6 +650,91 @@ impl<'a> Lowerer<'a> {
         }
     }
 
+    /// `if a > b { x } else { y }` (also `<`, `>=`, `<=`, and `else if`
+    /// chains): a piecewise expression, differentiated branch by branch.
+    fn conditional(&mut self, i: &syn::ExprIf, mode: Mode) -> Option<Sym> {
+        let test = self.comparison(&i.cond, mode);
+        let then = self.block(&i.then_branch, mode);
+        let otherwise = match &i.else_branch {
+            Some((_, e)) => match &**e {
+                Expr::Block(b) => self.block(&b.block, mode),
+                other => self.expr(other, mode),
+            },
+            None => {
+                self.cx.error_spanned_by(
+                    i.if_token,
+                    "an `if` in an expression needs an `else` branch: `if a > b { x } else { y }`",
+                );
+                None
+            }
+        };
+        let ((test, flip), then, otherwise) = (test?, then?, otherwise?);
+        Some(if flip {
+            self.ctx.select(test, otherwise, then)
+        } else {
+            self.ctx.select(test, then, otherwise)
+        })
+    }
+
+    /// The test of a condition as (d, flip): `a > b` is (a − b, false), `a < b`
+    /// (b − a, false); `a >= b` is "not b > a", (b − a, true), `a <= b`
+    /// (a − b, true). Equality and other conditions are refused: floats are
+    /// never compared for equality.
+    fn comparison(&mut self, cond: &Expr, mode: Mode) -> Option<(Sym, bool)> {
+        let cond = match cond {
+            Expr::Paren(p) => &*p.expr,
+            other => other,
+        };
+        let Expr::Binary(b) = cond else {
+            self.cx.error_spanned_by(
+                cond,
+                "the condition must compare two expressions with `>`, `<`, `>=` or `<=`, e.g. `if dot(x) > 0 { .. } else { .. }`",
+            );
+            return None;
+        };
+        let flip = match b.op {
+            BinOp::Gt(_) | BinOp::Lt(_) => false,
+            BinOp::Ge(_) | BinOp::Le(_) => true,
+            BinOp::Eq(_) | BinOp::Ne(_) => {
+                self.cx.error_spanned_by(
+                    b.op,
+                    "`==` and `!=` compare floats exactly, which a state never meets reliably; use `>`, `<`, `>=` or `<=`",
+                );
+                return None;
+            }
+            _ => {
+                self.cx.error_spanned_by(
+                    b.op,
+                    "the condition must be one comparison with `>`, `<`, `>=` or `<=`; nest `if`s (or use `min`/`max`) for several",
+                );
+                return None;
+            }
+        };
+        let l = self.expr(&b.left, mode);
+        let r = self.expr(&b.right, mode);
+        let (l, r) = (l?, r?);
+        let positive_when_left_larger = matches!(b.op, BinOp::Gt(_) | BinOp::Le(_));
+        Some(if positive_when_left_larger {
+            (self.ctx.sub(l, r), flip)
+        } else {
+            (self.ctx.sub(r, l), flip)
+        })
+    }
+
+    /// `{ expr }`: a block holding one expression.
+    fn block(&mut self, block: &syn::Block, mode: Mode) -> Option<Sym> {
+        match block.stmts.as_slice() {
+            [syn::Stmt::Expr(e, None)] => self.expr(e, mode),
+            _ => {
+                self.cx.error_spanned_by(
+                    block,
+                    "a branch holds one expression, without `let` or `;`: `{ x }`",
+                );
+                None
+            }
+        }
+    }
+
     fn call(&mut self, c: &syn::ExprCall, mode: Mode) -> Option<Sym> {
         let Expr::Path(p) = &*c.func else {
             return self.unsupported(&c.func, "calling this");
@@ -730,6 +816,13 @@ impl<'a> Lowerer<'a> {
             "sqrt" => Func::Sqrt,
             "abs" => Func::Abs,
             "atan2" => return self.ctx.atan2(a[0], a[1]),
+            "sign" => return self.ctx.sign(a[0]),
+            "min" => return self.ctx.min(a[0], a[1]),
+            "max" => return self.ctx.max(a[0], a[1]),
+            "clamp" => {
+                let low = self.ctx.max(a[0], a[1]);
+                return self.ctx.min(low, a[2]);
+            }
             // pow, powi, powf
             _ => return self.ctx.pow(a[0], a[1]),
         };
@@ -789,8 +882,9 @@ fn component(name: &str) -> Option<usize> {
 fn arity(name: &str) -> Option<usize> {
     Some(match name {
         "sin" | "cos" | "tan" | "asin" | "acos" | "atan" | "sinh" | "cosh" | "tanh" | "exp"
-        | "ln" | "log" | "sqrt" | "abs" => 1,
-        "atan2" | "pow" | "powi" | "powf" => 2,
+        | "ln" | "log" | "sqrt" | "abs" | "sign" => 1,
+        "atan2" | "pow" | "powi" | "powf" | "min" | "max" => 2,
+        "clamp" => 3,
         _ => return None,
     })
 }

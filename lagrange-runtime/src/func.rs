@@ -48,6 +48,19 @@ unary! {
     abs;
 }
 
+/// `if test > 0 { positive } else { otherwise }`: the piecewise form of the
+/// description language (comparisons, `sign`, `min`, `max`, `clamp`). Both
+/// values are computed before the choice, so a branch that is not finite
+/// where it is not taken does no harm.
+#[inline(always)]
+pub fn select<T: Real>(test: T, positive: T, otherwise: T) -> T {
+    if test > T::zero() {
+        positive
+    } else {
+        otherwise
+    }
+}
+
 /// Four-quadrant arctangent of `y / x`.
 #[inline(always)]
 pub fn atan2<T: Real>(y: T, x: T) -> T {

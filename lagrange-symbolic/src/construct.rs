@@ -377,6 +377,47 @@ impl Context {
         }
         self.intern(Node::Atan2(y, x))
     }
+
+    /// `if test > 0 { positive } else { otherwise }`. Folds a constant test and
+    /// equal branches.
+    pub fn select(&mut self, test: Expr, positive: Expr, otherwise: Expr) -> Expr {
+        if positive == otherwise {
+            return positive;
+        }
+        if let Some(t) = self.num(test) {
+            return if t.to_f64() > 0.0 {
+                positive
+            } else {
+                otherwise
+            };
+        }
+        self.intern(Node::Select(test, positive, otherwise))
+    }
+
+    /// `a > b`, as the test of a [`select`](Self::select): `a − b`.
+    pub fn greater(&mut self, a: Expr, b: Expr) -> Expr {
+        self.sub(a, b)
+    }
+
+    /// sign(x): 1, 0 or −1 (0 at 0).
+    pub fn sign(&mut self, x: Expr) -> Expr {
+        let (one, zero, minus) = (self.int(1), self.int(0), self.int(-1));
+        let neg = self.neg(x);
+        let below = self.select(neg, minus, zero);
+        self.select(x, one, below)
+    }
+
+    /// min(a, b) (a when equal).
+    pub fn min(&mut self, a: Expr, b: Expr) -> Expr {
+        let t = self.greater(a, b);
+        self.select(t, b, a)
+    }
+
+    /// max(a, b) (a when equal).
+    pub fn max(&mut self, a: Expr, b: Expr) -> Expr {
+        let t = self.greater(b, a);
+        self.select(t, b, a)
+    }
 }
 
 impl Context {
@@ -413,6 +454,14 @@ impl Context {
                     e
                 } else {
                     self.atan2(ny, nx)
+                }
+            }
+            Node::Select(t, a, b) => {
+                let (nt, na, nb) = (f(self, t), f(self, a), f(self, b));
+                if (nt, na, nb) == (t, a, b) {
+                    e
+                } else {
+                    self.select(nt, na, nb)
                 }
             }
         }

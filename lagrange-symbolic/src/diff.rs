@@ -60,6 +60,12 @@ impl Context {
                 let den = self.add(x2, y2);
                 self.div(num, den)
             }
+            // Piecewise: the derivative of the branch taken (the switching
+            // surface itself has measure zero; there the else branch's).
+            Node::Select(t, a, b) => {
+                let (da, db) = (self.diff(a, wrt), self.diff(b, wrt));
+                self.select(t, da, db)
+            }
         }
     }
 
@@ -123,11 +129,8 @@ impl Context {
                 let p = self.pow(u, m_half);
                 self.mul(half, p)
             }
-            Func::Abs => {
-                // sign(u) = u / |u| (undefined at 0, like the derivative)
-                let a = self.func(Func::Abs, u);
-                self.div(u, a)
-            }
+            // sign(u): ±1, and 0 at u = 0 (a subgradient there, not a NaN).
+            Func::Abs => self.sign(u),
         }
     }
 
@@ -232,7 +235,7 @@ impl Context {
                 self.degree(b, wanted, memo)?
                     .checked_mul(u32::try_from(n).ok()?)
             }
-            Node::Call(..) | Node::Atan2(..) => None,
+            Node::Call(..) | Node::Atan2(..) | Node::Select(..) => None,
         };
         memo.insert(e, d);
         d

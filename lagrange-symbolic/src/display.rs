@@ -60,6 +60,16 @@ impl Context {
                 };
                 (text, ATOM)
             }
+            &Node::Select(t, a, b) => {
+                let (ts, as_, bs) = (self.show(t, st).0, self.show(a, st).0, self.show(b, st).0);
+                let text = match st {
+                    Style::Text => format!("(if {ts} > 0 {{ {as_} }} else {{ {bs} }})"),
+                    Style::Latex => format!(
+                        "\\begin{{cases}} {as_} & {ts} > 0 \\\\ {bs} & \\text{{otherwise}} \\end{{cases}}"
+                    ),
+                };
+                (text, ATOM)
+            }
         }
     }
 

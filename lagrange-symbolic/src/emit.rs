@@ -133,6 +133,10 @@ impl Program {
                 let a = o(a);
                 quote!(#f::powi(#a, #n))
             }
+            Op::Select(t, a, b) => {
+                let (t, a, b) = (o(t), o(a), o(b));
+                quote!(#f::select(#t, #a, #b))
+            }
         })
     }
 }

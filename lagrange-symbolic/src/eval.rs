@@ -38,6 +38,13 @@ impl Context {
             }
             &Node::Call(f, a) => f.apply(self.eval_in(a, env, memo)),
             &Node::Atan2(y, x) => self.eval_in(y, env, memo).atan2(self.eval_in(x, env, memo)),
+            &Node::Select(t, a, b) => {
+                if self.eval_in(t, env, memo) > 0.0 {
+                    self.eval_in(a, env, memo)
+                } else {
+                    self.eval_in(b, env, memo)
+                }
+            }
         };
         memo.insert(e, v);
         v

@@ -161,6 +161,24 @@ impl Program {
             ),
             Op::Powi(a, n) if latex => (format!("{{{}}}^{{{n}}}", at(a, Prec::Atom)), Prec::Unary),
             Op::Powi(a, n) => (format!("{}^{n}", at(a, Prec::Atom)), Prec::Unary),
+            Op::Select(t, a, b) if latex => (
+                format!(
+                    "\\begin{{cases}} {} & {} > 0 \\\\ {} & \\text{{otherwise}} \\end{{cases}}",
+                    plain(a),
+                    plain(t),
+                    plain(b)
+                ),
+                Prec::Atom,
+            ),
+            Op::Select(t, a, b) => (
+                format!(
+                    "(if {} > 0 {{ {} }} else {{ {} }})",
+                    plain(t),
+                    plain(a),
+                    plain(b)
+                ),
+                Prec::Atom,
+            ),
         }
     }
 }

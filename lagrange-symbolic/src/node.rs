@@ -168,6 +168,9 @@ pub enum Node {
     Call(Func, Expr),
     /// `atan2(y, x)`.
     Atan2(Expr, Expr),
+    /// `if test > 0 { positive } else { otherwise }`: the one piecewise form;
+    /// comparisons, `sign`, `min`, `max` and `clamp` are built from it.
+    Select(Expr, Expr, Expr),
 }
 
 impl Node {
@@ -188,6 +191,11 @@ impl Node {
                 f(*b);
             }
             Node::Call(_, a) => f(*a),
+            Node::Select(t, a, b) => {
+                f(*t);
+                f(*a);
+                f(*b);
+            }
         }
     }
 }

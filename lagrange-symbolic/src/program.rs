@@ -58,18 +58,23 @@ pub(crate) enum Op {
     Atan2(Value, Value),
     Powf(Value, Value),
     Powi(Value, i32),
+    /// `if test > 0 { a } else { b }`.
+    Select(Value, Value, Value),
 }
 
 impl Op {
     /// The values this operation reads.
     pub(crate) fn operands(&self) -> impl Iterator<Item = Value> {
-        let (a, b) = match *self {
-            Op::Sym(_) | Op::Const(_) => (None, None),
-            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => (Some(a), Some(b)),
-            Op::Atan2(a, b) | Op::Powf(a, b) => (Some(a), Some(b)),
-            Op::Neg(a) | Op::Call(_, a) | Op::Powi(a, _) => (Some(a), None),
+        let (a, b, c) = match *self {
+            Op::Sym(_) | Op::Const(_) => (None, None, None),
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => {
+                (Some(a), Some(b), None)
+            }
+            Op::Atan2(a, b) | Op::Powf(a, b) => (Some(a), Some(b), None),
+            Op::Neg(a) | Op::Call(_, a) | Op::Powi(a, _) => (Some(a), None, None),
+            Op::Select(t, a, b) => (Some(t), Some(a), Some(b)),
         };
-        a.into_iter().chain(b)
+        a.into_iter().chain(b).chain(c)
     }
 }
 
@@ -140,6 +145,10 @@ impl Lowering<'_> {
             &Node::Atan2(y, x) => {
                 let (y, x) = (self.lower(y), self.lower(x));
                 self.push(Op::Atan2(y, x))
+            }
+            &Node::Select(t, a, b) => {
+                let (t, a, b) = (self.lower(t), self.lower(a), self.lower(b));
+                self.push(Op::Select(t, a, b))
             }
         };
         self.memo.insert(e, v);
@@ -328,6 +337,8 @@ impl Program {
                 Op::Mul(..) => c.mul += 1,
                 Op::Div(..) => c.div += 1,
                 Op::Call(..) | Op::Atan2(..) | Op::Powf(..) | Op::Powi(..) => c.call += 1,
+                // A comparison and a branch-free choice: counted as one addition.
+                Op::Select(..) => c.add += 1,
             }
         }
         c
@@ -350,6 +361,13 @@ impl Program {
                 Op::Atan2(y, x) => g(y).atan2(g(x)),
                 Op::Powf(a, b) => g(a).powf(g(b)),
                 Op::Powi(a, n) => g(a).powi(n),
+                Op::Select(t, a, b) => {
+                    if g(t) > 0.0 {
+                        g(a)
+                    } else {
+                        g(b)
+                    }
+                }
             };
             vals.push(x);
         }
@@ -370,6 +388,11 @@ pub(crate) fn for_each_operand(op: Op, mut f: impl FnMut(Value)) {
             f(a);
             f(b);
         }
+        Op::Select(t, a, b) => {
+            f(t);
+            f(a);
+            f(b);
+        }
     }
 }
 
@@ -385,5 +408,6 @@ fn map_operands(op: Op, f: impl Fn(Value) -> Value) -> Op {
         Op::Atan2(a, b) => Op::Atan2(f(a), f(b)),
         Op::Powf(a, b) => Op::Powf(f(a), f(b)),
         Op::Powi(a, n) => Op::Powi(f(a), n),
+        Op::Select(t, a, b) => Op::Select(f(t), f(a), f(b)),
     }
 }
