@@ -4,7 +4,7 @@
 use crate::catalog::bicycle::{Bicycle, published};
 use crate::catalog::constrained::RollingDisk;
 use crate::catalog::control::{CartPole, TwoLinkArm};
-use crate::{Row, TOL, row};
+use crate::{Row, TOL, coords, row};
 use lagrange::linear::sweep;
 use lagrange::nalgebra::DMatrix;
 use lagrange::prelude::*;
@@ -36,6 +36,7 @@ fn cart_pole(gain: &DMatrix<f64>, period: Option<f64>) -> Result<Row, Error> {
     };
     row(
         name,
+        &coords(&cp),
         0.0..10.0,
         false,
         || {
@@ -70,6 +71,7 @@ fn disk() -> Result<Row, Error> {
     let spin = 1.2 * critical;
     row(
         "rolling disk upright, critical spin",
+        &coords(&d),
         0.0..10.0,
         true,
         || {
@@ -110,6 +112,7 @@ fn bicycle() -> Result<Row, Error> {
     v0[3] = 0.5;
     row(
         "Whipple bicycle at 5 m/s, roll-rate kick",
+        &coords(&b),
         0.0..8.0,
         true,
         || {
@@ -138,6 +141,7 @@ fn arm() -> Result<Row, Error> {
     let [q0, v0, _] = TwoLinkArm::reference(0.0);
     row(
         "two-link arm, computed-torque tracking",
+        &coords(&arm),
         0.0..5.0,
         false,
         || {

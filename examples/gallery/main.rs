@@ -7,6 +7,9 @@
 #[path = "../catalog/mod.rs"]
 mod catalog;
 mod control;
+mod figure;
+mod output;
+mod plot;
 
 use std::time::Instant;
 
@@ -25,11 +28,19 @@ pub(crate) struct Row {
     residuals: Option<[f64; 2]>,
     note: String,
     wall_ms: f64,
+    /// What the index page draws and saves of the run.
+    figure: Option<figure::Figure>,
+}
+
+/// The coordinate names of a system (for plots and CSV headers).
+pub(crate) fn coords<S: Lagrangian<f64, N>, const N: usize>(_: &S) -> [&'static str; N] {
+    S::COORDINATES
 }
 
 /// One gallery row from a run of any formulation (the closure integrates).
 pub(crate) fn row<const N: usize, E: Into<Error>>(
     system: &'static str,
+    names: &[&str; N],
     span: std::ops::Range<f64>,
     conservative: bool,
     integrate: impl FnOnce() -> Result<Trajectory<f64, N>, E>,
@@ -51,6 +62,7 @@ pub(crate) fn row<const N: usize, E: Into<Error>>(
         residuals: (residuals != [0.0; 2]).then_some(residuals),
         note: note(&traj),
         wall_ms,
+        figure: Some(figure::Figure::of(&traj, names, conservative)?),
     })
 }
 
@@ -72,6 +84,7 @@ where
     let run_span = span.clone();
     row(
         system,
+        &coords(sys),
         span,
         conservative,
         || {
@@ -96,6 +109,7 @@ fn main() -> Result<(), Error> {
     let period = std::cell::Cell::new(f64::NAN);
     rows.push(row(
         "simple pendulum, 179°, period by events",
+        &coords(&pendulum),
         0.0..20.0,
         true,
         || {
@@ -245,52 +259,168 @@ fn main() -> Result<(), Error> {
     constrained_rows(&mut rows)?;
     control::rows(&mut rows)?;
 
-    println!("lagrange gallery — DOPRI5 at rtol = atol = 1e-10, f64\n");
+    let out = output_dir()?;
+    print_table(&rows);
+    let find = |name: &str| rows.iter().find(|r| r.system == name);
+    let animations = output::Animations {
+        double_pendulum: find("double pendulum").map(|r| (r, double.l1, double.l2)),
+        rolling_disk: find("rolling disk, steady circle").map(|r| (r, 0.5)),
+        cavity: find(CAVITY).map(|r| (r, 1.0)),
+    };
+    let index = output::write(&out, &rows, &animations)?;
+    println!("\nplots, animations and CSV files: {}", index.display());
+    Ok(())
+}
+
+/// `--out DIR`, or `target/gallery` under the current directory.
+fn output_dir() -> Result<std::path::PathBuf, Error> {
+    let mut args = std::env::args().skip(1);
+    match (args.next().as_deref(), args.next()) {
+        (None, _) => Ok("target/gallery".into()),
+        (Some("--out"), Some(dir)) => Ok(dir.into()),
+        _ => Err(Error::InvalidSettings(
+            "usage: cargo run --release --example gallery [-- --out DIR]".into(),
+        )),
+    }
+}
+
+/// The summary as a markdown table that fits 100 columns; the checks each row
+/// passes are in index.html.
+fn print_table(rows: &[Row]) {
+    println!("lagrange gallery: DOPRI5 at rtol = atol = 1e-10, f64\n");
     println!(
-        "| {:<40} | {:>3} | {:>5} | {:>6} | {:>5} | {:>7} | {:>9} | {:>17} | {:>8} | note",
-        "system",
-        "dof",
-        "span",
-        "steps",
-        "rej",
-        "f evals",
-        "drift",
-        "residuals |Φ|,|Gv|",
-        "wall ms"
+        "| {:<42} | {:>3} | {:>6} | {:>7} | {:>7} | {:>7} | {:>6} |",
+        "system", "dof", "steps", "evals", "drift", "resid.", "ms"
     );
-    println!("|{}|", "-".repeat(140));
-    for r in &rows {
-        let drift = r
-            .drift
-            .map(|d| format!("{d:.2e}"))
-            .unwrap_or_else(|| "—".to_string());
+    println!(
+        "|{}|{}|{}|{}|{}|{}|{}|",
+        "-".repeat(44),
+        "-".repeat(4) + ":",
+        "-".repeat(7) + ":",
+        "-".repeat(8) + ":",
+        "-".repeat(8) + ":",
+        "-".repeat(8) + ":",
+        "-".repeat(7) + ":"
+    );
+    for r in rows {
+        let drift = r.drift.map_or("—".to_string(), |d| format!("{d:.1e}"));
         let res = r
             .residuals
-            .map(|[p, v]| format!("{p:.1e}, {v:.1e}"))
-            .unwrap_or_else(|| "—".to_string());
+            .map_or("—".to_string(), |[p, v]| format!("{:.0e}", p.max(v)));
+        let name: String = r.system.chars().take(42).collect();
         println!(
-            "| {:<40} | {:>3} | {:>5.1} | {:>6} | {:>5} | {:>7} | {:>9} | {:>17} | {:>8.2} | {}",
-            r.system,
-            r.dof,
-            r.span,
-            r.accepted,
-            r.rejected,
-            r.evaluations,
-            drift,
-            res,
-            r.wall_ms,
-            r.note
+            "| {:<42} | {:>3} | {:>6} | {:>7} | {:>7} | {:>7} | {:>6.1} |",
+            name, r.dof, r.accepted, r.evaluations, drift, res, r.wall_ms
         );
     }
     println!(
-        "\ndrift: max |I(t) − I(0)| / |I(0)| of the conserved quantity (T + V, or the Jacobi integral)."
+        "\ndrift: max |I(t) − I(0)| / |I(0)| of T + V (or the Jacobi integral); resid.: largest"
     );
-    println!(
-        "residuals: largest |Φ| and |G q̇ + g| along the run (multiplier form with projection), or"
-    );
-    println!("|q̇ − W u − w| (reduced form); — for unconstrained systems.");
-    Ok(())
+    println!("|Φ| or |G q̇ + g| along the run; — where it does not apply.");
 }
+
+/// What each gallery system demonstrates, for the index page.
+pub(crate) fn about(system: &str) -> &'static str {
+    const ABOUT: &[(&str, &str)] = &[
+        (
+            "simple pendulum, 179°, period by events",
+            "events located on the dense output; the period against the elliptic-integral closed form",
+        ),
+        (
+            "C1 spherical pendulum (θ, φ)",
+            "minimal coordinates; p_φ conserved (cyclic coordinate)",
+        ),
+        (
+            "C2 ellipsoid with growing axes",
+            "rheonomic position maps ξ(q, t)",
+        ),
+        (
+            "C3 dumbbell (rod, free)",
+            "a rigid rod as two particles; free fall of the centre of mass",
+        ),
+        ("C7 heavy particle, vertical plane", "the textbook parabola"),
+        (
+            "double pendulum",
+            "chaos with the energy kept to the tolerance",
+        ),
+        (
+            "5-link pendulum (relative angles)",
+            "a longer chain, relative angles",
+        ),
+        (
+            "damped driven pendulum",
+            "dissipation and a time-dependent force",
+        ),
+        (
+            "C1 spherical pendulum, Cartesian + λ",
+            "holonomic constraint with a multiplier, drift projection, the rod tension",
+        ),
+        (
+            "C3 rod as a constraint (6 coords + λ)",
+            "the dumbbell again, the rod as a constraint",
+        ),
+        (
+            "C4 body as three particles",
+            "rigid-body inertia tensor against three particles",
+        ),
+        (
+            "C5 rolling sphere, multipliers",
+            "nonholonomic rolling with multipliers",
+        ),
+        (
+            "C5 rolling sphere, reduced (Maggi)",
+            "the same sphere in reduced form (independent speeds)",
+        ),
+        (
+            "C6 tops joined by an untwistable thread",
+            "a nonholonomic coupling of two rigid bodies",
+        ),
+        (
+            "C8 polar, quasi-velocity x ẏ − y ẋ",
+            "Gibbs–Appell equations on a quasi-velocity",
+        ),
+        (
+            "C9 sphere on a turning plane",
+            "rheonomic rolling; the velocity turns at 2Ω/7",
+        ),
+        (
+            "rolling disk, steady circle",
+            "steady circular rolling from the closed-form condition",
+        ),
+        (
+            "C10 point in a spherical cavity, e = 0.7",
+            "impacts by events, then sliding on the wall with a multiplier",
+        ),
+        ("Chaplygin sleigh", "a knife edge in reduced form"),
+        (
+            "two-link arm, computed-torque tracking",
+            "a controller in a closure, inverse dynamics from the model",
+        ),
+        (
+            "cart-pole, LQR from the linearisation",
+            "LQR gain from the symbolic linearisation, continuous feedback",
+        ),
+        (
+            "cart-pole, LQR sampled at 100 Hz (ZOH)",
+            "the same gain, sampled with zero-order hold",
+        ),
+        (
+            "rolling disk upright, critical spin",
+            "critical spin from the eigenvalues against √(g/3a); wobble above it",
+        ),
+        (
+            "Whipple bicycle at 5 m/s, roll-rate kick",
+            "weave and capsize speeds against the published benchmark; self-stability",
+        ),
+    ];
+    ABOUT
+        .iter()
+        .find(|(name, _)| *name == system)
+        .map_or("", |(_, about)| about)
+}
+
+/// The cavity row's name (its animation is looked up by it).
+const CAVITY: &str = "C10 point in a spherical cavity, e = 0.7";
 
 /// C10: a point in a spherical cavity, impacts with restitution 0.7 until the
 /// bounces die out, then sliding on the wall with a multiplier.
@@ -312,8 +442,12 @@ fn cavity_row() -> Result<Row, Error> {
     for (_, q, _) in run.points() {
         outside = outside.max(q.norm() - cavity.r);
     }
+    let points: Vec<(f64, [f64; 3], [f64; 3])> = run
+        .points()
+        .map(|(t, q, v)| (t, [q[0], q[1], q[2]], [v[0], v[1], v[2]]))
+        .collect();
     Ok(Row {
-        system: "C10 point in a spherical cavity, e = 0.7",
+        system: CAVITY,
         dof: 3,
         span: 8.0,
         accepted: stats.accepted,
@@ -327,6 +461,7 @@ fn cavity_row() -> Result<Row, Error> {
             run.slides.first().copied().unwrap_or(f64::NAN)
         ),
         wall_ms,
+        figure: Some(figure::Figure::from_points(&["x", "y", "z"], &points)),
     })
 }
 
@@ -342,6 +477,7 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
     let v0 = [th.cos() * thd, th.sin() * phd, th.sin() * thd];
     rows.push(row(
         "C1 spherical pendulum, Cartesian + λ",
+        &coords(&cart),
         0.0..20.0,
         true,
         || {
@@ -373,6 +509,7 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
     };
     rows.push(row(
         "C3 rod as a constraint (6 coords + λ)",
+        &coords(&pair),
         0.0..1.5,
         true,
         || {
@@ -435,6 +572,7 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
     let v5 = reduced_traj.velocities()[0];
     rows.push(row(
         "C5 rolling sphere, multipliers",
+        &coords(&sphere),
         0.0..10.0,
         true,
         || {
@@ -459,6 +597,7 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
     )?);
     rows.push(row(
         "C5 rolling sphere, reduced (Maggi)",
+        &coords(&reduced),
         0.0..10.0,
         true,
         || {
@@ -488,6 +627,7 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
     let (th1, th2) = (0.4f64, 0.7f64);
     rows.push(row(
         "C6 tops joined by an untwistable thread",
+        &coords(&tops),
         0.0..5.0,
         true,
         || {
@@ -517,6 +657,7 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
     };
     rows.push(row(
         "C8 polar, quasi-velocity x ẏ − y ẋ",
+        &coords(&polar),
         0.0..5.0,
         false,
         || {
@@ -537,6 +678,7 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
     };
     rows.push(row(
         "C9 sphere on a turning plane",
+        &coords(&turntable),
         0.0..10.0,
         false,
         || {
@@ -570,6 +712,7 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
     let (q0, v0) = disk.steady_circle(theta0, 2.0);
     rows.push(row(
         "rolling disk, steady circle",
+        &coords(&disk),
         0.0..3.0,
         true,
         || {
@@ -589,6 +732,7 @@ fn constrained_rows(rows: &mut Vec<Row>) -> Result<(), Error> {
 
     rows.push(row(
         "Chaplygin sleigh",
+        &coords(&sleigh),
         0.0..60.0,
         true,
         || {
