@@ -228,8 +228,9 @@ pub mod prelude {
     pub use lagrange_runtime::{
         Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation, Direction, Dop853,
         Dopri5, Drift, Driven, Error, Event, EventRun, Failure, Gauss, InputTable, Integrator,
-        Interpolation, Lagrangian, Occurrence, Radau5, Rattle, Real, Reduced, ReducedDynamics,
-        ReducedForm, Rk4, Simulation, StormerVerlet, Study, Trajectory, WorkPrecision,
+        Interpolation, Lagrangian, Occurrence, Radau5, Rattle, Real, Record, Reduced,
+        ReducedDynamics, ReducedForm, Rk4, Simulation, StormerVerlet, Study, Trajectory,
+        WorkPrecision,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }

@@ -105,4 +105,4 @@ pub use reduced::{ReducedDynamics, ReducedForm};
 pub use simulation::{EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::{Constrained, Driven, Lagrangian, Reduced};
-pub use trajectory::Trajectory;
+pub use trajectory::{Record, Trajectory};

@@ -22,6 +22,42 @@ pub struct Trajectory<T: Real, const N: usize> {
     residual: Vec<[T; 2]>,
     segments: Vec<DenseSegment<T, N>>,
     stats: Stats,
+    /// What is kept of the run, and the state of that policy.
+    record: Record,
+    /// Steps seen (for `Record::Every`).
+    steps_seen: usize,
+    /// The next output time (for `Record::Interval`).
+    next_output: T,
+    /// The latest step when it was not stored: stored by `close`, so that a
+    /// thinned trajectory still ends at the final state.
+    pending: Option<Point<T, N>>,
+}
+
+/// One recorded point: t, q, q̇ and the sample there.
+type Point<T, const N: usize> = (T, SVector<T, N>, SVector<T, N>, Sample<T>);
+
+/// What a run keeps of its steps (set on the integrator, e.g.
+/// `Dopri5::tol(1e-10).record(Record::Every(100))`, or on the
+/// [`Simulation`](crate::Simulation)).
+///
+/// Memory per stored point for f64: 8 (t) + 16 N (q, q̇) + 24 (integral,
+/// residuals) bytes; `Steps` also keeps each step's dense segment, 8 × 16 N + 24
+/// bytes more, so that [`state_at`](Trajectory::state_at) and
+/// [`crossings`](Trajectory::crossings) work. The other policies keep no
+/// segments (those two then return `None` and nothing), so a run of 10⁷ steps
+/// with `Every(1000)` stores 10⁴ points and with `Final` two.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum Record {
+    /// Every accepted step with its dense output (the default).
+    #[default]
+    Steps,
+    /// Every k-th accepted step, and the final state.
+    Every(usize),
+    /// The state at t0, t0 + dt, t0 + 2 dt, … from the dense output of the steps
+    /// that cover those times, and the final state.
+    Interval(f64),
+    /// The initial and the final state only.
+    Final,
 }
 
 impl<T: Real, const N: usize> Trajectory<T, N> {
@@ -35,23 +71,72 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
             residual: vec![sample.residuals],
             segments: Vec::new(),
             stats: Stats::default(),
+            record: Record::Steps,
+            steps_seen: 0,
+            next_output: t0,
+            pending: None,
         }
     }
 
-    /// Reserves room for `steps` more points.
+    /// A trajectory holding only the initial point that keeps what `record`
+    /// says of the steps pushed into it.
+    pub fn start_recording(
+        record: Record,
+        t0: T,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+        sample: Sample<T>,
+    ) -> Self {
+        let mut traj = Self::start(t0, q0, v0, sample);
+        traj.record = record;
+        if let Record::Interval(dt) = record {
+            traj.next_output = t0 + T::lit(dt);
+        }
+        traj
+    }
+
+    /// What this trajectory keeps of its steps.
+    pub fn recording(&self) -> Record {
+        self.record
+    }
+
+    /// The heap memory the recording holds, in bytes (capacities included).
+    pub fn memory(&self) -> usize {
+        use std::mem::size_of;
+        self.times.capacity() * size_of::<T>()
+            + (self.q.capacity() + self.v.capacity()) * size_of::<SVector<T, N>>()
+            + self.integral.capacity() * size_of::<T>()
+            + self.residual.capacity() * size_of::<[T; 2]>()
+            + self.segments.capacity() * size_of::<DenseSegment<T, N>>()
+    }
+
+    /// Reserves room for `steps` more steps, as many points as the recording
+    /// will keep of them.
     pub fn reserve(&mut self, steps: usize) {
+        let steps = match self.record {
+            Record::Steps => steps,
+            Record::Every(k) => steps / k.max(1) + 1,
+            // The number of output times is not known from the step count.
+            Record::Interval(_) | Record::Final => return,
+        };
         self.times.reserve(steps);
         self.q.reserve(steps);
         self.v.reserve(steps);
         self.integral.reserve(steps);
         self.residual.reserve(steps);
-        self.segments.reserve(steps);
+        if self.record == Record::Steps {
+            self.segments.reserve(steps);
+        }
     }
 
     /// Appends an accepted step ending at `segment.end()`.
     ///
     /// Integrators outside this crate build their trajectories with
     /// [`start`](Self::start), `push` and [`set_stats`](Self::set_stats).
+    /// With a thinning [`Record`] the point is kept or not as it says, and
+    /// [`push_sampled`](Self::push_sampled) is needed for `Record::Interval`
+    /// (its points need samples between the steps); here they get the step
+    /// end's sample.
     pub fn push(
         &mut self,
         segment: DenseSegment<T, N>,
@@ -59,16 +144,71 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         v: SVector<T, N>,
         sample: Sample<T>,
     ) {
-        self.times.push(segment.end());
+        self.push_sampled(segment, q, v, |_, _, _| sample);
+    }
+
+    /// [`push`](Self::push) with the sample computed on demand by
+    /// `sample(t, q, q̇)`: at the step's end, and at the output times inside the
+    /// step for `Record::Interval`.
+    pub fn push_sampled(
+        &mut self,
+        segment: DenseSegment<T, N>,
+        q: SVector<T, N>,
+        v: SVector<T, N>,
+        sample: impl Fn(T, &SVector<T, N>, &SVector<T, N>) -> Sample<T>,
+    ) {
+        let end = segment.end();
+        match self.record {
+            Record::Steps => {
+                self.store((end, q, v, sample(end, &q, &v)));
+                self.segments.push(segment);
+            }
+            Record::Every(k) => {
+                self.steps_seen += 1;
+                let point = (end, q, v, sample(end, &q, &v));
+                if self.steps_seen.is_multiple_of(k.max(1)) {
+                    self.pending = None;
+                    self.store(point);
+                } else {
+                    self.pending = Some(point);
+                }
+            }
+            Record::Interval(dt) => {
+                let dt = T::lit(dt);
+                while self.next_output < end {
+                    let t = self.next_output;
+                    let (qi, vi) = segment.eval(t);
+                    self.store((t, qi, vi, sample(t, &qi, &vi)));
+                    self.next_output = t + dt;
+                }
+                self.pending = Some((end, q, v, sample(end, &q, &v)));
+            }
+            Record::Final => self.pending = Some((end, q, v, sample(end, &q, &v))),
+        }
+    }
+
+    fn store(&mut self, (t, q, v, sample): Point<T, N>) {
+        self.times.push(t);
         self.q.push(q);
         self.v.push(v);
         self.integral.push(sample.integral);
         self.residual.push(sample.residuals);
-        self.segments.push(segment);
     }
 
-    /// Records the work done by the integration.
+    /// Stores the final state if the policy left it pending; integrators call
+    /// this when the run ends (done by [`set_stats`](Self::set_stats)).
+    pub fn close(&mut self) {
+        if let Some(point) = self.pending.take()
+            && self.times.last() != Some(&point.0)
+        {
+            self.store(point);
+        }
+    }
+
+    /// Records the work done by the integration, and closes the recording
+    /// (see [`close`](Self::close)).
     pub fn set_stats(&mut self, stats: Stats) {
+        self.close();
         self.stats = stats;
     }
 
@@ -197,7 +337,8 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         if self.times[i - 1] == t {
             return Some((self.q[i - 1], self.v[i - 1]));
         }
-        Some(self.segments[i - 1].eval(t))
+        // A thinned recording keeps no segments: only its stored points.
+        self.segments.get(i - 1).map(|s| s.eval(t))
     }
 
     /// max_k |I(t_k) − I(t_0)| / max(|I(t_0)|, tiny): the relative drift of the

@@ -25,7 +25,7 @@ use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_pr
 use crate::error::{Error, Failure};
 use crate::func::{abs, sqrt};
 use crate::real::Real;
-use crate::trajectory::Trajectory;
+use crate::trajectory::{Record, Trajectory};
 use nalgebra::SVector;
 
 /// Adaptive Dormand–Prince 8(5,3) with dense output of order 7.
@@ -50,6 +50,8 @@ pub struct Dop853 {
     control: StepControl,
     dense7: bool,
     stiffness_test: usize,
+    /// What the trajectory keeps of the steps.
+    record: Record,
 }
 
 impl Default for Dop853 {
@@ -60,6 +62,13 @@ impl Default for Dop853 {
 }
 
 impl Dop853 {
+    /// What the trajectory keeps of the steps (default: every step with its
+    /// dense output); see [`Record`].
+    pub fn record(mut self, record: Record) -> Self {
+        self.record = record;
+        self
+    }
+
     /// Relative and absolute tolerance both equal to `tol`.
     pub fn tol(tol: f64) -> Self {
         Self::new(tol, tol)
@@ -69,6 +78,7 @@ impl Dop853 {
     /// accurate enough when its local error is below atol + rtol·|y|.
     pub fn new(rtol: f64, atol: f64) -> Self {
         Self {
+            record: Record::Steps,
             control: StepControl::new(rtol, atol),
             dense7: true,
             stiffness_test: 1000,
@@ -377,7 +387,8 @@ impl Integrator for Dop853 {
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         let started = crate::clock::Stopwatch::start();
         let mut stats = Stats::default();
-        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        let mut traj =
+            Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         // Everything computed before a failure goes back with it.
         let outcome = (|| -> Result<(), Error> {
             self.validate()?;
@@ -513,9 +524,10 @@ impl Integrator for Dop853 {
                     if rhs.project(t_new, &mut y_new.q, &mut y_new.v)? {
                         k13 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
                     }
-                    let sample = Sample::of(rhs, t_new, &y_new.q, &y_new.v);
                     let stop = rhs.after_step(&segment, &y_new.q, &y_new.v)?;
-                    traj.push(segment, y_new.q, y_new.v, sample);
+                    traj.push_sampled(segment, y_new.q, y_new.v, |t, q, v| {
+                        Sample::of(rhs, t, q, v)
+                    });
                     stiff?;
                     (t, y, k1) = (t_new, y_new, k13);
                     if last || stop {

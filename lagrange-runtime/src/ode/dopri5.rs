@@ -16,7 +16,7 @@ use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_pr
 use crate::error::{Error, Failure};
 use crate::func::{abs, sqrt};
 use crate::real::Real;
-use crate::trajectory::Trajectory;
+use crate::trajectory::{Record, Trajectory};
 use nalgebra::SVector;
 
 /// Adaptive Dormand–Prince 5(4) with dense output of order 4.
@@ -30,6 +30,8 @@ use nalgebra::SVector;
 pub struct Dopri5 {
     control: StepControl,
     stiffness_test: usize,
+    /// What the trajectory keeps of the steps.
+    record: Record,
 }
 
 impl Default for Dopri5 {
@@ -40,6 +42,13 @@ impl Default for Dopri5 {
 }
 
 impl Dopri5 {
+    /// What the trajectory keeps of the steps (default: every step with its
+    /// dense output); see [`Record`].
+    pub fn record(mut self, record: Record) -> Self {
+        self.record = record;
+        self
+    }
+
     /// Relative and absolute tolerance both equal to `tol`.
     pub fn tol(tol: f64) -> Self {
         Self::new(tol, tol)
@@ -49,6 +58,7 @@ impl Dopri5 {
     /// accurate enough when its local error is below atol + rtol·|y|.
     pub fn new(rtol: f64, atol: f64) -> Self {
         Self {
+            record: Record::Steps,
             control: StepControl::new(rtol, atol),
             stiffness_test: 1000,
         }
@@ -156,7 +166,8 @@ impl Integrator for Dopri5 {
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         let started = crate::clock::Stopwatch::start();
         let mut stats = Stats::default();
-        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        let mut traj =
+            Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         // Everything computed before a failure goes back with it.
         let outcome = (|| -> Result<(), Error> {
             self.validate()?;
@@ -267,9 +278,10 @@ impl Integrator for Dopri5 {
                     if rhs.project(t_new, &mut y_new.q, &mut y_new.v)? {
                         k7 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
                     }
-                    let sample = Sample::of(rhs, t_new, &y_new.q, &y_new.v);
                     let stop = rhs.after_step(&segment, &y_new.q, &y_new.v)?;
-                    traj.push(segment, y_new.q, y_new.v, sample);
+                    traj.push_sampled(segment, y_new.q, y_new.v, |t, q, v| {
+                        Sample::of(rhs, t, q, v)
+                    });
                     stiff?;
                     (t, y, k1) = (t_new, y_new, k7);
                     if last || stop {

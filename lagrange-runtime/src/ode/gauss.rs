@@ -10,7 +10,7 @@ use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_pr
 use crate::error::{Error, Failure};
 use crate::func::abs;
 use crate::real::Real;
-use crate::trajectory::Trajectory;
+use crate::trajectory::{Record, Trajectory};
 use nalgebra::{DMatrix, SVector};
 
 /// Gauss–Legendre collocation with a fixed step: s = 2 stages (order 4, the
@@ -40,12 +40,22 @@ pub struct Gauss {
     stages: usize,
     max_steps: usize,
     max_iterations: usize,
+    /// What the trajectory keeps of the steps.
+    record: Record,
 }
 
 impl Gauss {
+    /// What the trajectory keeps of the steps (default: every step with its
+    /// dense output); see [`Record`].
+    pub fn record(mut self, record: Record) -> Self {
+        self.record = record;
+        self
+    }
+
     /// The 2-stage, order-4 method with step size `h`.
     pub fn step(h: f64) -> Self {
         Self {
+            record: Record::Steps,
             h,
             stages: 2,
             max_steps: 10_000_000,
@@ -56,6 +66,7 @@ impl Gauss {
     /// The implicit midpoint rule (1 stage, order 2) with step size `h`.
     pub fn midpoint(h: f64) -> Self {
         Self {
+            record: Record::Steps,
             stages: 1,
             ..Self::step(h)
         }
@@ -95,7 +106,8 @@ impl Integrator for Gauss {
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         let started = crate::clock::Stopwatch::start();
         let mut stats = Stats::default();
-        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        let mut traj =
+            Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         let run = (&mut traj, &mut stats);
         let outcome = self.run_stages(rhs, (t0, t1, q0, v0), run);
         super::finish(traj, stats, started, outcome)
@@ -227,9 +239,8 @@ impl Gauss {
                 stats.evaluations += 1;
                 acc1 = rhs.acceleration(t_next, &q1, &v1)?;
             }
-            let sample = Sample::of(rhs, t_next, &q1, &v1);
             let stop = rhs.after_step(&segment, &q1, &v1)?;
-            traj.push(segment, q1, v1, sample);
+            traj.push_sampled(segment, q1, v1, |t, q, v| Sample::of(rhs, t, q, v));
             stats.accepted += 1;
             (t, q, v, p, acc) = (t_next, q1, v1, p1, acc1);
             if stop {

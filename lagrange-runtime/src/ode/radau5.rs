@@ -10,7 +10,7 @@ use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_pr
 use crate::error::{Error, Failure};
 use crate::func::{abs, sqrt};
 use crate::real::Real;
-use crate::trajectory::Trajectory;
+use crate::trajectory::{Record, Trajectory};
 use nalgebra::{DMatrix, SVector};
 
 /// The 3-stage Radau IIA method (order 5, L-stable) with Hairer's RADAU5
@@ -42,6 +42,8 @@ use nalgebra::{DMatrix, SVector};
 pub struct Radau5 {
     control: StepControl,
     max_newton: usize,
+    /// What the trajectory keeps of the steps.
+    record: Record,
 }
 
 impl Default for Radau5 {
@@ -52,6 +54,13 @@ impl Default for Radau5 {
 }
 
 impl Radau5 {
+    /// What the trajectory keeps of the steps (default: every step with its
+    /// dense output); see [`Record`].
+    pub fn record(mut self, record: Record) -> Self {
+        self.record = record;
+        self
+    }
+
     /// Relative and absolute tolerance both equal to `tol`.
     pub fn tol(tol: f64) -> Self {
         Self::new(tol, tol)
@@ -61,6 +70,7 @@ impl Radau5 {
     /// `radau5.f`, before its internal transformation).
     pub fn new(rtol: f64, atol: f64) -> Self {
         Self {
+            record: Record::Steps,
             control: StepControl::new(rtol, atol),
             max_newton: 7,
         }
@@ -213,7 +223,8 @@ impl Integrator for Radau5 {
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         let started = crate::clock::Stopwatch::start();
         let mut stats = Stats::default();
-        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        let mut traj =
+            Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         // Everything computed before a failure goes back with it.
         let outcome = (|| -> Result<(), Error> {
             self.validate()?;
@@ -516,7 +527,7 @@ impl Integrator for Radau5 {
                     }
                     set_scal(&mut w.scal, &y);
                     let stop = rhs.after_step(&segment, &p.q, &p.v)?;
-                    traj.push(segment, p.q, p.v, Sample::of(rhs, t, &p.q, &p.v));
+                    traj.push_sampled(segment, p.q, p.v, |t, q, v| Sample::of(rhs, t, q, v));
                     caljac = false;
                     if last || stop {
                         break;

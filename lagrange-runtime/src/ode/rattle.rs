@@ -36,7 +36,7 @@ use crate::constraint::ConstrainedDynamics;
 use crate::error::{Error, Failure, to_vec};
 use crate::real::Real;
 use crate::system::Constrained;
-use crate::trajectory::Trajectory;
+use crate::trajectory::{Record, Trajectory};
 use nalgebra::{Cholesky, SMatrix, SVector};
 
 /// RATTLE with a fixed step `h` for [`Constrained`] systems with a constant
@@ -52,12 +52,22 @@ pub struct Rattle {
     max_steps: usize,
     max_iterations: usize,
     consistency_tolerance: f64,
+    /// What the trajectory keeps of the steps.
+    record: Record,
 }
 
 impl Rattle {
+    /// What the trajectory keeps of the steps (default: every step with its
+    /// dense output); see [`Record`].
+    pub fn record(mut self, record: Record) -> Self {
+        self.record = record;
+        self
+    }
+
     /// RATTLE with step size `h`.
     pub fn step(h: f64) -> Self {
         Self {
+            record: Record::Steps,
             h,
             max_steps: 10_000_000,
             max_iterations: 20,
@@ -113,7 +123,13 @@ impl Rattle {
         let started = crate::clock::Stopwatch::start();
         let mut stats = Stats::default();
         let dynamics = ConstrainedDynamics::<S, T, K>::new(system);
-        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(&dynamics, t0, &q0, &v0));
+        let mut traj = Trajectory::start_recording(
+            self.record,
+            t0,
+            q0,
+            v0,
+            Sample::of(&dynamics, t0, &q0, &v0),
+        );
         // Everything computed before a failure goes back with it.
         let outcome = (|| -> Result<(), Error> {
             check_problem(t0, t1, &q0, &v0)?;
@@ -194,8 +210,9 @@ impl Rattle {
                     (&q, &v, &a_start),
                     (&q_next, &v_next, &a_end),
                 );
-                let sample = Sample::of(&dynamics, t_next, &q_next, &v_next);
-                traj.push(segment, q_next, v_next, sample);
+                traj.push_sampled(segment, q_next, v_next, |t, q, v| {
+                    Sample::of(&dynamics, t, q, v)
+                });
                 stats.accepted += 1;
                 // F at the end of the step with the final velocity: the next
                 // step's first kick.

@@ -3,7 +3,7 @@
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::{Error, Failure};
 use crate::real::Real;
-use crate::trajectory::Trajectory;
+use crate::trajectory::{Record, Trajectory};
 use nalgebra::SVector;
 
 /// Classic RK4 with a fixed step `h`; the last step is shortened so that the
@@ -19,12 +19,22 @@ use nalgebra::SVector;
 pub struct Rk4 {
     h: f64,
     max_steps: usize,
+    /// What the trajectory keeps of the steps.
+    record: Record,
 }
 
 impl Rk4 {
+    /// What the trajectory keeps of the steps (default: every step with its
+    /// dense output); see [`Record`].
+    pub fn record(mut self, record: Record) -> Self {
+        self.record = record;
+        self
+    }
+
     /// RK4 with step size `h`.
     pub fn step(h: f64) -> Self {
         Self {
+            record: Record::Steps,
             h,
             max_steps: 10_000_000,
         }
@@ -53,7 +63,8 @@ impl Integrator for Rk4 {
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         let started = crate::clock::Stopwatch::start();
         let mut stats = Stats::default();
-        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        let mut traj =
+            Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         // Everything computed before a failure goes back with it.
         let outcome = (|| -> Result<(), Error> {
             if !(self.h.is_finite() && self.h > 0.0) {
@@ -116,9 +127,10 @@ impl Integrator for Rk4 {
                 rhs.project(t_next, &mut y_next.q, &mut y_next.v)?;
                 let f_next = y_next.derivative(rhs, t_next, ev)?;
                 let segment = DenseSegment::hermite(t, t_next, &y, &f, &y_next, &f_next);
-                let sample = Sample::of(rhs, t_next, &y_next.q, &y_next.v);
                 let stop = rhs.after_step(&segment, &y_next.q, &y_next.v)?;
-                traj.push(segment, y_next.q, y_next.v, sample);
+                traj.push_sampled(segment, y_next.q, y_next.v, |t, q, v| {
+                    Sample::of(rhs, t, q, v)
+                });
                 stats.accepted += 1;
                 (t, y, f) = (t_next, y_next, f_next);
                 if stop {

@@ -3,7 +3,7 @@
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::{Error, Failure};
 use crate::real::Real;
-use crate::trajectory::Trajectory;
+use crate::trajectory::{Record, Trajectory};
 use nalgebra::SVector;
 
 /// Velocity Verlet with a fixed step `h`:
@@ -35,12 +35,22 @@ use nalgebra::SVector;
 pub struct StormerVerlet {
     h: f64,
     max_steps: usize,
+    /// What the trajectory keeps of the steps.
+    record: Record,
 }
 
 impl StormerVerlet {
+    /// What the trajectory keeps of the steps (default: every step with its
+    /// dense output); see [`Record`].
+    pub fn record(mut self, record: Record) -> Self {
+        self.record = record;
+        self
+    }
+
     /// Velocity Verlet with step size `h`.
     pub fn step(h: f64) -> Self {
         Self {
+            record: Record::Steps,
             h,
             max_steps: 10_000_000,
         }
@@ -95,7 +105,8 @@ impl Integrator for StormerVerlet {
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         let started = crate::clock::Stopwatch::start();
         let mut stats = Stats::default();
-        let mut traj = Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        let mut traj =
+            Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         // Everything computed before a failure goes back with it.
         let outcome = (|| -> Result<(), Error> {
             check_problem(t0, t1, &q0, &v0)?;
@@ -132,9 +143,8 @@ impl Integrator for StormerVerlet {
                     stats.evaluations += 1;
                     a_next = rhs.acceleration(t_next, &q_next, &v_next)?;
                 }
-                let sample = Sample::of(rhs, t_next, &q_next, &v_next);
                 let stop = rhs.after_step(&segment, &q_next, &v_next)?;
-                traj.push(segment, q_next, v_next, sample);
+                traj.push_sampled(segment, q_next, v_next, |t, q, v| Sample::of(rhs, t, q, v));
                 stats.accepted += 1;
                 (t, q, v, a) = (t_next, q_next, v_next, a_next);
                 if stop {

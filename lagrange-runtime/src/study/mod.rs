@@ -91,7 +91,7 @@ enum Reference<'a, const N: usize> {
     /// A closed form q(t).
     Exact(Box<dyn Fn(f64) -> SVector<f64, N> + 'a>),
     /// A trajectory the caller computed (e.g. in f64 for an f32 study).
-    Given(Trajectory<f64, N>),
+    Given(Box<Trajectory<f64, N>>),
 }
 
 /// A work-precision study under construction: the closure that runs one
@@ -147,7 +147,7 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
     /// time are read from its dense output). The way to give an f32 study an
     /// f64 reference.
     pub fn reference(mut self, reference: Trajectory<f64, N>) -> Self {
-        self.reference = Reference::Given(reference);
+        self.reference = Reference::Given(Box::new(reference));
         self
     }
 
