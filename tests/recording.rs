@@ -31,7 +31,10 @@ fn every_kth_step_is_the_full_run_thinned() {
     let thin = run(Record::Every(10));
     let steps = full.len() - 1;
     // Points 0, 10, 20, … and the final one.
-    assert_eq!(thin.len(), steps / 10 + 1 + usize::from(!steps.is_multiple_of(10)));
+    assert_eq!(
+        thin.len(),
+        steps / 10 + 1 + usize::from(!steps.is_multiple_of(10))
+    );
     for (k, t) in thin.times().iter().enumerate().take(thin.len() - 1) {
         assert_eq!(*t, full.times()[10 * k]);
         assert_eq!(thin.positions()[k], full.positions()[10 * k]);

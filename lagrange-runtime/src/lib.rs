@@ -70,6 +70,8 @@ mod clock;
 pub mod constraint;
 pub mod control;
 mod dynamics;
+#[cfg(feature = "parallel")]
+pub mod ensemble;
 mod error;
 pub mod event;
 pub mod func;
