@@ -10,7 +10,6 @@
 //! and the shards' rows concatenated in order are the full table.
 
 #[path = "catalog/mod.rs"]
-#[allow(dead_code)]
 mod catalog;
 
 use catalog::DoublePendulum;
