@@ -127,3 +127,48 @@ fn thinned_recording_works_through_events() {
     assert_eq!(full.trajectory.final_state(), thin.trajectory.final_state());
     assert!(thin.trajectory.len() * 10 < full.trajectory.len());
 }
+
+/// The complete table of a constrained run: names, energies that add up to
+/// the recorded integral, and the multipliers of the saddle-point solve.
+#[test]
+fn table_has_energies_and_multipliers() {
+    let sys = catalog::constrained::CartesianSphericalPendulum {
+        m: 1.0,
+        l: 1.0,
+        g: 9.81,
+    };
+    let traj = Simulation::new(&sys)
+        .integrator(Dopri5::tol(1e-10))
+        .drift(Drift::projection())
+        .run_constrained([0.6, 0.0, -0.8], [0.0, 1.5, 0.0], 0.0..1.0)
+        .unwrap();
+    let mut buf = Vec::new();
+    traj.table(&sys)
+        .multipliers(&sys)
+        .unwrap()
+        .write(&mut buf)
+        .unwrap();
+    let text = String::from_utf8(buf).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(
+        &header[..7],
+        ["t", "x", "y", "z", "dot_x", "dot_y", "dot_z"]
+    );
+    let nu = header.iter().position(|h| h.starts_with("nu_")).unwrap();
+    let (kin, pot, int) = (
+        header.iter().position(|h| *h == "kinetic").unwrap(),
+        header.iter().position(|h| *h == "potential").unwrap(),
+        header.iter().position(|h| *h == "integral").unwrap(),
+    );
+    assert_eq!(header.last(), Some(&"residual_velocity"));
+    let dynamics = ConstrainedDynamics::new(&sys);
+    for (k, line) in lines.enumerate() {
+        let row: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        assert!((row[kin] + row[pot] - row[int]).abs() < 1e-12);
+        let sol = dynamics
+            .solve(traj.times()[k], &traj.positions()[k], &traj.velocities()[k])
+            .unwrap();
+        assert_eq!(row[nu], sol.multipliers[0]);
+    }
+}

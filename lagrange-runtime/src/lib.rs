@@ -84,6 +84,7 @@ mod root;
 mod simulation;
 pub mod study;
 mod system;
+mod table;
 mod trajectory;
 
 pub use constraint::{ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent};
@@ -107,4 +108,5 @@ pub use reduced::{ReducedDynamics, ReducedForm};
 pub use simulation::{EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::{Constrained, Driven, Lagrangian, Reduced};
+pub use table::Table;
 pub use trajectory::{Record, Trajectory};

@@ -384,41 +384,29 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         out
     }
 
-    /// Writes the recorded points as CSV: a header `t,<q names>,<v names>,integral`
-    /// and one row per point, numbers in the shortest form that reads back exactly.
+    /// Writes the recorded points as CSV: a header `t,<q names>,<v names>,
+    /// integral,residual_position,residual_velocity` and one row per point,
+    /// numbers in the shortest form that reads back exactly. (With the system
+    /// at hand, [`table`](Self::table) adds the energies and the multipliers.)
     ///
     /// `names` are the coordinate names (e.g. [`Lagrangian::COORDINATES`]): the
-    /// columns are then `t,theta,phi,dot_theta,dot_phi,integral`. An empty slice
-    /// gives `q0,q1,..,v0,v1,..`.
+    /// columns are then `t,theta,phi,dot_theta,dot_phi,integral,…`. An empty
+    /// slice gives `q0,q1,..,dot_q0,dot_q1,..`.
     ///
     /// [`Lagrangian::COORDINATES`]: crate::Lagrangian::COORDINATES
     ///
     /// # Errors
     /// [`Error::InvalidSettings`] if `names` has neither N nor 0 entries;
     /// [`Error::Io`] if writing fails.
-    pub fn write_csv(&self, mut w: impl Write, names: &[&str]) -> Result<(), Error> {
-        let (qn, vn): (Vec<String>, Vec<String>) = match names.len() {
-            0 => (0..N).map(|i| (format!("q{i}"), format!("v{i}"))).unzip(),
-            n if n == N => names
-                .iter()
-                .map(|s| (s.to_string(), format!("dot_{s}")))
-                .unzip(),
-            n => {
-                return Err(Error::InvalidSettings(format!(
-                    "write_csv: {n} coordinate names for {N} coordinates"
-                )));
-            }
-        };
-        writeln!(w, "t,{},{},integral", qn.join(","), vn.join(","))?;
-        for k in 0..self.len() {
-            write!(w, "{}", self.times[k])?;
-            for x in self.q[k].iter().chain(self.v[k].iter()) {
-                write!(w, ",{x}")?;
-            }
-            writeln!(w, ",{}", self.integral[k])?;
-        }
-        w.flush()?;
-        Ok(())
+    pub fn write_csv(&self, w: impl Write, names: &[&str]) -> Result<(), Error> {
+        crate::table::Table::new(self, names)?.write(w)
+    }
+
+    /// The run as a [`Table`](crate::Table) with the system's coordinate
+    /// names and its kinetic and potential energy at every point (add the
+    /// multipliers with [`Table::multipliers`](crate::Table::multipliers)).
+    pub fn table<S: crate::Lagrangian<T, N>>(&self, sys: &S) -> crate::table::Table<'_, T, N> {
+        crate::table::Table::of(self, sys)
     }
 
     /// [`write_csv`](Self::write_csv) to a new file at `path` (buffered).
@@ -489,15 +477,18 @@ mod tests {
         tr.write_csv(&mut buf, &["x"]).unwrap();
         let text = String::from_utf8(buf).unwrap();
         let mut lines = text.lines();
-        assert_eq!(lines.next(), Some("t,x,dot_x,integral"));
-        assert_eq!(lines.next(), Some("0,1,0,0.5"));
+        assert_eq!(
+            lines.next(),
+            Some("t,x,dot_x,integral,residual_position,residual_velocity")
+        );
+        assert_eq!(lines.next(), Some("0,1,0,0.5,0,0"));
         assert_eq!(lines.count(), 2);
         let mut buf = Vec::new();
         tr.write_csv(&mut buf, &[]).unwrap();
         assert!(
             String::from_utf8(buf)
                 .unwrap()
-                .starts_with("t,q0,v0,integral\n")
+                .starts_with("t,q0,dot_q0,integral,residual_position,residual_velocity\n")
         );
         assert!(tr.write_csv(Vec::new(), &["a", "b"]).is_err());
     }

@@ -759,10 +759,20 @@ fn csv_names_every_column() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next(),
-        Some("t,x,y,phi,dot_x,dot_y,dot_phi,thrust,torque")
+        Some(
+            "t,x,y,phi,dot_x,dot_y,dot_phi,thrust,torque,integral,residual_position,residual_velocity"
+        )
     );
-    assert_eq!(lines.next(), Some("0,0,0,0,0,0,0,1,0.5"));
+    assert_eq!(lines.next(), Some("0,0,0,0,0,0,0,1,0.5,0,0,0"));
     assert_eq!(lines.count(), 4);
+    // With the system: its energies too.
+    let mut buf = Vec::new();
+    run.table(&skate).unwrap().write(&mut buf).unwrap();
+    let text = String::from_utf8(buf).unwrap();
+    assert!(
+        text.starts_with("t,x,y,phi,dot_x,dot_y,dot_phi,thrust,torque,kinetic,potential,integral,"),
+        "{text}"
+    );
 }
 
 #[test]

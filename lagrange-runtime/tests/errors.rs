@@ -84,7 +84,10 @@ fn csv_parses_back() {
         .unwrap();
     let text = String::from_utf8(buf).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("t,theta,phi,dot_theta,dot_phi,integral"));
+    assert_eq!(
+        lines.next(),
+        Some("t,theta,phi,dot_theta,dot_phi,integral,residual_position,residual_velocity")
+    );
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
         .collect();
@@ -92,9 +95,19 @@ fn csv_parses_back() {
     for (k, row) in rows.iter().enumerate() {
         let (q, v) = (tr.positions()[k], tr.velocities()[k]);
         // Shortest round-trip formatting: the values come back bit for bit.
+        let [rp, rv] = tr.residuals()[k];
         assert_eq!(
             row,
-            &[tr.times()[k], q[0], q[1], v[0], v[1], tr.integrals()[k]]
+            &[
+                tr.times()[k],
+                q[0],
+                q[1],
+                v[0],
+                v[1],
+                tr.integrals()[k],
+                rp,
+                rv
+            ]
         );
     }
     // save_csv writes the same bytes to a file.

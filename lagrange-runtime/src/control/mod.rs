@@ -33,7 +33,7 @@
 //!     .integrator(Dopri5::tol(1e-10))
 //!     .feedback(|_, q, v| [-kp * q[0] - kd * v[0]])   // [T; P]: a wrong length does not compile
 //!     .run([1.0], [0.0], 0.0..5.0)?;
-//! run.save_csv("cart.csv")?;                          // t,x,dot_x,force
+//! run.save_csv("cart.csv")?;               // t,x,dot_x,force,integral,residuals
 //! ```
 //!
 //! # Design

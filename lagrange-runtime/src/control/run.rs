@@ -57,7 +57,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// assert_eq!(run.inputs()[0][0], -1.0); // u at t = 0
     /// let mut csv = Vec::new();
     /// run.write_csv(&mut csv)?;
-    /// assert!(String::from_utf8(csv).unwrap().starts_with("t,x,dot_x,force\n"));
+    /// assert!(String::from_utf8(csv).unwrap().starts_with("t,x,dot_x,force,integral,"));
     /// # Ok::<(), lagrange_runtime::Error>(())
     /// ```
     pub fn feedback<'e, T, F, U, const N: usize, const P: usize>(
@@ -539,23 +539,39 @@ impl<T: Real, const N: usize, const P: usize> ControlRun<T, N, P> {
     ///
     /// # Errors
     /// [`Error::Io`] if writing fails.
-    pub fn write_csv(&self, mut w: impl Write) -> Result<(), Error> {
-        let mut header = vec!["t".to_string()];
-        header.extend(self.coordinates.iter().map(|s| s.to_string()));
-        header.extend(self.coordinates.iter().map(|s| format!("dot_{s}")));
-        header.extend(self.input_names.iter().map(|s| s.to_string()));
-        writeln!(w, "{}", header.join(","))?;
-        let tr = &self.trajectory;
-        for k in 0..tr.len() {
-            write!(w, "{}", tr.times()[k])?;
-            let (q, v) = (&tr.positions()[k], &tr.velocities()[k]);
-            for x in q.iter().chain(v.iter()).chain(self.inputs[k].iter()) {
-                write!(w, ",{x}")?;
-            }
-            writeln!(w)?;
-        }
-        w.flush()?;
-        Ok(())
+    pub fn write_csv(&self, w: impl Write) -> Result<(), Error> {
+        self.table_of(crate::table::Table::new(
+            &self.trajectory,
+            &self.coordinates,
+        )?)?
+        .write(w)
+    }
+
+    /// The run as a [`Table`](crate::Table) with the inputs, the system's
+    /// energies at every point and the other columns of
+    /// [`Trajectory::table`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] if the inputs do not match the points (they
+    /// always do for a run built here).
+    pub fn table<S: Lagrangian<T, N>>(
+        &self,
+        sys: &S,
+    ) -> Result<crate::table::Table<'_, T, N>, Error> {
+        self.table_of(self.trajectory.table(sys))
+    }
+
+    fn table_of<'t>(
+        &'t self,
+        table: crate::table::Table<'t, T, N>,
+    ) -> Result<crate::table::Table<'t, T, N>, Error> {
+        let names = self.input_names.iter().map(|s| s.to_string()).collect();
+        let values = self
+            .inputs
+            .iter()
+            .map(|u| u.iter().copied().collect())
+            .collect();
+        table.columns(names, values)
     }
 
     /// [`write_csv`](Self::write_csv) to a new file at `path` (buffered).

@@ -1,0 +1,170 @@
+//! A run as a CSV table with every column a user needs, named in the header:
+//! t, the coordinates and their rates (by the system's names), the inputs of
+//! a controlled run, the kinetic and potential energy, the conserved integral,
+//! the constraint residuals |Φ| and |G q̇ + g|, and, when asked for, the
+//! multipliers ν (by the constraints' names). Written with the `csv` crate.
+//!
+//! ```no_run
+//! # use lagrange_runtime::{Error, Trajectory, Lagrangian, Constrained};
+//! # fn demo<S: Constrained<f64, 3, 1>>(sys: &S, traj: &Trajectory<f64, 3>) -> Result<(), Error> {
+//! traj.table(sys).multipliers(sys)?.save("run.csv")?;
+//! # Ok(()) }
+//! ```
+
+use crate::constraint::ConstrainedDynamics;
+use crate::error::Error;
+use crate::real::Real;
+use crate::system::{Constrained, Lagrangian};
+use crate::trajectory::Trajectory;
+use std::io::Write;
+use std::path::Path;
+
+/// The columns of a run, built from a trajectory and what the system adds.
+#[derive(Clone, Debug)]
+pub struct Table<'a, T: Real, const N: usize> {
+    traj: &'a Trajectory<T, N>,
+    names: Vec<String>,
+    /// (T, V) per point.
+    energies: Option<Vec<(T, T)>>,
+    /// Named extra column groups, one value per point each (inputs, ν).
+    extra: Vec<(Vec<String>, Vec<Vec<T>>)>,
+}
+
+impl<'a, T: Real, const N: usize> Table<'a, T, N> {
+    /// The trajectory's own columns, coordinates named `names` (N of them,
+    /// or none for q0, q1, …).
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] for a wrong number of names.
+    pub fn new(traj: &'a Trajectory<T, N>, names: &[&str]) -> Result<Self, Error> {
+        let names = match names.len() {
+            0 => (0..N).map(|i| format!("q{i}")).collect(),
+            n if n == N => names.iter().map(|s| s.to_string()).collect(),
+            n => {
+                return Err(Error::InvalidSettings(format!(
+                    "CSV: {n} coordinate names for {N} coordinates"
+                )));
+            }
+        };
+        Ok(Self {
+            traj,
+            names,
+            energies: None,
+            extra: Vec::new(),
+        })
+    }
+
+    /// The columns with the system's coordinate names and its kinetic and
+    /// potential energy at every point.
+    pub fn of<S: Lagrangian<T, N>>(traj: &'a Trajectory<T, N>, sys: &S) -> Self {
+        let energies = traj
+            .times()
+            .iter()
+            .zip(traj.positions().iter().zip(traj.velocities()))
+            .map(|(&t, (q, v))| (sys.kinetic_energy(q, v, t), sys.potential_energy(q, t)))
+            .collect();
+        Self {
+            traj,
+            names: S::COORDINATES.iter().map(|s| s.to_string()).collect(),
+            energies: Some(energies),
+            extra: Vec::new(),
+        }
+    }
+
+    /// Adds the multipliers ν of the multiplier form at every point, one
+    /// column per constraint (`nu_<name>`).
+    ///
+    /// # Errors
+    /// What solving the saddle-point system reports at a point (a state the
+    /// run recorded, so normally none).
+    pub fn multipliers<S, const K: usize>(mut self, sys: &S) -> Result<Self, Error>
+    where
+        S: Constrained<T, N, K>,
+    {
+        let dynamics = ConstrainedDynamics::<S, T, K>::new(sys);
+        let tr = self.traj;
+        let values = (0..tr.len())
+            .map(|k| {
+                let sol = dynamics.solve(tr.times()[k], &tr.positions()[k], &tr.velocities()[k])?;
+                Ok(sol.multipliers.iter().copied().collect())
+            })
+            .collect::<Result<Vec<Vec<T>>, Error>>()?;
+        let names = S::CONSTRAINTS.iter().map(|c| format!("nu_{c}")).collect();
+        self.extra.push((names, values));
+        Ok(self)
+    }
+
+    /// Adds a named group of columns, one row of values per point (e.g. the
+    /// inputs of a controlled run).
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] if there is not one row per point, or a row
+    /// has not one value per name.
+    pub fn columns(mut self, names: Vec<String>, values: Vec<Vec<T>>) -> Result<Self, Error> {
+        if values.len() != self.traj.len() || values.iter().any(|r| r.len() != names.len()) {
+            return Err(Error::InvalidSettings(format!(
+                "CSV: {} rows of {} values for {} points",
+                values.len(),
+                names.len(),
+                self.traj.len()
+            )));
+        }
+        self.extra.push((names, values));
+        Ok(self)
+    }
+
+    /// The header: t, q…, dot_q…, extra groups, T and V (if known), the
+    /// integral, the residuals.
+    fn header(&self) -> Vec<String> {
+        let mut h = vec!["t".to_string()];
+        h.extend(self.names.iter().cloned());
+        h.extend(self.names.iter().map(|n| format!("dot_{n}")));
+        for (names, _) in &self.extra {
+            h.extend(names.iter().cloned());
+        }
+        if self.energies.is_some() {
+            h.extend(["kinetic".to_string(), "potential".to_string()]);
+        }
+        h.extend(["integral", "residual_position", "residual_velocity"].map(String::from));
+        h
+    }
+
+    /// Writes the table.
+    ///
+    /// # Errors
+    /// [`Error::Io`] if writing fails.
+    pub fn write(&self, w: impl Write) -> Result<(), Error> {
+        let mut out = csv::Writer::from_writer(w);
+        out.write_record(self.header()).map_err(io)?;
+        let tr = self.traj;
+        for k in 0..tr.len() {
+            let mut row: Vec<T> = vec![tr.times()[k]];
+            row.extend(tr.positions()[k].iter().chain(tr.velocities()[k].iter()));
+            for (_, values) in &self.extra {
+                row.extend(values[k].iter().copied());
+            }
+            if let Some(e) = &self.energies {
+                row.extend([e[k].0, e[k].1]);
+            }
+            row.push(tr.integrals()[k]);
+            row.extend(tr.residuals()[k]);
+            out.write_record(row.iter().map(|x| x.to_f64().to_string()))
+                .map_err(io)?;
+        }
+        out.flush()?;
+        Ok(())
+    }
+
+    /// [`write`](Self::write) to a new file at `path`.
+    ///
+    /// # Errors
+    /// As [`write`](Self::write), plus failure to create the file.
+    pub fn save(&self, path: impl AsRef<Path>) -> Result<(), Error> {
+        let file = std::fs::File::create(path)?;
+        self.write(std::io::BufWriter::new(file))
+    }
+}
+
+fn io(e: csv::Error) -> Error {
+    Error::Io(std::io::Error::other(e))
+}
