@@ -14,6 +14,7 @@ use std::path::Path;
 /// integral) at the initial time and after every accepted step, plus one dense
 /// output segment per step.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Trajectory<T: Real, const N: usize> {
     times: Vec<T>,
     q: Vec<SVector<T, N>>,
@@ -47,6 +48,7 @@ type Point<T, const N: usize> = (T, SVector<T, N>, SVector<T, N>, Sample<T>);
 /// segments (those two then return `None` and nothing), so a run of 10⁷ steps
 /// with `Every(1000)` stores 10⁴ points and with `Final` two.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Record {
     /// Every accepted step with its dense output (the default).
     #[default]

@@ -17,6 +17,7 @@ use nalgebra::SVector;
 /// derivatives at both ends (local error O(h⁴), so 3rd order uniformly). Only the
 /// coefficients in use are evaluated.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DenseSegment<T: Real, const N: usize> {
     t0: T,
     t1: T,

@@ -134,6 +134,7 @@ pub trait SecondOrder<T: Real, const N: usize> {
 
 /// What a trajectory records at each point besides the state.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Sample<T> {
     /// The conserved quantity ([`SecondOrder::integral`]).
     pub integral: T,
@@ -182,6 +183,7 @@ pub trait Integrator {
 
 /// Work done by one integration.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Stats {
     /// Accepted steps.
     pub accepted: usize,
@@ -223,6 +225,7 @@ impl Stats {
 /// A point of the phase space, or a derivative of one (then `q` holds q̇ = v and
 /// `v` holds v̇ = a).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Pair<T: Real, const N: usize> {
     pub q: SVector<T, N>,
     pub v: SVector<T, N>,

@@ -62,6 +62,7 @@ impl Integrator for Method {
 
 /// The swept parameter of one run: a fixed step size or a tolerance.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum Setting {
     /// Step size h of a fixed-step method.
     Step(f64),

@@ -323,6 +323,7 @@ fn max_distance<T: Real, const N: usize>(a: &SVector<T, N>, b: &SVector<T, N>) -
 
 /// Where a study's reference came from.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum ReferenceKind {
     /// A closed form.
     Exact,
@@ -357,6 +358,7 @@ impl ReferenceKind {
 
 /// What one successful run measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Measurement {
     /// max_i |q_i(t_end) − q_ref,i(t_end)|.
     pub error: f64,
@@ -372,13 +374,26 @@ pub struct Measurement {
 
 /// One run of a study: which method, which setting, and what came out.
 #[derive(Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Row {
     /// The sweep's name.
     pub method: String,
     /// The step size or tolerance.
     pub setting: Setting,
-    /// The measurement, or the typed error the run stopped with.
+    /// The measurement, or the typed error the run stopped with (serialized
+    /// as its message).
+    #[cfg_attr(feature = "serde", serde(serialize_with = "outcome"))]
     pub outcome: Result<Measurement, Error>,
+}
+
+/// A row's outcome for serde: `{"Ok": measurement}` or `{"Err": "message"}`.
+#[cfg(feature = "serde")]
+fn outcome<S: serde::Serializer>(o: &Result<Measurement, Error>, s: S) -> Result<S::Ok, S::Error> {
+    use serde::Serialize;
+    match o {
+        Ok(m) => Ok::<&Measurement, String>(m).serialize(s),
+        Err(e) => Err::<&Measurement, String>(e.to_string()).serialize(s),
+    }
 }
 
 impl Row {
@@ -391,6 +406,7 @@ impl Row {
 /// The measured study: the reference's description and one row per run, in the
 /// order of the sweeps and their settings.
 #[derive(Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Study {
     reference: ReferenceKind,
     rows: Vec<Row>,
