@@ -61,9 +61,12 @@
 //! `B.axis_<j>.<i>`, for attachments and contacts). Constraints written in
 //! point coordinates give Cartesian reactions R = Σ ν ∂f/∂ξ on those points.
 //!
-//! A constrained system implements [`Constrained`] (multipliers: run it with
-//! [`Simulation::run_constrained`]) and/or [`Reduced`] (Maggi / Gibbs–Appell
-//! equations on the speeds: [`Simulation::run_reduced`]).
+//! A constrained system implements [`Constrained`] (multipliers) and/or
+//! [`Reduced`] (Maggi / Gibbs–Appell equations on the speeds).
+//! [`Simulation::run`] is the one way to run any derived system: it integrates
+//! the form the description emitted (the multiplier form when there is one,
+//! else the reduced form); [`Simulation::run_constrained`] and
+//! [`Simulation::run_reduced`] choose a form explicitly when both are emitted.
 //!
 //! ```
 //! use lagrange::prelude::*;
@@ -84,7 +87,7 @@
 //! let traj = Simulation::new(&sys)
 //!     .integrator(Dopri5::tol(1e-10))
 //!     .drift(Drift::projection())
-//!     .run_constrained([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 0.0..5.0)
+//!     .run([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 0.0..5.0)
 //!     .unwrap();
 //! assert!(traj.max_residuals()[0] < 1e-11);
 //!
@@ -95,12 +98,13 @@
 //! assert!((tension - 1.0).abs() < 1e-12);
 //! ```
 //!
-//! A constrained system cannot be run as if it were free: `Simulation::run` (and
-//! anything else built on the unconstrained [`Dynamics`]) on it is a compile
-//! error ("this system has constraints, which the unconstrained dynamics would
-//! ignore: run it with `run_constrained` ... or `run_reduced` ..."), reported
-//! when the code is built (`cargo build`/`cargo test`; `cargo check` does not
-//! instantiate generic code and so does not see it):
+//! A constrained system cannot be run as if it were free:
+//! [`Simulation::run_unconstrained`] (and anything else built on the
+//! unconstrained [`Dynamics`]) on it is a compile error ("this system has
+//! constraints, which the unconstrained dynamics would ignore: run it with
+//! `run_constrained` ... or `run_reduced` ..."), reported when the code is built
+//! (`cargo build`/`cargo test`; `cargo check` does not instantiate generic code
+//! and so does not see it):
 //!
 //! ```compile_fail,E0080
 //! use lagrange::prelude::*;
@@ -115,7 +119,7 @@
 //! pub struct Bob { pub m: f64, pub g: f64 }
 //!
 //! let bob = Bob { m: 1.0, g: 9.81 };
-//! let traj = Simulation::new(&bob).run([1.0, 0.0], [0.0, 0.0], 0.0..1.0);
+//! let traj = Simulation::new(&bob).run_unconstrained([1.0, 0.0], [0.0, 0.0], 0.0..1.0);
 //! ```
 //!
 //! With `inputs(u1, ...)` the derive implements [`Driven`]:
@@ -240,5 +244,6 @@ pub mod prelude {
 pub mod __private {
     pub use lagrange_runtime::func;
     pub use lagrange_runtime::{Constrained, Driven, Lagrangian, Real, Reduced};
+    pub use lagrange_runtime::{Failure, Integrator, Simulation, Trajectory};
     pub use nalgebra::{SMatrix, SVector};
 }

@@ -176,3 +176,32 @@ fn rolling_disk_upright_agrees_with_the_multiplier_form() {
     }
     assert!(worst < 1e-13, "{worst:e}");
 }
+
+/// `Simulation::run` runs a constrained description in its form: the
+/// multiplier form when emitted (here with the sleigh's both forms), the
+/// reduced form when only that is (the default-speed knife edge has both too,
+/// so the catalog's reduced-only sphere stands in).
+#[test]
+fn run_picks_the_emitted_form() {
+    let sleigh = ChaplyginSleigh {
+        m: 2.0,
+        i: 0.3,
+        b: 0.4,
+    };
+    let (q0, v0) = ([0.0, 0.0, 0.3], [0.3f64.cos(), 0.3f64.sin(), 1.0]);
+    let sim = Simulation::new(&sleigh).integrator(Dopri5::tol(1e-10));
+    let by_run = sim.run(q0, v0, 0.0..2.0).unwrap();
+    let by_multipliers = sim.run_constrained(q0, v0, 0.0..2.0).unwrap();
+    assert_eq!(by_run.positions(), by_multipliers.positions());
+    let sphere = catalog::constrained::RollingSphereReduced {
+        m: 2.0,
+        j: 0.4 * 2.0 * 0.09,
+        a: 0.3,
+        g: 9.81,
+    };
+    let (q5, v5) = ([0.0, 0.0, 0.2, 0.9, 0.1], [0.0, 0.0, 1.5, -0.7, 4.0]);
+    let sim = Simulation::new(&sphere).integrator(Dopri5::tol(1e-10));
+    let by_run = sim.run(q5, v5, 0.0..1.0).unwrap();
+    let by_reduced = sim.run_reduced(q5, v5, 0.0..1.0).unwrap();
+    assert_eq!(by_run.positions(), by_reduced.positions());
+}

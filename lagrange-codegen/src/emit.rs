@@ -265,6 +265,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let mat_t = quote!(::lagrange::__private::SMatrix<#s, #nl, #nl>);
     let frame = Frame::new(system, n);
     let hamiltonian = optional_methods(&e, &frame, model);
+    let run_in = run_in(&frame, model);
     let constrained = impl_constrained(&e, &frame, model);
     let extras = extras(&e, &frame, model, system);
     let reduced = impl_reduced(&e, &frame, model);
@@ -330,6 +331,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
             }
 
             #hamiltonian
+            #run_in
         }
 
         #impl_doc
@@ -527,6 +529,32 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
             }
 
             #derivatives
+        }
+    }
+}
+
+/// The override of `Lagrangian::run_in` that makes `Simulation::run` run a
+/// constrained description in its form: the multiplier form when it is
+/// emitted, else the reduced form; nothing for an unconstrained one.
+fn run_in(f: &Frame, model: &Model) -> TokenStream {
+    let (s, nl) = (&f.s, &f.n);
+    let (method, k) = match (&model.constraints, &model.reduced) {
+        (Some(c), _) => (quote!(run_constrained), c.names.len()),
+        (None, Some(r)) => (quote!(run_reduced), r.names.len()),
+        (None, None) => return quote!(),
+    };
+    let kl = Literal::usize_unsuffixed(k);
+    let vec_n = f.vec(nl);
+    let p = quote!(::lagrange::__private);
+    quote! {
+        fn run_in<I: #p::Integrator>(
+            &self,
+            sim: &#p::Simulation<'_, Self, I>,
+            q0: #vec_n,
+            v0: #vec_n,
+            span: ::core::ops::Range<#s>,
+        ) -> ::core::result::Result<#p::Trajectory<#s, #nl>, #p::Failure<#p::Trajectory<#s, #nl>>> {
+            sim.#method::<#s, #nl, #kl>(q0, v0, span)
         }
     }
 }

@@ -353,14 +353,40 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
             .integrate(&dynamics, span.start, span.end, q0, v0)
     }
 
-    /// Integrates from (q0, v0) at `span.start` to `span.end`.
+    /// Integrates from (q0, v0) at `span.start` to `span.end`, in the form the
+    /// system's description asked for: the unconstrained dynamics, or for a
+    /// constrained `#[derive(Lagrangian)]` system the multiplier form (with this
+    /// simulation's drift control and consistency checks) or, when only that
+    /// is emitted, the reduced form. [`run_constrained`](Self::run_constrained)
+    /// and [`run_reduced`](Self::run_reduced) choose a form explicitly.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] for a bad singular tolerance, integrator setting,
-    /// time span or initial state; otherwise whatever the dynamics or the
-    /// integrator report ([`Error::SingularMassMatrix`], [`Error::NonFiniteState`],
-    /// [`Error::StepSizeUnderflow`], [`Error::TooManySteps`]).
+    /// A [`Failure`] with the error and the steps before it:
+    /// [`Error::InvalidSettings`] for a bad singular tolerance, integrator
+    /// setting, time span or initial state; otherwise whatever the dynamics or
+    /// the integrator report ([`Error::SingularMassMatrix`],
+    /// [`Error::NonFiniteState`], [`Error::StepSizeUnderflow`],
+    /// [`Error::TooManySteps`]; for constrained systems those of
+    /// [`run_constrained`](Self::run_constrained)).
     pub fn run<T: Real, const N: usize>(
+        &self,
+        q0: impl Into<SVector<T, N>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>
+    where
+        S: Lagrangian<T, N>,
+    {
+        self.system.run_in(self, q0.into(), v0.into(), span)
+    }
+
+    /// The unconstrained dynamics, whatever the system (a constrained one is
+    /// refused at compile time: its constraints would be ignored). What `run`
+    /// does for a system without constraints.
+    ///
+    /// # Errors
+    /// As [`run`](Self::run).
+    pub fn run_unconstrained<T: Real, const N: usize>(
         &self,
         q0: impl Into<SVector<T, N>>,
         v0: impl Into<SVector<T, N>>,

@@ -110,6 +110,30 @@ pub trait Lagrangian<T: Real, const N: usize> {
         let _ = (q, v, a, t);
         None
     }
+
+    /// Integrates this system for [`Simulation::run`](crate::Simulation::run)
+    /// in the form its description asked for: the unconstrained dynamics here;
+    /// `#[derive(Lagrangian)]` overrides it for a constrained description to
+    /// run the multiplier form (or the reduced form when only that is emitted),
+    /// so that `run` is the one way to run any derived system. Not meant to be
+    /// called directly.
+    ///
+    /// # Errors
+    /// As [`Simulation::run`](crate::Simulation::run).
+    #[doc(hidden)]
+    #[allow(clippy::type_complexity)]
+    fn run_in<I: crate::Integrator>(
+        &self,
+        sim: &crate::Simulation<'_, Self, I>,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+        span: core::ops::Range<T>,
+    ) -> Result<crate::Trajectory<T, N>, crate::Failure<crate::Trajectory<T, N>>>
+    where
+        Self: Sized,
+    {
+        sim.run_unconstrained(q0, v0, span)
+    }
 }
 
 /// Constraints kept with multipliers: K rows of
