@@ -179,7 +179,9 @@ fn get_mut<T: Real, const N: usize>(z: &mut Pair<T, N>, k: usize) -> &mut T {
     if k < N { &mut z.q[k] } else { &mut z.v[k - N] }
 }
 
-/// (q̇, ṗ) at (t, q, p), counting one evaluation.
+/// (q̇, ṗ) at (t, q, p), counting one evaluation. A non-finite value at a
+/// finite (q, p) is the system's NaN (a force that overflows), reported as
+/// such: passed on, it would only surface as a Newton failure.
 fn hamilton<T: Real, const N: usize>(
     mech: &dyn Mechanical<T, N>,
     t: T,
@@ -189,7 +191,11 @@ fn hamilton<T: Real, const N: usize>(
     *evaluations += 1;
     let v = mech.velocity(t, &z.q, &z.v)?;
     let pdot = mech.momentum_rate(t, &z.q, &v)?;
-    Ok(Pair::new(v, pdot))
+    let f = Pair::new(v, pdot);
+    if !f.is_finite() {
+        return Err(Error::non_finite(t, &z.q, &v));
+    }
+    Ok(f)
 }
 
 impl Gauss {
