@@ -105,6 +105,7 @@ pub struct WorkPrecision<'a, T: Real, const N: usize> {
     repeats: usize,
     repeat_budget: Duration,
     conservative: bool,
+    uncertainty: Option<f64>,
     on_row: Option<RowFn<'a>>,
 }
 
@@ -131,8 +132,18 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
             repeats: 5,
             repeat_budget: Duration::from_millis(200),
             conservative: true,
+            uncertainty: None,
             on_row: None,
         }
+    }
+
+    /// The reference's own error (e.g. of a trajectory given with
+    /// [`reference`](Self::reference), or a published figure): runs whose error
+    /// is below it are marked as not resolved. Overrides the estimate of a
+    /// computed reference.
+    pub fn uncertainty(mut self, uncertainty: f64) -> Self {
+        self.uncertainty = Some(uncertainty);
+        self
     }
 
     /// Uses a closed form: `exact(t)` is the exact q(t). It is evaluated only at
@@ -201,10 +212,11 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
             ));
         }
         let (reference_at, reference) = self.prepare_reference()?;
+        let uncertainty = self.uncertainty.or(reference.uncertainty());
         let mut rows = Vec::new();
         for sweep in std::mem::take(&mut self.sweeps) {
             for &(setting, method) in sweep.runs() {
-                let outcome = self.measure(method, &reference_at);
+                let outcome = self.measure(method, &reference_at, uncertainty.unwrap_or(0.0));
                 let row = Row {
                     method: sweep.name().to_string(),
                     setting,
@@ -216,7 +228,11 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
                 rows.push(row);
             }
         }
-        Ok(Study { reference, rows })
+        Ok(Study {
+            reference,
+            uncertainty,
+            rows,
+        })
     }
 
     /// The reference positions as a function of the final time, and its
@@ -224,13 +240,7 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
     #[allow(clippy::type_complexity)]
     fn prepare_reference(
         &mut self,
-    ) -> Result<
-        (
-            Box<dyn Fn(f64) -> Option<SVector<f64, N>> + 'a>,
-            ReferenceKind,
-        ),
-        Error,
-    > {
+    ) -> Result<(Box<dyn Fn(f64) -> Option<State<N>> + 'a>, ReferenceKind), Error> {
         match std::mem::replace(
             &mut self.reference,
             Reference::Computed {
@@ -238,9 +248,11 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
                 check: false,
             },
         ) {
-            Reference::Exact(f) => Ok((Box::new(move |t| Some(f(t))), ReferenceKind::Exact)),
+            Reference::Exact(f) => {
+                Ok((Box::new(move |t| Some((f(t), None))), ReferenceKind::Exact))
+            }
             Reference::Given(traj) => Ok((
-                Box::new(move |t| traj.state_at(t).map(|(q, _)| q)),
+                Box::new(move |t| traj.state_at(t).map(|(q, v)| (q, Some(v)))),
                 ReferenceKind::Given,
             )),
             Reference::Computed { tolerance, check } => {
@@ -265,7 +277,10 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
                     wall_time,
                     uncertainty,
                 };
-                let at = move |t: f64| traj.state_at(T::lit(t)).map(|(q, _)| q.map(|x| x.to_f64()));
+                let at = move |t: f64| {
+                    traj.state_at(T::lit(t))
+                        .map(|(q, v)| (q.map(|x| x.to_f64()), Some(v.map(|x| x.to_f64()))))
+                };
                 Ok((Box::new(at), kind))
             }
         }
@@ -275,7 +290,8 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
     fn measure(
         &self,
         method: Method,
-        reference_at: &dyn Fn(f64) -> Option<SVector<f64, N>>,
+        reference_at: &dyn Fn(f64) -> Option<State<N>>,
+        uncertainty: f64,
     ) -> Result<Measurement, Error> {
         let started = crate::clock::Stopwatch::start();
         let traj = (self.run)(method)?;
@@ -294,20 +310,36 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
         let wall_time = times[times.len() / 2];
 
         let t_end = traj.times()[traj.len() - 1].to_f64();
-        let exact = reference_at(t_end).ok_or_else(|| {
+        let (exact, exact_v) = reference_at(t_end).ok_or_else(|| {
             Error::InvalidSettings(format!(
                 "work-precision study: the run ends at t = {t_end}, outside the reference"
             ))
         })?;
-        let q = traj.final_state().0.map(|x| x.to_f64());
+        let (q, v) = traj.final_state();
+        let (q, v) = (q.map(|x| x.to_f64()), v.map(|x| x.to_f64()));
+        let error = max_distance(&q, &exact);
+        let size = exact.amax().max(1e-300);
+        let size = if size > 1e-300 { size } else { 1.0 };
+        let residual = traj
+            .residuals()
+            .iter()
+            .fold(0.0f64, |m, r| m.max(r[0].to_f64()).max(r[1].to_f64()));
         Ok(Measurement {
-            error: max_distance(&q, &exact),
+            error,
+            relative_error: error / size,
+            velocity_error: exact_v.map(|ev| max_distance(&v, &ev)),
+            residual,
+            resolved: error.partial_cmp(&uncertainty) != Some(std::cmp::Ordering::Less),
+            final_state: (q.iter().copied().collect(), v.iter().copied().collect()),
             drift: self.conservative.then(|| traj.integral_drift().to_f64()),
             stats: *traj.stats(),
             wall_time,
         })
     }
 }
+
+/// Reference positions and, when known, velocities at a time.
+type State<const N: usize> = (SVector<f64, N>, Option<SVector<f64, N>>);
 
 /// max_i |a_i − b_i|, NaN-propagating (a NaN must not pass for a small error).
 fn max_distance<T: Real, const N: usize>(a: &SVector<T, N>, b: &SVector<T, N>) -> f64 {
@@ -357,11 +389,25 @@ impl ReferenceKind {
 }
 
 /// What one successful run measured.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Measurement {
     /// max_i |q_i(t_end) − q_ref,i(t_end)|.
     pub error: f64,
+    /// `error` over max_i |q_ref,i(t_end)| (over 1 when the reference is at the
+    /// origin): the error in units of the motion's size.
+    pub relative_error: f64,
+    /// max_i |q̇_i(t_end) − q̇_ref,i(t_end)|, when the reference has velocities
+    /// (a computed or given reference; a closed form gives positions only).
+    pub velocity_error: Option<f64>,
+    /// The largest constraint residual along the run, max(|Φ|, |G q̇ + g|)
+    /// (zero for an unconstrained system).
+    pub residual: f64,
+    /// Whether the error is above the reference's own uncertainty (an error
+    /// below it is not resolved: the reference cannot tell it from zero).
+    pub resolved: bool,
+    /// The run's final positions and velocities, as f64.
+    pub final_state: (Vec<f64>, Vec<f64>),
     /// max over the run of |I(t) − I(t0)| / |I(t0)| for the conserved integral I
     /// (energy or Jacobi integral); `None` for a study of a non-conservative system.
     pub drift: Option<f64>,
@@ -409,6 +455,7 @@ impl Row {
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Study {
     reference: ReferenceKind,
+    uncertainty: Option<f64>,
     rows: Vec<Row>,
 }
 
@@ -416,6 +463,12 @@ impl Study {
     /// Where the reference came from.
     pub fn reference(&self) -> &ReferenceKind {
         &self.reference
+    }
+
+    /// The reference's own error: the one given with
+    /// [`WorkPrecision::uncertainty`], else the reference kind's estimate.
+    pub fn uncertainty(&self) -> Option<f64> {
+        self.uncertainty
     }
 
     /// All rows.

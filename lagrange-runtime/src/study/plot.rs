@@ -96,8 +96,8 @@ impl Study {
         root.fill(&WHITE).map_err(plot_error)?;
         let body = root.titled(title, ("sans-serif", 22)).map_err(plot_error)?;
         let groups = self.by_method();
-        for (k, (area, panel)) in body.split_evenly((1, 3)).iter().zip(&PANELS).enumerate() {
-            draw_panel(area, panel, &groups, k == 0)?;
+        for (area, panel) in body.split_evenly((1, 3)).iter().zip(&PANELS) {
+            draw_panel(area, panel, &groups)?;
         }
         root.present().map_err(plot_error)
     }
@@ -147,7 +147,6 @@ fn draw_panel(
     area: &DrawingArea<BitMapBackend<'_>, Shift>,
     panel: &Panel,
     groups: &[(&str, Vec<&Row>)],
-    legend: bool,
 ) -> Result<(), Error> {
     let series: Vec<Vec<(f64, f64)>> = groups.iter().map(|(_, rows)| points(rows, panel)).collect();
     let all = || series.iter().flatten();
@@ -174,6 +173,24 @@ fn draw_panel(
         .map_err(plot_error)?;
     for (k, ((name, rows), pts)) in groups.iter().zip(&series).enumerate() {
         let color = COLORS[k % COLORS.len()];
+        // Each point carries its setting (step or tolerance), so that a reader
+        // can find the run in the table.
+        let labels = rows
+            .iter()
+            .filter_map(|r| {
+                let m = r.measurement()?;
+                let (x, y) = ((panel.x)(m), (panel.y)(m)?);
+                (x.is_finite() && x > 0.0 && y.is_finite())
+                    .then(|| ((x, y.max(FLOOR)), format!("{:.0e}", r.setting.value())))
+            })
+            .collect::<Vec<_>>();
+        chart
+            .draw_series(
+                labels.into_iter().map(|(p, text)| {
+                    Text::new(text, p, ("sans-serif", 10).into_font().color(&color))
+                }),
+            )
+            .map_err(plot_error)?;
         let failed = rows.iter().filter(|r| r.outcome.is_err()).count();
         let label = if failed > 0 {
             format!("{name} ({failed} failed)")
@@ -191,15 +208,14 @@ fn draw_panel(
             .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
             .map_err(plot_error)?;
     }
-    if legend {
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerLeft)
-            .label_font(("sans-serif", 13))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(plot_error)?;
-    }
+    // A legend on every panel: each is read on its own.
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerLeft)
+        .label_font(("sans-serif", 13))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(plot_error)?;
     Ok(())
 }

@@ -7,11 +7,14 @@ use std::path::Path;
 use std::time::Duration;
 
 /// The markdown table's columns, in order.
-pub const MARKDOWN_COLUMNS: [&str; 8] = [
+pub const MARKDOWN_COLUMNS: [&str; 11] = [
     "method",
     "setting",
     "error in q at t_end",
+    "relative",
+    "error in q̇",
     "max integral drift",
+    "max residual",
     "RHS evaluations",
     "steps",
     "wall time",
@@ -19,11 +22,15 @@ pub const MARKDOWN_COLUMNS: [&str; 8] = [
 ];
 
 /// The CSV header's columns, in order.
-pub const CSV_COLUMNS: [&str; 13] = [
+pub const CSV_COLUMNS: [&str; 17] = [
     "method",
     "setting",
     "value",
     "error",
+    "relative_error",
+    "velocity_error",
+    "residual",
+    "resolved",
     "drift",
     "evaluations",
     "steps",
@@ -44,18 +51,20 @@ impl Study {
         let mut out = format!("{}\n\n", self.reference_line());
         out += &format!("| {} |\n", MARKDOWN_COLUMNS.join(" | "));
         out += &format!("|{}\n", "---|".repeat(MARKDOWN_COLUMNS.len()));
-        let floor = self.reference.uncertainty().unwrap_or(0.0);
         for row in &self.rows {
             let cells = match &row.outcome {
                 Ok(m) => {
-                    let note = if m.error < floor {
-                        "below the reference's accuracy"
-                    } else {
+                    let note = if m.resolved {
                         ""
+                    } else {
+                        "below the reference's accuracy"
                     };
                     [
                         format!("{:.2e}", m.error),
+                        format!("{:.2e}", m.relative_error),
+                        m.velocity_error.map_or("–".into(), |e| format!("{e:.2e}")),
                         m.drift.map_or("–".into(), |d| format!("{d:.2e}")),
+                        format!("{:.1e}", m.residual),
                         m.stats.evaluations.to_string(),
                         m.stats.steps().to_string(),
                         duration(m.wall_time),
@@ -65,6 +74,9 @@ impl Study {
                 Err(e) => {
                     let dash = || "–".to_string();
                     [
+                        dash(),
+                        dash(),
+                        dash(),
                         dash(),
                         dash(),
                         dash(),
@@ -85,9 +97,15 @@ impl Study {
     }
 
     fn reference_line(&self) -> String {
+        let given = |u: Option<f64>| match u {
+            Some(u) => format!(
+                "Reference: a trajectory supplied by the caller, uncertainty {u:.2e} (errors below that are not resolved)."
+            ),
+            None => "Reference: a trajectory supplied by the caller.".into(),
+        };
         match self.reference {
             ReferenceKind::Exact => "Reference: closed-form solution.".into(),
-            ReferenceKind::Given => "Reference: a trajectory supplied by the caller.".into(),
+            ReferenceKind::Given => given(self.uncertainty),
             ReferenceKind::Computed {
                 tolerance,
                 evaluations,
@@ -130,8 +148,12 @@ impl Study {
                     let s = &m.stats;
                     writeln!(
                         w,
-                        ",{},{},{},{},{},{},{},{},{},",
+                        ",{},{},{},{},{},{},{},{},{},{},{},{},{},",
                         m.error,
+                        m.relative_error,
+                        m.velocity_error.map_or(String::new(), |e| e.to_string()),
+                        m.residual,
+                        m.resolved,
                         m.drift.map_or(String::new(), |d| d.to_string()),
                         s.evaluations,
                         s.steps(),
@@ -142,7 +164,7 @@ impl Study {
                         m.wall_time.as_secs_f64()
                     )?;
                 }
-                Err(e) => writeln!(w, ",,,,,,,,,,{}", csv_field(&e.to_string()))?,
+                Err(e) => writeln!(w, ",,,,,,,,,,,,,,{}", csv_field(&e.to_string()))?,
             }
         }
         w.flush()?;

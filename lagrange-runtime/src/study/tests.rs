@@ -126,14 +126,19 @@ fn failures_are_rows_not_panics() {
 
     let md = study.to_markdown();
     assert!(
-        md.contains("| RK4 | h = 1e-3 | – | – | – | – | – | failed: more than 10 steps"),
+        md.contains(
+            "| RK4 | h = 1e-3 | – | – | – | – | – | – | – | – | failed: more than 10 steps"
+        ),
         "{md}"
     );
     let mut csv = Vec::new();
     study.write_csv_to(&mut csv).unwrap();
     let csv = String::from_utf8(csv).unwrap();
     let failed = csv.lines().nth(1).unwrap();
-    assert!(failed.starts_with("RK4,step,0.001,,,,,,,,,,"), "{failed}");
+    assert!(
+        failed.starts_with("RK4,step,0.001,,,,,,,,,,,,,,"),
+        "{failed}"
+    );
     assert!(failed.contains("more than 10 steps"), "{failed}");
 }
 
@@ -153,20 +158,25 @@ fn markdown_and_csv_have_the_expected_columns() {
     assert_eq!(
         lines.next(),
         Some(
-            "| method | setting | error in q at t_end | max integral drift | RHS evaluations | steps | wall time | note |"
+            "| method | setting | error in q at t_end | relative | error in q̇ | max integral drift | max residual | RHS evaluations | steps | wall time | note |"
         )
     );
-    assert_eq!(lines.next(), Some("|---|---|---|---|---|---|---|---|"));
+    assert_eq!(
+        lines.next(),
+        Some("|---|---|---|---|---|---|---|---|---|---|---|")
+    );
     let body: Vec<&str> = lines.collect();
     assert_eq!(body.len(), 3);
     for line in &body {
-        // Eight cells between nine bars; no drift for a non-conservative study.
+        // One cell per column; no velocity error against a closed form of the
+        // positions, no drift for a non-conservative study.
         assert_eq!(
             line.matches('|').count(),
             MARKDOWN_COLUMNS.len() + 1,
             "{line}"
         );
-        assert_eq!(line.split(" | ").nth(3), Some("–"), "{line}");
+        assert_eq!(line.split(" | ").nth(4), Some("–"), "{line}");
+        assert_eq!(line.split(" | ").nth(5), Some("–"), "{line}");
     }
     // RK4 with h = 0.1 over [0, 10]: 100 steps, 4 evaluations each plus one.
     assert!(body[1].starts_with("| RK4 | h = 1e-1 | "), "{}", body[1]);
@@ -185,8 +195,15 @@ fn markdown_and_csv_have_the_expected_columns() {
     let rk4 = &rows[1];
     assert_eq!(&rk4[..3], ["RK4", "step", "0.1"]);
     let error: f64 = rk4[3].parse().unwrap();
-    assert_eq!(error, study.rows()[1].measurement().unwrap().error);
-    assert_eq!((rk4[4], rk4[5], rk4[6], rk4[12]), ("", "401", "100", ""));
+    let m = study.rows()[1].measurement().unwrap();
+    assert_eq!(error, m.error);
+    // Relative to the motion's size |cos 10|; no velocity reference; resolved
+    // against an exact reference; no drift; 401 evaluations, 100 steps.
+    let relative: f64 = rk4[4].parse().unwrap();
+    assert!((relative - m.error / 10f64.cos().abs()).abs() < 1e-15 * relative.abs().max(1e-300));
+    assert_eq!((rk4[5], rk4[7], rk4[8]), ("", "true", ""));
+    assert_eq!((rk4[9], rk4[10], rk4[16]), ("401", "100", ""));
+    assert_eq!(m.final_state.0.len(), 1);
 }
 
 #[test]
@@ -288,4 +305,38 @@ fn plot_writes_a_png() {
         .plot_png(std::env::temp_dir().join("no-such-dir/x.png"), "t")
         .unwrap_err();
     assert!(matches!(e, Error::Io(_)), "{e}");
+}
+
+#[test]
+fn a_given_reference_with_its_uncertainty_marks_unresolved_runs() {
+    let reference = Dop853::tol(1e-13)
+        .integrate(
+            &Oscillator { omega: 1.0 },
+            0.0,
+            T_END,
+            Vector1::new(1.0),
+            Vector1::new(0.0),
+        )
+        .unwrap();
+    let study = oscillator()
+        .reference(reference)
+        .uncertainty(1e-7)
+        .sweep(Sweep::tolerances("DOPRI5", &[1e-3, 1e-12], Dopri5::tol))
+        .run()
+        .unwrap();
+    assert_eq!(study.uncertainty(), Some(1e-7));
+    let (loose, tight) = (
+        study.rows()[0].measurement().unwrap(),
+        study.rows()[1].measurement().unwrap(),
+    );
+    assert!(loose.resolved && loose.error > 1e-7, "{loose:?}");
+    assert!(!tight.resolved && tight.error < 1e-7, "{tight:?}");
+    // A trajectory reference has velocities: the velocity error is measured,
+    // and agrees with the exact −sin at the end to the reference's accuracy.
+    let ve = loose.velocity_error.unwrap();
+    let exact_ve = (loose.final_state.1[0] + T_END.sin()).abs();
+    assert!((ve - exact_ve).abs() < 1e-9, "{ve} vs {exact_ve}");
+    let md = study.to_markdown();
+    assert!(md.contains("uncertainty 1.00e-7"), "{md}");
+    assert!(md.contains("below the reference's accuracy"), "{md}");
 }
