@@ -202,8 +202,9 @@
 //!
 //! Piecewise forms: `sign(x)` (−1, 0 at 0, 1), `min(a, b)`, `max(a, b)` (both give
 //! `a` at a tie), `clamp(x, lo, hi)` = min(max(x, lo), hi), and Rust's own
-//! conditional, `if a > b { x } else { y }` with `>`, `<`, `>=`, `<=` and
-//! `else if` chains (`==` is refused: floats are not compared exactly). They are
+//! conditional, `if a > b { x } else { y }` with `>`, `<`, `>=`, `<=` joined by
+//! `&&`, `||`, `!`, and `else if` chains (`==` is refused: floats are not
+//! compared exactly). They are
 //! differentiated branch by branch (d sign = 0, d|x| = sign x, 0 at 0), so Coulomb
 //! friction `-mu * m * g * sign(dot(x))`, a saturated actuator
 //! `clamp(-k * x, -f, f)` or a one-sided contact spring `k * (min(x, 0)^2) / 2`

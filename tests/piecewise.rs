@@ -205,3 +205,42 @@ fn piecewise_force_jacobians_match_central_differences() {
         }
     }
 }
+
+/// A dead zone written with `&&`, and the same with `||` and `!`.
+#[derive(Lagrangian, Clone, Copy)]
+#[lagrange(
+    coordinates(x),
+    point(p, mass = m, at = [x, 0]),
+    generalized_force(x = if x > -d && x < d { 0 } else { -k * x }),
+)]
+struct DeadZone {
+    m: f64,
+    d: f64,
+    k: f64,
+}
+
+#[derive(Lagrangian, Clone, Copy)]
+#[lagrange(
+    coordinates(x),
+    point(p, mass = m, at = [x, 0]),
+    generalized_force(x = if !(x <= -d || x >= d) { 0 } else { -k * x }),
+)]
+struct DeadZoneOr {
+    m: f64,
+    d: f64,
+    k: f64,
+}
+
+#[test]
+fn conditions_join_with_and_or_not() {
+    let (m, d, k) = (1.0, 0.5, 3.0);
+    let (a, b) = (DeadZone { m, d, k }, DeadZoneOr { m, d, k });
+    for x in [-1.0, -0.5, -0.2, 0.0, 0.3, 0.5, 0.9] {
+        let q = Vector1::new(x);
+        let v = Vector1::zeros();
+        let fa = a.generalized_forces(&q, &v, 0.0)[0];
+        let fb = b.generalized_forces(&q, &v, 0.0)[0];
+        let expected = if x > -d && x < d { 0.0 } else { -k * x };
+        assert_eq!((fa, fb), (expected, expected), "x = {x}");
+    }
+}

@@ -17,6 +17,7 @@ pub mod ast;
 pub mod attr;
 pub mod chain;
 pub mod check;
+pub mod condition;
 pub mod constraint;
 pub mod ctxt;
 pub mod doc;
