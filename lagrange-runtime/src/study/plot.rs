@@ -184,12 +184,12 @@ fn draw_panel(
                     .then(|| ((x, y.max(FLOOR)), format!("{:.0e}", r.setting.value())))
             })
             .collect::<Vec<_>>();
+        // Offset from the marker so the label does not sit under it.
         chart
-            .draw_series(
-                labels.into_iter().map(|(p, text)| {
-                    Text::new(text, p, ("sans-serif", 10).into_font().color(&color))
-                }),
-            )
+            .draw_series(labels.into_iter().map(|(p, text)| {
+                EmptyElement::at(p)
+                    + Text::new(text, (6, -4), ("sans-serif", 10).into_font().color(&color))
+            }))
             .map_err(plot_error)?;
         let failed = rows.iter().filter(|r| r.outcome.is_err()).count();
         let label = if failed > 0 {
