@@ -205,3 +205,36 @@ fn run_picks_the_emitted_form() {
     let by_reduced = sim.run_reduced(q5, v5, 0.0..1.0).unwrap();
     assert_eq!(by_run.positions(), by_reduced.positions());
 }
+
+/// Event runs and controlled runs pick the form the same way.
+#[test]
+fn event_and_controlled_runs_pick_the_emitted_form() {
+    let sleigh = ChaplyginSleigh {
+        m: 2.0,
+        i: 0.3,
+        b: 0.4,
+    };
+    let (q0, v0) = ([0.0, 0.0, 0.3], [0.3f64.cos(), 0.3f64.sin(), 1.0]);
+    let sim = Simulation::new(&sleigh).integrator(Dopri5::tol(1e-10));
+    // Heading crossing 1 rad.
+    let heading = || Event::new(|_, q: &Vector3<f64>, _| q[2] - 1.0);
+    let a = sim.clone().event(heading()).run(q0, v0, 0.0..2.0).unwrap();
+    let b = sim
+        .clone()
+        .event(heading())
+        .run_constrained(q0, v0, 0.0..2.0)
+        .unwrap();
+    assert_eq!(a.times(0), b.times(0));
+    assert_eq!(a.trajectory.positions(), b.trajectory.positions());
+    let c = sim
+        .clone()
+        .open_loop(|_| [0.0f64; 0])
+        .run(q0, v0, 0.0..2.0)
+        .unwrap();
+    let d = sim
+        .clone()
+        .open_loop(|_| [0.0f64; 0])
+        .run_constrained(q0, v0, 0.0..2.0)
+        .unwrap();
+    assert_eq!(c.trajectory().positions(), d.trajectory().positions());
+}

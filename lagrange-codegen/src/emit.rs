@@ -556,6 +556,29 @@ fn run_in(f: &Frame, model: &Model) -> TokenStream {
         ) -> ::core::result::Result<#p::Trajectory<#s, #nl>, #p::Failure<#p::Trajectory<#s, #nl>>> {
             sim.#method::<#s, #nl, #kl>(q0, v0, span)
         }
+
+        fn run_events_in<I: #p::Integrator>(
+            &self,
+            sim: &#p::EventSimulation<'_, '_, Self, I, #s, #nl>,
+            q0: #vec_n,
+            v0: #vec_n,
+            span: ::core::ops::Range<#s>,
+        ) -> ::core::result::Result<#p::EventRun<#s, #nl>, #p::Failure<#p::EventRun<#s, #nl>>> {
+            sim.#method::<#kl>(q0, v0, span)
+        }
+
+        fn run_controlled_in<I: #p::Integrator, C: #p::InputSource<#s, #nl, P>, const P: usize>(
+            &self,
+            sim: &#p::ControlledSimulation<'_, '_, Self, I, C, #s, #nl, P>,
+            q0: #vec_n,
+            v0: #vec_n,
+            span: ::core::ops::Range<#s>,
+        ) -> ::core::result::Result<#p::ControlRun<#s, #nl, P>, #p::Failure<#p::ControlRun<#s, #nl, P>>>
+        where
+            Self: #p::Driven<#s, #nl, P>,
+        {
+            sim.#method::<#kl>(q0, v0, span)
+        }
     }
 }
 

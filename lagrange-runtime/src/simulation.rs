@@ -431,11 +431,31 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
         &self.simulation
     }
 
-    /// [`Simulation::run`] watching the events.
+    /// [`Simulation::run`] watching the events: in the form the system's
+    /// description asked for, like [`Simulation::run`].
     ///
     /// # Errors
     /// As [`Simulation::run`] and [`Events::integrate`].
     pub fn run(
+        &self,
+        q0: impl Into<SVector<T, N>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>>
+    where
+        S: Lagrangian<T, N>,
+    {
+        self.simulation
+            .system
+            .run_events_in(self, q0.into(), v0.into(), span)
+    }
+
+    /// [`run`](Self::run) with the unconstrained dynamics (refused at compile
+    /// time for a constrained system).
+    ///
+    /// # Errors
+    /// As [`run`](Self::run).
+    pub fn run_unconstrained(
         &self,
         q0: impl Into<SVector<T, N>>,
         v0: impl Into<SVector<T, N>>,
@@ -478,6 +498,34 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
         check_problem(span.start, span.end, &q0, &v0).map_err(start)?;
         let (dynamics, q0, v0) = sim
             .prepare_constrained::<T, N, K>(span.start, q0, v0)
+            .map_err(start)?;
+        self.events
+            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
+    }
+
+    /// [`Simulation::run_reduced`] watching the events; after an action the
+    /// velocities are rebuilt from the speeds, so that the state satisfies the
+    /// velocity constraints again.
+    ///
+    /// # Errors
+    /// As [`Simulation::run_reduced`] and [`Events::integrate`].
+    pub fn run_reduced<const K: usize>(
+        &self,
+        q0: impl Into<SVector<T, N>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>>
+    where
+        S: Reduced<T, N, K>,
+    {
+        let sim = &self.simulation;
+        let (q0, v0) = (q0.into(), v0.into());
+        let dynamics = sim.reduced_dynamics::<T, K>();
+        let start = |e| failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted);
+        sim.check_tolerances().map_err(start)?;
+        check_problem(span.start, span.end, &q0, &v0).map_err(start)?;
+        let v0 = dynamics
+            .consistent_velocities(span.start, &q0, &v0)
             .map_err(start)?;
         self.events
             .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)

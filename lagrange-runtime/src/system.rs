@@ -134,6 +134,49 @@ pub trait Lagrangian<T: Real, const N: usize> {
     {
         sim.run_unconstrained(q0, v0, span)
     }
+
+    /// [`run_in`](Self::run_in) for [`EventSimulation::run`](crate::EventSimulation::run).
+    ///
+    /// # Errors
+    /// As [`EventSimulation::run`](crate::EventSimulation::run).
+    #[doc(hidden)]
+    #[allow(clippy::type_complexity)]
+    fn run_events_in<I: crate::Integrator>(
+        &self,
+        sim: &crate::EventSimulation<'_, '_, Self, I, T, N>,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+        span: core::ops::Range<T>,
+    ) -> Result<crate::EventRun<T, N>, crate::Failure<crate::EventRun<T, N>>>
+    where
+        Self: Sized,
+    {
+        sim.run_unconstrained(q0, v0, span)
+    }
+
+    /// [`run_in`](Self::run_in) for
+    /// [`ControlledSimulation::run`](crate::ControlledSimulation::run).
+    ///
+    /// # Errors
+    /// As [`ControlledSimulation::run`](crate::ControlledSimulation::run).
+    #[doc(hidden)]
+    #[allow(clippy::type_complexity)]
+    fn run_controlled_in<
+        I: crate::Integrator,
+        C: crate::control::InputSource<T, N, P>,
+        const P: usize,
+    >(
+        &self,
+        sim: &crate::ControlledSimulation<'_, '_, Self, I, C, T, N, P>,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+        span: core::ops::Range<T>,
+    ) -> Result<crate::ControlRun<T, N, P>, crate::Failure<crate::ControlRun<T, N, P>>>
+    where
+        Self: Sized + Driven<T, N, P>,
+    {
+        sim.run_unconstrained(q0, v0, span)
+    }
 }
 
 /// Constraints kept with multipliers: K rows of

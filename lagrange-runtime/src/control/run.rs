@@ -174,13 +174,31 @@ where
         &self.source
     }
 
-    /// [`Simulation::run`] with the inputs applied.
+    /// [`Simulation::run`] with the inputs applied: in the form the system's
+    /// description asked for (for a constrained derived system the multiplier
+    /// form, else the reduced form), like [`Simulation::run`].
     ///
     /// # Errors
     /// As [`Simulation::run`] (and [`Events::integrate`] with events);
     /// [`Error::NonFiniteInput`] if an input is NaN or infinite;
     /// [`Error::InvalidSettings`] for a bad sampling period.
     pub fn run(
+        &self,
+        q0: impl Into<SVector<T, N>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>> {
+        self.simulation
+            .system
+            .run_controlled_in(self, q0.into(), v0.into(), span)
+    }
+
+    /// [`run`](Self::run) with the unconstrained dynamics (refused at compile
+    /// time for a constrained system).
+    ///
+    /// # Errors
+    /// As [`run`](Self::run).
+    pub fn run_unconstrained(
         &self,
         q0: impl Into<SVector<T, N>>,
         v0: impl Into<SVector<T, N>>,
