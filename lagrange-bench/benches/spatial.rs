@@ -1,0 +1,44 @@
+//! Issue 10's spatial chain (n rods, joint axes alternating z, y) at n = 6, 10,
+//! 12, 14: M + (Q − h) and q̇̈ per call, the figures to set beside Pinocchio's
+//! CRBA + NLE and ABA from `peer/pinocchio/run.sh` on the same machine.
+//!
+//!     cargo bench -p lagrange-bench --bench spatial
+
+use criterion::{Criterion, black_box, criterion_group, criterion_main};
+use lagrange::Lagrangian;
+use nalgebra::SVector;
+
+include!(concat!(env!("OUT_DIR"), "/spatial_chains.rs"));
+
+/// The state the Pinocchio harness uses: q_i = 0.3 + 0.01 i, v_i = 0.2 − 0.01 i.
+fn state<const N: usize>() -> (SVector<f64, N>, SVector<f64, N>) {
+    (
+        SVector::from_fn(|i, _| 0.3 + 0.01 * i as f64),
+        SVector::from_fn(|i, _| 0.2 - 0.01 * i as f64),
+    )
+}
+
+macro_rules! chain_bench {
+    ($c:expr, $module:ident, $n:literal) => {{
+        let sys = $module::SpatialChain::issue10();
+        let (q, v) = state::<$n>();
+        let mut group = $c.benchmark_group(concat!("spatial_chain_", stringify!($n)));
+        group.bench_function("M + (Q - h)", |b| {
+            b.iter(|| sys.mass_matrix_and_rhs(black_box(&q), black_box(&v), 0.0))
+        });
+        group.bench_function("accelerations", |b| {
+            b.iter(|| lagrange::accelerations(&sys, black_box(&q), black_box(&v), 0.0))
+        });
+        group.finish();
+    }};
+}
+
+fn spatial(c: &mut Criterion) {
+    chain_bench!(c, n6, 6);
+    chain_bench!(c, n10, 10);
+    chain_bench!(c, n12, 12);
+    chain_bench!(c, n14, 14);
+}
+
+criterion_group!(benches, spatial);
+criterion_main!(benches);

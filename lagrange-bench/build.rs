@@ -1,0 +1,25 @@
+//! Writes the spatial chains of issue 10 (n = 6, 10, 12, 14) as derived
+//! models, one module each, for `benches/spatial.rs` and `tests/spatial.rs`.
+
+use std::fmt::Write;
+
+fn main() {
+    let mut out = String::new();
+    for n in [6, 10, 12, 14] {
+        let source = lagrange_codegen::chain::spatial_chain_source(n);
+        let fields: Vec<String> = (0..n)
+            .map(|k| format!("m{k}: 1.0 + 0.1 * {k}.0, l{k}: 1.0 - 0.02 * {k}.0"))
+            .collect();
+        let _ = write!(
+            out,
+            "pub mod n{n} {{\n#[derive(lagrange::Lagrangian)]\n{source}\n\
+             impl SpatialChain {{\n    /// Issue 10's parameters.\n    pub fn issue10() -> Self {{\n        \
+             SpatialChain {{ {}, r: 0.05, g: 9.81 }}\n    }}\n}}\n}}\n",
+            fields.join(", ")
+        );
+    }
+    let path = std::path::Path::new(&std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"))
+        .join("spatial_chains.rs");
+    std::fs::write(path, out).expect("OUT_DIR is writable");
+    println!("cargo::rerun-if-changed=build.rs");
+}

@@ -1,0 +1,32 @@
+//! The derived spatial chains against Pinocchio 4.1 (CRBA and
+//! nonLinearEffects at the same state, printed by `peer/pinocchio/run.sh`):
+//! two derivations that share nothing agree to round-off.
+
+use lagrange::Lagrangian;
+use nalgebra::SVector;
+
+include!(concat!(env!("OUT_DIR"), "/spatial_chains.rs"));
+
+fn state<const N: usize>() -> (SVector<f64, N>, SVector<f64, N>) {
+    (
+        SVector::from_fn(|i, _| 0.3 + 0.01 * i as f64),
+        SVector::from_fn(|i, _| 0.2 - 0.01 * i as f64),
+    )
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-12 * b.abs().max(1.0)
+}
+
+#[test]
+fn mass_matrix_and_rhs_match_pinocchio() {
+    // (n, M[0][0], (Q − h)[0]) from Pinocchio.
+    let (q, v) = state::<6>();
+    let (m, f) = n6::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    assert!(close(m[(0, 0)], 74.0315975272448), "{}", m[(0, 0)]);
+    assert!(close(f[0], 4.42521592570079), "{}", f[0]);
+    let (q, v) = state::<14>();
+    let (m, f) = n14::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    assert!(close(m[(0, 0)], 482.975828915347), "{}", m[(0, 0)]);
+    assert!(close(f[0], 210.052527264394), "{}", f[0]);
+}
