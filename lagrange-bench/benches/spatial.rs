@@ -1,6 +1,7 @@
 //! Issue 10's spatial chain (n rods, joint axes alternating z, y) at n = 6, 10,
-//! 12, 14: M + (Q − h) and q̇̈ per call, the figures to set beside Pinocchio's
-//! CRBA + NLE and ABA from `peer/pinocchio/run.sh` on the same machine.
+//! 12, 14: M + (Q − h) and q̈ per call, the figures to set beside Pinocchio's
+//! CRBA + NLE and ABA from `peer/pinocchio/run.sh` on the same machine, and
+//! the hand-written recursive peer (`lagrange_bench::recursive`) to n = 30.
 //!
 //!     cargo bench -p lagrange-bench --bench spatial
 
@@ -38,6 +39,18 @@ fn spatial(c: &mut Criterion) {
     chain_bench!(c, n10, 10);
     chain_bench!(c, n12, 12);
     chain_bench!(c, n14, 14);
+    // The hand-written recursive Newton–Euler peer (M by n unit-acceleration
+    // passes: O(n²), heap-allocated), to n = 30.
+    let mut group = c.benchmark_group("spatial_chain_recursive");
+    for n in [6, 10, 12, 14, 30] {
+        let chain = lagrange_bench::recursive::SerialChain::issue10(n);
+        let q = nalgebra::DVector::from_fn(n, |i, _| 0.3 + 0.01 * i as f64);
+        let v = nalgebra::DVector::from_fn(n, |i, _| 0.2 - 0.01 * i as f64);
+        group.bench_function(format!("M + (Q - h), n = {n}"), |b| {
+            b.iter(|| chain.mass_matrix_and_rhs(black_box(&q), black_box(&v)))
+        });
+    }
+    group.finish();
 }
 
 criterion_group!(benches, spatial);

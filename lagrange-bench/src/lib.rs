@@ -1,1 +1,4 @@
-//! Benchmarks only: see `benches/`.
+//! Benchmarks: see `benches/`; peers in `peer/` and, hand-written in Rust,
+//! [`recursive`].
+
+pub mod recursive;

@@ -30,3 +30,34 @@ fn mass_matrix_and_rhs_match_pinocchio() {
     assert!(close(m[(0, 0)], 482.975828915347), "{}", m[(0, 0)]);
     assert!(close(f[0], 210.052527264394), "{}", f[0]);
 }
+
+/// The hand-written recursive Newton–Euler chain equals the derived one.
+#[test]
+fn recursive_newton_euler_matches_the_derivation() {
+    use lagrange_bench::recursive::SerialChain;
+    use nalgebra::DVector;
+    fn check<const N: usize>(f: SVector<f64, N>, mm: nalgebra::SMatrix<f64, N, N>) {
+        let chain = SerialChain::issue10(N);
+        let (q, v) = state::<N>();
+        let (rm, rf) = chain.mass_matrix_and_rhs(
+            &DVector::from_column_slice(q.as_slice()),
+            &DVector::from_column_slice(v.as_slice()),
+        );
+        let scale = mm.amax();
+        for i in 0..N {
+            for j in 0..N {
+                assert!(
+                    (rm[(i, j)] - mm[(i, j)]).abs() < 1e-12 * scale,
+                    "M[{i}][{j}]"
+                );
+            }
+            assert!((rf[i] - f[i]).abs() < 1e-12 * f.amax().max(1.0), "rhs[{i}]");
+        }
+    }
+    let (q, v) = state::<6>();
+    let (m, f) = n6::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    check::<6>(f, m);
+    let (q, v) = state::<14>();
+    let (m, f) = n14::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    check::<14>(f, m);
+}
