@@ -214,9 +214,11 @@
 //! discontinuous force sees both sides in one step: it shrinks the step around
 //! the switch (costly), and a force that flips with the motion, like friction at
 //! rest, chatters. Where that matters, put an [`Event`] on the switching surface
-//! (`Event::new(|_, _, v| v[0]).falling().terminal()` for a block coming to rest,
-//! or an action that changes the mode) so each smooth piece is integrated on its
-//! own; `tests/piecewise.rs` locates the stop of a block under Coulomb friction
+//! so each smooth piece is integrated on its own: `.restart()` cuts the step at
+//! the crossing and restarts just past the surface with the state unchanged (a
+//! switch the motion passes through), `.terminal()` ends the run there
+//! (`Event::new(|_, _, v| v[0]).falling().terminal()` for a block coming to
+//! rest), and an action changes the mode; `tests/piecewise.rs` locates the stop of a block under Coulomb friction
 //! this way within 1e-9 of v0/(μg). A force that is continuous with a kink (the
 //! contact spring, a saturation) needs no event: the error control handles it.
 

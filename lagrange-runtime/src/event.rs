@@ -40,6 +40,10 @@
 //!    ([`SecondOrder::project`]), and — unless the event is terminal — starts the
 //!    integrator afresh from the new state to the original end time. The pieces
 //!    are concatenated into one [`Trajectory`].
+//! 5. **Restart events** ([`Event::restart`]) stop the same way but land just
+//!    past the surface and keep the state: paired with a switch in the
+//!    equations of motion (a `sign`, an `if`, a `min` on the same function)
+//!    they make every step lie on one side of it.
 //!
 //! Restarting rather than resuming is deliberate: a state jump invalidates what
 //! a method carries between steps (DOPRI5's FSAL stage, the step-size history,
@@ -132,6 +136,7 @@ pub struct Event<'a, T: Real, const N: usize> {
     direction: Direction,
     terminal: Terminal<'a, T, N>,
     action: Option<ActionFn<'a, T, N>>,
+    restart: bool,
 }
 
 impl<T: Real, const N: usize> fmt::Debug for Event<'_, T, N> {
@@ -148,6 +153,7 @@ impl<T: Real, const N: usize> fmt::Debug for Event<'_, T, N> {
                 },
             )
             .field("action", &self.action.is_some())
+            .field("restart", &self.restart)
             .finish()
     }
 }
@@ -162,6 +168,7 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
             direction: Direction::Both,
             terminal: Terminal::Never,
             action: None,
+            restart: false,
         }
     }
 
@@ -210,6 +217,27 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
         self
     }
 
+    /// At each crossing the step is cut and the integrator restarted there,
+    /// from the state just past the surface, unchanged. This pairs the event
+    /// with a switch in the equations of motion on the same function
+    /// (`sign(g)`, `if g > 0 { .. }`, `min`, `max`, `clamp`, `abs` in a
+    /// force or potential): no step then straddles the switch, so the
+    /// integrator does not chatter or shrink its steps there, and each smooth
+    /// piece is integrated on its own.
+    ///
+    /// The restart lands on the far side of the surface, so the event does
+    /// not fire again at once. If the motion turns back at once (a sliding
+    /// mode, such as a body that friction holds at rest) the crossings
+    /// accumulate and the run ends with [`Error::EventsAccumulate`]: end the
+    /// run there instead ([`terminal_if`](Self::terminal_if)) or hold the
+    /// state with an [`action`](Self::action). With an action, the action
+    /// takes over: it receives the state before the crossing, as for any
+    /// impact law.
+    pub fn restart(mut self) -> Self {
+        self.restart = true;
+        self
+    }
+
     /// Names the event in error messages (by default `event #k`, k its
     /// position).
     pub fn named(mut self, name: impl Into<String>) -> Self {
@@ -236,7 +264,13 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
     /// Whether an occurrence stops the integrator (it has an action or may end
     /// the run).
     fn stops(&self) -> bool {
-        self.is_terminal() || self.action.is_some()
+        self.is_terminal() || self.action.is_some() || self.restart
+    }
+
+    /// Whether the cut lands past the surface ([`restart`](Self::restart)
+    /// without an action) rather than before it.
+    fn lands_past(&self) -> bool {
+        self.restart && self.action.is_none()
     }
 
     /// Whether the occurrence at t with the state (q, v) after the action ends the run.
@@ -479,7 +513,9 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
                 if t1 - stop.t <= stalled_within {
                     break;
                 }
-                watch.reset(stop.t, &qa, &va, Some((stop.event, stop.before)))?;
+                // Past the surface the fired event's sign is already the new one.
+                let fired = (!event.lands_past()).then_some((stop.event, stop.before));
+                watch.reset(stop.t, &qa, &va, fired)?;
                 (t, q, v) = (stop.t, qa, va);
             }
             Ok(())
@@ -630,8 +666,11 @@ fn crossings<T: Real, const N: usize>(
             tb
         } else {
             let (b, fb, c, fc) = brent_bracket(on_segment, ta, tb, ga, gb);
-            // The end of the final bracket on the old side of the crossing.
-            if same_sign(fb, ga) || fb == T::zero() || !same_sign(fc, ga) {
+            // The end of the final bracket on the old side of the crossing,
+            // or on the new side for a restart.
+            if event.lands_past() {
+                if same_sign(fb, ga) { c } else { b }
+            } else if same_sign(fb, ga) || fb == T::zero() || !same_sign(fc, ga) {
                 b
             } else {
                 c

@@ -68,6 +68,28 @@ impl SecondOrder<f64, 1> for Spring {
     }
 }
 
+/// A block sliding with Coulomb friction, q̈ = −sign(q̇) (sign(0) = 0): the
+/// acceleration jumps where q̇ changes sign.
+struct Friction;
+
+impl SecondOrder<f64, 1> for Friction {
+    fn acceleration(
+        &self,
+        _t: f64,
+        _q: &SVector<f64, 1>,
+        v: &SVector<f64, 1>,
+    ) -> Result<SVector<f64, 1>, Error> {
+        let s = if v[0] > 0.0 {
+            1.0
+        } else if v[0] < 0.0 {
+            -1.0
+        } else {
+            0.0
+        };
+        Ok(sv([-s]))
+    }
+}
+
 /// Closed form of a ball dropped from rest at height h0 with restitution e:
 /// impact k (k = 0, 1, ...) at t_k = t0 + Σ_{j=1..k} 2 e^j u/g with t0 = √(2h0/g)
 /// and u = g t0 the first impact speed; the apex after impact k at
@@ -436,4 +458,63 @@ fn terminal_if_decides_after_the_action() {
     );
     let (_, v) = run.trajectory.final_state();
     assert!(v[0] < 1.0 && v[0] > 0.0);
+}
+
+/// `restart` cuts the integration at every crossing and restarts it just past
+/// the surface with the state unchanged: each crossing is recorded once, the
+/// state after lies on the new side, no dense-output segment straddles the
+/// surface, and the motion is the undisturbed one. A motion that turns back at
+/// the surface at once (a sliding mode: friction holding a block at rest)
+/// accumulates restarts and ends with the typed error.
+#[test]
+fn restart_cuts_the_steps_at_the_surface() {
+    let osc = Spring { omega: 2.0 };
+    let run = Events::new()
+        .with(Event::new(|_, q: &SVector<f64, 1>, _| q[0]).restart())
+        .integrate(&Dopri5::tol(1e-12), &osc, 0.0, 10.0, sv([1.0]), sv([0.0]))
+        .unwrap();
+    // cos 2t is zero at π/4 + kπ/2: six times before t = 10.
+    assert_eq!(run.occurrences.len(), 6);
+    for (k, o) in run.occurrences.iter().enumerate() {
+        let exact = std::f64::consts::FRAC_PI_4 + k as f64 * std::f64::consts::FRAC_PI_2;
+        assert!((o.t - exact).abs() < 1e-10, "{} vs {exact}", o.t);
+        assert_eq!((o.q, o.v), (o.q_after, o.v_after));
+        // Falling through zero at even k, rising at odd k; the restart state is
+        // already on the far side (or on the surface).
+        let far = if k % 2 == 0 { -o.q[0] } else { o.q[0] };
+        assert!(far >= 0.0 && far < 1e-12, "k = {k}: q = {:e}", o.q[0]);
+    }
+    for seg in run.trajectory.segments() {
+        let (a, b) = (seg.start(), seg.end());
+        let signs: Vec<bool> = (1..10)
+            .map(|i| seg.eval(a + (b - a) * i as f64 / 10.0).0[0] > 0.0)
+            .collect();
+        assert!(
+            signs.iter().all(|&s| s == signs[0]),
+            "segment [{a}, {b}] straddles q = 0"
+        );
+    }
+    let (q, _) = run.trajectory.final_state();
+    assert!((q[0] - 20.0f64.cos()).abs() < 1e-9, "{q}");
+    // The block stops at t = 1 and friction would hold it: restarting there
+    // only finds the surface again.
+    let stuck = Events::new()
+        .with(
+            Event::new(|_, _, v: &SVector<f64, 1>| v[0])
+                .named("sticks")
+                .restart(),
+        )
+        .integrate(
+            &Dopri5::tol(1e-10),
+            &Friction,
+            0.0,
+            3.0,
+            sv([0.0]),
+            sv([1.0]),
+        )
+        .unwrap_err();
+    assert!(
+        matches!(&stuck.error, Error::EventsAccumulate { event, t, .. } if event == "sticks" && (t - 1.0).abs() < 1e-8),
+        "{stuck}"
+    );
 }
