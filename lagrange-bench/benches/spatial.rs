@@ -5,9 +5,10 @@
 //!
 //!     cargo bench -p lagrange-bench --bench spatial
 
-use criterion::{Criterion, black_box, criterion_group, criterion_main};
+use criterion::{Criterion, criterion_group, criterion_main};
 use lagrange::Lagrangian;
 use nalgebra::SVector;
+use std::hint::black_box;
 
 include!(concat!(env!("OUT_DIR"), "/spatial_chains.rs"));
 

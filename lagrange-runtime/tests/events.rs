@@ -482,7 +482,7 @@ fn restart_cuts_the_steps_at_the_surface() {
         // Falling through zero at even k, rising at odd k; the restart state is
         // already on the far side (or on the surface).
         let far = if k % 2 == 0 { -o.q[0] } else { o.q[0] };
-        assert!(far >= 0.0 && far < 1e-12, "k = {k}: q = {:e}", o.q[0]);
+        assert!((0.0..1e-12).contains(&far), "k = {k}: q = {:e}", o.q[0]);
     }
     for seg in run.trajectory.segments() {
         let (a, b) = (seg.start(), seg.end());
