@@ -172,3 +172,28 @@ fn table_has_energies_and_multipliers() {
         assert_eq!(row[nu], sol.multipliers[0]);
     }
 }
+
+/// Bad recording settings are refused before the first step.
+#[test]
+fn bad_recordings_are_typed_errors() {
+    let pendulum = Pendulum {
+        m: 1.0,
+        l: 1.0,
+        g: 9.81,
+    };
+    for record in [
+        Record::Every(0),
+        Record::Interval(0.0),
+        Record::Interval(f64::NAN),
+        Record::Interval(-1.0),
+    ] {
+        let run = Simulation::new(&pendulum)
+            .integrator(Rk4::step(0.1).record(record))
+            .run([1.0], [0.0], 0.0..1.0);
+        assert!(
+            matches!(&run, Err(Failure { error: Error::InvalidSettings(m), .. }) if m.contains("record")),
+            "{record:?}: {:?}",
+            run.err().map(|f| f.error)
+        );
+    }
+}

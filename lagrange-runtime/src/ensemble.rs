@@ -64,7 +64,7 @@ impl Ensemble {
     }
 
     /// Runs on a pool of `n` threads instead of all cores (the results are
-    /// the same; only the wall time changes).
+    /// the same; only the wall time changes). `n` = 0 is taken as 1.
     pub fn threads(mut self, n: usize) -> Self {
         self.threads = Some(n.max(1));
         self

@@ -37,9 +37,10 @@ pub struct Trajectory<T: Real, const N: usize> {
 /// One recorded point: t, q, q̇ and the sample there.
 type Point<T, const N: usize> = (T, SVector<T, N>, SVector<T, N>, Sample<T>);
 
-/// What a run keeps of its steps (set on the integrator, e.g.
-/// `Dopri5::tol(1e-10).record(Record::Every(100))`, or on the
-/// [`Simulation`](crate::Simulation)).
+/// What a run keeps of its steps, set on the integrator, e.g.
+/// `Dopri5::tol(1e-10).record(Record::Every(100))`. `Every(0)` and an
+/// `Interval` that is not positive and finite are refused when the run starts
+/// ([`Error::InvalidSettings`]).
 ///
 /// Memory per stored point for f64: 8 (t) + 16 N (q, q̇) + 24 (integral,
 /// residuals) bytes; `Steps` also keeps each step's dense segment, 8 × 16 N + 24
@@ -60,6 +61,24 @@ pub enum Record {
     Interval(f64),
     /// The initial and the final state only.
     Final,
+}
+
+impl Record {
+    /// Refuses `Every(0)` and an interval that is not positive and finite.
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`].
+    pub fn check(&self) -> Result<(), Error> {
+        match *self {
+            Record::Every(0) => Err(Error::InvalidSettings(
+                "record: Every(k) needs k ≥ 1".into(),
+            )),
+            Record::Interval(dt) if !(dt.is_finite() && dt > 0.0) => Err(Error::InvalidSettings(
+                format!("record: Interval(dt) needs a positive, finite dt, got {dt}"),
+            )),
+            _ => Ok(()),
+        }
+    }
 }
 
 impl<T: Real, const N: usize> Trajectory<T, N> {
@@ -168,7 +187,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
             Record::Every(k) => {
                 self.steps_seen += 1;
                 let point = (end, q, v, sample(end, &q, &v));
-                if self.steps_seen.is_multiple_of(k.max(1)) {
+                if self.steps_seen.is_multiple_of(k) {
                     self.pending = None;
                     self.store(point);
                 } else {
@@ -177,7 +196,10 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
             }
             Record::Interval(dt) => {
                 let dt = T::lit(dt);
-                while self.next_output < end {
+                // The integrators refuse a bad interval up front (Record::check);
+                // a hand-made trajectory with one records no grid rather than
+                // looping forever.
+                while dt > T::zero() && self.next_output < end {
                     let t = self.next_output;
                     let (qi, vi) = segment.eval(t);
                     self.store((t, qi, vi, sample(t, &qi, &vi)));

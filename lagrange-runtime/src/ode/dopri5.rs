@@ -170,6 +170,7 @@ impl Integrator for Dopri5 {
             Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         // Everything computed before a failure goes back with it.
         let outcome = (|| -> Result<(), Error> {
+            self.record.check()?;
             self.validate()?;
             self.control.check_precision::<T>("DOPRI5")?;
             check_problem(t0, t1, &q0, &v0)?;

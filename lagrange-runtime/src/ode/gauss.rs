@@ -123,6 +123,7 @@ impl Gauss {
         (t0, t1, q0, v0): (T, T, SVector<T, N>, SVector<T, N>),
         run: (&mut Trajectory<T, N>, &mut Stats),
     ) -> Result<(), Error> {
+        self.record.check()?;
         check_problem(t0, t1, &q0, &v0)?;
         if self.max_iterations == 0 {
             return Err(Error::InvalidSettings(

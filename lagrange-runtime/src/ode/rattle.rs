@@ -132,6 +132,7 @@ impl Rattle {
         );
         // Everything computed before a failure goes back with it.
         let outcome = (|| -> Result<(), Error> {
+            self.record.check()?;
             check_problem(t0, t1, &q0, &v0)?;
             let n = fixed_step_count("RATTLE", self.h, self.max_steps, t0, t1)?;
             if S::HOLONOMIC != K {

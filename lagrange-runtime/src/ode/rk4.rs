@@ -67,6 +67,7 @@ impl Integrator for Rk4 {
             Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         // Everything computed before a failure goes back with it.
         let outcome = (|| -> Result<(), Error> {
+            self.record.check()?;
             if !(self.h.is_finite() && self.h > 0.0) {
                 return Err(Error::InvalidSettings(format!(
                     "RK4 step size must be positive and finite, got {}",

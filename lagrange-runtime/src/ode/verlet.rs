@@ -109,6 +109,7 @@ impl Integrator for StormerVerlet {
             Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
         // Everything computed before a failure goes back with it.
         let outcome = (|| -> Result<(), Error> {
+            self.record.check()?;
             check_problem(t0, t1, &q0, &v0)?;
             let n = fixed_step_count("Störmer–Verlet", self.h, self.max_steps, t0, t1)?;
             let h = T::lit(self.h);

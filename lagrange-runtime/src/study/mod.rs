@@ -211,6 +211,13 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
                 "work-precision study: repeats must be at least 1".into(),
             ));
         }
+        if let Some(u) = self.uncertainty
+            && !(u.is_finite() && u >= 0.0)
+        {
+            return Err(Error::InvalidSettings(format!(
+                "work-precision study: the reference's uncertainty must be finite and non-negative, got {u}"
+            )));
+        }
         let (reference_at, reference) = self.prepare_reference()?;
         let uncertainty = self.uncertainty.or(reference.uncertainty());
         let mut rows = Vec::new();

@@ -340,3 +340,18 @@ fn a_given_reference_with_its_uncertainty_marks_unresolved_runs() {
     assert!(md.contains("uncertainty 1.00e-7"), "{md}");
     assert!(md.contains("below the reference's accuracy"), "{md}");
 }
+
+#[test]
+fn a_bad_uncertainty_is_refused() {
+    for u in [-1.0, f64::NAN, f64::INFINITY] {
+        let e = oscillator()
+            .exact(|t| Vector1::new(t.cos()))
+            .uncertainty(u)
+            .run()
+            .unwrap_err();
+        assert!(
+            matches!(e, Error::InvalidSettings(ref m) if m.contains("uncertainty")),
+            "{e}"
+        );
+    }
+}
