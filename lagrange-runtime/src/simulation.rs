@@ -343,14 +343,28 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     {
         let (q0, v0) = (q0.into(), v0.into());
         let dynamics = self.reduced_dynamics::<T, K>();
-        let start = |e| failed_at_start(&dynamics, span.start, q0, v0, e);
-        self.check_tolerances().map_err(start)?;
-        check_problem(span.start, span.end, &q0, &v0).map_err(start)?;
-        let v0 = dynamics
-            .consistent_velocities(span.start, &q0, &v0)
-            .map_err(start)?;
+        let v0 = self
+            .prepare_reduced(&dynamics, &span, q0, v0)
+            .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
         self.integrator
             .integrate(&dynamics, span.start, span.end, q0, v0)
+    }
+
+    /// The checks of a reduced run and its initial velocities: the admissible
+    /// ones with the speeds of `v0`.
+    pub(crate) fn prepare_reduced<T: Real, const N: usize, const K: usize, F>(
+        &self,
+        dynamics: &ReducedDynamics<'a, S, T, K, F>,
+        span: &Range<T>,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+    ) -> Result<SVector<T, N>, Error>
+    where
+        S: Reduced<T, N, K>,
+    {
+        self.check_tolerances()?;
+        check_problem(span.start, span.end, &q0, &v0)?;
+        dynamics.consistent_velocities(span.start, &q0, &v0)
     }
 
     /// Integrates from (q0, v0) at `span.start` to `span.end`, in the form the
@@ -521,12 +535,9 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
         let dynamics = sim.reduced_dynamics::<T, K>();
-        let start = |e| failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted);
-        sim.check_tolerances().map_err(start)?;
-        check_problem(span.start, span.end, &q0, &v0).map_err(start)?;
-        let v0 = dynamics
-            .consistent_velocities(span.start, &q0, &v0)
-            .map_err(start)?;
+        let v0 = sim.prepare_reduced(&dynamics, &span, q0, v0).map_err(|e| {
+            failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
+        })?;
         self.events
             .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
     }

@@ -266,12 +266,7 @@ where
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
         let dynamics = sim.reduced_dynamics::<T, K>();
-        let prepare = || {
-            sim.check_tolerances()?;
-            check_problem(span.start, span.end, &q0, &v0)?;
-            let v0 = dynamics.consistent_velocities(span.start, &q0, &v0)?;
-            Ok((q0, v0))
-        };
+        let prepare = || Ok((q0, sim.prepare_reduced(&dynamics, &span, q0, v0)?));
         self.drive(
             |f| dynamics.with_forcing(f),
             span.clone(),
