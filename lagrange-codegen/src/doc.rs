@@ -1,8 +1,9 @@
-//! The derived equations as text, for rustdoc and the `EQUATIONS` constant:
-//! a header that says what the symbols are, then every nonzero entry as one
-//! straight-line listing, each shared intermediate written once as `x<k> = …`
-//! (see `Program::listing`): the text grows with the program, not with the
-//! expression trees.
+//! The derived equations as text, for rustdoc, `EQUATIONS` and
+//! `EQUATIONS_LATEX`: a header that says what the symbols are, then every
+//! nonzero entry, as formulas while the trees are small and beyond that as
+//! one straight-line listing with each shared intermediate written once as
+//! `x<k> = …` (see `Program::listing`), so the text grows with the program,
+//! not with the expression trees.
 
 use std::fmt::Write;
 
@@ -10,8 +11,50 @@ use lagrange_symbolic::{Expr as Sym, ListingStyle, Program};
 
 use crate::mechanics::{BiasRoute, Model};
 
+/// The equations as plain text (header and entries) and as LaTeX, from one
+/// pass over the outputs: a large system's straight-line program is built once
+/// for both listings.
+pub struct Texts {
+    pub equations: String,
+    pub latex: String,
+}
+
+/// The plain-text equations alone (see [`texts`]).
 pub fn equations(model: &Model) -> String {
+    texts(model).equations
+}
+
+/// Both texts of the model.
+pub fn texts(model: &Model) -> Texts {
     let ctx = &model.ctx;
+    let outputs = outputs(model);
+    let exprs: Vec<Sym> = outputs.iter().map(|(_, e)| *e).collect();
+    let names: Vec<String> = outputs.iter().map(|(n, _)| n.clone()).collect();
+    let labels: Vec<String> = names.iter().map(|n| latex_label(n)).collect();
+    let mut equations = header(model);
+    let mut latex = String::from("\\begin{aligned}\n");
+    if tree_size(ctx, &exprs) <= TREE_LIMIT {
+        let _ = writeln!(equations, "\nEntries not listed are zero.\n");
+        for ((name, label), &e) in names.iter().zip(&labels).zip(&exprs) {
+            let _ = writeln!(equations, "{name} = {}", ctx.display(e));
+            let _ = writeln!(latex, "{label} &= {} \\\\", ctx.latex(e));
+        }
+    } else {
+        let _ = writeln!(
+            equations,
+            "\nShared intermediates are named x<k>; entries not listed are zero.\n"
+        );
+        let program = Program::new(ctx, &exprs);
+        equations.push_str(&program.listing(ctx, &names));
+        latex.push_str(&program.listing_in(ctx, &labels, ListingStyle::Latex));
+    }
+    latex.push_str("\\end{aligned}\n");
+    Texts { equations, latex }
+}
+
+/// What the symbols are: the form of the equations, q, u, the conserved
+/// quantity, the route of h, the constraint and reduced rows.
+fn header(model: &Model) -> String {
     let mut s = String::new();
     let args = if model.rheonomic { "q, t" } else { "q" };
     match &model.inputs {
@@ -47,7 +90,6 @@ pub fn equations(model: &Model) -> String {
         BiasRoute::Christoffel => "Christoffel symbols",
     };
     let _ = writeln!(s, "h by {route}; T kinetic, V potential energy.");
-    let outputs = outputs(model);
     if let Some(c) = &model.constraints {
         let _ = writeln!(
             s,
@@ -63,20 +105,6 @@ pub fn equations(model: &Model) -> String {
             r.names.join(", "),
             r.rows.join(", ")
         );
-    }
-    let exprs: Vec<Sym> = outputs.iter().map(|(_, e)| *e).collect();
-    if tree_size(ctx, &exprs) <= TREE_LIMIT {
-        let _ = writeln!(s, "\nEntries not listed are zero.\n");
-        for (name, e) in &outputs {
-            let _ = writeln!(s, "{name} = {}", ctx.display(*e));
-        }
-    } else {
-        let _ = writeln!(
-            s,
-            "\nShared intermediates are named x<k>; entries not listed are zero.\n"
-        );
-        let names: Vec<String> = outputs.into_iter().map(|(n, _)| n).collect();
-        s.push_str(&Program::new(ctx, &exprs).listing(ctx, &names));
     }
     s
 }
@@ -131,27 +159,6 @@ pub fn rustdoc(equations: &str, ident: &str) -> Option<String> {
         equations.lines().count(),
         equations.len() / 1024
     ))
-}
-
-/// The equations as LaTeX: the nonzero entries of M, h, Q, the energies, the
-/// inputs' force Jacobian and the constraint rows as the lines of one
-/// `aligned` block; beyond the size where formulas read well, the shared
-/// listing with intermediates x_{k}.
-pub fn latex(model: &Model) -> String {
-    let ctx = &model.ctx;
-    let outputs = outputs(model);
-    let exprs: Vec<Sym> = outputs.iter().map(|(_, e)| *e).collect();
-    let names: Vec<String> = outputs.iter().map(|(n, _)| latex_label(n)).collect();
-    let mut s = String::from("\\begin{aligned}\n");
-    if tree_size(ctx, &exprs) <= TREE_LIMIT {
-        for (name, e) in names.iter().zip(&exprs) {
-            let _ = writeln!(s, "{name} &= {} \\\\", ctx.latex(*e));
-        }
-    } else {
-        s.push_str(&Program::new(ctx, &exprs).listing_in(ctx, &names, ListingStyle::Latex));
-    }
-    s.push_str("\\end{aligned}\n");
-    s
 }
 
 /// `M[0][1]` → `M_{0 1}`, `G[rear_x][2]` → `G_{\mathrm{rear\_x}, 2}`, `dQ[1]/du` →

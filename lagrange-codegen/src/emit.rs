@@ -249,8 +249,10 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let where_clause = real_bound(system, where_clause);
     // The text is emitted once, in a macro both the rustdoc and `EQUATIONS`
     // expand (a summary replaces it in the rustdoc beyond the cap).
-    let docs = doc::equations(model);
-    let latex = doc::latex(model);
+    let doc::Texts {
+        equations: docs,
+        latex,
+    } = doc::texts(model);
     let docs_macro = format_ident!("__lagrange_equations_{}", system.ident);
     let impl_doc = match doc::rustdoc(&docs, &system.ident.to_string()) {
         Some(summary) => quote!(#[doc = #summary]),
