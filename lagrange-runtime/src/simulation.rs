@@ -325,7 +325,9 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// Integrates a [`Reduced`] system (independent speeds) from (q0, v0) at
     /// `span.start` to `span.end`. v0 is first replaced by
     /// velocities(q0, speeds(q0, v0)), the admissible velocity with the same
-    /// speeds; after every step v is rebuilt the same way.
+    /// speeds (for speeds the macro picked, with the velocities the constraints
+    /// leave free where those are fixed); after every step v is projected back
+    /// onto the constraints keeping the velocities they leave free.
     ///
     /// # Errors
     /// [`Error::InvalidSettings`] for bad settings, time span or initial state;

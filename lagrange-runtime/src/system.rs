@@ -285,7 +285,9 @@ pub trait Constrained<T: Real, const N: usize, const K: usize>: Lagrangian<T, N>
 /// no multipliers and no velocity drift. The form is finite wherever A is
 /// regular; where it is not, the speeds do not determine the velocities and the
 /// runtime names the dependent rows. The state the integrators carry is still
-/// (q, q̇); the dynamics re-derive q̇ from u after each step.
+/// (q, q̇); along the motion the dynamics solve with the velocities the
+/// constraints leave free at each state (any independent speeds give the same
+/// q̈) and project q̇ back onto the constraints after each step.
 #[diagnostic::on_unimplemented(
     message = "`{Self}` has no reduced form: `run_reduced` and the reduced linearisation need `formulation(reduced)` in its #[lagrange(...)]",
     label = "needs the reduced form",
