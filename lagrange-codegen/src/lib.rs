@@ -27,6 +27,7 @@ pub mod mechanics;
 pub mod order;
 pub mod rotation;
 pub mod scene;
+pub mod tree;
 
 use proc_macro2::TokenStream;
 use syn::DeriveInput;
@@ -67,7 +68,7 @@ pub fn expand(input: &DeriveInput) -> TokenStream {
     let Some(system) = attr::parse(&cx, input) else {
         return cx.to_compile_errors();
     };
-    match build(&cx, &system) {
+    match build(&cx, &system, mechanics::Route::Auto) {
         Some(model) => {
             let body = emit::impl_lagrangian(&system, &model);
             quote::quote!(const _: () = { #body };)
@@ -83,9 +84,15 @@ pub fn expand(input: &DeriveInput) -> TokenStream {
 /// Runs the stages up to the symbolic model, for tools and benchmarks that want the
 /// equations (and their operation counts) rather than tokens.
 pub fn model(input: &DeriveInput) -> Result<Model, syn::Error> {
+    model_by(input, mechanics::Route::Auto)
+}
+
+/// [`model`] by a chosen derivation route, for tests and benchmarks that compare
+/// the recursive and generic routes on one description.
+pub fn model_by(input: &DeriveInput, route: mechanics::Route) -> Result<Model, syn::Error> {
     let cx = Ctxt::new();
     let system = attr::parse(&cx, input);
-    let model = system.as_ref().and_then(|s| build(&cx, s));
+    let model = system.as_ref().and_then(|s| build(&cx, s, route));
     match (model, cx.take()) {
         (Some(m), None) => Ok(m),
         (_, Some(e)) => Err(e),
@@ -96,7 +103,7 @@ pub fn model(input: &DeriveInput) -> Result<Model, syn::Error> {
     }
 }
 
-fn build(cx: &Ctxt, system: &ast::System) -> Option<Model> {
+fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Model> {
     // An item that did not parse may have declared names (a misspelt
     // `coordinates`, a malformed `define`): checking the rest would report
     // every use of those names as well, so parse errors are reported alone.
@@ -108,7 +115,7 @@ fn build(cx: &Ctxt, system: &ast::System) -> Option<Model> {
     if cx.has_errors() {
         return None;
     }
-    match mechanics::derive(lowered?) {
+    match mechanics::derive_with(lowered?, route) {
         Ok(model) => {
             check::mass_rows(cx, system, &model);
             (!cx.has_errors()).then_some(model)

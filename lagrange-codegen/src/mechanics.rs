@@ -38,6 +38,8 @@ pub struct Lowered {
     pub parameters: Vec<String>,
     pub points: Vec<PointModel>,
     pub spins: Vec<SpinModel>,
+    /// Where the masses sit relative to the bodies (for the recursive route).
+    pub skeleton: crate::tree::Skeleton,
     pub gravity: Option<Vec<Sym>>,
     pub potential: Option<Sym>,
     pub dissipation: Option<Sym>,
@@ -63,6 +65,9 @@ pub enum BiasRoute {
     Projection,
     /// h = d/dt ∂T/∂q̇ − ∂T/∂q with q̈ = 0 (Christoffel symbols, rheonomic terms).
     Christoffel,
+    /// Recursive Newton–Euler over the kinematic tree, with M by composite rigid
+    /// bodies ([`crate::tree`]).
+    Recursive,
 }
 
 /// How the inputs u enter: Q(q, q̇, u, t) = Q(q, q̇, 0, t) + ΔQ.
@@ -101,7 +106,8 @@ pub struct Model {
     pub potential: Sym,
     pub integral: Sym,
     pub bias_route: BiasRoute,
-    /// The route not chosen, kept so tests can check the two agree.
+    /// The route not chosen, kept so tests can check the two agree (empty when
+    /// only the recursive route was derived).
     pub bias_other: Vec<Sym>,
     /// The inputs' generalized forces and their Jacobians, if inputs were declared.
     pub inputs: Option<InputModel>,
@@ -151,12 +157,37 @@ struct Spin {
     kappa: [Sym; 3],
 }
 
-/// Derives the model.
+/// Which derivation of M and h to use.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Route {
+    /// The recursive route where the bodies form a kinematic tree; on small trees
+    /// both routes are derived and the cheaper program kept.
+    Auto,
+    /// Differentiate ξ(q, t) (M = Σ Jᵀ m J, h by projection or Christoffel).
+    Generic,
+    /// Composite rigid bodies and recursive Newton–Euler; an error if the
+    /// description is not a kinematic tree of revolute joints.
+    Recursive,
+}
+
+/// Up to this many joints a detected tree is derived both ways (the generic
+/// route grows as n³ but its constant is small: it wins on a heavy top).
+const BOTH_ROUTES_UP_TO: usize = 6;
+
+/// Derives the model, by the recursive route where the bodies form a tree.
 ///
 /// # Errors
 /// A reduced form that cannot be built (speeds and constraints that do not
 /// determine the velocities), as a message for the whole description.
 pub fn derive(lowered: Lowered) -> Result<Model, String> {
+    derive_with(lowered, Route::Auto)
+}
+
+/// Derives the model by the given route.
+///
+/// # Errors
+/// As [`derive`], and [`Route::Recursive`] on a description that is not a tree.
+pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
     let Lowered {
         mut ctx,
         coordinates,
@@ -164,6 +195,7 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
         parameters,
         points,
         spins,
+        skeleton,
         gravity,
         potential,
         dissipation,
@@ -184,26 +216,59 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
         let z = ctx.zero();
         qdd.iter().map(|&a| (a, z)).collect()
     };
+    let tree = match route {
+        Route::Generic => None,
+        Route::Auto | Route::Recursive => {
+            let point_masses: Vec<Sym> = points.iter().map(|p| p.mass).collect();
+            let point_positions: Vec<Vec<Sym>> = points.iter().map(|p| p.position.clone()).collect();
+            let inertias: Vec<Mat3> = spins.iter().map(|s| s.inertia).collect();
+            let masses = crate::tree::Masses {
+                point_masses: &point_masses,
+                point_positions: &point_positions,
+                inertias: &inertias,
+                gravity: gravity.as_deref(),
+            };
+            crate::tree::detect(&mut ctx, &skeleton, &masses)
+        }
+    };
+    if route == Route::Recursive && tree.is_none() {
+        return Err("the recursive route needs a kinematic tree of revolute joints: each body's \
+                    rotation its parent's followed by rot_x/rot_y/rot_z of coordinates, its \
+                    reference point fixed in the parent"
+            .to_string());
+    }
+    let generic = tree
+        .as_ref()
+        .is_none_or(|t| route == Route::Auto && t.len() <= BOTH_ROUTES_UP_TO);
 
     // sin/cos of sums of coordinates are expanded into products of sin/cos of the
     // coordinates themselves, so an n-link chain costs ~2n transcendental calls.
+    // The Jacobians and κ are only needed by the generic route.
     let kin: Vec<Kinematics> = points
         .iter()
         .map(|p| {
             let position: Vec<Sym> = p.position.iter().map(|&x| ctx.expand_trig(x)).collect();
             let velocity: Vec<Sym> = position.iter().map(|&x| ctx.time_derivative(x)).collect();
-            let jacobian = position
-                .iter()
-                .map(|&x| q.iter().map(|&qi| ctx.diff(x, qi)).collect())
-                .collect();
+            let jacobian = if generic {
+                position
+                    .iter()
+                    .map(|&x| q.iter().map(|&qi| ctx.diff(x, qi)).collect())
+                    .collect()
+            } else {
+                Vec::new()
+            };
             let partial_t = position.iter().map(|&x| ctx.diff(x, t)).collect();
-            let kappa = velocity
-                .iter()
-                .map(|&v| {
-                    let a = ctx.time_derivative(v);
-                    ctx.substitute(a, &zero_acc)
-                })
-                .collect();
+            let kappa = if generic {
+                velocity
+                    .iter()
+                    .map(|&v| {
+                        let a = ctx.time_derivative(v);
+                        ctx.substitute(a, &zero_acc)
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
             Kinematics {
                 mass: p.mass,
                 velocity,
@@ -245,9 +310,6 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
             })
         });
 
-    let mass = mass_matrix(&mut ctx, &kin, &spin, n);
-    let projection = bias_projection(&mut ctx, &kin, &spin, n);
-
     let kinetic = {
         let mut terms: Vec<Sym> = kin
             .iter()
@@ -265,30 +327,38 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
         let e = ctx.mul(half, s);
         ctx.collect(e)
     };
-    let christoffel: Vec<Sym> = (0..n)
-        .map(|i| {
-            let p = ctx.diff(kinetic, qd[i]);
-            let dp = ctx.time_derivative(p);
-            let dp = ctx.substitute(dp, &zero_acc);
-            let dq = ctx.diff(kinetic, q[i]);
-            let h = ctx.sub(dp, dq);
-            ctx.collect(h)
-        })
-        .collect();
-
     let cost = |ctx: &Context, h: &[Sym]| Program::new(ctx, h).op_count().weighted();
-    let (bias_route, bias, bias_other) = if cost(&ctx, &projection) <= cost(&ctx, &christoffel) {
-        (BiasRoute::Projection, projection, christoffel)
-    } else {
-        (BiasRoute::Christoffel, christoffel, projection)
-    };
-
-    // Potential energy: the user's V plus the potential of uniform gravity, −Σ m g·ξ.
-    let potential_total = {
-        let mut terms = Vec::new();
-        if let Some(v) = potential {
-            terms.push(v);
+    let generic_terms = generic.then(|| {
+        let mass = mass_matrix(&mut ctx, &kin, &spin, n);
+        let projection = bias_projection(&mut ctx, &kin, &spin, n);
+        let christoffel = christoffel_bias(&mut ctx, kinetic, &q, &qd, &zero_acc);
+        if cost(&ctx, &projection) <= cost(&ctx, &christoffel) {
+            (mass, BiasRoute::Projection, projection, christoffel)
+        } else {
+            (mass, BiasRoute::Christoffel, christoffel, projection)
         }
+    });
+    // The recursive route: M by CRBA, and h − Q_gravity in one RNEA pass for the
+    // right-hand side (h alone for the `bias` output).
+    let recursive_terms = tree.as_ref().map(|tree| {
+        let mass = crate::tree::mass_matrix(&mut ctx, tree);
+        let with_gravity = crate::tree::inverse_dynamics(&mut ctx, tree, true);
+        let bias = crate::tree::inverse_dynamics(&mut ctx, tree, false);
+        (mass, with_gravity, bias)
+    });
+    let flat = |m: &[Vec<Sym>], v: &[Sym]| -> Vec<Sym> {
+        m.iter().flatten().chain(v).copied().collect()
+    };
+    let recursive_terms = match (generic_terms.as_ref(), recursive_terms) {
+        (Some((gm, _, gh, _)), Some((rm, rg, rh))) => {
+            let generic_cost = cost(&ctx, &flat(gm, gh));
+            (cost(&ctx, &flat(&rm, &rg)) < generic_cost).then_some((rm, rg, rh))
+        }
+        (_, r) => r,
+    };
+    // Potential energy: the user's V plus the potential of uniform gravity, −Σ m g·ξ.
+    let gravity_potential = {
+        let mut terms = Vec::new();
         if let Some(g) = &gravity {
             for k in &kin {
                 let gx = dot(&mut ctx, g, &k.position);
@@ -296,15 +366,25 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
                 terms.push(ctx.neg(mg));
             }
         }
-        let v = ctx.sum(&terms);
+        ctx.sum(&terms)
+    };
+    let potential_total = {
+        let v = match potential {
+            Some(v) => ctx.add(v, gravity_potential),
+            None => gravity_potential,
+        };
         ctx.collect(v)
     };
-
+    // On the recursive route gravity is in the RNEA pass, so Q here is the rest.
+    let zero = ctx.zero();
     let generalized = generalized_forces_of(
         &mut ctx,
         &q,
         &qd,
-        potential_total,
+        match (&recursive_terms, potential) {
+            (None, _) => potential_total,
+            (Some(_), v) => v.unwrap_or(zero),
+        },
         dissipation,
         &forces,
         &generalized_forces,
@@ -312,12 +392,32 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
     // The `Lagrangian` methods are the unforced system: every input at zero.
     let (generalized, potential_total, inputs) =
         split_inputs(&mut ctx, input_names, generalized, potential_total);
-    let rhs: Vec<Sym> = (0..n)
-        .map(|i| {
-            let r = ctx.sub(generalized[i], bias[i]);
-            ctx.collect(r)
-        })
-        .collect();
+    let (mass, bias, bias_other, bias_route, rhs, generalized) = match recursive_terms {
+        Some((mass, with_gravity, bias)) => {
+            let rhs: Vec<Sym> = (0..n)
+                .map(|i| ctx.sub(generalized[i], with_gravity[i]))
+                .collect();
+            let total = (0..n)
+                .map(|i| {
+                    let dv = ctx.diff(gravity_potential, q[i]);
+                    let e = ctx.sub(generalized[i], dv);
+                    ctx.collect(e)
+                })
+                .collect();
+            let other = generic_terms.map(|g| g.2).unwrap_or_default();
+            (mass, bias, other, BiasRoute::Recursive, rhs, total)
+        }
+        None => {
+            let (mass, route, bias, other) = generic_terms.expect("the generic route was derived");
+            let rhs: Vec<Sym> = (0..n)
+                .map(|i| {
+                    let r = ctx.sub(generalized[i], bias[i]);
+                    ctx.collect(r)
+                })
+                .collect();
+            (mass, bias, other, route, rhs, generalized)
+        }
+    };
 
     let integral = if rheonomic {
         // Jacobi integral T2 − T0 + V (Suslov 32.56), with T2 = ½ q̇ᵀ M q̇ and
@@ -422,6 +522,26 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
         particles: kin.iter().map(|k| (k.mass, k.position.clone())).collect(),
         has_spin: !spin.is_empty(),
     })
+}
+
+/// h_i = d/dt ∂T/∂q̇_i − ∂T/∂q_i at q̈ = 0.
+fn christoffel_bias(
+    ctx: &mut Context,
+    kinetic: Sym,
+    q: &[Sym],
+    qd: &[Sym],
+    zero_acc: &[(Sym, Sym)],
+) -> Vec<Sym> {
+    (0..q.len())
+        .map(|i| {
+            let p = ctx.diff(kinetic, qd[i]);
+            let dp = ctx.time_derivative(p);
+            let dp = ctx.substitute(dp, zero_acc);
+            let dq = ctx.diff(kinetic, q[i]);
+            let h = ctx.sub(dp, dq);
+            ctx.collect(h)
+        })
+        .collect()
 }
 
 /// Splits Q(u) and V(u) into the unforced Q(0), V(0) and the inputs' part ΔQ

@@ -25,6 +25,9 @@ pub struct Rotation {
     pub matrix: Mat3,
     pub omega_body: [Sym; 3],
     pub omega_world: [Sym; 3],
+    /// The elementary factors (axis, angle) in order, when every factor is one
+    /// (an explicit matrix has none): the joints of a kinematic tree.
+    pub factors: Option<Vec<(usize, Sym)>>,
 }
 
 const FORMS: &str = "rot_x(a), rot_y(a), rot_z(a), euler_zxz(a, b, c), euler_zyx(a, b, c) or a 3×3 matrix [[..], [..], [..]]";
@@ -128,6 +131,7 @@ impl Lowerer<'_> {
             matrix: m,
             omega_body: w,
             omega_world: w,
+            factors: Some(vec![(axis, angle)]),
         }
     }
 
@@ -181,6 +185,7 @@ impl Lowerer<'_> {
             matrix: m,
             omega_body: self.vee(&body),
             omega_world: self.vee(&world),
+            factors: None,
         })
     }
 
@@ -201,10 +206,18 @@ impl Lowerer<'_> {
         let omega_body = [0, 1, 2].map(|k| self.ctx.add(rotated[k], b.omega_body[k]));
         let carried = self.mat_vec(&a.matrix, &b.omega_world);
         let omega_world = [0, 1, 2].map(|k| self.ctx.add(a.omega_world[k], carried[k]));
+        let factors = match (a.factors, b.factors) {
+            (Some(mut x), Some(y)) => {
+                x.extend(y);
+                Some(x)
+            }
+            _ => None,
+        };
         Rotation {
             matrix,
             omega_body,
             omega_world,
+            factors,
         }
     }
 

@@ -39,6 +39,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         points,
         spins,
         rotations: _,
+        skeleton,
     } = items;
     let gravity = system
         .gravity
@@ -126,6 +127,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
             .collect(),
         points,
         spins,
+        skeleton,
         gravity,
         potential,
         dissipation,
@@ -146,6 +148,8 @@ struct Items {
     spins: Vec<SpinModel>,
     /// (body, rotation matrix, reference point) for the points fixed in bodies.
     rotations: Vec<(Ident, crate::rotation::Mat3, Vec<Sym>)>,
+    /// Where the masses sit relative to the bodies, for the recursive derivation.
+    skeleton: crate::tree::Skeleton,
 }
 
 /// A rigid body: its frame (for `B.x`, `B.omega_x` and points on it), its centre
@@ -190,10 +194,10 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
     if reference.len() != 3 {
         return;
     }
-    let centre = match com {
+    let centre = match &com {
         None => reference.clone(),
         Some(Some(offset)) if offset.len() == 3 => {
-            offset_in_body(lw, &rotation.matrix, &reference, &offset)
+            offset_in_body(lw, &rotation.matrix, &reference, offset)
         }
         Some(_) => return,
     };
@@ -206,6 +210,21 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
             axes: Some(rotation.matrix),
         },
     );
+    let index = items.spins.len();
+    let zero = lw.ctx.zero();
+    let local = match &com {
+        Some(Some(offset)) => offset.clone(),
+        _ => vec![zero; 3],
+    };
+    items.skeleton.bodies.push(crate::tree::BodyFrame {
+        factors: rotation.factors,
+        reference: reference.clone(),
+    });
+    items.skeleton.masses.push(Some((index, local)));
+    items
+        .skeleton
+        .anchors
+        .push((reference.clone(), index, vec![zero; 3]));
     items
         .rotations
         .push((b.name.clone(), rotation.matrix, reference));
@@ -272,19 +291,24 @@ fn lower_point(lw: &mut Lowerer, p: &crate::ast::Point, items: &mut Items) {
         .mass
         .as_ref()
         .map(|m| lw.without_inputs(NoInputs::MASS, |lw| lw.expr(m, Mode::Constant)));
-    let position = match (&p.on, local) {
+    let (position, fixed_in) = match (&p.on, local) {
         (_, None) => return,
-        (None, Some(x)) => x,
+        (None, Some(x)) => (x, None),
         (Some(body), Some(local)) => {
-            let Some((_, r, c)) = items.rotations.iter().find(|(n, _, _)| n == body) else {
+            let Some(index) = items.rotations.iter().position(|(n, _, _)| n == body) else {
                 return;
             };
             // `check` has reported body coordinates that are not [x, y, z].
             if local.len() != 3 {
                 return;
             }
-            let (r, c) = (*r, c.clone());
-            offset_in_body(lw, &r, &c, &local)
+            let (r, c) = (items.rotations[index].1, items.rotations[index].2.clone());
+            let position = offset_in_body(lw, &r, &c, &local);
+            items
+                .skeleton
+                .anchors
+                .push((position.clone(), index, local.clone()));
+            (position, Some((index, local)))
         }
     };
     lw.declare_frame(
@@ -297,6 +321,7 @@ fn lower_point(lw: &mut Lowerer, p: &crate::ast::Point, items: &mut Items) {
         },
     );
     if let Some(Some(mass)) = mass {
+        items.skeleton.masses.push(fixed_in);
         items.points.push(PointModel {
             name: p.name.to_string(),
             mass,

@@ -1,0 +1,129 @@
+//! The recursive route (composite rigid bodies for M, recursive Newton–Euler for
+//! h and gravity) against the generic one (differentiating ξ(q)) on the same
+//! descriptions: M, Q − h, h and Q agree at random states; a description that
+//! is not a tree of revolute joints stays on the generic route.
+
+mod common;
+use common::{Lcg, close, eval, random_point};
+use lagrange_codegen::mechanics::{BiasRoute, Model, Route};
+
+fn model_by(src: &str, route: Route) -> Model {
+    let input: syn::DeriveInput = syn::parse_str(src).expect("test input parses");
+    match lagrange_codegen::model_by(&input, route) {
+        Ok(m) => m,
+        Err(e) => panic!("derivation failed: {e}"),
+    }
+}
+
+/// Both routes evaluated at 20 random states (parameters, q, q̇).
+fn routes_agree(src: &str) {
+    let generic = model_by(src, Route::Generic);
+    let recursive = model_by(src, Route::Recursive);
+    assert_eq!(recursive.bias_route, BiasRoute::Recursive);
+    assert_ne!(generic.bias_route, BiasRoute::Recursive);
+    let n = generic.dof();
+    let mut rng = Lcg(2024);
+    for _ in 0..20 {
+        let p = random_point(&generic, &mut rng);
+        let pair = |a: lagrange_symbolic::Expr, b: lagrange_symbolic::Expr| {
+            (eval(&generic, a, &p), eval(&recursive, b, &p))
+        };
+        for i in 0..n {
+            for j in 0..n {
+                let (a, b) = pair(generic.mass[i][j], recursive.mass[i][j]);
+                assert!(close(a, b, 1e-12), "M[{i}][{j}]: {a} vs {b}\n{src}");
+            }
+            for (what, a, b) in [
+                ("Q - h", generic.rhs[i], recursive.rhs[i]),
+                ("h", generic.bias[i], recursive.bias[i]),
+                ("Q", generic.forces[i], recursive.forces[i]),
+            ] {
+                let (a, b) = pair(a, b);
+                assert!(close(a, b, 1e-12), "{what}[{i}]: {a} vs {b}\n{src}");
+            }
+        }
+    }
+}
+
+#[test]
+fn spatial_chains_agree() {
+    for n in [1, 2, 3, 5] {
+        routes_agree(&lagrange_codegen::chain::spatial_chain_source(n));
+    }
+}
+
+#[test]
+fn euler_top_on_massless_links_agrees() {
+    // Three joints meet at the pivot: two massless links, then the top.
+    routes_agree(
+        "#[lagrange(coordinates(psi, theta, phi),
+            body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+                 at = [0, 0, 0], rotation = euler_zxz(psi, theta, phi)),
+            gravity = [0, 0, -g])]
+         struct Top { m: f64, a: f64, c: f64, l: f64, g: f64 }",
+    );
+}
+
+#[test]
+fn branched_tree_with_point_masses_and_full_inertia() {
+    // A base turning about z at a raised pivot, two arms on points of it (one
+    // about x, one about y), a point mass on each arm, a full inertia tensor,
+    // a user potential (a torsion spring) and a damper.
+    routes_agree(
+        "#[lagrange(coordinates(a, b, c, d),
+            body(base, mass = m0, inertia = [i1, i2, i3, p, p2, p3], com = [0.1, 0.2, h],
+                 at = [0, 0, h], rotation = rot_z(a)),
+            point(left, on = base, at = [0, w, h]),
+            point(right, on = base, at = [0.3, -w, 0.5 * h]),
+            body(arm1, mass = m1, inertia = [i1, i2, i3], com = [0, 0, -l],
+                 at = [left.x, left.y, left.z], rotation = rot_z(a) * rot_x(b)),
+            body(arm2, mass = m2, inertia = [i2, i3, i1, p, 0, p3], com = [l, 0, -l],
+                 at = [right.x, right.y, right.z], rotation = rot_z(a) * rot_y(c)),
+            body(hand, mass = m1, inertia = [i3, i3, i1], com = [0, l, 0],
+                 at = [tip.x, tip.y, tip.z], rotation = rot_z(a) * rot_y(c) * rot_x(d)),
+            point(tip, on = arm2, at = [w, 0.2, -2 * l]),
+            point(bob, on = arm1, at = [0, 0.1, -2 * l], mass = m2),
+            point(nut, on = hand, at = [0, l, w], mass = m0),
+            potential = k * (b^2) / 2 + k * (d^2) / 2,
+            dissipation = k * (dot(a)^2) / 2,
+            gravity = [0, g / 3, -g])]
+         struct Arms { m0: f64, m1: f64, m2: f64, i1: f64, i2: f64, i3: f64, p: f64,
+                       p2: f64, p3: f64, h: f64, w: f64, l: f64, k: f64, g: f64 }",
+    );
+}
+
+#[test]
+fn non_trees_stay_generic() {
+    let cases = [
+        // A translating coordinate.
+        "#[lagrange(coordinates(x, th),
+            body(b, mass = m, inertia = [m, m, m], at = [x, 0, 0], rotation = rot_z(th)))]
+         struct Cart { m: f64 }",
+        // A rotation about a sum of coordinates.
+        "#[lagrange(coordinates(a, b),
+            body(b1, mass = m, inertia = [m, m, m], at = [0, 0, 0], rotation = rot_z(a + b)),
+            point(p, mass = m, at = [a, b, 0]))]
+         struct Sum { m: f64 }",
+        // A free point mass beside a body.
+        "#[lagrange(coordinates(th, s),
+            body(b, mass = m, inertia = [m, m, m], at = [0, 0, 0], rotation = rot_z(th)),
+            point(p, mass = m, at = [s, 0, 0]))]
+         struct Free { m: f64 }",
+    ];
+    for src in cases {
+        let input: syn::DeriveInput = syn::parse_str(src).unwrap();
+        let err = lagrange_codegen::model_by(&input, Route::Recursive)
+            .err()
+            .unwrap_or_else(|| panic!("not a tree, yet recursive:\n{src}"));
+        assert!(err.to_string().contains("kinematic tree"), "{err}");
+        assert_ne!(model_by(src, Route::Auto).bias_route, BiasRoute::Recursive);
+    }
+}
+
+#[test]
+fn long_chains_take_the_recursive_route_alone() {
+    let src = lagrange_codegen::chain::spatial_chain_source(8);
+    let model = model_by(&src, Route::Auto);
+    assert_eq!(model.bias_route, BiasRoute::Recursive);
+    assert!(model.bias_other.is_empty());
+}
