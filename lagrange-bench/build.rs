@@ -1,11 +1,11 @@
-//! Writes the spatial chains of issue 10 (n = 6, 10, 12, 14) as derived
+//! Writes the spatial chains of issue 10 (n = 6, 10, 12, 14, 30) as derived
 //! models, one module each, for `benches/spatial.rs` and `tests/spatial.rs`.
 
 use std::fmt::Write;
 
 fn main() {
     let mut out = String::new();
-    for n in [6, 10, 12, 14] {
+    for n in [6, 10, 12, 14, 30] {
         let source = lagrange_codegen::chain::spatial_chain_source(n);
         let fields: Vec<String> = (0..n)
             .map(|k| format!("m{k}: 1.0 + 0.1 * {k}.0, l{k}: 1.0 - 0.02 * {k}.0"))

@@ -1,5 +1,5 @@
 //! Issue 10's spatial chain (n rods, joint axes alternating z, y) at n = 6, 10,
-//! 12, 14: M + (Q − h) and q̈ per call, the figures to set beside Pinocchio's
+//! 12, 14, 30: M + (Q − h) and q̈ per call, the figures to set beside Pinocchio's
 //! CRBA + NLE and ABA from `peer/pinocchio/run.sh` on the same machine, and
 //! the hand-written recursive peer (`lagrange_bench::recursive`) to n = 30.
 //!
@@ -40,6 +40,7 @@ fn spatial(c: &mut Criterion) {
     chain_bench!(c, n10, 10);
     chain_bench!(c, n12, 12);
     chain_bench!(c, n14, 14);
+    chain_bench!(c, n30, 30);
     // The hand-written recursive Newton–Euler peer (M by n unit-acceleration
     // passes: O(n²), heap-allocated), to n = 30.
     let mut group = c.benchmark_group("spatial_chain_recursive");

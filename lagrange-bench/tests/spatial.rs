@@ -29,6 +29,10 @@ fn mass_matrix_and_rhs_match_pinocchio() {
     let (m, f) = n14::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
     assert!(close(m[(0, 0)], 482.975828915347), "{}", m[(0, 0)]);
     assert!(close(f[0], 210.052527264394), "{}", f[0]);
+    let (q, v) = state::<30>();
+    let (m, f) = n30::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    assert!(close(m[(0, 0)], 1069.00074347317), "{}", m[(0, 0)]);
+    assert!(close(f[0], 697.322883981117), "{}", f[0]);
 }
 
 /// The hand-written recursive Newton–Euler chain equals the derived one.
@@ -60,4 +64,7 @@ fn recursive_newton_euler_matches_the_derivation() {
     let (q, v) = state::<14>();
     let (m, f) = n14::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
     check::<14>(f, m);
+    let (q, v) = state::<30>();
+    let (m, f) = n30::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    check::<30>(f, m);
 }
