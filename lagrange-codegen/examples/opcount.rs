@@ -8,7 +8,7 @@
 use std::time::Instant;
 
 use lagrange_codegen::chain::{n_link_source, spatial_chain_source};
-use lagrange_codegen::mechanics::Model;
+use lagrange_codegen::mechanics::{Model, Route};
 use lagrange_symbolic::{Expr, Program};
 
 const CATALOG: [(&str, &str); 6] = [
@@ -43,9 +43,9 @@ fn ops(model: &Model, outputs: &[Expr]) -> usize {
 /// operation counts of the programs the impls evaluate per step.
 fn catalog() {
     println!(
-        "\n| system | N | derive + emit (ms) | expansion (KiB) | M, Q − h | + G, γ (multipliers) | + A, b, c (reduced) |"
+        "\n| system | N | derive + emit (ms) | expansion (KiB) | M, Q − h | + G, γ (multipliers) | + A, b, c (reduced) | route for M, h |"
     );
-    println!("|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|");
     for (file, src) in CATALOG {
         let Ok(parsed) = syn::parse_file(src) else {
             println!("| {file}: does not parse |");
@@ -86,11 +86,12 @@ fn catalog() {
                 ops(&model, &all).to_string()
             });
             println!(
-                "| {} | {n} | {ms:.1} | {kib:.0} | {} | {} | {} |",
+                "| {} | {n} | {ms:.1} | {kib:.0} | {} | {} | {} | {:?} |",
                 input.ident,
                 ops(&model, &core),
                 multipliers.unwrap_or_else(|| "—".into()),
                 reduced.unwrap_or_else(|| "—".into()),
+                model.bias_route,
             );
         }
     }
@@ -130,9 +131,9 @@ fn main() {
 /// count of M and Q − h, and the size of the expansion, by n.
 fn spatial() {
     println!(
-        "\n| spatial n | derive + emit (ms) | ops (M, Q − h) | expansion (KiB) | EQUATIONS (KiB) |"
+        "\n| spatial n | derive + emit (ms) | ops (M, Q − h) | generic route: derive (ms), ops | expansion (KiB) | EQUATIONS (KiB) |"
     );
-    println!("|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|");
     let sizes: Vec<usize> = std::env::args()
         .nth(1)
         .map(|a| a.split(',').filter_map(|x| x.parse().ok()).collect())
@@ -149,6 +150,17 @@ fn spatial() {
         outputs.extend(&model.rhs);
         let ops = Program::new(&model.ctx, &outputs).op_count().total();
         let eq = lagrange_codegen::doc::equations(&model).len() as f64 / 1024.0;
-        println!("| {n} | {ms:.0} | {ops} | {kib:.0} | {eq:.0} |");
+        // The generic route (differentiating ξ(q)) for comparison, while it is quick.
+        let generic = if n <= 14 {
+            let start = Instant::now();
+            let g = lagrange_codegen::model_by(&input, Route::Generic).expect("derivation succeeds");
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let mut outputs: Vec<Expr> = g.mass.iter().flatten().copied().collect();
+            outputs.extend(&g.rhs);
+            format!("{ms:.0}, {}", Program::new(&g.ctx, &outputs).op_count().total())
+        } else {
+            "—".into()
+        };
+        println!("| {n} | {ms:.0} | {ops} | {generic} | {kib:.0} | {eq:.0} |");
     }
 }
