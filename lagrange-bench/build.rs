@@ -1,18 +1,26 @@
 //! Writes the spatial chains of issue 10 (n = 6, 10, 12, 14, 30) as derived
-//! models, one module each, for `benches/spatial.rs` and `tests/spatial.rs`.
+//! models, one module each (`nN`, and `aN` with the articulated-body algorithm), for `benches/spatial.rs` and `tests/spatial.rs`.
 
 use std::fmt::Write;
 
 fn main() {
     let mut out = String::new();
-    for n in [6, 10, 12, 14, 30] {
-        let source = lagrange_codegen::chain::spatial_chain_source(n);
+    // `nN` derives M and Q − h (q̈ by Cholesky), `aN` adds the articulated-body
+    // algorithm (q̈ in O(n)).
+    let sizes = [6, 10, 12, 14, 30];
+    let variants = sizes
+        .iter()
+        .map(|&n| (n, "n", ""))
+        .chain(sizes.iter().map(|&n| (n, "a", "emit(articulated), ")));
+    for (n, prefix, extra) in variants {
+        let source = lagrange_codegen::chain::spatial_chain_source(n)
+            .replace("#[lagrange(", &format!("#[lagrange({extra}"));
         let fields: Vec<String> = (0..n)
             .map(|k| format!("m{k}: 1.0 + 0.1 * {k}.0, l{k}: 1.0 - 0.02 * {k}.0"))
             .collect();
         let _ = write!(
             out,
-            "pub mod n{n} {{\n#[derive(lagrange::Lagrangian)]\n{source}\n\
+            "pub mod {prefix}{n} {{\n#[derive(lagrange::Lagrangian)]\n{source}\n\
              impl SpatialChain {{\n    /// Issue 10's parameters.\n    pub fn issue10() -> Self {{\n        \
              SpatialChain {{ {}, r: 0.05, g: 9.81 }}\n    }}\n}}\n}}\n",
             fields.join(", ")

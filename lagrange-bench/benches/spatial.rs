@@ -21,7 +21,7 @@ fn state<const N: usize>() -> (SVector<f64, N>, SVector<f64, N>) {
 }
 
 macro_rules! chain_bench {
-    ($c:expr, $module:ident, $n:literal) => {{
+    ($c:expr, $module:ident, $articulated:ident, $n:literal) => {{
         let sys = $module::SpatialChain::issue10();
         let (q, v) = state::<$n>();
         let mut group = $c.benchmark_group(concat!("spatial_chain_", stringify!($n)));
@@ -31,16 +31,20 @@ macro_rules! chain_bench {
         group.bench_function("accelerations", |b| {
             b.iter(|| lagrange::accelerations(&sys, black_box(&q), black_box(&v), 0.0))
         });
+        let aba = $articulated::SpatialChain::issue10();
+        group.bench_function("accelerations (articulated)", |b| {
+            b.iter(|| lagrange::accelerations(&aba, black_box(&q), black_box(&v), 0.0))
+        });
         group.finish();
     }};
 }
 
 fn spatial(c: &mut Criterion) {
-    chain_bench!(c, n6, 6);
-    chain_bench!(c, n10, 10);
-    chain_bench!(c, n12, 12);
-    chain_bench!(c, n14, 14);
-    chain_bench!(c, n30, 30);
+    chain_bench!(c, n6, a6, 6);
+    chain_bench!(c, n10, a10, 10);
+    chain_bench!(c, n12, a12, 12);
+    chain_bench!(c, n14, a14, 14);
+    chain_bench!(c, n30, a30, 30);
     // The hand-written recursive Newton–Euler peer (M by n unit-acceleration
     // passes: O(n²), heap-allocated), to n = 30.
     let mut group = c.benchmark_group("spatial_chain_recursive");

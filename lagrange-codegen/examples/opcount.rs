@@ -153,11 +153,15 @@ fn spatial() {
         // The generic route (differentiating ξ(q)) for comparison, while it is quick.
         let generic = if n <= 14 {
             let start = Instant::now();
-            let g = lagrange_codegen::model_by(&input, Route::Generic).expect("derivation succeeds");
+            let g =
+                lagrange_codegen::model_by(&input, Route::Generic).expect("derivation succeeds");
             let ms = start.elapsed().as_secs_f64() * 1e3;
             let mut outputs: Vec<Expr> = g.mass.iter().flatten().copied().collect();
             outputs.extend(&g.rhs);
-            format!("{ms:.0}, {}", Program::new(&g.ctx, &outputs).op_count().total())
+            format!(
+                "{ms:.0}, {}",
+                Program::new(&g.ctx, &outputs).op_count().total()
+            )
         } else {
             "—".into()
         };

@@ -79,6 +79,9 @@ pub enum Extra {
     Jacobians,
     /// Hamilton's form: the momentum ∂T/∂q̇ and ∂T/∂q, for the symplectic integrators.
     Hamiltonian,
+    /// q̈ by the articulated-body algorithm (O(n), no mass matrix), for a
+    /// kinematic tree; the unconstrained dynamics use it instead of M and Cholesky.
+    Articulated,
 }
 
 /// `force(point, [fx, fy, fz])`: a Cartesian force applied at a point.

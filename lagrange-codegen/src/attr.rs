@@ -119,11 +119,12 @@ impl Parse for Item {
                         "coriolis" => Extra::Coriolis,
                         "jacobians" => Extra::Jacobians,
                         "hamiltonian" => Extra::Hamiltonian,
+                        "articulated" => Extra::Articulated,
                         other => {
                             return Err(syn::Error::new(
                                 n.span(),
                                 format!(
-                                    "unknown output `{other}`; expected `reactions`, `coriolis`, `jacobians` or `hamiltonian`"
+                                    "unknown output `{other}`; expected `reactions`, `coriolis`, `jacobians`, `hamiltonian` or `articulated`"
                                 ),
                             ));
                         }
@@ -219,7 +220,10 @@ const LISTS: [(&str, &str); 12] = [
     ("nonholonomic", "nonholonomic(name = a(q, t)·q̇ + b, ...)"),
     ("speeds", "speeds(name = expr, ...)"),
     ("formulation", "formulation(multipliers, reduced)"),
-    ("emit", "emit(reactions, coriolis, jacobians, hamiltonian)"),
+    (
+        "emit",
+        "emit(reactions, coriolis, jacobians, hamiltonian, articulated)",
+    ),
     ("force", "force(point, [fx, fy, fz])"),
     ("generalized_force", "generalized_force(q = expr, ...)"),
 ];

@@ -67,6 +67,12 @@ fn check_formulation(cx: &Ctxt, system: &System) {
                 "`reactions` come from the multipliers: constraints are needed, in the `multipliers` formulation",
             );
         }
+        if *e == Extra::Articulated && !chosen.is_empty() {
+            cx.error_at(
+                name.span(),
+                "`articulated` replaces M and its factorisation in the unconstrained dynamics; a constrained system's runs need M: remove `articulated`",
+            );
+        }
     }
 }
 

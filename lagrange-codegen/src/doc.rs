@@ -88,7 +88,9 @@ fn header(model: &Model) -> String {
     let route = match model.bias_route {
         BiasRoute::Projection => "d'Alembert projection",
         BiasRoute::Christoffel => "Christoffel symbols",
-        BiasRoute::Recursive => "recursive Newton–Euler over the kinematic tree (M by composite rigid bodies)",
+        BiasRoute::Recursive => {
+            "recursive Newton–Euler over the kinematic tree (M by composite rigid bodies)"
+        }
     };
     let _ = writeln!(s, "h by {route}; T kinetic, V potential energy.");
     if let Some(c) = &model.constraints {

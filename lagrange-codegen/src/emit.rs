@@ -68,6 +68,9 @@ impl<'a> Emitter<'a> {
         if let Some(d) = model.reduced.as_ref().and_then(|r| r.derivatives.as_ref()) {
             add(&d.nu_symbols, "nu");
         }
+        if let Some(a) = &model.articulated {
+            add(&a.extra, "tau");
+        }
         if let Some(d) = model
             .constraints
             .as_ref()
@@ -268,6 +271,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let frame = Frame::new(system, n);
     let hamiltonian = optional_methods(&e, &frame, model);
     let run_in = run_in(&frame, model);
+    let forward_dynamics = forward_dynamics(&e, &frame, model);
     let constrained = impl_constrained(&e, &frame, model);
     let extras = extras(&e, &frame, model, system);
     let reduced = impl_reduced(&e, &frame, model);
@@ -333,6 +337,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
             }
 
             #hamiltonian
+            #forward_dynamics
             #run_in
         }
 
@@ -531,6 +536,33 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
             }
 
             #derivatives
+        }
+    }
+}
+
+/// `Lagrangian::forward_dynamics` by the articulated-body algorithm, with the
+/// smallest-to-largest pivot ratio for the singularity check.
+fn forward_dynamics(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    let Some(a) = &model.articulated else {
+        return TokenStream::new();
+    };
+    let Frame { s, n, .. } = f;
+    let vec_t = quote!(::lagrange::__private::SVector<#s, #n>);
+    let mut outputs = a.accelerations.clone();
+    outputs.extend(&a.pivots);
+    let (lets, outs) = e.program(&outputs);
+    let (acc, pivots) = outs.split_at(a.accelerations.len());
+    quote! {
+        #[inline]
+        fn forward_dynamics(&self, q: &#vec_t, v: &#vec_t, tau: &#vec_t, t: #s) -> ::core::option::Option<(#vec_t, #s)> {
+            #lets
+            let pivots: [#s; #n] = [#(#pivots),*];
+            let (mut lo, mut hi) = (pivots[0], pivots[0]);
+            for &d in &pivots[1..] {
+                if d < lo { lo = d; }
+                if d > hi { hi = d; }
+            }
+            ::core::option::Option::Some((<#vec_t>::from([#(#acc),*]), lo / hi))
         }
     }
 }

@@ -120,6 +120,14 @@ fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Mod
             check::mass_rows(cx, system, &model);
             (!cx.has_errors()).then_some(model)
         }
+        Err(msg) if msg == mechanics::ARTICULATED_NEEDS_A_TREE => {
+            let at = system
+                .extras
+                .iter()
+                .find(|(_, e)| *e == ast::Extra::Articulated);
+            cx.error_at(at.map_or(system.span, |(name, _)| name.span()), msg);
+            None
+        }
         Err(msg) => {
             let span = system.speeds.first().map_or(system.span, |u| u.name.span());
             cx.error_at(span, msg);

@@ -87,6 +87,16 @@ pub struct InputModel {
     pub jacobian_v: Vec<Vec<Sym>>,
 }
 
+/// q̈(q, q̇, τ) by the articulated-body algorithm (`emit(articulated)`).
+pub struct Articulation {
+    /// q̈, with the extra generalized forces as the free symbols `extra`.
+    pub accelerations: Vec<Sym>,
+    /// The articulated pivots D_i, for the singularity check.
+    pub pivots: Vec<Sym>,
+    /// Free symbols for the extra generalized forces (emitted as `tau[i]`).
+    pub extra: Vec<Sym>,
+}
+
 /// The equations of motion M q̈ + h = Q and the energies, as expressions.
 ///
 /// With inputs, everything here but [`Model::inputs`] is the unforced system
@@ -131,6 +141,8 @@ pub struct Model {
     /// Whether any body has rotational inertia (then `particles` alone does not
     /// give T).
     pub has_spin: bool,
+    /// The articulated-body forward dynamics, if asked for.
+    pub articulated: Option<Articulation>,
 }
 
 impl Model {
@@ -220,7 +232,8 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         Route::Generic => None,
         Route::Auto | Route::Recursive => {
             let point_masses: Vec<Sym> = points.iter().map(|p| p.mass).collect();
-            let point_positions: Vec<Vec<Sym>> = points.iter().map(|p| p.position.clone()).collect();
+            let point_positions: Vec<Vec<Sym>> =
+                points.iter().map(|p| p.position.clone()).collect();
             let inertias: Vec<Mat3> = spins.iter().map(|s| s.inertia).collect();
             let masses = crate::tree::Masses {
                 point_masses: &point_masses,
@@ -232,10 +245,12 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         }
     };
     if route == Route::Recursive && tree.is_none() {
-        return Err("the recursive route needs a kinematic tree of revolute joints: each body's \
+        return Err(
+            "the recursive route needs a kinematic tree of revolute joints: each body's \
                     rotation its parent's followed by rot_x/rot_y/rot_z of coordinates, its \
                     reference point fixed in the parent"
-            .to_string());
+                .to_string(),
+        );
     }
     let generic = tree
         .as_ref()
@@ -346,9 +361,8 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         let bias = crate::tree::inverse_dynamics(&mut ctx, tree, false);
         (mass, with_gravity, bias)
     });
-    let flat = |m: &[Vec<Sym>], v: &[Sym]| -> Vec<Sym> {
-        m.iter().flatten().chain(v).copied().collect()
-    };
+    let flat =
+        |m: &[Vec<Sym>], v: &[Sym]| -> Vec<Sym> { m.iter().flatten().chain(v).copied().collect() };
     let recursive_terms = match (generic_terms.as_ref(), recursive_terms) {
         (Some((gm, _, gh, _)), Some((rm, rg, rh))) => {
             let generic_cost = cost(&ctx, &flat(gm, gh));
@@ -389,6 +403,21 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         &forces,
         &generalized_forces,
     );
+    let articulated = if extras.contains(&Extra::Articulated) {
+        let Some(tree) = &tree else {
+            return Err(ARTICULATED_NEEDS_A_TREE.to_string());
+        };
+        Some(articulation(
+            &mut ctx,
+            tree,
+            potential,
+            dissipation,
+            &forces,
+            &generalized_forces,
+        ))
+    } else {
+        None
+    };
     // The `Lagrangian` methods are the unforced system: every input at zero.
     let (generalized, potential_total, inputs) =
         split_inputs(&mut ctx, input_names, generalized, potential_total);
@@ -521,7 +550,54 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         kinetic_gradient,
         particles: kin.iter().map(|k| (k.mass, k.position.clone())).collect(),
         has_spin: !spin.is_empty(),
+        articulated,
     })
+}
+
+/// The error for `emit(articulated)` on a description that is not a tree.
+pub const ARTICULATED_NEEDS_A_TREE: &str = "`articulated` needs a kinematic tree of revolute joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates, its reference point fixed in the parent, every point mass fixed in a body";
+
+/// q̈ by the articulated-body algorithm with every generalized force but
+/// gravity's (which the algorithm takes as a base acceleration) plus the
+/// runtime's extra forces `tau[i]`, all at zero input.
+fn articulation(
+    ctx: &mut Context,
+    tree: &crate::tree::Tree,
+    potential: Option<Sym>,
+    dissipation: Option<Sym>,
+    forces: &[(Vec<Sym>, Vec<Sym>)],
+    generalized_forces: &[(usize, Sym)],
+) -> Articulation {
+    let q = ctx.coordinates();
+    let qd = ctx.velocities();
+    let zero = ctx.zero();
+    let rest = generalized_forces_of(
+        ctx,
+        &q,
+        &qd,
+        potential.unwrap_or(zero),
+        dissipation,
+        forces,
+        generalized_forces,
+    );
+    let at_zero: Vec<(Sym, Sym)> = ctx.inputs().iter().map(|&u| (u, zero)).collect();
+    let extra: Vec<Sym> = (0..q.len())
+        .map(|i| ctx.free_symbol(&format!("tau{i}")))
+        .collect();
+    let tau: Vec<Sym> = rest
+        .iter()
+        .zip(&extra)
+        .map(|(&r, &x)| {
+            let r = ctx.substitute(r, &at_zero);
+            ctx.add(r, x)
+        })
+        .collect();
+    let fd = crate::tree::forward_dynamics(ctx, tree, &tau);
+    Articulation {
+        accelerations: fd.accelerations,
+        pivots: fd.pivots,
+        extra,
+    }
 }
 
 /// h_i = d/dt ∂T/∂q̇_i − ∂T/∂q_i at q̈ = 0.

@@ -128,9 +128,9 @@ pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Option
         if prefix == mine.len() {
             return None;
         }
-        if parent.is_some_and(|p| {
-            (0..bodies.len()).any(|o| o != p && o != b && joints[o] == joints[p])
-        }) {
+        if parent
+            .is_some_and(|p| (0..bodies.len()).any(|o| o != p && o != b && joints[o] == joints[p]))
+        {
             return None; // two bodies with one rotation: which one carries b is unclear
         }
         let reference = &bodies[b].reference;
@@ -177,7 +177,8 @@ pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Option
         match at {
             Some((b, local)) if local.len() == 3 && local.iter().all(|&x| fixed(ctx, x)) => {
                 let link = last_link[*b]?;
-                let add = point_inertia(ctx, masses.point_masses[i], [local[0], local[1], local[2]]);
+                let add =
+                    point_inertia(ctx, masses.point_masses[i], [local[0], local[1], local[2]]);
                 links[link].inertia = Some(add_inertia(ctx, links[link].inertia, add));
             }
             None if masses.point_positions[i].iter().all(|&x| fixed(ctx, x)) => {}
@@ -321,7 +322,10 @@ pub fn mass_matrix(ctx: &mut Context, tree: &Tree) -> Vec<Vec<Sym>> {
         let mut e = [zero; 3];
         e[a] = ctx.one();
         // F = I_c S: moment I_o e_a, force e_a × h.
-        let mut nf = [[ic.rot[0][a], ic.rot[1][a], ic.rot[2][a]], cross(ctx, e, ic.first)];
+        let mut nf = [
+            [ic.rot[0][a], ic.rot[1][a], ic.rot[2][a]],
+            cross(ctx, e, ic.first),
+        ];
         let qi = link.coordinate;
         m[qi][qi] = ic.rot[a][a];
         let mut j = i;
@@ -344,7 +348,8 @@ fn inertia_to_parent(ctx: &mut Context, link: &Link, i: &Inertia) -> Inertia {
     let cs = trig(ctx, link);
     let a = link.axis;
     let h = rotate(ctx, a, cs, i.first);
-    let cols: [[Sym; 3]; 3] = [0, 1, 2].map(|k| rotate(ctx, a, cs, [i.rot[0][k], i.rot[1][k], i.rot[2][k]]));
+    let cols: [[Sym; 3]; 3] =
+        [0, 1, 2].map(|k| rotate(ctx, a, cs, [i.rot[0][k], i.rot[1][k], i.rot[2][k]]));
     // cols[k] = E I e_k, so (E I)_{rk} = cols[k][r]; E I Eᵀ has rows E (E I)ᵀ rows.
     let ei = [0, 1, 2].map(|r| [cols[0][r], cols[1][r], cols[2][r]]);
     let mut rot = [0, 1, 2].map(|r| rotate(ctx, a, cs, ei[r]));
@@ -363,7 +368,11 @@ fn inertia_to_parent(ctx: &mut Context, link: &Link, i: &Inertia) -> Inertia {
         for r in 0..3 {
             for c in r..3 {
                 let ddrc = ctx.mul(d[r], d[c]);
-                let diag = if r == c { ctx.sub(dd, ddrc) } else { ctx.neg(ddrc) };
+                let diag = if r == c {
+                    ctx.sub(dd, ddrc)
+                } else {
+                    ctx.neg(ddrc)
+                };
                 let mut terms = vec![rot[r][c], ctx.mul(i.mass, diag)];
                 if r == c {
                     terms.push(two_dh);
@@ -477,4 +486,271 @@ fn body_force(
     let wp = cross(ctx, w, p);
     let force = [0, 1, 2].map(|k| ctx.sum(&[ma[k], ah[k], wp[k]]));
     [moment, force]
+}
+
+/// A spatial inertia as three 3×3 blocks acting on (ω, v): moment A ω + B v,
+/// force Bᵀ ω + C v. A rigid body has A = I_o, B = [h]×, C = m 1; an articulated
+/// body is any symmetric 6×6 of this shape.
+#[derive(Clone, Copy)]
+struct Spatial {
+    a: Mat3,
+    b: Mat3,
+    c: Mat3,
+}
+
+/// The accelerations by the articulated-body algorithm and its pivots.
+pub struct ForwardDynamics {
+    /// q̈_i, in coordinate order.
+    pub accelerations: Vec<Sym>,
+    /// D_i = Sᵢᵀ I_iᴬ Sᵢ, the pivots of M's LᵀDL factorisation in tree order: a
+    /// tiny ratio of the smallest to the largest says M is nearly singular.
+    pub pivots: Vec<Sym>,
+}
+
+fn rigid_spatial(ctx: &mut Context, i: Option<&Inertia>) -> Spatial {
+    let zero = ctx.zero();
+    let Some(i) = i else {
+        return Spatial {
+            a: [[zero; 3]; 3],
+            b: [[zero; 3]; 3],
+            c: [[zero; 3]; 3],
+        };
+    };
+    let h = i.first;
+    let mut b = [[zero; 3]; 3];
+    for (r, row) in b.iter_mut().enumerate() {
+        let (j, k) = ((r + 1) % 3, (r + 2) % 3);
+        row[k] = h[j];
+        row[j] = ctx.neg(h[k]);
+    }
+    let mut c = [[zero; 3]; 3];
+    for (r, row) in c.iter_mut().enumerate() {
+        row[r] = i.mass;
+    }
+    Spatial { a: i.rot, b, c }
+}
+
+fn transpose(m: &Mat3) -> Mat3 {
+    [0, 1, 2].map(|i| [0, 1, 2].map(|j| m[j][i]))
+}
+
+/// (moment, force) = I (ω, v).
+fn spatial_apply(ctx: &mut Context, s: &Spatial, w: [Sym; 3], v: [Sym; 3]) -> [[Sym; 3]; 2] {
+    let aw = mat_vec(ctx, &s.a, w);
+    let bv = mat_vec(ctx, &s.b, v);
+    let bt = transpose(&s.b);
+    let btw = mat_vec(ctx, &bt, w);
+    let cv = mat_vec(ctx, &s.c, v);
+    [add3(ctx, aw, bv), add3(ctx, btw, cv)]
+}
+
+/// E M Eᵀ; `symmetric` mirrors the upper triangle so equal entries are one node.
+fn conjugate(ctx: &mut Context, axis: usize, cs: (Sym, Sym), m: &Mat3, symmetric: bool) -> Mat3 {
+    let cols: [[Sym; 3]; 3] = [0, 1, 2].map(|k| rotate(ctx, axis, cs, [m[0][k], m[1][k], m[2][k]]));
+    let rows = [0, 1, 2].map(|r| [cols[0][r], cols[1][r], cols[2][r]]);
+    let mut out = [0, 1, 2].map(|r| rotate(ctx, axis, cs, rows[r]));
+    if symmetric {
+        for r in 0..3 {
+            for c in r + 1..3 {
+                out[c][r] = out[r][c];
+            }
+        }
+    }
+    out
+}
+
+/// [d]×, with [d]× x = d × x.
+fn skew(ctx: &mut Context, d: [Sym; 3]) -> Mat3 {
+    let zero = ctx.zero();
+    let mut m = [[zero; 3]; 3];
+    for (r, row) in m.iter_mut().enumerate() {
+        let (j, k) = ((r + 1) % 3, (r + 2) % 3);
+        row[k] = d[j];
+        row[j] = ctx.neg(d[k]);
+    }
+    m
+}
+
+fn mat_mul(ctx: &mut Context, x: &Mat3, y: &Mat3) -> Mat3 {
+    [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            let terms: Vec<Sym> = (0..3).map(|k| ctx.mul(x[i][k], y[k][j])).collect();
+            ctx.sum(&terms)
+        })
+    })
+}
+
+fn mat_add(ctx: &mut Context, x: &Mat3, y: &Mat3, sign: i64) -> Mat3 {
+    [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            if sign < 0 {
+                ctx.sub(x[i][j], y[i][j])
+            } else {
+                ctx.add(x[i][j], y[i][j])
+            }
+        })
+    })
+}
+
+/// Xᵀ I X for the motion transform X from the parent to the link: the blocks
+/// rotated by E, then moved from the link origin d to the parent origin,
+/// A' − B'[d]× + [d]×B'ᵀ − [d]×C'[d]×, B' + [d]×C', C'.
+fn spatial_to_parent(ctx: &mut Context, link: &Link, s: &Spatial) -> Spatial {
+    let cs = trig(ctx, link);
+    let axis = link.axis;
+    let a = conjugate(ctx, axis, cs, &s.a, true);
+    let b = conjugate(ctx, axis, cs, &s.b, false);
+    let c = conjugate(ctx, axis, cs, &s.c, true);
+    if link.offset.iter().all(|&x| ctx.is_zero(x)) {
+        return Spatial { a, b, c };
+    }
+    let d = skew(ctx, link.offset);
+    let bd = mat_mul(ctx, &b, &d);
+    let db = mat_mul(ctx, &d, &transpose(&b));
+    let dc = mat_mul(ctx, &d, &c);
+    let dcd = mat_mul(ctx, &dc, &d);
+    let mut ap = [[a[0][0]; 3]; 3];
+    for r in 0..3 {
+        for k in r..3 {
+            let e = ctx.sum(&[a[r][k], db[r][k]]);
+            let e = ctx.sub(e, bd[r][k]);
+            let e = ctx.sub(e, dcd[r][k]);
+            ap[r][k] = e;
+            ap[k][r] = e;
+        }
+    }
+    Spatial {
+        a: ap,
+        b: mat_add(ctx, &b, &dc, 1),
+        c,
+    }
+}
+
+/// q̈ by the articulated-body algorithm (Featherstone, Table 7.1) with the
+/// generalized forces `tau` (in coordinate order) and gravity: O(n) operations,
+/// no mass matrix and no factorisation.
+pub fn forward_dynamics(ctx: &mut Context, tree: &Tree, tau: &[Sym]) -> ForwardDynamics {
+    let n = tree.links.len();
+    let zero = ctx.zero();
+    let qd = ctx.velocities();
+    // Pass 1, outward: velocities, velocity-product accelerations c and the
+    // bias forces p = v ×* I v.
+    let mut vel: Vec<[[Sym; 3]; 2]> = Vec::with_capacity(n);
+    let mut bias_acc: Vec<[[Sym; 3]; 2]> = Vec::with_capacity(n);
+    let mut inertia: Vec<Spatial> = Vec::with_capacity(n);
+    let mut bias: Vec<[[Sym; 3]; 2]> = Vec::with_capacity(n);
+    for link in &tree.links {
+        let [w, v] = link.parent.map_or([[zero; 3]; 2], |p| vel[p]);
+        let cs = trig(ctx, link);
+        let rate = qd[link.coordinate];
+        let wd = cross(ctx, w, link.offset);
+        let v_at = add3(ctx, v, wd);
+        let w_in = rotate_back(ctx, link.axis, cs, w);
+        let v = rotate_back(ctx, link.axis, cs, v_at);
+        let mut w = w_in;
+        w[link.axis] = ctx.add(w[link.axis], rate);
+        let wq = cross_axis(ctx, w_in, link.axis, rate);
+        let vq = cross_axis(ctx, v, link.axis, rate);
+        vel.push([w, v]);
+        bias_acc.push([wq, vq]);
+        let spatial = rigid_spatial(ctx, link.inertia.as_ref());
+        let p = match &link.inertia {
+            None => [[zero; 3]; 2],
+            Some(_) => {
+                let [l, p] = spatial_apply(ctx, &spatial, w, v);
+                let wl = cross(ctx, w, l);
+                let vp = cross(ctx, v, p);
+                [add3(ctx, wl, vp), cross(ctx, w, p)]
+            }
+        };
+        inertia.push(spatial);
+        bias.push(p);
+    }
+    // Pass 2, inward: articulated inertias, U = Iᴬ S, D = Sᵀ U, u = τ − Sᵀ pᴬ.
+    let mut columns: Vec<[[Sym; 3]; 2]> = vec![[[zero; 3]; 2]; n];
+    let mut pivots = vec![zero; n];
+    let mut residual = vec![zero; n];
+    for i in (0..n).rev() {
+        let link = &tree.links[i];
+        let axis = link.axis;
+        let s = inertia[i];
+        let u_n = [s.a[0][axis], s.a[1][axis], s.a[2][axis]];
+        let u_f = s.b[axis];
+        let d = s.a[axis][axis];
+        let u = ctx.sub(tau[link.coordinate], bias[i][0][axis]);
+        columns[i] = [u_n, u_f];
+        pivots[i] = d;
+        residual[i] = u;
+        let Some(p) = link.parent else { continue };
+        // Iᵃ = Iᴬ − U Uᵀ/D, pᵃ = pᴬ + Iᵃ c + U u/D, carried to the parent.
+        let inv = ctx.powi(d, -1);
+        let scaled_n = u_n.map(|x| ctx.mul(x, inv));
+        let scaled_f = u_f.map(|x| ctx.mul(x, inv));
+        let outer = |ctx: &mut Context, x: [Sym; 3], y: [Sym; 3]| -> Mat3 {
+            [0, 1, 2].map(|r| [0, 1, 2].map(|c| ctx.mul(x[r], y[c])))
+        };
+        let ua = outer(ctx, scaled_n, u_n);
+        let ub = outer(ctx, scaled_n, u_f);
+        let uc = outer(ctx, scaled_f, u_f);
+        let mut art = Spatial {
+            a: mat_add(ctx, &s.a, &ua, -1),
+            b: mat_add(ctx, &s.b, &ub, -1),
+            c: mat_add(ctx, &s.c, &uc, -1),
+        };
+        for r in 0..3 {
+            for c in r + 1..3 {
+                art.a[c][r] = art.a[r][c];
+                art.c[c][r] = art.c[r][c];
+            }
+        }
+        let [cw, cv] = bias_acc[i];
+        let [ic_n, ic_f] = spatial_apply(ctx, &art, cw, cv);
+        let uu = ctx.mul(u, inv);
+        let un = u_n.map(|x| ctx.mul(x, uu));
+        let uf = u_f.map(|x| ctx.mul(x, uu));
+        let pn = [0, 1, 2].map(|k| ctx.sum(&[bias[i][0][k], ic_n[k], un[k]]));
+        let pf = [0, 1, 2].map(|k| ctx.sum(&[bias[i][1][k], ic_f[k], uf[k]]));
+        let moved = spatial_to_parent(ctx, link, &art);
+        inertia[p] = Spatial {
+            a: mat_add(ctx, &inertia[p].a, &moved.a, 1),
+            b: mat_add(ctx, &inertia[p].b, &moved.b, 1),
+            c: mat_add(ctx, &inertia[p].c, &moved.c, 1),
+        };
+        let [fn_, ff] = force_to_parent(ctx, link, pn, pf);
+        bias[p] = [add3(ctx, bias[p][0], fn_), add3(ctx, bias[p][1], ff)];
+    }
+    // Pass 3, outward: a' = X a_parent + c, q̈ = (u − Uᵀ a')/D, a = a' + S q̈.
+    let ground = {
+        let a = tree.gravity.map_or([zero; 3], |g| g.map(|x| ctx.neg(x)));
+        [[zero; 3], a]
+    };
+    let mut acc: Vec<[[Sym; 3]; 2]> = Vec::with_capacity(n);
+    let mut qdd = vec![zero; n];
+    for (i, link) in tree.links.iter().enumerate() {
+        let [al, a] = link.parent.map_or(ground, |p| acc[p]);
+        let cs = trig(ctx, link);
+        let ad = cross(ctx, al, link.offset);
+        let a_at = add3(ctx, a, ad);
+        let al = rotate_back(ctx, link.axis, cs, al);
+        let a = rotate_back(ctx, link.axis, cs, a_at);
+        let mut al = add3(ctx, al, bias_acc[i][0]);
+        let a = add3(ctx, a, bias_acc[i][1]);
+        let [u_n, u_f] = columns[i];
+        let mut terms = vec![residual[i]];
+        for k in 0..3 {
+            let x = ctx.mul(u_n[k], al[k]);
+            terms.push(ctx.neg(x));
+            let y = ctx.mul(u_f[k], a[k]);
+            terms.push(ctx.neg(y));
+        }
+        let num = ctx.sum(&terms);
+        let q = ctx.div(num, pivots[i]);
+        qdd[link.coordinate] = q;
+        al[link.axis] = ctx.add(al[link.axis], q);
+        acc.push([al, a]);
+    }
+    ForwardDynamics {
+        accelerations: qdd,
+        pivots,
+    }
 }

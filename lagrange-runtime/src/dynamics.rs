@@ -109,9 +109,17 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
+        let tau = if F::ACTIVE {
+            self.forcing.force(t, q, v)?
+        } else {
+            SVector::zeros()
+        };
+        if let Some(a) = self.articulated(t, q, v, &tau)? {
+            return Ok(a);
+        }
         let (m, mut rhs) = self.system.mass_matrix_and_rhs(q, v, t);
         if F::ACTIVE {
-            rhs += self.forcing.force(t, q, v)?;
+            rhs += tau;
         }
         if !(all_finite(m.as_slice()) && all_finite(rhs.as_slice())) {
             return Err(Error::non_finite(t, q, v));
@@ -128,6 +136,38 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
             return Err(Error::non_finite(t, q, v));
         }
         Ok(a)
+    }
+}
+
+impl<S, T: Real, F> Dynamics<'_, S, T, F> {
+    /// q̈ by the system's articulated-body algorithm, if it emits one, with the
+    /// forcing's generalized forces `tau`; its pivot ratio is checked against the
+    /// same tolerance as the Cholesky factorisation's.
+    fn articulated<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        tau: &SVector<T, N>,
+    ) -> Result<Option<SVector<T, N>>, Error>
+    where
+        S: Lagrangian<T, N>,
+    {
+        let Some((a, ratio)) = self.system.forward_dynamics(q, v, tau, t) else {
+            return Ok(None);
+        };
+        // `!(ratio >= tol)` also refuses a NaN ratio.
+        if !(ratio >= self.singular_tolerance) {
+            return Err(Error::SingularMassMatrix {
+                t: t.to_f64(),
+                q: to_vec(q),
+                ratio: ratio.to_f64(),
+            });
+        }
+        if !all_finite(a.as_slice()) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        Ok(Some(a))
     }
 }
 

@@ -90,6 +90,24 @@ pub trait Lagrangian<T: Real, const N: usize> {
         None
     }
 
+    /// q̈ by the articulated-body algorithm, with the extra generalized forces
+    /// `tau` added to Q, and the ratio of the smallest to the largest
+    /// articulated pivot (the pivots of M's LᵀDL factorisation). `None` unless
+    /// the description asks for it with `emit(articulated)` (a kinematic tree of
+    /// revolute joints); then the unconstrained dynamics use it in place of M and
+    /// its Cholesky factorisation: O(n) operations instead of O(n³) for the
+    /// factorisation, the better choice for long chains.
+    fn forward_dynamics(
+        &self,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        tau: &SVector<T, N>,
+        t: T,
+    ) -> Option<(SVector<T, N>, T)> {
+        let _ = (q, v, tau, t);
+        None
+    }
+
     /// The Jacobians of the right-hand side at the acceleration `a` = q̈:
     ///
     /// ```text
