@@ -555,7 +555,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
 }
 
 /// The error for `emit(articulated)` on a description that is not a tree.
-pub const ARTICULATED_NEEDS_A_TREE: &str = "`articulated` needs a kinematic tree of revolute joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates, its reference point fixed in the parent, every point mass fixed in a body";
+pub const ARTICULATED_NEEDS_A_TREE: &str = "`articulated` needs a kinematic tree of revolute joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates, its reference point fixed in the parent, every point mass fixed in a body; without one, remove `articulated` (q̈ then comes from M and its Cholesky factorisation)";
 
 /// q̈ by the articulated-body algorithm with every generalized force but
 /// gravity's (which the algorithm takes as a base acceleration) plus the
