@@ -26,8 +26,30 @@ fn main() {
             fields.join(", ")
         );
     }
-    let path = std::path::Path::new(&std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"))
-        .join("spatial_chains.rs");
-    std::fs::write(path, out).expect("OUT_DIR is writable");
+    let dir = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
+    let dir = std::path::Path::new(&dir);
+    std::fs::write(dir.join("spatial_chains.rs"), out).expect("OUT_DIR is writable");
+    // The planar chains (point masses, absolute angles) beside the closed form.
+    let mut out = String::new();
+    for n in [10, 20, 30] {
+        let source = lagrange_codegen::chain::n_link_source(n);
+        let fields: Vec<String> = (1..=n)
+            .map(|k| {
+                format!(
+                    "m{k}: 1.0 + 0.1 * {}.0, l{k}: 1.0 - 0.02 * {}.0",
+                    k - 1,
+                    k - 1
+                )
+            })
+            .collect();
+        let _ = write!(
+            out,
+            "pub mod planar{n} {{\n#[derive(lagrange::Lagrangian)]\n{source}\n\
+             impl Chain {{\n    /// The closed form's parameters.\n    pub fn sample() -> Self {{\n        \
+             Chain {{ {}, g: 9.81 }}\n    }}\n}}\n}}\n",
+            fields.join(", ")
+        );
+    }
+    std::fs::write(dir.join("planar_chains.rs"), out).expect("OUT_DIR is writable");
     println!("cargo::rerun-if-changed=build.rs");
 }

@@ -1,4 +1,5 @@
 //! Benchmarks: see `benches/`; peers in `peer/` and, hand-written in Rust,
-//! [`recursive`].
+//! [`recursive`] and [`closed_form`].
 
+pub mod closed_form;
 pub mod recursive;

@@ -71,6 +71,7 @@ impl<'a> Emitter<'a> {
         if let Some(a) = &model.articulated {
             add(&a.extra, "tau");
         }
+        add(&model.hoisted.symbols, "p");
         if let Some(d) = model
             .constraints
             .as_ref()
@@ -233,11 +234,16 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let bias = e.vector_body(&model.bias, &s, &nl);
     let forces = e.vector_body(&model.forces, &s, &nl);
 
-    let mut joint = upper.clone();
-    joint.extend(&model.rhs);
+    // M and Q − h over the hoisted parameter terms `p` (see `hoisted`).
+    let hoisted = &model.hoisted;
+    let mut joint: Vec<Sym> = (0..n)
+        .flat_map(|i| (i..n).map(move |j| hoisted.outputs[i * n + j]))
+        .collect();
+    let upper_len = joint.len();
+    joint.extend(&hoisted.outputs[n * n..n * n + n]);
     let (j_lets, j_outs) = e.program(&joint);
-    let j_fill = e.fill_matrix(&j_outs[..upper.len()], n);
-    let j_rhs = &j_outs[upper.len()..];
+    let j_fill = e.fill_matrix(&j_outs[..upper_len], n);
+    let j_rhs = &j_outs[upper_len..];
 
     let (k_lets, k_out) = e.program(&[model.kinetic]);
     let (p_lets, p_out) = e.program(&[model.potential]);
@@ -271,7 +277,9 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let frame = Frame::new(system, n);
     let hamiltonian = optional_methods(&e, &frame, model);
     let run_in = run_in(&frame, model);
-    let forward_dynamics = forward_dynamics(&e, &frame, model);
+    let (forward_dynamics, articulated_inner) = forward_dynamics(&e, &frame, model);
+    let h_len = Literal::usize_unsuffixed(hoisted.terms.len());
+    let (t_lets, t_outs) = e.program(&hoisted.terms);
     let constrained = impl_constrained(&e, &frame, model);
     let extras = extras(&e, &frame, model, system);
     let reduced = impl_reduced(&e, &frame, model);
@@ -312,10 +320,19 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
 
             #[inline]
             fn mass_matrix_and_rhs(&self, q: &#vec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
-                #j_lets
-                let mut m = <#mat_t>::zeros();
-                #j_fill
-                (m, <#vec_t>::from([#(#j_rhs),*]))
+                self.__lagrange_mass_matrix_and_rhs(&self.__lagrange_parameter_terms(), q, v, t)
+            }
+
+            fn parameter_terms(&self) -> ::std::vec::Vec<#s> {
+                self.__lagrange_parameter_terms().to_vec()
+            }
+
+            #[inline]
+            fn mass_matrix_and_rhs_with(&self, terms: &[#s], q: &#vec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
+                match <&[#s; #h_len]>::try_from(terms) {
+                    ::core::result::Result::Ok(p) => self.__lagrange_mass_matrix_and_rhs(p, q, v, t),
+                    ::core::result::Result::Err(_) => self.mass_matrix_and_rhs(q, v, t),
+                }
             }
 
             #[inline]
@@ -354,6 +371,29 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
             /// `$$ … $$` in a document or a notebook.
             pub const EQUATIONS_LATEX: &'static str = #latex;
             #extras
+        }
+
+        /// The parameter-only terms and the programs over them.
+        #[automatically_derived]
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
+        impl #impl_generics #ident #ty_generics #where_clause {
+            #[doc(hidden)]
+            #[inline]
+            pub fn __lagrange_parameter_terms(&self) -> [#s; #h_len] {
+                #t_lets
+                [#(#t_outs),*]
+            }
+
+            #[doc(hidden)]
+            #[inline]
+            pub fn __lagrange_mass_matrix_and_rhs(&self, p: &[#s; #h_len], q: &#vec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
+                #j_lets
+                let mut m = <#mat_t>::zeros();
+                #j_fill
+                (m, <#vec_t>::from([#(#j_rhs),*]))
+            }
+
+            #articulated_inner
         }
 
         #constrained
@@ -541,20 +581,37 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
 }
 
 /// `Lagrangian::forward_dynamics` by the articulated-body algorithm, with the
-/// smallest-to-largest pivot ratio for the singularity check.
-fn forward_dynamics(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+/// smallest-to-largest pivot ratio for the singularity check: the trait methods
+/// and the inherent program over the hoisted parameter terms `p`.
+fn forward_dynamics(e: &Emitter, f: &Frame, model: &Model) -> (TokenStream, TokenStream) {
     let Some(a) = &model.articulated else {
-        return TokenStream::new();
+        return (TokenStream::new(), TokenStream::new());
     };
     let Frame { s, n, .. } = f;
     let vec_t = quote!(::lagrange::__private::SVector<#s, #n>);
-    let mut outputs = a.accelerations.clone();
-    outputs.extend(&a.pivots);
-    let (lets, outs) = e.program(&outputs);
+    let dof = model.dof();
+    let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
+    let outputs = &model.hoisted.outputs[dof * dof + dof..];
+    let (lets, outs) = e.program(outputs);
     let (acc, pivots) = outs.split_at(a.accelerations.len());
-    quote! {
+    let methods = quote! {
         #[inline]
         fn forward_dynamics(&self, q: &#vec_t, v: &#vec_t, tau: &#vec_t, t: #s) -> ::core::option::Option<(#vec_t, #s)> {
+            ::core::option::Option::Some(self.__lagrange_forward_dynamics(&self.__lagrange_parameter_terms(), q, v, tau, t))
+        }
+
+        #[inline]
+        fn forward_dynamics_with(&self, terms: &[#s], q: &#vec_t, v: &#vec_t, tau: &#vec_t, t: #s) -> ::core::option::Option<(#vec_t, #s)> {
+            match <&[#s; #h_len]>::try_from(terms) {
+                ::core::result::Result::Ok(p) => ::core::option::Option::Some(self.__lagrange_forward_dynamics(p, q, v, tau, t)),
+                ::core::result::Result::Err(_) => self.forward_dynamics(q, v, tau, t),
+            }
+        }
+    };
+    let inner = quote! {
+        #[doc(hidden)]
+        #[inline]
+        pub fn __lagrange_forward_dynamics(&self, p: &[#s; #h_len], q: &#vec_t, v: &#vec_t, tau: &#vec_t, t: #s) -> (#vec_t, #s) {
             #lets
             let pivots: [#s; #n] = [#(#pivots),*];
             let (mut lo, mut hi) = (pivots[0], pivots[0]);
@@ -562,9 +619,10 @@ fn forward_dynamics(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
                 if d < lo { lo = d; }
                 if d > hi { hi = d; }
             }
-            ::core::option::Option::Some((<#vec_t>::from([#(#acc),*]), lo / hi))
+            (<#vec_t>::from([#(#acc),*]), lo / hi)
         }
-    }
+    };
+    (methods, inner)
 }
 
 /// The override of `Lagrangian::run_in` that makes `Simulation::run` run a

@@ -143,6 +143,10 @@ pub struct Model {
     pub has_spin: bool,
     /// The articulated-body forward dynamics, if asked for.
     pub articulated: Option<Articulation>,
+    /// M (row-major, N²), Q − h and the articulated outputs with their
+    /// parameter-only parts split off, computed once per parameter set by the
+    /// generated code ([`lagrange_symbolic::Context::hoist`]).
+    pub hoisted: lagrange_symbolic::Hoisted,
 }
 
 impl Model {
@@ -527,6 +531,14 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         }
     };
 
+    let hoisted = {
+        let mut outputs: Vec<Sym> = mass.iter().flatten().chain(&rhs).copied().collect();
+        if let Some(a) = &articulated {
+            outputs.extend(&a.accelerations);
+            outputs.extend(&a.pivots);
+        }
+        ctx.hoist(&outputs, "__hoisted")
+    };
     Ok(Model {
         ctx,
         coordinates,
@@ -551,6 +563,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         particles: kin.iter().map(|k| (k.mass, k.position.clone())).collect(),
         has_spin: !spin.is_empty(),
         articulated,
+        hoisted,
     })
 }
 

@@ -34,6 +34,9 @@ pub struct Dynamics<'a, S, T, F = NoForcing> {
     system: &'a S,
     singular_tolerance: T,
     forcing: F,
+    /// The system's parameter-only terms, if computed once for this run (see
+    /// [`with_parameter_terms`](Dynamics::with_parameter_terms)).
+    terms: &'a [T],
 }
 
 // Manual impls: derive would demand `S: Clone`, but only a reference is held.
@@ -51,6 +54,7 @@ impl<'a, S, T: Real> Dynamics<'a, S, T> {
             system,
             singular_tolerance: T::lit(DEFAULT_SINGULAR_TOLERANCE),
             forcing: NoForcing,
+            terms: &[],
         }
     }
 }
@@ -63,6 +67,24 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
             system: self.system,
             singular_tolerance: self.singular_tolerance,
             forcing,
+            terms: self.terms,
+        }
+    }
+
+    /// The same dynamics reading the system's parameter-only terms from `terms`
+    /// (from [`Lagrangian::parameter_terms`] of this system, computed once)
+    /// instead of recomputing them at every call. The runs of
+    /// [`Simulation`](crate::Simulation) do this themselves: the parameters are
+    /// borrowed for the whole run, so the terms cannot go stale.
+    pub fn with_parameter_terms<'b>(self, terms: &'b [T]) -> Dynamics<'b, S, T, F>
+    where
+        'a: 'b,
+    {
+        Dynamics {
+            system: self.system,
+            singular_tolerance: self.singular_tolerance,
+            forcing: self.forcing,
+            terms,
         }
     }
 
@@ -117,7 +139,7 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
         if let Some(a) = self.articulated(t, q, v, &tau)? {
             return Ok(a);
         }
-        let (m, mut rhs) = self.system.mass_matrix_and_rhs(q, v, t);
+        let (m, mut rhs) = self.system.mass_matrix_and_rhs_with(self.terms, q, v, t);
         if F::ACTIVE {
             rhs += tau;
         }
@@ -153,7 +175,7 @@ impl<S, T: Real, F> Dynamics<'_, S, T, F> {
     where
         S: Lagrangian<T, N>,
     {
-        let Some((a, ratio)) = self.system.forward_dynamics(q, v, tau, t) else {
+        let Some((a, ratio)) = self.system.forward_dynamics_with(self.terms, q, v, tau, t) else {
             return Ok(None);
         };
         // `!(ratio >= tol)` also refuses a NaN ratio.

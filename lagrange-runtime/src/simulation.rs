@@ -412,7 +412,8 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         S: Lagrangian<T, N>,
     {
         let (q0, v0) = (q0.into(), v0.into());
-        let dynamics = self.dynamics();
+        let terms = self.system.parameter_terms();
+        let dynamics = self.dynamics().with_parameter_terms(&terms);
         self.check_singular_tolerance()
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
         self.integrator
@@ -482,7 +483,8 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
     {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
-        let dynamics = sim.dynamics();
+        let terms = sim.system.parameter_terms();
+        let dynamics = sim.dynamics().with_parameter_terms(&terms);
         sim.check_singular_tolerance().map_err(|e| {
             failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
         })?;

@@ -108,6 +108,57 @@ pub trait Lagrangian<T: Real, const N: usize> {
         None
     }
 
+    /// The parameter-only terms of [`mass_matrix_and_rhs`](Self::mass_matrix_and_rhs)
+    /// and [`forward_dynamics`](Self::forward_dynamics): composite masses,
+    /// products of lengths and inertia sums that `#[derive(Lagrangian)]` splits
+    /// off so they are computed once per parameter set instead of at every call.
+    /// Empty for a hand-written system.
+    ///
+    /// The runs of [`Simulation`](crate::Simulation) compute them once per run
+    /// (the system is borrowed for the run, so its parameters cannot change
+    /// under it). A loop of its own — a controller, an optimiser — does the
+    /// same with the `_with` methods; compute the terms again after changing a
+    /// parameter (with stale terms the results are those of the old parameters):
+    ///
+    /// ```ignore
+    /// let terms = sys.parameter_terms();
+    /// for (q, v) in states {
+    ///     let (m, rhs) = sys.mass_matrix_and_rhs_with(&terms, &q, &v, 0.0);
+    /// }
+    /// ```
+    fn parameter_terms(&self) -> Vec<T> {
+        Vec::new()
+    }
+
+    /// [`mass_matrix_and_rhs`](Self::mass_matrix_and_rhs) over terms from
+    /// [`parameter_terms`](Self::parameter_terms) of this same system (terms of
+    /// the wrong length are ignored and recomputed).
+    #[allow(clippy::type_complexity)]
+    fn mass_matrix_and_rhs_with(
+        &self,
+        terms: &[T],
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        t: T,
+    ) -> (SMatrix<T, N, N>, SVector<T, N>) {
+        let _ = terms;
+        self.mass_matrix_and_rhs(q, v, t)
+    }
+
+    /// [`forward_dynamics`](Self::forward_dynamics) over terms from
+    /// [`parameter_terms`](Self::parameter_terms) of this same system.
+    fn forward_dynamics_with(
+        &self,
+        terms: &[T],
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        tau: &SVector<T, N>,
+        t: T,
+    ) -> Option<(SVector<T, N>, T)> {
+        let _ = terms;
+        self.forward_dynamics(q, v, tau, t)
+    }
+
     /// The Jacobians of the right-hand side at the acceleration `a` = q̈:
     ///
     /// ```text

@@ -32,6 +32,7 @@ mod diff;
 mod display;
 mod emit;
 mod eval;
+mod hoist;
 mod listing;
 mod node;
 mod program;
@@ -40,6 +41,7 @@ mod trig;
 
 pub use context::Context;
 pub use emit::EmitConfig;
+pub use hoist::Hoisted;
 pub use listing::ListingStyle;
 pub use node::{Expr, Func, Node, Symbol, SymbolKind};
 pub use program::{OpCount, Program};

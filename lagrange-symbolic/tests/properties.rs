@@ -185,3 +185,33 @@ proptest! {
         prop_assert_eq!(format!("{:?}", p1), format!("{:?}", p2));
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, .. ProptestConfig::default() })]
+
+    /// Hoisting keeps the value: the outputs evaluated with each stand-in bound
+    /// to its term's value equal the originals, and no term or rewritten output
+    /// hides a parameter-only part behind a coordinate.
+    #[test]
+    fn hoisting_preserves_value(t in tree(), u in tree(), vals in prop::array::uniform3(-2.0f64..2.0)) {
+        let mut cx = Context::new();
+        let syms = vec![cx.coordinate("q"), cx.parameter("p"), cx.parameter("r")];
+        let a = build(&mut cx, &syms, &t);
+        let b = build(&mut cx, &syms, &u);
+        let h = cx.hoist(&[a, b], "__h");
+        let env = point(&cx, &syms, vals);
+        let values: Vec<f64> = h.terms.iter().map(|&x| cx.eval(x, &env)).collect();
+        let ids: Vec<Symbol> = h.symbols.iter().map(|&s| cx.as_symbol(s).unwrap()).collect();
+        let bound = |s: Symbol| match ids.iter().position(|&i| i == s) {
+            Some(k) => values[k],
+            None => env(s),
+        };
+        for (orig, new) in [a, b].into_iter().zip(&h.outputs) {
+            let (v, w) = (cx.eval(orig, &env), cx.eval(*new, &bound));
+            prop_assert!(close(v, w, 1e-9), "{} = {v} but hoisted {} = {w}", cx.display(orig), cx.display(*new));
+        }
+        for &term in &h.terms {
+            prop_assert!(!cx.depends_on(term, syms[0]), "term {} depends on q", cx.display(term));
+        }
+    }
+}

@@ -206,7 +206,8 @@ where
     ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>> {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
-        let dynamics = sim.dynamics::<T>();
+        let terms = sim.system.parameter_terms();
+        let dynamics = sim.dynamics::<T>().with_parameter_terms(&terms);
         let prepare = || {
             sim.check_singular_tolerance()?;
             check_problem(span.start, span.end, &q0, &v0)?;
