@@ -221,6 +221,14 @@ fn point_inertia(ctx: &mut Context, mass: Sym, r: [Sym; 3]) -> Inertia {
     Inertia { mass, first, rot }
 }
 
+/// Copies the upper triangle below the diagonal, so a symmetric matrix holds
+/// one node per pair.
+fn mirror_upper(m: &mut Mat3) {
+    for (r, c) in [(0, 1), (0, 2), (1, 2)] {
+        m[c][r] = m[r][c];
+    }
+}
+
 fn add_inertia(ctx: &mut Context, a: Option<Inertia>, b: Inertia) -> Inertia {
     let Some(a) = a else { return b };
     Inertia {
@@ -387,11 +395,7 @@ fn inertia_to_parent(ctx: &mut Context, link: &Link, i: &Inertia) -> Inertia {
             }
         }
     } else {
-        for r in 0..3 {
-            for c in r + 1..3 {
-                rot[c][r] = rot[r][c];
-            }
-        }
+        mirror_upper(&mut rot);
     }
     Inertia {
         mass: i.mass,
@@ -550,11 +554,7 @@ fn conjugate(ctx: &mut Context, axis: usize, cs: (Sym, Sym), m: &Mat3, symmetric
     let rows = [0, 1, 2].map(|r| [cols[0][r], cols[1][r], cols[2][r]]);
     let mut out = [0, 1, 2].map(|r| rotate(ctx, axis, cs, rows[r]));
     if symmetric {
-        for r in 0..3 {
-            for c in r + 1..3 {
-                out[c][r] = out[r][c];
-            }
-        }
+        mirror_upper(&mut out);
     }
     out
 }
@@ -697,12 +697,8 @@ pub fn forward_dynamics(ctx: &mut Context, tree: &Tree, tau: &[Sym]) -> ForwardD
             b: mat_add(ctx, &s.b, &ub, -1),
             c: mat_add(ctx, &s.c, &uc, -1),
         };
-        for r in 0..3 {
-            for c in r + 1..3 {
-                art.a[c][r] = art.a[r][c];
-                art.c[c][r] = art.c[r][c];
-            }
-        }
+        mirror_upper(&mut art.a);
+        mirror_upper(&mut art.c);
         let [cw, cv] = bias_acc[i];
         let [ic_n, ic_f] = spatial_apply(ctx, &art, cw, cv);
         let uu = ctx.mul(u, inv);

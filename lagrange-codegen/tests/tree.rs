@@ -129,6 +129,7 @@ fn long_chains_take_the_recursive_route_alone() {
 }
 
 /// Solves M x = b by Gaussian elimination with partial pivoting (small n).
+#[allow(clippy::needless_range_loop)] // the textbook index form
 fn solve(mut m: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
     let n = b.len();
     for k in 0..n {
@@ -182,12 +183,11 @@ fn articulated_agrees(src: &str) {
             .map(|i| eval(&model, model.rhs[i], &p) + tau[i])
             .collect();
         let expected = solve(m, rhs);
-        for i in 0..n {
+        for (i, &want) in expected.iter().enumerate() {
             let got = model.ctx.eval(fd.accelerations[i], &env);
             assert!(
-                close(got, expected[i], 1e-10),
-                "q̈[{i}] of {n}: {got} vs {}\n{src}",
-                expected[i]
+                close(got, want, 1e-10),
+                "q̈[{i}] of {n}: {got} vs {want}\n{src}"
             );
         }
         for &d in &fd.pivots {

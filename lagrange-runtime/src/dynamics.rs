@@ -178,8 +178,8 @@ impl<S, T: Real, F> Dynamics<'_, S, T, F> {
         let Some((a, ratio)) = self.system.forward_dynamics_with(self.terms, q, v, tau, t) else {
             return Ok(None);
         };
-        // `!(ratio >= tol)` also refuses a NaN ratio.
-        if !(ratio >= self.singular_tolerance) {
+        // A NaN ratio (a NaN pivot) is refused too; the ratio is at most 1.
+        if !ratio.is_finite() || ratio < self.singular_tolerance {
             return Err(Error::SingularMassMatrix {
                 t: t.to_f64(),
                 q: to_vec(q),
