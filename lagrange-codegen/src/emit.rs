@@ -158,25 +158,27 @@ impl<'a> Emitter<'a> {
         quote!(#(#sets)*)
     }
 
-    fn fill_matrix(&self, outs: &[TokenStream], n: usize) -> TokenStream {
-        let mut k = 0;
-        let mut sets = Vec::new();
-        for i in 0..n {
-            for j in i..n {
-                let o = &outs[k];
-                k += 1;
-                if self.is_zero(o) {
-                    continue;
-                }
-                let (li, lj) = (Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(j));
-                if i == j {
-                    sets.push(quote!(m[(#li, #lj)] = #o;));
-                } else {
-                    sets.push(quote!(let _m = #o; m[(#li, #lj)] = _m; m[(#lj, #li)] = _m;));
-                }
+    /// The symmetric N×N matrix from its upper triangle, row by row, as one
+    /// array literal (columns; M is symmetric): no indexing, so no bounds
+    /// checks, whose thousands of branches slowed the optimiser on large models.
+    fn symmetric_matrix(&self, outs: &[TokenStream], n: usize) -> TokenStream {
+        let zero = constant(self.scalar, 0.0);
+        let at = |i: usize, j: usize| {
+            let (r, c) = if i <= j { (i, j) } else { (j, i) };
+            // Index of (r, c) in the row-major upper triangle.
+            let k = r * n - r * (r + 1) / 2 + c;
+            let o = &outs[k];
+            if self.is_zero(o) {
+                zero.clone()
+            } else {
+                o.clone()
             }
-        }
-        quote!(#(#sets)*)
+        };
+        let columns = (0..n).map(|j| {
+            let column = (0..n).map(|i| at(i, j));
+            quote!([#(#column),*])
+        });
+        quote!([#(#columns),*])
     }
 
     fn upper(&self) -> Vec<Sym> {
@@ -229,7 +231,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let upper = e.upper();
 
     let (m_lets, m_outs) = e.program(&upper);
-    let m_fill = e.fill_matrix(&m_outs, n);
+    let m_fill = e.symmetric_matrix(&m_outs, n);
 
     let bias = e.vector_body(&model.bias, &s, &nl);
     let forces = e.vector_body(&model.forces, &s, &nl);
@@ -242,7 +244,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let upper_len = joint.len();
     joint.extend(&hoisted.outputs[n * n..n * n + n]);
     let (j_lets, j_outs) = e.program(&joint);
-    let j_fill = e.fill_matrix(&j_outs[..upper_len], n);
+    let j_fill = e.symmetric_matrix(&j_outs[..upper_len], n);
     let j_rhs = &j_outs[upper_len..];
 
     let (k_lets, k_out) = e.program(&[model.kinetic]);
@@ -303,9 +305,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
             #[inline]
             fn mass_matrix(&self, q: &#vec_t, t: #s) -> #mat_t {
                 #m_lets
-                let mut m = <#mat_t>::zeros();
-                #m_fill
-                m
+                <#mat_t>::from(#m_fill)
             }
 
             #[inline]
@@ -378,19 +378,19 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
         impl #impl_generics #ident #ty_generics #where_clause {
             #[doc(hidden)]
-            #[inline]
+            #[inline(never)]
             pub fn __lagrange_parameter_terms(&self) -> [#s; #h_len] {
                 #t_lets
                 [#(#t_outs),*]
             }
 
+            // Not `#[inline]`: two trait methods call it, and one copy of a
+            // large straight-line program is what keeps model crates quick to
+            // build (the call costs nothing beside the body).
             #[doc(hidden)]
-            #[inline]
             pub fn __lagrange_mass_matrix_and_rhs(&self, p: &[#s; #h_len], q: &#vec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
                 #j_lets
-                let mut m = <#mat_t>::zeros();
-                #j_fill
-                (m, <#vec_t>::from([#(#j_rhs),*]))
+                (<#mat_t>::from(#j_fill), <#vec_t>::from([#(#j_rhs),*]))
             }
 
             #articulated_inner
@@ -514,7 +514,7 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let (mu, rest) = all_outs.split_at(upper.len());
     let (rhs, rest) = rest.split_at(n);
     let (gs, gamma) = rest.split_at(n * k);
-    let m_fill = e.fill_matrix(mu, n);
+    let m_fill = e.symmetric_matrix(mu, n);
     let g_fill_all = e.fill_dense(&quote!(g), gs, n);
 
     let derivatives = match &c.derivatives {
@@ -568,8 +568,7 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
             #[inline]
             fn constrained_system(&self, q: &#vec_n, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) {
                 #all_lets
-                let mut m = <#mat_nn>::zeros();
-                #m_fill
+                let m = <#mat_nn>::from(#m_fill);
                 let mut g = <#mat_kn>::zeros();
                 #g_fill_all
                 (m, <#vec_n>::from([#(#rhs),*]), g, <#vec_k>::from([#(#gamma),*]))
@@ -610,7 +609,6 @@ fn forward_dynamics(e: &Emitter, f: &Frame, model: &Model) -> (TokenStream, Toke
     };
     let inner = quote! {
         #[doc(hidden)]
-        #[inline]
         pub fn __lagrange_forward_dynamics(&self, p: &[#s; #h_len], q: &#vec_t, v: &#vec_t, tau: &#vec_t, t: #s) -> (#vec_t, #s) {
             #lets
             let pivots: [#s; #n] = [#(#pivots),*];
