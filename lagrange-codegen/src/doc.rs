@@ -88,6 +88,7 @@ fn header(model: &Model) -> String {
     let route = match model.bias_route {
         BiasRoute::Projection => "d'Alembert projection",
         BiasRoute::Christoffel => "Christoffel symbols",
+        BiasRoute::MassMatrix => "Christoffel symbols of M",
         BiasRoute::Recursive => {
             "recursive Newton–Euler over the kinematic tree (M by composite rigid bodies)"
         }

@@ -68,6 +68,9 @@ pub enum BiasRoute {
     /// Recursive Newton–Euler over the kinematic tree, with M by composite rigid
     /// bodies ([`crate::tree`]).
     Recursive,
+    /// h_i = Σ_jk (∂M_ij/∂q_k − ½ ∂M_jk/∂q_i) q̇_j q̇_k, the Christoffel symbols of
+    /// the derived M (scleronomic systems only).
+    MassMatrix,
 }
 
 /// How the inputs u enter: Q(q, q̇, u, t) = Q(q, q̇, 0, t) + ΔQ.
@@ -351,11 +354,21 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         let mass = mass_matrix(&mut ctx, &kin, &spin, n);
         let projection = bias_projection(&mut ctx, &kin, &spin, n);
         let christoffel = christoffel_bias(&mut ctx, kinetic, &q, &qd, &zero_acc);
-        if cost(&ctx, &projection) <= cost(&ctx, &christoffel) {
-            (mass, BiasRoute::Projection, projection, christoffel)
+        let (route, bias, other) = if cost(&ctx, &projection) <= cost(&ctx, &christoffel) {
+            (BiasRoute::Projection, projection, christoffel)
         } else {
-            (mass, BiasRoute::Christoffel, christoffel, projection)
+            (BiasRoute::Christoffel, christoffel, projection)
+        };
+        // M's entries come out simplified (sin² + cos² folded, cyclic
+        // coordinates gone) where T's velocity products do not: for a
+        // scleronomic system h from M's Christoffel symbols keeps that form.
+        if !rheonomic {
+            let from_mass = bias_from_mass(&mut ctx, &mass, &q, &qd);
+            if cost(&ctx, &from_mass) < cost(&ctx, &bias) {
+                return (mass, BiasRoute::MassMatrix, from_mass, bias);
+            }
         }
+        (mass, route, bias, other)
     });
     // The recursive route: M by CRBA, and h − Q_gravity in one RNEA pass for the
     // right-hand side (h alone for the `bias` output).
@@ -452,6 +465,19 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         }
     };
 
+    // T = ½ q̇ᵀ M q̇ for a scleronomic system, printed and emitted in M's
+    // simplified form where that is the cheaper program.
+    let kinetic = if rheonomic {
+        kinetic
+    } else {
+        let from_mass = quadratic_form(&mut ctx, &mass, &qd);
+        let cost = |ctx: &Context, e: Sym| Program::new(ctx, &[e]).op_count().weighted();
+        if cost(&ctx, from_mass) < cost(&ctx, kinetic) {
+            from_mass
+        } else {
+            kinetic
+        }
+    };
     let integral = if rheonomic {
         // Jacobi integral T2 − T0 + V (Suslov 32.56), with T2 = ½ q̇ᵀ M q̇ and
         // T0 = T at q̇ = 0.
@@ -611,6 +637,64 @@ fn articulation(
         pivots: fd.pivots,
         extra,
     }
+}
+
+/// ½ q̇ᵀ M q̇, off-diagonal pairs once.
+fn quadratic_form(ctx: &mut Context, mass: &[Vec<Sym>], qd: &[Sym]) -> Sym {
+    let n = qd.len();
+    let mut terms = Vec::new();
+    for i in 0..n {
+        for j in i..n {
+            if ctx.is_zero(mass[i][j]) {
+                continue;
+            }
+            let vv = ctx.mul(qd[i], qd[j]);
+            let e = ctx.mul(mass[i][j], vv);
+            terms.push(if i == j { e } else { ctx.add(e, e) });
+        }
+    }
+    let s = ctx.sum(&terms);
+    let half = ctx.rational(1, 2);
+    let e = ctx.mul(half, s);
+    ctx.collect(e)
+}
+
+/// h_i = Σ_{j≤k} c_ijk q̇_j q̇_k with c_ijk = ∂M_ij/∂q_k + ∂M_ik/∂q_j − ∂M_jk/∂q_i
+/// (halved on the diagonal j = k): the Christoffel symbols of M, for T = ½ q̇ᵀ M q̇.
+fn bias_from_mass(ctx: &mut Context, mass: &[Vec<Sym>], q: &[Sym], qd: &[Sym]) -> Vec<Sym> {
+    let n = q.len();
+    // d[k][i][j] = ∂M_ij/∂q_k, the same node at (i, j) and (j, i).
+    let mut d = vec![vec![vec![ctx.zero(); n]; n]; n];
+    for (k, dk) in d.iter_mut().enumerate() {
+        for i in 0..n {
+            for j in i..n {
+                let e = ctx.diff(mass[i][j], q[k]);
+                dk[i][j] = e;
+                dk[j][i] = e;
+            }
+        }
+    }
+    let half = ctx.rational(1, 2);
+    (0..n)
+        .map(|i| {
+            let mut terms = Vec::new();
+            for j in 0..n {
+                for k in j..n {
+                    let c = ctx.sum(&[d[k][i][j], d[j][i][k]]);
+                    let c = ctx.sub(c, d[i][j][k]);
+                    let c = if j == k { ctx.mul(half, c) } else { c };
+                    let c = ctx.collect(c);
+                    if ctx.is_zero(c) {
+                        continue;
+                    }
+                    let vv = ctx.mul(qd[j], qd[k]);
+                    terms.push(ctx.mul(c, vv));
+                }
+            }
+            let h = ctx.sum(&terms);
+            ctx.collect(h)
+        })
+        .collect()
 }
 
 /// h_i = d/dt ∂T/∂q̇_i − ∂T/∂q_i at q̈ = 0.
