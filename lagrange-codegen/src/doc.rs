@@ -35,9 +35,13 @@ pub fn texts(model: &Model) -> Texts {
     let mut latex = String::from("\\begin{aligned}\n");
     if tree_size(ctx, &exprs) <= TREE_LIMIT {
         let _ = writeln!(equations, "\nEntries not listed are zero.\n");
+        // Printed with angle sums folded (cos(θ₁ − θ₂), not the products the
+        // code computes), in a copy of the context so the model stays as emitted.
+        let mut shown = ctx.clone();
         for ((name, label), &e) in names.iter().zip(&labels).zip(&exprs) {
-            let _ = writeln!(equations, "{name} = {}", ctx.display(e));
-            let _ = writeln!(latex, "{label} &= {} \\\\", ctx.latex(e));
+            let e = shown.fold_angle_sums(e);
+            let _ = writeln!(equations, "{name} = {}", shown.display(e));
+            let _ = writeln!(latex, "{label} &= {} \\\\", shown.latex(e));
         }
     } else {
         let _ = writeln!(

@@ -205,7 +205,7 @@ pub fn derive(lowered: Lowered) -> Result<Model, String> {
 /// Derives the model by the given route.
 ///
 /// # Errors
-/// As [`derive`], and [`Route::Recursive`] on a description that is not a tree.
+/// As [`derive()`], and [`Route::Recursive`] on a description that is not a tree.
 pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
     let Lowered {
         mut ctx,

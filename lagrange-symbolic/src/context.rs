@@ -6,6 +6,7 @@ use std::sync::Arc;
 use crate::node::{Expr, Node, Symbol, SymbolKind};
 use crate::rational::{Num, Rational};
 
+#[derive(Clone)]
 struct SymbolInfo {
     name: String,
     kind: SymbolKind,
@@ -27,6 +28,7 @@ struct CoordinateSymbols {
 /// an integer comparison. Alongside each node the arena keeps its sorted set of
 /// free symbols, which makes `depends_on` a binary search and lets every
 /// traversal skip subtrees that cannot matter.
+#[derive(Clone)]
 pub struct Context {
     nodes: Vec<Node>,
     free: Vec<Arc<[Symbol]>>,

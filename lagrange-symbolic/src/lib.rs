@@ -32,6 +32,7 @@ mod diff;
 mod display;
 mod emit;
 mod eval;
+mod fold;
 mod hoist;
 mod listing;
 mod node;

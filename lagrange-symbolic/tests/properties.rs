@@ -215,3 +215,42 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, .. ProptestConfig::default() })]
+
+    /// Folding angle sums keeps the value, also on expanded trigonometry
+    /// (where the pairs it folds come from).
+    #[test]
+    fn folding_angle_sums_preserves_value(t in tree(), vals in prop::array::uniform3(-2.0f64..2.0)) {
+        let (mut cx, syms) = setup();
+        let e = build(&mut cx, &syms, &t);
+        let expanded = cx.expand_trig(e);
+        let env = point(&cx, &syms, vals);
+        for x in [e, expanded] {
+            let f = cx.fold_angle_sums(x);
+            let (v, w) = (cx.eval(x, &env), cx.eval(f, &env));
+            prop_assert!(close(v, w, 1e-9), "{} = {v} but folded {} = {w}", cx.display(x), cx.display(f));
+        }
+    }
+}
+
+#[test]
+fn angle_sums_fold_to_the_closed_forms() {
+    let mut cx = Context::new();
+    let (a, b, m) = (cx.coordinate("a"), cx.coordinate("b"), cx.parameter("m"));
+    let (sa, ca, sb, cb) = (cx.sin(a), cx.cos(a), cx.sin(b), cx.cos(b));
+    // m (cos a cos b + sin a sin b) = m cos(a − b)
+    let cc = cx.product(&[m, ca, cb]);
+    let ss = cx.product(&[m, sa, sb]);
+    let e = cx.add(cc, ss);
+    let f = cx.fold_angle_sums(e);
+    assert_eq!(cx.display(f), "m*cos(a - b)");
+    // 2 sin a cos b − 2 cos a sin b = 2 sin(a − b)
+    let two = cx.int(2);
+    let sc = cx.product(&[two, sa, cb]);
+    let cs = cx.product(&[two, ca, sb]);
+    let e = cx.sub(sc, cs);
+    let f = cx.fold_angle_sums(e);
+    assert_eq!(cx.display(f), "2*sin(a - b)");
+}
