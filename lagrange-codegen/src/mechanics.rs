@@ -889,11 +889,58 @@ fn mass_matrix(ctx: &mut Context, kin: &[Kinematics], spin: &[Spin], n: usize) -
             }
             let s = ctx.sum(&terms);
             let s = ctx.collect(s);
+            let s = simplest_entry(ctx, s);
             m[i][j] = s;
             m[j][i] = s;
         }
     }
     m
+}
+
+/// Entries up to this DAG size are also tried expanded (see [`simplest_entry`]).
+const EXPAND_ENTRIES_UP_TO: usize = 400;
+
+/// The cheapest of an entry as derived, expanded and collected (where
+/// sin² + cos² = 1 meets the squares of the Jacobian's sums of products:
+/// m₂((l₁ cos a + l₂ cos(a+b))² + (…)²) becomes m₂(l₁² + l₂² + 2 l₁ l₂ cos b)),
+/// and that with angle sums folded.
+fn simplest_entry(ctx: &mut Context, e: Sym) -> Sym {
+    if ctx.node_count(e) > EXPAND_ENTRIES_UP_TO {
+        return e;
+    }
+    let expanded = ctx.expand(e);
+    let collected = ctx.collect(expanded);
+    let folded = ctx.fold_angle_sums(collected);
+    [collected, folded].into_iter().fold(e, |best, c| {
+        if entry_cost(ctx, c) < entry_cost(ctx, best) {
+            c
+        } else {
+            best
+        }
+    })
+}
+
+/// Operations of an entry's program, with sines and cosines of bare
+/// coordinates free (every program computes those once anyway) and any other
+/// call at the weight of a call.
+fn entry_cost(ctx: &Context, e: Sym) -> usize {
+    let ops = Program::new(ctx, &[e]).op_count();
+    let mut seen = std::collections::HashSet::new();
+    let mut stack = vec![e];
+    let mut compound_calls = 0;
+    while let Some(x) = stack.pop() {
+        if !seen.insert(x) {
+            continue;
+        }
+        let node = ctx.node(x);
+        if let lagrange_symbolic::Node::Call(_, a) = node
+            && ctx.as_symbol(*a).is_none()
+        {
+            compound_calls += 1;
+        }
+        stack.extend(node.children());
+    }
+    ops.add + ops.mul + 4 * ops.div + 20 * compound_calls
 }
 
 /// h_i = Σ_ν m_ν (J_ν)_·iᵀ κ_ν + Σ_bodies W_iᵀ (I κ_ω + ω × I ω) (Euler's equations

@@ -191,6 +191,51 @@ fn heavy_top_output_is_free_of_cyclic_coordinates() {
     }
 }
 
+/// Positions written with angle sums (a crank and a coupler, b + th): M's
+/// entries come out as the closed forms — M₁₁ = m₂d² + m₃r², M₀₀ with
+/// 2 m₂ r_a d cos th — and neither M nor h depends on the cyclic angle b, where
+/// the squares of the Jacobian's sums of products used to keep it.
+#[test]
+fn angle_sums_in_positions_give_closed_forms() {
+    let src = "#[lagrange(coordinates(b, th),
+        point(p1, mass = m1, at = [ra * cos(b), ra * sin(b)]),
+        point(p2, mass = m2, at = [ra * cos(b) + d * cos(b + th), ra * sin(b) + d * sin(b + th)]),
+        point(p3, mass = m3, at = [rr * cos(b) * cos(th) - rr * sin(b) * sin(th), rr * sin(b + th)]))]
+     struct S { m1: f64, m2: f64, m3: f64, ra: f64, d: f64, rr: f64 }";
+    check_model(src);
+    let model = model(src);
+    let b = model.ctx.coordinates()[0];
+    let mut outputs = model.bias.clone();
+    outputs.extend(model.mass.iter().flatten());
+    for &e in &outputs {
+        assert!(!model.ctx.depends_on(e, b), "b in {}", model.ctx.display(e));
+    }
+    let mut rng = Lcg(9);
+    let p = random_point(&model, &mut rng);
+    let [m1, m2, m3, ra, d, rr] = [0, 1, 2, 3, 4, 5].map(|i| p.params[i]);
+    let th = p.q[1];
+    let want = [
+        [
+            m1 * ra * ra + m2 * (ra * ra + d * d + 2.0 * ra * d * th.cos()) + m3 * rr * rr,
+            0.0,
+        ],
+        [0.0, m2 * d * d + m3 * rr * rr],
+    ];
+    for (i, j) in [(0, 0), (1, 1)] {
+        let got = eval(&model, model.mass[i][j], &p);
+        assert!(
+            close(got, want[i][j], 1e-13),
+            "M[{i}][{j}]: {got} vs {}",
+            want[i][j]
+        );
+    }
+    assert_eq!(
+        model.ctx.display(model.mass[1][1]),
+        "m2*d^2 + m3*rr^2",
+        "M₁₁ as the closed form"
+    );
+}
+
 /// A full inertia tensor, a yaw–pitch–roll rotation and an explicit matrix factor.
 #[test]
 fn body_with_full_tensor_and_explicit_matrix() {
