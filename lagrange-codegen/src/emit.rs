@@ -505,13 +505,25 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let g0 = &jac_outs[n * k..];
     let (gamma_lets, gamma_outs) = e.program(&c.gamma);
 
-    let upper = e.upper();
-    let mut all = upper.clone();
-    all.extend(&model.rhs);
-    all.extend(&g_flat);
-    all.extend(&c.gamma);
+    // M, Q − h, G and γ over the hoisted parameter terms `p` (after M, Q − h
+    // and the articulated outputs in the hoisting's layout).
+    let hoisted = &model.hoisted;
+    let after = n * n
+        + n
+        + if model.articulated.is_some() {
+            2 * n
+        } else {
+            0
+        };
+    let mut all: Vec<Sym> = (0..n)
+        .flat_map(|i| (i..n).map(move |j| hoisted.outputs[i * n + j]))
+        .collect();
+    let upper_len = all.len();
+    all.extend(&hoisted.outputs[n * n..n * n + n]);
+    all.extend(&hoisted.outputs[after..after + n * k + k]);
     let (all_lets, all_outs) = e.program(&all);
-    let (mu, rest) = all_outs.split_at(upper.len());
+    let h_len = Literal::usize_unsuffixed(hoisted.terms.len());
+    let (mu, rest) = all_outs.split_at(upper_len);
     let (rhs, rest) = rest.split_at(n);
     let (gs, gamma) = rest.split_at(n * k);
     let m_fill = e.symmetric_matrix(mu, n);
@@ -567,14 +579,31 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
 
             #[inline]
             fn constrained_system(&self, q: &#vec_n, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) {
+                self.__lagrange_constrained_system(&self.__lagrange_parameter_terms(), q, v, t)
+            }
+
+            #[inline]
+            fn constrained_system_with(&self, terms: &[#s], q: &#vec_n, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) {
+                match <&[#s; #h_len]>::try_from(terms) {
+                    ::core::result::Result::Ok(p) => self.__lagrange_constrained_system(p, q, v, t),
+                    ::core::result::Result::Err(_) => self.constrained_system(q, v, t),
+                }
+            }
+
+            #derivatives
+        }
+
+        #[automatically_derived]
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
+        impl #ig #ident #tg #wc {
+            #[doc(hidden)]
+            pub fn __lagrange_constrained_system(&self, p: &[#s; #h_len], q: &#vec_n, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) {
                 #all_lets
                 let m = <#mat_nn>::from(#m_fill);
                 let mut g = <#mat_kn>::zeros();
                 #g_fill_all
                 (m, <#vec_n>::from([#(#rhs),*]), g, <#vec_k>::from([#(#gamma),*]))
             }
-
-            #derivatives
         }
     }
 }
@@ -590,7 +619,7 @@ fn forward_dynamics(e: &Emitter, f: &Frame, model: &Model) -> (TokenStream, Toke
     let vec_t = quote!(::lagrange::__private::SVector<#s, #n>);
     let dof = model.dof();
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
-    let outputs = &model.hoisted.outputs[dof * dof + dof..];
+    let outputs = &model.hoisted.outputs[dof * dof + dof..dof * dof + 3 * dof];
     let (lets, outs) = e.program(outputs);
     let (acc, pivots) = outs.split_at(a.accelerations.len());
     let methods = quote! {

@@ -557,11 +557,17 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         }
     };
 
+    // One hoisting over every program that takes the terms, laid out as
+    // [M (N²), Q − h (N), articulated q̈ and pivots (2N), G (K·N), γ (K)].
     let hoisted = {
         let mut outputs: Vec<Sym> = mass.iter().flatten().chain(&rhs).copied().collect();
         if let Some(a) = &articulated {
             outputs.extend(&a.accelerations);
             outputs.extend(&a.pivots);
+        }
+        if let Some(c) = &constraints {
+            outputs.extend(c.jacobian.iter().flatten());
+            outputs.extend(&c.gamma);
         }
         ctx.hoist(&outputs, "__hoisted")
     };

@@ -41,6 +41,8 @@ pub struct ReducedDynamics<'a, S, T, const K: usize, F = NoForcing> {
     system: &'a S,
     singular_tolerance: T,
     forcing: F,
+    /// The system's parameter-only terms, if computed once for the run.
+    terms: &'a [T],
 }
 
 // Manual impls: derive would demand `S: Clone`, but only a reference is held.
@@ -58,6 +60,7 @@ impl<'a, S, T: Real, const K: usize> ReducedDynamics<'a, S, T, K> {
             system,
             singular_tolerance: T::lit(DEFAULT_SINGULAR_TOLERANCE),
             forcing: NoForcing,
+            terms: &[],
         }
     }
 }
@@ -70,6 +73,21 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
             system: self.system,
             singular_tolerance: self.singular_tolerance,
             forcing,
+            terms: self.terms,
+        }
+    }
+
+    /// The same dynamics reading the system's parameter-only terms from `terms`
+    /// (see [`Dynamics::with_parameter_terms`](crate::Dynamics::with_parameter_terms)).
+    pub fn with_parameter_terms<'b>(self, terms: &'b [T]) -> ReducedDynamics<'b, S, T, K, F>
+    where
+        'a: 'b,
+    {
+        ReducedDynamics {
+            system: self.system,
+            singular_tolerance: self.singular_tolerance,
+            forcing: self.forcing,
+            terms,
         }
     }
 
@@ -280,7 +298,9 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     {
         let mut velocities = *v;
         part.complete(&mut velocities, &-rows.b);
-        let (mass, rhs) = self.system.mass_matrix_and_rhs(q, &velocities, t);
+        let (mass, rhs) = self
+            .system
+            .mass_matrix_and_rhs_with(self.terms, q, &velocities, t);
         let rates = self.system.row_rates(q, &velocities, t);
         if !(all_finite(mass.as_slice())
             && all_finite(rhs.as_slice())
@@ -314,7 +334,9 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         S: Reduced<T, N, K>,
     {
         let velocities = rows.velocities(&inverse, u);
-        let (mass, rhs) = self.system.mass_matrix_and_rhs(q, &velocities, t);
+        let (mass, rhs) = self
+            .system
+            .mass_matrix_and_rhs_with(self.terms, q, &velocities, t);
         let rates = self.system.row_rates(q, &velocities, t);
         if !(all_finite(mass.as_slice())
             && all_finite(rhs.as_slice())

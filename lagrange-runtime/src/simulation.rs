@@ -242,6 +242,8 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         let (dynamics, q0, v0) = self
             .prepare_constrained::<T, N, K>(span.start, q0, v0)
             .map_err(start)?;
+        let terms = self.system.parameter_terms();
+        let dynamics = dynamics.with_parameter_terms(&terms);
         self.integrator
             .integrate(&dynamics, span.start, span.end, q0, v0)
     }
@@ -344,7 +346,8 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         S: Reduced<T, N, K>,
     {
         let (q0, v0) = (q0.into(), v0.into());
-        let dynamics = self.reduced_dynamics::<T, K>();
+        let terms = self.system.parameter_terms();
+        let dynamics = self.reduced_dynamics::<T, K>().with_parameter_terms(&terms);
         let v0 = self
             .prepare_reduced(&dynamics, &span, q0, v0)
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
@@ -356,7 +359,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// ones with the speeds of `v0`.
     pub(crate) fn prepare_reduced<T: Real, const N: usize, const K: usize, F>(
         &self,
-        dynamics: &ReducedDynamics<'a, S, T, K, F>,
+        dynamics: &ReducedDynamics<'_, S, T, K, F>,
         span: &Range<T>,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
@@ -517,6 +520,8 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
         let (dynamics, q0, v0) = sim
             .prepare_constrained::<T, N, K>(span.start, q0, v0)
             .map_err(start)?;
+        let terms = sim.system.parameter_terms();
+        let dynamics = dynamics.with_parameter_terms(&terms);
         self.events
             .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
     }
@@ -538,7 +543,8 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
     {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
-        let dynamics = sim.reduced_dynamics::<T, K>();
+        let terms = sim.system.parameter_terms();
+        let dynamics = sim.reduced_dynamics::<T, K>().with_parameter_terms(&terms);
         let v0 = sim.prepare_reduced(&dynamics, &span, q0, v0).map_err(|e| {
             failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
         })?;

@@ -298,6 +298,26 @@ pub trait Constrained<T: Real, const N: usize, const K: usize>: Lagrangian<T, N>
         SVector<T, K>,
     );
 
+    /// [`constrained_system`](Self::constrained_system) over terms from
+    /// [`Lagrangian::parameter_terms`] of this same system (terms of the wrong
+    /// length are ignored and recomputed).
+    #[allow(clippy::type_complexity)]
+    fn constrained_system_with(
+        &self,
+        terms: &[T],
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        t: T,
+    ) -> (
+        SMatrix<T, N, N>,
+        SVector<T, N>,
+        SMatrix<T, K, N>,
+        SVector<T, K>,
+    ) {
+        let _ = terms;
+        self.constrained_system(q, v, t)
+    }
+
     /// Derivatives of the constraint terms at the accelerations `a` = q̈ and the
     /// multipliers `nu` = ν, for linearising the constrained dynamics:
     ///

@@ -212,6 +212,8 @@ pub struct ConstrainedDynamics<'a, S, T, const K: usize, F = NoForcing> {
     least_squares: bool,
     drift: Drift,
     forcing: F,
+    /// The system's parameter-only terms, if computed once for the run.
+    terms: &'a [T],
 }
 
 // Manual impls: derive would demand `S: Clone`, but only a reference is held.
@@ -233,6 +235,7 @@ impl<'a, S, T: Real, const K: usize> ConstrainedDynamics<'a, S, T, K> {
             least_squares: false,
             drift: Drift::None,
             forcing: NoForcing,
+            terms: &[],
         }
     }
 }
@@ -249,6 +252,24 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
             least_squares: self.least_squares,
             drift: self.drift,
             forcing,
+            terms: self.terms,
+        }
+    }
+
+    /// The same dynamics reading the system's parameter-only terms from `terms`
+    /// (see [`Dynamics::with_parameter_terms`](crate::Dynamics::with_parameter_terms)).
+    pub fn with_parameter_terms<'b>(self, terms: &'b [T]) -> ConstrainedDynamics<'b, S, T, K, F>
+    where
+        'a: 'b,
+    {
+        ConstrainedDynamics {
+            system: self.system,
+            singular_tolerance: self.singular_tolerance,
+            redundant_tolerance: self.redundant_tolerance,
+            least_squares: self.least_squares,
+            drift: self.drift,
+            forcing: self.forcing,
+            terms,
         }
     }
 
@@ -324,7 +345,7 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
-        let (m, mut f, g, mut gamma) = self.system.constrained_system(q, v, t);
+        let (m, mut f, g, mut gamma) = self.system.constrained_system_with(self.terms, q, v, t);
         if F::ACTIVE {
             f += self.forcing.force(t, q, v)?;
         }

@@ -237,7 +237,10 @@ where
     {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
-        let dynamics = sim.constrained_dynamics::<T, K>();
+        let terms = sim.system.parameter_terms();
+        let dynamics = sim
+            .constrained_dynamics::<T, K>()
+            .with_parameter_terms(&terms);
         let prepare = || {
             check_problem(span.start, span.end, &q0, &v0)?;
             let (_, q0, v0) = sim.prepare_constrained::<T, N, K>(span.start, q0, v0)?;
@@ -266,7 +269,8 @@ where
     {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
-        let dynamics = sim.reduced_dynamics::<T, K>();
+        let terms = sim.system.parameter_terms();
+        let dynamics = sim.reduced_dynamics::<T, K>().with_parameter_terms(&terms);
         let prepare = || Ok((q0, sim.prepare_reduced(&dynamics, &span, q0, v0)?));
         self.drive(
             |f| dynamics.with_forcing(f),
