@@ -97,7 +97,10 @@ struct Lowering<'a> {
     cx: &'a Context,
     ops: Vec<Op>,
     dedup: HashMap<Op, Value>,
-    memo: HashMap<Expr, Value>,
+    /// Each expression's value and whether it holds the negation.
+    memo: HashMap<Expr, (Value, bool)>,
+    /// Sums by (added terms, subtracted terms, constant bits), sorted.
+    sums: HashMap<(Vec<Value>, Vec<Value>, u64), Value>,
 }
 
 impl Lowering<'_> {
@@ -125,13 +128,27 @@ impl Lowering<'_> {
     }
 
     fn lower(&mut self, e: Expr) -> Value {
+        match self.lower_signed(e) {
+            (v, true) => self.push(Op::Neg(v)),
+            (v, false) => v,
+        }
+    }
+
+    /// `e` as a value and whether that value is −e. A sum whose negation was
+    /// already computed (`c·d − a·b` after `a·b − c·d`, as sin(θⱼ − θᵢ) after
+    /// sin(θᵢ − θⱼ)) is that value negated, and the sign travels up through
+    /// products into the sum that uses them, where it becomes a subtraction
+    /// instead of a negation, so the products are shared as well.
+    fn lower_signed(&mut self, e: Expr) -> (Value, bool) {
         if let Some(&v) = self.memo.get(&e) {
             return v;
         }
         let cx = self.cx;
         let v = match cx.node(e) {
-            Node::Const(_) | Node::Float(_) => self.constant(cx.as_f64(e).unwrap_or(f64::NAN)),
-            Node::Sym(s) => self.push(Op::Sym(*s)),
+            Node::Const(_) | Node::Float(_) => {
+                (self.constant(cx.as_f64(e).unwrap_or(f64::NAN)), false)
+            }
+            Node::Sym(s) => (self.push(Op::Sym(*s)), false),
             Node::Add(terms) => self.lower_sum(terms),
             Node::Mul(fs) => match cx.num(fs[0]) {
                 Some(c) => self.lower_product(c, &fs[1..]),
@@ -140,37 +157,73 @@ impl Lowering<'_> {
             Node::Pow(..) => self.lower_product(Num::ONE, &[e]),
             &Node::Call(f, a) => {
                 let a = self.lower(a);
-                self.push(Op::Call(f, a))
+                (self.push(Op::Call(f, a)), false)
             }
             &Node::Atan2(y, x) => {
                 let (y, x) = (self.lower(y), self.lower(x));
-                self.push(Op::Atan2(y, x))
+                (self.push(Op::Atan2(y, x)), false)
             }
             &Node::Select(t, a, b) => {
                 let (t, a, b) = (self.lower(t), self.lower(a), self.lower(b));
-                self.push(Op::Select(t, a, b))
+                (self.push(Op::Select(t, a, b)), false)
             }
         };
         self.memo.insert(e, v);
         v
     }
 
-    fn lower_sum(&mut self, terms: &[Expr]) -> Value {
+    fn lower_sum(&mut self, terms: &[Expr]) -> (Value, bool) {
         let cx = self.cx;
         let mut constant = 0.0;
         let (mut pos, mut neg) = (Vec::new(), Vec::new());
         for &t in terms {
             if let Some(n) = cx.num(t) {
                 constant += n.to_f64();
-            } else if cx.is_negative_term(t) {
+                continue;
+            }
+            let (v, negated) = if cx.is_negative_term(t) {
                 let Node::Mul(fs) = cx.node(t) else { continue };
                 let c = cx.num(fs[0]).unwrap_or(Num::MINUS_ONE);
-                neg.push(self.lower_product(c.neg(), &fs[1..]));
+                let (v, negated) = self.lower_product(c.neg(), &fs[1..]);
+                (v, !negated)
             } else {
-                pos.push(self.lower(t));
-            }
+                self.lower_signed(t)
+            };
+            if negated { neg.push(v) } else { pos.push(v) }
         }
-        let mut neg = neg.into_iter();
+        // The same sum with every sign flipped, if it was computed already.
+        let key = |a: &[Value], b: &[Value], c: f64| {
+            let (mut a, mut b) = (a.to_vec(), b.to_vec());
+            a.sort_unstable();
+            b.sort_unstable();
+            (a, b, (c + 0.0).to_bits())
+        };
+        if let Some(&v) = self.sums.get(&key(&neg, &pos, -constant)) {
+            return (v, true);
+        }
+        let mine = key(&pos, &neg, constant);
+        if let Some(&v) = self.sums.get(&mine) {
+            return (v, false);
+        }
+        // All terms subtracted and no positive constant: the sum of the
+        // subtracted terms, negated (the sign goes to the user).
+        let (v, negated) = if pos.is_empty() && constant <= 0.0 && !neg.is_empty() {
+            (self.build_sum(&neg, &[], -constant), true)
+        } else {
+            (self.build_sum(&pos, &neg, constant), false)
+        };
+        let stored = if negated {
+            key(&neg, &pos, -constant)
+        } else {
+            mine
+        };
+        self.sums.insert(stored, v);
+        (v, negated)
+    }
+
+    /// Σ pos − Σ neg + constant, `pos` non-empty or `constant` non-zero.
+    fn build_sum(&mut self, pos: &[Value], neg: &[Value], mut constant: f64) -> Value {
+        let mut neg = neg.iter().copied();
         let mut acc = if let Some(&p) = pos.first() {
             p
         } else if constant > 0.0 {
@@ -199,12 +252,15 @@ impl Lowering<'_> {
         acc
     }
 
-    fn lower_product(&mut self, coeff: Num, factors: &[Expr]) -> Value {
+    fn lower_product(&mut self, coeff: Num, factors: &[Expr]) -> (Value, bool) {
         let cx = self.cx;
         let (mut num, mut den) = (Vec::new(), Vec::new());
+        let mut flipped = false;
         for &f in factors {
             let Node::Pow(b, x) = *cx.node(f) else {
-                num.push(self.lower(f));
+                let (v, negated) = self.lower_signed(f);
+                flipped ^= negated;
+                num.push(v);
                 continue;
             };
             let base = self.lower(b);
@@ -233,8 +289,8 @@ impl Lowering<'_> {
                 }
             }
         }
+        let coeff = if flipped { coeff.neg() } else { coeff };
         let magnitude = coeff.abs().to_f64();
-        let negative = coeff.is_negative();
         let mut negate = false;
         let mut v = match self.chain(&num) {
             Some(t) if magnitude != 1.0 => {
@@ -242,7 +298,7 @@ impl Lowering<'_> {
                 self.push(Op::Mul(c, t))
             }
             Some(t) => {
-                negate = negative;
+                negate = coeff.is_negative();
                 t
             }
             None => self.constant(coeff.to_f64()),
@@ -250,7 +306,7 @@ impl Lowering<'_> {
         if let Some(d) = self.chain(&den) {
             v = self.push(Op::Div(v, d));
         }
-        if negate { self.push(Op::Neg(v)) } else { v }
+        (v, negate)
     }
 
     /// Left-to-right product of `vs` (`None` if empty).
@@ -290,6 +346,7 @@ impl Program {
             ops: Vec::new(),
             dedup: HashMap::new(),
             memo: HashMap::new(),
+            sums: HashMap::new(),
         };
         let outs: Vec<Value> = outputs.iter().map(|&o| lw.lower(o)).collect();
         Program {
