@@ -45,7 +45,7 @@ impl Program {
         let mut register_of: Vec<Option<usize>> = Vec::with_capacity(self.ops.len());
         let mut body = TokenStream::new();
         for (i, op) in self.ops.iter().enumerate() {
-            let expr = match self.expression(op, &operand, cfg) {
+            let expr = match self.expression(op, &|v| operand[v as usize].clone(), cfg) {
                 Ok(expr) => expr,
                 Err(inline) => {
                     operand.push(inline);
@@ -80,6 +80,134 @@ impl Program {
         (quote!(#(#declarations)* #body), outputs)
     }
 
+    /// The program split into pieces of at most `max_ops` operations, for
+    /// separate functions: LLVM's time grows faster than linearly with the
+    /// size of one function, so a model of tens of thousands of operations
+    /// builds several times faster in pieces. Values a later piece reads (and
+    /// the outputs) pass through the array `state`, one slot each; symbols and
+    /// constants are spelled inline as usual. `None` if one piece would do.
+    pub fn emit_chunked(
+        &self,
+        _ctx: &Context,
+        cfg: &EmitConfig,
+        max_ops: usize,
+        state: &TokenStream,
+    ) -> Option<Chunked> {
+        let inline = |op: &Op| matches!(op, Op::Sym(_) | Op::Const(_));
+        let computed = self.ops.iter().filter(|op| !inline(op)).count();
+        if computed <= max_ops {
+            return None;
+        }
+        let mut piece = vec![0usize; self.ops.len()];
+        let (mut count, mut current) = (0, 0);
+        for (i, op) in self.ops.iter().enumerate() {
+            if !inline(op) {
+                if count == max_ops {
+                    current += 1;
+                    count = 0;
+                }
+                count += 1;
+            }
+            piece[i] = current;
+        }
+        let mut slot: Vec<Option<usize>> = vec![None; self.ops.len()];
+        let mut slots = 0;
+        let mut give_slot = |v: usize, slot: &mut Vec<Option<usize>>| {
+            if slot[v].is_none() {
+                slot[v] = Some(slots);
+                slots += 1;
+            }
+        };
+        for (i, op) in self.ops.iter().enumerate() {
+            for v in op.operands() {
+                let v = v as usize;
+                if !inline(&self.ops[v]) && piece[v] < piece[i] {
+                    give_slot(v, &mut slot);
+                }
+            }
+        }
+        for &o in &self.outputs {
+            if !inline(&self.ops[o as usize]) {
+                give_slot(o as usize, &mut slot);
+            }
+        }
+        // Reads within a piece; a value read only later needs no register
+        // after its slot is written.
+        let mut last = vec![0usize; self.ops.len()];
+        for (i, op) in self.ops.iter().enumerate() {
+            for v in op.operands() {
+                if piece[v as usize] == piece[i] {
+                    last[v as usize] = i;
+                }
+            }
+        }
+        let mut operand: Vec<TokenStream> = Vec::with_capacity(self.ops.len());
+        let mut register_of: Vec<Option<usize>> = vec![None; self.ops.len()];
+        let mut chunks = Vec::new();
+        let mut body = TokenStream::new();
+        let mut registers = Registers::default();
+        let mut finish = |body: &mut TokenStream, registers: &mut Registers| {
+            let declarations = (0..registers.count).map(|r| {
+                let name = register_name(cfg, r);
+                quote!(let mut #name;)
+            });
+            chunks.push(quote!(#(#declarations)* #body));
+            *body = TokenStream::new();
+            *registers = Registers::default();
+        };
+        for (i, op) in self.ops.iter().enumerate() {
+            if i > 0 && piece[i] != piece[i - 1] {
+                finish(&mut body, &mut registers);
+            }
+            // Operands from earlier pieces are read from their slots.
+            let spell = |v: Value| -> TokenStream {
+                let v = v as usize;
+                match slot[v] {
+                    Some(k) if piece[v] < piece[i] => quote!(#state[#k]),
+                    _ => operand[v].clone(),
+                }
+            };
+            let expr = match self.expression(op, &spell, cfg) {
+                Ok(expr) => expr,
+                Err(inline) => {
+                    operand.push(inline);
+                    continue;
+                }
+            };
+            for v in op.operands() {
+                let v = v as usize;
+                if piece[v] == piece[i]
+                    && last[v] == i
+                    && let Some(r) = register_of[v]
+                {
+                    registers.release(r);
+                }
+            }
+            let r = registers.take();
+            let name = register_name(cfg, r);
+            body.extend(quote!(#name = #expr;));
+            if let Some(k) = slot[i] {
+                body.extend(quote!(#state[#k] = #name;));
+            }
+            operand.push(quote!(#name));
+            register_of[i] = Some(r);
+        }
+        finish(&mut body, &mut registers);
+        let outputs = self
+            .outputs
+            .iter()
+            .map(|&v| match slot[v as usize] {
+                Some(k) => quote!(#state[#k]),
+                None => operand[v as usize].clone(),
+            })
+            .collect();
+        Some(Chunked {
+            slots,
+            chunks,
+            outputs,
+        })
+    }
+
     /// The index of the last operation reading each value (`usize::MAX` for
     /// outputs, which are read after the program).
     fn last_uses(&self) -> Vec<usize> {
@@ -100,18 +228,18 @@ impl Program {
     fn expression(
         &self,
         op: &Op,
-        operand: &[TokenStream],
+        operand: &dyn Fn(Value) -> TokenStream,
         cfg: &EmitConfig,
     ) -> Result<TokenStream, TokenStream> {
-        let o = |v: Value| &operand[v as usize];
+        let o = |v: Value| operand(v);
         let f = cfg.function;
         Ok(match *op {
             Op::Sym(s) => return Err((cfg.symbol)(s)),
             Op::Const(b) => return Err((cfg.constant)(f64::from_bits(b))),
-            Op::Add(a, b) => binary(o(a), quote!(+), o(b)),
-            Op::Sub(a, b) => binary(o(a), quote!(-), o(b)),
-            Op::Mul(a, b) => binary(o(a), quote!(*), o(b)),
-            Op::Div(a, b) => binary(o(a), quote!(/), o(b)),
+            Op::Add(a, b) => binary(&o(a), quote!(+), &o(b)),
+            Op::Sub(a, b) => binary(&o(a), quote!(-), &o(b)),
+            Op::Mul(a, b) => binary(&o(a), quote!(*), &o(b)),
+            Op::Div(a, b) => binary(&o(a), quote!(/), &o(b)),
             Op::Neg(a) => {
                 let a = o(a);
                 quote!(-#a)
@@ -139,6 +267,16 @@ impl Program {
             }
         })
     }
+}
+
+/// A program emitted in pieces (see [`Program::emit_chunked`]).
+pub struct Chunked {
+    /// Length of the state array the pieces share.
+    pub slots: usize,
+    /// Each piece's declarations and assignments, to run in order.
+    pub chunks: Vec<TokenStream>,
+    /// One expression per output, read after the last piece.
+    pub outputs: Vec<TokenStream>,
 }
 
 /// Free registers, lowest first, so the output is deterministic.

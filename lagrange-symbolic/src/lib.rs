@@ -41,7 +41,7 @@ mod rational;
 mod trig;
 
 pub use context::Context;
-pub use emit::EmitConfig;
+pub use emit::{Chunked, EmitConfig};
 pub use hoist::Hoisted;
 pub use listing::ListingStyle;
 pub use node::{Expr, Func, Node, Symbol, SymbolKind};
