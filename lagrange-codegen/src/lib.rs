@@ -120,17 +120,17 @@ fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Mod
             check::mass_rows(cx, system, &model);
             (!cx.has_errors()).then_some(model)
         }
-        Err(msg) if msg == mechanics::ARTICULATED_NEEDS_A_TREE => {
+        Err(e @ mechanics::DeriveError::ArticulatedNeedsTree) => {
             let at = system
                 .extras
                 .iter()
                 .find(|(_, e)| *e == ast::Extra::Articulated);
-            cx.error_at(at.map_or(system.span, |(name, _)| name.span()), msg);
+            cx.error_at(at.map_or(system.span, |(name, _)| name.span()), e);
             None
         }
-        Err(msg) => {
+        Err(e) => {
             let span = system.speeds.first().map_or(system.span, |u| u.name.span());
-            cx.error_at(span, msg);
+            cx.error_at(span, e);
             None
         }
     }

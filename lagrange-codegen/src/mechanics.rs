@@ -78,8 +78,6 @@ pub struct InputModel {
     pub names: Vec<String>,
     /// The input symbols, in order (emitted as `u[i]`).
     pub symbols: Vec<Sym>,
-    /// Q with the inputs, Q(q, q̇, u, t).
-    pub total: Vec<Sym>,
     /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t).
     pub forces: Vec<Sym>,
     /// ∂Q/∂u (N × P), row-major.
@@ -156,6 +154,37 @@ impl Model {
     pub fn dof(&self) -> usize {
         self.coordinates.len()
     }
+
+    /// M's upper triangle (row-major) and then Q − h, over the hoisted terms.
+    /// The hoisting's layout is [M (N²), Q − h (N), articulated q̈ and pivots
+    /// (2N, if emitted), G (K·N) and γ (K, if the multiplier form is emitted)].
+    pub fn hoisted_upper_and_rhs(&self) -> Vec<Sym> {
+        let n = self.dof();
+        let out = &self.hoisted.outputs;
+        (0..n)
+            .flat_map(|i| (i..n).map(move |j| out[i * n + j]))
+            .chain(out[n * n..n * n + n].iter().copied())
+            .collect()
+    }
+
+    /// The articulated q̈ and then its pivots, over the hoisted terms.
+    pub fn hoisted_articulated(&self) -> Option<&[Sym]> {
+        let n = self.dof();
+        let start = n * n + n;
+        self.articulated
+            .as_ref()
+            .map(|_| &self.hoisted.outputs[start..start + 2 * n])
+    }
+
+    /// G (row-major) and then γ, over the hoisted terms.
+    pub fn hoisted_constraints(&self) -> Option<&[Sym]> {
+        let n = self.dof();
+        let start = n * n + n + if self.articulated.is_some() { 2 * n } else { 0 };
+        self.constraints.as_ref().map(|c| {
+            let k = c.names.len();
+            &self.hoisted.outputs[start..start + n * k + k]
+        })
+    }
 }
 
 /// Per-point kinematics: ξ, ξ̇, J = ∂ξ/∂q, ∂ξ/∂t and κ = ξ̈ − J q̈.
@@ -193,20 +222,48 @@ pub enum Route {
 /// route grows as n³ but its constant is small: it wins on a heavy top).
 const BOTH_ROUTES_UP_TO: usize = 6;
 
+/// What a kinematic tree is, for the errors that need one.
+const TREE: &str = "a kinematic tree of revolute joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates, its reference point fixed in the parent, every point mass fixed in a body";
+
+/// Why a description could not be derived (beyond what lowering reports).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum DeriveError {
+    /// A reduced form that cannot be built: speeds and constraints that do not
+    /// determine the velocities.
+    Reduction(String),
+    /// `emit(articulated)` on a description that is not a kinematic tree.
+    ArticulatedNeedsTree,
+    /// [`Route::Recursive`] asked of a description that is not a kinematic tree.
+    NotATree,
+}
+
+impl std::fmt::Display for DeriveError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DeriveError::Reduction(msg) => f.write_str(msg),
+            DeriveError::ArticulatedNeedsTree => write!(
+                f,
+                "`articulated` needs {TREE}; without one, remove `articulated` (q̈ then comes from M and its Cholesky factorisation)"
+            ),
+            DeriveError::NotATree => write!(f, "the recursive route needs {TREE}"),
+        }
+    }
+}
+
 /// Derives the model, by the recursive route where the bodies form a tree.
 ///
 /// # Errors
-/// A reduced form that cannot be built (speeds and constraints that do not
-/// determine the velocities), as a message for the whole description.
-pub fn derive(lowered: Lowered) -> Result<Model, String> {
+/// See [`DeriveError`].
+pub fn derive(lowered: Lowered) -> Result<Model, DeriveError> {
     derive_with(lowered, Route::Auto)
 }
 
 /// Derives the model by the given route.
 ///
 /// # Errors
-/// As [`derive()`], and [`Route::Recursive`] on a description that is not a tree.
-pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
+/// As [`derive()`], and [`DeriveError::NotATree`] for [`Route::Recursive`] on a
+/// description that is not a tree.
+pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError> {
     let Lowered {
         mut ctx,
         coordinates,
@@ -252,12 +309,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         }
     };
     if route == Route::Recursive && tree.is_none() {
-        return Err(
-            "the recursive route needs a kinematic tree of revolute joints: each body's \
-                    rotation its parent's followed by rot_x/rot_y/rot_z of coordinates, its \
-                    reference point fixed in the parent"
-                .to_string(),
-        );
+        return Err(DeriveError::NotATree);
     }
     let generic = tree
         .as_ref()
@@ -406,34 +458,23 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         };
         ctx.collect(v)
     };
-    // On the recursive route gravity is in the RNEA pass, so Q here is the rest.
+    // Q without gravity's share, for the recursive algorithms (which take
+    // gravity as a base acceleration); the generic route's Q has it all.
+    let wants_articulated = extras.contains(&Extra::Articulated);
     let zero = ctx.zero();
-    let generalized = generalized_forces_of(
-        &mut ctx,
-        &q,
-        &qd,
-        match (&recursive_terms, potential) {
-            (None, _) => potential_total,
-            (Some(_), v) => v.unwrap_or(zero),
-        },
-        dissipation,
-        &forces,
-        &generalized_forces,
-    );
-    let articulated = if extras.contains(&Extra::Articulated) {
-        let Some(tree) = &tree else {
-            return Err(ARTICULATED_NEEDS_A_TREE.to_string());
-        };
-        Some(articulation(
-            &mut ctx,
-            tree,
-            potential,
-            dissipation,
-            &forces,
-            &generalized_forces,
-        ))
-    } else {
-        None
+    let forces_of = |ctx: &mut Context, v: Sym| {
+        generalized_forces_of(ctx, &q, &qd, v, dissipation, &forces, &generalized_forces)
+    };
+    let without_gravity = (recursive_terms.is_some() || wants_articulated)
+        .then(|| forces_of(&mut ctx, potential.unwrap_or(zero)));
+    let generalized = match (&recursive_terms, &without_gravity) {
+        (Some(_), Some(rest)) => rest.clone(),
+        _ => forces_of(&mut ctx, potential_total),
+    };
+    let articulated = match (wants_articulated, &tree, &without_gravity) {
+        (false, _, _) => None,
+        (true, Some(tree), Some(rest)) => Some(articulation(&mut ctx, tree, rest)),
+        (true, _, _) => return Err(DeriveError::ArticulatedNeedsTree),
     };
     // The `Lagrangian` methods are the unforced system: every input at zero.
     let (generalized, potential_total, inputs) =
@@ -540,7 +581,8 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
                     &holonomic,
                     &nonholonomic,
                     &coordinates,
-                )?,
+                )
+                .map_err(DeriveError::Reduction)?,
             };
             let mut r = crate::constraint::reduce(
                 &mut ctx,
@@ -548,7 +590,8 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
                 &nonholonomic,
                 &speeds,
                 &coordinates,
-            )?;
+            )
+            .map_err(DeriveError::Reduction)?;
             r.free_speeds = free_speeds;
             if wants(Extra::Jacobians) {
                 r.derivatives = Some(crate::constraint::reduced_derivatives(&mut ctx, &r));
@@ -557,8 +600,8 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
         }
     };
 
-    // One hoisting over every program that takes the terms, laid out as
-    // [M (N²), Q − h (N), articulated q̈ and pivots (2N), G (K·N), γ (K)].
+    // One hoisting over every program that takes the terms, in the layout
+    // `Model::hoisted_*` reads.
     let hoisted = {
         let mut outputs: Vec<Sym> = mass.iter().flatten().chain(&rhs).copied().collect();
         if let Some(a) = &articulated {
@@ -599,34 +642,13 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, String> {
     })
 }
 
-/// The error for `emit(articulated)` on a description that is not a tree.
-pub const ARTICULATED_NEEDS_A_TREE: &str = "`articulated` needs a kinematic tree of revolute joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates, its reference point fixed in the parent, every point mass fixed in a body; without one, remove `articulated` (q̈ then comes from M and its Cholesky factorisation)";
-
-/// q̈ by the articulated-body algorithm with every generalized force but
-/// gravity's (which the algorithm takes as a base acceleration) plus the
-/// runtime's extra forces `tau[i]`, all at zero input.
-fn articulation(
-    ctx: &mut Context,
-    tree: &crate::tree::Tree,
-    potential: Option<Sym>,
-    dissipation: Option<Sym>,
-    forces: &[(Vec<Sym>, Vec<Sym>)],
-    generalized_forces: &[(usize, Sym)],
-) -> Articulation {
-    let q = ctx.coordinates();
-    let qd = ctx.velocities();
+/// q̈ by the articulated-body algorithm with `rest`, every generalized force
+/// but gravity's (which the algorithm takes as a base acceleration), at zero
+/// input, plus the runtime's extra forces `tau[i]`.
+fn articulation(ctx: &mut Context, tree: &crate::tree::Tree, rest: &[Sym]) -> Articulation {
     let zero = ctx.zero();
-    let rest = generalized_forces_of(
-        ctx,
-        &q,
-        &qd,
-        potential.unwrap_or(zero),
-        dissipation,
-        forces,
-        generalized_forces,
-    );
     let at_zero: Vec<(Sym, Sym)> = ctx.inputs().iter().map(|&u| (u, zero)).collect();
-    let extra: Vec<Sym> = (0..q.len())
+    let extra: Vec<Sym> = (0..rest.len())
         .map(|i| ctx.free_symbol(&format!("tau{i}")))
         .collect();
     let tau: Vec<Sym> = rest
@@ -786,7 +808,6 @@ fn split_inputs(
         jacobian_v: jacobian(ctx, &forces, &qd),
         jacobian_u,
         symbols: u,
-        total,
         forces,
     };
     (q0, v0, Some(model))
