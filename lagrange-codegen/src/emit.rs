@@ -261,13 +261,10 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let bias = e.vector_body(&model.bias, &s, &nl);
     let forces = e.vector_body(&model.forces, &s, &nl);
 
-    // M and Q − h over the hoisted parameter terms `p` (see `hoisted`).
+    // M and Q − h over the hoisted parameter terms `p`.
     let hoisted = &model.hoisted;
-    let mut joint: Vec<Sym> = (0..n)
-        .flat_map(|i| (i..n).map(move |j| hoisted.outputs[i * n + j]))
-        .collect();
-    let upper_len = joint.len();
-    joint.extend(&hoisted.outputs[n * n..n * n + n]);
+    let joint = model.hoisted_upper_and_rhs();
+    let upper_len = joint.len() - n;
     // A large program runs as pieces, each its own function, passing values
     // through the array `s`.
     let (j_lets, j_outs, j_pieces) = match e.program_chunked(&joint) {
@@ -563,24 +560,12 @@ fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let g0 = &jac_outs[n * k..];
     let (gamma_lets, gamma_outs) = e.program(&c.gamma);
 
-    // M, Q − h, G and γ over the hoisted parameter terms `p` (after M, Q − h
-    // and the articulated outputs in the hoisting's layout).
-    let hoisted = &model.hoisted;
-    let after = n * n
-        + n
-        + if model.articulated.is_some() {
-            2 * n
-        } else {
-            0
-        };
-    let mut all: Vec<Sym> = (0..n)
-        .flat_map(|i| (i..n).map(move |j| hoisted.outputs[i * n + j]))
-        .collect();
-    let upper_len = all.len();
-    all.extend(&hoisted.outputs[n * n..n * n + n]);
-    all.extend(&hoisted.outputs[after..after + n * k + k]);
+    // M, Q − h, G and γ over the hoisted parameter terms `p`.
+    let mut all = model.hoisted_upper_and_rhs();
+    let upper_len = all.len() - n;
+    all.extend(model.hoisted_constraints().unwrap_or_default());
     let (all_lets, all_outs) = e.program(&all);
-    let h_len = Literal::usize_unsuffixed(hoisted.terms.len());
+    let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
     let (mu, rest) = all_outs.split_at(upper_len);
     let (rhs, rest) = rest.split_at(n);
     let (gs, gamma) = rest.split_at(n * k);
@@ -675,9 +660,8 @@ fn forward_dynamics(e: &Emitter, f: &Frame, model: &Model) -> (TokenStream, Toke
     };
     let Frame { s, n, .. } = f;
     let vec_t = quote!(::lagrange::__private::SVector<#s, #n>);
-    let dof = model.dof();
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
-    let outputs = &model.hoisted.outputs[dof * dof + dof..dof * dof + 3 * dof];
+    let outputs = model.hoisted_articulated().unwrap_or_default();
     let (lets, outs) = e.program(outputs);
     let (acc, pivots) = outs.split_at(a.accelerations.len());
     let methods = quote! {
