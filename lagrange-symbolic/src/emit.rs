@@ -37,19 +37,105 @@ impl Program {
     /// The program as Rust: the declarations and assignments, and one expression
     /// per output (a variable, or an inlined symbol or constant).
     pub fn emit(&self, _ctx: &Context, cfg: &EmitConfig) -> (TokenStream, Vec<TokenStream>) {
-        let last_use = self.last_uses();
-        let mut registers = Registers::default();
-        // For each value: how it is read (an inlined symbol or constant, or the
-        // register holding it) and, for temporaries, the register index.
-        let mut operand: Vec<TokenStream> = Vec::with_capacity(self.ops.len());
-        let mut register_of: Vec<Option<usize>> = Vec::with_capacity(self.ops.len());
-        let mut body = TokenStream::new();
+        let piece = vec![0; self.ops.len()];
+        let slot = vec![None; self.ops.len()];
+        let (mut bodies, outputs) = self.emit_pieces(cfg, &piece, &slot, &TokenStream::new());
+        (bodies.pop().unwrap_or_default(), outputs)
+    }
+
+    /// The program split into pieces of at most `max_ops` operations, for
+    /// separate functions: LLVM's time grows faster than linearly with the
+    /// size of one function, so a model of tens of thousands of operations
+    /// builds faster in pieces. Values a later piece reads (and the outputs)
+    /// pass through the array `state`, one slot each; symbols and constants
+    /// are spelled inline as usual. `None` if one piece would do.
+    pub fn emit_chunked(
+        &self,
+        _ctx: &Context,
+        cfg: &EmitConfig,
+        max_ops: usize,
+        state: &TokenStream,
+    ) -> Option<Chunked> {
+        let piece = self.pieces(max_ops)?;
+        let (slot, slots) = self.slots(&piece);
+        let (chunks, outputs) = self.emit_pieces(cfg, &piece, &slot, state);
+        Some(Chunked {
+            slots,
+            chunks,
+            outputs,
+        })
+    }
+
+    /// Each operation's piece, cutting after every `max_ops` computed ones
+    /// (symbols and constants cost nothing); `None` if there is one piece.
+    fn pieces(&self, max_ops: usize) -> Option<Vec<usize>> {
+        let mut piece = vec![0usize; self.ops.len()];
+        let (mut count, mut current) = (0, 0);
         for (i, op) in self.ops.iter().enumerate() {
-            let expr = match self.expression(op, &|v| operand[v as usize].clone(), cfg) {
+            if !is_inline(op) {
+                if count == max_ops {
+                    current += 1;
+                    count = 0;
+                }
+                count += 1;
+            }
+            piece[i] = current;
+        }
+        (current > 0).then_some(piece)
+    }
+
+    /// A slot in the state array for every value a later piece reads and for
+    /// every computed output; the number of slots.
+    fn slots(&self, piece: &[usize]) -> (Vec<Option<usize>>, usize) {
+        let mut slot: Vec<Option<usize>> = vec![None; self.ops.len()];
+        let mut slots = 0;
+        let crossing = self.ops.iter().enumerate().flat_map(|(i, op)| {
+            op.operands()
+                .map(|v| v as usize)
+                .filter(move |&v| piece[v] < piece[i])
+        });
+        let outputs = self.outputs.iter().map(|&o| o as usize);
+        for v in crossing.chain(outputs) {
+            if !is_inline(&self.ops[v]) && slot[v].is_none() {
+                slot[v] = Some(slots);
+                slots += 1;
+            }
+        }
+        (slot, slots)
+    }
+
+    /// Each piece's declarations and assignments (registers reused by
+    /// liveness within the piece; a value with a slot is written to it when
+    /// computed and read from it in later pieces), and the outputs' spellings.
+    fn emit_pieces(
+        &self,
+        cfg: &EmitConfig,
+        piece: &[usize],
+        slot: &[Option<usize>],
+        state: &TokenStream,
+    ) -> (Vec<TokenStream>, Vec<TokenStream>) {
+        let last_use = self.last_uses(piece, slot);
+        let mut operand: Vec<TokenStream> = Vec::with_capacity(self.ops.len());
+        let mut register_of: Vec<Option<usize>> = vec![None; self.ops.len()];
+        let mut bodies = Vec::new();
+        let mut body = TokenStream::new();
+        let mut registers = Registers::default();
+        for (i, op) in self.ops.iter().enumerate() {
+            if i > 0 && piece[i] != piece[i - 1] {
+                bodies.push(registers.declare(cfg, std::mem::take(&mut body)));
+                registers = Registers::default();
+            }
+            let spell = |v: Value| -> TokenStream {
+                let v = v as usize;
+                match slot[v] {
+                    Some(k) if piece[v] < piece[i] => quote!(#state[#k]),
+                    _ => operand[v].clone(),
+                }
+            };
+            let expr = match self.expression(op, &spell, cfg) {
                 Ok(expr) => expr,
                 Err(inline) => {
                     operand.push(inline);
-                    register_of.push(None);
                     continue;
                 }
             };
@@ -65,134 +151,13 @@ impl Program {
             let r = registers.take();
             let name = register_name(cfg, r);
             body.extend(quote!(#name = #expr;));
-            operand.push(quote!(#name));
-            register_of.push(Some(r));
-        }
-        let declarations = (0..registers.count).map(|r| {
-            let name = register_name(cfg, r);
-            quote!(let mut #name;)
-        });
-        let outputs = self
-            .outputs
-            .iter()
-            .map(|&v| operand[v as usize].clone())
-            .collect();
-        (quote!(#(#declarations)* #body), outputs)
-    }
-
-    /// The program split into pieces of at most `max_ops` operations, for
-    /// separate functions: LLVM's time grows faster than linearly with the
-    /// size of one function, so a model of tens of thousands of operations
-    /// builds several times faster in pieces. Values a later piece reads (and
-    /// the outputs) pass through the array `state`, one slot each; symbols and
-    /// constants are spelled inline as usual. `None` if one piece would do.
-    pub fn emit_chunked(
-        &self,
-        _ctx: &Context,
-        cfg: &EmitConfig,
-        max_ops: usize,
-        state: &TokenStream,
-    ) -> Option<Chunked> {
-        let inline = |op: &Op| matches!(op, Op::Sym(_) | Op::Const(_));
-        let computed = self.ops.iter().filter(|op| !inline(op)).count();
-        if computed <= max_ops {
-            return None;
-        }
-        let mut piece = vec![0usize; self.ops.len()];
-        let (mut count, mut current) = (0, 0);
-        for (i, op) in self.ops.iter().enumerate() {
-            if !inline(op) {
-                if count == max_ops {
-                    current += 1;
-                    count = 0;
-                }
-                count += 1;
-            }
-            piece[i] = current;
-        }
-        let mut slot: Vec<Option<usize>> = vec![None; self.ops.len()];
-        let mut slots = 0;
-        let mut give_slot = |v: usize, slot: &mut Vec<Option<usize>>| {
-            if slot[v].is_none() {
-                slot[v] = Some(slots);
-                slots += 1;
-            }
-        };
-        for (i, op) in self.ops.iter().enumerate() {
-            for v in op.operands() {
-                let v = v as usize;
-                if !inline(&self.ops[v]) && piece[v] < piece[i] {
-                    give_slot(v, &mut slot);
-                }
-            }
-        }
-        for &o in &self.outputs {
-            if !inline(&self.ops[o as usize]) {
-                give_slot(o as usize, &mut slot);
-            }
-        }
-        // Reads within a piece; a value read only later needs no register
-        // after its slot is written.
-        let mut last = vec![0usize; self.ops.len()];
-        for (i, op) in self.ops.iter().enumerate() {
-            for v in op.operands() {
-                if piece[v as usize] == piece[i] {
-                    last[v as usize] = i;
-                }
-            }
-        }
-        let mut operand: Vec<TokenStream> = Vec::with_capacity(self.ops.len());
-        let mut register_of: Vec<Option<usize>> = vec![None; self.ops.len()];
-        let mut chunks = Vec::new();
-        let mut body = TokenStream::new();
-        let mut registers = Registers::default();
-        let mut finish = |body: &mut TokenStream, registers: &mut Registers| {
-            let declarations = (0..registers.count).map(|r| {
-                let name = register_name(cfg, r);
-                quote!(let mut #name;)
-            });
-            chunks.push(quote!(#(#declarations)* #body));
-            *body = TokenStream::new();
-            *registers = Registers::default();
-        };
-        for (i, op) in self.ops.iter().enumerate() {
-            if i > 0 && piece[i] != piece[i - 1] {
-                finish(&mut body, &mut registers);
-            }
-            // Operands from earlier pieces are read from their slots.
-            let spell = |v: Value| -> TokenStream {
-                let v = v as usize;
-                match slot[v] {
-                    Some(k) if piece[v] < piece[i] => quote!(#state[#k]),
-                    _ => operand[v].clone(),
-                }
-            };
-            let expr = match self.expression(op, &spell, cfg) {
-                Ok(expr) => expr,
-                Err(inline) => {
-                    operand.push(inline);
-                    continue;
-                }
-            };
-            for v in op.operands() {
-                let v = v as usize;
-                if piece[v] == piece[i]
-                    && last[v] == i
-                    && let Some(r) = register_of[v]
-                {
-                    registers.release(r);
-                }
-            }
-            let r = registers.take();
-            let name = register_name(cfg, r);
-            body.extend(quote!(#name = #expr;));
             if let Some(k) = slot[i] {
                 body.extend(quote!(#state[#k] = #name;));
             }
             operand.push(quote!(#name));
             register_of[i] = Some(r);
         }
-        finish(&mut body, &mut registers);
+        bodies.push(registers.declare(cfg, body));
         let outputs = self
             .outputs
             .iter()
@@ -201,24 +166,24 @@ impl Program {
                 None => operand[v as usize].clone(),
             })
             .collect();
-        Some(Chunked {
-            slots,
-            chunks,
-            outputs,
-        })
+        (bodies, outputs)
     }
 
-    /// The index of the last operation reading each value (`usize::MAX` for
-    /// outputs, which are read after the program).
-    fn last_uses(&self) -> Vec<usize> {
+    /// The index of the last operation of the same piece reading each value
+    /// (`usize::MAX` for an output without a slot, read after the program).
+    fn last_uses(&self, piece: &[usize], slot: &[Option<usize>]) -> Vec<usize> {
         let mut last = vec![0usize; self.ops.len()];
         for (i, op) in self.ops.iter().enumerate() {
             for v in op.operands() {
-                last[v as usize] = i;
+                if piece[v as usize] == piece[i] {
+                    last[v as usize] = i;
+                }
             }
         }
         for &v in &self.outputs {
-            last[v as usize] = usize::MAX;
+            if slot[v as usize].is_none() {
+                last[v as usize] = usize::MAX;
+            }
         }
         last
     }
@@ -300,6 +265,19 @@ impl Registers {
     fn release(&mut self, r: usize) {
         self.free.insert(r);
     }
+
+    /// `let mut` for every register used, then `body`.
+    fn declare(&self, cfg: &EmitConfig, body: TokenStream) -> TokenStream {
+        let declarations = (0..self.count).map(|r| {
+            let name = register_name(cfg, r);
+            quote!(let mut #name;)
+        });
+        quote!(#(#declarations)* #body)
+    }
+}
+
+fn is_inline(op: &Op) -> bool {
+    matches!(op, Op::Sym(_) | Op::Const(_))
 }
 
 fn register_name(cfg: &EmitConfig, r: usize) -> Ident {

@@ -39,42 +39,14 @@ impl Context {
         if let Some(&r) = memo.get(&e) {
             return r;
         }
-        let r = match self.node(e).clone() {
-            Node::Const(_) | Node::Float(_) | Node::Sym(_) => e,
-            Node::Add(ts) => {
-                let terms: Vec<Expr> = ts.iter().map(|&t| self.fold_in(t, memo)).collect();
-                let mut s = self.sum(&terms);
-                // A fold can expose another (sin(a + b) cos c + cos(a + b) sin c).
-                for _ in 0..4 {
-                    match self.fold_sum(s) {
-                        Some(next) => s = next,
-                        None => break,
-                    }
-                }
-                s
+        let mut r = self.rebuild(e, |cx, c| cx.fold_in(c, memo));
+        // A fold can expose another (sin(a + b) cos c + cos(a + b) sin c).
+        for _ in 0..4 {
+            match self.fold_sum(r) {
+                Some(next) => r = next,
+                None => break,
             }
-            Node::Mul(fs) => {
-                let fs: Vec<Expr> = fs.iter().map(|&f| self.fold_in(f, memo)).collect();
-                self.product(&fs)
-            }
-            Node::Pow(b, x) => {
-                let (b, x) = (self.fold_in(b, memo), self.fold_in(x, memo));
-                self.pow(b, x)
-            }
-            Node::Call(f, a) => {
-                let a = self.fold_in(a, memo);
-                self.func(f, a)
-            }
-            Node::Atan2(y, x) => {
-                let (y, x) = (self.fold_in(y, memo), self.fold_in(x, memo));
-                self.atan2(y, x)
-            }
-            Node::Select(t, a, b) => {
-                let t = self.fold_in(t, memo);
-                let (a, b) = (self.fold_in(a, memo), self.fold_in(b, memo));
-                self.select(t, a, b)
-            }
-        };
+        }
         memo.insert(e, r);
         r
     }

@@ -25,8 +25,8 @@ pub struct Hoisted {
     pub outputs: Vec<Expr>,
 }
 
+/// The terms found so far and the rewrites done.
 struct Pass<'a> {
-    ctx: &'a mut Context,
     prefix: &'a str,
     memo: HashMap<Expr, Expr>,
     index: HashMap<Expr, usize>,
@@ -39,14 +39,13 @@ impl Context {
     /// symbols are free symbols named `{prefix}{k}`.
     pub fn hoist(&mut self, outputs: &[Expr], prefix: &str) -> Hoisted {
         let mut pass = Pass {
-            ctx: self,
             prefix,
             memo: HashMap::new(),
             index: HashMap::new(),
             terms: Vec::new(),
             symbols: Vec::new(),
         };
-        let outputs = outputs.iter().map(|&e| pass.rewrite(e)).collect();
+        let outputs = outputs.iter().map(|&e| pass.rewrite(self, e)).collect();
         Hoisted {
             terms: pass.terms,
             symbols: pass.symbols,
@@ -65,44 +64,28 @@ impl Context {
 }
 
 impl Pass<'_> {
-    fn term(&mut self, e: Expr) -> Expr {
+    fn term(&mut self, ctx: &mut Context, e: Expr) -> Expr {
         if let Some(&k) = self.index.get(&e) {
             return self.symbols[k];
         }
         let k = self.terms.len();
-        let s = self.ctx.free_symbol(&format!("{}{k}", self.prefix));
+        let s = ctx.free_symbol(&format!("{}{k}", self.prefix));
         self.index.insert(e, k);
         self.terms.push(e);
         self.symbols.push(s);
         s
     }
 
-    fn rewrite(&mut self, e: Expr) -> Expr {
+    fn rewrite(&mut self, ctx: &mut Context, e: Expr) -> Expr {
         if let Some(&r) = self.memo.get(&e) {
             return r;
         }
-        let node = self.ctx.node(e).clone();
-        let r = match node {
+        let r = match ctx.node(e).clone() {
             Node::Const(_) | Node::Float(_) | Node::Sym(_) => e,
-            _ if self.ctx.parametric(e) => self.term(e),
-            Node::Add(ts) => self.group(&ts, true),
-            Node::Mul(fs) => self.group(&fs, false),
-            Node::Pow(b, x) => {
-                let (b, x) = (self.rewrite(b), self.rewrite(x));
-                self.ctx.pow(b, x)
-            }
-            Node::Call(f, a) => {
-                let a = self.rewrite(a);
-                self.ctx.func(f, a)
-            }
-            Node::Atan2(y, x) => {
-                let (y, x) = (self.rewrite(y), self.rewrite(x));
-                self.ctx.atan2(y, x)
-            }
-            Node::Select(t, a, b) => {
-                let (t, a, b) = (self.rewrite(t), self.rewrite(a), self.rewrite(b));
-                self.ctx.select(t, a, b)
-            }
+            _ if ctx.parametric(e) => self.term(ctx, e),
+            Node::Add(ts) => self.group(ctx, &ts, true),
+            Node::Mul(fs) => self.group(ctx, &fs, false),
+            _ => ctx.rebuild(e, |cx, c| self.rewrite(cx, c)),
         };
         self.memo.insert(e, r);
         r
@@ -110,28 +93,28 @@ impl Pass<'_> {
 
     /// A sum or product: its parameter-only operands (and constants, when there
     /// is a parameter among them) as one hoisted term, the rest rewritten.
-    fn group(&mut self, operands: &[Expr], sum: bool) -> Expr {
+    fn group(&mut self, ctx: &mut Context, operands: &[Expr], sum: bool) -> Expr {
         let (fixed, rest): (Vec<Expr>, Vec<Expr>) = operands
             .iter()
-            .partition(|&&x| self.ctx.parametric(x) || self.ctx.is_constant(x));
-        let mut out: Vec<Expr> = rest.iter().map(|&x| self.rewrite(x)).collect();
-        let has_parameter = fixed.iter().any(|&x| self.ctx.parametric(x));
-        let single_atom = fixed.len() == 1 && self.ctx.as_symbol(fixed[0]).is_some();
+            .partition(|&&x| ctx.parametric(x) || ctx.is_constant(x));
+        let mut out: Vec<Expr> = rest.iter().map(|&x| self.rewrite(ctx, x)).collect();
+        let has_parameter = fixed.iter().any(|&x| ctx.parametric(x));
+        let single_atom = fixed.len() == 1 && ctx.as_symbol(fixed[0]).is_some();
         if has_parameter && !single_atom {
             let combined = if sum {
-                self.ctx.sum(&fixed)
+                ctx.sum(&fixed)
             } else {
-                self.ctx.product(&fixed)
+                ctx.product(&fixed)
             };
-            let s = self.term(combined);
+            let s = self.term(ctx, combined);
             out.push(s);
         } else {
             out.extend(fixed);
         }
         if sum {
-            self.ctx.sum(&out)
+            ctx.sum(&out)
         } else {
-            self.ctx.product(&out)
+            ctx.product(&out)
         }
     }
 }
