@@ -80,12 +80,10 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
     where
         'a: 'b,
     {
-        Dynamics {
-            system: self.system,
-            singular_tolerance: self.singular_tolerance,
-            forcing: self.forcing,
-            terms,
-        }
+        // Shortening the borrow is a coercion (the dynamics only hold
+        // references), so the rest of the settings carry over as they are.
+        let shorter: Dynamics<'b, S, T, F> = self;
+        Dynamics { terms, ..shorter }
     }
 
     /// The forcing in use.

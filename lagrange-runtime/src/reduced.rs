@@ -83,12 +83,10 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     where
         'a: 'b,
     {
-        ReducedDynamics {
-            system: self.system,
-            singular_tolerance: self.singular_tolerance,
-            forcing: self.forcing,
-            terms,
-        }
+        // Shortening the borrow is a coercion (the dynamics only hold
+        // references), so the rest of the settings carry over as they are.
+        let shorter: ReducedDynamics<'b, S, T, K, F> = self;
+        ReducedDynamics { terms, ..shorter }
     }
 
     /// The forcing in use.

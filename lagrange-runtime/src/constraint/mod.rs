@@ -262,15 +262,10 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
     where
         'a: 'b,
     {
-        ConstrainedDynamics {
-            system: self.system,
-            singular_tolerance: self.singular_tolerance,
-            redundant_tolerance: self.redundant_tolerance,
-            least_squares: self.least_squares,
-            drift: self.drift,
-            forcing: self.forcing,
-            terms,
-        }
+        // Shortening the borrow is a coercion (the dynamics only hold
+        // references), so the rest of the settings carry over as they are.
+        let shorter: ConstrainedDynamics<'b, S, T, K, F> = self;
+        ConstrainedDynamics { terms, ..shorter }
     }
 
     /// The forcing in use.
