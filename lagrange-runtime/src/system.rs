@@ -33,6 +33,14 @@ pub trait Lagrangian<T: Real, const N: usize> {
     /// linearisation) refuse it at compile time. `#[derive(Lagrangian)]` sets it;
     /// a hand-written [`Constrained`] or [`Reduced`] system should set it too.
     const CONSTRAINED: bool = false;
+    /// Which coordinates are cyclic (ignorable): no equation of motion reads
+    /// their value, so q_j enters M, h, Q and the constraint rows only through
+    /// its rate (a wheel's angle, a rolling body's position on the plane).
+    /// `#[derive(Lagrangian)]` finds them from the derived expressions; the
+    /// default, none, is always safe. Plots show them apart (they grow without
+    /// bound while the motion they belong to stays bounded), and an
+    /// eigen-analysis knows their zero eigenvalues are structural.
+    const CYCLIC: [bool; N] = [false; N];
 
     /// Mass matrix M(q,t): symmetric, positive definite where the chart is regular.
     fn mass_matrix(&self, q: &SVector<T, N>, t: T) -> SMatrix<T, N, N>;
