@@ -72,11 +72,11 @@
 //! indirection.
 
 use crate::error::{Error, Failure, to_vec};
-use crate::func::abs;
+use crate::numeric::Real;
+use crate::numeric::func::abs;
+use crate::numeric::root::brent_bracket;
+use crate::ode::Trajectory;
 use crate::ode::{DenseSegment, Integrator, Mechanical, Sample, SecondOrder, check_problem};
-use crate::real::Real;
-use crate::root::brent_bracket;
-use crate::trajectory::Trajectory;
 use nalgebra::{SMatrix, SVector};
 use std::cell::RefCell;
 use std::fmt;
@@ -424,7 +424,7 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>> {
-        let started = crate::clock::Stopwatch::start();
+        let started = crate::numeric::clock::Stopwatch::start();
         let watch = Watch {
             rhs,
             events: &self.events,

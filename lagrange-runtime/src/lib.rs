@@ -65,48 +65,44 @@
 //! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
 //! number of degrees of freedom `N`, a type-level constant.
 
-mod cholesky;
-mod clock;
-pub mod constraint;
+// The layers, bottom to top; each imports only from the layers above it in
+// this list (ARCHITECTURE.md has the map, tests/layers.rs holds it true).
 pub mod control;
-mod dynamics;
 #[cfg(feature = "parallel")]
 pub mod ensemble;
-mod error;
+pub mod error;
 pub mod event;
-pub mod func;
 pub mod linear;
+pub mod mechanics;
+pub mod numeric;
 pub mod ode;
-mod pivot;
-mod real;
-mod reduced;
-mod root;
 mod simulation;
 pub mod study;
 mod system;
 mod table;
-mod trajectory;
 
-pub use constraint::{ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent};
 pub use control::{
-    ControlRun, ControlledSimulation, Feedback, Forcing, InputForces, InputSource, InputTable,
-    Interpolation, IntoInput, NoForcing, OpenLoop, Sampled,
+    Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,
 };
-pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
-pub use error::{Error, Failure};
+pub use error::{Error, Failure, LinearError};
 pub use event::{Direction, Event, EventRun, Events, Occurrence};
 pub use linear::{
-    Linear, LinearError, Linearizer, OperatingPoint, complete_state, linearize,
-    linearize_constrained, linearize_reduced,
+    Linear, Linearizer, OperatingPoint, complete_state, linearize, linearize_constrained,
+    linearize_reduced,
 };
+pub use mechanics::constraint::{
+    ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent,
+};
+pub use mechanics::{
+    DEFAULT_SINGULAR_TOLERANCE, Dynamics, Forcing, NoForcing, Rattle, ReducedDynamics, ReducedForm,
+    accelerations,
+};
+pub use numeric::{Real, func};
 pub use ode::{
-    DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Rattle, Rk4, Sample,
-    SecondOrder, Stats, StormerVerlet,
+    DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Record, Rk4, Sample,
+    SecondOrder, Stats, StormerVerlet, Trajectory,
 };
-pub use real::Real;
-pub use reduced::{ReducedDynamics, ReducedForm};
-pub use simulation::{EventSimulation, Simulation};
+pub use simulation::{ControlRun, ControlledSimulation, EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::{Constrained, Driven, Lagrangian, Reduced};
 pub use table::Table;
-pub use trajectory::{Record, Trajectory};

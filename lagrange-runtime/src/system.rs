@@ -5,7 +5,7 @@
 //! this trait only, so a hand-written implementation is a first-class citizen too
 //! (the benchmarks compare exactly that).
 
-use crate::real::Real;
+use crate::numeric::Real;
 use nalgebra::{SMatrix, SVector};
 
 /// A holonomic system in minimal coordinates q ∈ Rᴺ, with equations of motion

@@ -11,11 +11,11 @@
 //! # Ok(()) }
 //! ```
 
-use crate::constraint::ConstrainedDynamics;
 use crate::error::Error;
-use crate::real::Real;
+use crate::mechanics::constraint::ConstrainedDynamics;
+use crate::numeric::Real;
+use crate::ode::Trajectory;
 use crate::system::{Constrained, Lagrangian};
-use crate::trajectory::Trajectory;
 use std::io::Write;
 use std::path::Path;
 
@@ -167,4 +167,42 @@ impl<'a, T: Real, const N: usize> Table<'a, T, N> {
 
 fn io(e: csv::Error) -> Error {
     Error::Io(std::io::Error::other(e))
+}
+
+/// The CSV output of a run lives here, beside the table that writes it, so that
+/// the integrators' solution type knows nothing of systems or files.
+impl<T: Real, const N: usize> Trajectory<T, N> {
+    /// Writes the recorded points as CSV: a header `t,<q names>,<v names>,
+    /// integral,residual_position,residual_velocity` and one row per point,
+    /// numbers in the shortest form that reads back exactly. (With the system
+    /// at hand, [`table`](Self::table) adds the energies and the multipliers.)
+    ///
+    /// `names` are the coordinate names (e.g. [`Lagrangian::COORDINATES`]): the
+    /// columns are then `t,theta,phi,dot_theta,dot_phi,integral,…`. An empty
+    /// slice gives `q0,q1,..,dot_q0,dot_q1,..`.
+    ///
+    /// [`Lagrangian::COORDINATES`]: crate::Lagrangian::COORDINATES
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] if `names` has neither N nor 0 entries;
+    /// [`Error::Io`] if writing fails.
+    pub fn write_csv(&self, w: impl Write, names: &[&str]) -> Result<(), Error> {
+        Table::new(self, names)?.write(w)
+    }
+
+    /// The run as a [`Table`](crate::Table) with the system's coordinate
+    /// names and its kinetic and potential energy at every point (add the
+    /// multipliers with [`Table::multipliers`](crate::Table::multipliers)).
+    pub fn table<S: crate::Lagrangian<T, N>>(&self, sys: &S) -> Table<'_, T, N> {
+        Table::of(self, sys)
+    }
+
+    /// [`write_csv`](Self::write_csv) to a new file at `path` (buffered).
+    ///
+    /// # Errors
+    /// As [`write_csv`](Self::write_csv), plus failure to create the file.
+    pub fn save_csv(&self, path: impl AsRef<Path>, names: &[&str]) -> Result<(), Error> {
+        let file = std::fs::File::create(path)?;
+        self.write_csv(std::io::BufWriter::new(file), names)
+    }
 }

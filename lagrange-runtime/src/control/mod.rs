@@ -77,52 +77,17 @@
 //! sample taken there: u_k at t_k, including t₀ and the end time when the end
 //! time is a sample instant.
 
-mod run;
 mod table;
 
-pub use run::{ControlRun, ControlledSimulation};
 pub use table::{InputTable, Interpolation};
 
 use crate::error::{Error, to_vec};
-use crate::real::Real;
+use crate::mechanics::Forcing;
+use crate::numeric::Real;
 use crate::system::Driven;
 use nalgebra::SVector;
 use std::cell::RefCell;
 use std::fmt;
-
-/// A generalized force ΔQ(t, q, q̇) added to the right-hand side Q − h of the
-/// forward dynamics.
-///
-/// Implemented by [`NoForcing`] (nothing, the default of every dynamics type)
-/// and [`InputForces`] (the forces of a [`Driven`] system's inputs); implement
-/// it for any other force law.
-pub trait Forcing<T: Real, const N: usize> {
-    /// Whether [`force`](Self::force) is called at all. `false` only for
-    /// [`NoForcing`]: the dynamics test it as a constant, so an unforced system
-    /// pays nothing.
-    const ACTIVE: bool = true;
-
-    /// ΔQ at (t, q, q̇).
-    ///
-    /// # Errors
-    /// Whatever prevents its evaluation, such as [`Error::NonFiniteInput`].
-    fn force(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error>;
-}
-
-/// No forcing: the default forcing parameter of [`Dynamics`](crate::Dynamics),
-/// [`ConstrainedDynamics`](crate::ConstrainedDynamics) and
-/// [`ReducedDynamics`](crate::ReducedDynamics).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct NoForcing;
-
-impl<T: Real, const N: usize> Forcing<T, N> for NoForcing {
-    const ACTIVE: bool = false;
-
-    #[inline(always)]
-    fn force(&self, _: T, _: &SVector<T, N>, _: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
-        Ok(SVector::zeros())
-    }
-}
 
 /// A value a controller may return for P inputs: `[T; P]` or `SVector<T, P>`.
 ///

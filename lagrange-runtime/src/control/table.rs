@@ -2,7 +2,7 @@
 
 use super::{InputSource, IntoInput};
 use crate::error::Error;
-use crate::real::Real;
+use crate::numeric::Real;
 use nalgebra::SVector;
 
 /// How an [`InputTable`] fills the time between its breakpoints.

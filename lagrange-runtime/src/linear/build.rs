@@ -2,11 +2,11 @@
 
 use super::dense::{Saddle, SaddleError, cholesky, condition, dm, dv, finite, pivot_columns};
 use super::{Linear, LinearError, SecondOrderForm};
-use crate::constraint::DEFAULT_CONSISTENCY_TOLERANCE;
-use crate::dynamics::DEFAULT_SINGULAR_TOLERANCE;
 use crate::error::{Error, to_vec};
-use crate::real::Real;
-use crate::reduced::{ReducedDynamics, ReducedForm};
+use crate::mechanics::constraint::DEFAULT_CONSISTENCY_TOLERANCE;
+use crate::mechanics::dynamics::DEFAULT_SINGULAR_TOLERANCE;
+use crate::mechanics::reduced::{ReducedDynamics, ReducedForm};
+use crate::numeric::Real;
 use crate::system::{Constrained, Driven, Reduced};
 use nalgebra::{DMatrix, DVector, SVector};
 
@@ -111,7 +111,7 @@ impl Linearizer {
             speeds: None,
             consistency_tolerance: DEFAULT_CONSISTENCY_TOLERANCE,
             singular_tolerance: DEFAULT_SINGULAR_TOLERANCE,
-            redundant_tolerance: crate::constraint::DEFAULT_REDUNDANT_TOLERANCE,
+            redundant_tolerance: crate::mechanics::constraint::DEFAULT_REDUNDANT_TOLERANCE,
             newton_tolerance: DEFAULT_NEWTON_TOLERANCE,
             newton_iterations: DEFAULT_NEWTON_ITERATIONS,
         }

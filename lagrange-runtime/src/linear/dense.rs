@@ -2,7 +2,7 @@
 //! system's stack matrices, a checked Cholesky, the saddle-point solve, rank
 //! tests and column pivoting.
 
-use crate::real::Real;
+use crate::numeric::Real;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 /// A stack matrix in any scalar as a dense f64 matrix.

@@ -3,7 +3,7 @@
 
 use super::{Linear, LinearError};
 use crate::error::Error;
-use crate::root::brent_bracket;
+use crate::numeric::root::brent_bracket;
 use nalgebra::{Complex, DMatrix, DVector};
 
 /// The eigenvalues of a real square matrix (nalgebra's Schur-based

@@ -11,7 +11,7 @@
 //! accuracy. After a rejection h is only reduced, using the I part alone, and the
 //! next accepted step may not grow.
 
-use crate::real::Real;
+use crate::numeric::Real;
 
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PiController<T> {

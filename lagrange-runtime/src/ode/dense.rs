@@ -1,7 +1,7 @@
 //! Dense output: a polynomial in θ = (t − t₀)/h over one accepted step.
 
 use super::Pair;
-use crate::real::Real;
+use crate::numeric::Real;
 use nalgebra::SVector;
 
 /// The continuous extension of one accepted step [t₀, t₁], in Hairer's nested form

@@ -14,9 +14,9 @@ use super::controller::PiController;
 use super::settings::{StepControl, step_control_builders};
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::{Error, Failure};
-use crate::func::{abs, sqrt};
-use crate::real::Real;
-use crate::trajectory::{Record, Trajectory};
+use crate::numeric::Real;
+use crate::numeric::func::{abs, sqrt};
+use crate::ode::{Record, Trajectory};
 use nalgebra::SVector;
 
 /// Adaptive Dormand–Prince 5(4) with dense output of order 4.
@@ -164,7 +164,7 @@ impl Integrator for Dopri5 {
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let started = crate::clock::Stopwatch::start();
+        let started = crate::numeric::clock::Stopwatch::start();
         let mut stats = Stats::default();
         let mut traj =
             Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));

@@ -3,14 +3,14 @@
 // Index loops mirror the block-matrix formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::linalg::{lu_factor, lu_solve};
 use super::mechanical::Mechanical;
 use super::verlet::fixed_step_count;
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::{Error, Failure};
-use crate::func::abs;
-use crate::real::Real;
-use crate::trajectory::{Record, Trajectory};
+use crate::numeric::Real;
+use crate::numeric::func::abs;
+use crate::numeric::lu::{lu_factor, lu_solve};
+use crate::ode::{Record, Trajectory};
 use nalgebra::{DMatrix, SVector};
 
 /// Gauss–Legendre collocation with a fixed step: s = 2 stages (order 4, the
@@ -104,7 +104,7 @@ impl Integrator for Gauss {
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let started = crate::clock::Stopwatch::start();
+        let started = crate::numeric::clock::Stopwatch::start();
         let mut stats = Stats::default();
         let mut traj =
             Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));

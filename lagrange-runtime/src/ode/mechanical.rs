@@ -1,11 +1,8 @@
 //! The Hamiltonian view of a mechanical system, for the symplectic integrators.
 
 use super::SecondOrder;
-use crate::control::Forcing;
-use crate::dynamics::Dynamics;
 use crate::error::{Error, to_vec};
-use crate::real::Real;
-use crate::system::Lagrangian;
+use crate::numeric::Real;
 use nalgebra::{SMatrix, SVector};
 
 /// A second-order system that can also be written in Hamilton's form
@@ -55,43 +52,5 @@ pub trait Mechanical<T: Real, const N: usize>: SecondOrder<T, N> {
             ratio: 0.0,
         })?;
         Ok(chol.solve(&(p - a)))
-    }
-}
-
-impl<S, T, F, const N: usize> Mechanical<T, N> for Dynamics<'_, S, T, F>
-where
-    S: Lagrangian<T, N>,
-    T: Real,
-    F: Forcing<T, N>,
-{
-    fn mass_matrix(&self, t: T, q: &SVector<T, N>) -> Result<SMatrix<T, N, N>, Error> {
-        crate::dynamics::refuse_constrained::<S, T, N>();
-        Ok(self.system().mass_matrix(q, t))
-    }
-
-    fn momentum(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
-        Ok(self.system().momentum(q, v, t))
-    }
-
-    fn momentum_rate(
-        &self,
-        t: T,
-        q: &SVector<T, N>,
-        v: &SVector<T, N>,
-    ) -> Result<SVector<T, N>, Error> {
-        let sys = self.system();
-        let grad = sys.kinetic_gradient(q, v, t).ok_or_else(|| {
-            Error::InvalidSettings(
-                "the symplectic integrator needs ∂T/∂q, but this system's \
-                 Lagrangian::kinetic_gradient returns None; implement it (and \
-                 Lagrangian::momentum for a rheonomic system) or choose another integrator"
-                    .into(),
-            )
-        })?;
-        let q_total = sys.generalized_forces(q, v, t);
-        if F::ACTIVE {
-            return Ok(grad + q_total + self.forcing().force(t, q, v)?);
-        }
-        Ok(grad + q_total)
     }
 }

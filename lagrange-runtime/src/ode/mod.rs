@@ -17,12 +17,11 @@ mod dense;
 mod dop853;
 mod dopri5;
 mod gauss;
-mod linalg;
 mod mechanical;
 mod radau5;
-mod rattle;
 mod rk4;
 mod settings;
+mod trajectory;
 mod verlet;
 
 pub use dense::DenseSegment;
@@ -31,13 +30,13 @@ pub use dopri5::Dopri5;
 pub use gauss::Gauss;
 pub use mechanical::Mechanical;
 pub use radau5::Radau5;
-pub use rattle::Rattle;
 pub use rk4::Rk4;
+pub use trajectory::{Record, Trajectory};
 pub use verlet::StormerVerlet;
+pub(crate) use verlet::fixed_step_count;
 
 use crate::error::{Error, Failure};
-use crate::real::Real;
-use crate::trajectory::Trajectory;
+use crate::numeric::Real;
 use nalgebra::{SMatrix, SVector};
 
 /// The right-hand side of a second-order system q̈ = a(t, q, q̇).
@@ -476,7 +475,7 @@ fn squared_distance<T: Real, const N: usize>(a: &Pair<T, N>, b: &Pair<T, N>) -> 
 pub(crate) fn finish<T: Real, const N: usize>(
     mut traj: Trajectory<T, N>,
     mut stats: Stats,
-    started: crate::clock::Stopwatch,
+    started: crate::numeric::clock::Stopwatch,
     outcome: Result<(), Error>,
 ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
     stats.wall_time = started.elapsed();

@@ -4,13 +4,13 @@
 // Index loops mirror the formulas of radau5.f, component by component.
 #![allow(clippy::needless_range_loop)]
 
-use super::linalg::{lu_factor, lu_solve};
 use super::settings::{StepControl, step_control_builders};
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::{Error, Failure};
-use crate::func::{abs, sqrt};
-use crate::real::Real;
-use crate::trajectory::{Record, Trajectory};
+use crate::numeric::Real;
+use crate::numeric::func::{abs, sqrt};
+use crate::numeric::lu::{lu_factor, lu_solve};
+use crate::ode::{Record, Trajectory};
 use nalgebra::{DMatrix, SVector};
 
 /// The 3-stage Radau IIA method (order 5, L-stable) with Hairer's RADAU5
@@ -221,7 +221,7 @@ impl Integrator for Radau5 {
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let started = crate::clock::Stopwatch::start();
+        let started = crate::numeric::clock::Stopwatch::start();
         let mut stats = Stats::default();
         let mut traj =
             Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));

@@ -2,8 +2,8 @@
 
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::{Error, Failure};
-use crate::real::Real;
-use crate::trajectory::{Record, Trajectory};
+use crate::numeric::Real;
+use crate::ode::{Record, Trajectory};
 use nalgebra::SVector;
 
 /// Classic RK4 with a fixed step `h`; the last step is shortened so that the
@@ -61,7 +61,7 @@ impl Integrator for Rk4 {
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let started = crate::clock::Stopwatch::start();
+        let started = crate::numeric::clock::Stopwatch::start();
         let mut stats = Stats::default();
         let mut traj =
             Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));

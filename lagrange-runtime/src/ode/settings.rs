@@ -74,7 +74,7 @@ impl StepControl {
     /// `TooManySteps` at t = 0.03): a settings error up front. Tolerances between
     /// that and ε are allowed: tiny steps still meet them locally, and the
     /// work-precision study measured f32's best DOPRI5 result at 1e-10.
-    pub fn check_precision<T: crate::real::Real>(&self, method: &str) -> Result<(), Error> {
+    pub fn check_precision<T: crate::numeric::Real>(&self, method: &str) -> Result<(), Error> {
         let eps = T::default_epsilon().to_f64();
         let floor = 16.0 * eps * eps;
         if self.rtol < floor {

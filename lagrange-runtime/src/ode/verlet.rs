@@ -2,8 +2,8 @@
 
 use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
 use crate::error::{Error, Failure};
-use crate::real::Real;
-use crate::trajectory::{Record, Trajectory};
+use crate::numeric::Real;
+use crate::ode::{Record, Trajectory};
 use nalgebra::SVector;
 
 /// Velocity Verlet with a fixed step `h`:
@@ -71,7 +71,7 @@ impl StormerVerlet {
 /// The number of fixed steps of size `h` covering [t0, t1], refusing more than
 /// `max_steps`. A span that is a whole number of steps up to rounding is not
 /// followed by a sliver of a step.
-pub(super) fn fixed_step_count<T: Real>(
+pub(crate) fn fixed_step_count<T: Real>(
     name: &str,
     h: f64,
     max_steps: usize,
@@ -103,7 +103,7 @@ impl Integrator for StormerVerlet {
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let started = crate::clock::Stopwatch::start();
+        let started = crate::numeric::clock::Stopwatch::start();
         let mut stats = Stats::default();
         let mut traj =
             Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));

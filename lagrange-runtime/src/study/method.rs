@@ -3,9 +3,9 @@
 //! generic method and cannot be a trait object.
 
 use crate::error::Failure;
+use crate::numeric::Real;
+use crate::ode::Trajectory;
 use crate::ode::{Dop853, Dopri5, Gauss, Integrator, Radau5, Rk4, SecondOrder, StormerVerlet};
-use crate::real::Real;
-use crate::trajectory::Trajectory;
 use nalgebra::SVector;
 use std::fmt;
 

@@ -65,9 +65,9 @@ pub use method::{Method, Setting, Sweep};
 pub use report::{CSV_COLUMNS, MARKDOWN_COLUMNS};
 
 use crate::error::Error;
+use crate::numeric::Real;
+use crate::ode::Trajectory;
 use crate::ode::{Dop853, Stats};
-use crate::real::Real;
-use crate::trajectory::Trajectory;
 use nalgebra::SVector;
 use std::time::Duration;
 
@@ -269,7 +269,7 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
                     )));
                 }
                 let dop853 = |tol| Method::Dop853(Dop853::tol(tol).max_steps(REFERENCE_MAX_STEPS));
-                let started = crate::clock::Stopwatch::start();
+                let started = crate::numeric::clock::Stopwatch::start();
                 let traj = (self.run)(dop853(tolerance))?;
                 let wall_time = started.elapsed();
                 let uncertainty = if check {
@@ -300,13 +300,13 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
         reference_at: &dyn Fn(f64) -> Option<State<N>>,
         uncertainty: f64,
     ) -> Result<Measurement, Error> {
-        let started = crate::clock::Stopwatch::start();
+        let started = crate::numeric::clock::Stopwatch::start();
         let traj = (self.run)(method)?;
         let first = started.elapsed();
         let mut times = vec![first];
         let mut spent = first;
         while times.len() < self.repeats && spent < self.repeat_budget {
-            let started = crate::clock::Stopwatch::start();
+            let started = crate::numeric::clock::Stopwatch::start();
             // The runs are deterministic: only the time of a repeat is new.
             drop((self.run)(method)?);
             let elapsed = started.elapsed();

@@ -1,16 +1,20 @@
 //! The user-facing entry point: system + integrator + initial state → trajectory.
 
-use crate::constraint::{
-    ConstrainedDynamics, DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE, Drift,
-};
-use crate::dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics};
+mod controlled;
+
+pub use controlled::{ControlRun, ControlledSimulation};
+
 use crate::error::{Error, Failure};
 use crate::event::{Event, EventRun, Events};
+use crate::mechanics::constraint::{
+    ConstrainedDynamics, DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE, Drift,
+};
+use crate::mechanics::dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics};
+use crate::mechanics::reduced::ReducedDynamics;
+use crate::numeric::Real;
+use crate::ode::Trajectory;
 use crate::ode::{Dopri5, Integrator, check_problem, failed_at_start};
-use crate::real::Real;
-use crate::reduced::ReducedDynamics;
 use crate::system::{Constrained, Lagrangian, Reduced};
-use crate::trajectory::Trajectory;
 use nalgebra::SVector;
 use std::ops::Range;
 

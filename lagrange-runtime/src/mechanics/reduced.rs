@@ -19,14 +19,14 @@
 //! constraints are independent, and a speed that is nearly dependent on them
 //! costs no digits.
 
-use crate::cholesky::Cholesky;
-use crate::control::{Forcing, NoForcing};
-use crate::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
 use crate::error::{Error, to_vec};
-use crate::func::abs;
+use crate::mechanics::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
+use crate::mechanics::{Forcing, NoForcing};
+use crate::numeric::Real;
+use crate::numeric::cholesky::Cholesky;
+use crate::numeric::elimination::{Dependent, Partition, invert};
+use crate::numeric::func::abs;
 use crate::ode::SecondOrder;
-use crate::pivot::{Dependent, Partition, invert};
-use crate::real::Real;
 use crate::system::Reduced;
 use nalgebra::{SMatrix, SVector};
 

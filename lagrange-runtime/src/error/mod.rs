@@ -284,16 +284,20 @@ pub enum Error {
     },
 
     /// Linearisation, eigen-analysis or LQR design failed; see
-    /// [`LinearError`](crate::linear::LinearError).
+    /// [`LinearError`](crate::error::LinearError).
     #[error(transparent)]
-    Linear(#[from] crate::linear::LinearError),
+    Linear(#[from] LinearError),
 
     /// Writing output (CSV) failed.
     #[error("i/o error: {0}")]
     Io(#[from] std::io::Error),
 }
 
-use crate::real::Real;
+mod linear;
+
+pub use linear::LinearError;
+
+use crate::numeric::Real;
 use nalgebra::SVector;
 
 /// Converts a state vector to `f64`s for an error report.

@@ -6,9 +6,9 @@
 
 use super::projection::max_abs;
 use super::{ConstrainedDynamics, holonomic};
-use crate::dynamics::all_finite;
 use crate::error::{Error, to_vec};
-use crate::real::Real;
+use crate::mechanics::dynamics::all_finite;
+use crate::numeric::Real;
 use crate::system::Constrained;
 use nalgebra::SVector;
 

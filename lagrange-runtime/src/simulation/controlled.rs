@@ -1,14 +1,16 @@
 //! Controlled simulation: the builder, the piecewise driver and its result.
 
-use super::{Feedback, InputForces, InputSource, IntoInput, OpenLoop, Sampled, check_input};
+use super::Simulation;
+use crate::control::{
+    Feedback, InputForces, InputSource, IntoInput, OpenLoop, Sampled, check_input,
+};
 use crate::error::{Error, Failure};
 use crate::event::{Event, Events, Occurrence};
-use crate::func::abs;
+use crate::numeric::Real;
+use crate::numeric::func::abs;
+use crate::ode::Trajectory;
 use crate::ode::{Integrator, Sample, SecondOrder, check_problem};
-use crate::real::Real;
-use crate::simulation::Simulation;
 use crate::system::{Constrained, Driven, Lagrangian, Reduced};
-use crate::trajectory::Trajectory;
 use nalgebra::SVector;
 use std::io::Write;
 use std::ops::Range;
@@ -294,7 +296,7 @@ where
         (q0, v0): (SVector<T, N>, SVector<T, N>),
         prepare: impl FnOnce() -> Result<(SVector<T, N>, SVector<T, N>), Error>,
     ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>> {
-        let started = crate::clock::Stopwatch::start();
+        let started = crate::numeric::clock::Stopwatch::start();
         let mut record = Record {
             whole: None,
             inputs: Vec::new(),

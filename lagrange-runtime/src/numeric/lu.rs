@@ -9,8 +9,8 @@
 // Index loops mirror the block-matrix formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use crate::func::abs;
-use crate::real::Real;
+use crate::numeric::Real;
+use crate::numeric::func::abs;
 use nalgebra::DMatrix;
 
 /// Factorises the square matrix `a` as P A = L U in place (L unit lower, U upper)

@@ -10,8 +10,8 @@
 //! that the holonomic rows of a constraint Jacobian, or the independent rows found
 //! by pivoting, can be handled without a differently sized type.
 
-use crate::func::sqrt;
-use crate::real::Real;
+use crate::numeric::Real;
+use crate::numeric::func::sqrt;
 use nalgebra::{SMatrix, SVector};
 
 /// M = L Lᵀ for symmetric positive definite M (leading `n`×`n` block).

@@ -1,7 +1,7 @@
 //! Scalar root finding on a bracket, for event location on dense output.
 
-use crate::func::abs;
-use crate::real::Real;
+use crate::numeric::Real;
+use crate::numeric::func::abs;
 
 /// Brent's method (zeroin): a root of `f` in [a, b] given f(a), f(b) of opposite
 /// signs, to within 4 ε |root| (plus the smallest normal number, so that a root at

@@ -11,8 +11,8 @@
 // Index loops mirror the elimination they implement.
 #![allow(clippy::needless_range_loop)]
 
-use crate::func::abs;
-use crate::real::Real;
+use crate::numeric::Real;
+use crate::numeric::func::abs;
 use core::ops::Range;
 use nalgebra::{SMatrix, SVector};
 

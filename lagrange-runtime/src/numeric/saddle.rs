@@ -14,8 +14,8 @@
 //! The same solve serves the dynamics (f = Q − h) and the projections (f = 0, where
 //! x = M⁻¹ Gᵀ S⁻¹ γ is the M-weighted minimum-norm correction).
 
-use crate::cholesky::{Cholesky, PivotedCholesky};
-use crate::real::Real;
+use crate::numeric::Real;
+use crate::numeric::cholesky::{Cholesky, PivotedCholesky};
 use nalgebra::{SMatrix, SVector};
 
 /// How the Schur complement is factorised.

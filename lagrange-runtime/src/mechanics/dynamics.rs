@@ -5,11 +5,11 @@
 //! pivot ratio tells a *near*-singular mass matrix (a chart singularity such as the
 //! pole of a spherical pendulum) from a healthy one.
 
-use crate::cholesky::{Cholesky, cholesky_solve};
-use crate::control::{Forcing, NoForcing};
 use crate::error::{Error, to_vec};
+use crate::mechanics::{Forcing, NoForcing};
+use crate::numeric::Real;
+use crate::numeric::cholesky::{Cholesky, cholesky_solve};
 use crate::ode::SecondOrder;
-use crate::real::Real;
 use crate::system::Lagrangian;
 use nalgebra::{SMatrix, SVector};
 

@@ -30,13 +30,13 @@
 //! evaluating F at v½ for the end of the step as Störmer–Verlet does, but is
 //! no longer symplectic.
 
-use super::verlet::fixed_step_count;
-use super::{DenseSegment, Sample, Stats, check_problem};
-use crate::constraint::ConstrainedDynamics;
 use crate::error::{Error, Failure, to_vec};
-use crate::real::Real;
+use crate::mechanics::constraint::ConstrainedDynamics;
+use crate::numeric::Real;
+use crate::ode::fixed_step_count;
+use crate::ode::{DenseSegment, Sample, Stats, check_problem, finish};
+use crate::ode::{Record, Trajectory};
 use crate::system::Constrained;
-use crate::trajectory::{Record, Trajectory};
 use nalgebra::{Cholesky, SMatrix, SVector};
 
 /// RATTLE with a fixed step `h` for [`Constrained`] systems with a constant
@@ -71,7 +71,7 @@ impl Rattle {
             h,
             max_steps: 10_000_000,
             max_iterations: 20,
-            consistency_tolerance: crate::constraint::DEFAULT_CONSISTENCY_TOLERANCE,
+            consistency_tolerance: crate::mechanics::constraint::DEFAULT_CONSISTENCY_TOLERANCE,
         }
     }
 
@@ -120,7 +120,7 @@ impl Rattle {
     where
         S: Constrained<T, N, K>,
     {
-        let started = crate::clock::Stopwatch::start();
+        let started = crate::numeric::clock::Stopwatch::start();
         let mut stats = Stats::default();
         let dynamics = ConstrainedDynamics::<S, T, K>::new(system);
         let mut traj = Trajectory::start_recording(
@@ -223,7 +223,7 @@ impl Rattle {
             }
             Ok(())
         })();
-        super::finish(traj, stats, started, outcome)
+        finish(traj, stats, started, outcome)
     }
 
     /// Newton on Φ(q̂ + M⁻¹Gₙᵀ Λ, t₁) = 0 with the exact Jacobian

@@ -6,7 +6,7 @@
 //! provide for a `RealField`, is never ambiguous. All of them are `#[inline(always)]`:
 //! they cost nothing over the method call.
 
-use crate::real::Real;
+use crate::numeric::Real;
 use nalgebra::{ComplexField, RealField};
 
 macro_rules! unary {

@@ -74,19 +74,18 @@
 
 mod consistency;
 mod projection;
-mod saddle;
 
 pub use consistency::{check_consistency, project_consistent};
 
-use crate::cholesky::Cholesky;
-use crate::control::{Forcing, NoForcing};
-use crate::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
 use crate::error::{Error, to_vec};
+use crate::mechanics::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
+use crate::mechanics::{Forcing, NoForcing};
+use crate::numeric::Real;
+use crate::numeric::cholesky::Cholesky;
+use crate::numeric::saddle::{Dependent, Schur, range_space};
 use crate::ode::SecondOrder;
-use crate::real::Real;
 use crate::system::Constrained;
 use nalgebra::SVector;
-use saddle::{Dependent, Schur, range_space};
 
 /// Default threshold on the pivot ratio of G M⁻¹ Gᵀ below which constraint rows
 /// are reported as redundant.

@@ -14,9 +14,9 @@
 //! round-off.
 
 use super::{ConstrainedDynamics, holonomic, range_space, redundant};
-use crate::dynamics::all_finite;
 use crate::error::{Error, to_vec};
-use crate::real::Real;
+use crate::mechanics::dynamics::all_finite;
+use crate::numeric::Real;
 use crate::system::Constrained;
 use nalgebra::SVector;
 
@@ -96,5 +96,5 @@ impl<S, T: Real, const K: usize, F> ConstrainedDynamics<'_, S, T, K, F> {
 pub(super) fn max_abs<T: Real, const K: usize>(x: &SVector<T, K>, rows: usize) -> T {
     x.iter()
         .take(rows)
-        .fold(T::zero(), |m, &xi| m.max(crate::func::abs(xi)))
+        .fold(T::zero(), |m, &xi| m.max(crate::numeric::func::abs(xi)))
 }

@@ -1,0 +1,41 @@
+//! Forces added to the right-hand side of the forward dynamics: the seam
+//! through which controllers (and any other force law) reach the mechanics
+//! without the mechanics knowing about controllers.
+
+use crate::error::Error;
+use crate::numeric::Real;
+use nalgebra::SVector;
+
+/// A generalized force ΔQ(t, q, q̇) added to the right-hand side Q − h of the
+/// forward dynamics.
+///
+/// Implemented by [`NoForcing`] (nothing, the default of every dynamics type)
+/// and [`InputForces`](crate::InputForces) (the forces of a [`Driven`](crate::Driven) system's inputs); implement
+/// it for any other force law.
+pub trait Forcing<T: Real, const N: usize> {
+    /// Whether [`force`](Self::force) is called at all. `false` only for
+    /// [`NoForcing`]: the dynamics test it as a constant, so an unforced system
+    /// pays nothing.
+    const ACTIVE: bool = true;
+
+    /// ΔQ at (t, q, q̇).
+    ///
+    /// # Errors
+    /// Whatever prevents its evaluation, such as [`Error::NonFiniteInput`].
+    fn force(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error>;
+}
+
+/// No forcing: the default forcing parameter of [`Dynamics`](crate::Dynamics),
+/// [`ConstrainedDynamics`](crate::ConstrainedDynamics) and
+/// [`ReducedDynamics`](crate::ReducedDynamics).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NoForcing;
+
+impl<T: Real, const N: usize> Forcing<T, N> for NoForcing {
+    const ACTIVE: bool = false;
+
+    #[inline(always)]
+    fn force(&self, _: T, _: &SVector<T, N>, _: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+        Ok(SVector::zeros())
+    }
+}

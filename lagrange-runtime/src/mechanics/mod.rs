@@ -1,0 +1,24 @@
+//! The mechanical forms: the equations of motion of a [`Lagrangian`](crate::Lagrangian)
+//! system solved for the accelerations, as a [`SecondOrder`](crate::ode::SecondOrder)
+//! problem the integrators step.
+//!
+//! - [`Dynamics`]: unconstrained, q̈ = M⁻¹(Q − h) (or the articulated-body q̈);
+//! - [`constraint`]: constraints kept with multipliers (the saddle-point system),
+//!   drift control and consistent initial conditions; [`Rattle`] integrates the
+//!   holonomic case symplectically;
+//! - [`ReducedDynamics`]: independent speeds, no multipliers.
+//!
+//! Each form adds a [`Forcing`] (controllers' input forces, by default none) to
+//! Q − h; it imports nothing above the system contract.
+
+pub mod constraint;
+pub(crate) mod dynamics;
+mod forcing;
+mod hamilton;
+mod rattle;
+pub(crate) mod reduced;
+
+pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
+pub use forcing::{Forcing, NoForcing};
+pub use rattle::Rattle;
+pub use reduced::{ReducedDynamics, ReducedForm};

@@ -1,0 +1,16 @@
+//! Scalar and small-matrix numerics, the bottom layer: the scalar type, the
+//! functions generated code calls, the one Cholesky, the one saddle-point
+//! solve, the one elimination with complete pivoting, dense LU for the
+//! implicit integrators, root finding on a bracket and a wall clock. Nothing
+//! here knows about mechanics or integrators.
+
+pub(crate) mod cholesky;
+pub(crate) mod clock;
+pub(crate) mod elimination;
+pub mod func;
+pub(crate) mod lu;
+mod real;
+pub(crate) mod root;
+pub(crate) mod saddle;
+
+pub use real::Real;
