@@ -255,12 +255,7 @@ pub mod prelude {
 /// Paths the generated code uses; not a public API.
 #[doc(hidden)]
 pub mod __private {
-    pub use lagrange_runtime::control::InputSource;
     pub use lagrange_runtime::func;
-    pub use lagrange_runtime::{Constrained, Driven, Lagrangian, Real, Reduced};
-    pub use lagrange_runtime::{
-        ControlRun, ControlledSimulation, EventRun, EventSimulation, Failure, Integrator,
-        Simulation, Trajectory,
-    };
+    pub use lagrange_runtime::{Constrained, Driven, FormVisitor, Lagrangian, Real, Reduced};
     pub use nalgebra::{SMatrix, SVector};
 }

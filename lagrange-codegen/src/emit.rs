@@ -694,51 +694,21 @@ fn forward_dynamics(e: &Emitter, f: &Frame, model: &Model) -> (TokenStream, Toke
     (methods, inner)
 }
 
-/// The override of `Lagrangian::run_in` that makes `Simulation::run` run a
-/// constrained description in its form: the multiplier form when it is
+/// The override of `Lagrangian::visit_form` that makes `Simulation::run` run
+/// a constrained description in its form: the multiplier form when it is
 /// emitted, else the reduced form; nothing for an unconstrained one.
 fn run_in(f: &Frame, model: &Model) -> TokenStream {
     let (s, nl) = (&f.s, &f.n);
     let (method, k) = match (&model.constraints, &model.reduced) {
-        (Some(c), _) => (quote!(run_constrained), c.names.len()),
-        (None, Some(r)) => (quote!(run_reduced), r.names.len()),
+        (Some(c), _) => (quote!(multipliers), c.names.len()),
+        (None, Some(r)) => (quote!(reduced), r.names.len()),
         (None, None) => return quote!(),
     };
     let kl = Literal::usize_unsuffixed(k);
-    let vec_n = f.vec(nl);
     let p = quote!(::lagrange::__private);
     quote! {
-        fn run_in<I: #p::Integrator>(
-            &self,
-            sim: &#p::Simulation<'_, Self, I>,
-            q0: #vec_n,
-            v0: #vec_n,
-            span: ::core::ops::Range<#s>,
-        ) -> ::core::result::Result<#p::Trajectory<#s, #nl>, #p::Failure<#p::Trajectory<#s, #nl>>> {
-            sim.#method::<#s, #nl, #kl>(q0, v0, span)
-        }
-
-        fn run_events_in<I: #p::Integrator>(
-            &self,
-            sim: &#p::EventSimulation<'_, '_, Self, I, #s, #nl>,
-            q0: #vec_n,
-            v0: #vec_n,
-            span: ::core::ops::Range<#s>,
-        ) -> ::core::result::Result<#p::EventRun<#s, #nl>, #p::Failure<#p::EventRun<#s, #nl>>> {
-            sim.#method::<#kl>(q0, v0, span)
-        }
-
-        fn run_controlled_in<I: #p::Integrator, C: #p::InputSource<#s, #nl, P>, const P: usize>(
-            &self,
-            sim: &#p::ControlledSimulation<'_, '_, Self, I, C, #s, #nl, P>,
-            q0: #vec_n,
-            v0: #vec_n,
-            span: ::core::ops::Range<#s>,
-        ) -> ::core::result::Result<#p::ControlRun<#s, #nl, P>, #p::Failure<#p::ControlRun<#s, #nl, P>>>
-        where
-            Self: #p::Driven<#s, #nl, P>,
-        {
-            sim.#method::<#kl>(q0, v0, span)
+        fn visit_form<F: #p::FormVisitor<#s, #nl, Self>>(&self, form: F) -> F::Output {
+            form.#method::<#kl>(self)
         }
     }
 }

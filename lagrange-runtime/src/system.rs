@@ -188,72 +188,42 @@ pub trait Lagrangian<T: Real, const N: usize> {
         None
     }
 
-    /// Integrates this system for [`Simulation::run`](crate::Simulation::run)
-    /// in the form its description asked for: the unconstrained dynamics here;
-    /// `#[derive(Lagrangian)]` overrides it for a constrained description to
-    /// run the multiplier form (or the reduced form when only that is emitted),
-    /// so that `run` is the one way to run any derived system. Not meant to be
-    /// called directly.
-    ///
-    /// # Errors
-    /// As [`Simulation::run`](crate::Simulation::run).
+    /// Hands `form` the equations this system runs in: the unconstrained
+    /// dynamics here; `#[derive(Lagrangian)]` overrides it for a constrained
+    /// description to choose the multiplier form (or the reduced form when only
+    /// that is emitted), so that [`Simulation::run`](crate::Simulation::run) is
+    /// the one way to run any derived system. The contract names no runner:
+    /// the runner is the visitor. Not meant to be called directly.
     #[doc(hidden)]
-    #[allow(clippy::type_complexity)]
-    fn run_in<I: crate::Integrator>(
-        &self,
-        sim: &crate::Simulation<'_, Self, I>,
-        q0: SVector<T, N>,
-        v0: SVector<T, N>,
-        span: core::ops::Range<T>,
-    ) -> Result<crate::Trajectory<T, N>, crate::Failure<crate::Trajectory<T, N>>>
+    fn visit_form<F: FormVisitor<T, N, Self>>(&self, form: F) -> F::Output
     where
         Self: Sized,
     {
-        sim.run_unconstrained(q0, v0, span)
+        form.unconstrained(self)
     }
+}
 
-    /// [`run_in`](Self::run_in) for [`EventSimulation::run`](crate::EventSimulation::run).
-    ///
-    /// # Errors
-    /// As [`EventSimulation::run`](crate::EventSimulation::run).
-    #[doc(hidden)]
-    #[allow(clippy::type_complexity)]
-    fn run_events_in<I: crate::Integrator>(
-        &self,
-        sim: &crate::EventSimulation<'_, '_, Self, I, T, N>,
-        q0: SVector<T, N>,
-        v0: SVector<T, N>,
-        span: core::ops::Range<T>,
-    ) -> Result<crate::EventRun<T, N>, crate::Failure<crate::EventRun<T, N>>>
-    where
-        Self: Sized,
-    {
-        sim.run_unconstrained(q0, v0, span)
-    }
+/// What runs a system in the form its description asked for (see
+/// [`Lagrangian::visit_form`]): one method per form, each with the trait the
+/// form needs. Implemented by the simulation builders; not meant to be
+/// implemented by users.
+#[doc(hidden)]
+pub trait FormVisitor<T: Real, const N: usize, S: Lagrangian<T, N>> {
+    /// What running the system gives.
+    type Output;
 
-    /// [`run_in`](Self::run_in) for
-    /// [`ControlledSimulation::run`](crate::ControlledSimulation::run).
-    ///
-    /// # Errors
-    /// As [`ControlledSimulation::run`](crate::ControlledSimulation::run).
-    #[doc(hidden)]
-    #[allow(clippy::type_complexity)]
-    fn run_controlled_in<
-        I: crate::Integrator,
-        C: crate::control::InputSource<T, N, P>,
-        const P: usize,
-    >(
-        &self,
-        sim: &crate::ControlledSimulation<'_, '_, Self, I, C, T, N, P>,
-        q0: SVector<T, N>,
-        v0: SVector<T, N>,
-        span: core::ops::Range<T>,
-    ) -> Result<crate::ControlRun<T, N, P>, crate::Failure<crate::ControlRun<T, N, P>>>
+    /// The unconstrained equations M q̈ + h = Q.
+    fn unconstrained(self, system: &S) -> Self::Output;
+
+    /// The multiplier form with K constraint rows.
+    fn multipliers<const K: usize>(self, system: &S) -> Self::Output
     where
-        Self: Sized + Driven<T, N, P>,
-    {
-        sim.run_unconstrained(q0, v0, span)
-    }
+        S: Constrained<T, N, K>;
+
+    /// The reduced form with K independent speeds.
+    fn reduced<const K: usize>(self, system: &S) -> Self::Output
+    where
+        S: Reduced<T, N, K>;
 }
 
 /// Constraints kept with multipliers: K rows of

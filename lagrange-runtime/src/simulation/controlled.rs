@@ -190,9 +190,13 @@ where
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
     ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>> {
-        self.simulation
-            .system
-            .run_controlled_in(self, q0.into(), v0.into(), span)
+        let start = super::form::Start {
+            builder: self,
+            q0: q0.into(),
+            v0: v0.into(),
+            span,
+        };
+        self.simulation.system.visit_form(start)
     }
 
     /// [`run`](Self::run) with the unconstrained dynamics (refused at compile

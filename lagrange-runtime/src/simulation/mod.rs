@@ -1,6 +1,7 @@
 //! The user-facing entry point: system + integrator + initial state → trajectory.
 
 mod controlled;
+mod form;
 
 pub use controlled::{ControlRun, ControlledSimulation};
 
@@ -400,7 +401,13 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     where
         S: Lagrangian<T, N>,
     {
-        self.system.run_in(self, q0.into(), v0.into(), span)
+        let start = form::Start {
+            builder: self,
+            q0: q0.into(),
+            v0: v0.into(),
+            span,
+        };
+        self.system.visit_form(start)
     }
 
     /// The unconstrained dynamics, whatever the system (a constrained one is
@@ -469,9 +476,13 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
     where
         S: Lagrangian<T, N>,
     {
-        self.simulation
-            .system
-            .run_events_in(self, q0.into(), v0.into(), span)
+        let start = form::Start {
+            builder: self,
+            q0: q0.into(),
+            v0: v0.into(),
+            span,
+        };
+        self.simulation.system.visit_form(start)
     }
 
     /// [`run`](Self::run) with the unconstrained dynamics (refused at compile
