@@ -193,7 +193,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     /// The run as a [`Table`](crate::Table) with the system's coordinate
     /// names and its kinetic and potential energy at every point (add the
     /// multipliers with [`Table::multipliers`](crate::Table::multipliers)).
-    pub fn table<S: crate::Lagrangian<T, N>>(&self, sys: &S) -> Table<'_, T, N> {
+    pub fn table<S: crate::system::Lagrangian<T, N>>(&self, sys: &S) -> Table<'_, T, N> {
         Table::of(self, sys)
     }
 

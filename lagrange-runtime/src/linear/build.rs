@@ -184,7 +184,7 @@ impl Linearizer {
     {
         const {
             assert!(
-                !<S as crate::Lagrangian<T, N>>::CONSTRAINED,
+                !<S as crate::system::Lagrangian<T, N>>::CONSTRAINED,
                 "this system has constraints, which an unconstrained linearisation would ignore: use `Linearizer::constrained` (multipliers) or `Linearizer::reduced`"
             )
         };
@@ -759,7 +759,7 @@ fn indices<S, T, const N: usize>(
     count: usize,
 ) -> Result<Vec<usize>, Error>
 where
-    S: crate::Lagrangian<T, N>,
+    S: crate::system::Lagrangian<T, N>,
     T: Real,
 {
     let bad = |reason: String| Error::from(LinearError::InvalidPartition { what, reason });
@@ -798,7 +798,7 @@ fn check_square<S, T, const N: usize>(
     tol: f64,
 ) -> Result<(), Error>
 where
-    S: crate::Lagrangian<T, N>,
+    S: crate::system::Lagrangian<T, N>,
     T: Real,
 {
     let m = full.select_columns(dependent.iter());

@@ -413,7 +413,7 @@ mod tests {
     use crate::{Dopri5, Rk4, ode::Integrator};
     use nalgebra::Vector1;
 
-    fn oscillator_run(method: impl Integrator, t_end: f64) -> crate::Trajectory<f64, 1> {
+    fn oscillator_run(method: impl Integrator, t_end: f64) -> super::Trajectory<f64, 1> {
         let osc = Oscillator { omega: 1.0 };
         method
             .integrate(&osc, 0.0, t_end, Vector1::new(1.0), Vector1::new(0.0))
