@@ -20,8 +20,7 @@ fn main() -> Result<(), Error> {
         println!("  {:+.10} {:+.10}i", l.re, l.im);
     }
     let speeds: Vec<f64> = (1..=20).map(|i| 0.5 * i as f64).collect();
-    let boundaries =
-        sweep(&speeds, |v| bike.lateral(v))?.boundaries(|v| bike.lateral(v), 1e-12, 1e-13)?;
+    let boundaries = sweep(&speeds, |v| bike.lateral(v))?.boundaries(1e-12, 1e-13)?;
     for b in &boundaries {
         let (name, reference) = if b.oscillatory {
             ("weave", published::WEAVE_SPEED)

@@ -190,7 +190,7 @@
 //! let cp = CartPole { m_c: 1.0, m_p: 0.1, l: 0.5, g: 9.81 };
 //! let upright = OperatingPoint::new(Vector2::zeros(), Vector2::zeros()).input(Vector1::zeros());
 //! let lin = linearize(&cp, &upright)?;
-//! assert_eq!(lin.stability(1e-9).verdict, Verdict::Unstable);
+//! assert_eq!(lin.stability(1e-9)?.verdict, Verdict::Unstable);
 //! let weights = DMatrix::from_diagonal(&DVector::from_vec(vec![10.0, 100.0, 1.0, 1.0]));
 //! let k = lin.lqr(&weights, &DMatrix::from_element(1, 1, 0.1))?.gain;
 //! let run = Simulation::new(&cp)

@@ -172,7 +172,9 @@ fn runtime_imports_point_down() {
     let mut wrong = Vec::new();
     for (module, imports) in module_graph(&src) {
         let Some(own) = layer_of(&module) else {
-            wrong.push(format!("`{module}` is in no layer: add it to RUNTIME_LAYERS"));
+            wrong.push(format!(
+                "`{module}` is in no layer: add it to RUNTIME_LAYERS"
+            ));
             continue;
         };
         for import in imports {
@@ -210,7 +212,10 @@ fn the_circle_finder_finds_circles() {
     let circle = find_circle(&graph).unwrap();
     assert_eq!(circle.first(), circle.last());
     assert_eq!(circle.len(), 4, "{circle:?}");
-    assert_eq!(crate_imports("use crate::ode::X; // crate::linear"), ["ode".to_string()].into());
+    assert_eq!(
+        crate_imports("use crate::ode::X; // crate::linear"),
+        ["ode".to_string()].into()
+    );
 }
 
 /// Every `fn` item of a file with its line count, from its first line to the
@@ -303,7 +308,11 @@ fn no_file_past_what_one_reads_at_once() {
                 .then(|| format!("{rel}: {n} lines"))
         })
         .collect();
-    assert!(long.is_empty(), "files over {MAX_FILE_LINES} lines:\n{}", long.join("\n"));
+    assert!(
+        long.is_empty(),
+        "files over {MAX_FILE_LINES} lines:\n{}",
+        long.join("\n")
+    );
 }
 
 #[test]
@@ -312,7 +321,9 @@ fn no_function_past_what_one_reads_at_once() {
     for file in sources() {
         let rel = relative(&file);
         for (name, line, n) in functions(&fs::read_to_string(&file).unwrap()) {
-            let allowed = LONG_FUNCTIONS.iter().any(|(p, f, _)| *p == rel && *f == name);
+            let allowed = LONG_FUNCTIONS
+                .iter()
+                .any(|(p, f, _)| *p == rel && *f == name);
             if n > MAX_FUNCTION_LINES && !allowed {
                 long.push(format!("{rel}:{line} `{name}`: {n} lines"));
             }

@@ -103,8 +103,8 @@ fn lateral_dynamics_match_the_published_matrices() {
 fn weave_and_capsize_speeds_match_the_benchmark() {
     let b = Bicycle::benchmark();
     let speeds: Vec<f64> = (1..=20).map(|i| 0.5 * i as f64).collect();
-    let eigen = sweep(&speeds, |v| b.lateral(v)).unwrap();
-    let found = eigen.boundaries(|v| b.lateral(v), 1e-12, 1e-13).unwrap();
+    let mut eigen = sweep(&speeds, |v| b.lateral(v)).unwrap();
+    let found = eigen.boundaries(1e-12, 1e-13).unwrap();
     assert_eq!(found.len(), 2, "{found:?}");
     let (weave, capsize) = (found[0], found[1]);
     assert!(weave.oscillatory && !weave.destabilising);
@@ -120,7 +120,7 @@ fn weave_and_capsize_speeds_match_the_benchmark() {
     assert!(rel(weave.parameter, published::WEAVE_SPEED) < 1e-8);
     assert!(rel(capsize.parameter, published::CAPSIZE_SPEED) < 1e-8);
     // Self-stable in between, unstable outside.
-    let verdict = |v: f64| b.lateral(v).unwrap().stability(1e-12).verdict;
+    let verdict = |v: f64| b.lateral(v).unwrap().stability(1e-12).unwrap().verdict;
     assert_eq!(verdict(5.0), Verdict::AsymptoticallyStable);
     assert_eq!(verdict(3.0), Verdict::Unstable);
     assert_eq!(verdict(7.0), Verdict::Unstable);
@@ -215,4 +215,85 @@ fn reduced_form_agrees_with_the_multiplier_form() {
     let gap = (r.final_state().0 - c.final_state().0).amax();
     eprintln!("bicycle, 2 s roll kick, reduced vs multiplier: {gap:.1e}");
     assert!(gap < 1e-7, "{gap:e}");
+}
+
+/// The whole linearised bicycle, no states selected: the zeros of the
+/// position, heading, wheel angles and forward speed are structural, so they
+/// are exact and the verdict is the lateral one (stable at 5 m/s, weave-unstable
+/// at 3 m/s), naming the states it left out.
+#[test]
+fn unselected_bicycle_verdict_ignores_its_structural_zeros() {
+    let b = Bicycle::benchmark();
+    let full = |v: f64| {
+        let (q, qd) = b.upright(v);
+        let op = OperatingPoint::new(SVector::from(q), SVector::from(qd));
+        Linearizer::new().constrained(&b, &op).unwrap()
+    };
+    let fast = full(5.0);
+    let naive = fast.a().complex_eigenvalues();
+    let naive_max = naive.iter().map(|z| z.re).fold(f64::NEG_INFINITY, f64::max);
+    eprintln!("whole-matrix eigen-solver: max Re = {naive_max:e}");
+    let stab = fast.stability(1e-12).unwrap();
+    assert_eq!(stab.verdict, Verdict::AsymptoticallyStable, "{stab:?}");
+    for name in ["x", "y", "psi", "theta_r", "theta_f"] {
+        assert!(stab.structural.contains(&name.to_string()), "{stab:?}");
+    }
+    for name in ["phi", "delta", "phi'", "delta'"] {
+        assert!(!stab.structural.contains(&name.to_string()), "{stab:?}");
+    }
+    let zeros = fast
+        .eigenvalues()
+        .iter()
+        .filter(|z| z.norm() == 0.0)
+        .count();
+    assert_eq!(zeros, stab.structural.len());
+    assert_eq!(
+        full(3.0).stability(1e-12).unwrap().verdict,
+        Verdict::Unstable
+    );
+}
+
+/// Naming only the states of interest: the linearizer completes the
+/// independent coordinates and speeds, and the lateral block is the one the
+/// fully named partition gives.
+#[test]
+fn linearizer_completes_a_partial_partition() {
+    let b = Bicycle::benchmark();
+    let (q, qd) = b.upright(4.0);
+    let op = OperatingPoint::new(SVector::from(q), SVector::from(qd));
+    let lin = Linearizer::new()
+        .coordinates(&["phi", "delta"])
+        .speeds(&["phi", "delta"])
+        .constrained(&b, &op)
+        .unwrap();
+    assert_eq!(lin.states()[..2], ["phi", "delta"]);
+    assert_eq!(
+        lin.completed().len(),
+        lin.states().len() - 4,
+        "{:?}",
+        lin.completed()
+    );
+    let lateral = lin.select(&["phi", "delta", "phi'", "delta'"]).unwrap();
+    let named = b.lateral(4.0).unwrap();
+    assert!(
+        (lateral.a() - named.a()).amax() < 1e-10,
+        "{}\n{}",
+        lateral.a(),
+        named.a()
+    );
+    let too_many = Linearizer::new()
+        .coordinates(&[
+            "x", "y", "psi", "phi", "theta_r", "delta", "theta_f", "pitch",
+        ])
+        .constrained(&b, &op)
+        .unwrap_err();
+    assert!(too_many.to_string().contains("at most 7"), "{too_many}");
+}
+
+#[test]
+fn a_negative_stability_tolerance_is_refused() {
+    let lateral = Bicycle::benchmark().lateral(5.0).unwrap();
+    let e = lateral.stability(-1e-9).unwrap_err();
+    assert!(e.to_string().contains("must be finite and >= 0"), "{e}");
+    assert!(lateral.stability(f64::NAN).is_err());
 }

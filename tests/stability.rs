@@ -36,8 +36,8 @@ fn critical_spin_of_upright_rolling() {
     // moves the crossing by only τ²/κ: τ = 1e-6 sits above the round-off and
     // still locates Ω_c to 2.3e-10.
     let tol = 1e-6;
-    let eigen = sweep(&spins, |w| d.upright_tilt(w)).unwrap();
-    let found = eigen.boundaries(|w| d.upright_tilt(w), tol, 1e-14).unwrap();
+    let mut eigen = sweep(&spins, |w| d.upright_tilt(w)).unwrap();
+    let found = eigen.boundaries(tol, 1e-14).unwrap();
     assert_eq!(found.len(), 1, "{found:?}");
     let rel = (found[0].parameter - exact).abs() / exact;
     eprintln!(
@@ -46,7 +46,7 @@ fn critical_spin_of_upright_rolling() {
     );
     assert!(rel < 1e-9);
     assert!(!found[0].destabilising);
-    let verdict = |w: f64| d.upright_tilt(w).unwrap().stability(tol).verdict;
+    let verdict = |w: f64| d.upright_tilt(w).unwrap().stability(tol).unwrap().verdict;
     assert_eq!(verdict(0.9 * exact), Verdict::Unstable);
     assert_eq!(verdict(1.1 * exact), Verdict::Marginal);
 }

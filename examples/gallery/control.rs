@@ -64,7 +64,7 @@ fn disk() -> Result<Row, Error> {
     let d = RollingDisk::thin(1.0, 0.5, 9.81);
     let spins: Vec<f64> = (1..=20).map(|i| 0.25 * i as f64).collect();
     let critical = sweep(&spins, |w| d.upright_tilt(w))?
-        .boundaries(|w| d.upright_tilt(w), 1e-6, 1e-14)?
+        .boundaries(1e-6, 1e-14)?
         .first()
         .map_or(f64::NAN, |b| b.parameter);
     let exact = (d.g / (3.0 * d.a)).sqrt();
@@ -100,7 +100,7 @@ fn disk() -> Result<Row, Error> {
 fn bicycle() -> Result<Row, Error> {
     let b = Bicycle::benchmark();
     let speeds: Vec<f64> = (1..=20).map(|i| 0.5 * i as f64).collect();
-    let found = sweep(&speeds, |v| b.lateral(v))?.boundaries(|v| b.lateral(v), 1e-12, 1e-13)?;
+    let found = sweep(&speeds, |v| b.lateral(v))?.boundaries(1e-12, 1e-13)?;
     let speed_of = |oscillatory: bool| {
         found
             .iter()

@@ -18,6 +18,45 @@ fn eigenvalues_of(a: &DMatrix<f64>) -> Vec<Complex<f64>> {
     ev
 }
 
+/// The states whose zero eigenvalues are structural, in the order found.
+///
+/// A state whose column of A is exactly zero (no state's rate depends on it: a
+/// cyclic coordinate such as a wheel angle or a position on the plane) is
+/// peeled off; then a state whose column is zero outside the rows already
+/// peeled (the heading, which only moves the position), and so on. In the
+/// peeled order A is block triangular, [[A_rr, 0], [A_pr, A_pp]] with A_pp
+/// strictly triangular, so the spectrum is exactly eig(A_rr) and one zero per
+/// peeled state. Computing them that way keeps the zeros exact: a numerical
+/// eigen-solver on the whole of A turns a Jordan chain of zeros into a ring of
+/// size √ε (±1.6e-7 on the bicycle), which would flip a verdict.
+///
+/// "Zero" is at round-off: |a_ij| ≤ 64 ε max|A|. A heading enters the rows of
+/// the other states only through terms such as sin ψ cos ψ − cos ψ sin ψ, which
+/// cancel to a few ulps rather than to 0; an entry that small moves an
+/// eigenvalue by no more than it is.
+fn structural_zero_states(a: &DMatrix<f64>) -> Vec<usize> {
+    let n = a.nrows();
+    let zero = 64.0 * f64::EPSILON * a.amax();
+    let mut peeled = vec![false; n];
+    let mut order = Vec::new();
+    while let Some(j) =
+        (0..n).find(|&j| !peeled[j] && (0..n).all(|i| peeled[i] || a[(i, j)].abs() <= zero))
+    {
+        peeled[j] = true;
+        order.push(j);
+    }
+    order
+}
+
+/// The eigenvalues of the states that are not structural zeros, and the
+/// structural states (see [`structural_zero_states`]).
+fn split_spectrum(a: &DMatrix<f64>) -> (Vec<Complex<f64>>, Vec<usize>) {
+    let structural = structural_zero_states(a);
+    let rest: Vec<usize> = (0..a.nrows()).filter(|i| !structural.contains(i)).collect();
+    let block = a.select_rows(rest.iter()).select_columns(rest.iter());
+    (eigenvalues_of(&block), structural)
+}
+
 fn max_real(ev: &[Complex<f64>]) -> f64 {
     ev.iter().map(|z| z.re).fold(f64::NEG_INFINITY, f64::max)
 }
@@ -48,7 +87,7 @@ pub enum Verdict {
 }
 
 /// A stability verdict with the figure it rests on.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Stability {
     /// The verdict.
     pub verdict: Verdict,
@@ -58,14 +97,37 @@ pub struct Stability {
     pub critical: Complex<f64>,
     /// The tolerance used.
     pub tolerance: f64,
+    /// The states whose zero eigenvalues are structural (cyclic coordinates
+    /// and what only they feed, see [`Linear::structural_zeros`]): left out of
+    /// the verdict, which is about the other states. A model whose every
+    /// state is structural is [`Verdict::Marginal`].
+    pub structural: Vec<String>,
 }
 
 impl Linear {
     /// The eigenvalues of A, sorted by decreasing real part (then decreasing
     /// imaginary part). Computed by nalgebra's real Schur decomposition, without
     /// balancing.
+    ///
+    /// The zero eigenvalues of [structural](Self::structural_zeros) states are
+    /// exact zeros, placed by the sort like any other eigenvalue.
     pub fn eigenvalues(&self) -> Vec<Complex<f64>> {
-        eigenvalues_of(self.a())
+        let (mut ev, structural) = split_spectrum(self.a());
+        ev.extend(structural.iter().map(|_| Complex::new(0.0, 0.0)));
+        ev.sort_by(|x, y| y.re.total_cmp(&x.re).then(y.im.total_cmp(&x.im)));
+        ev
+    }
+
+    /// The states whose zero eigenvalues are structural: no other state's rate
+    /// depends on them, except states already in the list (a cyclic
+    /// coordinate, a heading that only moves a position, a wheel's rate that
+    /// only turns the wheel). Found from the zeros of A (at round-off), so they are the
+    /// zeros a derived model's cyclic coordinates leave.
+    pub fn structural_zeros(&self) -> Vec<String> {
+        structural_zero_states(self.a())
+            .into_iter()
+            .map(|i| self.states()[i].clone())
+            .collect()
     }
 
     /// The eigenvalues with their eigenvectors, in the order of
@@ -113,12 +175,46 @@ impl Linear {
 
     /// The stability verdict with tolerance `tol` on the real parts (see
     /// [`Verdict`]).
-    pub fn stability(&self, tol: f64) -> Stability {
-        stability_of(&self.eigenvalues(), tol)
+    ///
+    /// The verdict is about the states that are not
+    /// [structural zeros](Self::structural_zeros); those are named in
+    /// [`Stability::structural`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] if `tol` is negative or not finite (a
+    /// negative tolerance would call an undamped oscillator asymptotically
+    /// stable).
+    pub fn stability(&self, tol: f64) -> Result<Stability, Error> {
+        check_tolerance(tol)?;
+        let (ev, structural) = split_spectrum(self.a());
+        let names = structural
+            .iter()
+            .map(|&i| self.states()[i].clone())
+            .collect();
+        Ok(stability_of(&ev, names, tol))
     }
 }
 
-fn stability_of(ev: &[Complex<f64>], tol: f64) -> Stability {
+fn check_tolerance(tol: f64) -> Result<(), Error> {
+    if tol.is_finite() && tol >= 0.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidSettings(format!(
+            "the stability tolerance on the real parts must be finite and >= 0, got {tol}"
+        )))
+    }
+}
+
+fn stability_of(ev: &[Complex<f64>], structural: Vec<String>, tol: f64) -> Stability {
+    if ev.is_empty() && !structural.is_empty() {
+        return Stability {
+            verdict: Verdict::Marginal,
+            max_real: 0.0,
+            critical: Complex::new(0.0, 0.0),
+            tolerance: tol,
+            structural,
+        };
+    }
     let max = max_real(ev);
     // Sorted by decreasing (re, im): the first one attaining the max has Im ≥ 0.
     let critical = ev.first().copied().unwrap_or(Complex::new(f64::NAN, 0.0));
@@ -138,6 +234,7 @@ fn stability_of(ev: &[Complex<f64>], tol: f64) -> Stability {
         },
         critical,
         tolerance: tol,
+        structural,
     }
 }
 
@@ -172,22 +269,53 @@ fn normalise(x: DVector<Complex<f64>>) -> DVector<Complex<f64>> {
 pub struct SweepPoint {
     /// The parameter.
     pub parameter: f64,
-    /// The eigenvalues, sorted as [`Linear::eigenvalues`].
+    /// The eigenvalues of the states that are not structural zeros, sorted as
+    /// [`Linear::eigenvalues`].
     pub eigenvalues: Vec<Complex<f64>>,
+    /// The states whose zero eigenvalues are structural (see
+    /// [`Linear::structural_zeros`]), left out of `eigenvalues`.
+    pub structural: Vec<String>,
 }
 
 impl SweepPoint {
-    /// max Re λ.
+    fn of(parameter: f64, lin: &Linear) -> Self {
+        let (eigenvalues, structural) = split_spectrum(lin.a());
+        let structural = structural
+            .iter()
+            .map(|&i| lin.states()[i].clone())
+            .collect();
+        Self {
+            parameter,
+            eigenvalues,
+            structural,
+        }
+    }
+
+    /// max Re λ over the eigenvalues that are not structural zeros (0 when
+    /// every state is structural).
     pub fn max_real(&self) -> f64 {
+        if self.eigenvalues.is_empty() && !self.structural.is_empty() {
+            return 0.0;
+        }
         max_real(&self.eigenvalues)
     }
 }
 
-/// The eigenvalues of a family of linear models over a parameter; see [`sweep`].
-#[derive(Clone, Debug, PartialEq)]
-pub struct EigenSweep {
+/// The eigenvalues of a family of linear models over a parameter, with the
+/// model itself, so that its stability boundaries can be refined; see
+/// [`sweep`].
+pub struct EigenSweep<F> {
     /// One point per parameter value, in the order given.
     pub points: Vec<SweepPoint>,
+    model: F,
+}
+
+impl<F> std::fmt::Debug for EigenSweep<F> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("EigenSweep")
+            .field("points", &self.points)
+            .finish_non_exhaustive()
+    }
 }
 
 /// A located stability boundary: where max Re λ crosses the tolerance.
@@ -209,27 +337,26 @@ pub struct Boundary {
     pub destabilising: bool,
 }
 
-/// The eigenvalues of `model(p)` for every p in `parameters`.
+/// The eigenvalues of `model(p)` for every p in `parameters`. The sweep keeps
+/// `model` to refine its [`boundaries`](EigenSweep::boundaries).
 ///
 /// # Errors
 /// The first error `model` returns.
-pub fn sweep<F>(parameters: &[f64], mut model: F) -> Result<EigenSweep, Error>
+pub fn sweep<F>(parameters: &[f64], mut model: F) -> Result<EigenSweep<F>, Error>
 where
     F: FnMut(f64) -> Result<Linear, Error>,
 {
     let points = parameters
         .iter()
-        .map(|&p| {
-            Ok(SweepPoint {
-                parameter: p,
-                eigenvalues: model(p)?.eigenvalues(),
-            })
-        })
+        .map(|&p| Ok(SweepPoint::of(p, &model(p)?)))
         .collect::<Result<_, Error>>()?;
-    Ok(EigenSweep { points })
+    Ok(EigenSweep { points, model })
 }
 
-impl EigenSweep {
+impl<F> EigenSweep<F>
+where
+    F: FnMut(f64) -> Result<Linear, Error>,
+{
     /// max Re λ at every point, as (parameter, max Re λ).
     pub fn max_real(&self) -> Vec<(f64, f64)> {
         self.points
@@ -239,11 +366,19 @@ impl EigenSweep {
     }
 
     /// The stability verdicts at every point, with tolerance `tol`.
-    pub fn verdicts(&self, tol: f64) -> Vec<(f64, Verdict)> {
-        self.points
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] for a negative or non-finite `tol`.
+    pub fn verdicts(&self, tol: f64) -> Result<Vec<(f64, Verdict)>, Error> {
+        check_tolerance(tol)?;
+        Ok(self
+            .points
             .iter()
-            .map(|p| (p.parameter, stability_of(&p.eigenvalues, tol).verdict))
-            .collect()
+            .map(|p| {
+                let stab = stability_of(&p.eigenvalues, p.structural.clone(), tol);
+                (p.parameter, stab.verdict)
+            })
+            .collect())
     }
 
     /// The stability boundaries: every pair of neighbouring sweep points across
@@ -253,70 +388,77 @@ impl EigenSweep {
     /// continuous but has kinks where the critical eigenvalue changes; Brent keeps
     /// a bracket, so a kink slows it down but cannot lose the crossing. A sweep
     /// too coarse to see a crossing (two within one interval) misses it.
+    /// Structural zero eigenvalues take no part (see [`SweepPoint::max_real`]).
     ///
     /// # Errors
-    /// The first error `model` returns; [`LinearError::BoundaryNotResolved`] if
-    /// the bracket is not within `rtol` after Brent stops;
-    /// [`Error::InvalidSettings`] for a negative or non-finite `rtol`.
-    pub fn boundaries<F>(&self, mut model: F, tol: f64, rtol: f64) -> Result<Vec<Boundary>, Error>
-    where
-        F: FnMut(f64) -> Result<Linear, Error>,
-    {
-        if !(rtol.is_finite() && rtol >= 0.0 && tol.is_finite()) {
+    /// The first error the model returns; [`LinearError::BoundaryNotResolved`]
+    /// if the bracket is not within `rtol` after Brent stops;
+    /// [`Error::InvalidSettings`] for a negative or non-finite `tol` or `rtol`.
+    pub fn boundaries(&mut self, tol: f64, rtol: f64) -> Result<Vec<Boundary>, Error> {
+        check_tolerance(tol)?;
+        if !(rtol.is_finite() && rtol >= 0.0) {
             return Err(Error::InvalidSettings(format!(
-                "boundary tolerances must be finite and rtol >= 0, got tol = {tol}, rtol = {rtol}"
+                "the boundary's relative tolerance must be finite and >= 0, got rtol = {rtol}"
             )));
         }
         let mut out = Vec::new();
-        for w in self.points.windows(2) {
-            let (fa, fb) = (w[0].max_real() - tol, w[1].max_real() - tol);
-            if (fa > 0.0) == (fb > 0.0) {
-                continue;
+        for k in 1..self.points.len() {
+            let (a, b) = (&self.points[k - 1], &self.points[k]);
+            let (fa, fb) = (a.max_real() - tol, b.max_real() - tol);
+            if (fa > 0.0) != (fb > 0.0) {
+                let ends = [(a.parameter, fa), (b.parameter, fb)];
+                out.push(locate(&mut self.model, ends, tol, rtol)?);
             }
-            let (a, b) = (w[0].parameter, w[1].parameter);
-            let mut failure: Option<Error> = None;
-            let (p, _, c, _) = brent_bracket(
-                |p: f64| {
-                    if failure.is_some() {
-                        return 0.0;
-                    }
-                    match model(p) {
-                        Ok(lin) => max_real(&lin.eigenvalues()) - tol,
-                        Err(e) => {
-                            failure = Some(e);
-                            0.0
-                        }
-                    }
-                },
-                a,
-                b,
-                fa,
-                fb,
-            );
-            if let Some(e) = failure {
-                return Err(e);
-            }
-            let (lo, hi) = (p.min(c), p.max(c));
-            // Brent's own stopping rule is 4 ε |p| (+ the smallest normal).
-            let reachable = 4.0 * f64::EPSILON * p.abs() + f64::MIN_POSITIVE;
-            if hi - lo > (rtol * p.abs()).max(reachable) {
-                return Err(LinearError::BoundaryNotResolved {
-                    lo,
-                    hi,
-                    tolerance: rtol,
-                }
-                .into());
-            }
-            let stab = model(p)?.stability(tol);
-            let z = stab.critical;
-            out.push(Boundary {
-                parameter: p,
-                bracket: (lo, hi),
-                eigenvalue: z,
-                oscillatory: z.im.abs() > 1e-8 * (1.0 + z.norm()),
-                destabilising: (fb > 0.0) == (b > a),
-            });
         }
         Ok(out)
     }
+}
+
+/// max Re λ − `tol` of `model(p)`, over the states that are not structural.
+fn margin<F>(model: &mut F, p: f64, tol: f64) -> Result<f64, Error>
+where
+    F: FnMut(f64) -> Result<Linear, Error>,
+{
+    Ok(SweepPoint::of(p, &model(p)?).max_real() - tol)
+}
+
+/// The boundary inside one bracket [(a, f(a)), (b, f(b))] of a sign change.
+fn locate<F>(model: &mut F, ends: [(f64, f64); 2], tol: f64, rtol: f64) -> Result<Boundary, Error>
+where
+    F: FnMut(f64) -> Result<Linear, Error>,
+{
+    let [(a, fa), (b, fb)] = ends;
+    let mut failure: Option<Error> = None;
+    let f = |p: f64| {
+        if failure.is_some() {
+            return 0.0;
+        }
+        margin(model, p, tol).unwrap_or_else(|e| {
+            failure = Some(e);
+            0.0
+        })
+    };
+    let (p, _, c, _) = brent_bracket(f, a, b, fa, fb);
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    let (lo, hi) = (p.min(c), p.max(c));
+    // Brent's own stopping rule is 4 ε |p| (+ the smallest normal).
+    let reachable = 4.0 * f64::EPSILON * p.abs() + f64::MIN_POSITIVE;
+    if hi - lo > (rtol * p.abs()).max(reachable) {
+        return Err(LinearError::BoundaryNotResolved {
+            lo,
+            hi,
+            tolerance: rtol,
+        }
+        .into());
+    }
+    let z = model(p)?.stability(tol)?.critical;
+    Ok(Boundary {
+        parameter: p,
+        bracket: (lo, hi),
+        eigenvalue: z,
+        oscillatory: z.im.abs() > 1e-8 * (1.0 + z.norm()),
+        destabilising: (fb > 0.0) == (b > a),
+    })
 }

@@ -43,10 +43,10 @@
 //!     let k = DMatrix::from_element(1, 1, 4.0);
 //!     Linear::from_second_order(m, c, k, DMatrix::zeros(1, 0), &["x"], &[])
 //! };
-//! assert_eq!(model(0.0)?.stability(1e-12).verdict, Verdict::AsymptoticallyStable);
+//! assert_eq!(model(0.0)?.stability(1e-12)?.verdict, Verdict::AsymptoticallyStable);
 //! let params: Vec<f64> = (0..=10).map(|i| 0.1 * i as f64).collect();
-//! let eigen = sweep(&params, model)?;
-//! let boundaries = eigen.boundaries(model, 1e-12, 1e-12)?;
+//! let mut eigen = sweep(&params, model)?;
+//! let boundaries = eigen.boundaries(1e-12, 1e-12)?;
 //! assert_eq!(boundaries.len(), 1);
 //! assert!((boundaries[0].parameter - 0.5).abs() < 1e-11);
 //! assert!(boundaries[0].oscillatory && boundaries[0].destabilising);
@@ -67,16 +67,20 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod build;
+mod defaults;
 mod dense;
 mod eigen;
+mod errors;
 mod lqr;
+mod partition;
+mod settings;
 
-pub use build::{
-    DEFAULT_NEWTON_ITERATIONS, DEFAULT_NEWTON_TOLERANCE, Linearizer, OperatingPoint,
-    complete_state, linearize, linearize_constrained, linearize_reduced,
-};
+pub use defaults::{complete_state, linearize, linearize_constrained, linearize_reduced};
 pub use eigen::{Boundary, EigenSweep, Mode, Stability, SweepPoint, Verdict, sweep};
 pub use lqr::{Lqr, RICCATI_TOLERANCE, lqr};
+pub use settings::{
+    DEFAULT_NEWTON_ITERATIONS, DEFAULT_NEWTON_TOLERANCE, Linearizer, OperatingPoint,
+};
 
 use crate::error::Error;
 pub use crate::error::LinearError;
@@ -170,6 +174,7 @@ pub struct Linear {
     inputs: Vec<String>,
     n_coordinates: usize,
     second_order: Option<SecondOrderForm>,
+    completed: Vec<String>,
 }
 
 impl Linear {
@@ -202,6 +207,7 @@ impl Linear {
             inputs: inputs.iter().map(|s| s.to_string()).collect(),
             n_coordinates,
             second_order: None,
+            completed: Vec::new(),
         })
     }
 
@@ -257,6 +263,7 @@ impl Linear {
                 coordinates: names.clone(),
                 speeds: names,
             }),
+            completed: Vec::new(),
         })
     }
 
@@ -275,7 +282,23 @@ impl Linear {
             inputs,
             n_coordinates,
             second_order,
+            completed: Vec::new(),
         }
+    }
+
+    /// The model with `names` recorded as the states its linearizer chose.
+    pub(crate) fn with_completed(mut self, names: Vec<String>) -> Self {
+        self.completed = names;
+        self
+    }
+
+    /// The states the [`Linearizer`] chose itself, beyond those named with
+    /// [`coordinates`](Linearizer::coordinates) and
+    /// [`speeds`](Linearizer::speeds) (all of a constrained model's states when
+    /// none were named; none for an unconstrained model, whose states are
+    /// all its coordinates and velocities).
+    pub fn completed(&self) -> &[String] {
+        &self.completed
     }
 
     /// The state matrix A.
@@ -380,14 +403,17 @@ impl Linear {
             .second_order
             .as_ref()
             .and_then(|so| self.select_second_order(so, &kept, &a, &b, n_coordinates));
-        Ok(Linear::from_parts(
-            a,
-            b,
-            states,
-            self.inputs.clone(),
-            n_coordinates,
-            second_order,
-        ))
+        let completed = self
+            .completed
+            .iter()
+            .filter(|c| states.contains(c))
+            .cloned()
+            .collect();
+        let inputs = self.inputs.clone();
+        Ok(
+            Linear::from_parts(a, b, states, inputs, n_coordinates, second_order)
+                .with_completed(completed),
+        )
     }
 
     fn select_second_order(

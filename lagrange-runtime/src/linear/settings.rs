@@ -1,0 +1,138 @@
+//! What a linearisation is about and how it is done: the operating point and
+//! the [`Linearizer`]'s settings.
+
+use crate::mechanics::constraint::{DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE};
+use crate::mechanics::dynamics::DEFAULT_SINGULAR_TOLERANCE;
+use crate::numeric::Real;
+use nalgebra::SVector;
+
+/// Default absolute tolerance on max |Φ| of the Newton iteration in
+/// [`Linearizer::complete_state`].
+pub const DEFAULT_NEWTON_TOLERANCE: f64 = 1e-12;
+/// Default limit on Newton iterations in [`Linearizer::complete_state`].
+pub const DEFAULT_NEWTON_ITERATIONS: usize = 20;
+
+/// An operating point (q0, q̇0, u0, t0) with P inputs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OperatingPoint<T: Real, const N: usize, const P: usize> {
+    /// Coordinates q0.
+    pub q: SVector<T, N>,
+    /// Velocities q̇0.
+    pub v: SVector<T, N>,
+    /// Inputs u0.
+    pub u: SVector<T, P>,
+    /// Time t0.
+    pub t: T,
+}
+
+impl<T: Real, const N: usize, const P: usize> OperatingPoint<T, N, P> {
+    /// The point (q, v) at t = 0 with all inputs zero.
+    pub fn new(q: SVector<T, N>, v: SVector<T, N>) -> Self {
+        Self {
+            q,
+            v,
+            u: SVector::zeros(),
+            t: T::zero(),
+        }
+    }
+
+    /// Sets the inputs u0.
+    pub fn input(mut self, u: SVector<T, P>) -> Self {
+        self.u = u;
+        self
+    }
+
+    /// Sets the time t0.
+    pub fn time(mut self, t: T) -> Self {
+        self.t = t;
+        self
+    }
+}
+
+/// Settings of a linearisation: the independent coordinates and speeds of a
+/// constrained system and the tolerances.
+///
+/// **Automatic choice** (when no names are given): the dependent coordinates are
+/// the columns of Φ_q chosen by QR with column pivoting (largest remaining column
+/// norm first, the later coordinate on ties), so Φ_{q_d} is as well conditioned
+/// as this greedy rule gets; the dependent speeds are the rates of the dependent
+/// coordinates plus, for the nonholonomic rows, the columns chosen by the same
+/// pivoting on those rows restricted to the holonomic motions,
+/// A_i − A_d Φ_{q_d}⁻¹ Φ_{q_i}. The independent speeds are then rates of
+/// independent coordinates, so the second-order form is always available. Names
+/// keep the order they are given in; automatic ones follow the coordinates'.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Linearizer {
+    pub(super) coordinates: Option<Vec<String>>,
+    pub(super) speeds: Option<Vec<String>>,
+    pub(super) consistency_tolerance: f64,
+    pub(super) singular_tolerance: f64,
+    pub(super) redundant_tolerance: f64,
+    pub(super) newton_tolerance: f64,
+    pub(super) newton_iterations: usize,
+}
+
+impl Default for Linearizer {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Linearizer {
+    /// Automatic choice of independent coordinates and speeds; consistency
+    /// tolerance 1e-10, singular and redundancy tolerances 1e-12, Newton to 1e-12
+    /// in at most 20 iterations.
+    pub fn new() -> Self {
+        Self {
+            coordinates: None,
+            speeds: None,
+            consistency_tolerance: DEFAULT_CONSISTENCY_TOLERANCE,
+            singular_tolerance: DEFAULT_SINGULAR_TOLERANCE,
+            redundant_tolerance: DEFAULT_REDUNDANT_TOLERANCE,
+            newton_tolerance: DEFAULT_NEWTON_TOLERANCE,
+            newton_iterations: DEFAULT_NEWTON_ITERATIONS,
+        }
+    }
+
+    /// Names the independent coordinates (N − HOLONOMIC of them), in the order the
+    /// states will have.
+    pub fn coordinates(mut self, names: &[&str]) -> Self {
+        self.coordinates = Some(names.iter().map(|s| s.to_string()).collect());
+        self
+    }
+
+    /// Names the independent speeds (N − K of them) by the coordinates whose rates
+    /// they are, in the order the states will have.
+    pub fn speeds(mut self, names: &[&str]) -> Self {
+        self.speeds = Some(names.iter().map(|s| s.to_string()).collect());
+        self
+    }
+
+    /// Absolute tolerance on max |Φ| and max |G q̇ + g| at the operating point
+    /// (default 1e-10).
+    pub fn consistency_tolerance(mut self, tol: f64) -> Self {
+        self.consistency_tolerance = tol;
+        self
+    }
+
+    /// Threshold on the mass matrix's Cholesky pivot ratio (default 1e-12).
+    pub fn singular_tolerance(mut self, tol: f64) -> Self {
+        self.singular_tolerance = tol;
+        self
+    }
+
+    /// Threshold on σ_min/σ_max (or the pivot ratio) below which constraint rows,
+    /// Φ_{q_d} or G_d count as singular (default 1e-12).
+    pub fn redundant_tolerance(mut self, tol: f64) -> Self {
+        self.redundant_tolerance = tol;
+        self
+    }
+
+    /// Tolerance on max |Φ| and iteration limit of the Newton iteration of
+    /// [`complete_state`](Self::complete_state).
+    pub fn newton(mut self, tol: f64, max_iter: usize) -> Self {
+        self.newton_tolerance = tol;
+        self.newton_iterations = max_iter;
+        self
+    }
+}
