@@ -228,7 +228,7 @@ fn reduced_linearisation_matches_central_differences() {
         let u: SVector<f64, 2> = rng.vector(2.0);
         let v = dynamics.velocities(0.0, &q, &u).unwrap();
         let lin = Linearizer::new()
-            .reduced(&sys, &OperatingPoint::<f64, 3, 0>::new(q, v))
+            .reduced(&sys, &OperatingPoint::<f64, 3>::new(q, v))
             .unwrap();
         let flow = |x: &SVector<f64, 5>| {
             let (q, u) = (

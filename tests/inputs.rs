@@ -288,3 +288,21 @@ fn generic_scalar() {
     let (du, dq, _) = sys.input_jacobians(&q, &v, &u, 0.0);
     assert_eq!((du[(0, 0)], dq[(0, 0)]), (0.5, 4.0));
 }
+
+/// An operating point without inputs linearises a driven system with its
+/// inputs at zero, with no annotation; the inputs, when given, must be as
+/// many as the system's (a compile-time check).
+#[test]
+fn operating_point_inputs_default_to_zero() {
+    let (q, v) = (Vector2::new(0.2, 0.4), Vector2::new(-0.1, 0.3));
+    let op = OperatingPoint::new(q, v);
+    let zero = Linearizer::new().unconstrained(&SYS, &op).unwrap();
+    let given = Linearizer::new()
+        .unconstrained(&SYS, &op.input(SVector::<f64, 5>::zeros()))
+        .unwrap();
+    assert_eq!(zero.a(), given.a());
+    assert_eq!(zero.b(), given.b());
+    assert_eq!(zero.inputs().len(), 5);
+    let pushed = op.input(SVector::<f64, 5>::from([1.0, 0.0, 0.0, 0.0, 0.0]));
+    assert_eq!(pushed.u[0], 1.0);
+}

@@ -784,11 +784,23 @@ fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     }
 }
 
+/// `Driven` with no inputs, for a description without them: the runtime's
+/// defaults (ΔQ = 0). Every derived system is `Driven` exactly once, so the
+/// number of inputs is inferred wherever one is needed.
+fn driven_by_nothing(f: &Frame) -> TokenStream {
+    let (s, nl) = (&f.s, &f.n);
+    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    quote! {
+        #[automatically_derived]
+        impl #ig ::lagrange::__private::Driven<#s, #nl, 0> for #ident #tg #wc {}
+    }
+}
+
 /// `impl Driven` for a description with inputs: ΔQ and its Jacobians, with the
 /// inputs taken as `u`.
 fn impl_driven(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let Some(inputs) = &model.inputs else {
-        return quote!();
+        return driven_by_nothing(f);
     };
     let p = inputs.names.len();
     let pl = Literal::usize_unsuffixed(p);

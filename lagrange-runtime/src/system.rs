@@ -429,9 +429,14 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
 /// enter M, h or the constraints, so the multiplier and reduced forms are driven
 /// the same way.
 ///
-/// Every [`Lagrangian`] system is `Driven` with P = 0 (no inputs), so code
-/// written for driven systems (linearisation, controlled simulation) also
-/// takes undriven ones.
+/// `#[derive(Lagrangian)]` implements it for every system: with the declared
+/// inputs, or with P = 0 for a system without inputs, so that code written for
+/// driven systems (linearisation, controlled simulation) takes undriven ones
+/// too and the number of inputs is always the system's own (an operating point
+/// or controller never needs it spelled out). A hand-written system without
+/// inputs writes `impl Driven<f64, N, 0> for MySystem {}`: every item has a
+/// default for P = 0 (and only for P = 0: a driven hand-written system must
+/// implement them, or the build stops at its impl).
 #[diagnostic::on_unimplemented(
     message = "`{Self}` is not driven by {P} input(s): a controller, input signal or operating point supplies a different number of inputs than `inputs(...)` declares",
     label = "{P} input(s) supplied here",
@@ -439,7 +444,13 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
 )]
 pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
     /// Names of the inputs, in order.
-    const INPUTS: [&'static str; P];
+    const INPUTS: [&'static str; P] = {
+        assert!(
+            P == 0,
+            "a driven system names its inputs in `Driven::INPUTS`"
+        );
+        [""; P]
+    };
 
     /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t): the generalized forces the inputs add.
     fn input_forces(
@@ -448,7 +459,11 @@ pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
         v: &SVector<T, N>,
         u: &SVector<T, P>,
         t: T,
-    ) -> SVector<T, N>;
+    ) -> SVector<T, N> {
+        const { assert!(P == 0, "a driven system implements `Driven::input_forces`") };
+        let _ = (q, v, u, t);
+        SVector::zeros()
+    }
 
     /// The input Jacobians at (q, q̇, u, t):
     ///
@@ -465,30 +480,14 @@ pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
         v: &SVector<T, N>,
         u: &SVector<T, P>,
         t: T,
-    ) -> (SMatrix<T, N, P>, SMatrix<T, N, N>, SMatrix<T, N, N>);
-}
-
-/// Every system is driven by zero inputs.
-impl<T: Real, const N: usize, S: Lagrangian<T, N> + ?Sized> Driven<T, N, 0> for S {
-    const INPUTS: [&'static str; 0] = [];
-
-    fn input_forces(
-        &self,
-        _: &SVector<T, N>,
-        _: &SVector<T, N>,
-        _: &SVector<T, 0>,
-        _: T,
-    ) -> SVector<T, N> {
-        SVector::zeros()
-    }
-
-    fn input_jacobians(
-        &self,
-        _: &SVector<T, N>,
-        _: &SVector<T, N>,
-        _: &SVector<T, 0>,
-        _: T,
-    ) -> (SMatrix<T, N, 0>, SMatrix<T, N, N>, SMatrix<T, N, N>) {
+    ) -> (SMatrix<T, N, P>, SMatrix<T, N, N>, SMatrix<T, N, N>) {
+        const {
+            assert!(
+                P == 0,
+                "a driven system implements `Driven::input_jacobians`"
+            )
+        };
+        let _ = (q, v, u, t);
         (SMatrix::zeros(), SMatrix::zeros(), SMatrix::zeros())
     }
 }

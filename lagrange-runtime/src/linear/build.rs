@@ -36,10 +36,10 @@ impl Linearizer {
     /// # Errors
     /// [`Error::NonFiniteState`]; [`Error::SingularMassMatrix`];
     /// [`Error::MissingDerivatives`] if the system has no `rhs_jacobians`.
-    pub fn unconstrained<S, T, const N: usize, const P: usize>(
+    pub fn unconstrained<S, T, const N: usize, const P: usize, const U: usize>(
         &self,
         sys: &S,
-        op: &OperatingPoint<T, N, P>,
+        op: &OperatingPoint<T, N, U>,
     ) -> Result<Linear, Error>
     where
         S: Driven<T, N, P>,
@@ -51,7 +51,8 @@ impl Linearizer {
                 "this system has constraints, which an unconstrained linearisation would ignore: use `Linearizer::constrained` (multipliers) or `Linearizer::reduced`"
             )
         };
-        let (q, v, u, t) = (&op.q, &op.v, &op.u, op.t);
+        let u0 = op.inputs::<P>();
+        let (q, v, u, t) = (&op.q, &op.v, &u0, op.t);
         let non_finite = || Error::non_finite(t, q, v);
         let (m_s, rhs) = sys.mass_matrix_and_rhs(q, v, t);
         let rhs = rhs + sys.input_forces(q, v, u, t);
@@ -133,16 +134,17 @@ impl Linearizer {
     /// [`Error::SingularMassMatrix`]; [`Error::NonFiniteState`];
     /// [`Error::MissingDerivatives`] without `rhs_jacobians` or
     /// `constraint_derivatives`.
-    pub fn constrained<S, T, const N: usize, const K: usize, const P: usize>(
+    pub fn constrained<S, T, const N: usize, const K: usize, const P: usize, const U: usize>(
         &self,
         sys: &S,
-        op: &OperatingPoint<T, N, P>,
+        op: &OperatingPoint<T, N, U>,
     ) -> Result<Linear, Error>
     where
         S: Constrained<T, N, K> + Driven<T, N, P>,
         T: Real,
     {
-        let (q, v, u, t) = (&op.q, &op.v, &op.u, op.t);
+        let u0 = op.inputs::<P>();
+        let (q, v, u, t) = (&op.q, &op.v, &u0, op.t);
         let ev = self.evaluate(sys, q, v, u, t)?;
         self.check_consistent::<S, T, N, K>(&ev, q, v, t)?;
         let part = self.partition::<S, T, N, K>(&ev.g, q, t)?;
@@ -243,16 +245,17 @@ impl Linearizer {
     /// [`Error::NonFiniteState`]; [`Error::ReducedFormBreakdown`] if the
     /// stacked rows are dependent at q0; [`Error::MissingDerivatives`] without
     /// `rhs_jacobians` or `row_derivatives` (`emit(jacobians)`).
-    pub fn reduced<S, T, const N: usize, const K: usize, const P: usize>(
+    pub fn reduced<S, T, const N: usize, const K: usize, const P: usize, const U: usize>(
         &self,
         sys: &S,
-        op: &OperatingPoint<T, N, P>,
+        op: &OperatingPoint<T, N, U>,
     ) -> Result<Linear, Error>
     where
         S: Reduced<T, N, K> + Driven<T, N, P>,
         T: Real,
     {
-        let (q, v, uin, t) = (&op.q, &op.v, &op.u, op.t);
+        let u0 = op.inputs::<P>();
+        let (q, v, uin, t) = (&op.q, &op.v, &u0, op.t);
         if !(t.is_finite() && finite(&dm(q)) && finite(&dm(v))) {
             return Err(Error::non_finite(t, q, v));
         }

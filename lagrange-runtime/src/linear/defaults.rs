@@ -11,9 +11,9 @@ use nalgebra::SVector;
 ///
 /// # Errors
 /// As [`Linearizer::unconstrained`].
-pub fn linearize<S, T, const N: usize, const P: usize>(
+pub fn linearize<S, T, const N: usize, const P: usize, const U: usize>(
     sys: &S,
-    op: &OperatingPoint<T, N, P>,
+    op: &OperatingPoint<T, N, U>,
 ) -> Result<Linear, Error>
 where
     S: Driven<T, N, P>,
@@ -27,9 +27,9 @@ where
 ///
 /// # Errors
 /// As [`Linearizer::constrained`].
-pub fn linearize_constrained<S, T, const N: usize, const K: usize, const P: usize>(
+pub fn linearize_constrained<S, T, const N: usize, const K: usize, const P: usize, const U: usize>(
     sys: &S,
-    op: &OperatingPoint<T, N, P>,
+    op: &OperatingPoint<T, N, U>,
 ) -> Result<Linear, Error>
 where
     S: Constrained<T, N, K> + Driven<T, N, P>,
@@ -42,9 +42,9 @@ where
 ///
 /// # Errors
 /// As [`Linearizer::reduced`].
-pub fn linearize_reduced<S, T, const N: usize, const K: usize, const P: usize>(
+pub fn linearize_reduced<S, T, const N: usize, const K: usize, const P: usize, const U: usize>(
     sys: &S,
-    op: &OperatingPoint<T, N, P>,
+    op: &OperatingPoint<T, N, U>,
 ) -> Result<Linear, Error>
 where
     S: Reduced<T, N, K> + Driven<T, N, P>,

@@ -12,20 +12,25 @@ pub const DEFAULT_NEWTON_TOLERANCE: f64 = 1e-12;
 /// Default limit on Newton iterations in [`Linearizer::complete_state`].
 pub const DEFAULT_NEWTON_ITERATIONS: usize = 20;
 
-/// An operating point (q0, q̇0, u0, t0) with P inputs.
+/// An operating point (q0, q̇0, u0, t0) with U inputs given.
+///
+/// [`new`](Self::new) makes a point with no inputs given, which every
+/// linearisation reads as all of the system's inputs zero, so a driven system
+/// needs no annotation; [`input`](Self::input) gives them (their number must be
+/// the system's, checked at compile time).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct OperatingPoint<T: Real, const N: usize, const P: usize> {
+pub struct OperatingPoint<T: Real, const N: usize, const U: usize = 0> {
     /// Coordinates q0.
     pub q: SVector<T, N>,
     /// Velocities q̇0.
     pub v: SVector<T, N>,
-    /// Inputs u0.
-    pub u: SVector<T, P>,
+    /// Inputs u0 (none: all zero).
+    pub u: SVector<T, U>,
     /// Time t0.
     pub t: T,
 }
 
-impl<T: Real, const N: usize, const P: usize> OperatingPoint<T, N, P> {
+impl<T: Real, const N: usize> OperatingPoint<T, N> {
     /// The point (q, v) at t = 0 with all inputs zero.
     pub fn new(q: SVector<T, N>, v: SVector<T, N>) -> Self {
         Self {
@@ -35,17 +40,34 @@ impl<T: Real, const N: usize, const P: usize> OperatingPoint<T, N, P> {
             t: T::zero(),
         }
     }
+}
 
+impl<T: Real, const N: usize, const U: usize> OperatingPoint<T, N, U> {
     /// Sets the inputs u0.
-    pub fn input(mut self, u: SVector<T, P>) -> Self {
-        self.u = u;
-        self
+    pub fn input<const P: usize>(self, u: SVector<T, P>) -> OperatingPoint<T, N, P> {
+        OperatingPoint {
+            q: self.q,
+            v: self.v,
+            u,
+            t: self.t,
+        }
     }
 
     /// Sets the time t0.
     pub fn time(mut self, t: T) -> Self {
         self.t = t;
         self
+    }
+
+    /// The system's P inputs: the given ones, or zeros when none were given.
+    pub(crate) fn inputs<const P: usize>(&self) -> SVector<T, P> {
+        const {
+            assert!(
+                U == 0 || U == P,
+                "the operating point's inputs must be as many as the system's (or none, for all zero)"
+            )
+        };
+        SVector::from_fn(|i, _| if U == 0 { T::zero() } else { self.u[i] })
     }
 }
 
