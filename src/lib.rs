@@ -246,8 +246,8 @@ pub mod prelude {
         Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation, Direction, Dop853,
         Dopri5, Drift, Driven, Error, Event, EventRun, Failure, Gauss, InputTable, Integrator,
         Interpolation, Lagrangian, Occurrence, Radau5, Rattle, Real, Record, Reduced,
-        ReducedDynamics, ReducedForm, Rk4, Simulation, StormerVerlet, Study, Trajectory,
-        WorkPrecision,
+        ReducedDynamics, ReducedForm, Rk4, Simulation, StateFeedback, StormerVerlet, Study,
+        Trajectory, WorkPrecision,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }

@@ -83,6 +83,7 @@ mod table;
 
 pub use control::{
     Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,
+    StateFeedback,
 };
 pub use error::{Error, Failure, LinearError};
 pub use event::{Direction, Event, EventRun, Events, Occurrence};

@@ -77,8 +77,10 @@
 //! sample taken there: u_k at t_k, including t₀ and the end time when the end
 //! time is a sample instant.
 
+mod state_feedback;
 mod table;
 
+pub use state_feedback::StateFeedback;
 pub use table::{InputTable, Interpolation};
 
 use crate::error::{Error, to_vec};
