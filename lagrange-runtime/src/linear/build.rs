@@ -1,18 +1,22 @@
 //! Building a [`Linear`] model from a system at an operating point.
 
-use super::dense::{Saddle, SaddleError, cholesky, dm, dv, finite};
+use super::dense::{dm, dv, finite};
 use super::errors::{missing, redundant, singular};
 use super::partition::{embeddings, holonomic};
 use super::settings::{Linearizer, OperatingPoint};
+use super::solve::{MassFactor, SaddleError, SaddleFactor};
 use super::{Linear, LinearError, SecondOrderForm};
 use crate::error::{Error, to_vec};
 use crate::mechanics::reduced::{ReducedDynamics, ReducedForm};
 use crate::numeric::Real;
 use crate::system::{Constrained, Driven, Reduced};
-use nalgebra::{DMatrix, DVector, SVector};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-/// M, Q − h + ΔQ, G, g, γ and Φ (holonomic rows) at one state, as f64.
-struct Evaluated {
+/// M, Q − h + ΔQ, G, g, γ and Φ (holonomic rows) at one state, as f64, and
+/// M and G as the system computed them (for the dynamics' factorisations).
+struct Evaluated<T, const N: usize, const K: usize> {
+    ms: SMatrix<T, N, N>,
+    gs: SMatrix<T, K, N>,
     m: DMatrix<f64>,
     f: DVector<f64>,
     g: DMatrix<f64>,
@@ -60,8 +64,9 @@ impl Linearizer {
         if !(finite(&m) && finite(&dm(&rhs)) && finite(&dm(q)) && finite(&dm(v))) {
             return Err(non_finite());
         }
-        let chol = cholesky(&m, self.singular_tolerance).map_err(|ratio| singular(t, q, ratio))?;
-        let a0 = chol.solve(&dv(&rhs));
+        let chol = MassFactor::new(&m_s, self.singular_tolerance)
+            .map_err(|ratio| singular(t, q, ratio))?;
+        let a0 = chol.solve(&dm(&rhs));
         let acc: SVector<T, N> = SVector::from_fn(|i, _| T::lit(a0[i]));
         let (jq, jv) = sys
             .rhs_jacobians(q, v, &acc, t)
@@ -286,8 +291,9 @@ impl Linearizer {
         if !(finite(&ms) && finite(&w_d) && f.iter().all(|x| x.is_finite())) {
             return Err(Error::non_finite(t, q, v));
         }
-        let chol = cholesky(&ms, self.singular_tolerance).map_err(|ratio| singular(t, q, ratio))?;
-        let du0 = chol.solve(&f);
+        let chol = MassFactor::new(&form.mass, self.singular_tolerance)
+            .map_err(|ratio| singular(t, q, ratio))?;
+        let du0 = chol.solve(&DMatrix::from_column_slice(K, 1, f.as_slice()));
         let du: SVector<T, K> = SVector::from_fn(|i, _| T::lit(du0[i]));
         let (dq, dfu, wq) = reduced_jacobians(sys, q, &form, &du, &e, t)?;
         let (bu, dqq, dqv) = sys.input_jacobians(q, v, uin, t);
@@ -410,7 +416,7 @@ impl Linearizer {
         v: &SVector<T, N>,
         u: &SVector<T, P>,
         t: T,
-    ) -> Result<Evaluated, Error>
+    ) -> Result<Evaluated<T, N, K>, Error>
     where
         S: Constrained<T, N, K> + Driven<T, N, P>,
         T: Real,
@@ -426,6 +432,8 @@ impl Linearizer {
             *x = 0.0;
         }
         let ev = Evaluated {
+            ms: m,
+            gs: g,
             m: dm(&m),
             f: dv(&f),
             g: dm(&g),
@@ -445,7 +453,7 @@ impl Linearizer {
 
     fn check_consistent<S, T, const N: usize, const K: usize>(
         &self,
-        ev: &Evaluated,
+        ev: &Evaluated<T, N, K>,
         q: &SVector<T, N>,
         v: &SVector<T, N>,
         t: T,
@@ -478,17 +486,17 @@ impl Linearizer {
 
     fn saddle<S, T, const N: usize, const K: usize>(
         &self,
-        ev: &Evaluated,
+        ev: &Evaluated<T, N, K>,
         q: &SVector<T, N>,
         t: T,
-    ) -> Result<Saddle, Error>
+    ) -> Result<SaddleFactor<T, N, K>, Error>
     where
         S: Constrained<T, N, K>,
         T: Real,
     {
-        Saddle::new(
-            &ev.m,
-            &ev.g,
+        SaddleFactor::new(
+            &ev.ms,
+            &ev.gs,
             self.singular_tolerance,
             self.redundant_tolerance,
         )

@@ -1,6 +1,6 @@
 //! Dense f64 linear algebra for the linearisation: conversions from the
-//! system's stack matrices, a checked Cholesky, the saddle-point solve, rank
-//! tests and column pivoting.
+//! system's stack matrices, rank tests and column pivoting. (Its solves use the
+//! dynamics' own factorisations: see `solve`.)
 
 use crate::numeric::Real;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
@@ -17,25 +17,6 @@ pub(crate) fn dv<T: Real, const R: usize>(x: &SVector<T, R>) -> DVector<f64> {
 
 pub(crate) fn finite(m: &DMatrix<f64>) -> bool {
     m.iter().all(|x| x.is_finite())
-}
-
-/// Cholesky of a symmetric positive definite matrix with the pivot-ratio test of
-/// the runtime's stack Cholesky: `Err(ratio)` if it breaks down or
-/// min L_ii² / max L_ii² < `tol`.
-pub(crate) fn cholesky(
-    m: &DMatrix<f64>,
-    tol: f64,
-) -> Result<nalgebra::Cholesky<f64, nalgebra::Dyn>, f64> {
-    let c = nalgebra::Cholesky::new(m.clone()).ok_or(0.0)?;
-    let l = c.l_dirty();
-    let d: Vec<f64> = (0..m.nrows()).map(|i| l[(i, i)] * l[(i, i)]).collect();
-    let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), &x| {
-        (lo.min(x), hi.max(x))
-    });
-    if !d.is_empty() && !(lo >= tol * hi) {
-        return Err(if hi > 0.0 { lo / hi } else { 0.0 });
-    }
-    Ok(c)
 }
 
 /// σ_min / σ_max of a matrix (1 for an empty one), and the right singular vector
@@ -93,71 +74,6 @@ pub(crate) fn pivot_columns(m: &DMatrix<f64>, count: usize) -> (Vec<usize>, f64)
     (chosen, ratio)
 }
 
-/// The saddle-point system of the multiplier form,
-///
-/// ```text
-/// M x − Gᵀ y = f,    G x = r
-/// ```
-///
-/// by the range-space method: y = S⁻¹ (r − G M⁻¹ f) with S = G M⁻¹ Gᵀ, then
-/// x = M⁻¹ (f + Gᵀ y).
-pub(crate) struct Saddle {
-    chol: nalgebra::Cholesky<f64, nalgebra::Dyn>,
-    g: DMatrix<f64>,
-    minv_gt: DMatrix<f64>,
-    s: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
-}
-
-/// Why a saddle-point system cannot be factorised.
-pub(crate) enum SaddleError {
-    /// M singular: the pivot ratio.
-    Mass(f64),
-    /// G rank deficient: σ_min/σ_max of S and the rows involved in the null
-    /// direction.
-    Redundant(f64, Vec<usize>),
-}
-
-impl Saddle {
-    pub(crate) fn new(
-        m: &DMatrix<f64>,
-        g: &DMatrix<f64>,
-        singular_tol: f64,
-        redundant_tol: f64,
-    ) -> Result<Self, SaddleError> {
-        let chol = cholesky(m, singular_tol).map_err(SaddleError::Mass)?;
-        let minv_gt = chol.solve(&g.transpose());
-        let s = g * &minv_gt;
-        let (ratio, null) = condition(&s);
-        if g.nrows() > 0 && !(ratio >= redundant_tol) {
-            let big = null.amax();
-            let rows = (0..null.len())
-                .filter(|&i| null[i].abs() > 0.1 * big)
-                .collect();
-            return Err(SaddleError::Redundant(ratio, rows));
-        }
-        Ok(Self {
-            chol,
-            g: g.clone(),
-            minv_gt,
-            s: s.lu(),
-        })
-    }
-
-    /// Solves for several right-hand sides at once (columns of f and r).
-    pub(crate) fn solve(&self, f: &DMatrix<f64>, r: &DMatrix<f64>) -> (DMatrix<f64>, DMatrix<f64>) {
-        let minv_f = self.chol.solve(f);
-        let y = if self.g.nrows() == 0 {
-            DMatrix::zeros(0, f.ncols())
-        } else {
-            self.s
-                .solve(&(r - &self.g * &minv_f))
-                .unwrap_or_else(|| DMatrix::from_element(r.nrows(), r.ncols(), f64::NAN))
-        };
-        let x = minv_f + &self.minv_gt * &y;
-        (x, y)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -176,26 +92,5 @@ mod tests {
         let r1 = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 4.0]);
         let (_, ratio) = pivot_columns(&r1, 2);
         assert!(ratio < 1e-15, "{ratio}");
-    }
-
-    #[test]
-    fn saddle_solves_and_detects_dependent_rows() {
-        let m = DMatrix::from_row_slice(3, 3, &[4.0, 1.0, 0.5, 1.0, 3.0, 0.2, 0.5, 0.2, 2.0]);
-        let g = DMatrix::from_row_slice(2, 3, &[1.0, 2.0, 0.0, 0.0, 1.0, -1.0]);
-        let f = DMatrix::from_column_slice(3, 1, &[1.0, -1.0, 2.0]);
-        let r = DMatrix::from_column_slice(2, 1, &[0.5, -0.25]);
-        let s = Saddle::new(&m, &g, 1e-12, 1e-12).ok().unwrap();
-        let (x, y) = s.solve(&f, &r);
-        assert!((&m * &x - g.transpose() * &y - &f).amax() < 1e-14);
-        assert!((&g * &x - &r).amax() < 1e-14);
-        let twice = DMatrix::from_row_slice(2, 3, &[1.0, 2.0, 0.0, 1.0, 2.0, 0.0]);
-        assert!(matches!(
-            Saddle::new(&m, &twice, 1e-12, 1e-12),
-            Err(SaddleError::Redundant(_, _))
-        ));
-        assert!(matches!(
-            Saddle::new(&DMatrix::zeros(3, 3), &g, 1e-12, 1e-12),
-            Err(SaddleError::Mass(_))
-        ));
     }
 }

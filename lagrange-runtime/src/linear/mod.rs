@@ -74,6 +74,7 @@ mod errors;
 mod lqr;
 mod partition;
 mod settings;
+mod solve;
 
 pub use defaults::{complete_state, linearize, linearize_constrained, linearize_reduced};
 pub use eigen::{Boundary, EigenSweep, Mode, Stability, SweepPoint, Verdict, sweep};
