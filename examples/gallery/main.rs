@@ -7,7 +7,7 @@
 //! The systems and what each shows are listed in `entries`; their runs live in
 //! one module per family (`minimal`, `constrained`, `nonholonomic`, `cavity`,
 //! `control`); `row` is what a run reports, `figure` what it keeps to draw,
-//! `plot` the pictures, `output`
+//! `layout` which coordinates go on which panel, `plot` the pictures, `output`
 //! the files and index.html, `table` the printed summary.
 
 #[path = "../catalog/mod.rs"]
@@ -17,6 +17,7 @@ mod constrained;
 mod control;
 mod entries;
 mod figure;
+mod layout;
 mod minimal;
 mod nonholonomic;
 mod output;

@@ -35,15 +35,18 @@ pub(crate) struct Row {
     pub figure: Option<Figure>,
 }
 
-/// A system's coordinates as the plots and CSV headers name them.
+/// A system's coordinates as the plots and CSV headers name them, and which
+/// of them are cyclic (`Lagrangian::CYCLIC`: the plots show their rates apart).
 pub(crate) struct Coords<const N: usize> {
     pub names: [&'static str; N],
+    pub cyclic: [bool; N],
 }
 
 /// The coordinates of a system.
 pub(crate) fn coords<S: Lagrangian<f64, N>, const N: usize>(_: &S) -> Coords<N> {
     Coords {
         names: S::COORDINATES,
+        cyclic: S::CYCLIC,
     }
 }
 
@@ -73,7 +76,12 @@ pub(crate) fn row<const N: usize, E: Into<Error>>(
         residuals: (residuals != [0.0; 2]).then_some(residuals),
         note: note(&traj),
         wall_ms,
-        figure: Some(Figure::of(&traj, &coords.names, conservative)?),
+        figure: Some(Figure::of(
+            &traj,
+            &coords.names,
+            &coords.cyclic,
+            conservative,
+        )?),
     })
 }
 
