@@ -2,13 +2,15 @@
 //! `minimal` (pendulums and the oscillator in minimal coordinates),
 //! `constrained` (holonomic and nonholonomic systems with their constraints),
 //! `driven` (systems with inputs), `second_order` (plain q̈ = f(t, q, q̇)
-//! reference problems), `closed_form` (exact answers to check against).
+//! reference problems), `closed_form` (exact answers to check against), `numeric` (random
+//! states, finite differences).
 #![allow(dead_code, unused_imports)] // each test binary uses a different subset
 
 pub mod closed_form;
 pub mod constrained;
 pub mod driven;
 pub mod minimal;
+pub mod numeric;
 pub mod second_order;
 
 pub use closed_form::{agm, pendulum_period};
