@@ -5,7 +5,8 @@
 
 mod common;
 use common::Oscillator;
-use common::driven::{Arm, Bob, Skate};
+use common::constrained::CartesianPendulum;
+use common::driven::{Arm, Skate};
 use lagrange_runtime::{Dopri5, Drift, Error, Event, InputTable, Rk4, Simulation};
 use nalgebra::{Vector1, Vector2, Vector3};
 
@@ -267,7 +268,7 @@ fn sampled_feedback_matches_discrete_time_propagation() {
 fn pendulum_cartesian_with_push_matches_angle_model() {
     let (m, l, g) = (1.5, 1.2, 9.81);
     let (kp, kd) = (6.0, 2.0);
-    let bob = Bob { m, l, g };
+    let bob = CartesianPendulum::<1> { m, l, g };
     let arm = Arm { m, l, g };
     let theta0: f64 = 0.8;
     let q0 = Vector2::new(l * theta0.sin(), -l * theta0.cos());
@@ -440,7 +441,7 @@ fn csv_names_every_column() {
 
 #[test]
 fn checks_of_the_plain_simulation_still_apply() {
-    let bob = Bob {
+    let bob = CartesianPendulum::<1> {
         m: 1.0,
         l: 1.0,
         g: 9.81,

@@ -1,9 +1,9 @@
 //! Hand-written driven systems (`Lagrangian` + `Driven`): the oscillator with a
-//! force input, a pendulum bob on a rod pushed sideways (multiplier form) and
-//! the same pendulum in its angle, and a knife edge with thrust and torque.
+//! force input, the Cartesian pendulum pushed sideways (multiplier form) and
+//! the same pendulum in its angle (`Arm`), and a knife edge with thrust and torque.
 
 use super::Oscillator;
-use super::constrained::{knife_edge_rates, knife_edge_rows};
+use super::constrained::{CartesianPendulum, knife_edge_rates, knife_edge_rows};
 use lagrange_runtime::{Constrained, Driven, Lagrangian, Reduced};
 use nalgebra::{
     Matrix1, Matrix1x3, Matrix2, Matrix3, Matrix3x2, SMatrix, Vector1, Vector2, Vector3,
@@ -32,76 +32,8 @@ impl Driven<f64, 1, 1> for Oscillator {
     }
 }
 
-/// A pendulum bob at (x, y) on a rod x² + y² = l², pushed horizontally by u.
-pub struct Bob {
-    pub m: f64,
-    pub l: f64,
-    pub g: f64,
-}
-
-impl Lagrangian<f64, 2> for Bob {
-    const COORDINATES: [&'static str; 2] = ["x", "y"];
-    const RHEONOMIC: bool = false;
-    fn mass_matrix(&self, _: &Vector2<f64>, _: f64) -> Matrix2<f64> {
-        Matrix2::identity() * self.m
-    }
-    fn bias(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> {
-        Vector2::zeros()
-    }
-    fn generalized_forces(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> {
-        Vector2::new(0.0, -self.m * self.g)
-    }
-    fn mass_matrix_and_rhs(
-        &self,
-        q: &Vector2<f64>,
-        v: &Vector2<f64>,
-        t: f64,
-    ) -> (Matrix2<f64>, Vector2<f64>) {
-        (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
-    }
-    fn kinetic_energy(&self, _: &Vector2<f64>, v: &Vector2<f64>, _: f64) -> f64 {
-        0.5 * self.m * v.norm_squared()
-    }
-    fn potential_energy(&self, q: &Vector2<f64>, _: f64) -> f64 {
-        self.m * self.g * q[1]
-    }
-    fn integral(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64) -> f64 {
-        self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
-    }
-}
-
-impl Constrained<f64, 2, 1> for Bob {
-    const CONSTRAINTS: [&'static str; 1] = ["rod"];
-    const HOLONOMIC: usize = 1;
-    fn constraint_positions(&self, q: &Vector2<f64>, _: f64) -> Vector1<f64> {
-        Vector1::new(q.norm_squared() - self.l * self.l)
-    }
-    fn constraint_jacobian(&self, q: &Vector2<f64>, _: f64) -> (SMatrix<f64, 1, 2>, Vector1<f64>) {
-        (
-            SMatrix::<f64, 1, 2>::new(2.0 * q[0], 2.0 * q[1]),
-            Vector1::zeros(),
-        )
-    }
-    fn constraint_rhs(&self, _: &Vector2<f64>, v: &Vector2<f64>, _: f64) -> Vector1<f64> {
-        Vector1::new(-2.0 * v.norm_squared())
-    }
-    fn constrained_system(
-        &self,
-        q: &Vector2<f64>,
-        v: &Vector2<f64>,
-        t: f64,
-    ) -> (Matrix2<f64>, Vector2<f64>, SMatrix<f64, 1, 2>, Vector1<f64>) {
-        let (m, f) = self.mass_matrix_and_rhs(q, v, t);
-        (
-            m,
-            f,
-            self.constraint_jacobian(q, t).0,
-            self.constraint_rhs(q, v, t),
-        )
-    }
-}
-
-impl Driven<f64, 2, 1> for Bob {
+/// The pendulum bob at (x, y) on its rod x² + y² = l², pushed horizontally by u.
+impl Driven<f64, 2, 1> for CartesianPendulum<1> {
     const INPUTS: [&'static str; 1] = ["push"];
     fn input_forces(
         &self,

@@ -4,7 +4,7 @@
 //! `driven` (systems with inputs), `second_order` (plain q̈ = f(t, q, q̇)
 //! reference problems), `closed_form` (exact answers to check against), `numeric` (random
 //! states, finite differences).
-#![allow(dead_code, unused_imports)] // each test binary uses a different subset
+#![allow(dead_code)] // each test binary uses a different subset
 
 pub mod closed_form;
 pub mod constrained;
@@ -13,7 +13,10 @@ pub mod minimal;
 pub mod numeric;
 pub mod second_order;
 
+// The names most tests use, at the top (each binary uses some of them).
+#[allow(unused_imports)]
 pub use closed_form::{agm, pendulum_period};
+#[allow(unused_imports)]
 pub use minimal::{Oscillator, Pendulum, SphericalPendulum};
 
 use nalgebra::SVector;
