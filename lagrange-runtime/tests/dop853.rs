@@ -1,9 +1,10 @@
 //! DOP853 against Hairer's `dop853.f`, exact solutions and DOPRI5.
+// Hairer's figures are quoted with the digits he publishes.
+#![allow(clippy::excessive_precision)]
 
 mod common;
 
 use common::second_order::{Arenstorf, VanDerPol};
-
 use lagrange_runtime::Failure;
 use lagrange_runtime::{Dop853, Dopri5, Error, Integrator, SecondOrder};
 use nalgebra::{Vector1, Vector2};
