@@ -132,64 +132,12 @@ fn stiff_spring() {
     let th0 = 0.5f64;
     let q0 = [sys.l0 + sys.m * sys.g * th0.cos() / sys.k, th0];
     let t_end = 10.0;
-    let rigid = Pendulum::<f64> {
-        m: sys.m,
-        l: sys.l0,
-        g: sys.g,
-    };
-    let reference = Simulation::new(&rigid)
-        .integrator(lagrange::Dop853::tol(1e-13))
-        .run([th0], [0.0], 0.0..t_end)
-        .unwrap()
-        .final_state()
-        .0[0];
-    println!(
-        "## 2. Spring pendulum, k/m = 10⁸ (ω_r = 10⁴ rad/s against ω ≈ 3.1 rad/s), \
-         θ₀ = {th0}, 0..{t_end} s\n"
-    );
-    println!(
-        "θ error: against a rigid pendulum of length l₀ (the spring stretches by ~m g/k = 10⁻⁷).\n"
-    );
-    println!(
-        "| method | outcome | accepted | rejected | evaluations | Jacobians | LU | θ error | energy drift | wall |"
-    );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let reference = rigid_reference(&sys, th0, t_end);
+    stiff_header(th0, t_end);
     // The pivot ratio of M = diag(m, m r²) is no singularity measure in mixed units,
     // and rejected trial stages of the explicit methods reach r ~ 10⁶ (see the
     // notes in docs/extremes.md): the check is switched off, M is regular for r ≠ 0.
     let sim = Simulation::new(&sys).singular_tolerance(0.0);
-    let row = |name: &str,
-               r: Result<Trajectory<f64, 2>, Failure<Trajectory<f64, 2>>>,
-               wall: Duration| match r {
-        Ok(traj) => {
-            let s = traj.stats();
-            println!(
-                "| {name} | completes | {} | {} | {} | {} | {} | {:.1e} | {:.1e} | {:.1} ms |",
-                s.accepted,
-                s.rejected,
-                s.evaluations,
-                s.jacobians,
-                s.factorizations,
-                (traj.final_state().0[1] - reference).abs(),
-                traj.integral_drift(),
-                wall.as_secs_f64() * 1e3
-            )
-        }
-        // The steps accepted before the failure come back with it.
-        Err(f) => {
-            let s = f.partial.stats();
-            println!(
-                "| {name} | {} | {} | {} | {} | {} | {} | | | {:.1} ms |",
-                short(&f.error),
-                s.accepted,
-                s.rejected,
-                s.evaluations,
-                s.jacobians,
-                s.factorizations,
-                wall.as_secs_f64() * 1e3
-            )
-        }
-    };
     macro_rules! timed {
         ($name:expr, $method:expr) => {
             timed!($name, $method, sim.clone())
@@ -197,7 +145,7 @@ fn stiff_spring() {
         ($name:expr, $method:expr, $sim:expr) => {{
             let start = Instant::now();
             let r = $sim.integrator($method).run(q0, [0.0; 2], 0.0..t_end);
-            row($name, r, start.elapsed());
+            stiff_row($name, r, start.elapsed(), reference);
         }};
     }
     timed!("Radau5 tol 1e-6", Radau5::tol(1e-6));
@@ -238,6 +186,75 @@ fn stiff_spring() {
     timed!("RK4 h = 10⁻³ (h ω_r = 10)", Rk4::step(1e-3));
     timed!("RK4 h = 2·10⁻⁴ (h ω_r = 2)", Rk4::step(2e-4));
     println!();
+}
+
+/// θ at `t_end` of the rigid pendulum of length l₀ the stiff spring follows.
+fn rigid_reference(sys: &SpringPendulum, th0: f64, t_end: f64) -> f64 {
+    let rigid = Pendulum::<f64> {
+        m: sys.m,
+        l: sys.l0,
+        g: sys.g,
+    };
+    Simulation::new(&rigid)
+        .integrator(lagrange::Dop853::tol(1e-13))
+        .run([th0], [0.0], 0.0..t_end)
+        .unwrap()
+        .final_state()
+        .0[0]
+}
+
+fn stiff_header(th0: f64, t_end: f64) {
+    println!(
+        "## 2. Spring pendulum, k/m = 10⁸ (ω_r = 10⁴ rad/s against ω ≈ 3.1 rad/s), \
+         θ₀ = {th0}, 0..{t_end} s\n"
+    );
+    println!(
+        "θ error: against a rigid pendulum of length l₀ (the spring stretches by ~m g/k = 10⁻⁷).\n"
+    );
+    println!(
+        "| method | outcome | accepted | rejected | evaluations | Jacobians | LU | θ error | energy drift | wall |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+}
+
+/// One row of the stiff-spring table: the work, and when the run completes the
+/// θ error against `reference` and the energy drift.
+fn stiff_row(
+    name: &str,
+    r: Result<Trajectory<f64, 2>, Failure<Trajectory<f64, 2>>>,
+    wall: Duration,
+    reference: f64,
+) {
+    match r {
+        Ok(traj) => {
+            let s = traj.stats();
+            println!(
+                "| {name} | completes | {} | {} | {} | {} | {} | {:.1e} | {:.1e} | {:.1} ms |",
+                s.accepted,
+                s.rejected,
+                s.evaluations,
+                s.jacobians,
+                s.factorizations,
+                (traj.final_state().0[1] - reference).abs(),
+                traj.integral_drift(),
+                wall.as_secs_f64() * 1e3
+            )
+        }
+        // The steps accepted before the failure come back with it.
+        Err(f) => {
+            let s = f.partial.stats();
+            println!(
+                "| {name} | {} | {} | {} | {} | {} | {} | | | {:.1} ms |",
+                short(&f.error),
+                s.accepted,
+                s.rejected,
+                s.evaluations,
+                s.jacobians,
+                s.factorizations,
+                wall.as_secs_f64() * 1e3
+            )
+        }
+    }
 }
 
 /// The variant and where it stopped, without the state dump.

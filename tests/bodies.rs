@@ -3,6 +3,9 @@
 //! parallel-axis theorem applied by the macro) and a body's axes in
 //! expressions (`B.axis_z.x`, entries of its rotation matrix).
 
+mod common;
+
+use common::numeric::Lcg;
 use lagrange::prelude::*;
 
 /// A heavy symmetric top on a fixed pivot, its inertia about the pivot
@@ -75,18 +78,6 @@ struct ChainByPoint {
     j: f64,
     l: f64,
     g: f64,
-}
-
-/// Pseudo-random numbers in [−1, 1).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
-    }
 }
 
 /// Largest difference of M and Q − h between two descriptions at random states.

@@ -127,6 +127,34 @@ fn cartesian_pendulum_passes_the_pole() {
     assert!(traj.max_residuals()[0] < 1e-11);
 }
 
+/// The two particles' positions and velocities, stacked (x1, x2), from the
+/// minimal dumbbell's centre of mass, polar and azimuth angles, with the
+/// particles at distances a and b from the centre of mass along the rod.
+fn dumbbell_particles(
+    a: f64,
+    b: f64,
+    q: &SVector<f64, 5>,
+    v: &SVector<f64, 5>,
+) -> (SVector<f64, 6>, SVector<f64, 6>) {
+    let (s, c) = (q[3].sin(), q[3].cos());
+    let (sp, cp) = (q[4].sin(), q[4].cos());
+    let e = Vector3::new(s * cp, s * sp, c);
+    let ed = Vector3::new(
+        c * cp * v[3] - s * sp * v[4],
+        c * sp * v[3] + s * cp * v[4],
+        -s * v[3],
+    );
+    let xc = Vector3::new(q[0], q[1], q[2]);
+    let vc = Vector3::new(v[0], v[1], v[2]);
+    let p1 = xc + e * a;
+    let p2 = xc - e * b;
+    let (v1, v2) = (vc + ed * a, vc - ed * b);
+    (
+        SVector::<f64, 6>::from([p1[0], p1[1], p1[2], p2[0], p2[1], p2[2]]),
+        SVector::<f64, 6>::from([v1[0], v1[1], v1[2], v2[0], v2[1], v2[2]]),
+    )
+}
+
 /// C3: the rod as a constraint between free particles moves like the minimal
 /// model; in ex. 100's set-up (rod turning in a vertical plane at constant φ̇0, no
 /// gravity) the rod pulls m1 towards the centre of mass with m1 a φ̇0².
@@ -151,25 +179,7 @@ fn rod_constraint_matches_minimal_dumbbell_and_reaction() {
         gz: g[2],
     };
     let (a, b) = (m2 * l / (m1 + m2), m1 * l / (m1 + m2));
-    let cart = |q: &SVector<f64, 5>, v: &SVector<f64, 5>| {
-        let (s, c) = (q[3].sin(), q[3].cos());
-        let (sp, cp) = (q[4].sin(), q[4].cos());
-        let e = Vector3::new(s * cp, s * sp, c);
-        let ed = Vector3::new(
-            c * cp * v[3] - s * sp * v[4],
-            c * sp * v[3] + s * cp * v[4],
-            -s * v[3],
-        );
-        let xc = Vector3::new(q[0], q[1], q[2]);
-        let vc = Vector3::new(v[0], v[1], v[2]);
-        let p1 = xc + e * a;
-        let p2 = xc - e * b;
-        let (v1, v2) = (vc + ed * a, vc - ed * b);
-        (
-            SVector::<f64, 6>::from([p1[0], p1[1], p1[2], p2[0], p2[1], p2[2]]),
-            SVector::<f64, 6>::from([v1[0], v1[1], v1[2], v2[0], v2[1], v2[2]]),
-        )
-    };
+    let cart = |q: &SVector<f64, 5>, v: &SVector<f64, 5>| dumbbell_particles(a, b, q, v);
     let q0 = SVector::<f64, 5>::from([0.1, 0.2, 3.0, 0.8, 0.4]);
     let v0 = SVector::<f64, 5>::from([0.5, -0.3, 2.0, 1.1, 0.7]);
     let (x0, xd0) = cart(&q0, &v0);

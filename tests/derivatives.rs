@@ -6,6 +6,9 @@
 
 #![allow(clippy::needless_range_loop)] // index loops mirror the formulas
 
+mod common;
+
+use common::numeric::{Lcg, close, fd};
 use lagrange::prelude::*;
 use nalgebra::{SMatrix, SVector};
 
@@ -78,40 +81,6 @@ const SLEIGH: Sleigh = Sleigh {
 )]
 struct Plain {
     m: f64,
-}
-
-/// A deterministic pseudo-random sequence in [−1, 1).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
-    }
-
-    fn vector<const D: usize>(&mut self, scale: f64) -> SVector<f64, D> {
-        SVector::from_fn(|_, _| scale * self.next())
-    }
-}
-
-fn close<const R: usize, const C: usize>(a: &SMatrix<f64, R, C>, b: &SMatrix<f64, R, C>, tol: f64) {
-    let scale = b.amax().max(1.0);
-    assert!((a - b).amax() <= tol * scale, "{a} vs {b}");
-}
-
-/// Central differences of `f` at `x`, one column per component of `x`.
-fn fd<const R: usize, const C: usize>(
-    f: impl Fn(&SVector<f64, C>) -> SVector<f64, R>,
-    x: &SVector<f64, C>,
-) -> SMatrix<f64, R, C> {
-    let h = 1e-6;
-    SMatrix::from_fn(|i, j| {
-        let mut e = SVector::<f64, C>::zeros();
-        e[j] = h;
-        (f(&(x + e))[i] - f(&(x - e))[i]) / (2.0 * h)
-    })
 }
 
 /// Gᵀν, γ − G a, γ and G q̇ + g from `constraint_jacobian` and `constraint_rhs`,

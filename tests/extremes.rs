@@ -253,6 +253,13 @@ fn stiff_spring_pendulum() {
     // Static stretch along the rod, so the fast mode starts (nearly) at rest.
     let q0 = [sys.l0 + sys.m * sys.g * th0.cos() / sys.k, th0];
     let span = 0.0..2.0;
+    explicit_methods_stop(&sys, q0, span.clone());
+    radau_follows_the_rigid_pendulum(&sys, q0, th0, span);
+}
+
+/// The explicit methods stop on their step budget, RK4 beyond its stability
+/// limit on a non-finite state: typed errors, with the steps before them.
+fn explicit_methods_stop(sys: &SpringPendulum, q0: [f64; 2], span: std::ops::Range<f64>) {
     // The failure hands back the steps accepted before it: they end where the
     // error says the run stopped, and every state in them is finite.
     let capped = |e: Result<Trajectory<f64, 2>, Failure<Trajectory<f64, 2>>>| match e {
@@ -273,7 +280,7 @@ fn stiff_spring_pendulum() {
     // default singular tolerance. Such a stage failure rejects the step (the
     // adaptive methods retry smaller) instead of ending the run, so the default
     // tolerance is kept here on purpose.
-    let sim = Simulation::new(&sys);
+    let sim = Simulation::new(sys);
     let t = capped(
         sim.clone()
             .integrator(Dopri5::tol(1e-6).max_steps(1000))
@@ -312,7 +319,16 @@ fn stiff_spring_pendulum() {
         ),
         "{e:?}"
     );
+}
 
+/// Radau5 steps over the fast mode and follows the rigid pendulum of length l₀.
+fn radau_follows_the_rigid_pendulum(
+    sys: &SpringPendulum,
+    q0: [f64; 2],
+    th0: f64,
+    span: std::ops::Range<f64>,
+) {
+    let sim = Simulation::new(sys);
     let traj = sim
         .clone()
         .integrator(Radau5::tol(1e-8))
@@ -442,7 +458,20 @@ const INF: f64 = f64::INFINITY;
 /// integrator `method`, and through `run_constrained` and `run_reduced` unless the
 /// method needs Hamilton's form (Gauss), which those forms do not offer.
 fn non_finite_inputs<I: Integrator + Clone>(method: I, unconstrained_only: bool) {
-    let t0 = 0.25;
+    non_finite_run(&method);
+    if !unconstrained_only {
+        non_finite_run_constrained(&method);
+        non_finite_run_reduced(&method);
+    }
+}
+
+/// The start of every run of `non_finite_inputs`.
+const T0: f64 = 0.25;
+
+/// `run`: the pendulum with a NaN or infinite parameter stops at its start;
+/// non-finite initial states and spans are refused.
+fn non_finite_run<I: Integrator + Clone>(method: &I) {
+    let t0 = T0;
     let pendulum = |m: f64, g: f64| Pendulum::<f64> { m, l: 1.0, g };
     let run = |sys: &Pendulum<f64>, q0: f64, v0: f64, span: std::ops::Range<f64>| {
         Simulation::new(sys)
@@ -467,10 +496,11 @@ fn non_finite_inputs<I: Integrator + Clone>(method: I, unconstrained_only: bool)
     refused("run, NaN start", run(&ok, 0.5, 0.0, NAN..1.0));
     refused("run, NaN end", run(&ok, 0.5, 0.0, t0..NAN));
     refused("run, infinite end", run(&ok, 0.5, 0.0, t0..INF));
-    if unconstrained_only {
-        return;
-    }
+}
 
+/// `run_constrained`: the Cartesian spherical pendulum.
+fn non_finite_run_constrained<I: Integrator + Clone>(method: &I) {
+    let t0 = T0;
     let cart = |m: f64| CartesianSphericalPendulum { m, l: 1.0, g: 9.81 };
     let (x0, xd0) = (Vector3::new(0.6, 0.0, -0.8), Vector3::new(0.0, 1.0, 0.0));
     let run_c = |sys: &CartesianSphericalPendulum, x0: Vector3<f64>, span: std::ops::Range<f64>| {
@@ -491,7 +521,11 @@ fn non_finite_inputs<I: Integrator + Clone>(method: I, unconstrained_only: bool)
         run_c(&cart(1.0), Vector3::new(INF, 0.0, -0.8), t0..1.0),
     );
     refused("run_constrained, NaN span", run_c(&cart(1.0), x0, NAN..1.0));
+}
 
+/// `run_reduced`: the rolling sphere in reduced form.
+fn non_finite_run_reduced<I: Integrator + Clone>(method: &I) {
+    let t0 = T0;
     let ball = |m: f64, a: f64| RollingSphereReduced {
         m,
         j: 0.4 * m * a * a,

@@ -6,9 +6,12 @@
 
 #![allow(clippy::needless_range_loop)] // index loops mirror the formulas
 
+mod common;
+
+use common::numeric::{Lcg, close, fd};
 use lagrange::Driven;
 use lagrange::prelude::*;
-use nalgebra::{SMatrix, SVector, Vector2};
+use nalgebra::{SVector, Vector2};
 
 #[derive(Lagrangian, Clone, Copy, Debug)]
 #[lagrange(
@@ -78,18 +81,6 @@ const BASE: Unforced = Unforced {
 
 type U = SVector<f64, 5>;
 
-/// A deterministic pseudo-random sequence in [−1, 1).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
-    }
-}
-
 fn states() -> Vec<(Vector2<f64>, Vector2<f64>, U, f64)> {
     let mut rng = Lcg(7);
     (0..6)
@@ -111,24 +102,6 @@ fn by_hand(q: &Vector2<f64>, v: &Vector2<f64>, u: &U) -> Vector2<f64> {
         force + wind * c + k * xs,
         torque + l * c * wind * c - damp * v[1],
     )
-}
-
-fn close<const R: usize, const C: usize>(a: &SMatrix<f64, R, C>, b: &SMatrix<f64, R, C>, tol: f64) {
-    let scale = b.amax().max(1.0);
-    assert!((a - b).amax() <= tol * scale, "{a} vs {b}");
-}
-
-/// Central differences of `f` at `x`, one column per component of `x`.
-fn fd<const R: usize, const C: usize>(
-    f: impl Fn(&SVector<f64, C>) -> SVector<f64, R>,
-    x: &SVector<f64, C>,
-) -> SMatrix<f64, R, C> {
-    let h = 1e-6;
-    SMatrix::from_fn(|i, j| {
-        let mut e = SVector::<f64, C>::zeros();
-        e[j] = h;
-        (f(&(x + e))[i] - f(&(x - e))[i]) / (2.0 * h)
-    })
 }
 
 #[test]

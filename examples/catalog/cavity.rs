@@ -197,23 +197,10 @@ impl Cavity {
         v0: Vector3<f64>,
         span: std::ops::Range<f64>,
     ) -> Result<CavityRun, Error> {
-        let (r, e) = (self.r, self.e);
-        if !(r > 0.0 && (0.0..=1.0).contains(&e) && self.slide_speed >= 0.0) {
-            return Err(Error::InvalidSettings(format!(
-                "cavity: need R > 0, 0 <= e <= 1, slide speed >= 0; got R = {r}, e = {e}, \
-                 slide speed {}",
-                self.slide_speed
-            )));
-        }
-        // Round-off of |x|² at the wall.
-        let on_wall = 16.0 * f64::EPSILON * r * r;
-        if q0.norm_squared() - r * r > on_wall {
-            return Err(Error::InvalidSettings(format!(
-                "cavity: the start q0 = {q0:?} is outside the cavity of radius {r}"
-            )));
-        }
+        let on_wall = self.check(&q0)?;
         let mut out = CavityRun::default();
         let (mut t, mut q, mut v) = (span.start, q0, v0);
+        let r = self.r;
         let mut sliding =
             (r * r - q.norm_squared()).abs() <= on_wall && self.slide_ok(t, &q, &v)?;
         // Phases that end where they started: switching back and forth without
@@ -222,60 +209,10 @@ impl Cavity {
         while t < span.end {
             let t_phase = t;
             if sliding {
-                // Onto the sphere exactly, velocity tangent to it.
-                let n = q / q.norm();
-                q = n * r;
-                v -= n * v.dot(&n);
-                out.slides.push(t);
-                let sphere = self.sphere();
-                let release = Event::new(|t, q: &Vector3<f64>, v: &Vector3<f64>| {
-                    // −λ > 0 while the wall pushes; a failed solve is reported
-                    // by the event layer as a non-finite event function.
-                    self.multiplier(t, q, v).map_or(f64::NAN, |l| -l)
-                })
-                .falling()
-                .named("release")
-                .terminal();
-                let run = Simulation::new(&sphere)
-                    .integrator(Dopri5::tol(self.tol))
-                    // |Φ| = ||x|² − R²| to 1e-14 R² (round-off is ~1e-16 R²): the
-                    // point stays on the wall to about 1e-14 R.
-                    .drift(Drift::Projection {
-                        tol: 1e-14 * r * r,
-                        max_iter: 10,
-                    })
-                    .event(release)
-                    .run_constrained(q, v, t..span.end)?;
-                if let Some(o) = run.occurrences.first() {
-                    out.releases.push(o.t);
-                }
-                (q, v) = run.trajectory.final_state();
-                t = *run.trajectory.times().last().expect("non-empty");
-                out.phases.push(Phase::Sliding(run.trajectory));
+                (q, v, t) = self.slide(&mut out, q, v, t..span.end)?;
                 sliding = false;
             } else {
-                // Bounces are restarts inside the event layer (which keeps the
-                // wall's side between them, so that a tiny bounce inside one
-                // step is still seen); the run ends at the impact after which
-                // the point should slide. (If the reaction cannot be computed
-                // there, the point keeps bouncing.)
-                let contact = contact_event(r, e)
-                    .terminal_if(|t, q, v| matches!(self.slide_ok(t, q, v), Ok(true)));
-                let run = Simulation::new(&self.particle)
-                    .integrator(Dopri5::tol(self.tol))
-                    .event(contact)
-                    .max_events(1_000_000)
-                    .run(q, v, t..span.end)?;
-                out.impacts.extend(run.occurrences.iter().map(|o| Impact {
-                    t: o.t,
-                    q: o.q,
-                    v_before: o.v,
-                    v_after: o.v_after,
-                }));
-                (q, v) = run.trajectory.final_state();
-                t = *run.trajectory.times().last().expect("non-empty");
-                out.phases.push(Phase::Free(run.trajectory));
-                sliding = run.terminated_by.is_some();
+                (q, v, t, sliding) = self.fly(&mut out, q, v, t..span.end)?;
             }
             stalled = if t > t_phase { 0 } else { stalled + 1 };
             if stalled >= 3 {
@@ -287,6 +224,102 @@ impl Cavity {
             }
         }
         Ok(out)
+    }
+
+    /// Checks the parameters and that q0 is inside; returns the round-off of
+    /// |x|² at the wall (within it, a point counts as on the wall).
+    fn check(&self, q0: &Vector3<f64>) -> Result<f64, Error> {
+        let (r, e) = (self.r, self.e);
+        if !(r > 0.0 && (0.0..=1.0).contains(&e) && self.slide_speed >= 0.0) {
+            return Err(Error::InvalidSettings(format!(
+                "cavity: need R > 0, 0 <= e <= 1, slide speed >= 0; got R = {r}, e = {e}, \
+                 slide speed {}",
+                self.slide_speed
+            )));
+        }
+        let on_wall = 16.0 * f64::EPSILON * r * r;
+        if q0.norm_squared() - r * r > on_wall {
+            return Err(Error::InvalidSettings(format!(
+                "cavity: the start q0 = {q0:?} is outside the cavity of radius {r}"
+            )));
+        }
+        Ok(on_wall)
+    }
+
+    /// A sliding phase from (q, v) at `span.start`: on the wall with the
+    /// multiplier until the wall would have to pull (or the span ends).
+    /// Returns the state and time where it ends.
+    fn slide(
+        &self,
+        out: &mut CavityRun,
+        q: Vector3<f64>,
+        v: Vector3<f64>,
+        span: std::ops::Range<f64>,
+    ) -> Result<(Vector3<f64>, Vector3<f64>, f64), Error> {
+        let r = self.r;
+        // Onto the sphere exactly, velocity tangent to it.
+        let n = q / q.norm();
+        let q = n * r;
+        let v = v - n * v.dot(&n);
+        out.slides.push(span.start);
+        let sphere = self.sphere();
+        let release = Event::new(|t, q: &Vector3<f64>, v: &Vector3<f64>| {
+            // −λ > 0 while the wall pushes; a failed solve is reported
+            // by the event layer as a non-finite event function.
+            self.multiplier(t, q, v).map_or(f64::NAN, |l| -l)
+        })
+        .falling()
+        .named("release")
+        .terminal();
+        let run = Simulation::new(&sphere)
+            .integrator(Dopri5::tol(self.tol))
+            // |Φ| = ||x|² − R²| to 1e-14 R² (round-off is ~1e-16 R²): the
+            // point stays on the wall to about 1e-14 R.
+            .drift(Drift::Projection {
+                tol: 1e-14 * r * r,
+                max_iter: 10,
+            })
+            .event(release)
+            .run_constrained(q, v, span)?;
+        if let Some(o) = run.occurrences.first() {
+            out.releases.push(o.t);
+        }
+        let (q, v) = run.trajectory.final_state();
+        let t = *run.trajectory.times().last().expect("non-empty");
+        out.phases.push(Phase::Sliding(run.trajectory));
+        Ok((q, v, t))
+    }
+
+    /// A free phase from (q, v) at `span.start`. Bounces are restarts inside
+    /// the event layer (which keeps the wall's side between them, so that a
+    /// tiny bounce inside one step is still seen); the run ends at the impact
+    /// after which the point should slide. (If the reaction cannot be computed
+    /// there, the point keeps bouncing.) Returns the state and time where it
+    /// ends and whether the point slides from there.
+    fn fly(
+        &self,
+        out: &mut CavityRun,
+        q: Vector3<f64>,
+        v: Vector3<f64>,
+        span: std::ops::Range<f64>,
+    ) -> Result<(Vector3<f64>, Vector3<f64>, f64, bool), Error> {
+        let contact = contact_event(self.r, self.e)
+            .terminal_if(|t, q, v| matches!(self.slide_ok(t, q, v), Ok(true)));
+        let run = Simulation::new(&self.particle)
+            .integrator(Dopri5::tol(self.tol))
+            .event(contact)
+            .max_events(1_000_000)
+            .run(q, v, span)?;
+        out.impacts.extend(run.occurrences.iter().map(|o| Impact {
+            t: o.t,
+            q: o.q,
+            v_before: o.v,
+            v_after: o.v_after,
+        }));
+        let (q, v) = run.trajectory.final_state();
+        let t = *run.trajectory.times().last().expect("non-empty");
+        out.phases.push(Phase::Free(run.trajectory));
+        Ok((q, v, t, run.terminated_by.is_some()))
     }
 
     /// Whether a point at the wall with velocity v should slide: its normal

@@ -1,4 +1,4 @@
-//! Systems and closed forms for the work-precision study (examples/work_precision.rs):
+//! Systems and closed forms for the work-precision study (examples/work_precision/):
 //! the Kepler problem, a stiff spring-pendulum, exact pendulum periods and Kepler
 //! orbits, and a wrapper that gives a derived system the ∂T/∂q the symplectic Gauss
 //! integrator needs.

@@ -4,20 +4,10 @@
 use crate::catalog::bicycle::{Bicycle, published};
 use crate::catalog::constrained::RollingDisk;
 use crate::catalog::control::{CartPole, TwoLinkArm};
-use crate::{Row, TOL, coords, row};
+use crate::row::{Row, TOL, coords, row};
 use lagrange::linear::sweep;
 use lagrange::nalgebra::DMatrix;
 use lagrange::prelude::*;
-
-pub fn rows(rows: &mut Vec<Row>) -> Result<(), Error> {
-    rows.push(arm()?);
-    let gain = cart_pole_gain()?;
-    rows.push(cart_pole(&gain, None)?);
-    rows.push(cart_pole(&gain, Some(0.01))?);
-    rows.push(disk()?);
-    rows.push(bicycle()?);
-    Ok(())
-}
 
 /// LQR gain of the cart-pole about upright, from the symbolic linearisation.
 fn cart_pole_gain() -> Result<DMatrix<f64>, Error> {
@@ -25,17 +15,23 @@ fn cart_pole_gain() -> Result<DMatrix<f64>, Error> {
     Ok(CartPole::standard().upright()?.lqr(&q, &r)?.gain)
 }
 
+/// The cart-pole caught from a 0.3 rad tilt by continuous LQR feedback.
+pub(crate) fn cart_pole_continuous(system: &'static str) -> Result<Row, Error> {
+    cart_pole(system, &cart_pole_gain()?, None)
+}
+
+/// The same gain sampled at 100 Hz with zero-order hold.
+pub(crate) fn cart_pole_sampled(system: &'static str) -> Result<Row, Error> {
+    cart_pole(system, &cart_pole_gain()?, Some(0.01))
+}
+
 /// The cart-pole caught from a 0.3 rad tilt by u = −K x, continuously or
 /// sampled with zero-order hold.
-fn cart_pole(gain: &DMatrix<f64>, period: Option<f64>) -> Result<Row, Error> {
+fn cart_pole(system: &'static str, gain: &DMatrix<f64>, period: Option<f64>) -> Result<Row, Error> {
     let cp = CartPole::standard();
     let law = |q: &Vector2<f64>, v: &Vector2<f64>| CartPole::state_feedback(gain, q, v);
-    let name = match period {
-        None => "cart-pole, LQR from the linearisation",
-        Some(_) => "cart-pole, LQR sampled at 100 Hz (ZOH)",
-    };
     row(
-        name,
+        system,
         &coords(&cp),
         0.0..10.0,
         false,
@@ -60,7 +56,7 @@ fn cart_pole(gain: &DMatrix<f64>, period: Option<f64>) -> Result<Row, Error> {
 
 /// The critical spin of upright rolling from the eigenvalues, then the
 /// nonlinear disk at 1.2 Ω_c kicked by a tilt rate: it wobbles and stays up.
-fn disk() -> Result<Row, Error> {
+pub(crate) fn disk(system: &'static str) -> Result<Row, Error> {
     let d = RollingDisk::thin(1.0, 0.5, 9.81);
     let spins: Vec<f64> = (1..=20).map(|i| 0.25 * i as f64).collect();
     let critical = sweep(&spins, |w| d.upright_tilt(w))?
@@ -70,7 +66,7 @@ fn disk() -> Result<Row, Error> {
     let exact = (d.g / (3.0 * d.a)).sqrt();
     let spin = 1.2 * critical;
     row(
-        "rolling disk upright, critical spin",
+        system,
         &coords(&d),
         0.0..10.0,
         true,
@@ -97,7 +93,7 @@ fn disk() -> Result<Row, Error> {
 
 /// The benchmark bicycle: self-stable speeds from the eigenvalues, and the
 /// nonlinear machine at 5 m/s recovering from a roll-rate kick.
-fn bicycle() -> Result<Row, Error> {
+pub(crate) fn bicycle(system: &'static str) -> Result<Row, Error> {
     let b = Bicycle::benchmark();
     let speeds: Vec<f64> = (1..=20).map(|i| 0.5 * i as f64).collect();
     let found = sweep(&speeds, |v| b.lateral(v))?.boundaries(1e-12, 1e-13)?;
@@ -111,7 +107,7 @@ fn bicycle() -> Result<Row, Error> {
     let (q0, mut v0) = b.upright(5.0);
     v0[3] = 0.5;
     row(
-        "Whipple bicycle at 5 m/s, roll-rate kick",
+        system,
         &coords(&b),
         0.0..8.0,
         true,
@@ -136,11 +132,11 @@ fn bicycle() -> Result<Row, Error> {
 
 /// Computed-torque tracking from a 0.1 rad error: τ = M (q̈_d + K_d ė + K_p e)
 /// − (Q − h) at zero torque.
-fn arm() -> Result<Row, Error> {
+pub(crate) fn arm(system: &'static str) -> Result<Row, Error> {
     let arm = TwoLinkArm::standard();
     let [q0, v0, _] = TwoLinkArm::reference(0.0);
     row(
-        "two-link arm, computed-torque tracking",
+        system,
         &coords(&arm),
         0.0..5.0,
         false,

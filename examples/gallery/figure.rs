@@ -11,6 +11,10 @@ pub(crate) struct Figure {
     pub t: Vec<f64>,
     /// `q[i][k]`: coordinate i at step k.
     pub q: Vec<Vec<f64>>,
+    /// `v[i][k]`: the rate of coordinate i at step k.
+    pub v: Vec<Vec<f64>>,
+    /// Which coordinates are cyclic (drawn as rates on a panel of their own).
+    pub cyclic: Vec<bool>,
     /// |I(t) − I(0)| / max(|I(0)|, 1e-300), when a quantity is conserved.
     pub drift: Option<Vec<f64>>,
     /// (|Φ|, |G q̇ + g|) per step, when the system has constraints.
@@ -23,10 +27,14 @@ impl Figure {
     pub(crate) fn of<const N: usize>(
         traj: &Trajectory<f64, N>,
         names: &[&str],
+        cyclic: &[bool; N],
         conservative: bool,
     ) -> Result<Self, Error> {
         let q = (0..N)
             .map(|i| traj.positions().iter().map(|p| p[i]).collect())
+            .collect();
+        let v = (0..N)
+            .map(|i| traj.velocities().iter().map(|p| p[i]).collect())
             .collect();
         let i0 = traj.integrals()[0];
         let scale = i0.abs().max(1e-300);
@@ -47,6 +55,8 @@ impl Figure {
             names: names.iter().map(|s| s.to_string()).collect(),
             t: traj.times().to_vec(),
             q,
+            v,
+            cyclic: cyclic.to_vec(),
             drift,
             residuals,
             csv: String::from_utf8_lossy(&csv).into_owned(),
@@ -54,7 +64,8 @@ impl Figure {
     }
 
     /// A figure from recorded points (t, q, q̇) of a run made of several
-    /// phases (the cavity's flights and slide); nothing conserved is drawn.
+    /// phases (the cavity's flights and slide); nothing conserved is drawn and
+    /// no coordinate is taken as cyclic.
     pub(crate) fn from_points<const N: usize>(
         names: &[&str; N],
         points: &[(f64, [f64; N], [f64; N])],
@@ -74,6 +85,10 @@ impl Figure {
             q: (0..N)
                 .map(|i| points.iter().map(|p| p.1[i]).collect())
                 .collect(),
+            v: (0..N)
+                .map(|i| points.iter().map(|p| p.2[i]).collect())
+                .collect(),
+            cyclic: vec![false; N],
             drift: None,
             residuals: None,
             csv,

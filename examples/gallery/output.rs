@@ -1,8 +1,8 @@
 //! The gallery on disk: per system a CSV and a PNG, three animations, and an
 //! `index.html` that shows them beside the summary table.
 
-use crate::Row;
 use crate::plot;
+use crate::row::Row;
 use lagrange::Error;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -124,7 +124,7 @@ fn html(rows: &[Row], gifs: &[(&str, &str)]) -> String {
             "<tr><td>{id}</td><td>{link}</td><td>{}</td><td class=\"n\">{}</td>\
              <td class=\"n\">{}</td><td class=\"n\">{} ({})</td><td class=\"n\">{}</td>\
              <td class=\"n\">{}</td><td>{}</td><td class=\"n\">{:.1}</td></tr>",
-            escape(crate::about(r.system)),
+            escape(r.about),
             r.dof,
             r.span,
             r.accepted,
@@ -144,7 +144,7 @@ fn html(rows: &[Row], gifs: &[(&str, &str)]) -> String {
             "<section id=\"{name}\"><h3>{}</h3><p>{} <a href=\"{name}.csv\">trajectory CSV</a></p>\
              <img src=\"{name}.png\" alt=\"{}\"></section>",
             escape(r.system),
-            escape(crate::about(r.system)),
+            escape(r.about),
             escape(r.system)
         );
     }

@@ -3,6 +3,7 @@
 //! the double pendulum, the rolling disk and the point in the cavity.
 
 use crate::figure::Figure;
+use crate::layout::{self, Shown};
 use lagrange::Error;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -38,22 +39,34 @@ pub(crate) fn register_font() -> Result<(), Error> {
         .map_err(|_| err("the bundled font could not be parsed"))
 }
 
-/// The system's PNG: coordinates against t; below, the conserved quantity's
-/// relative drift and the constraint residuals on log axes, where present.
+/// The system's PNG: the coordinates that carry the behaviour against t, the
+/// rates of the cyclic ones on a panel of their own (see `layout`); below, the
+/// conserved quantity's relative drift and the constraint residuals on log
+/// axes, where present.
 pub(crate) fn system_png(path: &Path, title: &str, fig: &Figure) -> Result<(), Error> {
-    let panels = 1 + usize::from(fig.drift.is_some()) + usize::from(fig.residuals.is_some());
+    let names: Vec<&str> = fig.names.iter().map(String::as_str).collect();
+    let motion = layout::motion_panels(&names, &fig.cyclic);
+    let panels =
+        motion.len() + usize::from(fig.drift.is_some()) + usize::from(fig.residuals.is_some());
     let root = BitMapBackend::new(path, (900, 260 * panels as u32 + 40)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let body = root.titled(title, ("sans-serif", 22)).map_err(err)?;
     let areas = body.split_evenly((panels, 1));
     let mut next = areas.iter();
-    let coords: Vec<(String, &[f64])> = fig
-        .names
-        .iter()
-        .zip(&fig.q)
-        .map(|(n, c)| (n.clone(), c.as_slice()))
-        .collect();
-    linear_panel(next.next().unwrap_or(&body), fig, "coordinates", &coords)?;
+    for panel in &motion {
+        let series: Vec<(String, &[f64])> = panel
+            .series
+            .iter()
+            .map(|(i, label, shown)| {
+                let values = match shown {
+                    Shown::Value => &fig.q[*i],
+                    Shown::Rate => &fig.v[*i],
+                };
+                (label.clone(), values.as_slice())
+            })
+            .collect();
+        linear_panel(next.next().unwrap_or(&body), fig, panel.y_label, &series)?;
+    }
     if let Some(d) = &fig.drift {
         log_panel(
             next.next().unwrap_or(&body),

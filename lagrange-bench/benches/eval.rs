@@ -103,7 +103,8 @@ struct Chain10 {
     g: f64,
 }
 
-fn eval(c: &mut Criterion) {
+/// The generated double pendulum against the hand-written one.
+fn double_pendulum(c: &mut Criterion) {
     let (m1, m2, l1, l2, g) = (1.0, 1.5, 1.0, 0.7, 9.81);
     let generated = catalog::DoublePendulum { m1, m2, l1, l2, g };
     let hand = HandWritten { m1, m2, l1, l2, g };
@@ -136,7 +137,10 @@ fn eval(c: &mut Criterion) {
         })
     });
     group.finish();
+}
 
+/// The 10-link chain: M and Q − h, and the accelerations.
+fn chain10(c: &mut Criterion) {
     let chain = Chain10 {
         m1: 1.0,
         l1: 0.5,
@@ -170,7 +174,9 @@ fn eval(c: &mut Criterion) {
         b.iter(|| lagrange::accelerations(&chain, black_box(&q), black_box(&v), black_box(0.0)))
     });
     group.finish();
+}
 
+fn rolling_sphere(c: &mut Criterion) {
     // C5, the rolling sphere: accelerations from the multiplier form (6 coordinates,
     // 3 constraint rows, saddle point by the range-space method) vs the reduced
     // form (5 coordinates, 3 speeds, one 3×3 Cholesky), at the same state.
@@ -204,5 +210,5 @@ fn eval(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, eval);
+criterion_group!(benches, double_pendulum, chain10, rolling_sphere);
 criterion_main!(benches);

@@ -4,347 +4,11 @@
 //! form or an independent formulation.
 
 mod common;
-use common::constrained::{knife_edge_rates, knife_edge_rows};
-use lagrange_runtime::{
-    Constrained, Dopri5, Drift, Driven, Error, Event, InputTable, Lagrangian, Reduced, Rk4,
-    Simulation,
-};
-use nalgebra::{
-    Matrix1, Matrix1x3, Matrix2, Matrix3, Matrix3x2, SMatrix, Vector1, Vector2, Vector3,
-};
-
-// ---------------------------------------------------------------------------
-// Systems
-
-/// A mass on a spring, m ẍ + k x = u (k = 0: a double integrator).
-struct Spring {
-    m: f64,
-    k: f64,
-}
-
-impl Lagrangian<f64, 1> for Spring {
-    const COORDINATES: [&'static str; 1] = ["x"];
-    const RHEONOMIC: bool = false;
-    fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> {
-        Matrix1::new(self.m)
-    }
-    fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
-        Vector1::zeros()
-    }
-    fn generalized_forces(&self, q: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
-        Vector1::new(-self.k * q[0])
-    }
-    fn mass_matrix_and_rhs(
-        &self,
-        q: &Vector1<f64>,
-        v: &Vector1<f64>,
-        t: f64,
-    ) -> (Matrix1<f64>, Vector1<f64>) {
-        (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
-    }
-    fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 {
-        0.5 * self.m * v[0] * v[0]
-    }
-    fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 {
-        0.5 * self.k * q[0] * q[0]
-    }
-    fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
-        self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
-    }
-}
-
-impl Driven<f64, 1, 1> for Spring {
-    const INPUTS: [&'static str; 1] = ["force"];
-    fn input_forces(
-        &self,
-        _: &Vector1<f64>,
-        _: &Vector1<f64>,
-        u: &Vector1<f64>,
-        _: f64,
-    ) -> Vector1<f64> {
-        *u
-    }
-    fn input_jacobians(
-        &self,
-        _: &Vector1<f64>,
-        _: &Vector1<f64>,
-        _: &Vector1<f64>,
-        _: f64,
-    ) -> (Matrix1<f64>, Matrix1<f64>, Matrix1<f64>) {
-        (Matrix1::identity(), Matrix1::zeros(), Matrix1::zeros())
-    }
-}
-
-/// A pendulum bob at (x, y) on a rod x² + y² = l², pushed horizontally by u.
-struct Bob {
-    m: f64,
-    l: f64,
-    g: f64,
-}
-
-impl Lagrangian<f64, 2> for Bob {
-    const COORDINATES: [&'static str; 2] = ["x", "y"];
-    const RHEONOMIC: bool = false;
-    fn mass_matrix(&self, _: &Vector2<f64>, _: f64) -> Matrix2<f64> {
-        Matrix2::identity() * self.m
-    }
-    fn bias(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> {
-        Vector2::zeros()
-    }
-    fn generalized_forces(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> {
-        Vector2::new(0.0, -self.m * self.g)
-    }
-    fn mass_matrix_and_rhs(
-        &self,
-        q: &Vector2<f64>,
-        v: &Vector2<f64>,
-        t: f64,
-    ) -> (Matrix2<f64>, Vector2<f64>) {
-        (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
-    }
-    fn kinetic_energy(&self, _: &Vector2<f64>, v: &Vector2<f64>, _: f64) -> f64 {
-        0.5 * self.m * v.norm_squared()
-    }
-    fn potential_energy(&self, q: &Vector2<f64>, _: f64) -> f64 {
-        self.m * self.g * q[1]
-    }
-    fn integral(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64) -> f64 {
-        self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
-    }
-}
-
-impl Constrained<f64, 2, 1> for Bob {
-    const CONSTRAINTS: [&'static str; 1] = ["rod"];
-    const HOLONOMIC: usize = 1;
-    fn constraint_positions(&self, q: &Vector2<f64>, _: f64) -> Vector1<f64> {
-        Vector1::new(q.norm_squared() - self.l * self.l)
-    }
-    fn constraint_jacobian(&self, q: &Vector2<f64>, _: f64) -> (SMatrix<f64, 1, 2>, Vector1<f64>) {
-        (
-            SMatrix::<f64, 1, 2>::new(2.0 * q[0], 2.0 * q[1]),
-            Vector1::zeros(),
-        )
-    }
-    fn constraint_rhs(&self, _: &Vector2<f64>, v: &Vector2<f64>, _: f64) -> Vector1<f64> {
-        Vector1::new(-2.0 * v.norm_squared())
-    }
-    fn constrained_system(
-        &self,
-        q: &Vector2<f64>,
-        v: &Vector2<f64>,
-        t: f64,
-    ) -> (Matrix2<f64>, Vector2<f64>, SMatrix<f64, 1, 2>, Vector1<f64>) {
-        let (m, f) = self.mass_matrix_and_rhs(q, v, t);
-        (
-            m,
-            f,
-            self.constraint_jacobian(q, t).0,
-            self.constraint_rhs(q, v, t),
-        )
-    }
-}
-
-impl Driven<f64, 2, 1> for Bob {
-    const INPUTS: [&'static str; 1] = ["push"];
-    fn input_forces(
-        &self,
-        _: &Vector2<f64>,
-        _: &Vector2<f64>,
-        u: &Vector1<f64>,
-        _: f64,
-    ) -> Vector2<f64> {
-        Vector2::new(u[0], 0.0)
-    }
-    fn input_jacobians(
-        &self,
-        _: &Vector2<f64>,
-        _: &Vector2<f64>,
-        _: &Vector1<f64>,
-        _: f64,
-    ) -> (SMatrix<f64, 2, 1>, Matrix2<f64>, Matrix2<f64>) {
-        (
-            SMatrix::<f64, 2, 1>::new(1.0, 0.0),
-            Matrix2::zeros(),
-            Matrix2::zeros(),
-        )
-    }
-}
-
-/// The same pendulum in its angle θ from the downward vertical; the horizontal
-/// push u at the bob is the generalized force u ∂x/∂θ = u l cos θ.
-struct Arm {
-    m: f64,
-    l: f64,
-    g: f64,
-}
-
-impl Lagrangian<f64, 1> for Arm {
-    const COORDINATES: [&'static str; 1] = ["theta"];
-    const RHEONOMIC: bool = false;
-    fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> {
-        Matrix1::new(self.m * self.l * self.l)
-    }
-    fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
-        Vector1::zeros()
-    }
-    fn generalized_forces(&self, q: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
-        Vector1::new(-self.m * self.g * self.l * q[0].sin())
-    }
-    fn mass_matrix_and_rhs(
-        &self,
-        q: &Vector1<f64>,
-        v: &Vector1<f64>,
-        t: f64,
-    ) -> (Matrix1<f64>, Vector1<f64>) {
-        (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
-    }
-    fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 {
-        0.5 * self.m * self.l * self.l * v[0] * v[0]
-    }
-    fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 {
-        -self.m * self.g * self.l * q[0].cos()
-    }
-    fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
-        self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
-    }
-}
-
-impl Driven<f64, 1, 1> for Arm {
-    const INPUTS: [&'static str; 1] = ["push"];
-    fn input_forces(
-        &self,
-        q: &Vector1<f64>,
-        _: &Vector1<f64>,
-        u: &Vector1<f64>,
-        _: f64,
-    ) -> Vector1<f64> {
-        Vector1::new(u[0] * self.l * q[0].cos())
-    }
-    fn input_jacobians(
-        &self,
-        q: &Vector1<f64>,
-        _: &Vector1<f64>,
-        u: &Vector1<f64>,
-        _: f64,
-    ) -> (Matrix1<f64>, Matrix1<f64>, Matrix1<f64>) {
-        (
-            Matrix1::new(self.l * q[0].cos()),
-            Matrix1::new(-u[0] * self.l * q[0].sin()),
-            Matrix1::zeros(),
-        )
-    }
-}
-
-/// A knife edge (skate) in the plane: position (x, y), heading φ, no sideways
-/// velocity (−ẋ sin φ + ẏ cos φ = 0). Inputs: thrust along the heading and a
-/// torque. Speeds u = (forward speed, φ̇).
-struct Skate {
-    m: f64,
-    j: f64,
-}
-
-impl Lagrangian<f64, 3> for Skate {
-    const COORDINATES: [&'static str; 3] = ["x", "y", "phi"];
-    const RHEONOMIC: bool = false;
-    fn mass_matrix(&self, _: &Vector3<f64>, _: f64) -> Matrix3<f64> {
-        Matrix3::from_diagonal(&Vector3::new(self.m, self.m, self.j))
-    }
-    fn bias(&self, _: &Vector3<f64>, _: &Vector3<f64>, _: f64) -> Vector3<f64> {
-        Vector3::zeros()
-    }
-    fn generalized_forces(&self, _: &Vector3<f64>, _: &Vector3<f64>, _: f64) -> Vector3<f64> {
-        Vector3::zeros()
-    }
-    fn mass_matrix_and_rhs(
-        &self,
-        q: &Vector3<f64>,
-        _: &Vector3<f64>,
-        t: f64,
-    ) -> (Matrix3<f64>, Vector3<f64>) {
-        (self.mass_matrix(q, t), Vector3::zeros())
-    }
-    fn kinetic_energy(&self, _: &Vector3<f64>, v: &Vector3<f64>, _: f64) -> f64 {
-        0.5 * (self.m * (v[0] * v[0] + v[1] * v[1]) + self.j * v[2] * v[2])
-    }
-    fn potential_energy(&self, _: &Vector3<f64>, _: f64) -> f64 {
-        0.0
-    }
-    fn integral(&self, q: &Vector3<f64>, v: &Vector3<f64>, t: f64) -> f64 {
-        self.kinetic_energy(q, v, t)
-    }
-}
-
-impl Driven<f64, 3, 2> for Skate {
-    const INPUTS: [&'static str; 2] = ["thrust", "torque"];
-    fn input_forces(
-        &self,
-        q: &Vector3<f64>,
-        _: &Vector3<f64>,
-        u: &Vector2<f64>,
-        _: f64,
-    ) -> Vector3<f64> {
-        Vector3::new(u[0] * q[2].cos(), u[0] * q[2].sin(), u[1])
-    }
-    fn input_jacobians(
-        &self,
-        q: &Vector3<f64>,
-        _: &Vector3<f64>,
-        u: &Vector2<f64>,
-        _: f64,
-    ) -> (Matrix3x2<f64>, Matrix3<f64>, Matrix3<f64>) {
-        let (s, c) = q[2].sin_cos();
-        let mut dq = Matrix3::zeros();
-        dq[(0, 2)] = -u[0] * s;
-        dq[(1, 2)] = u[0] * c;
-        (
-            Matrix3x2::new(c, 0.0, s, 0.0, 0.0, 1.0),
-            dq,
-            Matrix3::zeros(),
-        )
-    }
-}
-
-impl Constrained<f64, 3, 1> for Skate {
-    const CONSTRAINTS: [&'static str; 1] = ["no_slip"];
-    const HOLONOMIC: usize = 0;
-    fn constraint_positions(&self, _: &Vector3<f64>, _: f64) -> Vector1<f64> {
-        Vector1::zeros()
-    }
-    fn constraint_jacobian(&self, q: &Vector3<f64>, _: f64) -> (Matrix1x3<f64>, Vector1<f64>) {
-        let (s, c) = q[2].sin_cos();
-        (Matrix1x3::new(-s, c, 0.0), Vector1::zeros())
-    }
-    /// γ = −Ġ q̇ = φ̇ (ẋ cos φ + ẏ sin φ).
-    fn constraint_rhs(&self, q: &Vector3<f64>, v: &Vector3<f64>, _: f64) -> Vector1<f64> {
-        let (s, c) = q[2].sin_cos();
-        Vector1::new(v[2] * (v[0] * c + v[1] * s))
-    }
-    fn constrained_system(
-        &self,
-        q: &Vector3<f64>,
-        v: &Vector3<f64>,
-        t: f64,
-    ) -> (Matrix3<f64>, Vector3<f64>, Matrix1x3<f64>, Vector1<f64>) {
-        let (m, f) = self.mass_matrix_and_rhs(q, v, t);
-        (
-            m,
-            f,
-            self.constraint_jacobian(q, t).0,
-            self.constraint_rhs(q, v, t),
-        )
-    }
-}
-
-impl Reduced<f64, 3, 2> for Skate {
-    const SPEEDS: [&'static str; 2] = ["forward", "turn"];
-    const ROWS: [&'static str; 3] = ["forward", "turn", "no_side_slip"];
-    fn velocity_rows(&self, q: &Vector3<f64>, _: f64) -> (Matrix3<f64>, Vector3<f64>) {
-        (knife_edge_rows(q), Vector3::zeros())
-    }
-    fn row_rates(&self, q: &Vector3<f64>, v: &Vector3<f64>, _: f64) -> Vector3<f64> {
-        knife_edge_rates(q, v)
-    }
-}
+use common::Oscillator;
+use common::constrained::CartesianPendulum;
+use common::driven::{Arm, Skate};
+use lagrange_runtime::{Dopri5, Drift, Error, Event, InputTable, Rk4, Simulation};
+use nalgebra::{Vector1, Vector2, Vector3};
 
 // ---------------------------------------------------------------------------
 // Helpers
@@ -360,7 +24,7 @@ fn max_error(tr: &lagrange_runtime::Trajectory<f64, 1>, exact: impl Fn(f64) -> (
 }
 
 /// m ẍ + k x = F (constant) from (x0, v0) at t0, evaluated at t.
-fn spring_constant_force(s: &Spring, f: f64, t0: f64, x0: f64, v0: f64, t: f64) -> (f64, f64) {
+fn spring_constant_force(s: &Oscillator, f: f64, t0: f64, x0: f64, v0: f64, t: f64) -> (f64, f64) {
     let w = (s.k / s.m).sqrt();
     let (sn, cs) = (w * (t - t0)).sin_cos();
     let xs = f / s.k;
@@ -370,7 +34,7 @@ fn spring_constant_force(s: &Spring, f: f64, t0: f64, x0: f64, v0: f64, t: f64) 
     )
 }
 
-const SPRING: Spring = Spring { m: 2.0, k: 18.0 }; // ω = 3
+const SPRING: Oscillator = Oscillator { m: 2.0, k: 18.0 }; // ω = 3
 
 // ---------------------------------------------------------------------------
 // Open loop
@@ -490,7 +154,7 @@ fn hold_table_is_exact_for_piecewise_constant_input() {
 
 #[test]
 fn continuous_pd_is_critically_damped() {
-    let s = Spring { m: 1.0, k: 0.0 };
+    let s = Oscillator { m: 1.0, k: 0.0 };
     let w = 2.5;
     let (x0, v0) = (1.0, 0.5);
     let run = Simulation::new(&s)
@@ -518,7 +182,7 @@ fn continuous_pd_is_critically_damped() {
 
 #[test]
 fn sampled_feedback_matches_discrete_time_propagation() {
-    let s = Spring { m: 1.0, k: 0.0 };
+    let s = Oscillator { m: 1.0, k: 0.0 };
     let h = 0.01;
     let gains = [40.0, 9.0];
     let (x0, v0) = (1.0, -0.5);
@@ -604,7 +268,7 @@ fn sampled_feedback_matches_discrete_time_propagation() {
 fn pendulum_cartesian_with_push_matches_angle_model() {
     let (m, l, g) = (1.5, 1.2, 9.81);
     let (kp, kd) = (6.0, 2.0);
-    let bob = Bob { m, l, g };
+    let bob = CartesianPendulum::<1> { m, l, g };
     let arm = Arm { m, l, g };
     let theta0: f64 = 0.8;
     let q0 = Vector2::new(l * theta0.sin(), -l * theta0.cos());
@@ -707,7 +371,7 @@ fn reduced_skate_matches_multiplier_form() {
 #[test]
 fn events_work_under_control() {
     // Feedback u = −w² x on a double integrator: x = cos wt, first zero at π/(2w).
-    let s = Spring { m: 1.0, k: 0.0 };
+    let s = Oscillator { m: 1.0, k: 0.0 };
     let w = 2.0;
     let run = Simulation::new(&s)
         .integrator(Dopri5::tol(1e-12))
@@ -777,7 +441,7 @@ fn csv_names_every_column() {
 
 #[test]
 fn checks_of_the_plain_simulation_still_apply() {
-    let bob = Bob {
+    let bob = CartesianPendulum::<1> {
         m: 1.0,
         l: 1.0,
         g: 9.81,

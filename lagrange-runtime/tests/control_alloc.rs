@@ -3,10 +3,11 @@
 //! exactly the same steps). Counts are per thread, so the test harness's own
 //! threads do not disturb them.
 
-use lagrange_runtime::{
-    Driven, Dynamics, Feedback, InputForces, Integrator, Lagrangian, Rk4, Simulation,
-};
-use nalgebra::{Matrix1, Vector1};
+mod common;
+
+use common::Oscillator;
+use lagrange_runtime::{Dynamics, Feedback, InputForces, Integrator, Rk4, Simulation};
+use nalgebra::Vector1;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
@@ -41,65 +42,9 @@ fn allocations<R>(f: impl FnOnce() -> R) -> (usize, R) {
     (ALLOCATIONS.with(Cell::get) - before, r)
 }
 
-/// m ẍ + k x = u.
-struct Spring;
-
-impl Lagrangian<f64, 1> for Spring {
-    const COORDINATES: [&'static str; 1] = ["x"];
-    const RHEONOMIC: bool = false;
-    fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> {
-        Matrix1::new(1.0)
-    }
-    fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
-        Vector1::zeros()
-    }
-    fn generalized_forces(&self, q: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
-        Vector1::new(-4.0 * q[0])
-    }
-    fn mass_matrix_and_rhs(
-        &self,
-        q: &Vector1<f64>,
-        v: &Vector1<f64>,
-        t: f64,
-    ) -> (Matrix1<f64>, Vector1<f64>) {
-        (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
-    }
-    fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 {
-        0.5 * v[0] * v[0]
-    }
-    fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 {
-        2.0 * q[0] * q[0]
-    }
-    fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
-        self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
-    }
-}
-
-impl Driven<f64, 1, 1> for Spring {
-    const INPUTS: [&'static str; 1] = ["force"];
-    fn input_forces(
-        &self,
-        _: &Vector1<f64>,
-        _: &Vector1<f64>,
-        u: &Vector1<f64>,
-        _: f64,
-    ) -> Vector1<f64> {
-        *u
-    }
-    fn input_jacobians(
-        &self,
-        _: &Vector1<f64>,
-        _: &Vector1<f64>,
-        _: &Vector1<f64>,
-        _: f64,
-    ) -> (Matrix1<f64>, Matrix1<f64>, Matrix1<f64>) {
-        (Matrix1::identity(), Matrix1::zeros(), Matrix1::zeros())
-    }
-}
-
 #[test]
 fn the_controller_adds_no_allocation() {
-    let sys = Spring;
+    let sys = Oscillator { m: 1.0, k: 4.0 };
     let calls = Cell::new(0usize);
     let law = |_: f64, q: &Vector1<f64>, v: &Vector1<f64>| {
         calls.set(calls.get() + 1);

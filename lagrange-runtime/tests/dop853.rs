@@ -1,28 +1,13 @@
 //! DOP853 against Hairer's `dop853.f`, exact solutions and DOPRI5.
-// The Arenstorf constants are quoted with the digits Hairer publishes.
+// Hairer's figures are quoted with the digits he publishes.
 #![allow(clippy::excessive_precision)]
 
 mod common;
 
+use common::second_order::{Arenstorf, VanDerPol};
 use lagrange_runtime::Failure;
 use lagrange_runtime::{Dop853, Dopri5, Error, Integrator, SecondOrder};
 use nalgebra::{Vector1, Vector2};
-
-/// Van der Pol in Hairer's scaling: ε q̈ = (1 − q²) q̇ − q.
-struct VanDerPol {
-    eps: f64,
-}
-
-impl SecondOrder<f64, 1> for VanDerPol {
-    fn acceleration(
-        &self,
-        _t: f64,
-        q: &Vector1<f64>,
-        v: &Vector1<f64>,
-    ) -> Result<Vector1<f64>, Error> {
-        Ok(Vector1::new(((1.0 - q[0] * q[0]) * v[0] - q[0]) / self.eps))
-    }
-}
 
 #[test]
 fn van_der_pol_work_matches_hairer() {
@@ -35,7 +20,10 @@ fn van_der_pol_work_matches_hairer() {
     let tr = Dop853::tol(1e-9)
         .h0(1e-6)
         .integrate(
-            &VanDerPol { eps: 1e-3 },
+            &VanDerPol {
+                eps: 1e-3,
+                analytic: false,
+            },
             0.0,
             2.0,
             Vector1::new(2.0),
@@ -53,39 +41,14 @@ fn van_der_pol_work_matches_hairer() {
     assert!((v[0] + 0.8356886819301910).abs() < 1e-11, "{}", v[0]);
 }
 
-/// The restricted three-body problem (Arenstorf orbit), Hairer–Nørsett–Wanner I, §II.0.
-struct Arenstorf;
-
-const MU: f64 = 0.012277471;
-const T_ORBIT: f64 = 17.065_216_560_157_962_558_891_720_624_9;
-const V0: f64 = -2.001_585_106_379_082_522_405_378_622_24;
-
-impl SecondOrder<f64, 2> for Arenstorf {
-    fn acceleration(
-        &self,
-        _t: f64,
-        q: &Vector2<f64>,
-        v: &Vector2<f64>,
-    ) -> Result<Vector2<f64>, Error> {
-        let mu1 = 1.0 - MU;
-        let (x, y) = (q[0], q[1]);
-        let d1 = ((x + MU).powi(2) + y * y).powf(1.5);
-        let d2 = ((x - mu1).powi(2) + y * y).powf(1.5);
-        Ok(Vector2::new(
-            x + 2.0 * v[1] - mu1 * (x + MU) / d1 - MU * (x - mu1) / d2,
-            y - 2.0 * v[0] - mu1 * y / d1 - MU * y / d2,
-        ))
-    }
-}
-
 fn orbit(method: impl Integrator) -> lagrange_runtime::Trajectory<f64, 2> {
     method
         .integrate(
             &Arenstorf,
             0.0,
-            T_ORBIT,
+            Arenstorf::T_ORBIT,
             Vector2::new(0.994, 0.0),
-            Vector2::new(0.0, V0),
+            Vector2::new(0.0, Arenstorf::V0),
         )
         .unwrap()
 }
@@ -104,7 +67,7 @@ fn arenstorf_work_and_closure() {
             .abs()
             .max(q[1].abs())
             .max(v[0].abs())
-            .max((v[1] - V0).abs());
+            .max((v[1] - Arenstorf::V0).abs());
         let d5t = orbit(Dopri5::tol(tol));
         let d5 = *d5t.stats();
         let (q5, v5) = d5t.final_state();
@@ -112,7 +75,7 @@ fn arenstorf_work_and_closure() {
             .abs()
             .max(q5[1].abs())
             .max(v5[0].abs())
-            .max((v5[1] - V0).abs());
+            .max((v5[1] - Arenstorf::V0).abs());
 
         eprintln!(
             "arenstorf tol {tol:e}: DOP853 {} evals, {} steps ({} accepted, {} rejected), \
@@ -174,7 +137,7 @@ fn far_more_accurate_than_dopri5_at_tight_tolerance() {
             .abs()
             .max(q[1].abs())
             .max(v[0].abs())
-            .max((v[1] - V0).abs())
+            .max((v[1] - Arenstorf::V0).abs())
     };
     let (d8, d5) = (orbit(Dop853::tol(1e-12)), orbit(Dopri5::tol(1e-12)));
     let (c8, c5) = (closure(&d8), closure(&d5));
@@ -289,7 +252,10 @@ fn settings_and_failures_are_typed() {
 /// step counts stay Hairer's.
 #[test]
 fn stiffness_is_detected_as_hairer_does() {
-    let vdp = VanDerPol { eps: 1e-6 };
+    let vdp = VanDerPol {
+        eps: 1e-6,
+        analytic: false,
+    };
     let run = |m: &dyn Fn() -> Result<
         lagrange_runtime::Trajectory<f64, 1>,
         Failure<lagrange_runtime::Trajectory<f64, 1>>,

@@ -1,45 +1,19 @@
 //! DOPRI5 against Hairer's published figures, exact solutions and local references.
-// The Arenstorf constants are quoted with the digits Hairer publishes.
-#![allow(clippy::excessive_precision)]
 
 mod common;
 
+use common::second_order::Arenstorf;
 use common::{Oscillator, sv};
-use lagrange_runtime::{Dopri5, Error, Integrator, SecondOrder, Simulation};
-use nalgebra::Vector2;
-
-/// The restricted three-body problem (Arenstorf orbit), Hairer–Nørsett–Wanner I, §II.0.
-struct Arenstorf;
-
-const MU: f64 = 0.012277471;
-const T_ORBIT: f64 = 17.065_216_560_157_962_558_891_720_624_9;
-
-impl SecondOrder<f64, 2> for Arenstorf {
-    fn acceleration(
-        &self,
-        _t: f64,
-        q: &Vector2<f64>,
-        v: &Vector2<f64>,
-    ) -> Result<Vector2<f64>, Error> {
-        let mu1 = 1.0 - MU;
-        let (x, y) = (q[0], q[1]);
-        let d1 = ((x + MU).powi(2) + y * y).powf(1.5);
-        let d2 = ((x - mu1).powi(2) + y * y).powf(1.5);
-        Ok(Vector2::new(
-            x + 2.0 * v[1] - mu1 * (x + MU) / d1 - MU * (x - mu1) / d2,
-            y - 2.0 * v[0] - mu1 * y / d1 - MU * y / d2,
-        ))
-    }
-}
+use lagrange_runtime::{Dopri5, Integrator, Simulation};
 
 fn arenstorf(tol: f64) -> lagrange_runtime::Trajectory<f64, 2> {
     Dopri5::tol(tol)
         .integrate(
             &Arenstorf,
             0.0,
-            T_ORBIT,
+            Arenstorf::T_ORBIT,
             sv([0.994, 0.0]),
-            sv([0.0, -2.001_585_106_379_082_522_405_378_622_24]),
+            sv([0.0, Arenstorf::V0]),
         )
         .unwrap()
 }

@@ -320,10 +320,9 @@ fn two_crossings_in_one_step_and_directions() {
 }
 
 /// An action that leaves the state crossing (here: none at all) cannot loop
-/// forever; nor can a ball that comes to rest (Zeno); a NaN event function is a
-/// typed error naming the event.
+/// forever; nor can a ball that comes to rest (Zeno): typed errors at the point.
 #[test]
-fn misbehaving_events_are_typed_errors() {
+fn accumulating_events_are_typed_errors() {
     let ball = Ball { g: 9.81 };
     let sim = Simulation::new(&ball).integrator(Dopri5::tol(1e-10));
     let stuck = sim
@@ -372,6 +371,14 @@ fn misbehaving_events_are_typed_errors() {
         matches!(&zeno.error, Error::TooManyEvents { event, max_events: 20, .. } if event == "event #0"),
         "{zeno}"
     );
+}
+
+/// A NaN event function is a typed error naming the event; an action that
+/// makes the state non-finite and a zero event budget are typed errors too.
+#[test]
+fn misbehaving_events_are_typed_errors() {
+    let ball = Ball { g: 9.81 };
+    let sim = Simulation::new(&ball).integrator(Dopri5::tol(1e-10));
     let nan = sim
         .clone()
         .event(

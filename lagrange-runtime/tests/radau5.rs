@@ -1,37 +1,10 @@
 //! RADAU5 against Hairer's `radau5.f` and on a stiff mechanical system.
 
+mod common;
+
+use common::second_order::VanDerPol;
 use lagrange_runtime::{Dopri5, Error, Integrator, Radau5, SecondOrder};
-use nalgebra::{Matrix1, Vector1, Vector2};
-
-/// Van der Pol in Hairer's scaling, ε q̈ = (1 − q²) q̇ − q, with its Jacobian.
-struct VanDerPol {
-    eps: f64,
-    analytic: bool,
-}
-
-impl SecondOrder<f64, 1> for VanDerPol {
-    fn acceleration(
-        &self,
-        _t: f64,
-        q: &Vector1<f64>,
-        v: &Vector1<f64>,
-    ) -> Result<Vector1<f64>, Error> {
-        Ok(Vector1::new(((1.0 - q[0] * q[0]) * v[0] - q[0]) / self.eps))
-    }
-    fn jacobian(
-        &self,
-        _t: f64,
-        q: &Vector1<f64>,
-        v: &Vector1<f64>,
-    ) -> Option<Result<(Matrix1<f64>, Matrix1<f64>), Error>> {
-        self.analytic.then(|| {
-            Ok((
-                Matrix1::new((-2.0 * q[0] * v[0] - 1.0) / self.eps),
-                Matrix1::new((1.0 - q[0] * q[0]) / self.eps),
-            ))
-        })
-    }
-}
+use nalgebra::{Vector1, Vector2};
 
 fn vdp(analytic: bool) -> lagrange_runtime::Trajectory<f64, 1> {
     Radau5::tol(1e-4)

@@ -1,0 +1,147 @@
+//! The gallery's systems in the order of its table: each one's name, what it
+//! demonstrates, and the function that runs it.
+
+use crate::row::Entry;
+use crate::{cavity, constrained, control, minimal, nonholonomic};
+
+/// The cavity row's name (its animation is looked up by it).
+pub(crate) const CAVITY: &str = "C10 point in a spherical cavity, e = 0.7";
+/// The double pendulum's row name (its animation is looked up by it).
+pub(crate) const DOUBLE_PENDULUM: &str = "double pendulum";
+/// The steady rolling disk's row name (its animation is looked up by it).
+pub(crate) const ROLLING_DISK: &str = "rolling disk, steady circle";
+
+const fn entry(
+    name: &'static str,
+    about: &'static str,
+    run: fn(&'static str) -> Result<crate::row::Row, lagrange::Error>,
+) -> Entry {
+    Entry { name, about, run }
+}
+
+pub(crate) const ENTRIES: &[Entry] = &[
+    // Minimal coordinates.
+    entry(
+        "simple pendulum, 179°, period by events",
+        "events located on the dense output; the period against the elliptic-integral closed form",
+        minimal::pendulum_period,
+    ),
+    entry(
+        "C1 spherical pendulum (θ, φ)",
+        "minimal coordinates; p_φ conserved (cyclic coordinate)",
+        minimal::spherical,
+    ),
+    entry(
+        "C2 ellipsoid with growing axes",
+        "rheonomic position maps ξ(q, t)",
+        minimal::ellipsoid,
+    ),
+    entry(
+        "C3 dumbbell (rod, free)",
+        "a rigid rod as two particles; free fall of the centre of mass",
+        minimal::dumbbell,
+    ),
+    entry(
+        "C7 heavy particle, vertical plane",
+        "the textbook parabola",
+        minimal::heavy_particle,
+    ),
+    entry(
+        DOUBLE_PENDULUM,
+        "chaos with the energy kept to the tolerance",
+        minimal::double_pendulum,
+    ),
+    entry(
+        "5-link pendulum (relative angles)",
+        "a longer chain, relative angles",
+        minimal::chain,
+    ),
+    entry(
+        "damped driven pendulum",
+        "dissipation and a time-dependent force",
+        minimal::driven,
+    ),
+    // Constraints with multipliers, rigid bodies.
+    entry(
+        "C1 spherical pendulum, Cartesian + λ",
+        "holonomic constraint with a multiplier, drift projection, the rod tension",
+        constrained::cartesian_pendulum,
+    ),
+    entry(
+        "C3 rod as a constraint (6 coords + λ)",
+        "the dumbbell again, the rod as a constraint",
+        constrained::rod_pair,
+    ),
+    entry(
+        "C4 body as three particles",
+        "rigid-body inertia tensor against three particles",
+        constrained::three_particles,
+    ),
+    entry(
+        "C5 rolling sphere, multipliers",
+        "nonholonomic rolling with multipliers",
+        constrained::sphere_multipliers,
+    ),
+    entry(
+        "C5 rolling sphere, reduced (Maggi)",
+        "the same sphere in reduced form (independent speeds)",
+        constrained::sphere_reduced,
+    ),
+    entry(
+        "C6 tops joined by an untwistable thread",
+        "a nonholonomic coupling of two rigid bodies",
+        constrained::threaded_tops,
+    ),
+    // Reduced forms, impacts.
+    entry(
+        "C8 polar, quasi-velocity x ẏ − y ẋ",
+        "Gibbs–Appell equations on a quasi-velocity",
+        nonholonomic::polar,
+    ),
+    entry(
+        "C9 sphere on a turning plane",
+        "rheonomic rolling; the velocity turns at 2Ω/7",
+        nonholonomic::turntable,
+    ),
+    entry(
+        ROLLING_DISK,
+        "steady circular rolling from the closed-form condition",
+        nonholonomic::rolling_disk,
+    ),
+    entry(
+        CAVITY,
+        "impacts by events, then sliding on the wall with a multiplier",
+        cavity::row,
+    ),
+    entry(
+        "Chaplygin sleigh",
+        "a knife edge in reduced form",
+        nonholonomic::sleigh,
+    ),
+    // Control and linearisation.
+    entry(
+        "two-link arm, computed-torque tracking",
+        "a controller in a closure, inverse dynamics from the model",
+        control::arm,
+    ),
+    entry(
+        "cart-pole, LQR from the linearisation",
+        "LQR gain from the symbolic linearisation, continuous feedback",
+        control::cart_pole_continuous,
+    ),
+    entry(
+        "cart-pole, LQR sampled at 100 Hz (ZOH)",
+        "the same gain, sampled with zero-order hold",
+        control::cart_pole_sampled,
+    ),
+    entry(
+        "rolling disk upright, critical spin",
+        "critical spin from the eigenvalues against √(g/3a); wobble above it",
+        control::disk,
+    ),
+    entry(
+        "Whipple bicycle at 5 m/s, roll-rate kick",
+        "weave and capsize speeds against the published benchmark; self-stability",
+        control::bicycle,
+    ),
+];
