@@ -12,6 +12,7 @@
 //!
 //! New integrators implement [`Integrator`].
 
+mod adaptive;
 mod controller;
 mod dense;
 mod dop853;
@@ -20,6 +21,7 @@ mod gauss;
 mod mechanical;
 mod radau5;
 mod rk4;
+mod run;
 mod settings;
 mod trajectory;
 mod verlet;
