@@ -3,7 +3,8 @@
 //! the trajectory up to the last accepted step.
 //!
 //! [`Run`] holds that bookkeeping, so that an integrator's file holds only its
-//! stages and its own decisions.
+//! stages and its own decisions; [`fixed_steps`] is the step sequence of the
+//! fixed-step methods.
 
 use super::{DenseSegment, Record, Sample, SecondOrder, Stats, Trajectory};
 use crate::error::{Error, Failure};
@@ -89,4 +90,17 @@ impl<T: Real, const N: usize> Run<T, N> {
             Err(error) => Err(Failure::new(error, self.traj)),
         }
     }
+}
+/// The `n` fixed steps from t0 to t1 as (start, end) pairs: step k ends at
+/// t0 + k·h, computed from k rather than accumulated, so that a step chosen as
+/// T/n lands on T up to one rounding; the last one ends exactly at t1.
+pub(crate) fn fixed_steps<T: Real>(t0: T, t1: T, h: T, n: usize) -> impl Iterator<Item = (T, T)> {
+    let end = move |k: usize| {
+        if k == n {
+            t1
+        } else {
+            t0 + h * T::lit(k as f64)
+        }
+    };
+    (1..=n).map(move |k| (if k == 1 { t0 } else { end(k - 1) }, end(k)))
 }
