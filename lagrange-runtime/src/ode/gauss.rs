@@ -188,6 +188,20 @@ fn iteration_matrix<T: Real, const S: usize>(h: T, a: &[[T; S]; S], work: &mut W
     }
 }
 
+/// z0 + h Σ_j b_j F_j, added one stage at a time.
+fn update<T: Real, const N: usize, const S: usize>(
+    z0: &Pair<T, N>,
+    h: T,
+    b: &[T; S],
+    fs: &[Pair<T, N>; S],
+) -> Pair<T, N> {
+    let mut z1 = *z0;
+    for j in 0..S {
+        z1 = z1.add_combination(h, [b[j]], [&fs[j]]);
+    }
+    z1
+}
+
 /// Component k of the 2N vector (q, p) stored as a pair.
 #[inline]
 fn get<T: Real, const N: usize>(z: &Pair<T, N>, k: usize) -> T {
@@ -338,11 +352,7 @@ impl Gauss {
             if size <= floor || stagnant {
                 // One more evaluation would only move the result by round-off:
                 // update with the stage derivatives of the last iterate.
-                let mut z1 = *z0;
-                for j in 0..S {
-                    z1 = z1.add_combination(h, [b[j]], [&fs[j]]);
-                }
-                return Ok(z1);
+                return Ok(update(z0, h, b, &fs));
             }
             previous = size;
             if iteration == self.max_iterations {
