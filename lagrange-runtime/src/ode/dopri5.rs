@@ -10,9 +10,11 @@
 //! then at every step while h·|λ| stays beyond 3.25; 15 times ends the run with
 //! [`Error::ProbablyStiff`]). What is left out: per-component tolerances.
 
+use super::adaptive::{Stepping, first_step};
 use super::controller::PiController;
+use super::run::Run;
 use super::settings::{StepControl, step_control_builders};
-use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
+use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::{abs, sqrt};
@@ -164,154 +166,137 @@ impl Integrator for Dopri5 {
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let started = crate::numeric::clock::Stopwatch::start();
-        let mut stats = Stats::default();
-        let mut traj =
-            Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        let mut run = Run::of(self.record, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
-        let outcome = (|| -> Result<(), Error> {
-            self.record.check()?;
-            self.validate()?;
-            self.control.check_precision::<T>("DOPRI5")?;
-            check_problem(t0, t1, &q0, &v0)?;
-            let co = Coefficients::<T>::new();
-            let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
-            let hmax = self.control.hmax.map_or(t1 - t0, T::lit);
-            let underflow = T::lit(16.0) * T::default_epsilon();
-            let stretch = T::lit(1.01);
-
-            let mut y = Pair::new(q0, v0);
-            let mut k1 = y.derivative(rhs, t0, &mut stats.evaluations)?;
-            let mut h = match self.control.h0 {
-                Some(h0) => T::lit(h0).min(hmax),
-                None => hinit(
-                    rhs,
-                    t0,
-                    &y,
-                    &k1,
-                    hmax,
-                    rtol,
-                    atol,
-                    5,
-                    &mut stats.evaluations,
-                )?,
-            };
-            let mut ctrl = PiController::<T>::dopri5();
-            let mut stiffness = super::StiffnessTest::new("DOPRI5", self.stiffness_test, 3.25);
-            let mut t = t0;
-            let mut reject = false;
-            loop {
-                if stats.steps() >= self.control.max_steps {
-                    return Err(Error::TooManySteps {
-                        t: t.to_f64(),
-                        max_steps: self.control.max_steps,
-                    });
-                }
-                if h <= underflow * abs(t) || !h.is_finite() {
-                    return Err(Error::StepSizeUnderflow {
-                        t: t.to_f64(),
-                        h: h.to_f64(),
-                    });
-                }
-                // Stretch the last step by up to 1 % rather than leave a sliver.
-                let last = t + stretch * h - t1 > T::zero();
-                if last {
-                    h = t1 - t;
-                }
-                let t_new = if last { t1 } else { t + h };
-
-                let ev = &mut stats.evaluations;
-                let [c2, c3, c4, c5] = co.c;
-                let stages = (|| {
-                    let k2 = y
-                        .add_combination(h, co.a2, [&k1])
-                        .derivative(rhs, t + c2 * h, ev)?;
-                    let k3 =
-                        y.add_combination(h, co.a3, [&k1, &k2])
-                            .derivative(rhs, t + c3 * h, ev)?;
-                    let k4 = y.add_combination(h, co.a4, [&k1, &k2, &k3]).derivative(
-                        rhs,
-                        t + c4 * h,
-                        ev,
-                    )?;
-                    let k5 = y
-                        .add_combination(h, co.a5, [&k1, &k2, &k3, &k4])
-                        .derivative(rhs, t + c5 * h, ev)?;
-                    let y6 = y.add_combination(h, co.a6, [&k1, &k2, &k3, &k4, &k5]);
-                    let k6 = y6.derivative(rhs, t_new, ev)?;
-                    let y_new = y.add_combination(h, co.a7, [&k1, &k3, &k4, &k5, &k6]);
-                    let k7 = y_new.derivative(rhs, t_new, ev)?;
-                    Ok::<_, Error>((k3, k4, k5, k6, y6, y_new, k7))
-                })();
-                let (k3, k4, k5, k6, y6, y_new, k7) = match stages {
-                    Ok(k) => k,
-                    Err(e) if e.is_state_dependent() => {
-                        // Relative to the span as well as to t, so that t = 0 has a floor.
-                        let floor = underflow * abs(t).max(abs(t1 - t0));
-                        h = retry_smaller(h, floor, e)?;
-                        reject = true;
-                        stats.rejected += 1;
-                        continue;
-                    }
-                    Err(e) => return Err(e),
-                };
-                let err_vec = Pair::combination(h, co.e, [&k1, &k3, &k4, &k5, &k6, &k7]);
-                let err = error_norm(&err_vec, &y, &y_new, atol, rtol);
-                if err.partial_cmp(&T::zero()).is_none() {
-                    // NaN (unordered): only a right-hand side
-                    // that returns NaN without an error gets here.
-                    return Err(Error::non_finite(t_new, &y_new.q, &y_new.v));
-                }
-                let mut h_new = ctrl.propose(h, err);
-                if err <= T::one() {
-                    ctrl.accept(err);
-                    stats.accepted += 1;
-                    // The step is accepted: a stiffness verdict is reported after it
-                    // is recorded, so the partial trajectory ends where the error says.
-                    let stiff = stiffness.check(stats.accepted, t_new, h, [&y_new, &y6, &k7, &k6]);
-                    let (r1, r2, r3, r4) = DenseSegment::cubic_part(h, &y, &k1, &y_new, &k7);
-                    let r5 = Pair::combination(h, co.d, [&k1, &k3, &k4, &k5, &k6, &k7]);
-                    let segment = DenseSegment::new(t, t_new, h, [r1, r2, r3, r4, r5]);
-                    // A projection moves the end point by about the local error; the
-                    // dense output keeps the unprojected polynomial, and the first stage
-                    // of the next step (FSAL) is re-evaluated at the projected state.
-                    let (mut y_new, mut k7) = (y_new, k7);
-                    if rhs.project(t_new, &mut y_new.q, &mut y_new.v)? {
-                        k7 = y_new.derivative(rhs, t_new, &mut stats.evaluations)?;
-                    }
-                    let stop = rhs.after_step(&segment, &y_new.q, &y_new.v)?;
-                    traj.push_sampled(segment, y_new.q, y_new.v, |t, q, v| {
-                        Sample::of(rhs, t, q, v)
-                    });
-                    stiff?;
-                    (t, y, k1) = (t_new, y_new, k7);
-                    if last || stop {
-                        break;
-                    }
-                    h_new = h_new.min(hmax);
-                    if reject {
-                        h_new = h_new.min(h);
-                    }
-                    reject = false;
-                } else {
-                    h_new = ctrl.reject(h);
-                    reject = true;
-                    stats.rejected += 1;
-                }
-                h = h_new;
-            }
-            Ok(())
-        })();
-        super::finish(traj, stats, started, outcome)
+        let outcome = self.run(rhs, (t0, t1), Pair::new(q0, v0), &mut run);
+        run.finish(outcome)
     }
 }
 
-/// After a trial stage failed at its state: a quarter of the step, or the failure
-/// itself once the step would be below `floor` (so a genuine singularity on the
-/// solution is reported as what it is, after about 25 retries from h = 1).
-pub(crate) fn retry_smaller<T: Real>(h: T, floor: T, e: Error) -> Result<T, Error> {
-    let h = h * T::lit(0.25);
-    if h <= floor { Err(e) } else { Ok(h) }
+/// The stages of one attempt that the error estimate, the dense output and the
+/// stiffness test need (k2 enters none of them).
+struct Stages<T: Real, const N: usize> {
+    k3: Pair<T, N>,
+    k4: Pair<T, N>,
+    k5: Pair<T, N>,
+    k6: Pair<T, N>,
+    /// The argument of the 6th stage, at t_new (for the stiffness test).
+    y6: Pair<T, N>,
+    /// The 5th-order solution, and its derivative (FSAL: the next k1).
+    y_new: Pair<T, N>,
+    k7: Pair<T, N>,
+}
+
+impl Dopri5 {
+    /// Checks the settings and the problem, then steps from y0 at t0 to t1.
+    fn run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+        &self,
+        rhs: &F,
+        (t0, t1): (T, T),
+        y0: Pair<T, N>,
+        run: &mut Run<T, N>,
+    ) -> Result<(), Error> {
+        self.record.check()?;
+        self.validate()?;
+        self.control.check_precision::<T>("DOPRI5")?;
+        check_problem(t0, t1, &y0.q, &y0.v)?;
+        let co = Coefficients::<T>::new();
+        let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
+        let stats = &mut run.stats;
+        let (mut y, mut k1) = (y0, y0.derivative(rhs, t0, &mut stats.evaluations)?);
+        let h = first_step(
+            &self.control,
+            5,
+            rhs,
+            (t0, t1),
+            &y,
+            &k1,
+            &mut stats.evaluations,
+        )?;
+        let mut steps = Stepping::new(&self.control, PiController::dopri5(), t0, t1, h);
+        let mut stiffness = super::StiffnessTest::new("DOPRI5", self.stiffness_test, 3.25);
+        loop {
+            let (t_new, last) = steps.begin(&run.stats)?;
+            let (t, h) = (steps.t, steps.h);
+            let s = match stages(rhs, &co, t, h, t_new, &y, &k1, &mut run.stats.evaluations) {
+                Ok(s) => s,
+                Err(e) => {
+                    steps.stage_failed(e, &mut run.stats)?;
+                    continue;
+                }
+            };
+            let err_vec = Pair::combination(h, co.e, [&k1, &s.k3, &s.k4, &s.k5, &s.k6, &s.k7]);
+            let err = error_norm(&err_vec, &y, &s.y_new, atol, rtol);
+            if !steps.judge(err, t_new, &s.y_new, &mut run.stats)? {
+                continue;
+            }
+            // The step is accepted: a stiffness verdict is reported after it
+            // is recorded, so the partial trajectory ends where the error says.
+            let stiff = stiffness.check(
+                run.stats.accepted,
+                t_new,
+                h,
+                [&s.y_new, &s.y6, &s.k7, &s.k6],
+            );
+            let (r1, r2, r3, r4) = DenseSegment::cubic_part(h, &y, &k1, &s.y_new, &s.k7);
+            let r5 = Pair::combination(h, co.d, [&k1, &s.k3, &s.k4, &s.k5, &s.k6, &s.k7]);
+            let segment = DenseSegment::new(t, t_new, h, [r1, r2, r3, r4, r5]);
+            // A projection moves the end point by about the local error; the
+            // dense output keeps the unprojected polynomial, and the first stage
+            // of the next step (FSAL) is re-evaluated at the projected state.
+            let (mut y_new, mut k7) = (s.y_new, s.k7);
+            if rhs.project(t_new, &mut y_new.q, &mut y_new.v)? {
+                k7 = y_new.derivative(rhs, t_new, &mut run.stats.evaluations)?;
+            }
+            let stop = run.record(rhs, segment, y_new.q, y_new.v)?;
+            stiff?;
+            (y, k1) = (y_new, k7);
+            steps.advance(t_new);
+            if last || stop {
+                return Ok(());
+            }
+        }
+    }
+}
+
+/// The stages k2..k7 of an attempt of size h from (t, y) with first stage k1.
+#[allow(clippy::too_many_arguments)]
+fn stages<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    rhs: &F,
+    co: &Coefficients<T>,
+    t: T,
+    h: T,
+    t_new: T,
+    y: &Pair<T, N>,
+    k1: &Pair<T, N>,
+    ev: &mut usize,
+) -> Result<Stages<T, N>, Error> {
+    let [c2, c3, c4, c5] = co.c;
+    let k2 = y
+        .add_combination(h, co.a2, [k1])
+        .derivative(rhs, t + c2 * h, ev)?;
+    let k3 = y
+        .add_combination(h, co.a3, [k1, &k2])
+        .derivative(rhs, t + c3 * h, ev)?;
+    let k4 = y
+        .add_combination(h, co.a4, [k1, &k2, &k3])
+        .derivative(rhs, t + c4 * h, ev)?;
+    let k5 = y
+        .add_combination(h, co.a5, [k1, &k2, &k3, &k4])
+        .derivative(rhs, t + c5 * h, ev)?;
+    let y6 = y.add_combination(h, co.a6, [k1, &k2, &k3, &k4, &k5]);
+    let k6 = y6.derivative(rhs, t_new, ev)?;
+    let y_new = y.add_combination(h, co.a7, [k1, &k3, &k4, &k5, &k6]);
+    let k7 = y_new.derivative(rhs, t_new, ev)?;
+    Ok(Stages {
+        k3,
+        k4,
+        k5,
+        k6,
+        y6,
+        y_new,
+        k7,
+    })
 }
 
 /// Hairer's norm sqrt(1/n Σ (e_i / (atol + rtol·max(|y_i|, |y_new_i|)))²) over all
@@ -335,57 +320,10 @@ fn error_norm<T: Real, const N: usize>(
     sqrt(sum / T::lit((2 * N) as f64))
 }
 
-/// Hairer's starting step: make an explicit Euler step small compared with the
-/// solution (h = 0.01 ‖y‖/‖f‖), estimate the second derivative from one more
-/// evaluation, and choose h so that h^order · max(‖f‖, ‖y''‖) = 0.01 (order 5 for
-/// DOPRI5, 8 for DOP853). The norms are unnormalised sums, as in `dopri5.f`.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn hinit<T: Real, const N: usize, F: SecondOrder<T, N>>(
-    rhs: &F,
-    t0: T,
-    y: &Pair<T, N>,
-    f0: &Pair<T, N>,
-    hmax: T,
-    rtol: T,
-    atol: T,
-    order: u32,
-    evaluations: &mut usize,
-) -> Result<T, Error> {
-    let sk = |x: T| atol + rtol * abs(x);
-    let weighted = |a: &Pair<T, N>, b: Option<&Pair<T, N>>| {
-        let mut s = T::zero();
-        for (a, b, y) in [(&a.q, b.map(|b| &b.q), &y.q), (&a.v, b.map(|b| &b.v), &y.v)] {
-            for i in 0..N {
-                let x = b.map_or(a[i], |b| a[i] - b[i]) / sk(y[i]);
-                s += x * x;
-            }
-        }
-        s
-    };
-    let dnf = weighted(f0, None);
-    let dny = weighted(y, None);
-    let tiny = T::lit(1e-10);
-    let mut h = if dnf <= tiny || dny <= tiny {
-        T::lit(1e-6)
-    } else {
-        sqrt(dny / dnf) * T::lit(0.01)
-    };
-    h = h.min(hmax);
-    let y1 = y.add_combination(h, [T::one()], [f0]);
-    let f1 = y1.derivative(rhs, t0 + h, evaluations)?;
-    let der2 = sqrt(weighted(&f1, Some(f0))) / h;
-    let der12 = abs(der2).max(sqrt(dnf));
-    let h1 = if der12 <= T::lit(1e-15) {
-        T::lit(1e-6).max(abs(h) * T::lit(1e-3))
-    } else {
-        (T::lit(0.01) / der12).powf(T::lit(1.0 / f64::from(order)))
-    };
-    Ok((T::lit(100.0) * h).min(h1).min(hmax))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ode::Stats;
     use crate::ode::test_problems::Oscillator;
     use nalgebra::Vector1;
 

@@ -4,8 +4,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::mechanical::Mechanical;
+use super::run::{Run, fixed_steps};
 use super::verlet::fixed_step_count;
-use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
+use super::{DenseSegment, Integrator, Pair, SecondOrder, Stats, check_problem};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
@@ -104,13 +105,10 @@ impl Integrator for Gauss {
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let started = crate::numeric::clock::Stopwatch::start();
-        let mut stats = Stats::default();
-        let mut traj =
-            Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
-        let run = (&mut traj, &mut stats);
-        let outcome = self.run_stages(rhs, (t0, t1, q0, v0), run);
-        super::finish(traj, stats, started, outcome)
+        let mut run = Run::of(self.record, rhs, t0, q0, v0);
+        // Everything computed before a failure goes back with it.
+        let outcome = self.run_stages(rhs, (t0, t1, q0, v0), &mut run);
+        run.finish(outcome)
     }
 }
 
@@ -121,7 +119,7 @@ impl Gauss {
         &self,
         rhs: &F,
         (t0, t1, q0, v0): (T, T, SVector<T, N>, SVector<T, N>),
-        run: (&mut Trajectory<T, N>, &mut Stats),
+        run: &mut Run<T, N>,
     ) -> Result<(), Error> {
         self.record.check()?;
         check_problem(t0, t1, &q0, &v0)?;
@@ -169,6 +167,41 @@ struct Work<T: Real> {
     b: Vec<T>,
 }
 
+/// The Newton iteration matrix I − h A ⊗ J of the stage equations, into
+/// `work.lu` (from the Jacobian in `work.jac`).
+fn iteration_matrix<T: Real, const S: usize>(h: T, a: &[[T; S]; S], work: &mut Work<T>) {
+    let dim = work.jac.nrows();
+    for i in 0..S {
+        for j in 0..S {
+            for r in 0..dim {
+                for col in 0..dim {
+                    let delta = if i == j && r == col {
+                        T::one()
+                    } else {
+                        T::zero()
+                    };
+                    work.lu[(i * dim + r, j * dim + col)] =
+                        delta - h * a[i][j] * work.jac[(r, col)];
+                }
+            }
+        }
+    }
+}
+
+/// z0 + h Σ_j b_j F_j, added one stage at a time.
+fn update<T: Real, const N: usize, const S: usize>(
+    z0: &Pair<T, N>,
+    h: T,
+    b: &[T; S],
+    fs: &[Pair<T, N>; S],
+) -> Pair<T, N> {
+    let mut z1 = *z0;
+    for j in 0..S {
+        z1 = z1.add_combination(h, [b[j]], [&fs[j]]);
+    }
+    z1
+}
+
 /// Component k of the 2N vector (q, p) stored as a pair.
 #[inline]
 fn get<T: Real, const N: usize>(z: &Pair<T, N>, k: usize) -> T {
@@ -210,7 +243,7 @@ impl Gauss {
         a: [[f64; S]; S],
         b: [f64; S],
         c: [f64; S],
-        (traj, stats): (&mut Trajectory<T, N>, &mut Stats),
+        run: &mut Run<T, N>,
     ) -> Result<(), Error> {
         let (a, b, c) = (a.map(|r| r.map(T::lit)), b.map(T::lit), c.map(T::lit));
         let dim = 2 * N;
@@ -221,17 +254,14 @@ impl Gauss {
             b: vec![T::zero(); S * dim],
         };
         let h = T::lit(self.h);
-        let (mut t, mut q, mut v) = (t0, q0, v0);
-        let mut p = mech.momentum(t, &q, &v)?;
+        let (mut q, mut v) = (q0, v0);
+        let mut p = mech.momentum(t0, &q, &v)?;
+        let stats = &mut run.stats;
         stats.evaluations += 1;
-        let mut acc = rhs.acceleration(t, &q, &v)?;
-        traj.reserve(n);
-        for k in 1..=n {
-            let t_next = if k == n {
-                t1
-            } else {
-                t0 + h * T::lit(k as f64)
-            };
+        let mut acc = rhs.acceleration(t0, &q, &v)?;
+        run.traj.reserve(n);
+        for (t, t_next) in fixed_steps(t0, t1, h, n) {
+            let stats = &mut run.stats;
             let hk = t_next - t;
             let z0 = Pair::new(q, p);
             let z1 = self.advance(mech, t, hk, &z0, &a, &b, &c, &mut work, stats)?;
@@ -246,10 +276,9 @@ impl Gauss {
                 stats.evaluations += 1;
                 acc1 = rhs.acceleration(t_next, &q1, &v1)?;
             }
-            let stop = rhs.after_step(&segment, &q1, &v1)?;
-            traj.push_sampled(segment, q1, v1, |t, q, v| Sample::of(rhs, t, q, v));
-            stats.accepted += 1;
-            (t, q, v, p, acc) = (t_next, q1, v1, p1, acc1);
+            let stop = run.record(rhs, segment, q1, v1)?;
+            run.stats.accepted += 1;
+            (q, v, p, acc) = (q1, v1, p1, acc1);
             if stop {
                 break;
             }
@@ -276,22 +305,7 @@ impl Gauss {
         let f0 = hamilton(mech, t, z0, &mut stats.evaluations)?;
         self.jacobian(mech, t, z0, &f0, &mut work.jac, &mut stats.evaluations)?;
         stats.jacobians += 1;
-        // I − h A ⊗ J.
-        for i in 0..S {
-            for j in 0..S {
-                for r in 0..dim {
-                    for col in 0..dim {
-                        let delta = if i == j && r == col {
-                            T::one()
-                        } else {
-                            T::zero()
-                        };
-                        work.lu[(i * dim + r, j * dim + col)] =
-                            delta - h * a[i][j] * work.jac[(r, col)];
-                    }
-                }
-            }
-        }
+        iteration_matrix(h, a, work);
         stats.factorizations += 1;
         if lu_factor(&mut work.lu, &mut work.pivots).is_err() {
             return Err(Error::NewtonFailure {
@@ -338,11 +352,7 @@ impl Gauss {
             if size <= floor || stagnant {
                 // One more evaluation would only move the result by round-off:
                 // update with the stage derivatives of the last iterate.
-                let mut z1 = *z0;
-                for j in 0..S {
-                    z1 = z1.add_combination(h, [b[j]], [&fs[j]]);
-                }
-                return Ok(z1);
+                return Ok(update(z0, h, b, &fs));
             }
             previous = size;
             if iteration == self.max_iterations {

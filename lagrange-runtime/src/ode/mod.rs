@@ -12,6 +12,7 @@
 //!
 //! New integrators implement [`Integrator`].
 
+mod adaptive;
 mod controller;
 mod dense;
 mod dop853;
@@ -20,6 +21,7 @@ mod gauss;
 mod mechanical;
 mod radau5;
 mod rk4;
+mod run;
 mod settings;
 mod trajectory;
 mod verlet;
@@ -31,6 +33,7 @@ pub use gauss::Gauss;
 pub use mechanical::Mechanical;
 pub use radau5::Radau5;
 pub use rk4::Rk4;
+pub(crate) use run::{Run, fixed_steps};
 pub use trajectory::{Record, Trajectory};
 pub use verlet::StormerVerlet;
 pub(crate) use verlet::fixed_step_count;
@@ -467,23 +470,6 @@ fn squared_distance<T: Real, const N: usize>(a: &Pair<T, N>, b: &Pair<T, N>) -> 
         .chain(d.v.iter())
         .map(|x| x.to_f64() * x.to_f64())
         .sum()
-}
-
-/// The end of a run whose accepted steps are in `traj`: the trajectory, or the
-/// failure with it as the partial result; the statistics (with the wall time)
-/// are set either way.
-pub(crate) fn finish<T: Real, const N: usize>(
-    mut traj: Trajectory<T, N>,
-    mut stats: Stats,
-    started: crate::numeric::clock::Stopwatch,
-    outcome: Result<(), Error>,
-) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-    stats.wall_time = started.elapsed();
-    traj.set_stats(stats);
-    match outcome {
-        Ok(()) => Ok(traj),
-        Err(error) => Err(Failure::new(error, traj)),
-    }
 }
 
 /// The failure of a run that stopped before its first step: the partial

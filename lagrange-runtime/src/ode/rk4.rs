@@ -1,6 +1,7 @@
 //! The classic fourth-order Runge–Kutta method with a fixed step.
 
-use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
+use super::run::{Run, fixed_steps};
+use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::ode::{Record, Trajectory};
@@ -61,87 +62,91 @@ impl Integrator for Rk4 {
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let started = crate::numeric::clock::Stopwatch::start();
-        let mut stats = Stats::default();
-        let mut traj =
-            Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        let mut run = Run::of(self.record, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
-        let outcome = (|| -> Result<(), Error> {
-            self.record.check()?;
-            if !(self.h.is_finite() && self.h > 0.0) {
-                return Err(Error::InvalidSettings(format!(
-                    "RK4 step size must be positive and finite, got {}",
-                    self.h
-                )));
-            }
-            check_problem(t0, t1, &q0, &v0)?;
-            let h = T::lit(self.h);
-            // Round the step count so that a span that is a whole number of steps up to
-            // rounding is not followed by a sliver of a step.
-            let ratio = ((t1 - t0) / h).to_f64();
-            let n = (ratio - 1e-9 * ratio.max(1.0)).ceil().max(1.0);
-            if n > self.max_steps as f64 {
-                return Err(Error::TooManySteps {
-                    t: t0.to_f64(),
-                    max_steps: self.max_steps,
-                });
-            }
-            let n = n as usize;
-
-            let mut y = Pair::new(q0, v0);
-            let mut f = y.derivative(rhs, t0, &mut stats.evaluations)?;
-            traj.reserve(n);
-            let mut t = t0;
-            let half = T::lit(0.5);
-            let two = T::lit(2.0);
-            for k in 1..=n {
-                let t_next = if k == n {
-                    t1
-                } else {
-                    t0 + h * T::lit(k as f64)
-                };
-                let hk = t_next - t;
-                let ev = &mut stats.evaluations;
-                let k2 = y.add_combination(hk * half, [T::one()], [&f]).derivative(
-                    rhs,
-                    t + hk * half,
-                    ev,
-                )?;
-                let k3 = y.add_combination(hk * half, [T::one()], [&k2]).derivative(
-                    rhs,
-                    t + hk * half,
-                    ev,
-                )?;
-                let k4 = y
-                    .add_combination(hk, [T::one()], [&k3])
-                    .derivative(rhs, t_next, ev)?;
-                let y_next = y.add_combination(
-                    hk / T::lit(6.0),
-                    [T::one(), two, two, T::one()],
-                    [&f, &k2, &k3, &k4],
-                );
-                if !y_next.is_finite() {
-                    // Only a right-hand side that returns NaN or ∞ without an error gets here.
-                    return Err(Error::non_finite(t_next, &y_next.q, &y_next.v));
-                }
-                let mut y_next = y_next;
-                rhs.project(t_next, &mut y_next.q, &mut y_next.v)?;
-                let f_next = y_next.derivative(rhs, t_next, ev)?;
-                let segment = DenseSegment::hermite(t, t_next, &y, &f, &y_next, &f_next);
-                let stop = rhs.after_step(&segment, &y_next.q, &y_next.v)?;
-                traj.push_sampled(segment, y_next.q, y_next.v, |t, q, v| {
-                    Sample::of(rhs, t, q, v)
-                });
-                stats.accepted += 1;
-                (t, y, f) = (t_next, y_next, f_next);
-                if stop {
-                    break;
-                }
-            }
-            Ok(())
-        })();
-        super::finish(traj, stats, started, outcome)
+        let outcome = self.run(rhs, (t0, t1), Pair::new(q0, v0), &mut run);
+        run.finish(outcome)
     }
+}
+
+impl Rk4 {
+    /// Checks the settings and the problem, then takes the fixed steps.
+    fn run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+        &self,
+        rhs: &F,
+        (t0, t1): (T, T),
+        y0: Pair<T, N>,
+        run: &mut Run<T, N>,
+    ) -> Result<(), Error> {
+        self.record.check()?;
+        if !(self.h.is_finite() && self.h > 0.0) {
+            return Err(Error::InvalidSettings(format!(
+                "RK4 step size must be positive and finite, got {}",
+                self.h
+            )));
+        }
+        check_problem(t0, t1, &y0.q, &y0.v)?;
+        let h = T::lit(self.h);
+        // Round the step count so that a span that is a whole number of steps up to
+        // rounding is not followed by a sliver of a step.
+        let ratio = ((t1 - t0) / h).to_f64();
+        let n = (ratio - 1e-9 * ratio.max(1.0)).ceil().max(1.0);
+        if n > self.max_steps as f64 {
+            return Err(Error::TooManySteps {
+                t: t0.to_f64(),
+                max_steps: self.max_steps,
+            });
+        }
+        let n = n as usize;
+
+        let mut y = y0;
+        let mut f = y.derivative(rhs, t0, &mut run.stats.evaluations)?;
+        run.traj.reserve(n);
+        for (t, t_next) in fixed_steps(t0, t1, h, n) {
+            let ev = &mut run.stats.evaluations;
+            let mut y_next = step(rhs, (t, t_next), &y, &f, ev)?;
+            if !y_next.is_finite() {
+                // Only a right-hand side that returns NaN or ∞ without an error gets here.
+                return Err(Error::non_finite(t_next, &y_next.q, &y_next.v));
+            }
+            rhs.project(t_next, &mut y_next.q, &mut y_next.v)?;
+            let f_next = y_next.derivative(rhs, t_next, ev)?;
+            let segment = DenseSegment::hermite(t, t_next, &y, &f, &y_next, &f_next);
+            let stop = run.record(rhs, segment, y_next.q, y_next.v)?;
+            run.stats.accepted += 1;
+            (y, f) = (y_next, f_next);
+            if stop {
+                break;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One RK4 step from (t, y), with first stage f = y'(t), to t_next.
+fn step<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    rhs: &F,
+    (t, t_next): (T, T),
+    y: &Pair<T, N>,
+    f: &Pair<T, N>,
+    ev: &mut usize,
+) -> Result<Pair<T, N>, Error> {
+    let hk = t_next - t;
+    let (half, two) = (T::lit(0.5), T::lit(2.0));
+    let k2 = y
+        .add_combination(hk * half, [T::one()], [f])
+        .derivative(rhs, t + hk * half, ev)?;
+    let k3 = y
+        .add_combination(hk * half, [T::one()], [&k2])
+        .derivative(rhs, t + hk * half, ev)?;
+    let k4 = y
+        .add_combination(hk, [T::one()], [&k3])
+        .derivative(rhs, t_next, ev)?;
+    Ok(y.add_combination(
+        hk / T::lit(6.0),
+        [T::one(), two, two, T::one()],
+        [f, &k2, &k3, &k4],
+    ))
 }
 
 #[cfg(test)]

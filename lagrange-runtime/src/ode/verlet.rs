@@ -1,6 +1,7 @@
 //! Störmer–Verlet in its velocity form, with a fixed step.
 
-use super::{DenseSegment, Integrator, Pair, Sample, SecondOrder, Stats, check_problem};
+use super::run::{Run, fixed_steps};
+use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::ode::{Record, Trajectory};
@@ -103,58 +104,57 @@ impl Integrator for StormerVerlet {
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let started = crate::numeric::clock::Stopwatch::start();
-        let mut stats = Stats::default();
-        let mut traj =
-            Trajectory::start_recording(self.record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0));
+        let mut run = Run::of(self.record, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
-        let outcome = (|| -> Result<(), Error> {
-            self.record.check()?;
-            check_problem(t0, t1, &q0, &v0)?;
-            let n = fixed_step_count("Störmer–Verlet", self.h, self.max_steps, t0, t1)?;
-            let h = T::lit(self.h);
-            let half = T::lit(0.5);
+        let outcome = self.run(rhs, (t0, t1), (q0, v0), &mut run);
+        run.finish(outcome)
+    }
+}
 
-            let (mut t, mut q, mut v) = (t0, q0, v0);
-            stats.evaluations += 1;
-            let mut a = rhs.acceleration(t, &q, &v)?;
-            traj.reserve(n);
-            for k in 1..=n {
-                let t_next = if k == n {
-                    t1
-                } else {
-                    t0 + h * T::lit(k as f64)
-                };
-                let hk = t_next - t;
-                let v_half = v + a * (half * hk);
-                let mut q_next = q + v_half * hk;
-                stats.evaluations += 1;
-                let mut a_next = rhs.acceleration(t_next, &q_next, &v_half)?;
-                let mut v_next = v_half + a_next * (half * hk);
-                if !Pair::new(q_next, v_next).is_finite() {
-                    return Err(Error::non_finite(t_next, &q_next, &v_next));
-                }
-                let segment = DenseSegment::cubic_hermite(
-                    t,
-                    t_next,
-                    (&q, &v, &a),
-                    (&q_next, &v_next, &a_next),
-                );
-                if rhs.project(t_next, &mut q_next, &mut v_next)? {
-                    stats.evaluations += 1;
-                    a_next = rhs.acceleration(t_next, &q_next, &v_next)?;
-                }
-                let stop = rhs.after_step(&segment, &q_next, &v_next)?;
-                traj.push_sampled(segment, q_next, v_next, |t, q, v| Sample::of(rhs, t, q, v));
-                stats.accepted += 1;
-                (t, q, v, a) = (t_next, q_next, v_next, a_next);
-                if stop {
-                    break;
-                }
+impl StormerVerlet {
+    /// Checks the settings and the problem, then takes the fixed steps.
+    fn run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+        &self,
+        rhs: &F,
+        (t0, t1): (T, T),
+        (q0, v0): (SVector<T, N>, SVector<T, N>),
+        run: &mut Run<T, N>,
+    ) -> Result<(), Error> {
+        self.record.check()?;
+        check_problem(t0, t1, &q0, &v0)?;
+        let n = fixed_step_count("Störmer–Verlet", self.h, self.max_steps, t0, t1)?;
+        let h = T::lit(self.h);
+        let half = T::lit(0.5);
+
+        let (mut q, mut v) = (q0, v0);
+        let stats = &mut run.stats;
+        stats.evaluations += 1;
+        let mut a = rhs.acceleration(t0, &q, &v)?;
+        run.traj.reserve(n);
+        for (t, t_next) in fixed_steps(t0, t1, h, n) {
+            let hk = t_next - t;
+            let v_half = v + a * (half * hk);
+            let mut q_next = q + v_half * hk;
+            run.stats.evaluations += 1;
+            let mut a_next = rhs.acceleration(t_next, &q_next, &v_half)?;
+            let mut v_next = v_half + a_next * (half * hk);
+            if !Pair::new(q_next, v_next).is_finite() {
+                return Err(Error::non_finite(t_next, &q_next, &v_next));
             }
-            Ok(())
-        })();
-        super::finish(traj, stats, started, outcome)
+            let segment =
+                DenseSegment::cubic_hermite(t, t_next, (&q, &v, &a), (&q_next, &v_next, &a_next));
+            if rhs.project(t_next, &mut q_next, &mut v_next)? {
+                run.stats.evaluations += 1;
+                a_next = rhs.acceleration(t_next, &q_next, &v_next)?;
+            }
+            let stop = run.record(rhs, segment, q_next, v_next)?;
+            run.stats.accepted += 1;
+            (q, v, a) = (q_next, v_next, a_next);
+            if stop {
+                break;
+            }
+        }
+        Ok(())
     }
 }
 
