@@ -66,8 +66,51 @@ pub fn lqr(
     q: &DMatrix<f64>,
     r: &DMatrix<f64>,
 ) -> Result<Lqr, Error> {
-    let n = a.nrows();
-    let m = b.ncols();
+    let (n, m) = (a.nrows(), b.ncols());
+    let r_chol = check_problem(a, b, q, r)?;
+    if n == 0 {
+        return Ok(Lqr {
+            gain: DMatrix::zeros(m, 0),
+            riccati: DMatrix::zeros(0, 0),
+            residual: 0.0,
+            closed_loop: vec![],
+            iterations: 0,
+            newton_steps: 0,
+        });
+    }
+    pbh(a, b)?;
+    let s = b * r_chol.solve(&b.transpose());
+    let (w, iterations) = sign(hamiltonian(a, &s, q))?;
+    let p = stable_graph(&w, n)?;
+    let (p, res, newton_steps) = refine(a, &s, q, p);
+    if !(res <= RICCATI_TOLERANCE) {
+        return Err(LinearError::Riccati {
+            reason: "residual above the acceptance tolerance".into(),
+            residual: res,
+        }
+        .into());
+    }
+    let gain = r_chol.solve(&(b.transpose() * &p));
+    let closed_loop = closed_loop(&(a - b * &gain))?;
+    Ok(Lqr {
+        gain,
+        riccati: p,
+        residual: res,
+        closed_loop,
+        iterations,
+        newton_steps,
+    })
+}
+
+/// Checks the sizes, finiteness and definiteness of the design problem;
+/// returns R's Cholesky factor.
+fn check_problem(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    q: &DMatrix<f64>,
+    r: &DMatrix<f64>,
+) -> Result<nalgebra::Cholesky<f64, nalgebra::Dyn>, Error> {
+    let (n, m) = (a.nrows(), b.ncols());
     let shape = |name: &str, x: &DMatrix<f64>, rows: usize, cols: usize| {
         if x.nrows() != rows || x.ncols() != cols || !x.iter().all(|v| v.is_finite()) {
             Err(Error::InvalidSettings(format!(
@@ -94,28 +137,25 @@ pub fn lqr(
             "LQR: Q must be positive semidefinite".into(),
         ));
     }
-    let r_chol = nalgebra::Cholesky::new(r.clone())
-        .ok_or_else(|| Error::InvalidSettings("LQR: R must be positive definite".into()))?;
-    if n == 0 {
-        return Ok(Lqr {
-            gain: DMatrix::zeros(m, 0),
-            riccati: DMatrix::zeros(0, 0),
-            residual: 0.0,
-            closed_loop: vec![],
-            iterations: 0,
-            newton_steps: 0,
-        });
-    }
-    pbh(a, b)?;
+    nalgebra::Cholesky::new(r.clone())
+        .ok_or_else(|| Error::InvalidSettings("LQR: R must be positive definite".into()))
+}
 
-    let s = b * r_chol.solve(&b.transpose());
+/// The Hamiltonian matrix [[A, −S], [−Q, −Aᵀ]] with S = B R⁻¹ Bᵀ.
+fn hamiltonian(a: &DMatrix<f64>, s: &DMatrix<f64>, q: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = a.nrows();
     let mut h = DMatrix::zeros(2 * n, 2 * n);
     h.view_mut((0, 0), (n, n)).copy_from(a);
-    h.view_mut((0, n), (n, n)).copy_from(&-&s);
+    h.view_mut((0, n), (n, n)).copy_from(&-s);
     h.view_mut((n, 0), (n, n)).copy_from(&-q);
     h.view_mut((n, n), (n, n)).copy_from(&-a.transpose());
+    h
+}
 
-    let (w, iterations) = sign(h)?;
+/// P from the sign W of the Hamiltonian: the stable invariant subspace
+/// (the kernel of W + I) written as the graph [I; P], by least squares on
+/// [W₁₂; W₂₂ + I] P = −[W₁₁ + I; W₂₁], then symmetrised.
+fn stable_graph(w: &DMatrix<f64>, n: usize) -> Result<DMatrix<f64>, Error> {
     let mut lhs = DMatrix::zeros(2 * n, n);
     lhs.view_mut((0, 0), (n, n))
         .copy_from(&w.view((0, n), (n, n)));
@@ -141,40 +181,49 @@ pub fn lqr(
         reason: format!("least-squares solve failed: {e}"),
         residual: f64::NAN,
     })?;
-    let mut p = (&x + x.transpose()) * 0.5;
-    let mut res = residual(a, &s, q, &p);
-    let mut newton_steps = 0;
-    if n <= 30 {
-        for _ in 0..3 {
-            if res.1 <= 4.0 * f64::EPSILON {
-                break;
-            }
-            let ak = a - &s * &p;
-            let Some(dp) = lyapunov(&ak, &res.0) else {
-                break;
-            };
-            let cand = &p + (&dp + dp.transpose()) * 0.5;
-            let cres = residual(a, &s, q, &cand);
-            if !(cres.1 < res.1) {
-                break;
-            }
-            p = cand;
-            res = cres;
-            newton_steps += 1;
-        }
+    Ok((&x + x.transpose()) * 0.5)
+}
+
+/// Up to three Newton (Kleinman) steps on the Riccati equation, each kept only
+/// if it lowers the residual (for n ≤ 30; larger systems keep the sign
+/// iteration's P). Returns P, its relative residual and the steps kept.
+fn refine(
+    a: &DMatrix<f64>,
+    s: &DMatrix<f64>,
+    q: &DMatrix<f64>,
+    mut p: DMatrix<f64>,
+) -> (DMatrix<f64>, f64, usize) {
+    let mut res = residual(a, s, q, &p);
+    let mut steps = 0;
+    if a.nrows() > 30 {
+        return (p, res.1, steps);
     }
-    if !(res.1 <= RICCATI_TOLERANCE) {
-        return Err(LinearError::Riccati {
-            reason: "residual above the acceptance tolerance".into(),
-            residual: res.1,
+    for _ in 0..3 {
+        if res.1 <= 4.0 * f64::EPSILON {
+            break;
         }
-        .into());
+        let ak = a - s * &p;
+        let Some(dp) = lyapunov(&ak, &res.0) else {
+            break;
+        };
+        let cand = &p + (&dp + dp.transpose()) * 0.5;
+        let cres = residual(a, s, q, &cand);
+        if !(cres.1 < res.1) {
+            break;
+        }
+        p = cand;
+        res = cres;
+        steps += 1;
     }
-    let gain = r_chol.solve(&(b.transpose() * &p));
-    let closed = a - b * &gain;
-    let mut closed_loop: Vec<Complex<f64>> = closed.complex_eigenvalues().iter().copied().collect();
-    closed_loop.sort_by(|x, y| y.re.total_cmp(&x.re).then(y.im.total_cmp(&x.im)));
-    if let Some(z) = closed_loop.first().filter(|z| !(z.re < 0.0)) {
+    (p, res.1, steps)
+}
+
+/// The closed loop's eigenvalues, sorted by decreasing real part;
+/// [`LinearError::NotStabilisable`] unless every one is in the left half-plane.
+fn closed_loop(closed: &DMatrix<f64>) -> Result<Vec<Complex<f64>>, Error> {
+    let mut ev: Vec<Complex<f64>> = closed.complex_eigenvalues().iter().copied().collect();
+    ev.sort_by(|x, y| y.re.total_cmp(&x.re).then(y.im.total_cmp(&x.im)));
+    if let Some(z) = ev.first().filter(|z| !(z.re < 0.0)) {
         return Err(LinearError::NotStabilisable {
             re: z.re,
             im: z.im,
@@ -182,14 +231,7 @@ pub fn lqr(
         }
         .into());
     }
-    Ok(Lqr {
-        gain,
-        riccati: p,
-        residual: res.1,
-        closed_loop,
-        iterations,
-        newton_steps,
-    })
+    Ok(ev)
 }
 
 /// The Riccati residual matrix and its relative size.
