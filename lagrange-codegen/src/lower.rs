@@ -124,7 +124,7 @@ pub struct Frame {
     pub omega: Option<[[Sym; 3]; 2]>,
     /// The rotation matrix R (body to world), for bodies: column j is the
     /// body's j-th axis in world components.
-    pub axes: Option<crate::rotation::Mat3>,
+    pub axes: Option<crate::mat3::Mat3>,
 }
 
 /// A Cartesian coordinate (or velocity) of a point that appeared in a constraint,

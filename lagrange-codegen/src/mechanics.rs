@@ -11,52 +11,9 @@
 use lagrange_symbolic::{Context, Expr as Sym, Program};
 
 use crate::ast::Extra;
-use crate::constraint::{ConstraintModel, ConstraintSet, Reduction};
-use crate::rotation::Mat3;
-
-/// A point mass (or a body's centre of mass) after lowering.
-pub struct PointModel {
-    pub name: String,
-    pub mass: Sym,
-    pub position: Vec<Sym>,
-}
-
-/// The rotational part of a rigid body: inertia about the centre in body axes and
-/// the body-frame angular velocity ω(q, q̇, t).
-pub struct SpinModel {
-    pub name: String,
-    pub inertia: Mat3,
-    pub omega: [Sym; 3],
-}
-
-/// The lowered description: everything as expressions, names resolved.
-pub struct Lowered {
-    pub ctx: Context,
-    pub coordinates: Vec<String>,
-    /// Names of the inputs, in the order of their symbols (`Context::inputs`).
-    pub inputs: Vec<String>,
-    pub parameters: Vec<String>,
-    pub points: Vec<PointModel>,
-    pub spins: Vec<SpinModel>,
-    /// Where the masses sit relative to the bodies (for the recursive route).
-    pub skeleton: crate::tree::Skeleton,
-    pub gravity: Option<Vec<Sym>>,
-    pub potential: Option<Sym>,
-    pub dissipation: Option<Sym>,
-    /// (position of the point of application, Cartesian force)
-    pub forces: Vec<(Vec<Sym>, Vec<Sym>)>,
-    /// (coordinate index, generalized force)
-    pub generalized_forces: Vec<(usize, Sym)>,
-    pub holonomic: Vec<ConstraintModel>,
-    pub nonholonomic: Vec<ConstraintModel>,
-    /// The reduced form, if asked for: with the user's speeds (name, u(q, q̇, t)), or
-    /// `Some(None)` to choose independent velocities automatically.
-    pub speeds: Option<Option<Vec<(String, Sym)>>>,
-    /// Whether to build the multiplier form.
-    pub multipliers: bool,
-    /// Optional outputs asked for with `emit(...)`.
-    pub extras: Vec<Extra>,
-}
+use crate::constraint::{ConstraintSet, Reduction};
+use crate::lowered::Lowered;
+use crate::mat3::Mat3;
 
 /// Which derivation of h the emitted code uses.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

@@ -7,10 +7,10 @@ use syn::{BinOp, Expr, Ident};
 
 use crate::ast::{Formulation, System};
 use crate::check;
-use crate::constraint::ConstraintModel;
 use crate::ctxt::Ctxt;
 use crate::lower::{CartesianRef, Frame, Lowerer, Mode, NoInputs};
-use crate::mechanics::{Lowered, PointModel, SpinModel};
+use crate::lowered::{BodyFrame, ConstraintModel, Lowered, PointModel, Skeleton, SpinModel};
+use crate::mat3::Mat3;
 use crate::order::Item;
 
 pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
@@ -147,9 +147,9 @@ struct Items {
     points: Vec<PointModel>,
     spins: Vec<SpinModel>,
     /// (body, rotation matrix, reference point) for the points fixed in bodies.
-    rotations: Vec<(Ident, crate::rotation::Mat3, Vec<Sym>)>,
+    rotations: Vec<(Ident, Mat3, Vec<Sym>)>,
     /// Where the masses sit relative to the bodies, for the recursive derivation.
-    skeleton: crate::tree::Skeleton,
+    skeleton: Skeleton,
 }
 
 /// A rigid body: its frame (for `B.x`, `B.omega_x` and points on it), its centre
@@ -216,7 +216,7 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
         Some(Some(offset)) => offset.clone(),
         _ => vec![zero; 3],
     };
-    items.skeleton.bodies.push(crate::tree::BodyFrame {
+    items.skeleton.bodies.push(BodyFrame {
         factors: rotation.factors,
         reference: reference.clone(),
     });
@@ -271,12 +271,7 @@ fn to_centre_of_mass(
 }
 
 /// origin + R·local: a point given in body coordinates.
-fn offset_in_body(
-    lw: &mut Lowerer,
-    r: &crate::rotation::Mat3,
-    origin: &[Sym],
-    local: &[Sym],
-) -> Vec<Sym> {
+fn offset_in_body(lw: &mut Lowerer, r: &Mat3, origin: &[Sym], local: &[Sym]) -> Vec<Sym> {
     let rb = lw.mat_vec(r, local);
     (0..3).map(|i| lw.ctx.add(origin[i], rb[i])).collect()
 }

@@ -21,26 +21,8 @@
 
 use lagrange_symbolic::{Context, Expr as Sym, SymbolKind};
 
-use crate::rotation::Mat3;
-
-/// Where bodies and points sit, recorded while lowering.
-#[derive(Default)]
-pub struct Skeleton {
-    /// Per body, parallel to `Lowered::spins`.
-    pub bodies: Vec<BodyFrame>,
-    /// Per point mass, parallel to `Lowered::points`: the body it is fixed in and
-    /// its offset from that body's reference point in body axes.
-    pub masses: Vec<Option<(usize, Vec<Sym>)>>,
-    /// Every point fixed in a body (its world position, the body, the offset):
-    /// where children may be attached.
-    pub anchors: Vec<(Vec<Sym>, usize, Vec<Sym>)>,
-}
-
-/// A body's rotation factors (`None` for an explicit matrix) and reference point.
-pub struct BodyFrame {
-    pub factors: Option<Vec<(usize, Sym)>>,
-    pub reference: Vec<Sym>,
-}
+use crate::lowered::Skeleton;
+use crate::mat3::{Mat3, transpose};
 
 /// Mass, first moment h = m c and rotational inertia about the link origin, in
 /// link axes: the spatial inertia in its ten numbers.
@@ -532,10 +514,6 @@ fn rigid_spatial(ctx: &mut Context, i: Option<&Inertia>) -> Spatial {
         row[r] = i.mass;
     }
     Spatial { a: i.rot, b, c }
-}
-
-fn transpose(m: &Mat3) -> Mat3 {
-    [0, 1, 2].map(|i| [0, 1, 2].map(|j| m[j][i]))
 }
 
 /// (moment, force) = I (ω, v).
