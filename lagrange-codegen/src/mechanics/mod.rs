@@ -8,10 +8,10 @@
 //! differentiating T (the Christoffel route) — and the cheaper program is kept.
 //! The two must agree; a test checks that numerically.
 //!
-//! [`derive_with`] reads as the stages: per-point and per-body [`kinematics`] and
-//! T; M and h by the [`generic`] route and/or the [`recursive`] one (the cheaper
-//! kept); Q by [`force`] with the inputs split off; the [`energy`] functions;
-//! the optional outputs ([`extra`]), the constrained forms and one hoisting.
+//! [`derive_with`] reads as the stages: per-point and per-body `kinematics` and
+//! T; M and h by the `generic` route and/or the `recursive` one (the cheaper
+//! kept); Q by `force` with the inputs split off; the `energy` functions;
+//! the optional outputs (`extra`), the constrained forms and one hoisting.
 //! Every step builds nodes in the order the single function did, so the emitted
 //! code is unchanged byte for byte.
 
