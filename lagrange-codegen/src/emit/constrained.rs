@@ -6,6 +6,7 @@ use quote::quote;
 
 use super::Frame;
 use super::emitter::Emitter;
+use crate::constraint::ConstraintSet;
 use crate::mechanics::Model;
 
 /// `impl Constrained`: Φ, (G, g), γ and all of them with M and Q − h in one pass.
@@ -29,36 +30,9 @@ pub(super) fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
     let g0 = &jac_outs[n * k..];
     let (gamma_lets, gamma_outs) = e.program(&c.gamma);
 
-    // M, Q − h, G and γ over the hoisted parameter terms `p`.
-    let mut all = model.hoisted_upper_and_rhs();
-    let upper_len = all.len() - n;
-    all.extend(model.hoisted_constraints().unwrap_or_default());
-    let (all_lets, all_outs) = e.program(&all);
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
-    let (mu, rest) = all_outs.split_at(upper_len);
-    let (rhs, rest) = rest.split_at(n);
-    let (gs, gamma) = rest.split_at(n * k);
-    let m_fill = e.symmetric_matrix(mu, n);
-    let g_fill_all = e.fill_dense(&quote!(g), gs, n);
-
-    let derivatives = match &c.derivatives {
-        None => quote!(),
-        Some(d) => {
-            let body = e.dense_matrices(&[
-                ("dgnu", &d.force_q, mat_nn.clone()),
-                ("dres", &d.acceleration_q, mat_kn.clone()),
-                ("dgamma", &d.gamma_v, mat_kn.clone()),
-                ("dvel", &d.velocity_q, mat_kn.clone()),
-            ]);
-            quote! {
-                #[inline]
-                fn constraint_derivatives(&self, q: &#vec_n, v: &#vec_n, a: &#vec_n, nu: &#vec_k, t: #s) -> ::core::option::Option<(#mat_nn, #mat_kn, #mat_kn, #mat_kn)> {
-                    #body
-                    ::core::option::Option::Some((dgnu, dres, dgamma, dvel))
-                }
-            }
-        }
-    };
+    let system = constrained_system(e, f, model, &kl);
+    let derivatives = derivatives(e, f, c, &kl);
     let names = &c.names;
     let holonomic = c.holonomic;
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
@@ -105,6 +79,56 @@ pub(super) fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
             #derivatives
         }
 
+        #system
+    }
+}
+
+/// `constraint_derivatives`, when the Jacobians were asked for.
+fn derivatives(e: &Emitter, f: &Frame, c: &ConstraintSet, kl: &Literal) -> TokenStream {
+    let (s, nl) = (&f.s, &f.n);
+    let (vec_n, vec_k) = (f.vec(nl), f.vec(kl));
+    let (mat_nn, mat_kn) = (f.mat(nl, nl), f.mat(kl, nl));
+    match &c.derivatives {
+        None => quote!(),
+        Some(d) => {
+            let body = e.dense_matrices(&[
+                ("dgnu", &d.force_q, mat_nn.clone()),
+                ("dres", &d.acceleration_q, mat_kn.clone()),
+                ("dgamma", &d.gamma_v, mat_kn.clone()),
+                ("dvel", &d.velocity_q, mat_kn.clone()),
+            ]);
+            quote! {
+                #[inline]
+                fn constraint_derivatives(&self, q: &#vec_n, v: &#vec_n, a: &#vec_n, nu: &#vec_k, t: #s) -> ::core::option::Option<(#mat_nn, #mat_kn, #mat_kn, #mat_kn)> {
+                    #body
+                    ::core::option::Option::Some((dgnu, dres, dgamma, dvel))
+                }
+            }
+        }
+    }
+}
+
+/// The inherent `__lagrange_constrained_system`: M, Q − h, G and γ in one
+/// program over the hoisted parameter terms `p`.
+fn constrained_system(e: &Emitter, f: &Frame, model: &Model, kl: &Literal) -> TokenStream {
+    let n = model.dof();
+    let k = model.constraints.as_ref().map_or(0, |c| c.names.len());
+    let (s, nl) = (&f.s, &f.n);
+    let (vec_n, vec_k) = (f.vec(nl), f.vec(kl));
+    let (mat_nn, mat_kn) = (f.mat(nl, nl), f.mat(kl, nl));
+    let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
+    let mut all = model.hoisted_upper_and_rhs();
+    let upper_len = all.len() - n;
+    all.extend(model.hoisted_constraints().unwrap_or_default());
+    let (all_lets, all_outs) = e.program(&all);
+    let (mu, rest) = all_outs.split_at(upper_len);
+    let (rhs, rest) = rest.split_at(n);
+    let (gs, gamma) = rest.split_at(n * k);
+    let m_fill = e.symmetric_matrix(mu, n);
+    let g_fill_all = e.fill_dense(&quote!(g), gs, n);
+
+    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
         impl #ig #ident #tg #wc {
