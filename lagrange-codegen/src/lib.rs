@@ -4,7 +4,7 @@
 //!
 //! 1. [`attr`]: attributes and fields → [`ast::System`] (syntax, spans kept);
 //! 2. [`check`]: structural rules (names, dimensions, targets);
-//! 3. [`scene`] (with [`lower`] for expressions and [`rotation`] for bodies):
+//! 3. [`scene`] (with [`lower`] for expressions and [`lower::rotation`] for bodies):
 //!    `syn::Expr` → symbolic expressions (names resolved, velocity and linearity rules);
 //! 4. [`mechanics`]: M, h, Q, energies as expressions ([`mechanics::Model`]), with
 //!    [`constraint`] for the multiplier and reduced forms;
@@ -17,7 +17,6 @@ pub mod ast;
 pub mod attr;
 pub mod chain;
 pub mod check;
-pub mod condition;
 pub mod constraint;
 pub mod ctxt;
 pub mod doc;
@@ -27,7 +26,6 @@ pub mod lowered;
 pub mod mat3;
 pub mod mechanics;
 pub mod order;
-pub mod rotation;
 pub mod scene;
 pub mod tree;
 
