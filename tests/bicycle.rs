@@ -216,3 +216,12 @@ fn reduced_form_agrees_with_the_multiplier_form() {
     eprintln!("bicycle, 2 s roll kick, reduced vs multiplier: {gap:.1e}");
     assert!(gap < 1e-7, "{gap:e}");
 }
+
+/// The rear contact (x, y) and both wheels' rotations are cyclic; yaw (read by
+/// the rolling constraints), roll, pitch and steer are not.
+#[test]
+fn contact_point_and_wheel_angles_are_cyclic() {
+    let cyclic = <Bicycle as Lagrangian<f64, 8>>::CYCLIC;
+    // x, y, psi, phi, pitch, theta_r, delta, theta_f
+    assert_eq!(cyclic, [true, true, false, false, false, true, false, true]);
+}

@@ -73,6 +73,16 @@ fn header(model: &Model) -> String {
         }
     }
     let _ = writeln!(s, "q = ({})", model.coordinates.join(", "));
+    let cyclic: Vec<&str> = (model.coordinates.iter().zip(&model.cyclic))
+        .filter_map(|(name, &c)| c.then_some(name.as_str()))
+        .collect();
+    if !cyclic.is_empty() {
+        let _ = writeln!(
+            s,
+            "cyclic: {}: no equation reads their values, only their rates",
+            cyclic.join(", ")
+        );
+    }
     if let Some(inputs) = &model.inputs {
         let _ = writeln!(
             s,

@@ -95,6 +95,7 @@ fn lagrangian_trait(
     let names = &model.coordinates;
     let rheonomic = model.rheonomic;
     let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
+    let cyclic = cyclic_const(model, nl);
     let hamiltonian = optional_methods(e, f, model);
     let run_in = run_in(f, model);
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
@@ -109,6 +110,7 @@ fn lagrangian_trait(
             const COORDINATES: [&'static str; #nl] = [#(#names),*];
             const RHEONOMIC: bool = #rheonomic;
             const CONSTRAINED: bool = #has_constraints;
+            #cyclic
 
             #[inline]
             fn mass_matrix(&self, q: &#vec_t, t: #s) -> #mat_t {
@@ -150,6 +152,16 @@ fn lagrangian_trait(
             #run_in
         }
     }
+}
+
+/// `CYCLIC`, where some coordinate is; the trait's default (none) otherwise, so
+/// that most expansions do not carry a line of `false`s.
+fn cyclic_const(model: &Model, nl: &Literal) -> TokenStream {
+    if !model.cyclic.iter().any(|&c| c) {
+        return TokenStream::new();
+    }
+    let cyclic = &model.cyclic;
+    quote!(const CYCLIC: [bool; #nl] = [#(#cyclic),*];)
 }
 
 /// `kinetic_energy`, `potential_energy` and `integral`.

@@ -15,6 +15,7 @@
 //! Every step builds nodes in the order the single function did, so the emitted
 //! code is unchanged byte for byte.
 
+mod cyclic;
 mod energy;
 mod extra;
 mod force;
@@ -378,7 +379,7 @@ fn finish(
         articulated.as_ref(),
         constraints.as_ref(),
     );
-    Ok(Model {
+    let mut model = Model {
         ctx,
         coordinates: d.coordinates,
         parameters: d.parameters,
@@ -403,7 +404,10 @@ fn finish(
         has_spin: d.has_spin,
         articulated,
         hoisted,
-    })
+        cyclic: Vec::new(),
+    };
+    model.cyclic = cyclic::cyclic(&model);
+    Ok(model)
 }
 
 /// G, g, Φ and γ, with their derivatives when the Jacobians are asked for.

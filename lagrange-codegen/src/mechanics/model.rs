@@ -91,6 +91,9 @@ pub struct Model {
     pub has_spin: bool,
     /// The articulated-body forward dynamics, if asked for.
     pub articulated: Option<Articulation>,
+    /// Per coordinate, whether it is cyclic: read by none of the expressions
+    /// above (only its rate enters the motion).
+    pub cyclic: Vec<bool>,
     /// M (row-major, N²), Q − h and the articulated outputs with their
     /// parameter-only parts split off, computed once per parameter set by the
     /// generated code ([`lagrange_symbolic::Context::hoist`]).
