@@ -3,7 +3,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym, Program};
 
-use super::kinematics::Kinematics;
+use super::kinematics::{Kinematics, at_zero};
 use super::vector::dot;
 
 /// The potential of uniform gravity, −Σ m g·ξ.
@@ -61,7 +61,6 @@ pub(super) fn integral(
     kinetic: Sym,
     potential: Sym,
     mass: &[Vec<Sym>],
-    zero_vel: &[(Sym, Sym)],
 ) -> Sym {
     if !rheonomic {
         let e = ctx.add(kinetic, potential);
@@ -81,7 +80,8 @@ pub(super) fn integral(
         let half = ctx.rational(1, 2);
         ctx.mul(half, s)
     };
-    let t0 = ctx.substitute(kinetic, zero_vel);
+    let zero_vel = at_zero(ctx, &qd);
+    let t0 = ctx.substitute(kinetic, &zero_vel);
     let e = ctx.sub(t2, t0);
     let e = ctx.add(e, potential);
     ctx.collect(e)

@@ -34,8 +34,26 @@ pub(super) fn at_zero(ctx: &mut Context, symbols: &[Sym]) -> Vec<(Sym, Sym)> {
     symbols.iter().map(|&a| (a, z)).collect()
 }
 
+/// The kinematics of every point and body, whether the system is rheonomic,
+/// and T.
+pub(super) fn derive(
+    ctx: &mut Context,
+    point_models: &[PointModel],
+    spin_models: &[SpinModel],
+    generic: bool,
+    zero_acc: &[(Sym, Sym)],
+) -> (Vec<Kinematics>, Vec<Spin>, bool, Sym) {
+    let kin = points(ctx, point_models, generic, zero_acc);
+    let qd = ctx.velocities();
+    let zero_vel = at_zero(ctx, &qd);
+    let spin = spins(ctx, spin_models, zero_acc);
+    let rheonomic = is_rheonomic(ctx, &kin, &spin, &zero_vel);
+    let kinetic = kinetic_energy(ctx, &kin, &spin);
+    (kin, spin, rheonomic, kinetic)
+}
+
 /// ξ, ξ̇ and ∂ξ/∂t of every point, with J and κ where the generic route needs them.
-pub(super) fn points(
+fn points(
     ctx: &mut Context,
     points: &[PointModel],
     generic: bool,
@@ -81,7 +99,7 @@ pub(super) fn points(
 }
 
 /// ω, W and κ_ω of every body.
-pub(super) fn spins(ctx: &mut Context, spins: &[SpinModel], zero_acc: &[(Sym, Sym)]) -> Vec<Spin> {
+fn spins(ctx: &mut Context, spins: &[SpinModel], zero_acc: &[(Sym, Sym)]) -> Vec<Spin> {
     let qd = ctx.velocities();
     spins
         .iter()
@@ -103,7 +121,7 @@ pub(super) fn spins(ctx: &mut Context, spins: &[SpinModel], zero_acc: &[(Sym, Sy
 }
 
 /// Whether a point moves, or a body turns, with the velocities at zero.
-pub(super) fn is_rheonomic(
+fn is_rheonomic(
     ctx: &mut Context,
     kin: &[Kinematics],
     spin: &[Spin],
@@ -120,7 +138,7 @@ pub(super) fn is_rheonomic(
 }
 
 /// T = ½ Σ m |ξ̇|² + ½ Σ ωᵀ I ω.
-pub(super) fn kinetic_energy(ctx: &mut Context, kin: &[Kinematics], spin: &[Spin]) -> Sym {
+fn kinetic_energy(ctx: &mut Context, kin: &[Kinematics], spin: &[Spin]) -> Sym {
     let mut terms: Vec<Sym> = kin
         .iter()
         .map(|k| {

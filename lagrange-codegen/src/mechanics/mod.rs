@@ -124,12 +124,8 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         }
     };
     let generic = wants_generic(route, tree.as_ref())?;
-    let kin = kinematics::points(&mut ctx, &points, generic, &zero_acc);
-    let qd = ctx.velocities();
-    let zero_vel = at_zero(&mut ctx, &qd);
-    let spin = kinematics::spins(&mut ctx, &spins, &zero_acc);
-    let rheonomic = kinematics::is_rheonomic(&mut ctx, &kin, &spin, &zero_vel);
-    let kinetic = kinematics::kinetic_energy(&mut ctx, &kin, &spin);
+    let (kin, spin, rheonomic, kinetic) =
+        kinematics::derive(&mut ctx, &points, &spins, generic, &zero_acc);
     let generic_terms =
         generic.then(|| generic::derive(&mut ctx, &kin, &spin, kinetic, rheonomic, &zero_acc));
     let recursive_terms = recursive::cheaper(&mut ctx, tree.as_ref(), generic_terms.as_ref());
@@ -149,14 +145,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
     let forces = applied_forces(&mut ctx, &kin, &sources, input_names)?;
     let motion = equations(&mut ctx, recursive_terms, generic_terms, &forces);
     let kinetic = energy::cheaper_kinetic(&mut ctx, rheonomic, kinetic, &motion.mass);
-    let integral = energy::integral(
-        &mut ctx,
-        rheonomic,
-        kinetic,
-        forces.potential,
-        &motion.mass,
-        &zero_vel,
-    );
+    let integral = energy::integral(&mut ctx, rheonomic, kinetic, forces.potential, &motion.mass);
     let derived = Derived {
         coordinates,
         parameters,
