@@ -33,7 +33,8 @@ fn cyclic(source: &str, name: &str) -> Vec<String> {
     m.coordinates
         .iter()
         .zip(&m.cyclic)
-        .filter_map(|(q, &c)| c.then(|| q.clone()))
+        .filter(|&(_, &c)| c)
+        .map(|(q, _)| q.clone())
         .collect()
 }
 
