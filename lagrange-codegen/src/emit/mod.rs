@@ -1,4 +1,4 @@
-//! [`Model`] → the `impl Lagrangian` tokens.
+//! [`Model`](crate::mechanics::Model) → the `impl Lagrangian` tokens.
 //!
 //! Every method is one straight-line program: the outputs it returns are built
 //! together so that shared subexpressions (sin/cos of coordinates, Jacobian entries,
