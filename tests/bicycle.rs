@@ -297,3 +297,12 @@ fn a_negative_stability_tolerance_is_refused() {
     assert!(e.to_string().contains("must be finite and >= 0"), "{e}");
     assert!(lateral.stability(f64::NAN).is_err());
 }
+
+/// The rear contact (x, y) and both wheels' rotations are cyclic; yaw (read by
+/// the rolling constraints), roll, pitch and steer are not.
+#[test]
+fn contact_point_and_wheel_angles_are_cyclic() {
+    let cyclic = <Bicycle as Lagrangian<f64, 8>>::CYCLIC;
+    // x, y, psi, phi, pitch, theta_r, delta, theta_f
+    assert_eq!(cyclic, [true, true, false, false, false, true, false, true]);
+}

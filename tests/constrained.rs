@@ -569,3 +569,13 @@ fn typed_errors_for_bad_constraint_input() {
         .unwrap();
     assert!((fixed.positions()[0].norm() - 1.0).abs() < 1e-12);
 }
+
+/// The rolling disk's contact point (x, y) and spin φ are cyclic: no equation,
+/// constraint row or reduced row reads them; heading ψ and tilt θ are read.
+#[test]
+fn rolling_disk_cyclic_coordinates() {
+    assert_eq!(
+        <RollingDisk as Lagrangian<f64, 5>>::CYCLIC,
+        [true, true, false, false, true]
+    );
+}

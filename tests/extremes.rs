@@ -580,3 +580,16 @@ fn non_finite_input_is_a_typed_error_for_every_integrator() {
     non_finite_inputs(Gauss::step(0.01), true);
     non_finite_inputs(Gauss::midpoint(0.01), true);
 }
+
+/// The derive emits which coordinates are cyclic: the heavy top's precession ψ
+/// and spin φ, not its nutation θ; none of the double pendulum's.
+#[test]
+fn cyclic_coordinates_are_emitted() {
+    assert_eq!(
+        <HeavyTop as Lagrangian<f64, 3>>::CYCLIC,
+        [true, false, true]
+    );
+    assert_eq!(<DoublePendulum as Lagrangian<f64, 2>>::CYCLIC, [false; 2]);
+    assert!(HeavyTop::EQUATIONS.contains("cyclic: psi, phi"));
+    assert!(!DoublePendulum::EQUATIONS.contains("cyclic"));
+}

@@ -41,98 +41,40 @@ impl Parse for Item {
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let key: Ident = input.parse()?;
         expect_list(input, &key)?;
+        let definition = |(name, value)| Definition { name, value };
+        let constraint = |(name, value)| Constraint { name, value };
         match key.to_string().as_str() {
-            "coordinates" => {
-                let content;
-                syn::parenthesized!(content in input);
-                let names = Punctuated::<Ident, Token![,]>::parse_terminated(&content)?;
-                if names.is_empty() {
-                    return Err(syn::Error::new(
-                        key.span(),
-                        "`coordinates()` lists no coordinate: name them, `coordinates(q1, q2, ...)`",
-                    ));
-                }
-                Ok(Item::Coordinates(names.into_iter().collect()))
-            }
+            "coordinates" => parse_coordinates(input, &key).map(Item::Coordinates),
             "inputs" => parse_names(input).map(Item::Inputs),
-            "define" => {
-                let content;
-                syn::parenthesized!(content in input);
-                let defs = Punctuated::<NameValue, Token![,]>::parse_terminated(&content)?;
-                Ok(Item::Define(
-                    defs.into_iter()
-                        .map(|NameValue(name, value)| Definition { name, value })
-                        .collect(),
-                ))
-            }
+            "define" => Ok(Item::Define(
+                parse_name_values(input)?.map(definition).collect(),
+            )),
             "point" => parse_point(input).map(Item::Point),
             "body" => parse_body(input).map(|b| Item::Body(Box::new(b))),
-            "holonomic" | "nonholonomic" | "speeds" => {
-                let content;
-                syn::parenthesized!(content in input);
-                let items = Punctuated::<NameValue, Token![,]>::parse_terminated(&content)?;
-                let items = items.into_iter().map(|NameValue(n, v)| (n, v));
-                Ok(match key.to_string().as_str() {
-                    "holonomic" => Item::Holonomic(
-                        items
-                            .map(|(name, value)| Constraint { name, value })
-                            .collect(),
-                    ),
-                    "nonholonomic" => Item::Nonholonomic(
-                        items
-                            .map(|(name, value)| Constraint { name, value })
-                            .collect(),
-                    ),
-                    _ => Item::Speeds(
-                        items
-                            .map(|(name, value)| Definition { name, value })
-                            .collect(),
-                    ),
-                })
-            }
-            "formulation" => {
-                let names = parse_names(input)?;
-                let mut out = Vec::new();
-                for n in names {
-                    let f = match n.to_string().as_str() {
-                        "multipliers" => Formulation::Multipliers,
-                        "reduced" => Formulation::Reduced,
-                        other => {
-                            return Err(syn::Error::new(
-                                n.span(),
-                                format!(
-                                    "unknown formulation `{other}`; expected `multipliers` or `reduced`"
-                                ),
-                            ));
-                        }
-                    };
-                    out.push((n, f));
-                }
-                Ok(Item::Formulation(out))
-            }
-            "emit" => {
-                let names = parse_names(input)?;
-                let mut out = Vec::new();
-                for n in names {
-                    let e = match n.to_string().as_str() {
-                        "reactions" => Extra::Reactions,
-                        "coriolis" => Extra::Coriolis,
-                        "jacobians" => Extra::Jacobians,
-                        "hamiltonian" => Extra::Hamiltonian,
-                        "articulated" => Extra::Articulated,
-                        other => {
-                            return Err(syn::Error::new(
-                                n.span(),
-                                format!(
-                                    "unknown output `{other}`; expected `reactions`, `coriolis`, `jacobians`, `hamiltonian` or `articulated`"
-                                ),
-                            ));
-                        }
-                    };
-                    out.push((n, e));
-                }
-                Ok(Item::Emit(out))
-            }
+            "holonomic" => Ok(Item::Holonomic(
+                parse_name_values(input)?.map(constraint).collect(),
+            )),
+            "nonholonomic" => Ok(Item::Nonholonomic(
+                parse_name_values(input)?.map(constraint).collect(),
+            )),
+            "speeds" => Ok(Item::Speeds(
+                parse_name_values(input)?.map(definition).collect(),
+            )),
+            "formulation" => parse_keywords(input, "formulation", FORMULATIONS, |w| match w {
+                "multipliers" => Some(Formulation::Multipliers),
+                "reduced" => Some(Formulation::Reduced),
+                _ => None,
+            })
+            .map(Item::Formulation),
+            "emit" => parse_keywords(input, "output", OUTPUTS, |w| match w {
+                "reactions" => Some(Extra::Reactions),
+                "coriolis" => Some(Extra::Coriolis),
+                "jacobians" => Some(Extra::Jacobians),
+                "hamiltonian" => Some(Extra::Hamiltonian),
+                "articulated" => Some(Extra::Articulated),
+                _ => None,
+            })
+            .map(Item::Emit),
             "gravity" | "potential" | "dissipation" => {
                 input.parse::<Token![=]>()?;
                 let value: Expr = input.parse()?;
@@ -142,44 +84,94 @@ impl Parse for Item {
                     _ => Item::Dissipation(key, value),
                 })
             }
-            "force" => {
-                let content;
-                syn::parenthesized!(content in input);
-                let point: Ident = content.parse()?;
-                content.parse::<Token![,]>()?;
-                let value: Expr = content.parse()?;
-                let _ = content.parse::<Option<Token![,]>>()?;
-                if !content.is_empty() {
-                    return Err(content.error("expected `force(point, [fx, fy, fz])`"));
-                }
-                Ok(Item::Force(Force { point, value }))
-            }
-            "generalized_force" => {
-                let content;
-                syn::parenthesized!(content in input);
-                let items = Punctuated::<NameValue, Token![,]>::parse_terminated(&content)?;
-                Ok(Item::GeneralizedForce(
-                    items
-                        .into_iter()
-                        .map(|NameValue(coordinate, value)| GeneralizedForce { coordinate, value })
-                        .collect(),
-                ))
-            }
-            other => Err(syn::Error::new(
-                key.span(),
-                match closest(other, KEYS.split(", ")) {
-                    Some(k) => format!(
-                        "unknown key `{other}` in #[lagrange(...)]; did you mean `{k}`? (keys: {KEYS})"
-                    ),
-                    None => {
-                        format!(
-                            "unknown key `{other}` in #[lagrange(...)]; expected one of: {KEYS}"
-                        )
-                    }
-                },
+            "force" => parse_force(input).map(Item::Force),
+            "generalized_force" => Ok(Item::GeneralizedForce(
+                parse_name_values(input)?
+                    .map(|(coordinate, value)| GeneralizedForce { coordinate, value })
+                    .collect(),
             )),
+            other => Err(unknown_key(&key, other)),
         }
     }
+}
+
+const FORMULATIONS: &str = "`multipliers` or `reduced`";
+const OUTPUTS: &str = "`reactions`, `coriolis`, `jacobians`, `hamiltonian` or `articulated`";
+
+/// `coordinates(q1, q2, ...)`, which must name at least one.
+fn parse_coordinates(input: ParseStream, key: &Ident) -> syn::Result<Vec<Ident>> {
+    let content;
+    syn::parenthesized!(content in input);
+    let names = Punctuated::<Ident, Token![,]>::parse_terminated(&content)?;
+    if names.is_empty() {
+        return Err(syn::Error::new(
+            key.span(),
+            "`coordinates()` lists no coordinate: name them, `coordinates(q1, q2, ...)`",
+        ));
+    }
+    Ok(names.into_iter().collect())
+}
+
+/// `(name = value, ...)`, the shape of `define`, the constraints, `speeds` and
+/// `generalized_force`.
+fn parse_name_values(input: ParseStream) -> syn::Result<impl Iterator<Item = (Ident, Expr)>> {
+    let content;
+    syn::parenthesized!(content in input);
+    let items = Punctuated::<NameValue, Token![,]>::parse_terminated(&content)?;
+    Ok(items.into_iter().map(|NameValue(n, v)| (n, v)))
+}
+
+/// `(word, ...)` where each word is one of a fixed set (`what` and `expected`
+/// name the set in the error).
+fn parse_keywords<T>(
+    input: ParseStream,
+    what: &str,
+    expected: &str,
+    meaning: impl Fn(&str) -> Option<T>,
+) -> syn::Result<Vec<(Ident, T)>> {
+    let names = parse_names(input)?;
+    let mut out = Vec::new();
+    for n in names {
+        let word = n.to_string();
+        let Some(value) = meaning(&word) else {
+            return Err(syn::Error::new(
+                n.span(),
+                format!("unknown {what} `{word}`; expected {expected}"),
+            ));
+        };
+        out.push((n, value));
+    }
+    Ok(out)
+}
+
+/// `force(point, [fx, fy, fz])`.
+fn parse_force(input: ParseStream) -> syn::Result<Force> {
+    let content;
+    syn::parenthesized!(content in input);
+    let point: Ident = content.parse()?;
+    content.parse::<Token![,]>()?;
+    let value: Expr = content.parse()?;
+    let _ = content.parse::<Option<Token![,]>>()?;
+    if !content.is_empty() {
+        return Err(content.error("expected `force(point, [fx, fy, fz])`"));
+    }
+    Ok(Force { point, value })
+}
+
+/// The error for a key that is none of [`KEYS`], with the likely one if the key
+/// is a typo of it.
+fn unknown_key(key: &Ident, other: &str) -> syn::Error {
+    syn::Error::new(
+        key.span(),
+        match closest(other, KEYS.split(", ")) {
+            Some(k) => format!(
+                "unknown key `{other}` in #[lagrange(...)]; did you mean `{k}`? (keys: {KEYS})"
+            ),
+            None => {
+                format!("unknown key `{other}` in #[lagrange(...)]; expected one of: {KEYS}")
+            }
+        },
+    )
 }
 
 /// The candidate within two edits of `word` (a typo), if one is.

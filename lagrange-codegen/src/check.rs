@@ -146,13 +146,15 @@ fn check_body_keys(cx: &Ctxt, system: &System) {
 /// unconstrained and multiplier forms factor M, so that is an error at the
 /// coordinate, not a singular matrix at run time. (The reduced form alone may
 /// still be regular, M* = WᵀMW, when the constraints fix that coordinate's
-/// velocity, so it is left to the run-time check there.)
-pub fn mass_rows(cx: &Ctxt, system: &System, model: &crate::mechanics::Model) {
+/// velocity, so it is left to the run-time check there.) `zero_rows[i]` says
+/// whether M's row i is zero; the check takes that rather than the derived model
+/// so that it does not depend on the stage after it.
+pub fn mass_rows(cx: &Ctxt, system: &System, zero_rows: &[bool]) {
     if formulations(system) == [Formulation::Reduced] {
         return;
     }
     for (i, name) in system.coordinates.iter().enumerate() {
-        if model.mass[i].iter().all(|&e| model.ctx.is_zero(e)) {
+        if zero_rows[i] {
             cx.error_at(
                 name.span(),
                 format!(

@@ -18,16 +18,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-/// One constraint after lowering and composition with ξ(q,t).
-pub struct ConstraintModel {
-    pub name: String,
-    /// f(q,t) for a holonomic constraint, a(q,t)·q̇ + b(q,t) for a nonholonomic one.
-    pub value: Sym,
-    /// For each point or body named in the constraint: ∂f/∂ξ (holonomic) or ∂f/∂ξ̇
-    /// (nonholonomic) per Cartesian component, composed with ξ(q,t). The reaction of
-    /// this constraint on that point is its multiplier times this vector.
-    pub cartesian: Vec<(String, Vec<Sym>)>,
-}
+use crate::lowered::ConstraintModel;
 
 /// The multiplier form: K rows, holonomic first.
 pub struct ConstraintSet {

@@ -34,7 +34,10 @@ pub fn texts(model: &Model) -> Texts {
     let mut equations = header(model);
     let mut latex = String::from("\\begin{aligned}\n");
     if tree_size(ctx, &exprs) <= TREE_LIMIT {
-        let _ = writeln!(equations, "\nEntries not listed are zero.\n");
+        let _ = writeln!(
+            equations,
+            "\n{SYMMETRIC}\nEntries not listed (other than those mirror entries) are zero.\n"
+        );
         // Printed with angle sums folded (cos(θ₁ − θ₂), not the products the
         // code computes), in a copy of the context so the model stays as emitted.
         let mut shown = ctx.clone();
@@ -46,7 +49,7 @@ pub fn texts(model: &Model) -> Texts {
     } else {
         let _ = writeln!(
             equations,
-            "\nShared intermediates are named x<k>; entries not listed are zero.\n"
+            "\n{SYMMETRIC}\nShared intermediates are named x<k>; entries not listed (other than those mirror entries) are zero.\n"
         );
         let program = Program::new(ctx, &exprs);
         equations.push_str(&program.listing(ctx, &names));
@@ -55,6 +58,11 @@ pub fn texts(model: &Model) -> Texts {
     latex.push_str("\\end{aligned}\n");
     Texts { equations, latex }
 }
+
+/// M's lower triangle is the mirror of its upper one and is not listed, so the
+/// note that unlisted entries are zero must except it.
+const SYMMETRIC: &str =
+    "M is symmetric: only its entries M[i][j] with i <= j are listed (M[j][i] is the same).";
 
 /// What the symbols are: the form of the equations, q, u, the conserved
 /// quantity, the route of h, the constraint and reduced rows.
@@ -73,6 +81,16 @@ fn header(model: &Model) -> String {
         }
     }
     let _ = writeln!(s, "q = ({})", model.coordinates.join(", "));
+    let cyclic: Vec<&str> = (model.coordinates.iter().zip(&model.cyclic))
+        .filter_map(|(name, &c)| c.then_some(name.as_str()))
+        .collect();
+    if !cyclic.is_empty() {
+        let _ = writeln!(
+            s,
+            "cyclic: {}: no equation reads their values, only their rates",
+            cyclic.join(", ")
+        );
+    }
     if let Some(inputs) = &model.inputs {
         let _ = writeln!(
             s,

@@ -4,11 +4,17 @@
 //!
 //! 1. [`attr`]: attributes and fields → [`ast::System`] (syntax, spans kept);
 //! 2. [`check`]: structural rules (names, dimensions, targets);
-//! 3. [`scene`] (with [`lower`] for expressions and [`rotation`] for bodies):
-//!    `syn::Expr` → symbolic expressions (names resolved, velocity and linearity rules);
+//! 3. [`scene`] (with [`lower`] for expressions and [`lower::rotation`] for bodies):
+//!    `syn::Expr` → symbolic expressions (names resolved, velocity and linearity rules),
+//!    handed on as a [`lowered::Lowered`];
 //! 4. [`mechanics`]: M, h, Q, energies as expressions ([`mechanics::Model`]), with
-//!    [`constraint`] for the multiplier and reduced forms;
-//! 5. [`emit`]: straight-line Rust for each method of the runtime's trait.
+//!    [`tree`] for the recursive route and [`constraint`] for the multiplier and
+//!    reduced forms;
+//! 5. [`emit`] (with [`doc`] for the `EQUATIONS` texts): straight-line Rust for
+//!    each method of the runtime's traits.
+//!
+//! A module imports only from its own stage or the ones before it; [`mat3`] and
+//! [`ctxt`] are shared by all.
 //!
 //! Errors are collected in a [`ctxt::Ctxt`] across stages; on error the output is
 //! `compile_error!`s plus a stub impl, never a panic.
@@ -17,15 +23,15 @@ pub mod ast;
 pub mod attr;
 pub mod chain;
 pub mod check;
-pub mod condition;
 pub mod constraint;
 pub mod ctxt;
 pub mod doc;
 pub mod emit;
 pub mod lower;
+pub mod lowered;
+pub mod mat3;
 pub mod mechanics;
 pub mod order;
-pub mod rotation;
 pub mod scene;
 pub mod tree;
 
@@ -117,7 +123,12 @@ fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Mod
     }
     match mechanics::derive_with(lowered?, route) {
         Ok(model) => {
-            check::mass_rows(cx, system, &model);
+            let zero_rows: Vec<bool> = model
+                .mass
+                .iter()
+                .map(|row| row.iter().all(|&e| model.ctx.is_zero(e)))
+                .collect();
+            check::mass_rows(cx, system, &zero_rows);
             (!cx.has_errors()).then_some(model)
         }
         Err(e @ mechanics::DeriveError::ArticulatedNeedsTree) => {

@@ -7,12 +7,14 @@ use syn::{BinOp, Expr, Ident};
 
 use crate::ast::{Formulation, System};
 use crate::check;
-use crate::constraint::ConstraintModel;
 use crate::ctxt::Ctxt;
+use crate::lower::rotation::Rotation;
 use crate::lower::{CartesianRef, Frame, Lowerer, Mode, NoInputs};
-use crate::mechanics::{Lowered, PointModel, SpinModel};
+use crate::lowered::{BodyFrame, ConstraintModel, Lowered, PointModel, Skeleton, SpinModel};
+use crate::mat3::Mat3;
 use crate::order::Item;
 
+/// Lowers the description, in the order each part may refer to the ones before.
 pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     let mut lw = Lowerer::new(cx);
     for p in &system.parameters {
@@ -35,12 +37,53 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
             Item::Point(i) => lower_point(&mut lw, &system.points[i], &mut items),
         }
     }
+    let applied = applied(&mut lw, system);
+    let (holonomic, nonholonomic) = constraints(&mut lw, system);
+    let formulations = check::formulations(system);
+    let speeds = formulations
+        .contains(&Formulation::Reduced)
+        .then(|| speeds(&mut lw, system));
+    if cx.has_errors() {
+        return None;
+    }
     let Items {
         points,
         spins,
         rotations: _,
         skeleton,
     } = items;
+    let names = |ids: &mut dyn Iterator<Item = &Ident>| ids.map(|c| c.to_string()).collect();
+    Some(Lowered {
+        ctx: lw.ctx,
+        coordinates: names(&mut system.coordinates.iter()),
+        inputs: names(&mut system.inputs.iter()),
+        parameters: names(&mut system.parameters.iter().map(|p| &p.name)),
+        points,
+        spins,
+        skeleton,
+        gravity: applied.gravity,
+        potential: applied.potential,
+        dissipation: applied.dissipation,
+        forces: applied.forces,
+        generalized_forces: applied.generalized_forces,
+        holonomic,
+        nonholonomic,
+        speeds,
+        multipliers: formulations.contains(&Formulation::Multipliers),
+        extras: system.extras.iter().map(|(_, e)| *e).collect(),
+    })
+}
+
+/// Gravity, V, the dissipation function and the forces, lowered.
+struct Applied {
+    gravity: Option<Vec<Sym>>,
+    potential: Option<Sym>,
+    dissipation: Option<Sym>,
+    forces: Vec<(Vec<Sym>, Vec<Sym>)>,
+    generalized_forces: Vec<(usize, Sym)>,
+}
+
+fn applied(lw: &mut Lowerer, system: &System) -> Applied {
     let gravity = system
         .gravity
         .as_ref()
@@ -67,6 +110,18 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
             generalized_forces.push((i, v));
         }
     }
+    Applied {
+        gravity,
+        potential,
+        dissipation,
+        forces,
+        generalized_forces,
+    }
+}
+
+/// The holonomic and the nonholonomic constraints, the latter proved linear in
+/// the velocities.
+fn constraints(lw: &mut Lowerer, system: &System) -> (Vec<ConstraintModel>, Vec<ConstraintModel>) {
     let holonomic: Vec<ConstraintModel> = system
         .holonomic
         .iter()
@@ -84,7 +139,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
                 constraint(lw, &c.name, &c.value, Mode::State)
             })?;
             linear_in_velocities(
-                &mut lw,
+                lw,
                 &c.value,
                 m.value,
                 &format!("nonholonomic constraint `{}`", c.name),
@@ -92,53 +147,26 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
             .then_some(m)
         })
         .collect();
-    let formulations = check::formulations(system);
-    let speeds = if formulations.contains(&Formulation::Reduced) {
-        if system.speeds.is_empty() {
-            Some(None)
-        } else {
-            let mut out = Vec::new();
-            for u in &system.speeds {
-                let lowered =
-                    lw.without_inputs(NoInputs::SPEED, |lw| lw.expr(&u.value, Mode::State));
-                let Some(e) = lowered else {
-                    continue;
-                };
-                if linear_in_velocities(&mut lw, &u.value, e, &format!("speed `{}`", u.name)) {
-                    out.push((u.name.to_string(), e));
-                }
-            }
-            Some(Some(out))
-        }
-    } else {
-        None
-    };
-    if cx.has_errors() {
+    (holonomic, nonholonomic)
+}
+
+/// The reduced form's speeds, each proved linear in the velocities; `None` to
+/// have them chosen from the constraints.
+fn speeds(lw: &mut Lowerer, system: &System) -> Option<Vec<(String, Sym)>> {
+    if system.speeds.is_empty() {
         return None;
     }
-    Some(Lowered {
-        ctx: lw.ctx,
-        coordinates: system.coordinates.iter().map(|c| c.to_string()).collect(),
-        inputs: system.inputs.iter().map(|u| u.to_string()).collect(),
-        parameters: system
-            .parameters
-            .iter()
-            .map(|p| p.name.to_string())
-            .collect(),
-        points,
-        spins,
-        skeleton,
-        gravity,
-        potential,
-        dissipation,
-        forces,
-        generalized_forces,
-        holonomic,
-        nonholonomic,
-        speeds,
-        multipliers: formulations.contains(&Formulation::Multipliers),
-        extras: system.extras.iter().map(|(_, e)| *e).collect(),
-    })
+    let mut out = Vec::new();
+    for u in &system.speeds {
+        let lowered = lw.without_inputs(NoInputs::SPEED, |lw| lw.expr(&u.value, Mode::State));
+        let Some(e) = lowered else {
+            continue;
+        };
+        if linear_in_velocities(lw, &u.value, e, &format!("speed `{}`", u.name)) {
+            out.push((u.name.to_string(), e));
+        }
+    }
+    Some(out)
 }
 
 /// Point masses, spins and body frames lowered so far.
@@ -147,9 +175,9 @@ struct Items {
     points: Vec<PointModel>,
     spins: Vec<SpinModel>,
     /// (body, rotation matrix, reference point) for the points fixed in bodies.
-    rotations: Vec<(Ident, crate::rotation::Mat3, Vec<Sym>)>,
+    rotations: Vec<(Ident, Mat3, Vec<Sym>)>,
     /// Where the masses sit relative to the bodies, for the recursive derivation.
-    skeleton: crate::tree::Skeleton,
+    skeleton: Skeleton,
 }
 
 /// A rigid body: its frame (for `B.x`, `B.omega_x` and points on it), its centre
@@ -201,6 +229,26 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
         }
         Some(_) => return,
     };
+    record_body(
+        lw,
+        b,
+        items,
+        (mass, inertia),
+        (reference, centre, com),
+        rotation,
+    );
+}
+
+/// Brings a lowered body into scope and records its centre as a point mass, its
+/// spin, and its frame for the points fixed in it and the recursive route.
+fn record_body(
+    lw: &mut Lowerer,
+    b: &crate::ast::Body,
+    items: &mut Items,
+    (mass, inertia): (Sym, Mat3),
+    (reference, centre, com): (Vec<Sym>, Vec<Sym>, Option<Option<Vec<Sym>>>),
+    rotation: Rotation,
+) {
     lw.declare_frame(
         &b.name,
         Frame {
@@ -216,7 +264,7 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
         Some(Some(offset)) => offset.clone(),
         _ => vec![zero; 3],
     };
-    items.skeleton.bodies.push(crate::tree::BodyFrame {
+    items.skeleton.bodies.push(BodyFrame {
         factors: rotation.factors,
         reference: reference.clone(),
     });
@@ -271,12 +319,7 @@ fn to_centre_of_mass(
 }
 
 /// origin + R·local: a point given in body coordinates.
-fn offset_in_body(
-    lw: &mut Lowerer,
-    r: &crate::rotation::Mat3,
-    origin: &[Sym],
-    local: &[Sym],
-) -> Vec<Sym> {
+fn offset_in_body(lw: &mut Lowerer, r: &Mat3, origin: &[Sym], local: &[Sym]) -> Vec<Sym> {
     let rb = lw.mat_vec(r, local);
     (0..3).map(|i| lw.ctx.add(origin[i], rb[i])).collect()
 }

@@ -92,16 +92,11 @@ impl Program {
         text: &[Option<(String, Prec)>],
         style: ListingStyle,
     ) -> (String, Prec) {
-        let latex = style == ListingStyle::Latex;
-        let at = |a: Value, min: Prec| -> String {
-            let (s, p) = text[a as usize].clone().unwrap_or(("?".into(), Prec::Atom));
-            match (p < min, latex) {
-                (false, _) => s,
-                (true, false) => format!("({s})"),
-                (true, true) => format!("\\left({s}\\right)"),
-            }
+        let o = Operands {
+            text,
+            latex: style == ListingStyle::Latex,
         };
-        let plain = |a: Value| text[a as usize].clone().map_or("?".into(), |(s, _)| s);
+        let latex = o.latex;
         match self.ops[v as usize] {
             Op::Sym(s) => {
                 let name = ctx.symbol_name(s);
@@ -118,68 +113,108 @@ impl Program {
                 (format!("{x:?}"), p)
             }
             Op::Add(a, b) => (
-                format!("{} + {}", at(a, Prec::Sum), at(b, Prec::Sum)),
+                format!("{} + {}", o.at(a, Prec::Sum), o.at(b, Prec::Sum)),
                 Prec::Sum,
             ),
             Op::Sub(a, b) => (
-                format!("{} - {}", at(a, Prec::Sum), at(b, Prec::Product)),
+                format!("{} - {}", o.at(a, Prec::Sum), o.at(b, Prec::Product)),
                 Prec::Sum,
             ),
             Op::Mul(a, b) => {
                 let sep = if latex { "\\," } else { "*" };
                 (
-                    format!("{}{sep}{}", at(a, Prec::Product), at(b, Prec::Unary)),
+                    format!("{}{sep}{}", o.at(a, Prec::Product), o.at(b, Prec::Unary)),
                     Prec::Product,
                 )
             }
             Op::Div(a, b) if latex => (
-                format!("\\frac{{{}}}{{{}}}", plain(a), plain(b)),
+                format!("\\frac{{{}}}{{{}}}", o.plain(a), o.plain(b)),
                 Prec::Atom,
             ),
             Op::Div(a, b) => (
-                format!("{}/{}", at(a, Prec::Product), at(b, Prec::Atom)),
+                format!("{}/{}", o.at(a, Prec::Product), o.at(b, Prec::Atom)),
                 Prec::Product,
             ),
-            Op::Neg(a) => (format!("-{}", at(a, Prec::Unary)), Prec::Unary),
-            Op::Call(f, a) if latex => (latex_call(f.name(), &plain(a)), Prec::Atom),
-            Op::Call(f, a) => (format!("{}({})", f.name(), at(a, Prec::Sum)), Prec::Atom),
-            Op::Atan2(a, b) => {
-                let name = if latex {
-                    "\\operatorname{atan2}"
-                } else {
-                    "atan2"
-                };
-                (format!("{name}({}, {})", plain(a), plain(b)), Prec::Atom)
+            Op::Neg(a) => (format!("-{}", o.at(a, Prec::Unary)), Prec::Unary),
+            op @ (Op::Call(..) | Op::Atan2(..) | Op::Powf(..) | Op::Powi(..) | Op::Select(..)) => {
+                write_function(op, &o)
             }
-            Op::Powf(a, b) if latex => (
-                format!("{{{}}}^{{{}}}", at(a, Prec::Atom), plain(b)),
-                Prec::Unary,
-            ),
-            Op::Powf(a, b) => (
-                format!("{}^{}", at(a, Prec::Atom), at(b, Prec::Atom)),
-                Prec::Unary,
-            ),
-            Op::Powi(a, n) if latex => (format!("{{{}}}^{{{n}}}", at(a, Prec::Atom)), Prec::Unary),
-            Op::Powi(a, n) => (format!("{}^{n}", at(a, Prec::Atom)), Prec::Unary),
-            Op::Select(t, a, b) if latex => (
-                format!(
-                    "\\begin{{cases}} {} & {} > 0 \\\\ {} & \\text{{otherwise}} \\end{{cases}}",
-                    plain(a),
-                    plain(t),
-                    plain(b)
-                ),
-                Prec::Atom,
-            ),
-            Op::Select(t, a, b) => (
-                format!(
-                    "(if {} > 0 {{ {} }} else {{ {} }})",
-                    plain(t),
-                    plain(a),
-                    plain(b)
-                ),
-                Prec::Atom,
-            ),
         }
+    }
+}
+
+/// The texts of the values already written, for writing one more.
+struct Operands<'a> {
+    text: &'a [Option<(String, Prec)>],
+    latex: bool,
+}
+
+impl Operands<'_> {
+    /// Operand a, parenthesised where it binds more loosely than `min`.
+    fn at(&self, a: Value, min: Prec) -> String {
+        let (s, p) = self.text[a as usize]
+            .clone()
+            .unwrap_or(("?".into(), Prec::Atom));
+        match (p < min, self.latex) {
+            (false, _) => s,
+            (true, false) => format!("({s})"),
+            (true, true) => format!("\\left({s}\\right)"),
+        }
+    }
+
+    /// Operand a as written, where the notation delimits it already.
+    fn plain(&self, a: Value) -> String {
+        self.text[a as usize].clone().map_or("?".into(), |(s, _)| s)
+    }
+}
+
+/// Calls, powers and selections (the operations written with their own
+/// delimiters); the arithmetic is written by `Listing::write`.
+fn write_function(op: Op, o: &Operands) -> (String, Prec) {
+    let latex = o.latex;
+    match op {
+        Op::Call(f, a) if latex => (latex_call(f.name(), &o.plain(a)), Prec::Atom),
+        Op::Call(f, a) => (format!("{}({})", f.name(), o.at(a, Prec::Sum)), Prec::Atom),
+        Op::Atan2(a, b) => {
+            let name = if latex {
+                "\\operatorname{atan2}"
+            } else {
+                "atan2"
+            };
+            (
+                format!("{name}({}, {})", o.plain(a), o.plain(b)),
+                Prec::Atom,
+            )
+        }
+        Op::Powf(a, b) if latex => (
+            format!("{{{}}}^{{{}}}", o.at(a, Prec::Atom), o.plain(b)),
+            Prec::Unary,
+        ),
+        Op::Powf(a, b) => (
+            format!("{}^{}", o.at(a, Prec::Atom), o.at(b, Prec::Atom)),
+            Prec::Unary,
+        ),
+        Op::Powi(a, n) if latex => (format!("{{{}}}^{{{n}}}", o.at(a, Prec::Atom)), Prec::Unary),
+        Op::Powi(a, n) => (format!("{}^{n}", o.at(a, Prec::Atom)), Prec::Unary),
+        Op::Select(t, a, b) if latex => (
+            format!(
+                "\\begin{{cases}} {} & {} > 0 \\\\ {} & \\text{{otherwise}} \\end{{cases}}",
+                o.plain(a),
+                o.plain(t),
+                o.plain(b)
+            ),
+            Prec::Atom,
+        ),
+        Op::Select(t, a, b) => (
+            format!(
+                "(if {} > 0 {{ {} }} else {{ {} }})",
+                o.plain(t),
+                o.plain(a),
+                o.plain(b)
+            ),
+            Prec::Atom,
+        ),
+        _ => unreachable!("arithmetic is written by Listing::write"),
     }
 }
 

@@ -17,8 +17,7 @@ use lagrange_symbolic::Expr as Sym;
 use syn::{BinOp, Expr};
 
 use crate::lower::{Lowerer, Mode};
-
-pub type Mat3 = [[Sym; 3]; 3];
+use crate::mat3::{Mat3, transpose};
 
 /// A lowered rotation: the matrix and the angular velocity in body and world axes.
 pub struct Rotation {
@@ -254,10 +253,6 @@ impl Lowerer<'_> {
             self.ctx.sum(&terms)
         })
     }
-}
-
-fn transpose(a: &Mat3) -> Mat3 {
-    [0, 1, 2].map(|i| [0, 1, 2].map(|j| a[j][i]))
 }
 
 /// `A * B * C` → [A, B, C] (left to right, the order the factors apply in).

@@ -1,0 +1,123 @@
+//! Inherent methods for the optional outputs asked for with `emit(...)`.
+
+use lagrange_symbolic::Expr as Sym;
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+use super::emitter::Emitter;
+use super::{Frame, constant};
+use crate::ast::{Extra, System};
+use crate::constraint::ConstraintSet;
+use crate::mechanics::Model;
+
+/// Inherent methods for the optional outputs: reactions and the Coriolis matrix.
+pub(super) fn extras(e: &Emitter, f: &Frame, model: &Model, system: &System) -> TokenStream {
+    let mut out = TokenStream::new();
+    let wants = |x: Extra| system.extras.iter().any(|(_, e)| *e == x);
+    if wants(Extra::Reactions)
+        && let Some(c) = &model.constraints
+    {
+        out.extend(reactions(e, f, model, system, c));
+    }
+    if let Some(cm) = &model.coriolis {
+        out.extend(coriolis(e, f, model, cm));
+    }
+    out
+}
+
+/// `REACTION_POINTS` and `reactions`: R = Σ_α ν_α ∂f_α/∂ξ per point.
+fn reactions(
+    e: &Emitter,
+    f: &Frame,
+    model: &Model,
+    system: &System,
+    c: &ConstraintSet,
+) -> TokenStream {
+    let (s, nl) = (&f.s, &f.n);
+    let vec_n = f.vec(nl);
+    let k = c.names.len();
+    let kl = Literal::usize_unsuffixed(k);
+    let p = c.reactions.len();
+    let pl = Literal::usize_unsuffixed(p);
+    let dim = c.reactions.first().map_or(3, |(_, r)| r.len());
+    let dl = Literal::usize_unsuffixed(dim);
+    let vec_k = f.vec(&kl);
+    let vec_d = f.vec(&dl);
+    let coeffs: Vec<Sym> = c
+        .reactions
+        .iter()
+        .flat_map(|(_, r)| r.iter().flatten().copied())
+        .collect();
+    let (lets, outs) = e.program(&coeffs);
+    let zero = constant(&system.scalar, 0.0);
+    let mut it = outs.iter();
+    let mut idx = 0;
+    let vectors: Vec<TokenStream> = c
+        .reactions
+        .iter()
+        .map(|(_, r)| {
+            let comps: Vec<TokenStream> = r
+                .iter()
+                .map(|row| {
+                    let terms: Vec<TokenStream> = row
+                        .iter()
+                        .enumerate()
+                        .filter_map(|(j, &coef)| {
+                            let o = it.next();
+                            idx += 1;
+                            let o = o?;
+                            if model.ctx.is_zero(coef) {
+                                return None;
+                            }
+                            let j = Literal::usize_unsuffixed(j);
+                            Some(quote!(#o * nu[#j]))
+                        })
+                        .collect();
+                    if terms.is_empty() {
+                        zero.clone()
+                    } else {
+                        quote!(#(#terms)+*)
+                    }
+                })
+                .collect();
+            quote!(<#vec_d>::from([#(#comps),*]))
+        })
+        .collect();
+    let names: Vec<&String> = c.reactions.iter().map(|(n, _)| n).collect();
+    quote! {
+        /// Points and bodies that constraints act on, in the order of [`Self::reactions`].
+        pub const REACTION_POINTS: [&'static str; #pl] = [#(#names),*];
+
+        /// Cartesian constraint reactions R = Σ_α ν_α ∂f_α/∂ξ on each of
+        /// [`Self::REACTION_POINTS`], from the multipliers ν the constrained
+        /// dynamics compute. Constraints written in generalized coordinates only
+        /// do not act on a point and do not appear here.
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
+        pub fn reactions(&self, q: &#vec_n, v: &#vec_n, t: #s, nu: &#vec_k) -> [#vec_d; #pl] {
+            #lets
+            [#(#vectors),*]
+        }
+    }
+}
+
+/// `coriolis_matrix`: C(q, q̇, t).
+fn coriolis(e: &Emitter, f: &Frame, model: &Model, cm: &[Vec<Sym>]) -> TokenStream {
+    let (s, nl) = (&f.s, &f.n);
+    let vec_n = f.vec(nl);
+    let n = model.dof();
+    let flat: Vec<Sym> = cm.iter().flatten().copied().collect();
+    let (lets, outs) = e.program(&flat);
+    let fill = e.fill_dense(&quote!(c), &outs, n);
+    let mat = f.mat(nl, nl);
+    quote! {
+        /// The Coriolis matrix C(q, q̇, t), C_ij = Σ_k Γ_ijk q̇_k, with Γ the Christoffel
+        /// symbols of M: Ṁ − 2C is skew-symmetric, and C q̇ is the quadratic part of h.
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
+        pub fn coriolis_matrix(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #mat {
+            #lets
+            let mut c = <#mat>::zeros();
+            #fill
+            c
+        }
+    }
+}

@@ -1,0 +1,316 @@
+//! `impl Lagrangian`, the `EQUATIONS` texts and the programs over the hoisted
+//! parameter terms.
+
+use proc_macro2::{Literal, TokenStream};
+use quote::{format_ident, quote};
+
+use super::constrained::impl_constrained;
+use super::driven::impl_driven;
+use super::emitter::Emitter;
+use super::extra::extras;
+use super::method::{forward_dynamics, optional_methods, visit_form};
+use super::reduced::impl_reduced;
+use super::{Frame, constant};
+use crate::ast::System;
+use crate::doc;
+use crate::mechanics::Model;
+
+/// Every impl of a derived description: `Lagrangian`, the inherent `EQUATIONS`
+/// and optional outputs, the hoisted programs, and the constrained and driven
+/// forms it has.
+pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
+    let e = Emitter::new(model, &system.scalar);
+    let f = Frame::new(system, model.dof());
+    let docs = Docs::new(system, model);
+    let (forward_dynamics, articulated_inner) = forward_dynamics(&e, &f, model);
+    let lagrangian = lagrangian_trait(&e, &f, system, model, forward_dynamics);
+    let equations = equations_impl(&f, &docs, extras(&e, &f, model, system));
+    let hoisted = hoisted_impl(&e, &f, system, model, articulated_inner);
+    let constrained = impl_constrained(&e, &f, model);
+    let reduced = impl_reduced(&e, &f, model);
+    let driven = impl_driven(&e, &f, model);
+    let (docs_macro, docs_text) = (&docs.name, &docs.equations);
+    quote! {
+        macro_rules! #docs_macro {
+            () => {
+                #docs_text
+            };
+        }
+
+        #lagrangian
+        #equations
+        #hoisted
+        #constrained
+        #reduced
+        #driven
+    }
+}
+
+/// The `EQUATIONS` texts. The text is emitted once, in a macro both the rustdoc
+/// and `EQUATIONS` expand (a summary replaces it in the rustdoc beyond the cap).
+struct Docs {
+    equations: String,
+    latex: String,
+    name: syn::Ident,
+    impl_doc: TokenStream,
+}
+
+impl Docs {
+    fn new(system: &System, model: &Model) -> Self {
+        let doc::Texts { equations, latex } = doc::texts(model);
+        let name = format_ident!("__lagrange_equations_{}", system.ident);
+        let impl_doc = match doc::rustdoc(&equations, &system.ident.to_string()) {
+            Some(summary) => quote!(#[doc = #summary]),
+            None => quote! {
+                #[doc = "Equations of motion derived by `#[derive(Lagrangian)]`.\n\n```text"]
+                #[doc = #name!()]
+                #[doc = "```"]
+            },
+        };
+        Docs {
+            equations,
+            latex,
+            name,
+            impl_doc,
+        }
+    }
+}
+
+/// `impl Lagrangian`: M, h, Q, the energies and the methods over the hoisted
+/// terms, with the optional methods the model has.
+fn lagrangian_trait(
+    e: &Emitter,
+    f: &Frame,
+    system: &System,
+    model: &Model,
+    forward_dynamics: TokenStream,
+) -> TokenStream {
+    let (s, nl) = (&f.s, &f.n);
+    let n = model.dof();
+    let (m_lets, m_outs) = e.program(&e.upper());
+    let m_fill = e.symmetric_matrix(&m_outs, n);
+    let bias = e.vector_body(&model.bias, s, nl);
+    let forces = e.vector_body(&model.forces, s, nl);
+    let energies = energy_methods(e, f, model);
+    let names = &model.coordinates;
+    let rheonomic = model.rheonomic;
+    let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
+    let cyclic = cyclic_const(model, nl);
+    let hamiltonian = optional_methods(e, f, model);
+    let visit_form = visit_form(f, model);
+    let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
+    let (vec_t, mat_t) = (f.vec(nl), f.mat(nl, nl));
+    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    quote! {
+        /// The system as `#[derive(Lagrangian)]` derived it; the equations are
+        /// on the type's inherent impl (`EQUATIONS`).
+        #[automatically_derived]
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
+        impl #ig ::lagrange::__private::Lagrangian<#s, #nl> for #ident #tg #wc {
+            const COORDINATES: [&'static str; #nl] = [#(#names),*];
+            const RHEONOMIC: bool = #rheonomic;
+            const CONSTRAINED: bool = #has_constraints;
+            #cyclic
+
+            #[inline]
+            fn mass_matrix(&self, q: &#vec_t, t: #s) -> #mat_t {
+                #m_lets
+                <#mat_t>::from(#m_fill)
+            }
+
+            #[inline]
+            fn bias(&self, q: &#vec_t, v: &#vec_t, t: #s) -> #vec_t {
+                #bias
+            }
+
+            #[inline]
+            fn generalized_forces(&self, q: &#vec_t, v: &#vec_t, t: #s) -> #vec_t {
+                #forces
+            }
+
+            #[inline]
+            fn mass_matrix_and_rhs(&self, q: &#vec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
+                self.__lagrange_mass_matrix_and_rhs(&self.__lagrange_parameter_terms(), q, v, t)
+            }
+
+            fn parameter_terms(&self) -> ::std::vec::Vec<#s> {
+                self.__lagrange_parameter_terms().to_vec()
+            }
+
+            #[inline]
+            fn mass_matrix_and_rhs_with(&self, terms: &[#s], q: &#vec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
+                match <&[#s; #h_len]>::try_from(terms) {
+                    ::core::result::Result::Ok(p) => self.__lagrange_mass_matrix_and_rhs(p, q, v, t),
+                    ::core::result::Result::Err(_) => self.mass_matrix_and_rhs(q, v, t),
+                }
+            }
+
+            #energies
+
+            #hamiltonian
+            #forward_dynamics
+            #visit_form
+        }
+    }
+}
+
+/// `CYCLIC`, where some coordinate is; the trait's default (none) otherwise, so
+/// that most expansions do not carry a line of `false`s.
+fn cyclic_const(model: &Model, nl: &Literal) -> TokenStream {
+    if !model.cyclic.iter().any(|&c| c) {
+        return TokenStream::new();
+    }
+    let cyclic = &model.cyclic;
+    quote!(const CYCLIC: [bool; #nl] = [#(#cyclic),*];)
+}
+
+/// `kinetic_energy`, `potential_energy` and `integral`.
+fn energy_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    let (s, vec_t) = (&f.s, f.vec(&f.n));
+    let (k_lets, k_out) = e.program(&[model.kinetic]);
+    let (p_lets, p_out) = e.program(&[model.potential]);
+    let (i_lets, i_out) = e.program(&[model.integral]);
+    let (k_out, p_out, i_out) = (&k_out[0], &p_out[0], &i_out[0]);
+    quote! {
+        #[inline]
+        fn kinetic_energy(&self, q: &#vec_t, v: &#vec_t, t: #s) -> #s {
+            #k_lets
+            #k_out
+        }
+
+        #[inline]
+        fn potential_energy(&self, q: &#vec_t, t: #s) -> #s {
+            #p_lets
+            #p_out
+        }
+
+        #[inline]
+        fn integral(&self, q: &#vec_t, v: &#vec_t, t: #s) -> #s {
+            #i_lets
+            #i_out
+        }
+    }
+}
+
+/// The inherent impl with `EQUATIONS`, `EQUATIONS_LATEX` and the optional outputs.
+fn equations_impl(f: &Frame, docs: &Docs, extras: TokenStream) -> TokenStream {
+    let (docs_macro, latex, impl_doc) = (&docs.name, &docs.latex, &docs.impl_doc);
+    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    quote! {
+        #impl_doc
+        #[automatically_derived]
+        impl #ig #ident #tg #wc {
+            /// The derived equations of motion as text: M, h, Q, the energies
+            /// and the constraint rows, as one listing with shared
+            /// intermediates named.
+            pub const EQUATIONS: &'static str = #docs_macro!();
+            /// The same equations as LaTeX: the lines of an `aligned` block
+            /// (`M_{0 1} &= …`, `h_{0}`, `Q_{0}`, `T`, `V`, and `\Phi`, `G`, `g`,
+            /// `\gamma`, `A`, `b`, `c` per constraint or speed row), ready for
+            /// `$$ … $$` in a document or a notebook.
+            pub const EQUATIONS_LATEX: &'static str = #latex;
+            #extras
+        }
+    }
+}
+
+/// M and Q − h over the hoisted parameter terms `p`: the `let`s, M's fill, Q − h
+/// and the piece functions of a chunked program.
+struct Joint {
+    lets: TokenStream,
+    fill: TokenStream,
+    rhs: Vec<TokenStream>,
+    pieces: TokenStream,
+}
+
+fn joint_program(e: &Emitter, f: &Frame, system: &System, model: &Model) -> Joint {
+    let (s, nl) = (&f.s, &f.n);
+    let n = model.dof();
+    let joint = model.hoisted_upper_and_rhs();
+    let upper_len = joint.len() - n;
+    // A large program runs as pieces, each its own function, passing values
+    // through the array `s`.
+    let (lets, outs, pieces) = match e.program_chunked(&joint) {
+        None => {
+            let (lets, outs) = e.program(&joint);
+            (lets, outs, TokenStream::new())
+        }
+        Some(chunked) => {
+            let slots = Literal::usize_unsuffixed(chunked.slots);
+            let zero = constant(&system.scalar, 0.0);
+            let names: Vec<syn::Ident> = (0..chunked.chunks.len())
+                .map(|k| format_ident!("__lagrange_mass_matrix_and_rhs_{k}"))
+                .collect();
+            let bodies = &chunked.chunks;
+            let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
+            let vec_t = f.vec(nl);
+            let lets = quote! {
+                let mut s = [#zero; #slots];
+                #(self.#names(p, q, v, t, &mut s);)*
+            };
+            let pieces = quote! {
+                #(
+                    #[doc(hidden)]
+                    #[inline(never)]
+                    pub fn #names(&self, p: &[#s; #h_len], q: &#vec_t, v: &#vec_t, t: #s, s: &mut [#s; #slots]) {
+                        #bodies
+                    }
+                )*
+            };
+            (lets, chunked.outputs, pieces)
+        }
+    };
+    Joint {
+        lets,
+        fill: e.symmetric_matrix(&outs[..upper_len], n),
+        rhs: outs[upper_len..].to_vec(),
+        pieces,
+    }
+}
+
+/// The inherent impl of the parameter-only terms and the programs over them.
+fn hoisted_impl(
+    e: &Emitter,
+    f: &Frame,
+    system: &System,
+    model: &Model,
+    articulated_inner: TokenStream,
+) -> TokenStream {
+    let (s, nl) = (&f.s, &f.n);
+    let (vec_t, mat_t) = (f.vec(nl), f.mat(nl, nl));
+    let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
+    let (t_lets, t_outs) = e.program(&model.hoisted.terms);
+    let Joint {
+        lets: j_lets,
+        fill: j_fill,
+        rhs: j_rhs,
+        pieces: j_pieces,
+    } = joint_program(e, f, system, model);
+    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    quote! {
+        /// The parameter-only terms and the programs over them.
+        #[automatically_derived]
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
+        impl #ig #ident #tg #wc {
+            #[doc(hidden)]
+            #[inline(never)]
+            pub fn __lagrange_parameter_terms(&self) -> [#s; #h_len] {
+                #t_lets
+                [#(#t_outs),*]
+            }
+
+            // Not `#[inline]`: two trait methods call it, and one copy of a
+            // large straight-line program is what keeps model crates quick to
+            // build (the call costs nothing beside the body).
+            #[doc(hidden)]
+            pub fn __lagrange_mass_matrix_and_rhs(&self, p: &[#s; #h_len], q: &#vec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
+                #j_lets
+                (<#mat_t>::from(#j_fill), <#vec_t>::from([#(#j_rhs),*]))
+            }
+
+            #j_pieces
+
+            #articulated_inner
+        }
+    }
+}

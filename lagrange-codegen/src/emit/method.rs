@@ -1,0 +1,125 @@
+//! The `Lagrangian` methods a description has only sometimes: Hamilton's form,
+//! the right-hand-side Jacobians, the articulated-body q̈ and `visit_form` for a
+//! constrained description.
+
+use lagrange_symbolic::Expr as Sym;
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+use super::Frame;
+use super::emitter::Emitter;
+use crate::mechanics::Model;
+
+/// The optional `Lagrangian` methods: momentum and ∂T/∂q (Hamilton's form) and
+/// the right-hand-side Jacobians, when the model has them.
+pub(super) fn optional_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    let (s, nl) = (&f.s, &f.n);
+    let n = model.dof();
+    let (vec_n, mat) = (f.vec(nl), f.mat(nl, nl));
+    let mut out = TokenStream::new();
+    if let Some(p) = &model.momentum {
+        let (lets, outs) = e.program(p);
+        out.extend(quote! {
+            #[inline]
+            fn momentum(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_n {
+                #lets
+                <#vec_n>::from([#(#outs),*])
+            }
+        });
+    }
+    if let Some(g) = &model.kinetic_gradient {
+        let (lets, outs) = e.program(g);
+        out.extend(quote! {
+            #[inline]
+            fn kinetic_gradient(&self, q: &#vec_n, v: &#vec_n, t: #s) -> ::core::option::Option<#vec_n> {
+                #lets
+                ::core::option::Option::Some(<#vec_n>::from([#(#outs),*]))
+            }
+        });
+    }
+    if let Some([jq, jv]) = &model.jacobians {
+        let mut all: Vec<Sym> = jq.iter().flatten().copied().collect();
+        all.extend(jv.iter().flatten());
+        let (lets, outs) = e.program(&all);
+        let fq = e.fill_dense(&quote!(jq), &outs[..n * n], n);
+        let fv = e.fill_dense(&quote!(jv), &outs[n * n..], n);
+        out.extend(quote! {
+            #[inline]
+            fn rhs_jacobians(&self, q: &#vec_n, v: &#vec_n, a: &#vec_n, t: #s) -> ::core::option::Option<(#mat, #mat)> {
+                #lets
+                let mut jq = <#mat>::zeros();
+                #fq
+                let mut jv = <#mat>::zeros();
+                #fv
+                ::core::option::Option::Some((jq, jv))
+            }
+        });
+    }
+    out
+}
+
+/// `Lagrangian::forward_dynamics` by the articulated-body algorithm, with the
+/// smallest-to-largest pivot ratio for the singularity check: the trait methods
+/// and the inherent program over the hoisted parameter terms `p`.
+pub(super) fn forward_dynamics(
+    e: &Emitter,
+    f: &Frame,
+    model: &Model,
+) -> (TokenStream, TokenStream) {
+    let Some(a) = &model.articulated else {
+        return (TokenStream::new(), TokenStream::new());
+    };
+    let Frame { s, n, .. } = f;
+    let vec_t = quote!(::lagrange::__private::SVector<#s, #n>);
+    let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
+    let outputs = model.hoisted_articulated().unwrap_or_default();
+    let (lets, outs) = e.program(outputs);
+    let (acc, pivots) = outs.split_at(a.accelerations.len());
+    let methods = quote! {
+        #[inline]
+        fn forward_dynamics(&self, q: &#vec_t, v: &#vec_t, tau: &#vec_t, t: #s) -> ::core::option::Option<(#vec_t, #s)> {
+            ::core::option::Option::Some(self.__lagrange_forward_dynamics(&self.__lagrange_parameter_terms(), q, v, tau, t))
+        }
+
+        #[inline]
+        fn forward_dynamics_with(&self, terms: &[#s], q: &#vec_t, v: &#vec_t, tau: &#vec_t, t: #s) -> ::core::option::Option<(#vec_t, #s)> {
+            match <&[#s; #h_len]>::try_from(terms) {
+                ::core::result::Result::Ok(p) => ::core::option::Option::Some(self.__lagrange_forward_dynamics(p, q, v, tau, t)),
+                ::core::result::Result::Err(_) => self.forward_dynamics(q, v, tau, t),
+            }
+        }
+    };
+    let inner = quote! {
+        #[doc(hidden)]
+        pub fn __lagrange_forward_dynamics(&self, p: &[#s; #h_len], q: &#vec_t, v: &#vec_t, tau: &#vec_t, t: #s) -> (#vec_t, #s) {
+            #lets
+            let pivots: [#s; #n] = [#(#pivots),*];
+            let (mut lo, mut hi) = (pivots[0], pivots[0]);
+            for &d in &pivots[1..] {
+                if d < lo { lo = d; }
+                if d > hi { hi = d; }
+            }
+            (<#vec_t>::from([#(#acc),*]), lo / hi)
+        }
+    };
+    (methods, inner)
+}
+
+/// The override of `Lagrangian::visit_form` that makes `Simulation::run` run
+/// a constrained description in its form: the multiplier form when it is
+/// emitted, else the reduced form; nothing for an unconstrained one.
+pub(super) fn visit_form(f: &Frame, model: &Model) -> TokenStream {
+    let (s, nl) = (&f.s, &f.n);
+    let (method, k) = match (&model.constraints, &model.reduced) {
+        (Some(c), _) => (quote!(multipliers), c.names.len()),
+        (None, Some(r)) => (quote!(reduced), r.names.len()),
+        (None, None) => return quote!(),
+    };
+    let kl = Literal::usize_unsuffixed(k);
+    let p = quote!(::lagrange::__private);
+    quote! {
+        fn visit_form<F: #p::FormVisitor<#s, #nl, Self>>(&self, form: F) -> F::Output {
+            form.#method::<#kl>(self)
+        }
+    }
+}

@@ -1,0 +1,80 @@
+//! `impl Reduced`: the reduced form's speeds and stacked rows.
+
+use lagrange_symbolic::Expr as Sym;
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+use super::Frame;
+use super::emitter::Emitter;
+use crate::mechanics::Model;
+
+/// `impl Reduced`: the speeds, the stacked rows A = [U; G] with b, and their
+/// rates c; the runtime solves them (W, κ, M*, F*) with pivoting.
+pub(super) fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    let Some(r) = &model.reduced else {
+        return quote!();
+    };
+    let n = model.dof();
+    let kl = Literal::usize_unsuffixed(r.names.len());
+    let (s, nl) = (&f.s, &f.n);
+    let (vec_n, vec_k, mat_nn) = (f.vec(nl), f.vec(&kl), f.mat(nl, nl));
+
+    let (u_lets, u_outs) = e.program(&r.speeds);
+    let mut rows: Vec<Sym> = r.matrix.iter().flatten().copied().collect();
+    rows.extend(&r.free);
+    let (row_lets, row_outs) = e.program(&rows);
+    let (a_outs, b_outs) = row_outs.split_at(n * n);
+    let a_fill = e.fill_dense(&quote!(a), a_outs, n);
+    let (rate_lets, rate_outs) = e.program(&r.rates);
+    let derivatives = match &r.derivatives {
+        None => quote!(),
+        Some(d) => {
+            let body = e.dense_matrices(&[
+                ("danu", &d.force_q, mat_nn.clone()),
+                ("dres", &d.acceleration_q, mat_nn.clone()),
+                ("drate", &d.gamma_v, mat_nn.clone()),
+                ("dvel", &d.velocity_q, mat_nn.clone()),
+            ]);
+            quote! {
+                #[inline]
+                fn row_derivatives(&self, q: &#vec_n, v: &#vec_n, a: &#vec_n, nu: &#vec_n, t: #s) -> ::core::option::Option<(#mat_nn, #mat_nn, #mat_nn, #mat_nn)> {
+                    #body
+                    ::core::option::Option::Some((danu, dres, drate, dvel))
+                }
+            }
+        }
+    };
+    let (names, row_names, free) = (&r.names, &r.rows, r.free_speeds);
+    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    quote! {
+        #[automatically_derived]
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
+        impl #ig ::lagrange::__private::Reduced<#s, #nl, #kl> for #ident #tg #wc {
+            const SPEEDS: [&'static str; #kl] = [#(#names),*];
+            const ROWS: [&'static str; #nl] = [#(#row_names),*];
+            const FREE_SPEEDS: bool = #free;
+
+            #[inline]
+            fn velocity_rows(&self, q: &#vec_n, t: #s) -> (#mat_nn, #vec_n) {
+                #row_lets
+                let mut a = <#mat_nn>::zeros();
+                #a_fill
+                (a, <#vec_n>::from([#(#b_outs),*]))
+            }
+
+            #[inline]
+            fn row_rates(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_n {
+                #rate_lets
+                <#vec_n>::from([#(#rate_outs),*])
+            }
+
+            #[inline]
+            fn speeds(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_k {
+                #u_lets
+                <#vec_k>::from([#(#u_outs),*])
+            }
+
+            #derivatives
+        }
+    }
+}

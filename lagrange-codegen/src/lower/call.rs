@@ -1,0 +1,153 @@
+//! Function and method calls onto the engine's functions, and `dot(...)`, the
+//! time derivative of a position.
+
+use lagrange_symbolic::{Expr as Sym, Func};
+use syn::{Expr, Ident};
+
+use super::field::component;
+use super::{Binding, FUNCTIONS, Lowerer, Mode};
+
+impl Lowerer<'_> {
+    pub(super) fn call(&mut self, c: &syn::ExprCall, mode: Mode) -> Option<Sym> {
+        let Expr::Path(p) = &*c.func else {
+            return self.unsupported(&c.func, "calling this");
+        };
+        let Some(fname) = p.path.get_ident() else {
+            return self.unsupported(&c.func, "a path call");
+        };
+        let args: Vec<&Expr> = c.args.iter().collect();
+        let name = fname.to_string();
+        if name == "dot" {
+            return self.velocity(fname, &args, mode);
+        }
+        let Some(arity) = arity(&name) else {
+            self.cx.error_at(
+                fname.span(),
+                format!("unsupported function `{name}`; supported: {FUNCTIONS}"),
+            );
+            return None;
+        };
+        if args.len() != arity {
+            self.cx.error_spanned_by(
+                c,
+                format!(
+                    "`{name}` takes {arity} argument{}, found {}",
+                    if arity == 1 { "" } else { "s" },
+                    args.len()
+                ),
+            );
+            return None;
+        }
+        let lowered: Vec<Option<Sym>> = args.iter().map(|a| self.expr(a, mode)).collect();
+        let lowered: Vec<Sym> = lowered.into_iter().collect::<Option<_>>()?;
+        Some(self.apply(&name, &lowered))
+    }
+
+    /// `x.sin()`, `x.powi(2)`, `y.atan2(x)`: Rust method spelling of the same functions.
+    pub(super) fn method(&mut self, m: &syn::ExprMethodCall, mode: Mode) -> Option<Sym> {
+        let name = m.method.to_string();
+        let Some(arity) = arity(&name) else {
+            self.cx.error_at(
+                m.method.span(),
+                format!("unsupported function `{name}`; supported: {FUNCTIONS}"),
+            );
+            return None;
+        };
+        if m.args.len() + 1 != arity {
+            self.cx.error_spanned_by(
+                m,
+                format!(
+                    "`.{name}()` takes {} argument{}",
+                    arity - 1,
+                    if arity == 2 { "" } else { "s" }
+                ),
+            );
+            return None;
+        }
+        let recv = self.expr(&m.receiver, mode);
+        let rest: Vec<Option<Sym>> = m.args.iter().map(|a| self.expr(a, mode)).collect();
+        let mut all = vec![recv?];
+        for r in rest {
+            all.push(r?);
+        }
+        Some(self.apply(&name, &all))
+    }
+
+    fn apply(&mut self, name: &str, a: &[Sym]) -> Sym {
+        let f = match name {
+            "sin" => Func::Sin,
+            "cos" => Func::Cos,
+            "tan" => Func::Tan,
+            "asin" => Func::Asin,
+            "acos" => Func::Acos,
+            "atan" => Func::Atan,
+            "sinh" => Func::Sinh,
+            "cosh" => Func::Cosh,
+            "tanh" => Func::Tanh,
+            "exp" => Func::Exp,
+            "ln" | "log" => Func::Ln,
+            "sqrt" => Func::Sqrt,
+            "abs" => Func::Abs,
+            "atan2" => return self.ctx.atan2(a[0], a[1]),
+            "sign" => return self.ctx.sign(a[0]),
+            "min" => return self.ctx.min(a[0], a[1]),
+            "max" => return self.ctx.max(a[0], a[1]),
+            "clamp" => {
+                let low = self.ctx.max(a[0], a[1]);
+                return self.ctx.min(low, a[2]);
+            }
+            // pow, powi, powf
+            _ => return self.ctx.pow(a[0], a[1]),
+        };
+        self.ctx.func(f, a[0])
+    }
+
+    /// `dot(q)`: the generalized velocity of coordinate `q`.
+    fn velocity(&mut self, fname: &Ident, args: &[&Expr], mode: Mode) -> Option<Sym> {
+        if let [Expr::Field(f)] = args
+            && let Expr::Path(p) = &*f.base
+            && let Some(base) = p.path.get_ident()
+            && let syn::Member::Named(member) = &f.member
+            && let Some(frame) = self.frame_of(base)
+            && let Some(c) = component(&member.to_string())
+        {
+            return self.coordinate_of(frame, c, true, base, member, mode);
+        }
+        let target = match args {
+            [Expr::Path(p)] => p.path.get_ident(),
+            _ => None,
+        };
+        let Some(target) = target else {
+            self.cx.error_at(
+                fname.span(),
+                "`dot(...)` takes one coordinate name, e.g. `dot(theta)`",
+            );
+            return None;
+        };
+        let Some(Binding::Coordinate(q)) = self.scope.get(&target.to_string()).copied() else {
+            self.cx.error_at(
+                target.span(),
+                format!("`dot({target})`: `{target}` is not a generalized coordinate"),
+            );
+            return None;
+        };
+        if mode != Mode::State {
+            self.cx.error_at(
+                fname.span().join(target.span()).unwrap_or(fname.span()),
+                format!("velocity `dot({target})` cannot appear in {}: it must depend on coordinates, parameters and `t` only", mode.describe()),
+            );
+            return None;
+        }
+        self.ctx.velocity(q)
+    }
+}
+
+fn arity(name: &str) -> Option<usize> {
+    Some(match name {
+        "sin" | "cos" | "tan" | "asin" | "acos" | "atan" | "sinh" | "cosh" | "tanh" | "exp"
+        | "ln" | "log" | "sqrt" | "abs" | "sign" => 1,
+        "atan2" | "pow" | "powi" | "powf" | "min" | "max" => 2,
+        "clamp" => 3,
+        _ => return None,
+    })
+}

@@ -1,0 +1,241 @@
+//! `syn::Expr` → symbolic expressions.
+//!
+//! Resolves names (coordinates, parameters, definitions, `t`), maps the operators
+//! and functions a mechanics user writes onto the expression engine, and enforces
+//! the rules that need resolved names: unknown symbols, unsupported functions,
+//! velocities where only positions make sense, `^` precedence traps. Every error
+//! points at the offending token.
+
+use std::collections::BTreeMap;
+
+use lagrange_symbolic::{Context, Expr as Sym};
+use syn::{Expr, Ident, UnOp};
+
+use crate::ctxt::Ctxt;
+
+mod arith;
+mod call;
+pub mod condition;
+mod field;
+mod input;
+mod name;
+pub mod rotation;
+
+pub use input::NoInputs;
+
+/// What an expression is allowed to depend on.
+#[derive(Copy, Clone, PartialEq, Eq, Debug)]
+pub enum Mode {
+    /// Positions ξ(q, t) and potentials: coordinates, time, parameters; no velocities.
+    Configuration,
+    /// Forces and dissipation: velocities allowed too.
+    State,
+    /// Masses: parameters and literals only.
+    Constant,
+}
+
+impl Mode {
+    fn describe(self) -> &'static str {
+        match self {
+            Mode::Configuration => "a position, a gravity vector or a potential",
+            Mode::State => "this expression",
+            Mode::Constant => "a mass",
+        }
+    }
+}
+
+#[derive(Copy, Clone, Debug)]
+enum Binding {
+    Coordinate(Sym),
+    Parameter(Sym),
+    /// An input signal (`inputs(...)`).
+    Input(Sym),
+    /// A point or a body: index into `Lowerer::frames`.
+    Frame(usize),
+    /// A definition whose expression failed (its error is reported already):
+    /// its uses report nothing more.
+    Failed,
+    Definition {
+        value: Sym,
+        has_velocity: bool,
+        has_state: bool,
+        /// The first input the definition uses, if any.
+        input: Option<Sym>,
+    },
+}
+
+/// What `P.x`, `dot(P.x)` and `B.omega_x` refer to: a point, or a body's centre
+/// and angular velocity.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    pub name: String,
+    pub position: Vec<Sym>,
+    /// World- and body-frame angular velocity, for bodies.
+    pub omega: Option<[[Sym; 3]; 2]>,
+    /// The rotation matrix R (body to world), for bodies: column j is the
+    /// body's j-th axis in world components.
+    pub axes: Option<crate::mat3::Mat3>,
+}
+
+/// A Cartesian coordinate (or velocity) of a point that appeared in a constraint,
+/// kept as a free symbol so the reaction Σ λ ∂f/∂ξ can be taken before composing
+/// with ξ(q,t).
+#[derive(Copy, Clone, Debug)]
+pub struct CartesianRef {
+    pub symbol: Sym,
+    pub frame: usize,
+    pub component: usize,
+    pub velocity: bool,
+}
+
+/// Names in scope and the context the expressions are built in.
+pub struct Lowerer<'a> {
+    pub ctx: Context,
+    pub(crate) cx: &'a Ctxt,
+    scope: BTreeMap<String, Binding>,
+    pub frames: Vec<Frame>,
+    /// When set, point coordinates lower to free symbols recorded here.
+    pub cartesian: Option<Vec<CartesianRef>>,
+    /// When set, inputs are an error here (see [`Lowerer::without_inputs`]).
+    no_inputs: Option<NoInputs>,
+}
+
+const FUNCTIONS: &str = "sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, exp, ln, log, sqrt, abs, sign, min, max, clamp, pow, powi, powf, dot; and `if a > b { .. } else { .. }`";
+
+impl<'a> Lowerer<'a> {
+    pub fn new(cx: &'a Ctxt) -> Self {
+        let mut ctx = Context::new();
+        ctx.time();
+        Lowerer {
+            ctx,
+            cx,
+            scope: BTreeMap::new(),
+            frames: Vec::new(),
+            cartesian: None,
+            no_inputs: None,
+        }
+    }
+
+    /// Runs `f` with inputs forbidden: an input (or a definition that uses
+    /// one) is reported at its token with `place`'s reason.
+    pub fn without_inputs<R>(&mut self, place: NoInputs, f: impl FnOnce(&mut Self) -> R) -> R {
+        let outer = self.no_inputs.replace(place);
+        let r = f(self);
+        self.no_inputs = outer;
+        r
+    }
+
+    /// Brings an input into scope, unless its name is already taken (`check`
+    /// reports the clash at the input; the earlier meaning stays, so uses of
+    /// the name do not add errors of their own).
+    pub fn declare_input(&mut self, name: &Ident) -> Sym {
+        let u = self.ctx.input(&name.to_string());
+        self.scope
+            .entry(name.to_string())
+            .or_insert(Binding::Input(u));
+        u
+    }
+
+    /// Brings a point or body into scope for `P.x`, `dot(P.x)`, `B.omega_x`.
+    pub fn declare_frame(&mut self, name: &Ident, frame: Frame) -> usize {
+        let i = self.frames.len();
+        self.frames.push(frame);
+        self.scope.insert(name.to_string(), Binding::Frame(i));
+        i
+    }
+
+    /// The frame a name refers to, if it is a point or body in scope.
+    pub fn frame_of(&self, name: &Ident) -> Option<usize> {
+        match self.scope.get(&name.to_string()) {
+            Some(Binding::Frame(i)) => Some(*i),
+            _ => None,
+        }
+    }
+
+    pub fn declare_coordinate(&mut self, name: &Ident) -> Sym {
+        let q = self.ctx.coordinate(&name.to_string());
+        self.scope.insert(name.to_string(), Binding::Coordinate(q));
+        q
+    }
+
+    pub fn declare_parameter(&mut self, name: &Ident) -> Sym {
+        let p = self.ctx.parameter(&name.to_string());
+        self.scope.insert(name.to_string(), Binding::Parameter(p));
+        p
+    }
+
+    /// Lowers a definition (velocities allowed) and brings it into scope for later items.
+    pub fn declare_definition(&mut self, name: &Ident, value: &Expr) {
+        if let Some(v) = self.expr(value, Mode::State) {
+            let velocities = self.ctx.velocities();
+            let has_velocity = velocities.iter().any(|&qd| self.ctx.depends_on(v, qd));
+            let mut state = self.ctx.coordinates();
+            state.extend(velocities);
+            state.push(self.ctx.time());
+            let has_state = state.iter().any(|&s| self.ctx.depends_on(v, s));
+            let input = self
+                .ctx
+                .inputs()
+                .into_iter()
+                .find(|&u| self.ctx.depends_on(v, u));
+            self.scope.insert(
+                name.to_string(),
+                Binding::Definition {
+                    value: v,
+                    has_velocity,
+                    has_state,
+                    input,
+                },
+            );
+        } else {
+            self.scope.insert(name.to_string(), Binding::Failed);
+        }
+    }
+
+    /// Lowers `[a, b, c]` into its components.
+    pub fn vector(&mut self, e: &Expr, mode: Mode) -> Option<Vec<Sym>> {
+        let Expr::Array(a) = e else { return None };
+        let parts: Vec<Option<Sym>> = a.elems.iter().map(|x| self.expr(x, mode)).collect();
+        parts.into_iter().collect()
+    }
+
+    pub fn expr(&mut self, e: &Expr, mode: Mode) -> Option<Sym> {
+        match e {
+            Expr::Lit(l) => self.literal(&l.lit),
+            Expr::Paren(p) => self.expr(&p.expr, mode),
+            Expr::Group(g) => self.expr(&g.expr, mode),
+            Expr::Path(p) => match p.path.get_ident() {
+                Some(id) => self.name(id, mode),
+                None => self.unsupported(e, "a path; use a plain name"),
+            },
+            Expr::Field(f) => self.field(f, mode),
+            Expr::Unary(u) => match u.op {
+                UnOp::Neg(_) => {
+                    let a = self.expr(&u.expr, mode)?;
+                    Some(self.ctx.neg(a))
+                }
+                _ => self.unsupported(e, "this unary operator"),
+            },
+            Expr::Binary(b) => self.binary(b, mode),
+            Expr::If(i) => self.conditional(i, mode),
+            Expr::Call(c) => self.call(c, mode),
+            Expr::MethodCall(m) => self.method(m, mode),
+            Expr::Array(_) => {
+                self.cx.error_spanned_by(
+                    e,
+                    "a vector is not allowed here; expected a scalar expression",
+                );
+                None
+            }
+            _ => self.unsupported(e, "this kind of expression"),
+        }
+    }
+
+    fn unsupported(&self, e: &Expr, what: &str) -> Option<Sym> {
+        self.cx.error_spanned_by(
+            e,
+            format!("{what} is not supported in #[lagrange] expressions (use numbers, names, + - * / ^, and functions: {FUNCTIONS})"),
+        );
+        None
+    }
+}

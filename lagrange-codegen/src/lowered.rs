@@ -1,0 +1,82 @@
+//! The lowered description: what `scene` hands to `mechanics`, every quantity an
+//! expression in one [`Context`] with the names resolved. Kept apart from both
+//! stages so that neither has to import the other's internals.
+
+use lagrange_symbolic::{Context, Expr as Sym};
+
+use crate::ast::Extra;
+use crate::mat3::Mat3;
+
+/// A point mass (or a body's centre of mass) after lowering.
+pub struct PointModel {
+    pub name: String,
+    pub mass: Sym,
+    pub position: Vec<Sym>,
+}
+
+/// The rotational part of a rigid body: inertia about the centre in body axes and
+/// the body-frame angular velocity ω(q, q̇, t).
+pub struct SpinModel {
+    pub name: String,
+    pub inertia: Mat3,
+    pub omega: [Sym; 3],
+}
+
+/// The lowered description: everything as expressions, names resolved.
+pub struct Lowered {
+    pub ctx: Context,
+    pub coordinates: Vec<String>,
+    /// Names of the inputs, in the order of their symbols (`Context::inputs`).
+    pub inputs: Vec<String>,
+    pub parameters: Vec<String>,
+    pub points: Vec<PointModel>,
+    pub spins: Vec<SpinModel>,
+    /// Where the masses sit relative to the bodies (for the recursive route).
+    pub skeleton: Skeleton,
+    pub gravity: Option<Vec<Sym>>,
+    pub potential: Option<Sym>,
+    pub dissipation: Option<Sym>,
+    /// (position of the point of application, Cartesian force)
+    pub forces: Vec<(Vec<Sym>, Vec<Sym>)>,
+    /// (coordinate index, generalized force)
+    pub generalized_forces: Vec<(usize, Sym)>,
+    pub holonomic: Vec<ConstraintModel>,
+    pub nonholonomic: Vec<ConstraintModel>,
+    /// The reduced form, if asked for: with the user's speeds (name, u(q, q̇, t)), or
+    /// `Some(None)` to choose independent velocities automatically.
+    pub speeds: Option<Option<Vec<(String, Sym)>>>,
+    /// Whether to build the multiplier form.
+    pub multipliers: bool,
+    /// Optional outputs asked for with `emit(...)`.
+    pub extras: Vec<Extra>,
+}
+
+/// Where bodies and points sit, recorded while lowering.
+#[derive(Default)]
+pub struct Skeleton {
+    /// Per body, parallel to `Lowered::spins`.
+    pub bodies: Vec<BodyFrame>,
+    /// Per point mass, parallel to `Lowered::points`: the body it is fixed in and
+    /// its offset from that body's reference point in body axes.
+    pub masses: Vec<Option<(usize, Vec<Sym>)>>,
+    /// Every point fixed in a body (its world position, the body, the offset):
+    /// where children may be attached.
+    pub anchors: Vec<(Vec<Sym>, usize, Vec<Sym>)>,
+}
+
+/// A body's rotation factors (`None` for an explicit matrix) and reference point.
+pub struct BodyFrame {
+    pub factors: Option<Vec<(usize, Sym)>>,
+    pub reference: Vec<Sym>,
+}
+
+/// One constraint after lowering and composition with ξ(q,t).
+pub struct ConstraintModel {
+    pub name: String,
+    /// f(q,t) for a holonomic constraint, a(q,t)·q̇ + b(q,t) for a nonholonomic one.
+    pub value: Sym,
+    /// For each point or body named in the constraint: ∂f/∂ξ (holonomic) or ∂f/∂ξ̇
+    /// (nonholonomic) per Cartesian component, composed with ξ(q,t). The reaction of
+    /// this constraint on that point is its multiplier times this vector.
+    pub cartesian: Vec<(String, Vec<Sym>)>,
+}

@@ -1,0 +1,100 @@
+//! Optional outputs over the derived M and Q − h: the Coriolis matrix, the
+//! right-hand side's Jacobians, and the momentum and ∂T/∂q of the Hamiltonian
+//! methods.
+
+use lagrange_symbolic::{Context, Expr as Sym};
+
+/// p = ∂T/∂q̇.
+pub(super) fn momentum(ctx: &mut Context, kinetic: Sym) -> Vec<Sym> {
+    ctx.velocities()
+        .iter()
+        .map(|&v| {
+            let p = ctx.diff(kinetic, v);
+            ctx.collect(p)
+        })
+        .collect()
+}
+
+/// ∂T/∂q at fixed q̇.
+pub(super) fn kinetic_gradient(ctx: &mut Context, kinetic: Sym) -> Vec<Sym> {
+    ctx.coordinates()
+        .iter()
+        .map(|&x| {
+            let g = ctx.diff(kinetic, x);
+            ctx.collect(g)
+        })
+        .collect()
+}
+
+/// J_q = ∂(Q − h)/∂q − [∂M/∂q_k q̈]_k and J_v = ∂(Q − h)/∂q̇, with q̈ left as the
+/// acceleration symbols (the runtime passes the current q̈).
+pub(super) fn rhs_jacobians(
+    ctx: &mut Context,
+    mass: &[Vec<Sym>],
+    rhs: &[Sym],
+) -> [Vec<Vec<Sym>>; 2] {
+    let q = ctx.coordinates();
+    let qd = ctx.velocities();
+    let qdd = ctx.accelerations();
+    let n = q.len();
+    let jq = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|k| {
+                    let mut terms = vec![ctx.diff(rhs[i], q[k])];
+                    for j in 0..n {
+                        let dm = ctx.diff(mass[i][j], q[k]);
+                        let t = ctx.mul(dm, qdd[j]);
+                        terms.push(ctx.neg(t));
+                    }
+                    let s = ctx.sum(&terms);
+                    ctx.collect(s)
+                })
+                .collect()
+        })
+        .collect();
+    let jv = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|k| {
+                    let d = ctx.diff(rhs[i], qd[k]);
+                    ctx.collect(d)
+                })
+                .collect()
+        })
+        .collect();
+    [jq, jv]
+}
+
+/// C_ij = Σ_k Γ_ijk q̇_k with Γ_ijk = ½(∂M_ij/∂q_k + ∂M_ik/∂q_j − ∂M_jk/∂q_i): the
+/// factorisation of the Christoffel terms for which Ṁ − 2C is skew-symmetric.
+pub(super) fn coriolis_matrix(
+    ctx: &mut Context,
+    mass: &[Vec<Sym>],
+    q: &[Sym],
+    qd: &[Sym],
+) -> Vec<Vec<Sym>> {
+    let n = q.len();
+    let half = ctx.rational(1, 2);
+    (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let terms: Vec<Sym> = (0..n)
+                        .map(|k| {
+                            let a = ctx.diff(mass[i][j], q[k]);
+                            let b = ctx.diff(mass[i][k], q[j]);
+                            let c = ctx.diff(mass[j][k], q[i]);
+                            let g = ctx.add(a, b);
+                            let g = ctx.sub(g, c);
+                            let g = ctx.mul(half, g);
+                            ctx.mul(g, qd[k])
+                        })
+                        .collect();
+                    let s = ctx.sum(&terms);
+                    ctx.collect(s)
+                })
+                .collect()
+        })
+        .collect()
+}

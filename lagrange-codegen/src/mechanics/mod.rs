@@ -1,0 +1,458 @@
+//! Lagrange's equations of the second kind, derived symbolically.
+//!
+//! Input: the lowered description (positions ξ_ν(q,t), masses, gravity, potential,
+//! forces, dissipation). Output: a [`Model`] holding M(q,t), h(q,q̇,t), Q(q,q̇,t) and
+//! the energies as expressions in one [`Context`], ready for `emit`.
+//!
+//! h is derived twice — by the d'Alembert projection h = Σ m Jᵀκ and by
+//! differentiating T (the Christoffel route) — and the cheaper program is kept.
+//! The two must agree; a test checks that numerically.
+//!
+//! [`derive_with`] reads as the stages: per-point and per-body `kinematics` and
+//! T; M and h by the `generic` route and/or the `recursive` one (the cheaper
+//! kept); Q by `force` with the inputs split off; the `energy` functions;
+//! the optional outputs (`extra`), the constrained forms and one hoisting.
+//! Every step builds nodes in the order the single function did, so the emitted
+//! code is unchanged byte for byte.
+
+mod cyclic;
+mod energy;
+mod extra;
+mod force;
+mod generic;
+mod kinematics;
+mod model;
+mod recursive;
+mod vector;
+
+pub use model::{Articulation, BiasRoute, InputModel, Model};
+
+use lagrange_symbolic::{Context, Expr as Sym};
+
+use crate::ast::Extra;
+use crate::constraint::{ConstraintSet, Reduction};
+use crate::lowered::{ConstraintModel, Lowered};
+use force::Applied;
+use generic::GenericTerms;
+use kinematics::at_zero;
+use recursive::RecursiveTerms;
+
+/// Which derivation of M and h to use.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Route {
+    /// The recursive route where the bodies form a kinematic tree; on small trees
+    /// both routes are derived and the cheaper program kept.
+    Auto,
+    /// Differentiate ξ(q, t) (M = Σ Jᵀ m J, h by projection or Christoffel).
+    Generic,
+    /// Composite rigid bodies and recursive Newton–Euler; an error if the
+    /// description is not a kinematic tree of revolute joints.
+    Recursive,
+}
+
+/// Up to this many joints a detected tree is derived both ways (the generic
+/// route grows as n³ but its constant is small: it wins on a heavy top).
+const BOTH_ROUTES_UP_TO: usize = 6;
+
+/// What a kinematic tree is, for the errors that need one.
+const TREE: &str = "a kinematic tree of revolute joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates, its reference point fixed in the parent, every point mass fixed in a body";
+
+/// Why a description could not be derived (beyond what lowering reports).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum DeriveError {
+    /// A reduced form that cannot be built: speeds and constraints that do not
+    /// determine the velocities.
+    Reduction(String),
+    /// `emit(articulated)` on a description that is not a kinematic tree.
+    ArticulatedNeedsTree,
+    /// [`Route::Recursive`] asked of a description that is not a kinematic tree.
+    NotATree,
+}
+
+impl std::fmt::Display for DeriveError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DeriveError::Reduction(msg) => f.write_str(msg),
+            DeriveError::ArticulatedNeedsTree => write!(
+                f,
+                "`articulated` needs {TREE}; without one, remove `articulated` (q̈ then comes from M and its Cholesky factorisation)"
+            ),
+            DeriveError::NotATree => write!(f, "the recursive route needs {TREE}"),
+        }
+    }
+}
+
+/// Derives the model, by the recursive route where the bodies form a tree.
+///
+/// # Errors
+/// See [`DeriveError`].
+pub fn derive(lowered: Lowered) -> Result<Model, DeriveError> {
+    derive_with(lowered, Route::Auto)
+}
+
+/// Derives the model by the given route.
+///
+/// # Errors
+/// As [`derive()`], and [`DeriveError::NotATree`] for [`Route::Recursive`] on a
+/// description that is not a tree.
+pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError> {
+    let Lowered {
+        mut ctx,
+        coordinates,
+        inputs: input_names,
+        parameters,
+        points,
+        spins,
+        skeleton,
+        gravity,
+        potential,
+        dissipation,
+        forces,
+        generalized_forces,
+        holonomic,
+        nonholonomic,
+        speeds,
+        multipliers,
+        extras,
+    } = lowered;
+    let qdd = ctx.accelerations();
+    let zero_acc = at_zero(&mut ctx, &qdd);
+    let tree = match route {
+        Route::Generic => None,
+        Route::Auto | Route::Recursive => {
+            recursive::detect(&mut ctx, &points, &spins, &skeleton, gravity.as_deref())
+        }
+    };
+    let generic = wants_generic(route, tree.as_ref())?;
+    let (kin, spin, rheonomic, kinetic) =
+        kinematics::derive(&mut ctx, &points, &spins, generic, &zero_acc);
+    let generic_terms =
+        generic.then(|| generic::derive(&mut ctx, &kin, &spin, kinetic, rheonomic, &zero_acc));
+    let recursive_terms = recursive::cheaper(&mut ctx, tree.as_ref(), generic_terms.as_ref());
+    let applied = Applied {
+        dissipation,
+        forces: &forces,
+        generalized: &generalized_forces,
+    };
+    let sources = Sources {
+        gravity: gravity.as_deref(),
+        potential,
+        applied,
+        tree: tree.as_ref(),
+        recursive: recursive_terms.is_some(),
+        articulated: extras.contains(&Extra::Articulated),
+    };
+    let forces = applied_forces(&mut ctx, &kin, &sources, input_names)?;
+    let motion = equations(&mut ctx, recursive_terms, generic_terms, &forces);
+    let kinetic = energy::cheaper_kinetic(&mut ctx, rheonomic, kinetic, &motion.mass);
+    let integral = energy::integral(&mut ctx, rheonomic, kinetic, forces.potential, &motion.mass);
+    let derived = Derived {
+        coordinates,
+        parameters,
+        rheonomic,
+        kinetic,
+        integral,
+        particles: kin.iter().map(|k| (k.mass, k.position.clone())).collect(),
+        has_spin: !spin.is_empty(),
+        forces,
+        motion,
+    };
+    let constrained = Constrained {
+        holonomic: &holonomic,
+        nonholonomic: &nonholonomic,
+        multipliers,
+        speeds,
+    };
+    finish(ctx, derived, constrained, &extras)
+}
+
+/// Whether to derive the generic route (besides the recursive one, if there is a
+/// tree), or the error when the recursive route was required of a non-tree.
+fn wants_generic(route: Route, tree: Option<&crate::tree::Tree>) -> Result<bool, DeriveError> {
+    if route == Route::Recursive && tree.is_none() {
+        return Err(DeriveError::NotATree);
+    }
+    Ok(tree.is_none_or(|t| route == Route::Auto && t.len() <= BOTH_ROUTES_UP_TO))
+}
+
+/// Where Q comes from: gravity, V and the applied forces, and what the recursive
+/// algorithms need of it.
+struct Sources<'a> {
+    gravity: Option<&'a [Sym]>,
+    potential: Option<Sym>,
+    applied: Applied<'a>,
+    tree: Option<&'a crate::tree::Tree>,
+    /// Whether M and h come from the recursions (which take gravity as a base
+    /// acceleration, so Q leaves it out).
+    recursive: bool,
+    /// Whether `emit(articulated)` asked for the articulated-body q̈.
+    articulated: bool,
+}
+
+/// Q at zero input, V at zero input, and what depends on them.
+struct Forces {
+    generalized: Vec<Sym>,
+    /// −Σ m g·ξ alone (the recursive route adds its gradient back into Q).
+    gravity_potential: Sym,
+    /// The user's V plus gravity's, at zero input.
+    potential: Sym,
+    inputs: Option<InputModel>,
+    articulated: Option<Articulation>,
+}
+
+/// Q (with or without gravity's share, by the route), V, the inputs' share of
+/// both and the articulated q̈.
+fn applied_forces(
+    ctx: &mut Context,
+    kin: &[kinematics::Kinematics],
+    s: &Sources,
+    input_names: Vec<String>,
+) -> Result<Forces, DeriveError> {
+    let gravity_potential = energy::gravity_potential(ctx, s.gravity, kin);
+    let potential_total = energy::total_potential(ctx, s.potential, gravity_potential);
+    // Q without gravity's share, for the recursive algorithms (which take
+    // gravity as a base acceleration); the generic route's Q has it all.
+    let zero = ctx.zero();
+    let without_gravity = (s.recursive || s.articulated).then(|| {
+        s.applied
+            .generalized_forces(ctx, s.potential.unwrap_or(zero))
+    });
+    let generalized = match (s.recursive, &without_gravity) {
+        (true, Some(rest)) => rest.clone(),
+        _ => s.applied.generalized_forces(ctx, potential_total),
+    };
+    let articulated = match (s.articulated, s.tree, &without_gravity) {
+        (false, _, _) => None,
+        (true, Some(tree), Some(rest)) => Some(recursive::articulation(ctx, tree, rest)),
+        (true, _, _) => return Err(DeriveError::ArticulatedNeedsTree),
+    };
+    // The `Lagrangian` methods are the unforced system: every input at zero.
+    let (generalized, potential, inputs) =
+        force::split_inputs(ctx, input_names, generalized, potential_total);
+    Ok(Forces {
+        generalized,
+        gravity_potential,
+        potential,
+        inputs,
+        articulated,
+    })
+}
+
+/// M q̈ + h = Q by the route chosen, with Q − h.
+struct Motion {
+    mass: Vec<Vec<Sym>>,
+    bias: Vec<Sym>,
+    bias_other: Vec<Sym>,
+    bias_route: BiasRoute,
+    rhs: Vec<Sym>,
+    /// Q with gravity's share.
+    forces: Vec<Sym>,
+}
+
+/// Assembles M, h and Q − h from the route kept: the recursive right-hand side is
+/// Q (without gravity) − (h − Q_gravity), and its Q gets gravity's share back for
+/// the `forces` output.
+fn equations(
+    ctx: &mut Context,
+    recursive: Option<RecursiveTerms>,
+    generic: Option<GenericTerms>,
+    forces: &Forces,
+) -> Motion {
+    let q = ctx.coordinates();
+    let n = q.len();
+    let generalized = &forces.generalized;
+    match recursive {
+        Some(r) => {
+            let rhs: Vec<Sym> = (0..n)
+                .map(|i| ctx.sub(generalized[i], r.with_gravity[i]))
+                .collect();
+            let total = (0..n)
+                .map(|i| {
+                    let dv = ctx.diff(forces.gravity_potential, q[i]);
+                    let e = ctx.sub(generalized[i], dv);
+                    ctx.collect(e)
+                })
+                .collect();
+            Motion {
+                mass: r.mass,
+                bias: r.bias,
+                bias_other: generic.map(|g| g.bias).unwrap_or_default(),
+                bias_route: BiasRoute::Recursive,
+                rhs,
+                forces: total,
+            }
+        }
+        None => {
+            let g = generic.expect("the generic route was derived");
+            let rhs: Vec<Sym> = (0..n)
+                .map(|i| {
+                    let r = ctx.sub(generalized[i], g.bias[i]);
+                    ctx.collect(r)
+                })
+                .collect();
+            Motion {
+                mass: g.mass,
+                bias: g.bias,
+                bias_other: g.other,
+                bias_route: g.route,
+                rhs,
+                forces: generalized.clone(),
+            }
+        }
+    }
+}
+
+/// Everything derived before the optional outputs and the constrained forms.
+struct Derived {
+    coordinates: Vec<String>,
+    parameters: Vec<String>,
+    rheonomic: bool,
+    kinetic: Sym,
+    integral: Sym,
+    particles: Vec<(Sym, Vec<Sym>)>,
+    has_spin: bool,
+    forces: Forces,
+    motion: Motion,
+}
+
+/// The constraints and which constrained forms to build.
+struct Constrained<'a> {
+    holonomic: &'a [ConstraintModel],
+    nonholonomic: &'a [ConstraintModel],
+    multipliers: bool,
+    speeds: Option<Option<Vec<(String, Sym)>>>,
+}
+
+/// Adds the optional outputs, the constrained forms and the hoisting.
+fn finish(
+    mut ctx: Context,
+    d: Derived,
+    c: Constrained,
+    extras: &[Extra],
+) -> Result<Model, DeriveError> {
+    let wants = |e: Extra| extras.contains(&e);
+    let Motion {
+        mass,
+        bias,
+        bias_other,
+        bias_route,
+        rhs,
+        forces,
+    } = d.motion;
+    let coriolis = wants(Extra::Coriolis).then(|| {
+        let (q, qd) = (ctx.coordinates(), ctx.velocities());
+        extra::coriolis_matrix(&mut ctx, &mass, &q, &qd)
+    });
+    let jacobians = wants(Extra::Jacobians).then(|| extra::rhs_jacobians(&mut ctx, &mass, &rhs));
+    let hamiltonian = wants(Extra::Hamiltonian);
+    let momentum = (hamiltonian || d.rheonomic).then(|| extra::momentum(&mut ctx, d.kinetic));
+    let kinetic_gradient = hamiltonian.then(|| extra::kinetic_gradient(&mut ctx, d.kinetic));
+    let constraints = c
+        .multipliers
+        .then(|| multiplier_form(&mut ctx, &c, wants(Extra::Jacobians)));
+    let reduced = match c.speeds {
+        None => None,
+        Some(ref speeds) => Some(reduced_form(
+            &mut ctx,
+            &c,
+            speeds.as_deref(),
+            &d.coordinates,
+            wants(Extra::Jacobians),
+        )?),
+    };
+    let articulated = d.forces.articulated;
+    let hoisted = hoist(
+        &mut ctx,
+        &mass,
+        &rhs,
+        articulated.as_ref(),
+        constraints.as_ref(),
+    );
+    let mut model = Model {
+        ctx,
+        coordinates: d.coordinates,
+        parameters: d.parameters,
+        rheonomic: d.rheonomic,
+        mass,
+        bias,
+        forces,
+        rhs,
+        kinetic: d.kinetic,
+        potential: d.forces.potential,
+        integral: d.integral,
+        bias_route,
+        bias_other,
+        inputs: d.forces.inputs,
+        constraints,
+        reduced,
+        coriolis,
+        jacobians,
+        momentum,
+        kinetic_gradient,
+        particles: d.particles,
+        has_spin: d.has_spin,
+        articulated,
+        hoisted,
+        cyclic: Vec::new(),
+    };
+    model.cyclic = cyclic::cyclic(&model);
+    Ok(model)
+}
+
+/// G, g, Φ and γ, with their derivatives when the Jacobians are asked for.
+fn multiplier_form(ctx: &mut Context, c: &Constrained, jacobians: bool) -> ConstraintSet {
+    let mut set = crate::constraint::multiplier_form(ctx, c.holonomic, c.nonholonomic);
+    if jacobians {
+        set.derivatives = Some(crate::constraint::constraint_derivatives(ctx, &set));
+    }
+    set
+}
+
+/// The reduced form on the user's speeds, or on speeds chosen from the
+/// constraints (`speeds` is `None`).
+fn reduced_form(
+    ctx: &mut Context,
+    c: &Constrained,
+    speeds: Option<&[(String, Sym)]>,
+    coordinates: &[String],
+    jacobians: bool,
+) -> Result<Reduction, DeriveError> {
+    let chosen;
+    let speeds = match speeds {
+        Some(s) => s,
+        None => {
+            chosen =
+                crate::constraint::default_speeds(ctx, c.holonomic, c.nonholonomic, coordinates)
+                    .map_err(DeriveError::Reduction)?;
+            &chosen[..]
+        }
+    };
+    let mut r = crate::constraint::reduce(ctx, c.holonomic, c.nonholonomic, speeds, coordinates)
+        .map_err(DeriveError::Reduction)?;
+    r.free_speeds = c.speeds.as_ref().is_some_and(|s| s.is_none());
+    if jacobians {
+        r.derivatives = Some(crate::constraint::reduced_derivatives(ctx, &r));
+    }
+    Ok(r)
+}
+
+/// One hoisting over every program that takes the terms, in the layout
+/// `Model::hoisted_*` reads.
+fn hoist(
+    ctx: &mut Context,
+    mass: &[Vec<Sym>],
+    rhs: &[Sym],
+    articulated: Option<&Articulation>,
+    constraints: Option<&ConstraintSet>,
+) -> lagrange_symbolic::Hoisted {
+    let mut outputs: Vec<Sym> = mass.iter().flatten().chain(rhs).copied().collect();
+    if let Some(a) = articulated {
+        outputs.extend(&a.accelerations);
+        outputs.extend(&a.pivots);
+    }
+    if let Some(c) = constraints {
+        outputs.extend(c.jacobian.iter().flatten());
+        outputs.extend(&c.gamma);
+    }
+    ctx.hoist(&outputs, "__hoisted")
+}

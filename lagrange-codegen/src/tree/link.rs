@@ -1,0 +1,122 @@
+//! Algebra in link coordinates: the joint rotation E = rot_axis(q) and its
+//! transpose, cross products, and 3×3 blocks, written so that products by the
+//! zeros and ones of a unit joint axis vanish at construction.
+
+use lagrange_symbolic::{Context, Expr as Sym};
+
+use super::Link;
+use crate::mat3::Mat3;
+
+/// Copies the upper triangle below the diagonal, so a symmetric matrix holds
+/// one node per pair.
+pub(super) fn mirror_upper(m: &mut Mat3) {
+    for (r, c) in [(0, 1), (0, 2), (1, 2)] {
+        m[c][r] = m[r][c];
+    }
+}
+
+/// cos and sin of a link's joint angle.
+pub(super) fn trig(ctx: &mut Context, link: &Link) -> (Sym, Sym) {
+    let q = ctx.coordinates()[link.coordinate];
+    (ctx.cos(q), ctx.sin(q))
+}
+
+/// E x, E = rot_axis(q) (link axes to parent axes).
+pub(super) fn rotate(ctx: &mut Context, axis: usize, (c, s): (Sym, Sym), x: [Sym; 3]) -> [Sym; 3] {
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let mut out = x;
+    let (ci, sj) = (ctx.mul(c, x[i]), ctx.mul(s, x[j]));
+    out[i] = ctx.sub(ci, sj);
+    let (si, cj) = (ctx.mul(s, x[i]), ctx.mul(c, x[j]));
+    out[j] = ctx.add(si, cj);
+    out
+}
+
+/// Eᵀ x (parent axes to link axes).
+pub(super) fn rotate_back(
+    ctx: &mut Context,
+    axis: usize,
+    (c, s): (Sym, Sym),
+    x: [Sym; 3],
+) -> [Sym; 3] {
+    let ms = ctx.neg(s);
+    rotate(ctx, axis, (c, ms), x)
+}
+
+pub(super) fn cross(ctx: &mut Context, a: [Sym; 3], b: [Sym; 3]) -> [Sym; 3] {
+    [0, 1, 2].map(|i| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let p = ctx.mul(a[j], b[k]);
+        let m = ctx.mul(a[k], b[j]);
+        ctx.sub(p, m)
+    })
+}
+
+pub(super) fn add3(ctx: &mut Context, a: [Sym; 3], b: [Sym; 3]) -> [Sym; 3] {
+    [0, 1, 2].map(|i| ctx.add(a[i], b[i]))
+}
+
+pub(super) fn mat_vec(ctx: &mut Context, m: &Mat3, v: [Sym; 3]) -> [Sym; 3] {
+    [0, 1, 2].map(|i| {
+        let terms: Vec<Sym> = (0..3).map(|k| ctx.mul(m[i][k], v[k])).collect();
+        ctx.sum(&terms)
+    })
+}
+
+/// x × e_axis q̇ without forming the zero products.
+pub(super) fn cross_axis(ctx: &mut Context, x: [Sym; 3], axis: usize, rate: Sym) -> [Sym; 3] {
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let zero = ctx.zero();
+    let mut out = [zero; 3];
+    out[i] = ctx.mul(x[j], rate);
+    let xi = ctx.mul(x[i], rate);
+    out[j] = ctx.neg(xi);
+    out
+}
+
+/// A force (moment about the origin, force) carried from a link to its parent.
+pub(super) fn force_to_parent(
+    ctx: &mut Context,
+    link: &Link,
+    n: [Sym; 3],
+    f: [Sym; 3],
+) -> [[Sym; 3]; 2] {
+    let cs = trig(ctx, link);
+    let f = rotate(ctx, link.axis, cs, f);
+    let n = rotate(ctx, link.axis, cs, n);
+    let moment = cross(ctx, link.offset, f);
+    [add3(ctx, n, moment), f]
+}
+
+/// [d]×, with [d]× x = d × x.
+pub(super) fn skew(ctx: &mut Context, d: [Sym; 3]) -> Mat3 {
+    let zero = ctx.zero();
+    let mut m = [[zero; 3]; 3];
+    for (r, row) in m.iter_mut().enumerate() {
+        let (j, k) = ((r + 1) % 3, (r + 2) % 3);
+        row[k] = d[j];
+        row[j] = ctx.neg(d[k]);
+    }
+    m
+}
+
+pub(super) fn mat_mul(ctx: &mut Context, x: &Mat3, y: &Mat3) -> Mat3 {
+    [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            let terms: Vec<Sym> = (0..3).map(|k| ctx.mul(x[i][k], y[k][j])).collect();
+            ctx.sum(&terms)
+        })
+    })
+}
+
+pub(super) fn mat_add(ctx: &mut Context, x: &Mat3, y: &Mat3, sign: i64) -> Mat3 {
+    [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            if sign < 0 {
+                ctx.sub(x[i][j], y[i][j])
+            } else {
+                ctx.add(x[i][j], y[i][j])
+            }
+        })
+    })
+}

@@ -1,0 +1,81 @@
+//! The recursive route: when the bodies form a kinematic tree of revolute joints,
+//! M by composite rigid bodies (CRBA) and h − Q_gravity by recursive
+//! Newton–Euler (RNEA), built as expressions so the engine's CSE emits them as
+//! straight-line code (Featherstone, *Rigid Body Dynamics Algorithms*, ch. 5–6).
+//!
+//! Differentiating ξ(q) of every body costs O(n³) operations in 3-D (Jacobians of
+//! products of rotations, then M = Σ Jᵀ m J); the recursions cost O(n²) for M and
+//! O(n) for h, in link coordinates where joint axes are unit vectors and offsets
+//! are constant, so most products are by 0 or 1 and vanish at construction.
+//!
+//! A tree is detected from the description, not declared: a body's rotation is
+//! its parent's factors followed by elementary rotations about coordinates
+//! (`rot_z(q1) * rot_y(q2)` under `rot_z(q1)`), and its reference point is a
+//! point fixed in the parent (`at = [j.x, j.y, j.z]` with `point(j, on = parent)`)
+//! or a fixed point for a root. Each elementary factor is one joint; a body with
+//! several new factors (`euler_zxz(ψ, θ, φ)` about a fixed point) hangs on
+//! massless links that meet at its reference point. Anything else — a rotation
+//! written as a matrix, a translating coordinate, a point mass that is neither
+//! fixed in a body nor in space, a coordinate in two joints, time in a position
+//! — leaves the system to the generic route.
+
+mod aba;
+mod crba;
+mod detect;
+mod link;
+mod rnea;
+mod spatial;
+
+pub use aba::{ForwardDynamics, forward_dynamics};
+pub use crba::mass_matrix;
+pub use detect::detect;
+pub use rnea::inverse_dynamics;
+
+use lagrange_symbolic::Expr as Sym;
+
+use crate::mat3::Mat3;
+
+/// Mass, first moment h = m c and rotational inertia about the link origin, in
+/// link axes: the spatial inertia in its ten numbers.
+#[derive(Clone, Copy)]
+struct Inertia {
+    mass: Sym,
+    first: [Sym; 3],
+    rot: Mat3,
+}
+
+/// One revolute joint and the link it moves: the link frame is the parent's
+/// rotated by rot_axis(q) about the parent point `offset`.
+struct Link {
+    parent: Option<usize>,
+    axis: usize,
+    coordinate: usize,
+    offset: [Sym; 3],
+    inertia: Option<Inertia>,
+}
+
+/// A detected kinematic tree; links are ordered parents first.
+pub struct Tree {
+    links: Vec<Link>,
+    gravity: Option<[Sym; 3]>,
+}
+
+/// What the tree's bodies carry, as `derive` hands them over.
+pub struct Masses<'a> {
+    pub point_masses: &'a [Sym],
+    pub point_positions: &'a [Vec<Sym>],
+    pub inertias: &'a [Mat3],
+    pub gravity: Option<&'a [Sym]>,
+}
+
+impl Tree {
+    /// Number of joints.
+    pub fn len(&self) -> usize {
+        self.links.len()
+    }
+
+    /// Whether the tree has no joints (never returned by [`detect`]).
+    pub fn is_empty(&self) -> bool {
+        self.links.is_empty()
+    }
+}
