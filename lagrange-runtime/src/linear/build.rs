@@ -175,18 +175,7 @@ impl Linearizer {
         if !all.iter().all(|m| finite(m)) {
             return Err(Error::non_finite(t, q, v));
         }
-        // δq̈ = X_q δq + X_v δq̇ + X_u δu, all right-hand sides at once.
-        let mut f = DMatrix::zeros(N, 2 * N + P);
-        f.view_mut((0, 0), (N, N)).copy_from(&rq);
-        f.view_mut((0, N), (N, N)).copy_from(&rv);
-        f.view_mut((0, 2 * N), (N, P)).copy_from(&bu);
-        let mut r = DMatrix::zeros(K, 2 * N + P);
-        r.view_mut((0, 0), (K, N)).copy_from(&dga);
-        r.view_mut((0, N), (K, N)).copy_from(&dgv);
-        let (x, _) = saddle.solve(&f, &r);
-        let xq = x.columns(0, N).into_owned();
-        let xv = x.columns(N, N).into_owned();
-        let xu = x.columns(2 * N, P).into_owned();
+        let [xq, xv, xu] = sensitivities(&saddle, [&rq, &rv, &bu], [&dga, &dgv]);
 
         let (cq, cv, cvq) = embeddings(&part, &ev.g, &dvel, holonomic::<S, T, N, K>());
         let (ni, ns) = (part.ci.len(), part.si.len());
@@ -205,10 +194,14 @@ impl Linearizer {
         if !(finite(&a) && finite(&b)) {
             return Err(Error::non_finite(t, q, v));
         }
-        let coordinates: Vec<String> = part.ci.iter().map(|&i| S::COORDINATES[i].into()).collect();
-        let speeds: Vec<String> = part.si.iter().map(|&i| S::COORDINATES[i].into()).collect();
-        let mut states = coordinates.clone();
-        states.extend(speeds.iter().map(|s| format!("{s}'")));
+        let name = |i: &usize| S::COORDINATES[*i].to_string();
+        let coordinates: Vec<String> = part.ci.iter().map(name).collect();
+        let speeds: Vec<String> = part.si.iter().map(name).collect();
+        let states: Vec<String> = coordinates
+            .iter()
+            .cloned()
+            .chain(speeds.iter().map(|s| format!("{s}'")))
+            .collect();
         let second_order = part.si.iter().all(|s| part.ci.contains(s)).then(|| {
             let mr = cv.transpose() * &ev.m * &cv;
             SecondOrderForm {
@@ -553,4 +546,28 @@ where
     let dres = &wt * (zq - tq);
     let dforce = &wt * (jv - &m * &inv * cv) * &w;
     Ok((dres, dforce, vq))
+}
+
+/// X_q, X_v, X_u with δq̈ = X_q δq + X_v δq̇ + X_u δu: the saddle system solved
+/// for the columns of the right-hand sides [R_q, R_v, B_u] (force rows) and
+/// [∂(γ − G q̈)/∂q, ∂γ/∂q̇, 0] (constraint rows) at once.
+fn sensitivities<T: Real, const N: usize, const K: usize>(
+    saddle: &SaddleFactor<T, N, K>,
+    [rq, rv, bu]: [&DMatrix<f64>; 3],
+    [dga, dgv]: [&DMatrix<f64>; 2],
+) -> [DMatrix<f64>; 3] {
+    let p = bu.ncols();
+    let mut f = DMatrix::zeros(N, 2 * N + p);
+    f.view_mut((0, 0), (N, N)).copy_from(rq);
+    f.view_mut((0, N), (N, N)).copy_from(rv);
+    f.view_mut((0, 2 * N), (N, p)).copy_from(bu);
+    let mut r = DMatrix::zeros(K, 2 * N + p);
+    r.view_mut((0, 0), (K, N)).copy_from(dga);
+    r.view_mut((0, N), (K, N)).copy_from(dgv);
+    let (x, _) = saddle.solve(&f, &r);
+    [
+        x.columns(0, N).into_owned(),
+        x.columns(N, N).into_owned(),
+        x.columns(2 * N, p).into_owned(),
+    ]
 }
