@@ -79,7 +79,7 @@ mod watch;
 
 pub use driver::{DEFAULT_MAX_EVENTS, Events};
 
-use crate::error::{Error, to_vec};
+use crate::error::{Error, Progress, to_vec};
 use crate::numeric::Real;
 use crate::ode::Trajectory;
 use nalgebra::SVector;
@@ -356,5 +356,11 @@ impl<T: Real, const N: usize> EventRun<T, N> {
     /// The times of event `event`, in increasing order.
     pub fn times(&self, event: usize) -> Vec<T> {
         self.of(event).map(|o| o.t).collect()
+    }
+}
+
+impl<T: Real, const N: usize> Progress for EventRun<T, N> {
+    fn progress(&self) -> (usize, Option<f64>) {
+        self.trajectory.progress()
     }
 }

@@ -5,7 +5,7 @@ mod form;
 
 pub use controlled::{ControlRun, ControlledSimulation};
 
-use crate::error::{Error, Failure};
+use crate::error::{Error, Failure, Progress};
 use crate::event::{Event, EventRun, Events};
 use crate::mechanics::constraint::{
     ConstrainedDynamics, DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE, Drift,
@@ -565,5 +565,11 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
         })?;
         self.events
             .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
+    }
+}
+
+impl<T: Real, const N: usize> Progress for Trajectory<T, N> {
+    fn progress(&self) -> (usize, Option<f64>) {
+        (self.len(), self.times().last().map(|t| t.to_f64()))
     }
 }

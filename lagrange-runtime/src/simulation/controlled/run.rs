@@ -1,6 +1,6 @@
 //! The result of a controlled run and its output as a table or CSV.
 
-use crate::error::Error;
+use crate::error::{Error, Progress};
 use crate::event::Occurrence;
 use crate::numeric::Real;
 use crate::ode::Trajectory;
@@ -111,5 +111,11 @@ impl<T: Real, const N: usize, const P: usize> ControlRun<T, N, P> {
     pub fn save_csv(&self, path: impl AsRef<Path>) -> Result<(), Error> {
         let file = std::fs::File::create(path)?;
         self.write_csv(std::io::BufWriter::new(file))
+    }
+}
+
+impl<T: Real, const N: usize, const P: usize> Progress for ControlRun<T, N, P> {
+    fn progress(&self) -> (usize, Option<f64>) {
+        self.trajectory.progress()
     }
 }
