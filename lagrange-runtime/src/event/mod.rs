@@ -310,6 +310,7 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
 
 /// One occurrence of an event.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Occurrence<T: Real, const N: usize> {
     /// Which event, by its position in the order the events were added.
     pub event: usize,
@@ -327,6 +328,7 @@ pub struct Occurrence<T: Real, const N: usize> {
 
 /// The result of a run with events.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct EventRun<T: Real, const N: usize> {
     /// The motion, concatenated across the restarts at actions (see the module
     /// docs for what is recorded at an action).

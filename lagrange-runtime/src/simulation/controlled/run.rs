@@ -11,14 +11,31 @@ use std::path::Path;
 
 /// The result of a controlled run: the trajectory, the inputs at its points,
 /// and the event occurrences.
+///
+/// With the `serde` feature it serializes (not deserializes: its names are
+/// the system's `&'static str`s) with the fields `trajectory`, `inputs` (one
+/// per point), `occurrences`, `terminated_by`, `coordinates` and
+/// `input_names`.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct ControlRun<T: Real, const N: usize, const P: usize> {
     pub(super) trajectory: Trajectory<T, N>,
     pub(super) inputs: Vec<SVector<T, P>>,
     pub(super) occurrences: Vec<Occurrence<T, N>>,
     pub(super) terminated_by: Option<usize>,
+    #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
     pub(super) coordinates: [&'static str; N],
+    #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
     pub(super) input_names: [&'static str; P],
+}
+
+/// Names as a sequence (serde has no impl for arrays of a generic length).
+#[cfg(feature = "serde")]
+fn names<S: serde::Serializer, const K: usize>(
+    names: &[&'static str; K],
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    serializer.collect_seq(names.iter())
 }
 
 impl<T: Real, const N: usize, const P: usize> ControlRun<T, N, P> {
