@@ -165,6 +165,46 @@ impl<T: Real, const N: usize> fmt::Debug for Event<'_, T, N> {
 impl<'a, T: Real, const N: usize> Event<'a, T, N> {
     /// An event on the zero crossings of `g(t, q, v)` in both directions, not
     /// terminal, without action: it is only recorded.
+    ///
+    /// Given to a simulation (`Simulation::new(&sys).event(Event::new(..))`),
+    /// the event takes the system's scalar and dimension, so closures that
+    /// index the state need no annotation: `|_, q, _| q[0] - 1.0`,
+    /// `|_, _, v| v[0]`, `.action(|_, _, v| *v *= -0.9)`. Rust checks a
+    /// closure's body where it is written, before it reaches the simulation,
+    /// so a body that calls a method on a component (`q[1].cos()`,
+    /// `q[0].abs()`) fails with "type annotations needed" (E0282). Name the
+    /// scalar once, on the time, `|_: f64, q, _| q[1].cos()`; the compiler's
+    /// suggestion points there too. An event built outside a simulation (a
+    /// `let`, [`Events::with`]) has nothing to take its types from: annotate
+    /// the state, `|_, q: &SVector<f64, 2>, _|`.
+    ///
+    /// ```
+    /// # use lagrange_runtime::{Dopri5, Event, Lagrangian, Simulation};
+    /// # use nalgebra::{Matrix1, Vector1};
+    /// # struct Pendulum;
+    /// # impl Lagrangian<f64, 1> for Pendulum {
+    /// #     const COORDINATES: [&'static str; 1] = ["theta"];
+    /// #     const RHEONOMIC: bool = false;
+    /// #     fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> { Matrix1::new(1.0) }
+    /// #     fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+    /// #     fn generalized_forces(&self, q: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::new(-q[0].sin()) }
+    /// #     fn mass_matrix_and_rhs(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> (Matrix1<f64>, Vector1<f64>) {
+    /// #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+    /// #     }
+    /// #     fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 { 0.5 * v[0] * v[0] }
+    /// #     fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 { -q[0].cos() }
+    /// #     fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
+    /// #         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+    /// #     }
+    /// # }
+    /// let run = Simulation::new(&Pendulum)
+    ///     .integrator(Dopri5::tol(1e-10))
+    ///     .event(Event::new(|_, _, v| v[0]).falling())          // no annotation
+    ///     .event(Event::new(|_: f64, q, _| q[0].sin() - 0.5))   // the scalar, once
+    ///     .run([1.0], [0.0], 0.0..10.0)?;
+    /// assert!(!run.times(0).is_empty() && !run.times(1).is_empty());
+    /// # Ok::<(), lagrange_runtime::Error>(())
+    /// ```
     pub fn new(g: impl Fn(T, &SVector<T, N>, &SVector<T, N>) -> T + 'a) -> Self {
         Self {
             name: None,
