@@ -231,15 +231,26 @@
 //! rest), and an action changes the mode; `tests/piecewise.rs` locates the stop of a block under Coulomb friction
 //! this way within 1e-9 of v0/(μg). A force that is continuous with a kink (the
 //! contact spring, a saturation) needs no event: the error control handles it.
+//!
+//! **Ensembles.** With the feature `parallel`, `lagrange::ensemble::Ensemble`
+//! (also in [`prelude`] as `Ensemble`) runs many independent simulations —
+//! initial conditions, parameter sets, a Monte Carlo sweep — on all cores with
+//! a progress bar, the results in input order whatever the number of threads:
+//! `Ensemble::new().run(&inputs, |i, x| ...)`. Sweeps larger than one machine
+//! split into shards with `lagrange::ensemble::shard`.
 
 pub use lagrange_macros::Lagrangian;
 pub use lagrange_runtime::*;
 pub use nalgebra;
 
 /// Everything a typical program needs: the derive, the trait, the simulation
-/// builder, the integrators and nalgebra's fixed-size vectors.
+/// builder, the integrators and nalgebra's fixed-size vectors; with the
+/// feature `parallel`, `Ensemble` too.
 pub mod prelude {
     pub use lagrange_macros::Lagrangian;
+    /// Many independent runs on all cores (feature `parallel`).
+    #[cfg(feature = "parallel")]
+    pub use lagrange_runtime::ensemble::Ensemble;
     pub use lagrange_runtime::linear::{Linear, Linearizer, OperatingPoint, Verdict};
     pub use lagrange_runtime::study::{Method, Sweep};
     pub use lagrange_runtime::{

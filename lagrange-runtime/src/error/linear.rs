@@ -1,13 +1,13 @@
 //! Failures of linearisation, eigen-analysis and LQR design.
 
 /// Failures specific to linearisation, eigen-analysis and LQR design (wrapped in
-/// [`Error::Linear`]).
+/// [`Error::Linear`](super::Error::Linear)).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum LinearError {
     /// The operating point violates the constraints: Φ(q0, t0) ≠ 0 or
     /// G q̇0 + g ≠ 0 (or, for a reduced system, q̇0 is not W u + w) beyond the
-    /// tolerance. Complete it with [`Linearizer::complete_state`] first.
+    /// tolerance. Complete it with [`Linearizer::complete_state`](crate::linear::Linearizer::complete_state) first.
     #[error(
         "inconsistent operating point at t = {t}, q = {q:?} ({coordinates:?}): |Phi| = \
          {position_residual:e}, |G v + g| = {velocity_residual:e}, tolerance {tolerance:e}; \
@@ -56,7 +56,7 @@ pub enum LinearError {
         ratio: f64,
     },
 
-    /// A state name given to [`Linear::select`] does not exist.
+    /// A state name given to [`Linear::select`](crate::linear::Linear::select) does not exist.
     #[error("no state named `{name}`; the states are {states:?}")]
     UnknownState {
         /// The name asked for.
@@ -65,7 +65,7 @@ pub enum LinearError {
         states: Vec<String>,
     },
 
-    /// [`Linear::select`] would drop a state that a kept one depends on.
+    /// [`Linear::select`](crate::linear::Linear::select) would drop a state that a kept one depends on.
     #[error(
         "cannot drop `{dropped}`: kept state `{kept}` depends on it (A[{kept}, {dropped}] = \
          {coupling:e}, tolerance {tolerance:e})"

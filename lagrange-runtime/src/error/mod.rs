@@ -5,6 +5,9 @@
 //! that the error type does not depend on the scalar the system is computed in.
 
 /// Everything that can go wrong while evaluating the dynamics or integrating.
+///
+/// `Clone`: a clone of an [`Io`](Error::Io) error keeps its kind, its OS error
+/// code and its message (the wrapped error object itself cannot be cloned).
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
@@ -171,12 +174,22 @@ pub enum Error {
         ratio: f64,
     },
 
-    /// The integrator exceeded its step budget before reaching the end time.
-    #[error("more than {max_steps} steps needed; stopped at t = {t}")]
+    /// The integrator exceeded its step budget, the integrator's
+    /// `.max_steps(n)` setting, before reaching the end time. A fixed-step
+    /// method (RK4, Störmer–Verlet, Gauss, RATTLE) knows the count it needs
+    /// before the first step and refuses the run at once, with `t` the start
+    /// time; an adaptive one stops where the budget ran out.
+    #[error(
+        "more than {max_steps} steps needed: the step budget `.max_steps({max_steps})` \
+         ran out at t = {t}, before the end of the span (a fixed-step method refuses \
+         at the start time when its step count, span / step, exceeds the budget); \
+         raise it with `.max_steps(n)` on the integrator"
+    )]
     TooManySteps {
-        /// Time reached.
+        /// Time reached (the start time when a fixed-step method refuses up
+        /// front).
         t: f64,
-        /// The configured budget.
+        /// The configured budget (`.max_steps(n)`).
         max_steps: usize,
     },
 
@@ -284,7 +297,7 @@ pub enum Error {
     },
 
     /// Linearisation, eigen-analysis or LQR design failed; see
-    /// [`LinearError`](crate::error::LinearError).
+    /// [`LinearError`].
     #[error(transparent)]
     Linear(#[from] LinearError),
 
@@ -293,8 +306,11 @@ pub enum Error {
     Io(#[from] std::io::Error),
 }
 
+mod clone;
+mod failure;
 mod linear;
 
+pub use failure::{Failure, Progress};
 pub use linear::LinearError;
 
 use crate::numeric::Real;
@@ -385,72 +401,5 @@ mod tests {
         assert!(s.contains("[\"rod2\"]") && s.contains("1e-17"), "{s}");
         let e: Error = std::io::Error::other("disk full").into();
         assert!(e.to_string().contains("disk full"));
-    }
-}
-
-/// A run that stopped before its end: the typed error, and everything computed
-/// before it (`partial`: the accepted steps, their dense output and the run's
-/// statistics), as DifferentialEquations.jl's return codes keep the solution.
-///
-/// `?` turns it into the bare [`Error`] where a function returns
-/// `Result<_, Error>`; match on `error` to tell the cases apart:
-///
-/// ```
-/// # use lagrange_runtime::{Error, Failure, Trajectory};
-/// fn report(result: Result<Trajectory<f64, 1>, Failure<Trajectory<f64, 1>>>) {
-///     match result {
-///         Ok(traj) => println!("reached t = {:?}", traj.times().last()),
-///         Err(Failure { error: Error::TooManySteps { .. }, partial }) => {
-///             println!("out of steps at t = {:?}", partial.times().last())
-///         }
-///         Err(failure) => println!("{failure}"),
-///     }
-/// }
-/// ```
-#[derive(Debug)]
-pub struct Failure<P> {
-    /// What went wrong, where and when.
-    pub error: Error,
-    /// What was computed before it: for a trajectory, every step accepted up
-    /// to the failure (at least the initial state), with its statistics.
-    /// Boxed, so that a `Result` carrying it is no larger than its `Ok`.
-    pub partial: Box<P>,
-}
-
-impl<P> Failure<P> {
-    /// The failure of a run that got as far as `partial`.
-    pub fn new(error: Error, partial: P) -> Self {
-        Self {
-            error,
-            partial: Box::new(partial),
-        }
-    }
-
-    /// The error and the partial result.
-    pub fn into_parts(self) -> (Error, P) {
-        (self.error, *self.partial)
-    }
-
-    /// The partial result mapped (e.g. a trajectory into a run record).
-    pub fn map<Q>(self, f: impl FnOnce(P) -> Q) -> Failure<Q> {
-        Failure::new(self.error, f(*self.partial))
-    }
-}
-
-impl<P> std::fmt::Display for Failure<P> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        self.error.fmt(f)
-    }
-}
-
-impl<P: std::fmt::Debug> std::error::Error for Failure<P> {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        std::error::Error::source(&self.error)
-    }
-}
-
-impl<P> From<Failure<P>> for Error {
-    fn from(f: Failure<P>) -> Self {
-        f.error
     }
 }

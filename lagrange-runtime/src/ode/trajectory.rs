@@ -24,11 +24,14 @@ pub struct Trajectory<T: Real, const N: usize> {
     /// What is kept of the run, and the state of that policy.
     record: Record,
     /// Steps seen (for `Record::Every`).
+    #[cfg_attr(feature = "serde", serde(skip))]
     steps_seen: usize,
     /// The next output time (for `Record::Interval`).
+    #[cfg_attr(feature = "serde", serde(skip, default = "T::zero"))]
     next_output: T,
     /// The latest step when it was not stored: stored by `close`, so that a
     /// thinned trajectory still ends at the final state.
+    #[cfg_attr(feature = "serde", serde(skip, default = "Option::default"))]
     pending: Option<Point<T, N>>,
 }
 

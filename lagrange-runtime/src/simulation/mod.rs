@@ -5,7 +5,7 @@ mod form;
 
 pub use controlled::{ControlRun, ControlledSimulation};
 
-use crate::error::{Error, Failure};
+use crate::error::{Error, Failure, Progress};
 use crate::event::{Event, EventRun, Events};
 use crate::mechanics::constraint::{
     ConstrainedDynamics, DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE, Drift,
@@ -288,6 +288,11 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// the trajectory and the occurrences. See [`crate::event`] for how events
     /// are detected, located and acted on.
     ///
+    /// The event's scalar and dimension are the system's, so the closures
+    /// need no annotation to index the state (`q[0]`, `v[1]`); one that
+    /// calls a method on a component (`q[1].cos()`) needs its scalar named
+    /// once, see [`Event::new`].
+    ///
     /// ```
     /// # use lagrange_runtime::{Event, SecondOrder, Lagrangian, Simulation, Dopri5};
     /// # use nalgebra::{SMatrix, SVector, Vector1, Matrix1};
@@ -311,8 +316,8 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// // at 8.6 s); the apexes are where v falls through zero.
     /// let run = Simulation::new(&Fall)
     ///     .integrator(Dopri5::tol(1e-10))
-    ///     .event(Event::new(|_, q: &SVector<f64, 1>, _| q[0]).falling().action(|_, _, v| *v *= -0.9))
-    ///     .event(Event::new(|_, _, v: &SVector<f64, 1>| v[0]).falling())
+    ///     .event(Event::new(|_, q, _| q[0]).falling().action(|_, _, v| *v *= -0.9))
+    ///     .event(Event::new(|_, _, v| v[0]).falling())
     ///     .run([1.0], [0.0], 0.0..5.0)?;
     /// let bounces = run.times(0);
     /// assert!((bounces[0] - (2.0f64 / 9.81).sqrt()).abs() < 1e-12);
@@ -322,7 +327,10 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     pub fn event<'e, T: Real, const N: usize>(
         self,
         event: Event<'e, T, N>,
-    ) -> EventSimulation<'a, 'e, S, I, T, N> {
+    ) -> EventSimulation<'a, 'e, S, I, T, N>
+    where
+        S: Lagrangian<T, N>,
+    {
         EventSimulation {
             simulation: self,
             events: Events::new().with(event),
@@ -565,5 +573,11 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
         })?;
         self.events
             .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
+    }
+}
+
+impl<T: Real, const N: usize> Progress for Trajectory<T, N> {
+    fn progress(&self) -> (usize, Option<f64>) {
+        (self.len(), self.times().last().map(|t| t.to_f64()))
     }
 }

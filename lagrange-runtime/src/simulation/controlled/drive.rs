@@ -1,0 +1,262 @@
+//! The piecewise driver of a controlled run: one integrator run between
+//! consecutive breaks of the source (sample instants, table breakpoints),
+//! each with its inputs recorded at the stored points.
+
+use super::{ControlRun, ControlledSimulation};
+use crate::control::{InputForces, InputSource, check_input};
+use crate::error::{Error, Failure};
+use crate::event::Occurrence;
+use crate::numeric::Real;
+use crate::numeric::func::abs;
+use crate::ode::{Integrator, Sample, SecondOrder, Trajectory};
+use crate::system::Driven;
+use nalgebra::SVector;
+use std::ops::Range;
+
+impl<S, I, C, T, const N: usize, const P: usize> ControlledSimulation<'_, '_, S, I, C, T, N, P>
+where
+    I: Integrator,
+    T: Real,
+    S: Driven<T, N, P>,
+    C: InputSource<T, N, P>,
+{
+    /// Integrates piece by piece between the source's breaks (one piece when it
+    /// has none), each piece with the dynamics `make` builds from its forcing.
+    /// `prepare` checks the settings and gives the initial state to start from
+    /// (projected, for the constrained forms). On a failure the run so far (the
+    /// pieces, the failed piece's accepted steps, their inputs, the
+    /// occurrences; the given initial state alone if none) goes back with the
+    /// error.
+    pub(super) fn drive<'s, D: SecondOrder<T, N>>(
+        &'s self,
+        make: impl Fn(InputForces<'s, S, Piece<'s, C, T, P>, P>) -> D,
+        span: Range<T>,
+        (q0, v0): (SVector<T, N>, SVector<T, N>),
+        prepare: impl FnOnce() -> Result<(SVector<T, N>, SVector<T, N>), Error>,
+    ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>> {
+        let started = crate::numeric::clock::Stopwatch::start();
+        let mut record = Record {
+            whole: None,
+            inputs: Vec::new(),
+            occurrences: Vec::new(),
+            terminated_by: None,
+        };
+        let outcome =
+            prepare().and_then(|(q, v)| self.pieces(&make, span.clone(), q, v, &mut record));
+        let mut trajectory = match record.whole {
+            Some(w) => w,
+            None => {
+                let rhs = make(InputForces::new(
+                    self.simulation.system,
+                    Piece::Live(&self.source),
+                ));
+                record.inputs = vec![self.source.input(span.start, &q0, &v0)];
+                Trajectory::start(span.start, q0, v0, Sample::of(&rhs, span.start, &q0, &v0))
+            }
+        };
+        let mut stats = *trajectory.stats();
+        stats.wall_time = started.elapsed();
+        trajectory.set_stats(stats);
+        let run = ControlRun {
+            trajectory,
+            inputs: record.inputs,
+            occurrences: record.occurrences,
+            terminated_by: record.terminated_by,
+            coordinates: S::COORDINATES,
+            input_names: S::INPUTS,
+        };
+        match outcome {
+            Ok(()) => Ok(run),
+            Err(error) => Err(Failure::new(error, run)),
+        }
+    }
+
+    /// The pieces of [`drive`](Self::drive), recorded into `record`.
+    fn pieces<'s, D: SecondOrder<T, N>>(
+        &'s self,
+        make: &impl Fn(InputForces<'s, S, Piece<'s, C, T, P>, P>) -> D,
+        span: Range<T>,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+        record: &mut Record<T, N, P>,
+    ) -> Result<(), Error> {
+        self.source.check()?;
+        let (t0, t1) = (span.start, span.end);
+        // Breaks within this of each other (or of t1) are one instant.
+        let eps = T::lit(64.0) * T::default_epsilon() * (abs(t0) + abs(t1));
+        let held = self.source.held();
+        let mut ends_on_break = false;
+        let (mut t, mut q, mut v) = (t0, q0, v0);
+        loop {
+            let (end, on_break) = self.piece_end((t0, t1), t, eps);
+            if let Some(on_break) = on_break {
+                ends_on_break = on_break;
+            }
+            let source = if held {
+                let u = self.source.input(t, &q, &v);
+                check_input::<S, T, N, P>(t, &q, &v, &u)?;
+                Piece::Held(u)
+            } else {
+                Piece::Live(&self.source)
+            };
+            let rhs = make(InputForces::new(self.simulation.system, source));
+            let (piece, stop) = self.piece(&rhs, source, (t, end), (q, v), record)?;
+            (q, v) = piece.final_state();
+            let reached = *piece.times().last().expect("a trajectory holds its start");
+            self.record(piece, source, record, true)?;
+            if stop.is_some() {
+                record.terminated_by = stop;
+                break;
+            }
+            if end >= t1 {
+                break;
+            }
+            t = reached;
+        }
+        if held && ends_on_break && record.terminated_by.is_none() {
+            self.sample_at_end(t1, record)?;
+        }
+        Ok(())
+    }
+
+    /// Where the piece starting at `t` ends: the source's next break, or t1.
+    /// With a break at t1 (within `eps`), also whether the run ends on it.
+    fn piece_end(&self, (t0, t1): (T, T), t: T, eps: T) -> (T, Option<bool>) {
+        // A piece cut by an event a round-off before its end leaves t
+        // just short of a break: that break is this instant.
+        let mut next = self.source.next_break(t0, t);
+        while let Some(b) = next
+            && b - t <= eps
+        {
+            next = self.source.next_break(t0, b);
+        }
+        match next {
+            Some(b) if b < t1 - eps => (b, None),
+            Some(b) => (t1, Some(b <= t1 + eps)),
+            None => (t1, None),
+        }
+    }
+
+    /// Integrates one piece over `span` from `state`, watching the events if
+    /// there are any: the piece and the terminal event that ended it. On a
+    /// failure the failed piece's steps (and occurrences) are recorded.
+    fn piece<D: SecondOrder<T, N>>(
+        &self,
+        rhs: &D,
+        source: Piece<'_, C, T, P>,
+        (t, end): (T, T),
+        (q, v): (SVector<T, N>, SVector<T, N>),
+        record: &mut Record<T, N, P>,
+    ) -> Result<(Trajectory<T, N>, Option<usize>), Error> {
+        let integrator = &self.simulation.integrator;
+        if self.events.events().is_empty() {
+            return match integrator.integrate(rhs, t, end, q, v) {
+                Ok(piece) => Ok((piece, None)),
+                Err(f) => {
+                    self.record(*f.partial, source, record, false)?;
+                    Err(f.error)
+                }
+            };
+        }
+        match self.events.integrate(integrator, rhs, t, end, q, v) {
+            Ok(run) => {
+                record.occurrences.extend(run.occurrences);
+                Ok((run.trajectory, run.terminated_by))
+            }
+            Err(f) => {
+                record.occurrences.extend(f.partial.occurrences);
+                self.record(f.partial.trajectory, source, record, false)?;
+                Err(f.error)
+            }
+        }
+    }
+
+    /// The end time is a sample instant of a held source: records the new
+    /// sample there.
+    fn sample_at_end(&self, t1: T, record: &mut Record<T, N, P>) -> Result<(), Error> {
+        let trajectory = record
+            .whole
+            .as_ref()
+            .expect("the loop integrates at least one piece");
+        let (q, v) = trajectory.final_state();
+        let u = self.source.input(t1, &q, &v);
+        check_input::<S, T, N, P>(t1, &q, &v, &u)?;
+        *record.inputs.last_mut().expect("one input per point") = u;
+        Ok(())
+    }
+
+    /// Appends a piece and its inputs (one per point; the piece's first point
+    /// replaces the last one recorded). With `check` a non-finite input is the
+    /// error (after the piece is recorded); a failed piece's inputs are
+    /// recorded as they are.
+    fn record(
+        &self,
+        piece: Trajectory<T, N>,
+        source: Piece<'_, C, T, P>,
+        record: &mut Record<T, N, P>,
+        check: bool,
+    ) -> Result<(), Error> {
+        if record.whole.is_some() {
+            record.inputs.pop();
+        }
+        record.inputs.reserve(piece.len());
+        let mut refused = Ok(());
+        match source {
+            Piece::Held(u) => record.inputs.extend(std::iter::repeat_n(u, piece.len())),
+            Piece::Live(_) => {
+                let points = piece.times().iter().zip(piece.positions());
+                for ((&tk, qk), vk) in points.zip(piece.velocities()) {
+                    let u = self.source.input(tk, qk, vk);
+                    if check && refused.is_ok() {
+                        refused = check_input::<S, T, N, P>(tk, qk, vk, &u);
+                    }
+                    record.inputs.push(u);
+                }
+            }
+        }
+        // The piece is recorded even when one of its inputs is refused: the
+        // failure hands back everything computed, one input per point.
+        match &mut record.whole {
+            Some(w) => w.append(piece),
+            None => record.whole = Some(piece),
+        }
+        refused
+    }
+}
+
+/// A controlled run as it is recorded, piece by piece.
+struct Record<T: Real, const N: usize, const P: usize> {
+    whole: Option<Trajectory<T, N>>,
+    inputs: Vec<SVector<T, P>>,
+    occurrences: Vec<Occurrence<T, N>>,
+    terminated_by: Option<usize>,
+}
+
+/// The source of one piece of a controlled run: a held sample or the source
+/// itself.
+#[derive(Debug)]
+pub(crate) enum Piece<'c, C, T: Real, const P: usize> {
+    Held(SVector<T, P>),
+    Live(&'c C),
+}
+
+impl<C, T: Real, const P: usize> Clone for Piece<'_, C, T, P> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<C, T: Real, const P: usize> Copy for Piece<'_, C, T, P> {}
+
+impl<C, T, const N: usize, const P: usize> InputSource<T, N, P> for Piece<'_, C, T, P>
+where
+    T: Real,
+    C: InputSource<T, N, P>,
+{
+    #[inline]
+    fn input(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> SVector<T, P> {
+        match self {
+            Piece::Held(u) => *u,
+            Piece::Live(c) => c.input(t, q, v),
+        }
+    }
+}

@@ -1,0 +1,138 @@
+//! The result of a controlled run and its output as a table or CSV.
+
+use crate::error::{Error, Progress};
+use crate::event::Occurrence;
+use crate::numeric::Real;
+use crate::ode::Trajectory;
+use crate::system::Lagrangian;
+use nalgebra::SVector;
+use std::io::Write;
+use std::path::Path;
+
+/// The result of a controlled run: the trajectory, the inputs at its points,
+/// and the event occurrences.
+///
+/// With the `serde` feature it serializes (not deserializes: its names are
+/// the system's `&'static str`s) with the fields `trajectory`, `inputs` (one
+/// per point), `occurrences`, `terminated_by`, `coordinates` and
+/// `input_names`.
+#[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct ControlRun<T: Real, const N: usize, const P: usize> {
+    pub(super) trajectory: Trajectory<T, N>,
+    pub(super) inputs: Vec<SVector<T, P>>,
+    pub(super) occurrences: Vec<Occurrence<T, N>>,
+    pub(super) terminated_by: Option<usize>,
+    #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
+    pub(super) coordinates: [&'static str; N],
+    #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
+    pub(super) input_names: [&'static str; P],
+}
+
+/// Names as a sequence (serde has no impl for arrays of a generic length).
+#[cfg(feature = "serde")]
+fn names<S: serde::Serializer, const K: usize>(
+    names: &[&'static str; K],
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    serializer.collect_seq(names.iter())
+}
+
+impl<T: Real, const N: usize, const P: usize> ControlRun<T, N, P> {
+    /// The motion, concatenated across the restarts (samples, breakpoints,
+    /// event actions); its statistics sum the pieces' work.
+    pub fn trajectory(&self) -> &Trajectory<T, N> {
+        &self.trajectory
+    }
+
+    /// The trajectory, dropping the rest.
+    pub fn into_trajectory(self) -> Trajectory<T, N> {
+        self.trajectory
+    }
+
+    /// The inputs at the trajectory's [`times`](Trajectory::times), one per
+    /// point: the source's value at the stored time and state for continuous
+    /// sources; for held sources the value in force on the step that ends
+    /// there, or the new sample at a sample instant (see the
+    /// [module docs](crate::control)).
+    pub fn inputs(&self) -> &[SVector<T, P>] {
+        &self.inputs
+    }
+
+    /// The inputs' names ([`Driven::INPUTS`](crate::Driven::INPUTS)).
+    pub fn input_names(&self) -> &[&'static str; P] {
+        &self.input_names
+    }
+
+    /// The coordinates' names ([`Lagrangian::COORDINATES`]).
+    pub fn coordinate_names(&self) -> &[&'static str; N] {
+        &self.coordinates
+    }
+
+    /// Event occurrences, in time order.
+    pub fn occurrences(&self) -> &[Occurrence<T, N>] {
+        &self.occurrences
+    }
+
+    /// The terminal event that ended the run, if one did.
+    pub fn terminated_by(&self) -> Option<usize> {
+        self.terminated_by
+    }
+
+    /// Writes the recorded points as CSV: the header
+    /// `t,<coordinates>,dot_<coordinates>,<inputs>` (e.g. `t,x,theta,dot_x,dot_theta,force`,
+    /// named as in [`Trajectory::write_csv`]) and one row per point, numbers in
+    /// the shortest form that reads back exactly.
+    ///
+    /// # Errors
+    /// [`Error::Io`] if writing fails.
+    pub fn write_csv(&self, w: impl Write) -> Result<(), Error> {
+        self.table_of(crate::table::Table::new(
+            &self.trajectory,
+            &self.coordinates,
+        )?)?
+        .write(w)
+    }
+
+    /// The run as a [`Table`](crate::Table) with the inputs, the system's
+    /// energies at every point and the other columns of
+    /// [`Trajectory::table`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] if the inputs do not match the points (they
+    /// always do for a run built here).
+    pub fn table<S: Lagrangian<T, N>>(
+        &self,
+        sys: &S,
+    ) -> Result<crate::table::Table<'_, T, N>, Error> {
+        self.table_of(self.trajectory.table(sys))
+    }
+
+    fn table_of<'t>(
+        &'t self,
+        table: crate::table::Table<'t, T, N>,
+    ) -> Result<crate::table::Table<'t, T, N>, Error> {
+        let names = self.input_names.iter().map(|s| s.to_string()).collect();
+        let values = self
+            .inputs
+            .iter()
+            .map(|u| u.iter().copied().collect())
+            .collect();
+        table.columns(names, values)
+    }
+
+    /// [`write_csv`](Self::write_csv) to a new file at `path` (buffered).
+    ///
+    /// # Errors
+    /// As [`write_csv`](Self::write_csv), plus failure to create the file.
+    pub fn save_csv(&self, path: impl AsRef<Path>) -> Result<(), Error> {
+        let file = std::fs::File::create(path)?;
+        self.write_csv(std::io::BufWriter::new(file))
+    }
+}
+
+impl<T: Real, const N: usize, const P: usize> Progress for ControlRun<T, N, P> {
+    fn progress(&self) -> (usize, Option<f64>) {
+        self.trajectory.progress()
+    }
+}
