@@ -9,7 +9,7 @@
 //!   [`Dynamics`](crate::Dynamics), [`ConstrainedDynamics`](crate::ConstrainedDynamics)
 //!   (before the saddle-point solve) and [`ReducedDynamics`](crate::ReducedDynamics)
 //!   (as F* += Wᵀ ΔQ). Each of them has a defaulted type parameter
-//!   `F = `[`NoForcing`] and a `with_forcing` method: `Dynamics::new(&sys)` is
+//!   `F = `[`NoForcing`](crate::NoForcing) and a `with_forcing` method: `Dynamics::new(&sys)` is
 //!   unforced as before, and the `if F::ACTIVE` branch that adds ΔQ is removed at
 //!   compile time when there is no forcing.
 //! - [`InputSource`]: where u comes from. [`Feedback`] (u = k(t, q, q̇), evaluated
@@ -19,13 +19,13 @@
 //! - [`InputForces`]: a source and a driven system as a [`Forcing`]; it checks
 //!   every input and reports NaN or ∞ as [`Error::NonFiniteInput`] naming the
 //!   input, never as a NaN force.
-//! - [`ControlledSimulation`], built from a [`Simulation`](crate::Simulation) by
+//! - [`ControlledSimulation`](crate::ControlledSimulation), built from a [`Simulation`](crate::Simulation) by
 //!   [`feedback`](crate::Simulation::feedback), [`sampled`](crate::Simulation::sampled),
 //!   [`open_loop`](crate::Simulation::open_loop) or
 //!   [`control`](crate::Simulation::control), runs all three forms
 //!   (`run`, `run_constrained`, `run_reduced`) with the simulation's checks,
-//!   drift control and [`event`](ControlledSimulation::event)s, and returns a
-//!   [`ControlRun`]: the trajectory, the inputs at every stored point, a CSV
+//!   drift control and [`event`](crate::ControlledSimulation::event)s, and returns a
+//!   [`ControlRun`](crate::ControlRun): the trajectory, the inputs at every stored point, a CSV
 //!   writer.
 //!
 //! ```text
@@ -69,7 +69,7 @@
 //! implicit integrators fall back to finite differences, which see the forcing
 //! correctly.
 //!
-//! **What is recorded.** [`ControlRun::inputs`] holds one u per stored point of
+//! **What is recorded.** [`ControlRun::inputs`](crate::ControlRun::inputs) holds one u per stored point of
 //! the trajectory. For continuous sources it is the source evaluated at the
 //! stored time and state (after an event action, the state after it). For
 //! held sources ([`Sampled`], hold tables) it is the value in force on the step

@@ -7,7 +7,7 @@
 //!
 //! - [`Rk4`]: classic fixed-step Runge–Kutta of order 4.
 //! - [`Dopri5`]: Dormand–Prince 5(4) with Hairer's step-size control and dense output.
-//! - [`Rattle`]: RATTLE for [`Constrained`](crate::Constrained) systems with
+//! - [`Rattle`](crate::Rattle): RATTLE for [`Constrained`](crate::Constrained) systems with
 //!   holonomic constraints (its own entry point: it needs Φ, not only a).
 //!
 //! New integrators implement [`Integrator`].

@@ -31,10 +31,10 @@ use step::{Newton, State};
 ///   Newton-based step reductions of `radau5.f`.
 ///
 /// The tolerances are transformed as in `radau5.f` (rtol ← 0.1 rtol^(2/3)), and
-/// the counters follow it: [`Stats::jacobians`] = NJAC, [`Stats::factorizations`]
-/// = NDEC, [`Stats::accepted`] = NACCPT, and [`Stats::steps`] = NSTEP (every
-/// attempt, so [`Stats::rejected`] includes the steps abandoned because Newton
-/// converged too slowly, which Hairer's NREJCT does not). [`Stats::evaluations`]
+/// the counters follow it: [`Stats::jacobians`](crate::Stats::jacobians) = NJAC, [`Stats::factorizations`](crate::Stats::factorizations)
+/// = NDEC, [`Stats::accepted`](crate::Stats::accepted) = NACCPT, and [`Stats::steps`](crate::Stats::steps) = NSTEP (every
+/// attempt, so [`Stats::rejected`](crate::Stats::rejected) includes the steps abandoned because Newton
+/// converged too slowly, which Hairer's NREJCT does not). [`Stats::evaluations`](crate::Stats::evaluations)
 /// counts NFCN plus the finite-difference Jacobian's evaluations.
 ///
 /// The dense output is the cubic Hermite interpolant between accepted steps.
