@@ -194,5 +194,5 @@ fn a_failure_converts_into_the_bare_error_with_question_mark() {
         .run([1.0], [0.0], 0.0..20.0)
         .unwrap_err();
     let boxed: Box<dyn std::error::Error> = Box::new(f);
-    assert!(boxed.to_string().contains("more than 5 steps"), "{boxed}");
+    assert!(boxed.to_string().contains(".max_steps(5)"), "{boxed}");
 }

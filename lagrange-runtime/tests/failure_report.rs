@@ -7,7 +7,7 @@ mod common;
 
 use common::{Pendulum, sv};
 use lagrange_runtime::{
-    Dopri5, Error, Event, EventRun, Failure, Gauss, Simulation, StormerVerlet, Trajectory,
+    Dopri5, Error, Event, EventRun, Failure, Gauss, Rk4, Simulation, StormerVerlet, Trajectory,
 };
 
 /// A pendulum run out of steps after `max_steps` accepted ones.
@@ -33,7 +33,7 @@ fn debug_and_display_are_short_whatever_the_run() {
         let points = format!("{} points", failure.partial.len());
         for text in [&debug, &display] {
             assert!(
-                text.contains("TooManySteps") || text.contains("more than"),
+                text.contains("TooManySteps") || text.contains("step budget"),
                 "{text}"
             );
             assert!(text.contains(&points), "{text}");
@@ -106,19 +106,26 @@ fn the_step_budget_error_names_its_setting() {
     // An adaptive method runs out where it is.
     let adaptive = out_of_steps(60).error.to_string();
     assert!(adaptive.contains(".max_steps(60)"), "{adaptive}");
-    assert!(adaptive.contains("more than 60 steps"), "{adaptive}");
+    assert!(adaptive.contains("ran out at t = "), "{adaptive}");
     // A fixed-step method refuses up front, at the start time.
     let sys = Pendulum::standard();
     let verlet = Simulation::new(&sys)
         .integrator(StormerVerlet::step(1e-3).max_steps(100))
         .run(sv([1.0]), sv([0.0]), 0.0..1.0)
         .unwrap_err();
+    // 1 s at 1e-3 needs 1,000 steps: the error says so and names the setting
+    // that would allow them.
     assert!(matches!(
         verlet.error,
-        Error::TooManySteps { max_steps: 100, .. }
+        Error::TooManySteps {
+            max_steps: 100,
+            needed: Some(1000),
+            ..
+        }
     ));
     let message = verlet.error.to_string();
-    assert!(message.contains(".max_steps(100)"), "{message}");
+    assert!(message.contains("needs 1000 steps"), "{message}");
+    assert!(message.contains(".max_steps(1000)"), "{message}");
     assert!(message.contains("t = 0"), "{message}");
     let gauss = Simulation::new(&sys)
         .integrator(Gauss::step(1e-3).max_steps(100))
@@ -126,5 +133,14 @@ fn the_step_budget_error_names_its_setting() {
         .unwrap_err()
         .error
         .to_string();
-    assert!(gauss.contains(".max_steps(100)"), "{gauss}");
+    assert!(gauss.contains("budget is 100"), "{gauss}");
+    assert!(gauss.contains(".max_steps(1000)"), "{gauss}");
+    // RK4 says the same (it shares the fixed-step count).
+    let rk4 = Simulation::new(&sys)
+        .integrator(Rk4::step(1e-3).max_steps(100))
+        .run(sv([1.0]), sv([0.0]), 0.0..1.0)
+        .unwrap_err()
+        .error
+        .to_string();
+    assert!(rk4.contains("needs 1000 steps"), "{rk4}");
 }

@@ -48,5 +48,8 @@ fn study_rows_serialize_with_errors_as_messages() {
     let json = serde_json::to_string(&study).unwrap();
     // The step 0.001 needs 1000 steps: its row is the budget error, as text.
     assert!(json.contains("\"Ok\""), "{json}");
-    assert!(json.contains("more than 50 steps"), "{json}");
+    assert!(
+        json.contains("needs 1000 steps but the step budget is 50"),
+        "{json}"
+    );
 }

@@ -32,7 +32,7 @@ impl Clone for Error {
             StepSizeUnderflow { t, h },
             ProbablyStiff { method, t, h_lambda, tests },
             ReducedFormBreakdown { t, q, coordinates, rows, ratio },
-            TooManySteps { t, max_steps },
+            TooManySteps { t, max_steps, needed },
             NewtonFailure { t, h, iterations },
             EventFunction { event, t, q, v },
             TooManyEvents { t, event, max_events },
@@ -62,6 +62,7 @@ mod tests {
             Error::TooManySteps {
                 t: 0.5,
                 max_steps: 10,
+                needed: Some(20),
             },
             Error::InvalidSettings("bad".into()),
             std::io::Error::other("disk full").into(),

@@ -179,18 +179,16 @@ pub enum Error {
     /// method (RK4, Störmer–Verlet, Gauss, RATTLE) knows the count it needs
     /// before the first step and refuses the run at once, with `t` the start
     /// time; an adaptive one stops where the budget ran out.
-    #[error(
-        "more than {max_steps} steps needed: the step budget `.max_steps({max_steps})` \
-         ran out at t = {t}, before the end of the span (a fixed-step method refuses \
-         at the start time when its step count, span / step, exceeds the budget); \
-         raise it with `.max_steps(n)` on the integrator"
-    )]
+    #[error("{}", too_many_steps(*t, *max_steps, *needed))]
     TooManySteps {
         /// Time reached (the start time when a fixed-step method refuses up
         /// front).
         t: f64,
         /// The configured budget (`.max_steps(n)`).
         max_steps: usize,
+        /// The steps the run needs, when known before it starts (a fixed-step
+        /// method: span / step, rounded up).
+        needed: Option<usize>,
     },
 
     /// The Newton iteration for the stages of an implicit method did not
@@ -401,5 +399,22 @@ mod tests {
         assert!(s.contains("[\"rod2\"]") && s.contains("1e-17"), "{s}");
         let e: Error = std::io::Error::other("disk full").into();
         assert!(e.to_string().contains("disk full"));
+    }
+}
+
+/// The message of [`Error::TooManySteps`]: what ran out, what the run needs
+/// when that is known, and the setting that raises it.
+fn too_many_steps(t: f64, max_steps: usize, needed: Option<usize>) -> String {
+    match needed {
+        Some(n) => format!(
+            "the run needs {n} steps but the step budget is {max_steps}: refused at the start \
+             time t = {t}; raise it with `.max_steps({n})` on the integrator, or take a \
+             larger step"
+        ),
+        None => format!(
+            "the step budget `.max_steps({max_steps})` ran out at t = {t}, before the end of \
+             the span; raise it with `.max_steps(n)` on the integrator (the adaptive step \
+             control decides how many it needs), or loosen the tolerance"
+        ),
     }
 }

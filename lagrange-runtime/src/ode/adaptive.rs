@@ -60,6 +60,7 @@ impl<T: Real> Stepping<T> {
             return Err(Error::TooManySteps {
                 t: t.to_f64(),
                 max_steps: self.max_steps,
+                needed: None,
             });
         }
         if h <= self.underflow * abs(t) || !h.is_finite() {

@@ -1,6 +1,7 @@
 //! The classic fourth-order Runge–Kutta method with a fixed step.
 
 use super::run::{Run, fixed_steps};
+use super::verlet::fixed_step_count;
 use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
@@ -86,18 +87,8 @@ impl Rk4 {
             )));
         }
         check_problem(t0, t1, &y0.q, &y0.v)?;
+        let n = fixed_step_count("Rk4", self.h, self.max_steps, t0, t1)?;
         let h = T::lit(self.h);
-        // Round the step count so that a span that is a whole number of steps up to
-        // rounding is not followed by a sliver of a step.
-        let ratio = ((t1 - t0) / h).to_f64();
-        let n = (ratio - 1e-9 * ratio.max(1.0)).ceil().max(1.0);
-        if n > self.max_steps as f64 {
-            return Err(Error::TooManySteps {
-                t: t0.to_f64(),
-                max_steps: self.max_steps,
-            });
-        }
-        let n = n as usize;
 
         let mut y = y0;
         let mut f = y.derivative(rhs, t0, &mut run.stats.evaluations)?;

@@ -90,6 +90,7 @@ pub(crate) fn fixed_step_count<T: Real>(
         return Err(Error::TooManySteps {
             t: t0.to_f64(),
             max_steps,
+            needed: Some(n as usize),
         });
     }
     Ok(n as usize)

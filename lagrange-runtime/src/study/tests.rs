@@ -127,7 +127,7 @@ fn failures_are_rows_not_panics() {
     let md = study.to_markdown();
     assert!(
         md.contains(
-            "| RK4 | h = 1e-3 | – | – | – | – | – | – | – | – | failed: more than 10 steps"
+            "| RK4 | h = 1e-3 | – | – | – | – | – | – | – | – | failed: the run needs 10000 steps but the step budget is 10"
         ),
         "{md}"
     );
@@ -139,7 +139,7 @@ fn failures_are_rows_not_panics() {
         failed.starts_with("RK4,step,0.001,,,,,,,,,,,,,,"),
         "{failed}"
     );
-    assert!(failed.contains("more than 10 steps"), "{failed}");
+    assert!(failed.contains("needs 10000 steps"), "{failed}");
 }
 
 #[test]

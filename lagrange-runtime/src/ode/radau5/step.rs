@@ -217,6 +217,7 @@ impl<T: Real, const N: usize> State<T, N> {
             return Err(Error::TooManySteps {
                 t: t.to_f64(),
                 max_steps: self.p.max_steps,
+                needed: None,
             });
         }
         if T::lit(0.1) * abs(h) <= abs(t) * self.p.uround || !h.is_finite() {
