@@ -363,6 +363,23 @@ impl Error {
     }
 }
 
+/// The message of [`Error::TooManySteps`]: what ran out, what the run needs
+/// when that is known, and the setting that raises it.
+fn too_many_steps(t: f64, max_steps: usize, needed: Option<usize>) -> String {
+    match needed {
+        Some(n) => format!(
+            "the run needs {n} steps but the step budget is {max_steps}: refused at the start \
+             time t = {t}; raise it with `.max_steps({n})` on the integrator, or take a \
+             larger step"
+        ),
+        None => format!(
+            "the step budget `.max_steps({max_steps})` ran out at t = {t}, before the end of \
+             the span; raise it with `.max_steps(n)` on the integrator (the adaptive step \
+             control decides how many it needs), or loosen the tolerance"
+        ),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -399,22 +416,5 @@ mod tests {
         assert!(s.contains("[\"rod2\"]") && s.contains("1e-17"), "{s}");
         let e: Error = std::io::Error::other("disk full").into();
         assert!(e.to_string().contains("disk full"));
-    }
-}
-
-/// The message of [`Error::TooManySteps`]: what ran out, what the run needs
-/// when that is known, and the setting that raises it.
-fn too_many_steps(t: f64, max_steps: usize, needed: Option<usize>) -> String {
-    match needed {
-        Some(n) => format!(
-            "the run needs {n} steps but the step budget is {max_steps}: refused at the start \
-             time t = {t}; raise it with `.max_steps({n})` on the integrator, or take a \
-             larger step"
-        ),
-        None => format!(
-            "the step budget `.max_steps({max_steps})` ran out at t = {t}, before the end of \
-             the span; raise it with `.max_steps(n)` on the integrator (the adaptive step \
-             control decides how many it needs), or loosen the tolerance"
-        ),
     }
 }
