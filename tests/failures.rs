@@ -49,7 +49,7 @@ fn out_of_steps_keeps_every_accepted_step() {
     };
     let whole = run(100_000).unwrap();
     let Err(Failure {
-        error: Error::TooManySteps { t, max_steps },
+        error: Error::TooManySteps { t, max_steps, .. },
         partial,
     }) = run(60)
     else {
