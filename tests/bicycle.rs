@@ -147,7 +147,7 @@ fn lateral_dynamics_match_central_differences() {
         let (q, v) = lagrange::linear::Linearizer::new()
             .coordinates(&["x", "y", "psi", "phi", "theta_r", "delta", "theta_f"])
             .speeds(&["phi", "theta_r", "delta"])
-            .complete_state::<_, f64, 8, 5>(&b, q, v, 0.0)
+            .complete_state(&b, q, v, 0.0)
             .unwrap();
         let a = ConstrainedDynamics::<_, f64, 5>::new(&b)
             .solve(0.0, &q, &v)

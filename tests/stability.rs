@@ -68,7 +68,7 @@ fn central_differences(d: &RollingDisk, q0: Vector5<f64>, v0: Vector5<f64>) -> D
         let (q, v) = Linearizer::new()
             .coordinates(&COORDINATES)
             .speeds(&SPEEDS)
-            .complete_state::<_, f64, 5, 2>(d, q, v, 0.0)
+            .complete_state(d, q, v, 0.0)
             .unwrap();
         let a = ConstrainedDynamics::<_, f64, 2>::new(d)
             .solve(0.0, &q, &v)
@@ -104,7 +104,7 @@ fn linearisation_about_steady_turning_matches_central_differences() {
     let (q0, v0) = d.steady_circle(0.3, 2.0);
     let lz = Linearizer::new().coordinates(&COORDINATES).speeds(&SPEEDS);
     let (q0, v0) = lz
-        .complete_state::<_, f64, 5, 2>(&d, Vector5::from(q0), Vector5::from(v0), 0.0)
+        .complete_state(&d, Vector5::from(q0), Vector5::from(v0), 0.0)
         .unwrap();
     let a0 = ConstrainedDynamics::<_, f64, 2>::new(&d)
         .solve(0.0, &q0, &v0)

@@ -30,7 +30,7 @@ fn central_differences(b: &Bicycle, h: f64) -> Result<DMatrix<f64>, Error> {
         let (q0, v0) = b.upright(SPEED);
         let (mut q, mut v) = (SVector::<f64, 8>::from(q0), SVector::<f64, 8>::from(v0));
         (q[3], q[6], v[3], v[6]) = (x[0], x[1], x[2], x[3]);
-        let (q, v) = lz.complete_state::<_, f64, 8, 5>(b, q, v, 0.0)?;
+        let (q, v) = lz.complete_state(b, q, v, 0.0)?;
         let a = ConstrainedDynamics::<_, f64, 5>::new(b)
             .solve(0.0, &q, &v)?
             .accelerations;

@@ -140,6 +140,9 @@ pub struct Reduction {
     pub free: Vec<Sym>,
     /// c = −(Ȧ q̇ + ḃ).
     pub rates: Vec<Sym>,
+    /// Φ(q, t) of the holonomic constraints, whose rows follow the speeds':
+    /// what builds a starting state on them.
+    pub positions: Vec<Sym>,
     /// Whether the macro picked the speeds (velocities), so that the runtime
     /// may use other free velocities where the constraints fix these.
     pub free_speeds: bool,
@@ -382,6 +385,7 @@ pub fn reduce(
         matrix,
         free: stacked.iter().map(|r| r.g0).collect(),
         rates,
+        positions: holonomic.iter().map(|c| c.value).collect(),
         free_speeds: false,
         derivatives: None,
     })

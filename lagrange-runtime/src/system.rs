@@ -373,6 +373,20 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
     /// knife edge heading north fixes ẋ). Speeds you name are kept or refused.
     const FREE_SPEEDS: bool = false;
 
+    /// How many constraint rows are holonomic: the rows right after the K
+    /// speed rows are Φ_q of Φ(q, t) = 0 for that many constraints. Zero (the
+    /// default) when the description has none.
+    const HOLONOMIC: usize = 0;
+
+    /// Φ(q, t) of the holonomic constraints in the first
+    /// [`HOLONOMIC`](Self::HOLONOMIC) entries, zero in the others: what
+    /// [`complete_state`](crate::linear::complete_state) projects a starting
+    /// state onto. `#[derive(Lagrangian)]` emits it; the default has none.
+    fn holonomic_positions(&self, q: &SVector<T, N>, t: T) -> SVector<T, N> {
+        let _ = (q, t);
+        SVector::zeros()
+    }
+
     /// A = [U; G] and b = [u₀; g], so that A q̇ + b = (u, 0).
     fn velocity_rows(&self, q: &SVector<T, N>, t: T) -> (SMatrix<T, N, N>, SVector<T, N>);
 

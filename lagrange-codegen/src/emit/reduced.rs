@@ -44,6 +44,7 @@ pub(super) fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream
             }
         }
     };
+    let positions = holonomic_positions(e, f, &r.positions);
     let (names, row_names, free) = (&r.names, &r.rows, r.free_speeds);
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     quote! {
@@ -75,6 +76,31 @@ pub(super) fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream
             }
 
             #derivatives
+            #positions
+        }
+    }
+}
+
+/// `Reduced::HOLONOMIC` and `holonomic_positions`: Φ(q, t) of the holonomic
+/// constraints (nothing for a description without them: the defaults say none).
+fn holonomic_positions(e: &Emitter, f: &Frame, positions: &[Sym]) -> TokenStream {
+    if positions.is_empty() {
+        return quote!();
+    }
+    let (s, nl) = (&f.s, &f.n);
+    let vec_n = f.vec(nl);
+    let h = Literal::usize_unsuffixed(positions.len());
+    let (lets, outs) = e.program(positions);
+    let index = (0..positions.len()).map(Literal::usize_unsuffixed);
+    quote! {
+        const HOLONOMIC: usize = #h;
+
+        #[inline]
+        fn holonomic_positions(&self, q: &#vec_n, t: #s) -> #vec_n {
+            #lets
+            let mut phi = <#vec_n>::zeros();
+            #(phi[#index] = #outs;)*
+            phi
         }
     }
 }

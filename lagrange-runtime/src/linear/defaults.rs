@@ -4,7 +4,7 @@ use super::Linear;
 use super::settings::{Linearizer, OperatingPoint};
 use crate::error::Error;
 use crate::numeric::Real;
-use crate::system::{Constrained, Driven, Reduced};
+use crate::system::{Constrained, Driven, Lagrangian, Reduced};
 use nalgebra::SVector;
 
 /// [`Linearizer::unconstrained`] with the default settings.
@@ -58,7 +58,7 @@ where
 ///
 /// # Errors
 /// As [`Linearizer::complete_state`].
-pub fn complete_state<S, T, const N: usize, const K: usize>(
+pub fn complete_state<S, T, const N: usize>(
     sys: &S,
     q: SVector<T, N>,
     v: SVector<T, N>,
@@ -67,7 +67,7 @@ pub fn complete_state<S, T, const N: usize, const K: usize>(
     speeds: &[&str],
 ) -> Result<(SVector<T, N>, SVector<T, N>), Error>
 where
-    S: Constrained<T, N, K>,
+    S: Lagrangian<T, N>,
     T: Real,
 {
     let mut lin = Linearizer::new();

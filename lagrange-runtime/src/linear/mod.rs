@@ -67,6 +67,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod build;
+mod complete;
 mod defaults;
 mod dense;
 mod eigen;

@@ -85,7 +85,7 @@ impl Linearizer {
 /// columns of Φ_q outside `keep` (the named coordinates and speeds) chosen by
 /// QR with column pivoting, so the user names only the coordinates of
 /// interest. Returns (independent, dependent sorted, the pivoting's ratio).
-fn complete_coordinates(
+pub(super) fn complete_coordinates(
     phi_q: &DMatrix<f64>,
     named: &[usize],
     keep: &[usize],
@@ -187,7 +187,7 @@ pub(super) fn embeddings(
 }
 
 /// Coordinate indices of the given names, checked: known, distinct, `count` of them.
-fn indices<S, T, const N: usize>(
+pub(super) fn indices<S, T, const N: usize>(
     what: &'static str,
     names: &[String],
     count: usize,

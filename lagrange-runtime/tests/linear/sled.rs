@@ -30,6 +30,12 @@ impl Sled {
 }
 
 impl Lagrangian<f64, 3> for Sled {
+    const CONSTRAINED: bool = true;
+
+    fn visit_form<F: lagrange_runtime::FormVisitor<f64, 3, Self>>(&self, form: F) -> F::Output {
+        form.multipliers::<1>(self)
+    }
+
     const COORDINATES: [&'static str; 3] = ["x", "y", "theta"];
     const RHEONOMIC: bool = false;
 

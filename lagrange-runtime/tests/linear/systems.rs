@@ -169,6 +169,12 @@ impl Rod {
 }
 
 impl Lagrangian<f64, 2> for Rod {
+    const CONSTRAINED: bool = true;
+
+    fn visit_form<F: lagrange_runtime::FormVisitor<f64, 2, Self>>(&self, form: F) -> F::Output {
+        form.multipliers::<1>(self)
+    }
+
     const COORDINATES: [&'static str; 2] = ["x", "y"];
     const RHEONOMIC: bool = false;
 
