@@ -260,7 +260,9 @@ fn stiff_row(
 /// The variant and where it stopped, without the state dump.
 fn short(e: &Error) -> String {
     match e {
-        Error::TooManySteps { t, max_steps, .. } => format!("TooManySteps ({max_steps}) at t = {t:.3}"),
+        Error::TooManySteps { t, max_steps, .. } => {
+            format!("TooManySteps ({max_steps}) at t = {t:.3}")
+        }
         Error::StepSizeUnderflow { t, h } => {
             format!("StepSizeUnderflow (h = {h:.1e}) at t = {t:.3}")
         }
