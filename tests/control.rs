@@ -91,9 +91,10 @@ fn cart_pole_lqr(cp: &CartPole) -> Lqr {
 fn cart_pole_lqr_settles_from_a_tilt() {
     let cp = CartPole::standard();
     let k = cart_pole_lqr(&cp).gain;
+    let law = StateFeedback::from_gain(&k, &cp.upright().unwrap(), &CartPole::COORDINATES).unwrap();
     let run = Simulation::new(&cp)
         .integrator(Dopri5::tol(1e-10))
-        .feedback(|_, q, v| CartPole::state_feedback(&k, q, v))
+        .control(law)
         .run([0.0, 0.3], [0.0, 0.0], 0.0..10.0)
         .unwrap();
     let (q, v) = run.trajectory().final_state();
@@ -108,9 +109,10 @@ fn cart_pole_lqr_settles_from_a_tilt() {
 fn cart_pole_lqr_at_100_hz_with_zero_order_hold() {
     let cp = CartPole::standard();
     let k = cart_pole_lqr(&cp).gain;
+    let law = StateFeedback::from_gain(&k, &cp.upright().unwrap(), &CartPole::COORDINATES).unwrap();
     let run = Simulation::new(&cp)
         .integrator(Dopri5::tol(1e-10))
-        .sampled(0.01, |_, q, v| CartPole::state_feedback(&k, q, v))
+        .sampled(0.01, move |_, q, v| law.input(q, v))
         .run([0.0, 0.3], [0.0, 0.0], 0.0..10.0)
         .unwrap();
     let (q, v) = run.trajectory().final_state();

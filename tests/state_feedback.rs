@@ -38,7 +38,8 @@ fn lqr_gain_as_state_feedback() {
     let gain = lin.lqr(&q_w, &r_w).unwrap().gain;
     let law = StateFeedback::<f64, 2, 1>::from_gain(&gain, &lin, &CartPole::COORDINATES).unwrap();
     let (q, v) = (Vector2::new(0.3, -0.2), Vector2::new(0.7, 1.1));
-    let by_hand = CartPole::state_feedback(&gain, &q, &v);
+    let x = lagrange::nalgebra::DVector::from_row_slice(&[q[0], q[1], v[0], v[1]]);
+    let by_hand = [-(&gain * x)[0]];
     let before = ALLOCATIONS.with(Cell::get);
     let u = law.input(&q, &v);
     assert_eq!(
@@ -47,6 +48,7 @@ fn lqr_gain_as_state_feedback() {
         "no allocation per call"
     );
     assert!((u[0] - by_hand[0]).abs() < 1e-12, "{u} vs {by_hand:?}");
+    assert_eq!(cart.lqr_feedback().unwrap(), law);
 
     // The simulation takes it as a controller: the pendulum is caught.
     let run = Simulation::new(&cart)

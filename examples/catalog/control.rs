@@ -1,6 +1,7 @@
 //! Systems driven by inputs: what controllers are designed for.
 
 use lagrange::Lagrangian;
+use lagrange::control::StateFeedback;
 use lagrange::linear::{Linear, OperatingPoint, linearize};
 use lagrange::nalgebra::{DMatrix, DVector, Vector1, Vector2};
 
@@ -50,10 +51,12 @@ impl CartPole {
         )
     }
 
-    /// u = −K x for the state (q, q̇).
-    pub fn state_feedback(gain: &DMatrix<f64>, q: &Vector2<f64>, v: &Vector2<f64>) -> [f64; 1] {
-        let x = DVector::from_vec(vec![q[0], q[1], v[0], v[1]]);
-        [-(gain * x)[0]]
+    /// The LQR law u = −K x with the catalog's weights, about upright: a
+    /// static-size feedback that allocates nothing per call.
+    pub fn lqr_feedback(&self) -> Result<StateFeedback<f64, 2, 1>, lagrange::Error> {
+        let lin = self.upright()?;
+        let (q, r) = Self::lqr_weights();
+        StateFeedback::from_gain(&lin.lqr(&q, &r)?.gain, &lin, &Self::COORDINATES)
     }
 }
 

@@ -6,30 +6,23 @@ use crate::catalog::constrained::RollingDisk;
 use crate::catalog::control::{CartPole, TwoLinkArm};
 use crate::row::{Row, TOL, coords, row};
 use lagrange::linear::sweep;
-use lagrange::nalgebra::DMatrix;
 use lagrange::prelude::*;
-
-/// LQR gain of the cart-pole about upright, from the symbolic linearisation.
-fn cart_pole_gain() -> Result<DMatrix<f64>, Error> {
-    let (q, r) = CartPole::lqr_weights();
-    Ok(CartPole::standard().upright()?.lqr(&q, &r)?.gain)
-}
 
 /// The cart-pole caught from a 0.3 rad tilt by continuous LQR feedback.
 pub(crate) fn cart_pole_continuous(system: &'static str) -> Result<Row, Error> {
-    cart_pole(system, &cart_pole_gain()?, None)
+    cart_pole(system, None)
 }
 
 /// The same gain sampled at 100 Hz with zero-order hold.
 pub(crate) fn cart_pole_sampled(system: &'static str) -> Result<Row, Error> {
-    cart_pole(system, &cart_pole_gain()?, Some(0.01))
+    cart_pole(system, Some(0.01))
 }
 
 /// The cart-pole caught from a 0.3 rad tilt by u = −K x, continuously or
 /// sampled with zero-order hold.
-fn cart_pole(system: &'static str, gain: &DMatrix<f64>, period: Option<f64>) -> Result<Row, Error> {
+fn cart_pole(system: &'static str, period: Option<f64>) -> Result<Row, Error> {
     let cp = CartPole::standard();
-    let law = |q: &Vector2<f64>, v: &Vector2<f64>| CartPole::state_feedback(gain, q, v);
+    let law = cp.lqr_feedback()?;
     row(
         system,
         &coords(&cp),
@@ -38,12 +31,11 @@ fn cart_pole(system: &'static str, gain: &DMatrix<f64>, period: Option<f64>) -> 
         || {
             let sim = Simulation::new(&cp).integrator(Dopri5::tol(TOL));
             let run = match period {
-                None => sim
-                    .feedback(|_, q, v| law(q, v))
-                    .run([0.0, 0.3], [0.0; 2], 0.0..10.0),
-                Some(h) => sim
-                    .sampled(h, |_, q, v| law(q, v))
-                    .run([0.0, 0.3], [0.0; 2], 0.0..10.0),
+                None => sim.control(law).run([0.0, 0.3], [0.0; 2], 0.0..10.0),
+                Some(h) => {
+                    sim.sampled(h, |_, q, v| law.input(q, v))
+                        .run([0.0, 0.3], [0.0; 2], 0.0..10.0)
+                }
             };
             run.map(|r| r.into_trajectory())
         },
