@@ -263,6 +263,12 @@ pub mod prelude {
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }
 
+/// The README's code examples, compiled and run as doctests
+/// (`cargo test --doc -p lagrange`).
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
+
 /// Paths the generated code uses; not a public API.
 #[doc(hidden)]
 pub mod __private {

@@ -9,11 +9,32 @@
 //! The integrators in [`ode`] step the second-order system without allocating per
 //! step, and [`Simulation`] ties it together:
 //!
-//! ```text
-//! let traj = Simulation::new(&sys).integrator(Dopri5::tol(1e-10)).run(q0, v0, 0.0..10.0)?;
-//! let periods = traj.crossings(|_, q, _| q[0]);
+//! ```
+//! # use lagrange_runtime::{Dopri5, Lagrangian, Simulation};
+//! # use nalgebra::{Matrix1, Vector1};
+//! # struct Pendulum;
+//! # impl Lagrangian<f64, 1> for Pendulum {
+//! #     const COORDINATES: [&'static str; 1] = ["theta"];
+//! #     const RHEONOMIC: bool = false;
+//! #     fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> { Matrix1::new(1.0) }
+//! #     fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+//! #     fn generalized_forces(&self, q: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::new(-q[0].sin()) }
+//! #     fn mass_matrix_and_rhs(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> (Matrix1<f64>, Vector1<f64>) {
+//! #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+//! #     }
+//! #     fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 { 0.5 * v[0] * v[0] }
+//! #     fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 { -q[0].cos() }
+//! #     fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
+//! #         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+//! #     }
+//! # }
+//! let sys = Pendulum; // θ'' = −sin θ (by hand here; usually #[derive(Lagrangian)])
+//! let traj = Simulation::new(&sys).integrator(Dopri5::tol(1e-10)).run([1.0], [0.0], 0.0..10.0)?;
+//! let zeros = traj.crossings(|_, q, _| q[0]); // θ = 0 every half period
+//! assert_eq!(zeros.len(), 3);
 //! println!("energy drift {:e}", traj.integral_drift());
-//! traj.save_csv("out.csv", &Pendulum::COORDINATES)?;
+//! traj.save_csv(std::env::temp_dir().join("pendulum.csv"), &Pendulum::COORDINATES)?;
+//! # Ok::<(), lagrange_runtime::Error>(())
 //! ```
 //!
 //! Constrained systems come in two forms. A [`Constrained`] system keeps its
@@ -24,35 +45,120 @@
 //! [`project_consistent`]). A [`Reduced`] system is written in independent speeds
 //! and needs no multipliers: [`ReducedDynamics`].
 //!
-//! ```text
+//! ```
+//! # use lagrange_runtime::{Constrained, Dopri5, Drift, Lagrangian, Simulation};
+//! # use nalgebra::{Matrix1x2, Matrix2, Vector1, Vector2};
+//! # struct Bob;
+//! # impl Lagrangian<f64, 2> for Bob {
+//! #     const COORDINATES: [&'static str; 2] = ["x", "y"];
+//! #     const RHEONOMIC: bool = false;
+//! #     fn mass_matrix(&self, _: &Vector2<f64>, _: f64) -> Matrix2<f64> { Matrix2::identity() }
+//! #     fn bias(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> { Vector2::zeros() }
+//! #     fn generalized_forces(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> { Vector2::new(0.0, -9.81) }
+//! #     fn mass_matrix_and_rhs(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64) -> (Matrix2<f64>, Vector2<f64>) {
+//! #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+//! #     }
+//! #     fn kinetic_energy(&self, _: &Vector2<f64>, v: &Vector2<f64>, _: f64) -> f64 { 0.5 * v.norm_squared() }
+//! #     fn potential_energy(&self, q: &Vector2<f64>, _: f64) -> f64 { 9.81 * q[1] }
+//! #     fn integral(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64) -> f64 {
+//! #         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+//! #     }
+//! # }
+//! # impl Constrained<f64, 2, 1> for Bob {
+//! #     const CONSTRAINTS: [&'static str; 1] = ["rod"];
+//! #     const HOLONOMIC: usize = 1;
+//! #     fn constraint_positions(&self, q: &Vector2<f64>, _: f64) -> Vector1<f64> { Vector1::new(q.norm_squared() - 1.0) }
+//! #     fn constraint_jacobian(&self, q: &Vector2<f64>, _: f64) -> (Matrix1x2<f64>, Vector1<f64>) {
+//! #         (Matrix1x2::new(2.0 * q[0], 2.0 * q[1]), Vector1::zeros())
+//! #     }
+//! #     fn constraint_rhs(&self, _: &Vector2<f64>, v: &Vector2<f64>, _: f64) -> Vector1<f64> { Vector1::new(-2.0 * v.norm_squared()) }
+//! #     fn constrained_system(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64)
+//! #         -> (Matrix2<f64>, Vector2<f64>, Matrix1x2<f64>, Vector1<f64>) {
+//! #         let (m, f) = self.mass_matrix_and_rhs(q, v, t);
+//! #         (m, f, self.constraint_jacobian(q, t).0, self.constraint_rhs(q, v, t))
+//! #     }
+//! # }
+//! // A point (x, y) on a rod x² + y² = 1 (written out in full in `mechanics::constraint`).
+//! let (sys, q0, v0) = (Bob, [0.6, -0.8], [0.0, 0.0]);
 //! let traj = Simulation::new(&sys)
 //!     .integrator(Dopri5::tol(1e-10))
 //!     .drift(Drift::projection())
 //!     .run_constrained(q0, v0, 0.0..10.0)?;
 //! let [phi, vel] = traj.max_residuals();
+//! assert!(phi < 1e-12 && vel < 1e-12);
+//! # Ok::<(), lagrange_runtime::Error>(())
 //! ```
 //!
 //! Events ([`Event`]: zero crossings of g(t, q, v), located on the dense output,
 //! with an optional action such as an impact law, optionally terminal) are
 //! watched with [`Simulation::event`]; see [`event`] for the design.
 //!
-//! ```text
+//! ```
+//! # use lagrange_runtime::{Event, Lagrangian, Simulation};
+//! # use nalgebra::{Matrix1, Vector1};
+//! # struct Ball;
+//! # impl Lagrangian<f64, 1> for Ball {
+//! #     const COORDINATES: [&'static str; 1] = ["z"];
+//! #     const RHEONOMIC: bool = false;
+//! #     fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> { Matrix1::new(1.0) }
+//! #     fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+//! #     fn generalized_forces(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::new(-9.81) }
+//! #     fn mass_matrix_and_rhs(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> (Matrix1<f64>, Vector1<f64>) {
+//! #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+//! #     }
+//! #     fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 { 0.5 * v[0] * v[0] }
+//! #     fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 { 9.81 * q[0] }
+//! #     fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
+//! #         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+//! #     }
+//! # }
+//! let ball = Ball; // z'' = −g, dropped from z = 1
 //! let run = Simulation::new(&ball)
 //!     .event(Event::new(|_, q, _| q[0]).falling().action(|_, _, v| *v *= -0.9))
-//!     .run(q0, v0, 0.0..5.0)?;
+//!     .run([1.0], [0.0], 0.0..5.0)?;
 //! println!("{} impacts", run.occurrences.len());
+//! assert!(run.occurrences.len() > 3);
+//! # Ok::<(), lagrange_runtime::Error>(())
 //! ```
 //!
 //! Systems with inputs ([`Driven`]) are driven by a controller or a signal:
 //! continuous feedback, sampled feedback with zero-order hold, open-loop
 //! closures or [`InputTable`]s, in all three forms; see [`control`].
 //!
-//! ```text
+//! ```
+//! # use lagrange_runtime::{Dopri5, Driven, Lagrangian, Simulation};
+//! # use nalgebra::{Matrix1, Vector1};
+//! # struct Cart;
+//! # impl Lagrangian<f64, 1> for Cart {
+//! #     const COORDINATES: [&'static str; 1] = ["x"];
+//! #     const RHEONOMIC: bool = false;
+//! #     fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> { Matrix1::new(1.0) }
+//! #     fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+//! #     fn generalized_forces(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+//! #     fn mass_matrix_and_rhs(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> (Matrix1<f64>, Vector1<f64>) {
+//! #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+//! #     }
+//! #     fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 { 0.5 * v[0] * v[0] }
+//! #     fn potential_energy(&self, _: &Vector1<f64>, _: f64) -> f64 { 0.0 }
+//! #     fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 { self.kinetic_energy(q, v, t) }
+//! # }
+//! # impl Driven<f64, 1, 1> for Cart {
+//! #     const INPUTS: [&'static str; 1] = ["force"];
+//! #     fn input_forces(&self, _: &Vector1<f64>, _: &Vector1<f64>, u: &Vector1<f64>, _: f64) -> Vector1<f64> { *u }
+//! #     fn input_jacobians(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: &Vector1<f64>, _: f64)
+//! #         -> (Matrix1<f64>, Matrix1<f64>, Matrix1<f64>) {
+//! #         (Matrix1::identity(), Matrix1::zeros(), Matrix1::zeros())
+//! #     }
+//! # }
+//! // A free cart of unit mass pushed by a digital PD controller.
+//! let (cart, k1, k2) = (Cart, 4.0, 4.0);
 //! let run = Simulation::new(&cart)
 //!     .integrator(Dopri5::tol(1e-10))
 //!     .sampled(0.01, |_, q, v| [-k1 * q[0] - k2 * v[0]])
-//!     .run(q0, v0, 0.0..5.0)?;
-//! run.save_csv("cart.csv")?;   // t, coordinates, velocities, inputs
+//!     .run([1.0], [0.0], 0.0..5.0)?;
+//! run.save_csv(std::env::temp_dir().join("cart.csv"))?; // t, coordinates, velocities, inputs
+//! assert!(run.trajectory().final_state().0[0].abs() < 0.01);
+//! # Ok::<(), lagrange_runtime::Error>(())
 //! ```
 //!
 //! [`Rattle`] integrates holonomic constraints with a constant mass matrix

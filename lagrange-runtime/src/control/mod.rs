@@ -28,12 +28,38 @@
 //!   [`ControlRun`](crate::ControlRun): the trajectory, the inputs at every stored point, a CSV
 //!   writer.
 //!
-//! ```text
+//! ```
+//! # use lagrange_runtime::{Dopri5, Driven, Lagrangian, Simulation};
+//! # use nalgebra::{Matrix1, Vector1};
+//! # struct Cart;
+//! # impl Lagrangian<f64, 1> for Cart {
+//! #     const COORDINATES: [&'static str; 1] = ["x"];
+//! #     const RHEONOMIC: bool = false;
+//! #     fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> { Matrix1::new(1.0) }
+//! #     fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+//! #     fn generalized_forces(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+//! #     fn mass_matrix_and_rhs(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> (Matrix1<f64>, Vector1<f64>) {
+//! #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+//! #     }
+//! #     fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 { 0.5 * v[0] * v[0] }
+//! #     fn potential_energy(&self, _: &Vector1<f64>, _: f64) -> f64 { 0.0 }
+//! #     fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 { self.kinetic_energy(q, v, t) }
+//! # }
+//! # impl Driven<f64, 1, 1> for Cart {
+//! #     const INPUTS: [&'static str; 1] = ["force"];
+//! #     fn input_forces(&self, _: &Vector1<f64>, _: &Vector1<f64>, u: &Vector1<f64>, _: f64) -> Vector1<f64> { *u }
+//! #     fn input_jacobians(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: &Vector1<f64>, _: f64)
+//! #         -> (Matrix1<f64>, Matrix1<f64>, Matrix1<f64>) {
+//! #         (Matrix1::identity(), Matrix1::zeros(), Matrix1::zeros())
+//! #     }
+//! # }
+//! let (cart, kp, kd) = (Cart, 4.0, 4.0); // a free cart of unit mass
 //! let run = Simulation::new(&cart)
 //!     .integrator(Dopri5::tol(1e-10))
 //!     .feedback(|_, q, v| [-kp * q[0] - kd * v[0]])   // [T; P]: a wrong length does not compile
 //!     .run([1.0], [0.0], 0.0..5.0)?;
-//! run.save_csv("cart.csv")?;               // t,x,dot_x,force,integral,residuals
+//! run.save_csv(std::env::temp_dir().join("cart.csv"))?; // t,x,dot_x,force,integral,residuals
+//! # Ok::<(), lagrange_runtime::Error>(())
 //! ```
 //!
 //! # Design

@@ -2,14 +2,37 @@
 //! located on the dense output, optionally changing the state (an impact law)
 //! or ending the run.
 //!
-//! ```text
-//! let bounce = Event::new(|_, q, _| q[0])            // height above the floor
-//!     .falling()
-//!     .action(move |_, _, v| *v *= -e);              // restitution
-//! let run = Simulation::new(&ball).integrator(Dopri5::tol(1e-10))
-//!     .event(bounce)
-//!     .run([1.0], [0.0], 0.0..10.0)?;
+//! ```
+//! # use lagrange_runtime::{Dopri5, Event, Lagrangian, Simulation};
+//! # use nalgebra::{Matrix1, Vector1};
+//! # struct Ball;
+//! # impl Lagrangian<f64, 1> for Ball {
+//! #     const COORDINATES: [&'static str; 1] = ["z"];
+//! #     const RHEONOMIC: bool = false;
+//! #     fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> { Matrix1::new(1.0) }
+//! #     fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+//! #     fn generalized_forces(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::new(-9.81) }
+//! #     fn mass_matrix_and_rhs(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> (Matrix1<f64>, Vector1<f64>) {
+//! #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+//! #     }
+//! #     fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 { 0.5 * v[0] * v[0] }
+//! #     fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 { 9.81 * q[0] }
+//! #     fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
+//! #         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+//! #     }
+//! # }
+//! let (ball, e) = (Ball, 0.9); // z'' = −g above a floor at z = 0
+//! let run = Simulation::new(&ball)
+//!     .integrator(Dopri5::tol(1e-10))
+//!     .event(
+//!         Event::new(|_, q, _| q[0])                  // height above the floor
+//!             .falling()
+//!             .action(move |_, _, v| *v *= -e),       // restitution
+//!     )
+//!     .run([1.0], [0.0], 0.0..5.0)?;
 //! for o in &run.occurrences { println!("{} {}", o.t, o.v[0]); }
+//! assert!((run.occurrences[0].t - (2.0 / 9.81_f64).sqrt()).abs() < 1e-9);
+//! # Ok::<(), lagrange_runtime::Error>(())
 //! ```
 //!
 //! # Design

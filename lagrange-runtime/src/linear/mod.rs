@@ -53,14 +53,68 @@
 //! # Ok::<(), lagrange_runtime::Error>(())
 //! ```
 //!
-//! With a system (sketch; `sys` a `Constrained<f64, 2, 1>` Cartesian pendulum
-//! derived with `emit(jacobians)`):
+//! With a system: a point (x, y) on a rod x² + y² = 1 under gravity, a
+//! [`Constrained`](crate::Constrained) system with the derivatives
+//! `emit(jacobians)` would generate (written by hand here, as in
+//! [`mechanics::constraint`](crate::mechanics::constraint)). Naming only the
+//! coordinate of interest is enough; the speed is chosen and
+//! [`Linear::completed`] names it:
 //!
-//! ```text
-//! let op = OperatingPoint::new(Vector2::new(0.0, -1.0), Vector2::zeros());
-//! let lin = Linearizer::new().coordinates(&["x"]).speeds(&["x"]).constrained(&sys, &op)?;
-//! // states ["x", "x'"], eigenvalues ±i √(g/l)
-//! let (q, v) = Linearizer::new().coordinates(&["x"]).complete_state(&sys, q_guess, v_guess, 0.0)?;
+//! ```
+//! # use lagrange_runtime::{Constrained, Driven, Lagrangian};
+//! use lagrange_runtime::linear::{Linearizer, OperatingPoint, Verdict};
+//! # use nalgebra::{Matrix1x2, Matrix2, Vector1, Vector2};
+//! # struct Bob;
+//! # impl Lagrangian<f64, 2> for Bob {
+//! #     const COORDINATES: [&'static str; 2] = ["x", "y"];
+//! #     const RHEONOMIC: bool = false;
+//! #     fn mass_matrix(&self, _: &Vector2<f64>, _: f64) -> Matrix2<f64> { Matrix2::identity() }
+//! #     fn bias(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> { Vector2::zeros() }
+//! #     fn generalized_forces(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> { Vector2::new(0.0, -9.81) }
+//! #     fn mass_matrix_and_rhs(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64) -> (Matrix2<f64>, Vector2<f64>) {
+//! #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+//! #     }
+//! #     fn kinetic_energy(&self, _: &Vector2<f64>, v: &Vector2<f64>, _: f64) -> f64 { 0.5 * v.norm_squared() }
+//! #     fn potential_energy(&self, q: &Vector2<f64>, _: f64) -> f64 { 9.81 * q[1] }
+//! #     fn integral(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64) -> f64 {
+//! #         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+//! #     }
+//! #     fn rhs_jacobians(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: &Vector2<f64>, _: f64)
+//! #         -> Option<(Matrix2<f64>, Matrix2<f64>)> { Some((Matrix2::zeros(), Matrix2::zeros())) }
+//! # }
+//! # impl Constrained<f64, 2, 1> for Bob {
+//! #     const CONSTRAINTS: [&'static str; 1] = ["rod"];
+//! #     const HOLONOMIC: usize = 1;
+//! #     fn constraint_positions(&self, q: &Vector2<f64>, _: f64) -> Vector1<f64> { Vector1::new(q.norm_squared() - 1.0) }
+//! #     fn constraint_jacobian(&self, q: &Vector2<f64>, _: f64) -> (Matrix1x2<f64>, Vector1<f64>) {
+//! #         (Matrix1x2::new(2.0 * q[0], 2.0 * q[1]), Vector1::zeros())
+//! #     }
+//! #     fn constraint_rhs(&self, _: &Vector2<f64>, v: &Vector2<f64>, _: f64) -> Vector1<f64> { Vector1::new(-2.0 * v.norm_squared()) }
+//! #     fn constrained_system(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64)
+//! #         -> (Matrix2<f64>, Vector2<f64>, Matrix1x2<f64>, Vector1<f64>) {
+//! #         let (m, f) = self.mass_matrix_and_rhs(q, v, t);
+//! #         (m, f, self.constraint_jacobian(q, t).0, self.constraint_rhs(q, v, t))
+//! #     }
+//! #     fn constraint_derivatives(&self, _: &Vector2<f64>, v: &Vector2<f64>, a: &Vector2<f64>, nu: &Vector1<f64>, _: f64)
+//! #         -> Option<(Matrix2<f64>, Matrix1x2<f64>, Matrix1x2<f64>, Matrix1x2<f64>)> {
+//! #         Some((Matrix2::identity() * (2.0 * nu[0]), -2.0 * a.transpose(), -4.0 * v.transpose(), 2.0 * v.transpose()))
+//! #     }
+//! # }
+//! # impl Driven<f64, 2, 0> for Bob {}
+//! let bottom = OperatingPoint::new(Vector2::new(0.0, -1.0), Vector2::zeros());
+//! let lin = Linearizer::new().coordinates(&["x"]).constrained(&Bob, &bottom)?;
+//! assert_eq!(lin.states(), ["x", "x'"]);
+//! assert_eq!(lin.completed(), ["x'"]);
+//! let stability = lin.stability(1e-9)?; // eigenvalues ±i √(g/l)
+//! assert_eq!(stability.verdict, Verdict::Marginal);
+//! assert!((stability.critical.im - 9.81_f64.sqrt()).abs() < 1e-9);
+//!
+//! // A consistent state from the independent coordinate: y follows from x.
+//! let (q, _) = Linearizer::new()
+//!     .coordinates(&["x"])
+//!     .complete_state(&Bob, Vector2::new(0.6, -0.5), Vector2::zeros(), 0.0)?;
+//! assert!((q[1] + 0.8).abs() < 1e-12);
+//! # Ok::<(), lagrange_runtime::Error>(())
 //! ```
 
 // Tolerance tests are written `!(x <= tol)` on purpose: a NaN residual fails them.
