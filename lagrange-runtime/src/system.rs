@@ -241,6 +241,11 @@ pub trait FormVisitor<T: Real, const N: usize, S: Lagrangian<T, N>> {
 /// ```
 ///
 /// with γ = −(Ġ q̇ + ġ) and the multipliers ν = [λ; μ].
+///
+/// A hand-written implementation also sets [`Lagrangian::CONSTRAINED`] and
+/// overrides [`Lagrangian::visit_form`] with `form.multipliers::<K>(self)`,
+/// as the derive does, so that `Simulation::run` and `complete_state` use
+/// this form.
 #[diagnostic::on_unimplemented(
     message = "`{Self}` has no multiplier form with these constraint rows: `run_constrained` and the constrained linearisation need constraints (`holonomic(...)`, `nonholonomic(...)`) in the `multipliers` formulation",
     label = "needs the multiplier form",

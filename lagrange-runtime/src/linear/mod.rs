@@ -68,6 +68,10 @@
 //! # impl Lagrangian<f64, 2> for Bob {
 //! #     const COORDINATES: [&'static str; 2] = ["x", "y"];
 //! #     const RHEONOMIC: bool = false;
+//! #     const CONSTRAINED: bool = true;
+//! #     fn visit_form<F: lagrange_runtime::FormVisitor<f64, 2, Self>>(&self, f: F) -> F::Output {
+//! #         f.multipliers::<1>(self)
+//! #     }
 //! #     fn mass_matrix(&self, _: &Vector2<f64>, _: f64) -> Matrix2<f64> { Matrix2::identity() }
 //! #     fn bias(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> { Vector2::zeros() }
 //! #     fn generalized_forces(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> { Vector2::new(0.0, -9.81) }
