@@ -6,11 +6,10 @@
 
 mod common;
 
-use common::{Pendulum, sv};
+use common::{Oscillator, Pendulum, sv};
 use lagrange_runtime::{
-    Dopri5, Driven, Event, EventRun, Lagrangian, Occurrence, Record, Simulation, Stats, Trajectory,
+    Dopri5, Event, EventRun, Occurrence, Record, Simulation, Stats, Trajectory,
 };
-use nalgebra::{Matrix1, Vector1};
 use serde_json::Value;
 
 /// The recorder's internal fields, which no JSON of a result may carry.
@@ -88,65 +87,11 @@ fn event_runs_and_occurrences_round_trip() {
     assert_eq!(occurrence, run.occurrences[0]);
 }
 
-/// A unit mass pushed by one force.
-struct Cart;
-
-impl Lagrangian<f64, 1> for Cart {
-    const COORDINATES: [&'static str; 1] = ["x"];
-    const RHEONOMIC: bool = false;
-    fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> {
-        Matrix1::new(1.0)
-    }
-    fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
-        Vector1::zeros()
-    }
-    fn generalized_forces(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
-        Vector1::zeros()
-    }
-    fn mass_matrix_and_rhs(
-        &self,
-        q: &Vector1<f64>,
-        v: &Vector1<f64>,
-        t: f64,
-    ) -> (Matrix1<f64>, Vector1<f64>) {
-        (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
-    }
-    fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 {
-        0.5 * v[0] * v[0]
-    }
-    fn potential_energy(&self, _: &Vector1<f64>, _: f64) -> f64 {
-        0.0
-    }
-    fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
-        self.kinetic_energy(q, v, t)
-    }
-}
-
-impl Driven<f64, 1, 1> for Cart {
-    const INPUTS: [&'static str; 1] = ["force"];
-    fn input_forces(
-        &self,
-        _: &Vector1<f64>,
-        _: &Vector1<f64>,
-        u: &Vector1<f64>,
-        _: f64,
-    ) -> Vector1<f64> {
-        *u
-    }
-    fn input_jacobians(
-        &self,
-        _: &Vector1<f64>,
-        _: &Vector1<f64>,
-        _: &Vector1<f64>,
-        _: f64,
-    ) -> (Matrix1<f64>, Matrix1<f64>, Matrix1<f64>) {
-        (Matrix1::identity(), Matrix1::zeros(), Matrix1::zeros())
-    }
-}
-
 #[test]
 fn control_runs_serialize_with_their_inputs() {
-    let run = Simulation::new(&Cart)
+    // A unit mass pushed by one force (the shared oscillator without its spring).
+    let cart = Oscillator { m: 1.0, k: 0.0 };
+    let run = Simulation::new(&cart)
         .integrator(Dopri5::tol(1e-10))
         .sampled(0.1, |_, q, v| [-q[0] - 2.0 * v[0]])
         .event(Event::new(|_, q, _| q[0] - 0.5).falling())
