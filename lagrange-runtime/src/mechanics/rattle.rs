@@ -32,12 +32,14 @@
 
 use crate::error::{Error, Failure, to_vec};
 use crate::mechanics::constraint::ConstrainedDynamics;
+use crate::mechanics::dynamics::DEFAULT_SINGULAR_TOLERANCE;
 use crate::numeric::Real;
+use crate::numeric::cholesky::Cholesky;
 use crate::ode::{DenseSegment, Sample, Stats, check_problem, fixed_step_count};
 use crate::ode::{Record, Trajectory};
 use crate::ode::{Run, fixed_steps};
 use crate::system::Constrained;
-use nalgebra::{Cholesky, SMatrix, SVector};
+use nalgebra::{SMatrix, SVector};
 
 /// RATTLE with a fixed step `h` for [`Constrained`] systems with a constant
 /// mass matrix and holonomic constraints.
@@ -147,10 +149,12 @@ impl Rattle {
         self.check_settings::<S, T, N, K>()?;
         dynamics.check_consistency(t0, &q0, &v0, T::lit(self.consistency_tolerance))?;
         let m0 = system.mass_matrix(&q0, t0);
-        let chol = Cholesky::new(m0).ok_or_else(|| Error::SingularMassMatrix {
+        // The constant mass matrix, factorised and judged as the dynamics do.
+        let tolerance = T::lit(DEFAULT_SINGULAR_TOLERANCE);
+        let chol = Cholesky::new(m0, tolerance).map_err(|ratio| Error::SingularMassMatrix {
             t: t0.to_f64(),
             q: to_vec(&q0),
-            ratio: 0.0,
+            ratio: ratio.to_f64(),
         })?;
         run.traj.reserve(n);
         let h = T::lit(self.h);
@@ -214,7 +218,7 @@ impl Rattle {
     fn advance<S, T: Real, const N: usize, const K: usize>(
         &self,
         system: &S,
-        (m0, chol): (&SMatrix<T, N, N>, &Cholesky<T, nalgebra::Const<N>>),
+        (m0, chol): (&SMatrix<T, N, N>, &Cholesky<T, N>),
         (t, t_next): (T, T),
         (q, v, f): (&SVector<T, N>, &SVector<T, N>, &SVector<T, N>),
         g_n: &SMatrix<T, K, N>,
@@ -234,9 +238,9 @@ impl Rattle {
         let half = T::lit(0.5);
         let hk = t_next - t;
         // M⁻¹ Φ_q(qₙ)ᵀ, one column per constraint.
-        let minv_gt = chol.solve(&g_n.transpose());
+        let minv_gt = chol.solve_columns(g_n.transpose());
         // Position step: q(Λ) = q̂ + M⁻¹ Φ_q(qₙ)ᵀ Λ with Λ = h²/2 λ.
-        let a_free = chol.solve(f);
+        let a_free = chol.solve(*f);
         let q_hat = q + v * hk + a_free * (half * hk * hk);
         let (q_next, lambda) = self.solve_positions(system, t, hk, t_next, &q_hat, &minv_gt)?;
         let v_half = (q_next - q) / hk;
@@ -247,8 +251,8 @@ impl Rattle {
         check_constant_mass(m0, &m_next, t_next, &q_next)?;
         // Velocity step: G (v̂ + M⁻¹ Gᵀ Μ) + g = 0, linear in Μ = h/2 μ.
         let (g_next, g_t) = system.constraint_jacobian(&q_next, t_next);
-        let minv_gt_next = chol.solve(&g_next.transpose());
-        let a_free_next = chol.solve(&f_next);
+        let minv_gt_next = chol.solve_columns(g_next.transpose());
+        let a_free_next = chol.solve(f_next);
         let v_hat = v_half + a_free_next * (half * hk);
         let schur = g_next * minv_gt_next;
         let rhs = -(g_next * v_hat + g_t);

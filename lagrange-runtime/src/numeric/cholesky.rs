@@ -103,6 +103,15 @@ impl<T: Real, const N: usize> Cholesky<T, N> {
         self.solve_upper(&mut b);
         b
     }
+
+    /// M⁻¹ B for a matrix of right-hand sides, column by column.
+    pub fn solve_columns<const C: usize>(&self, mut b: SMatrix<T, N, C>) -> SMatrix<T, N, C> {
+        for j in 0..C {
+            let x = self.solve(b.column(j).into_owned());
+            b.set_column(j, &x);
+        }
+        b
+    }
 }
 
 /// Solves M x = b for symmetric positive definite M; on failure the pivot ratio.

@@ -3,6 +3,7 @@
 use super::SecondOrder;
 use crate::error::{Error, to_vec};
 use crate::numeric::Real;
+use crate::numeric::cholesky::Cholesky;
 use nalgebra::{SMatrix, SVector};
 
 /// A second-order system that can also be written in Hamilton's form
@@ -46,11 +47,14 @@ pub trait Mechanical<T: Real, const N: usize>: SecondOrder<T, N> {
     fn velocity(&self, t: T, q: &SVector<T, N>, p: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
         let a = self.momentum(t, q, &SVector::zeros())?;
         let m = self.mass_matrix(t, q)?;
-        let chol = nalgebra::Cholesky::new(m).ok_or_else(|| Error::SingularMassMatrix {
+        // The runtime's one Cholesky; a zero tolerance refuses only a matrix
+        // that is not positive definite, as before (the symplectic method has
+        // no singular-tolerance setting of its own).
+        let chol = Cholesky::new(m, T::zero()).map_err(|ratio| Error::SingularMassMatrix {
             t: t.to_f64(),
             q: to_vec(q),
-            ratio: 0.0,
+            ratio: ratio.to_f64(),
         })?;
-        Ok(chol.solve(&(p - a)))
+        Ok(chol.solve(p - a))
     }
 }
