@@ -128,10 +128,31 @@ pub trait Lagrangian<T: Real, const N: usize> {
     /// same with the `_with` methods; compute the terms again after changing a
     /// parameter (with stale terms the results are those of the old parameters):
     ///
-    /// ```ignore
+    /// ```
+    /// # use lagrange_runtime::Lagrangian;
+    /// # use nalgebra::{Matrix1, Vector1};
+    /// # struct Spring { k: f64 }
+    /// # impl Lagrangian<f64, 1> for Spring {
+    /// #     const COORDINATES: [&'static str; 1] = ["x"];
+    /// #     const RHEONOMIC: bool = false;
+    /// #     fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> { Matrix1::new(1.0) }
+    /// #     fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+    /// #     fn generalized_forces(&self, q: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { -q * self.k }
+    /// #     fn mass_matrix_and_rhs(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> (Matrix1<f64>, Vector1<f64>) {
+    /// #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+    /// #     }
+    /// #     fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 { 0.5 * v[0] * v[0] }
+    /// #     fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 { 0.5 * self.k * q[0] * q[0] }
+    /// #     fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
+    /// #         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+    /// #     }
+    /// # }
+    /// # let sys = Spring { k: 4.0 };
+    /// # let states = [(Vector1::new(0.5), Vector1::new(0.0)), (Vector1::new(-0.2), Vector1::new(1.0))];
     /// let terms = sys.parameter_terms();
     /// for (q, v) in states {
     ///     let (m, rhs) = sys.mass_matrix_and_rhs_with(&terms, &q, &v, 0.0);
+    ///     assert_eq!((m, rhs), sys.mass_matrix_and_rhs(&q, &v, 0.0));
     /// }
     /// ```
     fn parameter_terms(&self) -> Vec<T> {

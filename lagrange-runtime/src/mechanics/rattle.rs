@@ -44,9 +44,57 @@ use nalgebra::{SMatrix, SVector};
 /// RATTLE with a fixed step `h` for [`Constrained`] systems with a constant
 /// mass matrix and holonomic constraints.
 ///
-/// ```text
-/// let traj = Rattle::step(1e-2).integrate(&pendulum, 0.0, 1000.0, q0, v0)?;
+/// A pendulum in Cartesian coordinates (unit mass on a unit rod, written by
+/// hand here; the derive writes the same traits): RATTLE keeps the bob on its
+/// rod to round-off over a thousand steps.
+///
+/// ```
+/// # use lagrange_runtime::{Constrained, Lagrangian, Rattle};
+/// # use nalgebra::{Matrix1x2, Matrix2, Vector1, Vector2};
+/// # struct Bob;
+/// # impl Lagrangian<f64, 2> for Bob {
+/// #     const COORDINATES: [&'static str; 2] = ["x", "y"];
+/// #     const RHEONOMIC: bool = false;
+/// #     const CONSTRAINED: bool = true;
+/// #     fn visit_form<F: lagrange_runtime::FormVisitor<f64, 2, Self>>(&self, f: F) -> F::Output {
+/// #         f.multipliers::<1>(self)
+/// #     }
+/// #     fn mass_matrix(&self, _: &Vector2<f64>, _: f64) -> Matrix2<f64> { Matrix2::identity() }
+/// #     fn bias(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> { Vector2::zeros() }
+/// #     fn generalized_forces(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: f64) -> Vector2<f64> { Vector2::new(0.0, -9.81) }
+/// #     fn mass_matrix_and_rhs(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64) -> (Matrix2<f64>, Vector2<f64>) {
+/// #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+/// #     }
+/// #     fn kinetic_energy(&self, _: &Vector2<f64>, v: &Vector2<f64>, _: f64) -> f64 { 0.5 * v.norm_squared() }
+/// #     fn potential_energy(&self, q: &Vector2<f64>, _: f64) -> f64 { 9.81 * q[1] }
+/// #     fn integral(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64) -> f64 {
+/// #         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+/// #     }
+/// #     fn rhs_jacobians(&self, _: &Vector2<f64>, _: &Vector2<f64>, _: &Vector2<f64>, _: f64)
+/// #         -> Option<(Matrix2<f64>, Matrix2<f64>)> { Some((Matrix2::zeros(), Matrix2::zeros())) }
+/// # }
+/// # impl Constrained<f64, 2, 1> for Bob {
+/// #     const CONSTRAINTS: [&'static str; 1] = ["rod"];
+/// #     const HOLONOMIC: usize = 1;
+/// #     fn constraint_positions(&self, q: &Vector2<f64>, _: f64) -> Vector1<f64> { Vector1::new(q.norm_squared() - 1.0) }
+/// #     fn constraint_jacobian(&self, q: &Vector2<f64>, _: f64) -> (Matrix1x2<f64>, Vector1<f64>) {
+/// #         (Matrix1x2::new(2.0 * q[0], 2.0 * q[1]), Vector1::zeros())
+/// #     }
+/// #     fn constraint_rhs(&self, _: &Vector2<f64>, v: &Vector2<f64>, _: f64) -> Vector1<f64> { Vector1::new(-2.0 * v.norm_squared()) }
+/// #     fn constrained_system(&self, q: &Vector2<f64>, v: &Vector2<f64>, t: f64)
+/// #         -> (Matrix2<f64>, Vector2<f64>, Matrix1x2<f64>, Vector1<f64>) {
+/// #         let (m, f) = self.mass_matrix_and_rhs(q, v, t);
+/// #         (m, f, self.constraint_jacobian(q, t).0, self.constraint_rhs(q, v, t))
+/// #     }
+/// #     fn constraint_derivatives(&self, _: &Vector2<f64>, v: &Vector2<f64>, a: &Vector2<f64>, nu: &Vector1<f64>, _: f64)
+/// #         -> Option<(Matrix2<f64>, Matrix1x2<f64>, Matrix1x2<f64>, Matrix1x2<f64>)> {
+/// #         Some((Matrix2::identity() * (2.0 * nu[0]), -2.0 * a.transpose(), -4.0 * v.transpose(), 2.0 * v.transpose()))
+/// #     }
+/// # }
+/// let (q0, v0) = (Vector2::new(0.3_f64.sin(), -0.3_f64.cos()), Vector2::zeros());
+/// let traj = Rattle::step(1e-2).integrate(&Bob, 0.0, 10.0, q0, v0)?;
 /// assert!(traj.max_residuals()[0] < 1e-13);
+/// # Ok::<(), lagrange_runtime::Failure<lagrange_runtime::Trajectory<f64, 2>>>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rattle {
