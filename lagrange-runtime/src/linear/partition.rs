@@ -46,7 +46,13 @@ impl Linearizer {
         // constraints allow, so that they stay rates of independent coordinates.
         let mut keep = named_c.clone();
         keep.extend(named_s.iter().filter(|i| !named_c.contains(i)));
-        let (mut ci, mut cd, mut ratio) = complete_coordinates(&phi_q, &named_c, &keep, N - h);
+        let complement = |named: &[usize]| (0..N).filter(|i| !named.contains(i)).collect();
+        // All named: nothing to choose (the checks below still judge the choice).
+        let (mut ci, mut cd, mut ratio) = if self.coordinates.is_some() && named_c.len() == N - h {
+            (named_c.clone(), complement(&named_c), 1.0)
+        } else {
+            complete_coordinates(&phi_q, &named_c, &keep, N - h)
+        };
         if h > 0 && !(ratio >= tol) && keep.len() > named_c.len() {
             (ci, cd, ratio) = complete_coordinates(&phi_q, &named_c, &named_c, N - h);
         }
@@ -66,7 +72,11 @@ impl Linearizer {
             }
             .into());
         }
-        let (si, sd, ratio) = complete_speeds(g, h, &ci, &cd, &named_s);
+        let (si, sd, ratio) = if self.speeds.is_some() && named_s.len() == N.saturating_sub(K) {
+            (named_s.clone(), complement(&named_s), 1.0)
+        } else {
+            complete_speeds(g, h, &ci, &cd, &named_s)
+        };
         if K > h
             && !(ratio >= tol)
             && (self.speeds.is_none() || named_s.len() < N.saturating_sub(K))

@@ -6,7 +6,7 @@
 
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
-use crate::numeric::saddle::{Schur, range_space};
+use crate::numeric::saddle::{Schur, SchurFactor};
 use nalgebra::{DMatrix, SMatrix, SVector};
 
 /// A stack vector from a column of a dense f64 matrix.
@@ -54,8 +54,7 @@ pub(super) enum SaddleError {
 /// factorised as the constrained dynamics factorise it.
 pub(super) struct SaddleFactor<T, const N: usize, const K: usize> {
     mass: Cholesky<T, N>,
-    g: SMatrix<T, K, N>,
-    schur: Schur<T>,
+    schur: SchurFactor<T, N, K>,
 }
 
 impl<T: Real, const N: usize, const K: usize> SaddleFactor<T, N, K> {
@@ -73,10 +72,9 @@ impl<T: Real, const N: usize, const K: usize> SaddleFactor<T, N, K> {
             tolerance: T::lit(redundant_tolerance),
             least_squares: false,
         };
-        let zero = (SVector::zeros(), SVector::zeros());
-        range_space(&mass, g, K, zero.0, &zero.1, schur)
+        let schur = SchurFactor::new(&mass, g, K, schur)
             .map_err(|d| SaddleError::Redundant(d.ratio.to_f64(), d.rows))?;
-        Ok(Self { mass, g: *g, schur })
+        Ok(Self { mass, schur })
     }
 
     /// Solves for the columns of `f` (N rows) and `r` (K rows) at once:
@@ -86,7 +84,7 @@ impl<T: Real, const N: usize, const K: usize> SaddleFactor<T, N, K> {
         let mut y = DMatrix::zeros(K, f.ncols());
         for j in 0..f.ncols() {
             let (fj, rj) = (column::<T, N>(f, j), column::<T, K>(r, j));
-            match range_space(&self.mass, &self.g, K, fj, &rj, self.schur) {
+            match self.schur.solve(&self.mass, fj, &rj) {
                 Ok((xj, yj)) => {
                     set_column(&mut x, j, &xj);
                     set_column(&mut y, j, &yj);

@@ -35,43 +35,79 @@ pub(crate) struct Dependent<T> {
     pub rows: Vec<usize>,
 }
 
+/// The Schur complement S = G M⁻¹ Gᵀ = Yᵀ Y (Y = L⁻¹ Gᵀ) factorised once, for
+/// the first `rows` rows of G: solving then costs two triangular solves with
+/// M's factor and one with S's, for each right-hand side.
+pub(crate) struct SchurFactor<T, const N: usize, const K: usize> {
+    y: SMatrix<T, N, K>,
+    factor: PivotedCholesky<T, K>,
+    rows: usize,
+}
+
+impl<T: Real, const N: usize, const K: usize> SchurFactor<T, N, K> {
+    /// Factorises S; [`Dependent`] rows unless `schur` accepts least squares.
+    pub(crate) fn new(
+        m: &Cholesky<T, N>,
+        g: &SMatrix<T, K, N>,
+        rows: usize,
+        schur: Schur<T>,
+    ) -> Result<Self, Dependent<T>> {
+        let mut y = SMatrix::<T, N, K>::zeros();
+        for j in 0..rows {
+            let mut col = g.row(j).transpose();
+            m.solve_lower(&mut col);
+            y.set_column(j, &col);
+        }
+        let factor = PivotedCholesky::new(y.tr_mul(&y), rows, schur.tolerance);
+        let this = Self { y, factor, rows };
+        if !this.factor.is_full_rank() && !schur.least_squares {
+            return Err(this.dependent());
+        }
+        Ok(this)
+    }
+
+    fn dependent(&self) -> Dependent<T> {
+        Dependent {
+            ratio: self.factor.ratio(),
+            rows: self.factor.dependent_rows().to_vec(),
+        }
+    }
+
+    /// (x, ν) for the right-hand sides f and γ (γ's rows past `rows` ignored,
+    /// their multipliers zero); `m` is the factor this was built with.
+    pub(crate) fn solve(
+        &self,
+        m: &Cholesky<T, N>,
+        mut f: SVector<T, N>,
+        gamma: &SVector<T, K>,
+    ) -> Result<(SVector<T, N>, SVector<T, K>), Dependent<T>> {
+        m.solve_lower(&mut f);
+        let z = f;
+        let mut b = *gamma - self.y.tr_mul(&z);
+        for x in b.iter_mut().skip(self.rows) {
+            *x = T::zero();
+        }
+        let nu = self
+            .factor
+            .solve_min_norm(&b)
+            .ok_or_else(|| self.dependent())?;
+        let mut x = z + self.y * nu;
+        m.solve_upper(&mut x);
+        Ok((x, nu))
+    }
+}
+
 /// Solves the saddle-point system restricted to the first `rows` rows of G (the
 /// others, and γ's, are ignored and their multipliers are zero). Returns (x, ν).
 pub(crate) fn range_space<T: Real, const N: usize, const K: usize>(
     m: &Cholesky<T, N>,
     g: &SMatrix<T, K, N>,
     rows: usize,
-    mut f: SVector<T, N>,
+    f: SVector<T, N>,
     gamma: &SVector<T, K>,
     schur: Schur<T>,
 ) -> Result<(SVector<T, N>, SVector<T, K>), Dependent<T>> {
-    m.solve_lower(&mut f);
-    let z = f;
-    let mut y = SMatrix::<T, N, K>::zeros();
-    for j in 0..rows {
-        let mut col = g.row(j).transpose();
-        m.solve_lower(&mut col);
-        y.set_column(j, &col);
-    }
-    let s = y.tr_mul(&y);
-    let mut b = *gamma - y.tr_mul(&z);
-    for x in b.iter_mut().skip(rows) {
-        *x = T::zero();
-    }
-    let factor = PivotedCholesky::new(s, rows, schur.tolerance);
-    if !factor.is_full_rank() && !schur.least_squares {
-        return Err(Dependent {
-            ratio: factor.ratio(),
-            rows: factor.dependent_rows().to_vec(),
-        });
-    }
-    let nu = factor.solve_min_norm(&b).ok_or_else(|| Dependent {
-        ratio: factor.ratio(),
-        rows: factor.dependent_rows().to_vec(),
-    })?;
-    let mut x = z + y * nu;
-    m.solve_upper(&mut x);
-    Ok((x, nu))
+    SchurFactor::new(m, g, rows, schur)?.solve(m, f, gamma)
 }
 
 #[cfg(test)]
