@@ -116,8 +116,11 @@ impl Linearizer {
         let (g, _) = sys.constraint_jacobian(&q, t);
         let part = self.partition::<S, T, N, K>(&dm(&g), &q, t)?;
         let phi = |q: &SVector<T, N>| dv(&sys.constraint_positions(q, t)).rows(0, h).into_owned();
-        let jac = |q: &SVector<T, N>| dm(&sys.constraint_jacobian(q, t).0).rows(0, h).into_owned();
-        let failed = projection_failed::<T, N>(S::COORDINATES.to_vec(), t, self.newton_tolerance);
+        let jac = |q: &SVector<T, N>| {
+            let g = sys.constraint_jacobian(q, t).0;
+            DMatrix::from_fn(h, N, |i, j| g[(i, j)].to_f64())
+        };
+        let failed = projection_failed::<T, N>(S::COORDINATES, t, self.newton_tolerance);
         let q = self.project_holonomic(q, &part.cd, phi, jac, failed)?;
         let (g, g0) = sys.constraint_jacobian(&q, t);
         let g = dm(&g);
@@ -156,7 +159,7 @@ impl Linearizer {
         };
         let (_, dependent, _) = complete_coordinates(&jac(&q), &named, &named, N - h);
         let phi = |q: &SVector<T, N>| dv(&sys.holonomic_positions(q, t)).rows(0, h).into_owned();
-        let failed = projection_failed::<T, N>(S::COORDINATES.to_vec(), t, self.newton_tolerance);
+        let failed = projection_failed::<T, N>(S::COORDINATES, t, self.newton_tolerance);
         let q = if h == 0 {
             q
         } else {
@@ -171,14 +174,14 @@ impl Linearizer {
 
 /// The error of a Newton iteration that did not reach its tolerance.
 fn projection_failed<T: Real, const N: usize>(
-    coordinates: Vec<&'static str>,
+    coordinates: [&'static str; N],
     t: T,
     tolerance: f64,
 ) -> impl Fn(&SVector<T, N>, f64, usize) -> Error {
     move |q, residual, iterations| Error::ProjectionFailed {
         t: t.to_f64(),
         q: to_vec(q),
-        coordinates: coordinates.clone(),
+        coordinates: coordinates.to_vec(),
         residual,
         iterations,
         tolerance,

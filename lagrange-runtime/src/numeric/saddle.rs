@@ -46,6 +46,7 @@ pub(crate) struct SchurFactor<T, const N: usize, const K: usize> {
 
 impl<T: Real, const N: usize, const K: usize> SchurFactor<T, N, K> {
     /// Factorises S; [`Dependent`] rows unless `schur` accepts least squares.
+    #[inline]
     pub(crate) fn new(
         m: &Cholesky<T, N>,
         g: &SMatrix<T, K, N>,
@@ -75,6 +76,7 @@ impl<T: Real, const N: usize, const K: usize> SchurFactor<T, N, K> {
 
     /// (x, ν) for the right-hand sides f and γ (γ's rows past `rows` ignored,
     /// their multipliers zero); `m` is the factor this was built with.
+    #[inline]
     pub(crate) fn solve(
         &self,
         m: &Cholesky<T, N>,
@@ -99,6 +101,7 @@ impl<T: Real, const N: usize, const K: usize> SchurFactor<T, N, K> {
 
 /// Solves the saddle-point system restricted to the first `rows` rows of G (the
 /// others, and γ's, are ignored and their multipliers are zero). Returns (x, ν).
+#[inline]
 pub(crate) fn range_space<T: Real, const N: usize, const K: usize>(
     m: &Cholesky<T, N>,
     g: &SMatrix<T, K, N>,
