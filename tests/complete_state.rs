@@ -100,3 +100,36 @@ fn every_form_completes_the_same_positions() {
         .unwrap();
     assert_eq!(free, (Vector1::new(0.3), Vector1::new(-1.0)));
 }
+
+/// Bad choices in the reduced form are typed errors, not a failed Newton.
+#[test]
+fn reduced_form_refuses_a_singular_or_oversized_choice() {
+    let sys = ReducedPendulum {
+        m: 1.0,
+        l: 2.0,
+        g: 9.81,
+    };
+    // At (2, 0) the rod fixes x, not y: y cannot be the dependent coordinate.
+    let e = Linearizer::new()
+        .coordinates(&["x"])
+        .complete_state(&sys, Vector2::new(2.0, 0.0), Vector2::zeros(), 0.0)
+        .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            lagrange::Error::Linear(lagrange::LinearError::SingularPartition { .. })
+        ),
+        "{e:?}"
+    );
+    let e = Linearizer::new()
+        .coordinates(&["x", "y"])
+        .complete_state(&sys, Vector2::new(1.0, -1.0), Vector2::zeros(), 0.0)
+        .unwrap_err();
+    assert!(e.to_string().contains("at most 1"), "{e}");
+    let nan =
+        Linearizer::new().complete_state(&sys, Vector2::new(f64::NAN, -1.0), Vector2::zeros(), 0.0);
+    assert!(
+        matches!(nan, Err(lagrange::Error::NonFiniteState { .. })),
+        "{nan:?}"
+    );
+}

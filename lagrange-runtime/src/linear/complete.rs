@@ -5,7 +5,7 @@
 use super::dense::{dm, dv, finite};
 use super::partition::{complete_coordinates, holonomic, indices};
 use super::settings::Linearizer;
-use crate::error::{Error, to_vec};
+use crate::error::{Error, LinearError, to_vec};
 use crate::mechanics::reduced::ReducedDynamics;
 use crate::numeric::Real;
 use crate::system::{Constrained, FormVisitor, Lagrangian, Reduced};
@@ -26,7 +26,8 @@ impl Linearizer {
     ///   completed automatically at the given q;
     /// - reduced: the same Newton on the holonomic constraints
     ///   ([`Reduced::holonomic_positions`]), then the velocities W u + w with
-    ///   the speeds u of `v`;
+    ///   the speeds u of `v` (the description's speeds: named
+    ///   [`speeds`](Self::speeds) play no part);
     /// - unconstrained: (q, v) as given.
     ///
     /// # Errors
@@ -61,24 +62,25 @@ impl Linearizer {
         })
     }
 
-    /// Newton on the `h` holonomic constraints Φ (values by `phi`, Jacobian
-    /// rows by `jacobian`) over the coordinates `dependent`, the others held.
-    /// Once within the tolerance, one more step polishes Φ to round-off (kept
-    /// only if it does not increase the residual).
+    /// Newton on the holonomic constraints Φ (values by `phi`, Jacobian rows by
+    /// `jacobian`) over the coordinates `dependent`, the others held. Once
+    /// within the tolerance, one more step polishes Φ to round-off (kept only
+    /// if it does not increase the residual).
     fn project_holonomic<T: Real, const N: usize>(
         &self,
-        mut q: SVector<T, N>,
+        (mut q, v, t): (SVector<T, N>, &SVector<T, N>, T),
+        coordinates: [&'static str; N],
         dependent: &[usize],
         phi: impl Fn(&SVector<T, N>) -> DVector<f64>,
         jacobian: impl Fn(&SVector<T, N>) -> DMatrix<f64>,
-        failed: impl Fn(&SVector<T, N>, f64, usize) -> Error,
     ) -> Result<SVector<T, N>, Error> {
         let mut polish: Option<(SVector<T, N>, f64)> = None;
-        for iterations in 0.. {
+        let mut iterations = 0;
+        loop {
             let residual_vector = phi(&q);
             let residual = residual_vector.amax();
             if !residual.is_finite() {
-                return Err(failed(&q, residual, iterations));
+                return Err(Error::non_finite(t, &q, v));
             }
             if let Some((previous, r)) = polish {
                 return Ok(if residual <= r { q } else { previous });
@@ -89,16 +91,23 @@ impl Linearizer {
                 }
                 polish = Some((q, residual));
             } else if iterations == self.newton_iterations {
-                return Err(failed(&q, residual, iterations));
+                return Err(Error::ProjectionFailed {
+                    t: t.to_f64(),
+                    q: to_vec(&q),
+                    coordinates: coordinates.to_vec(),
+                    residual,
+                    iterations,
+                    tolerance: self.newton_tolerance,
+                });
             }
             let jd = jacobian(&q).select_columns(dependent.iter());
             let step = jd.lu().solve(&-residual_vector);
-            let step = step.ok_or_else(|| failed(&q, f64::NAN, iterations))?;
+            let step = step.ok_or_else(|| Error::non_finite(t, &q, v))?;
             for (k, &i) in dependent.iter().enumerate() {
                 q[i] += T::lit(step[k]);
             }
+            iterations += 1;
         }
-        unreachable!("the loop returns")
     }
 
     fn complete_multipliers<S, T, const N: usize, const K: usize>(
@@ -120,8 +129,7 @@ impl Linearizer {
             let g = sys.constraint_jacobian(q, t).0;
             DMatrix::from_fn(h, N, |i, j| g[(i, j)].to_f64())
         };
-        let failed = projection_failed::<T, N>(S::COORDINATES, t, self.newton_tolerance);
-        let q = self.project_holonomic(q, &part.cd, phi, jac, failed)?;
+        let q = self.project_holonomic((q, &v, t), S::COORDINATES, &part.cd, phi, jac)?;
         let (g, g0) = sys.constraint_jacobian(&q, t);
         let g = dm(&g);
         for &i in &part.sd {
@@ -157,34 +165,30 @@ impl Linearizer {
             Some(names) => indices::<S, T, N>("coordinates", names, N - h)?,
             None => Vec::new(),
         };
-        let (_, dependent, _) = complete_coordinates(&jac(&q), &named, &named, N - h);
+        let (_, dependent, ratio) = complete_coordinates(&jac(&q), &named, &named, N - h);
+        if h > 0 && !(ratio >= self.redundant_tolerance) {
+            // No well-conditioned choice of dependent coordinates among those
+            // not named: the named ones (or redundant constraints) leave none.
+            return Err(LinearError::SingularPartition {
+                what: "coordinates",
+                dependent: dependent
+                    .iter()
+                    .map(|&i| S::COORDINATES[i].into())
+                    .collect(),
+                ratio,
+            }
+            .into());
+        }
         let phi = |q: &SVector<T, N>| dv(&sys.holonomic_positions(q, t)).rows(0, h).into_owned();
-        let failed = projection_failed::<T, N>(S::COORDINATES, t, self.newton_tolerance);
         let q = if h == 0 {
             q
         } else {
-            self.project_holonomic(q, &dependent, phi, jac, failed)?
+            self.project_holonomic((q, &v, t), S::COORDINATES, &dependent, phi, jac)?
         };
         let v = ReducedDynamics::new(sys)
             .with_singular_tolerance(T::lit(self.singular_tolerance))
             .consistent_velocities(t, &q, &v)?;
         checked(t, q, v)
-    }
-}
-
-/// The error of a Newton iteration that did not reach its tolerance.
-fn projection_failed<T: Real, const N: usize>(
-    coordinates: [&'static str; N],
-    t: T,
-    tolerance: f64,
-) -> impl Fn(&SVector<T, N>, f64, usize) -> Error {
-    move |q, residual, iterations| Error::ProjectionFailed {
-        t: t.to_f64(),
-        q: to_vec(q),
-        coordinates: coordinates.to_vec(),
-        residual,
-        iterations,
-        tolerance,
     }
 }
 

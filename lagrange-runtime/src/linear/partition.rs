@@ -47,8 +47,11 @@ impl Linearizer {
         let mut keep = named_c.clone();
         keep.extend(named_s.iter().filter(|i| !named_c.contains(i)));
         let complement = |named: &[usize]| (0..N).filter(|i| !named.contains(i)).collect();
-        // All named: nothing to choose (the checks below still judge the choice).
-        let (mut ci, mut cd, mut ratio) = if self.coordinates.is_some() && named_c.len() == N - h {
+        // All named: nothing to choose (the checks below still judge the
+        // choice, and a singular one is the user's, not redundancy).
+        let all_c = self.coordinates.is_some() && named_c.len() == N - h;
+        let all_s = self.speeds.is_some() && named_s.len() == N.saturating_sub(K);
+        let (mut ci, mut cd, mut ratio) = if all_c {
             (named_c.clone(), complement(&named_c), 1.0)
         } else {
             complete_coordinates(&phi_q, &named_c, &keep, N - h)
@@ -56,7 +59,7 @@ impl Linearizer {
         if h > 0 && !(ratio >= tol) && keep.len() > named_c.len() {
             (ci, cd, ratio) = complete_coordinates(&phi_q, &named_c, &named_c, N - h);
         }
-        if h > 0 && !(ratio >= tol) && (self.coordinates.is_none() || named_c.len() < N - h) {
+        if h > 0 && !(ratio >= tol) && !all_c {
             let (_, null) = condition(&phi_q.transpose());
             return Err(redundant::<S, T, N, K>(t, q, ratio, big_entries(&null)));
         }
@@ -72,15 +75,12 @@ impl Linearizer {
             }
             .into());
         }
-        let (si, sd, ratio) = if self.speeds.is_some() && named_s.len() == N.saturating_sub(K) {
+        let (si, sd, ratio) = if all_s {
             (named_s.clone(), complement(&named_s), 1.0)
         } else {
             complete_speeds(g, h, &ci, &cd, &named_s)
         };
-        if K > h
-            && !(ratio >= tol)
-            && (self.speeds.is_none() || named_s.len() < N.saturating_sub(K))
-        {
+        if K > h && !(ratio >= tol) && !all_s {
             let (_, null) = condition(&g.rows(h, K - h).transpose());
             let rows = big_entries(&null).iter().map(|r| r + h).collect();
             return Err(redundant::<S, T, N, K>(t, q, ratio, rows));

@@ -74,8 +74,9 @@ impl<T: Real, const N: usize, const U: usize> OperatingPoint<T, N, U> {
 /// Settings of a linearisation: the independent coordinates and speeds of a
 /// constrained system and the tolerances.
 ///
-/// **Automatic choice** (when no names are given): the dependent coordinates are
-/// the columns of Φ_q chosen by QR with column pivoting (largest remaining column
+/// **Automatic choice** (of what is not named): the dependent coordinates are
+/// the columns of Φ_q outside the named coordinates (and, where the constraints
+/// allow, outside the named speeds) chosen by QR with column pivoting (largest remaining column
 /// norm first, the later coordinate on ties), so Φ_{q_d} is as well conditioned
 /// as this greedy rule gets; the dependent speeds are the rates of the dependent
 /// coordinates plus, for the nonholonomic rows, the columns chosen by the same
@@ -116,15 +117,17 @@ impl Linearizer {
         }
     }
 
-    /// Names the independent coordinates (N − HOLONOMIC of them), in the order the
-    /// states will have.
+    /// Names independent coordinates, at most N − HOLONOMIC of them, in the
+    /// order the states will have; fewer is enough: the rest are chosen (see
+    /// [`Linear::completed`](crate::linear::Linear::completed)).
     pub fn coordinates(mut self, names: &[&str]) -> Self {
         self.coordinates = Some(names.iter().map(|s| s.to_string()).collect());
         self
     }
 
-    /// Names the independent speeds (N − K of them) by the coordinates whose rates
-    /// they are, in the order the states will have.
+    /// Names independent speeds, at most N − K of them, by the coordinates
+    /// whose rates they are, in the order the states will have; fewer is
+    /// enough: the rest are chosen.
     pub fn speeds(mut self, names: &[&str]) -> Self {
         self.speeds = Some(names.iter().map(|s| s.to_string()).collect());
         self
