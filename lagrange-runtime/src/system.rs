@@ -381,6 +381,10 @@ pub trait Constrained<T: Real, const N: usize, const K: usize>: Lagrangian<T, N>
 /// (q, q̇); along the motion the dynamics solve with the velocities the
 /// constraints leave free at each state (any independent speeds give the same
 /// q̈) and project q̇ back onto the constraints after each step.
+///
+/// A hand-written implementation that runs only in this form sets
+/// [`Lagrangian::CONSTRAINED`] and overrides [`Lagrangian::visit_form`] with
+/// `form.reduced::<K>(self)`, as the derive does.
 #[diagnostic::on_unimplemented(
     message = "`{Self}` has no reduced form: `run_reduced` and the reduced linearisation need `formulation(reduced)` in its #[lagrange(...)]",
     label = "needs the reduced form",
