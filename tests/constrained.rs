@@ -121,7 +121,7 @@ fn cartesian_pendulum_passes_the_pole() {
         .run_constrained(x0, xd0, 0.0..3.0)
         .unwrap();
     // A planar swing through the bottom and back: it crosses the pole again.
-    let crossings = traj.crossings(|_, x, _| x[0]);
+    let crossings = traj.crossings(|_, x, _| x[0]).unwrap();
     assert!(crossings.len() >= 2, "{crossings:?}");
     assert!(traj.integral_drift() < 1e-9);
     assert!(traj.max_residuals()[0] < 1e-11);

@@ -30,7 +30,7 @@
 //! # }
 //! let sys = Pendulum; // θ'' = −sin θ (by hand here; usually #[derive(Lagrangian)])
 //! let traj = Simulation::new(&sys).integrator(Dopri5::tol(1e-10)).run([1.0], [0.0], 0.0..10.0)?;
-//! let zeros = traj.crossings(|_, q, _| q[0]); // θ = 0 every half period
+//! let zeros = traj.crossings(|_, q, _| q[0])?; // θ = 0 every half period
 //! assert_eq!(zeros.len(), 3);
 //! println!("energy drift {:e}", traj.integral_drift());
 //! traj.save_csv(std::env::temp_dir().join("pendulum.csv"), &Pendulum::COORDINATES)?;
@@ -206,8 +206,8 @@ pub use mechanics::{
 };
 pub use numeric::{Real, func};
 pub use ode::{
-    DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Record, Rk4, Sample,
-    SecondOrder, Stats, StormerVerlet, Trajectory,
+    Continuation, DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Record, Rk4,
+    Sample, SecondOrder, Stats, StormerVerlet, Trajectory,
 };
 pub use simulation::{ControlRun, ControlledSimulation, EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};

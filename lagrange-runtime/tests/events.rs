@@ -4,53 +4,13 @@
 
 mod common;
 
-use common::{Pendulum, pendulum_period, sv};
+use common::{Ball, Pendulum, pendulum_period, sv};
 use lagrange_runtime::Failure;
 use lagrange_runtime::{
-    Direction, Dop853, Dopri5, Error, Event, Events, Gauss, Integrator, Lagrangian, Radau5, Rk4,
-    SecondOrder, Simulation, StormerVerlet,
+    Direction, Dop853, Dopri5, Error, Event, Events, Gauss, Integrator, Radau5, Rk4, SecondOrder,
+    Simulation, StormerVerlet,
 };
-use nalgebra::{Matrix1, SVector, Vector1};
-
-/// A ball of unit mass falling along z under gravity g: z̈ = −g.
-struct Ball {
-    g: f64,
-}
-
-impl Lagrangian<f64, 1> for Ball {
-    const COORDINATES: [&'static str; 1] = ["z"];
-    const RHEONOMIC: bool = false;
-    fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> {
-        Matrix1::new(1.0)
-    }
-    fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
-        Vector1::zeros()
-    }
-    fn generalized_forces(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
-        Vector1::new(-self.g)
-    }
-    fn mass_matrix_and_rhs(
-        &self,
-        q: &Vector1<f64>,
-        v: &Vector1<f64>,
-        t: f64,
-    ) -> (Matrix1<f64>, Vector1<f64>) {
-        (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
-    }
-    fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 {
-        0.5 * v[0] * v[0]
-    }
-    fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 {
-        self.g * q[0]
-    }
-    fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
-        self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
-    }
-    // For the symplectic Gauss method: T does not depend on z.
-    fn kinetic_gradient(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Option<Vector1<f64>> {
-        Some(Vector1::zeros())
-    }
-}
+use nalgebra::SVector;
 
 /// q̈ = −ω² q as a bare `SecondOrder` system (no Lagrangian behind it).
 struct Spring {

@@ -19,7 +19,7 @@ fn energy_and_p_phi_conserved_over_100_swings() {
         .run(q0, v0, 0.0..span)
         .unwrap();
     // A swing is one full θ oscillation: two zeros of θ̇.
-    let swings = tr.crossings(|_, _, v| v[0]).len() / 2;
+    let swings = tr.crossings(|_, _, v| v[0]).unwrap().len() / 2;
     assert!(swings >= 100, "{swings} swings");
     let energy_drift = tr.integral_drift();
     let p0 = sys.p_phi(&q0, &v0);

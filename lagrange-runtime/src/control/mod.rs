@@ -171,6 +171,14 @@ pub trait InputSource<T: Real, const N: usize, const P: usize> {
         false
     }
 
+    /// How many breaks fall in (start, end], when the source knows it without
+    /// enumerating them: the run refuses, before any work, more breaks than
+    /// its step budget. The default does not know (`None`).
+    fn breaks_within(&self, start: T, end: T) -> Option<f64> {
+        let _ = (start, end);
+        None
+    }
+
     /// Checks the source's settings before a run.
     ///
     /// # Errors
@@ -191,6 +199,9 @@ impl<T: Real, const N: usize, const P: usize, C: InputSource<T, N, P> + ?Sized> 
     }
     fn held(&self) -> bool {
         (**self).held()
+    }
+    fn breaks_within(&self, start: T, end: T) -> Option<f64> {
+        (**self).breaks_within(start, end)
     }
     fn check(&self) -> Result<(), Error> {
         (**self).check()
@@ -316,6 +327,10 @@ where
 
     fn held(&self) -> bool {
         true
+    }
+
+    fn breaks_within(&self, start: T, end: T) -> Option<f64> {
+        Some(((end - start).to_f64() / self.period).floor().max(0.0))
     }
 
     fn check(&self) -> Result<(), Error> {

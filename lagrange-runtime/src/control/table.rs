@@ -164,4 +164,9 @@ impl<T: Real, const N: usize, const P: usize> InputSource<T, N, P> for InputTabl
     fn held(&self) -> bool {
         self.interpolation == Interpolation::Hold
     }
+
+    fn breaks_within(&self, start: T, end: T) -> Option<f64> {
+        let within = self.times.iter().filter(|&&ti| start < ti && ti <= end);
+        Some(within.count() as f64)
+    }
 }

@@ -6,7 +6,7 @@ use super::{Event, EventRun, Occurrence};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
-use crate::ode::{Integrator, Sample, SecondOrder, Trajectory, check_problem};
+use crate::ode::{Continuation, Integrator, Sample, SecondOrder, Trajectory, check_problem};
 use nalgebra::SVector;
 
 /// A list of events and the budget of restarts, ready to drive any
@@ -78,6 +78,25 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>> {
+        self.continue_run(integrator, rhs, Continuation::start(t0), t0, t1, q0, v0)
+    }
+
+    /// [`integrate`](Self::integrate) as the next piece of a run whose
+    /// recording stands at `from` (see [`Integrator::continue_run`]).
+    ///
+    /// # Errors
+    /// As [`integrate`](Self::integrate).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn continue_run<I: Integrator, F: SecondOrder<T, N>>(
+        &self,
+        integrator: &I,
+        rhs: &F,
+        from: Continuation<T>,
+        t0: T,
+        t1: T,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>> {
         let started = crate::numeric::clock::Stopwatch::start();
         let watch = Watch::new(rhs, &self.events);
         // Everything computed before a failure (the pieces so far, the failed
@@ -85,6 +104,7 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
         let mut so_far = SoFar {
             trajectory: None,
             terminated_by: None,
+            from,
         };
         let outcome = self.pieces(integrator, &watch, (t0, t1), q0, v0, &mut so_far);
         let mut trajectory = so_far
@@ -128,7 +148,8 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
         let (mut t, mut q, mut v) = (t0, q0, v0);
         let (mut restarts, mut stalled) = (0usize, 0usize);
         loop {
-            let piece = match integrator.integrate(watch, t, t1, q, v) {
+            let from = so_far.continuation();
+            let piece = match integrator.continue_run(watch, from, t, t1, q, v) {
                 Ok(piece) => piece,
                 Err(failure) => {
                     join(&mut so_far.trajectory, *failure.partial);
@@ -146,6 +167,7 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
                 break;
             }
             restarts += 1;
+            within_budget(so_far.trajectory.as_ref(), integrator.max_steps(), stop.t)?;
             stalled = if stop.t - t <= stalled_within {
                 stalled + 1
             } else {
@@ -229,11 +251,42 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
 struct SoFar<T: Real, const N: usize> {
     trajectory: Option<Trajectory<T, N>>,
     terminated_by: Option<usize>,
+    /// Where the recording stood when the run started.
+    from: Continuation<T>,
+}
+
+impl<T: Real, const N: usize> SoFar<T, N> {
+    /// Where the next piece's recording goes on from.
+    fn continuation(&self) -> Continuation<T> {
+        self.trajectory
+            .as_ref()
+            .map_or(self.from, Trajectory::continuation)
+    }
+}
+
+/// Refuses to go on once the pieces so far have spent the integrator's step
+/// budget, which bounds the whole run (each piece alone stays within it, so a
+/// run ends within two budgets however many pieces it has).
+pub(crate) fn within_budget<T: Real, const N: usize>(
+    so_far: Option<&Trajectory<T, N>>,
+    max_steps: usize,
+    t: T,
+) -> Result<(), Error> {
+    match so_far {
+        Some(whole) if whole.stats().steps() >= max_steps => Err(Error::TooManySteps {
+            t: t.to_f64(),
+            max_steps,
+            needed: None,
+        }),
+        _ => Ok(()),
+    }
 }
 
 fn join<T: Real, const N: usize>(whole: &mut Option<Trajectory<T, N>>, piece: Trajectory<T, N>) {
     match whole {
-        Some(w) => w.append(piece),
+        Some(w) => {
+            w.append(piece);
+        }
         None => *whole = Some(piece),
     }
 }

@@ -100,6 +100,7 @@
 mod driver;
 mod watch;
 
+pub(crate) use driver::within_budget;
 pub use driver::{DEFAULT_MAX_EVENTS, Events};
 
 use crate::error::{Error, Progress, to_vec};

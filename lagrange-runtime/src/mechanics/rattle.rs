@@ -35,8 +35,8 @@ use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::mechanics::dynamics::DEFAULT_SINGULAR_TOLERANCE;
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
+use crate::ode::{Continuation, Record, Trajectory};
 use crate::ode::{DenseSegment, Sample, Stats, check_problem, fixed_step_count};
-use crate::ode::{Record, Trajectory};
 use crate::ode::{Run, fixed_steps};
 use crate::system::Constrained;
 use nalgebra::{SMatrix, SVector};
@@ -172,7 +172,7 @@ impl Rattle {
     {
         let dynamics = ConstrainedDynamics::<S, T, K>::new(system);
         let sample = Sample::of(&dynamics, t0, &q0, &v0);
-        let mut run = Run::start(self.record, t0, q0, v0, sample);
+        let mut run = Run::start(self.record, Continuation::start(t0), t0, q0, v0, sample);
         // Everything computed before a failure goes back with it.
         let outcome = self.run(system, &dynamics, (t0, t1), (q0, v0), &mut run);
         run.finish(outcome)
@@ -191,7 +191,7 @@ impl Rattle {
     where
         S: Constrained<T, N, K>,
     {
-        self.record.check()?;
+        self.record.check_span(t0, t1, N)?;
         check_problem(t0, t1, &q0, &v0)?;
         let n = fixed_step_count("RATTLE", self.h, self.max_steps, t0, t1)?;
         self.check_settings::<S, T, N, K>()?;

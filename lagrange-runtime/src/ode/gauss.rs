@@ -11,7 +11,7 @@ use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
 use crate::numeric::lu::{lu_factor, lu_solve};
-use crate::ode::{Record, Trajectory};
+use crate::ode::{Continuation, Record, Trajectory};
 use nalgebra::{DMatrix, SVector};
 
 /// Gauss–Legendre collocation with a fixed step: s = 2 stages (order 4, the
@@ -97,18 +97,23 @@ impl Gauss {
 }
 
 impl Integrator for Gauss {
-    fn integrate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
         &self,
         rhs: &F,
+        from: Continuation<T>,
         t0: T,
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let mut run = Run::of(self.record, rhs, t0, q0, v0);
+        let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
         let outcome = self.run_stages(rhs, (t0, t1, q0, v0), &mut run);
         run.finish(outcome)
+    }
+
+    fn max_steps(&self) -> usize {
+        self.max_steps
     }
 }
 
@@ -121,7 +126,7 @@ impl Gauss {
         (t0, t1, q0, v0): (T, T, SVector<T, N>, SVector<T, N>),
         run: &mut Run<T, N>,
     ) -> Result<(), Error> {
-        self.record.check()?;
+        self.record.check_span(t0, t1, N)?;
         check_problem(t0, t1, &q0, &v0)?;
         if self.max_iterations == 0 {
             return Err(Error::InvalidSettings(

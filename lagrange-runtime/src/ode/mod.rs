@@ -20,6 +20,7 @@ mod dopri5;
 mod gauss;
 mod mechanical;
 mod radau5;
+mod record;
 mod rk4;
 mod run;
 mod settings;
@@ -32,9 +33,10 @@ pub use dopri5::Dopri5;
 pub use gauss::Gauss;
 pub use mechanical::Mechanical;
 pub use radau5::Radau5;
+pub use record::{Continuation, Record};
 pub use rk4::Rk4;
 pub(crate) use run::{Run, fixed_steps};
-pub use trajectory::{Record, Trajectory};
+pub use trajectory::Trajectory;
 pub use verlet::StormerVerlet;
 pub(crate) use verlet::fixed_step_count;
 
@@ -164,12 +166,14 @@ impl<T: Real> Sample<T> {
 /// The integrator's settings are plain `f64`s (a tolerance needs no more), converted
 /// to the system's scalar when a run starts.
 pub trait Integrator {
-    /// Integrates from (t0, q0, v0) to t1 > t0 and records every accepted step.
+    /// Integrates from (t0, q0, v0) to t1 > t0 and records the accepted steps
+    /// as the integrator's [`Record`] says.
     ///
     /// # Errors
     /// A [`Failure`] holding the error and the trajectory up to the last
     /// accepted step (at least the initial state). The error is
-    /// [`Error::InvalidSettings`] for invalid settings, a span that is empty,
+    /// [`Error::InvalidSettings`] for invalid settings (a recording that would
+    /// exceed [`Record::MAX_POINTS`] among them), a span that is empty,
     /// reversed or not finite, or a non-finite initial state; any error of the
     /// right-hand side; [`Error::StepSizeUnderflow`] and [`Error::TooManySteps`] for
     /// adaptive methods.
@@ -180,7 +184,30 @@ pub trait Integrator {
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
+    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+        self.continue_run(rhs, Continuation::start(t0), t0, t1, q0, v0)
+    }
+
+    /// [`integrate`](Self::integrate) as the next piece of a run whose
+    /// recording stands at `from` (the [`Trajectory::continuation`] of the run
+    /// so far): the drivers of events and controlled runs integrate piece by
+    /// piece this way, so that the pieces record as one run.
+    ///
+    /// # Errors
+    /// As [`integrate`](Self::integrate).
+    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+        &self,
+        rhs: &F,
+        from: Continuation<T>,
+        t0: T,
+        t1: T,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>;
+
+    /// The step budget of one run (`.max_steps(n)`): a run made of pieces
+    /// spends it across all of them.
+    fn max_steps(&self) -> usize;
 }
 
 /// Work done by one integration.

@@ -5,7 +5,7 @@ use super::verlet::fixed_step_count;
 use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
-use crate::ode::{Record, Trajectory};
+use crate::ode::{Continuation, Record, Trajectory};
 use nalgebra::SVector;
 
 /// Classic RK4 with a fixed step `h`; the last step is shortened so that the
@@ -55,18 +55,23 @@ impl Rk4 {
 }
 
 impl Integrator for Rk4 {
-    fn integrate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
         &self,
         rhs: &F,
+        from: Continuation<T>,
         t0: T,
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let mut run = Run::of(self.record, rhs, t0, q0, v0);
+        let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
         let outcome = self.run(rhs, (t0, t1), Pair::new(q0, v0), &mut run);
         run.finish(outcome)
+    }
+
+    fn max_steps(&self) -> usize {
+        self.max_steps
     }
 }
 
@@ -79,7 +84,7 @@ impl Rk4 {
         y0: Pair<T, N>,
         run: &mut Run<T, N>,
     ) -> Result<(), Error> {
-        self.record.check()?;
+        self.record.check_span(t0, t1, N)?;
         if !(self.h.is_finite() && self.h > 0.0) {
             return Err(Error::InvalidSettings(format!(
                 "RK4 step size must be positive and finite, got {}",

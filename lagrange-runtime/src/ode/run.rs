@@ -6,7 +6,7 @@
 //! stages and its own decisions; [`fixed_steps`] is the step sequence of the
 //! fixed-step methods.
 
-use super::{DenseSegment, Record, Sample, SecondOrder, Stats, Trajectory};
+use super::{Continuation, DenseSegment, Record, Sample, SecondOrder, Stats, Trajectory};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::clock::Stopwatch;
@@ -21,9 +21,11 @@ pub(crate) struct Run<T: Real, const N: usize> {
 }
 
 impl<T: Real, const N: usize> Run<T, N> {
-    /// Starts the clock and records the initial state with `sample`.
+    /// Starts the clock and records the initial state with `sample`, going on
+    /// from the recording `from`.
     pub fn start(
         record: Record,
+        from: Continuation<T>,
         t0: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
@@ -31,7 +33,7 @@ impl<T: Real, const N: usize> Run<T, N> {
     ) -> Self {
         let started = Stopwatch::start();
         Self {
-            traj: Trajectory::start_recording(record, t0, q0, v0, sample),
+            traj: Trajectory::start_recording(record, from, t0, q0, v0, sample),
             stats: Stats::default(),
             started,
         }
@@ -40,12 +42,13 @@ impl<T: Real, const N: usize> Run<T, N> {
     /// [`start`](Self::start) with the initial state sampled from `rhs`.
     pub fn of<F: SecondOrder<T, N>>(
         record: Record,
+        from: Continuation<T>,
         rhs: &F,
         t0: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Self {
-        Self::start(record, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0))
+        Self::start(record, from, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0))
     }
 
     /// Records an accepted step: `segment` its dense output, (q, v) the state

@@ -5,7 +5,7 @@ use crate::error::Error;
 use crate::numeric::Real;
 use crate::numeric::func::abs;
 use crate::numeric::root::brent;
-use crate::ode::{DenseSegment, Sample, Stats};
+use crate::ode::{Continuation, DenseSegment, Record, Sample, Stats};
 use nalgebra::SVector;
 
 /// A computed motion: the state (q, v) and the integral (energy or Jacobi
@@ -23,12 +23,14 @@ pub struct Trajectory<T: Real, const N: usize> {
     stats: Stats,
     /// What is kept of the run, and the state of that policy.
     record: Record,
-    /// Steps seen (for `Record::Every`).
+    /// Where the policy stands: the grid of `Record::Interval`, the steps
+    /// counted for `Record::Every`.
+    #[cfg_attr(feature = "serde", serde(skip, default = "fresh_continuation"))]
+    resume: Continuation<T>,
+    /// The last point was stored by `close` (the end of a piece), not by the
+    /// policy: a thinned recording drops it when the run goes on.
     #[cfg_attr(feature = "serde", serde(skip))]
-    steps_seen: usize,
-    /// The next output time (for `Record::Interval`).
-    #[cfg_attr(feature = "serde", serde(skip, default = "T::zero"))]
-    next_output: T,
+    closed_extra: bool,
     /// The latest step when it was not stored: stored by `close`, so that a
     /// thinned trajectory still ends at the final state.
     #[cfg_attr(feature = "serde", serde(skip, default = "Option::default"))]
@@ -38,48 +40,9 @@ pub struct Trajectory<T: Real, const N: usize> {
 /// One recorded point: t, q, q̇ and the sample there.
 type Point<T, const N: usize> = (T, SVector<T, N>, SVector<T, N>, Sample<T>);
 
-/// What a run keeps of its steps, set on the integrator, e.g.
-/// `Dopri5::tol(1e-10).record(Record::Every(100))`. `Every(0)` and an
-/// `Interval` that is not positive and finite are refused when the run starts
-/// ([`Error::InvalidSettings`]).
-///
-/// Memory per stored point for f64: 8 (t) + 16 N (q, q̇) + 24 (integral,
-/// residuals) bytes; `Steps` also keeps each step's dense segment, 8 × 16 N + 24
-/// bytes more, so that [`state_at`](Trajectory::state_at) and
-/// [`crossings`](Trajectory::crossings) work. The other policies keep no
-/// segments (those two then return `None` and nothing), so a run of 10⁷ steps
-/// with `Every(1000)` stores 10⁴ points and with `Final` two.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum Record {
-    /// Every accepted step with its dense output (the default).
-    #[default]
-    Steps,
-    /// Every k-th accepted step, and the final state.
-    Every(usize),
-    /// The state at t0, t0 + dt, t0 + 2 dt, … from the dense output of the steps
-    /// that cover those times, and the final state.
-    Interval(f64),
-    /// The initial and the final state only.
-    Final,
-}
-
-impl Record {
-    /// Refuses `Every(0)` and an interval that is not positive and finite.
-    ///
-    /// # Errors
-    /// [`Error::InvalidSettings`].
-    pub fn check(&self) -> Result<(), Error> {
-        match *self {
-            Record::Every(0) => Err(Error::InvalidSettings(
-                "record: Every(k) needs k ≥ 1".into(),
-            )),
-            Record::Interval(dt) if !(dt.is_finite() && dt > 0.0) => Err(Error::InvalidSettings(
-                format!("record: Interval(dt) needs a positive, finite dt, got {dt}"),
-            )),
-            _ => Ok(()),
-        }
-    }
+#[cfg(feature = "serde")]
+fn fresh_continuation<T: Real>() -> Continuation<T> {
+    Continuation::start(T::zero())
 }
 
 impl<T: Real, const N: usize> Trajectory<T, N> {
@@ -94,16 +57,19 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
             segments: Vec::new(),
             stats: Stats::default(),
             record: Record::Steps,
-            steps_seen: 0,
-            next_output: t0,
+            resume: Continuation::start(t0),
+            closed_extra: false,
             pending: None,
         }
     }
 
     /// A trajectory holding only the initial point that keeps what `record`
-    /// says of the steps pushed into it.
+    /// says of the steps pushed into it, going on from `from` (a fresh
+    /// [`Continuation::start`], or the [`continuation`](Self::continuation) of
+    /// the run so far when this is one of its pieces).
     pub fn start_recording(
         record: Record,
+        from: Continuation<T>,
         t0: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
@@ -111,10 +77,14 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     ) -> Self {
         let mut traj = Self::start(t0, q0, v0, sample);
         traj.record = record;
-        if let Record::Interval(dt) = record {
-            traj.next_output = t0 + T::lit(dt);
-        }
+        traj.resume = from;
         traj
+    }
+
+    /// Where the recording stands, for the next piece of the same run to go on
+    /// from (see [`Continuation`]).
+    pub fn continuation(&self) -> Continuation<T> {
+        self.resume
     }
 
     /// What this trajectory keeps of its steps.
@@ -186,9 +156,9 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
                 self.segments.push(segment);
             }
             Record::Every(k) => {
-                self.steps_seen += 1;
+                self.resume.steps_seen += 1;
                 let point = (end, q, v, sample(end, &q, &v));
-                if self.steps_seen.is_multiple_of(k) {
+                if self.resume.steps_seen.is_multiple_of(k) {
                     self.pending = None;
                     self.store(point);
                 } else {
@@ -196,15 +166,14 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
                 }
             }
             Record::Interval(dt) => {
-                let dt = T::lit(dt);
                 // The integrators refuse a bad interval up front (Record::check);
                 // a hand-made trajectory with one records no grid rather than
                 // looping forever.
-                while dt > T::zero() && self.next_output < end {
-                    let t = self.next_output;
+                while dt > 0.0 && self.resume.grid_time(self.resume.next, dt) < end {
+                    let t = self.resume.grid_time(self.resume.next, dt);
                     let (qi, vi) = segment.eval(t);
                     self.store((t, qi, vi, sample(t, &qi, &vi)));
-                    self.next_output = t + dt;
+                    self.resume.next += 1;
                 }
                 self.pending = Some((end, q, v, sample(end, &q, &v)));
             }
@@ -227,6 +196,18 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
             && self.times.last() != Some(&point.0)
         {
             self.store(point);
+            self.closed_extra = true;
+        }
+    }
+
+    /// Removes the last stored point (never the initial one).
+    fn pop_point(&mut self) {
+        if self.len() > 1 {
+            self.times.pop();
+            self.q.pop();
+            self.v.pop();
+            self.integral.pop();
+            self.residual.pop();
         }
     }
 
@@ -240,7 +221,9 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     /// Cuts the last step at `t` (between its start and its end, the time of an
     /// event) and records (q, v) as the state there. When `t` is the start of the
     /// last step, the step is dropped and the state recorded at its start is
-    /// replaced instead.
+    /// replaced instead. A thinned recording drops the points it took past `t`
+    /// (they came from the part of the step beyond the event) and ends at the
+    /// cut.
     pub(crate) fn truncate_last(
         &mut self,
         t: T,
@@ -248,13 +231,12 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         v: SVector<T, N>,
         sample: Sample<T>,
     ) {
+        if self.record != Record::Steps {
+            return self.truncate_thinned((t, q, v, sample));
+        }
         let last = self.len() - 1;
         if last > 0 && self.times[last - 1] >= t {
-            self.times.pop();
-            self.q.pop();
-            self.v.pop();
-            self.integral.pop();
-            self.residual.pop();
+            self.pop_point();
             self.segments.pop();
         } else if let Some(segment) = self.segments.last_mut() {
             segment.truncate(t);
@@ -267,24 +249,57 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         self.residual[last] = sample.residuals;
     }
 
-    /// Appends `other`, which starts where `self` ends (same time): its first
-    /// point replaces the last one of `self` (after an event action the two
-    /// differ, and the trajectory records the state after it), and the work
-    /// statistics add up.
-    pub(crate) fn append(&mut self, other: Trajectory<T, N>) {
+    /// [`truncate_last`](Self::truncate_last) for a recording without
+    /// segments: the points after the cut go, the grid steps back to the first
+    /// time after it, and the cut state closes the recording.
+    fn truncate_thinned(&mut self, cut: Point<T, N>) {
+        let t = cut.0;
+        if self.closed_extra {
+            self.pop_point();
+            self.closed_extra = false;
+        }
+        while self.len() > 1 && self.times[self.len() - 1] > t {
+            self.pop_point();
+        }
+        if let Record::Interval(dt) = self.record {
+            let r = &mut self.resume;
+            while r.next > 1 && r.grid_time(r.next - 1, dt) > t {
+                r.next -= 1;
+            }
+        }
+        self.pending = Some(cut);
+        self.close();
+    }
+
+    /// Appends `other`, the next piece of the same run, which starts where
+    /// `self` ends (same time), and returns the index of the first point that
+    /// came from it. The work statistics add up.
+    ///
+    /// The first point of `other` replaces the last one of `self` (after an
+    /// event action the two differ, and the trajectory records the state
+    /// after it), except when a thinned recording stored that last point only
+    /// to end the piece: then neither is kept, since the instant where the
+    /// pieces join is not one of its points.
+    pub(crate) fn append(&mut self, other: Trajectory<T, N>) -> usize {
         debug_assert_eq!(self.times.last(), other.times.first());
-        let last = self.len() - 1;
-        self.q[last] = other.q[0];
-        self.v[last] = other.v[0];
-        self.integral[last] = other.integral[0];
-        self.residual[last] = other.residual[0];
-        self.times.extend_from_slice(&other.times[1..]);
-        self.q.extend_from_slice(&other.q[1..]);
-        self.v.extend_from_slice(&other.v[1..]);
-        self.integral.extend_from_slice(&other.integral[1..]);
-        self.residual.extend_from_slice(&other.residual[1..]);
+        self.times.pop();
+        self.q.pop();
+        self.v.pop();
+        self.integral.pop();
+        self.residual.pop();
+        let skip = usize::from(self.closed_extra);
+        let from = self.len();
+        self.times.extend_from_slice(&other.times[skip..]);
+        self.q.extend_from_slice(&other.q[skip..]);
+        self.v.extend_from_slice(&other.v[skip..]);
+        self.integral.extend_from_slice(&other.integral[skip..]);
+        self.residual.extend_from_slice(&other.residual[skip..]);
         self.segments.extend_from_slice(&other.segments);
         self.stats.add(&other.stats);
+        self.resume = other.resume;
+        self.closed_extra = other.closed_extra;
+        self.pending = other.pending;
+        from
     }
 
     /// Number of recorded points: accepted steps + 1 (the initial point).
@@ -348,7 +363,9 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     }
 
     /// The state (q, v) at time `t`, interpolated by the dense output; `None`
-    /// outside the integrated span. Exact (the stored state) at recorded times.
+    /// outside the integrated span, and between the stored points of a thinned
+    /// recording (it keeps no dense output). Exact (the stored state) at
+    /// recorded times.
     ///
     /// The interpolant's order is the integrator's dense-output order: 4 for
     /// [`Dopri5`](crate::Dopri5), 3 (cubic Hermite) for [`Rk4`](crate::Rk4).
@@ -386,7 +403,26 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     /// by Brent's method on the dense output, to about 4 ε relative in t. Two
     /// crossings inside one step cancel and are missed: g must not oscillate
     /// faster than the step size.
-    pub fn crossings(&self, g: impl Fn(T, &SVector<T, N>, &SVector<T, N>) -> T) -> Vec<T> {
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] on a thinned recording ([`Record::Every`],
+    /// [`Record::Interval`], [`Record::Final`]): it keeps no dense output, and
+    /// sign changes between its stored points would miss crossings (a pair
+    /// between two stored points cancels) and misplace the others. Record
+    /// [`Record::Steps`], or watch the crossing as an event during the run.
+    pub fn crossings(
+        &self,
+        g: impl Fn(T, &SVector<T, N>, &SVector<T, N>) -> T,
+    ) -> Result<Vec<T>, Error> {
+        if self.segments.len() + 1 != self.len() {
+            return Err(Error::InvalidSettings(format!(
+                "crossings: the run was recorded with {:?}, which keeps no dense output, so \
+                 crossings between its {} stored points cannot be found; record \
+                 Record::Steps, or watch the crossing as an event during the run",
+                self.record,
+                self.len()
+            )));
+        }
         let mut out = Vec::new();
         let mut g_prev = g(self.times[0], &self.q[0], &self.v[0]);
         if g_prev == T::zero() {
@@ -406,7 +442,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
             }
             g_prev = g_next;
         }
-        out
+        Ok(out)
     }
 }
 
@@ -432,7 +468,7 @@ mod tests {
         let (q, v) = tr.state_at(2.5).unwrap();
         assert!((q[0] - 2.5f64.cos()).abs() < 1e-10 && (v[0] + 2.5f64.sin()).abs() < 1e-10);
         // cos t = 0 at π/2 + kπ.
-        let c = tr.crossings(|_, q, _| q[0]);
+        let c = tr.crossings(|_, q, _| q[0]).unwrap();
         assert_eq!(c.len(), 3);
         for (k, t) in c.iter().enumerate() {
             let exact = std::f64::consts::FRAC_PI_2 + k as f64 * std::f64::consts::PI;
@@ -440,7 +476,7 @@ mod tests {
         }
         // A function that is zero exactly at a node is reported once.
         let t3 = tr.times()[3];
-        assert_eq!(tr.crossings(|t, _, _| t - t3), vec![t3]);
+        assert_eq!(tr.crossings(|t, _, _| t - t3).unwrap(), vec![t3]);
         assert!(tr.integral_drift() < 1e-10);
     }
 

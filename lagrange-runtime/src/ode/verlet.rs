@@ -4,7 +4,7 @@ use super::run::{Run, fixed_steps};
 use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
-use crate::ode::{Record, Trajectory};
+use crate::ode::{Continuation, Record, Trajectory};
 use nalgebra::SVector;
 
 /// Velocity Verlet with a fixed step `h`:
@@ -97,18 +97,23 @@ pub(crate) fn fixed_step_count<T: Real>(
 }
 
 impl Integrator for StormerVerlet {
-    fn integrate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
         &self,
         rhs: &F,
+        from: Continuation<T>,
         t0: T,
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let mut run = Run::of(self.record, rhs, t0, q0, v0);
+        let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
         let outcome = self.run(rhs, (t0, t1), (q0, v0), &mut run);
         run.finish(outcome)
+    }
+
+    fn max_steps(&self) -> usize {
+        self.max_steps
     }
 }
 
@@ -121,7 +126,7 @@ impl StormerVerlet {
         (q0, v0): (SVector<T, N>, SVector<T, N>),
         run: &mut Run<T, N>,
     ) -> Result<(), Error> {
-        self.record.check()?;
+        self.record.check_span(t0, t1, N)?;
         check_problem(t0, t1, &q0, &v0)?;
         let n = fixed_step_count("Störmer–Verlet", self.h, self.max_steps, t0, t1)?;
         let h = T::lit(self.h);

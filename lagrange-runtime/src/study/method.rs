@@ -4,7 +4,7 @@
 
 use crate::error::Failure;
 use crate::numeric::Real;
-use crate::ode::Trajectory;
+use crate::ode::{Continuation, Trajectory};
 use crate::ode::{Dop853, Dopri5, Gauss, Integrator, Radau5, Rk4, SecondOrder, StormerVerlet};
 use nalgebra::SVector;
 use std::fmt;
@@ -41,21 +41,33 @@ macro_rules! from_integrator {
 from_integrator!(Rk4, Dopri5, Dop853, StormerVerlet, Gauss, Radau5);
 
 impl Integrator for Method {
-    fn integrate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
         &self,
         rhs: &F,
+        from: Continuation<T>,
         t0: T,
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
         match self {
-            Method::Rk4(m) => m.integrate(rhs, t0, t1, q0, v0),
-            Method::Dopri5(m) => m.integrate(rhs, t0, t1, q0, v0),
-            Method::Dop853(m) => m.integrate(rhs, t0, t1, q0, v0),
-            Method::StormerVerlet(m) => m.integrate(rhs, t0, t1, q0, v0),
-            Method::Gauss(m) => m.integrate(rhs, t0, t1, q0, v0),
-            Method::Radau5(m) => m.integrate(rhs, t0, t1, q0, v0),
+            Method::Rk4(m) => m.continue_run(rhs, from, t0, t1, q0, v0),
+            Method::Dopri5(m) => m.continue_run(rhs, from, t0, t1, q0, v0),
+            Method::Dop853(m) => m.continue_run(rhs, from, t0, t1, q0, v0),
+            Method::StormerVerlet(m) => m.continue_run(rhs, from, t0, t1, q0, v0),
+            Method::Gauss(m) => m.continue_run(rhs, from, t0, t1, q0, v0),
+            Method::Radau5(m) => m.continue_run(rhs, from, t0, t1, q0, v0),
+        }
+    }
+
+    fn max_steps(&self) -> usize {
+        match self {
+            Method::Rk4(m) => m.max_steps(),
+            Method::Dopri5(m) => m.max_steps(),
+            Method::Dop853(m) => m.max_steps(),
+            Method::StormerVerlet(m) => m.max_steps(),
+            Method::Gauss(m) => m.max_steps(),
+            Method::Radau5(m) => m.max_steps(),
         }
     }
 }

@@ -1,8 +1,8 @@
 //! Hand-written unconstrained systems in minimal coordinates: the simple and
-//! spherical pendulums and the harmonic oscillator.
+//! spherical pendulums, the harmonic oscillator and a ball in free fall.
 
 use lagrange_runtime::{Lagrangian, Real, func};
-use nalgebra::{Matrix2, SMatrix, Vector1, Vector2};
+use nalgebra::{Matrix1, Matrix2, SMatrix, Vector1, Vector2};
 
 /// Simple pendulum, θ from the downward vertical: M = m l², h = 0, Q = −m g l sin θ.
 /// Generic over the scalar, as generated code is.
@@ -163,5 +163,45 @@ impl Lagrangian<f64, 1> for Oscillator {
     }
     fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+    }
+}
+
+/// A ball of unit mass falling along z under gravity g: z̈ = −g.
+pub struct Ball {
+    pub g: f64,
+}
+
+impl Lagrangian<f64, 1> for Ball {
+    const COORDINATES: [&'static str; 1] = ["z"];
+    const RHEONOMIC: bool = false;
+    fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> {
+        Matrix1::new(1.0)
+    }
+    fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
+        Vector1::zeros()
+    }
+    fn generalized_forces(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
+        Vector1::new(-self.g)
+    }
+    fn mass_matrix_and_rhs(
+        &self,
+        q: &Vector1<f64>,
+        v: &Vector1<f64>,
+        t: f64,
+    ) -> (Matrix1<f64>, Vector1<f64>) {
+        (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+    }
+    fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 {
+        0.5 * v[0] * v[0]
+    }
+    fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 {
+        self.g * q[0]
+    }
+    fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
+        self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+    }
+    // For the symplectic Gauss method: T does not depend on z.
+    fn kinetic_gradient(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Option<Vector1<f64>> {
+        Some(Vector1::zeros())
     }
 }

@@ -17,7 +17,7 @@ pub mod second_order;
 #[allow(unused_imports)]
 pub use closed_form::{agm, pendulum_period};
 #[allow(unused_imports)]
-pub use minimal::{Oscillator, Pendulum, SphericalPendulum};
+pub use minimal::{Ball, Oscillator, Pendulum, SphericalPendulum};
 
 use nalgebra::SVector;
 

@@ -26,7 +26,7 @@ use super::{DenseSegment, Integrator, Pair, SecondOrder, Stats, check_problem};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::{abs, sqrt};
-use crate::ode::{Record, Trajectory};
+use crate::ode::{Continuation, Record, Trajectory};
 use nalgebra::SVector;
 
 /// Adaptive Dormand–Prince 8(5,3) with dense output of order 7.
@@ -166,18 +166,23 @@ impl<T: Real> Coefficients<T> {
 }
 
 impl Integrator for Dop853 {
-    fn integrate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
         &self,
         rhs: &F,
+        from: Continuation<T>,
         t0: T,
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let mut run = Run::of(self.record, rhs, t0, q0, v0);
+        let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
         let outcome = self.run(rhs, (t0, t1), Pair::new(q0, v0), &mut run);
         run.finish(outcome)
+    }
+
+    fn max_steps(&self) -> usize {
+        self.control.max_steps
     }
 }
 
@@ -199,7 +204,7 @@ impl Dop853 {
         y0: Pair<T, N>,
         run: &mut Run<T, N>,
     ) -> Result<(), Error> {
-        self.record.check()?;
+        self.record.check_span(t0, t1, N)?;
         self.validate()?;
         self.control.check_precision::<T>("DOP853")?;
         check_problem(t0, t1, &y0.q, &y0.v)?;

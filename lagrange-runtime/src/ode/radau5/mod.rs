@@ -9,7 +9,7 @@ use super::settings::{StepControl, step_control_builders};
 use super::{Integrator, SecondOrder, check_problem};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
-use crate::ode::{Record, Trajectory};
+use crate::ode::{Continuation, Record, Trajectory};
 use nalgebra::SVector;
 use step::{Newton, State};
 
@@ -171,18 +171,23 @@ fn constants<T: Real>() -> Constants<T> {
 }
 
 impl Integrator for Radau5 {
-    fn integrate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
         &self,
         rhs: &F,
+        from: Continuation<T>,
         t0: T,
         t1: T,
         q0: SVector<T, N>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
-        let mut run = Run::of(self.record, rhs, t0, q0, v0);
+        let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
         let outcome = self.run(rhs, (t0, t1), (q0, v0), &mut run);
         run.finish(outcome)
+    }
+
+    fn max_steps(&self) -> usize {
+        self.control.max_steps
     }
 }
 
@@ -198,7 +203,7 @@ impl Radau5 {
         (q0, v0): (SVector<T, N>, SVector<T, N>),
         run: &mut Run<T, N>,
     ) -> Result<(), Error> {
-        self.record.check()?;
+        self.record.check_span(t0, t1, N)?;
         self.validate()?;
         self.control.check_precision::<T>("RADAU5")?;
         check_problem(t0, t1, &q0, &v0)?;

@@ -6,9 +6,10 @@ use super::{ControlRun, ControlledSimulation};
 use crate::control::{InputForces, InputSource, check_input};
 use crate::error::{Error, Failure};
 use crate::event::Occurrence;
+use crate::event::within_budget;
 use crate::numeric::Real;
 use crate::numeric::func::abs;
-use crate::ode::{Integrator, Sample, SecondOrder, Trajectory};
+use crate::ode::{Continuation, Integrator, Sample, SecondOrder, Trajectory};
 use crate::system::Driven;
 use nalgebra::SVector;
 use std::ops::Range;
@@ -40,6 +41,7 @@ where
             inputs: Vec::new(),
             occurrences: Vec::new(),
             terminated_by: None,
+            from: Continuation::start(span.start),
         };
         let outcome =
             prepare().and_then(|(q, v)| self.pieces(&make, span.clone(), q, v, &mut record));
@@ -82,6 +84,7 @@ where
     ) -> Result<(), Error> {
         self.source.check()?;
         let (t0, t1) = (span.start, span.end);
+        self.check_budget(t0, t1)?;
         // Breaks within this of each other (or of t1) are one instant.
         let eps = T::lit(64.0) * T::default_epsilon() * (abs(t0) + abs(t1));
         let held = self.source.held();
@@ -111,6 +114,8 @@ where
             if end >= t1 {
                 break;
             }
+            let max_steps = self.simulation.integrator.max_steps();
+            within_budget(record.whole.as_ref(), max_steps, reached)?;
             t = reached;
         }
         if held && ends_on_break && record.terminated_by.is_none() {
@@ -149,8 +154,12 @@ where
         record: &mut Record<T, N, P>,
     ) -> Result<(Trajectory<T, N>, Option<usize>), Error> {
         let integrator = &self.simulation.integrator;
+        let from = record
+            .whole
+            .as_ref()
+            .map_or(record.from, Trajectory::continuation);
         if self.events.events().is_empty() {
-            return match integrator.integrate(rhs, t, end, q, v) {
+            return match integrator.continue_run(rhs, from, t, end, q, v) {
                 Ok(piece) => Ok((piece, None)),
                 Err(f) => {
                     self.record(*f.partial, source, record, false)?;
@@ -158,7 +167,10 @@ where
                 }
             };
         }
-        match self.events.integrate(integrator, rhs, t, end, q, v) {
+        match self
+            .events
+            .continue_run(integrator, rhs, from, t, end, q, v)
+        {
             Ok(run) => {
                 record.occurrences.extend(run.occurrences);
                 Ok((run.trajectory, run.terminated_by))
@@ -185,10 +197,29 @@ where
         Ok(())
     }
 
-    /// Appends a piece and its inputs (one per point; the piece's first point
-    /// replaces the last one recorded). With `check` a non-finite input is the
-    /// error (after the piece is recorded); a failed piece's inputs are
-    /// recorded as they are.
+    /// Refuses, before any work, a source with more breaks in the span than
+    /// the integrator's step budget for the whole run: every piece between
+    /// two breaks takes at least one step.
+    fn check_budget(&self, t0: T, t1: T) -> Result<(), Error> {
+        let max_steps = self.simulation.integrator.max_steps();
+        match self.source.breaks_within(t0, t1) {
+            Some(n) if n >= max_steps as f64 => Err(Error::InvalidSettings(format!(
+                "the input source restarts the run {n:.3e} times in [{}, {}] (each piece \
+                 at least one step), but the integrator's step budget for the whole run is \
+                 max_steps = {max_steps}: sample less often, shorten the span, or raise \
+                 .max_steps(n) on the integrator",
+                t0.to_f64(),
+                t1.to_f64()
+            ))),
+            _ => Ok(()),
+        }
+    }
+
+    /// Appends a piece and the inputs at the points it adds (the piece's
+    /// first point replaces the last one recorded, or a thinned recording
+    /// drops both: see [`Trajectory::continuation`]). With `check` a
+    /// non-finite input is the error (after the piece is recorded); a failed
+    /// piece's inputs are recorded as they are.
     fn record(
         &self,
         piece: Trajectory<T, N>,
@@ -196,29 +227,29 @@ where
         record: &mut Record<T, N, P>,
         check: bool,
     ) -> Result<(), Error> {
-        if record.whole.is_some() {
-            record.inputs.pop();
-        }
-        record.inputs.reserve(piece.len());
-        let mut refused = Ok(());
-        match source {
-            Piece::Held(u) => record.inputs.extend(std::iter::repeat_n(u, piece.len())),
-            Piece::Live(_) => {
-                let points = piece.times().iter().zip(piece.positions());
-                for ((&tk, qk), vk) in points.zip(piece.velocities()) {
-                    let u = self.source.input(tk, qk, vk);
-                    if check && refused.is_ok() {
-                        refused = check_input::<S, T, N, P>(tk, qk, vk, &u);
-                    }
-                    record.inputs.push(u);
-                }
-            }
-        }
         // The piece is recorded even when one of its inputs is refused: the
         // failure hands back everything computed, one input per point.
-        match &mut record.whole {
+        let from = match &mut record.whole {
             Some(w) => w.append(piece),
-            None => record.whole = Some(piece),
+            None => {
+                record.whole = Some(piece);
+                0
+            }
+        };
+        let whole = record.whole.as_ref().expect("just recorded");
+        record.inputs.truncate(from);
+        record.inputs.reserve(whole.len() - from);
+        let mut refused = Ok(());
+        let points = whole.times().iter().zip(whole.positions());
+        for ((&tk, qk), vk) in points.zip(whole.velocities()).skip(from) {
+            let u = match source {
+                Piece::Held(u) => u,
+                Piece::Live(_) => self.source.input(tk, qk, vk),
+            };
+            if check && refused.is_ok() {
+                refused = check_input::<S, T, N, P>(tk, qk, vk, &u);
+            }
+            record.inputs.push(u);
         }
         refused
     }
@@ -230,6 +261,8 @@ struct Record<T: Real, const N: usize, const P: usize> {
     inputs: Vec<SVector<T, P>>,
     occurrences: Vec<Occurrence<T, N>>,
     terminated_by: Option<usize>,
+    /// Where the recording starts (the grid's origin is the run's t0).
+    from: Continuation<T>,
 }
 
 /// The source of one piece of a controlled run: a held sample or the source
