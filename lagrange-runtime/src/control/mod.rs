@@ -109,7 +109,7 @@ mod table;
 pub use state_feedback::StateFeedback;
 pub use table::{InputTable, Interpolation};
 
-use crate::error::{Error, to_vec};
+use crate::error::{Error, check_finite_inputs};
 use crate::mechanics::Forcing;
 use crate::numeric::Real;
 use crate::system::Driven;
@@ -436,14 +436,5 @@ pub(crate) fn check_input<S: Driven<T, N, P>, T: Real, const N: usize, const P: 
     v: &SVector<T, N>,
     u: &SVector<T, P>,
 ) -> Result<(), Error> {
-    match u.iter().position(|x| !x.is_finite()) {
-        None => Ok(()),
-        Some(i) => Err(Error::NonFiniteInput {
-            t: t.to_f64(),
-            input: S::INPUTS[i],
-            value: u[i].to_f64(),
-            q: to_vec(q),
-            v: to_vec(v),
-        }),
-    }
+    check_finite_inputs(&S::INPUTS, t, q, v, u)
 }

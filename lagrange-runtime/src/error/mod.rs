@@ -363,6 +363,43 @@ impl Error {
     }
 }
 
+/// Refuses a tolerance that is negative, NaN or infinite, naming the setting:
+/// every tolerance of the library is checked this way, so a sign slip is an
+/// error rather than a verdict (a negative stability tolerance would call an
+/// undamped oscillator asymptotically stable; a negative consistency
+/// tolerance would call an exactly consistent state inconsistent).
+pub(crate) fn check_tolerance(setting: &str, tol: f64) -> Result<(), Error> {
+    if tol.is_finite() && tol >= 0.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidSettings(format!(
+            "{setting} must be non-negative and finite, got {tol}"
+        )))
+    }
+}
+
+/// The first non-finite entry of the inputs `u` as
+/// [`Error::NonFiniteInput`], named from `names`, with the state it was
+/// computed for.
+pub(crate) fn check_finite_inputs<T: Real, const N: usize, const P: usize>(
+    names: &[&'static str; P],
+    t: T,
+    q: &SVector<T, N>,
+    v: &SVector<T, N>,
+    u: &SVector<T, P>,
+) -> Result<(), Error> {
+    match u.iter().position(|x| !x.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(Error::NonFiniteInput {
+            t: t.to_f64(),
+            input: names[i],
+            value: u[i].to_f64(),
+            q: to_vec(q),
+            v: to_vec(v),
+        }),
+    }
+}
+
 /// The message of [`Error::TooManySteps`]: what ran out, what the run needs
 /// when that is known, and the setting that raises it.
 fn too_many_steps(t: f64, max_steps: usize, needed: Option<usize>) -> String {

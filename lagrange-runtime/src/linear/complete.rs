@@ -51,6 +51,7 @@ impl Linearizer {
         S: Lagrangian<T, N>,
         T: Real,
     {
+        self.check_settings()?;
         if !(t.is_finite() && finite(&dm(&q)) && finite(&dm(&v))) {
             return Err(Error::non_finite(t, &q, &v));
         }

@@ -2,7 +2,7 @@
 //! boundaries of a [`Linear`] model.
 
 use super::{Linear, LinearError};
-use crate::error::Error;
+use crate::error::{Error, check_tolerance};
 use crate::numeric::root::brent_bracket;
 use nalgebra::{Complex, DMatrix, DVector};
 
@@ -185,7 +185,7 @@ impl Linear {
     /// negative tolerance would call an undamped oscillator asymptotically
     /// stable).
     pub fn stability(&self, tol: f64) -> Result<Stability, Error> {
-        check_tolerance(tol)?;
+        check_stability_tolerance(tol)?;
         let (ev, structural) = split_spectrum(self.a());
         let names = structural
             .iter()
@@ -195,14 +195,8 @@ impl Linear {
     }
 }
 
-fn check_tolerance(tol: f64) -> Result<(), Error> {
-    if tol.is_finite() && tol >= 0.0 {
-        Ok(())
-    } else {
-        Err(Error::InvalidSettings(format!(
-            "the stability tolerance on the real parts must be finite and >= 0, got {tol}"
-        )))
-    }
+fn check_stability_tolerance(tol: f64) -> Result<(), Error> {
+    check_tolerance("the stability tolerance on the real parts", tol)
 }
 
 fn stability_of(ev: &[Complex<f64>], structural: Vec<String>, tol: f64) -> Stability {
@@ -370,7 +364,7 @@ where
     /// # Errors
     /// [`Error::InvalidSettings`] for a negative or non-finite `tol`.
     pub fn verdicts(&self, tol: f64) -> Result<Vec<(f64, Verdict)>, Error> {
-        check_tolerance(tol)?;
+        check_stability_tolerance(tol)?;
         Ok(self
             .points
             .iter()
@@ -395,7 +389,7 @@ where
     /// if the bracket is not within `rtol` after Brent stops;
     /// [`Error::InvalidSettings`] for a negative or non-finite `tol` or `rtol`.
     pub fn boundaries(&mut self, tol: f64, rtol: f64) -> Result<Vec<Boundary>, Error> {
-        check_tolerance(tol)?;
+        check_stability_tolerance(tol)?;
         if !(rtol.is_finite() && rtol >= 0.0) {
             return Err(Error::InvalidSettings(format!(
                 "the boundary's relative tolerance must be finite and >= 0, got rtol = {rtol}"

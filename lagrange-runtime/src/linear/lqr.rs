@@ -111,6 +111,14 @@ fn check_problem(
     r: &DMatrix<f64>,
 ) -> Result<nalgebra::Cholesky<f64, nalgebra::Dyn>, Error> {
     let (n, m) = (a.nrows(), b.ncols());
+    if m == 0 {
+        return Err(Error::InvalidSettings(
+            "LQR: the model has no inputs (B has no columns), so there is no control to \
+             design; declare them with `inputs(...)` in the description and use them in a \
+             force, or linearise a model that has them"
+                .into(),
+        ));
+    }
     let shape = |name: &str, x: &DMatrix<f64>, rows: usize, cols: usize| {
         if x.nrows() != rows || x.ncols() != cols || !x.iter().all(|v| v.is_finite()) {
             Err(Error::InvalidSettings(format!(

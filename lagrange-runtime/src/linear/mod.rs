@@ -421,8 +421,9 @@ impl Linear {
     /// # Errors
     /// [`LinearError::UnknownState`] for a name that is not a state;
     /// [`LinearError::CoupledStates`] naming the largest coupling to a dropped
-    /// state.
+    /// state; [`Error::InvalidSettings`] for a negative or non-finite `tol`.
     pub fn select_with_tolerance(&self, names: &[&str], tol: f64) -> Result<Linear, Error> {
+        crate::error::check_tolerance("select: the coupling tolerance", tol)?;
         let mut keep = vec![false; self.states.len()];
         for &name in names {
             let i = self

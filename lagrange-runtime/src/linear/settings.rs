@@ -1,9 +1,11 @@
 //! What a linearisation is about and how it is done: the operating point and
 //! the [`Linearizer`]'s settings.
 
+use crate::error::{Error, check_finite_inputs, check_tolerance};
 use crate::mechanics::constraint::{DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE};
 use crate::mechanics::dynamics::DEFAULT_SINGULAR_TOLERANCE;
 use crate::numeric::Real;
+use crate::system::Driven;
 use nalgebra::SVector;
 
 /// Default absolute tolerance on max |Φ| of the Newton iteration in
@@ -159,5 +161,46 @@ impl Linearizer {
         self.newton_tolerance = tol;
         self.newton_iterations = max_iter;
         self
+    }
+}
+
+impl Linearizer {
+    /// What every linearisation checks first: the tolerances (non-negative
+    /// and finite), the Newton budget, and the operating point's inputs
+    /// (a NaN input is named, not reported as a non-finite state). Returns
+    /// the system's P inputs at the point.
+    pub(super) fn inputs_at<S, T, const N: usize, const P: usize, const U: usize>(
+        &self,
+        op: &OperatingPoint<T, N, U>,
+    ) -> Result<SVector<T, P>, Error>
+    where
+        S: Driven<T, N, P>,
+        T: Real,
+    {
+        self.check_settings()?;
+        let u = op.inputs::<P>();
+        check_finite_inputs(&S::INPUTS, op.t, &op.q, &op.v, &u)?;
+        Ok(u)
+    }
+
+    /// The tolerances non-negative and finite, the Newton budget positive.
+    pub(super) fn check_settings(&self) -> Result<(), Error> {
+        for (name, tol) in [
+            (
+                "Linearizer: consistency tolerance",
+                self.consistency_tolerance,
+            ),
+            ("Linearizer: singular tolerance", self.singular_tolerance),
+            ("Linearizer: redundant tolerance", self.redundant_tolerance),
+            ("Linearizer: Newton tolerance", self.newton_tolerance),
+        ] {
+            check_tolerance(name, tol)?;
+        }
+        if self.newton_iterations == 0 {
+            return Err(Error::InvalidSettings(
+                "Linearizer: the Newton iteration limit must be at least 1".into(),
+            ));
+        }
+        Ok(())
     }
 }

@@ -5,7 +5,7 @@
 //! pivot ratio tells a *near*-singular mass matrix (a chart singularity such as the
 //! pole of a spherical pendulum) from a healthy one.
 
-use crate::error::{Error, to_vec};
+use crate::error::{Error, check_tolerance, to_vec};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::{Cholesky, cholesky_solve};
@@ -92,7 +92,8 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
     }
 
     /// Sets the threshold on min L_ii² / max L_ii² below which the mass matrix is
-    /// reported as singular.
+    /// reported as singular; a negative or non-finite one is refused
+    /// ([`Error::InvalidSettings`]) at the first evaluation.
     pub fn with_singular_tolerance(mut self, tolerance: T) -> Self {
         self.singular_tolerance = tolerance;
         self
@@ -129,6 +130,7 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
+        check_tolerance("singular tolerance", self.singular_tolerance.to_f64())?;
         let tau = if F::ACTIVE {
             self.forcing.force(t, q, v)?
         } else {

@@ -19,7 +19,7 @@
 //! constraints are independent, and a speed that is nearly dependent on them
 //! costs no digits.
 
-use crate::error::{Error, to_vec};
+use crate::error::{Error, check_tolerance, to_vec};
 use crate::mechanics::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
@@ -95,7 +95,8 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     }
 
     /// Sets the threshold on the pivot ratio of M* below which it is reported as
-    /// singular.
+    /// singular; a negative or non-finite one is refused
+    /// ([`Error::InvalidSettings`]) at the first evaluation.
     pub fn with_singular_tolerance(mut self, tolerance: T) -> Self {
         self.singular_tolerance = tolerance;
         self
@@ -132,6 +133,7 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         F: Forcing<T, N>,
     {
         check_state(t, q, v)?;
+        check_tolerance("singular tolerance", self.singular_tolerance.to_f64())?;
         let rows = self.rows(t, q)?;
         let part = self.partition(t, q, &rows)?;
         let (mut form, rates) = self.partitioned_form(t, q, &rows, &part, v)?;

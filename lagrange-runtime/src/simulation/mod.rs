@@ -5,7 +5,7 @@ mod form;
 
 pub use controlled::{ControlRun, ControlledSimulation};
 
-use crate::error::{Error, Failure, Progress};
+use crate::error::{Error, Failure, Progress, check_tolerance};
 use crate::event::{Event, EventRun, Events};
 use crate::mechanics::constraint::{
     ConstrainedDynamics, DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE, Drift,
@@ -191,13 +191,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     }
 
     pub(crate) fn check_singular_tolerance(&self) -> Result<(), Error> {
-        let tol = self.singular_tolerance;
-        if !(tol.is_finite() && tol >= 0.0) {
-            return Err(Error::InvalidSettings(format!(
-                "singular tolerance must be non-negative and finite, got {tol}"
-            )));
-        }
-        Ok(())
+        check_tolerance("singular tolerance", self.singular_tolerance)
     }
 
     pub(crate) fn check_tolerances(&self) -> Result<(), Error> {
@@ -207,11 +201,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
             ("redundant tolerance", c.redundant_tolerance),
             ("consistency tolerance", c.consistency_tolerance),
         ] {
-            if !(tol.is_finite() && tol >= 0.0) {
-                return Err(Error::InvalidSettings(format!(
-                    "{name} must be non-negative and finite, got {tol}"
-                )));
-            }
+            check_tolerance(name, tol)?;
         }
         c.drift.check()
     }

@@ -77,7 +77,7 @@ mod projection;
 
 pub use consistency::{check_consistency, project_consistent};
 
-use crate::error::{Error, to_vec};
+use crate::error::{Error, check_tolerance, to_vec};
 use crate::mechanics::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
@@ -280,7 +280,8 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
     }
 
     /// Sets the threshold on the pivot ratio of G M⁻¹ Gᵀ below which constraint
-    /// rows count as redundant (default 1e-12).
+    /// rows count as redundant (default 1e-12); a negative or non-finite one
+    /// is refused ([`Error::InvalidSettings`]) at the first evaluation.
     pub fn with_redundant_tolerance(mut self, tolerance: T) -> Self {
         self.redundant_tolerance = tolerance;
         self
@@ -339,6 +340,8 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
+        check_tolerance("singular tolerance", self.singular_tolerance.to_f64())?;
+        check_tolerance("redundant tolerance", self.redundant_tolerance.to_f64())?;
         let (m, mut f, g, mut gamma) = self.system.constrained_system_with(self.terms, q, v, t);
         if F::ACTIVE {
             f += self.forcing.force(t, q, v)?;
