@@ -21,7 +21,7 @@ fn main() {
         let _ = write!(
             out,
             "pub mod {prefix}{n} {{\n#[derive(lagrange::Lagrangian)]\n{source}\n\
-             impl SpatialChain {{\n    /// Issue 10's parameters.\n    pub fn issue10() -> Self {{\n        \
+             impl SpatialChain {{\n    /// The benchmark's parameters (those of `SerialChain::benchmark`).\n    pub fn benchmark() -> Self {{\n        \
              SpatialChain {{ {}, r: 0.05, g: 9.81 }}\n    }}\n}}\n}}\n",
             fields.join(", ")
         );

@@ -273,6 +273,8 @@ pub struct ReadmeDoctests;
 #[doc(hidden)]
 pub mod __private {
     pub use lagrange_runtime::func;
-    pub use lagrange_runtime::{Constrained, Driven, FormVisitor, Lagrangian, Real, Reduced};
+    pub use lagrange_runtime::{
+        Constrained, Driven, FormVisitor, Lagrangian, Real, Reduced, Route,
+    };
     pub use nalgebra::{SMatrix, SVector};
 }

@@ -294,7 +294,10 @@ fn linearizer_completes_a_partial_partition() {
 fn a_negative_stability_tolerance_is_refused() {
     let lateral = Bicycle::benchmark().lateral(5.0).unwrap();
     let e = lateral.stability(-1e-9).unwrap_err();
-    assert!(e.to_string().contains("must be finite and >= 0"), "{e}");
+    assert!(
+        e.to_string().contains("must be non-negative and finite"),
+        "{e}"
+    );
     assert!(lateral.stability(f64::NAN).is_err());
 }
 

@@ -184,3 +184,43 @@ fn radau5_uses_emitted_jacobians() {
     );
     assert!(sa.evaluations < sb.evaluations, "{sa:?} vs {sb:?}");
 }
+
+/// A three-link spatial chain, each link hung at its parent's tip.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(a, b, c),
+    body(l1, mass = m, inertia = [i, i, j], at = [0, 0, 0], rotation = rot_z(a)),
+    point(t1, on = l1, at = [0, 0, -l]),
+    body(l2, mass = m, inertia = [i, i, j], com = [0, 0, -l / 2], at = [t1.x, t1.y, t1.z],
+         rotation = rot_z(a) * rot_y(b)),
+    point(t2, on = l2, at = [0, 0, -l]),
+    body(l3, mass = m, inertia = [i, i, j], com = [0, 0, -l / 2], at = [t2.x, t2.y, t2.z],
+         rotation = rot_z(a) * rot_y(b) * rot_x(c)),
+    gravity = [0, 0, -g],
+)]
+struct Chain {
+    m: f64,
+    i: f64,
+    j: f64,
+    l: f64,
+    g: f64,
+}
+
+#[test]
+fn the_route_is_a_constant_with_its_reason() {
+    use lagrange::Route;
+    assert_eq!(
+        <Double as Lagrangian<f64, 2>>::ROUTE,
+        Route::Generic {
+            reason: "it has no rigid bodies (point masses alone)"
+        }
+    );
+    assert!(Double::EQUATIONS.contains("not recursive because it has no rigid bodies"));
+    // A tree this small is derived both ways, and the cheaper program kept.
+    assert_eq!(
+        <Chain as Lagrangian<f64, 3>>::ROUTE,
+        Route::Generic {
+            reason: "the generic program is the cheaper one on this small tree (3 joints)"
+        }
+    );
+}

@@ -22,7 +22,7 @@ fn state<const N: usize>() -> (SVector<f64, N>, SVector<f64, N>) {
 
 macro_rules! chain_bench {
     ($c:expr, $module:ident, $articulated:ident, $n:literal) => {{
-        let sys = $module::SpatialChain::issue10();
+        let sys = $module::SpatialChain::benchmark();
         let (q, v) = state::<$n>();
         let mut group = $c.benchmark_group(concat!("spatial_chain_", stringify!($n)));
         group.bench_function("M + (Q - h)", |b| {
@@ -31,7 +31,7 @@ macro_rules! chain_bench {
         group.bench_function("accelerations", |b| {
             b.iter(|| lagrange::accelerations(&sys, black_box(&q), black_box(&v), 0.0))
         });
-        let aba = $articulated::SpatialChain::issue10();
+        let aba = $articulated::SpatialChain::benchmark();
         group.bench_function("accelerations (articulated)", |b| {
             b.iter(|| lagrange::accelerations(&aba, black_box(&q), black_box(&v), 0.0))
         });
@@ -49,7 +49,7 @@ fn spatial(c: &mut Criterion) {
     // passes: O(n²), heap-allocated), to n = 30.
     let mut group = c.benchmark_group("spatial_chain_recursive");
     for n in [6, 10, 12, 14, 30] {
-        let chain = lagrange_bench::recursive::SerialChain::issue10(n);
+        let chain = lagrange_bench::recursive::SerialChain::benchmark(n);
         let q = nalgebra::DVector::from_fn(n, |i, _| 0.3 + 0.01 * i as f64);
         let v = nalgebra::DVector::from_fn(n, |i, _| 0.2 - 0.01 * i as f64);
         group.bench_function(format!("M + (Q - h), n = {n}"), |b| {

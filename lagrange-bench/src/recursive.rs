@@ -44,9 +44,9 @@ struct Body {
 }
 
 impl SerialChain {
-    /// Issue 10's chain of n rods (mass 1 + 0.1k, length 1 − 0.02k, radius
+    /// The benchmark chain of n rods (mass 1 + 0.1k, length 1 − 0.02k, radius
     /// 0.05, axes alternating z, y, gravity 9.81 down z).
-    pub fn issue10(n: usize) -> Self {
+    pub fn benchmark(n: usize) -> Self {
         let links = (0..n)
             .map(|k| {
                 let (m, l, r) = (1.0 + 0.1 * k as f64, 1.0 - 0.02 * k as f64, 0.05);

@@ -22,17 +22,23 @@ fn close(a: f64, b: f64) -> bool {
 fn mass_matrix_and_rhs_match_pinocchio() {
     // (n, M[0][0], (Q − h)[0]) from Pinocchio.
     let (q, v) = state::<6>();
-    let (m, f) = n6::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    let (m, f) = n6::SpatialChain::benchmark().mass_matrix_and_rhs(&q, &v, 0.0);
     assert!(close(m[(0, 0)], 74.0315975272448), "{}", m[(0, 0)]);
     assert!(close(f[0], 4.42521592570079), "{}", f[0]);
     let (q, v) = state::<14>();
-    let (m, f) = n14::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    let (m, f) = n14::SpatialChain::benchmark().mass_matrix_and_rhs(&q, &v, 0.0);
     assert!(close(m[(0, 0)], 482.975828915347), "{}", m[(0, 0)]);
     assert!(close(f[0], 210.052527264394), "{}", f[0]);
     let (q, v) = state::<30>();
-    let (m, f) = n30::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    let (m, f) = n30::SpatialChain::benchmark().mass_matrix_and_rhs(&q, &v, 0.0);
     assert!(close(m[(0, 0)], 1069.00074347317), "{}", m[(0, 0)]);
     assert!(close(f[0], 697.322883981117), "{}", f[0]);
+    // Past six joints the recursive route is taken alone, and says so.
+    assert_eq!(
+        <n14::SpatialChain as Lagrangian<f64, 14>>::ROUTE,
+        lagrange::Route::Recursive
+    );
+    assert!(n30::SpatialChain::EQUATIONS.contains("route: recursive"));
 }
 
 /// The hand-written recursive Newton–Euler chain equals the derived one.
@@ -41,7 +47,7 @@ fn recursive_newton_euler_matches_the_derivation() {
     use lagrange_bench::recursive::SerialChain;
     use nalgebra::DVector;
     fn check<const N: usize>(f: SVector<f64, N>, mm: nalgebra::SMatrix<f64, N, N>) {
-        let chain = SerialChain::issue10(N);
+        let chain = SerialChain::benchmark(N);
         let (q, v) = state::<N>();
         let (rm, rf) = chain.mass_matrix_and_rhs(
             &DVector::from_column_slice(q.as_slice()),
@@ -59,13 +65,13 @@ fn recursive_newton_euler_matches_the_derivation() {
         }
     }
     let (q, v) = state::<6>();
-    let (m, f) = n6::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    let (m, f) = n6::SpatialChain::benchmark().mass_matrix_and_rhs(&q, &v, 0.0);
     check::<6>(f, m);
     let (q, v) = state::<14>();
-    let (m, f) = n14::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    let (m, f) = n14::SpatialChain::benchmark().mass_matrix_and_rhs(&q, &v, 0.0);
     check::<14>(f, m);
     let (q, v) = state::<30>();
-    let (m, f) = n30::SpatialChain::issue10().mass_matrix_and_rhs(&q, &v, 0.0);
+    let (m, f) = n30::SpatialChain::benchmark().mass_matrix_and_rhs(&q, &v, 0.0);
     check::<30>(f, m);
 }
 
@@ -86,22 +92,25 @@ fn articulated_body_matches_cholesky() {
     }
     let (q, v) = state::<6>();
     check(
-        lagrange::accelerations(&n6::SpatialChain::issue10(), &q, &v, 0.0).unwrap(),
-        lagrange::accelerations(&a6::SpatialChain::issue10(), &q, &v, 0.0).unwrap(),
+        lagrange::accelerations(&n6::SpatialChain::benchmark(), &q, &v, 0.0).unwrap(),
+        lagrange::accelerations(&a6::SpatialChain::benchmark(), &q, &v, 0.0).unwrap(),
     );
     let (q, v) = state::<14>();
     check(
-        lagrange::accelerations(&n14::SpatialChain::issue10(), &q, &v, 0.0).unwrap(),
-        lagrange::accelerations(&a14::SpatialChain::issue10(), &q, &v, 0.0).unwrap(),
+        lagrange::accelerations(&n14::SpatialChain::benchmark(), &q, &v, 0.0).unwrap(),
+        lagrange::accelerations(&a14::SpatialChain::benchmark(), &q, &v, 0.0).unwrap(),
     );
     let (q, v) = state::<30>();
     check(
-        lagrange::accelerations(&n30::SpatialChain::issue10(), &q, &v, 0.0).unwrap(),
-        lagrange::accelerations(&a30::SpatialChain::issue10(), &q, &v, 0.0).unwrap(),
+        lagrange::accelerations(&n30::SpatialChain::benchmark(), &q, &v, 0.0).unwrap(),
+        lagrange::accelerations(&a30::SpatialChain::benchmark(), &q, &v, 0.0).unwrap(),
     );
     // One second of the 14-link arm falling from the same state, both ways.
     let (q, v) = state::<14>();
-    let (full, articulated) = (n14::SpatialChain::issue10(), a14::SpatialChain::issue10());
+    let (full, articulated) = (
+        n14::SpatialChain::benchmark(),
+        a14::SpatialChain::benchmark(),
+    );
     let a = lagrange::Simulation::new(&full)
         .integrator(lagrange::Dopri5::tol(1e-10))
         .run(q, v, 0.0..1.0)

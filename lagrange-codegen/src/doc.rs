@@ -107,15 +107,7 @@ fn header(model: &Model) -> String {
             "scleronomic: conserved (if forces are conservative): T + V"
         }
     );
-    let route = match model.bias_route {
-        BiasRoute::Projection => "d'Alembert projection",
-        BiasRoute::Christoffel => "Christoffel symbols",
-        BiasRoute::MassMatrix => "Christoffel symbols of M",
-        BiasRoute::Recursive => {
-            "recursive Newton–Euler over the kinematic tree (M by composite rigid bodies)"
-        }
-    };
-    let _ = writeln!(s, "h by {route}; T kinetic, V potential energy.");
+    let _ = writeln!(s, "{}; T kinetic, V potential energy.", route_line(model));
     if let Some(c) = &model.constraints {
         let _ = writeln!(
             s,
@@ -278,4 +270,19 @@ fn outputs(model: &Model) -> Vec<(String, Sym)> {
         }
     }
     out
+}
+
+/// The `route:` line: how M and h are computed and, off the recursive route,
+/// why (which body, and what about it).
+fn route_line(model: &Model) -> String {
+    let h = match model.bias_route {
+        BiasRoute::Projection => "d'Alembert projection",
+        BiasRoute::Christoffel => "Christoffel symbols",
+        BiasRoute::MassMatrix => "Christoffel symbols of M",
+        BiasRoute::Recursive => {
+            return "route: recursive: M by composite rigid bodies, h by recursive Newton–Euler over the kinematic tree".into();
+        }
+    };
+    let why = model.route_reason.as_deref().unwrap_or("");
+    format!("route: generic: M from the positions, h by {h}; not recursive because {why}")
 }

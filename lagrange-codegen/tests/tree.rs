@@ -93,32 +93,53 @@ fn branched_tree_with_point_masses_and_full_inertia() {
 }
 
 #[test]
-fn non_trees_stay_generic() {
+fn non_trees_stay_generic_and_say_why() {
     let cases = [
-        // A translating coordinate.
-        "#[lagrange(coordinates(x, th),
-            body(b, mass = m, inertia = [m, m, m], at = [x, 0, 0], rotation = rot_z(th)))]
-         struct Cart { m: f64 }",
-        // A rotation about a sum of coordinates.
-        "#[lagrange(coordinates(a, b),
-            body(b1, mass = m, inertia = [m, m, m], at = [0, 0, 0], rotation = rot_z(a + b)),
-            point(p, mass = m, at = [a, b, 0]))]
-         struct Sum { m: f64 }",
-        // A free point mass beside a body.
-        "#[lagrange(coordinates(th, s),
-            body(b, mass = m, inertia = [m, m, m], at = [0, 0, 0], rotation = rot_z(th)),
-            point(p, mass = m, at = [s, 0, 0]))]
-         struct Free { m: f64 }",
+        (
+            "#[lagrange(coordinates(x, th),
+                body(b, mass = m, inertia = [m, m, m], at = [x, 0, 0], rotation = rot_z(th)))]
+             struct Cart { m: f64 }",
+            "body `b`: its reference point moves, but it has no parent body",
+        ),
+        (
+            "#[lagrange(coordinates(a, b),
+                body(b1, mass = m, inertia = [m, m, m], at = [0, 0, 0], rotation = rot_z(a + b)),
+                point(p, mass = m, at = [a, b, 0]))]
+             struct Sum { m: f64 }",
+            "body `b1`: its factor rot_z turns by an angle that is not one coordinate",
+        ),
+        (
+            "#[lagrange(coordinates(th, s),
+                body(b, mass = m, inertia = [m, m, m], at = [0, 0, 0], rotation = rot_z(th)),
+                point(p, mass = m, at = [s, 0, 0]))]
+             struct Free { m: f64 }",
+            "coordinate `s` turns no joint",
+        ),
+        (
+            "#[lagrange(coordinates(th),
+                body(b, mass = m, inertia = [m, m, m], at = [0, 0, 0], rotation = rot_z(th)),
+                point(p, mass = m, at = [th, 0, 0]))]
+             struct Loose { m: f64 }",
+            "point `p`: it has mass and moves, but is not fixed in a body",
+        ),
     ];
-    for src in cases {
+    for (src, why) in cases {
         let input: syn::DeriveInput = syn::parse_str(src).unwrap();
         let refused = lagrange_codegen::model_by(&input, Route::Recursive).err();
         let message = refused.map(|e| e.to_string()).unwrap_or_default();
         assert!(
-            message.contains("kinematic tree"),
-            "not a tree, yet not refused by the recursive route (message {message:?}):\n{src}"
+            message.contains("kinematic tree") && message.contains(why),
+            "not a tree, yet not refused with the reason {why:?} (message {message:?}):\n{src}"
         );
-        assert_ne!(model_by(src, Route::Auto).bias_route, BiasRoute::Recursive);
+        let model = model_by(src, Route::Auto);
+        assert_ne!(model.bias_route, BiasRoute::Recursive);
+        let text = lagrange_codegen::doc::equations(&model);
+        let reason = model.route_reason.unwrap_or_default();
+        assert!(reason.starts_with(why), "{reason:?} is not {why:?}:\n{src}");
+        assert!(
+            text.contains(&format!("not recursive because {why}")),
+            "{text}"
+        );
     }
 }
 

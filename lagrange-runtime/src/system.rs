@@ -41,6 +41,11 @@ pub trait Lagrangian<T: Real, const N: usize> {
     /// bound while the motion they belong to stays bounded), and an
     /// eigen-analysis knows their zero eigenvalues are structural.
     const CYCLIC: [bool; N] = [false; N];
+    /// How M and h are computed: by the recursive algorithms over a kinematic
+    /// tree, or by differentiating the positions (with the reason the
+    /// recursive route was not taken: which body, and what about it).
+    /// `#[derive(Lagrangian)]` sets it; the default is [`Route::HandWritten`].
+    const ROUTE: Route = Route::HandWritten;
 
     /// Mass matrix M(q,t): symmetric, positive definite where the chart is regular.
     fn mass_matrix(&self, q: &SVector<T, N>, t: T) -> SMatrix<T, N, N>;
@@ -534,4 +539,24 @@ pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
         let _ = (q, v, u, t);
         (SMatrix::zeros(), SMatrix::zeros(), SMatrix::zeros())
     }
+}
+
+/// How a system's mass matrix M and bias h are computed
+/// ([`Lagrangian::ROUTE`]; also the `route:` line of a derived system's
+/// `EQUATIONS`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Route {
+    /// Composite rigid bodies for M and recursive Newton–Euler for h over the
+    /// kinematic tree the description spans: O(n²) and O(n) operations.
+    Recursive,
+    /// Differentiating the positions ξ(q, t) (M = Σ Jᵀ m J, h by projection
+    /// or Christoffel symbols), and why the recursive route was not taken.
+    Generic {
+        /// Which body or point, and what about it, keeps the description
+        /// from being a tree; or that the generic program was the cheaper
+        /// one on a small tree.
+        reason: &'static str,
+    },
+    /// Not derived: the system's impl was written by hand.
+    HandWritten,
 }

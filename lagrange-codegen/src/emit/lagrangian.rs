@@ -96,6 +96,7 @@ fn lagrangian_trait(
     let rheonomic = model.rheonomic;
     let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
     let cyclic = cyclic_const(model, nl);
+    let route = route_const(model);
     let hamiltonian = optional_methods(e, f, model);
     let visit_form = visit_form(f, model);
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
@@ -111,6 +112,7 @@ fn lagrangian_trait(
             const RHEONOMIC: bool = #rheonomic;
             const CONSTRAINED: bool = #has_constraints;
             #cyclic
+            #route
 
             #[inline]
             fn mass_matrix(&self, q: &#vec_t, t: #s) -> #mat_t {
@@ -162,6 +164,19 @@ fn cyclic_const(model: &Model, nl: &Literal) -> TokenStream {
     }
     let cyclic = &model.cyclic;
     quote!(const CYCLIC: [bool; #nl] = [#(#cyclic),*];)
+}
+
+/// `ROUTE`: recursive, or generic with the reason.
+fn route_const(model: &Model) -> TokenStream {
+    match &model.route_reason {
+        None => quote!(
+            const ROUTE: ::lagrange::__private::Route = ::lagrange::__private::Route::Recursive;
+        ),
+        Some(reason) => quote! {
+            const ROUTE: ::lagrange::__private::Route =
+                ::lagrange::__private::Route::Generic { reason: #reason };
+        },
+    }
 }
 
 /// `kinetic_energy`, `potential_energy` and `integral`.

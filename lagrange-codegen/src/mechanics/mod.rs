@@ -65,8 +65,9 @@ pub enum DeriveError {
     Reduction(String),
     /// `emit(articulated)` on a description that is not a kinematic tree.
     ArticulatedNeedsTree,
-    /// [`Route::Recursive`] asked of a description that is not a kinematic tree.
-    NotATree,
+    /// [`Route::Recursive`] asked of a description that is not a kinematic
+    /// tree, and why it is not.
+    NotATree(String),
 }
 
 impl std::fmt::Display for DeriveError {
@@ -77,7 +78,9 @@ impl std::fmt::Display for DeriveError {
                 f,
                 "`articulated` needs {TREE}; without one, remove `articulated` (q̈ then comes from M and its Cholesky factorisation)"
             ),
-            DeriveError::NotATree => write!(f, "the recursive route needs {TREE}"),
+            DeriveError::NotATree(why) => {
+                write!(f, "the recursive route needs {TREE}; here {why}")
+            }
         }
     }
 }
@@ -118,17 +121,19 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
     let qdd = ctx.accelerations();
     let zero_acc = at_zero(&mut ctx, &qdd);
     let tree = match route {
-        Route::Generic => None,
+        Route::Generic => Err("the generic route was asked for".to_string()),
         Route::Auto | Route::Recursive => {
             recursive::detect(&mut ctx, &points, &spins, &skeleton, gravity.as_deref())
         }
     };
-    let generic = wants_generic(route, tree.as_ref())?;
+    let generic = wants_generic(route, &tree)?;
+    let (tree, not_a_tree) = tree.map_or_else(|why| (None, Some(why)), |t| (Some(t), None));
     let (kin, spin, rheonomic, kinetic) =
         kinematics::derive(&mut ctx, &points, &spins, generic, &zero_acc);
     let generic_terms =
         generic.then(|| generic::derive(&mut ctx, &kin, &spin, kinetic, rheonomic, &zero_acc));
     let recursive_terms = recursive::cheaper(&mut ctx, tree.as_ref(), generic_terms.as_ref());
+    let route_reason = route_reason(recursive_terms.is_some(), tree.as_ref(), not_a_tree);
     let applied = Applied {
         dissipation,
         forces: &forces,
@@ -156,6 +161,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         has_spin: !spin.is_empty(),
         forces,
         motion,
+        route_reason,
     };
     let constrained = Constrained {
         holonomic: &holonomic,
@@ -168,11 +174,35 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
 
 /// Whether to derive the generic route (besides the recursive one, if there is a
 /// tree), or the error when the recursive route was required of a non-tree.
-fn wants_generic(route: Route, tree: Option<&crate::tree::Tree>) -> Result<bool, DeriveError> {
-    if route == Route::Recursive && tree.is_none() {
-        return Err(DeriveError::NotATree);
+fn wants_generic(
+    route: Route,
+    tree: &Result<crate::tree::Tree, String>,
+) -> Result<bool, DeriveError> {
+    match (route, tree) {
+        (Route::Recursive, Err(why)) => Err(DeriveError::NotATree(why.clone())),
+        (_, Err(_)) => Ok(true),
+        (_, Ok(t)) => Ok(route == Route::Auto && t.len() <= BOTH_ROUTES_UP_TO),
     }
-    Ok(tree.is_none_or(|t| route == Route::Auto && t.len() <= BOTH_ROUTES_UP_TO))
+}
+
+/// Why M and h are not by the recursive route (`None` when they are): the
+/// reason the description is not a tree, or that the generic program won.
+fn route_reason(
+    recursive: bool,
+    tree: Option<&crate::tree::Tree>,
+    not_a_tree: Option<String>,
+) -> Option<String> {
+    if recursive {
+        return None;
+    }
+    not_a_tree.or_else(|| {
+        tree.map(|t| {
+            format!(
+                "the generic program is the cheaper one on this small tree ({} joints)",
+                t.len()
+            )
+        })
+    })
 }
 
 /// Where Q comes from: gravity, V and the applied forces, and what the recursive
@@ -313,6 +343,8 @@ struct Derived {
     has_spin: bool,
     forces: Forces,
     motion: Motion,
+    /// Why M and h are not by the recursive route (`None` when they are).
+    route_reason: Option<String>,
 }
 
 /// The constraints and which constrained forms to build.
@@ -394,6 +426,7 @@ fn finish(
         articulated,
         hoisted,
         cyclic: Vec::new(),
+        route_reason: d.route_reason,
     };
     model.cyclic = cyclic::cyclic(&model);
     Ok(model)

@@ -64,6 +64,9 @@ pub struct Model {
     pub potential: Sym,
     pub integral: Sym,
     pub bias_route: BiasRoute,
+    /// Why M and h are not by the recursive route: which body or point, and
+    /// what about it (`None` when they are).
+    pub route_reason: Option<String>,
     /// The route not chosen, kept so tests can check the two agree (empty when
     /// only the recursive route was derived).
     pub bias_other: Vec<Sym>,

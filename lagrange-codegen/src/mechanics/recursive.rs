@@ -24,11 +24,15 @@ pub(super) fn detect(
     spins: &[SpinModel],
     skeleton: &Skeleton,
     gravity: Option<&[Sym]>,
-) -> Option<Tree> {
+) -> Result<Tree, String> {
     let point_masses: Vec<Sym> = points.iter().map(|p| p.mass).collect();
+    let point_names: Vec<String> = points.iter().map(|p| p.name.clone()).collect();
+    let body_names: Vec<String> = spins.iter().map(|s| s.name.clone()).collect();
     let point_positions: Vec<Vec<Sym>> = points.iter().map(|p| p.position.clone()).collect();
     let inertias: Vec<Mat3> = spins.iter().map(|s| s.inertia).collect();
     let masses = crate::tree::Masses {
+        body_names: &body_names,
+        point_names: &point_names,
         point_masses: &point_masses,
         point_positions: &point_positions,
         inertias: &inertias,

@@ -1,6 +1,8 @@
 //! Finding the tree in a description: joints from the bodies' rotation factors,
 //! parents by the longest proper prefix of joints, offsets from the anchors, and
-//! the masses gathered onto the links.
+//! the masses gathered onto the links. Where the description is not a tree,
+//! the answer says why: which body or point, and what about it, so that the
+//! user can see what keeps a model off the recursive route.
 
 use lagrange_symbolic::{Context, Expr as Sym, SymbolKind};
 
@@ -14,44 +16,72 @@ fn fixed(ctx: &Context, e: Sym) -> bool {
         .all(|&s| matches!(ctx.symbol_kind(s), SymbolKind::Parameter(_)))
 }
 
-/// The kinematic tree the description spans, if it is one.
-pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Option<Tree> {
-    let coordinates = ctx.coordinates();
-    let n = coordinates.len();
-    let bodies = &skeleton.bodies;
-    if bodies.is_empty() || n == 0 {
-        return None;
+/// The name of coordinate `i`, for the reasons.
+fn coordinate_name(ctx: &Context, i: usize) -> String {
+    let q = ctx.coordinates()[i];
+    ctx.as_symbol(q)
+        .map_or_else(String::new, |s| ctx.symbol_name(s).to_string())
+}
+
+/// The kinematic tree the description spans, or why it is not one.
+pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result<Tree, String> {
+    let n = ctx.coordinates().len();
+    if skeleton.bodies.is_empty() || n == 0 {
+        return Err("it has no rigid bodies (point masses alone)".into());
     }
-    // Each body's joints as (axis, coordinate index).
-    let mut joints: Vec<Vec<(usize, usize)>> = Vec::new();
-    for b in bodies {
-        let factors = b.factors.as_ref()?;
-        let js = factors
-            .iter()
-            .map(|&(axis, angle)| Some((axis, coordinates.iter().position(|&q| q == angle)?)))
-            .collect::<Option<Vec<_>>>()?;
-        joints.push(js);
-    }
-    let (mut links, last_link) = link_bodies(ctx, skeleton, &joints, n)?;
+    let joints = body_joints(ctx, skeleton, masses.body_names)?;
+    let (mut links, last_link) = link_bodies(ctx, skeleton, &joints, masses.body_names)?;
     attach_masses(ctx, skeleton, masses, &mut links, &last_link)?;
     let gravity = match masses.gravity {
         None => None,
         Some(g) if g.len() == 3 && g.iter().all(|&x| fixed(ctx, x)) => Some([g[0], g[1], g[2]]),
-        Some(_) => return None,
+        Some(_) => return Err("gravity is not a constant vector".into()),
     };
-    Some(Tree { links, gravity })
+    Ok(Tree { links, gravity })
 }
 
-/// The links, parents first, and each body's last link; `None` unless every
+/// Each body's joints as (axis, coordinate index), from its rotation factors.
+fn body_joints(
+    ctx: &Context,
+    skeleton: &Skeleton,
+    names: &[String],
+) -> Result<Vec<Vec<(usize, usize)>>, String> {
+    let coordinates = ctx.coordinates();
+    let mut joints = Vec::new();
+    for (b, body) in skeleton.bodies.iter().enumerate() {
+        let Some(factors) = body.factors.as_ref() else {
+            return Err(format!(
+                "body `{}`: its rotation is not a product of rot_x/rot_y/rot_z factors",
+                names[b]
+            ));
+        };
+        let mut js = Vec::new();
+        for &(axis, angle) in factors {
+            let Some(q) = coordinates.iter().position(|&q| q == angle) else {
+                return Err(format!(
+                    "body `{}`: its factor rot_{} turns by an angle that is not one coordinate",
+                    names[b],
+                    ["x", "y", "z"][axis]
+                ));
+            };
+            js.push((axis, q));
+        }
+        joints.push(js);
+    }
+    Ok(joints)
+}
+
+/// The links, parents first, and each body's last link; an error unless every
 /// body hangs on its parent at a fixed point by new joints and every
 /// coordinate is one joint.
 fn link_bodies(
     ctx: &mut Context,
     skeleton: &Skeleton,
     joints: &[Vec<(usize, usize)>],
-    n: usize,
-) -> Option<(Vec<Link>, Vec<Option<usize>>)> {
+    names: &[String],
+) -> Result<(Vec<Link>, Vec<Option<usize>>), String> {
     let bodies = &skeleton.bodies;
+    let n = ctx.coordinates().len();
     // Parents: the body whose joints are the longest proper prefix.
     let mut order: Vec<usize> = (0..bodies.len()).collect();
     order.sort_by_key(|&b| joints[b].len());
@@ -66,18 +96,37 @@ fn link_bodies(
             .max_by_key(|&p| joints[p].len());
         let prefix = parent.map_or(0, |p| joints[p].len());
         if prefix == mine.len() {
-            return None;
+            return Err(format!(
+                "body `{}`: its rotation adds no joint to another body's",
+                names[b]
+            ));
         }
         if parent
             .is_some_and(|p| (0..bodies.len()).any(|o| o != p && o != b && joints[o] == joints[p]))
         {
-            return None; // two bodies with one rotation: which one carries b is unclear
+            return Err(format!(
+                "body `{}`: two bodies have its parent's rotation, so which one carries it is unclear",
+                names[b]
+            ));
         }
-        let offset = joint_offset(ctx, skeleton, b, parent)?;
+        let offset = joint_offset(ctx, skeleton, b, parent).ok_or_else(|| match parent {
+            None => format!(
+                "body `{}`: its reference point moves, but it has no parent body",
+                names[b]
+            ),
+            Some(p) => format!(
+                "body `{}`: its reference point is not a point fixed in its parent `{}`",
+                names[b], names[p]
+            ),
+        })?;
         let mut up = parent.map(|p| last_link[p].expect("parents come first"));
         for (k, &(axis, coordinate)) in mine[prefix..].iter().enumerate() {
             if std::mem::replace(&mut used[coordinate], true) {
-                return None;
+                let q = coordinate_name(ctx, coordinate);
+                return Err(format!(
+                    "body `{}`: coordinate `{q}` turns a second joint",
+                    names[b]
+                ));
             }
             links.push(Link {
                 parent: up,
@@ -90,10 +139,13 @@ fn link_bodies(
         }
         last_link[b] = up;
     }
-    if used.iter().any(|u| !u) {
-        return None;
+    if let Some(q) = used.iter().position(|u| !u) {
+        let q = coordinate_name(ctx, q);
+        return Err(format!(
+            "coordinate `{q}` turns no joint (a translation, or a coordinate outside the rotations)"
+        ));
     }
-    Some((links, last_link))
+    Ok((links, last_link))
 }
 
 /// Where body `b`'s first new joint sits: its reference point, fixed in space
@@ -129,22 +181,33 @@ fn attach_masses(
     masses: &Masses,
     links: &mut [Link],
     last_link: &[Option<usize>],
-) -> Option<()> {
+) -> Result<(), String> {
     let zero = ctx.zero();
+    let jointless = |b: usize| {
+        format!(
+            "body `{}` carries mass but turns on no joint",
+            masses.body_names[b]
+        )
+    };
     for (i, at) in skeleton.masses.iter().enumerate() {
         match at {
             Some((b, local)) if local.len() == 3 && local.iter().all(|&x| fixed(ctx, x)) => {
-                let link = last_link[*b]?;
+                let link = last_link[*b].ok_or_else(|| jointless(*b))?;
                 let add =
                     point_inertia(ctx, masses.point_masses[i], [local[0], local[1], local[2]]);
                 links[link].inertia = Some(add_inertia(ctx, links[link].inertia, add));
             }
             None if masses.point_positions[i].iter().all(|&x| fixed(ctx, x)) => {}
-            _ => return None,
+            _ => {
+                return Err(format!(
+                    "point `{}`: it has mass and moves, but is not fixed in a body",
+                    masses.point_names[i]
+                ));
+            }
         }
     }
     for (b, tensor) in masses.inertias.iter().enumerate() {
-        let link = last_link[b]?;
+        let link = last_link[b].ok_or_else(|| jointless(b))?;
         let spin = Inertia {
             mass: zero,
             first: [zero; 3],
@@ -152,7 +215,7 @@ fn attach_masses(
         };
         links[link].inertia = Some(add_inertia(ctx, links[link].inertia, spin));
     }
-    Some(())
+    Ok(())
 }
 
 /// A point mass μ at r: (μ, μ r, μ(|r|² 1 − r rᵀ)).

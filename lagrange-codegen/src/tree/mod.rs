@@ -62,6 +62,10 @@ pub struct Tree {
 
 /// What the tree's bodies carry, as `derive` hands them over.
 pub struct Masses<'a> {
+    /// The bodies' names (parallel to the skeleton's bodies) and the point
+    /// masses' names, for the reason a description is not a tree.
+    pub body_names: &'a [String],
+    pub point_names: &'a [String],
     pub point_masses: &'a [Sym],
     pub point_positions: &'a [Vec<Sym>],
     pub inertias: &'a [Mat3],
