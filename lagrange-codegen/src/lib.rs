@@ -131,7 +131,7 @@ fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Mod
             check::mass_rows(cx, system, &zero_rows);
             (!cx.has_errors()).then_some(model)
         }
-        Err(e @ mechanics::DeriveError::ArticulatedNeedsTree) => {
+        Err(e @ mechanics::DeriveError::ArticulatedNeedsTree(_)) => {
             let at = system
                 .extras
                 .iter()

@@ -92,6 +92,40 @@ fn branched_tree_with_point_masses_and_full_inertia() {
     );
 }
 
+/// What a robot description holds: placements between joints (a URDF joint's
+/// fixed `rpy`, here a literal quarter turn and a parameter angle), a joint
+/// about a tilted axis, a body with a constant turn after its joint (its
+/// inertia and com in turned axes), a tool fixed in the last link (a fixed
+/// joint) with a point mass on it, and a massive base fixed in space.
+const ROBOT: &str = "#[lagrange(coordinates(a, b, c),
+            body(base, mass = m0, inertia = [i1, i2, i3], at = [0, 0, 0], rotation = rot_z(w)),
+            point(mount, on = base, at = [0.1, 0, h]),
+            body(l1, mass = m1, inertia = [i1, i2, i3, p, 0, 0], com = [0.1, 0, 0.2],
+                 at = [mount.x, mount.y, mount.z], rotation = rot_z(w) * rot_z(a) * rot_x(0.4)),
+            point(t1, on = l1, at = [0, 0.1, l]),
+            body(l2, mass = m1, inertia = [i2, i3, i1], com = [l / 2, 0, 0],
+                 at = [t1.x, t1.y, t1.z],
+                 rotation = rot_z(w) * rot_z(a) * rot_x(0.4) * rot_x(1.5707963) * rot_z(b)),
+            point(t2, on = l2, at = [l, 0, 0.05]),
+            body(l3, mass = m0, inertia = [i1, i1, i3], com = [0, 0, l / 3],
+                 at = [t2.x, t2.y, t2.z],
+                 rotation = rot_z(w) * rot_z(a) * rot_x(0.4) * rot_x(1.5707963) * rot_z(b)
+                     * rot_y(w) * rot_z(c) * rot_y(-w)),
+            point(flange, on = l3, at = [0, 0.02, l]),
+            body(tool, mass = m1, inertia = [i3, i2, i1], com = [0, 0, 0.1],
+                 at = [flange.x, flange.y, flange.z],
+                 rotation = rot_z(w) * rot_z(a) * rot_x(0.4) * rot_x(1.5707963) * rot_z(b)
+                     * rot_y(w) * rot_z(c) * rot_y(-w) * rot_x(0.3)),
+            point(tip, on = tool, at = [0, 0.05, 0.2], mass = m0),
+            gravity = [0, 0, -g])]
+         struct Robot { m0: f64, m1: f64, i1: f64, i2: f64, i3: f64, p: f64, h: f64, l: f64,
+                        w: f64, g: f64 }";
+
+#[test]
+fn placements_tilted_axes_and_fixed_bodies_agree() {
+    routes_agree(ROBOT);
+}
+
 #[test]
 fn non_trees_stay_generic_and_say_why() {
     let cases = [
@@ -106,7 +140,7 @@ fn non_trees_stay_generic_and_say_why() {
                 body(b1, mass = m, inertia = [m, m, m], at = [0, 0, 0], rotation = rot_z(a + b)),
                 point(p, mass = m, at = [a, b, 0]))]
              struct Sum { m: f64 }",
-            "body `b1`: its factor rot_z turns by an angle that is not one coordinate",
+            "body `b1`: its factor rot_z turns by an angle that is neither one coordinate nor constant",
         ),
         (
             "#[lagrange(coordinates(th, s),
@@ -239,4 +273,8 @@ fn articulated_body_accelerations_agree_with_the_mass_matrix() {
             gravity = [0, 0, -g])]
          struct Top { m: f64, a: f64, c: f64, l: f64, g: f64, k: f64 }",
     );
+    articulated_agrees(&ROBOT.replace(
+        "#[lagrange(coordinates",
+        "#[lagrange(emit(articulated), coordinates",
+    ));
 }

@@ -55,7 +55,7 @@ pub enum Route {
 const BOTH_ROUTES_UP_TO: usize = 6;
 
 /// What a kinematic tree is, for the errors that need one.
-const TREE: &str = "a kinematic tree of revolute joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates, its reference point fixed in the parent, every point mass fixed in a body";
+const TREE: &str = "a kinematic tree of revolute joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates or of constant angles, its reference point fixed in the parent, every point mass fixed in a body";
 
 /// Why a description could not be derived (beyond what lowering reports).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -63,8 +63,9 @@ pub enum DeriveError {
     /// A reduced form that cannot be built: speeds and constraints that do not
     /// determine the velocities.
     Reduction(String),
-    /// `emit(articulated)` on a description that is not a kinematic tree.
-    ArticulatedNeedsTree,
+    /// `emit(articulated)` on a description that is not a kinematic tree, and
+    /// why it is not.
+    ArticulatedNeedsTree(String),
     /// [`Route::Recursive`] asked of a description that is not a kinematic
     /// tree, and why it is not.
     NotATree(String),
@@ -74,9 +75,9 @@ impl std::fmt::Display for DeriveError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             DeriveError::Reduction(msg) => f.write_str(msg),
-            DeriveError::ArticulatedNeedsTree => write!(
+            DeriveError::ArticulatedNeedsTree(why) => write!(
                 f,
-                "`articulated` needs {TREE}; without one, remove `articulated` (q̈ then comes from M and its Cholesky factorisation)"
+                "`articulated` needs {TREE}; here {why}; without one, remove `articulated` (q̈ then comes from M and its Cholesky factorisation)"
             ),
             DeriveError::NotATree(why) => {
                 write!(f, "the recursive route needs {TREE}; here {why}")
@@ -146,6 +147,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         tree: tree.as_ref(),
         recursive: recursive_terms.is_some(),
         articulated: extras.contains(&Extra::Articulated),
+        route_reason: route_reason.clone(),
     };
     let forces = applied_forces(&mut ctx, &kin, &sources, input_names)?;
     let motion = equations(&mut ctx, recursive_terms, generic_terms, &forces);
@@ -217,6 +219,9 @@ struct Sources<'a> {
     recursive: bool,
     /// Whether `emit(articulated)` asked for the articulated-body q̈.
     articulated: bool,
+    /// Why M and h are not by the recursive route, for the error when the
+    /// articulated q̈ needs a tree.
+    route_reason: Option<String>,
 }
 
 /// Q at zero input, V at zero input, and what depends on them.
@@ -254,7 +259,10 @@ fn applied_forces(
     let articulated = match (s.articulated, s.tree, &without_gravity) {
         (false, _, _) => None,
         (true, Some(tree), Some(rest)) => Some(recursive::articulation(ctx, tree, rest)),
-        (true, _, _) => return Err(DeriveError::ArticulatedNeedsTree),
+        (true, _, _) => {
+            let why = s.route_reason.clone().unwrap_or_default();
+            return Err(DeriveError::ArticulatedNeedsTree(why));
+        }
     };
     // The `Lagrangian` methods are the unforced system: every input at zero.
     let (generalized, potential, inputs) =

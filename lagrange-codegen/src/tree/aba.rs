@@ -3,9 +3,7 @@
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::Tree;
-use super::link::{
-    add3, cross, cross_axis, force_to_parent, mat_add, mirror_upper, rotate_back, trig,
-};
+use super::link::{add3, cross, cross_axis, force_to_parent, mat_add, mirror_upper, to_link, trig};
 use super::spatial::{Spatial, rigid_spatial, spatial_apply, spatial_to_parent};
 use crate::mat3::Mat3;
 
@@ -65,8 +63,8 @@ fn velocities(ctx: &mut Context, tree: &Tree) -> Links {
         let rate = qd[link.coordinate];
         let wd = cross(ctx, w, link.offset);
         let v_at = add3(ctx, v, wd);
-        let w_in = rotate_back(ctx, link.axis, cs, w);
-        let v = rotate_back(ctx, link.axis, cs, v_at);
+        let w_in = to_link(ctx, link, cs, w);
+        let v = to_link(ctx, link, cs, v_at);
         let mut w = w_in;
         w[link.axis] = ctx.add(w[link.axis], rate);
         let wq = cross_axis(ctx, w_in, link.axis, rate);
@@ -178,8 +176,8 @@ fn accelerations(ctx: &mut Context, tree: &Tree, bias_acc: &[Pair], joints: &Joi
         let cs = trig(ctx, link);
         let ad = cross(ctx, al, link.offset);
         let a_at = add3(ctx, a, ad);
-        let al = rotate_back(ctx, link.axis, cs, al);
-        let a = rotate_back(ctx, link.axis, cs, a_at);
+        let al = to_link(ctx, link, cs, al);
+        let a = to_link(ctx, link, cs, a_at);
         let mut al = add3(ctx, al, bias_acc[i][0]);
         let a = add3(ctx, a, bias_acc[i][1]);
         let [u_n, u_f] = columns[i];

@@ -5,7 +5,7 @@
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::detect::add_inertia;
-use super::link::{cross, force_to_parent, mirror_upper, rotate, trig};
+use super::link::{cross, force_to_parent, mirror_upper, to_parent, trig};
 use super::{Inertia, Link, Tree};
 
 /// The joint-space mass matrix by composite rigid bodies: O(n²) entries, each
@@ -61,13 +61,12 @@ pub fn mass_matrix(ctx: &mut Context, tree: &Tree) -> Vec<Vec<Sym>> {
 /// I' = E I Eᵀ + m(|d|² 1 − d dᵀ) + 2(d·h) 1 − h dᵀ − d hᵀ, h' = E h + m d.
 pub(super) fn inertia_to_parent(ctx: &mut Context, link: &Link, i: &Inertia) -> Inertia {
     let cs = trig(ctx, link);
-    let a = link.axis;
-    let h = rotate(ctx, a, cs, i.first);
+    let h = to_parent(ctx, link, cs, i.first);
     let cols: [[Sym; 3]; 3] =
-        [0, 1, 2].map(|k| rotate(ctx, a, cs, [i.rot[0][k], i.rot[1][k], i.rot[2][k]]));
+        [0, 1, 2].map(|k| to_parent(ctx, link, cs, [i.rot[0][k], i.rot[1][k], i.rot[2][k]]));
     // cols[k] = E I e_k, so (E I)_{rk} = cols[k][r]; E I Eᵀ has rows E (E I)ᵀ rows.
     let ei = [0, 1, 2].map(|r| [cols[0][r], cols[1][r], cols[2][r]]);
-    let mut rot = [0, 1, 2].map(|r| rotate(ctx, a, cs, ei[r]));
+    let mut rot = [0, 1, 2].map(|r| to_parent(ctx, link, cs, ei[r]));
     let d = link.offset;
     let first = [0, 1, 2].map(|k| {
         let md = ctx.mul(i.mass, d[k]);

@@ -1,13 +1,17 @@
-//! Finding the tree in a description: joints from the bodies' rotation factors,
-//! parents by the longest proper prefix of joints, offsets from the anchors, and
-//! the masses gathered onto the links. Where the description is not a tree,
-//! the answer says why: which body or point, and what about it, so that the
-//! user can see what keeps a model off the recursive route.
+//! Finding the tree in a description: joints and placements from the bodies'
+//! rotation factors, parents by the longest prefix of factors among the bodies
+//! the child hangs on, offsets from the anchors, and the masses gathered onto
+//! the links (those of a body fixed in its parent onto the parent's link).
+//! Where the description is not a tree, the answer says why: which body or
+//! point, and what about it, so that the user can see what keeps a model off
+//! the recursive route.
 
 use lagrange_symbolic::{Context, Expr as Sym, SymbolKind};
 
+use super::link::{add3, elementary, mat_mul, mat_vec};
 use super::{Inertia, Link, Masses, Tree};
 use crate::lowered::Skeleton;
+use crate::mat3::{Mat3, transpose};
 
 /// Whether `e` depends on parameters only (fixed in space and time).
 fn fixed(ctx: &Context, e: Sym) -> bool {
@@ -23,15 +27,44 @@ fn coordinate_name(ctx: &Context, i: usize) -> String {
         .map_or_else(String::new, |s| ctx.symbol_name(s).to_string())
 }
 
+/// An elementary rotation factor by a constant angle: (axis, angle).
+type Constant = (usize, Sym);
+
+/// One joint of a body's rotation: the constant factors since the previous
+/// joint (its placement), its axis and its coordinate.
+#[derive(Clone, PartialEq)]
+struct Joint {
+    placement: Vec<Constant>,
+    axis: usize,
+    coordinate: usize,
+}
+
+/// A body's rotation read as joints, the constant factors after the last one,
+/// and the number of factors in all.
+struct Chain {
+    joints: Vec<Joint>,
+    trailing: Vec<Constant>,
+    factors: Vec<(usize, Sym)>,
+}
+
+/// Where a body sits: the link it is fixed in (`None`: fixed in space), its
+/// reference point in that link's axes (or in world axes), and the rotation
+/// from its own axes to the link's.
+#[derive(Clone, Copy)]
+struct Frame {
+    link: Option<usize>,
+    origin: [Sym; 3],
+    rotation: Mat3,
+}
+
 /// The kinematic tree the description spans, or why it is not one.
 pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result<Tree, String> {
-    let n = ctx.coordinates().len();
-    if skeleton.bodies.is_empty() || n == 0 {
+    if skeleton.bodies.is_empty() || ctx.coordinates().is_empty() {
         return Err("it has no rigid bodies (point masses alone)".into());
     }
-    let joints = body_joints(ctx, skeleton, masses.body_names)?;
-    let (mut links, last_link) = link_bodies(ctx, skeleton, &joints, masses.body_names)?;
-    attach_masses(ctx, skeleton, masses, &mut links, &last_link)?;
+    let chains = body_chains(ctx, skeleton, masses.body_names)?;
+    let (mut links, frames) = link_bodies(ctx, skeleton, &chains, masses.body_names)?;
+    attach_masses(ctx, skeleton, masses, &mut links, &frames)?;
     let gravity = match masses.gravity {
         None => None,
         Some(g) if g.len() == 3 && g.iter().all(|&x| fixed(ctx, x)) => Some([g[0], g[1], g[2]]),
@@ -40,14 +73,11 @@ pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result
     Ok(Tree { links, gravity })
 }
 
-/// Each body's joints as (axis, coordinate index), from its rotation factors.
-fn body_joints(
-    ctx: &Context,
-    skeleton: &Skeleton,
-    names: &[String],
-) -> Result<Vec<Vec<(usize, usize)>>, String> {
+/// Each body's rotation factors read as joints (about coordinates) and
+/// placements (by constant angles).
+fn body_chains(ctx: &Context, skeleton: &Skeleton, names: &[String]) -> Result<Vec<Chain>, String> {
     let coordinates = ctx.coordinates();
-    let mut joints = Vec::new();
+    let mut chains = Vec::new();
     for (b, body) in skeleton.bodies.iter().enumerate() {
         let Some(factors) = body.factors.as_ref() else {
             return Err(format!(
@@ -55,89 +85,135 @@ fn body_joints(
                 names[b]
             ));
         };
-        let mut js = Vec::new();
+        let (mut joints, mut pending) = (Vec::new(), Vec::new());
         for &(axis, angle) in factors {
-            let Some(q) = coordinates.iter().position(|&q| q == angle) else {
+            if let Some(coordinate) = coordinates.iter().position(|&q| q == angle) {
+                let placement = std::mem::take(&mut pending);
+                joints.push(Joint {
+                    placement,
+                    axis,
+                    coordinate,
+                });
+            } else if fixed(ctx, angle) {
+                pending.push((axis, angle));
+            } else {
                 return Err(format!(
-                    "body `{}`: its factor rot_{} turns by an angle that is not one coordinate",
+                    "body `{}`: its factor rot_{} turns by an angle that is neither one coordinate nor constant",
                     names[b],
                     ["x", "y", "z"][axis]
                 ));
-            };
-            js.push((axis, q));
+            }
         }
-        joints.push(js);
+        let factors = factors.clone();
+        chains.push(Chain {
+            joints,
+            trailing: pending,
+            factors,
+        });
     }
-    Ok(joints)
+    Ok(chains)
 }
 
-/// The links, parents first, and each body's last link; an error unless every
-/// body hangs on its parent at a fixed point by new joints and every
-/// coordinate is one joint.
+/// The product of constant factors as a matrix (`None`: the identity).
+fn constant_rotation(ctx: &mut Context, factors: &[Constant]) -> Option<Mat3> {
+    let mut out: Option<Mat3> = None;
+    for &(axis, angle) in factors {
+        let m = elementary(ctx, axis, angle);
+        out = Some(match out {
+            None => m,
+            Some(r) => mat_mul(ctx, &r, &m),
+        });
+    }
+    out
+}
+
+fn identity(ctx: &mut Context) -> Mat3 {
+    let (zero, one) = (ctx.zero(), ctx.one());
+    [0, 1, 2].map(|i| [0, 1, 2].map(|j| if i == j { one } else { zero }))
+}
+
+/// The body `b` hangs on: among the bodies placed before it whose factors
+/// begin its own and which carry a point at its reference point, the one with
+/// the most factors; and that point in the parent's axes.
+fn parent_of(
+    skeleton: &Skeleton,
+    chains: &[Chain],
+    placed: &[usize],
+    b: usize,
+) -> Option<(usize, Vec<Sym>)> {
+    let reference = &skeleton.bodies[b].reference;
+    placed
+        .iter()
+        .filter(|&&p| chains[b].factors.starts_with(&chains[p].factors))
+        .filter_map(|&p| {
+            let anchor = skeleton
+                .anchors
+                .iter()
+                .find(|(at, body, _)| *body == p && at == reference)?;
+            Some((p, anchor.2.clone()))
+        })
+        .max_by_key(|(p, _)| chains[*p].factors.len())
+}
+
+/// The links, parents first, and each body's frame; an error unless every
+/// body hangs on a parent at a point fixed in it (or is fixed in space), by
+/// joints that extend the parent's, and every coordinate is one joint.
 fn link_bodies(
     ctx: &mut Context,
     skeleton: &Skeleton,
-    joints: &[Vec<(usize, usize)>],
+    chains: &[Chain],
     names: &[String],
-) -> Result<(Vec<Link>, Vec<Option<usize>>), String> {
-    let bodies = &skeleton.bodies;
+) -> Result<(Vec<Link>, Vec<Frame>), String> {
     let n = ctx.coordinates().len();
-    // Parents: the body whose joints are the longest proper prefix.
-    let mut order: Vec<usize> = (0..bodies.len()).collect();
-    order.sort_by_key(|&b| joints[b].len());
+    let mut order: Vec<usize> = (0..chains.len()).collect();
+    order.sort_by_key(|&b| chains[b].factors.len());
     let mut links: Vec<Link> = Vec::new();
-    let mut last_link: Vec<Option<usize>> = vec![None; bodies.len()];
+    let mut frames: Vec<Option<Frame>> = vec![None; chains.len()];
     let mut used = vec![false; n];
-    let zero = ctx.zero();
-    for &b in &order {
-        let mine = &joints[b];
-        let parent = (0..bodies.len())
-            .filter(|&p| p != b && joints[p].len() < mine.len() && mine.starts_with(&joints[p]))
-            .max_by_key(|&p| joints[p].len());
-        let prefix = parent.map_or(0, |p| joints[p].len());
-        if prefix == mine.len() {
-            return Err(format!(
-                "body `{}`: its rotation adds no joint to another body's",
-                names[b]
-            ));
-        }
-        if parent
-            .is_some_and(|p| (0..bodies.len()).any(|o| o != p && o != b && joints[o] == joints[p]))
-        {
-            return Err(format!(
-                "body `{}`: two bodies have its parent's rotation, so which one carries it is unclear",
-                names[b]
-            ));
-        }
-        let offset = joint_offset(ctx, skeleton, b, parent).ok_or_else(|| match parent {
-            None => format!(
-                "body `{}`: its reference point moves, but it has no parent body",
-                names[b]
-            ),
-            Some(p) => format!(
-                "body `{}`: its reference point is not a point fixed in its parent `{}`",
-                names[b], names[p]
-            ),
-        })?;
-        let mut up = parent.map(|p| last_link[p].expect("parents come first"));
-        for (k, &(axis, coordinate)) in mine[prefix..].iter().enumerate() {
-            if std::mem::replace(&mut used[coordinate], true) {
-                let q = coordinate_name(ctx, coordinate);
+    for (k, &b) in order.iter().enumerate() {
+        let (up, origin, inherited) = match parent_of(skeleton, chains, &order[..k], b) {
+            Some((p, anchor)) => {
+                let parent = frames[p].expect("parents are placed first");
+                let local = [anchor[0], anchor[1], anchor[2]];
+                let turned = mat_vec(ctx, &parent.rotation, local);
+                (
+                    parent.link,
+                    add3(ctx, parent.origin, turned),
+                    chains[p].joints.len(),
+                )
+            }
+            None => (None, root_point(ctx, skeleton, chains, b, names)?, 0),
+        };
+        let mine = &chains[b];
+        let mut up = up;
+        let mut offset = Some(origin);
+        for joint in &mine.joints[inherited..] {
+            if std::mem::replace(&mut used[joint.coordinate], true) {
+                let q = coordinate_name(ctx, joint.coordinate);
                 return Err(format!(
                     "body `{}`: coordinate `{q}` turns a second joint",
                     names[b]
                 ));
             }
+            let zero = ctx.zero();
             links.push(Link {
                 parent: up,
-                axis,
-                coordinate,
-                offset: if k == 0 { offset } else { [zero; 3] },
+                placement: constant_rotation(ctx, &joint.placement),
+                axis: joint.axis,
+                coordinate: joint.coordinate,
+                offset: offset.take().unwrap_or([zero; 3]),
                 inertia: None,
             });
             up = Some(links.len() - 1);
         }
-        last_link[b] = up;
+        let zero = ctx.zero();
+        let origin = offset.unwrap_or([zero; 3]);
+        let rotation = constant_rotation(ctx, &mine.trailing).unwrap_or_else(|| identity(ctx));
+        frames[b] = Some(Frame {
+            link: up,
+            origin,
+            rotation,
+        });
     }
     if let Some(q) = used.iter().position(|u| !u) {
         let q = coordinate_name(ctx, q);
@@ -145,56 +221,60 @@ fn link_bodies(
             "coordinate `{q}` turns no joint (a translation, or a coordinate outside the rotations)"
         ));
     }
-    Ok((links, last_link))
+    let frames = frames
+        .into_iter()
+        .map(|f| f.expect("every body placed"))
+        .collect();
+    Ok((links, frames))
 }
 
-/// Where body `b`'s first new joint sits: its reference point, fixed in space
-/// for a root, or an anchor fixed in the parent.
-fn joint_offset(
+/// A body that hangs on no other: its reference point, which must be fixed in
+/// space; the reason otherwise names the body whose rotation its own extends.
+fn root_point(
     ctx: &Context,
     skeleton: &Skeleton,
+    chains: &[Chain],
     b: usize,
-    parent: Option<usize>,
-) -> Option<[Sym; 3]> {
-    let reference = &skeleton.bodies[b].reference;
-    let at = match parent {
-        None => reference,
-        Some(p) => {
-            let (_, _, local) = skeleton
-                .anchors
-                .iter()
-                .find(|(at, body, _)| *body == p && at == reference)?;
-            local
-        }
-    };
-    if at.len() != 3 || !at.iter().all(|&x| fixed(ctx, x)) {
-        return None;
+    names: &[String],
+) -> Result<[Sym; 3], String> {
+    let at = &skeleton.bodies[b].reference;
+    if at.len() == 3 && at.iter().all(|&x| fixed(ctx, x)) {
+        return Ok([at[0], at[1], at[2]]);
     }
-    Some([at[0], at[1], at[2]])
+    let extended = (0..chains.len()).find(|&p| {
+        p != b && !chains[p].joints.is_empty() && chains[b].factors.starts_with(&chains[p].factors)
+    });
+    Err(match extended {
+        Some(p) => format!(
+            "body `{}`: its reference point is not a point fixed in its parent `{}`",
+            names[b], names[p]
+        ),
+        None => format!(
+            "body `{}`: its reference point moves, but it has no parent body",
+            names[b]
+        ),
+    })
 }
 
 /// Masses: point masses fixed in bodies (body centres included) and the bodies'
-/// rotational inertia; a point mass fixed in space moves with nothing.
+/// rotational inertia, in the axes of the link each body is fixed in; a mass
+/// fixed in space moves with nothing.
 fn attach_masses(
     ctx: &mut Context,
     skeleton: &Skeleton,
     masses: &Masses,
     links: &mut [Link],
-    last_link: &[Option<usize>],
+    frames: &[Frame],
 ) -> Result<(), String> {
     let zero = ctx.zero();
-    let jointless = |b: usize| {
-        format!(
-            "body `{}` carries mass but turns on no joint",
-            masses.body_names[b]
-        )
-    };
     for (i, at) in skeleton.masses.iter().enumerate() {
         match at {
             Some((b, local)) if local.len() == 3 && local.iter().all(|&x| fixed(ctx, x)) => {
-                let link = last_link[*b].ok_or_else(|| jointless(*b))?;
-                let add =
-                    point_inertia(ctx, masses.point_masses[i], [local[0], local[1], local[2]]);
+                let frame = frames[*b];
+                let Some(link) = frame.link else { continue };
+                let turned = mat_vec(ctx, &frame.rotation, [local[0], local[1], local[2]]);
+                let r = add3(ctx, frame.origin, turned);
+                let add = point_inertia(ctx, masses.point_masses[i], r);
                 links[link].inertia = Some(add_inertia(ctx, links[link].inertia, add));
             }
             None if masses.point_positions[i].iter().all(|&x| fixed(ctx, x)) => {}
@@ -207,11 +287,13 @@ fn attach_masses(
         }
     }
     for (b, tensor) in masses.inertias.iter().enumerate() {
-        let link = last_link[b].ok_or_else(|| jointless(b))?;
+        let Some(link) = frames[b].link else { continue };
+        let r = frames[b].rotation;
+        let turned = mat_mul(ctx, &r, tensor);
         let spin = Inertia {
             mass: zero,
             first: [zero; 3],
-            rot: *tensor,
+            rot: mat_mul(ctx, &turned, &transpose(&r)),
         };
         links[link].inertia = Some(add_inertia(ctx, links[link].inertia, spin));
     }

@@ -5,7 +5,7 @@
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::Link;
-use crate::mat3::Mat3;
+use crate::mat3::{Mat3, transpose};
 
 /// Copies the upper triangle below the diagonal, so a symmetric matrix holds
 /// one node per pair.
@@ -32,7 +32,39 @@ pub(super) fn rotate(ctx: &mut Context, axis: usize, (c, s): (Sym, Sym), x: [Sym
     out
 }
 
-/// Eᵀ x (parent axes to link axes).
+/// E x with E = P rot_axis(q): a vector in link axes in the parent's axes.
+pub(super) fn to_parent(ctx: &mut Context, link: &Link, cs: (Sym, Sym), x: [Sym; 3]) -> [Sym; 3] {
+    let turned = rotate(ctx, link.axis, cs, x);
+    match &link.placement {
+        None => turned,
+        Some(p) => mat_vec(ctx, p, turned),
+    }
+}
+
+/// Eᵀ x = rot_axis(q)ᵀ Pᵀ x: a vector in the parent's axes in link axes.
+pub(super) fn to_link(ctx: &mut Context, link: &Link, cs: (Sym, Sym), x: [Sym; 3]) -> [Sym; 3] {
+    let placed = match &link.placement {
+        None => x,
+        Some(p) => mat_vec(ctx, &transpose(p), x),
+    };
+    rotate_back(ctx, link.axis, cs, placed)
+}
+
+/// The rotation about `axis` by a constant `angle`, as a matrix.
+pub(super) fn elementary(ctx: &mut Context, axis: usize, angle: Sym) -> Mat3 {
+    let (zero, one) = (ctx.zero(), ctx.one());
+    let (c, s) = (ctx.cos(angle), ctx.sin(angle));
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let mut m = [[zero; 3]; 3];
+    m[axis][axis] = one;
+    m[i][i] = c;
+    m[j][j] = c;
+    m[i][j] = ctx.neg(s);
+    m[j][i] = s;
+    m
+}
+
+/// Eᵀ x (parent axes to link axes) for E = rot_axis(q).
 pub(super) fn rotate_back(
     ctx: &mut Context,
     axis: usize,
@@ -82,8 +114,8 @@ pub(super) fn force_to_parent(
     f: [Sym; 3],
 ) -> [[Sym; 3]; 2] {
     let cs = trig(ctx, link);
-    let f = rotate(ctx, link.axis, cs, f);
-    let n = rotate(ctx, link.axis, cs, n);
+    let f = to_parent(ctx, link, cs, f);
+    let n = to_parent(ctx, link, cs, n);
     let moment = cross(ctx, link.offset, f);
     [add3(ctx, n, moment), f]
 }

@@ -9,15 +9,19 @@
 //! are constant, so most products are by 0 or 1 and vanish at construction.
 //!
 //! A tree is detected from the description, not declared: a body's rotation is
-//! its parent's factors followed by elementary rotations about coordinates
-//! (`rot_z(q1) * rot_y(q2)` under `rot_z(q1)`), and its reference point is a
-//! point fixed in the parent (`at = [j.x, j.y, j.z]` with `point(j, on = parent)`)
-//! or a fixed point for a root. Each elementary factor is one joint; a body with
-//! several new factors (`euler_zxz(ψ, θ, φ)` about a fixed point) hangs on
-//! massless links that meet at its reference point. Anything else — a rotation
-//! written as a matrix, a translating coordinate, a point mass that is neither
-//! fixed in a body nor in space, a coordinate in two joints, time in a position
-//! — leaves the system to the generic route.
+//! its parent's factors followed by elementary rotations, about coordinates
+//! (joints) or by constant angles (placements: a robot's fixed `rpy`, a tilted
+//! joint axis written `rot_y(w) * rot_z(q) * rot_y(-w)`), and its reference
+//! point is a point fixed in the parent (`at = [j.x, j.y, j.z]` with
+//! `point(j, on = parent)`) or a fixed point for a root. Each elementary factor
+//! about a coordinate is one joint; a body with several (`euler_zxz(ψ, θ, φ)`
+//! about a fixed point) hangs on massless links that meet at its reference
+//! point; a body with none beyond its parent's is fixed in the parent (a fixed
+//! joint: its masses join the parent's link), and one with none at all is fixed
+//! in space. Anything else — a rotation written as a matrix, a translating
+//! coordinate, a point mass that is neither fixed in a body nor in space, a
+//! coordinate in two joints, time in a position — leaves the system to the
+//! generic route, with the reason.
 
 mod aba;
 mod crba;
@@ -45,9 +49,12 @@ struct Inertia {
 }
 
 /// One revolute joint and the link it moves: the link frame is the parent's
-/// rotated by rot_axis(q) about the parent point `offset`.
+/// turned by the constant `placement` P (none: the identity) and then by
+/// rot_axis(q), about the parent point `offset`: E = P rot_axis(q). A joint
+/// about a tilted axis n is one whose placement maps the axis onto n.
 struct Link {
     parent: Option<usize>,
+    placement: Option<Mat3>,
     axis: usize,
     coordinate: usize,
     offset: [Sym; 3],

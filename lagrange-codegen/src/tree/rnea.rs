@@ -3,7 +3,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::link::{add3, cross, cross_axis, force_to_parent, mat_vec, rotate_back, trig};
+use super::link::{add3, cross, cross_axis, force_to_parent, mat_vec, to_link, trig};
 use super::{Inertia, Tree};
 
 /// Recursive Newton–Euler at q̈ = 0: τ = h(q, q̇) − Q_gravity(q) with gravity, h
@@ -31,10 +31,10 @@ pub fn inverse_dynamics(ctx: &mut Context, tree: &Tree, with_gravity: bool) -> V
         let v_at = add3(ctx, v, wd);
         let ad = cross(ctx, al, link.offset);
         let a_at = add3(ctx, a, ad);
-        let w_in = rotate_back(ctx, link.axis, cs, w);
-        let v = rotate_back(ctx, link.axis, cs, v_at);
-        let al_in = rotate_back(ctx, link.axis, cs, al);
-        let a_in = rotate_back(ctx, link.axis, cs, a_at);
+        let w_in = to_link(ctx, link, cs, w);
+        let v = to_link(ctx, link, cs, v_at);
+        let al_in = to_link(ctx, link, cs, al);
+        let a_in = to_link(ctx, link, cs, a_at);
         let mut w = w_in;
         w[link.axis] = ctx.add(w[link.axis], rate);
         let wq = cross_axis(ctx, w_in, link.axis, rate);

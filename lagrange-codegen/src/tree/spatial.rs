@@ -3,7 +3,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::link::{add3, mat_add, mat_mul, mat_vec, mirror_upper, rotate, skew, trig};
+use super::link::{add3, mat_add, mat_mul, mat_vec, mirror_upper, skew, to_parent, trig};
 use super::{Inertia, Link};
 use crate::mat3::{Mat3, transpose};
 
@@ -58,14 +58,15 @@ pub(super) fn spatial_apply(
 /// E M Eᵀ; `symmetric` mirrors the upper triangle so equal entries are one node.
 pub(super) fn conjugate(
     ctx: &mut Context,
-    axis: usize,
+    link: &Link,
     cs: (Sym, Sym),
     m: &Mat3,
     symmetric: bool,
 ) -> Mat3 {
-    let cols: [[Sym; 3]; 3] = [0, 1, 2].map(|k| rotate(ctx, axis, cs, [m[0][k], m[1][k], m[2][k]]));
+    let cols: [[Sym; 3]; 3] =
+        [0, 1, 2].map(|k| to_parent(ctx, link, cs, [m[0][k], m[1][k], m[2][k]]));
     let rows = [0, 1, 2].map(|r| [cols[0][r], cols[1][r], cols[2][r]]);
-    let mut out = [0, 1, 2].map(|r| rotate(ctx, axis, cs, rows[r]));
+    let mut out = [0, 1, 2].map(|r| to_parent(ctx, link, cs, rows[r]));
     if symmetric {
         mirror_upper(&mut out);
     }
@@ -77,10 +78,9 @@ pub(super) fn conjugate(
 /// A' − B'[d]× + [d]×B'ᵀ − [d]×C'[d]×, B' + [d]×C', C'.
 pub(super) fn spatial_to_parent(ctx: &mut Context, link: &Link, s: &Spatial) -> Spatial {
     let cs = trig(ctx, link);
-    let axis = link.axis;
-    let a = conjugate(ctx, axis, cs, &s.a, true);
-    let b = conjugate(ctx, axis, cs, &s.b, false);
-    let c = conjugate(ctx, axis, cs, &s.c, true);
+    let a = conjugate(ctx, link, cs, &s.a, true);
+    let b = conjugate(ctx, link, cs, &s.b, false);
+    let c = conjugate(ctx, link, cs, &s.c, true);
     if link.offset.iter().all(|&x| ctx.is_zero(x)) {
         return Spatial { a, b, c };
     }
