@@ -133,4 +133,18 @@ pub struct System {
     pub generalized_forces: Vec<GeneralizedForce>,
     /// Where to point errors that concern the whole description (e.g. "no coordinates").
     pub span: Span,
+    /// `urdf = "path"`: the robot file the description was read from.
+    pub urdf: Option<UrdfSource>,
+}
+
+/// What a description read from URDF publishes beside the equations.
+#[derive(Clone, Debug)]
+pub struct UrdfSource {
+    /// The file's absolute path (the generated code includes its bytes, so the
+    /// crate rebuilds when it changes).
+    pub path: String,
+    /// The robot's name.
+    pub robot: String,
+    /// Each coordinate's position limits, in coordinate order.
+    pub limits: Vec<(f64, f64)>,
 }

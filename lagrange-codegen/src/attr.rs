@@ -16,7 +16,7 @@ use crate::ast::{
 use crate::ctxt::Ctxt;
 
 /// Keys accepted at the top level of `#[lagrange(...)]`, for the "unknown key" message.
-const KEYS: &str = "coordinates, inputs, define, point, body, gravity, potential, force, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit";
+const KEYS: &str = "urdf, coordinates, inputs, define, point, body, gravity, potential, force, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit";
 
 /// One top-level item of the attribute.
 enum Item {
@@ -35,6 +35,7 @@ enum Item {
     Dissipation(Ident, Expr),
     Force(Force),
     GeneralizedForce(Vec<GeneralizedForce>),
+    Urdf(syn::LitStr),
 }
 
 impl Parse for Item {
@@ -83,6 +84,10 @@ impl Parse for Item {
                     "potential" => Item::Potential(key, value),
                     _ => Item::Dissipation(key, value),
                 })
+            }
+            "urdf" => {
+                input.parse::<Token![=]>()?;
+                input.parse().map(Item::Urdf)
             }
             "force" => parse_force(input).map(Item::Force),
             "generalized_force" => Ok(Item::GeneralizedForce(
@@ -375,6 +380,7 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
         forces: Vec::new(),
         generalized_forces: Vec::new(),
         span: input.ident.span(),
+        urdf: None,
     };
 
     let mut seen_attr = false;
@@ -441,7 +447,59 @@ fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
         Item::Gravity(k, v) => set_once(cx, &mut system.gravity, k, v),
         Item::Potential(k, v) => set_once(cx, &mut system.potential, k, v),
         Item::Dissipation(k, v) => set_once(cx, &mut system.dissipation, k, v),
+        Item::Urdf(path) => add_urdf(cx, system, &path),
     }
+}
+
+/// Reads the URDF file and adds its description's items, each spanned at the
+/// path so that any error they raise points at `urdf = "..."`.
+fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr) {
+    if system.urdf.is_some() {
+        cx.error_at(
+            path.span(),
+            "`urdf` given twice; a description reads one robot",
+        );
+        return;
+    }
+    let manifest = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_else(|_| ".".into());
+    let urdf = match crate::urdf::load(&manifest, &path.value()) {
+        Ok(urdf) => urdf,
+        Err(message) => return cx.error_at(path.span(), message),
+    };
+    for text in &urdf.items {
+        let tokens: proc_macro2::TokenStream = text.parse().expect("generated items are tokens");
+        match syn::parse2::<Item>(respan(tokens, path.span())) {
+            Ok(item) => add_item(cx, system, item),
+            Err(e) => cx.error_at(
+                path.span(),
+                format!("{}: generated `{text}`: {e}", path.value()),
+            ),
+        }
+    }
+    system.urdf = Some(crate::ast::UrdfSource {
+        path: urdf.path,
+        robot: urdf.name,
+        limits: urdf.limits,
+    });
+}
+
+/// `tokens` with every span set to `span`.
+fn respan(tokens: proc_macro2::TokenStream, span: Span) -> proc_macro2::TokenStream {
+    use proc_macro2::{Group, TokenTree};
+    tokens
+        .into_iter()
+        .map(|tt| match tt {
+            TokenTree::Group(g) => {
+                let mut out = Group::new(g.delimiter(), respan(g.stream(), span));
+                out.set_span(span);
+                TokenTree::Group(out)
+            }
+            mut other => {
+                other.set_span(span);
+                other
+            }
+        })
+        .collect()
 }
 
 fn set_once(cx: &Ctxt, slot: &mut Option<Expr>, key: Ident, value: Expr) {

@@ -34,6 +34,7 @@ pub mod mechanics;
 pub mod order;
 pub mod scene;
 pub mod tree;
+pub mod urdf;
 
 use proc_macro2::TokenStream;
 use syn::DeriveInput;

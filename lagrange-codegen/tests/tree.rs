@@ -156,6 +156,15 @@ fn non_trees_stay_generic_and_say_why() {
              struct Loose { m: f64 }",
             "point `p`: it has mass and moves, but is not fixed in a body",
         ),
+        (
+            "#[lagrange(coordinates(a, s),
+                body(l1, mass = m, inertia = [m, m, m], at = [0, 0, 0], rotation = rot_z(a)),
+                point(slide, on = l1, at = [0, 0, s]),
+                body(l2, mass = m, inertia = [m, m, m], at = [slide.x, slide.y, slide.z],
+                     rotation = rot_z(a)))]
+             struct Slider { m: f64 }",
+            "body `l2`: its reference point moves in its parent `l1` (a sliding joint)",
+        ),
     ];
     for (src, why) in cases {
         let input: syn::DeriveInput = syn::parse_str(src).unwrap();

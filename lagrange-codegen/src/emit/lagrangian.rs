@@ -24,7 +24,16 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let docs = Docs::new(system, model);
     let (forward_dynamics, articulated_inner) = forward_dynamics(&e, &f, model);
     let lagrangian = lagrangian_trait(&e, &f, system, model, forward_dynamics);
-    let equations = equations_impl(&f, &docs, extras(&e, &f, model, system));
+    let mut inherent = extras(&e, &f, model, system);
+    inherent.extend(urdf_consts(system));
+    let equations = equations_impl(&f, &docs, inherent);
+    let urdf_file = system.urdf.as_ref().map(|u| {
+        let path = &u.path;
+        // Read by the compiler, so that the crate rebuilds when the file changes.
+        quote!(
+            const _: &[u8] = include_bytes!(#path);
+        )
+    });
     let hoisted = hoisted_impl(&e, &f, system, model, articulated_inner);
     let constrained = impl_constrained(&e, &f, model);
     let reduced = impl_reduced(&e, &f, model);
@@ -37,6 +46,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
             };
         }
 
+        #urdf_file
         #lagrangian
         #equations
         #hoisted
@@ -204,6 +214,37 @@ fn energy_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
             #i_lets
             #i_out
         }
+    }
+}
+
+/// `ROBOT` and `JOINT_LIMITS` of a description read from URDF.
+fn urdf_consts(system: &System) -> TokenStream {
+    let Some(u) = &system.urdf else {
+        return TokenStream::new();
+    };
+    let bound = |x: f64| {
+        if x == f64::INFINITY {
+            quote!(f64::INFINITY)
+        } else if x == f64::NEG_INFINITY {
+            quote!(f64::NEG_INFINITY)
+        } else {
+            let lit = Literal::f64_suffixed(x);
+            quote!(#lit)
+        }
+    };
+    let limits = u.limits.iter().map(|&(lo, hi)| {
+        let (lo, hi) = (bound(lo), bound(hi));
+        quote!((#lo, #hi))
+    });
+    let (robot, n) = (&u.robot, Literal::usize_unsuffixed(u.limits.len()));
+    quote! {
+        /// The robot's name in its URDF file.
+        pub const ROBOT: &'static str = #robot;
+        /// Each coordinate's position limits (lower, upper) from the URDF
+        /// file, in coordinate order; ±∞ for a continuous joint or one without
+        /// limits. Pair them with events to stop or bounce at a limit.
+        #[allow(clippy::approx_constant)] // as the file writes them: 3.14159 is not π
+        pub const JOINT_LIMITS: [(f64, f64); #n] = [#(#limits),*];
     }
 }
 

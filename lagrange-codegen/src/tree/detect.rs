@@ -173,6 +173,12 @@ fn link_bodies(
     for (k, &b) in order.iter().enumerate() {
         let (up, origin, inherited) = match parent_of(skeleton, chains, &order[..k], b) {
             Some((p, anchor)) => {
+                if anchor.len() != 3 || !anchor.iter().all(|&x| fixed(ctx, x)) {
+                    return Err(format!(
+                        "body `{}`: its reference point moves in its parent `{}` (a sliding joint)",
+                        names[b], names[p]
+                    ));
+                }
                 let parent = frames[p].expect("parents are placed first");
                 let local = [anchor[0], anchor[1], anchor[2]];
                 let turned = mat_vec(ctx, &parent.rotation, local);

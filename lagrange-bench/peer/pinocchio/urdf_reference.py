@@ -1,0 +1,36 @@
+"""Reference values for the URDF robots in `robots/` from Pinocchio (PyPI `pin`).
+
+Prints M, nle = C(q, v) v + g(q) (so Q - h = -nle in lagrange's terms) and the
+accelerations of ABA at zero torque, at a fixed state, for the tests in
+`tests/urdf.rs`. Fixed base, gravity (0, 0, -9.81) (Pinocchio's default).
+The Panda's second finger mimics the first in the URDF; Pinocchio reads it as
+a joint of its own, so only the arm's 7 x 7 block is compared, at finger
+velocities zero.
+
+    python3 lagrange-bench/peer/pinocchio/urdf_reference.py
+"""
+import os
+import numpy as np
+import pinocchio as pin
+
+ROOT = os.path.join(os.path.dirname(__file__), "..", "..", "..", "robots")
+
+def state(n):
+    q = np.array([0.3 - 0.17 * k for k in range(n)])
+    v = np.array([0.5 - 0.21 * k for k in range(n)])
+    return q, v
+
+for name, n_arm in [("ur5.urdf", 6), ("panda.urdf", 7)]:
+    model = pin.buildModelFromUrdf(os.path.join(ROOT, name))
+    data = model.createData()
+    q, v = state(model.nq)
+    if model.nq > n_arm:
+        q[n_arm:] = 0.02
+        v[n_arm:] = 0.0
+    m = pin.crba(model, data, q)
+    m = np.triu(m) + np.triu(m, 1).T
+    nle = pin.nonLinearEffects(model, data, q, v)
+    print(f"// {name}: nq = {model.nq}")
+    print("M row 0:", [float(x) for x in m[0, :n_arm]])
+    print("M diag:", [float(x) for x in np.diag(m)[:n_arm]])
+    print("Q - h:", [float(x) for x in -nle[:n_arm]])

@@ -1,0 +1,57 @@
+//! `urdf = "path"`: a robot's URDF file read at compile time and written as
+//! the description items a user would write by hand (`describe`), so that the
+//! rest of the derive, and every check, sees an ordinary description.
+//!
+//! The path is relative to the crate's manifest directory; the generated code
+//! includes the file's bytes, so the crate rebuilds when the file changes.
+//! URDF is parsed with `roxmltree`: a small, maintained, read-only XML tree
+//! that keeps each element's position, which is what the errors need (file and
+//! line).
+
+mod describe;
+mod model;
+
+pub use describe::identifier;
+
+/// A URDF file read into description items.
+pub struct Urdf {
+    /// The file's absolute path (for `include_bytes!`).
+    pub path: String,
+    /// The description's items, as source text.
+    pub items: Vec<String>,
+    /// The robot's name.
+    pub name: String,
+    /// The coordinates (moving, non-mimic joints, in tree order).
+    pub coordinates: Vec<String>,
+    /// Their position limits (±∞ where the file gives none).
+    pub limits: Vec<(f64, f64)>,
+}
+
+/// Reads `path` (relative to `manifest_dir`) into description items; the
+/// error quotes the file and line.
+pub fn load(manifest_dir: &str, path: &str) -> Result<Urdf, String> {
+    let full = std::path::Path::new(manifest_dir).join(path);
+    let text = std::fs::read_to_string(&full)
+        .map_err(|e| format!("cannot read the URDF file `{}`: {e}", full.display()))?;
+    from_text(&text, path).map(|mut urdf| {
+        urdf.path = full.display().to_string();
+        urdf
+    })
+}
+
+/// [`load`] for the text of a file named `path`.
+pub fn from_text(text: &str, path: &str) -> Result<Urdf, String> {
+    let at = |e: model::ReadError| match e.line {
+        0 => format!("{path}: {}", e.message),
+        line => format!("{path}:{line}: {}", e.message),
+    };
+    let robot = model::parse(text).map_err(at)?;
+    let d = describe::describe(&robot).map_err(at)?;
+    Ok(Urdf {
+        path: path.to_string(),
+        items: d.items,
+        name: robot.name,
+        coordinates: d.coordinates,
+        limits: d.limits,
+    })
+}

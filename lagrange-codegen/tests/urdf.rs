@@ -1,0 +1,132 @@
+//! Robots read from URDF (`urdf = "path"`): the description a file becomes
+//! derives the same equations by both routes, takes the recursive route where
+//! every joint is one it takes, says why where not, and a bad file is an error
+//! that quotes the file and line.
+
+mod common;
+use common::{Lcg, close, eval, random_point};
+use lagrange_codegen::mechanics::{BiasRoute, Model, Route};
+
+fn robot(file: &str) -> String {
+    format!(
+        "#[lagrange(urdf = \"{}/../robots/{file}\", gravity = [0, 0, -9.81])] struct Robot {{}}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+fn model_by(src: &str, route: Route) -> Result<Model, String> {
+    let input: syn::DeriveInput = syn::parse_str(src).expect("test input parses");
+    lagrange_codegen::model_by(&input, route).map_err(|e| e.to_string())
+}
+
+/// M, h and Q of both routes at random states.
+fn routes_agree(generic: &Model, recursive: &Model) {
+    let n = generic.dof();
+    let mut rng = Lcg(7);
+    for _ in 0..10 {
+        let p = random_point(generic, &mut rng);
+        for i in 0..n {
+            for j in 0..n {
+                let (a, b) = (
+                    eval(generic, generic.mass[i][j], &p),
+                    eval(recursive, recursive.mass[i][j], &p),
+                );
+                assert!(close(a, b, 1e-12), "M[{i}][{j}]: {a} vs {b}");
+            }
+            let (a, b) = (
+                eval(generic, generic.rhs[i], &p),
+                eval(recursive, recursive.rhs[i], &p),
+            );
+            assert!(close(a, b, 1e-12), "(Q - h)[{i}]: {a} vs {b}");
+        }
+    }
+}
+
+#[test]
+fn ur5_takes_the_recursive_route_and_agrees_with_the_generic_one() {
+    let src = robot("ur5.urdf");
+    let recursive = model_by(&src, Route::Recursive).unwrap();
+    assert_eq!(recursive.coordinates.len(), 6);
+    assert_eq!(recursive.bias_route, BiasRoute::Recursive);
+    routes_agree(&model_by(&src, Route::Generic).unwrap(), &recursive);
+    // Six joints are derived both ways, and the cheaper program kept.
+    let auto = model_by(&src, Route::Auto).unwrap();
+    println!(
+        "UR5 by Auto: {:?}, {:?}",
+        auto.bias_route, auto.route_reason
+    );
+}
+
+#[test]
+fn panda_says_why_its_fingers_keep_it_generic() {
+    let src = robot("panda.urdf");
+    let model = model_by(&src, Route::Auto).unwrap();
+    // Seven arm joints and one finger: the second finger mimics the first.
+    assert_eq!(model.coordinates.len(), 8, "{:?}", model.coordinates);
+    let reason = model.route_reason.clone().unwrap_or_default();
+    assert!(reason.contains("sliding joint"), "{reason}");
+}
+
+#[test]
+fn bad_files_quote_the_file_and_line() {
+    let dir = std::env::temp_dir().join("lagrange-urdf-tests");
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases = [
+        (
+            "<robot name='r'><link name='a'>",
+            "bad.urdf:1: malformed XML",
+        ),
+        (
+            "<robot name='r'>\n<link name='a'/>\n<joint name='j' type='revolute'>\n<parent link='a'/><child link='b'/></joint>\n</robot>",
+            "bad.urdf:3: joint `j` names an unknown link `b`",
+        ),
+        (
+            "<robot name='r'>\n<link name='a'/><link name='b'/>\n<joint name='j' type='floating'><parent link='a'/><child link='b'/></joint>\n</robot>",
+            "bad.urdf:3: joint `j` is floating",
+        ),
+        (
+            "<robot name='r'>\n<link name='a'/><link name='b'/>\n<joint name='j' type='planar'><parent link='a'/><child link='b'/></joint>\n</robot>",
+            "bad.urdf:3: joint `j` has type `planar`",
+        ),
+        (
+            "<robot name='r'>\n<link name='a'/><link name='b'/>\n<joint name='j' type='revolute'><parent link='a'/><child link='b'/></joint>\n<joint name='k' type='revolute'><parent link='b'/><child link='a'/></joint>\n</robot>",
+            "bad.urdf: every link is some joint's child",
+        ),
+        (
+            "<robot name='r'>\n<link name='a'>\n<inertial><mass value='x'/><inertia ixx='1' iyy='1' izz='1' ixy='0' ixz='0' iyz='0'/></inertial></link>\n</robot>",
+            "bad.urdf:3: `x` is not a number",
+        ),
+    ];
+    for (text, expected) in cases {
+        let path = dir.join("bad.urdf");
+        std::fs::write(&path, text).unwrap();
+        let e = lagrange_codegen::urdf::load("/", path.to_str().unwrap())
+            .err()
+            .unwrap_or_default();
+        let shown = e
+            .replace(&format!("{}", dir.display()), "")
+            .replace('/', "");
+        assert!(
+            shown.contains(&expected.replace('/', "")),
+            "{e}\nexpected {expected}"
+        );
+    }
+}
+
+#[test]
+fn a_bad_file_is_one_compile_error_at_the_attribute() {
+    let path = std::env::temp_dir().join("lagrange-urdf-expand.urdf");
+    std::fs::write(
+        &path,
+        "<robot name='r'>\n<link name='a'/>\n<joint name='j' type='revolute'>\n<parent link='a'/><child link='b'/></joint>\n</robot>",
+    )
+    .unwrap();
+    let src = format!("#[lagrange(urdf = \"{}\")] struct R {{}}", path.display());
+    let input: syn::DeriveInput = syn::parse_str(&src).unwrap();
+    let out = lagrange_codegen::expand(&input).to_string();
+    assert_eq!(out.matches("compile_error").count(), 1, "{out}");
+    assert!(
+        out.contains(":3: joint `j` names an unknown link `b`"),
+        "{out}"
+    );
+}

@@ -1,0 +1,152 @@
+//! Robots straight from their URDF files (`robots/`, from the PyPI package
+//! `example-robot-data`): the derived M and Q − h against Pinocchio's
+//! `crba` and `nonLinearEffects` on the same files
+//! (`lagrange-bench/peer/pinocchio/urdf_reference.py`), to 1e-12, and the
+//! published joint limits.
+
+use lagrange::Route;
+use lagrange::prelude::*;
+use nalgebra::SVector;
+
+#[derive(Lagrangian)]
+#[lagrange(urdf = "robots/ur5.urdf", gravity = [0, 0, -9.81])]
+struct Ur5 {}
+
+#[derive(Lagrangian)]
+#[lagrange(urdf = "robots/panda.urdf", gravity = [0, 0, -9.81])]
+struct Panda {}
+
+/// The state the reference script uses: q_k = 0.3 − 0.17 k, q̇_k = 0.5 − 0.21 k
+/// on the arm's joints, the fingers at 0.02 and at rest.
+fn state<const N: usize>(arm: usize) -> (SVector<f64, N>, SVector<f64, N>) {
+    let q = SVector::from_fn(|k, _| if k < arm { 0.3 - 0.17 * k as f64 } else { 0.02 });
+    let v = SVector::from_fn(|k, _| if k < arm { 0.5 - 0.21 * k as f64 } else { 0.0 });
+    (q, v)
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-12 * b.abs().max(1.0)
+}
+
+/// Row 0 of M, its diagonal and Q − h on the first `reference.len()` joints.
+fn agrees<const N: usize>(
+    name: &str,
+    (m, f): (nalgebra::SMatrix<f64, N, N>, SVector<f64, N>),
+    row0: &[f64],
+    diag: &[f64],
+    rhs: &[f64],
+) {
+    for k in 0..row0.len() {
+        assert!(
+            close(m[(0, k)], row0[k]),
+            "{name}: M[0][{k}] {} vs {}",
+            m[(0, k)],
+            row0[k]
+        );
+        assert!(
+            close(m[(k, k)], diag[k]),
+            "{name}: M[{k}][{k}] {} vs {}",
+            m[(k, k)],
+            diag[k]
+        );
+        assert!(
+            close(f[k], rhs[k]),
+            "{name}: (Q - h)[{k}] {} vs {}",
+            f[k],
+            rhs[k]
+        );
+    }
+}
+
+#[test]
+fn ur5_from_its_urdf_matches_pinocchio() {
+    let (q, v) = state::<6>(6);
+    agrees(
+        "UR5",
+        Ur5 {}.mass_matrix_and_rhs(&q, &v, 0.0),
+        &[
+            4.319483539164107,
+            0.059266121006629396,
+            0.006310676305278529,
+            -0.0006227903818485613,
+            -0.24606852604913182,
+            -0.0007609229518518384,
+        ],
+        &[
+            4.319483539164107,
+            3.9720782121626415,
+            0.8403528895878274,
+            0.2417924794146909,
+            0.24868348170529445,
+            0.0171364731454,
+        ],
+        &[
+            0.08942250497005594,
+            58.662849091233696,
+            15.624483593317478,
+            0.02984933118715202,
+            -0.0038020908595054813,
+            0.00604661544350677,
+        ],
+    );
+    assert_eq!(Ur5::ROBOT, "ur5");
+    // The file's ±6.28318530718, kept as written (not 2π).
+    let (lower, upper) = Ur5::JOINT_LIMITS[0];
+    assert!(
+        lower == -upper
+            && (upper - std::f64::consts::TAU).abs() < 1e-10
+            && upper != std::f64::consts::TAU
+    );
+    assert_eq!(
+        <Ur5 as Lagrangian<f64, 6>>::COORDINATES,
+        [
+            "shoulder_pan_joint",
+            "shoulder_lift_joint",
+            "elbow_joint",
+            "wrist_1_joint",
+            "wrist_2_joint",
+            "wrist_3_joint"
+        ]
+    );
+}
+
+#[test]
+fn panda_from_its_urdf_matches_pinocchio_on_the_arm() {
+    let (q, v) = state::<8>(7);
+    agrees(
+        "Panda",
+        Panda {}.mass_matrix_and_rhs(&q, &v, 0.0),
+        &[
+            0.29058702621609,
+            -0.0160279716253119,
+            0.16110291081885933,
+            0.012989869102031398,
+            0.04458813383534247,
+            -0.010246788870440159,
+            -0.003888289574017855,
+        ],
+        &[
+            0.29058702621609,
+            2.817909233952939,
+            0.11297098422206134,
+            0.5773093058923416,
+            0.026863069785381517,
+            0.0538414143058625,
+            0.006696151967360947,
+        ],
+        &[
+            -0.23082727593350477,
+            13.371949925909558,
+            -0.15498816047242353,
+            -1.7559629687647642,
+            -0.1045651244930427,
+            -0.15486091567440036,
+            -0.005750803349196086,
+        ],
+    );
+    assert_eq!(Panda::JOINT_LIMITS[7], (0.0, 0.04));
+    match <Panda as Lagrangian<f64, 8>>::ROUTE {
+        Route::Generic { reason } => assert!(reason.contains("sliding joint"), "{reason}"),
+        other => panic!("{other:?}"),
+    }
+}
