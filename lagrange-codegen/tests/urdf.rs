@@ -58,13 +58,18 @@ fn ur5_takes_the_recursive_route_and_agrees_with_the_generic_one() {
 }
 
 #[test]
-fn panda_says_why_its_fingers_keep_it_generic() {
+fn panda_with_its_sliding_fingers_takes_the_recursive_route() {
     let src = robot("panda.urdf");
     let model = model_by(&src, Route::Auto).unwrap();
     // Seven arm joints and one finger: the second finger mimics the first.
     assert_eq!(model.coordinates.len(), 8, "{:?}", model.coordinates);
-    let reason = model.route_reason.clone().unwrap_or_default();
-    assert!(reason.contains("sliding joint"), "{reason}");
+    assert_eq!(
+        model.bias_route,
+        BiasRoute::Recursive,
+        "{:?}",
+        model.route_reason
+    );
+    routes_agree(&model_by(&src, Route::Generic).unwrap(), &model);
 }
 
 #[test]

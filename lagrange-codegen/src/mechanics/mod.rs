@@ -258,6 +258,16 @@ fn applied_forces(
     };
     let articulated = match (s.articulated, s.tree, &without_gravity) {
         (false, _, _) => None,
+        (true, Some(tree), _) if tree.shared_coordinate().is_some() => {
+            let q = tree.shared_coordinate().map_or(0, |q| q);
+            let name = ctx.coordinates()[q];
+            let name = ctx
+                .as_symbol(name)
+                .map_or_else(String::new, |s| ctx.symbol_name(s).to_string());
+            return Err(DeriveError::ArticulatedNeedsTree(format!(
+                "coordinate `{name}` drives two joints (a mimic joint), and the articulated-body algorithm needs one coordinate per joint"
+            )));
+        }
         (true, Some(tree), Some(rest)) => Some(recursive::articulation(ctx, tree, rest)),
         (true, _, _) => {
             let why = s.route_reason.clone().unwrap_or_default();

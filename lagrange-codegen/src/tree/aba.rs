@@ -2,9 +2,12 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::Tree;
-use super::link::{add3, cross, cross_axis, force_to_parent, mat_add, mirror_upper, to_link, trig};
+use super::link::{
+    add_motion, add3, cross, force_to_parent, joint_velocity, mat_add, mat_vec, mirror_upper,
+    origin, project, to_link, trig,
+};
 use super::spatial::{Spatial, rigid_spatial, spatial_apply, spatial_to_parent};
+use super::{Link, Tree};
 use crate::mat3::Mat3;
 
 /// The accelerations by the articulated-body algorithm and its pivots.
@@ -61,16 +64,14 @@ fn velocities(ctx: &mut Context, tree: &Tree) -> Links {
         let [w, v] = link.parent.map_or([[zero; 3]; 2], |p| vel[p]);
         let cs = trig(ctx, link);
         let rate = qd[link.coordinate];
-        let wd = cross(ctx, w, link.offset);
+        let d = origin(ctx, link);
+        let wd = cross(ctx, w, d);
         let v_at = add3(ctx, v, wd);
         let w_in = to_link(ctx, link, cs, w);
-        let v = to_link(ctx, link, cs, v_at);
-        let mut w = w_in;
-        w[link.axis] = ctx.add(w[link.axis], rate);
-        let wq = cross_axis(ctx, w_in, link.axis, rate);
-        let vq = cross_axis(ctx, v, link.axis, rate);
+        let v_in = to_link(ctx, link, cs, v_at);
+        let ([w, v], c) = joint_velocity(ctx, link, [w_in, v_in], rate);
         vel.push([w, v]);
-        bias_acc.push([wq, vq]);
+        bias_acc.push(c);
         let spatial = rigid_spatial(ctx, link.inertia.as_ref());
         let p = match &link.inertia {
             None => [[zero; 3]; 2],
@@ -91,6 +92,18 @@ fn velocities(ctx: &mut Context, tree: &Tree) -> Links {
     }
 }
 
+/// U = Iᴬ S: for S = (e_axis, 0) the moment column A e and the force column
+/// Bᵀ e (row `axis` of B); for S = (0, s), B s and C s.
+fn column(ctx: &mut Context, link: &Link, s: &Spatial) -> Pair {
+    match link.slide {
+        None => {
+            let axis = link.axis;
+            [[s.a[0][axis], s.a[1][axis], s.a[2][axis]], s.b[axis]]
+        }
+        Some(dir) => [mat_vec(ctx, &s.b, dir), mat_vec(ctx, &s.c, dir)],
+    }
+}
+
 /// Pass 2, inward: articulated inertias and bias forces, each carried to the
 /// parent, and the joint terms U, D, u.
 fn articulated_inertias(ctx: &mut Context, tree: &Tree, tau: &[Sym], links: &mut Links) -> Joints {
@@ -106,12 +119,11 @@ fn articulated_inertias(ctx: &mut Context, tree: &Tree, tau: &[Sym], links: &mut
     let mut residual = vec![zero; n];
     for i in (0..n).rev() {
         let link = &tree.links[i];
-        let axis = link.axis;
         let s = inertia[i];
-        let u_n = [s.a[0][axis], s.a[1][axis], s.a[2][axis]];
-        let u_f = s.b[axis];
-        let d = s.a[axis][axis];
-        let u = ctx.sub(tau[link.coordinate], bias[i][0][axis]);
+        let [u_n, u_f] = column(ctx, link, &s);
+        let d = project(ctx, link, &[u_n, u_f]);
+        let p_joint = project(ctx, link, &bias[i]);
+        let u = ctx.sub(tau[link.coordinate], p_joint);
         columns[i] = [u_n, u_f];
         pivots[i] = d;
         residual[i] = u;
@@ -174,11 +186,12 @@ fn accelerations(ctx: &mut Context, tree: &Tree, bias_acc: &[Pair], joints: &Joi
     for (i, link) in tree.links.iter().enumerate() {
         let [al, a] = link.parent.map_or(ground, |p| acc[p]);
         let cs = trig(ctx, link);
-        let ad = cross(ctx, al, link.offset);
+        let d = origin(ctx, link);
+        let ad = cross(ctx, al, d);
         let a_at = add3(ctx, a, ad);
         let al = to_link(ctx, link, cs, al);
         let a = to_link(ctx, link, cs, a_at);
-        let mut al = add3(ctx, al, bias_acc[i][0]);
+        let al = add3(ctx, al, bias_acc[i][0]);
         let a = add3(ctx, a, bias_acc[i][1]);
         let [u_n, u_f] = columns[i];
         let mut terms = vec![residual[i]];
@@ -191,8 +204,9 @@ fn accelerations(ctx: &mut Context, tree: &Tree, bias_acc: &[Pair], joints: &Joi
         let num = ctx.sum(&terms);
         let q = ctx.div(num, pivots[i]);
         qdd[link.coordinate] = q;
-        al[link.axis] = ctx.add(al[link.axis], q);
-        acc.push([al, a]);
+        let mut pair = [al, a];
+        add_motion(ctx, link, &mut pair, q);
+        acc.push(pair);
     }
     qdd
 }

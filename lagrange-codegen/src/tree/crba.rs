@@ -5,7 +5,7 @@
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::detect::add_inertia;
-use super::link::{cross, force_to_parent, mirror_upper, to_parent, trig};
+use super::link::{cross, force_to_parent, mirror_upper, origin, project, to_parent, trig};
 use super::{Inertia, Link, Tree};
 
 /// The joint-space mass matrix by composite rigid bodies: O(n²) entries, each
@@ -30,30 +30,50 @@ pub fn mass_matrix(ctx: &mut Context, tree: &Tree) -> Vec<Vec<Sym>> {
             composite[p] = add_inertia(ctx, Some(composite[p]), moved);
         }
     }
-    let mut m = vec![vec![zero; n]; n];
+    // One row per coordinate (a mimic joint's coordinate drives two links).
+    let dof = ctx.coordinates().len();
+    let mut m = vec![vec![zero; dof]; dof];
     for (i, link) in tree.links.iter().enumerate() {
-        let a = link.axis;
-        let ic = composite[i];
-        let mut e = [zero; 3];
-        e[a] = ctx.one();
-        // F = I_c S: moment I_o e_a, force e_a × h.
-        let mut nf = [
-            [ic.rot[0][a], ic.rot[1][a], ic.rot[2][a]],
-            cross(ctx, e, ic.first),
-        ];
+        let mut nf = joint_force(ctx, link, &composite[i]);
         let qi = link.coordinate;
-        m[qi][qi] = ic.rot[a][a];
+        let own = project(ctx, link, &nf);
+        m[qi][qi] = ctx.add(m[qi][qi], own);
         let mut j = i;
         while let Some(p) = tree.links[j].parent {
             nf = force_to_parent(ctx, &tree.links[j], nf[0], nf[1]);
             j = p;
             let qj = tree.links[j].coordinate;
-            let entry = nf[0][tree.links[j].axis];
-            m[qi][qj] = entry;
-            m[qj][qi] = entry;
+            // Joint-space entries summed over the joints each coordinate
+            // drives (one each, but for a mimic joint).
+            let entry = project(ctx, &tree.links[j], &nf);
+            if qi == qj {
+                let both = ctx.add(entry, entry);
+                m[qi][qi] = ctx.add(m[qi][qi], both);
+            } else {
+                m[qi][qj] = ctx.add(m[qi][qj], entry);
+                m[qj][qi] = m[qi][qj];
+            }
         }
     }
     m
+}
+
+/// F = I_c S, the force that moving the joint alone needs: moment I_o e,
+/// force e × h for a revolute joint about e; moment h × s, force m s for a
+/// sliding one along s.
+fn joint_force(ctx: &mut Context, link: &Link, ic: &Inertia) -> [[Sym; 3]; 2] {
+    match link.slide {
+        None => {
+            let a = link.axis;
+            let mut e = [ctx.zero(); 3];
+            e[a] = ctx.one();
+            [
+                [ic.rot[0][a], ic.rot[1][a], ic.rot[2][a]],
+                cross(ctx, e, ic.first),
+            ]
+        }
+        Some(s) => [cross(ctx, ic.first, s), s.map(|x| ctx.mul(ic.mass, x))],
+    }
 }
 
 /// A link's (composite) inertia in its parent's axes about the parent origin:
@@ -67,7 +87,7 @@ pub(super) fn inertia_to_parent(ctx: &mut Context, link: &Link, i: &Inertia) -> 
     // cols[k] = E I e_k, so (E I)_{rk} = cols[k][r]; E I Eᵀ has rows E (E I)ᵀ rows.
     let ei = [0, 1, 2].map(|r| [cols[0][r], cols[1][r], cols[2][r]]);
     let mut rot = [0, 1, 2].map(|r| to_parent(ctx, link, cs, ei[r]));
-    let d = link.offset;
+    let d = origin(ctx, link);
     let first = [0, 1, 2].map(|k| {
         let md = ctx.mul(i.mass, d[k]);
         ctx.add(h[k], md)

@@ -155,56 +155,154 @@ fn parent_of(
         .max_by_key(|(p, _)| chains[*p].factors.len())
 }
 
+/// Where a body hangs: the link it hangs on (`None`: the ground), the point in
+/// that link's axes, a sliding joint there (direction and coordinate) if the
+/// point moves along a line, and how many of its joints its parent has.
+struct Hook {
+    up: Option<usize>,
+    at: [Sym; 3],
+    slide: Option<([Sym; 3], usize)>,
+    inherited: usize,
+}
+
+/// `x = c + a q_k` with c and a constant, for exactly one coordinate q_k: a
+/// point sliding along a fixed line.
+fn sliding(ctx: &mut Context, x: &[Sym]) -> Option<([Sym; 3], [Sym; 3], usize)> {
+    if x.len() != 3 {
+        return None;
+    }
+    let qs = ctx.coordinates();
+    let mut found = None;
+    for (k, &q) in qs.iter().enumerate() {
+        let a: Vec<Sym> = x.iter().map(|&e| ctx.diff(e, q)).collect();
+        if a.iter().all(|&d| ctx.is_zero(d)) {
+            continue;
+        }
+        if found.is_some() || !a.iter().all(|&d| fixed(ctx, d)) {
+            return None;
+        }
+        found = Some((k, [a[0], a[1], a[2]]));
+    }
+    let (k, a) = found?;
+    let zero = ctx.zero();
+    let c: Vec<Sym> = x
+        .iter()
+        .map(|&e| ctx.substitute(e, &[(qs[k], zero)]))
+        .collect();
+    c.iter()
+        .all(|&e| fixed(ctx, e))
+        .then(|| ([c[0], c[1], c[2]], a, k))
+}
+
+/// Where body `b` hangs, from its parent's frame (or the ground's).
+fn hook(
+    ctx: &mut Context,
+    skeleton: &Skeleton,
+    chains: &[Chain],
+    frames: &[Option<Frame>],
+    (placed, b): (&[usize], usize),
+    names: &[String],
+) -> Result<Hook, String> {
+    let Some((p, anchor)) = parent_of(skeleton, chains, placed, b) else {
+        let reference = skeleton.bodies[b].reference.clone();
+        if let Some((at, dir, k)) = sliding(ctx, &reference) {
+            let slide = Some((dir, k));
+            return Ok(Hook {
+                up: None,
+                at,
+                slide,
+                inherited: 0,
+            });
+        }
+        let at = root_point(ctx, skeleton, chains, b, names)?;
+        return Ok(Hook {
+            up: None,
+            at,
+            slide: None,
+            inherited: 0,
+        });
+    };
+    let parent = frames[p].expect("parents are placed first");
+    let (local, slide) = if anchor.len() == 3 && anchor.iter().all(|&x| fixed(ctx, x)) {
+        ([anchor[0], anchor[1], anchor[2]], None)
+    } else if let Some((c, a, k)) = sliding(ctx, &anchor) {
+        (c, Some((mat_vec(ctx, &parent.rotation, a), k)))
+    } else {
+        return Err(format!(
+            "body `{}`: its reference point moves in its parent `{}`, and not along a fixed line",
+            names[b], names[p]
+        ));
+    };
+    let turned = mat_vec(ctx, &parent.rotation, local);
+    let at = add3(ctx, parent.origin, turned);
+    let inherited = chains[p].joints.len();
+    Ok(Hook {
+        up: parent.link,
+        at,
+        slide,
+        inherited,
+    })
+}
+
+/// Claims coordinate `q` for a joint of body `b`: a coordinate may drive
+/// joints of different bodies (a mimic joint: the tree algorithms sum the
+/// joints' shares), not two joints of one body.
+fn claim(
+    ctx: &Context,
+    used: &mut [Option<usize>],
+    q: usize,
+    b: usize,
+    body: &str,
+) -> Result<(), String> {
+    if used[q] == Some(b) {
+        let q = coordinate_name(ctx, q);
+        return Err(format!(
+            "body `{body}`: coordinate `{q}` moves two of its joints"
+        ));
+    }
+    used[q] = Some(b);
+    Ok(())
+}
+
 /// The links, parents first, and each body's frame; an error unless every
-/// body hangs on a parent at a point fixed in it (or is fixed in space), by
-/// joints that extend the parent's, and every coordinate is one joint.
+/// body hangs on a parent at a point fixed in it or sliding along a fixed
+/// line (or is fixed in space), by joints that extend the parent's, and every
+/// coordinate is one joint.
 fn link_bodies(
     ctx: &mut Context,
     skeleton: &Skeleton,
     chains: &[Chain],
     names: &[String],
 ) -> Result<(Vec<Link>, Vec<Frame>), String> {
-    let n = ctx.coordinates().len();
     let mut order: Vec<usize> = (0..chains.len()).collect();
     order.sort_by_key(|&b| chains[b].factors.len());
     let mut links: Vec<Link> = Vec::new();
     let mut frames: Vec<Option<Frame>> = vec![None; chains.len()];
-    let mut used = vec![false; n];
+    let mut used: Vec<Option<usize>> = vec![None; ctx.coordinates().len()];
+    let zero = ctx.zero();
     for (k, &b) in order.iter().enumerate() {
-        let (up, origin, inherited) = match parent_of(skeleton, chains, &order[..k], b) {
-            Some((p, anchor)) => {
-                if anchor.len() != 3 || !anchor.iter().all(|&x| fixed(ctx, x)) {
-                    return Err(format!(
-                        "body `{}`: its reference point moves in its parent `{}` (a sliding joint)",
-                        names[b], names[p]
-                    ));
-                }
-                let parent = frames[p].expect("parents are placed first");
-                let local = [anchor[0], anchor[1], anchor[2]];
-                let turned = mat_vec(ctx, &parent.rotation, local);
-                (
-                    parent.link,
-                    add3(ctx, parent.origin, turned),
-                    chains[p].joints.len(),
-                )
-            }
-            None => (None, root_point(ctx, skeleton, chains, b, names)?, 0),
-        };
-        let mine = &chains[b];
-        let mut up = up;
-        let mut offset = Some(origin);
-        for joint in &mine.joints[inherited..] {
-            if std::mem::replace(&mut used[joint.coordinate], true) {
-                let q = coordinate_name(ctx, joint.coordinate);
-                return Err(format!(
-                    "body `{}`: coordinate `{q}` turns a second joint",
-                    names[b]
-                ));
-            }
-            let zero = ctx.zero();
+        let hook = hook(ctx, skeleton, chains, &frames, (&order[..k], b), names)?;
+        let (mut up, mut offset) = (hook.up, Some(hook.at));
+        if let Some((dir, q)) = hook.slide {
+            claim(ctx, &mut used, q, b, &names[b])?;
+            let at = offset.replace([zero; 3]).expect("set above");
+            links.push(Link {
+                parent: up,
+                placement: None,
+                slide: Some(dir),
+                axis: 0,
+                coordinate: q,
+                offset: at,
+                inertia: None,
+            });
+            up = Some(links.len() - 1);
+        }
+        for joint in &chains[b].joints[hook.inherited..] {
+            claim(ctx, &mut used, joint.coordinate, b, &names[b])?;
             links.push(Link {
                 parent: up,
                 placement: constant_rotation(ctx, &joint.placement),
+                slide: None,
                 axis: joint.axis,
                 coordinate: joint.coordinate,
                 offset: offset.take().unwrap_or([zero; 3]),
@@ -212,19 +310,19 @@ fn link_bodies(
             });
             up = Some(links.len() - 1);
         }
-        let zero = ctx.zero();
         let origin = offset.unwrap_or([zero; 3]);
-        let rotation = constant_rotation(ctx, &mine.trailing).unwrap_or_else(|| identity(ctx));
+        let trailing = constant_rotation(ctx, &chains[b].trailing);
+        let rotation = trailing.unwrap_or_else(|| identity(ctx));
         frames[b] = Some(Frame {
             link: up,
             origin,
             rotation,
         });
     }
-    if let Some(q) = used.iter().position(|u| !u) {
+    if let Some(q) = used.iter().position(Option::is_none) {
         let q = coordinate_name(ctx, q);
         return Err(format!(
-            "coordinate `{q}` turns no joint (a translation, or a coordinate outside the rotations)"
+            "coordinate `{q}` moves no joint (it enters a position other than along a fixed line)"
         ));
     }
     let frames = frames

@@ -32,8 +32,12 @@ pub(super) fn rotate(ctx: &mut Context, axis: usize, (c, s): (Sym, Sym), x: [Sym
     out
 }
 
-/// E x with E = P rot_axis(q): a vector in link axes in the parent's axes.
+/// E x with E = P rot_axis(q): a vector in link axes in the parent's axes
+/// (E = 1 for a sliding joint).
 pub(super) fn to_parent(ctx: &mut Context, link: &Link, cs: (Sym, Sym), x: [Sym; 3]) -> [Sym; 3] {
+    if link.slide.is_some() {
+        return x;
+    }
     let turned = rotate(ctx, link.axis, cs, x);
     match &link.placement {
         None => turned,
@@ -43,11 +47,71 @@ pub(super) fn to_parent(ctx: &mut Context, link: &Link, cs: (Sym, Sym), x: [Sym;
 
 /// Eᵀ x = rot_axis(q)ᵀ Pᵀ x: a vector in the parent's axes in link axes.
 pub(super) fn to_link(ctx: &mut Context, link: &Link, cs: (Sym, Sym), x: [Sym; 3]) -> [Sym; 3] {
+    if link.slide.is_some() {
+        return x;
+    }
     let placed = match &link.placement {
         None => x,
         Some(p) => mat_vec(ctx, &transpose(p), x),
     };
     rotate_back(ctx, link.axis, cs, placed)
+}
+
+/// The link's origin in the parent's axes: the offset, moved by q along the
+/// direction of a sliding joint.
+pub(super) fn origin(ctx: &mut Context, link: &Link) -> [Sym; 3] {
+    let Some(dir) = link.slide else {
+        return link.offset;
+    };
+    let q = ctx.coordinates()[link.coordinate];
+    [0, 1, 2].map(|k| {
+        let moved = ctx.mul(dir[k], q);
+        ctx.add(link.offset[k], moved)
+    })
+}
+
+/// The joint's rate S q̇ added to the link's velocity (w, v) carried in from
+/// the parent, and the velocity-product acceleration c = (w, v) ×m S q̇:
+/// S = (e_axis, 0) for a revolute joint, (0, slide) for a sliding one.
+pub(super) fn joint_velocity(
+    ctx: &mut Context,
+    link: &Link,
+    [w, v]: [[Sym; 3]; 2],
+    rate: Sym,
+) -> ([[Sym; 3]; 2], [[Sym; 3]; 2]) {
+    let Some(dir) = link.slide else {
+        let mut turned = w;
+        turned[link.axis] = ctx.add(w[link.axis], rate);
+        let wq = cross_axis(ctx, w, link.axis, rate);
+        let vq = cross_axis(ctx, v, link.axis, rate);
+        return ([turned, v], [wq, vq]);
+    };
+    let u = dir.map(|x| ctx.mul(x, rate));
+    let zero = ctx.zero();
+    ([w, add3(ctx, v, u)], [[zero; 3], cross(ctx, w, u)])
+}
+
+/// Sᵀ f: the joint's share of a spatial force (moment, force), or the joint
+/// component of a spatial motion.
+pub(super) fn project(ctx: &mut Context, link: &Link, f: &[[Sym; 3]; 2]) -> Sym {
+    let Some(dir) = link.slide else {
+        return f[0][link.axis];
+    };
+    let terms: Vec<Sym> = (0..3).map(|k| ctx.mul(f[1][k], dir[k])).collect();
+    ctx.sum(&terms)
+}
+
+/// a + S q̈.
+pub(super) fn add_motion(ctx: &mut Context, link: &Link, a: &mut [[Sym; 3]; 2], qdd: Sym) {
+    match link.slide {
+        None => a[0][link.axis] = ctx.add(a[0][link.axis], qdd),
+        Some(dir) => {
+            for k in 0..3 {
+                let m = ctx.mul(dir[k], qdd);
+                a[1][k] = ctx.add(a[1][k], m);
+            }
+        }
+    }
 }
 
 /// The rotation about `axis` by a constant `angle`, as a matrix.
@@ -116,7 +180,8 @@ pub(super) fn force_to_parent(
     let cs = trig(ctx, link);
     let f = to_parent(ctx, link, cs, f);
     let n = to_parent(ctx, link, cs, n);
-    let moment = cross(ctx, link.offset, f);
+    let d = origin(ctx, link);
+    let moment = cross(ctx, d, f);
     [add3(ctx, n, moment), f]
 }
 

@@ -55,6 +55,10 @@ struct Inertia {
 struct Link {
     parent: Option<usize>,
     placement: Option<Mat3>,
+    /// A sliding (prismatic) joint's direction in the parent's axes: the link
+    /// frame is the parent's, its origin at `offset + slide q`, and
+    /// `placement` and `axis` are unused.
+    slide: Option<[Sym; 3]>,
     axis: usize,
     coordinate: usize,
     offset: [Sym; 3],
@@ -83,6 +87,16 @@ impl Tree {
     /// Number of joints.
     pub fn len(&self) -> usize {
         self.links.len()
+    }
+
+    /// A coordinate that drives more than one joint (a mimic joint), if any:
+    /// the articulated-body algorithm needs one coordinate per joint.
+    pub fn shared_coordinate(&self) -> Option<usize> {
+        let mut seen = std::collections::BTreeSet::new();
+        self.links
+            .iter()
+            .map(|l| l.coordinate)
+            .find(|&q| !seen.insert(q))
     }
 
     /// Whether the tree has no joints (never returned by [`detect`]).

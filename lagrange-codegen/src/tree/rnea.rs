@@ -3,7 +3,9 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::link::{add3, cross, cross_axis, force_to_parent, mat_vec, to_link, trig};
+use super::link::{
+    add3, cross, force_to_parent, joint_velocity, mat_vec, origin, project, to_link, trig,
+};
 use super::{Inertia, Tree};
 
 /// Recursive Newton–Euler at q̈ = 0: τ = h(q, q̇) − Q_gravity(q) with gravity, h
@@ -27,20 +29,18 @@ pub fn inverse_dynamics(ctx: &mut Context, tree: &Tree, with_gravity: bool) -> V
         let [w, v, al, a] = link.parent.map_or(ground, |p| motion[p]);
         let cs = trig(ctx, link);
         let rate = qd[link.coordinate];
-        let wd = cross(ctx, w, link.offset);
+        let d = origin(ctx, link);
+        let wd = cross(ctx, w, d);
         let v_at = add3(ctx, v, wd);
-        let ad = cross(ctx, al, link.offset);
+        let ad = cross(ctx, al, d);
         let a_at = add3(ctx, a, ad);
         let w_in = to_link(ctx, link, cs, w);
-        let v = to_link(ctx, link, cs, v_at);
+        let v_in = to_link(ctx, link, cs, v_at);
         let al_in = to_link(ctx, link, cs, al);
         let a_in = to_link(ctx, link, cs, a_at);
-        let mut w = w_in;
-        w[link.axis] = ctx.add(w[link.axis], rate);
-        let wq = cross_axis(ctx, w_in, link.axis, rate);
-        let al = add3(ctx, al_in, wq);
-        let vq = cross_axis(ctx, v, link.axis, rate);
-        let a = add3(ctx, a_in, vq);
+        let ([w, v], [cw, cv]) = joint_velocity(ctx, link, [w_in, v_in], rate);
+        let al = add3(ctx, al_in, cw);
+        let a = add3(ctx, a_in, cv);
         motion.push([w, v, al, a]);
     }
     let mut forces: Vec<[[Sym; 3]; 2]> = tree
@@ -52,11 +52,14 @@ pub fn inverse_dynamics(ctx: &mut Context, tree: &Tree, with_gravity: bool) -> V
             Some(i) => body_force(ctx, i, w, v, al, a),
         })
         .collect();
-    let mut tau = vec![zero; n];
+    let mut tau = vec![zero; ctx.coordinates().len()];
     for k in (0..n).rev() {
         let link = &tree.links[k];
         let [nk, fk] = forces[k];
-        tau[link.coordinate] = nk[link.axis];
+        // A coordinate that drives several joints (a mimic joint) takes the
+        // sum of their shares: the chain rule through q̇_joint = S q̇.
+        let share = project(ctx, link, &[nk, fk]);
+        tau[link.coordinate] = ctx.add(tau[link.coordinate], share);
         if let Some(p) = link.parent {
             let [np, fp] = force_to_parent(ctx, link, nk, fk);
             forces[p] = [add3(ctx, forces[p][0], np), add3(ctx, forces[p][1], fp)];

@@ -3,7 +3,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::link::{add3, mat_add, mat_mul, mat_vec, mirror_upper, skew, to_parent, trig};
+use super::link::{add3, mat_add, mat_mul, mat_vec, mirror_upper, origin, skew, to_parent, trig};
 use super::{Inertia, Link};
 use crate::mat3::{Mat3, transpose};
 
@@ -81,10 +81,11 @@ pub(super) fn spatial_to_parent(ctx: &mut Context, link: &Link, s: &Spatial) -> 
     let a = conjugate(ctx, link, cs, &s.a, true);
     let b = conjugate(ctx, link, cs, &s.b, false);
     let c = conjugate(ctx, link, cs, &s.c, true);
-    if link.offset.iter().all(|&x| ctx.is_zero(x)) {
+    let offset = origin(ctx, link);
+    if offset.iter().all(|&x| ctx.is_zero(x)) {
         return Spatial { a, b, c };
     }
-    let d = skew(ctx, link.offset);
+    let d = skew(ctx, offset);
     let bd = mat_mul(ctx, &b, &d);
     let db = mat_mul(ctx, &d, &transpose(&b));
     let dc = mat_mul(ctx, &d, &c);
