@@ -272,7 +272,7 @@ pub struct ReadmeDoctests;
 /// Paths the generated code uses; not a public API.
 #[doc(hidden)]
 pub mod __private {
-    pub use lagrange_runtime::func;
     pub use lagrange_runtime::{Constrained, Driven, FormVisitor, Lagrangian, Real, Reduced};
+    pub use lagrange_runtime::{Error, func, physical};
     pub use nalgebra::{SMatrix, SVector};
 }
