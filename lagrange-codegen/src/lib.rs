@@ -32,6 +32,7 @@ pub mod lowered;
 pub mod mat3;
 pub mod mechanics;
 pub mod order;
+pub mod physical;
 pub mod scene;
 pub mod tree;
 

@@ -10,9 +10,12 @@ use crate::check;
 use crate::ctxt::Ctxt;
 use crate::lower::rotation::Rotation;
 use crate::lower::{CartesianRef, Frame, Lowerer, Mode, NoInputs};
-use crate::lowered::{BodyFrame, ConstraintModel, Lowered, PointModel, Skeleton, SpinModel};
+use crate::lowered::{
+    BodyFrame, ConstraintModel, Lowered, PhysicalCheck, PointModel, Skeleton, SpinModel,
+};
 use crate::mat3::Mat3;
 use crate::order::Item;
+use crate::physical;
 
 /// Lowers the description, in the order each part may refer to the ones before.
 pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
@@ -51,6 +54,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         spins,
         rotations: _,
         skeleton,
+        checks,
     } = items;
     let names = |ids: &mut dyn Iterator<Item = &Ident>| ids.map(|c| c.to_string()).collect();
     Some(Lowered {
@@ -71,6 +75,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         speeds,
         multipliers: formulations.contains(&Formulation::Multipliers),
         extras: system.extras.iter().map(|(_, e)| *e).collect(),
+        checks,
     })
 }
 
@@ -178,6 +183,8 @@ struct Items {
     rotations: Vec<(Ident, Mat3, Vec<Sym>)>,
     /// Where the masses sit relative to the bodies, for the recursive derivation.
     skeleton: Skeleton,
+    /// Masses and inertias computed from parameters, checked at run time.
+    checks: Vec<PhysicalCheck>,
 }
 
 /// A rigid body: its frame (for `B.x`, `B.omega_x` and points on it), its centre
@@ -222,6 +229,20 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
     if reference.len() != 3 {
         return;
     }
+    let what = format!("body `{}`", b.name);
+    let name = b.name.to_string();
+    let syntax = b.mass.as_ref().unwrap_or(at);
+    items
+        .checks
+        .extend(physical::mass(lw, &name, &what, syntax, mass));
+    let spatial = rotation.omega_body.iter().all(|&w| !lw.ctx.is_zero(w));
+    let shape = physical::Shape {
+        moved: b.about.is_some(),
+        spatial,
+    };
+    items
+        .checks
+        .extend(physical::inertia(lw, b, &inertia, shape));
     let centre = match &com {
         None => reference.clone(),
         Some(Some(offset)) if offset.len() == 3 => {
@@ -363,7 +384,12 @@ fn lower_point(lw: &mut Lowerer, p: &crate::ast::Point, items: &mut Items) {
             axes: None,
         },
     );
-    if let Some(Some(mass)) = mass {
+    if let (Some(Some(mass)), Some(syntax)) = (mass, &p.mass) {
+        let what = format!("point `{}`", p.name);
+        let name = p.name.to_string();
+        items
+            .checks
+            .extend(physical::mass(lw, &name, &what, syntax, mass));
         items.skeleton.masses.push(fixed_in);
         items.points.push(PointModel {
             name: p.name.to_string(),

@@ -114,6 +114,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         speeds,
         multipliers,
         extras,
+        checks,
     } = lowered;
     let qdd = ctx.accelerations();
     let zero_acc = at_zero(&mut ctx, &qdd);
@@ -156,6 +157,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         has_spin: !spin.is_empty(),
         forces,
         motion,
+        checks,
     };
     let constrained = Constrained {
         holonomic: &holonomic,
@@ -313,6 +315,7 @@ struct Derived {
     has_spin: bool,
     forces: Forces,
     motion: Motion,
+    checks: Vec<crate::lowered::PhysicalCheck>,
 }
 
 /// The constraints and which constrained forms to build.
@@ -394,6 +397,7 @@ fn finish(
         articulated,
         hoisted,
         cyclic: Vec::new(),
+        checks: d.checks,
     };
     model.cyclic = cyclic::cyclic(&model);
     Ok(model)

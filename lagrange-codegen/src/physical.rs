@@ -1,0 +1,171 @@
+//! Physical validity of masses and inertias: a mass is non-negative; principal
+//! moments are non-negative and satisfy the triangle inequalities
+//! (A + B ≥ C, ...); a full tensor's second-moment matrix tr(I)/2·E − I is
+//! positive semidefinite (which implies both for its principal moments). Zero
+//! is allowed: a massless point, a slender rod's axis, a thin plate's
+//! A + B = C. Values given by literals are checked here, with the error at the
+//! literal; values computed from parameters are recorded as
+//! [`PhysicalCheck`]s for the generated `check_parameters`, which applies the
+//! same rules (`lagrange_runtime::physical`) before a run.
+
+use lagrange_symbolic::Expr as Sym;
+use syn::Expr;
+
+use crate::ast::Body;
+use crate::lower::Lowerer;
+use crate::lowered::PhysicalCheck;
+use crate::mat3::Mat3;
+
+/// Relative round-off allowed on the inequalities, as at run time.
+const ROUND_OFF: f64 = 1e-12;
+
+/// The value of an expression that depends on nothing (literals, `pi`).
+fn value(lw: &Lowerer, e: Sym) -> Option<f64> {
+    lw.ctx
+        .free_symbols(e)
+        .is_empty()
+        .then(|| lw.ctx.eval(e, &|_| f64::NAN))
+}
+
+/// The mass of a point or body (`what` is "point `p`" or "body `b`"), checked
+/// now if it is a constant, else recorded.
+pub fn mass(lw: &Lowerer, name: &str, what: &str, syntax: &Expr, m: Sym) -> Option<PhysicalCheck> {
+    let Some(v) = value(lw, m) else {
+        return Some(PhysicalCheck::Mass(name.to_string(), m));
+    };
+    if v < 0.0 {
+        lw.cx.error_spanned_by(
+            syntax,
+            format!("{what}: mass = {v} must be non-negative (zero is allowed: a massless point)"),
+        );
+    }
+    None
+}
+
+/// How a body's inertia is given and used.
+#[derive(Copy, Clone)]
+pub struct Shape {
+    /// Given about the point `about`, moved to the centre of mass.
+    pub moved: bool,
+    /// The body turns about all three of its axes (no component of its
+    /// angular velocity is identically zero). A body that does not, such as a
+    /// planar one (`rot_z` only), is written with the moments it uses,
+    /// `[0, 0, Iz]`: the triangle inequalities then do not apply, as the
+    /// equations never read the moments they would constrain.
+    pub spatial: bool,
+}
+
+/// A body's inertia about its centre of mass: checked now if its entries are
+/// constants, else recorded.
+pub fn inertia(lw: &Lowerer, b: &Body, i: &Mat3, shape: Shape) -> Option<PhysicalCheck> {
+    let syntax = b.inertia.as_ref()?;
+    let Expr::Array(list) = syntax else {
+        return None;
+    };
+    let name = b.name.to_string();
+    let principal = list.elems.len() == 3 && !shape.moved;
+    let entries = [i[0][0], i[1][1], i[2][2], i[0][1], i[0][2], i[1][2]];
+    let names = if principal {
+        ["A", "B", "C"]
+    } else {
+        ["Ixx", "Iyy", "Izz"]
+    };
+    let values: Option<Vec<f64>> = entries.iter().map(|&e| value(lw, e)).collect();
+    let Some(v) = values else {
+        let diagonal = [entries[0], entries[1], entries[2]];
+        return Some(match (shape.spatial, principal) {
+            (false, _) => PhysicalCheck::Moments(name, names, diagonal),
+            (true, true) => PhysicalCheck::Principal(name, diagonal),
+            (true, false) => PhysicalCheck::Tensor(name, entries),
+        });
+    };
+    let moved = shape.moved;
+    for k in 0..3 {
+        if v[k] < 0.0 && !moved {
+            let what = if principal {
+                "principal moment"
+            } else {
+                "moment"
+            };
+            lw.cx.error_spanned_by(
+                &list.elems[k],
+                format!(
+                    "body `{name}`: {what} {} = {} must be non-negative (a moment of inertia is \
+                     ∫ r² dm about an axis; zero is allowed, as for a slender rod's axis)",
+                    names[k], v[k]
+                ),
+            );
+            return None;
+        }
+    }
+    if !shape.spatial {
+        return None;
+    }
+    if principal {
+        triangle(lw, &name, &list.elems, [v[0], v[1], v[2]]);
+    } else if !second_moments_psd(&v) {
+        let whose = if moved {
+            "its inertia moved from `about` to the centre of mass (parallel-axis theorem, \
+             I_com = I_about − m(|d|²E − d dᵀ))"
+        } else {
+            "its inertia tensor"
+        };
+        lw.cx.error_spanned_by(
+            syntax,
+            format!(
+                "body `{name}`: {whose} is that of no rigid body: the second-moment matrix \
+                 tr(I)/2·E − I is not positive semidefinite (a principal moment is negative \
+                 or exceeds the sum of the other two); check the products' sign \
+                 (I_xy = -∫xy dm) and sizes"
+            ),
+        );
+    }
+    None
+}
+
+/// A + B ≥ C and its rotations, the error at the moment that is too large.
+fn triangle(
+    lw: &Lowerer,
+    name: &str,
+    elems: &syn::punctuated::Punctuated<Expr, syn::Token![,]>,
+    m: [f64; 3],
+) {
+    let names = ["A", "B", "C"];
+    let tol = ROUND_OFF * (m[0] + m[1] + m[2]);
+    for k in 0..3 {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        if m[i] + m[j] < m[k] - tol {
+            let (a, b, c) = (names[i], names[j], names[k]);
+            lw.cx.error_spanned_by(
+                &elems[k],
+                format!(
+                    "body `{name}`: principal moments {a} = {}, {b} = {}, {c} = {} break the \
+                     triangle inequality {a} + {b} >= {c}: no rigid body has them (the moment \
+                     about one axis is at most the sum of the other two)",
+                    m[i], m[j], m[k]
+                ),
+            );
+            return;
+        }
+    }
+}
+
+/// Whether S = tr(I)/2·E − I is positive semidefinite, by its principal
+/// minors (all of them, not only the leading ones), to round-off.
+fn second_moments_psd(v: &[f64]) -> bool {
+    let h = 0.5 * (v[0] + v[1] + v[2]);
+    let s = [
+        [h - v[0], -v[3], -v[4]],
+        [-v[3], h - v[1], -v[5]],
+        [-v[4], -v[5], h - v[2]],
+    ];
+    let tol = ROUND_OFF * h.abs().max(f64::MIN_POSITIVE);
+    let minor = |i: usize, j: usize| s[i][i] * s[j][j] - s[i][j] * s[j][i];
+    let det = s[0][0] * minor(1, 2) - s[0][1] * (s[1][0] * s[2][2] - s[1][2] * s[2][0])
+        + s[0][2] * (s[1][0] * s[2][1] - s[1][1] * s[2][0]);
+    (0..3).all(|i| s[i][i] >= -tol)
+        && [(0, 1), (0, 2), (1, 2)]
+            .iter()
+            .all(|&(i, j)| minor(i, j) >= -tol * h.abs())
+        && det >= -tol * h * h
+}
