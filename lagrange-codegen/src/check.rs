@@ -167,6 +167,43 @@ pub fn mass_rows(cx: &Ctxt, system: &System, zero_rows: &[bool]) {
     }
 }
 
+/// An input that no force, potential or dissipation reads would be ignored by
+/// every controller driving it. `read[j]` says whether the lowered applied
+/// forces (forces, generalized forces, V, D) depend on input j.
+pub fn inputs_read(cx: &Ctxt, system: &System, read: &[bool]) {
+    let q = system
+        .coordinates
+        .first()
+        .map_or("q".to_string(), ToString::to_string);
+    for (name, _) in system.inputs.iter().zip(read).filter(|(_, r)| !**r) {
+        cx.error_at(
+            name.span(),
+            format!(
+                "input `{name}` is read by no force, potential or dissipation: a controller \
+                 driving it would move nothing; remove it from `inputs(...)` or use it in a \
+                 force, e.g. `generalized_force({q} = {name})`"
+            ),
+        );
+    }
+}
+
+/// An input that the applied forces read but that drops out of the generalized
+/// forces (a potential term without the coordinates, `u - u`): `moves[j]` says
+/// whether ΔQ depends on input j.
+pub fn inputs_move(cx: &Ctxt, system: &System, moves: &[bool]) {
+    for (name, _) in system.inputs.iter().zip(moves).filter(|(_, m)| !**m) {
+        cx.error_at(
+            name.span(),
+            format!(
+                "input `{name}` drops out of every generalized force (it appears only in terms \
+                 the equations do not feel, such as a potential term without the coordinates), \
+                 so a controller driving it would move nothing; use it in a force, or in a \
+                 potential or dissipation term together with the coordinates or velocities"
+            ),
+        );
+    }
+}
+
 fn check_has_coordinates(cx: &Ctxt, system: &System) {
     if system.coordinates.is_empty() {
         cx.error_at(

@@ -46,6 +46,10 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     let speeds = formulations
         .contains(&Formulation::Reduced)
         .then(|| speeds(&mut lw, system));
+    // An input that a failed expression would have read is not reported unread.
+    if !cx.has_errors() {
+        check::inputs_read(cx, system, &inputs_read(&lw, &applied));
+    }
     if cx.has_errors() {
         return None;
     }
@@ -122,6 +126,18 @@ fn applied(lw: &mut Lowerer, system: &System) -> Applied {
         forces,
         generalized_forces,
     }
+}
+
+/// Per input, whether the applied forces read it.
+fn inputs_read(lw: &Lowerer, a: &Applied) -> Vec<bool> {
+    let mut all: Vec<Sym> = a.potential.into_iter().chain(a.dissipation).collect();
+    all.extend(a.forces.iter().flat_map(|(_, f)| f.iter().copied()));
+    all.extend(a.generalized_forces.iter().map(|(_, g)| *g));
+    let inputs = lw.ctx.inputs();
+    inputs
+        .iter()
+        .map(|&u| all.iter().any(|&e| lw.ctx.depends_on(e, u)))
+        .collect()
 }
 
 /// The holonomic and the nonholonomic constraints, the latter proved linear in
