@@ -396,13 +396,40 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
             }
         }
     }
-    if !seen_attr {
+    let misplaced = misplaced_attributes(cx, input, fields);
+    if !seen_attr && !misplaced {
         cx.error_at(
             input.ident.span(),
             "missing #[lagrange(coordinates(...), point(...), ...)] describing the system",
         );
     }
     Some(system)
+}
+
+/// `#[lagrange(...)]` on a field, where the derive (which registers it as a
+/// helper attribute of the whole item) accepts it silently: an error at the
+/// attribute. Returns whether there was one.
+fn misplaced_attributes(cx: &Ctxt, input: &DeriveInput, fields: Option<&syn::FieldsNamed>) -> bool {
+    let mut found = false;
+    for field in fields.into_iter().flat_map(|f| f.named.iter()) {
+        for attr in field.attrs.iter().filter(|a| a.path().is_ident("lagrange")) {
+            found = true;
+            let name = field
+                .ident
+                .as_ref()
+                .map(ToString::to_string)
+                .unwrap_or_default();
+            cx.error_spanned_by(
+                attr,
+                format!(
+                    "#[lagrange(...)] belongs on the struct, not on field `{name}`: move it above \
+                     `struct {}` (the fields are the parameters and take no attribute)",
+                    input.ident
+                ),
+            );
+        }
+    }
+    found
 }
 
 /// Splits `a, b(c, d), e` into `a`, `b(c, d)`, `e`: commas inside groups are

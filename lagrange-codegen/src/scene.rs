@@ -212,17 +212,24 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
     else {
         return;
     };
-    let mass = lw.without_inputs(NoInputs::MASS, |lw| lw.expr(mass, Mode::Constant));
-    let inertia = lw.without_inputs(NoInputs::INERTIA, |lw| inertia_matrix(lw, inertia));
+    let whose = |key: &str| format!("the {key} of body `{}`", b.name);
+    let mass = lw.constant_as(whose("mass"), |lw| {
+        lw.without_inputs(NoInputs::MASS, |lw| lw.expr(mass, Mode::Constant))
+    });
+    let inertia = lw.constant_as(whose("inertia"), |lw| {
+        lw.without_inputs(NoInputs::INERTIA, |lw| inertia_matrix(lw, inertia))
+    });
     let reference = lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration));
-    let com = b
-        .com
-        .as_ref()
-        .map(|c| lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(c, Mode::Constant)));
-    let about = b
-        .about
-        .as_ref()
-        .map(|a| lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(a, Mode::Constant)));
+    let com = b.com.as_ref().map(|c| {
+        lw.constant_as(whose("centre of mass `com`"), |lw| {
+            lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(c, Mode::Constant))
+        })
+    });
+    let about = b.about.as_ref().map(|a| {
+        lw.constant_as(whose("inertia's reference point `about`"), |lw| {
+            lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(a, Mode::Constant))
+        })
+    });
     let rotation = lw.without_inputs(NoInputs::ROTATION, |lw| lw.rotation(rotation));
     let (Some(mass), Some(inertia), Some(reference), Some(rotation)) =
         (mass, inertia, reference, rotation)
@@ -367,10 +374,11 @@ fn offset_in_body(lw: &mut Lowerer, r: &Mat3, origin: &[Sym], local: &[Sym]) -> 
 fn lower_point(lw: &mut Lowerer, p: &crate::ast::Point, items: &mut Items) {
     let Some(at) = &p.at else { return };
     let local = lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration));
-    let mass = p
-        .mass
-        .as_ref()
-        .map(|m| lw.without_inputs(NoInputs::MASS, |lw| lw.expr(m, Mode::Constant)));
+    let mass = p.mass.as_ref().map(|m| {
+        lw.constant_as(format!("the mass of point `{}`", p.name), |lw| {
+            lw.without_inputs(NoInputs::MASS, |lw| lw.expr(m, Mode::Constant))
+        })
+    });
     let (position, fixed_in) = match (&p.on, local) {
         (_, None) => return,
         (None, Some(x)) => (x, None),

@@ -124,22 +124,54 @@ impl Lowerer<'_> {
             );
             return None;
         };
-        let Some(Binding::Coordinate(q)) = self.scope.get(&target.to_string()).copied() else {
-            self.cx.error_at(
-                target.span(),
-                format!("`dot({target})`: `{target}` is not a generalized coordinate"),
-            );
+        let binding = self.scope.get(&target.to_string()).copied();
+        let Some(Binding::Coordinate(q)) = binding else {
+            if let Some(why) = not_a_coordinate(target, binding) {
+                self.cx
+                    .error_at(target.span(), format!("`dot({target})`: {why}"));
+            }
             return None;
         };
         if mode != Mode::State {
             self.cx.error_at(
                 fname.span().join(target.span()).unwrap_or(fname.span()),
-                format!("velocity `dot({target})` cannot appear in {}: it must depend on coordinates, parameters and `t` only", mode.describe()),
+                format!("velocity `dot({target})` cannot appear in {}: it must depend on coordinates, parameters and `t` only", self.describe(mode)),
             );
             return None;
         }
         self.ctx.velocity(q)
     }
+}
+
+/// Why `dot(name)` has no meaning, for a name that is not a coordinate (`None`
+/// for a failed definition, whose error is reported already).
+fn not_a_coordinate(target: &Ident, binding: Option<Binding>) -> Option<String> {
+    let Some(binding) = binding else {
+        return Some(if target == "t" {
+            "`t` is the time: its rate is 1".to_string()
+        } else {
+            format!("`{target}` is not a generalized coordinate")
+        });
+    };
+    Some(match binding {
+        Binding::Input(_) => format!(
+            "`{target}` is an input, not a generalized coordinate: inputs are supplied at run \
+             time without their time derivative, so `dot` cannot take one; if a force needs \
+             the rate, declare it as an input of its own (`inputs({target}, {target}_rate)`) \
+             and supply both"
+        ),
+        Binding::Parameter(_) => format!(
+            "`{target}` is a parameter, constant in time: its rate is zero; remove the term"
+        ),
+        Binding::Definition { .. } => format!(
+            "`{target}` is a definition; `dot` takes a coordinate (`dot(theta)`) or a point's \
+             coordinate (`dot(P.x)`): write the definition's rate with the coordinates' rates"
+        ),
+        Binding::Frame(_) => format!(
+            "`{target}` is a point or body; `dot` takes one of its coordinates, `dot({target}.x)`"
+        ),
+        Binding::Failed | Binding::Coordinate(_) => return None,
+    })
 }
 
 fn arity(name: &str) -> Option<usize> {

@@ -66,7 +66,7 @@ impl Lowerer<'_> {
                 member.span(),
                 format!(
                     "the angular velocity `{base}.{m}` cannot appear in {}",
-                    mode.describe()
+                    self.describe(mode)
                 ),
             );
             return None;
@@ -119,7 +119,7 @@ impl Lowerer<'_> {
                 inner,
                 format!(
                     "a body's axes depend on the configuration and cannot appear in {}",
-                    mode.describe()
+                    self.describe(mode)
                 ),
             );
             return None;
@@ -149,7 +149,10 @@ impl Lowerer<'_> {
         if mode == Mode::Constant {
             self.cx.error_at(
                 base.span(),
-                format!("a mass must be constant: it cannot depend on the position of `{base}`"),
+                format!(
+                    "{} must be constant: it cannot depend on the position of `{base}`",
+                    self.describe(mode)
+                ),
             );
             return None;
         }
@@ -158,7 +161,7 @@ impl Lowerer<'_> {
                 base.span(),
                 format!(
                     "velocity `dot({base}.{member})` cannot appear in {}",
-                    mode.describe()
+                    self.describe(mode)
                 ),
             );
             return None;
