@@ -2,6 +2,7 @@
 //! time derivative of a position.
 
 use lagrange_symbolic::{Expr as Sym, Func};
+use quote::ToTokens;
 use syn::{Expr, Ident};
 
 use super::field::component;
@@ -40,7 +41,45 @@ impl Lowerer<'_> {
         }
         let lowered: Vec<Option<Sym>> = args.iter().map(|a| self.expr(a, mode)).collect();
         let lowered: Vec<Sym> = lowered.into_iter().collect::<Option<_>>()?;
-        Some(self.apply(&name, &lowered))
+        self.checked_apply(&name, &lowered, c)
+    }
+
+    /// [`apply`](Self::apply), refusing literal arguments that make the call
+    /// meaningless: reversed or equal `clamp` bounds (the result would be a
+    /// constant), and constants outside a function's domain (`sqrt(-1)`,
+    /// `ln(0)`: NaN or an infinity in the equations). The error is at the call.
+    fn checked_apply(&mut self, name: &str, a: &[Sym], call: &dyn ToTokens) -> Option<Sym> {
+        if name == "clamp"
+            && let (Some(lo), Some(hi)) = (self.ctx.as_f64(a[1]), self.ctx.as_f64(a[2]))
+            && lo >= hi
+        {
+            let why = if lo == hi {
+                format!(
+                    "its bounds are equal, so it is the constant {hi}; write the constant, or distinct bounds"
+                )
+            } else {
+                format!(
+                    "its lower bound {lo} is above its upper bound {hi}, so it is the constant {hi} whatever its argument; swap the bounds"
+                )
+            };
+            self.cx
+                .error_spanned_by(call, format!("`clamp(x, lo, hi)` needs lo < hi: {why}"));
+            return None;
+        }
+        let result = self.apply(name, a);
+        if self.ctx.free_symbols(result).is_empty() {
+            let value = self.ctx.eval(result, &|_| f64::NAN);
+            if !value.is_finite() {
+                self.cx.error_spanned_by(
+                    call,
+                    format!(
+                        "`{name}` of these constants is {value}, not a finite number: an argument lies outside the function's domain (`sqrt` needs x >= 0, `ln` x > 0, `asin` and `acos` -1 <= x <= 1)"
+                    ),
+                );
+                return None;
+            }
+        }
+        Some(result)
     }
 
     /// `x.sin()`, `x.powi(2)`, `y.atan2(x)`: Rust method spelling of the same functions.
@@ -70,7 +109,7 @@ impl Lowerer<'_> {
         for r in rest {
             all.push(r?);
         }
-        Some(self.apply(&name, &all))
+        self.checked_apply(&name, &all, m)
     }
 
     fn apply(&mut self, name: &str, a: &[Sym]) -> Sym {
