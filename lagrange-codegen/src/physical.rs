@@ -7,6 +7,12 @@
 //! literal; values computed from parameters are recorded as
 //! [`PhysicalCheck`]s for the generated `check_parameters`, which applies the
 //! same rules (`lagrange_runtime::physical`) before a run.
+//!
+//! A Rayleigh dissipation function with literal coefficients must be positive
+//! semidefinite in the velocities (a negative damping coefficient feeds energy
+//! in); one whose coefficients are parameters or depend on the state (a van
+//! der Pol term) is left alone, so a deliberately self-exciting model stays
+//! possible.
 
 use lagrange_symbolic::Expr as Sym;
 use syn::Expr;
@@ -168,4 +174,69 @@ fn second_moments_psd(v: &[f64]) -> bool {
             .iter()
             .all(|&(i, j)| minor(i, j) >= -tol * h.abs())
         && det >= -tol * h * h
+}
+
+/// D(q, q̇) with a constant numeric Hessian in the velocities (literal damping
+/// coefficients) must be positive semidefinite: the error at the dissipation
+/// names the first velocity where a pivot of ∂²D/∂q̇² is negative.
+pub fn dissipation(lw: &mut Lowerer, syntax: &Expr, d: Sym, coordinates: &[syn::Ident]) {
+    let qd = lw.ctx.velocities();
+    let mut h = vec![vec![0.0; qd.len()]; qd.len()];
+    for (i, &vi) in qd.iter().enumerate() {
+        let di = lw.ctx.diff(d, vi);
+        for (j, &vj) in qd.iter().enumerate() {
+            let dij = lw.ctx.diff(di, vj);
+            let dij = lw.ctx.simplify(dij);
+            match value(lw, dij) {
+                Some(v) => h[i][j] = v,
+                None => return,
+            }
+        }
+    }
+    let Some(k) = negative_pivot(h) else {
+        return;
+    };
+    let q = coordinates.get(k).map(ToString::to_string).unwrap_or_default();
+    lw.cx.error_spanned_by(
+        syntax,
+        format!(
+            "a Rayleigh dissipation function is >= 0 for all velocities, but this one's \
+             ∂²D/∂q̇² is not positive semidefinite (a negative pivot at `dot({q})`): its \
+             damping feeds energy in instead of taking it out; write damping as \
+             `c * pow(dot({q}), 2) / 2` with c >= 0, or, if a self-exciting term is intended, \
+             make its coefficient a parameter"
+        ),
+    );
+}
+
+/// The index of the first negative pivot of a symmetric matrix in Cholesky
+/// with diagonal pivoting (largest remaining diagonal first), or `None` when
+/// it is positive semidefinite to round-off.
+fn negative_pivot(mut a: Vec<Vec<f64>>) -> Option<usize> {
+    let n = a.len();
+    let scale = (0..n).map(|i| a[i][i].abs()).fold(0.0, f64::max);
+    let tol = ROUND_OFF * scale.max(f64::MIN_POSITIVE);
+    let mut left: Vec<usize> = (0..n).collect();
+    while !left.is_empty() {
+        let (at, &p) = left
+            .iter()
+            .enumerate()
+            .max_by(|x, y| a[*x.1][*x.1].total_cmp(&a[*y.1][*y.1]))?;
+        let pivot = a[p][p];
+        if pivot <= tol {
+            // The rest must vanish: a negative diagonal, or an off-diagonal
+            // entry beside a zero diagonal, makes the matrix indefinite.
+            let bad = left.iter().find(|&&i| {
+                a[i][i] < -tol || left.iter().any(|&j| j != i && a[i][j].abs() > tol)
+            });
+            return bad.copied();
+        }
+        left.remove(at);
+        for &i in &left {
+            for &j in &left {
+                a[i][j] -= a[i][p] * a[p][j] / pivot;
+            }
+        }
+    }
+    None
 }

@@ -101,10 +101,11 @@ fn applied(lw: &mut Lowerer, system: &System) -> Applied {
         .potential
         .as_ref()
         .and_then(|v| lw.expr(v, Mode::Configuration));
-    let dissipation = system
-        .dissipation
-        .as_ref()
-        .and_then(|d| lw.expr(d, Mode::State));
+    let dissipation = system.dissipation.as_ref().and_then(|d| {
+        let value = lw.expr(d, Mode::State)?;
+        physical::dissipation(lw, d, value, &system.coordinates);
+        Some(value)
+    });
     let mut forces = Vec::new();
     for f in &system.forces {
         let at = lw.frame_of(&f.point).map(|i| lw.frames[i].position.clone());
