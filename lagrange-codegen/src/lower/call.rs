@@ -67,13 +67,24 @@ impl Lowerer<'_> {
             return None;
         }
         let result = self.apply(name, a);
+        self.finite_constant(result, call, &format!("`{name}`"))
+    }
+
+    /// `result`, unless it is a constant that is not a finite number (a
+    /// function of constants outside its domain): then an error at `at`.
+    pub(super) fn finite_constant(
+        &mut self,
+        result: Sym,
+        at: &dyn ToTokens,
+        what: &str,
+    ) -> Option<Sym> {
         if self.ctx.free_symbols(result).is_empty() {
             let value = self.ctx.eval(result, &|_| f64::NAN);
             if !value.is_finite() {
                 self.cx.error_spanned_by(
-                    call,
+                    at,
                     format!(
-                        "`{name}` of these constants is {value}, not a finite number: an argument lies outside the function's domain (`sqrt` needs x >= 0, `ln` x > 0, `asin` and `acos` -1 <= x <= 1)"
+                        "{what} of these constants is {value}, not a finite number: an argument lies outside the function's domain (`sqrt` needs x >= 0, `ln` x > 0, `asin` and `acos` -1 <= x <= 1, a power of 0 a positive exponent)"
                     ),
                 );
                 return None;

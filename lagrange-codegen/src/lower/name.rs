@@ -63,7 +63,7 @@ impl Lowerer<'_> {
             Some(Binding::Failed) => None,
             None => {
                 let msg = format!(
-                    "unknown symbol `{key}`: not a coordinate, a parameter field, a definition, or `t`"
+                    "unknown symbol `{key}`: not a coordinate, a parameter field, an input, a definition, a point or body, or `t`"
                 );
                 self.cx.error_at(id.span(), msg);
                 None

@@ -6,7 +6,7 @@ use lagrange::Lagrangian;
 #[lagrange(
     coordinates(x),
     point(cart, mass = m, at = [x, 0]),
-    potential = k * sqrt(-2) * pow(x, 2) + ln(0) * x,
+    potential = k * sqrt(-2) * pow(x, 2) + ln(0) * x + (0^(-1)) * x,
 )]
 struct Cart {
     m: f64,
