@@ -196,7 +196,10 @@ pub fn dissipation(lw: &mut Lowerer, syntax: &Expr, d: Sym, coordinates: &[syn::
     let Some(k) = negative_pivot(h) else {
         return;
     };
-    let q = coordinates.get(k).map(ToString::to_string).unwrap_or_default();
+    let q = coordinates
+        .get(k)
+        .map(ToString::to_string)
+        .unwrap_or_default();
     lw.cx.error_spanned_by(
         syntax,
         format!(
@@ -226,9 +229,9 @@ fn negative_pivot(mut a: Vec<Vec<f64>>) -> Option<usize> {
         if pivot <= tol {
             // The rest must vanish: a negative diagonal, or an off-diagonal
             // entry beside a zero diagonal, makes the matrix indefinite.
-            let bad = left.iter().find(|&&i| {
-                a[i][i] < -tol || left.iter().any(|&j| j != i && a[i][j].abs() > tol)
-            });
+            let bad = left
+                .iter()
+                .find(|&&i| a[i][i] < -tol || left.iter().any(|&j| j != i && a[i][j].abs() > tol));
             return bad.copied();
         }
         left.remove(at);
