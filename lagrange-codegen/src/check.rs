@@ -204,6 +204,41 @@ pub fn inputs_move(cx: &Ctxt, system: &System, moves: &[bool]) {
     }
 }
 
+/// A holonomic constraint that depends on no coordinate constrains nothing
+/// (its row of G is zero, and a run would stop at once with redundant
+/// constraints); a nonholonomic one without velocities is a condition on the
+/// configuration; a speed without velocities is no speed (its row of the
+/// reduced form is zero). `reads` says, per holonomic constraint,
+/// nonholonomic constraint and user speed, whether it reads the coordinates
+/// (resp. the velocities).
+pub fn constraints_read(cx: &Ctxt, system: &System, reads: [&[bool]; 3]) {
+    let what = [
+        (
+            system.holonomic.iter().map(|c| &c.name).collect::<Vec<_>>(),
+            "holonomic constraint",
+            "the coordinates: it constrains nothing (its row of G would be zero); write it with the coordinates or points' coordinates (`P.x`)",
+        ),
+        (
+            system.nonholonomic.iter().map(|c| &c.name).collect(),
+            "nonholonomic constraint",
+            "the velocities: it is a condition on the configuration; write it as `holonomic(...)`, or with the velocities (`dot(q)`, `dot(P.x)`)",
+        ),
+        (
+            system.speeds.iter().map(|u| &u.name).collect(),
+            "speed",
+            "the velocities: it is no speed (its row of the reduced form would be zero); write it with `dot(q)`",
+        ),
+    ];
+    for ((items, kind, fix), reads) in what.into_iter().zip(reads) {
+        for (name, _) in items.iter().zip(reads).filter(|(_, r)| !**r) {
+            cx.error_at(
+                name.span(),
+                format!("{kind} `{name}` does not depend on {fix}"),
+            );
+        }
+    }
+}
+
 fn check_has_coordinates(cx: &Ctxt, system: &System) {
     if system.coordinates.is_empty() {
         cx.error_at(

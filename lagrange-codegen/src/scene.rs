@@ -49,6 +49,24 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     // An input that a failed expression would have read is not reported unread.
     if !cx.has_errors() {
         check::inputs_read(cx, system, &inputs_read(&lw, &applied));
+        let reads = |m: &Vec<ConstraintModel>, e: &[Sym]| -> Vec<bool> {
+            m.iter()
+                .map(|c| e.iter().any(|&x| lw.ctx.depends_on(c.value, x)))
+                .collect()
+        };
+        let (q, qd) = (lw.ctx.coordinates(), lw.ctx.velocities());
+        let user_speeds = speeds.iter().flatten().flatten();
+        let speeds_read: Vec<bool> =
+            (user_speeds.map(|(_, u)| qd.iter().any(|&v| lw.ctx.depends_on(*u, v)))).collect();
+        check::constraints_read(
+            cx,
+            system,
+            [
+                &reads(&holonomic, &q),
+                &reads(&nonholonomic, &qd),
+                &speeds_read,
+            ],
+        );
     }
     if cx.has_errors() {
         return None;
