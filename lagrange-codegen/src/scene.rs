@@ -49,24 +49,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     // An input that a failed expression would have read is not reported unread.
     if !cx.has_errors() {
         check::inputs_read(cx, system, &inputs_read(&lw, &applied));
-        let reads = |m: &Vec<ConstraintModel>, e: &[Sym]| -> Vec<bool> {
-            m.iter()
-                .map(|c| e.iter().any(|&x| lw.ctx.depends_on(c.value, x)))
-                .collect()
-        };
-        let (q, qd) = (lw.ctx.coordinates(), lw.ctx.velocities());
-        let user_speeds = speeds.iter().flatten().flatten();
-        let speeds_read: Vec<bool> =
-            (user_speeds.map(|(_, u)| qd.iter().any(|&v| lw.ctx.depends_on(*u, v)))).collect();
-        check::constraints_read(
-            cx,
-            system,
-            [
-                &reads(&holonomic, &q),
-                &reads(&nonholonomic, &qd),
-                &speeds_read,
-            ],
-        );
+        constraints_read(&lw, system, [&holonomic, &nonholonomic], speeds.as_ref());
     }
     if cx.has_errors() {
         return None;
@@ -157,6 +140,23 @@ fn inputs_read(lw: &Lowerer, a: &Applied) -> Vec<bool> {
         .iter()
         .map(|&u| all.iter().any(|&e| lw.ctx.depends_on(e, u)))
         .collect()
+}
+
+/// Whether each constraint reads the coordinates (holonomic) or the velocities
+/// (nonholonomic, and each user speed), for `check::constraints_read`.
+fn constraints_read(
+    lw: &Lowerer,
+    system: &System,
+    [holonomic, nonholonomic]: [&[ConstraintModel]; 2],
+    speeds: Option<&Option<Vec<(String, Sym)>>>,
+) {
+    let (q, qd) = (lw.ctx.coordinates(), lw.ctx.velocities());
+    let reads = |e: Sym, on: &[Sym]| on.iter().any(|&x| lw.ctx.depends_on(e, x));
+    let holonomic: Vec<bool> = holonomic.iter().map(|c| reads(c.value, &q)).collect();
+    let nonholonomic: Vec<bool> = nonholonomic.iter().map(|c| reads(c.value, &qd)).collect();
+    let user_speeds = speeds.into_iter().flatten().flatten();
+    let speeds: Vec<bool> = user_speeds.map(|(_, u)| reads(*u, &qd)).collect();
+    check::constraints_read(lw.cx, system, [&holonomic, &nonholonomic, &speeds]);
 }
 
 /// The holonomic and the nonholonomic constraints, the latter proved linear in
