@@ -166,8 +166,10 @@ fn constraints(lw: &mut Lowerer, system: &System) -> (Vec<ConstraintModel>, Vec<
         .holonomic
         .iter()
         .filter_map(|c| {
-            lw.without_inputs(NoInputs::HOLONOMIC, |lw| {
-                constraint(lw, &c.name, &c.value, Mode::Configuration)
+            lw.lowering_as(format!("holonomic constraint `{}`", c.name), |lw| {
+                lw.without_inputs(NoInputs::HOLONOMIC, |lw| {
+                    constraint(lw, &c.name, &c.value, Mode::Configuration)
+                })
             })
         })
         .collect();
@@ -232,24 +234,28 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
         return;
     };
     let whose = |key: &str| format!("the {key} of body `{}`", b.name);
-    let mass = lw.constant_as(whose("mass"), |lw| {
+    let mass = lw.lowering_as(whose("mass"), |lw| {
         lw.without_inputs(NoInputs::MASS, |lw| lw.expr(mass, Mode::Constant))
     });
-    let inertia = lw.constant_as(whose("inertia"), |lw| {
+    let inertia = lw.lowering_as(whose("inertia"), |lw| {
         lw.without_inputs(NoInputs::INERTIA, |lw| inertia_matrix(lw, inertia))
     });
-    let reference = lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration));
+    let reference = lw.lowering_as(whose("position `at`"), |lw| {
+        lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration))
+    });
     let com = b.com.as_ref().map(|c| {
-        lw.constant_as(whose("centre of mass `com`"), |lw| {
+        lw.lowering_as(whose("centre of mass `com`"), |lw| {
             lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(c, Mode::Constant))
         })
     });
     let about = b.about.as_ref().map(|a| {
-        lw.constant_as(whose("inertia's reference point `about`"), |lw| {
+        lw.lowering_as(whose("inertia's reference point `about`"), |lw| {
             lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(a, Mode::Constant))
         })
     });
-    let rotation = lw.without_inputs(NoInputs::ROTATION, |lw| lw.rotation(rotation));
+    let rotation = lw.lowering_as(whose("rotation"), |lw| {
+        lw.without_inputs(NoInputs::ROTATION, |lw| lw.rotation(rotation))
+    });
     let (Some(mass), Some(inertia), Some(reference), Some(rotation)) =
         (mass, inertia, reference, rotation)
     else {
@@ -392,9 +398,11 @@ fn offset_in_body(lw: &mut Lowerer, r: &Mat3, origin: &[Sym], local: &[Sym]) -> 
 /// a mass.
 fn lower_point(lw: &mut Lowerer, p: &crate::ast::Point, items: &mut Items) {
     let Some(at) = &p.at else { return };
-    let local = lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration));
+    let local = lw.lowering_as(format!("the position of point `{}`", p.name), |lw| {
+        lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration))
+    });
     let mass = p.mass.as_ref().map(|m| {
-        lw.constant_as(format!("the mass of point `{}`", p.name), |lw| {
+        lw.lowering_as(format!("the mass of point `{}`", p.name), |lw| {
             lw.without_inputs(NoInputs::MASS, |lw| lw.expr(m, Mode::Constant))
         })
     });
