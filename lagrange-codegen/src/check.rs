@@ -265,7 +265,11 @@ fn check_point_keys(cx: &Ctxt, system: &System) {
         {
             cx.error_at(
                 body.span(),
-                format!("point `{}` is on unknown body `{body}`; bodies are declared with `body(name, ...)`", p.name),
+                format!(
+                    "point `{}` is on {}; bodies are declared with `body(name, ...)`",
+                    p.name,
+                    what_is(system, body, "body")
+                ),
             );
         }
         if p.at.is_none() {
@@ -340,6 +344,30 @@ fn check_unique_names(cx: &Ctxt, system: &System) {
     }
 }
 
+/// "unknown `wanted` `name`", or "`name`, which is a parameter, not a
+/// `wanted`" when the name is declared as something else.
+fn what_is(system: &System, name: &Ident, wanted: &str) -> String {
+    let declared: [(&str, bool); 7] = [
+        ("coordinate", system.coordinates.contains(name)),
+        (
+            "parameter",
+            system.parameters.iter().any(|p| p.name == *name),
+        ),
+        ("input", system.inputs.contains(name)),
+        (
+            "definition",
+            system.definitions.iter().any(|d| d.name == *name),
+        ),
+        ("point", system.points.iter().any(|p| p.name == *name)),
+        ("body", system.bodies.iter().any(|b| b.name == *name)),
+        ("speed", system.speeds.iter().any(|u| u.name == *name)),
+    ];
+    match declared.iter().find(|(_, is)| *is) {
+        Some((kind, _)) => format!("`{name}`, which is a {kind}, not a {wanted}"),
+        None => format!("unknown {wanted} `{name}`"),
+    }
+}
+
 /// Number of components of a `[..]` vector expression, or an error at it.
 pub fn vector_len(cx: &Ctxt, expr: &Expr, what: &str) -> Option<usize> {
     match expr {
@@ -403,13 +431,17 @@ fn check_force_targets(cx: &Ctxt, system: &System) {
         let known = system.points.iter().any(|p| p.name == f.point)
             || system.bodies.iter().any(|b| b.name == f.point);
         if !known {
-            cx.error_at(
-                f.point.span(),
+            let hint = if system.coordinates.contains(&f.point) {
                 format!(
-                    "force on unknown point `{}`; points are declared with `point(name, ...)` and bodies with `body(name, ...)`",
+                    "a force on a coordinate is `generalized_force({} = ...)`",
                     f.point
-                ),
-            );
+                )
+            } else {
+                "points are declared with `point(name, ...)` and bodies with `body(name, ...)`"
+                    .to_string()
+            };
+            let what = what_is(system, &f.point, "point");
+            cx.error_at(f.point.span(), format!("force on {what}; {hint}"));
         }
     }
     for g in &system.generalized_forces {
@@ -417,8 +449,8 @@ fn check_force_targets(cx: &Ctxt, system: &System) {
             cx.error_at(
                 g.coordinate.span(),
                 format!(
-                    "generalized force for unknown coordinate `{}`",
-                    g.coordinate
+                    "generalized force for {}; it names one of `coordinates(...)`",
+                    what_is(system, &g.coordinate, "coordinate")
                 ),
             );
         }
