@@ -243,3 +243,30 @@ fn negative_pivot(mut a: Vec<Vec<f64>>) -> Option<usize> {
     }
     None
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pivots_find_indefinite_damping() {
+        assert_eq!(negative_pivot(vec![vec![1.0, 0.0], vec![0.0, 0.0]]), None);
+        // Singular but semidefinite: one damper on x − y.
+        assert_eq!(negative_pivot(vec![vec![1.0, -1.0], vec![-1.0, 1.0]]), None);
+        assert_eq!(negative_pivot(vec![vec![-0.3]]), Some(0));
+        // A zero diagonal beside a coupling, and a coupling too strong.
+        assert!(negative_pivot(vec![vec![0.0, 1.0], vec![1.0, 0.0]]).is_some());
+        assert!(negative_pivot(vec![vec![2.0, 3.0], vec![3.0, 2.0]]).is_some());
+    }
+
+    #[test]
+    fn second_moments() {
+        // A slender rod along (1, −1, 0)/√2: I = E − u uᵀ, on the boundary.
+        assert!(second_moments_psd(&[0.5, 0.5, 1.0, 0.5, 0.0, 0.0]));
+        assert!(second_moments_psd(&[1.0, 1.0, 2.0, 0.0, 0.0, 0.0]));
+        assert!(!second_moments_psd(&[1.0, 1.0, 3.0, 0.0, 0.0, 0.0]));
+        assert!(!second_moments_psd(&[1.0, 1.0, 1.0, 2.0, 0.0, 0.0]));
+        // Positive definite, yet no body: principal moments 1, 1, 2.5.
+        assert!(!second_moments_psd(&[1.0, 1.0, 2.5, 0.0, 0.0, 0.0]));
+    }
+}
