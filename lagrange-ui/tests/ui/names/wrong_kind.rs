@@ -9,6 +9,7 @@ use lagrange::Lagrangian;
     point(rim, on = tip, at = [1, 0, 0]),
     force(x, [1, 0, 0]),
     generalized_force(m = 1),
+    potential = m * pow(x.y, 2),
 )]
 struct Wheel {
     m: f64,
