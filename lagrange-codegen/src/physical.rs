@@ -87,17 +87,25 @@ pub fn inertia(lw: &Lowerer, b: &Body, i: &Mat3, shape: Shape) -> Option<Physica
     };
     let moved = shape.moved;
     for k in 0..3 {
-        if v[k] < 0.0 && !moved {
+        if v[k] < 0.0 {
             let what = if principal {
                 "principal moment"
             } else {
                 "moment"
             };
+            let (at, moved_note): (&dyn quote::ToTokens, &str) = if moved {
+                (
+                    syntax,
+                    " once moved from `about` to the centre of mass (I_com = I_about − m(|d|²E − d dᵀ))",
+                )
+            } else {
+                (&list.elems[k], "")
+            };
             lw.cx.error_spanned_by(
-                &list.elems[k],
+                at,
                 format!(
-                    "body `{name}`: {what} {} = {} must be non-negative (a moment of inertia is \
-                     ∫ r² dm about an axis; zero is allowed, as for a slender rod's axis)",
+                    "body `{name}`: {what} {} = {}{moved_note} must be non-negative (a moment of \
+                     inertia is ∫ r² dm about an axis; zero is allowed, as for a slender rod's axis)",
                     names[k], v[k]
                 ),
             );
