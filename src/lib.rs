@@ -208,10 +208,15 @@
 //! operation must be parenthesised — the macro rejects the ambiguous form), and the
 //! functions `sin cos tan asin acos atan atan2 sinh cosh tanh exp ln sqrt abs`
 //! (also in method form: `x.sin()`, `x.powi(2)`). Positions, gravity and the
-//! potential cannot depend on velocities.
+//! potential cannot depend on velocities. A function of constants outside its
+//! domain (`sqrt(-2)`, `ln(0)`, `asin(2)`) is a compile error, not a NaN in the
+//! equations.
 //!
 //! Piecewise forms: `sign(x)` (−1, 0 at 0, 1), `min(a, b)`, `max(a, b)` (both give
-//! `a` at a tie), `clamp(x, lo, hi)` = min(max(x, lo), hi), and Rust's own
+//! `a` at a tie), `clamp(x, lo, hi)` = min(max(x, lo), hi) (literal bounds
+//! must have lo < hi, else a compile error: the result would be a constant;
+//! bounds computed from parameters are not checked, and with lo > hi the
+//! result is hi whatever x, where `f64::clamp` would panic), and Rust's own
 //! conditional, `if a > b { x } else { y }` with `>`, `<`, `>=`, `<=` joined by
 //! `&&`, `||`, `!`, and `else if` chains (`==` is refused: floats are not
 //! compared exactly). They are
@@ -272,9 +277,9 @@ pub struct ReadmeDoctests;
 /// Paths the generated code uses; not a public API.
 #[doc(hidden)]
 pub mod __private {
-    pub use lagrange_runtime::func;
     pub use lagrange_runtime::{
         Constrained, Driven, FormVisitor, Lagrangian, Real, Reduced, Route,
     };
+    pub use lagrange_runtime::{Error, func, physical};
     pub use nalgebra::{SMatrix, SVector};
 }

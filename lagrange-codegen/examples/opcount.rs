@@ -124,7 +124,40 @@ fn main() {
         );
     }
     spatial();
+    robots();
     catalog();
+}
+
+/// The robots in `robots/`, read from their URDF files: the operation count
+/// of M and Q − h by each route, and how long each derivation took.
+fn robots() {
+    println!(
+        "\n| robot (URDF) | dof | recursive: derive (ms), ops | generic: derive (ms), ops | route taken |"
+    );
+    println!("|---|---|---|---|---|");
+    for file in ["ur5.urdf", "panda.urdf"] {
+        let src = format!(
+            "#[lagrange(urdf = \"{}/../robots/{file}\", gravity = [0, 0, -9.81])] struct Robot {{}}",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let input: syn::DeriveInput = syn::parse_str(&src).expect("source parses");
+        let by = |route| {
+            let start = Instant::now();
+            let model = lagrange_codegen::model_by(&input, route).expect("derivation succeeds");
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let mut outputs: Vec<Expr> = model.mass.iter().flatten().copied().collect();
+            outputs.extend(&model.rhs);
+            (ms, ops(&model, &outputs), model)
+        };
+        let (rm, rops, model) = by(Route::Recursive);
+        let (gm, gops, _) = by(Route::Generic);
+        let auto = lagrange_codegen::model_by(&input, Route::Auto).expect("derivation succeeds");
+        println!(
+            "| {file} | {} | {rm:.0}, {rops} | {gm:.0}, {gops} | {:?} |",
+            model.dof(),
+            auto.bias_route
+        );
+    }
 }
 
 /// The spatial chain (issue 10's robot-arm shape): derivation time, operation

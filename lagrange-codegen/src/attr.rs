@@ -402,13 +402,40 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
             }
         }
     }
-    if !seen_attr {
+    let misplaced = misplaced_attributes(cx, input, fields);
+    if !seen_attr && !misplaced {
         cx.error_at(
             input.ident.span(),
             "missing #[lagrange(coordinates(...), point(...), ...)] describing the system",
         );
     }
     Some(system)
+}
+
+/// `#[lagrange(...)]` on a field, where the derive (which registers it as a
+/// helper attribute of the whole item) accepts it silently: an error at the
+/// attribute. Returns whether there was one.
+fn misplaced_attributes(cx: &Ctxt, input: &DeriveInput, fields: Option<&syn::FieldsNamed>) -> bool {
+    let mut found = false;
+    for field in fields.into_iter().flat_map(|f| f.named.iter()) {
+        for attr in field.attrs.iter().filter(|a| a.path().is_ident("lagrange")) {
+            found = true;
+            let name = field
+                .ident
+                .as_ref()
+                .map(ToString::to_string)
+                .unwrap_or_default();
+            cx.error_spanned_by(
+                attr,
+                format!(
+                    "#[lagrange(...)] belongs on the struct, not on field `{name}`: move it above \
+                     `struct {}` (the fields are the parameters and take no attribute)",
+                    input.ident
+                ),
+            );
+        }
+    }
+    found
 }
 
 /// Splits `a, b(c, d), e` into `a`, `b(c, d)`, `e`: commas inside groups are
@@ -466,9 +493,8 @@ fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr) {
         Ok(urdf) => urdf,
         Err(message) => return cx.error_at(path.span(), message),
     };
-    for text in &urdf.items {
-        let tokens: proc_macro2::TokenStream = text.parse().expect("generated items are tokens");
-        match syn::parse2::<Item>(respan(tokens, path.span())) {
+    for (text, tokens) in urdf.tokens_at(path.span()) {
+        match syn::parse2::<Item>(tokens) {
             Ok(item) => add_item(cx, system, item),
             Err(e) => cx.error_at(
                 path.span(),
@@ -481,25 +507,6 @@ fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr) {
         robot: urdf.name,
         limits: urdf.limits,
     });
-}
-
-/// `tokens` with every span set to `span`.
-fn respan(tokens: proc_macro2::TokenStream, span: Span) -> proc_macro2::TokenStream {
-    use proc_macro2::{Group, TokenTree};
-    tokens
-        .into_iter()
-        .map(|tt| match tt {
-            TokenTree::Group(g) => {
-                let mut out = Group::new(g.delimiter(), respan(g.stream(), span));
-                out.set_span(span);
-                TokenTree::Group(out)
-            }
-            mut other => {
-                other.set_span(span);
-                other
-            }
-        })
-        .collect()
 }
 
 fn set_once(cx: &Ctxt, slot: &mut Option<Expr>, key: Ident, value: Expr) {

@@ -167,6 +167,78 @@ pub fn mass_rows(cx: &Ctxt, system: &System, zero_rows: &[bool]) {
     }
 }
 
+/// An input that no force, potential or dissipation reads would be ignored by
+/// every controller driving it. `read[j]` says whether the lowered applied
+/// forces (forces, generalized forces, V, D) depend on input j.
+pub fn inputs_read(cx: &Ctxt, system: &System, read: &[bool]) {
+    let q = system
+        .coordinates
+        .first()
+        .map_or("q".to_string(), ToString::to_string);
+    for (name, _) in system.inputs.iter().zip(read).filter(|(_, r)| !**r) {
+        cx.error_at(
+            name.span(),
+            format!(
+                "input `{name}` is read by no force, potential or dissipation: a controller \
+                 driving it would move nothing; remove it from `inputs(...)` or use it in a \
+                 force, e.g. `generalized_force({q} = {name})`"
+            ),
+        );
+    }
+}
+
+/// An input that the applied forces read but that drops out of the generalized
+/// forces (a potential term without the coordinates, `u - u`): `moves[j]` says
+/// whether ΔQ depends on input j.
+pub fn inputs_move(cx: &Ctxt, system: &System, moves: &[bool]) {
+    for (name, _) in system.inputs.iter().zip(moves).filter(|(_, m)| !**m) {
+        cx.error_at(
+            name.span(),
+            format!(
+                "input `{name}` drops out of every generalized force (it appears only in terms \
+                 the equations do not feel, such as a potential term without the coordinates), \
+                 so a controller driving it would move nothing; use it in a force, or in a \
+                 potential or dissipation term together with the coordinates or velocities"
+            ),
+        );
+    }
+}
+
+/// A holonomic constraint that depends on no coordinate constrains nothing
+/// (its row of G is zero, and a run would stop at once with redundant
+/// constraints); a nonholonomic one without velocities is a condition on the
+/// configuration; a speed without velocities is no speed (its row of the
+/// reduced form is zero). `reads` says, per holonomic constraint,
+/// nonholonomic constraint and user speed, whether it reads the coordinates
+/// (resp. the velocities).
+pub fn constraints_read(cx: &Ctxt, system: &System, reads: [&[bool]; 3]) {
+    let what = [
+        (
+            system.holonomic.iter().map(|c| &c.name).collect::<Vec<_>>(),
+            "holonomic constraint",
+            "the coordinates: it constrains nothing (its row of G would be zero); write it with the coordinates or points' coordinates (`P.x`)",
+        ),
+        (
+            system.nonholonomic.iter().map(|c| &c.name).collect(),
+            "nonholonomic constraint",
+            "the velocities: it is a condition on the configuration; write it as `holonomic(...)`, or with the velocities (`dot(q)`, `dot(P.x)`)",
+        ),
+        (
+            system.speeds.iter().map(|u| &u.name).collect(),
+            "speed",
+            "the velocities: it is no speed (its row of the reduced form would be zero); write it with `dot(q)`",
+        ),
+    ];
+    for ((items, kind, fix), reads) in what.into_iter().zip(reads) {
+        for (name, _) in items.iter().zip(reads).filter(|(_, r)| !**r) {
+            cx.error_at(
+                name.span(),
+                format!("{kind} `{name}` does not depend on {fix}"),
+            );
+        }
+    }
+}
+
 fn check_has_coordinates(cx: &Ctxt, system: &System) {
     if system.coordinates.is_empty() {
         cx.error_at(
@@ -193,7 +265,11 @@ fn check_point_keys(cx: &Ctxt, system: &System) {
         {
             cx.error_at(
                 body.span(),
-                format!("point `{}` is on unknown body `{body}`; bodies are declared with `body(name, ...)`", p.name),
+                format!(
+                    "point `{}` is on {}; bodies are declared with `body(name, ...)`",
+                    p.name,
+                    what_is(system, body, "body")
+                ),
             );
         }
         if p.at.is_none() {
@@ -268,6 +344,30 @@ fn check_unique_names(cx: &Ctxt, system: &System) {
     }
 }
 
+/// "unknown `wanted` `name`", or "`name`, which is a parameter, not a
+/// `wanted`" when the name is declared as something else.
+fn what_is(system: &System, name: &Ident, wanted: &str) -> String {
+    let declared: [(&str, bool); 7] = [
+        ("coordinate", system.coordinates.contains(name)),
+        (
+            "parameter",
+            system.parameters.iter().any(|p| p.name == *name),
+        ),
+        ("input", system.inputs.contains(name)),
+        (
+            "definition",
+            system.definitions.iter().any(|d| d.name == *name),
+        ),
+        ("point", system.points.iter().any(|p| p.name == *name)),
+        ("body", system.bodies.iter().any(|b| b.name == *name)),
+        ("speed", system.speeds.iter().any(|u| u.name == *name)),
+    ];
+    match declared.iter().find(|(_, is)| *is) {
+        Some((kind, _)) => format!("`{name}`, which is a {kind}, not a {wanted}"),
+        None => format!("unknown {wanted} `{name}`"),
+    }
+}
+
 /// Number of components of a `[..]` vector expression, or an error at it.
 pub fn vector_len(cx: &Ctxt, expr: &Expr, what: &str) -> Option<usize> {
     match expr {
@@ -331,13 +431,17 @@ fn check_force_targets(cx: &Ctxt, system: &System) {
         let known = system.points.iter().any(|p| p.name == f.point)
             || system.bodies.iter().any(|b| b.name == f.point);
         if !known {
-            cx.error_at(
-                f.point.span(),
+            let hint = if system.coordinates.contains(&f.point) {
                 format!(
-                    "force on unknown point `{}`; points are declared with `point(name, ...)` and bodies with `body(name, ...)`",
+                    "a force on a coordinate is `generalized_force({} = ...)`",
                     f.point
-                ),
-            );
+                )
+            } else {
+                "points are declared with `point(name, ...)` and bodies with `body(name, ...)`"
+                    .to_string()
+            };
+            let what = what_is(system, &f.point, "point");
+            cx.error_at(f.point.span(), format!("force on {what}; {hint}"));
         }
     }
     for g in &system.generalized_forces {
@@ -345,8 +449,8 @@ fn check_force_targets(cx: &Ctxt, system: &System) {
             cx.error_at(
                 g.coordinate.span(),
                 format!(
-                    "generalized force for unknown coordinate `{}`",
-                    g.coordinate
+                    "generalized force for {}; it names one of `coordinates(...)`",
+                    what_is(system, &g.coordinate, "coordinate")
                 ),
             );
         }

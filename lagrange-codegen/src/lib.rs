@@ -32,6 +32,7 @@ pub mod lowered;
 pub mod mat3;
 pub mod mechanics;
 pub mod order;
+pub mod physical;
 pub mod scene;
 pub mod tree;
 pub mod urdf;
@@ -130,6 +131,12 @@ fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Mod
                 .map(|row| row.iter().all(|&e| model.ctx.is_zero(e)))
                 .collect();
             check::mass_rows(cx, system, &zero_rows);
+            if let Some(inputs) = &model.inputs {
+                let moves: Vec<bool> = (inputs.symbols.iter())
+                    .map(|&u| inputs.forces.iter().any(|&f| model.ctx.depends_on(f, u)))
+                    .collect();
+                check::inputs_move(cx, system, &moves);
+            }
             (!cx.has_errors()).then_some(model)
         }
         Err(e @ mechanics::DeriveError::ArticulatedNeedsTree(_)) => {

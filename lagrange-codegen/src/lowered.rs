@@ -49,6 +49,24 @@ pub struct Lowered {
     pub multipliers: bool,
     /// Optional outputs asked for with `emit(...)`.
     pub extras: Vec<Extra>,
+    /// The masses and inertias computed from parameters, for the run-time check.
+    pub checks: Vec<PhysicalCheck>,
+}
+
+/// A mass or an inertia computed from the parameters, checked at run time by
+/// `Lagrangian::check_parameters` (one given by literals is checked at compile
+/// time, in `physical`). Each names its point or body.
+pub enum PhysicalCheck {
+    Mass(String, Sym),
+    /// Principal moments [A, B, C] of a body turning about all three axes.
+    Principal(String, [Sym; 3]),
+    /// [Ixx, Iyy, Izz, Ixy, Ixz, Iyz] about the centre of mass, of a body
+    /// turning about all three axes.
+    Tensor(String, [Sym; 6]),
+    /// The moments (named A, B, C or Ixx, Iyy, Izz) of a body that turns
+    /// about fewer axes, whose other moments the equations never read: only
+    /// their signs are checked.
+    Moments(String, [&'static str; 3], [Sym; 3]),
 }
 
 /// Where bodies and points sit, recorded while lowering.

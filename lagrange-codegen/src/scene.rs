@@ -10,9 +10,12 @@ use crate::check;
 use crate::ctxt::Ctxt;
 use crate::lower::rotation::Rotation;
 use crate::lower::{CartesianRef, Frame, Lowerer, Mode, NoInputs};
-use crate::lowered::{BodyFrame, ConstraintModel, Lowered, PointModel, Skeleton, SpinModel};
+use crate::lowered::{
+    BodyFrame, ConstraintModel, Lowered, PhysicalCheck, PointModel, Skeleton, SpinModel,
+};
 use crate::mat3::Mat3;
 use crate::order::Item;
+use crate::physical;
 
 /// Lowers the description, in the order each part may refer to the ones before.
 pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
@@ -43,6 +46,11 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     let speeds = formulations
         .contains(&Formulation::Reduced)
         .then(|| speeds(&mut lw, system));
+    // An input that a failed expression would have read is not reported unread.
+    if !cx.has_errors() {
+        check::inputs_read(cx, system, &inputs_read(&lw, &applied));
+        constraints_read(&lw, system, [&holonomic, &nonholonomic], speeds.as_ref());
+    }
     if cx.has_errors() {
         return None;
     }
@@ -51,6 +59,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         spins,
         rotations: _,
         skeleton,
+        checks,
     } = items;
     let names = |ids: &mut dyn Iterator<Item = &Ident>| ids.map(|c| c.to_string()).collect();
     Some(Lowered {
@@ -71,6 +80,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         speeds,
         multipliers: formulations.contains(&Formulation::Multipliers),
         extras: system.extras.iter().map(|(_, e)| *e).collect(),
+        checks,
     })
 }
 
@@ -92,10 +102,11 @@ fn applied(lw: &mut Lowerer, system: &System) -> Applied {
         .potential
         .as_ref()
         .and_then(|v| lw.expr(v, Mode::Configuration));
-    let dissipation = system
-        .dissipation
-        .as_ref()
-        .and_then(|d| lw.expr(d, Mode::State));
+    let dissipation = system.dissipation.as_ref().and_then(|d| {
+        let value = lw.expr(d, Mode::State)?;
+        physical::dissipation(lw, d, value, &system.coordinates);
+        Some(value)
+    });
     let mut forces = Vec::new();
     for f in &system.forces {
         let at = lw.frame_of(&f.point).map(|i| lw.frames[i].position.clone());
@@ -119,6 +130,35 @@ fn applied(lw: &mut Lowerer, system: &System) -> Applied {
     }
 }
 
+/// Per input, whether the applied forces read it.
+fn inputs_read(lw: &Lowerer, a: &Applied) -> Vec<bool> {
+    let mut all: Vec<Sym> = a.potential.into_iter().chain(a.dissipation).collect();
+    all.extend(a.forces.iter().flat_map(|(_, f)| f.iter().copied()));
+    all.extend(a.generalized_forces.iter().map(|(_, g)| *g));
+    let inputs = lw.ctx.inputs();
+    inputs
+        .iter()
+        .map(|&u| all.iter().any(|&e| lw.ctx.depends_on(e, u)))
+        .collect()
+}
+
+/// Whether each constraint reads the coordinates (holonomic) or the velocities
+/// (nonholonomic, and each user speed), for `check::constraints_read`.
+fn constraints_read(
+    lw: &Lowerer,
+    system: &System,
+    [holonomic, nonholonomic]: [&[ConstraintModel]; 2],
+    speeds: Option<&Option<Vec<(String, Sym)>>>,
+) {
+    let (q, qd) = (lw.ctx.coordinates(), lw.ctx.velocities());
+    let reads = |e: Sym, on: &[Sym]| on.iter().any(|&x| lw.ctx.depends_on(e, x));
+    let holonomic: Vec<bool> = holonomic.iter().map(|c| reads(c.value, &q)).collect();
+    let nonholonomic: Vec<bool> = nonholonomic.iter().map(|c| reads(c.value, &qd)).collect();
+    let user_speeds = speeds.into_iter().flatten().flatten();
+    let speeds: Vec<bool> = user_speeds.map(|(_, u)| reads(*u, &qd)).collect();
+    check::constraints_read(lw.cx, system, [&holonomic, &nonholonomic, &speeds]);
+}
+
 /// The holonomic and the nonholonomic constraints, the latter proved linear in
 /// the velocities.
 fn constraints(lw: &mut Lowerer, system: &System) -> (Vec<ConstraintModel>, Vec<ConstraintModel>) {
@@ -126,8 +166,10 @@ fn constraints(lw: &mut Lowerer, system: &System) -> (Vec<ConstraintModel>, Vec<
         .holonomic
         .iter()
         .filter_map(|c| {
-            lw.without_inputs(NoInputs::HOLONOMIC, |lw| {
-                constraint(lw, &c.name, &c.value, Mode::Configuration)
+            lw.lowering_as(format!("holonomic constraint `{}`", c.name), |lw| {
+                lw.without_inputs(NoInputs::HOLONOMIC, |lw| {
+                    constraint(lw, &c.name, &c.value, Mode::Configuration)
+                })
             })
         })
         .collect();
@@ -178,6 +220,8 @@ struct Items {
     rotations: Vec<(Ident, Mat3, Vec<Sym>)>,
     /// Where the masses sit relative to the bodies, for the recursive derivation.
     skeleton: Skeleton,
+    /// Masses and inertias computed from parameters, checked at run time.
+    checks: Vec<PhysicalCheck>,
 }
 
 /// A rigid body: its frame (for `B.x`, `B.omega_x` and points on it), its centre
@@ -189,18 +233,29 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
     else {
         return;
     };
-    let mass = lw.without_inputs(NoInputs::MASS, |lw| lw.expr(mass, Mode::Constant));
-    let inertia = lw.without_inputs(NoInputs::INERTIA, |lw| inertia_matrix(lw, inertia));
-    let reference = lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration));
-    let com = b
-        .com
-        .as_ref()
-        .map(|c| lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(c, Mode::Constant)));
-    let about = b
-        .about
-        .as_ref()
-        .map(|a| lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(a, Mode::Constant)));
-    let rotation = lw.without_inputs(NoInputs::ROTATION, |lw| lw.rotation(rotation));
+    let whose = |key: &str| format!("the {key} of body `{}`", b.name);
+    let mass = lw.lowering_as(whose("mass"), |lw| {
+        lw.without_inputs(NoInputs::MASS, |lw| lw.expr(mass, Mode::Constant))
+    });
+    let inertia = lw.lowering_as(whose("inertia"), |lw| {
+        lw.without_inputs(NoInputs::INERTIA, |lw| inertia_matrix(lw, inertia))
+    });
+    let reference = lw.lowering_as(whose("position `at`"), |lw| {
+        lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration))
+    });
+    let com = b.com.as_ref().map(|c| {
+        lw.lowering_as(whose("centre of mass `com`"), |lw| {
+            lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(c, Mode::Constant))
+        })
+    });
+    let about = b.about.as_ref().map(|a| {
+        lw.lowering_as(whose("inertia's reference point `about`"), |lw| {
+            lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(a, Mode::Constant))
+        })
+    });
+    let rotation = lw.lowering_as(whose("rotation"), |lw| {
+        lw.without_inputs(NoInputs::ROTATION, |lw| lw.rotation(rotation))
+    });
     let (Some(mass), Some(inertia), Some(reference), Some(rotation)) =
         (mass, inertia, reference, rotation)
     else {
@@ -222,6 +277,20 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
     if reference.len() != 3 {
         return;
     }
+    let what = format!("body `{}`", b.name);
+    let name = b.name.to_string();
+    let syntax = b.mass.as_ref().unwrap_or(at);
+    items
+        .checks
+        .extend(physical::mass(lw, &name, &what, syntax, mass));
+    let spatial = rotation.omega_body.iter().all(|&w| !lw.ctx.is_zero(w));
+    let shape = physical::Shape {
+        moved: b.about.is_some(),
+        spatial,
+    };
+    items
+        .checks
+        .extend(physical::inertia(lw, b, &inertia, shape));
     let centre = match &com {
         None => reference.clone(),
         Some(Some(offset)) if offset.len() == 3 => {
@@ -329,11 +398,14 @@ fn offset_in_body(lw: &mut Lowerer, r: &Mat3, origin: &[Sym], local: &[Sym]) -> 
 /// a mass.
 fn lower_point(lw: &mut Lowerer, p: &crate::ast::Point, items: &mut Items) {
     let Some(at) = &p.at else { return };
-    let local = lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration));
-    let mass = p
-        .mass
-        .as_ref()
-        .map(|m| lw.without_inputs(NoInputs::MASS, |lw| lw.expr(m, Mode::Constant)));
+    let local = lw.lowering_as(format!("the position of point `{}`", p.name), |lw| {
+        lw.without_inputs(NoInputs::POSITION, |lw| lw.vector(at, Mode::Configuration))
+    });
+    let mass = p.mass.as_ref().map(|m| {
+        lw.lowering_as(format!("the mass of point `{}`", p.name), |lw| {
+            lw.without_inputs(NoInputs::MASS, |lw| lw.expr(m, Mode::Constant))
+        })
+    });
     let (position, fixed_in) = match (&p.on, local) {
         (_, None) => return,
         (None, Some(x)) => (x, None),
@@ -363,7 +435,12 @@ fn lower_point(lw: &mut Lowerer, p: &crate::ast::Point, items: &mut Items) {
             axes: None,
         },
     );
-    if let Some(Some(mass)) = mass {
+    if let (Some(Some(mass)), Some(syntax)) = (mass, &p.mass) {
+        let what = format!("point `{}`", p.name);
+        let name = p.name.to_string();
+        items
+            .checks
+            .extend(physical::mass(lw, &name, &what, syntax, mass));
         items.skeleton.masses.push(fixed_in);
         items.points.push(PointModel {
             name: p.name.to_string(),

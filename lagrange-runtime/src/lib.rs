@@ -211,5 +211,6 @@ pub use ode::{
 };
 pub use simulation::{ControlRun, ControlledSimulation, EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};
+pub use system::physical;
 pub use system::{Constrained, Driven, FormVisitor, Lagrangian, Reduced, Route};
 pub use table::Table;

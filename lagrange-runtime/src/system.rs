@@ -8,6 +8,8 @@
 use crate::numeric::Real;
 use nalgebra::{SMatrix, SVector};
 
+pub mod physical;
+
 /// A holonomic system in minimal coordinates q ∈ Rᴺ, with equations of motion
 ///
 /// ```text
@@ -212,6 +214,22 @@ pub trait Lagrangian<T: Real, const N: usize> {
     ) -> Option<(SMatrix<T, N, N>, SMatrix<T, N, N>)> {
         let _ = (q, v, a, t);
         None
+    }
+
+    /// Checks that the parameters describe a physical system: non-negative
+    /// masses, principal moments that are non-negative and satisfy the triangle
+    /// inequalities, inertia tensors whose second-moment matrix is positive
+    /// semidefinite (see [`physical`](crate::physical)). `#[derive(Lagrangian)]`
+    /// refuses literal values at compile time and overrides this method when a
+    /// mass or an inertia is computed from the struct's fields; the runs of
+    /// [`Simulation`](crate::Simulation) call it before they start. The
+    /// default, for a hand-written system, checks nothing.
+    ///
+    /// # Errors
+    /// [`Error::NonPhysicalParameter`](crate::Error::NonPhysicalParameter)
+    /// naming the body, the entry and the rule.
+    fn check_parameters(&self) -> Result<(), crate::error::Error> {
+        Ok(())
     }
 
     /// Hands `form` the equations this system runs in: the unconstrained

@@ -8,6 +8,7 @@ use quote::quote;
 
 use super::Frame;
 use super::emitter::Emitter;
+use crate::lowered::PhysicalCheck;
 use crate::mechanics::Model;
 
 /// The optional `Lagrangian` methods: momentum and ∂T/∂q (Hamilton's form) and
@@ -55,7 +56,50 @@ pub(super) fn optional_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
             }
         });
     }
+    out.extend(check_parameters(e, model));
     out
+}
+
+/// `Lagrangian::check_parameters` for the masses and inertias computed from
+/// parameters (nothing when every one is a literal, checked at compile time).
+fn check_parameters(e: &Emitter, model: &Model) -> TokenStream {
+    if model.checks.is_empty() {
+        return TokenStream::new();
+    }
+    let mut values: Vec<Sym> = Vec::new();
+    for c in &model.checks {
+        match c {
+            PhysicalCheck::Mass(_, m) => values.push(*m),
+            PhysicalCheck::Principal(_, m) => values.extend(m),
+            PhysicalCheck::Tensor(_, m) => values.extend(m),
+            PhysicalCheck::Moments(_, _, m) => values.extend(m),
+        }
+    }
+    let (lets, outs) = e.program(&values);
+    let mut outs = outs.into_iter();
+    let p = quote!(::lagrange::__private);
+    let calls = model.checks.iter().map(|c| {
+        let (rule, name, k) = match c {
+            PhysicalCheck::Mass(n, _) => (quote!(mass), n, 1),
+            PhysicalCheck::Principal(n, _) => (quote!(principal), n, 3),
+            PhysicalCheck::Tensor(n, _) => (quote!(tensor), n, 6),
+            PhysicalCheck::Moments(n, _, _) => (quote!(moments), n, 3),
+        };
+        let args: Vec<TokenStream> = outs.by_ref().take(k).collect();
+        let arg = match c {
+            PhysicalCheck::Mass(..) => quote!(#(#args)*),
+            PhysicalCheck::Moments(_, names, _) => quote!([#(#names),*], [#(#args),*]),
+            _ => quote!([#(#args),*]),
+        };
+        quote!(#p::physical::#rule(#name, #arg)?;)
+    });
+    quote! {
+        fn check_parameters(&self) -> ::core::result::Result<(), #p::Error> {
+            #lets
+            #(#calls)*
+            ::core::result::Result::Ok(())
+        }
+    }
 }
 
 /// `Lagrangian::forward_dynamics` by the articulated-body algorithm, with the

@@ -66,7 +66,10 @@ impl Lowerer<'_> {
                 None
             }
             BinOp::Div(_) => Some(self.ctx.div(l, r)),
-            BinOp::BitXor(_) => Some(self.ctx.pow(l, r)),
+            BinOp::BitXor(_) => {
+                let p = self.ctx.pow(l, r);
+                self.finite_constant(p, b, "`^`")
+            }
             _ => {
                 self.cx.error_spanned_by(
                     b.op,

@@ -2,6 +2,7 @@
 //! time derivative of a position.
 
 use lagrange_symbolic::{Expr as Sym, Func};
+use quote::ToTokens;
 use syn::{Expr, Ident};
 
 use super::field::component;
@@ -40,7 +41,56 @@ impl Lowerer<'_> {
         }
         let lowered: Vec<Option<Sym>> = args.iter().map(|a| self.expr(a, mode)).collect();
         let lowered: Vec<Sym> = lowered.into_iter().collect::<Option<_>>()?;
-        Some(self.apply(&name, &lowered))
+        self.checked_apply(&name, &lowered, c)
+    }
+
+    /// [`apply`](Self::apply), refusing literal arguments that make the call
+    /// meaningless: reversed or equal `clamp` bounds (the result would be a
+    /// constant), and constants outside a function's domain (`sqrt(-1)`,
+    /// `ln(0)`: NaN or an infinity in the equations). The error is at the call.
+    fn checked_apply(&mut self, name: &str, a: &[Sym], call: &dyn ToTokens) -> Option<Sym> {
+        if name == "clamp"
+            && let (Some(lo), Some(hi)) = (self.ctx.as_f64(a[1]), self.ctx.as_f64(a[2]))
+            && lo >= hi
+        {
+            let why = if lo == hi {
+                format!(
+                    "its bounds are equal, so it is the constant {hi}; write the constant, or distinct bounds"
+                )
+            } else {
+                format!(
+                    "its lower bound {lo} is above its upper bound {hi}, so it is the constant {hi} whatever its argument; swap the bounds"
+                )
+            };
+            self.cx
+                .error_spanned_by(call, format!("`clamp(x, lo, hi)` needs lo < hi: {why}"));
+            return None;
+        }
+        let result = self.apply(name, a);
+        self.finite_constant(result, call, &format!("`{name}`"))
+    }
+
+    /// `result`, unless it is a constant that is not a finite number (a
+    /// function of constants outside its domain): then an error at `at`.
+    pub(super) fn finite_constant(
+        &mut self,
+        result: Sym,
+        at: &dyn ToTokens,
+        what: &str,
+    ) -> Option<Sym> {
+        if self.ctx.free_symbols(result).is_empty() {
+            let value = self.ctx.eval(result, &|_| f64::NAN);
+            if !value.is_finite() {
+                self.cx.error_spanned_by(
+                    at,
+                    format!(
+                        "{what} of these constants is {value}, not a finite number: an argument lies outside the function's domain (`sqrt` needs x >= 0, `ln` x > 0, `asin` and `acos` -1 <= x <= 1, a power of 0 a positive exponent)"
+                    ),
+                );
+                return None;
+            }
+        }
+        Some(result)
     }
 
     /// `x.sin()`, `x.powi(2)`, `y.atan2(x)`: Rust method spelling of the same functions.
@@ -70,7 +120,7 @@ impl Lowerer<'_> {
         for r in rest {
             all.push(r?);
         }
-        Some(self.apply(&name, &all))
+        self.checked_apply(&name, &all, m)
     }
 
     fn apply(&mut self, name: &str, a: &[Sym]) -> Sym {
@@ -124,22 +174,54 @@ impl Lowerer<'_> {
             );
             return None;
         };
-        let Some(Binding::Coordinate(q)) = self.scope.get(&target.to_string()).copied() else {
-            self.cx.error_at(
-                target.span(),
-                format!("`dot({target})`: `{target}` is not a generalized coordinate"),
-            );
+        let binding = self.scope.get(&target.to_string()).copied();
+        let Some(Binding::Coordinate(q)) = binding else {
+            if let Some(why) = not_a_coordinate(target, binding) {
+                self.cx
+                    .error_at(target.span(), format!("`dot({target})`: {why}"));
+            }
             return None;
         };
         if mode != Mode::State {
             self.cx.error_at(
                 fname.span().join(target.span()).unwrap_or(fname.span()),
-                format!("velocity `dot({target})` cannot appear in {}: it must depend on coordinates, parameters and `t` only", mode.describe()),
+                format!("velocity `dot({target})` cannot appear in {}: it must depend on coordinates, parameters and `t` only", self.describe(mode)),
             );
             return None;
         }
         self.ctx.velocity(q)
     }
+}
+
+/// Why `dot(name)` has no meaning, for a name that is not a coordinate (`None`
+/// for a failed definition, whose error is reported already).
+fn not_a_coordinate(target: &Ident, binding: Option<Binding>) -> Option<String> {
+    let Some(binding) = binding else {
+        return Some(if target == "t" {
+            "`t` is the time: its rate is 1".to_string()
+        } else {
+            format!("`{target}` is not a generalized coordinate")
+        });
+    };
+    Some(match binding {
+        Binding::Input(_) => format!(
+            "`{target}` is an input, not a generalized coordinate: inputs are supplied at run \
+             time without their time derivative, so `dot` cannot take one; if a force needs \
+             the rate, declare it as an input of its own (`inputs({target}, {target}_rate)`) \
+             and supply both"
+        ),
+        Binding::Parameter(_) => format!(
+            "`{target}` is a parameter, constant in time: its rate is zero; remove the term"
+        ),
+        Binding::Definition { .. } => format!(
+            "`{target}` is a definition; `dot` takes a coordinate (`dot(theta)`) or a point's \
+             coordinate (`dot(P.x)`): write the definition's rate with the coordinates' rates"
+        ),
+        Binding::Frame(_) => format!(
+            "`{target}` is a point or body; `dot` takes one of its coordinates, `dot({target}.x)`"
+        ),
+        Binding::Failed | Binding::Coordinate(_) => return None,
+    })
 }
 
 fn arity(name: &str) -> Option<usize> {

@@ -117,6 +117,18 @@ impl Lowerer<'_> {
         } else {
             self.ctx.sub(r, l)
         };
+        if self.ctx.free_symbols(d).is_empty() {
+            let holds = (self.ctx.eval(d, &|_| f64::NAN) > 0.0) != negated;
+            self.cx.error_spanned_by(
+                b,
+                format!(
+                    "`{}` compares constants: it is always {holds}, so the `if` always takes its {} branch; compare an expression of the state, time or parameters, or write that branch alone",
+                    quote::ToTokens::to_token_stream(b),
+                    if holds { "first" } else { "`else`" },
+                ),
+            );
+            return None;
+        }
         Some(Cond::Test { d, negated })
     }
 

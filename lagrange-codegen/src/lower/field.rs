@@ -28,10 +28,24 @@ impl Lowerer<'_> {
             return self.self_field(member);
         }
         let Some(frame) = self.frame_of(base) else {
-            self.cx.error_at(
-                base.span(),
-                format!("unknown point or body `{base}`; declare it with `point({base}, ...)` or `body({base}, ...)`"),
-            );
+            let kind = match self.scope.get(&base.to_string()) {
+                None => None,
+                Some(Binding::Failed) => return None,
+                Some(Binding::Coordinate(_)) => Some("a coordinate"),
+                Some(Binding::Parameter(_)) => Some("a parameter"),
+                Some(Binding::Input(_)) => Some("an input"),
+                // Not a frame: `frame_of` found none.
+                Some(_) => Some("a definition"),
+            };
+            let msg = match kind {
+                Some(kind) => format!(
+                    "`{base}` is {kind}, a number: only points and bodies have coordinates `.x`, `.y`, `.z`; write `{base}` itself"
+                ),
+                None => format!(
+                    "unknown point or body `{base}`; declare it with `point({base}, ...)` or `body({base}, ...)`"
+                ),
+            };
+            self.cx.error_at(base.span(), msg);
             return None;
         };
         let m = member.to_string();
@@ -66,7 +80,7 @@ impl Lowerer<'_> {
                 member.span(),
                 format!(
                     "the angular velocity `{base}.{m}` cannot appear in {}",
-                    mode.describe()
+                    self.describe(mode)
                 ),
             );
             return None;
@@ -119,7 +133,7 @@ impl Lowerer<'_> {
                 inner,
                 format!(
                     "a body's axes depend on the configuration and cannot appear in {}",
-                    mode.describe()
+                    self.describe(mode)
                 ),
             );
             return None;
@@ -149,7 +163,10 @@ impl Lowerer<'_> {
         if mode == Mode::Constant {
             self.cx.error_at(
                 base.span(),
-                format!("a mass must be constant: it cannot depend on the position of `{base}`"),
+                format!(
+                    "{} must be constant: it cannot depend on the position of `{base}`",
+                    self.describe(mode)
+                ),
             );
             return None;
         }
@@ -158,7 +175,7 @@ impl Lowerer<'_> {
                 base.span(),
                 format!(
                     "velocity `dot({base}.{member})` cannot appear in {}",
-                    mode.describe()
+                    self.describe(mode)
                 ),
             );
             return None;

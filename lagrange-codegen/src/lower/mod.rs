@@ -34,16 +34,6 @@ pub enum Mode {
     Constant,
 }
 
-impl Mode {
-    fn describe(self) -> &'static str {
-        match self {
-            Mode::Configuration => "a position, a gravity vector or a potential",
-            Mode::State => "this expression",
-            Mode::Constant => "a mass",
-        }
-    }
-}
-
 #[derive(Copy, Clone, Debug)]
 enum Binding {
     Coordinate(Sym),
@@ -98,6 +88,9 @@ pub struct Lowerer<'a> {
     pub cartesian: Option<Vec<CartesianRef>>,
     /// When set, inputs are an error here (see [`Lowerer::without_inputs`]).
     no_inputs: Option<NoInputs>,
+    /// What the expression being lowered is, for its errors ("the inertia
+    /// of body `b`", "the position of point `p`"); see [`Lowerer::lowering_as`].
+    place: Option<String>,
 }
 
 const FUNCTIONS: &str = "sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, exp, ln, log, sqrt, abs, sign, min, max, clamp, pow, powi, powf, dot; and `if a > b { .. } else { .. }`";
@@ -113,6 +106,34 @@ impl<'a> Lowerer<'a> {
             frames: Vec::new(),
             cartesian: None,
             no_inputs: None,
+            place: None,
+        }
+    }
+
+    /// Runs `f` with `place` ("the mass of point `p`") named in the errors of
+    /// the expressions it lowers.
+    pub fn lowering_as<R>(&mut self, place: String, f: impl FnOnce(&mut Self) -> R) -> R {
+        let outer = self.place.replace(place);
+        let r = f(self);
+        self.place = outer;
+        r
+    }
+
+    /// What an expression lowered in `mode` is, for an error ("cannot appear
+    /// in {}", "{} must be constant").
+    fn describe(&self, mode: Mode) -> String {
+        match mode {
+            Mode::Configuration => match (&self.place, self.no_inputs) {
+                (Some(place), _) => place.clone(),
+                (None, Some(no_inputs)) => no_inputs.place.to_string(),
+                // The one configuration expression that may read inputs.
+                (None, None) => "the potential".to_string(),
+            },
+            Mode::State => "this expression".to_string(),
+            Mode::Constant => match &self.place {
+                Some(place) => place.clone(),
+                None => "a mass".to_string(),
+            },
         }
     }
 

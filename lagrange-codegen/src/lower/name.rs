@@ -13,9 +13,10 @@ impl Lowerer<'_> {
         match key.as_str() {
             "t" => {
                 if mode == Mode::Constant {
+                    let what = self.describe(mode);
                     self.cx.error_at(
                         id.span(),
-                        "a mass must be constant: it cannot depend on time `t`",
+                        format!("{what} must be constant: it cannot depend on time `t`"),
                     );
                     return None;
                 }
@@ -31,7 +32,8 @@ impl Lowerer<'_> {
                     self.cx.error_at(
                         id.span(),
                         format!(
-                            "a mass must be constant: it cannot depend on the coordinate `{key}`"
+                            "{} must be constant: it cannot depend on the coordinate `{key}`",
+                            self.describe(mode)
                         ),
                     );
                     return None;
@@ -61,7 +63,7 @@ impl Lowerer<'_> {
             Some(Binding::Failed) => None,
             None => {
                 let msg = format!(
-                    "unknown symbol `{key}`: not a coordinate, a parameter field, a definition, or `t`"
+                    "unknown symbol `{key}`: not a coordinate, a parameter field, an input, a definition, a point or body, or `t`"
                 );
                 self.cx.error_at(id.span(), msg);
                 None
@@ -95,7 +97,7 @@ impl Lowerer<'_> {
                 id.span(),
                 format!(
                     "`{key}` depends on velocities and cannot be used in {}",
-                    mode.describe()
+                    self.describe(mode)
                 ),
             );
             return None;
@@ -103,7 +105,10 @@ impl Lowerer<'_> {
         if mode == Mode::Constant && has_state {
             self.cx.error_at(
                 id.span(),
-                format!("a mass must be constant, but `{key}` depends on the state or time"),
+                format!(
+                    "{} must be constant, but `{key}` depends on the state or time",
+                    self.describe(mode)
+                ),
             );
             return None;
         }

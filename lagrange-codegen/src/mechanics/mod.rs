@@ -118,6 +118,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         speeds,
         multipliers,
         extras,
+        checks,
     } = lowered;
     let qdd = ctx.accelerations();
     let zero_acc = at_zero(&mut ctx, &qdd);
@@ -164,6 +165,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         forces,
         motion,
         route_reason,
+        checks,
     };
     let constrained = Constrained {
         holonomic: &holonomic,
@@ -363,6 +365,7 @@ struct Derived {
     motion: Motion,
     /// Why M and h are not by the recursive route (`None` when they are).
     route_reason: Option<String>,
+    checks: Vec<crate::lowered::PhysicalCheck>,
 }
 
 /// The constraints and which constrained forms to build.
@@ -445,6 +448,7 @@ fn finish(
         hoisted,
         cyclic: Vec::new(),
         route_reason: d.route_reason,
+        checks: d.checks,
     };
     model.cyclic = cyclic::cyclic(&model);
     Ok(model)

@@ -101,6 +101,9 @@ pub struct Model {
     /// parameter-only parts split off, computed once per parameter set by the
     /// generated code ([`lagrange_symbolic::Context::hoist`]).
     pub hoisted: lagrange_symbolic::Hoisted,
+    /// The masses and inertias computed from parameters, which the generated
+    /// `check_parameters` checks before a run.
+    pub checks: Vec<crate::lowered::PhysicalCheck>,
 }
 
 impl Model {

@@ -11,6 +11,8 @@
 mod describe;
 mod model;
 
+use proc_macro2::{Group, Span, TokenStream, TokenTree};
+
 pub use describe::identifier;
 
 /// A URDF file read into description items.
@@ -25,6 +27,39 @@ pub struct Urdf {
     pub coordinates: Vec<String>,
     /// Their position limits (±∞ where the file gives none).
     pub limits: Vec<(f64, f64)>,
+}
+
+impl Urdf {
+    /// Each item as its text and its tokens, every token spanned at `span`
+    /// (the path in the attribute), so that an error an item raises points
+    /// there.
+    pub fn tokens_at(&self, span: Span) -> Vec<(&str, TokenStream)> {
+        self.items
+            .iter()
+            .map(|text| {
+                let tokens: TokenStream = text.parse().expect("generated items are tokens");
+                (text.as_str(), respan(tokens, span))
+            })
+            .collect()
+    }
+}
+
+/// `tokens` with every span set to `span`.
+fn respan(tokens: TokenStream, span: Span) -> TokenStream {
+    tokens
+        .into_iter()
+        .map(|tt| match tt {
+            TokenTree::Group(g) => {
+                let mut out = Group::new(g.delimiter(), respan(g.stream(), span));
+                out.set_span(span);
+                TokenTree::Group(out)
+            }
+            mut other => {
+                other.set_span(span);
+                other
+            }
+        })
+        .collect()
 }
 
 /// Reads `path` (relative to `manifest_dir`) into description items; the

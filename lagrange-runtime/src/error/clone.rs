@@ -38,7 +38,8 @@ impl Clone for Error {
             TooManyEvents { t, event, max_events },
             EventsAccumulate { t, event, count },
             NonFiniteInput { t, input, value, q, v },
-            MissingDerivatives { method, needed_for };
+            MissingDerivatives { method, needed_for },
+            NonPhysicalParameter { body, entry, value, reason };
             InvalidSettings, Linear
         )
     }

@@ -274,6 +274,27 @@ pub enum Error {
         v: Vec<f64>,
     },
 
+    /// A parameter gives the system a mass or an inertia no body has: a
+    /// negative mass, a negative principal moment, principal moments that break
+    /// the triangle inequality (A + B ≥ C, ...), or an inertia tensor whose
+    /// second-moment matrix tr(I)/2·E − I is not positive semidefinite.
+    /// Literal values are refused at compile time; values computed from the
+    /// struct's fields are checked by [`Lagrangian::check_parameters`](crate::Lagrangian::check_parameters)
+    /// before every run.
+    #[error("non-physical parameters: `{body}`: {entry} = {value}: {reason}")]
+    NonPhysicalParameter {
+        /// The body (or point mass) whose mass or inertia is wrong.
+        body: &'static str,
+        /// Which entry: `mass`, a principal moment `A`, `B`, `C`, a tensor
+        /// entry `Ixx`, `Iyy`, `Izz`, or `inertia tensor` for the tensor as a whole.
+        entry: &'static str,
+        /// The entry's value (for the tensor as a whole, the most negative
+        /// eigenvalue of its second-moment matrix).
+        value: f64,
+        /// The rule broken, and what it means.
+        reason: String,
+    },
+
     /// The settings or the initial value problem are invalid (non-positive
     /// tolerance, empty or reversed time span, non-finite initial state, ...).
     #[error("invalid settings: {0}")]

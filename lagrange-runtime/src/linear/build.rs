@@ -55,7 +55,7 @@ impl Linearizer {
                 "this system has constraints, which an unconstrained linearisation would ignore: use `Linearizer::constrained` (multipliers) or `Linearizer::reduced`"
             )
         };
-        let u0 = self.inputs_at::<S, T, N, P, U>(op)?;
+        let u0 = self.inputs_at(sys, op)?;
         let (q, v, u, t) = (&op.q, &op.v, &u0, op.t);
         let non_finite = || Error::non_finite(t, q, v);
         let (m_s, rhs) = sys.mass_matrix_and_rhs(q, v, t);
@@ -148,7 +148,7 @@ impl Linearizer {
         S: Constrained<T, N, K> + Driven<T, N, P>,
         T: Real,
     {
-        let u0 = self.inputs_at::<S, T, N, P, U>(op)?;
+        let u0 = self.inputs_at(sys, op)?;
         let (q, v, u, t) = (&op.q, &op.v, &u0, op.t);
         let ev = self.evaluate(sys, q, v, u, t)?;
         self.check_consistent::<S, T, N, K>(&ev, q, v, t)?;
@@ -252,7 +252,7 @@ impl Linearizer {
         S: Reduced<T, N, K> + Driven<T, N, P>,
         T: Real,
     {
-        let u0 = self.inputs_at::<S, T, N, P, U>(op)?;
+        let u0 = self.inputs_at(sys, op)?;
         let (q, v, uin, t) = (&op.q, &op.v, &u0, op.t);
         if !(t.is_finite() && finite(&dm(q)) && finite(&dm(v))) {
             return Err(Error::non_finite(t, q, v));

@@ -166,11 +166,14 @@ impl Linearizer {
 
 impl Linearizer {
     /// What every linearisation checks first: the tolerances (non-negative
-    /// and finite), the Newton budget, and the operating point's inputs
+    /// and finite), the Newton budget, the system's physical parameters
+    /// ([`Lagrangian::check_parameters`](crate::Lagrangian::check_parameters)),
+    /// and the operating point's inputs
     /// (a NaN input is named, not reported as a non-finite state). Returns
     /// the system's P inputs at the point.
     pub(super) fn inputs_at<S, T, const N: usize, const P: usize, const U: usize>(
         &self,
+        sys: &S,
         op: &OperatingPoint<T, N, U>,
     ) -> Result<SVector<T, P>, Error>
     where
@@ -178,6 +181,7 @@ impl Linearizer {
         T: Real,
     {
         self.check_settings()?;
+        sys.check_parameters()?;
         let u = op.inputs::<P>();
         check_finite_inputs(&S::INPUTS, op.t, &op.q, &op.v, &u)?;
         Ok(u)

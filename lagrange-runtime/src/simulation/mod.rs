@@ -190,7 +190,13 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         ReducedDynamics::new(self.system).with_singular_tolerance(T::lit(self.singular_tolerance))
     }
 
-    pub(crate) fn check_singular_tolerance(&self) -> Result<(), Error> {
+    /// The unconstrained runs' checks: the system's parameters
+    /// ([`Lagrangian::check_parameters`]) and the singular tolerance.
+    pub(crate) fn check_singular_tolerance<T: Real, const N: usize>(&self) -> Result<(), Error>
+    where
+        S: Lagrangian<T, N>,
+    {
+        self.system.check_parameters()?;
         check_tolerance("singular tolerance", self.singular_tolerance)
     }
 
@@ -261,6 +267,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     where
         S: Constrained<T, N, K>,
     {
+        self.system.check_parameters()?;
         self.check_tolerances()?;
         let dynamics = self.constrained_dynamics::<T, K>();
         let (q0, v0) = if self.constraints.project_initial {
@@ -370,6 +377,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     where
         S: Reduced<T, N, K>,
     {
+        self.system.check_parameters()?;
         self.check_tolerances()?;
         check_problem(span.start, span.end, &q0, &v0)?;
         dynamics.consistent_velocities(span.start, &q0, &v0)

@@ -1,0 +1,10 @@
+use lagrange::Lagrangian;
+
+#[derive(Lagrangian)]
+struct Pendulum {
+    #[lagrange(coordinates(theta), point(bob, mass = m, at = [l * sin(theta), -l * cos(theta)]))]
+    m: f64,
+    l: f64,
+}
+
+fn main() {}
