@@ -21,7 +21,7 @@ use nalgebra::{Matrix2, Vector2};
     point(b2, mass = m2, at = [l1 * sin(th1) + l2 * sin(th2), -l1 * cos(th1) - l2 * cos(th2)]),
     gravity = [0, -g],
     dissipation = c * (dot(th1)^2) / 2,
-    emit(coriolis, jacobians, hamiltonian),
+    emit(coriolis, jacobians, hamiltonian, inverse_dynamics),
 )]
 struct Double {
     m1: f64,
@@ -223,4 +223,31 @@ fn the_route_is_a_constant_with_its_reason() {
             reason: "the generic program is the cheaper one on this small tree (3 joints)"
         }
     );
+}
+
+/// Off the tree route, the emitted inverse dynamics is M a + h − Q, and the
+/// gravity torques the gradient of the potential (gravity is the only one).
+#[test]
+fn inverse_dynamics_and_gravity_torques_off_the_tree() {
+    for (q, v) in states() {
+        let a = Vector2::new(0.7 * q[0] - 0.2, 1.1 - v[1]);
+        let (m, f) = SYS.mass_matrix_and_rhs(&q, &v, 0.0);
+        let expected = m * a - f;
+        let tau = SYS.inverse_dynamics(&q, &v, &a, 0.0);
+        assert!(
+            (tau - expected).amax() < 1e-12 * expected.amax().max(1.0),
+            "{tau} vs {expected}"
+        );
+        let g = SYS.gravity_torques(&q, 0.0).expect("emitted");
+        let h = 1e-6;
+        for i in 0..2 {
+            let mut up = q;
+            up[i] += h;
+            let mut down = q;
+            down[i] -= h;
+            let dv =
+                (SYS.potential_energy(&up, 0.0) - SYS.potential_energy(&down, 0.0)) / (2.0 * h);
+            assert!((g[i] - dv).abs() < 1e-7, "g[{i}] {} vs {dv}", g[i]);
+        }
+    }
 }

@@ -1,6 +1,7 @@
 //! Robots straight from their URDF files (`robots/`, from the PyPI package
 //! `example-robot-data`): the derived M and Q − h against Pinocchio's
-//! `crba` and `nonLinearEffects` on the same files
+//! `crba`, `nonLinearEffects`, `rnea` and `computeGeneralizedGravity` on the
+//! same files
 //! (`lagrange-bench/peer/pinocchio/urdf_reference.py`), to 1e-12, and the
 //! published joint limits.
 
@@ -9,12 +10,49 @@ use lagrange::prelude::*;
 use nalgebra::SVector;
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/ur5.urdf", gravity = [0, 0, -9.81])]
+#[lagrange(urdf = "robots/ur5.urdf", gravity = [0, 0, -9.81], emit(inverse_dynamics))]
 struct Ur5 {}
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/panda.urdf", gravity = [0, 0, -9.81])]
+#[lagrange(urdf = "robots/panda.urdf", gravity = [0, 0, -9.81], emit(inverse_dynamics))]
 struct Panda {}
+
+/// τ by recursive Newton–Euler at q̈_k = 0.1 + 0.05 k (the fingers at rest)
+/// and the gravity torques, against Pinocchio's `rnea` and
+/// `computeGeneralizedGravity`; and τ at the accelerations the dynamics give
+/// is zero.
+fn inverse_agrees<S: Lagrangian<f64, N>, const N: usize>(
+    name: &str,
+    sys: &S,
+    arm: usize,
+    rnea: &[f64],
+    gravity: &[f64],
+) {
+    let (q, v) = state::<N>(arm);
+    let a = SVector::<f64, N>::from_fn(|k, _| if k < arm { 0.1 + 0.05 * k as f64 } else { 0.0 });
+    let tau = sys.inverse_dynamics(&q, &v, &a, 0.0);
+    let g = sys.gravity_torques(&q, 0.0).expect("emitted");
+    for k in 0..arm {
+        assert!(
+            (tau[k] - rnea[k]).abs() <= 1e-12 * rnea[k].abs().max(1.0),
+            "{name}: tau[{k}] {} vs {}",
+            tau[k],
+            rnea[k]
+        );
+        assert!(
+            (g[k] - gravity[k]).abs() <= 1e-12 * gravity[k].abs().max(1.0),
+            "{name}: g[{k}] {} vs {}",
+            g[k],
+            gravity[k]
+        );
+    }
+    let qdd = lagrange::accelerations(sys, &q, &v, 0.0).unwrap();
+    let rest = sys.inverse_dynamics(&q, &v, &qdd, 0.0);
+    assert!(
+        rest.amax() < 1e-10,
+        "{name}: tau at the free accelerations {rest}"
+    );
+}
 
 /// The state the reference script uses: q_k = 0.3 − 0.17 k, q̇_k = 0.5 − 0.21 k
 /// on the arm's joints, the fingers at 0.02 and at rest.
@@ -89,6 +127,27 @@ fn ur5_from_its_urdf_matches_pinocchio() {
             0.00604661544350677,
         ],
     );
+    inverse_agrees(
+        "UR5",
+        &Ur5 {},
+        6,
+        &[
+            0.2784353239150551,
+            -57.689203886716314,
+            -15.1604001927325,
+            0.12235062416422743,
+            0.0554549883948916,
+            0.009423479815381774,
+        ],
+        &[
+            -1.1102230246251565e-16,
+            -58.761259878292094,
+            -15.641237825825822,
+            -0.020885979352930614,
+            0.0,
+            0.0,
+        ],
+    );
     assert_eq!(Ur5::ROBOT, "ur5");
     // The file's ±6.28318530718, kept as written (not 2π).
     let (lower, upper) = Ur5::JOINT_LIMITS[0];
@@ -142,6 +201,29 @@ fn panda_from_its_urdf_matches_pinocchio_on_the_arm() {
             -0.1045651244930427,
             -0.15486091567440036,
             -0.005750803349196086,
+        ],
+    );
+    inverse_agrees(
+        "Panda",
+        &Panda {},
+        7,
+        &[
+            0.3011845804669382,
+            -13.195590220923204,
+            0.20122723165348927,
+            1.7151092470564209,
+            0.12250288257153022,
+            0.17841779500209404,
+            0.005317400205041516,
+        ],
+        &[
+            -2.914335439641036e-16,
+            -13.148620505166942,
+            0.036814207115614256,
+            1.6319038361635216,
+            0.08569502542388215,
+            0.1955012471817792,
+            0.00288857296301313,
         ],
     );
     assert_eq!(Panda::JOINT_LIMITS[7], (0.0, 0.04));

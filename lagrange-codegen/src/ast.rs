@@ -82,6 +82,9 @@ pub enum Extra {
     /// q̈ by the articulated-body algorithm (O(n), no mass matrix), for a
     /// kinematic tree; the unconstrained dynamics use it instead of M and Cholesky.
     Articulated,
+    /// τ = M q̈ + h − Q (recursive Newton–Euler on a tree) and the gravity
+    /// torques.
+    InverseDynamics,
 }
 
 /// `force(point, [fx, fy, fz])`: a Cartesian force applied at a point.

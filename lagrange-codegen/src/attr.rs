@@ -73,6 +73,7 @@ impl Parse for Item {
                 "jacobians" => Some(Extra::Jacobians),
                 "hamiltonian" => Some(Extra::Hamiltonian),
                 "articulated" => Some(Extra::Articulated),
+                "inverse_dynamics" => Some(Extra::InverseDynamics),
                 _ => None,
             })
             .map(Item::Emit),
@@ -101,7 +102,8 @@ impl Parse for Item {
 }
 
 const FORMULATIONS: &str = "`multipliers` or `reduced`";
-const OUTPUTS: &str = "`reactions`, `coriolis`, `jacobians`, `hamiltonian` or `articulated`";
+const OUTPUTS: &str =
+    "`reactions`, `coriolis`, `jacobians`, `hamiltonian`, `articulated` or `inverse_dynamics`";
 
 /// `coordinates(q1, q2, ...)`, which must name at least one.
 fn parse_coordinates(input: ParseStream, key: &Ident) -> syn::Result<Vec<Ident>> {

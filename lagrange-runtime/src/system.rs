@@ -105,6 +105,31 @@ pub trait Lagrangian<T: Real, const N: usize> {
         None
     }
 
+    /// Inverse dynamics: the generalized forces τ = M a + h − Q that give the
+    /// accelerations `a` at (q, q̇, t), every input at zero (the torques a
+    /// computed-torque controller applies). The default computes M and Q − h;
+    /// `#[derive(Lagrangian)]` with `emit(inverse_dynamics)` emits recursive
+    /// Newton–Euler on a kinematic tree (O(n), no mass matrix), else one
+    /// straight-line program. Constraint forces are not included.
+    fn inverse_dynamics(
+        &self,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        a: &SVector<T, N>,
+        t: T,
+    ) -> SVector<T, N> {
+        let (m, f) = self.mass_matrix_and_rhs(q, v, t);
+        m * a - f
+    }
+
+    /// The generalized forces that hold the system still against gravity alone
+    /// at q, ∂V_gravity/∂q (Pinocchio's generalized gravity). `None` unless the
+    /// description asks for it with `emit(inverse_dynamics)`.
+    fn gravity_torques(&self, q: &SVector<T, N>, t: T) -> Option<SVector<T, N>> {
+        let _ = (q, t);
+        None
+    }
+
     /// q̈ by the articulated-body algorithm, with the extra generalized forces
     /// `tau` added to Q, and the ratio of the smallest to the largest
     /// articulated pivot (the pivots of M's LᵀDL factorisation). `None` unless

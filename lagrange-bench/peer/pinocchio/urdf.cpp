@@ -28,7 +28,7 @@ static double ns_per_call(F f, int calls) {
 }
 
 int main() {
-  std::printf("| robot | nq | Pinocchio CRBA + NLE (ns) | Pinocchio ABA (ns) | M[0][0] | (Q - h)[0] |\n|---|---|---|---|---|---|\n");
+  std::printf("| robot | nq | Pinocchio CRBA + NLE (ns) | Pinocchio ABA (ns) | Pinocchio RNEA (ns) | M[0][0] | (Q - h)[0] |\n|---|---|---|---|---|---|---|\n");
   for (pin::Model model : {ur5(), panda()}) {
     pin::Data data(model);
     Eigen::VectorXd q(model.nq), v(model.nv), tau = Eigen::VectorXd::Zero(model.nv);
@@ -45,10 +45,13 @@ int main() {
         },
         calls);
     double aba = ns_per_call([&] { pin::aba(model, data, q, v, tau); }, calls);
+    Eigen::VectorXd a(model.nv);
+    for (int k = 0; k < model.nv; ++k) a[k] = (k < 7 || model.nv <= 7) ? 0.1 + 0.05 * k : 0.0;
+    double rnea = ns_per_call([&] { pin::rnea(model, data, q, v, a); }, calls);
     pin::crba(model, data, q);
     pin::nonLinearEffects(model, data, q, v);
-    std::printf("| %s | %d | %.0f | %.0f | %.15g | %.15g |\n", model.name.c_str(), model.nq, crba_nle,
-                aba, data.M(0, 0), -data.nle[0]);
+    std::printf("| %s | %d | %.0f | %.0f | %.0f | %.15g | %.15g |\n", model.name.c_str(), model.nq,
+                crba_nle, aba, rnea, data.M(0, 0), -data.nle[0]);
   }
   return 0;
 }

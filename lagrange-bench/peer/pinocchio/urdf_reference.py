@@ -1,7 +1,7 @@
 """Reference values for the URDF robots in `robots/` from Pinocchio (PyPI `pin`).
 
 Prints M, nle = C(q, v) v + g(q) (so Q - h = -nle in lagrange's terms) and the
-accelerations of ABA at zero torque, at a fixed state, for the tests in
+the inverse dynamics (`rnea`) at q̈_k = 0.1 + 0.05 k and the gravity torques, at a fixed state, for the tests in
 `tests/urdf.rs`. Fixed base, gravity (0, 0, -9.81) (Pinocchio's default).
 The Panda's second finger mimics the first in the URDF; Pinocchio reads it as
 a joint of its own, so only the arm's 7 x 7 block is compared, at finger
@@ -34,3 +34,7 @@ for name, n_arm in [("ur5.urdf", 6), ("panda.urdf", 7)]:
     print("M row 0:", [float(x) for x in m[0, :n_arm]])
     print("M diag:", [float(x) for x in np.diag(m)[:n_arm]])
     print("Q - h:", [float(x) for x in -nle[:n_arm]])
+    a = np.array([0.1 + 0.05 * k for k in range(model.nv)])
+    a[n_arm:] = 0.0
+    print("rnea:", [float(x) for x in pin.rnea(model, data, q, v, a)[:n_arm]])
+    print("gravity:", [float(x) for x in pin.computeGeneralizedGravity(model, data, q)[:n_arm]])

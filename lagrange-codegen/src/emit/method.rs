@@ -56,6 +56,7 @@ pub(super) fn optional_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
             }
         });
     }
+    out.extend(inverse_dynamics(e, f, model));
     out.extend(check_parameters(e, model));
     out
 }
@@ -147,6 +148,29 @@ pub(super) fn forward_dynamics(
         }
     };
     (methods, inner)
+}
+
+/// `inverse_dynamics` and `gravity_torques`, with `emit(inverse_dynamics)`.
+fn inverse_dynamics(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    let Some(inverse) = &model.inverse else {
+        return TokenStream::new();
+    };
+    let (s, vec_n) = (&f.s, f.vec(&f.n));
+    let (lets, outs) = e.program(&inverse.torques);
+    let (g_lets, g_outs) = e.program(&inverse.gravity);
+    quote! {
+        #[inline]
+        fn inverse_dynamics(&self, q: &#vec_n, v: &#vec_n, a: &#vec_n, t: #s) -> #vec_n {
+            #lets
+            <#vec_n>::from([#(#outs),*])
+        }
+
+        #[inline]
+        fn gravity_torques(&self, q: &#vec_n, t: #s) -> ::core::option::Option<#vec_n> {
+            #g_lets
+            ::core::option::Option::Some(<#vec_n>::from([#(#g_outs),*]))
+        }
+    }
 }
 
 /// The override of `Lagrangian::visit_form` that makes `Simulation::run` run

@@ -20,11 +20,13 @@ mod energy;
 mod extra;
 mod force;
 mod generic;
+mod inverse;
 mod kinematics;
 mod model;
 mod recursive;
 mod vector;
 
+pub use inverse::InverseDynamics;
 pub use model::{Articulation, BiasRoute, InputModel, Model};
 
 use lagrange_symbolic::{Context, Expr as Sym};
@@ -152,6 +154,10 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
     };
     let forces = applied_forces(&mut ctx, &kin, &sources, input_names)?;
     let motion = equations(&mut ctx, recursive_terms, generic_terms, &forces);
+    let inverse = extras.contains(&Extra::InverseDynamics).then(|| {
+        let terms = (&motion.mass[..], &motion.bias[..], &motion.forces[..]);
+        inverse::inverse_dynamics(&mut ctx, tree.as_ref(), terms, forces.gravity_potential)
+    });
     let kinetic = energy::cheaper_kinetic(&mut ctx, rheonomic, kinetic, &motion.mass);
     let integral = energy::integral(&mut ctx, rheonomic, kinetic, forces.potential, &motion.mass);
     let derived = Derived {
@@ -165,6 +171,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         forces,
         motion,
         route_reason,
+        inverse,
         checks,
     };
     let constrained = Constrained {
@@ -365,6 +372,8 @@ struct Derived {
     motion: Motion,
     /// Why M and h are not by the recursive route (`None` when they are).
     route_reason: Option<String>,
+    /// `emit(inverse_dynamics)`.
+    inverse: Option<InverseDynamics>,
     checks: Vec<crate::lowered::PhysicalCheck>,
 }
 
@@ -448,6 +457,7 @@ fn finish(
         hoisted,
         cyclic: Vec::new(),
         route_reason: d.route_reason,
+        inverse: d.inverse,
         checks: d.checks,
     };
     model.cyclic = cyclic::cyclic(&model);

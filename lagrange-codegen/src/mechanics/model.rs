@@ -67,6 +67,9 @@ pub struct Model {
     /// Why M and h are not by the recursive route: which body or point, and
     /// what about it (`None` when they are).
     pub route_reason: Option<String>,
+    /// τ = M q̈ + h − Q and the gravity torques, if asked for
+    /// (`emit(inverse_dynamics)`).
+    pub inverse: Option<super::InverseDynamics>,
     /// The route not chosen, kept so tests can check the two agree (empty when
     /// only the recursive route was derived).
     pub bias_other: Vec<Sym>,

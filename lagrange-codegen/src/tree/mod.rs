@@ -33,7 +33,7 @@ mod spatial;
 pub use aba::{ForwardDynamics, forward_dynamics};
 pub use crba::mass_matrix;
 pub use detect::detect;
-pub use rnea::inverse_dynamics;
+pub use rnea::{inverse_dynamics, inverse_dynamics_at_accelerations};
 
 use lagrange_symbolic::Expr as Sym;
 

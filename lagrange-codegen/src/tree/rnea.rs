@@ -4,7 +4,8 @@
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::link::{
-    add3, cross, force_to_parent, joint_velocity, mat_vec, origin, project, to_link, trig,
+    add_motion, add3, cross, force_to_parent, joint_velocity, mat_vec, origin, project, to_link,
+    trig,
 };
 use super::{Inertia, Tree};
 
@@ -13,9 +14,29 @@ use super::{Inertia, Tree};
 /// axes, the link forces I a + v ×* I v come back, and τ_i is the joint-axis
 /// component of the moment.
 pub fn inverse_dynamics(ctx: &mut Context, tree: &Tree, with_gravity: bool) -> Vec<Sym> {
+    recursive_newton_euler(ctx, tree, with_gravity, false)
+}
+
+/// τ = M q̈ + h (− Q_gravity `with_gravity`) at the accelerations' symbols, by
+/// the same passes with S q̈ added to each link's acceleration.
+pub fn inverse_dynamics_at_accelerations(
+    ctx: &mut Context,
+    tree: &Tree,
+    with_gravity: bool,
+) -> Vec<Sym> {
+    recursive_newton_euler(ctx, tree, with_gravity, true)
+}
+
+fn recursive_newton_euler(
+    ctx: &mut Context,
+    tree: &Tree,
+    with_gravity: bool,
+    accelerated: bool,
+) -> Vec<Sym> {
     let n = tree.links.len();
     let zero = ctx.zero();
     let qd = ctx.velocities();
+    let qdd = ctx.accelerations();
     // (ω, v, α, a) of each link at its origin, in its axes.
     let mut motion: Vec<[[Sym; 3]; 4]> = Vec::with_capacity(n);
     let ground = {
@@ -39,9 +60,11 @@ pub fn inverse_dynamics(ctx: &mut Context, tree: &Tree, with_gravity: bool) -> V
         let al_in = to_link(ctx, link, cs, al);
         let a_in = to_link(ctx, link, cs, a_at);
         let ([w, v], [cw, cv]) = joint_velocity(ctx, link, [w_in, v_in], rate);
-        let al = add3(ctx, al_in, cw);
-        let a = add3(ctx, a_in, cv);
-        motion.push([w, v, al, a]);
+        let mut acc = [add3(ctx, al_in, cw), add3(ctx, a_in, cv)];
+        if accelerated {
+            add_motion(ctx, link, &mut acc, qdd[link.coordinate]);
+        }
+        motion.push([w, v, acc[0], acc[1]]);
     }
     let mut forces: Vec<[[Sym; 3]; 2]> = tree
         .links
