@@ -9,6 +9,9 @@ use crate::numeric::Real;
 use nalgebra::{SMatrix, SVector};
 
 pub mod physical;
+mod route;
+
+pub use route::Route;
 
 /// A holonomic system in minimal coordinates q ∈ Rᴺ, with equations of motion
 ///
@@ -582,24 +585,4 @@ pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
         let _ = (q, v, u, t);
         (SMatrix::zeros(), SMatrix::zeros(), SMatrix::zeros())
     }
-}
-
-/// How a system's mass matrix M and bias h are computed
-/// ([`Lagrangian::ROUTE`]; also the `route:` line of a derived system's
-/// `EQUATIONS`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Route {
-    /// Composite rigid bodies for M and recursive Newton–Euler for h over the
-    /// kinematic tree the description spans: O(n²) and O(n) operations.
-    Recursive,
-    /// Differentiating the positions ξ(q, t) (M = Σ Jᵀ m J, h by projection
-    /// or Christoffel symbols), and why the recursive route was not taken.
-    Generic {
-        /// Which body or point, and what about it, keeps the description
-        /// from being a tree; or that the generic program was the cheaper
-        /// one on a small tree.
-        reason: &'static str,
-    },
-    /// Not derived: the system's impl was written by hand.
-    HandWritten,
 }

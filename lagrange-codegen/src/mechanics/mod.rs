@@ -154,10 +154,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
     };
     let forces = applied_forces(&mut ctx, &kin, &sources, input_names)?;
     let motion = equations(&mut ctx, recursive_terms, generic_terms, &forces);
-    let inverse = extras.contains(&Extra::InverseDynamics).then(|| {
-        let terms = (&motion.mass[..], &motion.bias[..], &motion.forces[..]);
-        inverse::inverse_dynamics(&mut ctx, tree.as_ref(), terms, forces.gravity_potential)
-    });
+    let inverse = inverse_if_asked(&mut ctx, &extras, tree.as_ref(), &motion, &forces);
     let kinetic = energy::cheaper_kinetic(&mut ctx, rheonomic, kinetic, &motion.mass);
     let integral = energy::integral(&mut ctx, rheonomic, kinetic, forces.potential, &motion.mass);
     let derived = Derived {
@@ -194,6 +191,19 @@ fn wants_generic(
         (_, Err(_)) => Ok(true),
         (_, Ok(t)) => Ok(route == Route::Auto && t.len() <= BOTH_ROUTES_UP_TO),
     }
+}
+
+/// `emit(inverse_dynamics)`: τ and the gravity torques.
+fn inverse_if_asked(
+    ctx: &mut Context,
+    extras: &[Extra],
+    tree: Option<&crate::tree::Tree>,
+    motion: &Motion,
+    forces: &Forces,
+) -> Option<InverseDynamics> {
+    let terms = (&motion.mass[..], &motion.bias[..], &motion.forces[..]);
+    let asked = extras.contains(&Extra::InverseDynamics);
+    asked.then(|| inverse::inverse_dynamics(ctx, tree, terms, forces.gravity_potential))
 }
 
 /// Why M and h are not by the recursive route (`None` when they are): the
