@@ -230,3 +230,27 @@ fn panda_from_its_urdf_matches_pinocchio_on_the_arm() {
     // The fingers slide: a prismatic joint on the recursive route.
     assert_eq!(<Panda as Lagrangian<f64, 8>>::ROUTE, Route::Recursive);
 }
+
+/// The UR5 with a payload: a field named `<link>_mass` replaces that link's
+/// mass from the file.
+#[derive(Lagrangian)]
+#[lagrange(urdf = "robots/ur5.urdf", gravity = [0, 0, -9.81])]
+struct Ur5Payload {
+    wrist_3_link_mass: f64,
+}
+
+#[test]
+fn a_field_named_for_a_link_overrides_its_mass() {
+    let (q, v) = state::<6>(6);
+    let (m, f) = Ur5 {}.mass_matrix_and_rhs(&q, &v, 0.0);
+    let same = Ur5Payload {
+        wrist_3_link_mass: 0.1879,
+    }
+    .mass_matrix_and_rhs(&q, &v, 0.0);
+    assert!((same.0 - m).amax() < 1e-14 && (same.1 - f).amax() < 1e-12);
+    let heavy = Ur5Payload {
+        wrist_3_link_mass: 2.0,
+    }
+    .mass_matrix_and_rhs(&q, &v, 0.0);
+    assert!((heavy.0 - m).amax() > 1e-3 && (heavy.1 - f).amax() > 1e-2);
+}

@@ -491,7 +491,12 @@ fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr) {
         return;
     }
     let manifest = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_else(|_| ".".into());
-    let urdf = match crate::urdf::load(&manifest, &path.value()) {
+    let fields: Vec<String> = system
+        .parameters
+        .iter()
+        .map(|p| p.name.to_string())
+        .collect();
+    let urdf = match crate::urdf::load(&manifest, &path.value(), &fields) {
         Ok(urdf) => urdf,
         Err(message) => return cx.error_at(path.span(), message),
     };

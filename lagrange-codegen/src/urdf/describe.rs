@@ -210,10 +210,12 @@ fn rpy_matrix(rpy: &[Number; 3]) -> [[f64; 3]; 3] {
     ]
 }
 
-/// `mass = .., inertia = [..], com = [..]` in link axes.
-fn mass_items(inertial: Option<&Inertial>) -> String {
+/// `mass = .., inertia = [..], com = [..]` in link axes; `mass_field`, a
+/// struct field named `<link>_mass`, replaces the file's mass (a payload).
+fn mass_items(inertial: Option<&Inertial>, mass_field: Option<&str>) -> String {
     let Some(i) = inertial else {
-        return "mass = 0, inertia = [0, 0, 0]".into();
+        let mass = mass_field.unwrap_or("0");
+        return format!("mass = {mass}, inertia = [0, 0, 0]");
     };
     let entries: Vec<String> = if i.origin.rpy.iter().all(Number::is_zero) {
         i.inertia.iter().map(lit).collect()
@@ -233,14 +235,14 @@ fn mass_items(inertial: Option<&Inertial>) -> String {
     let com: Vec<String> = i.origin.xyz.iter().map(lit).collect();
     format!(
         "mass = {}, inertia = [{}], com = [{}]",
-        lit(&i.mass),
+        mass_field.map_or_else(|| lit(&i.mass), str::to_string),
         entries.join(", "),
         com.join(", ")
     )
 }
 
 /// The robot as description items.
-pub fn describe(robot: &Robot) -> Result<Description, ReadError> {
+pub fn describe(robot: &Robot, fields: &[String]) -> Result<Description, ReadError> {
     let order = tree_order(robot)?;
     let inertials: BTreeMap<&str, Option<&Inertial>> = robot
         .links
@@ -278,7 +280,11 @@ pub fn describe(robot: &Robot) -> Result<Description, ReadError> {
     let mut factors: BTreeMap<&str, Vec<String>> = BTreeMap::new();
     for (link, joint) in &order {
         let body = unique(link, 0)?;
-        let masses = mass_items(inertials[link]);
+        let field = format!("{body}_mass");
+        let masses = mass_items(
+            inertials[link],
+            fields.contains(&field).then_some(field.as_str()),
+        );
         let Some(j) = joint else {
             factors.insert(link, Vec::new());
             items.push(format!(

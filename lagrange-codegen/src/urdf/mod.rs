@@ -64,24 +64,25 @@ fn respan(tokens: TokenStream, span: Span) -> TokenStream {
 
 /// Reads `path` (relative to `manifest_dir`) into description items; the
 /// error quotes the file and line.
-pub fn load(manifest_dir: &str, path: &str) -> Result<Urdf, String> {
+pub fn load(manifest_dir: &str, path: &str, fields: &[String]) -> Result<Urdf, String> {
     let full = std::path::Path::new(manifest_dir).join(path);
     let text = std::fs::read_to_string(&full)
         .map_err(|e| format!("cannot read the URDF file `{}`: {e}", full.display()))?;
-    from_text(&text, path).map(|mut urdf| {
+    from_text(&text, path, fields).map(|mut urdf| {
         urdf.path = full.display().to_string();
         urdf
     })
 }
 
-/// [`load`] for the text of a file named `path`.
-pub fn from_text(text: &str, path: &str) -> Result<Urdf, String> {
+/// [`load`] for the text of a file named `path`. A struct field named
+/// `<link>_mass` (among `fields`) replaces that link's mass.
+pub fn from_text(text: &str, path: &str, fields: &[String]) -> Result<Urdf, String> {
     let at = |e: model::ReadError| match e.line {
         0 => format!("{path}: {}", e.message),
         line => format!("{path}:{line}: {}", e.message),
     };
     let robot = model::parse(text).map_err(at)?;
-    let d = describe::describe(&robot).map_err(at)?;
+    let d = describe::describe(&robot, fields).map_err(at)?;
     Ok(Urdf {
         path: path.to_string(),
         items: d.items,
