@@ -182,6 +182,8 @@ pub mod linear;
 pub mod mechanics;
 pub mod numeric;
 pub mod ode;
+pub mod pose;
+pub mod scene;
 mod simulation;
 pub mod study;
 mod system;
@@ -209,6 +211,8 @@ pub use ode::{
     DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Record, Rk4, Sample,
     SecondOrder, Stats, StormerVerlet, Trajectory,
 };
+pub use pose::Posed;
+pub use scene::Scene;
 pub use simulation::{ControlRun, ControlledSimulation, EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::{Constrained, Driven, FormVisitor, Lagrangian, Reduced};
