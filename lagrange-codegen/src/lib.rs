@@ -32,7 +32,9 @@ pub mod lowered;
 pub mod mat3;
 pub mod mechanics;
 pub mod order;
+pub mod pose;
 pub mod scene;
+pub mod shape;
 pub mod tree;
 
 use proc_macro2::TokenStream;
@@ -117,6 +119,7 @@ fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Mod
         return None;
     }
     check::check(cx, system);
+    shape::check(cx, system);
     let lowered = scene::lower(cx, system);
     if cx.has_errors() {
         return None;

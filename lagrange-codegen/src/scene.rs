@@ -43,6 +43,8 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     let speeds = formulations
         .contains(&Formulation::Reduced)
         .then(|| speeds(&mut lw, system));
+    // Last, so that the shapes' nodes come after every node the equations use.
+    let poses = crate::pose::collect(&mut lw, system, &items.points, &items.spins);
     if cx.has_errors() {
         return None;
     }
@@ -71,6 +73,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         speeds,
         multipliers: formulations.contains(&Formulation::Multipliers),
         extras: system.extras.iter().map(|(_, e)| *e).collect(),
+        poses,
     })
 }
 

@@ -31,7 +31,7 @@ use lagrange_symbolic::{Context, Expr as Sym};
 
 use crate::ast::Extra;
 use crate::constraint::{ConstraintSet, Reduction};
-use crate::lowered::{ConstraintModel, Lowered};
+use crate::lowered::{ConstraintModel, Lowered, Poses};
 use force::Applied;
 use generic::GenericTerms;
 use kinematics::at_zero;
@@ -114,6 +114,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         speeds,
         multipliers,
         extras,
+        poses,
     } = lowered;
     let qdd = ctx.accelerations();
     let zero_acc = at_zero(&mut ctx, &qdd);
@@ -156,6 +157,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         has_spin: !spin.is_empty(),
         forces,
         motion,
+        poses,
     };
     let constrained = Constrained {
         holonomic: &holonomic,
@@ -313,6 +315,7 @@ struct Derived {
     has_spin: bool,
     forces: Forces,
     motion: Motion,
+    poses: Poses,
 }
 
 /// The constraints and which constrained forms to build.
@@ -394,6 +397,7 @@ fn finish(
         articulated,
         hoisted,
         cyclic: Vec::new(),
+        poses: d.poses,
     };
     model.cyclic = cyclic::cyclic(&model);
     Ok(model)

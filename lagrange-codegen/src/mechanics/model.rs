@@ -98,6 +98,8 @@ pub struct Model {
     /// parameter-only parts split off, computed once per parameter set by the
     /// generated code ([`lagrange_symbolic::Context::hoist`]).
     pub hoisted: lagrange_symbolic::Hoisted,
+    /// The bodies' poses, the points' positions and the shapes, for the scene.
+    pub poses: crate::lowered::Poses,
 }
 
 impl Model {
