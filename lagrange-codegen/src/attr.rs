@@ -14,6 +14,7 @@ use crate::ast::{
     Scalar, Shape, System,
 };
 use crate::ctxt::Ctxt;
+use crate::spelling::closest;
 
 /// Keys accepted at the top level of `#[lagrange(...)]`, for the "unknown key" message.
 const KEYS: &str = "coordinates, inputs, define, point, body, gravity, potential, force, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit, shape";
@@ -174,33 +175,6 @@ fn unknown_key(key: &Ident, other: &str) -> syn::Error {
             }
         },
     )
-}
-
-/// The candidate within two edits of `word` (a typo), if one is.
-pub(crate) fn closest<'a>(
-    word: &str,
-    candidates: impl Iterator<Item = &'a str>,
-) -> Option<&'a str> {
-    candidates
-        .map(|c| (edit_distance(word, c), c))
-        .filter(|&(d, _)| d <= 2)
-        .min_by_key(|&(d, _)| d)
-        .map(|(_, c)| c)
-}
-
-/// Levenshtein distance, by the two-row dynamic programme.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut row = vec![i + 1];
-        for (j, &cb) in b.iter().enumerate() {
-            let substitute = prev[j] + usize::from(ca != cb);
-            row.push(substitute.min(prev[j + 1] + 1).min(row[j] + 1));
-        }
-        prev = row;
-    }
-    prev[b.len()]
 }
 
 /// The form each list key takes, for the error when it is written `key = ...`.

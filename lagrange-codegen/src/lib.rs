@@ -35,6 +35,7 @@ pub mod order;
 pub mod pose;
 pub mod scene;
 pub mod shape;
+pub mod spelling;
 pub mod tree;
 
 use proc_macro2::TokenStream;

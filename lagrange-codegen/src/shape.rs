@@ -200,7 +200,7 @@ fn unknown_target(system: &System, name: &Ident) -> String {
         .chain(system.points.iter().map(|p| p.name.to_string()))
         .collect();
     let word = name.to_string();
-    match crate::attr::closest(&word, names.iter().map(String::as_str)) {
+    match crate::spelling::closest(&word, names.iter().map(String::as_str)) {
         Some(near) => format!("shape on unknown body or point `{word}`; did you mean `{near}`?"),
         None => format!(
             "shape on unknown body or point `{word}`; shapes go on the bodies and points declared with `body({word}, ...)` or `point({word}, ...)`"
