@@ -203,6 +203,13 @@ pub struct RollingSphereReduced {
          rotation = euler_zxz(phi2, theta2, psi2)),
     gravity = [0, 0, -g],
     nonholonomic(thread = dot(psi1) + cos(theta1) * dot(phi1) + dot(psi2) + cos(theta2) * dot(phi2)),
+    // Drawn as spinning discs on spindles from their pivots (visual only).
+    shape(top1, cylinder(radius = l, length = l / 5, axis = z)),
+    shape(top1, box(size = [2 * l, l / 8, l / 3])),
+    shape(top1, capsule(radius = l / 25, length = 1.3 * l, axis = z), at = [0, 0, -0.4 * l]),
+    shape(top2, cylinder(radius = l, length = l / 5, axis = z)),
+    shape(top2, box(size = [2 * l, l / 8, l / 3])),
+    shape(top2, capsule(radius = l / 25, length = 1.3 * l, axis = z), at = [0, 0, -0.4 * l]),
 )]
 pub struct ThreadedTops {
     pub m: f64,

@@ -11,6 +11,7 @@ use crate::pose::{Anchor, Solid};
 
 const TEMPLATE: &str = include_str!("page.html");
 const VIEWER: &str = include_str!("viewer.js");
+const SIDE_BY_SIDE: &str = " Side by side: each run after the first is drawn moved under the first, one lane to its left, so that their motions compare; positions are the first run's.";
 
 /// What the page shows besides the frames.
 pub(super) struct Static<'a> {
@@ -20,6 +21,8 @@ pub(super) struct Static<'a> {
     pub shapes: &'a [Drawn],
     pub plot: &'a [&'a str],
     pub planar: bool,
+    /// Runs after the first drawn beside it, following it ([`super::Scene::side_by_side`]).
+    pub side_by_side: bool,
 }
 
 /// One run as the page gets it.
@@ -211,23 +214,22 @@ pub(super) fn page(s: &Static, runs: &[RunData]) -> String {
         .flat_map(|r| r.frames.plotted.iter())
         .fold(0.0_f64, |m, x| m.max(x.abs()));
     let mut data = String::new();
-    data.push_str("{\"planar\":");
-    let _ = write!(data, "{}", s.planar);
+    let _ = write!(
+        data,
+        "{{\"planar\":{},\"sideBySide\":{}",
+        s.planar, s.side_by_side
+    );
     data.push_str(",\"bodies\":");
     strings(&mut data, s.bodies);
     data.push_str(",\"points\":");
     strings(&mut data, s.points);
     data.push_str(",\"plot\":");
     strings(&mut data, s.plot);
-    let solid_on = |j: usize| {
-        let on_point =
-            |x: &Drawn| x.on == Anchor::Point(j) && !matches!(x.solid, Solid::Line { .. });
-        s.shapes.iter().any(on_point)
-    };
-    let has_solid: Vec<String> = (0..s.points.len())
-        .map(|j| solid_on(j).to_string())
-        .collect();
-    let _ = write!(data, ",\"pointHasSolid\":[{}]", has_solid.join(","));
+    // A point is a dot unless the description draws shapes of its own (then
+    // it chose what to show: the bicycle's helper points stay hidden).
+    let own_shapes = s.shapes.iter().any(|x| !x.default);
+    let dots = vec![(!own_shapes).to_string(); s.points.len()];
+    let _ = write!(data, ",\"pointDots\":[{}]", dots.join(","));
     data.push_str(",\"shapes\":[");
     for (i, x) in s.shapes.iter().enumerate() {
         if i > 0 {
@@ -254,6 +256,7 @@ pub(super) fn page(s: &Static, runs: &[RunData]) -> String {
     }
     TEMPLATE
         .replace("{{TITLE}}", &title)
+        .replace("{{NOTE}}", if s.side_by_side { SIDE_BY_SIDE } else { "" })
         .replace("{{SCRIPT}}", VIEWER)
         .replace("{{DATA}}", &data)
 }

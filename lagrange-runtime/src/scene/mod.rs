@@ -92,6 +92,7 @@ pub struct Scene<'a, T: Real, const N: usize, S> {
     title: String,
     plot: Option<Vec<String>>,
     fps: f64,
+    side_by_side: bool,
 }
 
 impl<'a, T: Real, const N: usize, S: Posed<T, N> + Lagrangian<T, N>> Scene<'a, T, N, S> {
@@ -103,6 +104,7 @@ impl<'a, T: Real, const N: usize, S: Posed<T, N> + Lagrangian<T, N>> Scene<'a, T
             title: "lagrange scene".to_string(),
             plot: None,
             fps: 30.0,
+            side_by_side: false,
         }
     }
 
@@ -134,9 +136,19 @@ impl<'a, T: Real, const N: usize, S: Posed<T, N> + Lagrangian<T, N>> Scene<'a, T
         self
     }
 
-    /// The coordinates the linked plot shows, by name (default: the first four).
+    /// The coordinates the linked plot shows, by name (default: the first
+    /// four that are not cyclic, else the first four).
     pub fn plot(mut self, coordinates: &[&str]) -> Self {
         self.plot = Some(coordinates.iter().map(|c| c.to_string()).collect());
+        self
+    }
+
+    /// Draws the runs after the first beside it rather than where they are:
+    /// each moved horizontally under the first one's centroid, a lane to its
+    /// left, so that runs that travel apart (a bicycle at two speeds) stay in
+    /// view together. Display only: the hook reports the true positions.
+    pub fn side_by_side(mut self, on: bool) -> Self {
+        self.side_by_side = on;
         self
     }
 
@@ -170,6 +182,7 @@ impl<'a, T: Real, const N: usize, S: Posed<T, N> + Lagrangian<T, N>> Scene<'a, T
             shapes: &drawn,
             plot: &names,
             planar,
+            side_by_side: self.side_by_side,
         };
         let runs: Vec<html::RunData> = self
             .runs
@@ -226,7 +239,14 @@ impl<'a, T: Real, const N: usize, S: Posed<T, N> + Lagrangian<T, N>> Scene<'a, T
     /// The indices of the plotted coordinates.
     fn plotted(&self) -> Result<Vec<usize>, Error> {
         let Some(names) = &self.plot else {
-            return Ok((0..N.min(4)).collect());
+            // Cyclic coordinates (a rolling wheel's angle, a heading) often
+            // grow without bound and would flatten the others' curves.
+            let shaped: Vec<usize> = (0..N).filter(|&j| !S::CYCLIC[j]).take(4).collect();
+            return Ok(if shaped.is_empty() {
+                (0..N.min(4)).collect()
+            } else {
+                shaped
+            });
         };
         names
             .iter()

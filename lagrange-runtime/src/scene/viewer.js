@@ -1,8 +1,10 @@
 // The scene viewer of lagrange: plays the sampled frames of one or more runs
 // on a Canvas 2D, with an orbiting camera and a linked plot. No libraries and
 // no network: the page is one file. Solids are flat-shaded polygons drawn far
-// to near (the painter's algorithm), which is exact enough for a few convex
-// bodies and needs no WebGL.
+// to near (the painter's algorithm) shape by shape: a convex solid's visible
+// faces do not overlap, so ordering the shapes by their centres' depth (ties
+// in the description's order, so a bar across a disc is drawn over it) is
+// enough for a few bodies and needs no WebGL.
 (function () {
   'use strict';
   var data = JSON.parse(document.getElementById('scene-data').textContent);
@@ -148,6 +150,7 @@
     if (s[2] > 1e-6) out.push({ depth: s[2] - 2e-3 * radius, kind: 'dot', at: s, rgb: style.rgb, alpha: style.alpha });
   }
 
+  // Draws one shape into `out`; returns the depth of its centre.
   function shapePrimitives(out, c, pose, s, style) {
     var frame = s.on[0] === 'b' ? pose.bodies[s.on[1]] : { origin: pose.points[s.on[1]], rotation: LIFT };
     var centre = add(frame.origin, mulMV(frame.rotation, s.at)), axes = mulMM(frame.rotation, s.axes);
@@ -159,7 +162,12 @@
     else if (s.kind === 'cylinder') cylinder(out, c, centre, axes, s.radius, s.length, s.axis, st, true);
     else if (s.kind === 'capsule') {
       cylinder(out, c, centre, axes, s.radius, s.length, s.axis, st, false).forEach(function (end) { disc(out, c, end, s.radius, st); });
-    } else if (s.kind === 'line') line(out, c, frame.origin, anchorPosition(pose, s.to), st);
+    } else if (s.kind === 'line') {
+      var to = anchorPosition(pose, s.to);
+      line(out, c, frame.origin, to, st);
+      return project(c, scale(add(frame.origin, to), 0.5))[2];
+    }
+    return project(c, centre)[2];
   }
   function hexToRgb(h) { return [1, 3, 5].map(function (i) { return parseInt(h.substr(i, 2), 16); }); }
 
@@ -198,18 +206,47 @@
     }
     ctx.globalAlpha = 1;
   }
+  // Side by side: each run after the first moved, horizontally, under the
+  // first one's centroid, one lane to the side per run (display only).
+  function moved(pose, shift) {
+    return {
+      bodies: pose.bodies.map(function (b) { return { origin: add(b.origin, shift), rotation: b.rotation }; }),
+      points: pose.points.map(function (p) { return add(p, shift); })
+    };
+  }
+  function sideBySide(poses) {
+    var lead = centroid(poses[0]);
+    return poses.map(function (pose, r) {
+      if (r === 0) return pose;
+      var d = sub(lead, centroid(pose));
+      return moved(pose, [d[0], d[1] + 2.2 * radius * r, 0]);
+    });
+  }
   function render() {
     var poses = runs.map(function (r) { return poseAt(r, state.t); });
+    if (data.sideBySide) poses = sideBySide(poses);
     if (state.follow) cam.target = centroid(poses[0]);
     var c = camera(), prims = [];
     ctx.fillStyle = '#ffffff'; ctx.fillRect(0, 0, view.width, view.height);
     grid(c);
+    var order = 0;
+    function group(list, depth) {
+      list.forEach(function (p) { p.group = depth; p.order = order; prims.push(p); });
+      order++;
+    }
     runs.forEach(function (run, r) {
       var style = { rgb: hexToRgb(run.color), alpha: run.opacity };
-      data.shapes.forEach(function (s) { shapePrimitives(prims, c, poses[r], s, style); });
-      poses[r].points.forEach(function (p, j) { if (!data.pointHasSolid[j]) dotAt(prims, c, p, style); });
+      data.shapes.forEach(function (s) {
+        var own = [], depth = shapePrimitives(own, c, poses[r], s, style);
+        group(own, depth);
+      });
+      poses[r].points.forEach(function (p, j) {
+        var own = [];
+        if (data.pointDots[j]) dotAt(own, c, p, style);
+        if (own.length) group(own, own[0].depth);
+      });
     });
-    prims.sort(function (a, b) { return b.depth - a.depth; });
+    prims.sort(function (a, b) { return (b.group - a.group) || (a.order - b.order) || (b.depth - a.depth); });
     prims.forEach(drawPrimitive);
     document.getElementById('time').textContent = 't = ' + state.t.toFixed(3) + ' s';
     document.getElementById('slider').value = Math.round(1000 * (state.t - tMin) / ((tMax - tMin) || 1));
