@@ -14,7 +14,7 @@
   var runs = data.runs;
   var tMin = Math.min.apply(null, runs.map(function (r) { return r.t0; }));
   var tMax = Math.max.apply(null, runs.map(function (r) { return r.t0 + r.dt * (r.count - 1); }));
-  var state = { t: tMin, playing: true, speed: 1, follow: true, last: null };
+  var state = { t: tMin, playing: true, speed: 1, follow: false, last: null };
 
   // ---- vectors and rotations -------------------------------------------
   function add(a, b) { return [a[0] + b[0], a[1] + b[1], a[2] + b[2]]; }
@@ -74,16 +74,30 @@
   }
 
   // ---- camera ----------------------------------------------------------
-  var first = poseAt(runs[0], tMin), home = centroid(first), radius = 0;
-  first.bodies.map(function (b) { return b.origin; }).concat(first.points).forEach(function (p) {
-    radius = Math.max(radius, Math.sqrt(dot(sub(p, home), sub(p, home))));
-  });
-  data.shapes.forEach(function (s) {
+  // The camera: a system that travels (a bicycle, a rolling disk) is
+  // followed at the size of one frame; one that stays (an arm, a top) is
+  // framed whole, every sampled position of every run in view.
+  function anchors(pose) { return pose.bodies.map(function (b) { return b.origin; }).concat(pose.points); }
+  function spread(list, centre) {
+    return list.reduce(function (m, p) { return Math.max(m, Math.sqrt(dot(sub(p, centre), sub(p, centre)))); }, 0);
+  }
+  var first = poseAt(runs[0], tMin), home = centroid(first), radius = spread(anchors(first), home);
+  var shapeSize = data.shapes.reduce(function (m, s) {
     var size = s.size ? Math.max.apply(null, s.size) / 2 : (s.radius || 0) + (s.length || 0) / 2;
-    radius = Math.max(radius, size + Math.sqrt(dot(s.at, s.at)));
+    return Math.max(m, size + Math.sqrt(dot(s.at, s.at)));
+  }, 0);
+  var everywhere = [];
+  runs.forEach(function (run) {
+    for (var k = 0; k <= 60; k++) everywhere = everywhere.concat(anchors(poseAt(run, tMin + (tMax - tMin) * k / 60)));
   });
-  if (!(radius > 0)) radius = 1;
-  var cam = { az: data.planar ? -Math.PI / 2 : -1.0, el: data.planar ? 0.0 : 0.35, dist: 3.2 * radius, target: home };
+  var lo = everywhere.reduce(function (m, p) { return [Math.min(m[0], p[0]), Math.min(m[1], p[1]), Math.min(m[2], p[2])]; }, home);
+  var hi = everywhere.reduce(function (m, p) { return [Math.max(m[0], p[0]), Math.max(m[1], p[1]), Math.max(m[2], p[2])]; }, home);
+  var whole = spread(everywhere, scale(add(lo, hi), 0.5));
+  state.follow = whole > 4 * Math.max(radius, shapeSize);
+  if (!state.follow) { home = scale(add(lo, hi), 0.5); radius = whole; }
+  radius = Math.max(radius, shapeSize, 1e-9);
+  document.getElementById('follow').checked = state.follow;
+  var cam = { az: data.planar ? -Math.PI / 2 : -1.0, el: data.planar ? 0.0 : 0.35, dist: 4.2 * radius, target: home };
   function camera() {
     var ce = Math.cos(cam.el), eye = add(cam.target, scale([ce * Math.cos(cam.az), ce * Math.sin(cam.az), Math.sin(cam.el)], cam.dist));
     var forward = norm(sub(cam.target, eye)), right = norm(cross(forward, [0, 0, 1])), up = cross(right, forward);
@@ -226,6 +240,7 @@
     var poses = runs.map(function (r) { return poseAt(r, state.t); });
     if (data.sideBySide) poses = sideBySide(poses);
     if (state.follow) cam.target = centroid(poses[0]);
+    else cam.target = home;
     var c = camera(), prims = [];
     ctx.fillStyle = '#ffffff'; ctx.fillRect(0, 0, view.width, view.height);
     grid(c);
