@@ -136,10 +136,10 @@ pub enum Shape {
     /// point, in its axes) or centred on a point (world axes).
     Solid {
         target: Ident,
-        solid: Solid,
+        solid: Box<Solid>,
         /// The keyword as written, where errors about the solid point.
         keyword: Ident,
-        at: Option<Expr>,
+        at: Option<Box<Expr>>,
     },
     /// A polyline through points and bodies' reference points.
     Line(Vec<Ident>),

@@ -50,11 +50,11 @@ pub fn parse(input: ParseStream) -> syn::Result<Shape> {
                 ),
             ));
         }
-        at = Some(value);
+        at = Some(Box::new(value));
     }
     Ok(Shape::Solid {
         target: first,
-        solid,
+        solid: Box::new(solid),
         keyword,
         at,
     })
@@ -178,7 +178,7 @@ pub fn check(cx: &Ctxt, system: &System) {
             Shape::Line(names) => (names.iter().collect(), Vec::new(), None),
             Shape::Solid {
                 target, solid, at, ..
-            } => (vec![target], sizes(cx, solid), at.as_ref()),
+            } => (vec![target], sizes(cx, solid), at.as_deref()),
         };
         for name in targets.into_iter().filter(|n| !known(n)) {
             cx.error_at(name.span(), unknown_target(system, name));

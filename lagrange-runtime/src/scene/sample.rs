@@ -57,15 +57,11 @@ fn state_at<T: Real, const N: usize>(traj: &Trajectory<T, N>, t: f64) -> SVector
         return q;
     }
     let times = traj.times();
-    let i = times.partition_point(|&ti| ti.to_f64() < t);
-    let i = if i == times.len() {
-        i - 1
-    } else if i > 0 && (t - times[i - 1].to_f64()) < (times[i].to_f64() - t) {
-        i - 1
-    } else {
-        i
-    };
-    traj.positions()[i]
+    let i = times
+        .partition_point(|&ti| ti.to_f64() < t)
+        .min(times.len() - 1);
+    let before_is_nearer = i > 0 && (t - times[i - 1].to_f64()) < (times[i].to_f64() - t);
+    traj.positions()[if before_is_nearer { i - 1 } else { i }]
 }
 
 /// Samples the run.

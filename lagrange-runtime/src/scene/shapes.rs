@@ -132,7 +132,7 @@ pub(super) fn equivalent_box(
     let [a, b, c] = [0, 1, 2].map(|i| eigen.eigenvalues[i]);
     let edge = |x: f64| (6.0 * x / m).max(0.0).sqrt();
     let mut size = Vector3::new(edge(b + c - a), edge(a + c - b), edge(a + b - c));
-    let marker = !(m > 0.0) || !size.iter().all(|x| x.is_finite()) || size.max() <= 0.0;
+    let marker = m.is_nan() || m <= 0.0 || !size.iter().all(|x| x.is_finite()) || size.max() <= 0.0;
     if marker {
         size = Vector3::repeat(0.0);
     }
