@@ -53,5 +53,6 @@ pub(crate) fn row(system: &'static str) -> Result<Row, Error> {
         // The run is made of phases of two systems (free flight and sliding
         // on the wall): one scene would need both; its GIF shows it instead.
         scene: None,
+        still: None,
     })
 }

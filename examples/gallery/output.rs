@@ -41,6 +41,9 @@ pub(crate) fn write(out: &Path, rows: &[Row], animations: &Animations) -> Result
         if let Some(page) = &row.scene {
             std::fs::write(out.join(scene_file(row.system)), page)?;
         }
+        if let Some(segments) = &row.still {
+            crate::still::png(&out.join(still_file(row.system)), segments)?;
+        }
     }
     let mut gifs = Vec::new();
     if let Some((row, l1, l2)) = animations.double_pendulum
@@ -77,11 +80,21 @@ fn escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// A link to the row's scene, if it has one.
-fn scene_link(r: &Row, text: &str) -> String {
-    match r.scene {
-        Some(_) => format!("<a href=\"{}\">{text}</a>", scene_file(r.system)),
-        None => String::new(),
+/// The file of a system's still (the table's picture of its scene).
+fn still_file(system: &str) -> String {
+    format!("{}-still.png", slug(system))
+}
+
+/// A link to the row's scene, if it has one (its still as the link, if drawn).
+fn scene_link(r: &Row, text: &str, picture: bool) -> String {
+    match (&r.scene, &r.still) {
+        (Some(_), Some(_)) if picture => format!(
+            "<a href=\"{}\"><img src=\"{}\" width=\"90\" alt=\"{text}\" title=\"open the 3D scene\"></a>",
+            scene_file(r.system),
+            still_file(r.system)
+        ),
+        (Some(_), _) => format!("<a href=\"{}\">{text}</a>", scene_file(r.system)),
+        _ => String::new(),
     }
 }
 
@@ -153,7 +166,7 @@ fn html(rows: &[Row], gifs: &[(&str, &str)]) -> String {
                 .map_or("—".into(), |[p, v]| format!("{p:.1e}, {v:.1e}")),
             escape(&r.note),
             r.wall_ms,
-            scene_link(r, "3D")
+            scene_link(r, "3D", true)
         );
     }
     s.push_str("</table>\n");
@@ -165,7 +178,7 @@ fn html(rows: &[Row], gifs: &[(&str, &str)]) -> String {
              <img src=\"{name}.png\" alt=\"{}\"></section>",
             escape(r.system),
             escape(r.about),
-            scene_link(r, "3D scene"),
+            scene_link(r, "3D scene", false),
             escape(r.system)
         );
     }

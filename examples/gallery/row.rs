@@ -36,6 +36,8 @@ pub(crate) struct Row {
     pub figure: Option<Figure>,
     /// The run's 3D scene, a self-contained HTML page.
     pub scene: Option<String>,
+    /// The scene at mid-run, as segments for the table's picture.
+    pub still: Option<Vec<lagrange::scene::Segment>>,
 }
 
 /// A system's coordinates as the plots and CSV headers name them, and which
@@ -91,6 +93,7 @@ where
             conservative,
         )?),
         scene: Some(traj.scene(sys).title(system).to_html()?),
+        still: Some(traj.scene(sys).still((span.start + span.end) / 2.0)?),
     })
 }
 

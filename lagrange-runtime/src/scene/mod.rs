@@ -60,8 +60,10 @@
 mod html;
 mod sample;
 mod shapes;
+mod still;
 
 pub use sample::MAX_FRAMES;
+pub use still::Segment;
 
 use std::path::Path;
 
@@ -196,6 +198,18 @@ impl<'a, T: Real, const N: usize, S: Posed<T, N> + Lagrangian<T, N>> Scene<'a, T
             })
             .collect();
         Ok(html::page(&scene, &runs))
+    }
+
+    /// A still of the first run without a browser: every shape's edges at
+    /// time `t` and the paths of the bodies and points over the run, as
+    /// segments on the picture plane (x right, y up) seen from the page's
+    /// starting view, for drawing with other tools.
+    ///
+    /// # Errors
+    /// As [`Scene::to_html`] for the shapes and the run.
+    pub fn still(&self, t: f64) -> Result<Vec<Segment>, Error> {
+        self.check()?;
+        still::segments(self.sys, self.runs[0].traj, t)
     }
 
     /// Writes the page to `path`.

@@ -52,7 +52,7 @@ fn frame_times<T: Real, const N: usize>(traj: &Trajectory<T, N>, fps: f64) -> (f
 
 /// The state at a frame time: the dense output where there is one, else the
 /// stored point nearest in time.
-fn state_at<T: Real, const N: usize>(traj: &Trajectory<T, N>, t: f64) -> SVector<T, N> {
+pub(super) fn state_at<T: Real, const N: usize>(traj: &Trajectory<T, N>, t: f64) -> SVector<T, N> {
     if let Some((q, _)) = traj.state_at(T::lit(t)) {
         return q;
     }
@@ -116,7 +116,7 @@ pub(super) fn sample<T: Real, const N: usize, S: Posed<T, N>>(
     Ok(frames)
 }
 
-fn to_f64<T: Real>(pose: &BodyPose<T>) -> BodyPose<f64> {
+pub(super) fn to_f64<T: Real>(pose: &BodyPose<T>) -> BodyPose<f64> {
     BodyPose {
         origin: pose.origin.map(|x| x.to_f64()),
         centre: pose.centre.map(|x| x.to_f64()),

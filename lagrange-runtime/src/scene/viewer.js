@@ -93,9 +93,12 @@
   var lo = everywhere.reduce(function (m, p) { return [Math.min(m[0], p[0]), Math.min(m[1], p[1]), Math.min(m[2], p[2])]; }, home);
   var hi = everywhere.reduce(function (m, p) { return [Math.max(m[0], p[0]), Math.max(m[1], p[1]), Math.max(m[2], p[2])]; }, home);
   var whole = spread(everywhere, scale(add(lo, hi), 0.5));
-  state.follow = whole > 4 * Math.max(radius, shapeSize);
+  // A lone point has no size of its own: such a scene is always framed whole.
+  var size = Math.max(radius, shapeSize);
+  state.follow = size > 0 && whole > 4 * size;
   if (!state.follow) { home = scale(add(lo, hi), 0.5); radius = whole; }
-  radius = Math.max(radius, shapeSize, 1e-9);
+  radius = Math.max(radius, shapeSize);
+  if (!(radius > 0)) radius = 1;
   document.getElementById('follow').checked = state.follow;
   var cam = { az: data.planar ? -Math.PI / 2 : -1.0, el: data.planar ? 0.0 : 0.35, dist: 4.2 * radius, target: home };
   function camera() {
