@@ -164,6 +164,10 @@
 //! [`Rattle`] integrates holonomic constraints with a constant mass matrix
 //! symplectically, keeping Φ = 0 and Φ_q q̇ = 0 to round-off.
 //!
+//! [`Scene`] turns runs of a system into one self-contained HTML page that
+//! plays the motion in 3D (the bodies' poses come from [`Posed`], which the
+//! derive implements); see [`scene`].
+//!
 //! [`study`] runs work-precision studies: integrators × tolerances or step sizes
 //! on one problem, each run's error against a closed form or a DOP853 reference
 //! and its cost, as a markdown/CSV table and (feature `plot`) a log-log PNG.

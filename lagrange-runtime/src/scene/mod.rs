@@ -276,8 +276,8 @@ impl<'a, T: Real, const N: usize, S: Posed<T, N> + Lagrangian<T, N>> Scene<'a, T
     }
 }
 
-/// Whether every position lies in z = 0 and no body turns out of the plane:
-/// a planar description, shown in its plane with y up.
+/// Whether the description is planar: no body, every point in z = 0; shown
+/// in its plane with y up.
 fn is_planar(f: &sample::Frames, bodies: usize) -> bool {
     bodies == 0 && f.points.chunks(3).all(|p| p[2] == 0.0)
 }
