@@ -262,7 +262,7 @@ pub mod prelude {
         Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation, Direction, Dop853,
         Dopri5, Drift, Driven, Error, Event, EventRun, Failure, Gauss, InputTable, Integrator,
         Interpolation, Lagrangian, Occurrence, Radau5, Rattle, Real, Record, Reduced,
-        ReducedDynamics, ReducedForm, Rk4, Simulation, StateFeedback, StormerVerlet, Study,
+        ReducedDynamics, ReducedForm, Rk4, Scene, Simulation, StateFeedback, StormerVerlet, Study,
         Trajectory, WorkPrecision,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
@@ -277,9 +277,10 @@ pub struct ReadmeDoctests;
 /// Paths the generated code uses; not a public API.
 #[doc(hidden)]
 pub mod __private {
+    pub use lagrange_runtime::pose::{Anchor, BodyInertia, BodyPose, Posed, Shape, Solid};
     pub use lagrange_runtime::{
         Constrained, Driven, FormVisitor, Lagrangian, Real, Reduced, Route,
     };
     pub use lagrange_runtime::{Error, func, physical};
-    pub use nalgebra::{SMatrix, SVector};
+    pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 }

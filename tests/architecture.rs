@@ -16,9 +16,11 @@ const RUNTIME_LAYERS: &[&[&str]] = &[
     &["numeric"],
     &["error"],
     &["ode"],
-    &["system"],
+    &["system", "pose"],
     &["mechanics"],
-    &["control", "event", "linear", "study", "table", "ensemble"],
+    &[
+        "control", "event", "linear", "study", "table", "ensemble", "scene",
+    ],
     &["simulation"],
 ];
 

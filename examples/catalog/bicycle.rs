@@ -68,6 +68,30 @@ use lagrange::nalgebra::SVector;
         front_x = dot(front_hub.x) + front_wheel.omega_y * d_z - front_wheel.omega_z * d_y,
         front_y = dot(front_hub.y) + front_wheel.omega_z * d_x - front_wheel.omega_x * d_z
     ),
+    // What the scene draws (visual only, no equation reads it): the wheels as
+    // discs with a cross to show them turn, the frame as tubes between
+    // massless points (bottom bracket, seat, head tube on the steer axis), a
+    // saddle and the handlebar.
+    point(bottom_bracket, on = rear_frame, at = [0.4, 0, -0.02]),
+    point(seat, on = rear_frame, at = [0.25, 0, 0.65]),
+    point(head_low, on = rear_frame,
+          at = [w + c - 0.75 * sin(lambda), 0, 0.75 * cos(lambda) - r_r]),
+    point(head_high, on = rear_frame,
+          at = [w + c - 1.05 * sin(lambda), 0, 1.05 * cos(lambda) - r_r]),
+    point(stem, on = front_frame, at = [-1.1 * sin(lambda), 0, 1.1 * cos(lambda)]),
+    shape(rear_wheel, cylinder(radius = r_r, length = 0.03, axis = y)),
+    shape(rear_wheel, box(size = [1.9 * r_r, 0.05, 0.03])),
+    shape(rear_wheel, box(size = [0.03, 0.05, 1.9 * r_r])),
+    shape(front_wheel, cylinder(radius = r_f, length = 0.03, axis = y)),
+    shape(front_wheel, box(size = [1.9 * r_f, 0.05, 0.03])),
+    shape(front_wheel, box(size = [0.03, 0.05, 1.9 * r_f])),
+    shape(line(rear_wheel, bottom_bracket, head_low, head_high, seat, rear_wheel)),
+    shape(line(seat, bottom_bracket)),
+    shape(line(front_hub, head_low)),
+    shape(line(head_high, stem)),
+    shape(rear_frame, box(size = [0.26, 0.14, 0.05]), at = [0.25, 0, 0.68]),
+    shape(front_frame, capsule(radius = 0.018, length = 0.55, axis = y),
+          at = [-1.1 * sin(lambda) - 0.05, 0, 1.1 * cos(lambda)]),
     // Both forms: the reduced one on the roll, rear wheel and steer rates.
     speeds(roll = dot(phi), rear = dot(theta_r), steer = dot(delta)),
     formulation(multipliers, reduced),

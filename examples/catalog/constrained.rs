@@ -153,6 +153,9 @@ impl ThreeParticleBody {
     coordinates(x, y, z, psi, theta, phi),
     body(ball, mass = m, inertia = [j, j, j], at = [x, y, z],
          rotation = euler_zxz(psi, theta, phi)),
+    // Drawn as a ball with an axle through it, to see it roll (visual only).
+    shape(ball, sphere(radius = a)),
+    shape(ball, box(size = [2.3 * a, 0.2 * a, 0.2 * a])),
     gravity = [0, 0, -g],
     holonomic(height = ball.z - a),
     nonholonomic(slip_x = dot(ball.x) - a * ball.omega_y,
@@ -176,6 +179,8 @@ pub struct RollingSphere {
     coordinates(x, y, psi, theta, phi),
     body(ball, mass = m, inertia = [j, j, j], at = [x, y, a],
          rotation = euler_zxz(psi, theta, phi)),
+    shape(ball, sphere(radius = a)),
+    shape(ball, box(size = [2.3 * a, 0.2 * a, 0.2 * a])),
     gravity = [0, 0, -g],
     nonholonomic(slip_x = dot(ball.x) - a * ball.omega_y,
                  slip_y = dot(ball.y) + a * ball.omega_x),
@@ -203,6 +208,13 @@ pub struct RollingSphereReduced {
          rotation = euler_zxz(phi2, theta2, psi2)),
     gravity = [0, 0, -g],
     nonholonomic(thread = dot(psi1) + cos(theta1) * dot(phi1) + dot(psi2) + cos(theta2) * dot(phi2)),
+    // Drawn as spinning discs on spindles from their pivots (visual only).
+    shape(top1, cylinder(radius = l, length = l / 5, axis = z)),
+    shape(top1, box(size = [2 * l, l / 8, l / 3])),
+    shape(top1, capsule(radius = l / 25, length = 1.3 * l, axis = z), at = [0, 0, -0.4 * l]),
+    shape(top2, cylinder(radius = l, length = l / 5, axis = z)),
+    shape(top2, box(size = [2 * l, l / 8, l / 3])),
+    shape(top2, capsule(radius = l / 25, length = 1.3 * l, axis = z), at = [0, 0, -0.4 * l]),
 )]
 pub struct ThreadedTops {
     pub m: f64,
@@ -251,6 +263,8 @@ pub struct PlanarParticle {
     coordinates(x, y, psi, theta, phi),
     body(ball, mass = m, inertia = [j, j, j], at = [x, y, a],
          rotation = euler_zxz(psi, theta, phi)),
+    shape(ball, sphere(radius = a)),
+    shape(ball, box(size = [2.3 * a, 0.2 * a, 0.2 * a])),
     gravity = [0, 0, -g],
     nonholonomic(slip_x = dot(ball.x) - a * ball.omega_y + big_omega * ball.y,
                  slip_y = dot(ball.y) + a * ball.omega_x - big_omega * ball.x),
@@ -273,6 +287,10 @@ pub struct SphereOnTurntable {
     body(disk, mass = m, inertia = [b, c, b],
          at = [x + a * sin(theta) * sin(psi), y - a * sin(theta) * cos(psi), a * cos(theta)],
          rotation = rot_z(psi) * rot_x(theta) * rot_y(phi)),
+    // Drawn as a disc with a cross on it, to see it spin (visual only).
+    shape(disk, cylinder(radius = a, length = a / 10, axis = y)),
+    shape(disk, box(size = [1.9 * a, a / 6, a / 8])),
+    shape(disk, box(size = [a / 8, a / 6, 1.9 * a])),
     gravity = [0, 0, -g],
     // The material point at the contact, centre − a u with u = (sθ sψ, −sθ cψ, cθ) the
     // disk's "up" direction, has zero velocity: v_centre − a ω × u = 0.

@@ -69,6 +69,12 @@ impl CartPole {
     inputs(tau1, tau2),
     point(elbow, mass = m1, at = [l1 * cos(q1), l1 * sin(q1)]),
     point(hand, mass = m2, at = [l1 * cos(q1) + l2 * cos(q1 + q2), l1 * sin(q1) + l2 * sin(q1 + q2)]),
+    // The scene's links (visual only): the shoulder a point without mass at
+    // the origin, the elbow and hand as balls, the links as lines.
+    point(shoulder, mass = 0, at = [0, 0]),
+    shape(elbow, sphere(radius = 0.05)),
+    shape(hand, sphere(radius = 0.04)),
+    shape(line(shoulder, elbow, hand)),
     gravity = [0, -g],
     generalized_force(q1 = tau1, q2 = tau2),
     emit(jacobians),

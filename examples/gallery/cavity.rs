@@ -50,5 +50,9 @@ pub(crate) fn row(system: &'static str) -> Result<Row, Error> {
         ),
         wall_ms,
         figure: Some(Figure::from_points(&["x", "y", "z"], &points)),
+        // The run is made of phases of two systems (free flight and sliding
+        // on the wall): one scene would need both; its GIF shows it instead.
+        scene: None,
+        still: None,
     })
 }

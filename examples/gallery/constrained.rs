@@ -3,7 +3,7 @@
 //! rolling sphere both ways, the threaded tops.
 
 use crate::catalog::constrained::*;
-use crate::row::{Row, TOL, coords, row, run};
+use crate::row::{Row, TOL, row, run};
 use lagrange::prelude::*;
 
 /// C1 in Cartesian coordinates with the rod as a constraint; the note is the
@@ -19,7 +19,7 @@ pub(crate) fn cartesian_pendulum(system: &'static str) -> Result<Row, Error> {
     let v0 = [th.cos() * thd, th.sin() * phd, th.sin() * thd];
     row(
         system,
-        &coords(&cart),
+        &cart,
         0.0..20.0,
         true,
         || {
@@ -53,7 +53,7 @@ pub(crate) fn rod_pair(system: &'static str) -> Result<Row, Error> {
     };
     row(
         system,
-        &coords(&pair),
+        &pair,
         0.0..1.5,
         true,
         || {
@@ -137,7 +137,7 @@ pub(crate) fn sphere_multipliers(system: &'static str) -> Result<Row, Error> {
     let (a, start) = (s.sphere.a, s.start);
     row(
         system,
-        &coords(&s.sphere),
+        &s.sphere,
         0.0..10.0,
         true,
         || {
@@ -166,7 +166,7 @@ pub(crate) fn sphere_reduced(system: &'static str) -> Result<Row, Error> {
     let s = Sphere::new();
     row(
         system,
-        &coords(&s.reduced),
+        &s.reduced,
         0.0..10.0,
         true,
         || s.run_reduced(),
@@ -199,7 +199,7 @@ pub(crate) fn threaded_tops(system: &'static str) -> Result<Row, Error> {
     ];
     row(
         system,
-        &coords(&tops),
+        &tops,
         0.0..5.0,
         true,
         || {

@@ -4,7 +4,7 @@
 use crate::catalog::bicycle::{Bicycle, published};
 use crate::catalog::constrained::RollingDisk;
 use crate::catalog::control::{CartPole, TwoLinkArm};
-use crate::row::{Row, TOL, coords, row};
+use crate::row::{Row, TOL, row};
 use lagrange::linear::sweep;
 use lagrange::prelude::*;
 
@@ -25,7 +25,7 @@ fn cart_pole(system: &'static str, period: Option<f64>) -> Result<Row, Error> {
     let law = cp.lqr_feedback()?;
     row(
         system,
-        &coords(&cp),
+        &cp,
         0.0..10.0,
         false,
         || {
@@ -59,7 +59,7 @@ pub(crate) fn disk(system: &'static str) -> Result<Row, Error> {
     let spin = 1.2 * critical;
     row(
         system,
-        &coords(&d),
+        &d,
         0.0..10.0,
         true,
         || {
@@ -96,20 +96,22 @@ pub(crate) fn bicycle(system: &'static str) -> Result<Row, Error> {
             .map_or(f64::NAN, |x| x.parameter)
     };
     let (weave, capsize) = (speed_of(true), speed_of(false));
-    let (q0, mut v0) = b.upright(5.0);
-    v0[3] = 0.5;
-    row(
+    // The same roll-rate kick at a forward speed v.
+    let kicked = |v: f64| {
+        let (q0, mut v0) = b.upright(v);
+        v0[3] = 0.5;
+        Simulation::new(&b)
+            .integrator(Dopri5::tol(TOL))
+            .drift(Drift::projection())
+            .project_initial(true)
+            .run_constrained(q0, v0, 0.0..8.0)
+    };
+    let mut row = row(
         system,
-        &coords(&b),
+        &b,
         0.0..8.0,
         true,
-        || {
-            Simulation::new(&b)
-                .integrator(Dopri5::tol(TOL))
-                .drift(Drift::projection())
-                .project_initial(true)
-                .run_constrained(q0, v0, 0.0..8.0)
-        },
+        || kicked(5.0),
         |tr| {
             let (q, _) = tr.final_state();
             format!(
@@ -119,7 +121,27 @@ pub(crate) fn bicycle(system: &'static str) -> Result<Row, Error> {
                 q[3]
             )
         },
-    )
+    )?;
+    row.scene = Some(bicycle_scene(&b, &kicked(5.0)?, kicked(3.0))?);
+    Ok(row)
+}
+
+/// The bicycle at 5 m/s (self-stable: between the weave and capsize speeds)
+/// beside the same kick at 3 m/s, below the weave speed, where it falls; a
+/// run that fails (the bicycle on the ground) is shown up to its failure.
+fn bicycle_scene(
+    b: &Bicycle,
+    stable: &Trajectory<f64, 8>,
+    slow: Result<Trajectory<f64, 8>, Failure<Trajectory<f64, 8>>>,
+) -> Result<String, Error> {
+    let slow = slow.unwrap_or_else(|f| *f.partial);
+    Scene::new(b)
+        .title("Whipple bicycle: the same roll-rate kick at 5 m/s (self-stable) and 3 m/s (falls)")
+        .run(stable, "5 m/s")
+        .run(&slow, "3 m/s")
+        .plot(&["phi", "delta"])
+        .side_by_side(true)
+        .to_html()
 }
 
 /// Computed-torque tracking from a 0.1 rad error: τ = M (q̈_d + K_d ė + K_p e)
@@ -129,7 +151,7 @@ pub(crate) fn arm(system: &'static str) -> Result<Row, Error> {
     let [q0, v0, _] = TwoLinkArm::reference(0.0);
     row(
         system,
-        &coords(&arm),
+        &arm,
         0.0..5.0,
         false,
         || {

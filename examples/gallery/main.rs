@@ -23,6 +23,7 @@ mod nonholonomic;
 mod output;
 mod plot;
 mod row;
+mod still;
 mod table;
 
 use lagrange::Error;

@@ -2,7 +2,7 @@
 //! M q̈ + h = Q with DOPRI5: pendulums, a rheonomic surface, free bodies.
 
 use crate::catalog::*;
-use crate::row::{Row, TOL, coords, row, run};
+use crate::row::{Row, TOL, row, run};
 use lagrange::prelude::*;
 
 /// The double pendulum of the row and of its animation.
@@ -27,7 +27,7 @@ pub(crate) fn pendulum_period(system: &'static str) -> Result<Row, Error> {
     let period = std::cell::Cell::new(f64::NAN);
     row(
         system,
-        &coords(&pendulum),
+        &pendulum,
         0.0..20.0,
         true,
         || {

@@ -3,7 +3,7 @@
 //! the rolling disk on a steady circle, the Chaplygin sleigh.
 
 use crate::catalog::constrained::*;
-use crate::row::{Row, TOL, coords, row};
+use crate::row::{Row, TOL, row};
 use lagrange::prelude::*;
 
 /// The rolling disk's radius (its row and its animation).
@@ -17,7 +17,7 @@ pub(crate) fn polar(system: &'static str) -> Result<Row, Error> {
     };
     row(
         system,
-        &coords(&polar),
+        &polar,
         0.0..5.0,
         false,
         || {
@@ -41,7 +41,7 @@ pub(crate) fn turntable(system: &'static str) -> Result<Row, Error> {
     };
     row(
         system,
-        &coords(&turntable),
+        &turntable,
         0.0..10.0,
         false,
         || {
@@ -78,7 +78,7 @@ pub(crate) fn rolling_disk(system: &'static str) -> Result<Row, Error> {
     let (q0, v0) = disk.steady_circle(theta0, 2.0);
     row(
         system,
-        &coords(&disk),
+        &disk,
         0.0..3.0,
         true,
         || {
@@ -98,7 +98,7 @@ pub(crate) fn sleigh(system: &'static str) -> Result<Row, Error> {
     };
     row(
         system,
-        &coords(&sleigh),
+        &sleigh,
         0.0..60.0,
         true,
         || {

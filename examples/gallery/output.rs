@@ -37,6 +37,14 @@ pub(crate) fn write(out: &Path, rows: &[Row], animations: &Animations) -> Result
         std::fs::write(out.join(format!("{name}.csv")), &fig.csv)?;
         plot::system_png(&out.join(format!("{name}.png")), row.system, fig)?;
     }
+    for row in rows {
+        if let Some(page) = &row.scene {
+            std::fs::write(out.join(scene_file(row.system)), page)?;
+        }
+        if let Some(segments) = &row.still {
+            crate::still::png(&out.join(still_file(row.system)), segments)?;
+        }
+    }
     let mut gifs = Vec::new();
     if let Some((row, l1, l2)) = animations.double_pendulum
         && let Some(fig) = &row.figure
@@ -61,10 +69,33 @@ pub(crate) fn write(out: &Path, rows: &[Row], animations: &Animations) -> Result
     Ok(index)
 }
 
+/// The file of a system's 3D scene.
+pub(crate) fn scene_file(system: &str) -> String {
+    format!("{}-scene.html", slug(system))
+}
+
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
+}
+
+/// The file of a system's still (the table's picture of its scene).
+fn still_file(system: &str) -> String {
+    format!("{}-still.png", slug(system))
+}
+
+/// A link to the row's scene, if it has one (its still as the link, if drawn).
+fn scene_link(r: &Row, text: &str, picture: bool) -> String {
+    match (&r.scene, &r.still) {
+        (Some(_), Some(_)) if picture => format!(
+            "<a href=\"{}\"><img src=\"{}\" width=\"90\" alt=\"{text}\" title=\"open the 3D scene\"></a>",
+            scene_file(r.system),
+            still_file(r.system)
+        ),
+        (Some(_), _) => format!("<a href=\"{}\">{text}</a>", scene_file(r.system)),
+        _ => String::new(),
+    }
 }
 
 /// The catalog id ("C5") and the human name of a gallery system name.
@@ -90,7 +121,8 @@ fn html(rows: &[Row], gifs: &[(&str, &str)]) -> String {
          rtol = atol = 1e-10 in f64 (controlled and linearised systems included). \
          <i>drift</i> is the largest relative change of the conserved quantity \
          (T + V, or the Jacobi integral); <i>residuals</i> the largest |&Phi;| and \
-         |G q&#775; + g| along the run. Each system has a plot and its trajectory as CSV below.</p>\n",
+         |G q&#775; + g| along the run. Each system has a plot and its trajectory as CSV below, and a 3D scene \
+         (a page of its own, offline: play, scrub, drag to orbit, wheel to zoom).</p>\n",
     );
     if !gifs.is_empty() {
         s.push_str("<h2>Animations</h2>\n<div class=\"anim\">\n");
@@ -106,7 +138,7 @@ fn html(rows: &[Row], gifs: &[(&str, &str)]) -> String {
     s.push_str(
         "<h2>Summary</h2>\n<table><tr><th>id</th><th>system</th><th>what it shows</th>\
          <th>dof</th><th>span</th><th>steps (rejected)</th><th>drift</th><th>residuals |&Phi;|, |Gv|</th>\
-         <th>check</th><th>wall ms</th></tr>\n",
+         <th>check</th><th>wall ms</th><th>scene</th></tr>\n",
     );
     for r in rows {
         let (id, name) = split_id(r.system);
@@ -123,7 +155,7 @@ fn html(rows: &[Row], gifs: &[(&str, &str)]) -> String {
             s,
             "<tr><td>{id}</td><td>{link}</td><td>{}</td><td class=\"n\">{}</td>\
              <td class=\"n\">{}</td><td class=\"n\">{} ({})</td><td class=\"n\">{}</td>\
-             <td class=\"n\">{}</td><td>{}</td><td class=\"n\">{:.1}</td></tr>",
+             <td class=\"n\">{}</td><td>{}</td><td class=\"n\">{:.1}</td><td>{}</td></tr>",
             escape(r.about),
             r.dof,
             r.span,
@@ -133,7 +165,8 @@ fn html(rows: &[Row], gifs: &[(&str, &str)]) -> String {
             r.residuals
                 .map_or("—".into(), |[p, v]| format!("{p:.1e}, {v:.1e}")),
             escape(&r.note),
-            r.wall_ms
+            r.wall_ms,
+            scene_link(r, "3D", true)
         );
     }
     s.push_str("</table>\n");
@@ -141,10 +174,11 @@ fn html(rows: &[Row], gifs: &[(&str, &str)]) -> String {
         let name = slug(r.system);
         let _ = writeln!(
             s,
-            "<section id=\"{name}\"><h3>{}</h3><p>{} <a href=\"{name}.csv\">trajectory CSV</a></p>\
+            "<section id=\"{name}\"><h3>{}</h3><p>{} <a href=\"{name}.csv\">trajectory CSV</a> {}</p>\
              <img src=\"{name}.png\" alt=\"{}\"></section>",
             escape(r.system),
             escape(r.about),
+            scene_link(r, "3D scene", false),
             escape(r.system)
         );
     }

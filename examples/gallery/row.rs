@@ -5,6 +5,7 @@
 use std::time::Instant;
 
 use crate::figure::Figure;
+use lagrange::Posed;
 use lagrange::prelude::*;
 
 /// The tolerance every row integrates to (rtol = atol).
@@ -33,6 +34,10 @@ pub(crate) struct Row {
     pub wall_ms: f64,
     /// What the index page draws and saves of the run.
     pub figure: Option<Figure>,
+    /// The run's 3D scene, a self-contained HTML page.
+    pub scene: Option<String>,
+    /// The scene at mid-run, as segments for the table's picture.
+    pub still: Option<Vec<lagrange::scene::Segment>>,
 }
 
 /// A system's coordinates as the plots and CSV headers name them, and which
@@ -50,15 +55,20 @@ pub(crate) fn coords<S: Lagrangian<f64, N>, const N: usize>(_: &S) -> Coords<N> 
     }
 }
 
-/// One gallery row from a run of any formulation (the closure integrates).
-pub(crate) fn row<const N: usize, E: Into<Error>>(
+/// One gallery row from a run of any formulation (the closure integrates),
+/// with the run's scene.
+pub(crate) fn row<S, const N: usize, E: Into<Error>>(
     system: &'static str,
-    coords: &Coords<N>,
+    sys: &S,
     span: std::ops::Range<f64>,
     conservative: bool,
     integrate: impl FnOnce() -> Result<Trajectory<f64, N>, E>,
     note: impl FnOnce(&Trajectory<f64, N>) -> String,
-) -> Result<Row, Error> {
+) -> Result<Row, Error>
+where
+    S: Lagrangian<f64, N> + Posed<f64, N>,
+{
+    let coords = &coords(sys);
     let start = Instant::now();
     let traj = integrate().map_err(Into::into)?;
     let wall_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -82,6 +92,8 @@ pub(crate) fn row<const N: usize, E: Into<Error>>(
             &coords.cyclic,
             conservative,
         )?),
+        scene: Some(traj.scene(sys).title(system).to_html()?),
+        still: Some(traj.scene(sys).still((span.start + span.end) / 2.0)?),
     })
 }
 
@@ -95,12 +107,12 @@ pub(crate) fn run<S, const N: usize>(
     note: impl FnOnce(&Trajectory<f64, N>) -> String,
 ) -> Result<Row, Error>
 where
-    S: Lagrangian<f64, N>,
+    S: Lagrangian<f64, N> + Posed<f64, N>,
 {
     let run_span = span.clone();
     row(
         system,
-        &coords(sys),
+        sys,
         span,
         conservative,
         || {

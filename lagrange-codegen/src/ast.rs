@@ -108,6 +108,46 @@ pub struct Definition {
     pub value: Expr,
 }
 
+/// The solid of a `shape(...)` item, with its sizes as written (lowered later
+/// as parameter-only expressions).
+#[derive(Clone, Debug)]
+pub enum Solid {
+    /// `box(size = [lx, ly, lz])`: full edge lengths along the body axes.
+    Box { size: Expr },
+    /// `sphere(radius = r)`.
+    Sphere { radius: Expr },
+    /// `cylinder(radius = r, length = l, axis = x|y|z)`, centred on its place.
+    Cylinder {
+        radius: Expr,
+        length: Expr,
+        axis: usize,
+    },
+    /// `capsule(radius = r, length = l, axis = x|y|z)`: a cylinder of length l
+    /// with hemispherical ends.
+    Capsule {
+        radius: Expr,
+        length: Expr,
+        axis: usize,
+    },
+}
+
+/// `shape(target, solid(...), at = [..])` or `shape(line(a, b, ...))`: what the
+/// scene draws; visual only, no equation reads it.
+#[derive(Clone, Debug)]
+pub enum Shape {
+    /// A solid fixed in a body (at body coordinates `at` from its reference
+    /// point, in its axes) or centred on a point (world axes).
+    Solid {
+        target: Ident,
+        solid: Box<Solid>,
+        /// The keyword as written, where errors about the solid point.
+        keyword: Ident,
+        at: Option<Box<Expr>>,
+    },
+    /// A polyline through points and bodies' reference points.
+    Line(Vec<Ident>),
+}
+
 /// Everything `#[lagrange(...)]` says about one struct.
 #[derive(Clone, Debug)]
 pub struct System {
@@ -134,6 +174,8 @@ pub struct System {
     pub dissipation: Option<Expr>,
     pub forces: Vec<Force>,
     pub generalized_forces: Vec<GeneralizedForce>,
+    /// `shape(...)`: visual shapes for the scene, in order.
+    pub shapes: Vec<Shape>,
     /// Where to point errors that concern the whole description (e.g. "no coordinates").
     pub span: Span,
     /// `urdf = "path"`: the robot file the description was read from.

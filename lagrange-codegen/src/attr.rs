@@ -11,12 +11,13 @@ use syn::{Data, DeriveInput, Expr, Fields, GenericParam, Ident, Token, Type};
 
 use crate::ast::{
     Body, Constraint, Definition, Extra, Force, Formulation, GeneralizedForce, Parameter, Point,
-    Scalar, System,
+    Scalar, Shape, System,
 };
 use crate::ctxt::Ctxt;
+use crate::spelling::closest;
 
 /// Keys accepted at the top level of `#[lagrange(...)]`, for the "unknown key" message.
-const KEYS: &str = "urdf, coordinates, inputs, define, point, body, gravity, potential, force, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit";
+const KEYS: &str = "urdf, coordinates, inputs, define, point, body, gravity, potential, force, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit, shape";
 
 /// One top-level item of the attribute.
 enum Item {
@@ -36,6 +37,7 @@ enum Item {
     Force(Force),
     GeneralizedForce(Vec<GeneralizedForce>),
     Urdf(syn::LitStr),
+    Shape(Shape),
 }
 
 impl Parse for Item {
@@ -96,6 +98,7 @@ impl Parse for Item {
                     .map(|(coordinate, value)| GeneralizedForce { coordinate, value })
                     .collect(),
             )),
+            "shape" => crate::shape::parse(input).map(Item::Shape),
             other => Err(unknown_key(&key, other)),
         }
     }
@@ -181,32 +184,8 @@ fn unknown_key(key: &Ident, other: &str) -> syn::Error {
     )
 }
 
-/// The candidate within two edits of `word` (a typo), if one is.
-fn closest<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -> Option<&'a str> {
-    candidates
-        .map(|c| (edit_distance(word, c), c))
-        .filter(|&(d, _)| d <= 2)
-        .min_by_key(|&(d, _)| d)
-        .map(|(_, c)| c)
-}
-
-/// Levenshtein distance, by the two-row dynamic programme.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut row = vec![i + 1];
-        for (j, &cb) in b.iter().enumerate() {
-            let substitute = prev[j] + usize::from(ca != cb);
-            row.push(substitute.min(prev[j + 1] + 1).min(row[j] + 1));
-        }
-        prev = row;
-    }
-    prev[b.len()]
-}
-
 /// The form each list key takes, for the error when it is written `key = ...`.
-const LISTS: [(&str, &str); 12] = [
+const LISTS: [(&str, &str); 13] = [
     ("coordinates", "coordinates(q1, q2, ...)"),
     ("inputs", "inputs(u1, u2, ...)"),
     ("define", "define(name = expr, ...)"),
@@ -225,6 +204,10 @@ const LISTS: [(&str, &str); 12] = [
     ),
     ("force", "force(point, [fx, fy, fz])"),
     ("generalized_force", "generalized_force(q = expr, ...)"),
+    (
+        "shape",
+        "shape(body, cylinder(radius = r, length = l, axis = y))",
+    ),
 ];
 
 /// A list key written as an assignment (`coordinates = [x, y]`) is one error
@@ -381,6 +364,7 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
         dissipation: None,
         forces: Vec::new(),
         generalized_forces: Vec::new(),
+        shapes: Vec::new(),
         span: input.ident.span(),
         urdf: None,
     };
@@ -473,6 +457,7 @@ fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
         Item::Emit(e) => system.extras.extend(e),
         Item::Force(f) => system.forces.push(f),
         Item::GeneralizedForce(g) => system.generalized_forces.extend(g),
+        Item::Shape(s) => system.shapes.push(s),
         Item::Gravity(k, v) => set_once(cx, &mut system.gravity, k, v),
         Item::Potential(k, v) => set_once(cx, &mut system.potential, k, v),
         Item::Dissipation(k, v) => set_once(cx, &mut system.dissipation, k, v),

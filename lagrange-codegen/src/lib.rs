@@ -2,19 +2,21 @@
 //!
 //! The pipeline, one representation per stage:
 //!
-//! 1. [`attr`]: attributes and fields → [`ast::System`] (syntax, spans kept);
-//! 2. [`check`]: structural rules (names, dimensions, targets);
+//! 1. [`attr`]: attributes and fields → [`ast::System`] (syntax, spans kept), with
+//!    [`shape`] for the `shape(...)` items;
+//! 2. [`check`] and [`shape::check`]: structural rules (names, dimensions, targets);
 //! 3. [`scene`] (with [`lower`] for expressions and [`lower::rotation`] for bodies):
 //!    `syn::Expr` → symbolic expressions (names resolved, velocity and linearity rules),
-//!    handed on as a [`lowered::Lowered`];
+//!    handed on as a [`lowered::Lowered`], whose [`lowered::Poses`] ([`pose`]) hold
+//!    the bodies' poses, the points' positions and the shapes for the scene;
 //! 4. [`mechanics`]: M, h, Q, energies as expressions ([`mechanics::Model`]), with
 //!    [`tree`] for the recursive route and [`constraint`] for the multiplier and
 //!    reduced forms;
 //! 5. [`emit`] (with [`doc`] for the `EQUATIONS` texts): straight-line Rust for
-//!    each method of the runtime's traits.
+//!    each method of the runtime's traits, `Posed` (the scene's poses) among them.
 //!
-//! A module imports only from its own stage or the ones before it; [`mat3`] and
-//! [`ctxt`] are shared by all.
+//! A module imports only from its own stage or the ones before it; [`mat3`],
+//! [`ctxt`] and [`spelling`] are shared by all.
 //!
 //! Errors are collected in a [`ctxt::Ctxt`] across stages; on error the output is
 //! `compile_error!`s plus a stub impl, never a panic.
@@ -33,7 +35,10 @@ pub mod mat3;
 pub mod mechanics;
 pub mod order;
 pub mod physical;
+pub mod pose;
 pub mod scene;
+pub mod shape;
+pub mod spelling;
 pub mod tree;
 pub mod urdf;
 
@@ -119,6 +124,7 @@ fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Mod
         return None;
     }
     check::check(cx, system);
+    shape::check(cx, system);
     let lowered = scene::lower(cx, system);
     if cx.has_errors() {
         return None;

@@ -51,6 +51,8 @@ pub struct Lowered {
     pub extras: Vec<Extra>,
     /// The masses and inertias computed from parameters, for the run-time check.
     pub checks: Vec<PhysicalCheck>,
+    /// The poses and shapes the scene draws.
+    pub poses: Poses,
 }
 
 /// A mass or an inertia computed from the parameters, checked at run time by
@@ -97,4 +99,68 @@ pub struct ConstraintModel {
     /// (nonholonomic) per Cartesian component, composed with ξ(q,t). The reaction of
     /// this constraint on that point is its multiplier times this vector.
     pub cartesian: Vec<(String, Vec<Sym>)>,
+}
+
+/// What the scene draws, lowered: every body's pose and inertia, every
+/// point's position and the `shape(...)` items. No equation reads it; it only
+/// names nodes the lowering built anyway (the shapes' sizes excepted).
+#[derive(Default)]
+pub struct Poses {
+    /// In declaration order.
+    pub bodies: Vec<BodyPose>,
+    /// Every point, with or without mass, in declaration order.
+    pub points: Vec<PointPose>,
+    pub shapes: Vec<ShapeModel>,
+}
+
+/// A body's reference point, centre of mass and rotation (body → world), and
+/// its mass and inertia about the centre in body axes (for the default shape).
+pub struct BodyPose {
+    pub name: String,
+    pub origin: Vec<Sym>,
+    pub centre: Vec<Sym>,
+    pub rotation: Mat3,
+    pub mass: Sym,
+    pub inertia: Mat3,
+}
+
+/// A point's world position (two components in a planar description) and the
+/// body it is fixed in, if any.
+pub struct PointPose {
+    pub name: String,
+    pub position: Vec<Sym>,
+    pub body: Option<usize>,
+}
+
+/// What a shape is attached to: an index into [`Poses::bodies`] or [`Poses::points`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Anchor {
+    Body(usize),
+    Point(usize),
+}
+
+/// A `shape(...)` item with its sizes as parameter-only expressions.
+pub struct ShapeModel {
+    pub on: Anchor,
+    /// The centre, in body coordinates from the reference point (world axes
+    /// from a point); empty for none.
+    pub at: Vec<Sym>,
+    pub solid: SolidModel,
+}
+
+/// The lowered solid; a line runs from the shape's anchor to another.
+pub enum SolidModel {
+    Box([Sym; 3]),
+    Sphere(Sym),
+    Cylinder {
+        radius: Sym,
+        length: Sym,
+        axis: usize,
+    },
+    Capsule {
+        radius: Sym,
+        length: Sym,
+        axis: usize,
+    },
+    Line(Anchor),
 }

@@ -51,6 +51,8 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         check::inputs_read(cx, system, &inputs_read(&lw, &applied));
         constraints_read(&lw, system, [&holonomic, &nonholonomic], speeds.as_ref());
     }
+    // Last, so that the shapes' nodes come after every node the equations use.
+    let poses = crate::pose::collect(&mut lw, system, &items.points, &items.spins);
     if cx.has_errors() {
         return None;
     }
@@ -81,6 +83,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         multipliers: formulations.contains(&Formulation::Multipliers),
         extras: system.extras.iter().map(|(_, e)| *e).collect(),
         checks,
+        poses,
     })
 }
 

@@ -9,6 +9,7 @@ use super::driven::impl_driven;
 use super::emitter::Emitter;
 use super::extra::extras;
 use super::method::{forward_dynamics, optional_methods, visit_form};
+use super::posed::impl_posed;
 use super::reduced::impl_reduced;
 use super::{Frame, constant};
 use crate::ast::System;
@@ -38,6 +39,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let constrained = impl_constrained(&e, &f, model);
     let reduced = impl_reduced(&e, &f, model);
     let driven = impl_driven(&e, &f, model);
+    let posed = impl_posed(&e, &f, model, &system.scalar);
     let (docs_macro, docs_text) = (&docs.name, &docs.equations);
     quote! {
         macro_rules! #docs_macro {
@@ -53,6 +55,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
         #constrained
         #reduced
         #driven
+        #posed
     }
 }
 

@@ -11,6 +11,7 @@ mod emitter;
 mod extra;
 mod lagrangian;
 mod method;
+mod posed;
 mod reduced;
 mod stub;
 

@@ -23,6 +23,7 @@ pub fn stub_impl(system: &System) -> TokenStream {
     let vec_t = quote!(::lagrange::__private::SVector<#s, #nl>);
     let mat_t = quote!(::lagrange::__private::SMatrix<#s, #nl, #nl>);
     let constrained = stub_constraint_impls(system);
+    let p = quote!(::lagrange::__private);
     quote! {
         #[allow(unused_variables)]
         impl #impl_generics ::lagrange::__private::Lagrangian<#s, #nl> for #ident #ty_generics #where_clause {
@@ -35,6 +36,15 @@ pub fn stub_impl(system: &System) -> TokenStream {
             fn kinetic_energy(&self, q: &#vec_t, v: &#vec_t, t: #s) -> #s { ::core::unreachable!() }
             fn potential_energy(&self, q: &#vec_t, t: #s) -> #s { ::core::unreachable!() }
             fn integral(&self, q: &#vec_t, v: &#vec_t, t: #s) -> #s { ::core::unreachable!() }
+        }
+        #[allow(unused_variables)]
+        impl #impl_generics #p::Posed<#s, #nl> for #ident #ty_generics #where_clause {
+            const BODIES: &'static [&'static str] = &[];
+            const POINTS: &'static [&'static str] = &[];
+            const POINT_BODIES: &'static [::core::option::Option<usize>] = &[];
+            fn poses(&self, q: &#vec_t, t: #s, bodies: &mut [#p::BodyPose<#s>], points: &mut [#p::Vector3<#s>]) { ::core::unreachable!() }
+            fn inertias(&self, out: &mut [#p::BodyInertia<#s>]) { ::core::unreachable!() }
+            fn shapes(&self, out: &mut dyn FnMut(#p::Shape<#s>)) { ::core::unreachable!() }
         }
         #constrained
     }

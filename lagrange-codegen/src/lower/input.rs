@@ -41,6 +41,10 @@ impl NoInputs {
         place: "a nonholonomic constraint",
         why: "the constraint is differentiated in time, which would need the input's time derivative, not supplied at run time",
     };
+    pub const SHAPE: NoInputs = NoInputs {
+        place: "a shape's size",
+        why: "a shape is drawn from the parameters alone, before any input is known",
+    };
     pub const SPEED: NoInputs = NoInputs {
         place: "a speed",
         why: "the reduced equations differentiate the speeds in time, which would need the input's time derivative, not supplied at run time",

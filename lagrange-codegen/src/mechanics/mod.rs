@@ -33,7 +33,7 @@ use lagrange_symbolic::{Context, Expr as Sym};
 
 use crate::ast::Extra;
 use crate::constraint::{ConstraintSet, Reduction};
-use crate::lowered::{ConstraintModel, Lowered};
+use crate::lowered::{ConstraintModel, Lowered, Poses};
 use force::Applied;
 use generic::GenericTerms;
 use kinematics::at_zero;
@@ -121,6 +121,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         multipliers,
         extras,
         checks,
+        poses,
     } = lowered;
     let qdd = ctx.accelerations();
     let zero_acc = at_zero(&mut ctx, &qdd);
@@ -170,6 +171,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         route_reason,
         inverse,
         checks,
+        poses,
     };
     let constrained = Constrained {
         holonomic: &holonomic,
@@ -385,6 +387,7 @@ struct Derived {
     /// `emit(inverse_dynamics)`.
     inverse: Option<InverseDynamics>,
     checks: Vec<crate::lowered::PhysicalCheck>,
+    poses: Poses,
 }
 
 /// The constraints and which constrained forms to build.
@@ -469,6 +472,7 @@ fn finish(
         route_reason: d.route_reason,
         inverse: d.inverse,
         checks: d.checks,
+        poses: d.poses,
     };
     model.cyclic = cyclic::cyclic(&model);
     Ok(model)

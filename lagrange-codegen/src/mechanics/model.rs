@@ -107,6 +107,8 @@ pub struct Model {
     /// The masses and inertias computed from parameters, which the generated
     /// `check_parameters` checks before a run.
     pub checks: Vec<crate::lowered::PhysicalCheck>,
+    /// The bodies' poses, the points' positions and the shapes, for the scene.
+    pub poses: crate::lowered::Poses,
 }
 
 impl Model {

@@ -24,6 +24,7 @@ impl Clone for Error {
         clone_variants!(self, e => clone_io(e);
             SingularMassMatrix { t, q, ratio },
             NonFiniteState { t, q, v },
+            NonFinitePose { t, name },
             RedundantConstraints { t, q, coordinates, ratio, dependent },
             InconsistentInitialConditions {
                 t, q, coordinates, position_residual, velocity_residual, tolerance, constraint,

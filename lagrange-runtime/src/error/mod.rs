@@ -295,6 +295,19 @@ pub enum Error {
         reason: String,
     },
 
+    /// A scene's pose is not finite: the position or rotation of a body or point
+    /// at a sampled time is NaN or ∞ (a non-finite parameter, or a chart
+    /// singularity of the description's rotation).
+    #[error(
+        "the scene's pose of `{name}` at t = {t} is not finite; check the parameters and the state there"
+    )]
+    NonFinitePose {
+        /// Time of the sampled frame.
+        t: f64,
+        /// The body or point.
+        name: String,
+    },
+
     /// The settings or the initial value problem are invalid (non-positive
     /// tolerance, empty or reversed time span, non-finite initial state, ...).
     #[error("invalid settings: {0}")]

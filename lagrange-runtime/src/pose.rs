@@ -1,0 +1,112 @@
+//! What a system reports for drawing: the world pose of each body and the
+//! position of each point as functions of (q, t), each body's mass and
+//! inertia, and the visual shapes of its description. `#[derive(Lagrangian)]`
+//! implements [`Posed`] for every description; the [`scene`](crate::scene)
+//! service samples it along a trajectory.
+//!
+//! Shapes are visual only: nothing in the equations of motion reads them.
+
+use nalgebra::{Matrix3, SVector, Vector3};
+
+use crate::numeric::Real;
+
+/// A body's pose: its reference point (`at` in the description), its centre
+/// of mass and its rotation R (body → world: column j is the body's j-th axis
+/// in world components).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyPose<T> {
+    pub origin: Vector3<T>,
+    pub centre: Vector3<T>,
+    pub rotation: Matrix3<T>,
+}
+
+impl<T: Real> Default for BodyPose<T> {
+    fn default() -> Self {
+        BodyPose {
+            origin: Vector3::zeros(),
+            centre: Vector3::zeros(),
+            rotation: Matrix3::identity(),
+        }
+    }
+}
+
+/// A body's mass and its inertia tensor about the centre of mass, in body axes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyInertia<T> {
+    pub mass: T,
+    pub inertia: Matrix3<T>,
+}
+
+impl<T: Real> Default for BodyInertia<T> {
+    fn default() -> Self {
+        BodyInertia {
+            mass: T::zero(),
+            inertia: Matrix3::zeros(),
+        }
+    }
+}
+
+/// What a shape is fixed to: an index into [`Posed::BODIES`] or [`Posed::POINTS`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Anchor {
+    Body(usize),
+    Point(usize),
+}
+
+/// The solid of a shape, sizes in the description's length unit; a cylinder's
+/// or capsule's `axis` is 0, 1 or 2 for the body's x, y or z axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Solid<T> {
+    /// Full edge lengths along the body axes.
+    Box {
+        size: Vector3<T>,
+    },
+    Sphere {
+        radius: T,
+    },
+    Cylinder {
+        radius: T,
+        length: T,
+        axis: usize,
+    },
+    /// A cylinder of `length` with hemispherical ends.
+    Capsule {
+        radius: T,
+        length: T,
+        axis: usize,
+    },
+    /// A straight line from the shape's anchor to `to`.
+    Line {
+        to: Anchor,
+    },
+}
+
+/// A `shape(...)` item: a solid centred `at` (body coordinates from the body's
+/// reference point, or world axes from a point) on its anchor.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shape<T> {
+    pub on: Anchor,
+    pub at: Vector3<T>,
+    pub solid: Solid<T>,
+}
+
+/// The poses of a system's bodies and points, in the order of [`Posed::BODIES`]
+/// and [`Posed::POINTS`]. Planar descriptions report points with z = 0.
+pub trait Posed<T: Real, const N: usize> {
+    /// The bodies' names, in declaration order.
+    const BODIES: &'static [&'static str];
+    /// Every point's name (with or without mass), in declaration order.
+    const POINTS: &'static [&'static str];
+    /// Per point, the index of the body it is fixed in, if any.
+    const POINT_BODIES: &'static [Option<usize>];
+
+    /// Writes the pose of every body and the position of every point at
+    /// (q, t). The slices hold `BODIES.len()` and `POINTS.len()` entries.
+    fn poses(&self, q: &SVector<T, N>, t: T, bodies: &mut [BodyPose<T>], points: &mut [Vector3<T>]);
+
+    /// Writes each body's mass and inertia (`BODIES.len()` entries).
+    fn inertias(&self, out: &mut [BodyInertia<T>]);
+
+    /// Calls `out` with each shape of the description, in order.
+    fn shapes(&self, out: &mut dyn FnMut(Shape<T>));
+}
