@@ -5,8 +5,11 @@ use crate::catalog::bicycle::{Bicycle, published};
 use crate::catalog::constrained::RollingDisk;
 use crate::catalog::control::{CartPole, TwoLinkArm};
 use crate::row::{Row, TOL, row};
+use lagrange::Posed;
 use lagrange::linear::sweep;
+use lagrange::pose::BodyPose;
 use lagrange::prelude::*;
+use nalgebra::SVector;
 
 /// The cart-pole caught from a 0.3 rad tilt by continuous LQR feedback.
 pub(crate) fn cart_pole_continuous(system: &'static str) -> Result<Row, Error> {
@@ -177,4 +180,94 @@ pub(crate) fn arm(system: &'static str) -> Result<Row, Error> {
             )
         },
     )
+}
+
+/// The UR5 read from its URDF file, with a torque input at each joint.
+#[derive(Lagrangian)]
+#[lagrange(
+    urdf = "robots/ur5.urdf",
+    inputs(u1, u2, u3, u4, u5, u6),
+    generalized_force(
+        shoulder_pan_joint = u1,
+        shoulder_lift_joint = u2,
+        elbow_joint = u3,
+        wrist_1_joint = u4,
+        wrist_2_joint = u5,
+        wrist_3_joint = u6
+    ),
+    gravity = [0, 0, -9.81],
+    emit(inverse_dynamics),
+    // The scene (visual only): the links as a line through the joints, the
+    // joints as cylinders and balls. The file's wrist inertias are far larger
+    // than the wrists, so their default inertia boxes would hide the arm.
+    shape(line(
+        shoulder_pan_joint_origin,
+        shoulder_lift_joint_origin,
+        elbow_joint_origin,
+        wrist_1_joint_origin,
+        wrist_2_joint_origin,
+        wrist_3_joint_origin,
+        ee_fixed_joint_origin
+    )),
+    shape(base_link, cylinder(radius = 0.07, length = 0.09, axis = z), at = [0, 0, 0.045]),
+    shape(shoulder_link, cylinder(radius = 0.06, length = 0.14, axis = y)),
+    shape(upper_arm_link, cylinder(radius = 0.055, length = 0.12, axis = y)),
+    shape(forearm_link, sphere(radius = 0.05)),
+    shape(wrist_1_link, sphere(radius = 0.045)),
+    shape(wrist_2_link, sphere(radius = 0.045)),
+    shape(wrist_3_link, cylinder(radius = 0.04, length = 0.05, axis = y)),
+)]
+struct Ur5 {}
+
+/// The UR5 driven from its home pose to a target by computed torque through
+/// its own inverse dynamics (recursive Newton–Euler): τ = ID(q, q̇, K_p e −
+/// K_d q̇), so every joint's error follows e'' + 12 e' + 36 e = 0, e(t) =
+/// e0 (1 + 6t) e^(−6t).
+pub(crate) fn ur5(system: &'static str) -> Result<Row, Error> {
+    let ur5 = Ur5 {};
+    let home = SVector::<f64, 6>::from([0.0, -1.57, 1.57, -1.57, -1.57, 0.0]);
+    let target = SVector::<f64, 6>::from([0.8, -1.2, 1.4, -1.8, -1.5, 0.6]);
+    let (kp, kd, span) = (36.0, 12.0, 0.0..3.0);
+    row(
+        system,
+        &ur5,
+        span.clone(),
+        false,
+        || {
+            Simulation::new(&ur5)
+                .integrator(Dopri5::tol(TOL))
+                .feedback(|t, q: &SVector<f64, 6>, v: &SVector<f64, 6>| {
+                    let a = (target - q) * kp - v * kd;
+                    ur5.inverse_dynamics(q, v, &a, t)
+                })
+                .run(home, SVector::zeros(), span.clone())
+                .map(|run| run.into_trajectory())
+        },
+        |tr| {
+            let (q, _) = tr.final_state();
+            let exact =
+                (home - target).abs().max() * (1.0 + 6.0 * span.end) * (-6.0 * span.end).exp();
+            format!(
+                "joint error {:.1e} rad at {} s (closed form {exact:.1e}); tool0 {:.1e} m from its target",
+                (target - q).abs().max(),
+                span.end,
+                tool_distance(&ur5, &q, &target)
+            )
+        },
+    )
+}
+
+/// How far the UR5's tool frame at q is from where it is at the target.
+fn tool_distance(ur5: &Ur5, q: &SVector<f64, 6>, target: &SVector<f64, 6>) -> f64 {
+    let tool = Ur5::BODIES
+        .iter()
+        .position(|&b| b == "tool0")
+        .expect("the UR5 has a tool0 link");
+    let at = |q: &SVector<f64, 6>| {
+        let mut bodies = vec![BodyPose::default(); Ur5::BODIES.len()];
+        let mut points = vec![nalgebra::Vector3::zeros(); Ur5::POINTS.len()];
+        ur5.poses(q, 0.0, &mut bodies, &mut points);
+        bodies[tool].origin
+    };
+    (at(q) - at(target)).norm()
 }

@@ -125,6 +125,11 @@ pub(crate) const ENTRIES: &[Entry] = &[
         control::arm,
     ),
     entry(
+        "UR5 from its URDF, computed torque to a target",
+        "a robot read from its URDF file at compile time, driven by its own recursive Newton–Euler inverse dynamics",
+        control::ur5,
+    ),
+    entry(
         "cart-pole, LQR from the linearisation",
         "LQR gain from the symbolic linearisation, continuous feedback",
         control::cart_pole_continuous,
