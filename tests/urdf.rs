@@ -254,3 +254,29 @@ fn a_field_named_for_a_link_overrides_its_mass() {
     .mass_matrix_and_rhs(&q, &v, 0.0);
     assert!((heavy.0 - m).amax() > 1e-3 && (heavy.1 - f).amax() > 1e-2);
 }
+
+/// `snap` makes the file's `1.57079632679` an exact quarter turn and says so;
+/// the motion changes by the 1e-12 it moved.
+#[derive(Lagrangian)]
+#[lagrange(urdf("robots/ur5.urdf", snap = 1e-6), gravity = [0, 0, -9.81])]
+struct Ur5Snapped {}
+
+#[test]
+fn snapping_reports_the_angles_it_made_exact() {
+    assert!(Ur5::URDF_SNAPPED.is_empty());
+    // Three quarter turns, a half turn and a negative quarter turn.
+    let snapped = Ur5Snapped::URDF_SNAPPED;
+    assert_eq!(snapped.len(), 5, "{snapped:?}");
+    for &(at, written, exact) in snapped {
+        let k = exact / std::f64::consts::FRAC_PI_2;
+        assert!(at.starts_with("joint `") && k == k.round(), "{at}: {exact}");
+        assert!(
+            written != exact && (written - exact).abs() < 1e-10,
+            "{at}: {written}"
+        );
+    }
+    let (q, v) = state::<6>(6);
+    let (m, f) = Ur5 {}.mass_matrix_and_rhs(&q, &v, 0.0);
+    let (ms, fs) = Ur5Snapped {}.mass_matrix_and_rhs(&q, &v, 0.0);
+    assert!((m - ms).amax() < 1e-9 && (f - fs).amax() < 1e-9);
+}

@@ -135,11 +135,16 @@ fn robots() {
         "\n| robot (URDF) | dof | recursive: derive (ms), ops | generic: derive (ms), ops | route taken |"
     );
     println!("|---|---|---|---|---|");
-    for file in ["ur5.urdf", "panda.urdf"] {
+    for (file, snap) in [
+        ("ur5.urdf", ""),
+        ("ur5.urdf", ", snap = 1e-6"),
+        ("panda.urdf", ""),
+    ] {
         let src = format!(
-            "#[lagrange(urdf = \"{}/../robots/{file}\", gravity = [0, 0, -9.81])] struct Robot {{}}",
+            "#[lagrange(urdf(\"{}/../robots/{file}\"{snap}), gravity = [0, 0, -9.81])] struct Robot {{}}",
             env!("CARGO_MANIFEST_DIR")
         );
+        let file = format!("{file}{snap}");
         let input: syn::DeriveInput = syn::parse_str(&src).expect("source parses");
         let by = |route| {
             let start = Instant::now();

@@ -192,4 +192,6 @@ pub struct UrdfSource {
     pub robot: String,
     /// Each coordinate's position limits, in coordinate order.
     pub limits: Vec<(f64, f64)>,
+    /// `snap`: the angles made exact multiples of π/2 (where, written, snapped).
+    pub snapped: Vec<(String, f64, f64)>,
 }

@@ -36,7 +36,8 @@ enum Item {
     Dissipation(Ident, Expr),
     Force(Force),
     GeneralizedForce(Vec<GeneralizedForce>),
-    Urdf(syn::LitStr),
+    /// The path, and the tolerance within which angles snap to multiples of π/2.
+    Urdf(syn::LitStr, Option<f64>),
     Shape(Shape),
 }
 
@@ -89,8 +90,7 @@ impl Parse for Item {
                 })
             }
             "urdf" => {
-                input.parse::<Token![=]>()?;
-                input.parse().map(Item::Urdf)
+                crate::urdf::parse_attribute(input).map(|(path, snap)| Item::Urdf(path, snap))
             }
             "force" => parse_force(input).map(Item::Force),
             "generalized_force" => Ok(Item::GeneralizedForce(
@@ -461,13 +461,13 @@ fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
         Item::Gravity(k, v) => set_once(cx, &mut system.gravity, k, v),
         Item::Potential(k, v) => set_once(cx, &mut system.potential, k, v),
         Item::Dissipation(k, v) => set_once(cx, &mut system.dissipation, k, v),
-        Item::Urdf(path) => add_urdf(cx, system, &path),
+        Item::Urdf(path, snap) => add_urdf(cx, system, &path, snap),
     }
 }
 
 /// Reads the URDF file and adds its description's items, each spanned at the
 /// path so that any error they raise points at `urdf = "..."`.
-fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr) {
+fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr, snap: Option<f64>) {
     if system.urdf.is_some() {
         cx.error_at(
             path.span(),
@@ -481,7 +481,7 @@ fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr) {
         .iter()
         .map(|p| p.name.to_string())
         .collect();
-    let urdf = match crate::urdf::load(&manifest, &path.value(), &fields) {
+    let urdf = match crate::urdf::load(&manifest, &path.value(), &fields, snap) {
         Ok(urdf) => urdf,
         Err(message) => return cx.error_at(path.span(), message),
     };
@@ -498,6 +498,7 @@ fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr) {
         path: urdf.path,
         robot: urdf.name,
         limits: urdf.limits,
+        snapped: urdf.snapped,
     });
 }
 

@@ -1,10 +1,31 @@
 //! 3×3 matrices of expressions, shared by the rotations of the lowering and the
 //! recursions of the derivation (so neither stage imports the other for it).
 
-use lagrange_symbolic::Expr as Sym;
+use lagrange_symbolic::{Context, Expr as Sym};
 
 /// A 3×3 matrix of expressions, row-major.
 pub type Mat3 = [[Sym; 3]; 3];
+
+/// cos and sin of an angle: exactly 0 and ±1 at a constant that is a
+/// multiple of π/2 to within a few ulp. `pi / 2` in a description is a float
+/// whose cosine is 6e-17, not 0; the exact zeros let the products they enter
+/// vanish at construction (a robot's quarter-turn placements).
+pub fn cos_sin(ctx: &mut Context, angle: Sym) -> (Sym, Sym) {
+    if let Some(v) = ctx.as_f64(angle) {
+        let k = (v / std::f64::consts::FRAC_PI_2).round();
+        let off = (v - k * std::f64::consts::FRAC_PI_2).abs();
+        if off <= 4.0 * f64::EPSILON * v.abs().max(1.0) {
+            let (c, s) = match (k as i64).rem_euclid(4) {
+                0 => (1, 0),
+                1 => (0, 1),
+                2 => (-1, 0),
+                _ => (0, -1),
+            };
+            return (ctx.int(c), ctx.int(s));
+        }
+    }
+    (ctx.cos(angle), ctx.sin(angle))
+}
 
 /// Aᵀ (no new nodes: entries are only moved).
 pub fn transpose(a: &Mat3) -> Mat3 {

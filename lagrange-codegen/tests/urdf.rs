@@ -105,7 +105,7 @@ fn bad_files_quote_the_file_and_line() {
     for (text, expected) in cases {
         let path = dir.join("bad.urdf");
         std::fs::write(&path, text).unwrap();
-        let e = lagrange_codegen::urdf::load("/", path.to_str().unwrap(), &[])
+        let e = lagrange_codegen::urdf::load("/", path.to_str().unwrap(), &[], None)
             .err()
             .unwrap_or_default();
         let shown = e

@@ -240,6 +240,13 @@ fn urdf_consts(system: &System) -> TokenStream {
         quote!((#lo, #hi))
     });
     let (robot, n) = (&u.robot, Literal::usize_unsuffixed(u.limits.len()));
+    let snapped = u.snapped.iter().map(|(at, written, exact)| {
+        let (w, e) = (
+            Literal::f64_suffixed(*written),
+            Literal::f64_suffixed(*exact),
+        );
+        quote!((#at, #w, #e))
+    });
     quote! {
         /// The robot's name in its URDF file.
         pub const ROBOT: &'static str = #robot;
@@ -248,6 +255,10 @@ fn urdf_consts(system: &System) -> TokenStream {
         /// limits. Pair them with events to stop or bounce at a limit.
         #[allow(clippy::approx_constant)] // as the file writes them: 3.14159 is not π
         pub const JOINT_LIMITS: [(f64, f64); #n] = [#(#limits),*];
+        /// The angles `urdf(.., snap = tol)` made exact multiples of π/2:
+        /// (where, as the file writes it, as used). Empty without `snap`.
+        #[allow(clippy::approx_constant)]
+        pub const URDF_SNAPPED: &'static [(&'static str, f64, f64)] = &[#(#snapped),*];
     }
 }
 

@@ -117,7 +117,7 @@ pub(super) fn add_motion(ctx: &mut Context, link: &Link, a: &mut [[Sym; 3]; 2], 
 /// The rotation about `axis` by a constant `angle`, as a matrix.
 pub(super) fn elementary(ctx: &mut Context, axis: usize, angle: Sym) -> Mat3 {
     let (zero, one) = (ctx.zero(), ctx.one());
-    let (c, s) = (ctx.cos(angle), ctx.sin(angle));
+    let (c, s) = crate::mat3::cos_sin(ctx, angle);
     let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
     let mut m = [[zero; 3]; 3];
     m[axis][axis] = one;

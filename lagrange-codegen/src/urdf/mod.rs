@@ -12,6 +12,8 @@ mod describe;
 mod model;
 
 use proc_macro2::{Group, Span, TokenStream, TokenTree};
+use syn::parse::ParseStream;
+use syn::{Ident, Token};
 
 pub use describe::identifier;
 
@@ -27,6 +29,39 @@ pub struct Urdf {
     pub coordinates: Vec<String>,
     /// Their position limits (±∞ where the file gives none).
     pub limits: Vec<(f64, f64)>,
+    /// The angles snapped to multiples of π/2: where, as written, as snapped.
+    pub snapped: Vec<(String, f64, f64)>,
+}
+
+/// Rewrites every `rpy` angle within `tol` of a multiple of π/2 (but not
+/// already one) as that multiple, and says which: the file's `1.5707963` is
+/// not π/2, and only the exact quarter turn makes the placements' zeros exact.
+fn snap(robot: &mut model::Robot, tol: f64) -> Vec<(String, f64, f64)> {
+    let mut changed = Vec::new();
+    let mut one = |at: String, n: &mut model::Number| {
+        let k = (n.value / std::f64::consts::FRAC_PI_2).round();
+        let exact = k * std::f64::consts::FRAC_PI_2;
+        if n.value != exact && (n.value - exact).abs() <= tol {
+            changed.push((at, n.value, exact));
+            *n = model::Number {
+                text: format!("{exact:?}"),
+                value: exact,
+            };
+        }
+    };
+    for j in &mut robot.joints {
+        for (k, n) in j.origin.rpy.iter_mut().enumerate() {
+            one(format!("joint `{}` rpy[{k}]", j.name), n);
+        }
+    }
+    for l in &mut robot.links {
+        if let Some(i) = &mut l.inertial {
+            for (k, n) in i.origin.rpy.iter_mut().enumerate() {
+                one(format!("link `{}` inertial rpy[{k}]", l.name), n);
+            }
+        }
+    }
+    changed
 }
 
 impl Urdf {
@@ -64,24 +99,36 @@ fn respan(tokens: TokenStream, span: Span) -> TokenStream {
 
 /// Reads `path` (relative to `manifest_dir`) into description items; the
 /// error quotes the file and line.
-pub fn load(manifest_dir: &str, path: &str, fields: &[String]) -> Result<Urdf, String> {
+pub fn load(
+    manifest_dir: &str,
+    path: &str,
+    fields: &[String],
+    snap_within: Option<f64>,
+) -> Result<Urdf, String> {
     let full = std::path::Path::new(manifest_dir).join(path);
     let text = std::fs::read_to_string(&full)
         .map_err(|e| format!("cannot read the URDF file `{}`: {e}", full.display()))?;
-    from_text(&text, path, fields).map(|mut urdf| {
+    from_text(&text, path, fields, snap_within).map(|mut urdf| {
         urdf.path = full.display().to_string();
         urdf
     })
 }
 
-/// [`load`] for the text of a file named `path`. A struct field named
+/// [`load`] for the text of a file named `path`; with `snap_within`, angles
+/// that close to a multiple of π/2 become it (see `snap`). A struct field named
 /// `<link>_mass` (among `fields`) replaces that link's mass.
-pub fn from_text(text: &str, path: &str, fields: &[String]) -> Result<Urdf, String> {
+pub fn from_text(
+    text: &str,
+    path: &str,
+    fields: &[String],
+    snap_within: Option<f64>,
+) -> Result<Urdf, String> {
     let at = |e: model::ReadError| match e.line {
         0 => format!("{path}: {}", e.message),
         line => format!("{path}:{line}: {}", e.message),
     };
-    let robot = model::parse(text).map_err(at)?;
+    let mut robot = model::parse(text).map_err(at)?;
+    let snapped = snap_within.map_or_else(Vec::new, |tol| snap(&mut robot, tol));
     let d = describe::describe(&robot, fields).map_err(at)?;
     Ok(Urdf {
         path: path.to_string(),
@@ -89,5 +136,41 @@ pub fn from_text(text: &str, path: &str, fields: &[String]) -> Result<Urdf, Stri
         name: robot.name,
         coordinates: d.coordinates,
         limits: d.limits,
+        snapped,
     })
+}
+
+/// The attribute's `urdf = "path"`, or `urdf("path", snap = 1e-6)`: the
+/// path, and the tolerance within which angles snap to multiples of π/2.
+pub fn parse_attribute(input: ParseStream) -> syn::Result<(syn::LitStr, Option<f64>)> {
+    if input.peek(Token![=]) {
+        input.parse::<Token![=]>()?;
+        return Ok((input.parse()?, None));
+    }
+    let content;
+    syn::parenthesized!(content in input);
+    let path: syn::LitStr = content.parse()?;
+    if content.is_empty() {
+        return Ok((path, None));
+    }
+    content.parse::<Token![,]>()?;
+    let key: Ident = content.parse()?;
+    if key != "snap" {
+        return Err(syn::Error::new(
+            key.span(),
+            format!(
+                "unknown `urdf` option `{key}`; the option is `snap = tolerance` (angles that close to a multiple of π/2 become it)"
+            ),
+        ));
+    }
+    content.parse::<Token![=]>()?;
+    let tol: syn::LitFloat = content.parse()?;
+    let value: f64 = tol.base10_parse()?;
+    if !(value.is_finite() && value > 0.0) {
+        return Err(syn::Error::new(
+            tol.span(),
+            "`snap` needs a positive, finite tolerance, such as 1e-6",
+        ));
+    }
+    Ok((path, Some(value)))
 }
