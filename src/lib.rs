@@ -49,7 +49,7 @@
 //! | `nonholonomic(name = e, ...)` | constraints e = a(q, t)·q̇ + b(q, t) = 0; must be linear in the velocities |
 //! | `speeds(u = expr, ...)` | independent speeds / quasi-velocities u = U(q, t) q̇ + u₀ for the reduced form |
 //! | `formulation(multipliers, reduced)` | which constrained equations to emit (default: multipliers, or reduced when `speeds` are given; `reduced` alone picks independent velocities itself) |
-//! | `emit(reactions, coriolis, jacobians, hamiltonian, articulated, inverse_dynamics)` | optional outputs: `reactions(q, v, t, ν)` per point; `coriolis_matrix(q, v, t)`; [`Lagrangian::rhs_jacobians`] (used by [`Radau5`] instead of finite differences) and, for the constrained forms, [`Constrained::constraint_derivatives`] and [`Reduced::row_derivatives`] (linearisation); [`Lagrangian::momentum`] and [`Lagrangian::kinetic_gradient`] (Hamilton's form, needed by the symplectic [`Gauss`] method); [`Lagrangian::forward_dynamics`] (q̈ by the articulated-body algorithm, for a kinematic tree of revolute joints; the unconstrained dynamics then use it instead of M and Cholesky); `inverse_dynamics` overrides `Lagrangian::inverse_dynamics` (τ = M q̈ + h − Q, by recursive Newton–Euler on a kinematic tree, O(n); the default computes M) and `Lagrangian::gravity_torques` (∂V_gravity/∂q) |
+//! | `emit(reactions, coriolis, jacobians, hamiltonian, articulated, inverse_dynamics, kinematics)` | optional outputs: `reactions(q, v, t, ν)` per point; `coriolis_matrix(q, v, t)`; [`Lagrangian::rhs_jacobians`] (used by [`Radau5`] instead of finite differences) and, for the constrained forms, [`Constrained::constraint_derivatives`] and [`Reduced::row_derivatives`] (linearisation); [`Lagrangian::momentum`] and [`Lagrangian::kinetic_gradient`] (Hamilton's form, needed by the symplectic [`Gauss`] method); [`Lagrangian::forward_dynamics`] (q̈ by the articulated-body algorithm, for a kinematic tree of revolute joints; the unconstrained dynamics then use it instead of M and Cholesky); `inverse_dynamics` overrides `Lagrangian::inverse_dynamics` (τ = M q̈ + h − Q, by recursive Newton–Euler on a kinematic tree, O(n); the default computes M) and `Lagrangian::gravity_torques` (∂V_gravity/∂q); `kinematics` implements `Kinematics`: each body frame's geometric Jacobian at its origin in world-aligned axes and J̇ q̇ (`frame_jacobian`, `frame_bias`, by `body_index("tool0")`), the moving masses' centre of mass and its Jacobian |
 //!
 //! Rotations are products of `rot_x(a)`, `rot_y(a)`, `rot_z(a)`,
 //! `euler_zxz(ψ, θ, φ)` (= rot_z(ψ)·rot_x(θ)·rot_z(φ), Suslov's precession, nutation,
@@ -277,7 +277,9 @@ pub struct ReadmeDoctests;
 /// Paths the generated code uses; not a public API.
 #[doc(hidden)]
 pub mod __private {
-    pub use lagrange_runtime::pose::{Anchor, BodyInertia, BodyPose, Posed, Shape, Solid};
+    pub use lagrange_runtime::pose::{
+        Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid,
+    };
     pub use lagrange_runtime::{
         Constrained, Driven, FormVisitor, Lagrangian, Real, Reduced, Route,
     };

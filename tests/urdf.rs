@@ -10,11 +10,19 @@ use lagrange::prelude::*;
 use nalgebra::SVector;
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/ur5.urdf", gravity = [0, 0, -9.81], emit(inverse_dynamics))]
+#[lagrange(
+    urdf = "robots/ur5.urdf",
+    gravity = [0, 0, -9.81],
+    emit(inverse_dynamics, kinematics)
+)]
 struct Ur5 {}
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/panda.urdf", gravity = [0, 0, -9.81], emit(inverse_dynamics))]
+#[lagrange(
+    urdf = "robots/panda.urdf",
+    gravity = [0, 0, -9.81],
+    emit(inverse_dynamics, kinematics)
+)]
 struct Panda {}
 
 /// τ by recursive Newton–Euler at q̈_k = 0.1 + 0.05 k (the fingers at rest)
@@ -279,4 +287,136 @@ fn snapping_reports_the_angles_it_made_exact() {
     let (m, f) = Ur5 {}.mass_matrix_and_rhs(&q, &v, 0.0);
     let (ms, fs) = Ur5Snapped {}.mass_matrix_and_rhs(&q, &v, 0.0);
     assert!((m - ms).amax() < 1e-9 && (f - fs).amax() < 1e-9);
+}
+
+/// What Pinocchio gives for one frame and the centre of mass.
+struct FrameReference<'a> {
+    frame: &'a str,
+    row0: &'a [f64],
+    row5: &'a [f64],
+    bias: [f64; 6],
+    com: [f64; 3],
+    com_row0: &'a [f64],
+}
+
+fn close_all(name: &str, ours: impl Iterator<Item = f64>, theirs: &[f64]) {
+    for (k, (a, b)) in ours.zip(theirs).enumerate() {
+        assert!(
+            (a - b).abs() <= 1e-12 * b.abs().max(1.0),
+            "{name}[{k}]: {a} vs {b}"
+        );
+    }
+}
+
+/// The frame Jacobian (LOCAL_WORLD_ALIGNED), J̇ q̇, the centre of mass and
+/// its Jacobian against `computeFrameJacobian`, `getFrameClassicalAcceleration`,
+/// `centerOfMass` and `jacobianCenterOfMass`.
+fn kinematics_agree<S: lagrange::Kinematics<f64, N>, const N: usize>(
+    sys: &S,
+    arm: usize,
+    r: FrameReference,
+) {
+    let (q, v) = state::<N>(arm);
+    let body = S::body_index(r.frame).expect("the frame is a body");
+    let j = sys.frame_jacobian(body, &q, 0.0).expect("a body");
+    close_all("J row 0", (0..arm).map(|k| j[(0, k)]), r.row0);
+    close_all("J row 5", (0..arm).map(|k| j[(5, k)]), r.row5);
+    let bias = sys.frame_bias(body, &q, &v, 0.0).expect("a body");
+    close_all("Jdot v", bias.iter().copied(), &r.bias);
+    close_all("com", sys.center_of_mass(&q, 0.0).iter().copied(), &r.com);
+    let jc = sys.center_of_mass_jacobian(&q, 0.0);
+    close_all("Jcom row 0", (0..arm).map(|k| jc[(0, k)]), r.com_row0);
+    assert!(sys.frame_jacobian(S::BODIES.len(), &q, 0.0).is_none());
+}
+
+#[test]
+fn ur5_frames_and_centre_of_mass_match_pinocchio() {
+    kinematics_agree(
+        &Ur5 {},
+        6,
+        FrameReference {
+            frame: "tool0",
+            row0: &[
+                -0.4116675019269206,
+                -0.1795775939757901,
+                -0.1269437976382908,
+                -0.09326354258140457,
+                0.06346915364971446,
+                2.6020852139652106e-18,
+            ],
+            row5: &[1.0, 0.0, 0.0, 0.0, -0.992808635852694, -0.04440370812567669],
+            bias: [
+                -0.22204384860097487,
+                -0.20840704245392314,
+                0.027888948584321945,
+                0.33263042670397713,
+                0.2602011492845997,
+                -0.018051629597868046,
+            ],
+            com: [
+                0.3132534424371484,
+                0.18006597942719585,
+                0.045848805741710276,
+            ],
+            com_row0: &[
+                -0.18006597942719585,
+                -0.04137580892606247,
+                -0.009070578288644392,
+                -0.0009926045284632584,
+                0.0,
+                0.0,
+            ],
+        },
+    );
+}
+
+#[test]
+fn panda_frames_and_centre_of_mass_match_pinocchio() {
+    kinematics_agree(
+        &Panda {},
+        7,
+        FrameReference {
+            frame: "panda_hand",
+            row0: &[
+                -0.032999588220948506,
+                0.5320632934542463,
+                -0.011385109072863487,
+                -0.24571816181376027,
+                0.001891131633072354,
+                0.13537465330231213,
+                -1.2468324983583301e-18,
+            ],
+            row5: &[
+                1.0,
+                2.220446049250313e-16,
+                0.9915618937147881,
+                0.005183983051216994,
+                0.942776281462301,
+                0.1284737534299602,
+                -0.6429191563196266,
+            ],
+            bias: [
+                -0.09302309802784717,
+                0.1496098522593604,
+                0.02460812488863324,
+                -0.022442575539986298,
+                0.03912917951738135,
+                -0.6294666445240152,
+            ],
+            com: [
+                0.07648172785261936,
+                0.026244227702494058,
+                0.6166196289472685,
+            ],
+            com_row0: &[
+                -0.02624422770249405,
+                0.2843947062602523,
+                -0.01360877197873552,
+                -0.10273767230503518,
+                -0.0032506426596487325,
+                0.01726874834800034,
+                -1.2964046748144731e-05,
+            ],
+        },
+    );
 }

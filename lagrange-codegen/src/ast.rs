@@ -85,6 +85,9 @@ pub enum Extra {
     /// τ = M q̈ + h − Q (recursive Newton–Euler on a tree) and the gravity
     /// torques.
     InverseDynamics,
+    /// The bodies' frame Jacobians and J̇ q̇, the centre of mass and its
+    /// Jacobian.
+    Kinematics,
 }
 
 /// `force(point, [fx, fy, fz])`: a Cartesian force applied at a point.

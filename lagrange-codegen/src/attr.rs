@@ -77,6 +77,7 @@ impl Parse for Item {
                 "hamiltonian" => Some(Extra::Hamiltonian),
                 "articulated" => Some(Extra::Articulated),
                 "inverse_dynamics" => Some(Extra::InverseDynamics),
+                "kinematics" => Some(Extra::Kinematics),
                 _ => None,
             })
             .map(Item::Emit),
@@ -105,8 +106,7 @@ impl Parse for Item {
 }
 
 const FORMULATIONS: &str = "`multipliers` or `reduced`";
-const OUTPUTS: &str =
-    "`reactions`, `coriolis`, `jacobians`, `hamiltonian`, `articulated` or `inverse_dynamics`";
+const OUTPUTS: &str = "`reactions`, `coriolis`, `jacobians`, `hamiltonian`, `articulated`, `inverse_dynamics` or `kinematics`";
 
 /// `coordinates(q1, q2, ...)`, which must name at least one.
 fn parse_coordinates(input: ParseStream, key: &Ident) -> syn::Result<Vec<Ident>> {

@@ -215,7 +215,7 @@ pub use ode::{
     Continuation, DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Record, Rk4,
     Sample, SecondOrder, Stats, StormerVerlet, Trajectory,
 };
-pub use pose::Posed;
+pub use pose::{Kinematics, Posed};
 pub use scene::Scene;
 pub use simulation::{ControlRun, ControlledSimulation, EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};

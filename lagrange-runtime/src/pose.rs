@@ -6,7 +6,7 @@
 //!
 //! Shapes are visual only: nothing in the equations of motion reads them.
 
-use nalgebra::{Matrix3, SVector, Vector3};
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use crate::numeric::Real;
 
@@ -109,4 +109,38 @@ pub trait Posed<T: Real, const N: usize> {
 
     /// Calls `out` with each shape of the description, in order.
     fn shapes(&self, out: &mut dyn FnMut(Shape<T>));
+}
+
+/// The bodies' frame Jacobians and the centre of mass with its Jacobian, as
+/// robot code calls them; `#[derive(Lagrangian)]` implements it with
+/// `emit(kinematics)`. A frame is a body's: its origin (the reference point)
+/// and its axes; `body` indexes [`Posed::BODIES`]. Everything is at a fixed
+/// time: a rheonomic description's explicit ∂/∂t terms are left out.
+pub trait Kinematics<T: Real, const N: usize>: Posed<T, N> {
+    /// The geometric Jacobian of the frame at its origin in world-aligned
+    /// axes: rows 0–2 map q̇ to the origin's velocity, rows 3–5 to the
+    /// angular velocity (Pinocchio's `LOCAL_WORLD_ALIGNED`). `None` for an
+    /// index past the bodies.
+    fn frame_jacobian(&self, body: usize, q: &SVector<T, N>, t: T) -> Option<SMatrix<T, 6, N>>;
+
+    /// J̇ q̇ of the frame: the origin's classical acceleration and the angular
+    /// acceleration at q̈ = 0, so that the frame's acceleration is J q̈ + J̇ q̇.
+    fn frame_bias(
+        &self,
+        body: usize,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        t: T,
+    ) -> Option<SVector<T, 6>>;
+
+    /// The centre of mass of every mass of the description.
+    fn center_of_mass(&self, q: &SVector<T, N>, t: T) -> Vector3<T>;
+
+    /// ∂(centre of mass)/∂q.
+    fn center_of_mass_jacobian(&self, q: &SVector<T, N>, t: T) -> SMatrix<T, 3, N>;
+
+    /// The index of the body named `name` in [`Posed::BODIES`].
+    fn body_index(name: &str) -> Option<usize> {
+        Self::BODIES.iter().position(|&b| b == name)
+    }
 }

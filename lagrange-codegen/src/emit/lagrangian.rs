@@ -8,6 +8,7 @@ use super::constrained::impl_constrained;
 use super::driven::impl_driven;
 use super::emitter::Emitter;
 use super::extra::extras;
+use super::kinematics::impl_kinematics;
 use super::method::{forward_dynamics, optional_methods, visit_form};
 use super::posed::impl_posed;
 use super::reduced::impl_reduced;
@@ -40,6 +41,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let reduced = impl_reduced(&e, &f, model);
     let driven = impl_driven(&e, &f, model);
     let posed = impl_posed(&e, &f, model, &system.scalar);
+    let kinematics = impl_kinematics(&e, &f, model);
     let (docs_macro, docs_text) = (&docs.name, &docs.equations);
     quote! {
         macro_rules! #docs_macro {
@@ -56,6 +58,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
         #reduced
         #driven
         #posed
+        #kinematics
     }
 }
 

@@ -9,6 +9,7 @@ mod constrained;
 mod driven;
 mod emitter;
 mod extra;
+mod kinematics;
 mod lagrangian;
 mod method;
 mod posed;

@@ -19,6 +19,7 @@ mod cyclic;
 mod energy;
 mod extra;
 mod force;
+mod frames;
 mod generic;
 mod inverse;
 mod kinematics;
@@ -26,6 +27,7 @@ mod model;
 mod recursive;
 mod vector;
 
+pub use frames::Frames;
 pub use inverse::InverseDynamics;
 pub use model::{Articulation, BiasRoute, InputModel, Model};
 
@@ -436,6 +438,7 @@ fn finish(
         )?),
     };
     let articulated = d.forces.articulated;
+    let frames = wants(Extra::Kinematics).then(|| frames::frames(&mut ctx, &d.poses, &d.particles));
     let hoisted = hoist(
         &mut ctx,
         &mass,
@@ -464,6 +467,7 @@ fn finish(
         jacobians,
         momentum,
         kinetic_gradient,
+        frames,
         particles: d.particles,
         has_spin: d.has_spin,
         articulated,

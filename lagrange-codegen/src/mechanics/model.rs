@@ -70,6 +70,9 @@ pub struct Model {
     /// τ = M q̈ + h − Q and the gravity torques, if asked for
     /// (`emit(inverse_dynamics)`).
     pub inverse: Option<super::InverseDynamics>,
+    /// The frames' Jacobians and the centre of mass, if asked for
+    /// (`emit(kinematics)`).
+    pub frames: Option<super::Frames>,
     /// The route not chosen, kept so tests can check the two agree (empty when
     /// only the recursive route was derived).
     pub bias_other: Vec<Sym>,
