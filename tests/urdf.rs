@@ -294,6 +294,8 @@ struct FrameReference<'a> {
     frame: &'a str,
     row0: &'a [f64],
     row5: &'a [f64],
+    /// Rows 0 and 5 of the Jacobian in the frame's own axes (`LOCAL`).
+    local: [&'a [f64]; 2],
     bias: [f64; 6],
     com: [f64; 3],
     com_row0: &'a [f64],
@@ -321,6 +323,9 @@ fn kinematics_agree<S: lagrange::Kinematics<f64, N>, const N: usize>(
     let j = sys.frame_jacobian(body, &q, 0.0).expect("a body");
     close_all("J row 0", (0..arm).map(|k| j[(0, k)]), r.row0);
     close_all("J row 5", (0..arm).map(|k| j[(5, k)]), r.row5);
+    let local = sys.frame_jacobian_local(body, &q, 0.0).expect("a body");
+    close_all("J local row 0", (0..arm).map(|k| local[(0, k)]), r.local[0]);
+    close_all("J local row 5", (0..arm).map(|k| local[(5, k)]), r.local[1]);
     let bias = sys.frame_bias(body, &q, &v, 0.0).expect("a body");
     close_all("Jdot v", bias.iter().copied(), &r.bias);
     close_all("com", sys.center_of_mass(&q, 0.0).iter().copied(), &r.com);
@@ -336,6 +341,24 @@ fn ur5_frames_and_centre_of_mass_match_pinocchio() {
         6,
         FrameReference {
             frame: "tool0",
+            local: [
+                &[
+                    -0.11653700301507783,
+                    0.6227178549425902,
+                    0.324236027321386,
+                    0.05897934751853523,
+                    -0.07016276816549731,
+                    0.0,
+                ],
+                &[
+                    -0.044403708129536645,
+                    0.9286646355774596,
+                    0.9286646355774596,
+                    0.9286646355774596,
+                    4.174504524882494e-12,
+                    1.0,
+                ],
+            ],
             row0: &[
                 -0.4116675019269206,
                 -0.1795775939757901,
@@ -377,6 +400,26 @@ fn panda_frames_and_centre_of_mass_match_pinocchio() {
         7,
         FrameReference {
             frame: "panda_hand",
+            local: [
+                &[
+                    0.13191106368729374,
+                    0.2604964726147533,
+                    0.06683627078156168,
+                    -0.10189741530891945,
+                    0.019053805908450475,
+                    0.0069926165186352494,
+                    0.0,
+                ],
+                &[
+                    -0.6429191563196264,
+                    0.21981153381080126,
+                    -0.7326086640678745,
+                    -0.1938753923111311,
+                    -0.8525245220595057,
+                    2.220446049250313e-16,
+                    1.0,
+                ],
+            ],
             row0: &[
                 -0.032999588220948506,
                 0.5320632934542463,

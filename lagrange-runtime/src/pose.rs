@@ -139,6 +139,30 @@ pub trait Kinematics<T: Real, const N: usize>: Posed<T, N> {
     /// ∂(centre of mass)/∂q.
     fn center_of_mass_jacobian(&self, q: &SVector<T, N>, t: T) -> SMatrix<T, 3, N>;
 
+    /// The frame Jacobian in the frame's own axes (Pinocchio's `LOCAL`):
+    /// [`frame_jacobian`](Self::frame_jacobian) with both blocks turned by Rᵀ,
+    /// R the body's rotation from [`Posed::poses`].
+    fn frame_jacobian_local(
+        &self,
+        body: usize,
+        q: &SVector<T, N>,
+        t: T,
+    ) -> Option<SMatrix<T, 6, N>> {
+        let world = self.frame_jacobian(body, q, t)?;
+        let mut bodies = vec![BodyPose::default(); Self::BODIES.len()];
+        let mut points = vec![Vector3::zeros(); Self::POINTS.len()];
+        self.poses(q, t, &mut bodies, &mut points);
+        let rt = bodies[body].rotation.transpose();
+        let mut local = world;
+        local
+            .fixed_rows_mut::<3>(0)
+            .copy_from(&(rt * world.fixed_rows::<3>(0)));
+        local
+            .fixed_rows_mut::<3>(3)
+            .copy_from(&(rt * world.fixed_rows::<3>(3)));
+        Some(local)
+    }
+
     /// The index of the body named `name` in [`Posed::BODIES`].
     fn body_index(name: &str) -> Option<usize> {
         Self::BODIES.iter().position(|&b| b == name)

@@ -44,6 +44,8 @@ for name, n_arm in [("ur5.urdf", 6), ("panda.urdf", 7)]:
     fid = model.getFrameId(frame)
     J = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL_WORLD_ALIGNED)
     print(f"J[{frame}] rows 0 and 5:", [float(x) for x in J[0, :n_arm]], [float(x) for x in J[5, :n_arm]])
+    L = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL)
+    print(f"J local[{frame}] rows 0 and 5:", [float(x) for x in L[0, :n_arm]], [float(x) for x in L[5, :n_arm]])
     pin.forwardKinematics(model, data, q, v, 0 * v)
     acc = pin.getFrameClassicalAcceleration(model, data, fid, pin.LOCAL_WORLD_ALIGNED)
     print(f"Jdot v[{frame}]:", [float(x) for x in acc.linear] + [float(x) for x in acc.angular])
