@@ -1,7 +1,7 @@
 //! The recursive route (composite rigid bodies for M, recursive Newton–Euler for
 //! h and gravity) against the generic one (differentiating ξ(q)) on the same
 //! descriptions: M, Q − h, h and Q agree at random states; a description that
-//! is not a tree of revolute joints stays on the generic route.
+//! is not a tree of revolute and sliding joints stays on the generic route.
 
 mod common;
 use common::{Lcg, close, eval, random_point};

@@ -133,7 +133,9 @@ pub trait Kinematics<T: Real, const N: usize>: Posed<T, N> {
         t: T,
     ) -> Option<SVector<T, 6>>;
 
-    /// The centre of mass of every mass of the description.
+    /// The centre of mass of the moving masses: a mass fixed in space (a
+    /// robot's base) moves with nothing and is left out, as Pinocchio's
+    /// `centerOfMass` leaves out the universe's.
     fn center_of_mass(&self, q: &SVector<T, N>, t: T) -> Vector3<T>;
 
     /// ∂(centre of mass)/∂q.
@@ -141,7 +143,8 @@ pub trait Kinematics<T: Real, const N: usize>: Posed<T, N> {
 
     /// The frame Jacobian in the frame's own axes (Pinocchio's `LOCAL`):
     /// [`frame_jacobian`](Self::frame_jacobian) with both blocks turned by Rᵀ,
-    /// R the body's rotation from [`Posed::poses`].
+    /// R the body's rotation from [`Posed::poses`] (which this evaluates for
+    /// every body and point, allocating their slices: not for a hot loop).
     fn frame_jacobian_local(
         &self,
         body: usize,

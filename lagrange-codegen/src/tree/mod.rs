@@ -1,4 +1,5 @@
-//! The recursive route: when the bodies form a kinematic tree of revolute joints,
+//! The recursive route: when the bodies form a kinematic tree of revolute and
+//! sliding joints,
 //! M by composite rigid bodies (CRBA) and h − Q_gravity by recursive
 //! Newton–Euler (RNEA), built as expressions so the engine's CSE emits them as
 //! straight-line code (Featherstone, *Rigid Body Dynamics Algorithms*, ch. 5–6).

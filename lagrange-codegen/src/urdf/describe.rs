@@ -26,7 +26,7 @@ fn error(line: u32, message: String) -> ReadError {
 
 /// A name usable as a Rust identifier: other characters become `_`, a
 /// leading digit gets a `_` before it, a keyword one after it.
-pub fn identifier(name: &str) -> String {
+fn identifier(name: &str) -> String {
     let mut s: String = name
         .chars()
         .map(|c| {

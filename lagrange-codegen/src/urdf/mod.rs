@@ -15,8 +15,6 @@ use proc_macro2::{Group, Span, TokenStream, TokenTree};
 use syn::parse::ParseStream;
 use syn::{Ident, Token};
 
-pub use describe::identifier;
-
 /// A URDF file read into description items.
 pub struct Urdf {
     /// The file's absolute path (for `include_bytes!`).

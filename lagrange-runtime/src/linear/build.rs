@@ -40,6 +40,10 @@ impl Linearizer {
     /// # Errors
     /// [`Error::NonFiniteState`]; [`Error::SingularMassMatrix`];
     /// [`Error::MissingDerivatives`] if the system has no `rhs_jacobians`.
+    /// Before any of these: [`Error::InvalidSettings`] for a negative or
+    /// non-finite tolerance or a zero Newton limit, [`Error::NonPhysicalParameter`]
+    /// from [`check_parameters`](crate::Lagrangian::check_parameters), and
+    /// [`Error::NonFiniteInput`] naming a non-finite input of the point.
     pub fn unconstrained<S, T, const N: usize, const P: usize, const U: usize>(
         &self,
         sys: &S,
@@ -139,6 +143,10 @@ impl Linearizer {
     /// [`Error::SingularMassMatrix`]; [`Error::NonFiniteState`];
     /// [`Error::MissingDerivatives`] without `rhs_jacobians` or
     /// `constraint_derivatives`.
+    /// Before any of these: [`Error::InvalidSettings`] for a negative or
+    /// non-finite tolerance or a zero Newton limit, [`Error::NonPhysicalParameter`]
+    /// from [`check_parameters`](crate::Lagrangian::check_parameters), and
+    /// [`Error::NonFiniteInput`] naming a non-finite input of the point.
     pub fn constrained<S, T, const N: usize, const K: usize, const P: usize, const U: usize>(
         &self,
         sys: &S,
@@ -243,6 +251,10 @@ impl Linearizer {
     /// [`Error::NonFiniteState`]; [`Error::ReducedFormBreakdown`] if the
     /// stacked rows are dependent at q0; [`Error::MissingDerivatives`] without
     /// `rhs_jacobians` or `row_derivatives` (`emit(jacobians)`).
+    /// Before any of these: [`Error::InvalidSettings`] for a negative or
+    /// non-finite tolerance or a zero Newton limit, [`Error::NonPhysicalParameter`]
+    /// from [`check_parameters`](crate::Lagrangian::check_parameters), and
+    /// [`Error::NonFiniteInput`] naming a non-finite input of the point.
     pub fn reduced<S, T, const N: usize, const K: usize, const P: usize, const U: usize>(
         &self,
         sys: &S,

@@ -242,11 +242,12 @@ where
         let mut refused = Ok(());
         let points = whole.times().iter().zip(whole.positions());
         for ((&tk, qk), vk) in points.zip(whole.velocities()).skip(from) {
-            let u = match source {
-                Piece::Held(u) => u,
-                Piece::Live(_) => self.source.input(tk, qk, vk),
+            // A held sample was checked when it was taken.
+            let (u, live) = match source {
+                Piece::Held(u) => (u, false),
+                Piece::Live(_) => (self.source.input(tk, qk, vk), true),
             };
-            if check && refused.is_ok() {
+            if check && live && refused.is_ok() {
                 refused = check_input::<S, T, N, P>(tk, qk, vk, &u);
             }
             record.inputs.push(u);
