@@ -210,6 +210,7 @@ pub use mechanics::{
     DEFAULT_SINGULAR_TOLERANCE, Dynamics, Forcing, NoForcing, Rattle, ReducedDynamics, ReducedForm,
     accelerations,
 };
+pub use numeric::orientation::Orientation;
 pub use numeric::{Real, func};
 pub use ode::{
     Continuation, DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Record, Rk4,

@@ -6,6 +6,7 @@
 //! (the benchmarks compare exactly that).
 
 use crate::numeric::Real;
+use crate::numeric::orientation::Orientation;
 use nalgebra::{SMatrix, SVector};
 
 pub mod physical;
@@ -22,9 +23,27 @@ pub use route::Route;
 /// `T` is the scalar the parameters are stored in (f64, f32, or any [`Real`]);
 /// `N` is the number of degrees of freedom, a type-level constant so that every
 /// state is a stack-allocated [`SVector`].
-pub trait Lagrangian<T: Real, const N: usize> {
-    /// Names of the generalized coordinates, in order.
-    const COORDINATES: [&'static str; N];
+pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
+    /// Names of the numbers in q, in order: a coordinate's name, and for an
+    /// orientation its quaternion's four components (`body.w`, `body.x`, …).
+    const COORDINATES: [&'static str; Q];
+    /// Names of the velocities, in order: a coordinate's own name (its rate),
+    /// and for an orientation the body-axis angular velocity's components
+    /// (`body.wx`, …). Without orientations, the coordinates' names.
+    const VELOCITIES: [&'static str; N] = {
+        let mut names = [""; N];
+        let mut i = 0;
+        while i < N && i < Q {
+            names[i] = Self::COORDINATES[i];
+            i += 1;
+        }
+        names
+    };
+    /// Where unit quaternions sit in q and their angular velocities in v (see
+    /// [`orientation`](crate::numeric::orientation)): none by default, and then
+    /// Q = N. `#[derive(Lagrangian)]` sets it for free bodies and spherical
+    /// joints.
+    const ORIENTATIONS: &'static [Orientation] = &[];
     /// Whether a position map depends explicitly on time. When it does, the
     /// conserved quantity (if any) is the Jacobi integral T2 − T0 + V, not T + V.
     const RHEONOMIC: bool;
@@ -53,39 +72,39 @@ pub trait Lagrangian<T: Real, const N: usize> {
     const ROUTE: Route = Route::HandWritten;
 
     /// Mass matrix M(q,t): symmetric, positive definite where the chart is regular.
-    fn mass_matrix(&self, q: &SVector<T, N>, t: T) -> SMatrix<T, N, N>;
+    fn mass_matrix(&self, q: &SVector<T, Q>, t: T) -> SMatrix<T, N, N>;
 
     /// Bias h(q,q̇,t): Coriolis/centrifugal terms plus the rheonomic terms from T1, T0.
-    fn bias(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, N>;
+    fn bias(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> SVector<T, N>;
 
     /// Generalized forces Q(q,q̇,t): −∂V/∂q, Σ Jᵀ F, −∂D/∂q̇ and explicit generalized forces.
-    fn generalized_forces(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, N>;
+    fn generalized_forces(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> SVector<T, N>;
 
     /// M and the right-hand side Q − h, computed in one pass so that subexpressions
     /// shared between them (sines and cosines of the coordinates, Jacobian entries)
     /// are evaluated once. This is what the integrators call.
     fn mass_matrix_and_rhs(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         t: T,
     ) -> (SMatrix<T, N, N>, SVector<T, N>);
 
     /// Kinetic energy T = T2 + T1 + T0.
-    fn kinetic_energy(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> T;
+    fn kinetic_energy(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> T;
 
     /// Potential energy V(q,t), gravity included.
-    fn potential_energy(&self, q: &SVector<T, N>, t: T) -> T;
+    fn potential_energy(&self, q: &SVector<T, Q>, t: T) -> T;
 
     /// The quantity conserved when the forces are conservative: T + V for a
     /// scleronomic system, the Jacobi integral T2 − T0 + V for a rheonomic one.
     /// It is the runtime's accuracy diagnostic.
-    fn integral(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> T;
+    fn integral(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> T;
 
     /// The generalized momentum p = ∂L/∂q̇ = M(q,t) q̇ + a(q,t), with a the
     /// coefficient of T1 = aᵀq̇. The default, M q̇, is right for scleronomic
     /// systems (a = 0); a rheonomic implementation must override it.
-    fn momentum(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, N> {
+    fn momentum(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> SVector<T, N> {
         self.mass_matrix(q, t) * v
     }
 
@@ -100,7 +119,7 @@ pub trait Lagrangian<T: Real, const N: usize> {
     /// ṗ = ∂T/∂q + Q also covers forces that have no potential.)
     fn kinetic_gradient(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         t: T,
     ) -> Option<SVector<T, N>> {
@@ -116,7 +135,7 @@ pub trait Lagrangian<T: Real, const N: usize> {
     /// straight-line program. Constraint forces are not included.
     fn inverse_dynamics(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         a: &SVector<T, N>,
         t: T,
@@ -128,7 +147,7 @@ pub trait Lagrangian<T: Real, const N: usize> {
     /// The generalized forces that hold the system still against gravity alone
     /// at q, ∂V_gravity/∂q (Pinocchio's generalized gravity). `None` unless the
     /// description asks for it with `emit(inverse_dynamics)`.
-    fn gravity_torques(&self, q: &SVector<T, N>, t: T) -> Option<SVector<T, N>> {
+    fn gravity_torques(&self, q: &SVector<T, Q>, t: T) -> Option<SVector<T, N>> {
         let _ = (q, t);
         None
     }
@@ -142,7 +161,7 @@ pub trait Lagrangian<T: Real, const N: usize> {
     /// factorisation, the better choice for long chains.
     fn forward_dynamics(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         tau: &SVector<T, N>,
         t: T,
@@ -201,7 +220,7 @@ pub trait Lagrangian<T: Real, const N: usize> {
     fn mass_matrix_and_rhs_with(
         &self,
         terms: &[T],
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         t: T,
     ) -> (SMatrix<T, N, N>, SVector<T, N>) {
@@ -214,7 +233,7 @@ pub trait Lagrangian<T: Real, const N: usize> {
     fn forward_dynamics_with(
         &self,
         terms: &[T],
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         tau: &SVector<T, N>,
         t: T,
@@ -235,7 +254,7 @@ pub trait Lagrangian<T: Real, const N: usize> {
     #[allow(clippy::type_complexity)]
     fn rhs_jacobians(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         a: &SVector<T, N>,
         t: T,
@@ -267,7 +286,7 @@ pub trait Lagrangian<T: Real, const N: usize> {
     /// the one way to run any derived system. The contract names no runner:
     /// the runner is the visitor. Not meant to be called directly.
     #[doc(hidden)]
-    fn visit_form<F: FormVisitor<T, N, Self>>(&self, form: F) -> F::Output
+    fn visit_form<F: FormVisitor<T, N, Self, Q>>(&self, form: F) -> F::Output
     where
         Self: Sized,
     {
@@ -280,7 +299,7 @@ pub trait Lagrangian<T: Real, const N: usize> {
 /// form needs. Implemented by the simulation builders; not meant to be
 /// implemented by users.
 #[doc(hidden)]
-pub trait FormVisitor<T: Real, const N: usize, S: Lagrangian<T, N>> {
+pub trait FormVisitor<T: Real, const N: usize, S: Lagrangian<T, N, Q>, const Q: usize = N> {
     /// What running the system gives.
     type Output;
 

@@ -40,7 +40,8 @@ impl Clone for Error {
             EventsAccumulate { t, event, count },
             NonFiniteInput { t, input, value, q, v },
             MissingDerivatives { method, needed_for },
-            NonPhysicalParameter { body, entry, value, reason };
+            NonPhysicalParameter { body, entry, value, reason },
+            NonUnitQuaternion { orientation, norm, tolerance };
             InvalidSettings, Linear
         )
     }

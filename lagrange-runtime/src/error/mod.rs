@@ -253,6 +253,24 @@ pub enum Error {
         count: usize,
     },
 
+    /// An orientation's quaternion in an initial state is not a rotation:
+    /// not finite, or its norm further from 1 than
+    /// [`UNIT_TOLERANCE`](crate::numeric::orientation::UNIT_TOLERANCE) (within
+    /// it, the run normalises it silently).
+    #[error(
+        "the quaternion of `{orientation}` in the initial state has norm {norm}, not 1 \
+         (within {tolerance} it is normalised): give a unit quaternion (w, x, y, z), \
+         scalar first"
+    )]
+    NonUnitQuaternion {
+        /// The orientation's name (its body), from the coordinates' names.
+        orientation: String,
+        /// The quaternion's norm (NaN if a component is not finite).
+        norm: f64,
+        /// The tolerance it missed.
+        tolerance: f64,
+    },
+
     /// An input (from a controller, an open-loop signal or a table) is NaN or
     /// infinite. Reported where it was computed, never passed on to the
     /// dynamics as a NaN force.
@@ -346,6 +364,7 @@ pub use failure::{Failure, Progress};
 pub use linear::LinearError;
 
 use crate::numeric::Real;
+use crate::numeric::orientation::{self, Orientation, UNIT_TOLERANCE};
 use nalgebra::SVector;
 
 /// Converts a state vector to `f64`s for an error report.
@@ -384,9 +403,9 @@ impl Error {
     }
 
     /// A [`Error::NonFiniteState`] for the given time and state.
-    pub(crate) fn non_finite<T: Real, const N: usize>(
+    pub(crate) fn non_finite<T: Real, const N: usize, const Q: usize>(
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Self {
         Error::NonFiniteState {
@@ -410,6 +429,33 @@ pub(crate) fn check_tolerance(setting: &str, tol: f64) -> Result<(), Error> {
             "{setting} must be non-negative and finite, got {tol}"
         )))
     }
+}
+
+/// The initial configuration with its quaternions normalised, or
+/// [`Error::NonUnitQuaternion`] naming the first one that is further than
+/// [`UNIT_TOLERANCE`] from unit norm (or not finite). `names` are the
+/// coordinates' names; an orientation is named by its `w`'s name without the
+/// `.w`.
+pub(crate) fn unit_quaternions<T: Real, const Q: usize>(
+    layout: &[Orientation],
+    names: &[&'static str; Q],
+    mut q: SVector<T, Q>,
+) -> Result<SVector<T, Q>, Error> {
+    for o in layout {
+        let [w, x, y, z] = orientation::quaternion(q.as_slice(), o.q).map(|c| c.to_f64());
+        let norm = (w * w + x * x + y * y + z * z).sqrt();
+        let unit = (norm - 1.0).abs() <= UNIT_TOLERANCE;
+        if !unit {
+            let name = names[o.q];
+            return Err(Error::NonUnitQuaternion {
+                orientation: name.strip_suffix(".w").unwrap_or(name).to_string(),
+                norm,
+                tolerance: UNIT_TOLERANCE,
+            });
+        }
+    }
+    orientation::normalise(layout, q.as_mut_slice());
+    Ok(q)
 }
 
 /// The first non-finite entry of the inputs `u` as

@@ -9,6 +9,7 @@ use crate::error::{Error, check_tolerance, to_vec};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::{Cholesky, cholesky_solve};
+use crate::numeric::orientation::{self, Orientation};
 use crate::ode::SecondOrder;
 use crate::system::Lagrangian;
 use nalgebra::{SMatrix, SVector};
@@ -116,20 +117,24 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
     /// finite; [`Error::SingularMassMatrix`] if M is not positive definite or its
     /// pivot ratio is below the singular tolerance; whatever the forcing reports
     /// (e.g. [`Error::NonFiniteInput`]).
-    pub fn acceleration<const N: usize>(
+    pub fn acceleration<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error>
     where
-        S: Lagrangian<T, N>,
-        F: Forcing<T, N>,
+        S: Lagrangian<T, N, Q>,
+        F: Forcing<T, N, Q>,
     {
-        refuse_constrained::<S, T, N>();
+        refuse_constrained::<S, T, N, Q>();
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
+        // A Runge–Kutta stage leaves the unit sphere by its local error: the
+        // equations see the rotation it is closest to.
+        let unit = on_sphere::<S, T, N, Q>(q);
+        let q = &unit;
         check_tolerance("singular tolerance", self.singular_tolerance.to_f64())?;
         let tau = if F::ACTIVE {
             self.forcing.force(t, q, v)?
@@ -165,15 +170,15 @@ impl<S, T: Real, F> Dynamics<'_, S, T, F> {
     /// q̈ by the system's articulated-body algorithm, if it emits one, with the
     /// forcing's generalized forces `tau`; its pivot ratio is checked against the
     /// same tolerance as the Cholesky factorisation's.
-    fn articulated<const N: usize>(
+    fn articulated<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         tau: &SVector<T, N>,
     ) -> Result<Option<SVector<T, N>>, Error>
     where
-        S: Lagrangian<T, N>,
+        S: Lagrangian<T, N, Q>,
     {
         let Some((a, ratio)) = self.system.forward_dynamics_with(self.terms, q, v, tau, t) else {
             return Ok(None);
@@ -193,26 +198,28 @@ impl<S, T: Real, F> Dynamics<'_, S, T, F> {
     }
 }
 
-impl<S, T, F, const N: usize> SecondOrder<T, N> for Dynamics<'_, S, T, F>
+impl<S, T, F, const N: usize, const Q: usize> SecondOrder<T, N, Q> for Dynamics<'_, S, T, F>
 where
-    S: Lagrangian<T, N>,
+    S: Lagrangian<T, N, Q>,
     T: Real,
-    F: Forcing<T, N>,
+    F: Forcing<T, N, Q>,
 {
+    const ORIENTATIONS: &'static [Orientation] = S::ORIENTATIONS;
+
     fn acceleration(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error> {
         Dynamics::acceleration(self, t, q, v)
     }
 
-    fn integral(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
-        self.system.integral(q, v, t)
+    fn integral(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> T {
+        self.system.integral(&on_sphere::<S, T, N, Q>(q), v, t)
     }
 
-    fn mechanical(&self) -> Option<&dyn crate::ode::Mechanical<T, N>> {
+    fn mechanical(&self) -> Option<&dyn crate::ode::Mechanical<T, N, Q>> {
         Some(self)
     }
 
@@ -220,14 +227,15 @@ where
     /// [`rhs_jacobians`](Lagrangian::rhs_jacobians), when it has them and the
     /// dynamics are unforced (a forcing's dependence on the state, such as a
     /// feedback law, is unknown here: forced dynamics fall back to finite
-    /// differences).
+    /// differences). With orientations the system's Jacobians are in the
+    /// tangent space, not in the quaternions' R⁴: finite differences too.
     fn jacobian(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
-    ) -> Option<Result<(SMatrix<T, N, N>, SMatrix<T, N, N>), Error>> {
-        if F::ACTIVE {
+    ) -> Option<Result<(SMatrix<T, N, Q>, SMatrix<T, N, N>), Error>> {
+        if F::ACTIVE || !S::ORIENTATIONS.is_empty() {
             return None;
         }
         let a = match Dynamics::acceleration(self, t, q, v) {
@@ -257,7 +265,8 @@ where
         if !(all_finite(dq.as_slice()) && all_finite(dv.as_slice())) {
             return Some(Err(Error::non_finite(t, q, v)));
         }
-        Some(Ok((dq, dv)))
+        // Q = N here (no orientations): the same matrix, retyped.
+        Some(Ok((SMatrix::from_fn(|i, j| dq[(i, j)]), dv)))
     }
 }
 
@@ -266,9 +275,9 @@ where
 ///
 /// # Errors
 /// [`Error::NonFiniteState`] or [`Error::SingularMassMatrix`].
-pub fn accelerations<S: Lagrangian<T, N>, T: Real, const N: usize>(
+pub fn accelerations<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q: usize>(
     sys: &S,
-    q: &SVector<T, N>,
+    q: &SVector<T, Q>,
     v: &SVector<T, N>,
     t: T,
 ) -> Result<SVector<T, N>, Error> {
@@ -279,13 +288,28 @@ pub fn accelerations<S: Lagrangian<T, N>, T: Real, const N: usize>(
 /// ignore (see [`Lagrangian::CONSTRAINED`]): the error appears where the
 /// unconstrained dynamics of such a system is instantiated.
 #[inline(always)]
-pub(crate) fn refuse_constrained<S: Lagrangian<T, N>, T: Real, const N: usize>() {
+pub(crate) fn refuse_constrained<
+    S: Lagrangian<T, N, Q>,
+    T: Real,
+    const N: usize,
+    const Q: usize,
+>() {
     const {
         assert!(
-            !<S as Lagrangian<T, N>>::CONSTRAINED,
+            !<S as Lagrangian<T, N, Q>>::CONSTRAINED,
             "this system has constraints, which the unconstrained dynamics would ignore: run it with `run_constrained` (multipliers) or `run_reduced` (independent speeds)"
         )
     };
+}
+
+/// q with its quaternions scaled to unit norm (q itself without orientations).
+#[inline(always)]
+pub(crate) fn on_sphere<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q: usize>(
+    q: &SVector<T, Q>,
+) -> SVector<T, Q> {
+    let mut unit = *q;
+    orientation::normalise(S::ORIENTATIONS, unit.as_mut_slice());
+    unit
 }
 
 pub(crate) fn all_finite<T: Real>(xs: &[T]) -> bool {

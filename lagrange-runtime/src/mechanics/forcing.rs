@@ -12,7 +12,7 @@ use nalgebra::SVector;
 /// Implemented by [`NoForcing`] (nothing, the default of every dynamics type)
 /// and [`InputForces`](crate::InputForces) (the forces of a [`Driven`](crate::Driven) system's inputs); implement
 /// it for any other force law.
-pub trait Forcing<T: Real, const N: usize> {
+pub trait Forcing<T: Real, const N: usize, const Q: usize = N> {
     /// Whether [`force`](Self::force) is called at all. `false` only for
     /// [`NoForcing`]: the dynamics test it as a constant, so an unforced system
     /// pays nothing.
@@ -22,7 +22,7 @@ pub trait Forcing<T: Real, const N: usize> {
     ///
     /// # Errors
     /// Whatever prevents its evaluation, such as [`Error::NonFiniteInput`].
-    fn force(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error>;
+    fn force(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error>;
 }
 
 /// No forcing: the default forcing parameter of [`Dynamics`](crate::Dynamics),
@@ -31,11 +31,11 @@ pub trait Forcing<T: Real, const N: usize> {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct NoForcing;
 
-impl<T: Real, const N: usize> Forcing<T, N> for NoForcing {
+impl<T: Real, const N: usize, const Q: usize> Forcing<T, N, Q> for NoForcing {
     const ACTIVE: bool = false;
 
     #[inline(always)]
-    fn force(&self, _: T, _: &SVector<T, N>, _: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+    fn force(&self, _: T, _: &SVector<T, Q>, _: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
         Ok(SVector::zeros())
     }
 }

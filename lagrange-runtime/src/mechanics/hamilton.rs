@@ -9,25 +9,25 @@ use crate::ode::Mechanical;
 use crate::system::Lagrangian;
 use nalgebra::{SMatrix, SVector};
 
-impl<S, T, F, const N: usize> Mechanical<T, N> for Dynamics<'_, S, T, F>
+impl<S, T, F, const N: usize, const Q: usize> Mechanical<T, N, Q> for Dynamics<'_, S, T, F>
 where
-    S: Lagrangian<T, N>,
+    S: Lagrangian<T, N, Q>,
     T: Real,
-    F: Forcing<T, N>,
+    F: Forcing<T, N, Q>,
 {
-    fn mass_matrix(&self, t: T, q: &SVector<T, N>) -> Result<SMatrix<T, N, N>, Error> {
-        refuse_constrained::<S, T, N>();
+    fn mass_matrix(&self, t: T, q: &SVector<T, Q>) -> Result<SMatrix<T, N, N>, Error> {
+        refuse_constrained::<S, T, N, Q>();
         Ok(self.system().mass_matrix(q, t))
     }
 
-    fn momentum(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+    fn momentum(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
         Ok(self.system().momentum(q, v, t))
     }
 
     fn momentum_rate(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error> {
         let sys = self.system();

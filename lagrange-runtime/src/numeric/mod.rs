@@ -9,6 +9,7 @@ pub(crate) mod clock;
 pub(crate) mod elimination;
 pub mod func;
 pub(crate) mod lu;
+pub mod orientation;
 mod real;
 pub(crate) mod root;
 pub(crate) mod saddle;

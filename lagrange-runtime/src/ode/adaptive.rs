@@ -97,11 +97,11 @@ impl<T: Real> Stepping<T> {
     /// The controller's verdict on an attempt with error norm `err` ending at
     /// (t_new, y_new): true if accepted (counted, and the next step size
     /// proposed), false if rejected (counted, and the step size reduced).
-    pub fn judge<const N: usize>(
+    pub fn judge<const N: usize, const Q: usize>(
         &mut self,
         err: T,
         t_new: T,
-        y_new: &Pair<T, N>,
+        y_new: &Pair<T, N, Q>,
         stats: &mut Stats,
     ) -> Result<bool, Error> {
         if err.partial_cmp(&T::zero()).is_none() {
@@ -142,13 +142,13 @@ fn largest_step<T: Real>(control: &StepControl, t0: T, t1: T) -> T {
 
 /// The first step: the setting (at most hmax), or Hairer's `hinit` estimate
 /// for a method of order `order` (one more evaluation).
-pub(crate) fn first_step<T: Real, const N: usize, F: SecondOrder<T, N>>(
+pub(crate) fn first_step<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
     control: &StepControl,
     order: u32,
     rhs: &F,
     (t0, t1): (T, T),
-    y: &Pair<T, N>,
-    f0: &Pair<T, N>,
+    y: &Pair<T, N, Q>,
+    f0: &Pair<T, N, Q>,
     evaluations: &mut usize,
 ) -> Result<T, Error> {
     let hmax = largest_step(control, t0, t1);
@@ -172,11 +172,11 @@ fn retry_smaller<T: Real>(h: T, floor: T, e: Error) -> Result<T, Error> {
 /// evaluation, and choose h so that h^order · max(‖f‖, ‖y''‖) = 0.01 (order 5 for
 /// DOPRI5, 8 for DOP853). The norms are unnormalised sums, as in `dopri5.f`.
 #[allow(clippy::too_many_arguments)]
-fn hinit<T: Real, const N: usize, F: SecondOrder<T, N>>(
+fn hinit<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
     rhs: &F,
     t0: T,
-    y: &Pair<T, N>,
-    f0: &Pair<T, N>,
+    y: &Pair<T, N, Q>,
+    f0: &Pair<T, N, Q>,
     hmax: T,
     rtol: T,
     atol: T,
@@ -184,10 +184,14 @@ fn hinit<T: Real, const N: usize, F: SecondOrder<T, N>>(
     evaluations: &mut usize,
 ) -> Result<T, Error> {
     let sk = |x: T| atol + rtol * abs(x);
-    let weighted = |a: &Pair<T, N>, b: Option<&Pair<T, N>>| {
+    let weighted = |a: &Pair<T, N, Q>, b: Option<&Pair<T, N, Q>>| {
         let mut s = T::zero();
-        for (a, b, y) in [(&a.q, b.map(|b| &b.q), &y.q), (&a.v, b.map(|b| &b.v), &y.v)] {
-            for i in 0..N {
+        let parts = [
+            (a.q.as_slice(), b.map(|b| b.q.as_slice()), y.q.as_slice()),
+            (a.v.as_slice(), b.map(|b| b.v.as_slice()), y.v.as_slice()),
+        ];
+        for (a, b, y) in parts {
+            for i in 0..a.len() {
                 let x = b.map_or(a[i], |b| a[i] - b[i]) / sk(y[i]);
                 s += x * x;
             }

@@ -2,6 +2,7 @@
 
 use super::Pair;
 use crate::numeric::Real;
+use crate::numeric::orientation::{self, Orientation};
 use nalgebra::SVector;
 
 /// The continuous extension of one accepted step [t₀, t₁], in Hairer's nested form
@@ -18,20 +19,28 @@ use nalgebra::SVector;
 /// coefficients in use are evaluated.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct DenseSegment<T: Real, const N: usize> {
+pub struct DenseSegment<T: Real, const N: usize, const Q: usize = N> {
     t0: T,
     t1: T,
     h: T,
-    r: [Pair<T, N>; 8],
+    r: [Pair<T, N, Q>; 8],
     /// How many of the r's are in use (4, 5 or 8).
     used: usize,
+    /// The quaternions in q, normalised where the segment is read.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    orientations: &'static [Orientation],
 }
 
-impl<T: Real, const N: usize> DenseSegment<T, N> {
+impl<T: Real, const N: usize, const Q: usize> DenseSegment<T, N, Q> {
     /// A segment from its first K ≤ 8 coefficients. `h` is the step size the
     /// coefficients were computed with; `t1` the recorded end time (t₀ + h up to
     /// rounding).
-    pub(crate) fn new<const K: usize>(t0: T, t1: T, h: T, coefficients: [Pair<T, N>; K]) -> Self {
+    pub(crate) fn new<const K: usize>(
+        t0: T,
+        t1: T,
+        h: T,
+        coefficients: [Pair<T, N, Q>; K],
+    ) -> Self {
         const { assert!(K >= 1 && K <= 8) };
         let mut r = [Pair::zeros(); 8];
         r[..K].copy_from_slice(&coefficients);
@@ -41,6 +50,7 @@ impl<T: Real, const N: usize> DenseSegment<T, N> {
             h,
             r,
             used: K,
+            orientations: &[],
         }
     }
 
@@ -49,49 +59,36 @@ impl<T: Real, const N: usize> DenseSegment<T, N> {
     pub(crate) fn hermite(
         t0: T,
         t1: T,
-        y0: &Pair<T, N>,
-        f0: &Pair<T, N>,
-        y1: &Pair<T, N>,
-        f1: &Pair<T, N>,
+        y0: &Pair<T, N, Q>,
+        f0: &Pair<T, N, Q>,
+        y1: &Pair<T, N, Q>,
+        f1: &Pair<T, N, Q>,
     ) -> Self {
         let h = t1 - t0;
         let (r1, r2, r3, r4) = Self::cubic_part(h, y0, f0, y1, f1);
         Self::new(t0, t1, h, [r1, r2, r3, r4])
     }
 
-    /// The cubic Hermite interpolant through (q0, v0) and (q1, v1) with the
-    /// accelerations a0, a1 at the ends: the dense output of any one-step method
-    /// that has no continuous extension of its own.
-    #[allow(clippy::too_many_arguments)]
-    pub fn cubic_hermite(
-        t0: T,
-        t1: T,
-        (q0, v0, a0): (&SVector<T, N>, &SVector<T, N>, &SVector<T, N>),
-        (q1, v1, a1): (&SVector<T, N>, &SVector<T, N>, &SVector<T, N>),
-    ) -> Self {
-        Self::hermite(
-            t0,
-            t1,
-            &Pair::new(*q0, *v0),
-            &Pair::new(*v0, *a0),
-            &Pair::new(*q1, *v1),
-            &Pair::new(*v1, *a1),
-        )
-    }
-
     /// r₁..r₄, shared by Hermite and DOPRI5: r₁ = y₀, r₂ = y₁ − y₀,
     /// r₃ = h f₀ − r₂, r₄ = r₂ − h f₁ − r₃.
     pub(crate) fn cubic_part(
         h: T,
-        y0: &Pair<T, N>,
-        f0: &Pair<T, N>,
-        y1: &Pair<T, N>,
-        f1: &Pair<T, N>,
-    ) -> (Pair<T, N>, Pair<T, N>, Pair<T, N>, Pair<T, N>) {
+        y0: &Pair<T, N, Q>,
+        f0: &Pair<T, N, Q>,
+        y1: &Pair<T, N, Q>,
+        f1: &Pair<T, N, Q>,
+    ) -> (Pair<T, N, Q>, Pair<T, N, Q>, Pair<T, N, Q>, Pair<T, N, Q>) {
         let r2 = y1.sub(y0);
         let r3 = f0.scale(h).sub(&r2);
         let r4 = r2.sub(&f1.scale(h)).sub(&r3);
         (*y0, r2, r3, r4)
+    }
+
+    /// The segment with the quaternions at `layout` normalised where it is
+    /// read (an interpolant leaves the unit sphere by its own error).
+    pub(crate) fn with_orientations(mut self, layout: &'static [Orientation]) -> Self {
+        self.orientations = layout;
+        self
     }
 
     /// Ends the segment at `t1` (inside the step): the polynomial is unchanged,
@@ -117,23 +114,54 @@ impl<T: Real, const N: usize> DenseSegment<T, N> {
     }
 
     /// The interpolated (q, v) at `t` (meaningful for t in [start, end]).
-    pub fn eval(&self, t: T) -> (SVector<T, N>, SVector<T, N>) {
+    pub fn eval(&self, t: T) -> (SVector<T, Q>, SVector<T, N>) {
         let th = (t - self.t0) / self.h;
         let th1 = T::one() - th;
+        let mut q = self.horner(th, th1, |p| &p.q);
+        orientation::normalise(self.orientations, q.as_mut_slice());
+        (q, self.horner(th, th1, |p| &p.v))
+    }
+
+    /// One part (q or v) of the nested polynomial, by Horner's rule from the
+    /// innermost coefficient outwards; the factor in front of r_k (k ≥ 2,
+    /// 1-based) is θ for even k and 1 − θ for odd k.
+    fn horner<const M: usize>(
+        &self,
+        th: T,
+        th1: T,
+        part: impl Fn(&Pair<T, N, Q>) -> &SVector<T, M>,
+    ) -> SVector<T, M> {
         let r = &self.r[..self.used];
-        // Horner from the innermost coefficient outwards; the factor in front of
-        // r_k (k ≥ 2, 1-based) is θ for even k and 1 − θ for odd k.
-        let poly = |part: fn(&Pair<T, N>) -> &SVector<T, N>| {
-            SVector::<T, N>::from_fn(|i, _| {
-                let mut acc = T::zero();
-                for (k, rk) in r.iter().enumerate().skip(1).rev() {
-                    let factor = if k % 2 == 1 { th } else { th1 };
-                    acc = factor * (part(rk)[i] + acc);
-                }
-                part(&r[0])[i] + acc
-            })
-        };
-        (poly(|p| &p.q), poly(|p| &p.v))
+        SVector::<T, M>::from_fn(|i, _| {
+            let mut acc = T::zero();
+            for (k, rk) in r.iter().enumerate().skip(1).rev() {
+                let factor = if k % 2 == 1 { th } else { th1 };
+                acc = factor * (part(rk)[i] + acc);
+            }
+            part(&r[0])[i] + acc
+        })
+    }
+}
+
+impl<T: Real, const N: usize> DenseSegment<T, N> {
+    /// The cubic Hermite interpolant through (q0, v0) and (q1, v1) with the
+    /// accelerations a0, a1 at the ends: the dense output of any one-step method
+    /// that has no continuous extension of its own.
+    #[allow(clippy::too_many_arguments)]
+    pub fn cubic_hermite(
+        t0: T,
+        t1: T,
+        (q0, v0, a0): (&SVector<T, N>, &SVector<T, N>, &SVector<T, N>),
+        (q1, v1, a1): (&SVector<T, N>, &SVector<T, N>, &SVector<T, N>),
+    ) -> Self {
+        Self::hermite(
+            t0,
+            t1,
+            &Pair::new(*q0, *v0),
+            &Pair::new(*v0, *a0),
+            &Pair::new(*q1, *v1),
+            &Pair::new(*v1, *a1),
+        )
     }
 }
 

@@ -14,7 +14,7 @@ use super::adaptive::{Stepping, first_step};
 use super::controller::PiController;
 use super::run::Run;
 use super::settings::{StepControl, step_control_builders};
-use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem};
+use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem, settle};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::{abs, sqrt};
@@ -158,15 +158,15 @@ impl<T: Real> Coefficients<T> {
 }
 
 impl Integrator for Dopri5 {
-    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         from: Continuation<T>,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>> {
         let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
         let outcome = self.run(rhs, (t0, t1), Pair::new(q0, v0), &mut run);
@@ -180,26 +180,26 @@ impl Integrator for Dopri5 {
 
 /// The stages of one attempt that the error estimate, the dense output and the
 /// stiffness test need (k2 enters none of them).
-struct Stages<T: Real, const N: usize> {
-    k3: Pair<T, N>,
-    k4: Pair<T, N>,
-    k5: Pair<T, N>,
-    k6: Pair<T, N>,
+struct Stages<T: Real, const N: usize, const Q: usize> {
+    k3: Pair<T, N, Q>,
+    k4: Pair<T, N, Q>,
+    k5: Pair<T, N, Q>,
+    k6: Pair<T, N, Q>,
     /// The argument of the 6th stage, at t_new (for the stiffness test).
-    y6: Pair<T, N>,
+    y6: Pair<T, N, Q>,
     /// The 5th-order solution, and its derivative (FSAL: the next k1).
-    y_new: Pair<T, N>,
-    k7: Pair<T, N>,
+    y_new: Pair<T, N, Q>,
+    k7: Pair<T, N, Q>,
 }
 
 impl Dopri5 {
     /// Checks the settings and the problem, then steps from y0 at t0 to t1.
-    fn run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         (t0, t1): (T, T),
-        y0: Pair<T, N>,
-        run: &mut Run<T, N>,
+        y0: Pair<T, N, Q>,
+        run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
         self.record.check_span(t0, t1, N)?;
         self.validate()?;
@@ -250,7 +250,7 @@ impl Dopri5 {
             // dense output keeps the unprojected polynomial, and the first stage
             // of the next step (FSAL) is re-evaluated at the projected state.
             let (mut y_new, mut k7) = (s.y_new, s.k7);
-            if rhs.project(t_new, &mut y_new.q, &mut y_new.v)? {
+            if settle(rhs, t_new, &mut y_new.q, &mut y_new.v)? {
                 k7 = y_new.derivative(rhs, t_new, &mut run.stats.evaluations)?;
             }
             let stop = run.record(rhs, segment, y_new.q, y_new.v)?;
@@ -266,16 +266,16 @@ impl Dopri5 {
 
 /// The stages k2..k7 of an attempt of size h from (t, y) with first stage k1.
 #[allow(clippy::too_many_arguments)]
-fn stages<T: Real, const N: usize, F: SecondOrder<T, N>>(
+fn stages<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
     rhs: &F,
     co: &Coefficients<T>,
     t: T,
     h: T,
     t_new: T,
-    y: &Pair<T, N>,
-    k1: &Pair<T, N>,
+    y: &Pair<T, N, Q>,
+    k1: &Pair<T, N, Q>,
     ev: &mut usize,
-) -> Result<Stages<T, N>, Error> {
+) -> Result<Stages<T, N, Q>, Error> {
     let [c2, c3, c4, c5] = co.c;
     let k2 = y
         .add_combination(h, co.a2, [k1])
@@ -305,24 +305,27 @@ fn stages<T: Real, const N: usize, F: SecondOrder<T, N>>(
 }
 
 /// Hairer's norm sqrt(1/n Σ (e_i / (atol + rtol·max(|y_i|, |y_new_i|)))²) over all
-/// 2N components.
-fn error_norm<T: Real, const N: usize>(
-    e: &Pair<T, N>,
-    y: &Pair<T, N>,
-    y_new: &Pair<T, N>,
+/// Q + N components.
+fn error_norm<T: Real, const N: usize, const Q: usize>(
+    e: &Pair<T, N, Q>,
+    y: &Pair<T, N, Q>,
+    y_new: &Pair<T, N, Q>,
     atol: T,
     rtol: T,
 ) -> T {
     let mut sum = T::zero();
-    let parts = [(&e.q, &y.q, &y_new.q), (&e.v, &y.v, &y_new.v)];
+    let parts = [
+        (e.q.as_slice(), y.q.as_slice(), y_new.q.as_slice()),
+        (e.v.as_slice(), y.v.as_slice(), y_new.v.as_slice()),
+    ];
     for (e, y, y_new) in parts {
-        for ((&e, &y), &y_new) in e.as_slice().iter().zip(y.as_slice()).zip(y_new.as_slice()) {
+        for ((&e, &y), &y_new) in e.iter().zip(y).zip(y_new) {
             let sk = atol + rtol * abs(y).max(abs(y_new));
             let r = e / sk;
             sum += r * r;
         }
     }
-    sqrt(sum / T::lit((2 * N) as f64))
+    sqrt(sum / T::lit((Q + N) as f64))
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@
 use super::mechanical::Mechanical;
 use super::run::{Run, fixed_steps};
 use super::verlet::fixed_step_count;
-use super::{DenseSegment, Integrator, Pair, SecondOrder, Stats, check_problem};
+use super::{DenseSegment, Integrator, Pair, SecondOrder, Stats, check_problem, settle};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
@@ -97,15 +97,15 @@ impl Gauss {
 }
 
 impl Integrator for Gauss {
-    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         from: Continuation<T>,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>> {
         let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
         let outcome = self.run_stages(rhs, (t0, t1, q0, v0), &mut run);
@@ -120,11 +120,11 @@ impl Integrator for Gauss {
 impl Gauss {
     /// Checks the settings and runs the method with the chosen stages,
     /// recording into `run`.
-    fn run_stages<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn run_stages<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
-        (t0, t1, q0, v0): (T, T, SVector<T, N>, SVector<T, N>),
-        run: &mut Run<T, N>,
+        (t0, t1, q0, v0): (T, T, SVector<T, Q>, SVector<T, N>),
+        run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
         self.record.check_span(t0, t1, N)?;
         check_problem(t0, t1, &q0, &v0)?;
@@ -134,6 +134,14 @@ impl Gauss {
             ));
         }
         let n = fixed_step_count("Gauss", self.h, self.max_steps, t0, t1)?;
+        if Q != N {
+            return Err(Error::InvalidSettings(
+                "Gauss integrates Hamilton's form, p = ∂L/∂q̇, which a system with \
+                 orientations (quaternions, angular velocities as speeds) does not have: \
+                 use Radau5, Dop853, Dopri5, Rk4 or StormerVerlet"
+                    .into(),
+            ));
+        }
         let Some(mech) = rhs.mechanical() else {
             return Err(Error::InvalidSettings(
                 "Gauss needs the system in Hamilton's form (momentum, mass matrix and \
@@ -194,12 +202,12 @@ fn iteration_matrix<T: Real, const S: usize>(h: T, a: &[[T; S]; S], work: &mut W
 }
 
 /// z0 + h Σ_j b_j F_j, added one stage at a time.
-fn update<T: Real, const N: usize, const S: usize>(
-    z0: &Pair<T, N>,
+fn update<T: Real, const N: usize, const Q: usize, const S: usize>(
+    z0: &Pair<T, N, Q>,
     h: T,
     b: &[T; S],
-    fs: &[Pair<T, N>; S],
-) -> Pair<T, N> {
+    fs: &[Pair<T, N, Q>; S],
+) -> Pair<T, N, Q> {
     let mut z1 = *z0;
     for j in 0..S {
         z1 = z1.add_combination(h, [b[j]], [&fs[j]]);
@@ -209,28 +217,29 @@ fn update<T: Real, const N: usize, const S: usize>(
 
 /// Component k of the 2N vector (q, p) stored as a pair.
 #[inline]
-fn get<T: Real, const N: usize>(z: &Pair<T, N>, k: usize) -> T {
-    if k < N { z.q[k] } else { z.v[k - N] }
+fn get<T: Real, const N: usize, const Q: usize>(z: &Pair<T, N, Q>, k: usize) -> T {
+    if k < Q { z.q[k] } else { z.v[k - Q] }
 }
 
 #[inline]
-fn get_mut<T: Real, const N: usize>(z: &mut Pair<T, N>, k: usize) -> &mut T {
-    if k < N { &mut z.q[k] } else { &mut z.v[k - N] }
+fn get_mut<T: Real, const N: usize, const Q: usize>(z: &mut Pair<T, N, Q>, k: usize) -> &mut T {
+    if k < Q { &mut z.q[k] } else { &mut z.v[k - Q] }
 }
 
 /// (q̇, ṗ) at (t, q, p), counting one evaluation. A non-finite value at a
 /// finite (q, p) is the system's NaN (a force that overflows), reported as
 /// such: passed on, it would only surface as a Newton failure.
-fn hamilton<T: Real, const N: usize>(
-    mech: &dyn Mechanical<T, N>,
+fn hamilton<T: Real, const N: usize, const Q: usize>(
+    mech: &dyn Mechanical<T, N, Q>,
     t: T,
-    z: &Pair<T, N>,
+    z: &Pair<T, N, Q>,
     evaluations: &mut usize,
-) -> Result<Pair<T, N>, Error> {
+) -> Result<Pair<T, N, Q>, Error> {
     *evaluations += 1;
     let v = mech.velocity(t, &z.q, &z.v)?;
     let pdot = mech.momentum_rate(t, &z.q, &v)?;
-    let f = Pair::new(v, pdot);
+    // Hamilton's form has q̇ = v: `run_stages` refuses orientations (Q ≠ N).
+    let f = Pair::new(SVector::from_fn(|i, _| v[i]), pdot);
     if !f.is_finite() {
         return Err(Error::non_finite(t, &z.q, &v));
     }
@@ -239,19 +248,19 @@ fn hamilton<T: Real, const N: usize>(
 
 impl Gauss {
     #[allow(clippy::too_many_arguments)]
-    fn run<T: Real, const N: usize, const S: usize, F: SecondOrder<T, N>>(
+    fn run<T: Real, const N: usize, const Q: usize, const S: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
-        mech: &dyn Mechanical<T, N>,
-        (t0, t1, q0, v0): (T, T, SVector<T, N>, SVector<T, N>),
+        mech: &dyn Mechanical<T, N, Q>,
+        (t0, t1, q0, v0): (T, T, SVector<T, Q>, SVector<T, N>),
         n: usize,
         a: [[f64; S]; S],
         b: [f64; S],
         c: [f64; S],
-        run: &mut Run<T, N>,
+        run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
         let (a, b, c) = (a.map(|r| r.map(T::lit)), b.map(T::lit), c.map(T::lit));
-        let dim = 2 * N;
+        let dim = Q + N;
         let mut work = Work {
             jac: DMatrix::zeros(dim, dim),
             lu: DMatrix::zeros(S * dim, S * dim),
@@ -274,9 +283,16 @@ impl Gauss {
             let mut v1 = mech.velocity(t_next, &q1, &p1)?;
             stats.evaluations += 1;
             let mut acc1 = rhs.acceleration(t_next, &q1, &v1)?;
-            let segment = DenseSegment::cubic_hermite(t, t_next, (&q, &v, &acc), (&q1, &v1, &acc1));
+            let segment = DenseSegment::hermite(
+                t,
+                t_next,
+                &Pair::new(q, v),
+                &Pair::new(rhs.rate(&q, &v), acc),
+                &Pair::new(q1, v1),
+                &Pair::new(rhs.rate(&q1, &v1), acc1),
+            );
             let mut p1 = p1;
-            if rhs.project(t_next, &mut q1, &mut v1)? {
+            if settle(rhs, t_next, &mut q1, &mut v1)? {
                 p1 = mech.momentum(t_next, &q1, &v1)?;
                 stats.evaluations += 1;
                 acc1 = rhs.acceleration(t_next, &q1, &v1)?;
@@ -293,19 +309,19 @@ impl Gauss {
 
     /// One step from z0 = (q, p) at t: returns (q, p) at t + h.
     #[allow(clippy::too_many_arguments)]
-    fn advance<T: Real, const N: usize, const S: usize>(
+    fn advance<T: Real, const N: usize, const Q: usize, const S: usize>(
         &self,
-        mech: &dyn Mechanical<T, N>,
+        mech: &dyn Mechanical<T, N, Q>,
         t: T,
         h: T,
-        z0: &Pair<T, N>,
+        z0: &Pair<T, N, Q>,
         a: &[[T; S]; S],
         b: &[T; S],
         c: &[T; S],
         work: &mut Work<T>,
         stats: &mut Stats,
-    ) -> Result<Pair<T, N>, Error> {
-        let dim = 2 * N;
+    ) -> Result<Pair<T, N, Q>, Error> {
+        let dim = Q + N;
         let eps = T::default_epsilon();
         let f0 = hamilton(mech, t, z0, &mut stats.evaluations)?;
         self.jacobian(mech, t, z0, &f0, &mut work.jac, &mut stats.evaluations)?;
@@ -320,8 +336,8 @@ impl Gauss {
             });
         }
         // Stage increments Z_i = z(t + c_i h) − z0, started on the tangent.
-        let mut zs: [Pair<T, N>; S] = std::array::from_fn(|i| f0.scale(c[i] * h));
-        let mut fs = [Pair::<T, N>::zeros(); S];
+        let mut zs: [Pair<T, N, Q>; S] = std::array::from_fn(|i| f0.scale(c[i] * h));
+        let mut fs = [Pair::<T, N, Q>::zeros(); S];
         let mut previous = T::max_value().unwrap_or(T::one() / eps);
         for iteration in 1..=self.max_iterations {
             for i in 0..S {
@@ -373,23 +389,23 @@ impl Gauss {
 
     /// Forward-difference Jacobian of (q̇, ṗ) at z0 (f0 = its value there), with
     /// Hairer's increment sqrt(ε · max(1e-5, |z_k|)).
-    fn jacobian<T: Real, const N: usize>(
+    fn jacobian<T: Real, const N: usize, const Q: usize>(
         &self,
-        mech: &dyn Mechanical<T, N>,
+        mech: &dyn Mechanical<T, N, Q>,
         t: T,
-        z0: &Pair<T, N>,
-        f0: &Pair<T, N>,
+        z0: &Pair<T, N, Q>,
+        f0: &Pair<T, N, Q>,
         jac: &mut DMatrix<T>,
         evaluations: &mut usize,
     ) -> Result<(), Error> {
         let eps = T::default_epsilon();
-        for col in 0..2 * N {
+        for col in 0..Q + N {
             let mut z = *z0;
             let zk = get(z0, col);
             let delta = (eps * T::lit(1e-5).max(abs(zk))).sqrt();
             *get_mut(&mut z, col) = zk + delta;
             let f = hamilton(mech, t, &z, evaluations)?;
-            for r in 0..2 * N {
+            for r in 0..Q + N {
                 jac[(r, col)] = (get(&f, r) - get(f0, r)) / delta;
             }
         }

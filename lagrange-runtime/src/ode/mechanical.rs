@@ -1,6 +1,5 @@
 //! The Hamiltonian view of a mechanical system, for the symplectic integrators.
 
-use super::SecondOrder;
 use crate::error::{Error, to_vec};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
@@ -15,18 +14,18 @@ use nalgebra::{SMatrix, SVector};
 /// which a symplectic method ([`Gauss`](crate::Gauss)) integrates in (q, p). The
 /// velocity is recovered from the momentum by q̇ = M⁻¹(p − a), and a is the
 /// momentum at zero velocity (p is affine in q̇).
-pub trait Mechanical<T: Real, const N: usize>: SecondOrder<T, N> {
+pub trait Mechanical<T: Real, const N: usize, const Q: usize = N> {
     /// The mass matrix M(q,t).
     ///
     /// # Errors
     /// Whatever prevents its evaluation.
-    fn mass_matrix(&self, t: T, q: &SVector<T, N>) -> Result<SMatrix<T, N, N>, Error>;
+    fn mass_matrix(&self, t: T, q: &SVector<T, Q>) -> Result<SMatrix<T, N, N>, Error>;
 
     /// The momentum p = ∂L/∂q̇.
     ///
     /// # Errors
     /// Whatever prevents its evaluation.
-    fn momentum(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error>;
+    fn momentum(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error>;
 
     /// ṗ = ∂T/∂q + Q: the kinetic-energy gradient plus all generalized forces
     /// (a forcing's ΔQ included).
@@ -36,7 +35,7 @@ pub trait Mechanical<T: Real, const N: usize>: SecondOrder<T, N> {
     fn momentum_rate(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error>;
 
@@ -44,7 +43,7 @@ pub trait Mechanical<T: Real, const N: usize>: SecondOrder<T, N> {
     ///
     /// # Errors
     /// [`Error::SingularMassMatrix`] if M is not positive definite.
-    fn velocity(&self, t: T, q: &SVector<T, N>, p: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+    fn velocity(&self, t: T, q: &SVector<T, Q>, p: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
         let a = self.momentum(t, q, &SVector::zeros())?;
         let m = self.mass_matrix(t, q)?;
         // The runtime's one Cholesky; a zero tolerance refuses only a matrix

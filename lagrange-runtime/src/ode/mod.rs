@@ -42,13 +42,21 @@ pub(crate) use verlet::fixed_step_count;
 
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
+use crate::numeric::orientation::{self, Orientation};
 use nalgebra::{SMatrix, SVector};
 
 /// The right-hand side of a second-order system q̈ = a(t, q, q̇).
 ///
 /// Implemented by [`Dynamics`](crate::Dynamics); tests and users can implement it
 /// directly for any second-order ODE.
-pub trait SecondOrder<T: Real, const N: usize> {
+pub trait SecondOrder<T: Real, const N: usize, const Q: usize = N> {
+    /// Where unit quaternions sit in q (see [`orientation`](crate::numeric::orientation)):
+    /// none unless overridden, and then Q = N. With them, q̇ is not v but
+    /// [`rate`](Self::rate), every integrator steps the quaternions in
+    /// R⁴ and normalises them after each step, and a trajectory's dense
+    /// output is normalised where it is read.
+    const ORIENTATIONS: &'static [Orientation] = &[];
+
     /// The acceleration a(t, q, v).
     ///
     /// # Errors
@@ -57,13 +65,49 @@ pub trait SecondOrder<T: Real, const N: usize> {
     fn acceleration(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error>;
 
+    /// q̇ at (q, v): v itself for ordinary coordinates, ½ q ⊗ (0, ω) for a
+    /// quaternion.
+    fn rate(&self, q: &SVector<T, Q>, v: &SVector<T, N>) -> SVector<T, Q> {
+        const {
+            assert!(
+                Q == N + Self::ORIENTATIONS.len(),
+                "nq must be nv + 1 per orientation"
+            )
+        };
+        let mut out = SVector::<T, Q>::zeros();
+        if Self::ORIENTATIONS.is_empty() {
+            out.as_mut_slice().copy_from_slice(v.as_slice());
+        } else {
+            orientation::rate(
+                Self::ORIENTATIONS,
+                q.as_slice(),
+                v.as_slice(),
+                out.as_mut_slice(),
+            );
+        }
+        out
+    }
+
+    /// q ⊕ δ: q moved by the tangent vector δ, an orientation turned by the
+    /// rotation vector δ in body axes (q ⊗ exp(δ)); q + δ without orientations.
+    fn advance(&self, q: &SVector<T, Q>, delta: &SVector<T, N>) -> SVector<T, Q> {
+        let mut out = SVector::<T, Q>::zeros();
+        orientation::integrate(
+            Self::ORIENTATIONS,
+            q.as_slice(),
+            delta.as_slice(),
+            out.as_mut_slice(),
+        );
+        out
+    }
+
     /// A quantity recorded at every accepted step as an accuracy diagnostic (the
     /// energy or Jacobi integral). Zero unless overridden.
-    fn integral(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
+    fn integral(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> T {
         let _ = (t, q, v);
         T::zero()
     }
@@ -71,7 +115,7 @@ pub trait SecondOrder<T: Real, const N: usize> {
     /// Constraint residuals recorded at every accepted step: the largest position
     /// residual |Φ(q,t)|∞ and the largest velocity residual |G q̇ + g|∞. Zero for an
     /// unconstrained system.
-    fn residuals(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> [T; 2] {
+    fn residuals(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> [T; 2] {
         let _ = (t, q, v);
         [T::zero(); 2]
     }
@@ -83,7 +127,7 @@ pub trait SecondOrder<T: Real, const N: usize> {
     ///
     /// # Errors
     /// A projection that does not converge, or a right-hand side failure.
-    fn project(&self, t: T, q: &mut SVector<T, N>, v: &mut SVector<T, N>) -> Result<bool, Error> {
+    fn project(&self, t: T, q: &mut SVector<T, Q>, v: &mut SVector<T, N>) -> Result<bool, Error> {
         let _ = (t, q, v);
         Ok(false)
     }
@@ -106,8 +150,8 @@ pub trait SecondOrder<T: Real, const N: usize> {
     /// Whatever the observer cannot evaluate (a non-finite event function).
     fn after_step(
         &self,
-        segment: &DenseSegment<T, N>,
-        q: &SVector<T, N>,
+        segment: &DenseSegment<T, N, Q>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<bool, Error> {
         let _ = (segment, q, v);
@@ -117,7 +161,7 @@ pub trait SecondOrder<T: Real, const N: usize> {
     /// The same system in Hamilton's form, if it has one: what the symplectic
     /// [`Gauss`] integrator needs. `None` unless overridden;
     /// [`Dynamics`](crate::Dynamics) returns itself.
-    fn mechanical(&self) -> Option<&dyn Mechanical<T, N>> {
+    fn mechanical(&self) -> Option<&dyn Mechanical<T, N, Q>> {
         None
     }
 
@@ -128,9 +172,9 @@ pub trait SecondOrder<T: Real, const N: usize> {
     fn jacobian(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
-    ) -> Option<Result<(SMatrix<T, N, N>, SMatrix<T, N, N>), Error>> {
+    ) -> Option<Result<(SMatrix<T, N, Q>, SMatrix<T, N, N>), Error>> {
         let _ = (t, q, v);
         None
     }
@@ -144,19 +188,23 @@ pub struct Sample<T> {
     pub integral: T,
     /// Position and velocity constraint residuals ([`SecondOrder::residuals`]).
     pub residuals: [T; 2],
+    /// The largest | |q_k| − 1 | over the orientation quaternions (zero
+    /// without any): round-off, since every integrator normalises them.
+    pub unit_error: T,
 }
 
 impl<T: Real> Sample<T> {
     /// Samples `rhs` at (t, q, v).
-    pub fn of<const N: usize, F: SecondOrder<T, N>>(
+    pub fn of<const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         rhs: &F,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Self {
         Self {
             integral: rhs.integral(t, q, v),
             residuals: rhs.residuals(t, q, v),
+            unit_error: orientation::unit_error(F::ORIENTATIONS, q.as_slice()),
         }
     }
 }
@@ -177,14 +225,14 @@ pub trait Integrator {
     /// reversed or not finite, or a non-finite initial state; any error of the
     /// right-hand side; [`Error::StepSizeUnderflow`] and [`Error::TooManySteps`] for
     /// adaptive methods.
-    fn integrate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn integrate<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>> {
         self.continue_run(rhs, Continuation::start(t0), t0, t1, q0, v0)
     }
 
@@ -195,15 +243,15 @@ pub trait Integrator {
     ///
     /// # Errors
     /// As [`integrate`](Self::integrate).
-    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         from: Continuation<T>,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>;
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>>;
 
     /// The step budget of one run (`.max_steps(n)`): a run made of pieces
     /// spends it across all of them.
@@ -255,13 +303,13 @@ impl Stats {
 /// `v` holds v̇ = a).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub(crate) struct Pair<T: Real, const N: usize> {
-    pub q: SVector<T, N>,
+pub(crate) struct Pair<T: Real, const N: usize, const Q: usize = N> {
+    pub q: SVector<T, Q>,
     pub v: SVector<T, N>,
 }
 
-impl<T: Real, const N: usize> Pair<T, N> {
-    pub fn new(q: SVector<T, N>, v: SVector<T, N>) -> Self {
+impl<T: Real, const N: usize, const Q: usize> Pair<T, N, Q> {
+    pub fn new(q: SVector<T, Q>, v: SVector<T, N>) -> Self {
         Self { q, v }
     }
 
@@ -269,15 +317,17 @@ impl<T: Real, const N: usize> Pair<T, N> {
         Self::new(SVector::zeros(), SVector::zeros())
     }
 
-    /// The derivative (v, a(t, q, v)) of this state.
-    pub fn derivative<F: SecondOrder<T, N>>(
+    /// The derivative (q̇, a(t, q, v)) of this state, q̇ = v for ordinary
+    /// coordinates.
+    pub fn derivative<F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         t: T,
         evaluations: &mut usize,
     ) -> Result<Self, Error> {
         *evaluations += 1;
-        Ok(Self::new(self.v, rhs.acceleration(t, &self.q, &self.v)?))
+        let a = rhs.acceleration(t, &self.q, &self.v)?;
+        Ok(Self::new(rhs.rate(&self.q, &self.v), a))
     }
 
     /// self + h Σ_j c_j k_j, the Runge–Kutta stage combination.
@@ -322,12 +372,31 @@ fn combine<T: Real, const K: usize>(out: &mut [T], h: T, c: &[T; K], k: &[&[T]; 
     }
 }
 
+/// What every integrator does after an accepted step: the quaternions back to
+/// unit norm (the projection that keeps a Runge–Kutta method's order, since
+/// the exact flow keeps |q| = 1 and the step leaves it only by its local
+/// error), then the system's own [`project`](SecondOrder::project). Returns
+/// what `project` returns: normalising moves the state by the local error
+/// only, so a derivative kept from before it (FSAL) stays within that error.
+///
+/// # Errors
+/// As [`project`](SecondOrder::project).
+pub(crate) fn settle<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
+    rhs: &F,
+    t: T,
+    q: &mut SVector<T, Q>,
+    v: &mut SVector<T, N>,
+) -> Result<bool, Error> {
+    orientation::normalise(F::ORIENTATIONS, q.as_mut_slice());
+    rhs.project(t, q, v)
+}
+
 /// Checks what every integrator needs: a finite, non-empty, forward time span and
 /// a finite initial state.
-pub fn check_problem<T: Real, const N: usize>(
+pub fn check_problem<T: Real, const N: usize, const Q: usize>(
     t0: T,
     t1: T,
-    q0: &SVector<T, N>,
+    q0: &SVector<T, Q>,
     v0: &SVector<T, N>,
 ) -> Result<(), Error> {
     if !(t0.is_finite() && t1.is_finite()) {
@@ -454,12 +523,12 @@ impl StiffnessTest {
 
     /// Checks an accepted step of size `h` (the `accepted`-th) ending at `t`:
     /// `f_new` = f(t, y_new) and `f_stage` = f(t, y_stage).
-    pub(crate) fn check<T: Real, const N: usize>(
+    pub(crate) fn check<T: Real, const N: usize, const Q: usize>(
         &mut self,
         accepted: usize,
         t: T,
         h: T,
-        [y_new, y_stage, f_new, f_stage]: [&Pair<T, N>; 4],
+        [y_new, y_stage, f_new, f_stage]: [&Pair<T, N, Q>; 4],
     ) -> Result<(), Error> {
         if self.every == 0 || !(accepted.is_multiple_of(self.every) || self.suspicious > 0) {
             return Ok(());
@@ -491,7 +560,10 @@ impl StiffnessTest {
     }
 }
 
-fn squared_distance<T: Real, const N: usize>(a: &Pair<T, N>, b: &Pair<T, N>) -> f64 {
+fn squared_distance<T: Real, const N: usize, const Q: usize>(
+    a: &Pair<T, N, Q>,
+    b: &Pair<T, N, Q>,
+) -> f64 {
     let d = a.sub(b);
     d.q.iter()
         .chain(d.v.iter())
@@ -501,13 +573,13 @@ fn squared_distance<T: Real, const N: usize>(a: &Pair<T, N>, b: &Pair<T, N>) -> 
 
 /// The failure of a run that stopped before its first step: the partial
 /// result is the initial state alone.
-pub(crate) fn failed_at_start<T: Real, const N: usize, F: SecondOrder<T, N>>(
+pub(crate) fn failed_at_start<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
     rhs: &F,
     t0: T,
-    q0: SVector<T, N>,
+    q0: SVector<T, Q>,
     v0: SVector<T, N>,
     error: Error,
-) -> Failure<Trajectory<T, N>> {
+) -> Failure<Trajectory<T, N, Q>> {
     Failure::new(
         error,
         Trajectory::start(t0, q0, v0, Sample::of(rhs, t0, &q0, &v0)),

@@ -2,7 +2,7 @@
 
 use super::run::{Run, fixed_steps};
 use super::verlet::fixed_step_count;
-use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem};
+use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem, settle};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::ode::{Continuation, Record, Trajectory};
@@ -55,15 +55,15 @@ impl Rk4 {
 }
 
 impl Integrator for Rk4 {
-    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         from: Continuation<T>,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>> {
         let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
         let outcome = self.run(rhs, (t0, t1), Pair::new(q0, v0), &mut run);
@@ -77,12 +77,12 @@ impl Integrator for Rk4 {
 
 impl Rk4 {
     /// Checks the settings and the problem, then takes the fixed steps.
-    fn run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         (t0, t1): (T, T),
-        y0: Pair<T, N>,
-        run: &mut Run<T, N>,
+        y0: Pair<T, N, Q>,
+        run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
         self.record.check_span(t0, t1, N)?;
         if !(self.h.is_finite() && self.h > 0.0) {
@@ -105,7 +105,7 @@ impl Rk4 {
                 // Only a right-hand side that returns NaN or ∞ without an error gets here.
                 return Err(Error::non_finite(t_next, &y_next.q, &y_next.v));
             }
-            rhs.project(t_next, &mut y_next.q, &mut y_next.v)?;
+            settle(rhs, t_next, &mut y_next.q, &mut y_next.v)?;
             let f_next = y_next.derivative(rhs, t_next, ev)?;
             let segment = DenseSegment::hermite(t, t_next, &y, &f, &y_next, &f_next);
             let stop = run.record(rhs, segment, y_next.q, y_next.v)?;
@@ -120,13 +120,13 @@ impl Rk4 {
 }
 
 /// One RK4 step from (t, y), with first stage f = y'(t), to t_next.
-fn step<T: Real, const N: usize, F: SecondOrder<T, N>>(
+fn step<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
     rhs: &F,
     (t, t_next): (T, T),
-    y: &Pair<T, N>,
-    f: &Pair<T, N>,
+    y: &Pair<T, N, Q>,
+    f: &Pair<T, N, Q>,
     ev: &mut usize,
-) -> Result<Pair<T, N>, Error> {
+) -> Result<Pair<T, N, Q>, Error> {
     let hk = t_next - t;
     let (half, two) = (T::lit(0.5), T::lit(2.0));
     let k2 = y

@@ -14,20 +14,20 @@ use nalgebra::SVector;
 
 /// One integration in progress: the trajectory recorded so far, the work done,
 /// and the clock started with it.
-pub(crate) struct Run<T: Real, const N: usize> {
-    pub traj: Trajectory<T, N>,
+pub(crate) struct Run<T: Real, const N: usize, const Q: usize = N> {
+    pub traj: Trajectory<T, N, Q>,
     pub stats: Stats,
     started: Stopwatch,
 }
 
-impl<T: Real, const N: usize> Run<T, N> {
+impl<T: Real, const N: usize, const Q: usize> Run<T, N, Q> {
     /// Starts the clock and records the initial state with `sample`, going on
     /// from the recording `from`.
     pub fn start(
         record: Record,
         from: Continuation<T>,
         t0: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
         sample: Sample<T>,
     ) -> Self {
@@ -40,12 +40,12 @@ impl<T: Real, const N: usize> Run<T, N> {
     }
 
     /// [`start`](Self::start) with the initial state sampled from `rhs`.
-    pub fn of<F: SecondOrder<T, N>>(
+    pub fn of<F: SecondOrder<T, N, Q>>(
         record: Record,
         from: Continuation<T>,
         rhs: &F,
         t0: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
     ) -> Self {
         Self::start(record, from, t0, q0, v0, Sample::of(rhs, t0, &q0, &v0))
@@ -55,11 +55,11 @@ impl<T: Real, const N: usize> Run<T, N> {
     /// at its end (after any projection). The system's
     /// [`after_step`](SecondOrder::after_step) sees the step first; its answer,
     /// whether the run stops here, is returned.
-    pub fn record<F: SecondOrder<T, N>>(
+    pub fn record<F: SecondOrder<T, N, Q>>(
         &mut self,
         rhs: &F,
-        segment: DenseSegment<T, N>,
-        q: SVector<T, N>,
+        segment: DenseSegment<T, N, Q>,
+        q: SVector<T, Q>,
         v: SVector<T, N>,
     ) -> Result<bool, Error> {
         let stop = rhs.after_step(&segment, &q, &v)?;
@@ -69,13 +69,14 @@ impl<T: Real, const N: usize> Run<T, N> {
 
     /// Stores a step without asking [`after_step`](SecondOrder::after_step),
     /// sampling the recorded points from `rhs`.
-    pub fn push<F: SecondOrder<T, N>>(
+    pub fn push<F: SecondOrder<T, N, Q>>(
         &mut self,
         rhs: &F,
-        segment: DenseSegment<T, N>,
-        q: SVector<T, N>,
+        segment: DenseSegment<T, N, Q>,
+        q: SVector<T, Q>,
         v: SVector<T, N>,
     ) {
+        let segment = segment.with_orientations(F::ORIENTATIONS);
         self.traj
             .push_sampled(segment, q, v, |t, q, v| Sample::of(rhs, t, q, v));
     }
@@ -85,7 +86,7 @@ impl<T: Real, const N: usize> Run<T, N> {
     pub fn finish(
         mut self,
         outcome: Result<(), Error>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>> {
         self.stats.wall_time = self.started.elapsed();
         self.traj.set_stats(self.stats);
         match outcome {

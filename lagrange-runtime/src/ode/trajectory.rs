@@ -13,13 +13,14 @@ use nalgebra::SVector;
 /// output segment per step.
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Trajectory<T: Real, const N: usize> {
+pub struct Trajectory<T: Real, const N: usize, const Q: usize = N> {
     times: Vec<T>,
-    q: Vec<SVector<T, N>>,
+    q: Vec<SVector<T, Q>>,
     v: Vec<SVector<T, N>>,
     integral: Vec<T>,
     residual: Vec<[T; 2]>,
-    segments: Vec<DenseSegment<T, N>>,
+    unit: Vec<T>,
+    segments: Vec<DenseSegment<T, N, Q>>,
     stats: Stats,
     /// What is kept of the run, and the state of that policy.
     record: Record,
@@ -34,26 +35,27 @@ pub struct Trajectory<T: Real, const N: usize> {
     /// The latest step when it was not stored: stored by `close`, so that a
     /// thinned trajectory still ends at the final state.
     #[cfg_attr(feature = "serde", serde(skip, default = "Option::default"))]
-    pending: Option<Point<T, N>>,
+    pending: Option<Point<T, N, Q>>,
 }
 
 /// One recorded point: t, q, q̇ and the sample there.
-type Point<T, const N: usize> = (T, SVector<T, N>, SVector<T, N>, Sample<T>);
+type Point<T, const N: usize, const Q: usize> = (T, SVector<T, Q>, SVector<T, N>, Sample<T>);
 
 #[cfg(feature = "serde")]
 fn fresh_continuation<T: Real>() -> Continuation<T> {
     Continuation::start(T::zero())
 }
 
-impl<T: Real, const N: usize> Trajectory<T, N> {
+impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
     /// A trajectory holding only the initial point.
-    pub fn start(t0: T, q0: SVector<T, N>, v0: SVector<T, N>, sample: Sample<T>) -> Self {
+    pub fn start(t0: T, q0: SVector<T, Q>, v0: SVector<T, N>, sample: Sample<T>) -> Self {
         Self {
             times: vec![t0],
             q: vec![q0],
             v: vec![v0],
             integral: vec![sample.integral],
             residual: vec![sample.residuals],
+            unit: vec![sample.unit_error],
             segments: Vec::new(),
             stats: Stats::default(),
             record: Record::Steps,
@@ -71,7 +73,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         record: Record,
         from: Continuation<T>,
         t0: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
         sample: Sample<T>,
     ) -> Self {
@@ -99,7 +101,8 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
             + (self.q.capacity() + self.v.capacity()) * size_of::<SVector<T, N>>()
             + self.integral.capacity() * size_of::<T>()
             + self.residual.capacity() * size_of::<[T; 2]>()
-            + self.segments.capacity() * size_of::<DenseSegment<T, N>>()
+            + self.unit.capacity() * size_of::<T>()
+            + self.segments.capacity() * size_of::<DenseSegment<T, N, Q>>()
     }
 
     /// Reserves room for `steps` more steps, as many points as the recording
@@ -116,6 +119,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         self.v.reserve(steps);
         self.integral.reserve(steps);
         self.residual.reserve(steps);
+        self.unit.reserve(steps);
         if self.record == Record::Steps {
             self.segments.reserve(steps);
         }
@@ -131,8 +135,8 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     /// end's sample.
     pub fn push(
         &mut self,
-        segment: DenseSegment<T, N>,
-        q: SVector<T, N>,
+        segment: DenseSegment<T, N, Q>,
+        q: SVector<T, Q>,
         v: SVector<T, N>,
         sample: Sample<T>,
     ) {
@@ -144,10 +148,10 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     /// step for `Record::Interval`.
     pub fn push_sampled(
         &mut self,
-        segment: DenseSegment<T, N>,
-        q: SVector<T, N>,
+        segment: DenseSegment<T, N, Q>,
+        q: SVector<T, Q>,
         v: SVector<T, N>,
-        sample: impl Fn(T, &SVector<T, N>, &SVector<T, N>) -> Sample<T>,
+        sample: impl Fn(T, &SVector<T, Q>, &SVector<T, N>) -> Sample<T>,
     ) {
         let end = segment.end();
         match self.record {
@@ -181,12 +185,13 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         }
     }
 
-    fn store(&mut self, (t, q, v, sample): Point<T, N>) {
+    fn store(&mut self, (t, q, v, sample): Point<T, N, Q>) {
         self.times.push(t);
         self.q.push(q);
         self.v.push(v);
         self.integral.push(sample.integral);
         self.residual.push(sample.residuals);
+        self.unit.push(sample.unit_error);
     }
 
     /// Stores the final state if the policy left it pending; integrators call
@@ -208,6 +213,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
             self.v.pop();
             self.integral.pop();
             self.residual.pop();
+            self.unit.pop();
         }
     }
 
@@ -227,7 +233,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     pub(crate) fn truncate_last(
         &mut self,
         t: T,
-        q: SVector<T, N>,
+        q: SVector<T, Q>,
         v: SVector<T, N>,
         sample: Sample<T>,
     ) {
@@ -247,12 +253,13 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         self.v[last] = v;
         self.integral[last] = sample.integral;
         self.residual[last] = sample.residuals;
+        self.unit[last] = sample.unit_error;
     }
 
     /// [`truncate_last`](Self::truncate_last) for a recording without
     /// segments: the points after the cut go, the grid steps back to the first
     /// time after it, and the cut state closes the recording.
-    fn truncate_thinned(&mut self, cut: Point<T, N>) {
+    fn truncate_thinned(&mut self, cut: Point<T, N, Q>) {
         let t = cut.0;
         if self.closed_extra {
             self.pop_point();
@@ -280,13 +287,14 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     /// after it), except when a thinned recording stored that last point only
     /// to end the piece: then neither is kept, since the instant where the
     /// pieces join is not one of its points.
-    pub(crate) fn append(&mut self, other: Trajectory<T, N>) -> usize {
+    pub(crate) fn append(&mut self, other: Trajectory<T, N, Q>) -> usize {
         debug_assert_eq!(self.times.last(), other.times.first());
         self.times.pop();
         self.q.pop();
         self.v.pop();
         self.integral.pop();
         self.residual.pop();
+        self.unit.pop();
         let skip = usize::from(self.closed_extra);
         let from = self.len();
         self.times.extend_from_slice(&other.times[skip..]);
@@ -294,6 +302,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         self.v.extend_from_slice(&other.v[skip..]);
         self.integral.extend_from_slice(&other.integral[skip..]);
         self.residual.extend_from_slice(&other.residual[skip..]);
+        self.unit.extend_from_slice(&other.unit[skip..]);
         self.segments.extend_from_slice(&other.segments);
         self.stats.add(&other.stats);
         self.resume = other.resume;
@@ -319,7 +328,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     }
 
     /// Generalized coordinates at [`times`](Self::times).
-    pub fn positions(&self) -> &[SVector<T, N>] {
+    pub fn positions(&self) -> &[SVector<T, Q>] {
         &self.q
     }
 
@@ -339,6 +348,18 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
         &self.residual
     }
 
+    /// The largest | |q_k| − 1 | of the orientation quaternions at each
+    /// recorded point ([`Sample::unit_error`]); zeros without orientations.
+    pub fn unit_errors(&self) -> &[T] {
+        &self.unit
+    }
+
+    /// The largest unit-norm error of the quaternions along the run:
+    /// round-off, since every integrator normalises them after each step.
+    pub fn max_unit_error(&self) -> T {
+        self.unit.iter().fold(T::zero(), |m, &e| m.max(e))
+    }
+
     /// The largest position and velocity constraint residuals along the run.
     pub fn max_residuals(&self) -> [T; 2] {
         self.residual
@@ -347,7 +368,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     }
 
     /// Dense output, one segment per accepted step.
-    pub fn segments(&self) -> &[DenseSegment<T, N>] {
+    pub fn segments(&self) -> &[DenseSegment<T, N, Q>] {
         &self.segments
     }
 
@@ -357,7 +378,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     }
 
     /// The state (q, v) at the end time.
-    pub fn final_state(&self) -> (SVector<T, N>, SVector<T, N>) {
+    pub fn final_state(&self) -> (SVector<T, Q>, SVector<T, N>) {
         let last = self.len() - 1;
         (self.q[last], self.v[last])
     }
@@ -369,7 +390,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     ///
     /// The interpolant's order is the integrator's dense-output order: 4 for
     /// [`Dopri5`](crate::Dopri5), 3 (cubic Hermite) for [`Rk4`](crate::Rk4).
-    pub fn state_at(&self, t: T) -> Option<(SVector<T, N>, SVector<T, N>)> {
+    pub fn state_at(&self, t: T) -> Option<(SVector<T, Q>, SVector<T, N>)> {
         let (&first, &last) = (self.times.first()?, self.times.last()?);
         if !(first <= t && t <= last) {
             return None;
@@ -412,7 +433,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     /// [`Record::Steps`], or watch the crossing as an event during the run.
     pub fn crossings(
         &self,
-        g: impl Fn(T, &SVector<T, N>, &SVector<T, N>) -> T,
+        g: impl Fn(T, &SVector<T, Q>, &SVector<T, N>) -> T,
     ) -> Result<Vec<T>, Error> {
         if self.segments.len() + 1 != self.len() {
             return Err(Error::InvalidSettings(format!(

@@ -1,7 +1,7 @@
 //! Störmer–Verlet in its velocity form, with a fixed step.
 
 use super::run::{Run, fixed_steps};
-use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem};
+use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem, settle};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::ode::{Continuation, Record, Trajectory};
@@ -97,15 +97,15 @@ pub(crate) fn fixed_step_count<T: Real>(
 }
 
 impl Integrator for StormerVerlet {
-    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         from: Continuation<T>,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>> {
         let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
         let outcome = self.run(rhs, (t0, t1), (q0, v0), &mut run);
@@ -119,12 +119,12 @@ impl Integrator for StormerVerlet {
 
 impl StormerVerlet {
     /// Checks the settings and the problem, then takes the fixed steps.
-    fn run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         (t0, t1): (T, T),
-        (q0, v0): (SVector<T, N>, SVector<T, N>),
-        run: &mut Run<T, N>,
+        (q0, v0): (SVector<T, Q>, SVector<T, N>),
+        run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
         self.record.check_span(t0, t1, N)?;
         check_problem(t0, t1, &q0, &v0)?;
@@ -140,16 +140,22 @@ impl StormerVerlet {
         for (t, t_next) in fixed_steps(t0, t1, h, n) {
             let hk = t_next - t;
             let v_half = v + a * (half * hk);
-            let mut q_next = q + v_half * hk;
+            let mut q_next = rhs.advance(&q, &(v_half * hk));
             run.stats.evaluations += 1;
             let mut a_next = rhs.acceleration(t_next, &q_next, &v_half)?;
             let mut v_next = v_half + a_next * (half * hk);
             if !Pair::new(q_next, v_next).is_finite() {
                 return Err(Error::non_finite(t_next, &q_next, &v_next));
             }
-            let segment =
-                DenseSegment::cubic_hermite(t, t_next, (&q, &v, &a), (&q_next, &v_next, &a_next));
-            if rhs.project(t_next, &mut q_next, &mut v_next)? {
+            let segment = DenseSegment::hermite(
+                t,
+                t_next,
+                &Pair::new(q, v),
+                &Pair::new(rhs.rate(&q, &v), a),
+                &Pair::new(q_next, v_next),
+                &Pair::new(rhs.rate(&q_next, &v_next), a_next),
+            );
+            if settle(rhs, t_next, &mut q_next, &mut v_next)? {
                 run.stats.evaluations += 1;
                 a_next = rhs.acceleration(t_next, &q_next, &v_next)?;
             }

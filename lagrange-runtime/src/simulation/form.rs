@@ -4,30 +4,31 @@
 
 use super::{ControlledSimulation, EventSimulation, Simulation};
 use crate::control::InputSource;
-use crate::error::Failure;
+use crate::error::{Error, Failure};
 use crate::event::EventRun;
 use crate::numeric::Real;
-use crate::ode::{Integrator, Trajectory};
+use crate::ode::{Integrator, Sample, Trajectory};
 use crate::simulation::ControlRun;
 use crate::system::{Constrained, Driven, FormVisitor, Lagrangian, Reduced};
 use nalgebra::SVector;
 use std::ops::Range;
 
 /// A run waiting for its form: the builder, the initial state and the span.
-pub(super) struct Start<'r, B, T, const N: usize> {
+pub(super) struct Start<'r, B, T, const N: usize, const Q: usize = N> {
     pub builder: &'r B,
-    pub q0: SVector<T, N>,
+    pub q0: SVector<T, Q>,
     pub v0: SVector<T, N>,
     pub span: Range<T>,
 }
 
-impl<S, I, T, const N: usize> FormVisitor<T, N, S> for Start<'_, Simulation<'_, S, I>, T, N>
+impl<S, I, T, const N: usize, const Q: usize> FormVisitor<T, N, S, Q>
+    for Start<'_, Simulation<'_, S, I>, T, N, Q>
 where
-    S: Lagrangian<T, N>,
+    S: Lagrangian<T, N, Q>,
     I: Integrator,
     T: Real,
 {
-    type Output = Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>;
+    type Output = Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>>;
 
     fn unconstrained(self, _: &S) -> Self::Output {
         self.builder.run_unconstrained(self.q0, self.v0, self.span)
@@ -37,17 +38,56 @@ where
     where
         S: Constrained<T, N, K>,
     {
-        self.builder
-            .run_constrained::<T, N, K>(self.q0, self.v0, self.span)
+        // A system with constraints has Q = N (`Constrained` extends
+        // `Lagrangian<T, N>`): the casts only restate that to the compiler.
+        let Some(q0) = same::<_, SVector<T, N>>(self.q0) else {
+            return Err(self.mismatch());
+        };
+        let run = self
+            .builder
+            .run_constrained::<T, N, K>(q0, self.v0, self.span);
+        same(run).expect("the run's type is the output's when q0's was")
     }
 
     fn reduced<const K: usize>(self, _: &S) -> Self::Output
     where
         S: Reduced<T, N, K>,
     {
-        self.builder
-            .run_reduced::<T, N, K>(self.q0, self.v0, self.span)
+        let Some(q0) = same::<_, SVector<T, N>>(self.q0) else {
+            return Err(self.mismatch());
+        };
+        let run = self.builder.run_reduced::<T, N, K>(q0, self.v0, self.span);
+        same(run).expect("the run's type is the output's when q0's was")
     }
+}
+
+impl<B, T: Real, const N: usize, const Q: usize> Start<'_, B, T, N, Q> {
+    /// The failure of a system whose `visit_form` names a constrained form
+    /// for a configuration with orientations, which no constrained form takes
+    /// (only a hand-written `visit_form` can).
+    fn mismatch(self) -> Failure<Trajectory<T, N, Q>> {
+        let zero = T::zero();
+        let sample = Sample {
+            integral: zero,
+            residuals: [zero; 2],
+            unit_error: zero,
+        };
+        Failure::new(
+            Error::InvalidSettings(
+                "the constrained forms take no orientations (Q = N): this system's \
+                 visit_form names one for a configuration with quaternions"
+                    .into(),
+            ),
+            Trajectory::start(self.span.start, self.q0, self.v0, sample),
+        )
+    }
+}
+
+/// `a` as a `B` when `A` and `B` are the same type: the witness that Q = N,
+/// which the const generics of stable Rust cannot state.
+fn same<A: 'static, B: 'static>(a: A) -> Option<B> {
+    let boxed: Box<dyn std::any::Any> = Box::new(a);
+    boxed.downcast::<B>().ok().map(|b| *b)
 }
 
 impl<S, I, T, const N: usize> FormVisitor<T, N, S>

@@ -5,7 +5,7 @@ mod form;
 
 pub use controlled::{ControlRun, ControlledSimulation};
 
-use crate::error::{Error, Failure, Progress, check_tolerance};
+use crate::error::{Error, Failure, Progress, check_tolerance, unit_quaternions};
 use crate::event::{Event, EventRun, Events};
 use crate::mechanics::constraint::{
     ConstrainedDynamics, DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE, Drift,
@@ -192,9 +192,11 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
 
     /// The unconstrained runs' checks: the system's parameters
     /// ([`Lagrangian::check_parameters`]) and the singular tolerance.
-    pub(crate) fn check_singular_tolerance<T: Real, const N: usize>(&self) -> Result<(), Error>
+    pub(crate) fn check_singular_tolerance<T: Real, const N: usize, const Q: usize>(
+        &self,
+    ) -> Result<(), Error>
     where
-        S: Lagrangian<T, N>,
+        S: Lagrangian<T, N, Q>,
     {
         self.system.check_parameters()?;
         check_tolerance("singular tolerance", self.singular_tolerance)
@@ -398,14 +400,14 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// [`Error::NonFiniteState`], [`Error::StepSizeUnderflow`],
     /// [`Error::TooManySteps`]; for constrained systems those of
     /// [`run_constrained`](Self::run_constrained)).
-    pub fn run<T: Real, const N: usize>(
+    pub fn run<T: Real, const N: usize, const Q: usize>(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>>
     where
-        S: Lagrangian<T, N>,
+        S: Lagrangian<T, N, Q>,
     {
         let start = form::Start {
             builder: self,
@@ -422,19 +424,21 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     ///
     /// # Errors
     /// As [`run`](Self::run).
-    pub fn run_unconstrained<T: Real, const N: usize>(
+    pub fn run_unconstrained<T: Real, const N: usize, const Q: usize>(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>>
     where
-        S: Lagrangian<T, N>,
+        S: Lagrangian<T, N, Q>,
     {
         let (q0, v0) = (q0.into(), v0.into());
         let terms = self.system.parameter_terms();
         let dynamics = self.dynamics().with_parameter_terms(&terms);
-        self.check_singular_tolerance()
+        self.check_singular_tolerance::<T, N, Q>()
+            .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
+        let q0 = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0)
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
         self.integrator
             .integrate(&dynamics, span.start, span.end, q0, v0)
@@ -574,7 +578,7 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, 
     }
 }
 
-impl<T: Real, const N: usize> Progress for Trajectory<T, N> {
+impl<T: Real, const N: usize, const Q: usize> Progress for Trajectory<T, N, Q> {
     fn progress(&self) -> (usize, Option<f64>) {
         (self.len(), self.times().last().map(|t| t.to_f64()))
     }

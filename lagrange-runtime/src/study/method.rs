@@ -41,15 +41,15 @@ macro_rules! from_integrator {
 from_integrator!(Rk4, Dopri5, Dop853, StormerVerlet, Gauss, Radau5);
 
 impl Integrator for Method {
-    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         from: Continuation<T>,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>> {
         match self {
             Method::Rk4(m) => m.continue_run(rhs, from, t0, t1, q0, v0),
             Method::Dopri5(m) => m.continue_run(rhs, from, t0, t1, q0, v0),

@@ -11,6 +11,7 @@ pub mod constrained;
 pub mod driven;
 pub mod minimal;
 pub mod numeric;
+pub mod rigid;
 pub mod second_order;
 
 // The names most tests use, at the top (each binary uses some of them).

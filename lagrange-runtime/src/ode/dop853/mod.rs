@@ -22,7 +22,7 @@ use super::adaptive::{Stepping, first_step};
 use super::controller::PiController;
 use super::run::Run;
 use super::settings::{StepControl, step_control_builders};
-use super::{DenseSegment, Integrator, Pair, SecondOrder, Stats, check_problem};
+use super::{DenseSegment, Integrator, Pair, SecondOrder, Stats, check_problem, settle};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::{abs, sqrt};
@@ -166,15 +166,15 @@ impl<T: Real> Coefficients<T> {
 }
 
 impl Integrator for Dop853 {
-    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         from: Continuation<T>,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>> {
         let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
         let outcome = self.run(rhs, (t0, t1), Pair::new(q0, v0), &mut run);
@@ -188,21 +188,21 @@ impl Integrator for Dop853 {
 
 /// The stages of one attempt that the solution, the error estimate, the dense
 /// output and the stiffness test need (k2..k5 enter only later stages).
-struct Stages<T: Real, const N: usize> {
+struct Stages<T: Real, const N: usize, const Q: usize> {
     /// k6..k12: the stages after k1 that the 8th-order weights combine.
-    k: [Pair<T, N>; 7],
+    k: [Pair<T, N, Q>; 7],
     /// The argument of the 12th stage, at t_new (for the stiffness test).
-    y12: Pair<T, N>,
+    y12: Pair<T, N, Q>,
 }
 
 impl Dop853 {
     /// Checks the settings and the problem, then steps from y0 at t0 to t1.
-    fn run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         (t0, t1): (T, T),
-        y0: Pair<T, N>,
-        run: &mut Run<T, N>,
+        y0: Pair<T, N, Q>,
+        run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
         self.record.check_span(t0, t1, N)?;
         self.validate()?;
@@ -256,7 +256,7 @@ impl Dop853 {
             // As in DOPRI5: the dense output keeps the unprojected polynomial;
             // the next first stage is re-evaluated at the projected state.
             let (mut y_new, mut k13) = (y_new, k13);
-            if rhs.project(t_new, &mut y_new.q, &mut y_new.v)? {
+            if settle(rhs, t_new, &mut y_new.q, &mut y_new.v)? {
                 k13 = y_new.derivative(rhs, t_new, &mut run.stats.evaluations)?;
             }
             let stop = run.record(rhs, segment, y_new.q, y_new.v)?;
@@ -273,18 +273,18 @@ impl Dop853 {
 /// The stages k2..k12 of an attempt of size h from (t, y) with first stage k1;
 /// each row of the tableau names the stages it combines.
 #[allow(clippy::too_many_arguments)]
-fn stages<T: Real, const N: usize, F: SecondOrder<T, N>>(
+fn stages<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
     rhs: &F,
     co: &Coefficients<T>,
     t: T,
     h: T,
     t_new: T,
-    y: &Pair<T, N>,
-    k1: &Pair<T, N>,
+    y: &Pair<T, N, Q>,
+    k1: &Pair<T, N, Q>,
     ev: &mut usize,
-) -> Result<Stages<T, N>, Error> {
+) -> Result<Stages<T, N, Q>, Error> {
     let c = co.c;
-    let stage = |a: Pair<T, N>, ci: T, ev: &mut usize| a.derivative(rhs, t + ci * h, ev);
+    let stage = |a: Pair<T, N, Q>, ci: T, ev: &mut usize| a.derivative(rhs, t + ci * h, ev);
     let k2 = stage(y.add_combination(h, co.a2, [k1]), c[1], ev)?;
     let k3 = stage(y.add_combination(h, co.a3, [k1, &k2]), c[2], ev)?;
     let k4 = stage(y.add_combination(h, co.a4, [k1, &k3]), c[3], ev)?;
@@ -323,18 +323,18 @@ impl Dop853 {
     /// The 7th-order continuous extension of an accepted step: three more stages
     /// (at 0.1, 0.2 and 7/9 of the step) and the coefficients r₁..r₈.
     #[allow(clippy::too_many_arguments)]
-    fn dense<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn dense<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         co: &Coefficients<T>,
         t: T,
         h: T,
-        y: &Pair<T, N>,
-        y_new: &Pair<T, N>,
-        [k1, k6, k7, k8, k9, k10, k11, k12]: [&Pair<T, N>; 8],
-        k13: &Pair<T, N>,
+        y: &Pair<T, N, Q>,
+        y_new: &Pair<T, N, Q>,
+        [k1, k6, k7, k8, k9, k10, k11, k12]: [&Pair<T, N, Q>; 8],
+        k13: &Pair<T, N, Q>,
         stats: &mut Stats,
-    ) -> Result<DenseSegment<T, N>, Error> {
+    ) -> Result<DenseSegment<T, N, Q>, Error> {
         let ev = &mut stats.evaluations;
         let c = co.c;
         let k14 = y
@@ -359,25 +359,35 @@ impl Dop853 {
     }
 }
 
-/// DOP853's error norm: with sk = atol + rtol·max(|y|, |y_new|) over all 2N
+/// DOP853's error norm: with sk = atol + rtol·max(|y|, |y_new|) over all Q + N
 /// components, s₅ = Σ (e₅/sk)², s₃ = Σ (e₃/sk)²,
 /// err = |h| s₅ / sqrt(2N (s₅ + 0.01 s₃)).
-fn error_norm<T: Real, const N: usize>(
+fn error_norm<T: Real, const N: usize, const Q: usize>(
     h: T,
-    e5: &Pair<T, N>,
-    e3: &Pair<T, N>,
-    y: &Pair<T, N>,
-    y_new: &Pair<T, N>,
+    e5: &Pair<T, N, Q>,
+    e3: &Pair<T, N, Q>,
+    y: &Pair<T, N, Q>,
+    y_new: &Pair<T, N, Q>,
     atol: T,
     rtol: T,
 ) -> T {
     let (mut s5, mut s3) = (T::zero(), T::zero());
     let parts = [
-        (&e5.q, &e3.q, &y.q, &y_new.q),
-        (&e5.v, &e3.v, &y.v, &y_new.v),
+        (
+            e5.q.as_slice(),
+            e3.q.as_slice(),
+            y.q.as_slice(),
+            y_new.q.as_slice(),
+        ),
+        (
+            e5.v.as_slice(),
+            e3.v.as_slice(),
+            y.v.as_slice(),
+            y_new.v.as_slice(),
+        ),
     ];
     for (e5, e3, y, y_new) in parts {
-        for i in 0..N {
+        for i in 0..e5.len() {
             let sk = atol + rtol * abs(y[i]).max(abs(y_new[i]));
             let (a, b) = (e5[i] / sk, e3[i] / sk);
             s5 += a * a;
@@ -388,5 +398,5 @@ fn error_norm<T: Real, const N: usize>(
     if deno <= T::zero() {
         deno = T::one();
     }
-    abs(h) * s5 * sqrt(T::one() / (deno * T::lit((2 * N) as f64)))
+    abs(h) * s5 * sqrt(T::one() / (deno * T::lit((Q + N) as f64)))
 }

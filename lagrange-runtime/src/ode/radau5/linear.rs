@@ -52,15 +52,15 @@ impl<T: Real> Work<T> {
     }
 }
 
-pub(super) fn to_pair<T: Real, const N: usize>(y: &[T]) -> Pair<T, N> {
+pub(super) fn to_pair<T: Real, const N: usize, const Q: usize>(y: &[T]) -> Pair<T, N, Q> {
     Pair::new(
         SVector::from_fn(|i, _| y[i]),
-        SVector::from_fn(|i, _| y[N + i]),
+        SVector::from_fn(|i, _| y[Q + i]),
     )
 }
 
-/// ẏ = (v, a) at (t, y) into `out`, counting one evaluation.
-pub(super) fn rhs_into<T: Real, const N: usize, F: SecondOrder<T, N>>(
+/// ẏ = (q̇, a) at (t, y) into `out`, counting one evaluation.
+pub(super) fn rhs_into<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
     rhs: &F,
     t: T,
     y: &[T],
@@ -68,17 +68,15 @@ pub(super) fn rhs_into<T: Real, const N: usize, F: SecondOrder<T, N>>(
     evaluations: &mut usize,
 ) -> Result<(), Error> {
     *evaluations += 1;
-    let p = to_pair::<T, N>(y);
+    let p = to_pair::<T, N, Q>(y);
     let a = rhs.acceleration(t, &p.q, &p.v)?;
-    for i in 0..N {
-        out[i] = p.v[i];
-        out[N + i] = a[i];
-    }
+    out[..Q].copy_from_slice(rhs.rate(&p.q, &p.v).as_slice());
+    out[Q..Q + N].copy_from_slice(a.as_slice());
     Ok(())
 }
 
-/// J = ∂(v, a)/∂(q, v) at (t, y); `f0` = (v, a) there.
-pub(super) fn jacobian<T: Real, const N: usize, F: SecondOrder<T, N>>(
+/// J = ∂(q̇, a)/∂(q, v) at (t, y); `f0` = (q̇, a) there.
+pub(super) fn jacobian<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
     rhs: &F,
     t: T,
     y: &[T],
@@ -87,37 +85,60 @@ pub(super) fn jacobian<T: Real, const N: usize, F: SecondOrder<T, N>>(
     stats: &mut Stats,
 ) -> Result<(), Error> {
     jac.fill(T::zero());
-    for i in 0..N {
-        jac[(i, N + i)] = T::one();
-    }
-    let p = to_pair::<T, N>(y);
+    let p = to_pair::<T, N, Q>(y);
+    rate_rows(rhs, &p, jac);
     if let Some(blocks) = rhs.jacobian(t, &p.q, &p.v) {
         let (aq, av) = blocks?;
-        for i in 0..N {
-            for j in 0..N {
-                jac[(N + i, j)] = aq[(i, j)];
-                jac[(N + i, N + j)] = av[(i, j)];
-            }
-        }
+        jac.view_mut((Q, 0), (N, Q)).copy_from(&aq);
+        jac.view_mut((Q, Q), (N, N)).copy_from(&av);
         return Ok(());
     }
     let eps = T::default_epsilon();
-    for col in 0..2 * N {
+    for col in 0..Q + N {
         let mut pp = p;
-        let x = if col < N {
+        let x = if col < Q {
             &mut pp.q[col]
         } else {
-            &mut pp.v[col - N]
+            &mut pp.v[col - Q]
         };
         let delta = sqrt(eps * T::lit(1e-5).max(abs(*x)));
         *x += delta;
         stats.evaluations += 1;
         let a = rhs.acceleration(t, &pp.q, &pp.v)?;
         for i in 0..N {
-            jac[(N + i, col)] = (a[i] - f0[N + i]) / delta;
+            jac[(Q + i, col)] = (a[i] - f0[Q + i]) / delta;
         }
     }
     Ok(())
+}
+
+/// The rows of q̇ = rate(q, v): the identity on v for ordinary coordinates;
+/// a quaternion's rate is bilinear in (q, ω), so unit differences are its
+/// exact derivatives.
+fn rate_rows<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
+    rhs: &F,
+    p: &Pair<T, N, Q>,
+    jac: &mut DMatrix<T>,
+) {
+    if F::ORIENTATIONS.is_empty() {
+        for i in 0..N {
+            jac[(i, Q + i)] = T::one();
+        }
+        return;
+    }
+    let r0 = rhs.rate(&p.q, &p.v);
+    for col in 0..Q + N {
+        let mut pp = *p;
+        if col < Q {
+            pp.q[col] += T::one();
+        } else {
+            pp.v[col - Q] += T::one();
+        }
+        let r = rhs.rate(&pp.q, &pp.v) - r0;
+        for i in 0..Q {
+            jac[(i, col)] = r[i];
+        }
+    }
 }
 
 /// Builds and factorises E1 = fac1·I − J and the real form of
@@ -165,7 +186,7 @@ pub(super) fn solve_stages<T: Real>(w: &mut Work<T>, fac1: T, alphn: T, betan: T
 /// with one more filtered evaluation at the first step and after a rejection if
 /// the estimate is ≥ 1.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn estimate<T: Real, const N: usize, F: SecondOrder<T, N>>(
+pub(super) fn estimate<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
     rhs: &F,
     k: &Constants<T>,
     w: &mut Work<T>,
@@ -198,7 +219,7 @@ pub(super) fn estimate<T: Real, const N: usize, F: SecondOrder<T, N>>(
             w.tmp[i] += y[i];
         }
         let (tmp, f0) = (&w.tmp, &mut w.f[0]);
-        rhs_into::<T, N, F>(rhs, t, tmp, f0, &mut stats.evaluations)?;
+        rhs_into::<T, N, Q, F>(rhs, t, tmp, f0, &mut stats.evaluations)?;
         for i in 0..n {
             w.tmp[i] = w.f[0][i] + w.f[1][i];
         }

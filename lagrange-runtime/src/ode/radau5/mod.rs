@@ -171,15 +171,15 @@ fn constants<T: Real>() -> Constants<T> {
 }
 
 impl Integrator for Radau5 {
-    fn continue_run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn continue_run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         from: Continuation<T>,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>> {
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>> {
         let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
         // Everything computed before a failure goes back with it.
         let outcome = self.run(rhs, (t0, t1), (q0, v0), &mut run);
@@ -196,12 +196,12 @@ impl Radau5 {
     /// t1: each attempt prepares the iteration matrices, solves the stage
     /// equations by simplified Newton, estimates the error, and accepts or
     /// retries (the phases are in [`step`]).
-    fn run<T: Real, const N: usize, F: SecondOrder<T, N>>(
+    fn run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
         (t0, t1): (T, T),
-        (q0, v0): (SVector<T, N>, SVector<T, N>),
-        run: &mut Run<T, N>,
+        (q0, v0): (SVector<T, Q>, SVector<T, N>),
+        run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
         self.record.check_span(t0, t1, N)?;
         self.validate()?;

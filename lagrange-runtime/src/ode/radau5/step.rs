@@ -14,7 +14,7 @@ use crate::error::Error;
 use crate::numeric::Real;
 use crate::numeric::func::{abs, sqrt};
 use crate::ode::run::Run;
-use crate::ode::{DenseSegment, SecondOrder, Stats};
+use crate::ode::{DenseSegment, SecondOrder, Stats, settle};
 use nalgebra::SVector;
 
 /// Where the next attempt starts.
@@ -64,7 +64,7 @@ struct Tuning<T> {
 }
 
 /// A run of RADAU5 between two attempts.
-pub(super) struct State<T: Real, const N: usize> {
+pub(super) struct State<T: Real, const N: usize, const Q: usize> {
     k: Constants<T>,
     w: Work<T>,
     p: Tuning<T>,
@@ -100,17 +100,17 @@ pub(super) struct State<T: Real, const N: usize> {
     pending_error: Option<Error>,
 }
 
-impl<T: Real, const N: usize> State<T, N> {
+impl<T: Real, const N: usize, const Q: usize> State<T, N, Q> {
     /// Sets up a run from (q0, v0) at t0 (one evaluation of the right-hand side).
-    pub fn new<F: SecondOrder<T, N>>(
+    pub fn new<F: SecondOrder<T, N, Q>>(
         radau: &Radau5,
         rhs: &F,
         (t0, t1): (T, T),
-        (q0, v0): (SVector<T, N>, SVector<T, N>),
+        (q0, v0): (SVector<T, Q>, SVector<T, N>),
         stats: &mut Stats,
     ) -> Result<Self, Error> {
         let control = &radau.control;
-        let n = 2 * N;
+        let n = Q + N;
         // radau5.f's tolerance transformation and Newton stopping criterion.
         let uround = T::default_epsilon();
         let rtol_t = 0.1 * control.rtol.powf(2.0 / 3.0);
@@ -170,7 +170,7 @@ impl<T: Real, const N: usize> State<T, N> {
 
     /// The error weights atol + rtol |y| at the current y.
     fn set_scal(&mut self) {
-        for i in 0..2 * N {
+        for i in 0..Q + N {
             self.w.scal[i] = self.p.atol + self.p.rtol * abs(self.y[i]);
         }
     }
@@ -178,7 +178,7 @@ impl<T: Real, const N: usize> State<T, N> {
     /// Computes the Jacobian and factorises the iteration matrices as the
     /// entry asks. False if the matrices are singular: the step is halved and
     /// the attempt starts over (label 78).
-    pub fn prepare<F: SecondOrder<T, N>>(
+    pub fn prepare<F: SecondOrder<T, N, Q>>(
         &mut self,
         rhs: &F,
         stats: &mut Stats,
@@ -258,7 +258,7 @@ impl<T: Real, const N: usize> State<T, N> {
         }
         let c3q = self.h / self.hold;
         let cq = [k.c1 * c3q, k.c2 * c3q, c3q];
-        for i in 0..2 * N {
+        for i in 0..Q + N {
             let (ak1, ak2, ak3) = (w.cont[0][i], w.cont[1][i], w.cont[2][i]);
             let zi = cq.map(|c| c * (ak1 + (c - k.c2m1) * (ak2 + (c - k.c1m1) * ak3)));
             for s in 0..3 {
@@ -273,7 +273,7 @@ impl<T: Real, const N: usize> State<T, N> {
     /// The simplified Newton iteration for the stage values, with radau5.f's
     /// tests on the contraction θ: too slow a convergence ends the attempt
     /// early with a smaller step.
-    pub fn newton<F: SecondOrder<T, N>>(
+    pub fn newton<F: SecondOrder<T, N, Q>>(
         &mut self,
         rhs: &F,
         stats: &mut Stats,
@@ -321,7 +321,7 @@ impl<T: Real, const N: usize> State<T, N> {
     /// f at the three stage points y + z_s, transformed by T⁻¹ (the Newton
     /// right-hand side), into z. False if the right-hand side failed at a
     /// stage state; the failure is kept as the pending error.
-    fn stage_residuals<F: SecondOrder<T, N>>(
+    fn stage_residuals<F: SecondOrder<T, N, Q>>(
         &mut self,
         rhs: &F,
         stats: &mut Stats,
@@ -329,12 +329,12 @@ impl<T: Real, const N: usize> State<T, N> {
         let (k, w, t, h) = (&self.k, &mut self.w, self.t, self.h);
         let cs = [k.c1, k.c2, T::one()];
         for s in 0..3 {
-            for i in 0..2 * N {
+            for i in 0..Q + N {
                 w.tmp[i] = self.y[i] + w.z[s][i];
             }
             let ts = if s == 2 { t + h } else { t + cs[s] * h };
             let (tmp, zs) = (&w.tmp, &mut w.z[s]);
-            match rhs_into::<T, N, F>(rhs, ts, tmp, zs, &mut stats.evaluations) {
+            match rhs_into::<T, N, Q, F>(rhs, ts, tmp, zs, &mut stats.evaluations) {
                 Ok(()) => {}
                 // A Newton iterate the right-hand side cannot evaluate (far
                 // off the solution) is a failed iteration, as in RADAU5's
@@ -347,7 +347,7 @@ impl<T: Real, const N: usize> State<T, N> {
                 Err(e) => return Err(e),
             }
         }
-        for i in 0..2 * N {
+        for i in 0..Q + N {
             let a = [w.z[0][i], w.z[1][i], w.z[2][i]];
             for s in 0..3 {
                 w.z[s][i] = k.ti[s][0] * a[0] + k.ti[s][1] * a[1] + k.ti[s][2] * a[2];
@@ -358,7 +358,7 @@ impl<T: Real, const N: usize> State<T, N> {
 
     /// The scaled RMS norm of the Newton correction.
     fn correction_norm(&self) -> T {
-        let n = 2 * N;
+        let n = Q + N;
         let mut dyno = T::zero();
         for i in 0..n {
             for s in 0..3 {
@@ -373,7 +373,7 @@ impl<T: Real, const N: usize> State<T, N> {
     /// into the stage increments z = T f.
     fn update_stages(&mut self) {
         let (k, w) = (&self.k, &mut self.w);
-        for i in 0..2 * N {
+        for i in 0..Q + N {
             let fi = [0, 1, 2].map(|s| w.f[s][i] + w.z[s][i]);
             for s in 0..3 {
                 w.f[s][i] = fi[s];
@@ -385,7 +385,11 @@ impl<T: Real, const N: usize> State<T, N> {
     }
 
     /// The filtered error estimate of the converged attempt (ESTRAD).
-    pub fn error<F: SecondOrder<T, N>>(&mut self, rhs: &F, stats: &mut Stats) -> Result<T, Error> {
+    pub fn error<F: SecondOrder<T, N, Q>>(
+        &mut self,
+        rhs: &F,
+        stats: &mut Stats,
+    ) -> Result<T, Error> {
         let again = self.first || self.reject;
         let (k, w, y, y0) = (&self.k, &mut self.w, &self.y, &self.y0);
         estimate(rhs, k, w, self.t, self.h, y, y0, again, stats)
@@ -402,12 +406,12 @@ impl<T: Real, const N: usize> State<T, N> {
 
     /// Accepts the attempt, records the step, and decides the next one.
     /// Returns whether the run ends here (t1 reached, or the system stops it).
-    pub fn accept<F: SecondOrder<T, N>>(
+    pub fn accept<F: SecondOrder<T, N, Q>>(
         &mut self,
         rhs: &F,
         err: T,
         (mut quot, mut hnew): (T, T),
-        run: &mut Run<T, N>,
+        run: &mut Run<T, N, Q>,
     ) -> Result<bool, Error> {
         let (h, p) = (self.h, &self.p);
         self.first = false;
@@ -436,15 +440,15 @@ impl<T: Real, const N: usize> State<T, N> {
     /// polynomial for the next starting values, f there, the projection, and
     /// the recorded step (the cubic Hermite interpolant as dense output).
     /// Returns whether the system stops the run.
-    fn advance<F: SecondOrder<T, N>>(
+    fn advance<F: SecondOrder<T, N, Q>>(
         &mut self,
         rhs: &F,
-        run: &mut Run<T, N>,
+        run: &mut Run<T, N, Q>,
     ) -> Result<bool, Error> {
         let (k, w, y) = (&self.k, &mut self.w, &mut self.y);
-        let y_old = to_pair::<T, N>(y);
-        let f_old = to_pair::<T, N>(&self.y0);
-        for i in 0..2 * N {
+        let y_old = to_pair::<T, N, Q>(y);
+        let f_old = to_pair::<T, N, Q>(&self.y0);
+        for i in 0..Q + N {
             y[i] += w.z[2][i];
             let (z1, z2, z3) = (w.z[0][i], w.z[1][i], w.z[2][i]);
             w.cont[0][i] = (z2 - z3) / k.c2m1;
@@ -460,21 +464,21 @@ impl<T: Real, const N: usize> State<T, N> {
             t_prev + self.h
         };
         let t = self.t;
-        let mut p = to_pair::<T, N>(y);
+        let mut p = to_pair::<T, N, Q>(y);
         if !p.is_finite() {
             return Err(Error::non_finite(t, &p.q, &p.v));
         }
         // The derivative at the new point: the next step's y0 and the
         // Hermite end slope.
         let ev = &mut run.stats.evaluations;
-        rhs_into::<T, N, F>(rhs, t, y, &mut self.y0, ev)?;
+        rhs_into::<T, N, Q, F>(rhs, t, y, &mut self.y0, ev)?;
         let segment = DenseSegment::hermite(t_prev, t, &y_old, &f_old, &p, &to_pair(&self.y0));
-        if rhs.project(t, &mut p.q, &mut p.v)? {
-            for i in 0..N {
-                y[i] = p.q[i];
-                y[N + i] = p.v[i];
-            }
-            rhs_into::<T, N, F>(rhs, t, y, &mut self.y0, ev)?;
+        let projected = settle(rhs, t, &mut p.q, &mut p.v)?;
+        // The normalised quaternions go on, as in the other methods.
+        y[..Q].copy_from_slice(p.q.as_slice());
+        if projected {
+            y[Q..Q + N].copy_from_slice(p.v.as_slice());
+            rhs_into::<T, N, Q, F>(rhs, t, y, &mut self.y0, ev)?;
         }
         self.set_scal();
         run.record(rhs, segment, p.q, p.v)
