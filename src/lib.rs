@@ -281,7 +281,7 @@ pub mod __private {
         Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid,
     };
     pub use lagrange_runtime::{
-        Constrained, Driven, FormVisitor, Lagrangian, Real, Reduced, Route,
+        Constrained, Driven, FormVisitor, Lagrangian, Orientation, Real, Reduced, Route,
     };
     pub use lagrange_runtime::{Error, func, physical};
     pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};

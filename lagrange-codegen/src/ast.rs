@@ -159,6 +159,9 @@ pub struct System {
     pub scalar: Scalar,
     pub parameters: Vec<Parameter>,
     pub coordinates: Vec<Ident>,
+    /// `orientation(a, ...)`: free orientations, each a unit quaternion in q
+    /// and a body-axis angular velocity in v, usable as a rotation factor.
+    pub orientations: Vec<Ident>,
     /// `inputs(u1, u2, ...)`: named scalar signals supplied at run time, allowed
     /// in forces, generalized forces, the potential and the dissipation.
     pub inputs: Vec<Ident>,

@@ -17,11 +17,12 @@ use crate::ctxt::Ctxt;
 use crate::spelling::closest;
 
 /// Keys accepted at the top level of `#[lagrange(...)]`, for the "unknown key" message.
-const KEYS: &str = "urdf, coordinates, inputs, define, point, body, gravity, potential, force, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit, shape";
+const KEYS: &str = "urdf, coordinates, orientation, inputs, define, point, body, gravity, potential, force, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit, shape";
 
 /// One top-level item of the attribute.
 enum Item {
     Coordinates(Vec<Ident>),
+    Orientations(Vec<Ident>),
     Inputs(Vec<Ident>),
     Define(Vec<Definition>),
     Point(Point),
@@ -49,6 +50,7 @@ impl Parse for Item {
         let constraint = |(name, value)| Constraint { name, value };
         match key.to_string().as_str() {
             "coordinates" => parse_coordinates(input, &key).map(Item::Coordinates),
+            "orientation" => parse_names(input).map(Item::Orientations),
             "inputs" => parse_names(input).map(Item::Inputs),
             "define" => Ok(Item::Define(
                 parse_name_values(input)?.map(definition).collect(),
@@ -185,8 +187,9 @@ fn unknown_key(key: &Ident, other: &str) -> syn::Error {
 }
 
 /// The form each list key takes, for the error when it is written `key = ...`.
-const LISTS: [(&str, &str); 13] = [
+const LISTS: [(&str, &str); 14] = [
     ("coordinates", "coordinates(q1, q2, ...)"),
+    ("orientation", "orientation(name, ...)"),
     ("inputs", "inputs(u1, u2, ...)"),
     ("define", "define(name = expr, ...)"),
     ("point", "point(name, mass = m, at = [x, y, z])"),
@@ -350,6 +353,7 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
         scalar,
         parameters,
         coordinates: Vec::new(),
+        orientations: Vec::new(),
         inputs: Vec::new(),
         definitions: Vec::new(),
         points: Vec::new(),
@@ -446,6 +450,7 @@ fn split_top_level_commas(tokens: proc_macro2::TokenStream) -> Vec<proc_macro2::
 fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
     match item {
         Item::Coordinates(names) => system.coordinates.extend(names),
+        Item::Orientations(names) => system.orientations.extend(names),
         Item::Inputs(names) => system.inputs.extend(names),
         Item::Define(defs) => system.definitions.extend(defs),
         Item::Point(p) => system.points.push(p),

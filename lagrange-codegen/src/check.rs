@@ -22,6 +22,42 @@ pub fn check(cx: &Ctxt, system: &System) {
     check_dimensions(cx, system);
     check_force_targets(cx, system);
     check_formulation(cx, system);
+    check_orientations(cx, system);
+}
+
+/// What a free orientation does not combine with yet, named at the
+/// orientation: the constrained forms, inputs, the optional outputs and a
+/// URDF (whose joints are rotations about axes).
+fn check_orientations(cx: &Ctxt, system: &System) {
+    let Some(first) = system.orientations.first() else {
+        return;
+    };
+    let mut not_yet = Vec::new();
+    if !(system.holonomic.is_empty() && system.nonholonomic.is_empty()) {
+        not_yet.push("constraints (`holonomic`, `nonholonomic`)");
+    }
+    if !system.speeds.is_empty() {
+        not_yet.push("`speeds(...)`");
+    }
+    if !system.inputs.is_empty() {
+        not_yet.push("`inputs(...)`");
+    }
+    if !system.extras.is_empty() {
+        not_yet.push("`emit(...)`");
+    }
+    if system.urdf.is_some() {
+        not_yet.push("`urdf`");
+    }
+    if !not_yet.is_empty() {
+        cx.error_at(
+            first.span(),
+            format!(
+                "a free orientation does not combine with {} yet: describe the rotation with \
+                 `rot_x/rot_y/rot_z` or `euler_zxz` of coordinates for those",
+                not_yet.join(", ")
+            ),
+        );
+    }
 }
 
 /// The formulations a system is emitted in: what `formulation(...)` asks for, or by
@@ -240,10 +276,10 @@ pub fn constraints_read(cx: &Ctxt, system: &System, reads: [&[bool]; 3]) {
 }
 
 fn check_has_coordinates(cx: &Ctxt, system: &System) {
-    if system.coordinates.is_empty() {
+    if system.coordinates.is_empty() && system.orientations.is_empty() {
         cx.error_at(
             system.span,
-            "no generalized coordinates: add `coordinates(q1, q2, ...)` to #[lagrange(...)]",
+            "no generalized coordinates: add `coordinates(q1, q2, ...)` (or a free rotation, `orientation(name)`) to #[lagrange(...)]",
         );
     }
 }

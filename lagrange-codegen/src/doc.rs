@@ -81,6 +81,15 @@ fn header(model: &Model) -> String {
         }
     }
     let _ = writeln!(s, "q = ({})", model.coordinates.join(", "));
+    for o in &model.orientations {
+        let n = &o.name;
+        let _ = writeln!(
+            s,
+            "orientation {n}: unit quaternion ({n}.w, {n}.x, {n}.y, {n}.z) in q (body axes to world), \
+             angular velocity in body axes q' = (dot({n}.wx), dot({n}.wy), dot({n}.wz)); \
+             the equations hold at |q| = 1 (no chart: they are derived in the chart that moves with the body, at its centre)"
+        );
+    }
     let cyclic: Vec<&str> = (model.coordinates.iter().zip(&model.cyclic))
         .filter_map(|(name, &c)| c.then_some(name.as_str()))
         .collect();

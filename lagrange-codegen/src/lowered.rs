@@ -26,6 +26,8 @@ pub struct SpinModel {
 pub struct Lowered {
     pub ctx: Context,
     pub coordinates: Vec<String>,
+    /// The free orientations, whose θ coordinates follow `coordinates`.
+    pub orientations: Vec<OrientationModel>,
     /// Names of the inputs, in the order of their symbols (`Context::inputs`).
     pub inputs: Vec<String>,
     pub parameters: Vec<String>,
@@ -111,6 +113,17 @@ pub struct Poses {
     /// Every point, with or without mass, in declaration order.
     pub points: Vec<PointPose>,
     pub shapes: Vec<ShapeModel>,
+}
+
+/// A free orientation as the derivation sees it (see
+/// [`OrientationSymbols`](crate::lower::OrientationSymbols)): θ, three
+/// coordinates set to zero once everything is derived, and the quaternion
+/// read from q.
+#[derive(Clone)]
+pub struct OrientationModel {
+    pub name: String,
+    pub theta: [Sym; 3],
+    pub quaternion: [Sym; 4],
 }
 
 /// A body's reference point, centre of mass and rotation (body → world), and

@@ -26,6 +26,9 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     for q in &system.coordinates {
         lw.declare_coordinate(q);
     }
+    for o in &system.orientations {
+        lw.declare_orientation(o);
+    }
     for u in &system.inputs {
         lw.declare_input(u);
     }
@@ -64,9 +67,19 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         checks,
     } = items;
     let names = |ids: &mut dyn Iterator<Item = &Ident>| ids.map(|c| c.to_string()).collect();
+    let orientations = lw
+        .orientations
+        .iter()
+        .map(|o| crate::lowered::OrientationModel {
+            name: o.name.clone(),
+            theta: o.theta,
+            quaternion: o.quaternion,
+        })
+        .collect();
     Some(Lowered {
         ctx: lw.ctx,
         coordinates: names(&mut system.coordinates.iter()),
+        orientations,
         inputs: names(&mut system.inputs.iter()),
         parameters: names(&mut system.parameters.iter().map(|p| &p.name)),
         points,

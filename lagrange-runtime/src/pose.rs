@@ -92,7 +92,7 @@ pub struct Shape<T> {
 
 /// The poses of a system's bodies and points, in the order of [`Posed::BODIES`]
 /// and [`Posed::POINTS`]. Planar descriptions report points with z = 0.
-pub trait Posed<T: Real, const N: usize> {
+pub trait Posed<T: Real, const N: usize, const Q: usize = N> {
     /// The bodies' names, in declaration order.
     const BODIES: &'static [&'static str];
     /// Every point's name (with or without mass), in declaration order.
@@ -102,7 +102,7 @@ pub trait Posed<T: Real, const N: usize> {
 
     /// Writes the pose of every body and the position of every point at
     /// (q, t). The slices hold `BODIES.len()` and `POINTS.len()` entries.
-    fn poses(&self, q: &SVector<T, N>, t: T, bodies: &mut [BodyPose<T>], points: &mut [Vector3<T>]);
+    fn poses(&self, q: &SVector<T, Q>, t: T, bodies: &mut [BodyPose<T>], points: &mut [Vector3<T>]);
 
     /// Writes each body's mass and inertia (`BODIES.len()` entries).
     fn inertias(&self, out: &mut [BodyInertia<T>]);

@@ -38,6 +38,7 @@ mod listing;
 mod node;
 mod program;
 mod rational;
+mod reduce;
 mod trig;
 
 pub use context::Context;

@@ -22,6 +22,11 @@ fn driven_by_nothing(f: &Frame) -> TokenStream {
 /// `impl Driven` for a description with inputs: ΔQ and its Jacobians, with the
 /// inputs taken as `u`.
 pub(super) fn impl_driven(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    // A controlled run takes no orientations yet (`Driven` extends
+    // `Lagrangian<T, N>`, Q = N): a description with them has no inputs.
+    if !model.orientations.is_empty() {
+        return TokenStream::new();
+    }
     let Some(inputs) = &model.inputs else {
         return driven_by_nothing(f);
     };

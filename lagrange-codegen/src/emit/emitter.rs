@@ -31,6 +31,16 @@ pub(super) struct Emitter<'a> {
 impl<'a> Emitter<'a> {
     pub(super) fn new(model: &'a Model, scalar: &'a Scalar) -> Self {
         let mut free = Vec::new();
+        // The quaternions follow the coordinates in q.
+        let first = model.coordinates.len();
+        for (k, o) in model.orientations.iter().enumerate() {
+            for (c, &e) in o.quaternion.iter().enumerate() {
+                if let Some(s) = model.ctx.as_symbol(e) {
+                    let i = Literal::usize_unsuffixed(first + 4 * k + c);
+                    free.push((s, quote!(q[#i])));
+                }
+            }
+        }
         let mut add = |symbols: &[Sym], array: &str| {
             let array = format_ident!("{array}");
             for (i, &e) in symbols.iter().enumerate() {

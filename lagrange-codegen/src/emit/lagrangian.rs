@@ -22,7 +22,7 @@ use crate::mechanics::Model;
 /// forms it has.
 pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let e = Emitter::new(model, &system.scalar);
-    let f = Frame::new(system, model.dof());
+    let f = Frame::new(system, model.dof(), model.configuration_len());
     let docs = Docs::new(system, model);
     let (forward_dynamics, articulated_inner) = forward_dynamics(&e, &f, model);
     let lagrangian = lagrangian_trait(&e, &f, system, model, forward_dynamics);
@@ -108,7 +108,7 @@ fn lagrangian_trait(
     let bias = e.vector_body(&model.bias, s, nl);
     let forces = e.vector_body(&model.forces, s, nl);
     let energies = energy_methods(e, f, model);
-    let names = &model.coordinates;
+    let names = configuration_names(model);
     let rheonomic = model.rheonomic;
     let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
     let cyclic = cyclic_const(model, nl);
@@ -116,38 +116,41 @@ fn lagrangian_trait(
     let hamiltonian = optional_methods(e, f, model);
     let visit_form = visit_form(f, model);
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
-    let (vec_t, mat_t) = (f.vec(nl), f.mat(nl, nl));
+    let (vec_t, mat_t, qvec_t) = (f.vec(nl), f.mat(nl, nl), f.qvec());
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let (sizes, nq) = (f.sizes(), &f.nq);
+    let orientations = orientation_consts(model);
     quote! {
         /// The system as `#[derive(Lagrangian)]` derived it; the equations are
         /// on the type's inherent impl (`EQUATIONS`).
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
-        impl #ig ::lagrange::__private::Lagrangian<#s, #nl> for #ident #tg #wc {
-            const COORDINATES: [&'static str; #nl] = [#(#names),*];
+        impl #ig ::lagrange::__private::Lagrangian<#s, #sizes> for #ident #tg #wc {
+            const COORDINATES: [&'static str; #nq] = [#(#names),*];
+            #orientations
             const RHEONOMIC: bool = #rheonomic;
             const CONSTRAINED: bool = #has_constraints;
             #cyclic
             #route
 
             #[inline]
-            fn mass_matrix(&self, q: &#vec_t, t: #s) -> #mat_t {
+            fn mass_matrix(&self, q: &#qvec_t, t: #s) -> #mat_t {
                 #m_lets
                 <#mat_t>::from(#m_fill)
             }
 
             #[inline]
-            fn bias(&self, q: &#vec_t, v: &#vec_t, t: #s) -> #vec_t {
+            fn bias(&self, q: &#qvec_t, v: &#vec_t, t: #s) -> #vec_t {
                 #bias
             }
 
             #[inline]
-            fn generalized_forces(&self, q: &#vec_t, v: &#vec_t, t: #s) -> #vec_t {
+            fn generalized_forces(&self, q: &#qvec_t, v: &#vec_t, t: #s) -> #vec_t {
                 #forces
             }
 
             #[inline]
-            fn mass_matrix_and_rhs(&self, q: &#vec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
+            fn mass_matrix_and_rhs(&self, q: &#qvec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
                 self.__lagrange_mass_matrix_and_rhs(&self.__lagrange_parameter_terms(), q, v, t)
             }
 
@@ -156,7 +159,7 @@ fn lagrangian_trait(
             }
 
             #[inline]
-            fn mass_matrix_and_rhs_with(&self, terms: &[#s], q: &#vec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
+            fn mass_matrix_and_rhs_with(&self, terms: &[#s], q: &#qvec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
                 match <&[#s; #h_len]>::try_from(terms) {
                     ::core::result::Result::Ok(p) => self.__lagrange_mass_matrix_and_rhs(p, q, v, t),
                     ::core::result::Result::Err(_) => self.mass_matrix_and_rhs(q, v, t),
@@ -169,6 +172,41 @@ fn lagrangian_trait(
             #forward_dynamics
             #visit_form
         }
+    }
+}
+
+/// The names of q's entries: the coordinates', then each orientation's
+/// quaternion components `name.w`, `name.x`, `name.y`, `name.z`.
+fn configuration_names(model: &Model) -> Vec<String> {
+    let mut names = model.coordinates.clone();
+    for o in &model.orientations {
+        names.extend(["w", "x", "y", "z"].map(|c| format!("{}.{c}", o.name)));
+    }
+    names
+}
+
+/// `VELOCITIES` and `ORIENTATIONS` of a description with free orientations
+/// (nothing without: the trait's defaults are right).
+fn orientation_consts(model: &Model) -> TokenStream {
+    if model.orientations.is_empty() {
+        return TokenStream::new();
+    }
+    let mut velocities = model.coordinates.clone();
+    for o in &model.orientations {
+        velocities.extend(["wx", "wy", "wz"].map(|c| format!("{}.{c}", o.name)));
+    }
+    let n = Literal::usize_unsuffixed(velocities.len());
+    let first = model.coordinates.len();
+    let layout = (0..model.orientations.len()).map(|k| {
+        let (q, v) = (
+            Literal::usize_unsuffixed(first + 4 * k),
+            Literal::usize_unsuffixed(first + 3 * k),
+        );
+        quote!(::lagrange::__private::Orientation { q: #q, v: #v })
+    });
+    quote! {
+        const VELOCITIES: [&'static str; #n] = [#(#velocities),*];
+        const ORIENTATIONS: &'static [::lagrange::__private::Orientation] = &[#(#layout),*];
     }
 }
 
@@ -197,26 +235,26 @@ fn route_const(model: &Model) -> TokenStream {
 
 /// `kinetic_energy`, `potential_energy` and `integral`.
 fn energy_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
-    let (s, vec_t) = (&f.s, f.vec(&f.n));
+    let (s, vec_t, qvec_t) = (&f.s, f.vec(&f.n), f.qvec());
     let (k_lets, k_out) = e.program(&[model.kinetic]);
     let (p_lets, p_out) = e.program(&[model.potential]);
     let (i_lets, i_out) = e.program(&[model.integral]);
     let (k_out, p_out, i_out) = (&k_out[0], &p_out[0], &i_out[0]);
     quote! {
         #[inline]
-        fn kinetic_energy(&self, q: &#vec_t, v: &#vec_t, t: #s) -> #s {
+        fn kinetic_energy(&self, q: &#qvec_t, v: &#vec_t, t: #s) -> #s {
             #k_lets
             #k_out
         }
 
         #[inline]
-        fn potential_energy(&self, q: &#vec_t, t: #s) -> #s {
+        fn potential_energy(&self, q: &#qvec_t, t: #s) -> #s {
             #p_lets
             #p_out
         }
 
         #[inline]
-        fn integral(&self, q: &#vec_t, v: &#vec_t, t: #s) -> #s {
+        fn integral(&self, q: &#qvec_t, v: &#vec_t, t: #s) -> #s {
             #i_lets
             #i_out
         }
@@ -316,7 +354,7 @@ fn joint_program(e: &Emitter, f: &Frame, system: &System, model: &Model) -> Join
                 .collect();
             let bodies = &chunked.chunks;
             let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
-            let vec_t = f.vec(nl);
+            let (vec_t, qvec_t) = (f.vec(nl), f.qvec());
             let lets = quote! {
                 let mut s = [#zero; #slots];
                 #(self.#names(p, q, v, t, &mut s);)*
@@ -325,7 +363,7 @@ fn joint_program(e: &Emitter, f: &Frame, system: &System, model: &Model) -> Join
                 #(
                     #[doc(hidden)]
                     #[inline(never)]
-                    pub fn #names(&self, p: &[#s; #h_len], q: &#vec_t, v: &#vec_t, t: #s, s: &mut [#s; #slots]) {
+                    pub fn #names(&self, p: &[#s; #h_len], q: &#qvec_t, v: &#vec_t, t: #s, s: &mut [#s; #slots]) {
                         #bodies
                     }
                 )*
@@ -350,7 +388,7 @@ fn hoisted_impl(
     articulated_inner: TokenStream,
 ) -> TokenStream {
     let (s, nl) = (&f.s, &f.n);
-    let (vec_t, mat_t) = (f.vec(nl), f.mat(nl, nl));
+    let (vec_t, mat_t, qvec_t) = (f.vec(nl), f.mat(nl, nl), f.qvec());
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
     let (t_lets, t_outs) = e.program(&model.hoisted.terms);
     let Joint {
@@ -376,7 +414,7 @@ fn hoisted_impl(
             // large straight-line program is what keeps model crates quick to
             // build (the call costs nothing beside the body).
             #[doc(hidden)]
-            pub fn __lagrange_mass_matrix_and_rhs(&self, p: &[#s; #h_len], q: &#vec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
+            pub fn __lagrange_mass_matrix_and_rhs(&self, p: &[#s; #h_len], q: &#qvec_t, v: &#vec_t, t: #s) -> (#mat_t, #vec_t) {
                 #j_lets
                 (<#mat_t>::from(#j_fill), <#vec_t>::from([#(#j_rhs),*]))
             }

@@ -16,13 +16,13 @@ use crate::mechanics::Model;
 pub(super) fn optional_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let (s, nl) = (&f.s, &f.n);
     let n = model.dof();
-    let (vec_n, mat) = (f.vec(nl), f.mat(nl, nl));
+    let (vec_n, mat, qvec) = (f.vec(nl), f.mat(nl, nl), f.qvec());
     let mut out = TokenStream::new();
     if let Some(p) = &model.momentum {
         let (lets, outs) = e.program(p);
         out.extend(quote! {
             #[inline]
-            fn momentum(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_n {
+            fn momentum(&self, q: &#qvec, v: &#vec_n, t: #s) -> #vec_n {
                 #lets
                 <#vec_n>::from([#(#outs),*])
             }
@@ -32,7 +32,7 @@ pub(super) fn optional_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
         let (lets, outs) = e.program(g);
         out.extend(quote! {
             #[inline]
-            fn kinetic_gradient(&self, q: &#vec_n, v: &#vec_n, t: #s) -> ::core::option::Option<#vec_n> {
+            fn kinetic_gradient(&self, q: &#qvec, v: &#vec_n, t: #s) -> ::core::option::Option<#vec_n> {
                 #lets
                 ::core::option::Option::Some(<#vec_n>::from([#(#outs),*]))
             }
@@ -46,7 +46,7 @@ pub(super) fn optional_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
         let fv = e.fill_dense(&quote!(jv), &outs[n * n..], n);
         out.extend(quote! {
             #[inline]
-            fn rhs_jacobians(&self, q: &#vec_n, v: &#vec_n, a: &#vec_n, t: #s) -> ::core::option::Option<(#mat, #mat)> {
+            fn rhs_jacobians(&self, q: &#qvec, v: &#vec_n, a: &#vec_n, t: #s) -> ::core::option::Option<(#mat, #mat)> {
                 #lets
                 let mut jq = <#mat>::zeros();
                 #fq
@@ -116,18 +116,19 @@ pub(super) fn forward_dynamics(
     };
     let Frame { s, n, .. } = f;
     let vec_t = quote!(::lagrange::__private::SVector<#s, #n>);
+    let qvec = f.qvec();
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
     let outputs = model.hoisted_articulated().unwrap_or_default();
     let (lets, outs) = e.program(outputs);
     let (acc, pivots) = outs.split_at(a.accelerations.len());
     let methods = quote! {
         #[inline]
-        fn forward_dynamics(&self, q: &#vec_t, v: &#vec_t, tau: &#vec_t, t: #s) -> ::core::option::Option<(#vec_t, #s)> {
+        fn forward_dynamics(&self, q: &#qvec, v: &#vec_t, tau: &#vec_t, t: #s) -> ::core::option::Option<(#vec_t, #s)> {
             ::core::option::Option::Some(self.__lagrange_forward_dynamics(&self.__lagrange_parameter_terms(), q, v, tau, t))
         }
 
         #[inline]
-        fn forward_dynamics_with(&self, terms: &[#s], q: &#vec_t, v: &#vec_t, tau: &#vec_t, t: #s) -> ::core::option::Option<(#vec_t, #s)> {
+        fn forward_dynamics_with(&self, terms: &[#s], q: &#qvec, v: &#vec_t, tau: &#vec_t, t: #s) -> ::core::option::Option<(#vec_t, #s)> {
             match <&[#s; #h_len]>::try_from(terms) {
                 ::core::result::Result::Ok(p) => ::core::option::Option::Some(self.__lagrange_forward_dynamics(p, q, v, tau, t)),
                 ::core::result::Result::Err(_) => self.forward_dynamics(q, v, tau, t),
@@ -136,7 +137,7 @@ pub(super) fn forward_dynamics(
     };
     let inner = quote! {
         #[doc(hidden)]
-        pub fn __lagrange_forward_dynamics(&self, p: &[#s; #h_len], q: &#vec_t, v: &#vec_t, tau: &#vec_t, t: #s) -> (#vec_t, #s) {
+        pub fn __lagrange_forward_dynamics(&self, p: &[#s; #h_len], q: &#qvec, v: &#vec_t, tau: &#vec_t, t: #s) -> (#vec_t, #s) {
             #lets
             let pivots: [#s; #n] = [#(#pivots),*];
             let (mut lo, mut hi) = (pivots[0], pivots[0]);
@@ -155,18 +156,18 @@ fn inverse_dynamics(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let Some(inverse) = &model.inverse else {
         return TokenStream::new();
     };
-    let (s, vec_n) = (&f.s, f.vec(&f.n));
+    let (s, vec_n, qvec) = (&f.s, f.vec(&f.n), f.qvec());
     let (lets, outs) = e.program(&inverse.torques);
     let (g_lets, g_outs) = e.program(&inverse.gravity);
     quote! {
         #[inline]
-        fn inverse_dynamics(&self, q: &#vec_n, v: &#vec_n, a: &#vec_n, t: #s) -> #vec_n {
+        fn inverse_dynamics(&self, q: &#qvec, v: &#vec_n, a: &#vec_n, t: #s) -> #vec_n {
             #lets
             <#vec_n>::from([#(#outs),*])
         }
 
         #[inline]
-        fn gravity_torques(&self, q: &#vec_n, t: #s) -> ::core::option::Option<#vec_n> {
+        fn gravity_torques(&self, q: &#qvec, t: #s) -> ::core::option::Option<#vec_n> {
             #g_lets
             ::core::option::Option::Some(<#vec_n>::from([#(#g_outs),*]))
         }

@@ -59,6 +59,8 @@ pub(crate) fn constant(scalar: &Scalar, v: f64) -> TokenStream {
 struct Frame<'a> {
     s: TokenStream,
     n: Literal,
+    /// The length of q: `n` plus one per free orientation.
+    nq: Literal,
     ident: &'a syn::Ident,
     impl_generics: syn::ImplGenerics<'a>,
     ty_generics: syn::TypeGenerics<'a>,
@@ -66,11 +68,12 @@ struct Frame<'a> {
 }
 
 impl<'a> Frame<'a> {
-    fn new(system: &'a System, n: usize) -> Self {
+    fn new(system: &'a System, n: usize, nq: usize) -> Self {
         let (impl_generics, ty_generics, where_clause) = system.generics.split_for_impl();
         Frame {
             s: scalar_tokens(&system.scalar),
             n: Literal::usize_unsuffixed(n),
+            nq: Literal::usize_unsuffixed(nq),
             ident: &system.ident,
             impl_generics,
             ty_generics,
@@ -81,6 +84,21 @@ impl<'a> Frame<'a> {
     fn vec(&self, k: &Literal) -> TokenStream {
         let s = &self.s;
         quote!(::lagrange::__private::SVector<#s, #k>)
+    }
+
+    /// The type of q.
+    fn qvec(&self) -> TokenStream {
+        self.vec(&self.nq)
+    }
+
+    /// The trait arguments after the scalar: `N`, or `N, Q` with orientations.
+    fn sizes(&self) -> TokenStream {
+        let (n, nq) = (&self.n, &self.nq);
+        if n.to_string() == nq.to_string() {
+            quote!(#n)
+        } else {
+            quote!(#n, #nq)
+        }
     }
 
     fn mat(&self, r: &Literal, c: &Literal) -> TokenStream {

@@ -17,7 +17,7 @@ use crate::mechanics::Model;
 /// The `Posed` impl of a derived description.
 pub(super) fn impl_posed(e: &Emitter, f: &Frame, model: &Model, scalar: &Scalar) -> TokenStream {
     let poses = &model.poses;
-    let (s, nl) = (&f.s, &f.n);
+    let (s, sizes, qvec) = (&f.s, f.sizes(), f.qvec());
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     let p = quote!(::lagrange::__private);
     let bodies: Vec<&String> = poses.bodies.iter().map(|b| &b.name).collect();
@@ -29,13 +29,13 @@ pub(super) fn impl_posed(e: &Emitter, f: &Frame, model: &Model, scalar: &Scalar)
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, clippy::all)]
-        impl #ig #p::Posed<#s, #nl> for #ident #tg #wc {
+        impl #ig #p::Posed<#s, #sizes> for #ident #tg #wc {
             const BODIES: &'static [&'static str] = &[#(#bodies),*];
             const POINTS: &'static [&'static str] = &[#(#points),*];
             const POINT_BODIES: &'static [::core::option::Option<usize>] = &[#(#on),*];
 
             #[inline]
-            fn poses(&self, q: &#p::SVector<#s, #nl>, t: #s, bodies: &mut [#p::BodyPose<#s>], points: &mut [#p::Vector3<#s>]) {
+            fn poses(&self, q: &#qvec, t: #s, bodies: &mut [#p::BodyPose<#s>], points: &mut [#p::Vector3<#s>]) {
                 #pose_body
             }
 

@@ -56,7 +56,7 @@ pub fn stub_impl(system: &System) -> TokenStream {
 fn stub_constraint_impls(system: &System) -> TokenStream {
     let n = system.coordinates.len();
     let m = system.holonomic.len() + system.nonholonomic.len();
-    let f = Frame::new(system, n);
+    let f = Frame::new(system, n, n);
     let (s, nl) = (&f.s, &f.n);
     let vec_n = f.vec(nl);
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);

@@ -220,6 +220,11 @@ fn not_a_coordinate(target: &Ident, binding: Option<Binding>) -> Option<String> 
         Binding::Frame(_) => format!(
             "`{target}` is a point or body; `dot` takes one of its coordinates, `dot({target}.x)`"
         ),
+        Binding::Orientation(_) => format!(
+            "`{target}` is an orientation; its rate is the angular velocity in body axes, \
+             which expressions do not read yet: give the torque as a `force` pair or a \
+             potential instead"
+        ),
         Binding::Failed | Binding::Coordinate(_) => return None,
     })
 }

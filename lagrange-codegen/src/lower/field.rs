@@ -34,6 +34,7 @@ impl Lowerer<'_> {
                 Some(Binding::Coordinate(_)) => Some("a coordinate"),
                 Some(Binding::Parameter(_)) => Some("a parameter"),
                 Some(Binding::Input(_)) => Some("an input"),
+                Some(Binding::Orientation(_)) => Some("an orientation"),
                 // Not a frame: `frame_of` found none.
                 Some(_) => Some("a definition"),
             };

@@ -42,6 +42,9 @@ enum Binding {
     Input(Sym),
     /// A point or a body: index into `Lowerer::frames`.
     Frame(usize),
+    /// A free orientation (`orientation(...)`): index into
+    /// `Lowerer::orientations`.
+    Orientation(usize),
     /// A definition whose expression failed (its error is reported already):
     /// its uses report nothing more.
     Failed,
@@ -91,6 +94,23 @@ pub struct Lowerer<'a> {
     /// What the expression being lowered is, for its errors ("the inertia
     /// of body `b`", "the position of point `p`"); see [`Lowerer::lowering_as`].
     place: Option<String>,
+    /// The free orientations, in declaration order.
+    pub orientations: Vec<OrientationSymbols>,
+}
+
+/// A free orientation's symbols. The derivation works in a chart moving
+/// with the body: the rotation is R₀·exp(θ) with R₀ the orientation now (from
+/// the quaternion, a constant to every derivative) and θ a rotation vector in
+/// body axes, three ordinary coordinates whose rates at θ = 0 are the angular
+/// velocity ω and whose second rates there are ω̇. Lagrange's equations in θ,
+/// taken at θ = 0 (the derivation substitutes it last), are then the
+/// equations in ω with no chart at all: R₀ has no singular set.
+pub struct OrientationSymbols {
+    pub name: String,
+    /// θ: three coordinates, zero wherever an equation is evaluated.
+    pub theta: [Sym; 3],
+    /// (w, x, y, z), read from q.
+    pub quaternion: [Sym; 4],
 }
 
 const FUNCTIONS: &str = "sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, exp, ln, log, sqrt, abs, sign, min, max, clamp, pow, powi, powf, dot; and `if a > b { .. } else { .. }`";
@@ -107,6 +127,7 @@ impl<'a> Lowerer<'a> {
             cartesian: None,
             no_inputs: None,
             place: None,
+            orientations: Vec::new(),
         }
     }
 
@@ -177,6 +198,30 @@ impl<'a> Lowerer<'a> {
         let q = self.ctx.coordinate(&name.to_string());
         self.scope.insert(name.to_string(), Binding::Coordinate(q));
         q
+    }
+
+    /// Declares a free orientation `name`: its θ coordinates (`name.wx`,
+    /// `name.wy`, `name.wz`, whose rates are ω in body axes) and its
+    /// quaternion's components (`name.w`, `name.x`, `name.y`, `name.z`).
+    pub fn declare_orientation(&mut self, name: &Ident) {
+        let n = name.to_string();
+        let theta = ["wx", "wy", "wz"].map(|a| self.ctx.coordinate(&format!("{n}.{a}")));
+        let quaternion = ["w", "x", "y", "z"].map(|c| self.ctx.free_symbol(&format!("{n}.{c}")));
+        let index = self.orientations.len();
+        self.scope.insert(n.clone(), Binding::Orientation(index));
+        self.orientations.push(OrientationSymbols {
+            name: n,
+            theta,
+            quaternion,
+        });
+    }
+
+    /// The index of the orientation named `name`, if one is in scope.
+    pub fn orientation_index(&self, name: &str) -> Option<usize> {
+        match self.scope.get(name) {
+            Some(Binding::Orientation(k)) => Some(*k),
+            _ => None,
+        }
     }
 
     pub fn declare_parameter(&mut self, name: &Ident) -> Sym {

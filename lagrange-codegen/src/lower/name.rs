@@ -53,6 +53,13 @@ impl Lowerer<'_> {
                 has_state,
                 input,
             }) => self.definition(id, mode, value, (has_velocity, has_state), input),
+            Some(Binding::Orientation(_)) => {
+                self.cx.error_at(
+                    id.span(),
+                    format!("`{key}` is an orientation, not a number; use it as a rotation (`rotation = {key}`, or a factor of one)"),
+                );
+                None
+            }
             Some(Binding::Frame(_)) => {
                 self.cx.error_at(
                     id.span(),

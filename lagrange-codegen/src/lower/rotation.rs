@@ -19,6 +19,28 @@ use syn::{BinOp, Expr};
 use crate::lower::{Lowerer, Mode};
 use crate::mat3::{Mat3, transpose};
 
+/// R(q) of a unit quaternion (w, x, y, z), body axes to the parent's.
+fn quaternion_matrix(ctx: &mut lagrange_symbolic::Context, [w, x, y, z]: [Sym; 4]) -> Mat3 {
+    let two = ctx.int(2);
+    let one = ctx.one();
+    let mut product = |a: Sym, b: Sym| {
+        let p = ctx.mul(a, b);
+        ctx.mul(two, p)
+    };
+    let (xx, yy, zz) = (product(x, x), product(y, y), product(z, z));
+    let (xy, xz, yz) = (product(x, y), product(x, z), product(y, z));
+    let (wx, wy, wz) = (product(w, x), product(w, y), product(w, z));
+    let diagonal = |ctx: &mut lagrange_symbolic::Context, a: Sym, b: Sym| {
+        let s = ctx.add(a, b);
+        ctx.sub(one, s)
+    };
+    [
+        [diagonal(ctx, yy, zz), ctx.sub(xy, wz), ctx.add(xz, wy)],
+        [ctx.add(xy, wz), diagonal(ctx, xx, zz), ctx.sub(yz, wx)],
+        [ctx.sub(xz, wy), ctx.add(yz, wx), diagonal(ctx, xx, yy)],
+    ]
+}
+
 /// A lowered rotation: the matrix and the angular velocity in body and world axes.
 pub struct Rotation {
     pub matrix: Mat3,
@@ -102,12 +124,66 @@ impl Lowerer<'_> {
                 acc
             }
             Expr::Array(rows) => self.explicit(e, rows),
+            Expr::Path(p) if self.orientation_named(p).is_some() => {
+                let k = self.orientation_named(p)?;
+                Some(self.free_orientation(k))
+            }
             _ => {
                 self.cx
                     .error_spanned_by(e, format!("not a rotation; expected a product of {FORMS}"));
                 None
             }
         }
+    }
+
+    /// The orientation a path names, if it names one.
+    fn orientation_named(&self, p: &syn::ExprPath) -> Option<usize> {
+        self.orientation_index(&p.path.get_ident()?.to_string())
+    }
+
+    /// A free orientation in the chart that moves with it: R₀·R(θ) with
+    /// R(θ) = I + [θ]× + ½[θ]×², the exponential map to the second order that
+    /// Lagrange's equations at θ = 0 read (first derivatives of T and V,
+    /// second of the constraints), and ω = θ̇ + ½ θ̇ × θ, vee(Rᵀ Ṙ) to the first
+    /// order. R₀ is the quaternion's rotation matrix.
+    fn free_orientation(&mut self, k: usize) -> Rotation {
+        let theta = self.orientations[k].theta;
+        let r0 = quaternion_matrix(&mut self.ctx, self.orientations[k].quaternion);
+        let skew = self.skew(theta);
+        let square = self.mat_mul(&skew, &skew);
+        let half = self.ctx.rational(1, 2);
+        let (zero, one) = (self.ctx.zero(), self.ctx.one());
+        let mut local = [[zero; 3]; 3];
+        for (i, row) in local.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate() {
+                let s2 = self.ctx.mul(half, square[i][j]);
+                let id = if i == j { one } else { zero };
+                *x = self.ctx.sum(&[id, skew[i][j], s2]);
+            }
+        }
+        let matrix = self.mat_mul(&r0, &local);
+        let rates = theta.map(|x| self.ctx.time_derivative(x));
+        // θ̇ × θ = [θ̇]× θ.
+        let rate_skew = self.skew(rates);
+        let turn = self.mat_vec(&rate_skew, &theta);
+        let omega_body = [0, 1, 2].map(|i| {
+            let h = self.ctx.mul(half, turn[i]);
+            self.ctx.add(rates[i], h)
+        });
+        let omega_world = self.mat_vec(&matrix, &omega_body);
+        Rotation {
+            matrix,
+            omega_body,
+            omega_world,
+            factors: None,
+        }
+    }
+
+    /// [v]×, the matrix of v × ·.
+    fn skew(&mut self, [x, y, z]: [Sym; 3]) -> Mat3 {
+        let zero = self.ctx.zero();
+        let (nx, ny, nz) = (self.ctx.neg(x), self.ctx.neg(y), self.ctx.neg(z));
+        [[zero, nz, y], [z, zero, nx], [ny, x, zero]]
     }
 
     /// rot_axis(a) and ω = ȧ e_axis.

@@ -15,6 +15,7 @@
 //! Every step builds nodes in the order the single function did, so the emitted
 //! code is unchanged byte for byte.
 
+mod chart;
 mod cyclic;
 mod energy;
 mod extra;
@@ -107,6 +108,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
     let Lowered {
         mut ctx,
         coordinates,
+        orientations,
         inputs: input_names,
         parameters,
         points,
@@ -162,6 +164,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
     let integral = energy::integral(&mut ctx, rheonomic, kinetic, forces.potential, &motion.mass);
     let derived = Derived {
         coordinates,
+        orientations,
         parameters,
         rheonomic,
         kinetic,
@@ -376,6 +379,7 @@ fn equations(
 /// Everything derived before the optional outputs and the constrained forms.
 struct Derived {
     coordinates: Vec<String>,
+    orientations: Vec<crate::lowered::OrientationModel>,
     parameters: Vec<String>,
     rheonomic: bool,
     kinetic: Sym,
@@ -403,10 +407,13 @@ struct Constrained<'a> {
 /// Adds the optional outputs, the constrained forms and the hoisting.
 fn finish(
     mut ctx: Context,
-    d: Derived,
+    mut d: Derived,
     c: Constrained,
     extras: &[Extra],
 ) -> Result<Model, DeriveError> {
+    if !d.orientations.is_empty() {
+        at_centre(&mut ctx, &mut d);
+    }
     let wants = |e: Extra| extras.contains(&e);
     let Motion {
         mass,
@@ -449,6 +456,7 @@ fn finish(
     let mut model = Model {
         ctx,
         coordinates: d.coordinates,
+        orientations: d.orientations,
         parameters: d.parameters,
         rheonomic: d.rheonomic,
         mass,
@@ -479,7 +487,41 @@ fn finish(
         poses: d.poses,
     };
     model.cyclic = cyclic::cyclic(&model);
+    // θ is zero in every output, but an orientation's angular velocity is
+    // no cyclic coordinate's rate.
+    let first = model.coordinates.len();
+    for c in model.cyclic.iter_mut().skip(first) {
+        *c = false;
+    }
     Ok(model)
+}
+
+/// Free orientations: every output at the centre of the moving chart, θ = 0
+/// (see `chart`). What takes no orientation yet (constraints, inputs and the
+/// optional outputs) is refused before the derivation.
+fn at_centre(ctx: &mut Context, d: &mut Derived) {
+    let at = chart::centre(ctx, &d.orientations);
+    let norms = chart::unit_norms(ctx, &d.orientations);
+    let mut c = chart::AtCentre {
+        ctx,
+        at: &at,
+        norms: &norms,
+    };
+    let m = &mut d.motion;
+    c.rows(&mut m.mass);
+    for v in [&mut m.bias, &mut m.bias_other, &mut m.rhs, &mut m.forces] {
+        c.all(v);
+    }
+    c.all(&mut d.forces.generalized);
+    for e in [&mut d.kinetic, &mut d.integral, &mut d.forces.potential] {
+        *e = c.one(*e);
+    }
+    d.forces.gravity_potential = c.one(d.forces.gravity_potential);
+    for (mass, position) in &mut d.particles {
+        *mass = c.one(*mass);
+        c.all(position);
+    }
+    c.poses(&mut d.poses);
 }
 
 /// G, g, Φ and γ, with their derivatives when the Jacobians are asked for.

@@ -52,6 +52,9 @@ pub struct Articulation {
 pub struct Model {
     pub ctx: Context,
     pub coordinates: Vec<String>,
+    /// Free orientations: their θ coordinates follow `coordinates` (and are
+    /// zero in every output), their quaternions follow the coordinates in q.
+    pub orientations: Vec<crate::lowered::OrientationModel>,
     pub parameters: Vec<String>,
     pub rheonomic: bool,
     /// Row-major N×N, symmetric (the same `Sym` at (i,j) and (j,i)).
@@ -115,8 +118,14 @@ pub struct Model {
 }
 
 impl Model {
+    /// The number of velocities N: the coordinates and three per orientation.
     pub fn dof(&self) -> usize {
-        self.coordinates.len()
+        self.coordinates.len() + 3 * self.orientations.len()
+    }
+
+    /// The number of entries of q: the coordinates and four per orientation.
+    pub fn configuration_len(&self) -> usize {
+        self.coordinates.len() + 4 * self.orientations.len()
     }
 
     /// M's upper triangle (row-major) and then Q − h, over the hoisted terms.

@@ -1,0 +1,279 @@
+//! Free orientations in the description language (`orientation(name)`, a
+//! unit quaternion with the angular velocity in body axes as its speeds),
+//! against Euler's equations, the same top in Euler angles where that chart
+//! is regular, and the elliptic period of the intermediate-axis flip.
+
+mod common;
+
+use common::numeric::Lcg;
+use lagrange::prelude::*;
+use nalgebra::{Matrix3, SVector, Vector3};
+use std::f64::consts::PI;
+
+/// A brick thrown through the air: its centre of mass (x, y, z) and a free
+/// orientation.
+#[derive(Lagrangian)]
+#[lagrange(
+    coordinates(x, y, z),
+    orientation(turn),
+    body(brick, mass = m, inertia = [a, b, c], at = [x, y, z], rotation = turn),
+    gravity = [0, 0, -g],
+)]
+struct Brick {
+    m: f64,
+    a: f64,
+    b: f64,
+    c: f64,
+    g: f64,
+}
+
+/// A heavy symmetric top on a fixed pivot with a free orientation: no chart.
+#[derive(Lagrangian, Clone, Copy)]
+#[lagrange(
+    orientation(spin),
+    body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+         at = [0, 0, 0], rotation = spin),
+    gravity = [0, 0, -g],
+)]
+struct Top {
+    m: f64,
+    a: f64,
+    c: f64,
+    l: f64,
+    g: f64,
+}
+
+/// The same top in Euler angles z-x-z (singular at θ = 0).
+#[derive(Lagrangian, Clone, Copy)]
+#[lagrange(
+    coordinates(phi, theta, psi),
+    body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+         at = [0, 0, 0], rotation = euler_zxz(phi, theta, psi)),
+    gravity = [0, 0, -g],
+)]
+struct EulerTop {
+    m: f64,
+    a: f64,
+    c: f64,
+    l: f64,
+    g: f64,
+}
+
+const TOP: Top = Top {
+    m: 1.5,
+    a: 0.8,
+    c: 0.5,
+    l: 0.4,
+    g: 9.81,
+};
+const EULER_TOP: EulerTop = EulerTop {
+    m: 1.5,
+    a: 0.8,
+    c: 0.5,
+    l: 0.4,
+    g: 9.81,
+};
+
+/// The Hamilton product.
+fn mul([a, b, c, d]: [f64; 4], [w, x, y, z]: [f64; 4]) -> [f64; 4] {
+    [
+        a * w - b * x - c * y - d * z,
+        a * x + b * w + c * z - d * y,
+        a * y - b * z + c * w + d * x,
+        a * z + b * y - c * x + d * w,
+    ]
+}
+
+/// (q, ω) of Euler angles z-x-z and their rates: q = q_z(φ) q_x(θ) q_z(ψ),
+/// ω in body axes.
+fn from_euler(e: [f64; 3], rate: [f64; 3]) -> ([f64; 4], [f64; 3]) {
+    let [phi, theta, psi] = e;
+    let about_z = |a: f64| [(a / 2.0).cos(), 0.0, 0.0, (a / 2.0).sin()];
+    let about_x = |a: f64| [(a / 2.0).cos(), (a / 2.0).sin(), 0.0, 0.0];
+    let q = mul(mul(about_z(phi), about_x(theta)), about_z(psi));
+    let [dphi, dtheta, dpsi] = rate;
+    let omega = [
+        dphi * theta.sin() * psi.sin() + dtheta * psi.cos(),
+        dphi * theta.sin() * psi.cos() - dtheta * psi.sin(),
+        dphi * theta.cos() + dpsi,
+    ];
+    (q, omega)
+}
+
+fn uniform(rng: &mut Lcg, lo: f64, hi: f64) -> f64 {
+    lo + (hi - lo) * 0.5 * (rng.next() + 1.0)
+}
+
+/// The arithmetic-geometric mean: K(k) = π / (2 AGM(1, √(1 − k²))).
+fn agm(mut a: f64, mut b: f64) -> f64 {
+    for _ in 0..10 {
+        (a, b) = (0.5 * (a + b), (a * b).sqrt());
+    }
+    a
+}
+
+fn unit_quaternion(rng: &mut Lcg) -> [f64; 4] {
+    let q = [0; 4].map(|_| rng.next());
+    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    q.map(|x| x / n)
+}
+
+fn rotation_of(q: &[f64]) -> Matrix3<f64> {
+    let r = lagrange::numeric::orientation::rotation_matrix([q[0], q[1], q[2], q[3]]);
+    Matrix3::from_fn(|i, j| r[i][j])
+}
+
+#[test]
+fn a_free_body_has_euler_s_equations_at_every_orientation() {
+    let brick = Brick {
+        m: 2.0,
+        a: 0.1,
+        b: 0.3,
+        c: 0.4,
+        g: 9.81,
+    };
+    let mut rng = Lcg(7);
+    for _ in 0..20 {
+        let [w, x, y, z] = unit_quaternion(&mut rng);
+        let q = SVector::from([0.3, -1.0, 2.0, w, x, y, z]);
+        let v = rng.vector::<6>(3.0);
+        let (m, rhs) = brick.mass_matrix_and_rhs(&q, &v, 0.0);
+        let diagonal = SVector::<f64, 6>::from([2.0, 2.0, 2.0, 0.1, 0.3, 0.4]);
+        assert_eq!(m, nalgebra::SMatrix::<f64, 6, 6>::from_diagonal(&diagonal));
+        let omega = Vector3::new(v[3], v[4], v[5]);
+        let euler = -omega.cross(&Vector3::new(0.1 * v[3], 0.3 * v[4], 0.4 * v[5]));
+        let expected = [0.0, 0.0, -2.0 * 9.81, euler[0], euler[1], euler[2]];
+        for k in 0..6 {
+            assert!(
+                (rhs[k] - expected[k]).abs() < 1e-13,
+                "{k}: {} vs {}",
+                rhs[k],
+                expected[k]
+            );
+        }
+    }
+    assert_eq!(
+        Brick::COORDINATES[3..],
+        ["turn.w", "turn.x", "turn.y", "turn.z"]
+    );
+    assert_eq!(Brick::VELOCITIES[3..], ["turn.wx", "turn.wy", "turn.wz"]);
+    assert_eq!(Brick::ORIENTATIONS, &[lagrange::Orientation { q: 3, v: 3 }]);
+}
+
+/// The quaternion top's M, Q − h and energy equal the Euler-angle top's,
+/// carried through the map (q, ω) = f(φ, θ, ψ, φ̇, θ̇, ψ̇): ω̇ from the
+/// quaternion top against the Euler top's q̈ differentiated through ω(q, q̇).
+#[test]
+fn the_quaternion_top_is_the_euler_angle_top_where_that_chart_is_regular() {
+    let mut rng = Lcg(11);
+    for _ in 0..20 {
+        let e = [
+            uniform(&mut rng, -PI, PI),
+            uniform(&mut rng, 0.2, 2.9),
+            uniform(&mut rng, -PI, PI),
+        ];
+        let rate = [0; 3].map(|_| 4.0 * rng.next());
+        let (quat, omega) = from_euler(e, rate);
+        let (q, v) = (SVector::from(quat), SVector::from(omega));
+        let (qe, ve) = (SVector::from(e), SVector::from(rate));
+        let energy = TOP.integral(&q, &v, 0.0);
+        let euler_energy = EULER_TOP.integral(&qe, &ve, 0.0);
+        assert!(
+            (energy - euler_energy).abs() < 1e-12,
+            "{energy} vs {euler_energy}"
+        );
+        // ω̇ by the quaternion top; by the Euler top, d/dt ω(q, q̇) with the
+        // Euler top's q̈, by a central difference along its motion.
+        let accel = lagrange::accelerations(&TOP, &q, &v, 0.0).unwrap();
+        let h = 1e-5;
+        let along = |s: f64| {
+            let qdd = lagrange::accelerations(&EULER_TOP, &qe, &ve, 0.0).unwrap();
+            let (q1, v1) = (qe + ve * s + qdd * (0.5 * s * s), ve + qdd * s);
+            from_euler(q1.into(), v1.into()).1
+        };
+        let (fwd, back) = (along(h), along(-h));
+        for k in 0..3 {
+            let d = (fwd[k] - back[k]) / (2.0 * h);
+            assert!(
+                (accel[k] - d).abs() < 1e-6 * (1.0 + d.abs()),
+                "{k}: {} vs {d}",
+                accel[k]
+            );
+        }
+    }
+}
+
+/// Released at tilt θ₀ with spin n, the top nutates between u₀ = cos θ₀ and
+/// the root of β(1 − u²) = a²(u₀ − u), a = C n / A, β = 2 m g l / A.
+#[test]
+fn the_quaternion_top_nutates_between_the_roots_of_the_cubic() {
+    let (theta0, n) = (0.6_f64, 6.0);
+    let (quat, omega) = from_euler([0.0, theta0, 0.0], [0.0, 0.0, n]);
+    let traj = Simulation::new(&TOP)
+        .integrator(Dop853::tol(1e-12))
+        .run(quat, omega, 0.0..5.0)
+        .unwrap();
+    let a = TOP.c * n / TOP.a;
+    let beta = 2.0 * TOP.m * TOP.g * TOP.l / TOP.a;
+    let u0 = theta0.cos();
+    let u1 = (a * a - (a.powi(4) - 4.0 * beta * (a * a * u0 - beta)).sqrt()) / (2.0 * beta);
+    let tilt_rate = |q: &SVector<f64, 4>, v: &SVector<f64, 3>| {
+        let r = rotation_of(q.as_slice());
+        r[(2, 0)] * v[1] - r[(2, 1)] * v[0]
+    };
+    let lowest = traj
+        .crossings(|_, q, v| tilt_rate(q, v))
+        .unwrap()
+        .iter()
+        .map(|&t| rotation_of(traj.state_at(t).unwrap().0.as_slice())[(2, 2)])
+        .fold(1.0, f64::min);
+    assert!((lowest - u1).abs() < 1e-9, "{lowest} vs {u1}");
+    assert!(traj.integral_drift() < 1e-10);
+    assert!(traj.max_unit_error() < 1e-15);
+}
+
+/// Spun exactly upright, where euler_zxz's chart is singular (θ = 0), the
+/// top runs; the Euler-angle top refuses that state.
+#[test]
+fn the_quaternion_top_runs_from_exactly_upright() {
+    let traj = Simulation::new(&TOP)
+        .run([1.0, 0.0, 0.0, 0.0], [0.01, 0.0, 30.0], 0.0..2.0)
+        .unwrap();
+    let r = rotation_of(traj.final_state().0.as_slice());
+    assert!(r[(2, 2)] > 0.99, "a fast top sleeps: cos θ = {}", r[(2, 2)]);
+    assert!(traj.integral_drift() < 1e-6);
+    let refused = Simulation::new(&EULER_TOP).run([0.0, 0.0, 0.0], [0.0, 0.0, 30.0], 0.0..2.0);
+    assert!(refused.is_err());
+}
+
+/// Twenty flips of a brick spun near its intermediate axis, at the
+/// elliptic-function period of Landau–Lifshitz §37.
+#[test]
+fn the_derived_brick_flips_at_the_elliptic_period() {
+    let brick = Brick {
+        m: 1.0,
+        a: 1.0,
+        b: 2.0,
+        c: 3.0,
+        g: 0.0,
+    };
+    let w = [0.02_f64, 1.0, 0.03];
+    let (i1, i2, i3) = (1.0_f64, 2.0_f64, 3.0_f64);
+    let two_e = i1 * w[0] * w[0] + i2 * w[1] * w[1] + i3 * w[2] * w[2];
+    let l2 = (i1 * w[0]).powi(2) + (i2 * w[1]).powi(2) + (i3 * w[2]).powi(2);
+    let s = ((i3 - i2) * (l2 - two_e * i1) / (i1 * i2 * i3)).sqrt();
+    let k2 = (i2 - i1) * (two_e * i3 - l2) / ((i3 - i2) * (l2 - two_e * i1));
+    let half = PI / agm(1.0, (1.0 - k2).sqrt()) / s;
+    let traj = Simulation::new(&brick)
+        .integrator(Dop853::tol(1e-11))
+        .run(
+            [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0, w[0], w[1], w[2]],
+            0.0..20.5 * half,
+        )
+        .unwrap();
+    let flips = traj.crossings(|_, _, v| v[4]).unwrap();
+    assert_eq!(flips.len(), 20);
+    let mean = (flips[19] - flips[0]) / 19.0;
+    assert!((mean - half).abs() < 1e-8 * half, "{mean} vs {half}");
+}
