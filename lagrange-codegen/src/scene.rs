@@ -67,15 +67,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         checks,
     } = items;
     let names = |ids: &mut dyn Iterator<Item = &Ident>| ids.map(|c| c.to_string()).collect();
-    let orientations = lw
-        .orientations
-        .iter()
-        .map(|o| crate::lowered::OrientationModel {
-            name: o.name.clone(),
-            theta: o.theta,
-            quaternion: o.quaternion,
-        })
-        .collect();
+    let orientations = lw.orientation_models();
     Some(Lowered {
         ctx: lw.ctx,
         coordinates: names(&mut system.coordinates.iter()),

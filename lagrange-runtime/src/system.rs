@@ -9,9 +9,11 @@ use crate::numeric::Real;
 use crate::numeric::orientation::Orientation;
 use nalgebra::{SMatrix, SVector};
 
+mod form;
 pub mod physical;
 mod route;
 
+pub use form::FormVisitor;
 pub use route::Route;
 
 /// A holonomic system in minimal coordinates q ∈ Rᴺ, with equations of motion
@@ -292,29 +294,6 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     {
         form.unconstrained(self)
     }
-}
-
-/// What runs a system in the form its description asked for (see
-/// [`Lagrangian::visit_form`]): one method per form, each with the trait the
-/// form needs. Implemented by the simulation builders; not meant to be
-/// implemented by users.
-#[doc(hidden)]
-pub trait FormVisitor<T: Real, const N: usize, S: Lagrangian<T, N, Q>, const Q: usize = N> {
-    /// What running the system gives.
-    type Output;
-
-    /// The unconstrained equations M q̈ + h = Q.
-    fn unconstrained(self, system: &S) -> Self::Output;
-
-    /// The multiplier form with K constraint rows.
-    fn multipliers<const K: usize>(self, system: &S) -> Self::Output
-    where
-        S: Constrained<T, N, K>;
-
-    /// The reduced form with K independent speeds.
-    fn reduced<const K: usize>(self, system: &S) -> Self::Output
-    where
-        S: Reduced<T, N, K>;
 }
 
 /// Constraints kept with multipliers: K rows of

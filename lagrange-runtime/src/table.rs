@@ -21,51 +21,73 @@ use std::path::Path;
 
 /// The columns of a run, built from a trajectory and what the system adds.
 #[derive(Clone, Debug)]
-pub struct Table<'a, T: Real, const N: usize> {
-    traj: &'a Trajectory<T, N>,
+pub struct Table<'a, T: Real, const N: usize, const Q: usize = N> {
+    traj: &'a Trajectory<T, N, Q>,
+    /// The columns of q (Q of them).
     names: Vec<String>,
+    /// The columns of v (N of them).
+    rates: Vec<String>,
     /// (T, V) per point.
     energies: Option<Vec<(T, T)>>,
     /// Named extra column groups, one value per point each (inputs, ν).
     extra: Vec<(Vec<String>, Vec<Vec<T>>)>,
 }
 
-impl<'a, T: Real, const N: usize> Table<'a, T, N> {
-    /// The trajectory's own columns, coordinates named `names` (N of them,
-    /// or none for q0, q1, …).
+impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
+    /// The trajectory's own columns, the entries of q named `names` (Q of
+    /// them, or none for q0, q1, …); the velocities are `dot_<name>`, or
+    /// v0, v1, … when q holds quaternions (Q ≠ N).
     ///
     /// # Errors
     /// [`Error::InvalidSettings`] for a wrong number of names.
-    pub fn new(traj: &'a Trajectory<T, N>, names: &[&str]) -> Result<Self, Error> {
-        let names = match names.len() {
-            0 => (0..N).map(|i| format!("q{i}")).collect(),
-            n if n == N => names.iter().map(|s| s.to_string()).collect(),
+    pub fn new(traj: &'a Trajectory<T, N, Q>, names: &[&str]) -> Result<Self, Error> {
+        let names: Vec<String> = match names.len() {
+            0 => (0..Q).map(|i| format!("q{i}")).collect(),
+            n if n == Q => names.iter().map(|s| s.to_string()).collect(),
             n => {
                 return Err(Error::InvalidSettings(format!(
-                    "CSV: {n} coordinate names for {N} coordinates"
+                    "CSV: {n} coordinate names for {Q} entries of q"
                 )));
             }
+        };
+        let rates = if Q == N {
+            names.iter().map(|n| format!("dot_{n}")).collect()
+        } else {
+            (0..N).map(|j| format!("v{j}")).collect()
         };
         Ok(Self {
             traj,
             names,
+            rates,
             energies: None,
             extra: Vec::new(),
         })
     }
 
-    /// The columns with the system's coordinate names and its kinetic and
-    /// potential energy at every point.
-    pub fn of<S: Lagrangian<T, N>>(traj: &'a Trajectory<T, N>, sys: &S) -> Self {
+    /// The columns with the system's names (q by
+    /// [`COORDINATES`](Lagrangian::COORDINATES), a coordinate's rate as
+    /// `dot_<name>`, an orientation's angular velocity by its
+    /// [`VELOCITIES`](Lagrangian::VELOCITIES) name, `turn.wx`) and its kinetic
+    /// and potential energy at every point.
+    pub fn of<S: Lagrangian<T, N, Q>>(traj: &'a Trajectory<T, N, Q>, sys: &S) -> Self {
         let energies = traj
             .times()
             .iter()
             .zip(traj.positions().iter().zip(traj.velocities()))
             .map(|(&t, (q, v))| (sys.kinetic_energy(q, v, t), sys.potential_energy(q, t)))
             .collect();
+        let names: Vec<String> = S::COORDINATES.iter().map(|s| s.to_string()).collect();
+        let rates = S::VELOCITIES
+            .iter()
+            .map(|v| match names.contains(&v.to_string()) {
+                true => format!("dot_{v}"),
+                false => v.to_string(),
+            })
+            .collect();
         Self {
             traj,
-            names: S::COORDINATES.iter().map(|s| s.to_string()).collect(),
+            names,
+            rates,
             energies: Some(energies),
             extra: Vec::new(),
         }
@@ -81,8 +103,14 @@ impl<'a, T: Real, const N: usize> Table<'a, T, N> {
     where
         S: Constrained<T, N, K>,
     {
+        // A constrained system has Q = N (`Constrained` extends `Lagrangian<T, N>`).
+        let Some(tr) = (self.traj as &dyn std::any::Any).downcast_ref::<Trajectory<T, N>>() else {
+            return Err(Error::InvalidSettings(
+                "CSV: multipliers of a run with orientations: no constrained form takes them"
+                    .into(),
+            ));
+        };
         let dynamics = ConstrainedDynamics::<S, T, K>::new(sys);
-        let tr = self.traj;
         let values = (0..tr.len())
             .map(|k| {
                 let sol = dynamics.solve(tr.times()[k], &tr.positions()[k], &tr.velocities()[k])?;
@@ -118,7 +146,7 @@ impl<'a, T: Real, const N: usize> Table<'a, T, N> {
     fn header(&self) -> Vec<String> {
         let mut h = vec!["t".to_string()];
         h.extend(self.names.iter().cloned());
-        h.extend(self.names.iter().map(|n| format!("dot_{n}")));
+        h.extend(self.rates.iter().cloned());
         for (names, _) in &self.extra {
             h.extend(names.iter().cloned());
         }
@@ -126,6 +154,9 @@ impl<'a, T: Real, const N: usize> Table<'a, T, N> {
             h.extend(["kinetic".to_string(), "potential".to_string()]);
         }
         h.extend(["integral", "residual_position", "residual_velocity"].map(String::from));
+        if Q != N {
+            h.push("unit_error".to_string());
+        }
         h
     }
 
@@ -148,6 +179,9 @@ impl<'a, T: Real, const N: usize> Table<'a, T, N> {
             }
             row.push(tr.integrals()[k]);
             row.extend(tr.residuals()[k]);
+            if Q != N {
+                row.push(tr.unit_errors()[k]);
+            }
             out.write_record(row.iter().map(|x| x.to_f64().to_string()))
                 .map_err(io)?;
         }
@@ -171,7 +205,7 @@ fn io(e: csv::Error) -> Error {
 
 /// The CSV output of a run lives here, beside the table that writes it, so that
 /// the integrators' solution type knows nothing of systems or files.
-impl<T: Real, const N: usize> Trajectory<T, N> {
+impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
     /// Writes the recorded points as CSV: a header `t,<q names>,<v names>,
     /// integral,residual_position,residual_velocity` and one row per point,
     /// numbers in the shortest form that reads back exactly. (With the system
@@ -184,7 +218,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     /// [`Lagrangian::COORDINATES`]: crate::Lagrangian::COORDINATES
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] if `names` has neither N nor 0 entries;
+    /// [`Error::InvalidSettings`] if `names` has neither Q nor 0 entries;
     /// [`Error::Io`] if writing fails.
     pub fn write_csv(&self, w: impl Write, names: &[&str]) -> Result<(), Error> {
         Table::new(self, names)?.write(w)
@@ -193,7 +227,7 @@ impl<T: Real, const N: usize> Trajectory<T, N> {
     /// The run as a [`Table`](crate::Table) with the system's coordinate
     /// names and its kinetic and potential energy at every point (add the
     /// multipliers with [`Table::multipliers`](crate::Table::multipliers)).
-    pub fn table<S: crate::system::Lagrangian<T, N>>(&self, sys: &S) -> Table<'_, T, N> {
+    pub fn table<S: crate::system::Lagrangian<T, N, Q>>(&self, sys: &S) -> Table<'_, T, N, Q> {
         Table::of(self, sys)
     }
 

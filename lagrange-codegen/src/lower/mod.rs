@@ -216,6 +216,16 @@ impl<'a> Lowerer<'a> {
         });
     }
 
+    /// The orientations as the derivation takes them.
+    pub fn orientation_models(&self) -> Vec<crate::lowered::OrientationModel> {
+        let model = |o: &OrientationSymbols| crate::lowered::OrientationModel {
+            name: o.name.clone(),
+            theta: o.theta,
+            quaternion: o.quaternion,
+        };
+        self.orientations.iter().map(model).collect()
+    }
+
     /// The index of the orientation named `name`, if one is in scope.
     pub fn orientation_index(&self, name: &str) -> Option<usize> {
         match self.scope.get(name) {

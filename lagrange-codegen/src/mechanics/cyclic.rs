@@ -22,6 +22,17 @@ use crate::constraint::{ConstraintDerivatives, ConstraintSet, Reduction};
 
 /// `cyclic[j]`: no derived expression depends on q_j.
 pub(super) fn cyclic(model: &Model) -> Vec<bool> {
+    let mut cyclic = read_nowhere(model);
+    // θ is zero in every output, but an orientation's angular velocity is no
+    // cyclic coordinate's rate.
+    for c in cyclic.iter_mut().skip(model.coordinates.len()) {
+        *c = false;
+    }
+    cyclic
+}
+
+/// Which coordinates no output reads (or reads only in terms that cancel).
+fn read_nowhere(model: &Model) -> Vec<bool> {
     let ctx = &model.ctx;
     let outputs = expressions(model);
     let read = reached(ctx, outputs.clone());

@@ -178,12 +178,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         checks,
         poses,
     };
-    let constrained = Constrained {
-        holonomic: &holonomic,
-        nonholonomic: &nonholonomic,
-        multipliers,
-        speeds,
-    };
+    let constrained = Constrained::new(&holonomic, &nonholonomic, multipliers, speeds);
     finish(ctx, derived, constrained, &extras)
 }
 
@@ -404,6 +399,22 @@ struct Constrained<'a> {
     speeds: Option<Option<Vec<(String, Sym)>>>,
 }
 
+impl<'a> Constrained<'a> {
+    fn new(
+        holonomic: &'a [ConstraintModel],
+        nonholonomic: &'a [ConstraintModel],
+        multipliers: bool,
+        speeds: Option<Option<Vec<(String, Sym)>>>,
+    ) -> Self {
+        Constrained {
+            holonomic,
+            nonholonomic,
+            multipliers,
+            speeds,
+        }
+    }
+}
+
 /// Adds the optional outputs, the constrained forms and the hoisting.
 fn finish(
     mut ctx: Context,
@@ -411,9 +422,7 @@ fn finish(
     c: Constrained,
     extras: &[Extra],
 ) -> Result<Model, DeriveError> {
-    if !d.orientations.is_empty() {
-        at_centre(&mut ctx, &mut d);
-    }
+    at_centre(&mut ctx, &mut d);
     let wants = |e: Extra| extras.contains(&e);
     let Motion {
         mass,
@@ -434,16 +443,7 @@ fn finish(
     let constraints = c
         .multipliers
         .then(|| multiplier_form(&mut ctx, &c, wants(Extra::Jacobians)));
-    let reduced = match c.speeds {
-        None => None,
-        Some(ref speeds) => Some(reduced_form(
-            &mut ctx,
-            &c,
-            speeds.as_deref(),
-            &d.coordinates,
-            wants(Extra::Jacobians),
-        )?),
-    };
+    let reduced = reduced_if_asked(&mut ctx, &c, &d.coordinates, wants(Extra::Jacobians))?;
     let articulated = d.forces.articulated;
     let frames = wants(Extra::Kinematics).then(|| frames::frames(&mut ctx, &d.poses, &d.particles));
     let hoisted = hoist(
@@ -487,12 +487,6 @@ fn finish(
         poses: d.poses,
     };
     model.cyclic = cyclic::cyclic(&model);
-    // θ is zero in every output, but an orientation's angular velocity is
-    // no cyclic coordinate's rate.
-    let first = model.coordinates.len();
-    for c in model.cyclic.iter_mut().skip(first) {
-        *c = false;
-    }
     Ok(model)
 }
 
@@ -500,6 +494,9 @@ fn finish(
 /// (see `chart`). What takes no orientation yet (constraints, inputs and the
 /// optional outputs) is refused before the derivation.
 fn at_centre(ctx: &mut Context, d: &mut Derived) {
+    if d.orientations.is_empty() {
+        return;
+    }
     let at = chart::centre(ctx, &d.orientations);
     let norms = chart::unit_norms(ctx, &d.orientations);
     let mut c = chart::AtCentre {
@@ -531,6 +528,19 @@ fn multiplier_form(ctx: &mut Context, c: &Constrained, jacobians: bool) -> Const
         set.derivatives = Some(crate::constraint::constraint_derivatives(ctx, &set));
     }
     set
+}
+
+/// The reduced form, when `speeds` or `formulation(reduced)` asks for it.
+fn reduced_if_asked(
+    ctx: &mut Context,
+    c: &Constrained,
+    coordinates: &[String],
+    jacobians: bool,
+) -> Result<Option<Reduction>, DeriveError> {
+    let Some(speeds) = &c.speeds else {
+        return Ok(None);
+    };
+    reduced_form(ctx, c, speeds.as_deref(), coordinates, jacobians).map(Some)
 }
 
 /// The reduced form on the user's speeds, or on speeds chosen from the

@@ -15,12 +15,12 @@ use nalgebra::SVector;
 ///
 /// [`Simulation::event`]: crate::Simulation::event
 #[derive(Debug)]
-pub struct Events<'a, T: Real, const N: usize> {
-    events: Vec<Event<'a, T, N>>,
+pub struct Events<'a, T: Real, const N: usize, const Q: usize = N> {
+    events: Vec<Event<'a, T, N, Q>>,
     max_events: usize,
 }
 
-impl<T: Real, const N: usize> Default for Events<'_, T, N> {
+impl<T: Real, const N: usize, const Q: usize> Default for Events<'_, T, N, Q> {
     fn default() -> Self {
         Self::new()
     }
@@ -30,7 +30,7 @@ impl<T: Real, const N: usize> Default for Events<'_, T, N> {
 /// terminal one).
 pub const DEFAULT_MAX_EVENTS: usize = 10_000;
 
-impl<'a, T: Real, const N: usize> Events<'a, T, N> {
+impl<'a, T: Real, const N: usize, const Q: usize> Events<'a, T, N, Q> {
     /// No events yet; budget [`DEFAULT_MAX_EVENTS`].
     pub fn new() -> Self {
         Self {
@@ -40,7 +40,7 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
     }
 
     /// Adds an event; its index in occurrences is the number added before it.
-    pub fn with(mut self, event: Event<'a, T, N>) -> Self {
+    pub fn with(mut self, event: Event<'a, T, N, Q>) -> Self {
         self.events.push(event);
         self
     }
@@ -53,7 +53,7 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
     }
 
     /// The events, in order.
-    pub fn events(&self) -> &[Event<'a, T, N>] {
+    pub fn events(&self) -> &[Event<'a, T, N, Q>] {
         &self.events
     }
 
@@ -69,15 +69,15 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
     /// finite; [`Error::NonFiniteState`] if an action produces a non-finite
     /// state; [`Error::TooManyEvents`], [`Error::EventsAccumulate`]; whatever
     /// the integrator and the system report.
-    pub fn integrate<I: Integrator, F: SecondOrder<T, N>>(
+    pub fn integrate<I: Integrator, F: SecondOrder<T, N, Q>>(
         &self,
         integrator: &I,
         rhs: &F,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>> {
+    ) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>> {
         self.continue_run(integrator, rhs, Continuation::start(t0), t0, t1, q0, v0)
     }
 
@@ -87,16 +87,16 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
     /// # Errors
     /// As [`integrate`](Self::integrate).
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn continue_run<I: Integrator, F: SecondOrder<T, N>>(
+    pub(crate) fn continue_run<I: Integrator, F: SecondOrder<T, N, Q>>(
         &self,
         integrator: &I,
         rhs: &F,
         from: Continuation<T>,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>> {
+    ) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>> {
         let started = crate::numeric::clock::Stopwatch::start();
         let watch = Watch::new(rhs, &self.events);
         // Everything computed before a failure (the pieces so far, the failed
@@ -127,14 +127,14 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
     /// The integrator's runs from stop to stop, joined into `so_far`: each
     /// ends at t1 or at a stopping event, whose action is applied before the
     /// next run starts from the new state.
-    fn pieces<I: Integrator, F: SecondOrder<T, N>>(
+    fn pieces<I: Integrator, F: SecondOrder<T, N, Q>>(
         &self,
         integrator: &I,
-        watch: &Watch<'_, 'a, F, T, N>,
+        watch: &Watch<'_, 'a, F, T, N, Q>,
         (t0, t1): (T, T),
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-        so_far: &mut SoFar<T, N>,
+        so_far: &mut SoFar<T, N, Q>,
     ) -> Result<(), Error> {
         check_problem(t0, t1, &q0, &v0)?;
         if self.max_events == 0 {
@@ -190,13 +190,13 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
     /// Applies the stopping event's action (if any) at the stop, projects the
     /// new state onto the constraints, cuts `piece` there, joins it and records
     /// the occurrence. Returns the state after the action.
-    fn act<F: SecondOrder<T, N>>(
+    fn act<F: SecondOrder<T, N, Q>>(
         &self,
-        watch: &Watch<'_, 'a, F, T, N>,
-        stop: &Stop<T, N>,
-        mut piece: Trajectory<T, N>,
-        so_far: &mut SoFar<T, N>,
-    ) -> Result<(SVector<T, N>, SVector<T, N>), Error> {
+        watch: &Watch<'_, 'a, F, T, N, Q>,
+        stop: &Stop<T, N, Q>,
+        mut piece: Trajectory<T, N, Q>,
+        so_far: &mut SoFar<T, N, Q>,
+    ) -> Result<(SVector<T, Q>, SVector<T, N>), Error> {
         let rhs = watch.rhs;
         let (mut qa, mut va) = (stop.q, stop.v);
         if let Some(action) = &self.events[stop.event].action {
@@ -205,7 +205,8 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
                 join(&mut so_far.trajectory, piece);
                 return Err(Error::non_finite(stop.t, &qa, &va));
             }
-            rhs.project(stop.t, &mut qa, &mut va)?;
+            // An action may leave a quaternion off the unit sphere.
+            crate::ode::settle(rhs, stop.t, &mut qa, &mut va)?;
         }
         piece.truncate_last(stop.t, qa, va, Sample::of(rhs, stop.t, &qa, &va));
         join(&mut so_far.trajectory, piece);
@@ -224,7 +225,7 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
     /// the integration advancing.
     fn check_progress(
         &self,
-        stop: &Stop<T, N>,
+        stop: &Stop<T, N, Q>,
         restarts: usize,
         stalled: usize,
     ) -> Result<(), Error> {
@@ -248,14 +249,14 @@ impl<'a, T: Real, const N: usize> Events<'a, T, N> {
 }
 
 /// What an event run has computed so far.
-struct SoFar<T: Real, const N: usize> {
-    trajectory: Option<Trajectory<T, N>>,
+struct SoFar<T: Real, const N: usize, const Q: usize> {
+    trajectory: Option<Trajectory<T, N, Q>>,
     terminated_by: Option<usize>,
     /// Where the recording stood when the run started.
     from: Continuation<T>,
 }
 
-impl<T: Real, const N: usize> SoFar<T, N> {
+impl<T: Real, const N: usize, const Q: usize> SoFar<T, N, Q> {
     /// Where the next piece's recording goes on from.
     fn continuation(&self) -> Continuation<T> {
         self.trajectory
@@ -267,8 +268,8 @@ impl<T: Real, const N: usize> SoFar<T, N> {
 /// Refuses to go on once the pieces so far have spent the integrator's step
 /// budget, which bounds the whole run (each piece alone stays within it, so a
 /// run ends within two budgets however many pieces it has).
-pub(crate) fn within_budget<T: Real, const N: usize>(
-    so_far: Option<&Trajectory<T, N>>,
+pub(crate) fn within_budget<T: Real, const N: usize, const Q: usize>(
+    so_far: Option<&Trajectory<T, N, Q>>,
     max_steps: usize,
     t: T,
 ) -> Result<(), Error> {
@@ -282,7 +283,10 @@ pub(crate) fn within_budget<T: Real, const N: usize>(
     }
 }
 
-fn join<T: Real, const N: usize>(whole: &mut Option<Trajectory<T, N>>, piece: Trajectory<T, N>) {
+fn join<T: Real, const N: usize, const Q: usize>(
+    whole: &mut Option<Trajectory<T, N, Q>>,
+    piece: Trajectory<T, N, Q>,
+) {
     match whole {
         Some(w) => {
             w.append(piece);

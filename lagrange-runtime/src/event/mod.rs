@@ -132,16 +132,19 @@ impl Direction {
     }
 }
 
-type EventFn<'a, T, const N: usize> = Box<dyn Fn(T, &SVector<T, N>, &SVector<T, N>) -> T + 'a>;
-type ActionFn<'a, T, const N: usize> = Box<dyn Fn(T, &mut SVector<T, N>, &mut SVector<T, N>) + 'a>;
-type TestFn<'a, T, const N: usize> = Box<dyn Fn(T, &SVector<T, N>, &SVector<T, N>) -> bool + 'a>;
+type EventFn<'a, T, const N: usize, const Q: usize> =
+    Box<dyn Fn(T, &SVector<T, Q>, &SVector<T, N>) -> T + 'a>;
+type ActionFn<'a, T, const N: usize, const Q: usize> =
+    Box<dyn Fn(T, &mut SVector<T, Q>, &mut SVector<T, N>) + 'a>;
+type TestFn<'a, T, const N: usize, const Q: usize> =
+    Box<dyn Fn(T, &SVector<T, Q>, &SVector<T, N>) -> bool + 'a>;
 
 /// When an occurrence ends the run.
-enum Terminal<'a, T, const N: usize> {
+enum Terminal<'a, T, const N: usize, const Q: usize> {
     Never,
     Always,
     /// When the test holds for the state after the action.
-    If(TestFn<'a, T, N>),
+    If(TestFn<'a, T, N, Q>),
 }
 
 /// An event: the zero crossings of g(t, q, v) in a [`Direction`], optionally
@@ -158,16 +161,16 @@ enum Terminal<'a, T, const N: usize> {
 ///     .action(move |_t, _q, v| *v *= -e);
 /// assert_eq!(floor.name(), "floor");
 /// ```
-pub struct Event<'a, T: Real, const N: usize> {
+pub struct Event<'a, T: Real, const N: usize, const Q: usize = N> {
     name: Option<String>,
-    g: EventFn<'a, T, N>,
+    g: EventFn<'a, T, N, Q>,
     direction: Direction,
-    terminal: Terminal<'a, T, N>,
-    action: Option<ActionFn<'a, T, N>>,
+    terminal: Terminal<'a, T, N, Q>,
+    action: Option<ActionFn<'a, T, N, Q>>,
     restart: bool,
 }
 
-impl<T: Real, const N: usize> fmt::Debug for Event<'_, T, N> {
+impl<T: Real, const N: usize, const Q: usize> fmt::Debug for Event<'_, T, N, Q> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Event")
             .field("name", &self.name)
@@ -186,7 +189,7 @@ impl<T: Real, const N: usize> fmt::Debug for Event<'_, T, N> {
     }
 }
 
-impl<'a, T: Real, const N: usize> Event<'a, T, N> {
+impl<'a, T: Real, const N: usize, const Q: usize> Event<'a, T, N, Q> {
     /// An event on the zero crossings of `g(t, q, v)` in both directions, not
     /// terminal, without action: it is only recorded.
     ///
@@ -229,7 +232,7 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
     /// assert!(!run.times(0).is_empty() && !run.times(1).is_empty());
     /// # Ok::<(), lagrange_runtime::Error>(())
     /// ```
-    pub fn new(g: impl Fn(T, &SVector<T, N>, &SVector<T, N>) -> T + 'a) -> Self {
+    pub fn new(g: impl Fn(T, &SVector<T, Q>, &SVector<T, N>) -> T + 'a) -> Self {
         Self {
             name: None,
             g: Box::new(g),
@@ -269,7 +272,7 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
     /// sliding contact model. Replaces [`terminal`](Self::terminal).
     pub fn terminal_if(
         mut self,
-        test: impl Fn(T, &SVector<T, N>, &SVector<T, N>) -> bool + 'a,
+        test: impl Fn(T, &SVector<T, Q>, &SVector<T, N>) -> bool + 'a,
     ) -> Self {
         self.terminal = Terminal::If(Box::new(test));
         self
@@ -279,7 +282,7 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
     /// the integration restarts from it.
     pub fn action(
         mut self,
-        action: impl Fn(T, &mut SVector<T, N>, &mut SVector<T, N>) + 'a,
+        action: impl Fn(T, &mut SVector<T, Q>, &mut SVector<T, N>) + 'a,
     ) -> Self {
         self.action = Some(Box::new(action));
         self
@@ -342,7 +345,7 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
     }
 
     /// Whether the occurrence at t with the state (q, v) after the action ends the run.
-    fn ends(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> bool {
+    fn ends(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> bool {
         match &self.terminal {
             Terminal::Never => false,
             Terminal::Always => true,
@@ -357,7 +360,7 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
     }
 
     /// g(t, q, v), or [`Error::EventFunction`] if it is not finite.
-    fn value(&self, index: usize, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<T, Error> {
+    fn value(&self, index: usize, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<T, Error> {
         let g = (self.g)(t, q, v);
         if g.is_finite() {
             Ok(g)
@@ -375,17 +378,17 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
 /// One occurrence of an event.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Occurrence<T: Real, const N: usize> {
+pub struct Occurrence<T: Real, const N: usize, const Q: usize = N> {
     /// Which event, by its position in the order the events were added.
     pub event: usize,
     /// When.
     pub t: T,
     /// Coordinates at the event, before any action.
-    pub q: SVector<T, N>,
+    pub q: SVector<T, Q>,
     /// Velocities at the event, before any action.
     pub v: SVector<T, N>,
     /// Coordinates after the event's action (= `q` without one).
-    pub q_after: SVector<T, N>,
+    pub q_after: SVector<T, Q>,
     /// Velocities after the event's action (= `v` without one).
     pub v_after: SVector<T, N>,
 }
@@ -393,20 +396,20 @@ pub struct Occurrence<T: Real, const N: usize> {
 /// The result of a run with events.
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct EventRun<T: Real, const N: usize> {
+pub struct EventRun<T: Real, const N: usize, const Q: usize = N> {
     /// The motion, concatenated across the restarts at actions (see the module
     /// docs for what is recorded at an action).
-    pub trajectory: Trajectory<T, N>,
+    pub trajectory: Trajectory<T, N, Q>,
     /// All occurrences, in time order.
-    pub occurrences: Vec<Occurrence<T, N>>,
+    pub occurrences: Vec<Occurrence<T, N, Q>>,
     /// The terminal event that ended the run, if one did.
     pub terminated_by: Option<usize>,
 }
 
-impl<T: Real, const N: usize> EventRun<T, N> {
+impl<T: Real, const N: usize, const Q: usize> EventRun<T, N, Q> {
     /// A run that stopped before its first step: the initial state, no
     /// occurrences.
-    pub(crate) fn unstarted(trajectory: Trajectory<T, N>) -> Self {
+    pub(crate) fn unstarted(trajectory: Trajectory<T, N, Q>) -> Self {
         Self {
             trajectory,
             occurrences: Vec::new(),
@@ -415,7 +418,7 @@ impl<T: Real, const N: usize> EventRun<T, N> {
     }
 
     /// The occurrences of event `event`, in time order.
-    pub fn of(&self, event: usize) -> impl Iterator<Item = &Occurrence<T, N>> {
+    pub fn of(&self, event: usize) -> impl Iterator<Item = &Occurrence<T, N, Q>> {
         self.occurrences.iter().filter(move |o| o.event == event)
     }
 
@@ -425,7 +428,7 @@ impl<T: Real, const N: usize> EventRun<T, N> {
     }
 }
 
-impl<T: Real, const N: usize> Progress for EventRun<T, N> {
+impl<T: Real, const N: usize, const Q: usize> Progress for EventRun<T, N, Q> {
     fn progress(&self) -> (usize, Option<f64>) {
         self.trajectory.progress()
     }

@@ -13,37 +13,39 @@ use std::cell::RefCell;
 
 /// The event occurrence that ends an integrator's run.
 #[derive(Clone, Copy)]
-pub(super) struct Stop<T: Real, const N: usize> {
+pub(super) struct Stop<T: Real, const N: usize, const Q: usize> {
     pub event: usize,
     pub t: T,
-    pub q: SVector<T, N>,
+    pub q: SVector<T, Q>,
     pub v: SVector<T, N>,
     /// The event function's value on the old side of the crossing.
     pub before: T,
 }
 
-struct WatchState<T: Real, const N: usize> {
+struct WatchState<T: Real, const N: usize, const Q: usize> {
     /// Each event function at the last recorded state; zero means "sign not
     /// known yet" (exactly zero there), and the next sample sets it.
     last: Vec<T>,
     /// The event that fired at the start of this integrator run, until its
     /// first step is checked: its start value is the forced pre-crossing sign.
     fired: Option<usize>,
-    found: Vec<Occurrence<T, N>>,
-    stop: Option<Stop<T, N>>,
+    found: Vec<Occurrence<T, N, Q>>,
+    stop: Option<Stop<T, N, Q>>,
 }
 
 /// The system seen through the event observer: everything is delegated, and
 /// [`after_step`](SecondOrder::after_step) watches the events.
-pub(super) struct Watch<'w, 'e, F, T: Real, const N: usize> {
+pub(super) struct Watch<'w, 'e, F, T: Real, const N: usize, const Q: usize> {
     pub rhs: &'w F,
-    events: &'w [Event<'e, T, N>],
-    state: RefCell<WatchState<T, N>>,
+    events: &'w [Event<'e, T, N, Q>],
+    state: RefCell<WatchState<T, N, Q>>,
 }
 
-impl<'w, 'e, F: SecondOrder<T, N>, T: Real, const N: usize> Watch<'w, 'e, F, T, N> {
+impl<'w, 'e, F: SecondOrder<T, N, Q>, T: Real, const N: usize, const Q: usize>
+    Watch<'w, 'e, F, T, N, Q>
+{
     /// `rhs` watched for `events`, nothing found yet.
-    pub fn new(rhs: &'w F, events: &'w [Event<'e, T, N>]) -> Self {
+    pub fn new(rhs: &'w F, events: &'w [Event<'e, T, N, Q>]) -> Self {
         Self {
             rhs,
             events,
@@ -57,17 +59,17 @@ impl<'w, 'e, F: SecondOrder<T, N>, T: Real, const N: usize> Watch<'w, 'e, F, T, 
     }
 
     /// The stopping occurrence that ended the integrator's last run, if one did.
-    pub fn take_stop(&self) -> Option<Stop<T, N>> {
+    pub fn take_stop(&self) -> Option<Stop<T, N, Q>> {
         self.state.borrow_mut().stop.take()
     }
 
     /// Records the occurrence of a stopping event (after its action).
-    pub fn record(&self, occurrence: Occurrence<T, N>) {
+    pub fn record(&self, occurrence: Occurrence<T, N, Q>) {
         self.state.borrow_mut().found.push(occurrence);
     }
 
     /// Every occurrence found, in time order.
-    pub fn into_occurrences(self) -> Vec<Occurrence<T, N>> {
+    pub fn into_occurrences(self) -> Vec<Occurrence<T, N, Q>> {
         self.state.into_inner().found
     }
 
@@ -78,7 +80,7 @@ impl<'w, 'e, F: SecondOrder<T, N>, T: Real, const N: usize> Watch<'w, 'e, F, T, 
     pub fn reset(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         fired: Option<(usize, T)>,
     ) -> Result<(), Error> {
@@ -120,9 +122,9 @@ fn same_sign<T: Real>(a: T, b: T) -> bool {
 /// sign; if there is none, the action did not resolve the event and the
 /// crossing is reported right after the start (the driver then stops with
 /// [`Error::EventsAccumulate`]).
-fn crossings<T: Real, const N: usize>(
-    event: &Event<'_, T, N>,
-    segment: &DenseSegment<T, N>,
+fn crossings<T: Real, const N: usize, const Q: usize>(
+    event: &Event<'_, T, N, Q>,
+    segment: &DenseSegment<T, N, Q>,
     samples: [(T, T); 3],
     fired: bool,
 ) -> [Option<(T, T)>; 2] {
@@ -177,45 +179,49 @@ fn crossings<T: Real, const N: usize>(
     out
 }
 
-impl<F: SecondOrder<T, N>, T: Real, const N: usize> SecondOrder<T, N> for Watch<'_, '_, F, T, N> {
+impl<F: SecondOrder<T, N, Q>, T: Real, const N: usize, const Q: usize> SecondOrder<T, N, Q>
+    for Watch<'_, '_, F, T, N, Q>
+{
+    const ORIENTATIONS: &'static [crate::numeric::orientation::Orientation] = F::ORIENTATIONS;
+
     fn acceleration(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error> {
         self.rhs.acceleration(t, q, v)
     }
 
-    fn integral(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
+    fn integral(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> T {
         self.rhs.integral(t, q, v)
     }
 
-    fn residuals(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> [T; 2] {
+    fn residuals(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> [T; 2] {
         self.rhs.residuals(t, q, v)
     }
 
-    fn project(&self, t: T, q: &mut SVector<T, N>, v: &mut SVector<T, N>) -> Result<bool, Error> {
+    fn project(&self, t: T, q: &mut SVector<T, Q>, v: &mut SVector<T, N>) -> Result<bool, Error> {
         self.rhs.project(t, q, v)
     }
 
-    fn mechanical(&self) -> Option<&dyn Mechanical<T, N>> {
+    fn mechanical(&self) -> Option<&dyn Mechanical<T, N, Q>> {
         self.rhs.mechanical()
     }
 
     fn jacobian(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
-    ) -> Option<Result<(SMatrix<T, N, N>, SMatrix<T, N, N>), Error>> {
+    ) -> Option<Result<(SMatrix<T, N, Q>, SMatrix<T, N, N>), Error>> {
         self.rhs.jacobian(t, q, v)
     }
 
     fn after_step(
         &self,
-        segment: &DenseSegment<T, N>,
-        q: &SVector<T, N>,
+        segment: &DenseSegment<T, N, Q>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<bool, Error> {
         // The wrapped system's own observer first (an event layer inside
@@ -231,7 +237,7 @@ impl<F: SecondOrder<T, N>, T: Real, const N: usize> SecondOrder<T, N> for Watch<
         let (qm, vm) = segment.eval(tm);
         let first_new = st.found.len();
         let fired = st.fired.take();
-        let mut stop: Option<Stop<T, N>> = None;
+        let mut stop: Option<Stop<T, N, Q>> = None;
         for (i, event) in self.events.iter().enumerate() {
             let gm = event.value(i, tm, &qm, &vm)?;
             let gb = event.value(i, tb, q, v)?;
