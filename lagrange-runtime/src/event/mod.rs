@@ -189,7 +189,7 @@ impl<T: Real, const N: usize, const Q: usize> fmt::Debug for Event<'_, T, N, Q> 
     }
 }
 
-impl<'a, T: Real, const N: usize, const Q: usize> Event<'a, T, N, Q> {
+impl<'a, T: Real, const N: usize> Event<'a, T, N> {
     /// An event on the zero crossings of `g(t, q, v)` in both directions, not
     /// terminal, without action: it is only recorded.
     ///
@@ -232,7 +232,23 @@ impl<'a, T: Real, const N: usize, const Q: usize> Event<'a, T, N, Q> {
     /// assert!(!run.times(0).is_empty() && !run.times(1).is_empty());
     /// # Ok::<(), lagrange_runtime::Error>(())
     /// ```
-    pub fn new(g: impl Fn(T, &SVector<T, Q>, &SVector<T, N>) -> T + 'a) -> Self {
+    pub fn new(g: impl Fn(T, &SVector<T, N>, &SVector<T, N>) -> T + 'a) -> Self {
+        Event {
+            name: None,
+            g: Box::new(g),
+            direction: Direction::Both,
+            terminal: Terminal::Never,
+            action: None,
+            restart: false,
+        }
+    }
+}
+
+impl<'a, T: Real, const N: usize, const Q: usize> Event<'a, T, N, Q> {
+    /// [`new`](Event::new) for a system whose configuration holds
+    /// orientations (unit quaternions, so q has Q ≠ N entries): `g` reads q
+    /// with its quaternions and v with the angular velocities.
+    pub fn with_orientations(g: impl Fn(T, &SVector<T, Q>, &SVector<T, N>) -> T + 'a) -> Self {
         Self {
             name: None,
             g: Box::new(g),

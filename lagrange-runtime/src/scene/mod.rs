@@ -79,8 +79,8 @@ const PALETTE: [&str; 6] = [
 ];
 
 /// One run of a scene with its label, colour and opacity.
-struct Run<'a, T: Real, const N: usize> {
-    traj: &'a Trajectory<T, N>,
+struct Run<'a, T: Real, const N: usize, const Q: usize> {
+    traj: &'a Trajectory<T, N, Q>,
     label: String,
     color: String,
     opacity: f64,
@@ -88,16 +88,18 @@ struct Run<'a, T: Real, const N: usize> {
 
 /// A scene of one system's runs, written as one HTML page; see the
 /// [module docs](self).
-pub struct Scene<'a, T: Real, const N: usize, S> {
+pub struct Scene<'a, T: Real, const N: usize, S, const Q: usize = N> {
     sys: &'a S,
-    runs: Vec<Run<'a, T, N>>,
+    runs: Vec<Run<'a, T, N, Q>>,
     title: String,
     plot: Option<Vec<String>>,
     fps: f64,
     side_by_side: bool,
 }
 
-impl<'a, T: Real, const N: usize, S: Posed<T, N> + Lagrangian<T, N>> Scene<'a, T, N, S> {
+impl<'a, T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q> + Lagrangian<T, N, Q>>
+    Scene<'a, T, N, S, Q>
+{
     /// A scene of `sys` with no run yet.
     pub fn new(sys: &'a S) -> Self {
         Scene {
@@ -112,7 +114,7 @@ impl<'a, T: Real, const N: usize, S: Posed<T, N> + Lagrangian<T, N>> Scene<'a, T
 
     /// Adds a run, drawn in the next colour of the palette; the first run is
     /// opaque, the ones overlaid on it a little transparent.
-    pub fn run(mut self, traj: &'a Trajectory<T, N>, label: impl Into<String>) -> Self {
+    pub fn run(mut self, traj: &'a Trajectory<T, N, Q>, label: impl Into<String>) -> Self {
         let k = self.runs.len();
         self.runs.push(Run {
             traj,
@@ -282,14 +284,14 @@ fn is_planar(f: &sample::Frames, bodies: usize) -> bool {
     bodies == 0 && f.points.chunks(3).all(|p| p[2] == 0.0)
 }
 
-impl<T: Real, const N: usize> Trajectory<T, N> {
+impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
     /// A [`Scene`] of this run of `sys`, to write as a page:
     /// `traj.scene(&sys).write_html("run.html")?`. Add runs to overlay with
     /// [`Scene::run`].
-    pub fn scene<'a, S: Posed<T, N> + Lagrangian<T, N>>(
+    pub fn scene<'a, S: Posed<T, N, Q> + Lagrangian<T, N, Q>>(
         &'a self,
         sys: &'a S,
-    ) -> Scene<'a, T, N, S> {
+    ) -> Scene<'a, T, N, S, Q> {
         Scene::new(sys).run(self, "run")
     }
 }

@@ -33,7 +33,10 @@ pub(super) struct Frames {
 
 /// The frame times: `fps` per second of the run's span, capped at [`MAX_FRAMES`];
 /// a run without dense output (thinned recording) gives its stored times.
-fn frame_times<T: Real, const N: usize>(traj: &Trajectory<T, N>, fps: f64) -> (f64, f64, usize) {
+fn frame_times<T: Real, const N: usize, const Q: usize>(
+    traj: &Trajectory<T, N, Q>,
+    fps: f64,
+) -> (f64, f64, usize) {
     let times = traj.times();
     let (t0, t1) = (times[0].to_f64(), times[times.len() - 1].to_f64());
     let wanted = if traj.segments().is_empty() {
@@ -52,7 +55,10 @@ fn frame_times<T: Real, const N: usize>(traj: &Trajectory<T, N>, fps: f64) -> (f
 
 /// The state at a frame time: the dense output where there is one, else the
 /// stored point nearest in time.
-pub(super) fn state_at<T: Real, const N: usize>(traj: &Trajectory<T, N>, t: f64) -> SVector<T, N> {
+pub(super) fn state_at<T: Real, const N: usize, const Q: usize>(
+    traj: &Trajectory<T, N, Q>,
+    t: f64,
+) -> SVector<T, Q> {
     if let Some((q, _)) = traj.state_at(T::lit(t)) {
         return q;
     }
@@ -68,9 +74,9 @@ pub(super) fn state_at<T: Real, const N: usize>(traj: &Trajectory<T, N>, t: f64)
 ///
 /// # Errors
 /// [`Error::NonFinitePose`] for a pose with a NaN or ∞.
-pub(super) fn sample<T: Real, const N: usize, S: Posed<T, N>>(
+pub(super) fn sample<T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q>>(
     sys: &S,
-    traj: &Trajectory<T, N>,
+    traj: &Trajectory<T, N, Q>,
     fps: f64,
     plotted: &[usize],
 ) -> Result<Frames, Error> {

@@ -27,7 +27,7 @@ pub(super) struct Drawn {
 ///
 /// # Errors
 /// [`Error::InvalidSettings`] for a size from a parameter that is not positive.
-pub(super) fn drawn<T: Real, const N: usize, S: Posed<T, N>>(
+pub(super) fn drawn<T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q>>(
     sys: &S,
     centres: &[Vector3<f64>],
 ) -> Result<Vec<Drawn>, Error> {

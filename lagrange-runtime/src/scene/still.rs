@@ -31,9 +31,9 @@ impl Frame {
     }
 }
 
-fn frame<T: Real, const N: usize, S: Posed<T, N>>(
+fn frame<T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q>>(
     sys: &S,
-    traj: &Trajectory<T, N>,
+    traj: &Trajectory<T, N, Q>,
     t: f64,
 ) -> Frame {
     let q = sample::state_at(traj, t);
@@ -47,9 +47,9 @@ fn frame<T: Real, const N: usize, S: Posed<T, N>>(
 }
 
 /// The still's segments, projected.
-pub(super) fn segments<T: Real, const N: usize, S: Posed<T, N>>(
+pub(super) fn segments<T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q>>(
     sys: &S,
-    traj: &Trajectory<T, N>,
+    traj: &Trajectory<T, N, Q>,
     t: f64,
 ) -> Result<Vec<Segment>, Error> {
     let f = frame(sys, traj, t);
@@ -107,9 +107,9 @@ fn view() -> Matrix3<f64> {
 
 /// The path of every body's reference point and every point over the run,
 /// through 48 evenly spaced times.
-fn trails<T: Real, const N: usize, S: Posed<T, N>>(
+fn trails<T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q>>(
     sys: &S,
-    traj: &Trajectory<T, N>,
+    traj: &Trajectory<T, N, Q>,
     out: &mut Vec<[Vector3<f64>; 2]>,
 ) {
     let times = traj.times();
