@@ -277,3 +277,33 @@ fn the_derived_brick_flips_at_the_elliptic_period() {
     let mean = (flips[19] - flips[0]) / 19.0;
     assert!((mean - half).abs() < 1e-8 * half, "{mean} vs {half}");
 }
+
+/// The sleeping top linearised in the tangent space (δθ ∈ R³, not four
+/// quaternion components): the real parts of A's eigenvalues are those of
+/// A ξ̈ − i C n ξ̇ − m g l ξ = 0, zero above the threshold C² n² = 4 A m g l
+/// and √(4 A m g l − C² n²) / (2A) below it.
+#[test]
+fn the_sleeping_top_is_stable_above_the_threshold_spin() {
+    let mgl = TOP.m * TOP.g * TOP.l;
+    let threshold = (4.0 * TOP.a * mgl).sqrt() / TOP.c;
+    for ratio in [0.9, 0.99, 1.01, 1.5] {
+        let n = ratio * threshold;
+        let lin = Linearizer::new()
+            .tangent(
+                &TOP,
+                &SVector::from([1.0, 0.0, 0.0, 0.0]),
+                &SVector::from([0.0, 0.0, n]),
+                0.0,
+            )
+            .unwrap();
+        assert_eq!(lin.states()[..3], ["spin.θx", "spin.θy", "spin.θz"]);
+        let growth = lin.eigenvalues()[0].re;
+        let disc = 4.0 * TOP.a * mgl - (TOP.c * n).powi(2);
+        let expected = disc.max(0.0).sqrt() / (2.0 * TOP.a);
+        eprintln!("n/n_c = {ratio}: largest real part {growth:e}, closed form {expected:e}");
+        assert!(
+            (growth - expected).abs() < 1e-6 * (1.0 + expected),
+            "{growth} vs {expected}"
+        );
+    }
+}

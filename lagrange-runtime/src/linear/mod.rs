@@ -134,6 +134,7 @@ mod lqr;
 mod partition;
 mod settings;
 mod solve;
+mod tangent;
 
 pub use defaults::{complete_state, linearize, linearize_constrained, linearize_reduced};
 pub use eigen::{Boundary, EigenSweep, Mode, Stability, SweepPoint, Verdict, sweep};
