@@ -35,6 +35,7 @@
 //! | item | meaning |
 //! |---|---|
 //! | `coordinates(q1, q2, ...)` | generalized coordinates, in order |
+//! | `orientation(name, ...)` | a free rotation without a chart (see *Free rotations* below): a unit quaternion in q, the angular velocity in body axes in v; `rotation = name` (or a factor of a product: `rotation = parent * name`) |
 //! | `inputs(u1, u2, ...)` | named signals supplied at run time (forces, torques, set-points): the system implements [`Driven`]; allowed in `force`, `generalized_force`, `potential`, `dissipation` and the `define`s used there, an error in positions, rotations, masses, inertias, gravity, constraints and speeds (which would need the input's time derivative) |
 //! | `define(r = expr, ...)` | intermediate definitions, usable by later expressions |
 //! | `point(name, mass = m, at = [x, y(, z)])` | a point mass at ξ(q, t); planar or spatial |
@@ -236,6 +237,73 @@
 //! rest), and an action changes the mode; `tests/piecewise.rs` locates the stop of a block under Coulomb friction
 //! this way within 1e-9 of v0/(μg). A force that is continuous with a kink (the
 //! contact spring, a saturation) needs no event: the error control handles it.
+//!
+//! ## Free rotations
+//!
+//! A rotation written with coordinates — `euler_zxz(phi, theta, psi)`, three
+//! `rot_*` — has a chart, and its singular set (θ = 0 for z-x-z) stops a run.
+//! `orientation(name)` declares a rotation with none:
+//!
+//! - **q** holds a unit quaternion **(w, x, y, z), scalar first**, that turns
+//!   body axes into the world's (p_world = R(q) p_body), after the
+//!   coordinates: [`Lagrangian::COORDINATES`] names its components
+//!   `name.w`, `name.x`, `name.y`, `name.z`. (Pinocchio stores (x, y, z, w);
+//!   MuJoCo and Drake (w, x, y, z), as here.)
+//! - **v** holds the angular velocity **in body axes**, `name.wx`,
+//!   `name.wy`, `name.wz` ([`Lagrangian::VELOCITIES`]). So q has one number
+//!   more than v per orientation: the system is `Lagrangian<T, N, Q>` with
+//!   Q = N + 1 per orientation, and [`Lagrangian::ORIENTATIONS`] says where.
+//! - **The equations have no chart.** The derive works in the chart that
+//!   moves with the body, R₀·exp(θ) with R₀ the quaternion's rotation, and
+//!   takes them at its centre θ = 0, where θ̇ is ω: M, h and Q are Euler's
+//!   equations for a lone body (`EQUATIONS` shows M = diag(A, A, C) and
+//!   h = ω × Iω for the top below), read from the quaternion.
+//! - **Integration on the group.** Every integrator steps q̇ = ½ q ⊗ (0, ω) in
+//!   R⁴ and scales the quaternion back to unit norm after each step: the
+//!   exact flow keeps |q| = 1, so the normalisation moves the state by the
+//!   step's own local error and keeps the method's order. The unit-norm error
+//!   is recorded with the residuals ([`Trajectory::max_unit_error`]); dense
+//!   output, events and recordings read normalised quaternions. A quaternion
+//!   in an initial state within 1e-6 of unit norm is normalised, further off
+//!   is [`Error::NonUnitQuaternion`] naming the orientation. [`Gauss`]
+//!   (Hamilton's form in p = ∂L/∂q̇) refuses orientations; [`StormerVerlet`]
+//!   drifts by the exponential map (first order with the gyroscopic terms).
+//! - **Linearisation in the tangent space**: [`Linearizer::tangent`] takes
+//!   δθ ∈ R³ per orientation (2·N states), so a steady spin linearises to a
+//!   constant A.
+//!
+//! Not yet with an orientation: constraints, `speeds`, `inputs`, `emit(..)`
+//! and `urdf` (each a compile error at the orientation), the recursive route
+//! (bodies with an orientation are derived by differentiating ξ), and the
+//! event and controlled builders of [`Simulation`] (events run through
+//! [`Events::integrate`] with [`Event::with_orientations`]).
+//!
+//! ```
+//! use lagrange::prelude::*;
+//!
+//! /// A heavy top on a fixed pivot, spun exactly upright: θ = 0, where
+//! /// euler_zxz stops, is an ordinary state here.
+//! #[derive(Lagrangian)]
+//! #[lagrange(
+//!     orientation(spin),
+//!     body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+//!          at = [0, 0, 0], rotation = spin),
+//!     gravity = [0, 0, -g],
+//! )]
+//! pub struct Top { pub m: f64, pub a: f64, pub c: f64, pub l: f64, pub g: f64 }
+//!
+//! let top = Top { m: 1.5, a: 0.8, c: 0.5, l: 0.4, g: 9.81 };
+//! // q = (w, x, y, z), v = ω in body axes: upright, spinning at 30 rad/s.
+//! let traj = Simulation::new(&top)
+//!     .integrator(Dop853::tol(1e-10))
+//!     .run([1.0, 0.0, 0.0, 0.0], [0.01, 0.0, 30.0], 0.0..5.0)?;
+//! assert!(traj.max_unit_error() < 1e-15 && traj.integral_drift() < 1e-8);
+//! // Above C²n² = 4 A m g l the sleeping top is stable: the tangent-space
+//! // linearisation's eigenvalues have no positive real part.
+//! let lin = Linearizer::new().tangent(&top, &Vector4::new(1.0, 0.0, 0.0, 0.0), &Vector3::new(0.0, 0.0, 30.0), 0.0)?;
+//! assert!(lin.eigenvalues()[0].re < 1e-9);
+//! # Ok::<(), lagrange::Error>(())
+//! ```
 //!
 //! **Ensembles.** With the feature `parallel`, `lagrange::ensemble::Ensemble`
 //! (also in [`prelude`] as `Ensemble`) runs many independent simulations —

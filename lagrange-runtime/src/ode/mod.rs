@@ -50,7 +50,7 @@ use nalgebra::{SMatrix, SVector};
 /// Implemented by [`Dynamics`](crate::Dynamics); tests and users can implement it
 /// directly for any second-order ODE.
 pub trait SecondOrder<T: Real, const N: usize, const Q: usize = N> {
-    /// Where unit quaternions sit in q (see [`orientation`](crate::numeric::orientation)):
+    /// Where unit quaternions sit in q (see [`crate::numeric::orientation`]):
     /// none unless overridden, and then Q = N. With them, q̇ is not v but
     /// [`rate`](Self::rate), every integrator steps the quaternions in
     /// R⁴ and normalises them after each step, and a trajectory's dense
