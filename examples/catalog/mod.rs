@@ -183,4 +183,5 @@ pub mod cavity;
 pub mod constrained;
 pub mod control;
 pub mod extremes;
+pub mod free;
 pub mod study;

@@ -54,5 +54,6 @@ pub(crate) fn row(system: &'static str) -> Result<Row, Error> {
         // on the wall): one scene would need both; its GIF shows it instead.
         scene: None,
         still: None,
+        frames: None,
     })
 }

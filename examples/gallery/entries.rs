@@ -2,7 +2,7 @@
 //! demonstrates, and the function that runs it.
 
 use crate::row::Entry;
-use crate::{cavity, constrained, control, minimal, nonholonomic};
+use crate::{cavity, constrained, control, free, minimal, nonholonomic};
 
 /// The cavity row's name (its animation is looked up by it).
 pub(crate) const CAVITY: &str = "C10 point in a spherical cavity, e = 0.7";
@@ -20,6 +20,17 @@ const fn entry(
 }
 
 pub(crate) const ENTRIES: &[Entry] = &[
+    // Free rotations: a quaternion in q, no chart.
+    entry(
+        "tumbling brick, intermediate-axis flip",
+        "orientation(turn): a unit quaternion and the body-axis angular velocity; the flip period against the elliptic closed form",
+        free::intermediate_axis,
+    ),
+    entry(
+        "heavy top spun exactly upright",
+        "θ = 0, where Euler angles stop, is an ordinary state; stability from the tangent-space linearisation",
+        free::upright_top,
+    ),
     // Minimal coordinates.
     entry(
         "simple pendulum, 179°, period by events",

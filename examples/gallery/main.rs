@@ -17,6 +17,7 @@ mod constrained;
 mod control;
 mod entries;
 mod figure;
+mod free;
 mod layout;
 mod minimal;
 mod nonholonomic;

@@ -50,19 +50,26 @@ pub(crate) fn write(out: &Path, rows: &[Row], animations: &Animations) -> Result
         && let Some(fig) = &row.figure
     {
         plot::double_pendulum_gif(&out.join("double-pendulum.gif"), fig, l1, l2)?;
-        gifs.push(("double-pendulum.gif", row.system));
+        gifs.push(("double-pendulum.gif".to_string(), row.system));
     }
     if let Some((row, radius)) = animations.rolling_disk
         && let Some(fig) = &row.figure
     {
         plot::rolling_disk_gif(&out.join("rolling-disk.gif"), fig, radius)?;
-        gifs.push(("rolling-disk.gif", row.system));
+        gifs.push(("rolling-disk.gif".to_string(), row.system));
     }
     if let Some((row, radius)) = animations.cavity
         && let Some(fig) = &row.figure
     {
         plot::cavity_gif(&out.join("cavity.gif"), fig, radius)?;
-        gifs.push(("cavity.gif", row.system));
+        gifs.push(("cavity.gif".to_string(), row.system));
+    }
+    for row in rows {
+        if let Some((frames, captions)) = &row.frames {
+            let file = format!("{}.gif", slug(row.system));
+            crate::still::gif(&out.join(&file), frames, |k| captions[k].clone())?;
+            gifs.push((file, row.system));
+        }
     }
     let index = out.join("index.html");
     std::fs::write(&index, html(rows, &gifs))?;
@@ -108,7 +115,7 @@ fn split_id(system: &str) -> (&str, &str) {
     }
 }
 
-fn html(rows: &[Row], gifs: &[(&str, &str)]) -> String {
+fn html(rows: &[Row], gifs: &[(String, &str)]) -> String {
     let mut s = String::from(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
          <title>lagrange gallery</title><style>\

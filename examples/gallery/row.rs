@@ -38,6 +38,9 @@ pub(crate) struct Row {
     pub scene: Option<String>,
     /// The scene at mid-run, as segments for the table's picture.
     pub still: Option<Vec<lagrange::scene::Segment>>,
+    /// The scene at successive times, for an animation, with each frame's
+    /// caption.
+    pub frames: Option<(Vec<Vec<lagrange::scene::Segment>>, Vec<String>)>,
 }
 
 /// A system's coordinates as the plots and CSV headers name them, and which
@@ -94,6 +97,7 @@ where
         )?),
         scene: Some(traj.scene(sys).title(system).to_html()?),
         still: Some(traj.scene(sys).still((span.start + span.end) / 2.0)?),
+        frames: None,
     })
 }
 

@@ -1,5 +1,6 @@
 //! The small picture of each system's scene in the index's table: the scene's
-//! still (its shapes' edges at mid-run, `Scene::still`) drawn with plotters.
+//! still (its shapes' edges at mid-run, `Scene::still`) drawn with plotters,
+//! and animations made of stills at successive times.
 
 use lagrange::Error;
 use lagrange::scene::Segment;
@@ -15,31 +16,84 @@ pub(crate) fn png(path: &Path, segments: &[Segment]) -> Result<(), Error> {
     let (w, h) = (180_u32, 120_u32);
     let root = BitMapBackend::new(path, (w, h)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in segments.iter().flatten() {
-        for k in 0..2 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
+    if let Some(view) = View::fitting(segments.iter(), (w, h)) {
+        draw(&root, &view, segments)?;
     }
-    if !(lo[0] < hi[0] || lo[1] < hi[1]) {
-        return root.present().map_err(err);
-    }
-    // One scale for both axes, the larger extent filling its side.
-    let scale = ((hi[0] - lo[0]) / f64::from(w - 12)).max((hi[1] - lo[1]) / f64::from(h - 12));
-    let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
-    let pixel = |p: &lagrange::nalgebra::Vector2<f64>| {
-        let x = f64::from(w) / 2.0 + (p[0] - centre[0]) / scale;
-        let y = f64::from(h) / 2.0 - (p[1] - centre[1]) / scale;
-        (x.round() as i32, y.round() as i32)
+    root.present().map_err(err)
+}
+
+/// An animation of a scene: one frame per set of segments (the scene's
+/// still at successive times), all at one scale so that the motion shows,
+/// `caption(k)` above frame k.
+pub(crate) fn gif(
+    path: &Path,
+    frames: &[Vec<Segment>],
+    caption: impl Fn(usize) -> String,
+) -> Result<(), Error> {
+    let (w, h) = (360_u32, 300_u32);
+    let root = BitMapBackend::gif(path, (w, h), 50)
+        .map_err(err)?
+        .into_drawing_area();
+    let Some(view) = View::fitting(frames.iter().flatten(), (w, h - 24)) else {
+        return Ok(());
     };
+    for (k, segments) in frames.iter().enumerate() {
+        root.fill(&WHITE).map_err(err)?;
+        root.draw(&Text::new(caption(k), (8, 4), ("sans-serif", 15)))
+            .map_err(err)?;
+        let below = root.margin(24, 0, 0, 0);
+        draw(&below, &view, segments)?;
+        root.present().map_err(err)?;
+    }
+    Ok(())
+}
+
+/// One scale for both axes, the larger extent filling its side.
+struct View {
+    scale: f64,
+    centre: [f64; 2],
+    size: (u32, u32),
+}
+
+impl View {
+    fn fitting<'a>(segments: impl Iterator<Item = &'a Segment>, size: (u32, u32)) -> Option<Self> {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in segments.flatten() {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        if !(lo[0] < hi[0] || lo[1] < hi[1]) {
+            return None;
+        }
+        let (w, h) = (f64::from(size.0 - 12), f64::from(size.1 - 12));
+        Some(View {
+            scale: ((hi[0] - lo[0]) / w).max((hi[1] - lo[1]) / h),
+            centre: [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0],
+            size,
+        })
+    }
+
+    fn pixel(&self, p: &lagrange::nalgebra::Vector2<f64>) -> (i32, i32) {
+        let x = f64::from(self.size.0) / 2.0 + (p[0] - self.centre[0]) / self.scale;
+        let y = f64::from(self.size.1) / 2.0 - (p[1] - self.centre[1]) / self.scale;
+        (x.round() as i32, y.round() as i32)
+    }
+}
+
+fn draw(
+    area: &DrawingArea<BitMapBackend, plotters::coord::Shift>,
+    view: &View,
+    segments: &[Segment],
+) -> Result<(), Error> {
     let ink = RGBColor(58, 111, 176);
     for [a, b] in segments {
-        root.draw(&PathElement::new(
-            vec![pixel(a), pixel(b)],
+        area.draw(&PathElement::new(
+            vec![view.pixel(a), view.pixel(b)],
             ink.stroke_width(1),
         ))
         .map_err(err)?;
     }
-    root.present().map_err(err)
+    Ok(())
 }

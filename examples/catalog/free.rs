@@ -1,0 +1,61 @@
+//! Free rotations (`orientation(..)`): a unit quaternion in q and the
+//! angular velocity in body axes in v, no chart anywhere.
+
+use lagrange::prelude::*;
+
+/// A brick tumbling in space: its centre of mass (x, y, z) and a free
+/// orientation; principal moments a < b < c about the centre.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, z),
+    orientation(turn),
+    body(brick, mass = m, inertia = [a, b, c], at = [x, y, z], rotation = turn),
+    gravity = [0, 0, -g],
+    shape(brick, box(size = [lx, ly, lz])),
+)]
+pub struct Brick {
+    pub m: f64,
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+    pub g: f64,
+    pub lx: f64,
+    pub ly: f64,
+    pub lz: f64,
+}
+
+impl Brick {
+    /// A solid brick of mass `m` with sides (lx, ly, lz), in free space.
+    pub fn solid(m: f64, [lx, ly, lz]: [f64; 3]) -> Self {
+        let moment = |p: f64, q: f64| m * (p * p + q * q) / 12.0;
+        Brick {
+            m,
+            a: moment(ly, lz),
+            b: moment(lx, lz),
+            c: moment(lx, ly),
+            g: 0.0,
+            lx,
+            ly,
+            lz,
+        }
+    }
+}
+
+/// A heavy symmetric top on a fixed pivot with a free orientation; its
+/// moments (a, a, c) about the pivot, its centre of mass l up its axis.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    orientation(spin),
+    body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+         at = [0, 0, 0], rotation = spin),
+    gravity = [0, 0, -g],
+    shape(top, cylinder(radius = 0.12, length = 0.04, axis = z), at = [0, 0, l]),
+    shape(top, capsule(radius = 0.008, length = 2 * l, axis = z), at = [0, 0, l]),
+)]
+pub struct QuaternionTop {
+    pub m: f64,
+    pub a: f64,
+    pub c: f64,
+    pub l: f64,
+    pub g: f64,
+}

@@ -1,0 +1,175 @@
+//! Free rotations: the intermediate-axis flip and a top spun exactly upright,
+//! each with an animation of its scene.
+
+use crate::catalog::free::{Brick, QuaternionTop};
+use crate::figure::Figure;
+use crate::row::Row;
+use lagrange::Posed;
+use lagrange::prelude::*;
+use std::f64::consts::PI;
+use std::ops::Range;
+use std::time::Instant;
+
+/// Frames of each animation.
+const FRAMES: usize = 150;
+
+/// The time between flips of a body spun near its intermediate axis
+/// (principal moments i1 < i2 < i3, L² > 2 E i2): half the period 4K(k)/s of
+/// Landau–Lifshitz §37.
+fn half_period([i1, i2, i3]: [f64; 3], w: [f64; 3]) -> f64 {
+    let two_e = i1 * w[0] * w[0] + i2 * w[1] * w[1] + i3 * w[2] * w[2];
+    let l2 = (i1 * w[0]).powi(2) + (i2 * w[1]).powi(2) + (i3 * w[2]).powi(2);
+    let s = ((i3 - i2) * (l2 - two_e * i1) / (i1 * i2 * i3)).sqrt();
+    let k2 = (i2 - i1) * (two_e * i3 - l2) / ((i3 - i2) * (l2 - two_e * i1));
+    let (mut a, mut b) = (1.0, (1.0 - k2).sqrt());
+    for _ in 0..10 {
+        (a, b) = (0.5 * (a + b), (a * b).sqrt());
+    }
+    PI / a / s
+}
+
+/// A brick spun about its intermediate axis, nudged: it flips over and back,
+/// every half period of the elliptic closed form.
+pub(crate) fn intermediate_axis(system: &'static str) -> Result<Row, Error> {
+    let brick = Brick::solid(1.0, [0.3, 0.2, 0.1]);
+    let w = [0.01, 5.0, 0.01];
+    let half = half_period([brick.a, brick.b, brick.c], w);
+    let span = 0.0..6.5 * half;
+    let q0 = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0];
+    let start = Instant::now();
+    let traj = Simulation::new(&brick).integrator(Dopri5::tol(1e-10)).run(
+        q0,
+        [0.0, 0.0, 0.0, w[0], w[1], w[2]],
+        span.clone(),
+    )?;
+    let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    let flips = traj.crossings(|_, _, v| v[4])?;
+    let mean = (flips[flips.len() - 1] - flips[0]) / (flips.len() - 1) as f64;
+    let note = format!(
+        "{} flips every {mean:.6} s (elliptic closed form {half:.6} s); unit-norm error {:.0e}",
+        flips.len(),
+        traj.max_unit_error()
+    );
+    free_row(system, &brick, &traj, span, (note, wall_ms))
+}
+
+/// A heavy top spun exactly upright (θ = 0, where Euler angles z-x-z stop)
+/// above the sleeping threshold C²n² = 4 A m g l, nudged: it stays up.
+pub(crate) fn upright_top(system: &'static str) -> Result<Row, Error> {
+    let top = QuaternionTop {
+        m: 1.5,
+        a: 0.1,
+        c: 0.05,
+        l: 0.2,
+        g: 9.81,
+    };
+    let threshold = (4.0 * top.a * top.m * top.g * top.l).sqrt() / top.c;
+    let n = 1.5 * threshold;
+    let span = 0.0..4.0;
+    let start = Instant::now();
+    let traj = Simulation::new(&top).integrator(Dopri5::tol(1e-10)).run(
+        [1.0, 0.0, 0.0, 0.0],
+        [0.3, 0.0, n],
+        span.clone(),
+    )?;
+    let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    let lowest = traj
+        .positions()
+        .iter()
+        .map(|q| 1.0 - 2.0 * (q[1] * q[1] + q[2] * q[2]))
+        .fold(1.0, f64::min);
+    let lin = Linearizer::new().tangent(
+        &top,
+        &Vector4::new(1.0, 0.0, 0.0, 0.0),
+        &Vector3::new(0.0, 0.0, n),
+        0.0,
+    )?;
+    let note = format!(
+        "spin {n:.1} rad/s = 1.5 × threshold; tilt stays below {:.2}°; largest real part of the tangent linearisation {:.0e}",
+        lowest.acos().to_degrees(),
+        lin.eigenvalues()[0].re
+    );
+    free_row(system, &top, &traj, span, (note, wall_ms))
+}
+
+/// A row of a run with orientations: its angular velocity plotted, its
+/// scene, its still and an animation of the scene.
+fn free_row<S, const N: usize, const Q: usize>(
+    system: &'static str,
+    sys: &S,
+    traj: &Trajectory<f64, N, Q>,
+    span: Range<f64>,
+    (note, wall_ms): (String, f64),
+) -> Result<Row, Error>
+where
+    S: Lagrangian<f64, N, Q> + Posed<f64, N, Q>,
+{
+    let stats = traj.stats();
+    let scene = traj.scene(sys).title(system);
+    let times =
+        (0..FRAMES).map(|k| span.start + (span.end - span.start) * k as f64 / (FRAMES - 1) as f64);
+    let frames = times
+        .clone()
+        .map(|t| scene.still(t))
+        .collect::<Result<Vec<_>, _>>()?;
+    let captions = times.map(|t| format!("{system}, t = {t:.2} s")).collect();
+    Ok(Row {
+        system,
+        about: "",
+        dof: N,
+        span: span.end - span.start,
+        accepted: stats.accepted,
+        rejected: stats.rejected,
+        evaluations: stats.evaluations,
+        drift: Some(traj.integral_drift()),
+        residuals: None,
+        note,
+        wall_ms,
+        figure: Some(angular_velocity(
+            traj,
+            S::VELOCITIES,
+            S::ORIENTATIONS[0].v,
+            csv(sys, traj)?,
+        )),
+        scene: Some(scene.to_html()?),
+        still: Some(scene.still((span.start + span.end) / 2.0)?),
+        frames: Some((frames, captions)),
+    })
+}
+
+/// The figure of a run with an orientation: its angular velocity in body
+/// axes (from index `at` of v) and the drift; the CSV has every column.
+fn angular_velocity<const N: usize, const Q: usize>(
+    traj: &Trajectory<f64, N, Q>,
+    names: [&str; N],
+    at: usize,
+    csv: String,
+) -> Figure {
+    let omega: [&str; 3] = [names[at], names[at + 1], names[at + 2]];
+    let points: Vec<(f64, [f64; 3], [f64; 3])> = (0..traj.len())
+        .map(|k| {
+            let v = &traj.velocities()[k];
+            (traj.times()[k], [v[at], v[at + 1], v[at + 2]], [0.0; 3])
+        })
+        .collect();
+    let mut figure = Figure::from_points(&omega, &points);
+    let i0 = traj.integrals()[0];
+    figure.drift = Some(
+        traj.integrals()
+            .iter()
+            .map(|i| (i - i0).abs() / i0.abs().max(1e-300))
+            .collect(),
+    );
+    figure.csv = csv;
+    figure
+}
+
+/// The run's CSV, every column named by the system.
+fn csv<S: Lagrangian<f64, N, Q>, const N: usize, const Q: usize>(
+    sys: &S,
+    traj: &Trajectory<f64, N, Q>,
+) -> Result<String, Error> {
+    let mut out = Vec::new();
+    traj.table(sys).write(&mut out)?;
+    Ok(String::from_utf8_lossy(&out).into_owned())
+}
