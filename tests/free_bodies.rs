@@ -307,3 +307,83 @@ fn the_sleeping_top_is_stable_above_the_threshold_spin() {
         );
     }
 }
+
+/// Two rigid bodies on spherical joints: the first on a fixed pivot, the
+/// second at the first's tip, its orientation the first's followed by its own
+/// (`rotation = upper * lower`). The lower joint's speeds are the relative
+/// angular velocity in the lower body's axes.
+#[derive(Lagrangian)]
+#[lagrange(
+    orientation(upper, lower),
+    body(arm, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, -l],
+         at = [0, 0, 0], rotation = upper),
+    point(tip, on = arm, at = [0, 0, -2 * l]),
+    body(hand, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, -l],
+         at = [tip.x, tip.y, tip.z], rotation = upper * lower),
+    gravity = [0, 0, -g],
+)]
+struct SphericalChain {
+    m: f64,
+    a: f64,
+    c: f64,
+    l: f64,
+    g: f64,
+}
+
+/// The same chain in Euler angles z-x-z, each joint its own three angles.
+#[derive(Lagrangian)]
+#[lagrange(
+    coordinates(p1, t1, s1, p2, t2, s2),
+    body(arm, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, -l],
+         at = [0, 0, 0], rotation = euler_zxz(p1, t1, s1)),
+    point(tip, on = arm, at = [0, 0, -2 * l]),
+    body(hand, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, -l],
+         at = [tip.x, tip.y, tip.z], rotation = euler_zxz(p1, t1, s1) * euler_zxz(p2, t2, s2)),
+    gravity = [0, 0, -g],
+)]
+struct EulerChain {
+    m: f64,
+    a: f64,
+    c: f64,
+    l: f64,
+    g: f64,
+}
+
+#[test]
+fn spherical_joints_in_a_chain_are_the_euler_angle_chain_where_it_is_regular() {
+    let (m, a, c, l, g) = (1.2, 0.5, 0.1, 0.3, 9.81);
+    let quat = SphericalChain { m, a, c, l, g };
+    let euler = EulerChain { m, a, c, l, g };
+    let mut rng = Lcg(5);
+    for _ in 0..10 {
+        let angles: [f64; 6] = std::array::from_fn(|k| {
+            if k % 3 == 1 { uniform(&mut rng, 0.3, 2.8) } else { uniform(&mut rng, -PI, PI) }
+        });
+        let rates: [f64; 6] = std::array::from_fn(|_| 2.0 * rng.next());
+        let (e1, e2) = ([angles[0], angles[1], angles[2]], [angles[3], angles[4], angles[5]]);
+        let (r1, r2) = ([rates[0], rates[1], rates[2]], [rates[3], rates[4], rates[5]]);
+        let map = |e1, e2, r1, r2| {
+            let ((q1, w1), (q2, w2)) = (from_euler(e1, r1), from_euler(e2, r2));
+            let q: SVector<f64, 8> = SVector::from_iterator(q1.into_iter().chain(q2));
+            let v: SVector<f64, 6> = SVector::from_iterator(w1.into_iter().chain(w2));
+            (q, v)
+        };
+        let (q, v) = map(e1, e2, r1, r2);
+        let (qe, ve) = (SVector::from(angles), SVector::from(rates));
+        let (energy, euler_energy) = (quat.integral(&q, &v, 0.0), euler.integral(&qe, &ve, 0.0));
+        assert!((energy - euler_energy).abs() < 1e-12, "{energy} vs {euler_energy}");
+        let accel = lagrange::accelerations(&quat, &q, &v, 0.0).unwrap();
+        let qdd = lagrange::accelerations(&euler, &qe, &ve, 0.0).unwrap();
+        let along = |s: f64| {
+            let (q1, v1) = (qe + ve * s + qdd * (0.5 * s * s), ve + qdd * s);
+            let e = |x: SVector<f64, 6>, k: usize| [x[k], x[k + 1], x[k + 2]];
+            map(e(q1, 0), e(q1, 3), e(v1, 0), e(v1, 3)).1
+        };
+        let h = 1e-5;
+        let (fwd, back) = (along(h), along(-h));
+        for k in 0..6 {
+            let d = (fwd[k] - back[k]) / (2.0 * h);
+            assert!((accel[k] - d).abs() < 1e-6 * (1.0 + d.abs()), "{k}: {} vs {d}", accel[k]);
+        }
+    }
+}
