@@ -357,11 +357,21 @@ fn spherical_joints_in_a_chain_are_the_euler_angle_chain_where_it_is_regular() {
     let mut rng = Lcg(5);
     for _ in 0..10 {
         let angles: [f64; 6] = std::array::from_fn(|k| {
-            if k % 3 == 1 { uniform(&mut rng, 0.3, 2.8) } else { uniform(&mut rng, -PI, PI) }
+            if k % 3 == 1 {
+                uniform(&mut rng, 0.3, 2.8)
+            } else {
+                uniform(&mut rng, -PI, PI)
+            }
         });
         let rates: [f64; 6] = std::array::from_fn(|_| 2.0 * rng.next());
-        let (e1, e2) = ([angles[0], angles[1], angles[2]], [angles[3], angles[4], angles[5]]);
-        let (r1, r2) = ([rates[0], rates[1], rates[2]], [rates[3], rates[4], rates[5]]);
+        let (e1, e2) = (
+            [angles[0], angles[1], angles[2]],
+            [angles[3], angles[4], angles[5]],
+        );
+        let (r1, r2) = (
+            [rates[0], rates[1], rates[2]],
+            [rates[3], rates[4], rates[5]],
+        );
         let map = |e1, e2, r1, r2| {
             let ((q1, w1), (q2, w2)) = (from_euler(e1, r1), from_euler(e2, r2));
             let q: SVector<f64, 8> = SVector::from_iterator(q1.into_iter().chain(q2));
@@ -371,7 +381,10 @@ fn spherical_joints_in_a_chain_are_the_euler_angle_chain_where_it_is_regular() {
         let (q, v) = map(e1, e2, r1, r2);
         let (qe, ve) = (SVector::from(angles), SVector::from(rates));
         let (energy, euler_energy) = (quat.integral(&q, &v, 0.0), euler.integral(&qe, &ve, 0.0));
-        assert!((energy - euler_energy).abs() < 1e-12, "{energy} vs {euler_energy}");
+        assert!(
+            (energy - euler_energy).abs() < 1e-12,
+            "{energy} vs {euler_energy}"
+        );
         let accel = lagrange::accelerations(&quat, &q, &v, 0.0).unwrap();
         let qdd = lagrange::accelerations(&euler, &qe, &ve, 0.0).unwrap();
         let along = |s: f64| {
@@ -383,7 +396,162 @@ fn spherical_joints_in_a_chain_are_the_euler_angle_chain_where_it_is_regular() {
         let (fwd, back) = (along(h), along(-h));
         for k in 0..6 {
             let d = (fwd[k] - back[k]) / (2.0 * h);
-            assert!((accel[k] - d).abs() < 1e-6 * (1.0 + d.abs()), "{k}: {} vs {d}", accel[k]);
+            assert!(
+                (accel[k] - d).abs() < 1e-6 * (1.0 + d.abs()),
+                "{k}: {} vs {d}",
+                accel[k]
+            );
         }
+    }
+}
+
+/// A hub on a free-flyer joint with a two-joint arm: the same floating base
+/// in Pinocchio (`lagrange-bench/peer/pinocchio/free_flyer_reference.py`,
+/// `JointModelFreeFlyer`, q = (x, y, z, qx, qy, qz, qw, ..), v in the hub's
+/// axes), its M and q̈ mapped to this description's convention (world-axis
+/// ẋ, body-axis ω, the quaternion scalar first).
+#[derive(Lagrangian)]
+#[lagrange(
+    coordinates(x, y, z, j1, j2),
+    orientation(base),
+    body(hub, mass = 5.0, inertia = [0.4, 0.5, 0.6], at = [x, y, z], rotation = base),
+    point(shoulder, on = hub, at = [0.3, 0.1, 0.2]),
+    body(upper, mass = 1.5, inertia = [0.01, 0.05, 0.05], com = [0.2, 0, 0],
+         at = [shoulder.x, shoulder.y, shoulder.z], rotation = base * rot_z(j1)),
+    point(elbow, on = upper, at = [0.4, 0, 0]),
+    body(fore, mass = 1.0, inertia = [0.005, 0.02, 0.02], com = [0.15, 0, 0],
+         at = [elbow.x, elbow.y, elbow.z], rotation = base * rot_z(j1) * rot_y(j2)),
+    gravity = [0, 0, -g],
+)]
+struct FloatingArm {
+    g: f64,
+}
+
+const PINOCCHIO_Q: [f64; 9] = [
+    0.1,
+    -0.2,
+    0.3,
+    0.7,
+    -0.4,
+    0.8295613557843402,
+    0.20739033894608505,
+    -0.4147806778921701,
+    0.3110855084191276,
+];
+const PINOCCHIO_V: [f64; 8] = [0.3, -0.1, 0.2, 0.5, -0.8, 0.4, -0.6, 0.9];
+const PINOCCHIO_M: [[f64; 8]; 8] = [
+    [
+        7.5,
+        -3.470457820992685e-16,
+        -1.8137878758184138e-16,
+        -0.6908167237583464,
+        0.07201089309653413,
+        -0.0574123144033089,
+        1.035987538776299,
+        -1.3225371538658732,
+    ],
+    [
+        -3.470457820992685e-16,
+        7.5,
+        4.045016528152149e-16,
+        0.2760469096494975,
+        0.12567534263953878,
+        -0.8779703597866136,
+        1.0297692338596605,
+        0.7303479849183148,
+    ],
+    [
+        -1.8137878758184138e-16,
+        4.045016528152149e-16,
+        7.5,
+        -0.38611023952947454,
+        -0.038988966745401865,
+        0.40215501358570954,
+        -0.3364170233642675,
+        -0.5258951857660336,
+    ],
+    [
+        -0.6908167237583464,
+        0.2760469096494975,
+        -0.38611023952947454,
+        0.4173405700806056,
+        0.0,
+        -0.15636996376057605,
+        -0.13170860352896602,
+        0.663654108004809,
+    ],
+    [
+        0.07201089309653413,
+        0.12567534263953878,
+        -0.038988966745401865,
+        0.0,
+        0.042499999999999996,
+        -0.08432309913482881,
+        0.12515682330725753,
+        0.0068215046227499245,
+    ],
+    [
+        -0.0574123144033089,
+        -0.8779703597866136,
+        0.40215501358570954,
+        -0.15636996376057605,
+        -0.08432309913482881,
+        0.8440211859079535,
+        -0.4993362353348936,
+        -0.3238937891644654,
+    ],
+    [
+        1.035987538776299,
+        1.0297692338596605,
+        -0.3364170233642675,
+        -0.13170860352896602,
+        0.12515682330725753,
+        -0.4993362353348936,
+        1.4890501594975785,
+        -0.18754987866359576,
+    ],
+    [
+        -1.3225371538658732,
+        0.7303479849183148,
+        -0.5258951857660336,
+        0.663654108004809,
+        0.0068215046227499245,
+        -0.3238937891644654,
+        -0.18754987866359576,
+        1.7599676459290126,
+    ],
+];
+const PINOCCHIO_ACCEL: [f64; 8] = [
+    -0.08038626277215381,
+    0.2288932371846933,
+    -9.460747315849554,
+    -0.3489975968811522,
+    1.2896847046166058,
+    -0.034690651250735005,
+    0.14557427340742118,
+    0.393159401969949,
+];
+
+#[test]
+fn a_floating_base_matches_pinocchio_s_free_flyer() {
+    let arm = FloatingArm { g: 9.81 };
+    let (q, v) = (SVector::from(PINOCCHIO_Q), SVector::from(PINOCCHIO_V));
+    let m = arm.mass_matrix(&q, 0.0);
+    for i in 0..8 {
+        for j in 0..8 {
+            let (ours, theirs) = (m[(i, j)], PINOCCHIO_M[i][j]);
+            assert!(
+                (ours - theirs).abs() < 1e-12,
+                "M[{i}][{j}]: {ours} vs {theirs}"
+            );
+        }
+    }
+    let accel = lagrange::accelerations(&arm, &q, &v, 0.0).unwrap();
+    for k in 0..8 {
+        let (ours, theirs) = (accel[k], PINOCCHIO_ACCEL[k]);
+        assert!(
+            (ours - theirs).abs() < 1e-12,
+            "accel[{k}]: {ours} vs {theirs}"
+        );
     }
 }
