@@ -352,6 +352,16 @@ fn events_locate_impacts_of_a_tumbling_body() {
         .with(floor)
         .integrate(&Dop853::tol(1e-12), &Dynamics::new(&body), 0.0, 2.0, q0, v0)
         .unwrap();
+    // The builder runs the same events the same way.
+    let floor = Event::with_orientations(|_, q: &SVector<f64, 7>, _: &SVector<f64, 6>| q[2] - 0.5)
+        .falling()
+        .action(|_, _, v: &mut SVector<f64, 6>| v[2] = -v[2]);
+    let built = Simulation::new(&body)
+        .integrator(Dop853::tol(1e-12))
+        .event(floor)
+        .run(q0, v0, 0.0..2.0)
+        .unwrap();
+    assert_eq!(built.times(0), run.times(0));
     // Free fall from 1 to 0.5 takes √(2·0.5/g); each bounce returns to 1.
     let fall = (1.0 / 9.81_f64).sqrt();
     let times = run.times(0);

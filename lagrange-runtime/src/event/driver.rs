@@ -16,8 +16,8 @@ use nalgebra::SVector;
 /// [`Simulation::event`]: crate::Simulation::event
 #[derive(Debug)]
 pub struct Events<'a, T: Real, const N: usize, const Q: usize = N> {
-    events: Vec<Event<'a, T, N, Q>>,
-    max_events: usize,
+    pub(super) events: Vec<Event<'a, T, N, Q>>,
+    pub(super) max_events: usize,
 }
 
 impl<T: Real, const N: usize, const Q: usize> Default for Events<'_, T, N, Q> {

@@ -98,6 +98,7 @@
 //! [`SecondOrder::project`]: crate::ode::SecondOrder::project
 
 mod driver;
+mod square;
 mod watch;
 
 pub(crate) use driver::within_budget;

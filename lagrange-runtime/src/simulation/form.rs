@@ -90,14 +90,14 @@ fn same<A: 'static, B: 'static>(a: A) -> Option<B> {
     boxed.downcast::<B>().ok().map(|b| *b)
 }
 
-impl<S, I, T, const N: usize> FormVisitor<T, N, S>
-    for Start<'_, EventSimulation<'_, '_, S, I, T, N>, T, N>
+impl<S, I, T, const N: usize, const Q: usize> FormVisitor<T, N, S, Q>
+    for Start<'_, EventSimulation<'_, '_, S, I, T, N, Q>, T, N, Q>
 where
-    S: Lagrangian<T, N>,
+    S: Lagrangian<T, N, Q>,
     I: Integrator,
     T: Real,
 {
-    type Output = Result<EventRun<T, N>, Failure<EventRun<T, N>>>;
+    type Output = Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>>;
 
     fn unconstrained(self, _: &S) -> Self::Output {
         self.builder.run_unconstrained(self.q0, self.v0, self.span)
@@ -107,15 +107,20 @@ where
     where
         S: Constrained<T, N, K>,
     {
-        self.builder
-            .run_constrained::<K>(self.q0, self.v0, self.span)
+        let Some(q0) = same::<_, SVector<T, N>>(self.q0) else {
+            return Err(self.mismatch().map(EventRun::unstarted));
+        };
+        self.builder.run_constrained::<K>(q0, self.v0, self.span)
     }
 
     fn reduced<const K: usize>(self, _: &S) -> Self::Output
     where
         S: Reduced<T, N, K>,
     {
-        self.builder.run_reduced::<K>(self.q0, self.v0, self.span)
+        let Some(q0) = same::<_, SVector<T, N>>(self.q0) else {
+            return Err(self.mismatch().map(EventRun::unstarted));
+        };
+        self.builder.run_reduced::<K>(q0, self.v0, self.span)
     }
 }
 

@@ -1,12 +1,14 @@
 //! The user-facing entry point: system + integrator + initial state → trajectory.
 
 mod controlled;
+mod events;
 mod form;
 
 pub use controlled::{ControlRun, ControlledSimulation};
+pub use events::EventSimulation;
 
 use crate::error::{Error, Failure, Progress, check_tolerance, unit_quaternions};
-use crate::event::{Event, EventRun, Events};
+use crate::event::{Event, Events};
 use crate::mechanics::constraint::{
     ConstrainedDynamics, DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE, Drift,
 };
@@ -323,12 +325,12 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// assert_eq!(run.times(1).len(), bounces.len());
     /// # Ok::<(), lagrange_runtime::Error>(())
     /// ```
-    pub fn event<'e, T: Real, const N: usize>(
+    pub fn event<'e, T: Real, const N: usize, const Q: usize>(
         self,
-        event: Event<'e, T, N>,
-    ) -> EventSimulation<'a, 'e, S, I, T, N>
+        event: Event<'e, T, N, Q>,
+    ) -> EventSimulation<'a, 'e, S, I, T, N, Q>
     where
-        S: Lagrangian<T, N>,
+        S: Lagrangian<T, N, Q>,
     {
         EventSimulation {
             simulation: self,
@@ -442,139 +444,6 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
         self.integrator
             .integrate(&dynamics, span.start, span.end, q0, v0)
-    }
-}
-
-/// A [`Simulation`] with events, built by [`Simulation::event`].
-#[derive(Debug)]
-pub struct EventSimulation<'a, 'e, S, I, T: Real, const N: usize> {
-    simulation: Simulation<'a, S, I>,
-    events: Events<'e, T, N>,
-}
-
-impl<'a, 'e, S, I: Integrator, T: Real, const N: usize> EventSimulation<'a, 'e, S, I, T, N> {
-    /// Adds another event; occurrences name events by the order they were added
-    /// (the first one, given to [`Simulation::event`], is 0).
-    pub fn event(mut self, event: Event<'e, T, N>) -> Self {
-        self.events = self.events.with(event);
-        self
-    }
-
-    /// Sets how many events may stop and restart the integration (default
-    /// [`DEFAULT_MAX_EVENTS`](crate::event::DEFAULT_MAX_EVENTS)).
-    pub fn max_events(mut self, n: usize) -> Self {
-        self.events = self.events.max_events(n);
-        self
-    }
-
-    /// The simulation without its events.
-    pub fn simulation(&self) -> &Simulation<'a, S, I> {
-        &self.simulation
-    }
-
-    /// [`Simulation::run`] watching the events: in the form the system's
-    /// description asked for, like [`Simulation::run`].
-    ///
-    /// # Errors
-    /// As [`Simulation::run`] and [`Events::integrate`].
-    pub fn run(
-        &self,
-        q0: impl Into<SVector<T, N>>,
-        v0: impl Into<SVector<T, N>>,
-        span: Range<T>,
-    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>>
-    where
-        S: Lagrangian<T, N>,
-    {
-        let start = form::Start {
-            builder: self,
-            q0: q0.into(),
-            v0: v0.into(),
-            span,
-        };
-        self.simulation.system.visit_form(start)
-    }
-
-    /// [`run`](Self::run) with the unconstrained dynamics (refused at compile
-    /// time for a constrained system).
-    ///
-    /// # Errors
-    /// As [`run`](Self::run).
-    pub fn run_unconstrained(
-        &self,
-        q0: impl Into<SVector<T, N>>,
-        v0: impl Into<SVector<T, N>>,
-        span: Range<T>,
-    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>>
-    where
-        S: Lagrangian<T, N>,
-    {
-        let sim = &self.simulation;
-        let (q0, v0) = (q0.into(), v0.into());
-        let terms = sim.system.parameter_terms();
-        let dynamics = sim.dynamics().with_parameter_terms(&terms);
-        sim.check_singular_tolerance().map_err(|e| {
-            failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
-        })?;
-        self.events
-            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
-    }
-
-    /// [`Simulation::run_constrained`] watching the events; after an action
-    /// the state is projected onto the constraints if the drift control
-    /// projects.
-    ///
-    /// # Errors
-    /// As [`Simulation::run_constrained`] and [`Events::integrate`].
-    pub fn run_constrained<const K: usize>(
-        &self,
-        q0: impl Into<SVector<T, N>>,
-        v0: impl Into<SVector<T, N>>,
-        span: Range<T>,
-    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>>
-    where
-        S: Constrained<T, N, K>,
-    {
-        let sim = &self.simulation;
-        let (q0, v0) = (q0.into(), v0.into());
-        let start = |e| {
-            let dynamics = sim.constrained_dynamics::<T, K>();
-            failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
-        };
-        check_problem(span.start, span.end, &q0, &v0).map_err(start)?;
-        let (dynamics, q0, v0) = sim
-            .prepare_constrained::<T, N, K>(span.start, q0, v0)
-            .map_err(start)?;
-        let terms = sim.system.parameter_terms();
-        let dynamics = dynamics.with_parameter_terms(&terms);
-        self.events
-            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
-    }
-
-    /// [`Simulation::run_reduced`] watching the events; after an action the
-    /// velocities are rebuilt from the speeds, so that the state satisfies the
-    /// velocity constraints again.
-    ///
-    /// # Errors
-    /// As [`Simulation::run_reduced`] and [`Events::integrate`].
-    pub fn run_reduced<const K: usize>(
-        &self,
-        q0: impl Into<SVector<T, N>>,
-        v0: impl Into<SVector<T, N>>,
-        span: Range<T>,
-    ) -> Result<EventRun<T, N>, Failure<EventRun<T, N>>>
-    where
-        S: Reduced<T, N, K>,
-    {
-        let sim = &self.simulation;
-        let (q0, v0) = (q0.into(), v0.into());
-        let terms = sim.system.parameter_terms();
-        let dynamics = sim.reduced_dynamics::<T, K>().with_parameter_terms(&terms);
-        let v0 = sim.prepare_reduced(&dynamics, &span, q0, v0).map_err(|e| {
-            failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
-        })?;
-        self.events
-            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
     }
 }
 

@@ -1,0 +1,103 @@
+//! Free orientations (`orientation(..)`): the heavy top's M + (Q − h) derived
+//! against Euler's equations written by hand, and a floating base (a hub on
+//! a free joint with a two-joint arm) to set beside Pinocchio's free flyer
+//! (`peer/pinocchio/free_flyer.sh`, the same model and state).
+//!
+//!     cargo bench -p lagrange-bench --bench free
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use lagrange::Lagrangian;
+use nalgebra::{Matrix3, SVector, Vector3, Vector4};
+use std::hint::black_box;
+
+#[derive(Lagrangian)]
+#[lagrange(
+    orientation(spin),
+    body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+         at = [0, 0, 0], rotation = spin),
+    gravity = [0, 0, -g],
+)]
+struct Top {
+    m: f64,
+    a: f64,
+    c: f64,
+    l: f64,
+    g: f64,
+}
+
+/// Euler's equations of the same top by hand: M = diag(A, A, C), Q − h =
+/// l e₃ × Rᵀ(−m g e_z) − ω × I ω, R's third row from the quaternion.
+fn by_hand(top: &Top, q: &Vector4<f64>, w: &Vector3<f64>) -> (Matrix3<f64>, Vector3<f64>) {
+    let (qw, qx, qy, qz) = (q[0], q[1], q[2], q[3]);
+    let r31 = 2.0 * (qx * qz - qw * qy);
+    let r32 = 2.0 * (qy * qz + qw * qx);
+    let mgl = top.m * top.g * top.l;
+    let iw = Vector3::new(top.a * w[0], top.a * w[1], top.c * w[2]);
+    let gyro = w.cross(&iw);
+    let rhs = Vector3::new(mgl * r32 - gyro[0], -mgl * r31 - gyro[1], -gyro[2]);
+    (
+        Matrix3::from_diagonal(&Vector3::new(top.a, top.a, top.c)),
+        rhs,
+    )
+}
+
+/// The floating base of `tests/free_bodies.rs` and the peer.
+#[derive(Lagrangian)]
+#[lagrange(
+    coordinates(x, y, z, j1, j2),
+    orientation(base),
+    body(hub, mass = 5.0, inertia = [0.4, 0.5, 0.6], at = [x, y, z], rotation = base),
+    point(shoulder, on = hub, at = [0.3, 0.1, 0.2]),
+    body(upper, mass = 1.5, inertia = [0.01, 0.05, 0.05], com = [0.2, 0, 0],
+         at = [shoulder.x, shoulder.y, shoulder.z], rotation = base * rot_z(j1)),
+    point(elbow, on = upper, at = [0.4, 0, 0]),
+    body(fore, mass = 1.0, inertia = [0.005, 0.02, 0.02], com = [0.15, 0, 0],
+         at = [elbow.x, elbow.y, elbow.z], rotation = base * rot_z(j1) * rot_y(j2)),
+    gravity = [0, 0, -9.81],
+)]
+struct FloatingArm {}
+
+fn free(c: &mut Criterion) {
+    let top = Top {
+        m: 1.5,
+        a: 0.8,
+        c: 0.5,
+        l: 0.4,
+        g: 9.81,
+    };
+    let n = (0.8_f64 * 0.8 + 0.2 * 0.2 + 0.4 * 0.4 + 0.3 * 0.3).sqrt();
+    let q = Vector4::new(0.8 / n, 0.2 / n, -0.4 / n, 0.3 / n);
+    let w = Vector3::new(0.4, -0.6, 9.0);
+    let mut group = c.benchmark_group("free_top");
+    group.bench_function("M + (Q - h) derived", |b| {
+        b.iter(|| top.mass_matrix_and_rhs(black_box(&q), black_box(&w), 0.0))
+    });
+    group.bench_function("M + (Q - h) by hand", |b| {
+        b.iter(|| by_hand(&top, black_box(&q), black_box(&w)))
+    });
+    group.finish();
+    let arm = FloatingArm {};
+    let q = SVector::<f64, 9>::from([
+        0.1,
+        -0.2,
+        0.3,
+        0.7,
+        -0.4,
+        0.8 / n,
+        0.2 / n,
+        -0.4 / n,
+        0.3 / n,
+    ]);
+    let v = SVector::<f64, 8>::from([0.3, -0.1, 0.2, 0.5, -0.8, 0.4, -0.6, 0.9]);
+    let mut group = c.benchmark_group("free_floating_arm");
+    group.bench_function("M + (Q - h)", |b| {
+        b.iter(|| arm.mass_matrix_and_rhs(black_box(&q), black_box(&v), 0.0))
+    });
+    group.bench_function("accelerations", |b| {
+        b.iter(|| lagrange::accelerations(&arm, black_box(&q), black_box(&v), 0.0))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, free);
+criterion_main!(benches);

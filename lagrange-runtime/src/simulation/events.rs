@@ -1,0 +1,179 @@
+//! [`EventSimulation`]: a [`Simulation`] that watches events.
+
+use super::{Simulation, form};
+use crate::error::{Error, Failure, unit_quaternions};
+use crate::event::{Event, EventRun, Events};
+use crate::numeric::Real;
+use crate::ode::{Integrator, check_problem, failed_at_start};
+use crate::system::{Constrained, Lagrangian, Reduced};
+use nalgebra::SVector;
+use std::ops::Range;
+
+/// A [`Simulation`] with events, built by [`Simulation::event`].
+#[derive(Debug)]
+pub struct EventSimulation<'a, 'e, S, I, T: Real, const N: usize, const Q: usize = N> {
+    pub(super) simulation: Simulation<'a, S, I>,
+    pub(super) events: Events<'e, T, N, Q>,
+}
+
+impl<'a, 'e, S, I: Integrator, T: Real, const N: usize, const Q: usize>
+    EventSimulation<'a, 'e, S, I, T, N, Q>
+{
+    /// Adds another event; occurrences name events by the order they were added
+    /// (the first one, given to [`Simulation::event`], is 0).
+    pub fn event(mut self, event: Event<'e, T, N, Q>) -> Self {
+        self.events = self.events.with(event);
+        self
+    }
+
+    /// Sets how many events may stop and restart the integration (default
+    /// [`DEFAULT_MAX_EVENTS`](crate::event::DEFAULT_MAX_EVENTS)).
+    pub fn max_events(mut self, n: usize) -> Self {
+        self.events = self.events.max_events(n);
+        self
+    }
+
+    /// The simulation without its events.
+    pub fn simulation(&self) -> &Simulation<'a, S, I> {
+        &self.simulation
+    }
+
+    /// [`Simulation::run`] watching the events: in the form the system's
+    /// description asked for, like [`Simulation::run`].
+    ///
+    /// # Errors
+    /// As [`Simulation::run`] and [`Events::integrate`].
+    pub fn run(
+        &self,
+        q0: impl Into<SVector<T, Q>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>>
+    where
+        S: Lagrangian<T, N, Q>,
+    {
+        let start = form::Start {
+            builder: self,
+            q0: q0.into(),
+            v0: v0.into(),
+            span,
+        };
+        self.simulation.system.visit_form(start)
+    }
+
+    /// [`run`](Self::run) with the unconstrained dynamics (refused at compile
+    /// time for a constrained system).
+    ///
+    /// # Errors
+    /// As [`run`](Self::run).
+    pub fn run_unconstrained(
+        &self,
+        q0: impl Into<SVector<T, Q>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>>
+    where
+        S: Lagrangian<T, N, Q>,
+    {
+        let sim = &self.simulation;
+        let (q0, v0) = (q0.into(), v0.into());
+        let terms = sim.system.parameter_terms();
+        let dynamics = sim.dynamics().with_parameter_terms(&terms);
+        let failed = |e| failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted);
+        sim.check_singular_tolerance::<T, N, Q>().map_err(failed)?;
+        let q0 = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0).map_err(failed)?;
+        self.events
+            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
+    }
+
+    /// [`Simulation::run_constrained`] watching the events; after an action
+    /// the state is projected onto the constraints if the drift control
+    /// projects.
+    ///
+    /// # Errors
+    /// As [`Simulation::run_constrained`] and [`Events::integrate`].
+    pub fn run_constrained<const K: usize>(
+        &self,
+        q0: impl Into<SVector<T, N>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>>
+    where
+        S: Constrained<T, N, K>,
+    {
+        let sim = &self.simulation;
+        let (q0, v0) = (q0.into(), v0.into());
+        let start = |e| {
+            let dynamics = sim.constrained_dynamics::<T, K>();
+            failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
+        };
+        let events = self.square().map_err(|e| widen_failure(start(e)))?;
+        check_problem(span.start, span.end, &q0, &v0).map_err(|e| widen_failure(start(e)))?;
+        let (dynamics, q0, v0) = sim
+            .prepare_constrained::<T, N, K>(span.start, q0, v0)
+            .map_err(|e| widen_failure(start(e)))?;
+        let terms = sim.system.parameter_terms();
+        let dynamics = dynamics.with_parameter_terms(&terms);
+        widen(events.integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0))
+    }
+
+    /// [`Simulation::run_reduced`] watching the events; after an action the
+    /// velocities are rebuilt from the speeds, so that the state satisfies the
+    /// velocity constraints again.
+    ///
+    /// # Errors
+    /// As [`Simulation::run_reduced`] and [`Events::integrate`].
+    pub fn run_reduced<const K: usize>(
+        &self,
+        q0: impl Into<SVector<T, N>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>>
+    where
+        S: Reduced<T, N, K>,
+    {
+        let sim = &self.simulation;
+        let (q0, v0) = (q0.into(), v0.into());
+        let terms = sim.system.parameter_terms();
+        let dynamics = sim.reduced_dynamics::<T, K>().with_parameter_terms(&terms);
+        let failed = |e| failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted);
+        let events = self.square().map_err(|e| widen_failure(failed(e)))?;
+        let v0 = sim
+            .prepare_reduced(&dynamics, &span, q0, v0)
+            .map_err(|e| widen_failure(failed(e)))?;
+        widen(events.integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0))
+    }
+
+    /// The events over q of N entries, for the constrained forms (which
+    /// take no orientations): an error if q has quaternions.
+    fn square(&self) -> Result<Events<'_, T, N>, Error> {
+        self.events.square().ok_or_else(|| {
+            Error::InvalidSettings(
+                "the constrained forms take no orientations (Q = N): this system's events \
+                 are over a configuration with quaternions"
+                    .into(),
+            )
+        })
+    }
+}
+
+/// A run over q of N entries as the run type of a builder over Q = N
+/// entries: the same type, which stable Rust's const generics cannot state.
+fn widen<T: Real, const N: usize, const Q: usize>(
+    run: Result<EventRun<T, N>, Failure<EventRun<T, N>>>,
+) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>> {
+    run.map(retype).map_err(widen_failure)
+}
+
+fn widen_failure<T: Real, const N: usize, const Q: usize>(
+    failure: Failure<EventRun<T, N>>,
+) -> Failure<EventRun<T, N, Q>> {
+    failure.map(retype)
+}
+
+fn retype<T: Real, const N: usize, const Q: usize>(run: EventRun<T, N>) -> EventRun<T, N, Q> {
+    let boxed: Box<dyn std::any::Any> = Box::new(run);
+    *boxed
+        .downcast()
+        .expect("the constrained forms run only where Q = N (checked by `square`)")
+}
