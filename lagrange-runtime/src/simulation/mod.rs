@@ -285,7 +285,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     }
 
     /// Watches `event` during the run: the first of a list of events (add more
-    /// with [`EventSimulation::event`]). The run then returns an [`EventRun`]:
+    /// with [`EventSimulation::event`]). The run then returns an [`EventRun`](crate::EventRun):
     /// the trajectory and the occurrences. See [`crate::event`] for how events
     /// are detected, located and acted on.
     ///
