@@ -272,11 +272,14 @@
 //!   δθ ∈ R³ per orientation (2·N states), so a steady spin linearises to a
 //!   constant A.
 //!
-//! Not yet with an orientation: constraints, `speeds`, `inputs`, `emit(..)`
-//! and `urdf` (each a compile error at the orientation), the recursive route
-//! (bodies with an orientation are derived by differentiating ξ), and the
-//! event and controlled builders of [`Simulation`] (events run through
-//! [`Events::integrate`] with [`Event::with_orientations`]).
+//! Events on such a system are written with [`Event::with_orientations`]
+//! (`g` reads q with its quaternions) and run by [`Simulation::event`] as
+//! usual; an action's result is normalised.
+//!
+//! Not yet with an orientation: constraints, `speeds`, `inputs` (so no
+//! controlled runs), `emit(..)` and `urdf` (each a compile error at the
+//! orientation), and the recursive route (bodies with an orientation are
+//! derived by differentiating ξ).
 //!
 //! ```
 //! use lagrange::prelude::*;

@@ -225,6 +225,11 @@ fn a_quaternion_off_the_unit_sphere_is_refused_naming_the_body() {
         ),
         "{e}"
     );
+    // An integrator used directly checks too, naming the quaternion's place.
+    let e = Rk4::step(0.01)
+        .integrate(&lagrange_runtime::Dynamics::new(&body), 0.0, 1.0, q0, v0)
+        .unwrap_err();
+    assert!(e.to_string().contains("q[3]"), "{e}");
     // Within the tolerance the quaternion is normalised, not refused.
     let (close, _) = spinning([1.0 + 1e-9, 0.0, 0.0, 0.0], [0.0; 3]);
     let traj = Simulation::new(&body).run(close, v0, 0.0..0.1).unwrap();

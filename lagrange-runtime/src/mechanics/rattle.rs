@@ -191,7 +191,7 @@ impl Rattle {
     where
         S: Constrained<T, N, K>,
     {
-        self.record.check_span(t0, t1, N)?;
+        self.record.check_span(t0, t1, 2 * N)?;
         check_problem(t0, t1, &q0, &v0)?;
         let n = fixed_step_count("RATTLE", self.h, self.max_steps, t0, t1)?;
         self.check_settings::<S, T, N, K>()?;

@@ -65,27 +65,22 @@ fn slots(layout: &[Orientation], nq: usize) -> impl Iterator<Item = Slot> + '_ {
 
 /// Whether `layout` fits a configuration of `nq` numbers with `nv`
 /// velocities: orientations in order, not overlapping, each one's velocity
-/// slot where the ordinary coordinates before it put it. The error says what
-/// is wrong.
-pub fn check_layout(layout: &[Orientation], nq: usize, nv: usize) -> Result<(), String> {
+/// slot where the ordinary coordinates before it put it. A `const fn`: a
+/// system's `ORIENTATIONS` is checked at compile time.
+pub const fn fits(layout: &[Orientation], nq: usize, nv: usize) -> bool {
     if nq != nv + layout.len() {
-        return Err(format!(
-            "{} orientations need nq = nv + {}, got nq = {nq}, nv = {nv}",
-            layout.len(),
-            layout.len()
-        ));
+        return false;
     }
-    let mut before = 0;
-    for (k, o) in layout.iter().enumerate() {
-        if o.q < before || o.q + 4 > nq || o.v != o.q - k {
-            return Err(format!(
-                "orientation {k} at q[{}], v[{}] does not fit the layout",
-                o.q, o.v
-            ));
+    let (mut k, mut before) = (0, 0);
+    while k < layout.len() {
+        let o = layout[k];
+        if o.q < before || o.q + 4 > nq || o.q < k || o.v != o.q - k {
+            return false;
         }
         before = o.q + 4;
+        k += 1;
     }
-    Ok(())
+    true
 }
 
 /// q̇ from (q, v): the rate of every ordinary coordinate is its velocity, and
@@ -159,7 +154,8 @@ pub fn quaternion<T: Real>(q: &[T], at: usize) -> [T; 4] {
     [q[at], q[at + 1], q[at + 2], q[at + 3]]
 }
 
-fn norm<T: Real>([w, x, y, z]: [T; 4]) -> T {
+/// The Euclidean norm of a quaternion.
+pub fn norm<T: Real>([w, x, y, z]: [T; 4]) -> T {
     sqrt(w * w + x * x + y * y + z * z)
 }
 
@@ -250,12 +246,12 @@ mod tests {
 
     #[test]
     fn layout_checks() {
-        assert!(check_layout(&LAYOUT, 6, 5).is_ok());
-        assert!(check_layout(&LAYOUT, 5, 5).is_err());
-        assert!(check_layout(&[Orientation { q: 1, v: 0 }], 6, 5).is_err());
-        assert!(check_layout(&[Orientation { q: 3, v: 3 }], 6, 5).is_err());
+        assert!(fits(&LAYOUT, 6, 5));
+        assert!(!fits(&LAYOUT, 5, 5));
+        assert!(!fits(&[Orientation { q: 1, v: 0 }], 6, 5));
+        assert!(!fits(&[Orientation { q: 3, v: 3 }], 6, 5));
         let two = [Orientation { q: 0, v: 0 }, Orientation { q: 4, v: 3 }];
-        assert!(check_layout(&two, 8, 6).is_ok());
+        assert!(fits(&two, 8, 6));
     }
 
     #[test]

@@ -6,7 +6,9 @@
 use super::mechanical::Mechanical;
 use super::run::{Run, fixed_steps};
 use super::verlet::fixed_step_count;
-use super::{DenseSegment, Integrator, Pair, SecondOrder, Stats, check_problem, settle};
+use super::{
+    DenseSegment, Integrator, Pair, SecondOrder, Stats, check_orientations, check_problem, settle,
+};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
@@ -126,8 +128,9 @@ impl Gauss {
         (t0, t1, q0, v0): (T, T, SVector<T, Q>, SVector<T, N>),
         run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
-        self.record.check_span(t0, t1, N)?;
+        self.record.check_span(t0, t1, Q + N)?;
         check_problem(t0, t1, &q0, &v0)?;
+        check_orientations(rhs, &q0)?;
         if self.max_iterations == 0 {
             return Err(Error::InvalidSettings(
                 "Gauss: max_iterations must be positive".into(),

@@ -74,8 +74,8 @@ pub trait SecondOrder<T: Real, const N: usize, const Q: usize = N> {
     fn rate(&self, q: &SVector<T, Q>, v: &SVector<T, N>) -> SVector<T, Q> {
         const {
             assert!(
-                Q == N + Self::ORIENTATIONS.len(),
-                "nq must be nv + 1 per orientation"
+                orientation::fits(Self::ORIENTATIONS, Q, N),
+                "ORIENTATIONS does not fit: nq must be nv + 1 per orientation, each quaternion's four slots in q after the coordinates before it, its ω at the same place in v"
             )
         };
         let mut out = SVector::<T, Q>::zeros();
@@ -389,6 +389,41 @@ pub(crate) fn settle<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, 
 ) -> Result<bool, Error> {
     orientation::normalise(F::ORIENTATIONS, q.as_mut_slice());
     rhs.project(t, q, v)
+}
+
+/// Checks a start with orientations: each quaternion is a rotation (finite,
+/// within
+/// [`UNIT_TOLERANCE`](orientation::UNIT_TOLERANCE) of unit norm). The
+/// simulation builders check and normalise before (naming the body); this
+/// is the integrators' own check, for a [`SecondOrder`] used directly.
+///
+/// (The layout itself is checked at compile time, in [`SecondOrder::rate`].)
+///
+/// # Errors
+/// [`Error::NonUnitQuaternion`] naming the quaternion by its place in q.
+pub(crate) fn check_orientations<
+    T: Real,
+    const N: usize,
+    const Q: usize,
+    F: SecondOrder<T, N, Q>,
+>(
+    _: &F,
+    q0: &SVector<T, Q>,
+) -> Result<(), Error> {
+    if F::ORIENTATIONS.is_empty() {
+        return Ok(());
+    }
+    for o in F::ORIENTATIONS {
+        let norm = orientation::norm(orientation::quaternion(q0.as_slice(), o.q)).to_f64();
+        if !((norm - 1.0).abs() <= orientation::UNIT_TOLERANCE) {
+            return Err(Error::NonUnitQuaternion {
+                orientation: format!("the quaternion at q[{}]", o.q),
+                norm,
+                tolerance: orientation::UNIT_TOLERANCE,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Checks what every integrator needs: a finite, non-empty, forward time span and

@@ -18,9 +18,9 @@ use crate::numeric::Real;
 /// across pieces, and neither records the instants where pieces join; `Steps`
 /// records every step, so those instants are among its points.
 ///
-/// Memory per stored point for f64: 8 (t) + 16 N (q, q̇) + 24 (integral,
-/// residuals) bytes; `Steps` also keeps each step's dense segment, 8 × 16 N + 24
-/// bytes more, so that [`state_at`](crate::Trajectory::state_at) and
+/// Memory per stored point for f64: 8 (t) + 8 (Q + N) (q, v; Q = N without
+/// orientations) + 32 (integral, residuals, unit-norm error) bytes; `Steps`
+/// also keeps each step's dense segment, 8 × 8 (Q + N) + 40 bytes more, so that [`state_at`](crate::Trajectory::state_at) and
 /// [`crossings`](crate::Trajectory::crossings) work. The other policies keep no
 /// segments (`state_at` then answers only at the stored times and `crossings`
 /// refuses), so a run of 10⁷ steps with `Every(1000)` stores 10⁴ points and
@@ -64,12 +64,12 @@ impl Record {
 
     /// [`check`](Self::check), and refuses an `Interval` whose grid over
     /// [t0, t1] has more than [`MAX_POINTS`](Self::MAX_POINTS) points, before
-    /// any work: the message gives the count and the memory for `n`
-    /// coordinates of `T`.
+    /// any work: the message gives the count and the memory for a state of
+    /// `len` numbers (Q + N) of `T`.
     ///
     /// # Errors
     /// [`Error::InvalidSettings`].
-    pub fn check_span<T: Real>(&self, t0: T, t1: T, n: usize) -> Result<(), Error> {
+    pub fn check_span<T: Real>(&self, t0: T, t1: T, len: usize) -> Result<(), Error> {
         self.check()?;
         let Record::Interval(dt) = *self else {
             return Ok(());
@@ -78,7 +78,7 @@ impl Record {
         if points.is_nan() || points <= Self::MAX_POINTS {
             return Ok(());
         }
-        let bytes = points * Self::point_bytes::<T>(n) as f64;
+        let bytes = points * Self::point_bytes::<T>(len) as f64;
         Err(Error::InvalidSettings(format!(
             "record: Interval({dt:e}) over [{}, {}] asks for {points:.3e} points, \
              {:.3e} bytes of memory; at most {:e} points are recorded: take a larger \
@@ -90,10 +90,11 @@ impl Record {
         )))
     }
 
-    /// The memory of one stored point without its dense segment: t, q, q̇,
-    /// the integral and two residuals.
-    fn point_bytes<T>(n: usize) -> usize {
-        (4 + 2 * n) * std::mem::size_of::<T>()
+    /// The memory of one stored point without its dense segment: t, the
+    /// state's `len` numbers, the integral, two residuals and the unit-norm
+    /// error.
+    fn point_bytes<T>(len: usize) -> usize {
+        (5 + len) * std::mem::size_of::<T>()
     }
 }
 

@@ -2,7 +2,9 @@
 
 use super::run::{Run, fixed_steps};
 use super::verlet::fixed_step_count;
-use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem, settle};
+use super::{
+    DenseSegment, Integrator, Pair, SecondOrder, check_orientations, check_problem, settle,
+};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::ode::{Continuation, Record, Trajectory};
@@ -84,7 +86,7 @@ impl Rk4 {
         y0: Pair<T, N, Q>,
         run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
-        self.record.check_span(t0, t1, N)?;
+        self.record.check_span(t0, t1, Q + N)?;
         if !(self.h.is_finite() && self.h > 0.0) {
             return Err(Error::InvalidSettings(format!(
                 "RK4 step size must be positive and finite, got {}",
@@ -92,6 +94,7 @@ impl Rk4 {
             )));
         }
         check_problem(t0, t1, &y0.q, &y0.v)?;
+        check_orientations(rhs, &y0.q)?;
         let n = fixed_step_count("Rk4", self.h, self.max_steps, t0, t1)?;
         let h = T::lit(self.h);
 

@@ -62,6 +62,8 @@ impl<T: Real, const N: usize, const Q: usize> Run<T, N, Q> {
         q: SVector<T, Q>,
         v: SVector<T, N>,
     ) -> Result<bool, Error> {
+        // The event layer reads the segment too: normalised quaternions there.
+        let segment = segment.with_orientations(F::ORIENTATIONS);
         let stop = rhs.after_step(&segment, &q, &v)?;
         self.push(rhs, segment, q, v);
         Ok(stop)

@@ -1,7 +1,9 @@
 //! Störmer–Verlet in its velocity form, with a fixed step.
 
 use super::run::{Run, fixed_steps};
-use super::{DenseSegment, Integrator, Pair, SecondOrder, check_problem, settle};
+use super::{
+    DenseSegment, Integrator, Pair, SecondOrder, check_orientations, check_problem, settle,
+};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::ode::{Continuation, Record, Trajectory};
@@ -126,8 +128,9 @@ impl StormerVerlet {
         (q0, v0): (SVector<T, Q>, SVector<T, N>),
         run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
-        self.record.check_span(t0, t1, N)?;
+        self.record.check_span(t0, t1, Q + N)?;
         check_problem(t0, t1, &q0, &v0)?;
+        check_orientations(rhs, &q0)?;
         let n = fixed_step_count("Störmer–Verlet", self.h, self.max_steps, t0, t1)?;
         let h = T::lit(self.h);
         let half = T::lit(0.5);

@@ -22,7 +22,9 @@ use super::adaptive::{Stepping, first_step};
 use super::controller::PiController;
 use super::run::Run;
 use super::settings::{StepControl, step_control_builders};
-use super::{DenseSegment, Integrator, Pair, SecondOrder, Stats, check_problem, settle};
+use super::{
+    DenseSegment, Integrator, Pair, SecondOrder, Stats, check_orientations, check_problem, settle,
+};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::{abs, sqrt};
@@ -204,10 +206,11 @@ impl Dop853 {
         y0: Pair<T, N, Q>,
         run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
-        self.record.check_span(t0, t1, N)?;
+        self.record.check_span(t0, t1, Q + N)?;
         self.validate()?;
         self.control.check_precision::<T>("DOP853")?;
         check_problem(t0, t1, &y0.q, &y0.v)?;
+        check_orientations(rhs, &y0.q)?;
         let co = Coefficients::<T>::new();
         let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
         let stats = &mut run.stats;

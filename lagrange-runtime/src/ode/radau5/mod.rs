@@ -6,7 +6,7 @@ mod step;
 
 use super::run::Run;
 use super::settings::{StepControl, step_control_builders};
-use super::{Integrator, SecondOrder, check_problem};
+use super::{Integrator, SecondOrder, check_orientations, check_problem};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::ode::{Continuation, Record, Trajectory};
@@ -203,10 +203,11 @@ impl Radau5 {
         (q0, v0): (SVector<T, Q>, SVector<T, N>),
         run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
-        self.record.check_span(t0, t1, N)?;
+        self.record.check_span(t0, t1, Q + N)?;
         self.validate()?;
         self.control.check_precision::<T>("RADAU5")?;
         check_problem(t0, t1, &q0, &v0)?;
+        check_orientations(rhs, &q0)?;
         let mut state = State::new(self, rhs, (t0, t1), (q0, v0), &mut run.stats)?;
         loop {
             if !state.prepare(rhs, &mut run.stats)? {
