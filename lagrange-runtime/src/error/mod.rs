@@ -441,18 +441,13 @@ pub(crate) fn unit_quaternions<T: Real, const Q: usize>(
     names: &[&'static str; Q],
     mut q: SVector<T, Q>,
 ) -> Result<SVector<T, Q>, Error> {
-    for o in layout {
-        let [w, x, y, z] = orientation::quaternion(q.as_slice(), o.q).map(|c| c.to_f64());
-        let norm = (w * w + x * x + y * y + z * z).sqrt();
-        let unit = (norm - 1.0).abs() <= UNIT_TOLERANCE;
-        if !unit {
-            let name = names[o.q];
-            return Err(Error::NonUnitQuaternion {
-                orientation: name.strip_suffix(".w").unwrap_or(name).to_string(),
-                norm,
-                tolerance: UNIT_TOLERANCE,
-            });
-        }
+    if let Some((o, norm)) = orientation::first_off_unit(layout, q.as_slice()) {
+        let name = names[o.q];
+        return Err(Error::NonUnitQuaternion {
+            orientation: name.strip_suffix(".w").unwrap_or(name).to_string(),
+            norm,
+            tolerance: UNIT_TOLERANCE,
+        });
     }
     orientation::normalise(layout, q.as_mut_slice());
     Ok(q)

@@ -139,6 +139,16 @@ pub fn unit_error<T: Real>(layout: &[Orientation], q: &[T]) -> T {
     })
 }
 
+/// The first orientation whose quaternion is not a rotation (not finite, or
+/// its norm further than [`UNIT_TOLERANCE`] from 1), with that norm.
+pub fn first_off_unit<T: Real>(layout: &[Orientation], q: &[T]) -> Option<(Orientation, f64)> {
+    layout.iter().find_map(|&o| {
+        let n = norm(quaternion(q, o.q)).to_f64();
+        let unit = (n - 1.0).abs() <= UNIT_TOLERANCE;
+        (!unit).then_some((o, n))
+    })
+}
+
 /// Scales every quaternion to unit norm, in place.
 pub fn normalise<T: Real>(layout: &[Orientation], q: &mut [T]) {
     for o in layout {

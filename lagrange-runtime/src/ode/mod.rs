@@ -410,18 +410,12 @@ pub(crate) fn check_orientations<
     _: &F,
     q0: &SVector<T, Q>,
 ) -> Result<(), Error> {
-    if F::ORIENTATIONS.is_empty() {
-        return Ok(());
-    }
-    for o in F::ORIENTATIONS {
-        let norm = orientation::norm(orientation::quaternion(q0.as_slice(), o.q)).to_f64();
-        if !((norm - 1.0).abs() <= orientation::UNIT_TOLERANCE) {
-            return Err(Error::NonUnitQuaternion {
-                orientation: format!("the quaternion at q[{}]", o.q),
-                norm,
-                tolerance: orientation::UNIT_TOLERANCE,
-            });
-        }
+    if let Some((o, norm)) = orientation::first_off_unit(F::ORIENTATIONS, q0.as_slice()) {
+        return Err(Error::NonUnitQuaternion {
+            orientation: format!("the quaternion at q[{}]", o.q),
+            norm,
+            tolerance: orientation::UNIT_TOLERANCE,
+        });
     }
     Ok(())
 }
