@@ -59,3 +59,25 @@ pub struct QuaternionTop {
     pub l: f64,
     pub g: f64,
 }
+
+/// The time between flips of a body spun near its intermediate axis
+/// (principal moments i1 < i2 < i3, angular velocity w with L² > 2 E i2):
+/// half the period 4K(k)/s of Landau–Lifshitz §37, with
+/// s² = (i3 − i2)(L² − 2E i1)/(i1 i2 i3), k² = (i2 − i1)(2E i3 − L²)/((i3 − i2)(L² − 2E i1))
+/// and K(k) = π / (2 AGM(1, √(1 − k²))).
+pub fn flip_half_period([i1, i2, i3]: [f64; 3], w: [f64; 3]) -> f64 {
+    let two_e = i1 * w[0] * w[0] + i2 * w[1] * w[1] + i3 * w[2] * w[2];
+    let l2 = (i1 * w[0]).powi(2) + (i2 * w[1]).powi(2) + (i3 * w[2]).powi(2);
+    assert!(
+        l2 > two_e * i2,
+        "the other case of §37: spin nearer the smallest axis"
+    );
+    let s = ((i3 - i2) * (l2 - two_e * i1) / (i1 * i2 * i3)).sqrt();
+    let k2 = (i2 - i1) * (two_e * i3 - l2) / ((i3 - i2) * (l2 - two_e * i1));
+    let (mut a, mut b) = (1.0, (1.0 - k2).sqrt());
+    // Quadratic convergence: 10 iterations reach round-off.
+    for _ in 0..10 {
+        (a, b) = (0.5 * (a + b), (a * b).sqrt());
+    }
+    std::f64::consts::PI / a / s
+}

@@ -1,39 +1,23 @@
 //! Free rotations: the intermediate-axis flip and a top spun exactly upright,
 //! each with an animation of its scene.
 
-use crate::catalog::free::{Brick, QuaternionTop};
+use crate::catalog::free::{Brick, QuaternionTop, flip_half_period};
 use crate::figure::Figure;
 use crate::row::Row;
 use lagrange::Posed;
 use lagrange::prelude::*;
-use std::f64::consts::PI;
 use std::ops::Range;
 use std::time::Instant;
 
 /// Frames of each animation.
 const FRAMES: usize = 150;
 
-/// The time between flips of a body spun near its intermediate axis
-/// (principal moments i1 < i2 < i3, L² > 2 E i2): half the period 4K(k)/s of
-/// Landau–Lifshitz §37.
-fn half_period([i1, i2, i3]: [f64; 3], w: [f64; 3]) -> f64 {
-    let two_e = i1 * w[0] * w[0] + i2 * w[1] * w[1] + i3 * w[2] * w[2];
-    let l2 = (i1 * w[0]).powi(2) + (i2 * w[1]).powi(2) + (i3 * w[2]).powi(2);
-    let s = ((i3 - i2) * (l2 - two_e * i1) / (i1 * i2 * i3)).sqrt();
-    let k2 = (i2 - i1) * (two_e * i3 - l2) / ((i3 - i2) * (l2 - two_e * i1));
-    let (mut a, mut b) = (1.0, (1.0 - k2).sqrt());
-    for _ in 0..10 {
-        (a, b) = (0.5 * (a + b), (a * b).sqrt());
-    }
-    PI / a / s
-}
-
 /// A brick spun about its intermediate axis, nudged: it flips over and back,
 /// every half period of the elliptic closed form.
 pub(crate) fn intermediate_axis(system: &'static str) -> Result<Row, Error> {
     let brick = Brick::solid(1.0, [0.3, 0.2, 0.1]);
     let w = [0.01, 5.0, 0.01];
-    let half = half_period([brick.a, brick.b, brick.c], w);
+    let half = flip_half_period([brick.a, brick.b, brick.c], w);
     let span = 0.0..6.5 * half;
     let q0 = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0];
     let start = Instant::now();
