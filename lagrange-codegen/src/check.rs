@@ -42,8 +42,9 @@ fn check_orientations(cx: &Ctxt, system: &System) {
     if !system.inputs.is_empty() {
         not_yet.push("`inputs(...)`");
     }
-    if !system.extras.is_empty() {
-        not_yet.push("`emit(...)`");
+    let centred = [Extra::Articulated, Extra::InverseDynamics];
+    if system.extras.iter().any(|(_, e)| !centred.contains(e)) {
+        not_yet.push("`emit(...)` other than `articulated` and `inverse_dynamics`");
     }
     if system.urdf.is_some() {
         not_yet.push("`urdf`");

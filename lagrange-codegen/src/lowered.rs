@@ -86,9 +86,22 @@ pub struct Skeleton {
     pub anchors: Vec<(Vec<Sym>, usize, Vec<Sym>)>,
 }
 
+/// One factor of a rotation product, as the recursive route reads it.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Factor {
+    /// rot_axis(angle): `rot_x`, `rot_y`, `rot_z` (axis 0, 1, 2).
+    Turn(usize, Sym),
+    /// A free orientation, R₀(quaternion)·exp(θ): a spherical joint whose
+    /// velocity is the angular velocity in its own axes.
+    Free {
+        theta: [Sym; 3],
+        quaternion: [Sym; 4],
+    },
+}
+
 /// A body's rotation factors (`None` for an explicit matrix) and reference point.
 pub struct BodyFrame {
-    pub factors: Option<Vec<(usize, Sym)>>,
+    pub factors: Option<Vec<Factor>>,
     pub reference: Vec<Sym>,
 }
 

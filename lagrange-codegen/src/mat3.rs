@@ -31,3 +31,25 @@ pub fn cos_sin(ctx: &mut Context, angle: Sym) -> (Sym, Sym) {
 pub fn transpose(a: &Mat3) -> Mat3 {
     [0, 1, 2].map(|i| [0, 1, 2].map(|j| a[j][i]))
 }
+
+/// R(q) of a unit quaternion (w, x, y, z), body axes to the parent's.
+pub fn quaternion_matrix(ctx: &mut Context, [w, x, y, z]: [Sym; 4]) -> Mat3 {
+    let two = ctx.int(2);
+    let one = ctx.one();
+    let mut product = |a: Sym, b: Sym| {
+        let p = ctx.mul(a, b);
+        ctx.mul(two, p)
+    };
+    let (xx, yy, zz) = (product(x, x), product(y, y), product(z, z));
+    let (xy, xz, yz) = (product(x, y), product(x, z), product(y, z));
+    let (wx, wy, wz) = (product(w, x), product(w, y), product(w, z));
+    let diagonal = |ctx: &mut Context, a: Sym, b: Sym| {
+        let s = ctx.add(a, b);
+        ctx.sub(one, s)
+    };
+    [
+        [diagonal(ctx, yy, zz), ctx.sub(xy, wz), ctx.add(xz, wy)],
+        [ctx.add(xy, wz), diagonal(ctx, xx, zz), ctx.sub(yz, wx)],
+        [ctx.sub(xz, wy), ctx.add(yz, wx), diagonal(ctx, xx, yy)],
+    ]
+}

@@ -17,6 +17,7 @@ fn shifted(p: &Point, dq: &[f64], dv: &[f64], dt: f64) -> Point {
         t: p.t + dt,
         params: p.params.clone(),
         u: p.u.clone(),
+        quaternions: p.quaternions.clone(),
     }
 }
 
@@ -127,6 +128,7 @@ fn reduced_form_equals_multiplier_form() {
             t: p.t,
             params: p.params.clone(),
             u: Vec::new(),
+            quaternions: p.quaternions.clone(),
         };
         let sol = saddle_point(&full, &fp);
         let expected = [sol[0], sol[1], sol[3], sol[4], sol[5]];

@@ -28,6 +28,7 @@ fn check_model(src: &str) {
                 t: p.t,
                 params: p.params.clone(),
                 u: Vec::new(),
+                quaternions: p.quaternions.clone(),
             };
             eval(&model, model.kinetic, &pp)
         };
@@ -57,6 +58,7 @@ fn check_model(src: &str) {
                     t: p.t,
                     params: p.params.clone(),
                     u: Vec::new(),
+                    quaternions: p.quaternions.clone(),
                 };
                 eval(&model, model.potential, &pp)
             };

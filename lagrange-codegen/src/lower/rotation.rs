@@ -17,29 +17,8 @@ use lagrange_symbolic::Expr as Sym;
 use syn::{BinOp, Expr};
 
 use crate::lower::{Lowerer, Mode};
-use crate::mat3::{Mat3, transpose};
-
-/// R(q) of a unit quaternion (w, x, y, z), body axes to the parent's.
-fn quaternion_matrix(ctx: &mut lagrange_symbolic::Context, [w, x, y, z]: [Sym; 4]) -> Mat3 {
-    let two = ctx.int(2);
-    let one = ctx.one();
-    let mut product = |a: Sym, b: Sym| {
-        let p = ctx.mul(a, b);
-        ctx.mul(two, p)
-    };
-    let (xx, yy, zz) = (product(x, x), product(y, y), product(z, z));
-    let (xy, xz, yz) = (product(x, y), product(x, z), product(y, z));
-    let (wx, wy, wz) = (product(w, x), product(w, y), product(w, z));
-    let diagonal = |ctx: &mut lagrange_symbolic::Context, a: Sym, b: Sym| {
-        let s = ctx.add(a, b);
-        ctx.sub(one, s)
-    };
-    [
-        [diagonal(ctx, yy, zz), ctx.sub(xy, wz), ctx.add(xz, wy)],
-        [ctx.add(xy, wz), diagonal(ctx, xx, zz), ctx.sub(yz, wx)],
-        [ctx.sub(xz, wy), ctx.add(yz, wx), diagonal(ctx, xx, yy)],
-    ]
-}
+use crate::lowered::Factor;
+use crate::mat3::{Mat3, quaternion_matrix, transpose};
 
 /// A lowered rotation: the matrix and the angular velocity in body and world axes.
 pub struct Rotation {
@@ -48,7 +27,7 @@ pub struct Rotation {
     pub omega_world: [Sym; 3],
     /// The elementary factors (axis, angle) in order, when every factor is one
     /// (an explicit matrix has none): the joints of a kinematic tree.
-    pub factors: Option<Vec<(usize, Sym)>>,
+    pub factors: Option<Vec<Factor>>,
 }
 
 const FORMS: &str = "rot_x(a), rot_y(a), rot_z(a), euler_zxz(a, b, c), euler_zyx(a, b, c) or a 3×3 matrix [[..], [..], [..]]";
@@ -171,11 +150,12 @@ impl Lowerer<'_> {
             self.ctx.add(rates[i], h)
         });
         let omega_world = self.mat_vec(&matrix, &omega_body);
+        let quaternion = self.orientations[k].quaternion;
         Rotation {
             matrix,
             omega_body,
             omega_world,
-            factors: None,
+            factors: Some(vec![Factor::Free { theta, quaternion }]),
         }
     }
 
@@ -205,7 +185,7 @@ impl Lowerer<'_> {
             matrix: m,
             omega_body: w,
             omega_world: w,
-            factors: Some(vec![(axis, angle)]),
+            factors: Some(vec![Factor::Turn(axis, angle)]),
         }
     }
 

@@ -11,8 +11,49 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
+use super::Derived;
 use crate::lowered::{OrientationModel, Poses};
 use crate::mat3::Mat3;
+
+/// Free orientations: every output at the centre of the moving chart, θ = 0
+/// (see `chart`). What takes no orientation yet (constraints, inputs and the
+/// optional outputs but the articulated q̈ and the inverse dynamics) is
+/// refused before the derivation.
+pub(super) fn at_centre(ctx: &mut Context, d: &mut Derived) {
+    if d.orientations.is_empty() {
+        return;
+    }
+    let at = centre(ctx, &d.orientations);
+    let norms = unit_norms(ctx, &d.orientations);
+    let mut c = AtCentre {
+        ctx,
+        at: &at,
+        norms: &norms,
+    };
+    let m = &mut d.motion;
+    c.rows(&mut m.mass);
+    for v in [&mut m.bias, &mut m.bias_other, &mut m.rhs, &mut m.forces] {
+        c.all(v);
+    }
+    c.all(&mut d.forces.generalized);
+    if let Some(a) = &mut d.forces.articulated {
+        c.all(&mut a.accelerations);
+        c.all(&mut a.pivots);
+    }
+    if let Some(i) = &mut d.inverse {
+        c.all(&mut i.torques);
+        c.all(&mut i.gravity);
+    }
+    for e in [&mut d.kinetic, &mut d.integral, &mut d.forces.potential] {
+        *e = c.one(*e);
+    }
+    d.forces.gravity_potential = c.one(d.forces.gravity_potential);
+    for (mass, position) in &mut d.particles {
+        *mass = c.one(*mass);
+        c.all(position);
+    }
+    c.poses(&mut d.poses);
+}
 
 /// θ ↦ 0 for every orientation.
 pub(super) fn centre(ctx: &mut Context, orientations: &[OrientationModel]) -> Vec<(Sym, Sym)> {

@@ -372,7 +372,7 @@ fn equations(
 }
 
 /// Everything derived before the optional outputs and the constrained forms.
-struct Derived {
+pub(super) struct Derived {
     coordinates: Vec<String>,
     orientations: Vec<crate::lowered::OrientationModel>,
     parameters: Vec<String>,
@@ -422,7 +422,7 @@ fn finish(
     c: Constrained,
     extras: &[Extra],
 ) -> Result<Model, DeriveError> {
-    at_centre(&mut ctx, &mut d);
+    chart::at_centre(&mut ctx, &mut d);
     let wants = |e: Extra| extras.contains(&e);
     let Motion {
         mass,
@@ -488,37 +488,6 @@ fn finish(
     };
     model.cyclic = cyclic::cyclic(&model);
     Ok(model)
-}
-
-/// Free orientations: every output at the centre of the moving chart, θ = 0
-/// (see `chart`). What takes no orientation yet (constraints, inputs and the
-/// optional outputs) is refused before the derivation.
-fn at_centre(ctx: &mut Context, d: &mut Derived) {
-    if d.orientations.is_empty() {
-        return;
-    }
-    let at = chart::centre(ctx, &d.orientations);
-    let norms = chart::unit_norms(ctx, &d.orientations);
-    let mut c = chart::AtCentre {
-        ctx,
-        at: &at,
-        norms: &norms,
-    };
-    let m = &mut d.motion;
-    c.rows(&mut m.mass);
-    for v in [&mut m.bias, &mut m.bias_other, &mut m.rhs, &mut m.forces] {
-        c.all(v);
-    }
-    c.all(&mut d.forces.generalized);
-    for e in [&mut d.kinetic, &mut d.integral, &mut d.forces.potential] {
-        *e = c.one(*e);
-    }
-    d.forces.gravity_potential = c.one(d.forces.gravity_potential);
-    for (mass, position) in &mut d.particles {
-        *mass = c.one(*mass);
-        c.all(position);
-    }
-    c.poses(&mut d.poses);
 }
 
 /// G, g, Φ and γ, with their derivatives when the Jacobians are asked for.

@@ -60,6 +60,7 @@ fn velocities(ctx: &mut Context, tree: &Tree) -> Links {
     let mut bias_acc: Vec<Pair> = Vec::with_capacity(n);
     let mut inertia: Vec<Spatial> = Vec::with_capacity(n);
     let mut bias: Vec<Pair> = Vec::with_capacity(n);
+    let mut entering: Vec<Pair> = Vec::with_capacity(n);
     for link in &tree.links {
         let [w, v] = link.parent.map_or([[zero; 3]; 2], |p| vel[p]);
         let cs = trig(ctx, link);
@@ -69,7 +70,9 @@ fn velocities(ctx: &mut Context, tree: &Tree) -> Links {
         let v_at = add3(ctx, v, wd);
         let w_in = to_link(ctx, link, cs, w);
         let v_in = to_link(ctx, link, cs, v_at);
-        let ([w, v], c) = joint_velocity(ctx, link, [w_in, v_in], rate);
+        entering.push([w_in, v_in]);
+        let first = link.chart.map_or([w_in, v_in], |k| entering[k]);
+        let ([w, v], c) = joint_velocity(ctx, link, [w_in, v_in], first, rate);
         vel.push([w, v]);
         bias_acc.push(c);
         let spatial = rigid_spatial(ctx, link.inertia.as_ref());

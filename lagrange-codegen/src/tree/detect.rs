@@ -10,8 +10,8 @@ use lagrange_symbolic::{Context, Expr as Sym, SymbolKind};
 
 use super::link::{add3, elementary, mat_mul, mat_vec};
 use super::{Inertia, Link, Masses, Tree};
-use crate::lowered::Skeleton;
-use crate::mat3::{Mat3, transpose};
+use crate::lowered::{Factor, Skeleton};
+use crate::mat3::{Mat3, quaternion_matrix, transpose};
 
 /// Whether `e` depends on parameters only (fixed in space and time).
 fn fixed(ctx: &Context, e: Sym) -> bool {
@@ -31,20 +31,33 @@ fn coordinate_name(ctx: &Context, i: usize) -> String {
 type Constant = (usize, Sym);
 
 /// One joint of a body's rotation: the constant factors since the previous
-/// joint (its placement), its axis and its coordinate.
+/// joint (its placement), its axis and its coordinate, and whether it is an
+/// axis of a spherical joint.
 #[derive(Clone, PartialEq)]
 struct Joint {
     placement: Vec<Constant>,
     axis: usize,
     coordinate: usize,
+    sphere: Sphere,
+}
+
+/// A joint's part in a spherical joint (a free orientation's three axes).
+#[derive(Clone, Copy, PartialEq)]
+enum Sphere {
+    /// A revolute joint.
+    No,
+    /// The first axis, placed by the quaternion's R₀ after the placement.
+    First([Sym; 4]),
+    /// The second or third axis, in the first's frame.
+    Next,
 }
 
 /// A body's rotation read as joints, the constant factors after the last one,
-/// and the number of factors in all.
+/// and the factors in all.
 struct Chain {
     joints: Vec<Joint>,
     trailing: Vec<Constant>,
-    factors: Vec<(usize, Sym)>,
+    factors: Vec<Factor>,
 }
 
 /// Where a body sits: the link it is fixed in (`None`: fixed in space), its
@@ -86,13 +99,37 @@ fn body_chains(ctx: &Context, skeleton: &Skeleton, names: &[String]) -> Result<V
             ));
         };
         let (mut joints, mut pending) = (Vec::new(), Vec::new());
-        for &(axis, angle) in factors {
+        for &factor in factors {
+            let (axis, angle) = match factor {
+                Factor::Turn(axis, angle) => (axis, angle),
+                Factor::Free { theta, quaternion } => {
+                    for (axis, &x) in theta.iter().enumerate() {
+                        let coordinate = coordinates
+                            .iter()
+                            .position(|&q| q == x)
+                            .expect("a free orientation's θ are coordinates");
+                        let sphere = if axis == 0 {
+                            Sphere::First(quaternion)
+                        } else {
+                            Sphere::Next
+                        };
+                        joints.push(Joint {
+                            placement: std::mem::take(&mut pending),
+                            axis,
+                            coordinate,
+                            sphere,
+                        });
+                    }
+                    continue;
+                }
+            };
             if let Some(coordinate) = coordinates.iter().position(|&q| q == angle) {
                 let placement = std::mem::take(&mut pending);
                 joints.push(Joint {
                     placement,
                     axis,
                     coordinate,
+                    sphere: Sphere::No,
                 });
             } else if fixed(ctx, angle) {
                 pending.push((axis, angle));
@@ -156,42 +193,47 @@ fn parent_of(
 }
 
 /// Where a body hangs: the link it hangs on (`None`: the ground), the point in
-/// that link's axes, a sliding joint there (direction and coordinate) if the
-/// point moves along a line, and how many of its joints its parent has.
+/// that link's axes, the sliding joints there (direction and coordinate) if
+/// the point moves along fixed lines, and how many of its joints its parent
+/// has.
 struct Hook {
     up: Option<usize>,
     at: [Sym; 3],
-    slide: Option<([Sym; 3], usize)>,
+    slides: Vec<([Sym; 3], usize)>,
     inherited: usize,
 }
 
-/// `x = c + a q_k` with c and a constant, for exactly one coordinate q_k: a
-/// point sliding along a fixed line.
-fn sliding(ctx: &mut Context, x: &[Sym]) -> Option<([Sym; 3], [Sym; 3], usize)> {
+/// A sliding joint: its direction and its coordinate.
+type Slide = ([Sym; 3], usize);
+
+/// `x = c + Σ a_k q_k` with c and every a_k constant, for one coordinate or
+/// more: a point sliding along fixed lines (a free body's `at = [x, y, z]`
+/// slides along the three axes), one sliding joint per coordinate.
+fn sliding(ctx: &mut Context, x: &[Sym]) -> Option<([Sym; 3], Vec<Slide>)> {
     if x.len() != 3 {
         return None;
     }
     let qs = ctx.coordinates();
-    let mut found = None;
+    let mut found = Vec::new();
     for (k, &q) in qs.iter().enumerate() {
         let a: Vec<Sym> = x.iter().map(|&e| ctx.diff(e, q)).collect();
         if a.iter().all(|&d| ctx.is_zero(d)) {
             continue;
         }
-        if found.is_some() || !a.iter().all(|&d| fixed(ctx, d)) {
+        if !a.iter().all(|&d| fixed(ctx, d)) {
             return None;
         }
-        found = Some((k, [a[0], a[1], a[2]]));
+        found.push(([a[0], a[1], a[2]], k));
     }
-    let (k, a) = found?;
+    if found.is_empty() {
+        return None;
+    }
     let zero = ctx.zero();
-    let c: Vec<Sym> = x
-        .iter()
-        .map(|&e| ctx.substitute(e, &[(qs[k], zero)]))
-        .collect();
+    let at: Vec<(Sym, Sym)> = found.iter().map(|&(_, k)| (qs[k], zero)).collect();
+    let c: Vec<Sym> = x.iter().map(|&e| ctx.substitute(e, &at)).collect();
     c.iter()
         .all(|&e| fixed(ctx, e))
-        .then(|| ([c[0], c[1], c[2]], a, k))
+        .then(|| ([c[0], c[1], c[2]], found))
 }
 
 /// Where body `b` hangs, from its parent's frame (or the ground's).
@@ -205,12 +247,11 @@ fn hook(
 ) -> Result<Hook, String> {
     let Some((p, anchor)) = parent_of(skeleton, chains, placed, b) else {
         let reference = skeleton.bodies[b].reference.clone();
-        if let Some((at, dir, k)) = sliding(ctx, &reference) {
-            let slide = Some((dir, k));
+        if let Some((at, slides)) = sliding(ctx, &reference) {
             return Ok(Hook {
                 up: None,
                 at,
-                slide,
+                slides,
                 inherited: 0,
             });
         }
@@ -218,15 +259,19 @@ fn hook(
         return Ok(Hook {
             up: None,
             at,
-            slide: None,
+            slides: Vec::new(),
             inherited: 0,
         });
     };
     let parent = frames[p].expect("parents are placed first");
-    let (local, slide) = if anchor.len() == 3 && anchor.iter().all(|&x| fixed(ctx, x)) {
-        ([anchor[0], anchor[1], anchor[2]], None)
-    } else if let Some((c, a, k)) = sliding(ctx, &anchor) {
-        (c, Some((mat_vec(ctx, &parent.rotation, a), k)))
+    let (local, slides) = if anchor.len() == 3 && anchor.iter().all(|&x| fixed(ctx, x)) {
+        ([anchor[0], anchor[1], anchor[2]], Vec::new())
+    } else if let Some((c, found)) = sliding(ctx, &anchor) {
+        let turned = found
+            .into_iter()
+            .map(|(a, k)| (mat_vec(ctx, &parent.rotation, a), k))
+            .collect();
+        (c, turned)
     } else {
         return Err(format!(
             "body `{}`: its reference point moves in its parent `{}`, and not along a fixed line",
@@ -239,7 +284,7 @@ fn hook(
     Ok(Hook {
         up: parent.link,
         at,
-        slide,
+        slides,
         inherited,
     })
 }
@@ -283,30 +328,42 @@ fn link_bodies(
     for (k, &b) in order.iter().enumerate() {
         let hook = hook(ctx, skeleton, chains, &frames, (&order[..k], b), names)?;
         let (mut up, mut offset) = (hook.up, Some(hook.at));
-        if let Some((dir, q)) = hook.slide {
+        for &(dir, q) in &hook.slides {
             claim(ctx, &mut used, q, b, &names[b])?;
-            let at = offset.replace([zero; 3]).expect("set above");
             links.push(Link {
                 parent: up,
                 placement: None,
                 slide: Some(dir),
                 axis: 0,
                 coordinate: q,
-                offset: at,
+                offset: offset.replace([zero; 3]).expect("set above"),
                 inertia: None,
+                chart: None,
             });
             up = Some(links.len() - 1);
         }
+        let mut sphere = None;
         for joint in &chains[b].joints[hook.inherited..] {
             claim(ctx, &mut used, joint.coordinate, b, &names[b])?;
+            let mut placement = constant_rotation(ctx, &joint.placement);
+            match joint.sphere {
+                Sphere::No => sphere = None,
+                Sphere::First(quaternion) => {
+                    let r0 = quaternion_matrix(ctx, quaternion);
+                    placement = Some(placement.map_or(r0, |p| mat_mul(ctx, &p, &r0)));
+                    sphere = Some(links.len());
+                }
+                Sphere::Next => {}
+            }
             links.push(Link {
                 parent: up,
-                placement: constant_rotation(ctx, &joint.placement),
+                placement,
                 slide: None,
                 axis: joint.axis,
                 coordinate: joint.coordinate,
                 offset: offset.take().unwrap_or([zero; 3]),
                 inertia: None,
+                chart: sphere,
             });
             up = Some(links.len() - 1);
         }

@@ -15,8 +15,11 @@ pub(super) fn mirror_upper(m: &mut Mat3) {
     }
 }
 
-/// cos and sin of a link's joint angle.
+/// cos and sin of a link's joint angle (1 and 0 at a chart's centre).
 pub(super) fn trig(ctx: &mut Context, link: &Link) -> (Sym, Sym) {
+    if link.chart.is_some() {
+        return (ctx.one(), ctx.zero());
+    }
     let q = ctx.coordinates()[link.coordinate];
     (ctx.cos(q), ctx.sin(q))
 }
@@ -72,18 +75,26 @@ pub(super) fn origin(ctx: &mut Context, link: &Link) -> [Sym; 3] {
 
 /// The joint's rate S q̇ added to the link's velocity (w, v) carried in from
 /// the parent, and the velocity-product acceleration c = (w, v) ×m S q̇:
-/// S = (e_axis, 0) for a revolute joint, (0, slide) for a sliding one.
+/// S = (e_axis, 0) for a revolute joint, (0, slide) for a sliding one. For an
+/// axis of a spherical joint c reads `entering`, the velocity carried into
+/// the joint's first link (see [`Link::chart`]); otherwise it is (w, v).
 pub(super) fn joint_velocity(
     ctx: &mut Context,
     link: &Link,
     [w, v]: [[Sym; 3]; 2],
+    entering: [[Sym; 3]; 2],
     rate: Sym,
 ) -> ([[Sym; 3]; 2], [[Sym; 3]; 2]) {
     let Some(dir) = link.slide else {
         let mut turned = w;
         turned[link.axis] = ctx.add(w[link.axis], rate);
-        let wq = cross_axis(ctx, w, link.axis, rate);
-        let vq = cross_axis(ctx, v, link.axis, rate);
+        let [we, ve] = if link.chart.is_some() {
+            entering
+        } else {
+            [w, v]
+        };
+        let wq = cross_axis(ctx, we, link.axis, rate);
+        let vq = cross_axis(ctx, ve, link.axis, rate);
         return ([turned, v], [wq, vq]);
     };
     let u = dir.map(|x| ctx.mul(x, rate));

@@ -1,5 +1,5 @@
-//! The recursive route: when the bodies form a kinematic tree of revolute and
-//! sliding joints,
+//! The recursive route: when the bodies form a kinematic tree of revolute,
+//! sliding and spherical joints (a free body: three sliding and a spherical),
 //! M by composite rigid bodies (CRBA) and h − Q_gravity by recursive
 //! Newton–Euler (RNEA), built as expressions so the engine's CSE emits them as
 //! straight-line code (Featherstone, *Rigid Body Dynamics Algorithms*, ch. 5–6).
@@ -19,7 +19,11 @@
 //! about a fixed point) hangs on massless links that meet at its reference
 //! point; a body with none beyond its parent's is fixed in the parent (a fixed
 //! joint: its masses join the parent's link), and one with none at all is fixed
-//! in space. Anything else — a rotation written as a matrix, a translating
+//! in space. A free orientation (`rotation = name` or a factor `.. * name`) is
+//! a spherical joint, whose motion subspace in its own axes is the identity on
+//! ω; a body whose reference point moves along several fixed directions (a
+//! free body's `at = [x, y, z]`) hangs on one sliding joint per coordinate.
+//! Anything else — a rotation written as a matrix, a translating
 //! coordinate, a point mass that is neither fixed in a body nor in space, a
 //! coordinate in two joints, time in a position — leaves the system to the
 //! generic route, with the reason.
@@ -64,6 +68,14 @@ struct Link {
     coordinate: usize,
     offset: [Sym; 3],
     inertia: Option<Inertia>,
+    /// One axis of a spherical joint (a free orientation), taken at the
+    /// centre of the chart that moves with it: rot_axis(θ) = 1, θ̇ the angular
+    /// velocity's component. The joint is three such links, the first placed
+    /// by the quaternion's R₀; this is the index of that first link, whose
+    /// entering velocity v the velocity product v × S ω reads (the joint's own
+    /// ω × ω vanishes, and with it the terms a chain of three revolute joints
+    /// would add).
+    chart: Option<usize>,
 }
 
 /// A detected kinematic tree; links are ordered parents first.

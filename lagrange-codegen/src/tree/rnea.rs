@@ -46,6 +46,7 @@ fn recursive_newton_euler(
         }
         [[zero; 3], [zero; 3], [zero; 3], a]
     };
+    let mut entering: Vec<[[Sym; 3]; 2]> = Vec::with_capacity(n);
     for link in &tree.links {
         let [w, v, al, a] = link.parent.map_or(ground, |p| motion[p]);
         let cs = trig(ctx, link);
@@ -59,7 +60,9 @@ fn recursive_newton_euler(
         let v_in = to_link(ctx, link, cs, v_at);
         let al_in = to_link(ctx, link, cs, al);
         let a_in = to_link(ctx, link, cs, a_at);
-        let ([w, v], [cw, cv]) = joint_velocity(ctx, link, [w_in, v_in], rate);
+        entering.push([w_in, v_in]);
+        let first = link.chart.map_or([w_in, v_in], |k| entering[k]);
+        let ([w, v], [cw, cv]) = joint_velocity(ctx, link, [w_in, v_in], first, rate);
         let mut acc = [add3(ctx, al_in, cw), add3(ctx, a_in, cv)];
         if accelerated {
             add_motion(ctx, link, &mut acc, qdd[link.coordinate]);

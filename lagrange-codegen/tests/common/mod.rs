@@ -24,6 +24,19 @@ pub struct Point {
     pub params: Vec<f64>,
     /// Values for the reduced form's speeds, if any.
     pub u: Vec<f64>,
+    /// A unit quaternion (w, x, y, z) per free orientation.
+    pub quaternions: Vec<[f64; 4]>,
+}
+
+/// The value of a free orientation's quaternion symbol `s`, if it is one.
+fn quaternion_value(model: &Model, p: &Point, s: Symbol) -> Option<f64> {
+    model.orientations.iter().enumerate().find_map(|(k, o)| {
+        let c = o
+            .quaternion
+            .iter()
+            .position(|&e| model.ctx.as_symbol(e) == Some(s))?;
+        Some(p.quaternions[k][c])
+    })
 }
 
 pub fn env<'a>(model: &'a Model, p: &'a Point) -> impl Fn(Symbol) -> f64 + 'a {
@@ -32,7 +45,8 @@ pub fn env<'a>(model: &'a Model, p: &'a Point) -> impl Fn(Symbol) -> f64 + 'a {
         SymbolKind::Velocity(i) => p.v[i],
         SymbolKind::Time => p.t,
         SymbolKind::Parameter(i) => p.params[i],
-        SymbolKind::Free | SymbolKind::Acceleration(_) | SymbolKind::Input(_) => f64::NAN,
+        SymbolKind::Free => quaternion_value(model, p, s).unwrap_or(f64::NAN),
+        SymbolKind::Acceleration(_) | SymbolKind::Input(_) => f64::NAN,
     }
 }
 
@@ -59,6 +73,15 @@ pub fn random_point(model: &Model, rng: &mut Lcg) -> Point {
             .reduced
             .as_ref()
             .map_or(Vec::new(), |r| r.names.iter().map(|_| rng.next()).collect()),
+        quaternions: model
+            .orientations
+            .iter()
+            .map(|_| {
+                let q = [0; 4].map(|_| rng.next());
+                let norm = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+                q.map(|x| x / norm)
+            })
+            .collect(),
     }
 }
 
