@@ -1,0 +1,112 @@
+//! Floating-base trees on the recursive route (a free root: three sliding
+//! joints and a spherical one) against Pinocchio's free flyer
+//! (`lagrange-bench/peer/pinocchio/floating.py`, which wrote
+//! `tests/data/floating_pinocchio.txt`): the quadruped and the satellite of
+//! `examples/catalog/floating.rs`, at a generic state and at one with the
+//! root pitched by exactly π/2. Each state is given in Pinocchio's convention
+//! (q = (x, y, z, qx, qy, qz, qw, joints), v with the root's linear velocity
+//! in its own axes) and mapped here to this crate's (quaternion scalar first
+//! after the joints, ẋ in world axes); M, Q − h, q̈ (articulated-body), τ by
+//! recursive Newton–Euler and the gravity torques agree to 1e-12.
+
+#[path = "../examples/catalog/mod.rs"]
+mod catalog;
+
+use catalog::floating::{Quadruped, Satellite};
+use lagrange::Route;
+use lagrange::prelude::*;
+use nalgebra::{Quaternion, SVector, UnitQuaternion, Vector3};
+
+const REFERENCE: &str = include_str!("data/floating_pinocchio.txt");
+
+/// The numbers of `key` for `model`'s state `k`.
+fn reference(model: &str, k: usize, key: &str) -> Vec<f64> {
+    let head = format!("{model} {k} {key} ");
+    let line = REFERENCE
+        .lines()
+        .find(|l| l.starts_with(&head))
+        .unwrap_or_else(|| panic!("no {head:?} in the reference file"));
+    line[head.len()..]
+        .split(' ')
+        .map(|x| x.parse().expect("a number"))
+        .collect()
+}
+
+/// Pinocchio's (q, v) of a free-flyer root with `J` joints after it, in
+/// this crate's convention: v_lin (root axes) → ẋ = R v_lin (world axes).
+fn from_pinocchio<const N: usize, const Q: usize>(
+    q_pin: &[f64],
+    v_pin: &[f64],
+) -> (SVector<f64, Q>, SVector<f64, N>) {
+    let joints = N - 6;
+    let (x, y, z, w) = (q_pin[3], q_pin[4], q_pin[5], q_pin[6]);
+    let r = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
+    let world = r * Vector3::new(v_pin[0], v_pin[1], v_pin[2]);
+    let mut q = SVector::<f64, Q>::zeros();
+    let mut v = SVector::<f64, N>::zeros();
+    for i in 0..3 {
+        q[i] = q_pin[i];
+        v[i] = world[i];
+        v[3 + joints + i] = v_pin[3 + i];
+    }
+    for j in 0..joints {
+        q[3 + j] = q_pin[7 + j];
+        v[3 + j] = v_pin[6 + j];
+    }
+    q.fixed_rows_mut::<4>(3 + joints)
+        .copy_from_slice(&[w, x, y, z]);
+    (q, v)
+}
+
+fn assert_close(what: &str, got: &[f64], want: &[f64]) {
+    assert_eq!(got.len(), want.len(), "{what}");
+    for (i, (&g, &w)) in got.iter().zip(want).enumerate() {
+        assert!(
+            (g - w).abs() <= 1e-12 * w.abs().max(1.0),
+            "{what}[{i}]: {g} against Pinocchio's {w} (difference {:e})",
+            g - w
+        );
+    }
+}
+
+fn agrees_with_pinocchio<S, const N: usize, const Q: usize>(name: &str, sys: &S)
+where
+    S: Lagrangian<f64, N, Q>,
+{
+    assert_eq!(
+        S::ROUTE,
+        Route::Recursive,
+        "{name} left the recursive route"
+    );
+    for k in 0..2 {
+        let at = |key: &str| reference(name, k, key);
+        let (q, v) = from_pinocchio::<N, Q>(&at("q_pin"), &at("v_pin"));
+        assert_close(&format!("{name} {k} q"), q.as_slice(), &at("q"));
+        assert_close(&format!("{name} {k} v"), v.as_slice(), &at("v"));
+        let (m, rhs) = sys.mass_matrix_and_rhs(&q, &v, 0.0);
+        let m_rows: Vec<f64> = m.transpose().iter().copied().collect();
+        assert_close(&format!("{name} {k} M"), &m_rows, &at("M"));
+        assert_close(&format!("{name} {k} Q - h"), rhs.as_slice(), &at("rhs"));
+        let accel = lagrange::accelerations(sys, &q, &v, 0.0).expect("a positive definite M");
+        assert_close(&format!("{name} {k} q''"), accel.as_slice(), &at("accel"));
+        let a = SVector::<f64, N>::from_column_slice(&at("a"));
+        let tau = sys.inverse_dynamics(&q, &v, &a, 0.0);
+        assert_close(&format!("{name} {k} tau"), tau.as_slice(), &at("tau"));
+        let gravity = sys.gravity_torques(&q, 0.0).expect("emitted");
+        assert_close(
+            &format!("{name} {k} gravity"),
+            gravity.as_slice(),
+            &at("gravity"),
+        );
+    }
+}
+
+#[test]
+fn a_quadruped_matches_pinocchio_s_free_flyer() {
+    agrees_with_pinocchio::<_, 18, 19>("quadruped", &Quadruped { g: 9.81 });
+}
+
+#[test]
+fn a_satellite_with_an_arm_matches_pinocchio_s_free_flyer() {
+    agrees_with_pinocchio::<_, 12, 13>("satellite", &Satellite { g: 9.81 });
+}
