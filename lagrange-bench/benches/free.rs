@@ -1,7 +1,9 @@
 //! Free orientations (`orientation(..)`): the heavy top's M + (Q − h) derived
-//! against Euler's equations written by hand, and a floating base (a hub on
-//! a free joint with a two-joint arm) to set beside Pinocchio's free flyer
-//! (`peer/pinocchio/free_flyer.sh`, the same model and state).
+//! against Euler's equations written by hand, and floating bases to set
+//! beside Pinocchio's free flyer (`peer/pinocchio/free_flyer.sh`, the same
+//! models and states): a hub with a two-joint arm, and the quadruped and the
+//! satellite of `examples/catalog/floating.rs` at state 0 of
+//! `tests/data/floating_pinocchio.txt`, which the peer reads too.
 //!
 //!     cargo bench -p lagrange-bench --bench free
 
@@ -9,6 +11,48 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use lagrange::Lagrangian;
 use nalgebra::{Matrix3, SVector, Vector3, Vector4};
 use std::hint::black_box;
+
+#[path = "../../examples/catalog/floating.rs"]
+mod floating;
+
+const REFERENCE: &str = include_str!("../../tests/data/floating_pinocchio.txt");
+
+/// The numbers of `key` at `model`'s state 0 in the reference file.
+fn reference(model: &str, key: &str) -> Vec<f64> {
+    let head = format!("{model} 0 {key} ");
+    let line = REFERENCE.lines().find(|l| l.starts_with(&head));
+    let line = line.unwrap_or_else(|| panic!("no {head:?} in the reference file"));
+    line[head.len()..]
+        .split(' ')
+        .map(|x| x.parse().expect("a number"))
+        .collect()
+}
+
+/// M + (Q − h), the articulated q̈, τ by recursive Newton–Euler (at q̈ = 0.1
+/// in every joint, as the peer) and the tangent-space A of a floating base.
+fn floating_base<S, const N: usize, const Q: usize>(c: &mut Criterion, name: &str, sys: &S)
+where
+    S: lagrange::Lagrangian<f64, N, Q>,
+{
+    let q = SVector::<f64, Q>::from_column_slice(&reference(name, "q"));
+    let v = SVector::<f64, N>::from_column_slice(&reference(name, "v"));
+    let a = SVector::<f64, N>::repeat(0.1);
+    let mut group = c.benchmark_group(format!("free_{name}"));
+    group.bench_function("M + (Q - h)", |b| {
+        b.iter(|| sys.mass_matrix_and_rhs(black_box(&q), black_box(&v), 0.0))
+    });
+    group.bench_function("accelerations", |b| {
+        b.iter(|| lagrange::accelerations(sys, black_box(&q), black_box(&v), 0.0))
+    });
+    group.bench_function("inverse dynamics", |b| {
+        b.iter(|| sys.inverse_dynamics(black_box(&q), black_box(&v), black_box(&a), 0.0))
+    });
+    let linearizer = lagrange::prelude::Linearizer::new();
+    group.bench_function("tangent A (central differences)", |b| {
+        b.iter(|| linearizer.tangent(sys, black_box(&q), black_box(&v), 0.0))
+    });
+    group.finish();
+}
 
 #[derive(Lagrangian)]
 #[lagrange(
@@ -97,6 +141,8 @@ fn free(c: &mut Criterion) {
         b.iter(|| lagrange::accelerations(&arm, black_box(&q), black_box(&v), 0.0))
     });
     group.finish();
+    floating_base::<_, 18, 19>(c, "quadruped", &floating::Quadruped { g: 9.81 });
+    floating_base::<_, 12, 13>(c, "satellite", &floating::Satellite { g: 9.81 });
 }
 
 criterion_group!(benches, free);

@@ -19,7 +19,7 @@ use syn::Expr;
 
 use crate::ast::Body;
 use crate::lower::Lowerer;
-use crate::lowered::PhysicalCheck;
+use crate::lowered::{Factor, PhysicalCheck, Skeleton, SpinModel};
 use crate::mat3::Mat3;
 
 /// Relative round-off allowed on the inequalities, as at run time.
@@ -135,6 +135,73 @@ pub fn inertia(lw: &Lowerer, b: &Body, i: &Mat3, shape: Shape) -> Option<Physica
         );
     }
     None
+}
+
+/// A body that a free orientation turns alone (no other body has that
+/// orientation among its factors, and no point mass sits on it) is a free
+/// body: its inertia about the centre of mass must be positive definite, or
+/// M is singular at every state. Literal entries are checked here, the error
+/// at the inertia; a zero moment from parameters makes a run's first step
+/// `Error::SingularMassMatrix`. A body with others hanging on its orientation
+/// is left alone: their masses may make M regular.
+pub fn free_bodies(lw: &Lowerer, bodies: &[Body], skeleton: &Skeleton, spins: &[SpinModel]) {
+    let free = |f: &&Factor| matches!(f, Factor::Free { .. });
+    let turning: Vec<Vec<Factor>> = skeleton
+        .bodies
+        .iter()
+        .map(|b| b.factors.iter().flatten().filter(free).copied().collect())
+        .collect();
+    for (i, own) in turning.iter().enumerate() {
+        let Some(&last) = own.last() else { continue };
+        let alone = turning.iter().filter(|t| t.contains(&last)).count() == 1;
+        let on_it = skeleton
+            .masses
+            .iter()
+            .flatten()
+            .filter(|(b, _)| *b == i)
+            .count();
+        let values: Option<Vec<f64>> = spins[i]
+            .inertia
+            .iter()
+            .flatten()
+            .map(|&e| value(lw, e))
+            .collect();
+        let (Some(v), true, 1) = (values, alone, on_it) else {
+            continue;
+        };
+        let body = bodies.iter().find(|b| b.name == spins[i].name);
+        let Some(syntax) = body.and_then(|b| b.inertia.as_ref()) else {
+            continue;
+        };
+        if !positive_definite(&v) {
+            lw.cx.error_spanned_by(
+                syntax,
+                format!(
+                    "body `{}`: a free orientation turns it and nothing else, so its inertia \
+                     about the centre of mass must be positive definite (every principal moment \
+                     above zero); with this one the mass matrix is singular at every state: \
+                     give each moment a positive value (a thin rod's axial moment is small, not \
+                     zero)",
+                    spins[i].name
+                ),
+            );
+        }
+    }
+}
+
+/// Whether the symmetric 3×3 matrix `v` (row-major) is positive definite:
+/// its leading principal minors above round-off.
+fn positive_definite(v: &[f64]) -> bool {
+    let m = |r: usize, c: usize| v[3 * r + c];
+    let scale = (m(0, 0) + m(1, 1) + m(2, 2)).abs();
+    let d1 = m(0, 0);
+    let d2 = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0);
+    let d3 = m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
+        - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
+        + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
+    d1 > ROUND_OFF * scale
+        && d2 > ROUND_OFF * scale * scale
+        && d3 > ROUND_OFF * scale * scale * scale
 }
 
 /// A + B ≥ C and its rotations, the error at the moment that is too large.

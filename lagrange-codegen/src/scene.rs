@@ -43,6 +43,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
             Item::Point(i) => lower_point(&mut lw, &system.points[i], &mut items),
         }
     }
+    crate::physical::free_bodies(&lw, &system.bodies, &items.skeleton, &items.spins);
     let applied = applied(&mut lw, system);
     let (holonomic, nonholonomic) = constraints(&mut lw, system);
     let formulations = check::formulations(system);
