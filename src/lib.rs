@@ -276,10 +276,20 @@
 //! (`g` reads q with its quaternions) and run by [`Simulation::event`] as
 //! usual; an action's result is normalised.
 //!
+//! **Floating bases on the recursive route.** An orientation is a spherical
+//! joint to the tree route (its motion subspace is the identity on ω, the
+//! velocity product reads only the velocity entering the joint), and a free
+//! body's `at = [x, y, z]` is three sliding joints, so a floating-base tree
+//! (a quadruped, a satellite with an arm) gets composite-rigid-body M,
+//! recursive Newton–Euler h and, with `emit(articulated, inverse_dynamics)`,
+//! the O(n) articulated-body q̈ and τ; `tests/floating_bases.rs` checks them
+//! against Pinocchio's free flyer to 1e-12. A body that an orientation turns
+//! alone must have a positive-definite inertia (a compile error at the
+//! inertia otherwise).
+//!
 //! Not yet with an orientation: constraints, `speeds`, `inputs` (so no
-//! controlled runs), `emit(..)` and `urdf` (each a compile error at the
-//! orientation), and the recursive route (bodies with an orientation are
-//! derived by differentiating ξ).
+//! controlled runs), the `emit(..)` outputs other than `articulated` and
+//! `inverse_dynamics`, and `urdf` (each a compile error at the orientation).
 //!
 //! ```
 //! use lagrange::prelude::*;

@@ -51,7 +51,7 @@ pub enum Route {
     /// Differentiate ξ(q, t) (M = Σ Jᵀ m J, h by projection or Christoffel).
     Generic,
     /// Composite rigid bodies and recursive Newton–Euler; an error if the
-    /// description is not a kinematic tree of revolute and sliding joints.
+    /// description is not a kinematic tree of revolute, sliding and spherical joints.
     Recursive,
 }
 
@@ -60,7 +60,7 @@ pub enum Route {
 const BOTH_ROUTES_UP_TO: usize = 6;
 
 /// What a kinematic tree is, for the errors that need one.
-const TREE: &str = "a kinematic tree of revolute and sliding joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates or of constant angles, its reference point fixed in the parent or sliding along a fixed line of it, every point mass fixed in a body";
+const TREE: &str = "a kinematic tree of revolute, sliding and spherical joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates or of constant angles, or by a free orientation, its reference point fixed in the parent or sliding along fixed lines of it, every point mass fixed in a body";
 
 /// Why a description could not be derived (beyond what lowering reports).
 #[derive(Clone, Debug, PartialEq, Eq)]
