@@ -42,9 +42,9 @@ fn check_orientations(cx: &Ctxt, system: &System) {
     if !system.inputs.is_empty() {
         not_yet.push("`inputs(...)`");
     }
-    let centred = [Extra::Articulated, Extra::InverseDynamics];
+    let centred = [Extra::Articulated, Extra::InverseDynamics, Extra::Jacobians];
     if system.extras.iter().any(|(_, e)| !centred.contains(e)) {
-        not_yet.push("`emit(...)` other than `articulated` and `inverse_dynamics`");
+        not_yet.push("`emit(...)` other than `articulated`, `inverse_dynamics` and `jacobians`");
     }
     if system.urdf.is_some() {
         not_yet.push("`urdf`");

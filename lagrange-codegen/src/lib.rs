@@ -145,11 +145,15 @@ fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Mod
             }
             (!cx.has_errors()).then_some(model)
         }
-        Err(e @ mechanics::DeriveError::ArticulatedNeedsTree(_)) => {
-            let at = system
-                .extras
-                .iter()
-                .find(|(_, e)| *e == ast::Extra::Articulated);
+        Err(
+            e @ (mechanics::DeriveError::ArticulatedNeedsTree(_)
+            | mechanics::DeriveError::JacobiansNeedTree(_)),
+        ) => {
+            let wanted = match e {
+                mechanics::DeriveError::ArticulatedNeedsTree(_) => ast::Extra::Articulated,
+                _ => ast::Extra::Jacobians,
+            };
+            let at = system.extras.iter().find(|(_, e)| *e == wanted);
             cx.error_at(at.map_or(system.span, |(name, _)| name.span()), e);
             None
         }

@@ -40,6 +40,10 @@ pub(super) fn at_centre(ctx: &mut Context, d: &mut Derived) {
         c.all(&mut a.accelerations);
         c.all(&mut a.pivots);
     }
+    if let Some([jq, jv]) = &mut d.jacobians {
+        c.rows(jq);
+        c.rows(jv);
+    }
     if let Some(i) = &mut d.inverse {
         c.all(&mut i.torques);
         c.all(&mut i.gravity);

@@ -17,6 +17,7 @@
 
 mod chart;
 mod cyclic;
+mod derivatives;
 mod energy;
 mod extra;
 mod force;
@@ -74,6 +75,9 @@ pub enum DeriveError {
     /// [`Route::Recursive`] asked of a description that is not a kinematic
     /// tree, and why it is not.
     NotATree(String),
+    /// `emit(jacobians)` with a free orientation on a description that is not
+    /// a kinematic tree, and why it is not.
+    JacobiansNeedTree(String),
 }
 
 impl std::fmt::Display for DeriveError {
@@ -87,6 +91,10 @@ impl std::fmt::Display for DeriveError {
             DeriveError::NotATree(why) => {
                 write!(f, "the recursive route needs {TREE}; here {why}")
             }
+            DeriveError::JacobiansNeedTree(why) => write!(
+                f,
+                "`jacobians` with a free orientation needs {TREE} (its derivatives are those of recursive Newton–Euler, in the tangent space); here {why}; without one, remove `jacobians` (`Linearizer::tangent` then takes central differences)"
+            ),
         }
     }
 }
@@ -160,6 +168,12 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
     let forces = applied_forces(&mut ctx, &kin, &sources, input_names)?;
     let motion = equations(&mut ctx, recursive_terms, generic_terms, &forces);
     let inverse = inverse_if_asked(&mut ctx, &extras, tree.as_ref(), &motion, &forces);
+    let jacobians = extras.contains(&Extra::Jacobians).then(|| {
+        let tree = tree
+            .as_ref()
+            .filter(|_| sources.recursive || !orientations.is_empty());
+        derivatives::rhs_jacobians(&mut ctx, tree, &motion, &sources, !orientations.is_empty())
+    });
     let kinetic = energy::cheaper_kinetic(&mut ctx, rheonomic, kinetic, &motion.mass);
     let integral = energy::integral(&mut ctx, rheonomic, kinetic, forces.potential, &motion.mass);
     let derived = Derived {
@@ -175,6 +189,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         motion,
         route_reason,
         inverse,
+        jacobians: jacobians.transpose()?,
         checks,
         poses,
     };
@@ -387,6 +402,8 @@ pub(super) struct Derived {
     route_reason: Option<String>,
     /// `emit(inverse_dynamics)`.
     inverse: Option<InverseDynamics>,
+    /// `emit(jacobians)`, before the chart's centre.
+    jacobians: Option<derivatives::Jacobians>,
     checks: Vec<crate::lowered::PhysicalCheck>,
     poses: Poses,
 }
@@ -436,7 +453,7 @@ fn finish(
         let (q, qd) = (ctx.coordinates(), ctx.velocities());
         extra::coriolis_matrix(&mut ctx, &mass, &q, &qd)
     });
-    let jacobians = wants(Extra::Jacobians).then(|| extra::rhs_jacobians(&mut ctx, &mass, &rhs));
+    let jacobians = d.jacobians;
     let hamiltonian = wants(Extra::Hamiltonian);
     let momentum = (hamiltonian || d.rheonomic).then(|| extra::momentum(&mut ctx, d.kinetic));
     let kinetic_gradient = hamiltonian.then(|| extra::kinetic_gradient(&mut ctx, d.kinetic));

@@ -46,8 +46,9 @@ struct Joint {
 enum Sphere {
     /// A revolute joint.
     No,
-    /// The first axis, placed by the quaternion's R₀ after the placement.
-    First([Sym; 4]),
+    /// The first axis, placed by the quaternion's R₀ after the placement;
+    /// the chart's θ.
+    First([Sym; 4], [Sym; 3]),
     /// The second or third axis, in the first's frame.
     Next,
 }
@@ -76,14 +77,18 @@ pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result
         return Err("it has no rigid bodies (point masses alone)".into());
     }
     let chains = body_chains(ctx, skeleton, masses.body_names)?;
-    let (mut links, frames) = link_bodies(ctx, skeleton, &chains, masses.body_names)?;
+    let (mut links, frames, spheres) = link_bodies(ctx, skeleton, &chains, masses.body_names)?;
     attach_masses(ctx, skeleton, masses, &mut links, &frames)?;
     let gravity = match masses.gravity {
         None => None,
         Some(g) if g.len() == 3 && g.iter().all(|&x| fixed(ctx, x)) => Some([g[0], g[1], g[2]]),
         Some(_) => return Err("gravity is not a constant vector".into()),
     };
-    Ok(Tree { links, gravity })
+    Ok(Tree {
+        links,
+        gravity,
+        spheres,
+    })
 }
 
 /// Each body's rotation factors read as joints (about coordinates) and
@@ -109,7 +114,7 @@ fn body_chains(ctx: &Context, skeleton: &Skeleton, names: &[String]) -> Result<V
                             .position(|&q| q == x)
                             .expect("a free orientation's θ are coordinates");
                         let sphere = if axis == 0 {
-                            Sphere::First(quaternion)
+                            Sphere::First(quaternion, theta)
                         } else {
                             Sphere::Next
                         };
@@ -318,12 +323,13 @@ fn link_bodies(
     skeleton: &Skeleton,
     chains: &[Chain],
     names: &[String],
-) -> Result<(Vec<Link>, Vec<Frame>), String> {
+) -> Result<(Vec<Link>, Vec<Frame>, Vec<(usize, [Sym; 3])>), String> {
     let mut order: Vec<usize> = (0..chains.len()).collect();
     order.sort_by_key(|&b| chains[b].factors.len());
     let mut links: Vec<Link> = Vec::new();
     let mut frames: Vec<Option<Frame>> = vec![None; chains.len()];
     let mut used: Vec<Option<usize>> = vec![None; ctx.coordinates().len()];
+    let mut spheres = Vec::new();
     let zero = ctx.zero();
     for (k, &b) in order.iter().enumerate() {
         let hook = hook(ctx, skeleton, chains, &frames, (&order[..k], b), names)?;
@@ -342,29 +348,10 @@ fn link_bodies(
             });
             up = Some(links.len() - 1);
         }
-        let mut sphere = None;
         for joint in &chains[b].joints[hook.inherited..] {
             claim(ctx, &mut used, joint.coordinate, b, &names[b])?;
-            let mut placement = constant_rotation(ctx, &joint.placement);
-            match joint.sphere {
-                Sphere::No => sphere = None,
-                Sphere::First(quaternion) => {
-                    let r0 = quaternion_matrix(ctx, quaternion);
-                    placement = Some(placement.map_or(r0, |p| mat_mul(ctx, &p, &r0)));
-                    sphere = Some(links.len());
-                }
-                Sphere::Next => {}
-            }
-            links.push(Link {
-                parent: up,
-                placement,
-                slide: None,
-                axis: joint.axis,
-                coordinate: joint.coordinate,
-                offset: offset.take().unwrap_or([zero; 3]),
-                inertia: None,
-                chart: sphere,
-            });
+            let at = offset.take().unwrap_or([zero; 3]);
+            links.push(joint_link(ctx, joint, up, at, &mut spheres, links.len()));
             up = Some(links.len() - 1);
         }
         let origin = offset.unwrap_or([zero; 3]);
@@ -386,7 +373,41 @@ fn link_bodies(
         .into_iter()
         .map(|f| f.expect("every body placed"))
         .collect();
-    Ok((links, frames))
+    Ok((links, frames, spheres))
+}
+
+/// The link of `joint` (at index `index`, hanging on `up` at `offset`): a
+/// spherical joint's first axis is placed by R₀ too, recorded in `spheres`
+/// with its θ, and its later axes point back at it.
+fn joint_link(
+    ctx: &mut Context,
+    joint: &Joint,
+    up: Option<usize>,
+    offset: [Sym; 3],
+    spheres: &mut Vec<(usize, [Sym; 3])>,
+    index: usize,
+) -> Link {
+    let mut placement = constant_rotation(ctx, &joint.placement);
+    let chart = match joint.sphere {
+        Sphere::No => None,
+        Sphere::First(quaternion, theta) => {
+            let r0 = quaternion_matrix(ctx, quaternion);
+            placement = Some(placement.map_or(r0, |p| mat_mul(ctx, &p, &r0)));
+            spheres.push((index, theta));
+            Some(index)
+        }
+        Sphere::Next => spheres.last().map(|&(first, _)| first),
+    };
+    Link {
+        parent: up,
+        placement,
+        slide: None,
+        axis: joint.axis,
+        coordinate: joint.coordinate,
+        offset,
+        inertia: None,
+        chart,
+    }
 }
 
 /// A body that hangs on no other: its reference point, which must be fixed in

@@ -228,3 +228,19 @@ pub(super) fn mat_add(ctx: &mut Context, x: &Mat3, y: &Mat3, sign: i64) -> Mat3 
         })
     })
 }
+
+/// R(θ) = 1 + [θ]× + ½[θ]×², the exponential map to the second order (as the
+/// lowering writes a free orientation's chart).
+pub(super) fn second_order_turn(ctx: &mut Context, theta: [Sym; 3]) -> Mat3 {
+    let k = skew(ctx, theta);
+    let k2 = mat_mul(ctx, &k, &k);
+    let half = ctx.rational(1, 2);
+    let (zero, one) = (ctx.zero(), ctx.one());
+    [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            let id = if i == j { one } else { zero };
+            let s2 = ctx.mul(half, k2[i][j]);
+            ctx.sum(&[id, k[i][j], s2])
+        })
+    })
+}

@@ -40,7 +40,7 @@ pub use crba::mass_matrix;
 pub use detect::detect;
 pub use rnea::{inverse_dynamics, inverse_dynamics_at_accelerations};
 
-use lagrange_symbolic::Expr as Sym;
+use lagrange_symbolic::{Context, Expr as Sym};
 
 use crate::mat3::Mat3;
 
@@ -57,6 +57,7 @@ struct Inertia {
 /// turned by the constant `placement` P (none: the identity) and then by
 /// rot_axis(q), about the parent point `offset`: E = P rot_axis(q). A joint
 /// about a tilted axis n is one whose placement maps the axis onto n.
+#[derive(Clone)]
 struct Link {
     parent: Option<usize>,
     placement: Option<Mat3>,
@@ -82,6 +83,8 @@ struct Link {
 pub struct Tree {
     links: Vec<Link>,
     gravity: Option<[Sym; 3]>,
+    /// Each spherical joint's first link and its chart's θ.
+    spheres: Vec<(usize, [Sym; 3])>,
 }
 
 /// What the tree's bodies carry, as `derive` hands them over.
@@ -110,6 +113,26 @@ impl Tree {
             .iter()
             .map(|l| l.coordinate)
             .find(|&q| !seen.insert(q))
+    }
+
+    /// The same tree with each spherical joint turned by R(θ) = 1 + [θ]× +
+    /// ½[θ]×² after R₀ (its velocity still ω in the turned axes): what to
+    /// differentiate in θ at θ = 0 for derivatives in the tangent space.
+    pub fn perturbed(&self, ctx: &mut Context) -> Tree {
+        let mut links = self.links.clone();
+        for &(k, theta) in &self.spheres {
+            let turn = link::second_order_turn(ctx, theta);
+            let placed = match &links[k].placement {
+                None => turn,
+                Some(p) => link::mat_mul(ctx, p, &turn),
+            };
+            links[k].placement = Some(placed);
+        }
+        Tree {
+            links,
+            gravity: self.gravity,
+            spheres: Vec::new(),
+        }
     }
 
     /// Whether the tree has no joints (never returned by [`detect`]).

@@ -1,0 +1,74 @@
+//! `emit(jacobians)`: J_q = ∂(Q − h)/∂q − [∂M/∂q_k q̈]_k and J_v = ∂(Q − h)/∂q̇,
+//! that is −∂τ/∂q and −∂τ/∂q̇ of the inverse dynamics τ(q, q̇, q̈) at the
+//! accelerations' symbols (Pinocchio's RNEA derivatives; the runtime solves
+//! ∂q̈/∂q = M⁻¹ J_q).
+//!
+//! On a tree the derivatives are those of recursive Newton–Euler, O(n) per
+//! coordinate, not of M (O(n³) entries each); a description with free
+//! orientations takes them from a copy of the tree whose spherical joints
+//! are turned by R(θ) (`Tree::perturbed`), so ∂/∂θ at θ = 0 is the derivative
+//! along q ⊕ δ at fixed ω — the tangent space's, with no chart.
+
+use lagrange_symbolic::{Context, Expr as Sym};
+
+use super::{DeriveError, Motion, Sources};
+use crate::tree::Tree;
+
+/// The two Jacobians, N × N each.
+pub type Jacobians = [Vec<Vec<Sym>>; 2];
+
+/// J_q and J_v from `tree` where one is given (the recursive route's, or
+/// any tree with free orientations), else from M and Q − h; an error for
+/// orientations without a tree (differentiating the generic form in θ would
+/// hold θ̇, not ω, fixed).
+pub(super) fn rhs_jacobians(
+    ctx: &mut Context,
+    tree: Option<&Tree>,
+    motion: &Motion,
+    sources: &Sources,
+    orientations: bool,
+) -> Result<Jacobians, DeriveError> {
+    match (tree, orientations) {
+        (Some(tree), _) => {
+            // Every generalized force but gravity's (a base acceleration to
+            // the recursion), at zero input.
+            let zero = ctx.zero();
+            let rest = (sources.applied).generalized_forces(ctx, sources.potential.unwrap_or(zero));
+            let at_zero: Vec<(Sym, Sym)> = ctx.inputs().iter().map(|&u| (u, zero)).collect();
+            let rest: Vec<Sym> = rest.iter().map(|&f| ctx.substitute(f, &at_zero)).collect();
+            Ok(of_the_tree(ctx, tree, &rest))
+        }
+        (None, false) => Ok(super::extra::rhs_jacobians(ctx, &motion.mass, &motion.rhs)),
+        (None, true) => Err(DeriveError::JacobiansNeedTree(
+            sources.route_reason.clone().unwrap_or_default(),
+        )),
+    }
+}
+
+/// −∂τ/∂q, −∂τ/∂q̇ with τ = RNEA(q, q̇, q̈; gravity) − rest.
+fn of_the_tree(ctx: &mut Context, tree: &Tree, rest: &[Sym]) -> Jacobians {
+    let turned = tree.perturbed(ctx);
+    let inertial = crate::tree::inverse_dynamics_at_accelerations(ctx, &turned, true);
+    let tau: Vec<Sym> = inertial
+        .iter()
+        .zip(rest)
+        .map(|(&m, &f)| ctx.sub(m, f))
+        .collect();
+    let q = ctx.coordinates();
+    let qd = ctx.velocities();
+    let minus_d = |ctx: &mut Context, x: &[Sym]| -> Vec<Vec<Sym>> {
+        tau.iter()
+            .map(|&t| {
+                x.iter()
+                    .map(|&xk| {
+                        let d = ctx.diff(t, xk);
+                        ctx.neg(d)
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let jq = minus_d(ctx, &q);
+    let jv = minus_d(ctx, &qd);
+    [jq, jv]
+}
