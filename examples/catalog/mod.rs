@@ -184,4 +184,5 @@ pub mod constrained;
 pub mod control;
 pub mod extremes;
 pub mod free;
+pub mod rolling;
 pub mod study;

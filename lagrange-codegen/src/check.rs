@@ -26,24 +26,29 @@ pub fn check(cx: &Ctxt, system: &System) {
 }
 
 /// What a free orientation does not combine with yet, named at the
-/// orientation: the constrained forms, inputs, the optional outputs and a
-/// URDF (whose joints are rotations about axes).
+/// orientation: the reduced form (`speeds(...)`, `formulation(reduced)`), the
+/// optional outputs but `reactions`, inputs, and a URDF (whose joints are
+/// rotations about axes). Constraints in the multiplier form combine.
 fn check_orientations(cx: &Ctxt, system: &System) {
     let Some(first) = system.orientations.first() else {
         return;
     };
     let mut not_yet = Vec::new();
-    if !(system.holonomic.is_empty() && system.nonholonomic.is_empty()) {
-        not_yet.push("constraints (`holonomic`, `nonholonomic`)");
-    }
     if !system.speeds.is_empty() {
         not_yet.push("`speeds(...)`");
     }
+    let reduced = system
+        .formulations
+        .iter()
+        .any(|(_, f)| *f == Formulation::Reduced);
+    if reduced {
+        not_yet.push("`formulation(reduced)`");
+    }
+    if system.extras.iter().any(|(_, e)| *e != Extra::Reactions) {
+        not_yet.push("`emit(...)` other than `reactions`");
+    }
     if !system.inputs.is_empty() {
         not_yet.push("`inputs(...)`");
-    }
-    if !system.extras.is_empty() {
-        not_yet.push("`emit(...)`");
     }
     if system.urdf.is_some() {
         not_yet.push("`urdf`");
@@ -52,8 +57,9 @@ fn check_orientations(cx: &Ctxt, system: &System) {
         cx.error_at(
             first.span(),
             format!(
-                "a free orientation does not combine with {} yet: describe the rotation with \
-                 `rot_x/rot_y/rot_z` or `euler_zxz` of coordinates for those",
+                "a free orientation does not combine with {} yet: keep its constraints in the \
+                 multiplier form (`formulation(multipliers)`, the default), or describe the \
+                 rotation with `rot_x/rot_y/rot_z` or `euler_zxz` of coordinates",
                 not_yet.join(", ")
             ),
         );

@@ -422,7 +422,12 @@ fn finish(
     c: Constrained,
     extras: &[Extra],
 ) -> Result<Model, DeriveError> {
-    at_centre(&mut ctx, &mut d);
+    // With orientations the constraint rows are derived in θ (Ġ and γ need
+    // their θ-derivatives) and taken at the centre with everything else
+    // (`emit(jacobians)`, whose derivatives would be in θ, is refused there).
+    let mut early =
+        (!d.orientations.is_empty() && c.multipliers).then(|| multiplier_form(&mut ctx, &c, false));
+    at_centre(&mut ctx, &mut d, early.as_mut());
     let wants = |e: Extra| extras.contains(&e);
     let Motion {
         mass,
@@ -440,9 +445,12 @@ fn finish(
     let hamiltonian = wants(Extra::Hamiltonian);
     let momentum = (hamiltonian || d.rheonomic).then(|| extra::momentum(&mut ctx, d.kinetic));
     let kinetic_gradient = hamiltonian.then(|| extra::kinetic_gradient(&mut ctx, d.kinetic));
-    let constraints = c
-        .multipliers
-        .then(|| multiplier_form(&mut ctx, &c, wants(Extra::Jacobians)));
+    let constraints = match early {
+        Some(set) => Some(set),
+        None => c
+            .multipliers
+            .then(|| multiplier_form(&mut ctx, &c, wants(Extra::Jacobians))),
+    };
     let reduced = reduced_if_asked(&mut ctx, &c, &d.coordinates, wants(Extra::Jacobians))?;
     let articulated = d.forces.articulated;
     let frames = wants(Extra::Kinematics).then(|| frames::frames(&mut ctx, &d.poses, &d.particles));
@@ -491,9 +499,10 @@ fn finish(
 }
 
 /// Free orientations: every output at the centre of the moving chart, θ = 0
-/// (see `chart`). What takes no orientation yet (constraints, inputs and the
-/// optional outputs) is refused before the derivation.
-fn at_centre(ctx: &mut Context, d: &mut Derived) {
+/// (see `chart`), the multiplier form's rows included (derived in θ before).
+/// What takes no orientation yet (the reduced form, inputs and the optional
+/// outputs but the reactions) is refused before the derivation.
+fn at_centre(ctx: &mut Context, d: &mut Derived, constraints: Option<&mut ConstraintSet>) {
     if d.orientations.is_empty() {
         return;
     }
@@ -519,6 +528,15 @@ fn at_centre(ctx: &mut Context, d: &mut Derived) {
         c.all(position);
     }
     c.poses(&mut d.poses);
+    if let Some(set) = constraints {
+        c.all(&mut set.phi);
+        c.rows(&mut set.jacobian);
+        c.all(&mut set.velocity_term);
+        c.all(&mut set.gamma);
+        for (_, coefficients) in &mut set.reactions {
+            c.rows(coefficients);
+        }
+    }
 }
 
 /// G, g, Φ and γ, with their derivatives when the Jacobians are asked for.

@@ -249,7 +249,7 @@ where
             .with_parameter_terms(&terms);
         let prepare = || {
             check_problem(span.start, span.end, &q0, &v0)?;
-            let (_, q0, v0) = sim.prepare_constrained::<T, N, K>(span.start, q0, v0)?;
+            let (_, q0, v0) = sim.prepare_constrained::<T, N, K, N>(span.start, q0, v0)?;
             Ok((q0, v0))
         };
         self.drive(
