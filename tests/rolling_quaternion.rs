@@ -14,6 +14,8 @@ use common::numeric::Lcg;
 use lagrange::prelude::*;
 use lagrange::{check_consistency, project_consistent};
 use nalgebra::{Matrix3, SVector, Vector3};
+
+const TOL: f64 = 1e-11;
 use std::ops::{Add, Mul, Neg, Sub};
 
 /// Chaplygin's ball in Euler angles z-x-z: `RollingSphere` with unequal
@@ -368,4 +370,130 @@ fn the_quaternion_disk_rolls_as_the_euler_angle_disk() {
         worst = worst.max((rolling - c.multipliers).amax() / (1.0 + c.multipliers.amax()));
     }
     eprintln!("disk: largest relative gap in v̇ and ν {worst:e}");
+}
+
+/// Over three seconds the sphere in a quaternion follows the sphere in
+/// Euler angles (started where that chart is regular) to the integrators'
+/// tolerance, on its constraints to round-off.
+#[test]
+fn the_quaternion_sphere_follows_the_chart_sphere_over_seconds() {
+    let mut rng = Lcg(23);
+    let (q, v) = ball_start(&CHART_BALL, &mut rng, BALL.a, (0.8, 2.3));
+    let (qq, vq, _) = ball_state(&q, &v, &SVector::zeros());
+    let chart = Simulation::new(&CHART_BALL)
+        .integrator(Dopri5::tol(TOL))
+        .drift(Drift::projection())
+        .run(q, v, 0.0..3.0)
+        .unwrap();
+    let quat = Simulation::new(&BALL)
+        .integrator(Dopri5::tol(TOL))
+        .drift(Drift::projection())
+        .run(qq, vq, 0.0..3.0)
+        .unwrap();
+    let (qc, vc) = chart.final_state();
+    let (qc, vc, _) = ball_state(&qc, &vc, &SVector::zeros());
+    let (qf, vf) = quat.final_state();
+    let (gap, speed_gap) = (quaternion_gap(&qf, &qc), (vf - vc).amax());
+    let [phi, vel] = quat.max_residuals();
+    eprintln!(
+        "sphere over 3 s: state gap {gap:e}, velocity gap {speed_gap:e}, residuals {phi:e} {vel:e}, \
+         energy drift {:e}, unit error {:e}",
+        quat.integral_drift(),
+        quat.max_unit_error()
+    );
+    assert!(gap < 1e-7 && speed_gap < 1e-7, "{gap:e} {speed_gap:e}");
+    assert!(phi <= 1e-12 && vel <= 1e-12, "{phi:e} {vel:e}");
+    assert!(quat.integral_drift() < 1e-8);
+}
+
+/// The same for the disk, rolling and wobbling (the tilt stays inside the
+/// chart's regular set, which is where the disk has a contact point).
+#[test]
+fn the_quaternion_disk_follows_the_chart_disk_over_seconds() {
+    let chart = RollingDisk::thin(1.2, 0.4, 9.81);
+    let disk = QuaternionDisk::thin(1.2, 0.4, 9.81);
+    // Rolling at 6 rad/s, tilted 0.3 and turning: it wobbles, it does not fall.
+    let q = SVector::from([0.0, 0.0, 0.2, 0.3, 0.0]);
+    let v = SVector::from([0.0, 0.0, 1.0, 0.5, 6.0]);
+    let (q, v) = project_consistent(&chart, q, v, 0.0).unwrap();
+    let (qq, vq, _) = disk_state(&chart, &q, &v, &SVector::zeros());
+    let c = Simulation::new(&chart)
+        .integrator(Dopri5::tol(TOL))
+        .drift(Drift::projection())
+        .run(q, v, 0.0..3.0)
+        .unwrap();
+    let d = Simulation::new(&disk)
+        .integrator(Dopri5::tol(TOL))
+        .drift(Drift::projection())
+        .run(qq, vq, 0.0..3.0)
+        .unwrap();
+    let (qc, vc) = c.final_state();
+    let (qc, vc, _) = disk_state(&chart, &qc, &vc, &SVector::zeros());
+    let (qf, vf) = d.final_state();
+    let (gap, speed_gap) = (quaternion_gap(&qf, &qc), (vf - vc).amax());
+    let [phi, vel] = d.max_residuals();
+    eprintln!(
+        "disk over 3 s: state gap {gap:e}, velocity gap {speed_gap:e}, residuals {phi:e} {vel:e}, \
+         energy drift {:e}",
+        d.integral_drift()
+    );
+    assert!(gap < 1e-7 && speed_gap < 1e-7, "{gap:e} {speed_gap:e}");
+    assert!(phi <= 1e-12 && vel <= 1e-12, "{phi:e} {vel:e}");
+    assert!(d.integral_drift() < 1e-8);
+}
+
+/// The angular momentum about the contact point, I_world ω + a e_z × m v_c:
+/// conserved for a ball with its centre of mass at its centre (the contact
+/// force and the weight have no moment about it, and the contact point moves
+/// with the centre).
+fn contact_momentum(
+    ball: &QuaternionSphere,
+    q: &SVector<f64, 7>,
+    v: &SVector<f64, 6>,
+) -> Vector3<f64> {
+    let r = rotation_of(q);
+    let inertia = Matrix3::from_diagonal(&Vector3::new(ball.j1, ball.j2, ball.j3));
+    let omega = Vector3::new(v[3], v[4], v[5]);
+    let centre = Vector3::new(v[0], v[1], v[2]) * ball.m;
+    r * (inertia * omega) + Vector3::new(0.0, 0.0, ball.a).cross(&centre)
+}
+
+/// Started with its z axis vertical, where euler_zxz stops (θ = 0, which
+/// the chart sphere refuses), the quaternion sphere rolls on: energy and the
+/// angular momentum about the contact point stay, and so do the constraints.
+#[test]
+fn the_quaternion_sphere_rolls_through_the_chart_s_singular_state() {
+    let w = [1.5, -0.7, 4.0];
+    let q0 = SVector::from([0.0, 0.0, BALL.a, 1.0, 0.0, 0.0, 0.0]);
+    // Body axes are world axes here: the centre moves as ω × (a e_z).
+    let v0 = SVector::from([BALL.a * w[1], -BALL.a * w[0], 0.0, w[0], w[1], w[2]]);
+    let traj = Simulation::new(&BALL)
+        .integrator(Dopri5::tol(TOL))
+        .drift(Drift::projection())
+        .run(q0, v0, 0.0..5.0)
+        .unwrap();
+    let k0 = contact_momentum(&BALL, &q0, &v0);
+    let drift = traj
+        .positions()
+        .iter()
+        .zip(traj.velocities())
+        .map(|(q, v)| (contact_momentum(&BALL, q, v) - k0).amax())
+        .fold(0.0, f64::max);
+    let [phi, vel] = traj.max_residuals();
+    eprintln!(
+        "sphere from θ = 0 over 5 s: momentum drift {drift:e} (of {:.3}), energy drift {:e}, \
+         residuals {phi:e} {vel:e}",
+        k0.amax(),
+        traj.integral_drift()
+    );
+    assert!(drift < 1e-8 * k0.amax(), "{drift:e}");
+    assert!(traj.integral_drift() < 1e-8);
+    assert!(phi <= 1e-12 && vel <= 1e-12, "{phi:e} {vel:e}");
+    let chart_q = SVector::from([0.0, 0.0, BALL.a, 0.0, 0.0, 0.0]);
+    let chart_v = SVector::from([v0[0], v0[1], 0.0, 0.0, 0.0, w[2]]);
+    assert!(
+        Simulation::new(&CHART_BALL)
+            .run(chart_q, chart_v, 0.0..1.0)
+            .is_err()
+    );
 }
