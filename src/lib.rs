@@ -276,10 +276,20 @@
 //! (`g` reads q with its quaternions) and run by [`Simulation::event`] as
 //! usual; an action's result is normalised.
 //!
-//! Not yet with an orientation: constraints, `speeds`, `inputs` (so no
-//! controlled runs), `emit(..)` and `urdf` (each a compile error at the
-//! orientation), and the recursive route (bodies with an orientation are
-//! derived by differentiating ξ).
+//! **Constraints** (`holonomic`, `nonholonomic`) run in the multiplier form
+//! ([`Constrained`]`<T, N, K, Q>`): G is K × N, an orientation's columns the
+//! coefficients of ω (∂/∂θ at θ = 0, the velocity rows G v + g = 0 read in
+//! the body-axis ω), and γ is taken at θ = 0 too, where θ̈ = ω̇; the position
+//! projection steps q ⊕ δ (the quaternion turned by exp of a rotation vector),
+//! and `emit(reactions)` gives the Cartesian reactions. A sphere rolling with
+//! a quaternion (`examples/catalog/rolling.rs`) rolls through the state
+//! where euler_zxz stops, its z axis vertical.
+//!
+//! Not yet with an orientation: the reduced form (`speeds`,
+//! `formulation(reduced)`), `inputs` (so no controlled runs), the other
+//! `emit(..)` outputs and `urdf` (each a compile error at the orientation),
+//! the constrained linearisation, and the recursive route (bodies with an
+//! orientation are derived by differentiating ξ).
 //!
 //! ```
 //! use lagrange::prelude::*;

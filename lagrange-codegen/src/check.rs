@@ -57,9 +57,9 @@ fn check_orientations(cx: &Ctxt, system: &System) {
         cx.error_at(
             first.span(),
             format!(
-                "a free orientation does not combine with {} yet: keep its constraints in the \
-                 multiplier form (`formulation(multipliers)`, the default), or describe the \
-                 rotation with `rot_x/rot_y/rot_z` or `euler_zxz` of coordinates",
+                "a free orientation does not combine with {} yet: remove them (constraints run \
+                 in the multiplier form, the default, and `emit(reactions)` is available), or \
+                 describe the rotation with `rot_x/rot_y/rot_z` or `euler_zxz` of coordinates",
                 not_yet.join(", ")
             ),
         );

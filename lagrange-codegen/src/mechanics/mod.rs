@@ -20,6 +20,7 @@ mod cyclic;
 mod energy;
 mod extra;
 mod force;
+mod forms;
 mod frames;
 mod generic;
 mod inverse;
@@ -35,9 +36,10 @@ pub use model::{Articulation, BiasRoute, InputModel, Model};
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use crate::ast::Extra;
-use crate::constraint::{ConstraintSet, Reduction};
+use crate::constraint::ConstraintSet;
 use crate::lowered::{ConstraintModel, Lowered, Poses};
 use force::Applied;
+use forms::{multiplier_form, reduced_if_asked};
 use generic::GenericTerms;
 use kinematics::at_zero;
 use recursive::RecursiveTerms;
@@ -392,11 +394,11 @@ struct Derived {
 }
 
 /// The constraints and which constrained forms to build.
-struct Constrained<'a> {
-    holonomic: &'a [ConstraintModel],
-    nonholonomic: &'a [ConstraintModel],
-    multipliers: bool,
-    speeds: Option<Option<Vec<(String, Sym)>>>,
+pub(super) struct Constrained<'a> {
+    pub holonomic: &'a [ConstraintModel],
+    pub nonholonomic: &'a [ConstraintModel],
+    pub multipliers: bool,
+    pub speeds: Option<Option<Vec<(String, Sym)>>>,
 }
 
 impl<'a> Constrained<'a> {
@@ -445,12 +447,10 @@ fn finish(
     let hamiltonian = wants(Extra::Hamiltonian);
     let momentum = (hamiltonian || d.rheonomic).then(|| extra::momentum(&mut ctx, d.kinetic));
     let kinetic_gradient = hamiltonian.then(|| extra::kinetic_gradient(&mut ctx, d.kinetic));
-    let constraints = match early {
-        Some(set) => Some(set),
-        None => c
-            .multipliers
-            .then(|| multiplier_form(&mut ctx, &c, wants(Extra::Jacobians))),
-    };
+    let constraints = early.or_else(|| {
+        c.multipliers
+            .then(|| multiplier_form(&mut ctx, &c, wants(Extra::Jacobians)))
+    });
     let reduced = reduced_if_asked(&mut ctx, &c, &d.coordinates, wants(Extra::Jacobians))?;
     let articulated = d.forces.articulated;
     let frames = wants(Extra::Kinematics).then(|| frames::frames(&mut ctx, &d.poses, &d.particles));
@@ -537,56 +537,6 @@ fn at_centre(ctx: &mut Context, d: &mut Derived, constraints: Option<&mut Constr
             c.rows(coefficients);
         }
     }
-}
-
-/// G, g, Φ and γ, with their derivatives when the Jacobians are asked for.
-fn multiplier_form(ctx: &mut Context, c: &Constrained, jacobians: bool) -> ConstraintSet {
-    let mut set = crate::constraint::multiplier_form(ctx, c.holonomic, c.nonholonomic);
-    if jacobians {
-        set.derivatives = Some(crate::constraint::constraint_derivatives(ctx, &set));
-    }
-    set
-}
-
-/// The reduced form, when `speeds` or `formulation(reduced)` asks for it.
-fn reduced_if_asked(
-    ctx: &mut Context,
-    c: &Constrained,
-    coordinates: &[String],
-    jacobians: bool,
-) -> Result<Option<Reduction>, DeriveError> {
-    let Some(speeds) = &c.speeds else {
-        return Ok(None);
-    };
-    reduced_form(ctx, c, speeds.as_deref(), coordinates, jacobians).map(Some)
-}
-
-/// The reduced form on the user's speeds, or on speeds chosen from the
-/// constraints (`speeds` is `None`).
-fn reduced_form(
-    ctx: &mut Context,
-    c: &Constrained,
-    speeds: Option<&[(String, Sym)]>,
-    coordinates: &[String],
-    jacobians: bool,
-) -> Result<Reduction, DeriveError> {
-    let chosen;
-    let speeds = match speeds {
-        Some(s) => s,
-        None => {
-            chosen =
-                crate::constraint::default_speeds(ctx, c.holonomic, c.nonholonomic, coordinates)
-                    .map_err(DeriveError::Reduction)?;
-            &chosen[..]
-        }
-    };
-    let mut r = crate::constraint::reduce(ctx, c.holonomic, c.nonholonomic, speeds, coordinates)
-        .map_err(DeriveError::Reduction)?;
-    r.free_speeds = c.speeds.as_ref().is_some_and(|s| s.is_none());
-    if jacobians {
-        r.derivatives = Some(crate::constraint::reduced_derivatives(ctx, &r));
-    }
-    Ok(r)
 }
 
 /// One hoisting over every program that takes the terms, in the layout
