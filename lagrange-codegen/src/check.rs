@@ -27,8 +27,8 @@ pub fn check(cx: &Ctxt, system: &System) {
 
 /// What a free orientation does not combine with yet, named at the
 /// orientation: the reduced form (`speeds(...)`, `formulation(reduced)`), the
-/// optional outputs but `reactions`, inputs, and a URDF (whose joints are
-/// rotations about axes). Constraints in the multiplier form combine.
+/// optional outputs but `reactions`, and a URDF (whose joints are rotations
+/// about axes). Constraints in the multiplier form and inputs combine.
 fn check_orientations(cx: &Ctxt, system: &System) {
     let Some(first) = system.orientations.first() else {
         return;
@@ -46,9 +46,6 @@ fn check_orientations(cx: &Ctxt, system: &System) {
     }
     if system.extras.iter().any(|(_, e)| *e != Extra::Reactions) {
         not_yet.push("`emit(...)` other than `reactions`");
-    }
-    if !system.inputs.is_empty() {
-        not_yet.push("`inputs(...)`");
     }
     if system.urdf.is_some() {
         not_yet.push("`urdf`");

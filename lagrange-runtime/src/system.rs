@@ -530,6 +530,10 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
 /// enter M, h or the constraints, so the multiplier and reduced forms are driven
 /// the same way.
 ///
+/// With free orientations (Q = N + 1 per orientation) q holds the
+/// quaternions and the forces are in v's tangent space: an orientation's
+/// three entries are torques in body axes (the coefficients of ω).
+///
 /// `#[derive(Lagrangian)]` implements it for every system: with the declared
 /// inputs, or with P = 0 for a system without inputs, so that code written for
 /// driven systems (linearisation, controlled simulation) takes undriven ones
@@ -543,7 +547,9 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
     label = "{P} input(s) supplied here",
     note = "a controller returns `[T; P]` or `SVector<T, P>` with P the number of names in `inputs(...)`; a system without inputs takes P = 0"
 )]
-pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
+pub trait Driven<T: Real, const N: usize, const P: usize, const Q: usize = N>:
+    Lagrangian<T, N, Q>
+{
     /// Names of the inputs, in order.
     const INPUTS: [&'static str; P] = {
         assert!(
@@ -556,7 +562,7 @@ pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
     /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t): the generalized forces the inputs add.
     fn input_forces(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         u: &SVector<T, P>,
         t: T,
@@ -577,7 +583,7 @@ pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
     #[allow(clippy::type_complexity)]
     fn input_jacobians(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         u: &SVector<T, P>,
         t: T,

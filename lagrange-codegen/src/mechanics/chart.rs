@@ -11,6 +11,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
+use super::model::InputModel;
 use crate::lowered::{OrientationModel, Poses};
 use crate::mat3::Mat3;
 
@@ -96,6 +97,37 @@ impl AtCentre<'_> {
         }
         for p in &mut poses.points {
             self.all(&mut p.position);
+        }
+    }
+
+    /// The inputs' forces and Jacobians, the orientations' θ starting at
+    /// velocity `first`. ΔQ in θ is J_r(θ)ᵀ τ = τ + ½ θ × τ (τ the body-axis
+    /// torques, J_r = I − ½[θ]× the right Jacobian to the first order), so
+    /// at θ = 0 its θ-derivative is ∂τ/∂δ − ½[τ]×: the term is added back, so
+    /// that ∂ΔQ/∂q is along q ⊕ δ, as the runtime reads it.
+    pub fn inputs(&mut self, inputs: &mut InputModel, first: usize, count: usize) {
+        self.all(&mut inputs.forces);
+        self.rows(&mut inputs.jacobian_u);
+        self.rows(&mut inputs.jacobian_q);
+        self.rows(&mut inputs.jacobian_v);
+        let half = self.ctx.rational(1, 2);
+        for k in 0..count {
+            let o = first + 3 * k;
+            let tau = [0, 1, 2].map(|i| inputs.forces[o + i]);
+            for i in 0..3 {
+                for j in 0..3 {
+                    if i == j {
+                        continue;
+                    }
+                    // [τ]×[i][j] = −ε_ijl τ_l, l the third axis.
+                    let l = 3 - i - j;
+                    let sign = if (i + 1) % 3 == j { -1 } else { 1 };
+                    let entry = self.ctx.mul(half, tau[l]);
+                    let entry = if sign < 0 { self.ctx.neg(entry) } else { entry };
+                    let sum = self.ctx.add(inputs.jacobian_q[o + i][o + j], entry);
+                    inputs.jacobian_q[o + i][o + j] = self.ctx.collect(sum);
+                }
+            }
         }
     }
 }

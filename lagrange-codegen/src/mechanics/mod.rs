@@ -500,8 +500,8 @@ fn finish(
 
 /// Free orientations: every output at the centre of the moving chart, θ = 0
 /// (see `chart`), the multiplier form's rows included (derived in θ before).
-/// What takes no orientation yet (the reduced form, inputs and the optional
-/// outputs but the reactions) is refused before the derivation.
+/// What takes no orientation yet (the reduced form and the optional outputs
+/// but the reactions) is refused before the derivation.
 fn at_centre(ctx: &mut Context, d: &mut Derived, constraints: Option<&mut ConstraintSet>) {
     if d.orientations.is_empty() {
         return;
@@ -528,6 +528,9 @@ fn at_centre(ctx: &mut Context, d: &mut Derived, constraints: Option<&mut Constr
         c.all(position);
     }
     c.poses(&mut d.poses);
+    if let Some(inputs) = &mut d.forces.inputs {
+        c.inputs(inputs, d.coordinates.len(), d.orientations.len());
+    }
     if let Some(set) = constraints {
         c.all(&mut set.phi);
         c.rows(&mut set.jacobian);

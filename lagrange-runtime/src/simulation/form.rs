@@ -117,15 +117,15 @@ where
     }
 }
 
-impl<S, I, C, T, const N: usize, const P: usize> FormVisitor<T, N, S>
-    for Start<'_, ControlledSimulation<'_, '_, S, I, C, T, N, P>, T, N>
+impl<S, I, C, T, const N: usize, const P: usize, const Q: usize> FormVisitor<T, N, S, Q>
+    for Start<'_, ControlledSimulation<'_, '_, S, I, C, T, N, P, Q>, T, N, Q>
 where
-    S: Driven<T, N, P>,
+    S: Driven<T, N, P, Q>,
     I: Integrator,
-    C: InputSource<T, N, P>,
+    C: InputSource<T, N, P, Q>,
     T: Real,
 {
-    type Output = Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>>;
+    type Output = Result<ControlRun<T, N, P, Q>, Failure<ControlRun<T, N, P, Q>>>;
 
     fn unconstrained(self, _: &S) -> Self::Output {
         self.builder.run_unconstrained(self.q0, self.v0, self.span)
@@ -133,7 +133,7 @@ where
 
     fn multipliers<const K: usize>(self, _: &S) -> Self::Output
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         self.builder
             .run_constrained::<K>(self.q0, self.v0, self.span)
