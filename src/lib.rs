@@ -285,11 +285,20 @@
 //! a quaternion (`examples/catalog/rolling.rs`) rolls through the state
 //! where euler_zxz stops, its z axis vertical.
 //!
+//! **Inputs** work as without orientations ([`Driven`]`<T, N, P, Q>`): the
+//! forces they add are in v's tangent space (an orientation's three entries
+//! torques in body axes; a torque is written as forces at body points, see
+//! `Satellite` in `examples/catalog/free.rs`), a controller reads q with its
+//! quaternions, and [`Linearizer::tangent_driven`] linearises with
+//! B = [0; M⁻¹ ∂Q/∂u] (2·N × P).
+//!
 //! Not yet with an orientation: the reduced form (`speeds`,
-//! `formulation(reduced)`), `inputs` (so no controlled runs), the other
-//! `emit(..)` outputs and `urdf` (each a compile error at the orientation),
-//! the constrained linearisation, and the recursive route (bodies with an
-//! orientation are derived by differentiating ξ).
+//! `formulation(reduced)`), the other `emit(..)` outputs and `urdf` (each a
+//! compile error at the orientation); [`StateFeedback`]
+//! (whose q − q₀ has no meaning for a quaternion: write the law as a
+//! `feedback` closure on the quaternion's error), the constrained
+//! linearisation, and the recursive route (bodies with an orientation are
+//! derived by differentiating ξ).
 //!
 //! ```
 //! use lagrange::prelude::*;
