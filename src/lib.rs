@@ -281,15 +281,36 @@
 //! velocity product reads only the velocity entering the joint), and a free
 //! body's `at = [x, y, z]` is three sliding joints, so a floating-base tree
 //! (a quadruped, a satellite with an arm) gets composite-rigid-body M,
-//! recursive Newton–Euler h and, with `emit(articulated, inverse_dynamics)`,
-//! the O(n) articulated-body q̈ and τ; `tests/floating_bases.rs` checks them
-//! against Pinocchio's free flyer to 1e-12. A body that an orientation turns
+//! recursive Newton–Euler h and, with `emit(articulated, inverse_dynamics,
+//! jacobians)`, the O(n) articulated-body q̈, τ and the derivatives of τ
+//! in the tangent space (what [`Linearizer::tangent`] reads when they are
+//! emitted); `tests/floating_bases.rs` checks them against Pinocchio's free
+//! flyer to 1e-12. A body that an orientation turns
 //! alone must have a positive-definite inertia (a compile error at the
 //! inertia otherwise).
 //!
-//! Not yet with an orientation: constraints, `speeds`, `inputs` (so no
-//! controlled runs), the `emit(..)` outputs other than `articulated` and
-//! `inverse_dynamics`, and `urdf` (each a compile error at the orientation).
+//! **Constraints** (`holonomic`, `nonholonomic`) run in the multiplier form
+//! ([`Constrained`]`<T, N, K, Q>`): G is K × N, an orientation's columns the
+//! coefficients of ω (∂/∂θ at θ = 0, the velocity rows G v + g = 0 read in
+//! the body-axis ω), and γ is taken at θ = 0 too, where θ̈ = ω̇; the position
+//! projection steps q ⊕ δ (the quaternion turned by exp of a rotation vector),
+//! and `emit(reactions)` gives the Cartesian reactions. A sphere rolling with
+//! a quaternion (`examples/catalog/rolling.rs`) rolls through the state
+//! where euler_zxz stops, its z axis vertical.
+//!
+//! **Inputs** work as without orientations ([`Driven`]`<T, N, P, Q>`): the
+//! forces they add are in v's tangent space (an orientation's three entries
+//! torques in body axes; a torque is written as forces at body points, see
+//! `Satellite` in `examples/catalog/free.rs`), a controller reads q with its
+//! quaternions, and [`Linearizer::tangent_driven`] linearises with
+//! B = [0; M⁻¹ ∂Q/∂u] (2·N × P).
+//!
+//! Not yet with an orientation: the reduced form (`speeds`,
+//! `formulation(reduced)`), the other `emit(..)` outputs and `urdf` (each a
+//! compile error at the orientation); [`StateFeedback`]
+//! (whose q − q₀ has no meaning for a quaternion: write the law as a
+//! `feedback` closure on the quaternion's error) and the constrained
+//! linearisation take Q = N only.
 //!
 //! ```
 //! use lagrange::prelude::*;

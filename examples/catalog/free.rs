@@ -81,3 +81,29 @@ pub fn flip_half_period([i1, i2, i3]: [f64; 3], w: [f64; 3]) -> f64 {
     }
     std::f64::consts::PI / a / s
 }
+
+/// A rigid body turning freely about its fixed centre of mass (a satellite's
+/// attitude), principal moments a, b, c, driven by three body-axis torques
+/// (reaction wheels, thrusters): each a force at unit distance along one
+/// body axis, in the direction of the next, `t1` about x, `t2` about y, `t3`
+/// about z.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    orientation(attitude),
+    inputs(t1, t2, t3),
+    body(sat, mass = m, inertia = [a, b, c], at = [0, 0, 0], rotation = attitude),
+    point(arm_y, on = sat, at = [0, 1, 0]),
+    point(arm_z, on = sat, at = [0, 0, 1]),
+    point(arm_x, on = sat, at = [1, 0, 0]),
+    // r × F with r = R e_y, F = t1 R e_z: t1 R e_x; and so on round.
+    force(arm_y, [t1 * sat.axis_z.x, t1 * sat.axis_z.y, t1 * sat.axis_z.z]),
+    force(arm_z, [t2 * sat.axis_x.x, t2 * sat.axis_x.y, t2 * sat.axis_x.z]),
+    force(arm_x, [t3 * sat.axis_y.x, t3 * sat.axis_y.y, t3 * sat.axis_y.z]),
+    shape(sat, box(size = [0.6, 0.4, 0.3])),
+)]
+pub struct Satellite {
+    pub m: f64,
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+}

@@ -185,4 +185,5 @@ pub mod control;
 pub mod extremes;
 pub mod floating;
 pub mod free;
+pub mod rolling;
 pub mod study;

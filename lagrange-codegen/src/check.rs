@@ -26,25 +26,34 @@ pub fn check(cx: &Ctxt, system: &System) {
 }
 
 /// What a free orientation does not combine with yet, named at the
-/// orientation: the constrained forms, inputs, the optional outputs and a
-/// URDF (whose joints are rotations about axes).
+/// orientation: the reduced form (`speeds(...)`, `formulation(reduced)`), the
+/// optional outputs but `reactions`, and a URDF (whose joints are rotations
+/// about axes). Constraints in the multiplier form and inputs combine.
 fn check_orientations(cx: &Ctxt, system: &System) {
     let Some(first) = system.orientations.first() else {
         return;
     };
     let mut not_yet = Vec::new();
-    if !(system.holonomic.is_empty() && system.nonholonomic.is_empty()) {
-        not_yet.push("constraints (`holonomic`, `nonholonomic`)");
-    }
     if !system.speeds.is_empty() {
         not_yet.push("`speeds(...)`");
     }
-    if !system.inputs.is_empty() {
-        not_yet.push("`inputs(...)`");
+    let reduced = system
+        .formulations
+        .iter()
+        .any(|(_, f)| *f == Formulation::Reduced);
+    if reduced {
+        not_yet.push("`formulation(reduced)`");
     }
-    let centred = [Extra::Articulated, Extra::InverseDynamics, Extra::Jacobians];
-    if system.extras.iter().any(|(_, e)| !centred.contains(e)) {
-        not_yet.push("`emit(...)` other than `articulated`, `inverse_dynamics` and `jacobians`");
+    let supported = [
+        Extra::Reactions,
+        Extra::Articulated,
+        Extra::InverseDynamics,
+        Extra::Jacobians,
+    ];
+    if system.extras.iter().any(|(_, e)| !supported.contains(e)) {
+        not_yet.push(
+            "`emit(...)` other than `reactions`, `articulated`, `inverse_dynamics` and `jacobians`",
+        );
     }
     if system.urdf.is_some() {
         not_yet.push("`urdf`");
@@ -53,8 +62,9 @@ fn check_orientations(cx: &Ctxt, system: &System) {
         cx.error_at(
             first.span(),
             format!(
-                "a free orientation does not combine with {} yet: describe the rotation with \
-                 `rot_x/rot_y/rot_z` or `euler_zxz` of coordinates for those",
+                "a free orientation does not combine with {} yet: remove them (constraints run \
+                 in the multiplier form, the default, and `emit(reactions)` is available), or \
+                 describe the rotation with `rot_x/rot_y/rot_z` or `euler_zxz` of coordinates",
                 not_yet.join(", ")
             ),
         );

@@ -312,6 +312,12 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
 ///
 /// with γ = −(Ġ q̇ + ġ) and the multipliers ν = [λ; μ].
 ///
+/// With free orientations (Q = N + 1 per orientation, see
+/// [`Lagrangian::ORIENTATIONS`]) q holds the quaternions and v the body-axis
+/// angular velocities: G's columns are the tangent space's (an orientation's
+/// three are ∂/∂θ of q ⊗ exp(θ) at θ = 0, i.e. the coefficients of ω), so
+/// G is K × N and G v + g = 0, G v̇ = γ read in v as they do without.
+///
 /// A hand-written implementation also sets [`Lagrangian::CONSTRAINED`] and
 /// overrides [`Lagrangian::visit_form`] with `form.multipliers::<K>(self)`,
 /// as the derive does, so that `Simulation::run` and `complete_state` use
@@ -321,27 +327,29 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     label = "needs the multiplier form",
     note = "the multiplier form is the default when a description has constraints and no `speeds(...)`; `formulation(multipliers, reduced)` emits both"
 )]
-pub trait Constrained<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
+pub trait Constrained<T: Real, const N: usize, const K: usize, const Q: usize = N>:
+    Lagrangian<T, N, Q>
+{
     /// Names of the constraints, in row order.
     const CONSTRAINTS: [&'static str; K];
     /// How many of the K rows (the first ones) are holonomic.
     const HOLONOMIC: usize;
 
     /// Φ(q,t) in the holonomic rows, zero in the nonholonomic rows.
-    fn constraint_positions(&self, q: &SVector<T, N>, t: T) -> SVector<T, K>;
+    fn constraint_positions(&self, q: &SVector<T, Q>, t: T) -> SVector<T, K>;
 
     /// G(q,t) = [Φ_q; A] and g(q,t) = [Φ_t; b].
-    fn constraint_jacobian(&self, q: &SVector<T, N>, t: T) -> (SMatrix<T, K, N>, SVector<T, K>);
+    fn constraint_jacobian(&self, q: &SVector<T, Q>, t: T) -> (SMatrix<T, K, N>, SVector<T, K>);
 
     /// γ(q,q̇,t) = −(Ġ q̇ + ġ), the right-hand side of G q̈ = γ.
-    fn constraint_rhs(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, K>;
+    fn constraint_rhs(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> SVector<T, K>;
 
     /// M, Q − h, G and γ in one pass (shared subexpressions evaluated once): what
     /// the constrained dynamics call.
     #[allow(clippy::type_complexity)]
     fn constrained_system(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         t: T,
     ) -> (
@@ -358,7 +366,7 @@ pub trait Constrained<T: Real, const N: usize, const K: usize>: Lagrangian<T, N>
     fn constrained_system_with(
         &self,
         terms: &[T],
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         t: T,
     ) -> (
@@ -388,7 +396,7 @@ pub trait Constrained<T: Real, const N: usize, const K: usize>: Lagrangian<T, N>
     #[allow(clippy::type_complexity)]
     fn constraint_derivatives(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         a: &SVector<T, N>,
         nu: &SVector<T, K>,
@@ -522,6 +530,10 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
 /// enter M, h or the constraints, so the multiplier and reduced forms are driven
 /// the same way.
 ///
+/// With free orientations (Q = N + 1 per orientation) q holds the
+/// quaternions and the forces are in v's tangent space: an orientation's
+/// three entries are torques in body axes (the coefficients of ω).
+///
 /// `#[derive(Lagrangian)]` implements it for every system: with the declared
 /// inputs, or with P = 0 for a system without inputs, so that code written for
 /// driven systems (linearisation, controlled simulation) takes undriven ones
@@ -535,7 +547,9 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
     label = "{P} input(s) supplied here",
     note = "a controller returns `[T; P]` or `SVector<T, P>` with P the number of names in `inputs(...)`; a system without inputs takes P = 0"
 )]
-pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
+pub trait Driven<T: Real, const N: usize, const P: usize, const Q: usize = N>:
+    Lagrangian<T, N, Q>
+{
     /// Names of the inputs, in order.
     const INPUTS: [&'static str; P] = {
         assert!(
@@ -548,7 +562,7 @@ pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
     /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t): the generalized forces the inputs add.
     fn input_forces(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         u: &SVector<T, P>,
         t: T,
@@ -569,7 +583,7 @@ pub trait Driven<T: Real, const N: usize, const P: usize>: Lagrangian<T, N> {
     #[allow(clippy::type_complexity)]
     fn input_jacobians(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         u: &SVector<T, P>,
         t: T,

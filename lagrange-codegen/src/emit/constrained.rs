@@ -18,8 +18,9 @@ pub(super) fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
     let k = c.names.len();
     let kl = Literal::usize_unsuffixed(k);
     let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_k) = (f.vec(nl), f.vec(&kl));
+    let (vec_n, vec_k, qvec) = (f.vec(nl), f.vec(&kl), f.qvec());
     let (mat_nn, mat_kn) = (f.mat(nl, nl), f.mat(&kl, nl));
+    let sizes = f.sizes_after(&kl);
     let g_flat: Vec<Sym> = c.jacobian.iter().flatten().copied().collect();
 
     let (phi_lets, phi_outs) = e.program(&c.phi);
@@ -39,18 +40,18 @@ pub(super) fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
-        impl #ig ::lagrange::__private::Constrained<#s, #nl, #kl> for #ident #tg #wc {
+        impl #ig ::lagrange::__private::Constrained<#s, #sizes> for #ident #tg #wc {
             const CONSTRAINTS: [&'static str; #kl] = [#(#names),*];
             const HOLONOMIC: usize = #holonomic;
 
             #[inline]
-            fn constraint_positions(&self, q: &#vec_n, t: #s) -> #vec_k {
+            fn constraint_positions(&self, q: &#qvec, t: #s) -> #vec_k {
                 #phi_lets
                 <#vec_k>::from([#(#phi_outs),*])
             }
 
             #[inline]
-            fn constraint_jacobian(&self, q: &#vec_n, t: #s) -> (#mat_kn, #vec_k) {
+            fn constraint_jacobian(&self, q: &#qvec, t: #s) -> (#mat_kn, #vec_k) {
                 #jac_lets
                 let mut g = <#mat_kn>::zeros();
                 #g_fill
@@ -58,18 +59,18 @@ pub(super) fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
             }
 
             #[inline]
-            fn constraint_rhs(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_k {
+            fn constraint_rhs(&self, q: &#qvec, v: &#vec_n, t: #s) -> #vec_k {
                 #gamma_lets
                 <#vec_k>::from([#(#gamma_outs),*])
             }
 
             #[inline]
-            fn constrained_system(&self, q: &#vec_n, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) {
+            fn constrained_system(&self, q: &#qvec, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) {
                 self.__lagrange_constrained_system(&self.__lagrange_parameter_terms(), q, v, t)
             }
 
             #[inline]
-            fn constrained_system_with(&self, terms: &[#s], q: &#vec_n, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) {
+            fn constrained_system_with(&self, terms: &[#s], q: &#qvec, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) {
                 match <&[#s; #h_len]>::try_from(terms) {
                     ::core::result::Result::Ok(p) => self.__lagrange_constrained_system(p, q, v, t),
                     ::core::result::Result::Err(_) => self.constrained_system(q, v, t),
@@ -114,7 +115,7 @@ fn constrained_system(e: &Emitter, f: &Frame, model: &Model, kl: &Literal) -> To
     let n = model.dof();
     let k = model.constraints.as_ref().map_or(0, |c| c.names.len());
     let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_k) = (f.vec(nl), f.vec(kl));
+    let (vec_n, vec_k, qvec) = (f.vec(nl), f.vec(kl), f.qvec());
     let (mat_nn, mat_kn) = (f.mat(nl, nl), f.mat(kl, nl));
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
     let mut all = model.hoisted_upper_and_rhs();
@@ -133,7 +134,7 @@ fn constrained_system(e: &Emitter, f: &Frame, model: &Model, kl: &Literal) -> To
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
         impl #ig #ident #tg #wc {
             #[doc(hidden)]
-            pub fn __lagrange_constrained_system(&self, p: &[#s; #h_len], q: &#vec_n, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) {
+            pub fn __lagrange_constrained_system(&self, p: &[#s; #h_len], q: &#qvec, v: &#vec_n, t: #s) -> (#mat_nn, #vec_n, #mat_kn, #vec_k) {
                 #all_lets
                 let m = <#mat_nn>::from(#m_fill);
                 let mut g = <#mat_kn>::zeros();

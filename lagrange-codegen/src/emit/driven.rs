@@ -11,29 +11,25 @@ use crate::mechanics::Model;
 /// defaults (ΔQ = 0). Every derived system is `Driven` exactly once, so the
 /// number of inputs is inferred wherever one is needed.
 fn driven_by_nothing(f: &Frame) -> TokenStream {
-    let (s, nl) = (&f.s, &f.n);
+    let (s, sizes) = (&f.s, f.sizes_after(&Literal::usize_unsuffixed(0)));
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     quote! {
         #[automatically_derived]
-        impl #ig ::lagrange::__private::Driven<#s, #nl, 0> for #ident #tg #wc {}
+        impl #ig ::lagrange::__private::Driven<#s, #sizes> for #ident #tg #wc {}
     }
 }
 
 /// `impl Driven` for a description with inputs: ΔQ and its Jacobians, with the
 /// inputs taken as `u`.
 pub(super) fn impl_driven(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
-    // A controlled run takes no orientations yet (`Driven` extends
-    // `Lagrangian<T, N>`, Q = N): a description with them has no inputs.
-    if !model.orientations.is_empty() {
-        return TokenStream::new();
-    }
     let Some(inputs) = &model.inputs else {
         return driven_by_nothing(f);
     };
     let p = inputs.names.len();
     let pl = Literal::usize_unsuffixed(p);
     let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_p) = (f.vec(nl), f.vec(&pl));
+    let (vec_n, vec_p, qvec) = (f.vec(nl), f.vec(&pl), f.qvec());
+    let sizes = f.sizes_after(&pl);
     let (mat_np, mat_nn) = (f.mat(nl, &pl), f.mat(nl, nl));
     let forces = e.vector_body(&inputs.forces, s, nl);
     let body = e.dense_matrices(&[
@@ -46,16 +42,16 @@ pub(super) fn impl_driven(e: &Emitter, f: &Frame, model: &Model) -> TokenStream 
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
-        impl #ig ::lagrange::__private::Driven<#s, #nl, #pl> for #ident #tg #wc {
+        impl #ig ::lagrange::__private::Driven<#s, #sizes> for #ident #tg #wc {
             const INPUTS: [&'static str; #pl] = [#(#names),*];
 
             #[inline]
-            fn input_forces(&self, q: &#vec_n, v: &#vec_n, u: &#vec_p, t: #s) -> #vec_n {
+            fn input_forces(&self, q: &#qvec, v: &#vec_n, u: &#vec_p, t: #s) -> #vec_n {
                 #forces
             }
 
             #[inline]
-            fn input_jacobians(&self, q: &#vec_n, v: &#vec_n, u: &#vec_p, t: #s) -> (#mat_np, #mat_nn, #mat_nn) {
+            fn input_jacobians(&self, q: &#qvec, v: &#vec_n, u: &#vec_p, t: #s) -> (#mat_np, #mat_nn, #mat_nn) {
                 #body
                 (du, dq, dv)
             }

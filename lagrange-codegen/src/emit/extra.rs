@@ -34,7 +34,7 @@ fn reactions(
     c: &ConstraintSet,
 ) -> TokenStream {
     let (s, nl) = (&f.s, &f.n);
-    let vec_n = f.vec(nl);
+    let (vec_n, qvec) = (f.vec(nl), f.qvec());
     let k = c.names.len();
     let kl = Literal::usize_unsuffixed(k);
     let p = c.reactions.len();
@@ -93,7 +93,7 @@ fn reactions(
         /// dynamics compute. Constraints written in generalized coordinates only
         /// do not act on a point and do not appear here.
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
-        pub fn reactions(&self, q: &#vec_n, v: &#vec_n, t: #s, nu: &#vec_k) -> [#vec_d; #pl] {
+        pub fn reactions(&self, q: &#qvec, v: &#vec_n, t: #s, nu: &#vec_k) -> [#vec_d; #pl] {
             #lets
             [#(#vectors),*]
         }

@@ -186,8 +186,9 @@ pub(super) fn visit_form(f: &Frame, model: &Model) -> TokenStream {
     };
     let kl = Literal::usize_unsuffixed(k);
     let p = quote!(::lagrange::__private);
+    let q = f.configuration_after_self();
     quote! {
-        fn visit_form<F: #p::FormVisitor<#s, #nl, Self>>(&self, form: F) -> F::Output {
+        fn visit_form<F: #p::FormVisitor<#s, #nl, Self #q>>(&self, form: F) -> F::Output {
             form.#method::<#kl>(self)
         }
     }

@@ -101,6 +101,29 @@ impl<'a> Frame<'a> {
         }
     }
 
+    /// The trait arguments after the scalar of a trait with one more size
+    /// `k` after N (`Constrained<T, N, K, Q>`): `N, K`, or `N, K, Q` with
+    /// orientations.
+    fn sizes_after(&self, k: &Literal) -> TokenStream {
+        let (n, nq) = (&self.n, &self.nq);
+        if n.to_string() == nq.to_string() {
+            quote!(#n, #k)
+        } else {
+            quote!(#n, #k, #nq)
+        }
+    }
+
+    /// The arguments after `Self` of the form visitor: none, or `Q` with
+    /// orientations.
+    fn configuration_after_self(&self) -> TokenStream {
+        let (n, nq) = (&self.n, &self.nq);
+        if n.to_string() == nq.to_string() {
+            quote!()
+        } else {
+            quote!(, #nq)
+        }
+    }
+
     fn mat(&self, r: &Literal, c: &Literal) -> TokenStream {
         let s = &self.s;
         quote!(::lagrange::__private::SMatrix<#s, #r, #c>)

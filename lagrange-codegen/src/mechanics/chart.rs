@@ -12,14 +12,21 @@
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::Derived;
+use super::model::InputModel;
+use crate::constraint::ConstraintSet;
 use crate::lowered::{OrientationModel, Poses};
 use crate::mat3::Mat3;
 
-/// Free orientations: every output at the centre of the moving chart, θ = 0
-/// (see `chart`). What takes no orientation yet (constraints, inputs and the
-/// optional outputs but the articulated q̈ and the inverse dynamics) is
-/// refused before the derivation.
-pub(super) fn at_centre(ctx: &mut Context, d: &mut Derived) {
+/// Free orientations: every output at the centre of the moving chart, θ = 0,
+/// the inputs' forces and the multiplier form's rows included (derived in θ
+/// before). What takes no orientation yet (the reduced form, and the optional
+/// outputs but the reactions, the articulated q̈, the inverse dynamics and
+/// the Jacobians) is refused before the derivation.
+pub(super) fn at_centre(
+    ctx: &mut Context,
+    d: &mut Derived,
+    constraints: Option<&mut ConstraintSet>,
+) {
     if d.orientations.is_empty() {
         return;
     }
@@ -57,6 +64,18 @@ pub(super) fn at_centre(ctx: &mut Context, d: &mut Derived) {
         c.all(position);
     }
     c.poses(&mut d.poses);
+    if let Some(inputs) = &mut d.forces.inputs {
+        c.inputs(inputs, d.coordinates.len(), d.orientations.len());
+    }
+    if let Some(set) = constraints {
+        c.all(&mut set.phi);
+        c.rows(&mut set.jacobian);
+        c.all(&mut set.velocity_term);
+        c.all(&mut set.gamma);
+        for (_, coefficients) in &mut set.reactions {
+            c.rows(coefficients);
+        }
+    }
 }
 
 /// θ ↦ 0 for every orientation.
@@ -141,6 +160,37 @@ impl AtCentre<'_> {
         }
         for p in &mut poses.points {
             self.all(&mut p.position);
+        }
+    }
+
+    /// The inputs' forces and Jacobians, the orientations' θ starting at
+    /// velocity `first`. ΔQ in θ is J_r(θ)ᵀ τ = τ + ½ θ × τ (τ the body-axis
+    /// torques, J_r = I − ½[θ]× the right Jacobian to the first order), so
+    /// at θ = 0 its θ-derivative is ∂τ/∂δ − ½[τ]×: the term is added back, so
+    /// that ∂ΔQ/∂q is along q ⊕ δ, as the runtime reads it.
+    pub fn inputs(&mut self, inputs: &mut InputModel, first: usize, count: usize) {
+        self.all(&mut inputs.forces);
+        self.rows(&mut inputs.jacobian_u);
+        self.rows(&mut inputs.jacobian_q);
+        self.rows(&mut inputs.jacobian_v);
+        let half = self.ctx.rational(1, 2);
+        for k in 0..count {
+            let o = first + 3 * k;
+            let tau = [0, 1, 2].map(|i| inputs.forces[o + i]);
+            for i in 0..3 {
+                for j in 0..3 {
+                    if i == j {
+                        continue;
+                    }
+                    // [τ]×[i][j] = −ε_ijl τ_l, l the third axis.
+                    let l = 3 - i - j;
+                    let sign = if (i + 1) % 3 == j { -1 } else { 1 };
+                    let entry = self.ctx.mul(half, tau[l]);
+                    let entry = if sign < 0 { self.ctx.neg(entry) } else { entry };
+                    let sum = self.ctx.add(inputs.jacobian_q[o + i][o + j], entry);
+                    inputs.jacobian_q[o + i][o + j] = self.ctx.collect(sum);
+                }
+            }
         }
     }
 }

@@ -17,10 +17,10 @@ use crate::tree::Tree;
 /// The two Jacobians, N × N each.
 pub type Jacobians = [Vec<Vec<Sym>>; 2];
 
-/// J_q and J_v from `tree` where one is given (the recursive route's, or
-/// any tree with free orientations), else from M and Q − h; an error for
-/// orientations without a tree (differentiating the generic form in θ would
-/// hold θ̇, not ω, fixed).
+/// J_q and J_v from the tree where M and h come from it, or where there are
+/// free orientations, else from M and Q − h; an error for orientations
+/// without a tree (differentiating the generic form in θ would hold θ̇, not
+/// ω, fixed).
 pub(super) fn rhs_jacobians(
     ctx: &mut Context,
     tree: Option<&Tree>,
@@ -28,6 +28,7 @@ pub(super) fn rhs_jacobians(
     sources: &Sources,
     orientations: bool,
 ) -> Result<Jacobians, DeriveError> {
+    let tree = tree.filter(|_| sources.recursive || orientations);
     match (tree, orientations) {
         (Some(tree), _) => {
             // Every generalized force but gravity's (a base acceleration to

@@ -21,6 +21,7 @@ mod derivatives;
 mod energy;
 mod extra;
 mod force;
+mod forms;
 mod frames;
 mod generic;
 mod inverse;
@@ -36,9 +37,10 @@ pub use model::{Articulation, BiasRoute, InputModel, Model};
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use crate::ast::Extra;
-use crate::constraint::{ConstraintSet, Reduction};
+use crate::constraint::ConstraintSet;
 use crate::lowered::{ConstraintModel, Lowered, Poses};
 use force::Applied;
+use forms::{multiplier_form, reduced_if_asked};
 use generic::GenericTerms;
 use kinematics::at_zero;
 use recursive::RecursiveTerms;
@@ -137,12 +139,8 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
     } = lowered;
     let qdd = ctx.accelerations();
     let zero_acc = at_zero(&mut ctx, &qdd);
-    let tree = match route {
-        Route::Generic => Err("the generic route was asked for".to_string()),
-        Route::Auto | Route::Recursive => {
-            recursive::detect(&mut ctx, &points, &spins, &skeleton, gravity.as_deref())
-        }
-    };
+    let masses = (&points[..], &spins[..], &skeleton);
+    let tree = recursive::detect(&mut ctx, route, masses, gravity.as_deref());
     let generic = wants_generic(route, &tree)?;
     let (tree, not_a_tree) = tree.map_or_else(|why| (None, Some(why)), |t| (Some(t), None));
     let (kin, spin, rheonomic, kinetic) =
@@ -168,12 +166,9 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
     let forces = applied_forces(&mut ctx, &kin, &sources, input_names)?;
     let motion = equations(&mut ctx, recursive_terms, generic_terms, &forces);
     let inverse = inverse_if_asked(&mut ctx, &extras, tree.as_ref(), &motion, &forces);
-    let jacobians = extras.contains(&Extra::Jacobians).then(|| {
-        let tree = tree
-            .as_ref()
-            .filter(|_| sources.recursive || !orientations.is_empty());
-        derivatives::rhs_jacobians(&mut ctx, tree, &motion, &sources, !orientations.is_empty())
-    });
+    let free = !orientations.is_empty();
+    let jacobians = (extras.contains(&Extra::Jacobians))
+        .then(|| derivatives::rhs_jacobians(&mut ctx, tree.as_ref(), &motion, &sources, free));
     let kinetic = energy::cheaper_kinetic(&mut ctx, rheonomic, kinetic, &motion.mass);
     let integral = energy::integral(&mut ctx, rheonomic, kinetic, forces.potential, &motion.mass);
     let derived = Derived {
@@ -409,11 +404,11 @@ pub(super) struct Derived {
 }
 
 /// The constraints and which constrained forms to build.
-struct Constrained<'a> {
-    holonomic: &'a [ConstraintModel],
-    nonholonomic: &'a [ConstraintModel],
-    multipliers: bool,
-    speeds: Option<Option<Vec<(String, Sym)>>>,
+pub(super) struct Constrained<'a> {
+    pub holonomic: &'a [ConstraintModel],
+    pub nonholonomic: &'a [ConstraintModel],
+    pub multipliers: bool,
+    pub speeds: Option<Option<Vec<(String, Sym)>>>,
 }
 
 impl<'a> Constrained<'a> {
@@ -439,7 +434,12 @@ fn finish(
     c: Constrained,
     extras: &[Extra],
 ) -> Result<Model, DeriveError> {
-    chart::at_centre(&mut ctx, &mut d);
+    // With orientations the constraint rows are derived in θ (Ġ and γ need
+    // their θ-derivatives) and taken at the centre with everything else
+    // (their derivatives for `emit(jacobians)` would be in θ: refused there).
+    let mut early =
+        (!d.orientations.is_empty() && c.multipliers).then(|| multiplier_form(&mut ctx, &c, false));
+    chart::at_centre(&mut ctx, &mut d, early.as_mut());
     let wants = |e: Extra| extras.contains(&e);
     let Motion {
         mass,
@@ -457,9 +457,10 @@ fn finish(
     let hamiltonian = wants(Extra::Hamiltonian);
     let momentum = (hamiltonian || d.rheonomic).then(|| extra::momentum(&mut ctx, d.kinetic));
     let kinetic_gradient = hamiltonian.then(|| extra::kinetic_gradient(&mut ctx, d.kinetic));
-    let constraints = c
-        .multipliers
-        .then(|| multiplier_form(&mut ctx, &c, wants(Extra::Jacobians)));
+    let constraints = early.or_else(|| {
+        c.multipliers
+            .then(|| multiplier_form(&mut ctx, &c, wants(Extra::Jacobians)))
+    });
     let reduced = reduced_if_asked(&mut ctx, &c, &d.coordinates, wants(Extra::Jacobians))?;
     let articulated = d.forces.articulated;
     let frames = wants(Extra::Kinematics).then(|| frames::frames(&mut ctx, &d.poses, &d.particles));
@@ -505,56 +506,6 @@ fn finish(
     };
     model.cyclic = cyclic::cyclic(&model);
     Ok(model)
-}
-
-/// G, g, Φ and γ, with their derivatives when the Jacobians are asked for.
-fn multiplier_form(ctx: &mut Context, c: &Constrained, jacobians: bool) -> ConstraintSet {
-    let mut set = crate::constraint::multiplier_form(ctx, c.holonomic, c.nonholonomic);
-    if jacobians {
-        set.derivatives = Some(crate::constraint::constraint_derivatives(ctx, &set));
-    }
-    set
-}
-
-/// The reduced form, when `speeds` or `formulation(reduced)` asks for it.
-fn reduced_if_asked(
-    ctx: &mut Context,
-    c: &Constrained,
-    coordinates: &[String],
-    jacobians: bool,
-) -> Result<Option<Reduction>, DeriveError> {
-    let Some(speeds) = &c.speeds else {
-        return Ok(None);
-    };
-    reduced_form(ctx, c, speeds.as_deref(), coordinates, jacobians).map(Some)
-}
-
-/// The reduced form on the user's speeds, or on speeds chosen from the
-/// constraints (`speeds` is `None`).
-fn reduced_form(
-    ctx: &mut Context,
-    c: &Constrained,
-    speeds: Option<&[(String, Sym)]>,
-    coordinates: &[String],
-    jacobians: bool,
-) -> Result<Reduction, DeriveError> {
-    let chosen;
-    let speeds = match speeds {
-        Some(s) => s,
-        None => {
-            chosen =
-                crate::constraint::default_speeds(ctx, c.holonomic, c.nonholonomic, coordinates)
-                    .map_err(DeriveError::Reduction)?;
-            &chosen[..]
-        }
-    };
-    let mut r = crate::constraint::reduce(ctx, c.holonomic, c.nonholonomic, speeds, coordinates)
-        .map_err(DeriveError::Reduction)?;
-    r.free_speeds = c.speeds.as_ref().is_some_and(|s| s.is_none());
-    if jacobians {
-        r.derivatives = Some(crate::constraint::reduced_derivatives(ctx, &r));
-    }
-    Ok(r)
 }
 
 /// One hoisting over every program that takes the terms, in the layout

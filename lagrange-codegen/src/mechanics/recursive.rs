@@ -17,14 +17,17 @@ pub(super) struct RecursiveTerms {
     pub bias: Vec<Sym>,
 }
 
-/// The kinematic tree the points and bodies span, if they span one.
+/// The kinematic tree the points and bodies span, if they span one and the
+/// route may use it.
 pub(super) fn detect(
     ctx: &mut Context,
-    points: &[PointModel],
-    spins: &[SpinModel],
-    skeleton: &Skeleton,
+    route: super::Route,
+    (points, spins, skeleton): (&[PointModel], &[SpinModel], &Skeleton),
     gravity: Option<&[Sym]>,
 ) -> Result<Tree, String> {
+    if route == super::Route::Generic {
+        return Err("the generic route was asked for".to_string());
+    }
     let point_masses: Vec<Sym> = points.iter().map(|p| p.mass).collect();
     let point_names: Vec<String> = points.iter().map(|p| p.name.clone()).collect();
     let body_names: Vec<String> = spins.iter().map(|s| s.name.clone()).collect();

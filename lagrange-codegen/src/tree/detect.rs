@@ -9,7 +9,7 @@
 use lagrange_symbolic::{Context, Expr as Sym, SymbolKind};
 
 use super::link::{add3, elementary, mat_mul, mat_vec};
-use super::{Inertia, Link, Masses, Tree};
+use super::{Inertia, Link, Masses, Spheres, Tree};
 use crate::lowered::{Factor, Skeleton};
 use crate::mat3::{Mat3, quaternion_matrix, transpose};
 
@@ -323,7 +323,7 @@ fn link_bodies(
     skeleton: &Skeleton,
     chains: &[Chain],
     names: &[String],
-) -> Result<(Vec<Link>, Vec<Frame>, Vec<(usize, [Sym; 3])>), String> {
+) -> Result<(Vec<Link>, Vec<Frame>, Spheres), String> {
     let mut order: Vec<usize> = (0..chains.len()).collect();
     order.sort_by_key(|&b| chains[b].factors.len());
     let mut links: Vec<Link> = Vec::new();
@@ -384,7 +384,7 @@ fn joint_link(
     joint: &Joint,
     up: Option<usize>,
     offset: [Sym; 3],
-    spheres: &mut Vec<(usize, [Sym; 3])>,
+    spheres: &mut Spheres,
     index: usize,
 ) -> Link {
     let mut placement = constant_rotation(ctx, &joint.placement);

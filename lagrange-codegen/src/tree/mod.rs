@@ -84,8 +84,11 @@ pub struct Tree {
     links: Vec<Link>,
     gravity: Option<[Sym; 3]>,
     /// Each spherical joint's first link and its chart's θ.
-    spheres: Vec<(usize, [Sym; 3])>,
+    spheres: Spheres,
 }
+
+/// Spherical joints: each one's first link and its chart's θ.
+type Spheres = Vec<(usize, [Sym; 3])>;
 
 /// What the tree's bodies carry, as `derive` hands them over.
 pub struct Masses<'a> {

@@ -151,10 +151,11 @@ impl<T: Real, const P: usize> IntoInput<T, P> for SVector<T, P> {
 /// ([`next_break`](Self::next_break): sample instants, table breakpoints) and
 /// whether its value is held between those instants
 /// ([`held`](Self::held): zero-order hold); see the [module docs](self).
-pub trait InputSource<T: Real, const N: usize, const P: usize> {
-    /// The inputs at (t, q, q̇). For a held source, called once per break, with
-    /// the state reached there.
-    fn input(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> SVector<T, P>;
+pub trait InputSource<T: Real, const N: usize, const P: usize, const Q: usize = N> {
+    /// The inputs at (t, q, q̇) (q of Q entries: with free orientations it
+    /// holds their quaternions). For a held source, called once per break,
+    /// with the state reached there.
+    fn input(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> SVector<T, P>;
 
     /// The first instant strictly after `after` at which the run must restart,
     /// `start` being the run's initial time; `None` if there is none. The
@@ -188,10 +189,10 @@ pub trait InputSource<T: Real, const N: usize, const P: usize> {
     }
 }
 
-impl<T: Real, const N: usize, const P: usize, C: InputSource<T, N, P> + ?Sized> InputSource<T, N, P>
-    for &C
+impl<T: Real, const N: usize, const P: usize, const Q: usize, C: InputSource<T, N, P, Q> + ?Sized>
+    InputSource<T, N, P, Q> for &C
 {
-    fn input(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> SVector<T, P> {
+    fn input(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> SVector<T, P> {
         (**self).input(t, q, v)
     }
     fn next_break(&self, start: T, after: T) -> Option<T> {
@@ -227,14 +228,15 @@ impl<F> fmt::Debug for Feedback<F> {
     }
 }
 
-impl<T, F, U, const N: usize, const P: usize> InputSource<T, N, P> for Feedback<F>
+impl<T, F, U, const N: usize, const P: usize, const Q: usize> InputSource<T, N, P, Q>
+    for Feedback<F>
 where
     T: Real,
-    F: Fn(T, &SVector<T, N>, &SVector<T, N>) -> U,
+    F: Fn(T, &SVector<T, Q>, &SVector<T, N>) -> U,
     U: IntoInput<T, P>,
 {
     #[inline]
-    fn input(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> SVector<T, P> {
+    fn input(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> SVector<T, P> {
         (self.0)(t, q, v).into_input()
     }
 }
@@ -257,14 +259,15 @@ impl<F> fmt::Debug for OpenLoop<F> {
     }
 }
 
-impl<T, F, U, const N: usize, const P: usize> InputSource<T, N, P> for OpenLoop<F>
+impl<T, F, U, const N: usize, const P: usize, const Q: usize> InputSource<T, N, P, Q>
+    for OpenLoop<F>
 where
     T: Real,
     F: Fn(T) -> U,
     U: IntoInput<T, P>,
 {
     #[inline]
-    fn input(&self, t: T, _: &SVector<T, N>, _: &SVector<T, N>) -> SVector<T, P> {
+    fn input(&self, t: T, _: &SVector<T, Q>, _: &SVector<T, N>) -> SVector<T, P> {
         (self.0)(t).into_input()
     }
 }
@@ -305,13 +308,13 @@ impl<F> fmt::Debug for Sampled<F> {
     }
 }
 
-impl<T, F, U, const N: usize, const P: usize> InputSource<T, N, P> for Sampled<F>
+impl<T, F, U, const N: usize, const P: usize, const Q: usize> InputSource<T, N, P, Q> for Sampled<F>
 where
     T: Real,
-    F: FnMut(T, &SVector<T, N>, &SVector<T, N>) -> U,
+    F: FnMut(T, &SVector<T, Q>, &SVector<T, N>) -> U,
     U: IntoInput<T, P>,
 {
-    fn input(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> SVector<T, P> {
+    fn input(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> SVector<T, P> {
         (self.controller.borrow_mut())(t, q, v).into_input()
     }
 
@@ -415,24 +418,31 @@ impl<S, C: fmt::Debug, const P: usize> fmt::Debug for InputForces<'_, S, C, P> {
     }
 }
 
-impl<S, C, T, const N: usize, const P: usize> Forcing<T, N> for InputForces<'_, S, C, P>
+impl<S, C, T, const N: usize, const P: usize, const Q: usize> Forcing<T, N, Q>
+    for InputForces<'_, S, C, P>
 where
-    S: Driven<T, N, P>,
-    C: InputSource<T, N, P>,
+    S: Driven<T, N, P, Q>,
+    C: InputSource<T, N, P, Q>,
     T: Real,
 {
     #[inline]
-    fn force(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+    fn force(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
         let u = self.source.input(t, q, v);
-        check_input::<S, T, N, P>(t, q, v, &u)?;
+        check_input::<S, T, N, P, Q>(t, q, v, &u)?;
         Ok(self.system.input_forces(q, v, &u, t))
     }
 }
 
 /// [`Error::NonFiniteInput`] for the first non-finite input, if any.
-pub(crate) fn check_input<S: Driven<T, N, P>, T: Real, const N: usize, const P: usize>(
+pub(crate) fn check_input<
+    S: Driven<T, N, P, Q>,
+    T: Real,
+    const N: usize,
+    const P: usize,
+    const Q: usize,
+>(
     t: T,
-    q: &SVector<T, N>,
+    q: &SVector<T, Q>,
     v: &SVector<T, N>,
     u: &SVector<T, P>,
 ) -> Result<(), Error> {

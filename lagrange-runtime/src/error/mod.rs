@@ -456,10 +456,10 @@ pub(crate) fn unit_quaternions<T: Real, const Q: usize>(
 /// The first non-finite entry of the inputs `u` as
 /// [`Error::NonFiniteInput`], named from `names`, with the state it was
 /// computed for.
-pub(crate) fn check_finite_inputs<T: Real, const N: usize, const P: usize>(
+pub(crate) fn check_finite_inputs<T: Real, const N: usize, const P: usize, const Q: usize>(
     names: &[&'static str; P],
     t: T,
-    q: &SVector<T, N>,
+    q: &SVector<T, Q>,
     v: &SVector<T, N>,
     u: &SVector<T, P>,
 ) -> Result<(), Error> {

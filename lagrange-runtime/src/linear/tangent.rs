@@ -19,11 +19,12 @@
 
 use super::Linear;
 use super::settings::Linearizer;
-use crate::error::{Error, check_tolerance, unit_quaternions};
-use crate::mechanics::Dynamics;
+use crate::error::{Error, check_finite_inputs, check_tolerance, to_vec, unit_quaternions};
+use crate::mechanics::{Dynamics, Forcing, NoForcing};
 use crate::numeric::Real;
+use crate::numeric::cholesky::Cholesky;
 use crate::numeric::orientation;
-use crate::system::Lagrangian;
+use crate::system::{Driven, Lagrangian};
 use nalgebra::{DMatrix, SVector};
 
 impl Linearizer {
@@ -54,10 +55,90 @@ impl Linearizer {
         S: Lagrangian<T, N, Q>,
         T: Real,
     {
+        let (_, a) = self.tangent_a(sys, q, v, t, NoForcing)?;
+        Ok(Linear::from_parts(
+            a,
+            DMatrix::zeros(2 * N, 0),
+            states::<S, T, N, Q>(),
+            Vec::new(),
+            N,
+            None,
+        ))
+    }
+
+    /// [`tangent`](Self::tangent) of a [`Driven`] system at the inputs `u`
+    /// (held at u in A): B (2·N × P) has rows zero in δ and M⁻¹ ∂Q/∂u in δv,
+    /// from the system's input Jacobian (an orientation's rows are the
+    /// body-axis torques' share of ω̇).
+    ///
+    /// # Errors
+    /// As [`tangent`](Self::tangent); [`Error::NonFiniteInput`] for a
+    /// non-finite u.
+    pub fn tangent_driven<S, T, const N: usize, const P: usize, const Q: usize>(
+        &self,
+        sys: &S,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        u: &SVector<T, P>,
+        t: T,
+    ) -> Result<Linear, Error>
+    where
+        S: Driven<T, N, P, Q>,
+        T: Real,
+    {
+        check_finite_inputs(&S::INPUTS, t, q, v, u)?;
+        let (q, a) = self.tangent_a(sys, q, v, t, Held { system: sys, u: *u })?;
+        let (du, _, _) = sys.input_jacobians(&q, v, u, t);
+        let m = sys.mass_matrix(&q, t);
+        let chol = Cholesky::new(m, T::lit(self.singular_tolerance)).map_err(|ratio| {
+            Error::SingularMassMatrix {
+                t: t.to_f64(),
+                q: to_vec(&q),
+                ratio: ratio.to_f64(),
+            }
+        })?;
+        let mut b = DMatrix::zeros(2 * N, P);
+        for k in 0..P {
+            let column = chol.solve(du.column(k).into_owned());
+            for i in 0..N {
+                b[(N + i, k)] = column[i].to_f64();
+            }
+        }
+        if !b.iter().all(|x| x.is_finite()) {
+            return Err(Error::non_finite(t, &q, v));
+        }
+        let inputs = S::INPUTS.iter().map(|s| s.to_string()).collect();
+        Ok(Linear::from_parts(
+            a,
+            b,
+            states::<S, T, N, Q>(),
+            inputs,
+            N,
+            None,
+        ))
+    }
+
+    /// The unit-normalised q and A (2·N × 2·N) of the tangent linearisation
+    /// of the dynamics with `forcing` added.
+    fn tangent_a<S, T, F, const N: usize, const Q: usize>(
+        &self,
+        sys: &S,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        t: T,
+        forcing: F,
+    ) -> Result<(SVector<T, Q>, DMatrix<f64>), Error>
+    where
+        S: Lagrangian<T, N, Q>,
+        T: Real,
+        F: Forcing<T, N, Q>,
+    {
         check_tolerance("singular tolerance", self.singular_tolerance)?;
         sys.check_parameters()?;
         let q = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, *q)?;
-        let dynamics = Dynamics::new(sys).with_singular_tolerance(T::lit(self.singular_tolerance));
+        let dynamics = Dynamics::new(sys)
+            .with_singular_tolerance(T::lit(self.singular_tolerance))
+            .with_forcing(forcing);
         let accel = |q: &SVector<T, Q>, v: &SVector<T, N>| dynamics.acceleration(t, q, v);
         let mut a = DMatrix::zeros(2 * N, 2 * N);
         a.view_mut((0, N), (N, N)).fill_with_identity();
@@ -84,14 +165,25 @@ impl Linearizer {
                 a[(N + i, N + j)] = dv[i];
             }
         }
-        Ok(Linear::from_parts(
-            a,
-            DMatrix::zeros(2 * N, 0),
-            states::<S, T, N, Q>(),
-            Vec::new(),
-            N,
-            None,
-        ))
+        Ok((q, a))
+    }
+}
+
+/// The inputs held at u: the generalized forces they add, at every state.
+/// (The linearisation sits below the controllers; this is all it needs of
+/// them.)
+struct Held<'s, S, T: Real, const P: usize> {
+    system: &'s S,
+    u: SVector<T, P>,
+}
+
+impl<S, T, const N: usize, const P: usize, const Q: usize> Forcing<T, N, Q> for Held<'_, S, T, P>
+where
+    S: Driven<T, N, P, Q>,
+    T: Real,
+{
+    fn force(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+        Ok(self.system.input_forces(q, v, &self.u, t))
     }
 }
 

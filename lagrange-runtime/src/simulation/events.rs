@@ -94,12 +94,12 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize, const Q: usize>
     /// As [`Simulation::run_constrained`] and [`Events::integrate`].
     pub fn run_constrained<const K: usize>(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
     ) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>>
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
@@ -107,14 +107,14 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize, const Q: usize>
             let dynamics = sim.constrained_dynamics::<T, K>();
             failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
         };
-        let events = self.square().map_err(|e| widen_failure(start(e)))?;
-        check_problem(span.start, span.end, &q0, &v0).map_err(|e| widen_failure(start(e)))?;
+        check_problem(span.start, span.end, &q0, &v0).map_err(start)?;
         let (dynamics, q0, v0) = sim
-            .prepare_constrained::<T, N, K>(span.start, q0, v0)
-            .map_err(|e| widen_failure(start(e)))?;
+            .prepare_constrained::<T, N, K, Q>(span.start, q0, v0)
+            .map_err(start)?;
         let terms = sim.system.parameter_terms();
         let dynamics = dynamics.with_parameter_terms(&terms);
-        widen(events.integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0))
+        self.events
+            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
     }
 
     /// [`Simulation::run_reduced`] watching the events; after an action the
@@ -144,12 +144,12 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize, const Q: usize>
         widen(events.integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0))
     }
 
-    /// The events over q of N entries, for the constrained forms (which
-    /// take no orientations): an error if q has quaternions.
+    /// The events over q of N entries, for the reduced form (which takes no
+    /// orientations): an error if q has quaternions.
     fn square(&self) -> Result<Events<'_, T, N>, Error> {
         self.events.square().ok_or_else(|| {
             Error::InvalidSettings(
-                "the constrained forms take no orientations (Q = N): this system's events \
+                "the reduced form takes no orientations (Q = N): this system's events \
                  are over a configuration with quaternions"
                     .into(),
             )
@@ -175,5 +175,5 @@ fn retype<T: Real, const N: usize, const Q: usize>(run: EventRun<T, N>) -> Event
     let boxed: Box<dyn std::any::Any> = Box::new(run);
     *boxed
         .downcast()
-        .expect("the constrained forms run only where Q = N (checked by `square`)")
+        .expect("the reduced form runs only where Q = N (checked by `square`)")
 }

@@ -36,23 +36,18 @@ where
 
     fn multipliers<const K: usize>(self, _: &S) -> Self::Output
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
-        // A system with constraints has Q = N (`Constrained` extends
-        // `Lagrangian<T, N>`): the casts only restate that to the compiler.
-        let Some(q0) = same::<_, SVector<T, N>>(self.q0) else {
-            return Err(self.mismatch());
-        };
-        let run = self
-            .builder
-            .run_constrained::<T, N, K>(q0, self.v0, self.span);
-        same(run).expect("the run's type is the output's when q0's was")
+        self.builder
+            .run_constrained::<T, N, K, Q>(self.q0, self.v0, self.span)
     }
 
     fn reduced<const K: usize>(self, _: &S) -> Self::Output
     where
         S: Reduced<T, N, K>,
     {
+        // A system with a reduced form has Q = N (`Reduced` extends
+        // `Lagrangian<T, N>`): the casts only restate that to the compiler.
         let Some(q0) = same::<_, SVector<T, N>>(self.q0) else {
             return Err(self.mismatch());
         };
@@ -62,9 +57,9 @@ where
 }
 
 impl<B, T: Real, const N: usize, const Q: usize> Start<'_, B, T, N, Q> {
-    /// The failure of a system whose `visit_form` names a constrained form
-    /// for a configuration with orientations, which no constrained form takes
-    /// (only a hand-written `visit_form` can).
+    /// The failure of a system whose `visit_form` names the reduced form
+    /// for a configuration with orientations, which it does not take (only a
+    /// hand-written `visit_form` can).
     fn mismatch(self) -> Failure<Trajectory<T, N, Q>> {
         let zero = T::zero();
         let sample = Sample {
@@ -74,8 +69,8 @@ impl<B, T: Real, const N: usize, const Q: usize> Start<'_, B, T, N, Q> {
         };
         Failure::new(
             Error::InvalidSettings(
-                "the constrained forms take no orientations (Q = N): this system's \
-                 visit_form names one for a configuration with quaternions"
+                "the reduced form takes no orientations (Q = N): this system's \
+                 visit_form names it for a configuration with quaternions"
                     .into(),
             ),
             Trajectory::start(self.span.start, self.q0, self.v0, sample),
@@ -105,12 +100,10 @@ where
 
     fn multipliers<const K: usize>(self, _: &S) -> Self::Output
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
-        let Some(q0) = same::<_, SVector<T, N>>(self.q0) else {
-            return Err(self.mismatch().map(EventRun::unstarted));
-        };
-        self.builder.run_constrained::<K>(q0, self.v0, self.span)
+        self.builder
+            .run_constrained::<K>(self.q0, self.v0, self.span)
     }
 
     fn reduced<const K: usize>(self, _: &S) -> Self::Output
@@ -124,15 +117,15 @@ where
     }
 }
 
-impl<S, I, C, T, const N: usize, const P: usize> FormVisitor<T, N, S>
-    for Start<'_, ControlledSimulation<'_, '_, S, I, C, T, N, P>, T, N>
+impl<S, I, C, T, const N: usize, const P: usize, const Q: usize> FormVisitor<T, N, S, Q>
+    for Start<'_, ControlledSimulation<'_, '_, S, I, C, T, N, P, Q>, T, N, Q>
 where
-    S: Driven<T, N, P>,
+    S: Driven<T, N, P, Q>,
     I: Integrator,
-    C: InputSource<T, N, P>,
+    C: InputSource<T, N, P, Q>,
     T: Real,
 {
-    type Output = Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>>;
+    type Output = Result<ControlRun<T, N, P, Q>, Failure<ControlRun<T, N, P, Q>>>;
 
     fn unconstrained(self, _: &S) -> Self::Output {
         self.builder.run_unconstrained(self.q0, self.v0, self.span)
@@ -140,7 +133,7 @@ where
 
     fn multipliers<const K: usize>(self, _: &S) -> Self::Output
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         self.builder
             .run_constrained::<K>(self.q0, self.v0, self.span)

@@ -231,21 +231,21 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// otherwise what the dynamics or the integrator report
     /// ([`Error::RedundantConstraints`], [`Error::SingularMassMatrix`],
     /// [`Error::NonFiniteState`], ...).
-    pub fn run_constrained<T: Real, const N: usize, const K: usize>(
+    pub fn run_constrained<T: Real, const N: usize, const K: usize, const Q: usize>(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>>
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         let (q0, v0) = (q0.into(), v0.into());
         let start =
             |e| failed_at_start(&self.constrained_dynamics::<T, K>(), span.start, q0, v0, e);
         check_problem(span.start, span.end, &q0, &v0).map_err(start)?;
         let (dynamics, q0, v0) = self
-            .prepare_constrained::<T, N, K>(span.start, q0, v0)
+            .prepare_constrained::<T, N, K, Q>(span.start, q0, v0)
             .map_err(start)?;
         let terms = self.system.parameter_terms();
         let dynamics = dynamics.with_parameter_terms(&terms);
@@ -255,24 +255,25 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
 
     /// The constrained dynamics and the checked (or projected) initial state.
     #[allow(clippy::type_complexity)]
-    pub(crate) fn prepare_constrained<T: Real, const N: usize, const K: usize>(
+    pub(crate) fn prepare_constrained<T: Real, const N: usize, const K: usize, const Q: usize>(
         &self,
         t0: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
     ) -> Result<
         (
             ConstrainedDynamics<'a, S, T, K>,
-            SVector<T, N>,
+            SVector<T, Q>,
             SVector<T, N>,
         ),
         Error,
     >
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         self.system.check_parameters()?;
         self.check_tolerances()?;
+        let q0 = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0)?;
         let dynamics = self.constrained_dynamics::<T, K>();
         let (q0, v0) = if self.constraints.project_initial {
             dynamics.consistent_state(t0, q0, v0)?

@@ -18,7 +18,7 @@ pub trait FormVisitor<T: Real, const N: usize, S: Lagrangian<T, N, Q>, const Q: 
     /// The multiplier form with K constraint rows.
     fn multipliers<const K: usize>(self, system: &S) -> Self::Output
     where
-        S: Constrained<T, N, K>;
+        S: Constrained<T, N, K, Q>;
 
     /// The reduced form with K independent speeds.
     fn reduced<const K: usize>(self, system: &S) -> Self::Output

@@ -15,17 +15,17 @@ use nalgebra::SVector;
 impl<S, T: Real, const K: usize, F> ConstrainedDynamics<'_, S, T, K, F> {
     /// The residual vectors: Φ(q, t) on the holonomic rows (zero on the others) and
     /// G v + g on all rows.
-    pub fn constraint_residuals<const N: usize>(
+    pub fn constraint_residuals<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> (SVector<T, K>, SVector<T, K>)
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         let mut phi = self.system.constraint_positions(q, t);
-        for x in phi.iter_mut().skip(holonomic::<S, T, N, K>()) {
+        for x in phi.iter_mut().skip(holonomic::<S, T, N, K, Q>()) {
             *x = T::zero();
         }
         let (g, g0) = self.system.constraint_jacobian(q, t);
@@ -34,9 +34,14 @@ impl<S, T: Real, const K: usize, F> ConstrainedDynamics<'_, S, T, K, F> {
 
     /// [max |Φ_i| over the holonomic rows, max |(G v + g)_i|], what trajectories
     /// record.
-    pub fn residuals<const N: usize>(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> [T; 2]
+    pub fn residuals<const N: usize, const Q: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+    ) -> [T; 2]
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         let (phi, vel) = self.constraint_residuals(t, q, v);
         [max_abs(&phi, K), max_abs(&vel, K)]
@@ -48,15 +53,15 @@ impl<S, T: Real, const K: usize, F> ConstrainedDynamics<'_, S, T, K, F> {
     /// # Errors
     /// [`Error::InconsistentInitialConditions`] naming the worst constraint;
     /// [`Error::NonFiniteState`] if the state or the residuals are not finite.
-    pub fn check_consistency<const N: usize>(
+    pub fn check_consistency<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         tol: T,
     ) -> Result<[T; 2], Error>
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
@@ -92,14 +97,14 @@ impl<S, T: Real, const K: usize, F> ConstrainedDynamics<'_, S, T, K, F> {
     /// [`Error::ProjectionFailed`] if Gauss–Newton does not converge;
     /// [`Error::SingularMassMatrix`], [`Error::RedundantConstraints`] (without
     /// least squares) or [`Error::NonFiniteState`] as in the dynamics.
-    pub fn consistent_state<const N: usize>(
+    pub fn consistent_state<const N: usize, const Q: usize>(
         &self,
         t: T,
-        mut q: SVector<T, N>,
+        mut q: SVector<T, Q>,
         mut v: SVector<T, N>,
-    ) -> Result<(SVector<T, N>, SVector<T, N>), Error>
+    ) -> Result<(SVector<T, Q>, SVector<T, N>), Error>
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, &q, &v));
@@ -115,15 +120,15 @@ impl<S, T: Real, const K: usize, F> ConstrainedDynamics<'_, S, T, K, F> {
 ///
 /// # Errors
 /// [`Error::InconsistentInitialConditions`] or [`Error::NonFiniteState`].
-pub fn check_consistency<S, T, const N: usize, const K: usize>(
+pub fn check_consistency<S, T, const N: usize, const K: usize, const Q: usize>(
     sys: &S,
-    q: &SVector<T, N>,
+    q: &SVector<T, Q>,
     v: &SVector<T, N>,
     t: T,
     tol: T,
 ) -> Result<[T; 2], Error>
 where
-    S: Constrained<T, N, K>,
+    S: Constrained<T, N, K, Q>,
     T: Real,
 {
     ConstrainedDynamics::new(sys).check_consistency(t, q, v, tol)
@@ -135,14 +140,14 @@ where
 ///
 /// # Errors
 /// As [`ConstrainedDynamics::consistent_state`].
-pub fn project_consistent<S, T, const N: usize, const K: usize>(
+pub fn project_consistent<S, T, const N: usize, const K: usize, const Q: usize>(
     sys: &S,
-    q: SVector<T, N>,
+    q: SVector<T, Q>,
     v: SVector<T, N>,
     t: T,
-) -> Result<(SVector<T, N>, SVector<T, N>), Error>
+) -> Result<(SVector<T, Q>, SVector<T, N>), Error>
 where
-    S: Constrained<T, N, K>,
+    S: Constrained<T, N, K, Q>,
     T: Real,
 {
     ConstrainedDynamics::new(sys).consistent_state(t, q, v)

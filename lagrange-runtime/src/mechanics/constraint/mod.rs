@@ -78,10 +78,11 @@ mod projection;
 pub use consistency::{check_consistency, project_consistent};
 
 use crate::error::{Error, check_tolerance, to_vec};
-use crate::mechanics::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
+use crate::mechanics::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite, on_sphere};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
+use crate::numeric::orientation::Orientation;
 use crate::numeric::saddle::{Dependent, Schur, range_space};
 use crate::ode::SecondOrder;
 use crate::system::Constrained;
@@ -327,19 +328,23 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
     /// or its pivot ratio is below the singular tolerance;
     /// [`Error::RedundantConstraints`] if rows of G are dependent and least squares
     /// is off; whatever the forcing reports (e.g. [`Error::NonFiniteInput`]).
-    pub fn solve<const N: usize>(
+    pub fn solve<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<Solution<T, N, K>, Error>
     where
-        S: Constrained<T, N, K>,
-        F: Forcing<T, N>,
+        S: Constrained<T, N, K, Q>,
+        F: Forcing<T, N, Q>,
     {
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
+        // As in `Dynamics`: a stage off the unit sphere reads the rotation
+        // it is closest to.
+        let unit = on_sphere::<S, T, N, Q>(q);
+        let q = &unit;
         check_tolerance("singular tolerance", self.singular_tolerance.to_f64())?;
         check_tolerance("redundant tolerance", self.redundant_tolerance.to_f64())?;
         let (m, mut f, g, mut gamma) = self.system.constrained_system_with(self.terms, q, v, t);
@@ -353,7 +358,7 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
             let (two_alpha, beta2) = (T::lit(2.0 * alpha), T::lit(beta * beta));
             for i in 0..K {
                 gamma[i] -= two_alpha * velocity[i];
-                if i < holonomic::<S, T, N, K>() {
+                if i < holonomic::<S, T, N, K, Q>() {
                     gamma[i] -= beta2 * phi[i];
                 }
             }
@@ -364,7 +369,7 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
         }
         let chol = self.factor_mass_matrix(t, q, m)?;
         let (a, nu) = range_space(&chol, &g, K, f, &gamma, self.schur())
-            .map_err(|d| redundant::<S, T, N, K>(t, q, d))?;
+            .map_err(|d| redundant::<S, T, N, K, Q>(t, q, d))?;
         // Finite inputs with acceptable pivots can still overflow.
         if !(all_finite(a.as_slice()) && all_finite(nu.as_slice())) {
             return Err(Error::non_finite(t, q, v));
@@ -380,23 +385,23 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
     ///
     /// # Errors
     /// As [`solve`](Self::solve).
-    pub fn reactions<const N: usize>(
+    pub fn reactions<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error>
     where
-        S: Constrained<T, N, K>,
-        F: Forcing<T, N>,
+        S: Constrained<T, N, K, Q>,
+        F: Forcing<T, N, Q>,
     {
         Ok(self.solve(t, q, v)?.reactions)
     }
 
-    fn factor_mass_matrix<const N: usize>(
+    fn factor_mass_matrix<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         m: nalgebra::SMatrix<T, N, N>,
     ) -> Result<Cholesky<T, N>, Error> {
         Cholesky::new(m, self.singular_tolerance).map_err(|ratio| Error::SingularMassMatrix {
@@ -409,14 +414,26 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
 
 /// The number of holonomic rows, clamped to K so that a wrong constant cannot
 /// index out of bounds.
-fn holonomic<S: Constrained<T, N, K>, T: Real, const N: usize, const K: usize>() -> usize {
+fn holonomic<
+    S: Constrained<T, N, K, Q>,
+    T: Real,
+    const N: usize,
+    const K: usize,
+    const Q: usize,
+>() -> usize {
     S::HOLONOMIC.min(K)
 }
 
 /// The typed error for dependent rows, with coordinate and constraint names.
-fn redundant<S: Constrained<T, N, K>, T: Real, const N: usize, const K: usize>(
+fn redundant<
+    S: Constrained<T, N, K, Q>,
+    T: Real,
+    const N: usize,
+    const K: usize,
+    const Q: usize,
+>(
     t: T,
-    q: &SVector<T, N>,
+    q: &SVector<T, Q>,
     d: Dependent<T>,
 ) -> Error {
     Error::RedundantConstraints {
@@ -428,31 +445,33 @@ fn redundant<S: Constrained<T, N, K>, T: Real, const N: usize, const K: usize>(
     }
 }
 
-impl<S, T, F, const N: usize, const K: usize> SecondOrder<T, N>
+impl<S, T, F, const N: usize, const K: usize, const Q: usize> SecondOrder<T, N, Q>
     for ConstrainedDynamics<'_, S, T, K, F>
 where
-    S: Constrained<T, N, K>,
+    S: Constrained<T, N, K, Q>,
     T: Real,
-    F: Forcing<T, N>,
+    F: Forcing<T, N, Q>,
 {
+    const ORIENTATIONS: &'static [Orientation] = S::ORIENTATIONS;
+
     fn acceleration(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error> {
         Ok(self.solve(t, q, v)?.accelerations)
     }
 
-    fn integral(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
-        self.system.integral(q, v, t)
+    fn integral(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> T {
+        self.system.integral(&on_sphere::<S, T, N, Q>(q), v, t)
     }
 
-    fn residuals(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> [T; 2] {
-        ConstrainedDynamics::residuals(self, t, q, v)
+    fn residuals(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> [T; 2] {
+        ConstrainedDynamics::residuals(self, t, &on_sphere::<S, T, N, Q>(q), v)
     }
 
-    fn project(&self, t: T, q: &mut SVector<T, N>, v: &mut SVector<T, N>) -> Result<bool, Error> {
+    fn project(&self, t: T, q: &mut SVector<T, Q>, v: &mut SVector<T, N>) -> Result<bool, Error> {
         match self.drift {
             Drift::Projection { tol, max_iter } => {
                 self.project_state(t, q, v, T::lit(tol), max_iter)

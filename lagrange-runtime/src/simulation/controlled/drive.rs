@@ -14,12 +14,13 @@ use crate::system::Driven;
 use nalgebra::SVector;
 use std::ops::Range;
 
-impl<S, I, C, T, const N: usize, const P: usize> ControlledSimulation<'_, '_, S, I, C, T, N, P>
+impl<S, I, C, T, const N: usize, const P: usize, const Q: usize>
+    ControlledSimulation<'_, '_, S, I, C, T, N, P, Q>
 where
     I: Integrator,
     T: Real,
-    S: Driven<T, N, P>,
-    C: InputSource<T, N, P>,
+    S: Driven<T, N, P, Q>,
+    C: InputSource<T, N, P, Q>,
 {
     /// Integrates piece by piece between the source's breaks (one piece when it
     /// has none), each piece with the dynamics `make` builds from its forcing.
@@ -28,13 +29,13 @@ where
     /// pieces, the failed piece's accepted steps, their inputs, the
     /// occurrences; the given initial state alone if none) goes back with the
     /// error.
-    pub(super) fn drive<'s, D: SecondOrder<T, N>>(
+    pub(super) fn drive<'s, D: SecondOrder<T, N, Q>>(
         &'s self,
         make: impl Fn(InputForces<'s, S, Piece<'s, C, T, P>, P>) -> D,
         span: Range<T>,
-        (q0, v0): (SVector<T, N>, SVector<T, N>),
-        prepare: impl FnOnce() -> Result<(SVector<T, N>, SVector<T, N>), Error>,
-    ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>> {
+        (q0, v0): (SVector<T, Q>, SVector<T, N>),
+        prepare: impl FnOnce() -> Result<(SVector<T, Q>, SVector<T, N>), Error>,
+    ) -> Result<ControlRun<T, N, P, Q>, Failure<ControlRun<T, N, P, Q>>> {
         let started = crate::numeric::clock::Stopwatch::start();
         let mut record = Record {
             whole: None,
@@ -74,13 +75,13 @@ where
     }
 
     /// The pieces of [`drive`](Self::drive), recorded into `record`.
-    fn pieces<'s, D: SecondOrder<T, N>>(
+    fn pieces<'s, D: SecondOrder<T, N, Q>>(
         &'s self,
         make: &impl Fn(InputForces<'s, S, Piece<'s, C, T, P>, P>) -> D,
         span: Range<T>,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-        record: &mut Record<T, N, P>,
+        record: &mut Record<T, N, P, Q>,
     ) -> Result<(), Error> {
         self.source.check()?;
         let (t0, t1) = (span.start, span.end);
@@ -97,7 +98,7 @@ where
             }
             let source = if held {
                 let u = self.source.input(t, &q, &v);
-                check_input::<S, T, N, P>(t, &q, &v, &u)?;
+                check_input::<S, T, N, P, Q>(t, &q, &v, &u)?;
                 Piece::Held(u)
             } else {
                 Piece::Live(&self.source)
@@ -145,14 +146,14 @@ where
     /// Integrates one piece over `span` from `state`, watching the events if
     /// there are any: the piece and the terminal event that ended it. On a
     /// failure the failed piece's steps (and occurrences) are recorded.
-    fn piece<D: SecondOrder<T, N>>(
+    fn piece<D: SecondOrder<T, N, Q>>(
         &self,
         rhs: &D,
         source: Piece<'_, C, T, P>,
         (t, end): (T, T),
-        (q, v): (SVector<T, N>, SVector<T, N>),
-        record: &mut Record<T, N, P>,
-    ) -> Result<(Trajectory<T, N>, Option<usize>), Error> {
+        (q, v): (SVector<T, Q>, SVector<T, N>),
+        record: &mut Record<T, N, P, Q>,
+    ) -> Result<(Trajectory<T, N, Q>, Option<usize>), Error> {
         let integrator = &self.simulation.integrator;
         let from = record
             .whole
@@ -185,14 +186,14 @@ where
 
     /// The end time is a sample instant of a held source: records the new
     /// sample there.
-    fn sample_at_end(&self, t1: T, record: &mut Record<T, N, P>) -> Result<(), Error> {
+    fn sample_at_end(&self, t1: T, record: &mut Record<T, N, P, Q>) -> Result<(), Error> {
         let trajectory = record
             .whole
             .as_ref()
             .expect("the loop integrates at least one piece");
         let (q, v) = trajectory.final_state();
         let u = self.source.input(t1, &q, &v);
-        check_input::<S, T, N, P>(t1, &q, &v, &u)?;
+        check_input::<S, T, N, P, Q>(t1, &q, &v, &u)?;
         *record.inputs.last_mut().expect("one input per point") = u;
         Ok(())
     }
@@ -222,9 +223,9 @@ where
     /// piece's inputs are recorded as they are.
     fn record(
         &self,
-        piece: Trajectory<T, N>,
+        piece: Trajectory<T, N, Q>,
         source: Piece<'_, C, T, P>,
-        record: &mut Record<T, N, P>,
+        record: &mut Record<T, N, P, Q>,
         check: bool,
     ) -> Result<(), Error> {
         // The piece is recorded even when one of its inputs is refused: the
@@ -248,7 +249,7 @@ where
                 Piece::Live(_) => (self.source.input(tk, qk, vk), true),
             };
             if check && live && refused.is_ok() {
-                refused = check_input::<S, T, N, P>(tk, qk, vk, &u);
+                refused = check_input::<S, T, N, P, Q>(tk, qk, vk, &u);
             }
             record.inputs.push(u);
         }
@@ -257,10 +258,10 @@ where
 }
 
 /// A controlled run as it is recorded, piece by piece.
-struct Record<T: Real, const N: usize, const P: usize> {
-    whole: Option<Trajectory<T, N>>,
+struct Record<T: Real, const N: usize, const P: usize, const Q: usize> {
+    whole: Option<Trajectory<T, N, Q>>,
     inputs: Vec<SVector<T, P>>,
-    occurrences: Vec<Occurrence<T, N>>,
+    occurrences: Vec<Occurrence<T, N, Q>>,
     terminated_by: Option<usize>,
     /// Where the recording starts (the grid's origin is the run's t0).
     from: Continuation<T>,
@@ -281,13 +282,14 @@ impl<C, T: Real, const P: usize> Clone for Piece<'_, C, T, P> {
 }
 impl<C, T: Real, const P: usize> Copy for Piece<'_, C, T, P> {}
 
-impl<C, T, const N: usize, const P: usize> InputSource<T, N, P> for Piece<'_, C, T, P>
+impl<C, T, const N: usize, const P: usize, const Q: usize> InputSource<T, N, P, Q>
+    for Piece<'_, C, T, P>
 where
     T: Real,
-    C: InputSource<T, N, P>,
+    C: InputSource<T, N, P, Q>,
 {
     #[inline]
-    fn input(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> SVector<T, P> {
+    fn input(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> SVector<T, P> {
         match self {
             Piece::Held(u) => *u,
             Piece::Live(c) => c.input(t, q, v),

@@ -3,17 +3,19 @@
 
 mod drive;
 mod run;
+mod square;
 
 pub use run::ControlRun;
 
 use super::Simulation;
 use crate::control::{Feedback, InputSource, IntoInput, OpenLoop, Sampled};
-use crate::error::Failure;
+use crate::error::{Error, Failure, unit_quaternions};
 use crate::event::{Event, Events};
 use crate::numeric::Real;
 use crate::ode::{Integrator, check_problem};
 use crate::system::{Constrained, Driven, Lagrangian, Reduced};
 use nalgebra::SVector;
+use square::{Narrowed, Widened};
 use std::ops::Range;
 
 impl<'a, S, I: Integrator> Simulation<'a, S, I> {
@@ -62,14 +64,14 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// assert!(String::from_utf8(csv).unwrap().starts_with("t,x,dot_x,force,integral,"));
     /// # Ok::<(), lagrange_runtime::Error>(())
     /// ```
-    pub fn feedback<'e, T, F, U, const N: usize, const P: usize>(
+    pub fn feedback<'e, T, F, U, const N: usize, const P: usize, const Q: usize>(
         self,
         k: F,
-    ) -> ControlledSimulation<'a, 'e, S, I, Feedback<F>, T, N, P>
+    ) -> ControlledSimulation<'a, 'e, S, I, Feedback<F>, T, N, P, Q>
     where
         T: Real,
-        S: Lagrangian<T, N> + Driven<T, N, P>,
-        F: Fn(T, &SVector<T, N>, &SVector<T, N>) -> U,
+        S: Lagrangian<T, N, Q> + Driven<T, N, P, Q>,
+        F: Fn(T, &SVector<T, Q>, &SVector<T, N>) -> U,
         U: IntoInput<T, P>,
     {
         self.control(Feedback::new(k))
@@ -82,15 +84,15 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// (`FnMut`): it is called once per sample, in time order. A period that is
     /// not positive and finite makes the run fail with
     /// [`Error::InvalidSettings`](crate::error::Error::InvalidSettings).
-    pub fn sampled<'e, T, F, U, const N: usize, const P: usize>(
+    pub fn sampled<'e, T, F, U, const N: usize, const P: usize, const Q: usize>(
         self,
         period: f64,
         k: F,
-    ) -> ControlledSimulation<'a, 'e, S, I, Sampled<F>, T, N, P>
+    ) -> ControlledSimulation<'a, 'e, S, I, Sampled<F>, T, N, P, Q>
     where
         T: Real,
-        S: Lagrangian<T, N> + Driven<T, N, P>,
-        F: FnMut(T, &SVector<T, N>, &SVector<T, N>) -> U,
+        S: Lagrangian<T, N, Q> + Driven<T, N, P, Q>,
+        F: FnMut(T, &SVector<T, Q>, &SVector<T, N>) -> U,
         U: IntoInput<T, P>,
     {
         self.control(Sampled::new(period, k))
@@ -98,13 +100,13 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
 
     /// Drives the system with an open-loop signal u(t), evaluated at every
     /// stage; `u` returns `[T; P]` or `SVector<T, P>`.
-    pub fn open_loop<'e, T, F, U, const N: usize, const P: usize>(
+    pub fn open_loop<'e, T, F, U, const N: usize, const P: usize, const Q: usize>(
         self,
         u: F,
-    ) -> ControlledSimulation<'a, 'e, S, I, OpenLoop<F>, T, N, P>
+    ) -> ControlledSimulation<'a, 'e, S, I, OpenLoop<F>, T, N, P, Q>
     where
         T: Real,
-        S: Lagrangian<T, N> + Driven<T, N, P>,
+        S: Lagrangian<T, N, Q> + Driven<T, N, P, Q>,
         F: Fn(T) -> U,
         U: IntoInput<T, P>,
     {
@@ -115,14 +117,14 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// [`InputTable`](crate::InputTable), or a [`Feedback`], [`Sampled`] or
     /// [`OpenLoop`] built beforehand (the methods above build those with
     /// the closure's argument types inferred from the system).
-    pub fn control<'e, T, C, const N: usize, const P: usize>(
+    pub fn control<'e, T, C, const N: usize, const P: usize, const Q: usize>(
         self,
         source: C,
-    ) -> ControlledSimulation<'a, 'e, S, I, C, T, N, P>
+    ) -> ControlledSimulation<'a, 'e, S, I, C, T, N, P, Q>
     where
         T: Real,
-        S: Lagrangian<T, N> + Driven<T, N, P>,
-        C: InputSource<T, N, P>,
+        S: Lagrangian<T, N, Q> + Driven<T, N, P, Q>,
+        C: InputSource<T, N, P, Q>,
     {
         ControlledSimulation {
             simulation: self,
@@ -137,23 +139,33 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
 /// or [`Simulation::control`]. Configure the simulation (integrator, drift, ...)
 /// before choosing the control; add events here.
 #[derive(Debug)]
-pub struct ControlledSimulation<'a, 'e, S, I, C, T: Real, const N: usize, const P: usize> {
+pub struct ControlledSimulation<
+    'a,
+    'e,
+    S,
+    I,
+    C,
+    T: Real,
+    const N: usize,
+    const P: usize,
+    const Q: usize = N,
+> {
     simulation: Simulation<'a, S, I>,
     source: C,
-    events: Events<'e, T, N>,
+    events: Events<'e, T, N, Q>,
 }
 
-impl<'a, 'e, S, I, C, T, const N: usize, const P: usize>
-    ControlledSimulation<'a, 'e, S, I, C, T, N, P>
+impl<'a, 'e, S, I, C, T, const N: usize, const P: usize, const Q: usize>
+    ControlledSimulation<'a, 'e, S, I, C, T, N, P, Q>
 where
     I: Integrator,
     T: Real,
-    S: Driven<T, N, P>,
-    C: InputSource<T, N, P>,
+    S: Driven<T, N, P, Q>,
+    C: InputSource<T, N, P, Q>,
 {
     /// Watches `event` during the run (see [`Simulation::event`]); occurrences
     /// name events by the order they were added, from 0.
-    pub fn event(mut self, event: Event<'e, T, N>) -> Self {
+    pub fn event(mut self, event: Event<'e, T, N, Q>) -> Self {
         self.events = self.events.with(event);
         self
     }
@@ -186,10 +198,10 @@ where
     /// [`Error::InvalidSettings`](crate::error::Error::InvalidSettings) for a bad sampling period.
     pub fn run(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>> {
+    ) -> Result<ControlRun<T, N, P, Q>, Failure<ControlRun<T, N, P, Q>>> {
         let start = super::form::Start {
             builder: self,
             q0: q0.into(),
@@ -206,10 +218,10 @@ where
     /// As [`run`](Self::run).
     pub fn run_unconstrained(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>> {
+    ) -> Result<ControlRun<T, N, P, Q>, Failure<ControlRun<T, N, P, Q>>> {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
         let terms = sim.system.parameter_terms();
@@ -217,7 +229,7 @@ where
         let prepare = || {
             sim.check_singular_tolerance()?;
             check_problem(span.start, span.end, &q0, &v0)?;
-            Ok((q0, v0))
+            Ok((unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0)?, v0))
         };
         self.drive(
             |f| dynamics.with_forcing(f),
@@ -234,12 +246,12 @@ where
     /// As [`Simulation::run_constrained`] and [`run`](Self::run).
     pub fn run_constrained<const K: usize>(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>>
+    ) -> Result<ControlRun<T, N, P, Q>, Failure<ControlRun<T, N, P, Q>>>
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
@@ -249,7 +261,7 @@ where
             .with_parameter_terms(&terms);
         let prepare = || {
             check_problem(span.start, span.end, &q0, &v0)?;
-            let (_, q0, v0) = sim.prepare_constrained::<T, N, K>(span.start, q0, v0)?;
+            let (_, q0, v0) = sim.prepare_constrained::<T, N, K, Q>(span.start, q0, v0)?;
             Ok((q0, v0))
         };
         self.drive(
@@ -261,25 +273,37 @@ where
     }
 
     /// [`Simulation::run_reduced`] with the inputs applied: F* gains Wᵀ ΔQ.
+    /// The reduced form takes no orientations: with them (Q ≠ N) the run
+    /// fails at its start with [`Error::InvalidSettings`].
     ///
     /// # Errors
     /// As [`Simulation::run_reduced`] and [`run`](Self::run).
     pub fn run_reduced<const K: usize>(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<ControlRun<T, N, P>, Failure<ControlRun<T, N, P>>>
+    ) -> Result<ControlRun<T, N, P, Q>, Failure<ControlRun<T, N, P, Q>>>
     where
         S: Reduced<T, N, K>,
     {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
-        let terms = sim.system.parameter_terms();
+        let terms = <S as Lagrangian<T, N>>::parameter_terms(sim.system);
         let dynamics = sim.reduced_dynamics::<T, K>().with_parameter_terms(&terms);
-        let prepare = || Ok((q0, sim.prepare_reduced(&dynamics, &span, q0, v0)?));
+        let prepare = || {
+            if Q != N {
+                return Err(Error::InvalidSettings(
+                    "the reduced form takes no orientations (Q = N): this system's \
+                     configuration has quaternions"
+                        .into(),
+                ));
+            }
+            let narrow = SVector::<T, N>::from_fn(|i, _| q0[i]);
+            Ok((q0, sim.prepare_reduced(&dynamics, &span, narrow, v0)?))
+        };
         self.drive(
-            |f| dynamics.with_forcing(f),
+            |f| Widened(dynamics.with_forcing(Narrowed(f))),
             span.clone(),
             (q0, v0),
             prepare,

@@ -18,13 +18,13 @@ use std::path::Path;
 /// `input_names`.
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
-pub struct ControlRun<T: Real, const N: usize, const P: usize> {
-    pub(super) trajectory: Trajectory<T, N>,
+pub struct ControlRun<T: Real, const N: usize, const P: usize, const Q: usize = N> {
+    pub(super) trajectory: Trajectory<T, N, Q>,
     pub(super) inputs: Vec<SVector<T, P>>,
-    pub(super) occurrences: Vec<Occurrence<T, N>>,
+    pub(super) occurrences: Vec<Occurrence<T, N, Q>>,
     pub(super) terminated_by: Option<usize>,
     #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
-    pub(super) coordinates: [&'static str; N],
+    pub(super) coordinates: [&'static str; Q],
     #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
     pub(super) input_names: [&'static str; P],
 }
@@ -38,15 +38,15 @@ fn names<S: serde::Serializer, const K: usize>(
     serializer.collect_seq(names.iter())
 }
 
-impl<T: Real, const N: usize, const P: usize> ControlRun<T, N, P> {
+impl<T: Real, const N: usize, const P: usize, const Q: usize> ControlRun<T, N, P, Q> {
     /// The motion, concatenated across the restarts (samples, breakpoints,
     /// event actions); its statistics sum the pieces' work.
-    pub fn trajectory(&self) -> &Trajectory<T, N> {
+    pub fn trajectory(&self) -> &Trajectory<T, N, Q> {
         &self.trajectory
     }
 
     /// The trajectory, dropping the rest.
-    pub fn into_trajectory(self) -> Trajectory<T, N> {
+    pub fn into_trajectory(self) -> Trajectory<T, N, Q> {
         self.trajectory
     }
 
@@ -65,12 +65,12 @@ impl<T: Real, const N: usize, const P: usize> ControlRun<T, N, P> {
     }
 
     /// The coordinates' names ([`Lagrangian::COORDINATES`]).
-    pub fn coordinate_names(&self) -> &[&'static str; N] {
+    pub fn coordinate_names(&self) -> &[&'static str; Q] {
         &self.coordinates
     }
 
     /// Event occurrences, in time order.
-    pub fn occurrences(&self) -> &[Occurrence<T, N>] {
+    pub fn occurrences(&self) -> &[Occurrence<T, N, Q>] {
         &self.occurrences
     }
 
@@ -101,17 +101,17 @@ impl<T: Real, const N: usize, const P: usize> ControlRun<T, N, P> {
     /// # Errors
     /// [`Error::InvalidSettings`] if the inputs do not match the points (they
     /// always do for a run built here).
-    pub fn table<S: Lagrangian<T, N>>(
+    pub fn table<S: Lagrangian<T, N, Q>>(
         &self,
         sys: &S,
-    ) -> Result<crate::table::Table<'_, T, N>, Error> {
+    ) -> Result<crate::table::Table<'_, T, N, Q>, Error> {
         self.table_of(self.trajectory.table(sys))
     }
 
     fn table_of<'t>(
         &'t self,
-        table: crate::table::Table<'t, T, N>,
-    ) -> Result<crate::table::Table<'t, T, N>, Error> {
+        table: crate::table::Table<'t, T, N, Q>,
+    ) -> Result<crate::table::Table<'t, T, N, Q>, Error> {
         let names = self.input_names.iter().map(|s| s.to_string()).collect();
         let values = self
             .inputs
@@ -131,7 +131,7 @@ impl<T: Real, const N: usize, const P: usize> ControlRun<T, N, P> {
     }
 }
 
-impl<T: Real, const N: usize, const P: usize> Progress for ControlRun<T, N, P> {
+impl<T: Real, const N: usize, const P: usize, const Q: usize> Progress for ControlRun<T, N, P, Q> {
     fn progress(&self) -> (usize, Option<f64>) {
         self.trajectory.progress()
     }

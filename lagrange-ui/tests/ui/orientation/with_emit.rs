@@ -1,13 +1,14 @@
 use lagrange::Lagrangian;
 
-// Constraints on a free orientation are not supported yet: one error, at the
-// orientation, naming what does not combine.
+// `emit(reactions)` combines with a free orientation; the other optional
+// outputs (here the Coriolis matrix) do not yet.
 #[derive(Lagrangian)]
 #[lagrange(
     coordinates(z),
     orientation(turn),
     body(b, mass = m, inertia = [1, 2, 3], at = [0, 0, z], rotation = turn),
     holonomic(floor = z),
+    emit(reactions, coriolis),
 )]
 struct Held {
     m: f64,
