@@ -7,12 +7,15 @@
 //! (q = (x, y, z, qx, qy, qz, qw, joints), v with the root's linear velocity
 //! in its own axes) and mapped here to this crate's (quaternion scalar first
 //! after the joints, ẋ in world axes); M, Q − h, q̈ (articulated-body), τ by
-//! recursive Newton–Euler and the gravity torques agree to 1e-12.
+//! recursive Newton–Euler and the gravity torques agree to 1e-12, and the
+//! tangent-space A (from `emit(jacobians)`: the derivatives of recursive
+//! Newton–Euler) agrees with `computeABADerivatives`, mapped to this
+//! convention by the chain rule, to 1e-10.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+#[path = "../examples/catalog/floating.rs"]
+mod floating;
 
-use catalog::floating::{Quadruped, Satellite};
+use floating::{Quadruped, Satellite};
 use lagrange::Route;
 use lagrange::prelude::*;
 use nalgebra::{Quaternion, SVector, UnitQuaternion, Vector3};
@@ -98,6 +101,38 @@ where
             gravity.as_slice(),
             &at("gravity"),
         );
+        let derivatives = (&at("dadq")[..], &at("dadv")[..]);
+        tangent_agrees(&format!("{name} {k}"), sys, (&q, &v), derivatives);
+    }
+}
+
+/// The lower half of the tangent linearisation's A, [∂v̇/∂δ, ∂v̇/∂v], against
+/// Pinocchio's (row-major N × N each), to 1e-10.
+fn tangent_agrees<S, const N: usize, const Q: usize>(
+    what: &str,
+    sys: &S,
+    (q, v): (&SVector<f64, Q>, &SVector<f64, N>),
+    (dq, dv): (&[f64], &[f64]),
+) where
+    S: Lagrangian<f64, N, Q>,
+{
+    // From the emitted derivatives of recursive Newton–Euler, not differences.
+    let accel = lagrange::accelerations(sys, q, v, 0.0).expect("a positive definite M");
+    assert!(sys.rhs_jacobians(q, v, &accel, 0.0).is_some(), "{what}");
+    let lin = Linearizer::new()
+        .tangent(sys, q, v, 0.0)
+        .expect("linearises");
+    let a = lin.a();
+    for i in 0..N {
+        for j in 0..N {
+            for (block, want, col) in [("∂v̇/∂δ", dq, j), ("∂v̇/∂v", dv, N + j)] {
+                let (g, w) = (a[(N + i, col)], want[i * N + j]);
+                assert!(
+                    (g - w).abs() <= 1e-10 * w.abs().max(1.0),
+                    "{what} {block}[{i}][{j}]: {g} against Pinocchio's {w}"
+                );
+            }
+        }
     }
 }
 

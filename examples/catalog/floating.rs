@@ -1,10 +1,14 @@
 //! Floating-base trees: a quadruped (a trunk on a free joint, four legs of
-//! three joints) and a satellite carrying a six-joint arm. Both are the
+//! three joints) and a satellite carrying a six-joint arm (included by path
+//! where used, not by the catalog's `mod.rs`, so the gallery does not build
+//! them). Both are the
 //! recursive route's floating bases (three sliding joints and a spherical one
 //! at the root), checked against Pinocchio's free flyer in
 //! `tests/floating_bases.rs` and timed beside it in `lagrange-bench`'s `free`
 //! bench; the Pinocchio models are `lagrange-bench/peer/pinocchio/floating.py`
 //! and `floating.cpp`.
+
+#![allow(dead_code)]
 
 use lagrange::Lagrangian;
 
@@ -49,7 +53,7 @@ use lagrange::Lagrangian;
     body(shank_hr, mass = 0.3, inertia = [0.004, 0.004, 0.0004], com = [0, 0, -0.1],
          at = [knee_hr.x, knee_hr.y, knee_hr.z], rotation = base * rot_x(a_hr) * rot_y(h_hr) * rot_y(k_hr)),
     gravity = [0, 0, -g],
-    emit(articulated, inverse_dynamics),
+    emit(articulated, inverse_dynamics, jacobians),
 )]
 pub struct Quadruped {
     pub g: f64,
@@ -88,7 +92,7 @@ pub struct Quadruped {
          rotation = base * rot_x(0.3) * rot_z(j1) * rot_y(j2) * rot_y(j3) * rot_x(j4) * rot_y(j5)
              * rot_x(j6)),
     gravity = [0, 0, -g],
-    emit(articulated, inverse_dynamics),
+    emit(articulated, inverse_dynamics, jacobians),
 )]
 pub struct Satellite {
     pub g: f64,

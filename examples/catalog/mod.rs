@@ -183,7 +183,6 @@ pub mod cavity;
 pub mod constrained;
 pub mod control;
 pub mod extremes;
-pub mod floating;
 pub mod free;
 pub mod rolling;
 pub mod study;

@@ -48,7 +48,7 @@ where
         b.iter(|| sys.inverse_dynamics(black_box(&q), black_box(&v), black_box(&a), 0.0))
     });
     let linearizer = lagrange::prelude::Linearizer::new();
-    group.bench_function("tangent A (central differences)", |b| {
+    group.bench_function("tangent A (emitted derivatives)", |b| {
         b.iter(|| linearizer.tangent(sys, black_box(&q), black_box(&v), 0.0))
     });
     group.finish();

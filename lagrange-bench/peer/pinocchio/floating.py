@@ -90,8 +90,43 @@ def ours(model, q_pin, v_pin, a_ours):
     tau = P.T @ pin.rnea(model, data, q_pin, v_pin, P @ a_ours + pdot_v)
     gravity = P.T @ pin.computeGeneralizedGravity(model, data, q_pin)
     q = np.concatenate([q_pin[0:3], q_pin[7:], [w, x, y, z]])
+    dq, dv = tangent_derivatives(model, data, q_pin, v_pin, R)
     return {"q_pin": q_pin, "v_pin": v_pin, "q": q, "v": v, "M": M.ravel(), "rhs": rhs,
-            "accel": accel, "a": a_ours, "tau": tau, "gravity": gravity}
+            "accel": accel, "a": a_ours, "tau": tau, "gravity": gravity,
+            "dadq": dq.ravel(), "dadv": dv.ravel()}
+
+
+def skew(u):
+    return np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
+
+
+def tangent_derivatives(model, data, q_pin, v_pin, R):
+    """∂v̇/∂δ and ∂v̇/∂v in lagrange's convention from computeABADerivatives
+    (Pinocchio's local tangent: δ = (δp in root axes, δθ, δjoints)).
+    Ours: δ = (δx world, δjoints, δθ), v = (ẋ world, q̇, ω), and
+    v̇_lin = R (a_lin + ω × v_lin) with v_lin = Rᵀ ẋ. By the chain rule:
+    δx = R δp; δθ turns v_lin by [v_lin]× δθ and v̇_lin by −R [y]× δθ,
+    y = a_lin + ω × v_lin."""
+    nv, nj = model.nv, model.nv - 6
+    tau = np.zeros(nv)
+    pin.computeABADerivatives(model, data, q_pin, v_pin, tau)
+    A_q, A_v = data.ddq_dq.copy(), data.ddq_dv.copy()
+    a = pin.aba(model, data, q_pin, v_pin, tau)
+    v_lin, w = v_pin[0:3], v_pin[3:6]
+    y = a[0:3] + np.cross(w, v_lin)
+    # Pinocchio's a as a function of our variables: columns (δx, δθ, δj), (ẋ, ω, q̇).
+    dq_pin = np.hstack([A_q[:, 0:3] @ R.T, A_q[:, 3:6] + A_v[:, 0:3] @ skew(v_lin), A_q[:, 6:]])
+    dv_pin = np.hstack([A_v[:, 0:3] @ R.T, A_v[:, 3:6], A_v[:, 6:]])
+    # Our v̇ rows: (ẍ, ω̇, q̈) before reordering.
+    dq, dv = dq_pin.copy(), dv_pin.copy()
+    dq[0:3] = R @ dq_pin[0:3]
+    dq[0:3, 3:6] += R @ (-skew(y) + skew(w) @ skew(v_lin))
+    dv[0:3] = R @ dv_pin[0:3]
+    dv[0:3, 0:3] += R @ skew(w) @ R.T
+    dv[0:3, 3:6] += R @ (-skew(v_lin))
+    # Reorder rows and columns from (lin, ang, joints) to (lin, joints, ang).
+    order = list(range(0, 3)) + list(range(6, nv)) + list(range(3, 6))
+    return dq[np.ix_(order, order)], dv[np.ix_(order, order)]
 
 
 def main():

@@ -12,10 +12,13 @@
 //! ```
 //!
 //! (the −ω* × δθ term is what makes a steady spin, the sleeping top's,
-//! a relative equilibrium with a constant A). ∂a/∂δ and ∂a/∂v are central
-//! differences of the forward dynamics along δ and v, each step the cube root
-//! of the machine epsilon times the entry's scale: a relative error about
-//! 1e-10.
+//! a relative equilibrium with a constant A). ∂a/∂δ and ∂a/∂v are
+//! M⁻¹ J_q and M⁻¹ J_v when the system has the right-hand side's Jacobians
+//! ([`Lagrangian::rhs_jacobians`], `emit(jacobians)`: on a tree the
+//! derivatives of recursive Newton–Euler in the tangent space, exact), else
+//! central differences of the forward dynamics along δ and v, each step the
+//! cube root of the machine epsilon times the entry's scale: a relative error
+//! about 1e-10.
 
 use super::Linear;
 use super::settings::Linearizer;
@@ -25,7 +28,7 @@ use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::numeric::orientation;
 use crate::system::{Driven, Lagrangian};
-use nalgebra::{DMatrix, SVector};
+use nalgebra::{DMatrix, SMatrix, SVector};
 
 impl Linearizer {
     /// Linearises an unconstrained system whose configuration holds
@@ -55,7 +58,7 @@ impl Linearizer {
         S: Lagrangian<T, N, Q>,
         T: Real,
     {
-        let (_, a) = self.tangent_a(sys, q, v, t, NoForcing)?;
+        let (_, a) = self.tangent_a(sys, q, v, t, (NoForcing, None))?;
         Ok(Linear::from_parts(
             a,
             DMatrix::zeros(2 * N, 0),
@@ -87,8 +90,10 @@ impl Linearizer {
         T: Real,
     {
         check_finite_inputs(&S::INPUTS, t, q, v, u)?;
-        let (q, a) = self.tangent_a(sys, q, v, t, Held { system: sys, u: *u })?;
-        let (du, _, _) = sys.input_jacobians(&q, v, u, t);
+        let q = &unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, *q)?;
+        let (du, dq, dv) = sys.input_jacobians(q, v, u, t);
+        let held = Held { system: sys, u: *u };
+        let (q, a) = self.tangent_a(sys, q, v, t, (held, Some((dq, dv))))?;
         let m = sys.mass_matrix(&q, t);
         let chol = Cholesky::new(m, T::lit(self.singular_tolerance)).map_err(|ratio| {
             Error::SingularMassMatrix {
@@ -119,14 +124,15 @@ impl Linearizer {
     }
 
     /// The unit-normalised q and A (2·N × 2·N) of the tangent linearisation
-    /// of the dynamics with `forcing` added.
+    /// of the dynamics with `forcing` added, whose own Jacobians
+    /// (∂ΔQ/∂δ, ∂ΔQ/∂v) are given when it has any.
     fn tangent_a<S, T, F, const N: usize, const Q: usize>(
         &self,
         sys: &S,
         q: &SVector<T, Q>,
         v: &SVector<T, N>,
         t: T,
-        forcing: F,
+        (forcing, forced): (F, Option<Pair<T, N>>),
     ) -> Result<(SVector<T, Q>, DMatrix<f64>), Error>
     where
         S: Lagrangian<T, N, Q>,
@@ -152,6 +158,11 @@ impl Linearizer {
                 }
             }
         }
+        if let Some([dq, dv]) = self.analytic(&dynamics, sys, (&q, v, t), forced)? {
+            a.view_mut((N, 0), (N, N)).copy_from(&dq);
+            a.view_mut((N, N), (N, N)).copy_from(&dv);
+            return Ok((q, a));
+        }
         let zero = SVector::<T, N>::zeros();
         for j in 0..N {
             let h = step(v[j].to_f64());
@@ -166,6 +177,54 @@ impl Linearizer {
             }
         }
         Ok((q, a))
+    }
+}
+
+/// A pair of N × N matrices: ∂/∂δ and ∂/∂v.
+type Pair<T, const N: usize> = (SMatrix<T, N, N>, SMatrix<T, N, N>);
+
+impl Linearizer {
+    /// ∂a/∂δ = M⁻¹ J_q and ∂a/∂v = M⁻¹ J_v from the system's right-hand-side
+    /// Jacobians at the (forced) acceleration a*, with the forcing's own
+    /// Jacobians added; `None` when the system has none.
+    fn analytic<S, T, F, const N: usize, const Q: usize>(
+        &self,
+        dynamics: &Dynamics<'_, S, T, F>,
+        sys: &S,
+        (q, v, t): (&SVector<T, Q>, &SVector<T, N>, T),
+        forced: Option<Pair<T, N>>,
+    ) -> Result<Option<[DMatrix<f64>; 2]>, Error>
+    where
+        S: Lagrangian<T, N, Q>,
+        T: Real,
+        F: Forcing<T, N, Q>,
+    {
+        let accel = dynamics.acceleration(t, q, v)?;
+        let Some((mut jq, mut jv)) = sys.rhs_jacobians(q, v, &accel, t) else {
+            return Ok(None);
+        };
+        if let Some((fq, fv)) = forced {
+            jq += fq;
+            jv += fv;
+        }
+        let m = sys.mass_matrix(q, t);
+        let chol = Cholesky::new(m, T::lit(self.singular_tolerance)).map_err(|ratio| {
+            Error::SingularMassMatrix {
+                t: t.to_f64(),
+                q: to_vec(q),
+                ratio: ratio.to_f64(),
+            }
+        })?;
+        let solve = |j: &SMatrix<T, N, N>| {
+            DMatrix::from_fn(N, N, |i, k| {
+                chol.solve(j.column(k).into_owned())[i].to_f64()
+            })
+        };
+        let out = [solve(&jq), solve(&jv)];
+        if !out.iter().all(|x| x.iter().all(|e| e.is_finite())) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        Ok(Some(out))
     }
 }
 
