@@ -47,6 +47,10 @@ where
     group.bench_function("inverse dynamics", |b| {
         b.iter(|| sys.inverse_dynamics(black_box(&q), black_box(&v), black_box(&a), 0.0))
     });
+    let accel = lagrange::accelerations(sys, &q, &v, 0.0).expect("a positive definite M");
+    group.bench_function("rhs Jacobians", |b| {
+        b.iter(|| sys.rhs_jacobians(black_box(&q), black_box(&v), black_box(&accel), 0.0))
+    });
     let linearizer = lagrange::prelude::Linearizer::new();
     group.bench_function("tangent A (emitted derivatives)", |b| {
         b.iter(|| linearizer.tangent(sys, black_box(&q), black_box(&v), 0.0))

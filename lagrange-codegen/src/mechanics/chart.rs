@@ -48,8 +48,14 @@ pub(super) fn at_centre(
         c.all(&mut a.pivots);
     }
     if let Some([jq, jv]) = &mut d.jacobians {
-        c.rows(jq);
-        c.rows(jv);
+        // Substituted only: R(θ) → 1 makes most of the derivatives' terms
+        // vanish at construction, and collecting a few hundred of them
+        // costs seconds of build time for no fewer operations.
+        for row in jq.iter_mut().chain(jv.iter_mut()) {
+            for e in row {
+                *e = c.ctx.substitute(*e, c.at);
+            }
+        }
     }
     if let Some(i) = &mut d.inverse {
         c.all(&mut i.torques);
@@ -117,9 +123,18 @@ pub(super) struct AtCentre<'a> {
 
 impl AtCentre<'_> {
     pub fn one(&mut self, e: Sym) -> Sym {
-        let s = self.ctx.substitute(e, self.at);
-        let s = self.ctx.collect(s);
-        let mut best = s;
+        // What the recursions built at the centre already (a spherical
+        // joint's links) has no θ: collecting it would only expand it.
+        let centred = !self
+            .at
+            .iter()
+            .any(|&(theta, _)| self.ctx.depends_on(e, theta));
+        let mut best = if centred {
+            e
+        } else {
+            let s = self.ctx.substitute(e, self.at);
+            self.ctx.collect(s)
+        };
         for &(w, square) in self.norms {
             if !self.ctx.depends_on(best, w) || self.ctx.node_count(best) > REDUCE_UP_TO {
                 continue;

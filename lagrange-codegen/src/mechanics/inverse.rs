@@ -13,13 +13,16 @@ pub struct InverseDynamics {
     pub gravity: Vec<Sym>,
 }
 
-/// From the tree where there is one (`rest` is Q without gravity's share),
-/// else from M, h and Q (with gravity's share) of the generic route.
+/// From the tree where there is one, else from M, h and Q (with gravity's
+/// share) of the generic route. `rest`, Q without gravity's share when the
+/// caller has it, lets the tree take gravity as its base acceleration, so
+/// that τ is the recursion's alone (with free orientations: built at the
+/// chart's centre, with nothing left to expand there).
 pub(super) fn inverse_dynamics(
     ctx: &mut Context,
     tree: Option<&Tree>,
     (mass, bias, forces): (&[Vec<Sym>], &[Sym], &[Sym]),
-    gravity_potential: Sym,
+    (gravity_potential, rest): (Sym, Option<&[Sym]>),
 ) -> InverseDynamics {
     let q = ctx.coordinates();
     let Some(tree) = tree else {
@@ -38,11 +41,13 @@ pub(super) fn inverse_dynamics(
             .collect();
         return InverseDynamics { torques, gravity };
     };
-    // M q̈ + h (no gravity) − Q, Q with gravity's share: τ = M q̈ + h − Q.
-    let inertial = crate::tree::inverse_dynamics_at_accelerations(ctx, tree, false);
+    // τ = M q̈ + h − Q: the recursion with gravity less Q without it, or
+    // without gravity less Q with it.
+    let with_gravity = rest.is_some();
+    let inertial = crate::tree::inverse_dynamics_at_accelerations(ctx, tree, with_gravity);
     let torques = inertial
         .iter()
-        .zip(forces)
+        .zip(rest.unwrap_or(forces))
         .map(|(&m, &f)| ctx.sub(m, f))
         .collect();
     // Gravity alone: the recursion at rest with gravity as a base acceleration.

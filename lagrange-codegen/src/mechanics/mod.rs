@@ -215,7 +215,10 @@ fn inverse_if_asked(
 ) -> Option<InverseDynamics> {
     let terms = (&motion.mass[..], &motion.bias[..], &motion.forces[..]);
     let asked = extras.contains(&Extra::InverseDynamics);
-    asked.then(|| inverse::inverse_dynamics(ctx, tree, terms, forces.gravity_potential))
+    // On the recursive route Q leaves gravity out.
+    let rest = (motion.bias_route == BiasRoute::Recursive).then_some(&forces.generalized[..]);
+    let gravity = (forces.gravity_potential, rest);
+    asked.then(|| inverse::inverse_dynamics(ctx, tree, terms, gravity))
 }
 
 /// Why M and h are not by the recursive route (`None` when they are): the

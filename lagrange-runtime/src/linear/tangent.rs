@@ -216,9 +216,14 @@ impl Linearizer {
             }
         })?;
         let solve = |j: &SMatrix<T, N, N>| {
-            DMatrix::from_fn(N, N, |i, k| {
-                chol.solve(j.column(k).into_owned())[i].to_f64()
-            })
+            let mut out = DMatrix::zeros(N, N);
+            for (k, column) in j.column_iter().enumerate() {
+                let x = chol.solve(column.into_owned());
+                for i in 0..N {
+                    out[(i, k)] = x[i].to_f64();
+                }
+            }
+            out
         };
         let out = [solve(&jq), solve(&jv)];
         if !out.iter().all(|x| x.iter().all(|e| e.is_finite())) {
