@@ -51,6 +51,9 @@ where
     group.bench_function("rhs Jacobians", |b| {
         b.iter(|| sys.rhs_jacobians(black_box(&q), black_box(&v), black_box(&accel), 0.0))
     });
+    group.bench_function("acceleration derivatives", |b| {
+        b.iter(|| lagrange::acceleration_derivatives(sys, black_box(&q), black_box(&v), 0.0))
+    });
     let linearizer = lagrange::prelude::Linearizer::new();
     group.bench_function("tangent A (emitted derivatives)", |b| {
         b.iter(|| linearizer.tangent(sys, black_box(&q), black_box(&v), 0.0))

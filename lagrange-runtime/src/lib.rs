@@ -207,8 +207,8 @@ pub use mechanics::constraint::{
     ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent,
 };
 pub use mechanics::{
-    DEFAULT_SINGULAR_TOLERANCE, Dynamics, Forcing, NoForcing, Rattle, ReducedDynamics, ReducedForm,
-    accelerations,
+    AccelerationDerivatives, DEFAULT_SINGULAR_TOLERANCE, Dynamics, Forcing, NoForcing, Rattle,
+    ReducedDynamics, ReducedForm, acceleration_derivatives, accelerations,
 };
 pub use numeric::orientation::Orientation;
 pub use numeric::{Real, func};

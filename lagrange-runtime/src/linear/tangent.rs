@@ -23,12 +23,12 @@
 use super::Linear;
 use super::settings::Linearizer;
 use crate::error::{Error, check_finite_inputs, check_tolerance, to_vec, unit_quaternions};
-use crate::mechanics::{Dynamics, Forcing, NoForcing};
+use crate::mechanics::{AccelerationDerivatives, Dynamics, Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::numeric::orientation;
 use crate::system::{Driven, Lagrangian};
-use nalgebra::{DMatrix, SMatrix, SVector};
+use nalgebra::{DMatrix, SVector};
 
 impl Linearizer {
     /// Linearises an unconstrained system whose configuration holds
@@ -132,7 +132,7 @@ impl Linearizer {
         q: &SVector<T, Q>,
         v: &SVector<T, N>,
         t: T,
-        (forcing, forced): (F, Option<Pair<T, N>>),
+        (forcing, forced): (F, Option<AccelerationDerivatives<T, N>>),
     ) -> Result<(SVector<T, Q>, DMatrix<f64>), Error>
     where
         S: Lagrangian<T, N, Q>,
@@ -158,9 +158,13 @@ impl Linearizer {
                 }
             }
         }
-        if let Some([dq, dv]) = self.analytic(&dynamics, sys, (&q, v, t), forced)? {
-            a.view_mut((N, 0), (N, N)).copy_from(&dq);
-            a.view_mut((N, N), (N, N)).copy_from(&dv);
+        if let Some((dq, dv)) = dynamics.acceleration_derivatives(t, &q, v, forced)? {
+            for i in 0..N {
+                for j in 0..N {
+                    a[(N + i, j)] = dq[(i, j)].to_f64();
+                    a[(N + i, N + j)] = dv[(i, j)].to_f64();
+                }
+            }
             return Ok((q, a));
         }
         let zero = SVector::<T, N>::zeros();
@@ -177,59 +181,6 @@ impl Linearizer {
             }
         }
         Ok((q, a))
-    }
-}
-
-/// A pair of N × N matrices: ∂/∂δ and ∂/∂v.
-type Pair<T, const N: usize> = (SMatrix<T, N, N>, SMatrix<T, N, N>);
-
-impl Linearizer {
-    /// ∂a/∂δ = M⁻¹ J_q and ∂a/∂v = M⁻¹ J_v from the system's right-hand-side
-    /// Jacobians at the (forced) acceleration a*, with the forcing's own
-    /// Jacobians added; `None` when the system has none.
-    fn analytic<S, T, F, const N: usize, const Q: usize>(
-        &self,
-        dynamics: &Dynamics<'_, S, T, F>,
-        sys: &S,
-        (q, v, t): (&SVector<T, Q>, &SVector<T, N>, T),
-        forced: Option<Pair<T, N>>,
-    ) -> Result<Option<[DMatrix<f64>; 2]>, Error>
-    where
-        S: Lagrangian<T, N, Q>,
-        T: Real,
-        F: Forcing<T, N, Q>,
-    {
-        let accel = dynamics.acceleration(t, q, v)?;
-        let Some((mut jq, mut jv)) = sys.rhs_jacobians(q, v, &accel, t) else {
-            return Ok(None);
-        };
-        if let Some((fq, fv)) = forced {
-            jq += fq;
-            jv += fv;
-        }
-        let m = sys.mass_matrix(q, t);
-        let chol = Cholesky::new(m, T::lit(self.singular_tolerance)).map_err(|ratio| {
-            Error::SingularMassMatrix {
-                t: t.to_f64(),
-                q: to_vec(q),
-                ratio: ratio.to_f64(),
-            }
-        })?;
-        let solve = |j: &SMatrix<T, N, N>| {
-            let mut out = DMatrix::zeros(N, N);
-            for (k, column) in j.column_iter().enumerate() {
-                let x = chol.solve(column.into_owned());
-                for i in 0..N {
-                    out[(i, k)] = x[i].to_f64();
-                }
-            }
-            out
-        };
-        let out = [solve(&jq), solve(&jv)];
-        if !out.iter().all(|x| x.iter().all(|e| e.is_finite())) {
-            return Err(Error::non_finite(t, q, v));
-        }
-        Ok(Some(out))
     }
 }
 

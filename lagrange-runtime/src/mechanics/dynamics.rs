@@ -8,7 +8,7 @@
 use crate::error::{Error, check_tolerance, to_vec};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
-use crate::numeric::cholesky::{Cholesky, cholesky_solve};
+use crate::numeric::cholesky::Cholesky;
 use crate::numeric::orientation::{self, Orientation};
 use crate::ode::SecondOrder;
 use crate::system::Lagrangian;
@@ -127,42 +127,69 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
         S: Lagrangian<T, N, Q>,
         F: Forcing<T, N, Q>,
     {
+        let (unit, tau) = self.checked(t, q, v)?;
+        if let Some(a) = self.articulated(t, &unit, v, &tau)? {
+            return Ok(a);
+        }
+        self.factorised(t, &unit, v, tau).map(|(_, a)| a)
+    }
+
+    /// The state's checks (finite, the tolerance), q on the unit sphere (a
+    /// Runge–Kutta stage leaves it by its local error: the equations see the
+    /// rotation it is closest to) and the forcing's generalized forces.
+    pub(super) fn checked<const N: usize, const Q: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+    ) -> Result<(SVector<T, Q>, SVector<T, N>), Error>
+    where
+        S: Lagrangian<T, N, Q>,
+        F: Forcing<T, N, Q>,
+    {
         refuse_constrained::<S, T, N, Q>();
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
-        // A Runge–Kutta stage leaves the unit sphere by its local error: the
-        // equations see the rotation it is closest to.
         let unit = on_sphere::<S, T, N, Q>(q);
-        let q = &unit;
         check_tolerance("singular tolerance", self.singular_tolerance.to_f64())?;
         let tau = if F::ACTIVE {
-            self.forcing.force(t, q, v)?
+            self.forcing.force(t, &unit, v)?
         } else {
             SVector::zeros()
         };
-        if let Some(a) = self.articulated(t, q, v, &tau)? {
-            return Ok(a);
-        }
-        let (m, mut rhs) = self.system.mass_matrix_and_rhs_with(self.terms, q, v, t);
-        if F::ACTIVE {
-            rhs += tau;
-        }
+        Ok((unit, tau))
+    }
+
+    /// M's Cholesky factor and q̈ = M⁻¹(Q − h + τ) at a checked state.
+    pub(super) fn factorised<const N: usize, const Q: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        tau: SVector<T, N>,
+    ) -> Result<(Cholesky<T, N>, SVector<T, N>), Error>
+    where
+        S: Lagrangian<T, N, Q>,
+    {
+        let (m, rhs) = self.system.mass_matrix_and_rhs_with(self.terms, q, v, t);
+        let rhs = rhs + tau;
         if !(all_finite(m.as_slice()) && all_finite(rhs.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
-        let a = cholesky_solve(m, rhs, self.singular_tolerance).map_err(|ratio| {
+        let chol = Cholesky::new(m, self.singular_tolerance).map_err(|ratio| {
             Error::SingularMassMatrix {
                 t: t.to_f64(),
                 q: to_vec(q),
                 ratio: ratio.to_f64(),
             }
         })?;
+        let a = chol.solve(rhs);
         // Finite M and rhs with acceptable pivots can still overflow.
         if !all_finite(a.as_slice()) {
             return Err(Error::non_finite(t, q, v));
         }
-        Ok(a)
+        Ok((chol, a))
     }
 }
 

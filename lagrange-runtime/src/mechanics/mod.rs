@@ -2,7 +2,8 @@
 //! system solved for the accelerations, as a [`SecondOrder`](crate::ode::SecondOrder)
 //! problem the integrators step.
 //!
-//! - [`Dynamics`]: unconstrained, q̈ = M⁻¹(Q − h) (or the articulated-body q̈);
+//! - [`Dynamics`]: unconstrained, q̈ = M⁻¹(Q − h) (or the articulated-body q̈),
+//!   and its derivatives from the emitted Jacobians (`derivatives`);
 //! - [`constraint`]: constraints kept with multipliers (the saddle-point system),
 //!   drift control and consistent initial conditions; [`Rattle`] integrates the
 //!   holonomic case symplectically;
@@ -12,12 +13,14 @@
 //! Q − h; it imports nothing above the system contract.
 
 pub mod constraint;
+pub(crate) mod derivatives;
 pub(crate) mod dynamics;
 mod forcing;
 mod hamilton;
 mod rattle;
 pub(crate) mod reduced;
 
+pub use derivatives::{AccelerationDerivatives, acceleration_derivatives};
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use forcing::{Forcing, NoForcing};
 pub use rattle::Rattle;

@@ -104,23 +104,46 @@ impl<T: Real, const N: usize> Cholesky<T, N> {
         b
     }
 
-    /// M⁻¹ B for a matrix of right-hand sides, column by column.
-    pub fn solve_columns<const C: usize>(&self, mut b: SMatrix<T, N, C>) -> SMatrix<T, N, C> {
-        for j in 0..C {
-            let x = self.solve(b.column(j).into_owned());
-            b.set_column(j, &x);
+    /// M⁻¹ B for a matrix of right-hand sides: the same operations in the
+    /// same order as [`solve`](Self::solve) on each column (so the same
+    /// numbers), done a row of B at a time on Bᵀ, whose rows are contiguous,
+    /// so that each step runs across the C columns at once.
+    pub fn solve_columns<const C: usize>(&self, b: SMatrix<T, N, C>) -> SMatrix<T, N, C> {
+        let mut bt = b.transpose();
+        let rows = bt.as_mut_slice();
+        // Row i of B is rows[i * C..(i + 1) * C]; `update(i, k, l)` is
+        // row_i −= l · row_k.
+        let update = |rows: &mut [T], i: usize, k: usize, l: T| {
+            let (i_row, k_row) = if k < i {
+                let (head, tail) = rows.split_at_mut(i * C);
+                (&mut tail[..C], &head[k * C..(k + 1) * C])
+            } else {
+                let (head, tail) = rows.split_at_mut(k * C);
+                (&mut head[i * C..(i + 1) * C], &tail[..C])
+            };
+            for (x, &y) in i_row.iter_mut().zip(k_row) {
+                *x -= l * y;
+            }
+        };
+        let divide = |rows: &mut [T], i: usize, d: T| {
+            for x in &mut rows[i * C..(i + 1) * C] {
+                *x /= d;
+            }
+        };
+        for i in 0..self.n {
+            for k in 0..i {
+                update(rows, i, k, self.l[(i, k)]);
+            }
+            divide(rows, i, self.l[(i, i)]);
         }
-        b
+        for i in (0..self.n).rev() {
+            for k in i + 1..self.n {
+                update(rows, i, k, self.l[(k, i)]);
+            }
+            divide(rows, i, self.l[(i, i)]);
+        }
+        bt.transpose()
     }
-}
-
-/// Solves M x = b for symmetric positive definite M; on failure the pivot ratio.
-pub(crate) fn cholesky_solve<T: Real, const N: usize>(
-    m: SMatrix<T, N, N>,
-    b: SVector<T, N>,
-    tolerance: T,
-) -> Result<SVector<T, N>, T> {
-    Ok(Cholesky::new(m, tolerance)?.solve(b))
 }
 
 /// P S Pᵀ = L Lᵀ with diagonal pivoting, for symmetric positive *semi*definite S
@@ -292,6 +315,15 @@ impl<T: Real, const K: usize> PivotedCholesky<T, K> {
 mod tests {
     use super::*;
     use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
+
+    /// Solves M x = b through the factorisation; on failure the pivot ratio.
+    fn cholesky_solve<T: Real, const N: usize>(
+        m: SMatrix<T, N, N>,
+        b: SVector<T, N>,
+        tolerance: T,
+    ) -> Result<SVector<T, N>, T> {
+        Ok(Cholesky::new(m, tolerance)?.solve(b))
+    }
 
     #[test]
     fn cholesky_solves_spd_system() {

@@ -1,0 +1,75 @@
+//! ∂q̈/∂q and ∂q̈/∂q̇ from the system's right-hand-side Jacobians
+//! ([`Lagrangian::rhs_jacobians`], `emit(jacobians)`): M⁻¹ J_q and M⁻¹ J_v,
+//! on the stack (the counterpart of Pinocchio's `computeABADerivatives`).
+//! With orientations the derivatives are in the tangent space: ∂/∂δ along
+//! q ⊕ δ, an orientation's δ the rotation vector in body axes, at fixed ω.
+
+use nalgebra::{SMatrix, SVector};
+
+use super::dynamics::{Dynamics, all_finite};
+use super::forcing::{Forcing, NoForcing};
+use crate::error::Error;
+use crate::numeric::Real;
+use crate::system::Lagrangian;
+
+/// ∂q̈/∂δ and ∂q̈/∂q̇, N × N each.
+pub type AccelerationDerivatives<T, const N: usize> = (SMatrix<T, N, N>, SMatrix<T, N, N>);
+
+impl<S, T, F> Dynamics<'_, S, T, F>
+where
+    T: Real,
+{
+    /// ∂q̈/∂δ and ∂q̈/∂q̇ at (q, v, t), with the forcing's own Jacobians
+    /// (∂ΔQ/∂δ, ∂ΔQ/∂v) added when it has any; `Ok(None)` when the system
+    /// does not emit its Jacobians.
+    ///
+    /// # Errors
+    /// As [`acceleration`](Self::acceleration); [`Error::NonFiniteState`] for
+    /// a non-finite derivative.
+    pub fn acceleration_derivatives<const N: usize, const Q: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        forced: Option<AccelerationDerivatives<T, N>>,
+    ) -> Result<Option<AccelerationDerivatives<T, N>>, Error>
+    where
+        S: Lagrangian<T, N, Q>,
+        F: Forcing<T, N, Q>,
+    {
+        // One factorisation of M for q̈ and for M⁻¹ J.
+        let (unit, tau) = self.checked(t, q, v)?;
+        let (chol, accel) = self.factorised(t, &unit, v, tau)?;
+        let Some((mut jq, mut jv)) = self.system().rhs_jacobians(&unit, v, &accel, t) else {
+            return Ok(None);
+        };
+        if let Some((fq, fv)) = forced {
+            jq += fq;
+            jv += fv;
+        }
+        let (dq, dv) = (chol.solve_columns(jq), chol.solve_columns(jv));
+        if !(all_finite(dq.as_slice()) && all_finite(dv.as_slice())) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        Ok(Some((dq, dv)))
+    }
+}
+
+/// ∂q̈/∂δ and ∂q̈/∂q̇ of `sys` at (q, v, t) with the default singular
+/// tolerance, or `None` when it does not emit its Jacobians. See
+/// [`Dynamics::acceleration_derivatives`].
+///
+/// # Errors
+/// [`Error::NonFiniteState`] or [`Error::SingularMassMatrix`].
+pub fn acceleration_derivatives<S, T, const N: usize, const Q: usize>(
+    sys: &S,
+    q: &SVector<T, Q>,
+    v: &SVector<T, N>,
+    t: T,
+) -> Result<Option<AccelerationDerivatives<T, N>>, Error>
+where
+    S: Lagrangian<T, N, Q>,
+    T: Real,
+{
+    Dynamics::<S, T, NoForcing>::new(sys).acceleration_derivatives(t, q, v, None)
+}
