@@ -287,7 +287,11 @@
 //! emitted); `tests/floating_bases.rs` checks them against Pinocchio's free
 //! flyer to 1e-12. A body that an orientation turns
 //! alone must have a positive-definite inertia (a compile error at the
-//! inertia otherwise).
+//! inertia otherwise). A robot from its URDF goes on a free root with
+//! `urdf("robots/solo12.urdf", base = floating)` (or a file's floating joint
+//! from a bare world link): coordinates `<base>_x`, `_y`, `_z` first, then the
+//! joints, and the orientation `<base>_turn`, as Pinocchio's
+//! `JointModelFreeFlyer` root (with its own conventions, stated above).
 //!
 //! **Constraints** (`holonomic`, `nonholonomic`) run in the multiplier form
 //! ([`Constrained`]`<T, N, K, Q>`): G is K × N, an orientation's columns the
@@ -306,7 +310,7 @@
 //! B = [0; M⁻¹ ∂Q/∂u] (2·N × P).
 //!
 //! Not yet with an orientation: the reduced form (`speeds`,
-//! `formulation(reduced)`), the other `emit(..)` outputs and `urdf` (each a
+//! `formulation(reduced)`) and the other `emit(..)` outputs (each a
 //! compile error at the orientation); [`StateFeedback`]
 //! (whose q − q₀ has no meaning for a quaternion: write the law as a
 //! `feedback` closure on the quaternion's error) and the constrained

@@ -36,10 +36,12 @@ fn reference(model: &str, k: usize, key: &str) -> Vec<f64> {
 }
 
 /// Pinocchio's (q, v) of a free-flyer root with `J` joints after it, in
-/// this crate's convention: v_lin (root axes) → ẋ = R v_lin (world axes).
+/// this crate's convention: v_lin (root axes) → ẋ = R v_lin (world axes);
+/// this crate's joint k is Pinocchio's `perm[k]`.
 fn from_pinocchio<const N: usize, const Q: usize>(
     q_pin: &[f64],
     v_pin: &[f64],
+    perm: &[f64],
 ) -> (SVector<f64, Q>, SVector<f64, N>) {
     let joints = N - 6;
     let (x, y, z, w) = (q_pin[3], q_pin[4], q_pin[5], q_pin[6]);
@@ -52,9 +54,9 @@ fn from_pinocchio<const N: usize, const Q: usize>(
         v[i] = world[i];
         v[3 + joints + i] = v_pin[3 + i];
     }
-    for j in 0..joints {
-        q[3 + j] = q_pin[7 + j];
-        v[3 + j] = v_pin[6 + j];
+    for (j, &p) in perm.iter().enumerate().take(joints) {
+        q[3 + j] = q_pin[7 + p as usize];
+        v[3 + j] = v_pin[6 + p as usize];
     }
     q.fixed_rows_mut::<4>(3 + joints)
         .copy_from_slice(&[w, x, y, z]);
@@ -83,7 +85,7 @@ where
     );
     for k in 0..2 {
         let at = |key: &str| reference(name, k, key);
-        let (q, v) = from_pinocchio::<N, Q>(&at("q_pin"), &at("v_pin"));
+        let (q, v) = from_pinocchio::<N, Q>(&at("q_pin"), &at("v_pin"), &at("perm"));
         assert_close(&format!("{name} {k} q"), q.as_slice(), &at("q"));
         assert_close(&format!("{name} {k} v"), v.as_slice(), &at("v"));
         let (m, rhs) = sys.mass_matrix_and_rhs(&q, &v, 0.0);
@@ -139,6 +141,26 @@ fn tangent_agrees<S, const N: usize, const Q: usize>(
 #[test]
 fn a_quadruped_matches_pinocchio_s_free_flyer() {
     agrees_with_pinocchio::<_, 18, 19>("quadruped", &Quadruped { g: 9.81 });
+}
+
+/// Solo 12 from its URDF (`robots/solo12.urdf`, example-robot-data) made
+/// floating-base by `base = floating`, against Pinocchio's
+/// `buildModelFromUrdf(.., JointModelFreeFlyer())` on the same file.
+#[derive(Lagrangian)]
+#[lagrange(
+    urdf("robots/solo12.urdf", base = floating),
+    gravity = [0, 0, -9.81],
+    emit(articulated, inverse_dynamics, jacobians)
+)]
+struct Solo12 {}
+
+#[test]
+fn solo_12_from_its_urdf_on_a_free_root_matches_pinocchio() {
+    assert_eq!(
+        &<Solo12 as Lagrangian<f64, 18, 19>>::COORDINATES[..4],
+        &["base_link_x", "base_link_y", "base_link_z", "FL_HAA"]
+    );
+    agrees_with_pinocchio::<_, 18, 19>("solo12", &Solo12 {});
 }
 
 #[test]

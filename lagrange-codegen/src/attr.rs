@@ -38,7 +38,7 @@ enum Item {
     Force(Force),
     GeneralizedForce(Vec<GeneralizedForce>),
     /// The path, and the tolerance within which angles snap to multiples of π/2.
-    Urdf(syn::LitStr, Option<f64>),
+    Urdf(syn::LitStr, crate::urdf::Options),
     Shape(Shape),
 }
 
@@ -93,7 +93,7 @@ impl Parse for Item {
                 })
             }
             "urdf" => {
-                crate::urdf::parse_attribute(input).map(|(path, snap)| Item::Urdf(path, snap))
+                crate::urdf::parse_attribute(input).map(|(path, options)| Item::Urdf(path, options))
             }
             "force" => parse_force(input).map(Item::Force),
             "generalized_force" => Ok(Item::GeneralizedForce(
@@ -466,13 +466,13 @@ fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
         Item::Gravity(k, v) => set_once(cx, &mut system.gravity, k, v),
         Item::Potential(k, v) => set_once(cx, &mut system.potential, k, v),
         Item::Dissipation(k, v) => set_once(cx, &mut system.dissipation, k, v),
-        Item::Urdf(path, snap) => add_urdf(cx, system, &path, snap),
+        Item::Urdf(path, options) => add_urdf(cx, system, &path, options),
     }
 }
 
 /// Reads the URDF file and adds its description's items, each spanned at the
 /// path so that any error they raise points at `urdf = "..."`.
-fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr, snap: Option<f64>) {
+fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr, options: crate::urdf::Options) {
     if system.urdf.is_some() {
         cx.error_at(
             path.span(),
@@ -486,7 +486,7 @@ fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr, snap: Option<f64
         .iter()
         .map(|p| p.name.to_string())
         .collect();
-    let urdf = match crate::urdf::load(&manifest, &path.value(), &fields, snap) {
+    let urdf = match crate::urdf::load(&manifest, &path.value(), &fields, options) {
         Ok(urdf) => urdf,
         Err(message) => return cx.error_at(path.span(), message),
     };

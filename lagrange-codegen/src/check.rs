@@ -55,9 +55,7 @@ fn check_orientations(cx: &Ctxt, system: &System) {
             "`emit(...)` other than `reactions`, `articulated`, `inverse_dynamics` and `jacobians`",
         );
     }
-    if system.urdf.is_some() {
-        not_yet.push("`urdf`");
-    }
+
     if !not_yet.is_empty() {
         cx.error_at(
             first.span(),

@@ -86,8 +86,8 @@ fn bad_files_quote_the_file_and_line() {
             "bad.urdf:3: joint `j` names an unknown link `b`",
         ),
         (
-            "<robot name='r'>\n<link name='a'/><link name='b'/>\n<joint name='j' type='floating'><parent link='a'/><child link='b'/></joint>\n</robot>",
-            "bad.urdf:3: joint `j` is floating",
+            "<robot name='r'>\n<link name='a'/><link name='b'/><link name='c'/>\n<joint name='j' type='revolute'><parent link='a'/><child link='b'/><axis xyz='0 0 1'/></joint>\n<joint name='k' type='floating'><parent link='b'/><child link='c'/></joint>\n</robot>",
+            "bad.urdf:4: joint `k` is floating but `b` is not a bare root",
         ),
         (
             "<robot name='r'>\n<link name='a'/><link name='b'/>\n<joint name='j' type='planar'><parent link='a'/><child link='b'/></joint>\n</robot>",
@@ -105,7 +105,7 @@ fn bad_files_quote_the_file_and_line() {
     for (text, expected) in cases {
         let path = dir.join("bad.urdf");
         std::fs::write(&path, text).unwrap();
-        let e = lagrange_codegen::urdf::load("/", path.to_str().unwrap(), &[], None)
+        let e = lagrange_codegen::urdf::load("/", path.to_str().unwrap(), &[], Default::default())
             .err()
             .unwrap_or_default();
         let shown = e
@@ -133,5 +133,34 @@ fn a_bad_file_is_one_compile_error_at_the_attribute() {
     assert!(
         out.contains(":3: joint `j` names an unknown link `b`"),
         "{out}"
+    );
+}
+
+/// A file's floating joint from a bare world link reads as `base = floating`
+/// on the same robot without it: the same description, item for item.
+#[test]
+fn a_floating_joint_at_the_root_is_a_free_base() {
+    let arm = "<link name='base'><inertial><mass value='2'/><inertia ixx='0.1' iyy='0.2' izz='0.3' ixy='0' ixz='0' iyz='0'/></inertial></link>
+<link name='arm'><inertial><origin xyz='0.1 0 0'/><mass value='1'/><inertia ixx='0.01' iyy='0.02' izz='0.02' ixy='0' ixz='0' iyz='0'/></inertial></link>
+<joint name='shoulder' type='revolute'><parent link='base'/><child link='arm'/><origin xyz='0 0 0.2'/><axis xyz='0 1 0'/></joint>";
+    let free = format!(
+        "<robot name='r'><link name='world'/><joint name='free' type='floating'><parent link='world'/><child link='base'/></joint>{arm}</robot>"
+    );
+    let based = format!("<robot name='r'>{arm}</robot>");
+    let read = |text: &str, floating: bool| {
+        let options = lagrange_codegen::urdf::Options {
+            floating,
+            ..Default::default()
+        };
+        lagrange_codegen::urdf::from_text(text, "r.urdf", &[], options)
+            .unwrap_or_else(|e| panic!("{e}"))
+    };
+    let (a, b) = (read(&free, false), read(&based, true));
+    assert_eq!(a.items, b.items);
+    assert_eq!(a.coordinates, ["base_x", "base_y", "base_z", "shoulder"]);
+    assert!(
+        a.items.iter().any(|i| i == "orientation(base_turn)"),
+        "{:?}",
+        a.items
     );
 }

@@ -70,7 +70,8 @@ def states(model, rng):
     return out
 
 
-def ours(model, q_pin, v_pin, a_ours):
+def ours(model, q_pin, v_pin, a_ours, perm):
+    """`perm[k]` is Pinocchio's index (after the root) of this crate's joint k."""
     data = model.createData()
     nv, nj = model.nv, model.nv - 6
     x, y, z, w = q_pin[3:7]
@@ -78,7 +79,8 @@ def ours(model, q_pin, v_pin, a_ours):
     P = np.zeros((nv, nv))
     P[0:3, 0:3] = R.T
     P[3:6, 3 + nj:] = np.eye(3)
-    P[6:, 3:3 + nj] = np.eye(nj)
+    for k, p in enumerate(perm):
+        P[6 + p, 3 + k] = 1.0
     v = np.linalg.solve(P, v_pin)
     pdot_v = np.zeros(nv)
     pdot_v[0:3] = -np.cross(v_pin[3:6], v_pin[0:3])
@@ -89,18 +91,18 @@ def ours(model, q_pin, v_pin, a_ours):
     accel = np.linalg.solve(P, pin.aba(model, data, q_pin, v_pin, np.zeros(nv)) - pdot_v)
     tau = P.T @ pin.rnea(model, data, q_pin, v_pin, P @ a_ours + pdot_v)
     gravity = P.T @ pin.computeGeneralizedGravity(model, data, q_pin)
-    q = np.concatenate([q_pin[0:3], q_pin[7:], [w, x, y, z]])
-    dq, dv = tangent_derivatives(model, data, q_pin, v_pin, R)
+    q = np.concatenate([q_pin[0:3], q_pin[7:][perm], [w, x, y, z]])
+    dq, dv = tangent_derivatives(model, data, q_pin, v_pin, R, perm)
     return {"q_pin": q_pin, "v_pin": v_pin, "q": q, "v": v, "M": M.ravel(), "rhs": rhs,
             "accel": accel, "a": a_ours, "tau": tau, "gravity": gravity,
-            "dadq": dq.ravel(), "dadv": dv.ravel()}
+            "dadq": dq.ravel(), "dadv": dv.ravel(), "perm": np.array(perm, float)}
 
 
 def skew(u):
     return np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
 
 
-def tangent_derivatives(model, data, q_pin, v_pin, R):
+def tangent_derivatives(model, data, q_pin, v_pin, R, perm):
     """∂v̇/∂δ and ∂v̇/∂v in lagrange's convention from computeABADerivatives
     (Pinocchio's local tangent: δ = (δp in root axes, δθ, δjoints)).
     Ours: δ = (δx world, δjoints, δθ), v = (ẋ world, q̇, ω), and
@@ -125,7 +127,7 @@ def tangent_derivatives(model, data, q_pin, v_pin, R):
     dv[0:3, 0:3] += R @ skew(w) @ R.T
     dv[0:3, 3:6] += R @ (-skew(v_lin))
     # Reorder rows and columns from (lin, ang, joints) to (lin, joints, ang).
-    order = list(range(0, 3)) + list(range(6, nv)) + list(range(3, 6))
+    order = list(range(0, 3)) + [6 + p for p in perm] + list(range(3, 6))
     return dq[np.ix_(order, order)], dv[np.ix_(order, order)]
 
 
@@ -134,9 +136,18 @@ def main():
     here = os.path.dirname(os.path.abspath(__file__))
     path = os.path.join(here, "../../../tests/data/floating_pinocchio.txt")
     lines = ["# Pinocchio " + pin.__version__ + ", written by lagrange-bench/peer/pinocchio/floating.py"]
-    for name, model in [("quadruped", quadruped()), ("satellite", satellite())]:
+    solo = pin.buildModelFromUrdf(os.path.join(here, "../../../robots/solo12.urdf"), pin.JointModelFreeFlyer())
+    # lagrange orders a URDF's joints breadth-first (the hips, then the
+    # thighs, then the knees), Pinocchio depth-first (leg by leg).
+    names = list(solo.names)[2:]
+    solo_order = [leg + "_" + j for j in ("HAA", "HFE", "KFE") for leg in ("FL", "FR", "HL", "HR")]
+    for name, model, perm in [
+        ("quadruped", quadruped(), list(range(12))),
+        ("satellite", satellite(), list(range(6))),
+        ("solo12", solo, [names.index(n) for n in solo_order]),
+    ]:
         for k, (q, v, a) in enumerate(states(model, rng)):
-            for key, values in ours(model, q, v, a).items():
+            for key, values in ours(model, q, v, a, perm).items():
                 lines.append(f"{name} {k} {key} " + " ".join(repr(float(x)) for x in values))
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -118,8 +118,8 @@ impl Tree {
             .find(|&q| !seen.insert(q))
     }
 
-    /// The same tree with each spherical joint turned by R(θ) = 1 + [θ]× +
-    /// ½[θ]×² after R₀ (its velocity still ω in the turned axes): what to
+    /// The same tree with each spherical joint turned by R(θ) = 1 + \[θ\]× +
+    /// ½\[θ\]×² after R₀ (its velocity still ω in the turned axes): what to
     /// differentiate in θ at θ = 0 for derivatives in the tangent space.
     pub fn perturbed(&self, ctx: &mut Context) -> Tree {
         let mut links = self.links.clone();

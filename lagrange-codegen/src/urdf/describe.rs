@@ -241,87 +241,188 @@ fn mass_items(inertial: Option<&Inertial>, mass_field: Option<&str>) -> String {
     )
 }
 
-/// The robot as description items.
-pub fn describe(robot: &Robot, fields: &[String]) -> Result<Description, ReadError> {
+/// The names given so far, so that no two items share one.
+#[derive(Default)]
+struct Names(BTreeSet<String>);
+
+impl Names {
+    /// `name` as an identifier, or an error if another item has it.
+    fn unique(&mut self, name: &str, line: u32) -> Result<String, ReadError> {
+        let id = identifier(name);
+        if self.0.insert(id.clone()) {
+            return Ok(id);
+        }
+        Err(error(
+            line,
+            format!(
+                "`{name}` is named `{id}` in the description, which another link, joint or point already is"
+            ),
+        ))
+    }
+}
+
+/// The coordinates: a free root's position first (when `turn`, its
+/// orientation's name, is given), then one per moving, non-mimic joint in
+/// tree order; their limits; and each joint's coordinate.
+struct Coordinates<'r> {
+    names: Vec<String>,
+    limits: Vec<(f64, f64)>,
+    angle_of: BTreeMap<&'r str, String>,
+}
+
+fn coordinates<'r>(
+    order: &[(&'r str, Option<&'r Joint>)],
+    names: &mut Names,
+    turn: Option<&str>,
+) -> Result<Coordinates<'r>, ReadError> {
+    let mut out = Coordinates {
+        names: Vec::new(),
+        limits: Vec::new(),
+        angle_of: BTreeMap::new(),
+    };
+    if turn.is_some() {
+        let root = identifier(order[0].0);
+        for axis in ["x", "y", "z"] {
+            out.names.push(names.unique(&format!("{root}_{axis}"), 0)?);
+            out.limits.push((f64::NEG_INFINITY, f64::INFINITY));
+        }
+    }
+    for (_, joint) in order {
+        let Some(j) = joint else { continue };
+        if matches!(j.kind, JointType::Fixed) || j.mimic.is_some() {
+            continue;
+        }
+        let q = names.unique(&j.name, j.line)?;
+        out.angle_of.insert(j.name.as_str(), q.clone());
+        out.names.push(q);
+        out.limits
+            .push(j.limits.unwrap_or((f64::NEG_INFINITY, f64::INFINITY)));
+    }
+    Ok(out)
+}
+
+/// The robot as description items; `floating` puts the root link on a free
+/// joint: coordinates `<root>_x`, `_y`, `_z` for its origin in world axes
+/// (first, as Pinocchio's free flyer), an orientation `<root>_turn` for its
+/// rotation, which every other link's rotation begins with.
+pub fn describe(
+    robot: &Robot,
+    fields: &[String],
+    floating: bool,
+) -> Result<Description, ReadError> {
+    let freed = free_root(robot)?;
+    let (robot, floating) = match &freed {
+        Some(r) => (r, true),
+        None => (robot, floating),
+    };
     let order = tree_order(robot)?;
     let inertials: BTreeMap<&str, Option<&Inertial>> = robot
         .links
         .iter()
         .map(|l| (l.name.as_str(), l.inertial.as_ref()))
         .collect();
-    let mut names = BTreeSet::new();
-    let mut unique = |name: &str, line: u32| -> Result<String, ReadError> {
-        let id = identifier(name);
-        if names.insert(id.clone()) {
-            Ok(id)
-        } else {
-            Err(error(
-                line,
-                format!(
-                    "`{name}` is named `{id}` in the description, which another link, joint or point already is"
-                ),
-            ))
-        }
+    let mut names = Names::default();
+    let turn = match floating {
+        true => Some(names.unique(&format!("{}_turn", identifier(order[0].0)), 0)?),
+        false => None,
     };
-    let mut coordinates = Vec::new();
-    let mut limits = Vec::new();
-    let mut angle_of: BTreeMap<&str, String> = BTreeMap::new();
-    for (_, joint) in &order {
-        let Some(j) = joint else { continue };
-        if matches!(j.kind, JointType::Fixed) || j.mimic.is_some() {
-            continue;
-        }
-        let q = unique(&j.name, j.line)?;
-        angle_of.insert(j.name.as_str(), q.clone());
-        coordinates.push(q);
-        limits.push(j.limits.unwrap_or((f64::NEG_INFINITY, f64::INFINITY)));
-    }
-    let mut items = vec![format!("coordinates({})", coordinates.join(", "))];
+    let c = coordinates(&order, &mut names, turn.as_deref())?;
+    let mut items = vec![format!("coordinates({})", c.names.join(", "))];
+    items.extend(turn.iter().map(|t| format!("orientation({t})")));
     let mut factors: BTreeMap<&str, Vec<String>> = BTreeMap::new();
     for (link, joint) in &order {
-        let body = unique(link, 0)?;
+        let body = names.unique(link, 0)?;
         let field = format!("{body}_mass");
         let masses = mass_items(
             inertials[link],
             fields.contains(&field).then_some(field.as_str()),
         );
         let Some(j) = joint else {
-            factors.insert(link, Vec::new());
-            items.push(format!(
-                "body({body}, {masses}, at = [0, 0, 0], rotation = rot_z(0))"
-            ));
+            let (item, mine) = root_body(&body, &masses, turn.as_deref(), &c.names);
+            items.push(item);
+            factors.insert(link, mine);
             continue;
         };
-        let (item, mine) = hang(
-            j,
-            &body,
-            &masses,
-            &factors[j.parent.as_str()],
-            &angle_of,
-            &mut unique,
-        )?;
+        let parent = &factors[j.parent.as_str()];
+        let (item, mine) = hang(j, (&body, &masses), parent, &c.angle_of, &mut names)?;
         items.extend(item);
         factors.insert(link, mine);
     }
     Ok(Description {
         items,
-        coordinates,
-        limits,
+        coordinates: c.names,
+        limits: c.limits,
     })
+}
+
+/// The root link's body and its rotation factors: fixed in space, or on a
+/// free root turned by the orientation `turn` at the first three coordinates.
+fn root_body(
+    body: &str,
+    masses: &str,
+    turn: Option<&str>,
+    coordinates: &[String],
+) -> (String, Vec<String>) {
+    let Some(turn) = turn else {
+        let item = format!("body({body}, {masses}, at = [0, 0, 0], rotation = rot_z(0))");
+        return (item, Vec::new());
+    };
+    let at = coordinates[..3].join(", ");
+    let item = format!("body({body}, {masses}, at = [{at}], rotation = {turn})");
+    (item, vec![turn.to_string()])
+}
+
+/// A file's floating joint puts its child on a free root: the robot without
+/// that joint and its parent (the world link, fixed in space), to be read
+/// with `base = floating`. `None` without a floating joint; an error for one
+/// that does not hang on the tree's root, or for two.
+fn free_root(robot: &Robot) -> Result<Option<Robot>, ReadError> {
+    let floating: Vec<&Joint> = robot
+        .joints
+        .iter()
+        .filter(|j| matches!(j.kind, JointType::Floating))
+        .collect();
+    let Some(&free) = floating.first() else {
+        return Ok(None);
+    };
+    if let Some(second) = floating.get(1) {
+        return Err(error(
+            second.line,
+            format!(
+                "joint `{}` is floating, and so is `{}`: one free root is read, the robot's base",
+                second.name, free.name
+            ),
+        ));
+    }
+    let parent = free.parent.as_str();
+    let siblings = robot.joints.iter().filter(|j| j.parent == parent).count();
+    if robot.joints.iter().any(|j| j.child == parent) || siblings > 1 {
+        return Err(error(
+            free.line,
+            format!(
+                "joint `{}` is floating but `{parent}` is not a bare root holding only it: a \
+                 free joint is read only where it puts the robot's base on a free root",
+                free.name
+            ),
+        ));
+    }
+    let mut out = robot.clone();
+    out.joints.retain(|j| j.name != free.name);
+    out.links.retain(|l| l.name != parent);
+    Ok(Some(out))
 }
 
 /// The point where joint `j` sits on its parent and the child body hung
 /// there, with the child's rotation factors.
 fn hang(
     j: &Joint,
-    body: &str,
-    masses: &str,
+    (body, masses): (&str, &str),
     parent: &[String],
     angle_of: &BTreeMap<&str, String>,
-    unique: &mut impl FnMut(&str, u32) -> Result<String, ReadError>,
+    names: &mut Names,
 ) -> Result<(Vec<String>, Vec<String>), ReadError> {
     let parent_body = identifier(&j.parent);
-    let point = unique(&format!("{}_origin", j.name), j.line)?;
+    let point = names.unique(&format!("{}_origin", j.name), j.line)?;
     let angle = match &j.mimic {
         None => angle_of.get(j.name.as_str()).cloned(),
         Some(m) => {

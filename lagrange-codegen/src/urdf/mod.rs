@@ -15,6 +15,17 @@ use proc_macro2::{Group, Span, TokenStream, TokenTree};
 use syn::parse::ParseStream;
 use syn::{Ident, Token};
 
+/// The options of `urdf("path", ..)`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Options {
+    /// `snap = tol`: angles within `tol` of a multiple of π/2 become it.
+    pub snap: Option<f64>,
+    /// `base = floating`: the root link on a free joint (three coordinates
+    /// for its position, an orientation for its rotation), Pinocchio's
+    /// `JointModelFreeFlyer` root.
+    pub floating: bool,
+}
+
 /// A URDF file read into description items.
 pub struct Urdf {
     /// The file's absolute path (for `include_bytes!`).
@@ -101,33 +112,35 @@ pub fn load(
     manifest_dir: &str,
     path: &str,
     fields: &[String],
-    snap_within: Option<f64>,
+    options: Options,
 ) -> Result<Urdf, String> {
     let full = std::path::Path::new(manifest_dir).join(path);
     let text = std::fs::read_to_string(&full)
         .map_err(|e| format!("cannot read the URDF file `{}`: {e}", full.display()))?;
-    from_text(&text, path, fields, snap_within).map(|mut urdf| {
+    from_text(&text, path, fields, options).map(|mut urdf| {
         urdf.path = full.display().to_string();
         urdf
     })
 }
 
-/// [`load`] for the text of a file named `path`; with `snap_within`, angles
+/// [`load`] for the text of a file named `path`; with `options.snap`, angles
 /// that close to a multiple of π/2 become it (see `snap`). A struct field named
 /// `<link>_mass` (among `fields`) replaces that link's mass.
 pub fn from_text(
     text: &str,
     path: &str,
     fields: &[String],
-    snap_within: Option<f64>,
+    options: Options,
 ) -> Result<Urdf, String> {
     let at = |e: model::ReadError| match e.line {
         0 => format!("{path}: {}", e.message),
         line => format!("{path}:{line}: {}", e.message),
     };
     let mut robot = model::parse(text).map_err(at)?;
-    let snapped = snap_within.map_or_else(Vec::new, |tol| snap(&mut robot, tol));
-    let d = describe::describe(&robot, fields).map_err(at)?;
+    let snapped = options
+        .snap
+        .map_or_else(Vec::new, |tol| snap(&mut robot, tol));
+    let d = describe::describe(&robot, fields, options.floating).map_err(at)?;
     Ok(Urdf {
         path: path.to_string(),
         items: d.items,
@@ -138,30 +151,42 @@ pub fn from_text(
     })
 }
 
-/// The attribute's `urdf = "path"`, or `urdf("path", snap = 1e-6)`: the
-/// path, and the tolerance within which angles snap to multiples of π/2.
-pub fn parse_attribute(input: ParseStream) -> syn::Result<(syn::LitStr, Option<f64>)> {
+/// The attribute's `urdf = "path"`, or `urdf("path", snap = 1e-6, base =
+/// floating)`: the path and the options.
+pub fn parse_attribute(input: ParseStream) -> syn::Result<(syn::LitStr, Options)> {
+    let mut options = Options::default();
     if input.peek(Token![=]) {
         input.parse::<Token![=]>()?;
-        return Ok((input.parse()?, None));
+        return Ok((input.parse()?, options));
     }
     let content;
     syn::parenthesized!(content in input);
     let path: syn::LitStr = content.parse()?;
-    if content.is_empty() {
-        return Ok((path, None));
+    while !content.is_empty() {
+        content.parse::<Token![,]>()?;
+        if content.is_empty() {
+            break;
+        }
+        let key: Ident = content.parse()?;
+        content.parse::<Token![=]>()?;
+        match key.to_string().as_str() {
+            "snap" => options.snap = Some(snap_tolerance(&content)?),
+            "base" => options.floating = floating_base(&content)?,
+            _ => {
+                return Err(syn::Error::new(
+                    key.span(),
+                    format!(
+                        "unknown `urdf` option `{key}`; the options are `snap = tolerance` (angles that close to a multiple of π/2 become it) and `base = floating` (the root link on a free joint)"
+                    ),
+                ));
+            }
+        }
     }
-    content.parse::<Token![,]>()?;
-    let key: Ident = content.parse()?;
-    if key != "snap" {
-        return Err(syn::Error::new(
-            key.span(),
-            format!(
-                "unknown `urdf` option `{key}`; the option is `snap = tolerance` (angles that close to a multiple of π/2 become it)"
-            ),
-        ));
-    }
-    content.parse::<Token![=]>()?;
+    Ok((path, options))
+}
+
+/// `snap = tol`: a positive, finite tolerance.
+fn snap_tolerance(content: ParseStream) -> syn::Result<f64> {
     let tol: syn::LitFloat = content.parse()?;
     let value: f64 = tol.base10_parse()?;
     if !(value.is_finite() && value > 0.0) {
@@ -170,5 +195,20 @@ pub fn parse_attribute(input: ParseStream) -> syn::Result<(syn::LitStr, Option<f
             "`snap` needs a positive, finite tolerance, such as 1e-6",
         ));
     }
-    Ok((path, Some(value)))
+    Ok(value)
+}
+
+/// `base = floating` or `base = fixed`.
+fn floating_base(content: ParseStream) -> syn::Result<bool> {
+    let kind: Ident = content.parse()?;
+    match kind.to_string().as_str() {
+        "floating" => Ok(true),
+        "fixed" => Ok(false),
+        _ => Err(syn::Error::new(
+            kind.span(),
+            format!(
+                "unknown base `{kind}`: write `base = floating` (a free root joint) or `base = fixed` (the default)"
+            ),
+        )),
+    }
 }

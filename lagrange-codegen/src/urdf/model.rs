@@ -54,6 +54,9 @@ pub enum JointType {
     Continuous,
     Prismatic,
     Fixed,
+    /// Six degrees of freedom: read only as the joint that puts the robot's
+    /// base on a free root (see `describe::free_root`).
+    Floating,
 }
 
 /// `<mimic joint=".." multiplier=".." offset="..">`.
@@ -79,6 +82,7 @@ pub struct Joint {
     pub mimic: Option<Mimic>,
 }
 
+#[derive(Clone)]
 pub struct Robot {
     pub name: String,
     pub links: Vec<Link>,
@@ -229,15 +233,7 @@ fn joint_type(doc: &Document, node: Node, name: &str) -> Result<JointType, ReadE
         "continuous" => JointType::Continuous,
         "prismatic" => JointType::Prismatic,
         "fixed" => JointType::Fixed,
-        "floating" => {
-            return Err(error(
-                line_of(doc, node),
-                format!(
-                    "joint `{name}` is floating: a free root is not supported yet; fix the \
-                     robot's base (make the joint fixed) or describe the free body by hand"
-                ),
-            ));
-        }
+        "floating" => JointType::Floating,
         other => {
             return Err(error(
                 line_of(doc, node),
