@@ -309,8 +309,11 @@
 //! quaternions, and [`Linearizer::tangent_driven`] linearises with
 //! B = [0; M⁻¹ ∂Q/∂u] (2·N × P).
 //!
+//! `emit(kinematics)` gives the frames' Jacobians with v's columns (an
+//! orientation's three: body-axis ω) and J̇ q̇ at v̇ = 0.
+//!
 //! Not yet with an orientation: the reduced form (`speeds`,
-//! `formulation(reduced)`) and the other `emit(..)` outputs (each a
+//! `formulation(reduced)`), `emit(coriolis)` and `emit(hamiltonian)` (each a
 //! compile error at the orientation); [`StateFeedback`]
 //! (whose q − q₀ has no meaning for a quaternion: write the law as a
 //! `feedback` closure on the quaternion's error) and the constrained

@@ -16,8 +16,8 @@
 mod floating;
 
 use floating::{Quadruped, Satellite};
-use lagrange::Route;
 use lagrange::prelude::*;
+use lagrange::{Kinematics, Route};
 use nalgebra::{Quaternion, SVector, UnitQuaternion, Vector3};
 
 const REFERENCE: &str = include_str!("data/floating_pinocchio.txt");
@@ -150,7 +150,7 @@ fn a_quadruped_matches_pinocchio_s_free_flyer() {
 #[lagrange(
     urdf("robots/solo12.urdf", base = floating),
     gravity = [0, 0, -9.81],
-    emit(articulated, inverse_dynamics, jacobians)
+    emit(articulated, inverse_dynamics, jacobians, kinematics)
 )]
 struct Solo12 {}
 
@@ -161,6 +161,19 @@ fn solo_12_from_its_urdf_on_a_free_root_matches_pinocchio() {
         &["base_link_x", "base_link_y", "base_link_z", "FL_HAA"]
     );
     agrees_with_pinocchio::<_, 18, 19>("solo12", &Solo12 {});
+    // The front-left foot's frame: its Jacobian in world-aligned axes (the
+    // columns this crate's velocities) and J̇ q̇, against Pinocchio's
+    // getFrameJacobian and getFrameClassicalAcceleration (LOCAL_WORLD_ALIGNED).
+    let foot = <Solo12 as Kinematics<f64, 18, 19>>::body_index("FL_FOOT").expect("a link");
+    for k in 0..2 {
+        let at = |key: &str| reference("solo12", k, key);
+        let (q, v) = from_pinocchio::<18, 19>(&at("q_pin"), &at("v_pin"), &at("perm"));
+        let j = Solo12 {}.frame_jacobian(foot, &q, 0.0).expect("a body");
+        let rows: Vec<f64> = j.transpose().iter().copied().collect();
+        assert_close(&format!("foot {k} J"), &rows, &at("foot_J"));
+        let bias = Solo12 {}.frame_bias(foot, &q, &v, 0.0).expect("a body");
+        assert_close(&format!("foot {k} J'v"), bias.as_slice(), &at("foot_bias"));
+    }
 }
 
 #[test]

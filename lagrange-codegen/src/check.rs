@@ -49,11 +49,10 @@ fn check_orientations(cx: &Ctxt, system: &System) {
         Extra::Articulated,
         Extra::InverseDynamics,
         Extra::Jacobians,
+        Extra::Kinematics,
     ];
     if system.extras.iter().any(|(_, e)| !supported.contains(e)) {
-        not_yet.push(
-            "`emit(...)` other than `reactions`, `articulated`, `inverse_dynamics` and `jacobians`",
-        );
+        not_yet.push("`emit(coriolis)` or `emit(hamiltonian)`");
     }
 
     if !not_yet.is_empty() {

@@ -115,20 +115,22 @@ pub trait Posed<T: Real, const N: usize, const Q: usize = N> {
 /// robot code calls them; `#[derive(Lagrangian)]` implements it with
 /// `emit(kinematics)`. A frame is a body's: its origin (the reference point)
 /// and its axes; `body` indexes [`Posed::BODIES`]. Everything is at a fixed
-/// time: a rheonomic description's explicit ∂/∂t terms are left out.
-pub trait Kinematics<T: Real, const N: usize>: Posed<T, N> {
+/// time: a rheonomic description's explicit ∂/∂t terms are left out. With
+/// orientations (Q ≠ N) q holds the quaternions and the Jacobians' columns
+/// are v's: an orientation's three the body-axis ω (the tangent space).
+pub trait Kinematics<T: Real, const N: usize, const Q: usize = N>: Posed<T, N, Q> {
     /// The geometric Jacobian of the frame at its origin in world-aligned
     /// axes: rows 0–2 map q̇ to the origin's velocity, rows 3–5 to the
     /// angular velocity (Pinocchio's `LOCAL_WORLD_ALIGNED`). `None` for an
     /// index past the bodies.
-    fn frame_jacobian(&self, body: usize, q: &SVector<T, N>, t: T) -> Option<SMatrix<T, 6, N>>;
+    fn frame_jacobian(&self, body: usize, q: &SVector<T, Q>, t: T) -> Option<SMatrix<T, 6, N>>;
 
     /// J̇ q̇ of the frame: the origin's classical acceleration and the angular
     /// acceleration at q̈ = 0, so that the frame's acceleration is J q̈ + J̇ q̇.
     fn frame_bias(
         &self,
         body: usize,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         t: T,
     ) -> Option<SVector<T, 6>>;
@@ -136,10 +138,10 @@ pub trait Kinematics<T: Real, const N: usize>: Posed<T, N> {
     /// The centre of mass of the moving masses: a mass fixed in space (a
     /// robot's base) moves with nothing and is left out, as Pinocchio's
     /// `centerOfMass` leaves out the universe's.
-    fn center_of_mass(&self, q: &SVector<T, N>, t: T) -> Vector3<T>;
+    fn center_of_mass(&self, q: &SVector<T, Q>, t: T) -> Vector3<T>;
 
     /// ∂(centre of mass)/∂q.
-    fn center_of_mass_jacobian(&self, q: &SVector<T, N>, t: T) -> SMatrix<T, 3, N>;
+    fn center_of_mass_jacobian(&self, q: &SVector<T, Q>, t: T) -> SMatrix<T, 3, N>;
 
     /// The frame Jacobian in the frame's own axes (Pinocchio's `LOCAL`):
     /// [`frame_jacobian`](Self::frame_jacobian) with both blocks turned by Rᵀ,
@@ -148,7 +150,7 @@ pub trait Kinematics<T: Real, const N: usize>: Posed<T, N> {
     fn frame_jacobian_local(
         &self,
         body: usize,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         t: T,
     ) -> Option<SMatrix<T, 6, N>> {
         let world = self.frame_jacobian(body, q, t)?;

@@ -93,9 +93,27 @@ def ours(model, q_pin, v_pin, a_ours, perm):
     gravity = P.T @ pin.computeGeneralizedGravity(model, data, q_pin)
     q = np.concatenate([q_pin[0:3], q_pin[7:][perm], [w, x, y, z]])
     dq, dv = tangent_derivatives(model, data, q_pin, v_pin, R, perm)
-    return {"q_pin": q_pin, "v_pin": v_pin, "q": q, "v": v, "M": M.ravel(), "rhs": rhs,
+    frame = {}
+    if model.existFrame("FL_FOOT"):
+        frame = foot(model, data, q_pin, v_pin, P, pdot_v)
+    return frame | {"q_pin": q_pin, "v_pin": v_pin, "q": q, "v": v, "M": M.ravel(), "rhs": rhs,
             "accel": accel, "a": a_ours, "tau": tau, "gravity": gravity,
             "dadq": dq.ravel(), "dadv": dv.ravel(), "perm": np.array(perm, float)}
+
+
+def foot(model, data, q_pin, v_pin, P, pdot_v):
+    """The FL_FOOT frame's Jacobian (LOCAL_WORLD_ALIGNED) in this crate's
+    velocities, J P, and its classical acceleration at v̇ = 0 (Pinocchio's
+    acceleration Ṗ v then)."""
+    fid = model.getFrameId("FL_FOOT")
+    frame = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+    pin.computeJointJacobians(model, data, q_pin)
+    pin.updateFramePlacements(model, data)
+    J = pin.getFrameJacobian(model, data, fid, frame) @ P
+    pin.forwardKinematics(model, data, q_pin, v_pin, pdot_v)
+    pin.updateFramePlacements(model, data)
+    bias = pin.getFrameClassicalAcceleration(model, data, fid, frame).vector
+    return {"foot_J": J.ravel(), "foot_bias": bias}
 
 
 def skew(u):

@@ -39,6 +39,7 @@ pub(super) fn impl_kinematics(e: &Emitter, f: &Frame, model: &Model) -> TokenStr
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     let p = quote!(::lagrange::__private);
     let vec_n = quote!(#p::SVector<#s, #nl>);
+    let (qvec, sizes) = (f.qvec(), f.sizes());
     let jacobian = per_body(
         e,
         &frames.jacobians,
@@ -54,21 +55,21 @@ pub(super) fn impl_kinematics(e: &Emitter, f: &Frame, model: &Model) -> TokenStr
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, clippy::all)]
-        impl #ig #p::Kinematics<#s, #nl> for #ident #tg #wc {
-            fn frame_jacobian(&self, body: usize, q: &#vec_n, t: #s) -> ::core::option::Option<#p::SMatrix<#s, 6, #nl>> {
+        impl #ig #p::Kinematics<#s, #sizes> for #ident #tg #wc {
+            fn frame_jacobian(&self, body: usize, q: &#qvec, t: #s) -> ::core::option::Option<#p::SMatrix<#s, 6, #nl>> {
                 #jacobian
             }
 
-            fn frame_bias(&self, body: usize, q: &#vec_n, v: &#vec_n, t: #s) -> ::core::option::Option<#p::SVector<#s, 6>> {
+            fn frame_bias(&self, body: usize, q: &#qvec, v: &#vec_n, t: #s) -> ::core::option::Option<#p::SVector<#s, 6>> {
                 #bias
             }
 
-            fn center_of_mass(&self, q: &#vec_n, t: #s) -> #p::Vector3<#s> {
+            fn center_of_mass(&self, q: &#qvec, t: #s) -> #p::Vector3<#s> {
                 #com_lets
                 #p::Vector3::new(#(#com),*)
             }
 
-            fn center_of_mass_jacobian(&self, q: &#vec_n, t: #s) -> #p::SMatrix<#s, 3, #nl> {
+            fn center_of_mass_jacobian(&self, q: &#qvec, t: #s) -> #p::SMatrix<#s, 3, #nl> {
                 #jc_lets
                 #p::SMatrix::<#s, 3, #nl>::from_row_slice(&[#(#jc),*])
             }

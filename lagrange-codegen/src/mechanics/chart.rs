@@ -11,8 +11,8 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::Derived;
 use super::model::InputModel;
+use super::{Derived, Frames};
 use crate::constraint::ConstraintSet;
 use crate::lowered::{OrientationModel, Poses};
 use crate::mat3::Mat3;
@@ -26,6 +26,7 @@ pub(super) fn at_centre(
     ctx: &mut Context,
     d: &mut Derived,
     constraints: Option<&mut ConstraintSet>,
+    frames: Option<&mut Frames>,
 ) {
     if d.orientations.is_empty() {
         return;
@@ -47,15 +48,20 @@ pub(super) fn at_centre(
         c.all(&mut a.accelerations);
         c.all(&mut a.pivots);
     }
+    // Derivatives are substituted only: R(θ) → 1 makes most of their terms
+    // vanish at construction, and collecting a few hundred of them costs
+    // seconds of build time for no fewer operations.
     if let Some([jq, jv]) = &mut d.jacobians {
-        // Substituted only: R(θ) → 1 makes most of the derivatives' terms
-        // vanish at construction, and collecting a few hundred of them
-        // costs seconds of build time for no fewer operations.
         for row in jq.iter_mut().chain(jv.iter_mut()) {
-            for e in row {
-                *e = c.ctx.substitute(*e, c.at);
-            }
+            c.substituted(row);
         }
+    }
+    if let Some(f) = frames {
+        for row in f.jacobians.iter_mut().chain(f.biases.iter_mut()) {
+            c.substituted(row);
+        }
+        c.substituted(&mut f.com);
+        c.substituted(&mut f.com_jacobian);
     }
     if let Some(i) = &mut d.inverse {
         c.all(&mut i.torques);
@@ -146,6 +152,13 @@ impl AtCentre<'_> {
             }
         }
         best
+    }
+
+    /// θ = 0 substituted, nothing expanded.
+    pub fn substituted(&mut self, v: &mut [Sym]) {
+        for e in v {
+            *e = self.ctx.substitute(*e, self.at);
+        }
     }
 
     pub fn all(&mut self, v: &mut [Sym]) {

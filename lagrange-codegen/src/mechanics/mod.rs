@@ -437,13 +437,16 @@ fn finish(
     c: Constrained,
     extras: &[Extra],
 ) -> Result<Model, DeriveError> {
-    // With orientations the constraint rows are derived in θ (Ġ and γ need
-    // their θ-derivatives) and taken at the centre with everything else
-    // (their derivatives for `emit(jacobians)` would be in θ: refused there).
+    // With orientations the constraint rows (Ġ and γ need their
+    // θ-derivatives; theirs for `emit(jacobians)` would be in θ: not built)
+    // and the frames (derivatives of the poses) are derived in θ, then taken
+    // at the centre with everything else.
+    let wants = |e: Extra| extras.contains(&e);
     let mut early =
         (!d.orientations.is_empty() && c.multipliers).then(|| multiplier_form(&mut ctx, &c, false));
-    chart::at_centre(&mut ctx, &mut d, early.as_mut());
-    let wants = |e: Extra| extras.contains(&e);
+    let mut frames =
+        wants(Extra::Kinematics).then(|| frames::frames(&mut ctx, &d.poses, &d.particles));
+    chart::at_centre(&mut ctx, &mut d, early.as_mut(), frames.as_mut());
     let Motion {
         mass,
         bias,
@@ -456,7 +459,6 @@ fn finish(
         let (q, qd) = (ctx.coordinates(), ctx.velocities());
         extra::coriolis_matrix(&mut ctx, &mass, &q, &qd)
     });
-    let jacobians = d.jacobians;
     let hamiltonian = wants(Extra::Hamiltonian);
     let momentum = (hamiltonian || d.rheonomic).then(|| extra::momentum(&mut ctx, d.kinetic));
     let kinetic_gradient = hamiltonian.then(|| extra::kinetic_gradient(&mut ctx, d.kinetic));
@@ -466,7 +468,6 @@ fn finish(
     });
     let reduced = reduced_if_asked(&mut ctx, &c, &d.coordinates, wants(Extra::Jacobians))?;
     let articulated = d.forces.articulated;
-    let frames = wants(Extra::Kinematics).then(|| frames::frames(&mut ctx, &d.poses, &d.particles));
     let hoisted = hoist(
         &mut ctx,
         &mass,
@@ -493,7 +494,7 @@ fn finish(
         constraints,
         reduced,
         coriolis,
-        jacobians,
+        jacobians: d.jacobians,
         momentum,
         kinetic_gradient,
         frames,
