@@ -141,6 +141,7 @@ fn robots() {
         ("panda.urdf", ""),
         ("ur10.urdf", ""),
         ("kinova.urdf", ""),
+        ("kinova.urdf", ", snap = 1e-6"),
         ("z1.urdf", ""),
         ("xarm7.urdf", ""),
     ] {
