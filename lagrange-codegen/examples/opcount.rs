@@ -132,13 +132,18 @@ fn main() {
 /// of M and Q − h by each route, and how long each derivation took.
 fn robots() {
     println!(
-        "\n| robot (URDF) | dof | recursive: derive (ms), ops | generic: derive (ms), ops | route taken |"
+        "\n| robot (URDF) | dof | recursive: derive (ms), ops | generic: derive (ms), ops | emitted: ops, route (`ROUTE`) |"
     );
     println!("|---|---|---|---|---|");
     for (file, snap) in [
         ("ur5.urdf", ""),
         ("ur5.urdf", ", snap = 1e-6"),
         ("panda.urdf", ""),
+        ("ur10.urdf", ""),
+        ("kinova.urdf", ""),
+        ("kinova.urdf", ", snap = 1e-6"),
+        ("z1.urdf", ""),
+        ("xarm7.urdf", ""),
     ] {
         let src = format!(
             "#[lagrange(urdf(\"{}/../robots/{file}\"{snap}), gravity = [0, 0, -9.81])] struct Robot {{}}",
@@ -157,10 +162,16 @@ fn robots() {
         let (rm, rops, model) = by(Route::Recursive);
         let (gm, gops, _) = by(Route::Generic);
         let auto = lagrange_codegen::model_by(&input, Route::Auto).expect("derivation succeeds");
+        let mut outputs: Vec<Expr> = auto.mass.iter().flatten().copied().collect();
+        outputs.extend(&auto.rhs);
+        let route = auto
+            .route_reason
+            .as_deref()
+            .map_or("recursive".into(), |why| format!("generic: {why}"));
         println!(
-            "| {file} | {} | {rm:.0}, {rops} | {gm:.0}, {gops} | {:?} |",
+            "| {file} | {} | {rm:.0}, {rops} | {gm:.0}, {gops} | {}, {route} |",
             model.dof(),
-            auto.bias_route
+            ops(&auto, &outputs),
         );
     }
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds and runs the Pinocchio peer of the `urdf` bench on the robots in
+# Builds and runs the Pinocchio peer of the `urdf` bench on the six arms in
 # `robots/` (PyPI `pin` for Pinocchio, Debian's Eigen headers):
 #   pip install pin && apt-get install libeigen3-dev
 #   lagrange-bench/peer/pinocchio/urdf.sh
