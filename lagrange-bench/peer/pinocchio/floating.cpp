@@ -18,14 +18,7 @@
 
 namespace pin = pinocchio;
 
-template <class F>
-static double ns_per_call(F f, int calls) {
-  for (int i = 0; i < calls / 10; ++i) f();  // warm up
-  const auto start = std::chrono::steady_clock::now();
-  for (int i = 0; i < calls; ++i) f();
-  const auto end = std::chrono::steady_clock::now();
-  return std::chrono::duration<double, std::nano>(end - start).count() / calls;
-}
+#include "timing.hpp"
 
 static Eigen::Matrix3d diag(double a, double b, double c) { return Eigen::Vector3d(a, b, c).asDiagonal().toDenseMatrix(); }
 

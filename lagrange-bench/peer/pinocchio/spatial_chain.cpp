@@ -36,14 +36,7 @@ static pin::Model chain(int n) {
   return model;
 }
 
-template <class F>
-static double ns_per_call(F f, int calls) {
-  for (int i = 0; i < calls / 10; ++i) f();  // warm up
-  const auto start = std::chrono::steady_clock::now();
-  for (int i = 0; i < calls; ++i) f();
-  const auto end = std::chrono::steady_clock::now();
-  return std::chrono::duration<double, std::nano>(end - start).count() / calls;
-}
+#include "timing.hpp"
 
 int main(int argc, char** argv) {
   std::printf("| n | Pinocchio CRBA + NLE (ns) | Pinocchio ABA (ns) | M[0][0] | (Q - h)[0] |\n");

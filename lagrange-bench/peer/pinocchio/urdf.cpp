@@ -23,14 +23,7 @@ namespace pin = pinocchio;
 
 #include URDF_MODELS
 
-template <class F>
-static double ns_per_call(F f, int calls) {
-  for (int i = 0; i < calls / 10; ++i) f();  // warm up
-  const auto start = std::chrono::steady_clock::now();
-  for (int i = 0; i < calls; ++i) f();
-  const auto end = std::chrono::steady_clock::now();
-  return std::chrono::duration<double, std::nano>(end - start).count() / calls;
-}
+#include "timing.hpp"
 
 // The bench's state, by velocity index: q_k = 0.3 − 0.17 k, q̇_k = 0.5 − 0.21 k
 // on the arm's `arm` coordinates, the rest (fingers) at 0.02 and at rest.
