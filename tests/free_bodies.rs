@@ -6,9 +6,12 @@
 #[path = "../examples/catalog/mod.rs"]
 mod catalog;
 mod common;
+#[path = "../examples/catalog/floating.rs"]
+mod floating;
 
 use catalog::free::{Brick, QuaternionTop, flip_half_period};
 use common::numeric::Lcg;
+use floating::FloatingArm;
 use lagrange::prelude::*;
 use nalgebra::{Matrix3, SVector, Vector3};
 use std::f64::consts::PI;
@@ -360,28 +363,6 @@ fn spherical_joints_in_a_chain_are_the_euler_angle_chain_where_it_is_regular() {
             );
         }
     }
-}
-
-/// A hub on a free-flyer joint with a two-joint arm: the same floating base
-/// in Pinocchio (`lagrange-bench/peer/pinocchio/free_flyer_reference.py`,
-/// `JointModelFreeFlyer`, q = (x, y, z, qx, qy, qz, qw, ..), v in the hub's
-/// axes), its M and q̈ mapped to this description's convention (world-axis
-/// ẋ, body-axis ω, the quaternion scalar first).
-#[derive(Lagrangian)]
-#[lagrange(
-    coordinates(x, y, z, j1, j2),
-    orientation(base),
-    body(hub, mass = 5.0, inertia = [0.4, 0.5, 0.6], at = [x, y, z], rotation = base),
-    point(shoulder, on = hub, at = [0.3, 0.1, 0.2]),
-    body(upper, mass = 1.5, inertia = [0.01, 0.05, 0.05], com = [0.2, 0, 0],
-         at = [shoulder.x, shoulder.y, shoulder.z], rotation = base * rot_z(j1)),
-    point(elbow, on = upper, at = [0.4, 0, 0]),
-    body(fore, mass = 1.0, inertia = [0.005, 0.02, 0.02], com = [0.15, 0, 0],
-         at = [elbow.x, elbow.y, elbow.z], rotation = base * rot_z(j1) * rot_y(j2)),
-    gravity = [0, 0, -g],
-)]
-struct FloatingArm {
-    g: f64,
 }
 
 const PINOCCHIO_Q: [f64; 9] = [

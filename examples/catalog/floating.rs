@@ -1,5 +1,6 @@
 //! Floating-base trees: a quadruped (a trunk on a free joint, four legs of
-//! three joints) and a satellite carrying a six-joint arm (included by path
+//! three joints), a satellite carrying a six-joint arm and a hub with a
+//! two-joint arm (included by path
 //! where used, not by the catalog's `mod.rs`, so the gallery does not build
 //! them). Both are the
 //! recursive route's floating bases (three sliding joints and a spherical one
@@ -95,5 +96,27 @@ pub struct Quadruped {
     emit(articulated, inverse_dynamics, jacobians),
 )]
 pub struct Satellite {
+    pub g: f64,
+}
+
+/// A hub on a free-flyer joint with a two-joint arm: the same floating base
+/// in Pinocchio (`lagrange-bench/peer/pinocchio/free_flyer_reference.py`,
+/// `JointModelFreeFlyer`, q = (x, y, z, qx, qy, qz, qw, ..), v in the hub's
+/// axes), its M and q̈ mapped to this description's convention (world-axis
+/// ẋ, body-axis ω, the quaternion scalar first).
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, z, j1, j2),
+    orientation(base),
+    body(hub, mass = 5.0, inertia = [0.4, 0.5, 0.6], at = [x, y, z], rotation = base),
+    point(shoulder, on = hub, at = [0.3, 0.1, 0.2]),
+    body(upper, mass = 1.5, inertia = [0.01, 0.05, 0.05], com = [0.2, 0, 0],
+         at = [shoulder.x, shoulder.y, shoulder.z], rotation = base * rot_z(j1)),
+    point(elbow, on = upper, at = [0.4, 0, 0]),
+    body(fore, mass = 1.0, inertia = [0.005, 0.02, 0.02], com = [0.15, 0, 0],
+         at = [elbow.x, elbow.y, elbow.z], rotation = base * rot_z(j1) * rot_y(j2)),
+    gravity = [0, 0, -g],
+)]
+pub struct FloatingArm {
     pub g: f64,
 }

@@ -92,22 +92,6 @@ fn by_hand(top: &Top, q: &Vector4<f64>, w: &Vector3<f64>) -> (Matrix3<f64>, Vect
     )
 }
 
-/// The floating base of `tests/free_bodies.rs` and the peer.
-#[derive(Lagrangian)]
-#[lagrange(
-    coordinates(x, y, z, j1, j2),
-    orientation(base),
-    body(hub, mass = 5.0, inertia = [0.4, 0.5, 0.6], at = [x, y, z], rotation = base),
-    point(shoulder, on = hub, at = [0.3, 0.1, 0.2]),
-    body(upper, mass = 1.5, inertia = [0.01, 0.05, 0.05], com = [0.2, 0, 0],
-         at = [shoulder.x, shoulder.y, shoulder.z], rotation = base * rot_z(j1)),
-    point(elbow, on = upper, at = [0.4, 0, 0]),
-    body(fore, mass = 1.0, inertia = [0.005, 0.02, 0.02], com = [0.15, 0, 0],
-         at = [elbow.x, elbow.y, elbow.z], rotation = base * rot_z(j1) * rot_y(j2)),
-    gravity = [0, 0, -9.81],
-)]
-struct FloatingArm {}
-
 fn free(c: &mut Criterion) {
     let top = Top {
         m: 1.5,
@@ -127,7 +111,7 @@ fn free(c: &mut Criterion) {
         b.iter(|| by_hand(&top, black_box(&q), black_box(&w)))
     });
     group.finish();
-    let arm = FloatingArm {};
+    let arm = floating::FloatingArm { g: 9.81 };
     let q = SVector::<f64, 9>::from([
         0.1,
         -0.2,
