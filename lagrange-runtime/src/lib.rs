@@ -177,6 +177,7 @@
 
 // The layers, bottom to top; each imports only from the layers above it in
 // this list (ARCHITECTURE.md has the map, tests/layers.rs holds it true).
+pub mod atlas;
 pub mod control;
 #[cfg(feature = "parallel")]
 pub mod ensemble;
@@ -221,5 +222,7 @@ pub use scene::Scene;
 pub use simulation::{ControlRun, ControlledSimulation, EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::physical;
+pub use atlas::{AtlasRun, ChartSwitch};
+pub use system::{Atlas, EulerRotation, FreeVisitor};
 pub use system::{Constrained, Driven, FormVisitor, Lagrangian, Reduced, Route};
 pub use table::Table;

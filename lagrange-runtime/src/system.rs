@@ -9,10 +9,12 @@ use crate::numeric::Real;
 use crate::numeric::orientation::Orientation;
 use nalgebra::{SMatrix, SVector};
 
+mod atlas;
 mod form;
 pub mod physical;
 mod route;
 
+pub use atlas::{Atlas, EulerRotation, FreeVisitor};
 pub use form::FormVisitor;
 pub use route::Route;
 

@@ -7,6 +7,7 @@
 pub(crate) mod cholesky;
 pub(crate) mod clock;
 pub(crate) mod elimination;
+pub mod euler;
 pub mod func;
 pub(crate) mod lu;
 pub mod orientation;

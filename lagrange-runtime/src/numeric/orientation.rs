@@ -243,6 +243,30 @@ pub fn rotation_matrix<T: Real>([w, x, y, z]: [T; 4]) -> [[T; 3]; 3] {
     ]
 }
 
+/// The unit quaternion (w ≥ 0) of a rotation matrix given row by row, by
+/// Shepperd's method: the largest of 1 + trace and 1 + 2 R_kk − trace is the
+/// one square root taken, so no component is found by cancellation.
+pub fn from_rotation_matrix<T: Real>(r: [[T; 3]; 3]) -> [T; 4] {
+    let (one, quarter) = (T::one(), T::lit(0.25));
+    let trace = r[0][0] + r[1][1] + r[2][2];
+    let diagonal = [0, 1, 2].map(|k| one + T::lit(2.0) * r[k][k] - trace);
+    let big = (0..3).fold(3, |best, k| {
+        let current = if best == 3 { one + trace } else { diagonal[best] };
+        if diagonal[k] > current { k } else { best }
+    });
+    // (w, x, y, z) times 4·(the largest component).
+    let scaled = match big {
+        3 => [one + trace, r[2][1] - r[1][2], r[0][2] - r[2][0], r[1][0] - r[0][1]],
+        0 => [r[2][1] - r[1][2], diagonal[0], r[0][1] + r[1][0], r[0][2] + r[2][0]],
+        1 => [r[0][2] - r[2][0], r[0][1] + r[1][0], diagonal[1], r[1][2] + r[2][1]],
+        _ => [r[1][0] - r[0][1], r[0][2] + r[2][0], r[1][2] + r[2][1], diagonal[2]],
+    };
+    let largest = if big == 3 { one + trace } else { diagonal[big] };
+    let k = quarter / sqrt(largest * quarter);
+    let sign = if scaled[0] < T::zero() { -k } else { k };
+    scaled.map(|x| x * sign)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -318,6 +342,17 @@ mod tests {
                 let dot: f64 = (0..3).map(|k| r[k][i] * r[k][j]).sum();
                 let expected = if i == j { 1.0 } else { 0.0 };
                 assert!((dot - expected).abs() < 1e-15);
+            }
+        }
+    }
+    #[test]
+    fn from_rotation_matrix_inverts_rotation_matrix() {
+        for q in [[0.3, -0.5, 0.2, 0.7], [0.0, 1.0, 0.0, 0.0], [0.01, 0.2, -0.9, 0.3], [1.0, 0.0, 0.0, 0.0]] {
+            let q = unit(q);
+            let back = from_rotation_matrix(rotation_matrix(q));
+            let s = if q[0] < 0.0 { -1.0 } else { 1.0 };
+            for k in 0..4 {
+                assert!((back[k] - s * q[k]).abs() < 1e-15, "{q:?} -> {back:?}");
             }
         }
     }

@@ -1,5 +1,6 @@
 //! The user-facing entry point: system + integrator + initial state → trajectory.
 
+mod atlas;
 mod controlled;
 mod events;
 mod form;

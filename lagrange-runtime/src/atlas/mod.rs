@@ -1,0 +1,287 @@
+//! The atlas: a system written in Euler angles, run through every
+//! orientation by switching each rotation between two charts.
+//!
+//! Each rotation of [`Atlas::EULER`] has the user's chart (its own sequence)
+//! and a second one, the same sequence after the constant turn R_b(π/2)
+//! ([`EulerChart::second`]), whose singular set is disjoint from the first's
+//! (proved in [`crate::numeric::euler`]: s₁² + s₂² ≥ 1 for the two
+//! conditionings). A run leaves the user's chart when its conditioning falls
+//! below [`LEAVE_BELOW`] (the second's is then at least √(1 − 0.25²) ≈ 0.97)
+//! and comes back when it rises above [`RETURN_ABOVE`]: the gap is the
+//! hysteresis that keeps a body hovering near the boundary from switching at
+//! every step. The switches are events ([`crate::event`]), located on the
+//! dense output and followed by a restart, so no step straddles one.
+//!
+//! A switch maps (q, q̇) exactly: the rotation matrix is kept, and so is the
+//! body angular velocity ω = E q̇ (the speeds do not change, only the chart
+//! reading them). In the user's chart on every rotation the dynamics are the
+//! user's own program; otherwise they come from the free twin (each rotation
+//! a quaternion and ω), whose M and h depend on no chart: ω̇ from the twin,
+//! then q̈ = E⁻¹(ω̇ − Ė q̇) in whichever chart each rotation is in.
+
+mod run;
+
+pub use run::{AtlasRun, ChartSwitch};
+pub(crate) use run::integrate;
+
+use crate::error::Error;
+use crate::mechanics::Dynamics;
+use crate::numeric::Real;
+use crate::numeric::euler::EulerChart;
+use crate::numeric::orientation::{self, Orientation};
+use crate::ode::SecondOrder;
+use crate::system::{Atlas, EulerRotation, FreeVisitor, Lagrangian};
+use nalgebra::{Matrix3, SVector, Vector3};
+use std::cell::Cell;
+
+/// A rotation leaves the user's chart when that chart's conditioning (|sin θ|
+/// for z-x-z, |cos θ| for z-y-x) falls below this.
+pub const LEAVE_BELOW: f64 = 0.25;
+/// ... and comes back when it rises above this.
+pub const RETURN_ABOVE: f64 = 0.5;
+
+/// The state in the charts of the moment: the system seen by the integrator
+/// between two switches. Bit k of `second` is set while rotation k is in its
+/// second chart.
+pub(crate) struct Charted<'s, S, T: Real, const N: usize, const F: usize> {
+    dynamics: Dynamics<'s, S, T>,
+    second: Cell<u64>,
+}
+
+impl<'s, S, T, const N: usize, const F: usize> Charted<'s, S, T, N, F>
+where
+    S: Atlas<T, N, F>,
+    T: Real,
+{
+    /// All rotations in the user's charts.
+    pub fn new(dynamics: Dynamics<'s, S, T>) -> Self {
+        Self {
+            dynamics,
+            second: Cell::new(0),
+        }
+    }
+
+    /// Which rotations are in their second chart (bit k for rotation k).
+    pub fn charts(&self) -> u64 {
+        self.second.get()
+    }
+
+    /// Rotation k's chart at the moment.
+    fn chart(&self, k: usize) -> EulerChart {
+        let first = user_chart(&S::EULER[k]);
+        if self.second.get() >> k & 1 == 1 {
+            first.second()
+        } else {
+            first
+        }
+    }
+
+    /// The user's chart's conditioning of rotation k at q (in the charts of
+    /// the moment).
+    pub fn user_conditioning(&self, k: usize, q: &SVector<T, N>) -> T {
+        let r = self.chart(k).matrix(angles(&S::EULER[k], q));
+        user_chart(&S::EULER[k]).conditioning(&r)
+    }
+
+    /// Moves rotation k to its other chart: the same rotation matrix and the
+    /// same ω, read in the other chart. Coming back to the user's chart the
+    /// angles nearest `near` are taken (the user's angles when the rotation
+    /// left, so that ψ and φ go on from where they were, up to 2π).
+    pub fn switch(
+        &self,
+        k: usize,
+        q: &mut SVector<T, N>,
+        v: &mut SVector<T, N>,
+        near: Option<[T; 3]>,
+    ) -> Result<(), Error> {
+        let rotation = &S::EULER[k];
+        let (from, to) = (self.chart(k), self.chart(k).second());
+        let (x, dx) = (angles(rotation, q), angles(rotation, v));
+        let r = from.matrix(x);
+        let omega = from.rates(x) * Vector3::from(dx);
+        let y = to.angles(&r, near);
+        let dy = to
+            .rates(y)
+            .try_inverse()
+            .map(|e| e * omega)
+            .filter(|d| d.iter().all(|z| z.is_finite()))
+            .ok_or_else(|| Error::non_finite(T::zero(), q, v))?;
+        for (j, &i) in rotation.coordinates.iter().enumerate() {
+            q[i] = y[j];
+            v[i] = dy[j];
+        }
+        self.second.set(self.second.get() ^ (1 << k));
+        Ok(())
+    }
+
+    /// The free twin's state at (q, v): the kept coordinates in order, then
+    /// each rotation's quaternion and ω.
+    fn free_state(&self, q: &SVector<T, N>, v: &SVector<T, N>) -> (SVector<T, F>, SVector<T, N>) {
+        let (mut qf, mut vf) = (SVector::<T, F>::zeros(), SVector::<T, N>::zeros());
+        for (p, i) in kept::<S, T, N, F>().enumerate() {
+            qf[p] = q[i];
+            vf[p] = v[i];
+        }
+        let first = N - 3 * S::EULER.len();
+        for (k, rotation) in S::EULER.iter().enumerate() {
+            let chart = self.chart(k);
+            let x = angles(rotation, q);
+            let quaternion = orientation::from_rotation_matrix(rows(&chart.matrix(x)));
+            let omega = chart.rates(x) * Vector3::from(angles(rotation, v));
+            let (at_q, at_v) = (first + 4 * k, first + 3 * k);
+            qf.as_mut_slice()[at_q..at_q + 4].copy_from_slice(&quaternion);
+            vf.as_mut_slice()[at_v..at_v + 3].copy_from_slice(omega.as_slice());
+        }
+        (qf, vf)
+    }
+
+    /// q̈ in the charts of the moment from the twin's ω̇.
+    fn twin_acceleration(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<SVector<T, N>, Error> {
+        let (qf, vf) = self.free_state(q, v);
+        let tolerance = self.dynamics.singular_tolerance();
+        let af = (self.dynamics.system()).visit_free(TwinAcceleration {
+            t,
+            q: &qf,
+            v: &vf,
+            tolerance,
+        })?;
+        let mut a = SVector::<T, N>::zeros();
+        for (p, i) in kept::<S, T, N, F>().enumerate() {
+            a[i] = af[p];
+        }
+        let first = N - 3 * S::EULER.len();
+        for (k, rotation) in S::EULER.iter().enumerate() {
+            let chart = self.chart(k);
+            let (x, dx) = (angles(rotation, q), angles(rotation, v));
+            let dw = Vector3::from_fn(|j, _| af[first + 3 * k + j]);
+            let ddx = chart
+                .rates(x)
+                .try_inverse()
+                .map(|e| e * (dw - chart.rate_bias(x, dx)))
+                .ok_or_else(|| Error::non_finite(t, q, v))?;
+            for (j, &i) in rotation.coordinates.iter().enumerate() {
+                a[i] = ddx[j];
+            }
+        }
+        Ok(a)
+    }
+}
+
+impl<S, T, const N: usize, const F: usize> SecondOrder<T, N> for Charted<'_, S, T, N, F>
+where
+    S: Atlas<T, N, F>,
+    T: Real,
+{
+    fn acceleration(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<SVector<T, N>, Error> {
+        if self.second.get() == 0 {
+            self.dynamics.acceleration(t, q, v)
+        } else {
+            self.twin_acceleration(t, q, v)
+        }
+    }
+
+    /// The energy (or Jacobi integral) of the state, the same function in
+    /// every chart.
+    fn integral(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
+        if self.second.get() == 0 {
+            SecondOrder::integral(&self.dynamics, t, q, v)
+        } else {
+            let (qf, vf) = self.free_state(q, v);
+            (self.dynamics.system()).visit_free(TwinIntegral { t, q: &qf, v: &vf })
+        }
+    }
+}
+
+/// The twin's acceleration at its state.
+struct TwinAcceleration<'x, T: Real, const N: usize, const F: usize> {
+    t: T,
+    q: &'x SVector<T, F>,
+    v: &'x SVector<T, N>,
+    tolerance: T,
+}
+
+impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F>
+    for TwinAcceleration<'_, T, N, F>
+{
+    type Output = Result<SVector<T, N>, Error>;
+    fn visit<L: Lagrangian<T, N, F>>(self, free: &L) -> Self::Output {
+        let dynamics = Dynamics::new(free).with_singular_tolerance(self.tolerance);
+        dynamics.acceleration(self.t, self.q, self.v)
+    }
+}
+
+/// The twin's energy (or Jacobi integral) at its state.
+struct TwinIntegral<'x, T: Real, const N: usize, const F: usize> {
+    t: T,
+    q: &'x SVector<T, F>,
+    v: &'x SVector<T, N>,
+}
+
+impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F> for TwinIntegral<'_, T, N, F> {
+    type Output = T;
+    fn visit<L: Lagrangian<T, N, F>>(self, free: &L) -> T {
+        SecondOrder::integral(&Dynamics::new(free), self.t, self.q, self.v)
+    }
+}
+
+/// The user's chart of a rotation.
+pub(crate) fn user_chart(rotation: &EulerRotation) -> EulerChart {
+    EulerChart {
+        axes: rotation.axes,
+        offset: false,
+    }
+}
+
+/// A rotation's three numbers in q (its angles) or v (their rates).
+pub(crate) fn angles<T: Real, const N: usize>(rotation: &EulerRotation, x: &SVector<T, N>) -> [T; 3] {
+    rotation.coordinates.map(|i| x[i])
+}
+
+/// A matrix row by row.
+pub(crate) fn rows<T: Real>(m: &Matrix3<T>) -> [[T; 3]; 3] {
+    [0, 1, 2].map(|i| [0, 1, 2].map(|j| m[(i, j)]))
+}
+
+/// The coordinates of q that are no rotation's angles, in order: the twin's
+/// first coordinates.
+fn kept<S: Atlas<T, N, F>, T: Real, const N: usize, const F: usize>() -> impl Iterator<Item = usize>
+{
+    (0..N).filter(|i| !S::EULER.iter().any(|r| r.coordinates.contains(i)))
+}
+
+/// Whether the twin's layout is the one documented on [`Atlas`]: checked
+/// once per run, since a hand-written [`Atlas`] could disagree with itself.
+pub(crate) fn layout_agrees<S, T, const N: usize, const F: usize>(system: &S) -> bool
+where
+    S: Atlas<T, N, F>,
+    T: Real,
+{
+    struct Layout;
+    impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F> for Layout {
+        type Output = &'static [Orientation];
+        fn visit<L: Lagrangian<T, N, F>>(self, _: &L) -> &'static [Orientation] {
+            L::ORIENTATIONS
+        }
+    }
+    let n = S::EULER.len();
+    let mut used: Vec<usize> = S::EULER.iter().flat_map(|r| r.coordinates).collect();
+    used.sort_unstable();
+    used.dedup();
+    if F != N + n || n > 64 || used.len() != 3 * n || used.iter().any(|&i| i >= N) {
+        return false;
+    }
+    let first = N - 3 * n;
+    let layout = system.visit_free(Layout);
+    layout.len() == n
+        && (layout.iter().enumerate()).all(|(k, o)| o.q == first + 4 * k && o.v == first + 3 * k)
+}
