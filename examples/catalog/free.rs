@@ -60,6 +60,27 @@ pub struct QuaternionTop {
     pub g: f64,
 }
 
+/// The same top in the user's Euler angles z-x-z (precession ψ, nutation θ,
+/// spin φ) with an atlas: a run through θ = 0, where this chart is singular,
+/// goes on in the second chart and comes back.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(psi, theta, phi),
+    body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+         at = [0, 0, 0], rotation = euler_zxz(psi, theta, phi)),
+    gravity = [0, 0, -g],
+    emit(atlas),
+    shape(top, cylinder(radius = 0.12, length = 0.04, axis = z), at = [0, 0, l]),
+    shape(top, capsule(radius = 0.008, length = 2 * l, axis = z), at = [0, 0, l]),
+)]
+pub struct EulerTop {
+    pub m: f64,
+    pub a: f64,
+    pub c: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
 /// The time between flips of a body spun near its intermediate axis
 /// (principal moments i1 < i2 < i3, angular velocity w with L² > 2 E i2):
 /// half the period 4K(k)/s of Landau–Lifshitz §37, with

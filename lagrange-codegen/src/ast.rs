@@ -88,6 +88,9 @@ pub enum Extra {
     /// The bodies' frame Jacobians and J̇ q̇, the centre of mass and its
     /// Jacobian.
     Kinematics,
+    /// A second chart for each rotation written in Euler angles, through the
+    /// free twin (`crate::atlas`).
+    Atlas,
 }
 
 /// `force(point, [fx, fy, fz])`: a Cartesian force applied at a point.

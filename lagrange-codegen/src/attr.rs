@@ -80,6 +80,7 @@ impl Parse for Item {
                 "articulated" => Some(Extra::Articulated),
                 "inverse_dynamics" => Some(Extra::InverseDynamics),
                 "kinematics" => Some(Extra::Kinematics),
+                "atlas" => Some(Extra::Atlas),
                 _ => None,
             })
             .map(Item::Emit),
@@ -108,7 +109,7 @@ impl Parse for Item {
 }
 
 const FORMULATIONS: &str = "`multipliers` or `reduced`";
-const OUTPUTS: &str = "`reactions`, `coriolis`, `jacobians`, `hamiltonian`, `articulated`, `inverse_dynamics` or `kinematics`";
+const OUTPUTS: &str = "`reactions`, `coriolis`, `jacobians`, `hamiltonian`, `articulated`, `inverse_dynamics`, `kinematics` or `atlas`";
 
 /// `coordinates(q1, q2, ...)`, which must name at least one.
 fn parse_coordinates(input: ParseStream, key: &Ident) -> syn::Result<Vec<Ident>> {

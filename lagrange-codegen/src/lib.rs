@@ -22,6 +22,7 @@
 //! `compile_error!`s plus a stub impl, never a panic.
 
 pub mod ast;
+pub mod atlas;
 pub mod attr;
 pub mod chain;
 pub mod check;
@@ -84,7 +85,13 @@ pub fn expand(input: &DeriveInput) -> TokenStream {
     match build(&cx, &system, mechanics::Route::Auto) {
         Some(model) => {
             let body = emit::impl_lagrangian(&system, &model);
-            quote::quote!(const _: () = { #body };)
+            let atlas = atlas_impl(&cx, &system, &model);
+            if cx.has_errors() {
+                let errors = cx.to_compile_errors();
+                let stub = emit::stub_impl(&system);
+                return quote::quote!(#errors const _: () = { #stub };);
+            }
+            quote::quote!(const _: () = { #body #atlas };)
         }
         None => {
             let errors = cx.to_compile_errors();
@@ -92,6 +99,24 @@ pub fn expand(input: &DeriveInput) -> TokenStream {
             quote::quote!(#errors const _: () = { #stub };)
         }
     }
+}
+
+/// `impl Atlas` and the free twin, if `emit(atlas)` asks for them: the
+/// twin's description goes through the same stages as the user's.
+fn atlas_impl(cx: &Ctxt, system: &ast::System, model: &Model) -> Option<TokenStream> {
+    let (at, _) = system
+        .extras
+        .iter()
+        .find(|(_, e)| *e == ast::Extra::Atlas)?;
+    let (twin, triples) = atlas::twin(cx, system, at)?;
+    let twin_model = build(cx, &twin, mechanics::Route::Auto)?;
+    Some(emit::impl_atlas(
+        system,
+        model,
+        &twin,
+        &twin_model,
+        &triples,
+    ))
 }
 
 /// Runs the stages up to the symbolic model, for tools and benchmarks that want the

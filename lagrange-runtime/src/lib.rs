@@ -194,6 +194,7 @@ pub mod study;
 mod system;
 mod table;
 
+pub use atlas::{AtlasRun, ChartSwitch};
 pub use control::{
     Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,
     StateFeedback,
@@ -222,7 +223,6 @@ pub use scene::Scene;
 pub use simulation::{ControlRun, ControlledSimulation, EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::physical;
-pub use atlas::{AtlasRun, ChartSwitch};
 pub use system::{Atlas, EulerRotation, FreeVisitor};
 pub use system::{Constrained, Driven, FormVisitor, Lagrangian, Reduced, Route};
 pub use table::Table;

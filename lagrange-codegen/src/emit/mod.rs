@@ -5,6 +5,7 @@
 //! partial sums of masses) are computed once. Generated code uses absolute paths
 //! through `::lagrange::__private`, allocates nothing and is deterministic.
 
+mod atlas;
 mod constrained;
 mod driven;
 mod emitter;
@@ -16,6 +17,7 @@ mod posed;
 mod reduced;
 mod stub;
 
+pub use atlas::impl_atlas;
 pub use lagrangian::impl_lagrangian;
 pub use stub::stub_impl;
 

@@ -21,8 +21,8 @@
 
 mod run;
 
-pub use run::{AtlasRun, ChartSwitch};
 pub(crate) use run::integrate;
+pub use run::{AtlasRun, ChartSwitch};
 
 use crate::error::Error;
 use crate::mechanics::Dynamics;
@@ -243,7 +243,10 @@ pub(crate) fn user_chart(rotation: &EulerRotation) -> EulerChart {
 }
 
 /// A rotation's three numbers in q (its angles) or v (their rates).
-pub(crate) fn angles<T: Real, const N: usize>(rotation: &EulerRotation, x: &SVector<T, N>) -> [T; 3] {
+pub(crate) fn angles<T: Real, const N: usize>(
+    rotation: &EulerRotation,
+    x: &SVector<T, N>,
+) -> [T; 3] {
     rotation.coordinates.map(|i| x[i])
 }
 

@@ -109,7 +109,10 @@ impl<T: Real, const N: usize> AtlasRun<T, N> {
 
     /// Rotation k's angular velocity in body axes at point i.
     pub fn angular_velocity(&self, i: usize, k: usize) -> Vector3<T> {
-        let (q, v) = (&self.trajectory.positions()[i], &self.trajectory.velocities()[i]);
+        let (q, v) = (
+            &self.trajectory.positions()[i],
+            &self.trajectory.velocities()[i],
+        );
         let rotation = &self.rotations[k];
         self.chart(i, k).rates(angles(rotation, q)) * Vector3::from(angles(rotation, v))
     }
@@ -181,7 +184,9 @@ where
     };
     if !layout_agrees(charted.dynamics.system()) {
         return Err(unstarted(
-            Error::InvalidSettings("the system's Atlas twin does not have the documented layout".into()),
+            Error::InvalidSettings(
+                "the system's Atlas twin does not have the documented layout".into(),
+            ),
             q0,
             v0,
         ));
@@ -198,9 +203,10 @@ where
         }
     }
     let start = charted.charts();
-    let events = (0..S::EULER.len()).fold(Events::new().max_events(usize::MAX >> 8), |events, k| {
-        events.with(switching(&charted, &left, k))
-    });
+    let events = (0..S::EULER.len())
+        .fold(Events::new().max_events(usize::MAX >> 8), |events, k| {
+            events.with(switching(&charted, &left, k))
+        });
     match events.integrate(integrator, &charted, t0, t1, q, v) {
         Ok(run) => Ok(finish(run, start, S::EULER)),
         Err(failure) => Err(failure.map(|run| finish(run, start, S::EULER))),

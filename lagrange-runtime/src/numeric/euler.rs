@@ -202,9 +202,12 @@ mod tests {
     const ANGLES: [[f64; 3]; 3] = [[0.3, 1.1, -2.0], [-2.9, 0.4, 0.7], [1.7, 2.6, 3.0]];
 
     fn charts() -> impl Iterator<Item = EulerChart> {
-        SEQUENCES
-            .iter()
-            .flat_map(|&s| [EulerChart::new(s).unwrap(), EulerChart::new(s).unwrap().second()])
+        SEQUENCES.iter().flat_map(|&s| {
+            [
+                EulerChart::new(s).unwrap(),
+                EulerChart::new(s).unwrap().second(),
+            ]
+        })
     }
 
     #[test]
@@ -214,7 +217,10 @@ mod tests {
                 let r = chart.matrix(x);
                 for near in [None, Some(x)] {
                     let y = chart.angles(&r, near);
-                    assert!((chart.matrix(y) - r).norm() < 1e-14, "{chart:?} {x:?} {y:?}");
+                    assert!(
+                        (chart.matrix(y) - r).norm() < 1e-14,
+                        "{chart:?} {x:?} {y:?}"
+                    );
                 }
                 let back = chart.angles(&r, Some(x));
                 assert!((0..3).all(|k| (back[k] - x[k]).abs() < 1e-13), "{chart:?}");

@@ -251,15 +251,39 @@ pub fn from_rotation_matrix<T: Real>(r: [[T; 3]; 3]) -> [T; 4] {
     let trace = r[0][0] + r[1][1] + r[2][2];
     let diagonal = [0, 1, 2].map(|k| one + T::lit(2.0) * r[k][k] - trace);
     let big = (0..3).fold(3, |best, k| {
-        let current = if best == 3 { one + trace } else { diagonal[best] };
+        let current = if best == 3 {
+            one + trace
+        } else {
+            diagonal[best]
+        };
         if diagonal[k] > current { k } else { best }
     });
     // (w, x, y, z) times 4·(the largest component).
     let scaled = match big {
-        3 => [one + trace, r[2][1] - r[1][2], r[0][2] - r[2][0], r[1][0] - r[0][1]],
-        0 => [r[2][1] - r[1][2], diagonal[0], r[0][1] + r[1][0], r[0][2] + r[2][0]],
-        1 => [r[0][2] - r[2][0], r[0][1] + r[1][0], diagonal[1], r[1][2] + r[2][1]],
-        _ => [r[1][0] - r[0][1], r[0][2] + r[2][0], r[1][2] + r[2][1], diagonal[2]],
+        3 => [
+            one + trace,
+            r[2][1] - r[1][2],
+            r[0][2] - r[2][0],
+            r[1][0] - r[0][1],
+        ],
+        0 => [
+            r[2][1] - r[1][2],
+            diagonal[0],
+            r[0][1] + r[1][0],
+            r[0][2] + r[2][0],
+        ],
+        1 => [
+            r[0][2] - r[2][0],
+            r[0][1] + r[1][0],
+            diagonal[1],
+            r[1][2] + r[2][1],
+        ],
+        _ => [
+            r[1][0] - r[0][1],
+            r[0][2] + r[2][0],
+            r[1][2] + r[2][1],
+            diagonal[2],
+        ],
     };
     let largest = if big == 3 { one + trace } else { diagonal[big] };
     let k = quarter / sqrt(largest * quarter);
@@ -347,7 +371,12 @@ mod tests {
     }
     #[test]
     fn from_rotation_matrix_inverts_rotation_matrix() {
-        for q in [[0.3, -0.5, 0.2, 0.7], [0.0, 1.0, 0.0, 0.0], [0.01, 0.2, -0.9, 0.3], [1.0, 0.0, 0.0, 0.0]] {
+        for q in [
+            [0.3, -0.5, 0.2, 0.7],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.01, 0.2, -0.9, 0.3],
+            [1.0, 0.0, 0.0, 0.0],
+        ] {
             let q = unit(q);
             let back = from_rotation_matrix(rotation_matrix(q));
             let s = if q[0] < 0.0 { -1.0 } else { 1.0 };

@@ -40,7 +40,10 @@ impl<S, I: Integrator> Simulation<'_, S, I> {
         if let Err(error) = self.check_singular_tolerance::<T, N, N>() {
             let sample = Sample::of(&dynamics, span.start, &q0, &v0);
             let trajectory = Trajectory::start(span.start, q0, v0, sample);
-            return Err(Failure::new(error, AtlasRun::unstarted(trajectory, S::EULER)));
+            return Err(Failure::new(
+                error,
+                AtlasRun::unstarted(trajectory, S::EULER),
+            ));
         }
         atlas::integrate(&self.integrator, dynamics, (span.start, span.end), q0, v0)
     }
