@@ -70,7 +70,7 @@ pub fn twin(cx: &Ctxt, system: &System, at: &Ident) -> Option<(System, Vec<Euler
     if let Some((ident, owner)) = used_elsewhere(&twin, &angles) {
         cx.error_at(
             ident.span(),
-            format!("`{ident}` is an Euler angle of a rotation that `emit(atlas)` moves between charts, so it may appear only as that rotation's angle ({owner}); write what depends on the orientation from positions (gravity, points of the body), or drop `emit(atlas)`"),
+            format!("`{ident}` is an Euler angle of a rotation that `emit(atlas)` moves between charts, so it may appear only as that rotation's angle, not in {owner}; write what depends on the orientation from positions (gravity, points of the body), or drop `emit(atlas)`"),
         );
         return None;
     }
@@ -253,16 +253,16 @@ fn used_elsewhere(system: &System, angles: &[String]) -> Option<(Ident, &'static
     for b in &system.bodies {
         add(&b.rotation, "a rotation outside its Euler triple");
         for e in [&b.at, &b.mass, &b.inertia, &b.com, &b.about] {
-            add(e, "a body's item");
+            add(e, "a body's mass, inertia or placement");
         }
     }
     for p in &system.points {
         add(&p.at, "a point's position");
         add(&p.mass, "a point's mass");
     }
-    for e in [&system.gravity, &system.potential, &system.dissipation] {
-        add(e, "the potential, gravity or dissipation");
-    }
+    add(&system.gravity, "gravity");
+    add(&system.potential, "the potential");
+    add(&system.dissipation, "the dissipation");
     let mut rest: Vec<(TokenStream, &'static str)> = Vec::new();
     for d in &system.definitions {
         rest.push((d.value.to_token_stream(), "a `define`"));
