@@ -10,7 +10,7 @@ use catalog::free::{Brick, EulerTop, QuaternionTop};
 use lagrange::numeric::euler::EulerChart;
 use lagrange::numeric::orientation::rotation_matrix;
 use lagrange::prelude::*;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, SVector, Vector3};
 
 const EULER_TOP: EulerTop = EulerTop {
     m: 1.5,
@@ -211,4 +211,40 @@ fn a_tumbling_brick_in_yaw_pitch_roll_runs_through_every_orientation() {
     assert!(drift < 1e-8, "{drift:e}");
     assert!(parabola < 1e-9, "{parabola:e}");
     assert!(traj.integral_drift() < 1e-8);
+}
+
+/// The sleeping top linearised where its own chart is singular: the atlas
+/// reads the upright in the second chart, where the spin is the cyclic φ,
+/// and A's largest real part is √(4 A m g l − C² n²) / (2A) below the
+/// threshold spin and zero above it.
+#[test]
+fn the_upright_top_linearises_in_its_second_chart() {
+    let top = EULER_TOP;
+    let mgl = top.m * top.g * top.l;
+    let threshold = (4.0 * top.a * mgl).sqrt() / top.c;
+    for ratio in [0.9, 0.99, 1.01, 1.5] {
+        let n = ratio * threshold;
+        let lin = Linearizer::new()
+            .atlas(&top, &SVector::zeros(), &SVector::from([0.0, 0.0, n]), 0.0)
+            .unwrap();
+        assert_eq!(lin.states()[..3], ["psi@2", "theta@2", "phi@2"]);
+        let growth = lin.eigenvalues()[0].re;
+        let disc = 4.0 * top.a * mgl - (top.c * n).powi(2);
+        let expected = disc.max(0.0).sqrt() / (2.0 * top.a);
+        eprintln!("n/n_c = {ratio}: largest real part {growth:e}, closed form {expected:e}");
+        assert!(
+            (growth - expected).abs() < 1e-6 * (1.0 + expected),
+            "{growth} vs {expected}"
+        );
+    }
+    // Away from the upright the user's own chart is kept.
+    let lin = Linearizer::new()
+        .atlas(
+            &top,
+            &SVector::from([0.0, 0.7, 0.0]),
+            &SVector::from([0.0, 0.0, 10.0]),
+            0.0,
+        )
+        .unwrap();
+    assert_eq!(lin.states()[..3], ["psi", "theta", "phi"]);
 }

@@ -83,6 +83,25 @@ where
         user_chart(&S::EULER[k]).conditioning(&r)
     }
 
+    /// Moves every rotation whose user's chart is poor at q (below
+    /// [`LEAVE_BELOW`]) to its second chart, mapping (q, v); `left` receives
+    /// the user's angles of each rotation that moved.
+    pub fn enter_regular(
+        &self,
+        q: &mut SVector<T, N>,
+        v: &mut SVector<T, N>,
+        left: &mut [[T; 3]],
+    ) -> Result<(), Error> {
+        for (k, rotation) in S::EULER.iter().enumerate() {
+            if self.chart(k).offset || self.user_conditioning(k, q) >= T::lit(LEAVE_BELOW) {
+                continue;
+            }
+            left[k] = angles(rotation, q);
+            self.switch(k, q, v, None)?;
+        }
+        Ok(())
+    }
+
     /// Moves rotation k to its other chart: the same rotation matrix and the
     /// same ω, read in the other chart. Coming back to the user's chart the
     /// angles nearest `near` are taken (the user's angles when the rotation

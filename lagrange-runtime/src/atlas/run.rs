@@ -194,13 +194,8 @@ where
     // Where the user's angles stood when each rotation left their chart.
     let left = RefCell::new(vec![[T::zero(); 3]; S::EULER.len()]);
     let (mut q, mut v) = (q0, v0);
-    for k in 0..S::EULER.len() {
-        if charted.user_conditioning(k, &q) < T::lit(LEAVE_BELOW) {
-            left.borrow_mut()[k] = angles(&S::EULER[k], &q);
-            if let Err(e) = charted.switch(k, &mut q, &mut v, None) {
-                return Err(unstarted(e, q0, v0));
-            }
-        }
+    if let Err(e) = charted.enter_regular(&mut q, &mut v, &mut left.borrow_mut()) {
+        return Err(unstarted(e, q0, v0));
     }
     let start = charted.charts();
     let events = (0..S::EULER.len())

@@ -124,6 +124,7 @@
 // Tolerance tests are written `!(x <= tol)` on purpose: a NaN residual fails them.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+mod atlas;
 mod build;
 mod complete;
 mod defaults;

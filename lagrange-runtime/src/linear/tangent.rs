@@ -218,12 +218,16 @@ fn advance<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q: usize>(
 }
 
 /// The central-difference step for an entry of scale `x`.
-fn step(x: f64) -> f64 {
+pub(super) fn step(x: f64) -> f64 {
     f64::EPSILON.cbrt() * x.abs().max(1.0)
 }
 
 /// (f(+h) − f(−h)) / 2h.
-fn column<T: Real, const N: usize>(plus: SVector<T, N>, minus: SVector<T, N>, h: f64) -> Vec<f64> {
+pub(super) fn column<T: Real, const N: usize>(
+    plus: SVector<T, N>,
+    minus: SVector<T, N>,
+    h: f64,
+) -> Vec<f64> {
     (0..N)
         .map(|i| (plus[i].to_f64() - minus[i].to_f64()) / (2.0 * h))
         .collect()

@@ -1,0 +1,96 @@
+//! Linearisation of a system with an atlas in a chart that is regular at the
+//! operating point.
+
+use super::Linear;
+use super::settings::Linearizer;
+use super::tangent::{column, step};
+use crate::atlas::{Charted, layout_agrees};
+use crate::error::{Error, check_tolerance};
+use crate::mechanics::Dynamics;
+use crate::numeric::Real;
+use crate::ode::SecondOrder;
+use crate::system::Atlas;
+use nalgebra::{DMatrix, SVector};
+
+impl Linearizer {
+    /// Linearises a system with an atlas (`emit(atlas)`) about (q, v), given
+    /// in the user's coordinates, at time t, in charts that are regular there:
+    /// each rotation whose own chart is poor at q (the upright of a z-x-z
+    /// top) is read in its second chart, as
+    /// [`Simulation::run_atlas`](crate::Simulation::run_atlas) would. The
+    /// states are q then q̇ in those charts: a coordinate's name, with `@2`
+    /// for an angle of a second chart (`theta@2`), and a prime for a rate.
+    /// A by central differences of the forward dynamics (relative error about
+    /// 1e-10).
+    ///
+    /// A steady motion in which only cyclic angles turn (a sleeping top spins
+    /// in φ of either chart) linearises to a constant A: its stability reads
+    /// off A's eigenvalues.
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] for a bad singular tolerance or an [`Atlas`]
+    /// whose twin disagrees with its layout; [`Error::NonPhysicalParameter`];
+    /// whatever the forward dynamics report at a perturbed state.
+    pub fn atlas<S, T, const N: usize, const F: usize>(
+        &self,
+        sys: &S,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        t: T,
+    ) -> Result<Linear, Error>
+    where
+        S: Atlas<T, N, F>,
+        T: Real,
+    {
+        check_tolerance("singular tolerance", self.singular_tolerance)?;
+        sys.check_parameters()?;
+        if !layout_agrees(sys) {
+            return Err(Error::InvalidSettings(
+                "the system's Atlas twin does not have the documented layout".into(),
+            ));
+        }
+        let dynamics = Dynamics::new(sys).with_singular_tolerance(T::lit(self.singular_tolerance));
+        let charted = Charted::<S, T, N, F>::new(dynamics);
+        let (mut q, mut v) = (*q, *v);
+        charted.enter_regular(&mut q, &mut v, &mut vec![[T::zero(); 3]; S::EULER.len()])?;
+        let accel = |q: &SVector<T, N>, v: &SVector<T, N>| charted.acceleration(t, q, v);
+        let mut a = DMatrix::zeros(2 * N, 2 * N);
+        a.view_mut((0, N), (N, N)).fill_with_identity();
+        for j in 0..N {
+            let (hq, hv) = (step(q[j].to_f64()), step(v[j].to_f64()));
+            let mut e = SVector::<T, N>::zeros();
+            e[j] = T::lit(hq);
+            let dq = column(accel(&(q + e), &v)?, accel(&(q - e), &v)?, hq);
+            e[j] = T::lit(hv);
+            let dv = column(accel(&q, &(v + e))?, accel(&q, &(v - e))?, hv);
+            for i in 0..N {
+                a[(N + i, j)] = dq[i];
+                a[(N + i, N + j)] = dv[i];
+            }
+        }
+        Ok(Linear::from_parts(
+            a,
+            DMatrix::zeros(2 * N, 0),
+            states::<S, T, N, F>(charted.charts()),
+            Vec::new(),
+            N,
+            None,
+        ))
+    }
+}
+
+/// q's names in the charts `second` (bit k: rotation k in its second chart),
+/// then the rates with a prime.
+fn states<S: Atlas<T, N, F>, T: Real, const N: usize, const F: usize>(second: u64) -> Vec<String> {
+    let mut names: Vec<String> = S::COORDINATES.iter().map(|c| c.to_string()).collect();
+    for (k, rotation) in S::EULER.iter().enumerate() {
+        if second >> k & 1 == 1 {
+            for &i in &rotation.coordinates {
+                names[i].push_str("@2");
+            }
+        }
+    }
+    let rates: Vec<String> = names.iter().map(|n| format!("{n}'")).collect();
+    names.extend(rates);
+    names
+}
