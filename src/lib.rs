@@ -368,11 +368,11 @@ pub mod prelude {
     pub use lagrange_runtime::linear::{Linear, Linearizer, OperatingPoint, Verdict};
     pub use lagrange_runtime::study::{Method, Sweep};
     pub use lagrange_runtime::{
-        Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation, Direction, Dop853,
-        Dopri5, Drift, Driven, Error, Event, EventRun, Failure, Gauss, InputTable, Integrator,
-        Interpolation, Lagrangian, Occurrence, Radau5, Rattle, Real, Record, Reduced,
-        ReducedDynamics, ReducedForm, Rk4, Scene, Simulation, StateFeedback, StormerVerlet, Study,
-        Trajectory, WorkPrecision,
+        Atlas, AtlasRun, Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation,
+        Direction, Dop853, Dopri5, Drift, Driven, Error, Event, EventRun, Failure, Gauss,
+        InputTable, Integrator, Interpolation, Lagrangian, Occurrence, Radau5, Rattle, Real,
+        Record, Reduced, ReducedDynamics, ReducedForm, Rk4, Scene, Simulation, StateFeedback,
+        StormerVerlet, Study, Trajectory, WorkPrecision,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }

@@ -248,3 +248,51 @@ fn the_upright_top_linearises_in_its_second_chart() {
         .unwrap();
     assert_eq!(lin.states()[..3], ["psi", "theta", "phi"]);
 }
+
+/// The swing through the upright with every kind of integrator: the
+/// switches are events, so fixed-step, implicit and high-order methods all
+/// carry the run across, each to its own accuracy.
+#[test]
+fn every_integrator_carries_the_atlas_across() {
+    let (q0, v0) = ([0.2, 0.6, -0.4], [0.0, -6.0, 2.0]);
+    let omega0 = EulerChart::new([2, 0, 2]).unwrap().rates(q0) * Vector3::from(v0);
+    let reference = Simulation::new(&TOP)
+        .integrator(Dop853::tol(1e-12))
+        .run(
+            zxz_quaternion(q0),
+            [omega0[0], omega0[1], omega0[2]],
+            0.0..2.0,
+        )
+        .unwrap();
+    let exact = matrix(reference.final_state().0.as_slice());
+    fn error<I: Integrator>(integrator: I, exact: &Matrix3<f64>) -> f64 {
+        let run = Simulation::new(&EULER_TOP)
+            .integrator(integrator)
+            .run_atlas([0.2, 0.6, -0.4], [0.0, -6.0, 2.0], 0.0..2.0)
+            .unwrap();
+        assert!(run.switches().len() >= 4);
+        (run.rotation(run.trajectory().len() - 1, 0) - exact)
+            .abs()
+            .max()
+    }
+    let errors = [
+        ("dop853", error(Dop853::tol(1e-10), &exact)),
+        ("radau5", error(Radau5::tol(1e-8), &exact)),
+        ("rk4", error(Rk4::step(1e-3), &exact)),
+    ];
+    eprintln!("{errors:?}");
+    for (name, e) in errors {
+        assert!(e < 1e-5, "{name}: {e:e}");
+    }
+    // Störmer–Verlet is first order with velocity-dependent forces (the
+    // Euler angles' Coriolis terms), and stays so across the switches.
+    let (coarse, fine) = (
+        error(StormerVerlet::step(1e-4), &exact),
+        error(StormerVerlet::step(5e-5), &exact),
+    );
+    eprintln!("verlet {coarse:e} -> {fine:e}");
+    assert!(
+        (1.6..2.4).contains(&(coarse / fine)),
+        "{coarse:e} -> {fine:e}"
+    );
+}
