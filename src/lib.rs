@@ -346,6 +346,72 @@
 //! # Ok::<(), lagrange::Error>(())
 //! ```
 //!
+//! ## Charts that switch: the atlas
+//!
+//! A user who writes a rotation in Euler angles keeps them with
+//! `emit(atlas)`: the run no longer stops at the chart's singular set.
+//! Each rotation written as three Euler angles of coordinates about one
+//! point (`euler_zxz(ψ, θ, φ)`, `euler_zyx(..)`, or three successive `rot_*`
+//! whose middle axis differs from both ends) gets a second chart, the same
+//! sequence after the constant turn R_b(π/2) about its middle axis. A
+//! chart of the sequence (a, b, c) is singular where the body's c axis lies
+//! along e_a (θ = 0 for z-x-z, pitch ±π/2 for z-y-x); the turn moves e_a to
+//! a perpendicular axis, so the two singular sets are disjoint, and where
+//! one chart's conditioning s (|sin θ| for z-x-z, |cos θ| for z-y-x) is
+//! poor the other's is good: s₁² + s₂² ≥ 1 (`lagrange::numeric::euler`; the
+//! derive checks it for each rotation).
+//!
+//! [`Simulation::run_atlas`] starts in the user's chart, moves a rotation to
+//! its second chart when s₁ falls below 0.25 and back when it rises above
+//! 0.5 (the gap is the hysteresis), each switch an event located on the
+//! dense output, after which the integrator restarts. A switch keeps the
+//! rotation matrix and the body angular velocity ω = E q̇: the speeds do not
+//! change, only the chart reading them, so it is exact. In the user's chart
+//! the equations are the user's own; in the second they come from the
+//! description's free twin (each rotation a quaternion and ω, derived as
+//! for `orientation`), whose M and h have no chart: q̈ = E⁻¹(ω̇ − Ė q̇).
+//! The [`AtlasRun`] records each point in the charts it was computed in
+//! ([`AtlasRun::charts`], [`AtlasRun::switches`]), reports the orientation
+//! chart-free ([`AtlasRun::rotation`], [`AtlasRun::quaternion`],
+//! [`AtlasRun::angular_velocity`]) and in the user's coordinates wherever
+//! their chart is valid ([`AtlasRun::user_state`]). [`Linearizer::atlas`]
+//! linearises in charts regular at the operating point. [`Simulation::run`]
+//! on the same system stays in the user's chart and stops at its singular
+//! set with [`Error::SingularMassMatrix`]: that is the opt-out.
+//!
+//! The atlas covers unconstrained descriptions without `inputs`; an angle
+//! of such a rotation may appear only as that rotation's angle (a potential
+//! written in θ itself has no meaning in the second chart: write it from
+//! positions, e.g. `gravity`). Each is a compile error at its token.
+//!
+//! ```
+//! use lagrange::prelude::*;
+//!
+//! /// The heavy top in the user's Euler angles z-x-z, with an atlas.
+//! #[derive(Lagrangian)]
+//! #[lagrange(
+//!     coordinates(psi, theta, phi),
+//!     body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+//!          at = [0, 0, 0], rotation = euler_zxz(psi, theta, phi)),
+//!     gravity = [0, 0, -g],
+//!     emit(atlas),
+//! )]
+//! pub struct Top { pub m: f64, pub a: f64, pub c: f64, pub l: f64, pub g: f64 }
+//!
+//! let top = Top { m: 1.5, a: 0.8, c: 0.5, l: 0.4, g: 9.81 };
+//! // Swung over the top through θ = 0: the user's chart alone stops there.
+//! let sim = Simulation::new(&top).integrator(Dop853::tol(1e-10));
+//! let run = sim.run_atlas([0.2, 0.6, -0.4], [0.0, -6.0, 2.0], 0.0..4.0)?;
+//! assert!(run.switches().len() >= 4 && run.trajectory().integral_drift() < 1e-8);
+//! let upright = run.quaternion(0, 0); // (w, x, y, z) of the first point
+//! assert!((upright[0] - 0.9505).abs() < 1e-4);
+//! // Spun exactly upright, the sleeping top linearises in the second chart.
+//! let lin = Linearizer::new().atlas(&top, &Vector3::zeros(), &Vector3::new(0.0, 0.0, 30.0), 0.0)?;
+//! assert_eq!(lin.states()[1], "theta@2");
+//! assert!(lin.eigenvalues()[0].re < 1e-9);
+//! # Ok::<(), lagrange::Error>(())
+//! ```
+//!
 //! **Ensembles.** With the feature `parallel`, `lagrange::ensemble::Ensemble`
 //! (also in [`prelude`] as `Ensemble`) runs many independent simulations —
 //! initial conditions, parameter sets, a Monte Carlo sweep — on all cores with
