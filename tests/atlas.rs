@@ -110,6 +110,23 @@ fn a_top_swung_through_the_upright_switches_charts_and_back() {
     );
     assert!(worst < 1e-7, "{worst:e}");
     assert!(traj.integral_drift() < 1e-8, "{:e}", traj.integral_drift());
+    // In the second chart the user's coordinates are still there to read,
+    // wherever their chart is valid: the same rotation and the same ω.
+    let user = EulerChart::new([2, 0, 2]).unwrap();
+    let mut read = 0;
+    for i in (0..traj.len()).filter(|&i| run.charts()[i] == 1) {
+        let Some((q, v)) = run.user_state(i) else {
+            continue;
+        };
+        let x = [q[0], q[1], q[2]];
+        assert!((user.matrix(x) - run.rotation(i, 0)).abs().max() < 1e-12);
+        let omega = user.rates(x) * Vector3::new(v[0], v[1], v[2]);
+        assert!((omega - run.angular_velocity(i, 0)).norm() < 1e-9 * (1.0 + omega.norm()));
+        read += 1;
+    }
+    assert!(read > 10, "{read}");
+    let mapped = run.user_trajectory().unwrap();
+    assert!(mapped.len() + 2 >= traj.len() && mapped.segments().is_empty());
     // Back in the user's chart the user's angles read as the chart holds them.
     let charts = run.charts();
     let last = traj.len() - 1;

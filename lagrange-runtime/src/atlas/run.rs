@@ -40,7 +40,8 @@ pub struct AtlasRun<T: Real, const N: usize> {
     trajectory: Trajectory<T, N>,
     switches: Vec<ChartSwitch<T>>,
     rotations: &'static [EulerRotation],
-    start: u64,
+    /// Per point, bit k set while rotation k is in its second chart.
+    charts: Vec<u64>,
 }
 
 impl<T: Real, const N: usize> AtlasRun<T, N> {
@@ -74,26 +75,18 @@ impl<T: Real, const N: usize> AtlasRun<T, N> {
 
     /// For each point, which rotations are in their second chart (bit k
     /// for rotation k).
-    pub fn charts(&self) -> Vec<u64> {
-        let mut mask = self.start;
-        let mut next = self.switches.iter().peekable();
-        (self.trajectory.times().iter())
-            .map(|&t| {
-                while let Some(s) = next.next_if(|s| s.t <= t) {
-                    mask ^= 1 << s.rotation;
-                }
-                mask
-            })
-            .collect()
+    pub fn charts(&self) -> &[u64] {
+        &self.charts
     }
 
-    /// Rotation k's chart at point i, from the switches before it.
+    /// Rotation k's chart at point i.
     fn chart(&self, i: usize, k: usize) -> crate::numeric::euler::EulerChart {
-        let t = self.trajectory.times()[i];
-        let flips = self.switches.iter().filter(|s| s.t <= t && s.rotation == k);
-        let second = (self.start >> k & 1 == 1) ^ (flips.count() % 2 == 1);
         let user = user_chart(&self.rotations[k]);
-        if second { user.second() } else { user }
+        if self.charts[i] >> k & 1 == 1 {
+            user.second()
+        } else {
+            user
+        }
     }
 
     /// Rotation k's matrix (body axes into the parent's) at point i: no chart.
@@ -132,6 +125,9 @@ impl<T: Real, const N: usize> AtlasRun<T, N> {
             if user.conditioning(&r) < T::lit(USER_CHART_VALID) {
                 return None;
             }
+            if !self.chart(i, k).offset {
+                continue; // held in the user's chart already
+            }
             let near = (i > 0).then(|| self.user_angles_before(i, k)).flatten();
             let x = user.angles(&r, near);
             let dx = user.rates(x).try_inverse()? * self.angular_velocity(i, k);
@@ -141,6 +137,26 @@ impl<T: Real, const N: usize> AtlasRun<T, N> {
             }
         }
         Some((q, v))
+    }
+
+    /// The run in the user's coordinates, points only (no dense output, as
+    /// a thinned recording): every point where [`user_state`](Self::user_state)
+    /// has one, with its energy and statistics. What a figure or a
+    /// [`Scene`](crate::Scene) of the user's description reads.
+    pub fn user_trajectory(&self) -> Option<Trajectory<T, N>> {
+        let traj = &self.trajectory;
+        let points = (0..traj.len())
+            .filter_map(|i| {
+                let (q, v) = self.user_state(i)?;
+                let sample = Sample {
+                    integral: traj.integrals()[i],
+                    residuals: traj.residuals()[i],
+                    unit_error: T::zero(),
+                };
+                Some((traj.times()[i], q, v, sample))
+            })
+            .collect();
+        Trajectory::from_points(points, *traj.stats())
     }
 
     /// The user's angles of rotation k at the last point before i that was
@@ -247,14 +263,15 @@ where
     .named(format!("chart switch of {}", S::EULER[k].body))
 }
 
-/// The run's switches from its occurrences (event k is rotation k's switch).
+/// The run's switches from its occurrences (event k is rotation k's
+/// switch), and each point's charts.
 fn finish<T: Real, const N: usize>(
     run: EventRun<T, N>,
     start: u64,
     rotations: &'static [EulerRotation],
 ) -> AtlasRun<T, N> {
     let mut mask = start;
-    let switches = (run.occurrences.iter())
+    let switches: Vec<ChartSwitch<T>> = (run.occurrences.iter())
         .map(|o| {
             mask ^= 1 << o.event;
             ChartSwitch {
@@ -264,10 +281,21 @@ fn finish<T: Real, const N: usize>(
             }
         })
         .collect();
+    // A switch's point holds the state after it.
+    let mut mask = start;
+    let mut next = switches.iter().peekable();
+    let charts = (run.trajectory.times().iter())
+        .map(|&t| {
+            while let Some(s) = next.next_if(|s| s.t <= t) {
+                mask ^= 1 << s.rotation;
+            }
+            mask
+        })
+        .collect();
     AtlasRun {
         trajectory: run.trajectory,
         switches,
         rotations,
-        start,
+        charts,
     }
 }

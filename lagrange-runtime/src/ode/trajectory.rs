@@ -39,7 +39,8 @@ pub struct Trajectory<T: Real, const N: usize, const Q: usize = N> {
 }
 
 /// One recorded point: t, q, q̇ and the sample there.
-type Point<T, const N: usize, const Q: usize> = (T, SVector<T, Q>, SVector<T, N>, Sample<T>);
+pub(crate) type Point<T, const N: usize, const Q: usize> =
+    (T, SVector<T, Q>, SVector<T, N>, Sample<T>);
 
 #[cfg(feature = "serde")]
 fn fresh_continuation<T: Real>() -> Continuation<T> {
@@ -63,6 +64,19 @@ impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
             closed_extra: false,
             pending: None,
         }
+    }
+
+    /// A trajectory of points only, without dense output (as a thinned
+    /// recording keeps), from (t, q, v, sample) in time order: what a run
+    /// hands back after mapping its points into other coordinates.
+    pub(crate) fn from_points(points: Vec<Point<T, N, Q>>, stats: Stats) -> Option<Self> {
+        let mut points = points.into_iter();
+        let (t0, q0, v0, sample) = points.next()?;
+        let mut out = Self::start(t0, q0, v0, sample);
+        out.record = Record::Every(1);
+        points.for_each(|p| out.store(p));
+        out.stats = stats;
+        Some(out)
     }
 
     /// A trajectory holding only the initial point that keeps what `record`
