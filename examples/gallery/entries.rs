@@ -31,6 +31,11 @@ pub(crate) const ENTRIES: &[Entry] = &[
         "θ = 0, where Euler angles stop, is an ordinary state; stability from the tangent-space linearisation",
         free::upright_top,
     ),
+    entry(
+        "heavy top in Euler angles through θ = 0 (atlas)",
+        "emit(atlas): the user's z-x-z angles, a second chart where they stop, switched with hysteresis; the run matches the quaternion top",
+        free::atlas_top,
+    ),
     // Minimal coordinates.
     entry(
         "simple pendulum, 179°, period by events",

@@ -1,7 +1,7 @@
 //! Free rotations: the intermediate-axis flip and a top spun exactly upright,
 //! each with an animation of its scene.
 
-use crate::catalog::free::{Brick, QuaternionTop, flip_half_period};
+use crate::catalog::free::{Brick, EulerTop, QuaternionTop, flip_half_period};
 use crate::figure::Figure;
 use crate::row::Row;
 use lagrange::Posed;
@@ -34,7 +34,8 @@ pub(crate) fn intermediate_axis(system: &'static str) -> Result<Row, Error> {
         flips.len(),
         traj.max_unit_error()
     );
-    free_row(system, &brick, &traj, span, (note, wall_ms))
+    let figure = angular_velocity(&traj, Brick::VELOCITIES, 3, csv(&brick, &traj)?);
+    free_row(system, &brick, &traj, span, (note, wall_ms), figure)
 }
 
 /// A heavy top spun exactly upright (θ = 0, where Euler angles z-x-z stop)
@@ -73,7 +74,53 @@ pub(crate) fn upright_top(system: &'static str) -> Result<Row, Error> {
         lowest.acos().to_degrees(),
         lin.eigenvalues()[0].re
     );
-    free_row(system, &top, &traj, span, (note, wall_ms))
+    let figure = angular_velocity(&traj, QuaternionTop::VELOCITIES, 0, csv(&top, &traj)?);
+    free_row(system, &top, &traj, span, (note, wall_ms), figure)
+}
+
+/// The same top written in Euler angles z-x-z with `emit(atlas)`, swung over
+/// the top through θ = 0 again and again: each pass leaves the user's chart
+/// and comes back, and the motion is the quaternion top's.
+pub(crate) fn atlas_top(system: &'static str) -> Result<Row, Error> {
+    let (m, a, c, l, g) = (1.5, 0.1, 0.05, 0.2, 9.81);
+    let top = EulerTop { m, a, c, l, g };
+    let (q0, v0) = ([0.2, 0.6, -0.4], [0.0, -14.0, 2.0]);
+    let span = 0.0..3.0;
+    let start = Instant::now();
+    let run = Simulation::new(&top)
+        .integrator(Dopri5::tol(1e-10))
+        .run_atlas(q0, v0, span.clone())?;
+    let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+    let twin = QuaternionTop { m, a, c, l, g };
+    let chart = lagrange::numeric::euler::EulerChart::new([2, 0, 2]).expect("z-x-z");
+    let w = chart.rates(q0) * Vector3::from(v0);
+    let r0 = chart.matrix(q0);
+    let quaternion = lagrange::numeric::orientation::from_rotation_matrix(
+        [0, 1, 2].map(|i| [0, 1, 2].map(|j| r0[(i, j)])),
+    );
+    let reference = Simulation::new(&twin).integrator(Dopri5::tol(1e-10)).run(
+        quaternion,
+        [w[0], w[1], w[2]],
+        span.clone(),
+    )?;
+    let traj = run.trajectory();
+    let apart = (0..traj.len())
+        .filter_map(|i| {
+            let (q, _) = reference.state_at(traj.times()[i])?;
+            let r = lagrange::numeric::orientation::rotation_matrix([q[0], q[1], q[2], q[3]]);
+            let r = nalgebra::Matrix3::from_fn(|i, j| r[i][j]);
+            Some((run.rotation(i, 0) - r).abs().max())
+        })
+        .fold(0.0, f64::max);
+    let note = format!(
+        "{} chart switches (leave below |sin θ| = 0.25, back above 0.5); orientation within {apart:.0e} of the quaternion top",
+        run.switches().len()
+    );
+    let user = run.user_trajectory().ok_or_else(|| {
+        Error::InvalidSettings("the atlas run has no point in the user's chart".into())
+    })?;
+    let figure = Figure::of(&user, &EulerTop::COORDINATES, &[false; 3], true)?;
+    free_row(system, &top, &user, span, (note, wall_ms), figure)
 }
 
 /// A row of a run with orientations: its angular velocity plotted, its
@@ -84,6 +131,7 @@ fn free_row<S, const N: usize, const Q: usize>(
     traj: &Trajectory<f64, N, Q>,
     span: Range<f64>,
     (note, wall_ms): (String, f64),
+    figure: Figure,
 ) -> Result<Row, Error>
 where
     S: Lagrangian<f64, N, Q> + Posed<f64, N, Q>,
@@ -109,12 +157,7 @@ where
         residuals: None,
         note,
         wall_ms,
-        figure: Some(angular_velocity(
-            traj,
-            S::VELOCITIES,
-            S::ORIENTATIONS[0].v,
-            csv(sys, traj)?,
-        )),
+        figure: Some(figure),
         scene: Some(scene.to_html()?),
         still: Some(scene.still((span.start + span.end) / 2.0)?),
         frames: Some((frames, captions)),
