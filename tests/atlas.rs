@@ -2,7 +2,6 @@
 //! Euler angles runs through its chart's singular set by switching to the
 //! second chart, against the same system with a quaternion.
 
-#[allow(dead_code)]
 #[path = "../examples/catalog/mod.rs"]
 mod catalog;
 

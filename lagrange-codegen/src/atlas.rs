@@ -5,7 +5,7 @@
 //! whose middle axis differs from both ends) becomes a free orientation in a
 //! copy of the description, the twin: its M and h depend on no chart, and
 //! the runtime's atlas reads any chart's equations from it. This stage works
-//! on the parsed description ([`ast::System`] → [`ast::System`]); the twin
+//! on the parsed description (`ast::System` → `ast::System`); the twin
 //! then goes through the same stages as the user's description.
 //!
 //! Every Euler sequence has a second chart: the same sequence after the
@@ -162,7 +162,10 @@ fn rewrite(rotation: &Expr, system: &System, body: &Ident, triples: &mut Vec<Eul
 }
 
 /// The triple that starts the factors, and how many factors it spans.
-fn triple_at(factors: &[Expr], system: &System) -> (Option<([usize; 3], [usize; 3])>, usize) {
+/// A triple found: its coordinates and its axes.
+type Found = Option<([usize; 3], [usize; 3])>;
+
+fn triple_at(factors: &[Expr], system: &System) -> (Found, usize) {
     let Some((name, args)) = call(&factors[0]) else {
         return (None, 1);
     };

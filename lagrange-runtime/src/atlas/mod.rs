@@ -22,7 +22,7 @@
 mod run;
 
 pub(crate) use run::integrate;
-pub use run::{AtlasRun, ChartSwitch};
+pub use run::{AtlasRun, ChartSwitch, USER_CHART_VALID};
 
 use crate::error::Error;
 use crate::mechanics::Dynamics;
