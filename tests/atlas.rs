@@ -124,6 +124,14 @@ fn a_top_swung_through_the_upright_switches_charts_and_back() {
         read += 1;
     }
     assert!(read > 10, "{read}");
+    let mut csv = Vec::new();
+    run.table(&EULER_TOP).unwrap().write(&mut csv).unwrap();
+    let csv = String::from_utf8(csv).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.contains("psi,theta,phi") && header.contains("top.chart,top.w,top.x,top.y,top.z")
+    );
+    assert_eq!(csv.lines().count(), traj.len() + 1);
     let mapped = run.user_trajectory().unwrap();
     assert!(mapped.len() + 2 >= traj.len() && mapped.segments().is_empty());
     // Back in the user's chart the user's angles read as the chart holds them.

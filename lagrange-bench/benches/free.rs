@@ -8,7 +8,7 @@
 //!     cargo bench -p lagrange-bench --bench free
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use lagrange::Lagrangian;
+use lagrange::prelude::{Dopri5, Lagrangian, Simulation};
 use nalgebra::{Matrix3, SVector, Vector3, Vector4};
 use std::hint::black_box;
 
@@ -92,6 +92,61 @@ fn by_hand(top: &Top, q: &Vector4<f64>, w: &Vector3<f64>) -> (Matrix3<f64>, Vect
     )
 }
 
+/// The same top in Euler angles z-x-z with an atlas.
+#[derive(Lagrangian)]
+#[lagrange(
+    coordinates(psi, theta, phi),
+    body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+         at = [0, 0, 0], rotation = euler_zxz(psi, theta, phi)),
+    gravity = [0, 0, -g],
+    emit(atlas),
+)]
+struct EulerTop {
+    m: f64,
+    a: f64,
+    c: f64,
+    l: f64,
+    g: f64,
+}
+
+/// A swing over the top through θ = 0 for 2 s: the atlas run (the user's
+/// program in the user's chart, the twin's in the second) against the
+/// quaternion top's run of the same motion, both DOPRI5 at 1e-10.
+fn atlas(c: &mut Criterion, top: &Top) {
+    let euler = EulerTop {
+        m: top.m,
+        a: top.a,
+        c: top.c,
+        l: top.l,
+        g: top.g,
+    };
+    let (q0, v0) = ([0.2, 0.6, -0.4], [0.0, -6.0, 2.0]);
+    let chart = lagrange::numeric::euler::EulerChart::new([2, 0, 2]).expect("z-x-z");
+    let w = chart.rates(q0) * Vector3::from(v0);
+    let r = chart.matrix(q0);
+    let quaternion = lagrange::numeric::orientation::from_rotation_matrix(
+        [0, 1, 2].map(|i| [0, 1, 2].map(|j| r[(i, j)])),
+    );
+    let mut group = c.benchmark_group("atlas_top");
+    group.bench_function("swing 2 s, run_atlas (Euler angles)", |b| {
+        b.iter(|| {
+            Simulation::new(&euler)
+                .integrator(Dopri5::tol(1e-10))
+                .run_atlas(black_box(q0), v0, 0.0..2.0)
+                .map(|run| run.switches().len())
+        })
+    });
+    group.bench_function("swing 2 s, run (quaternion)", |b| {
+        b.iter(|| {
+            Simulation::new(top)
+                .integrator(Dopri5::tol(1e-10))
+                .run(black_box(quaternion), [w[0], w[1], w[2]], 0.0..2.0)
+                .map(|traj| traj.len())
+        })
+    });
+    group.finish();
+}
+
 fn free(c: &mut Criterion) {
     let top = Top {
         m: 1.5,
@@ -111,6 +166,7 @@ fn free(c: &mut Criterion) {
         b.iter(|| by_hand(&top, black_box(&q), black_box(&w)))
     });
     group.finish();
+    atlas(c, &top);
     let arm = floating::FloatingArm { g: 9.81 };
     let q = SVector::<f64, 9>::from([
         0.1,

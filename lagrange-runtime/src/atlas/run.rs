@@ -8,7 +8,8 @@ use crate::mechanics::Dynamics;
 use crate::numeric::Real;
 use crate::numeric::orientation;
 use crate::ode::{Integrator, Sample, Trajectory};
-use crate::system::{Atlas, EulerRotation};
+use crate::system::{Atlas, EulerRotation, Lagrangian};
+use crate::table::Table;
 use nalgebra::{Matrix3, SVector, Vector3};
 use std::cell::RefCell;
 
@@ -157,6 +158,33 @@ impl<T: Real, const N: usize> AtlasRun<T, N> {
             })
             .collect();
         Trajectory::from_points(points, *traj.stats())
+    }
+
+    /// The run as a CSV table ([`Table`]): q and q̇ as held (each rotation's
+    /// angles in the chart of the moment), then per rotation its chart
+    /// (`<body>.chart`: 1 the user's, 2 the second) and its unit quaternion
+    /// (`<body>.w`, `.x`, `.y`, `.z`, chart-free), then the energies and
+    /// residuals as for any run.
+    ///
+    /// # Errors
+    /// None in practice: the columns match the points by construction.
+    pub fn table<S: Lagrangian<T, N>>(&self, sys: &S) -> Result<Table<'_, T, N>, Error> {
+        let mut names = Vec::new();
+        for r in self.rotations {
+            names.push(format!("{}.chart", r.body));
+            names.extend(["w", "x", "y", "z"].map(|c| format!("{}.{c}", r.body)));
+        }
+        let values = (0..self.trajectory.len())
+            .map(|i| {
+                (0..self.rotations.len())
+                    .flat_map(|k| {
+                        let chart = T::lit(if self.chart(i, k).offset { 2.0 } else { 1.0 });
+                        std::iter::once(chart).chain(self.quaternion(i, k))
+                    })
+                    .collect()
+            })
+            .collect();
+        Table::of(&self.trajectory, sys).columns(names, values)
     }
 
     /// The user's angles of rotation k at the last point before i that was
