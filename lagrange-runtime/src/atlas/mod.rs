@@ -79,8 +79,12 @@ where
     /// The user's chart's conditioning of rotation k at q (in the charts of
     /// the moment).
     pub fn user_conditioning(&self, k: usize, q: &SVector<T, N>) -> T {
-        let r = self.chart(k).matrix(angles(&S::EULER[k], q));
-        user_chart(&S::EULER[k]).conditioning(&r)
+        let (chart, x) = (self.chart(k), angles(&S::EULER[k], q));
+        if chart.offset {
+            user_chart(&S::EULER[k]).conditioning(&chart.matrix(x))
+        } else {
+            chart.own_conditioning(x)
+        }
     }
 
     /// Moves every rotation whose user's chart is poor at q (below

@@ -97,6 +97,18 @@ impl EulerChart {
         sqrt(v[i] * v[i] + v[j] * v[j])
     }
 
+    /// [`conditioning`](Self::conditioning) of this chart's own R(angles),
+    /// from the middle angle alone: |sin β| for a proper sequence, |cos β|
+    /// for Tait–Bryan.
+    pub fn own_conditioning<T: Real>(&self, angles: [T; 3]) -> T {
+        let [a, _, c] = self.axes;
+        abs(if a == c {
+            sin(angles[1])
+        } else {
+            cos(angles[1])
+        })
+    }
+
     /// The angles of R in this chart: of the two solutions (and their 2π
     /// shifts), the one nearest `near`, or the principal one (β in [0, π] for
     /// a proper sequence, [−π/2, π/2] for Tait–Bryan) without it. On the
