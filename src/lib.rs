@@ -362,8 +362,8 @@
 //! derive checks it for each rotation).
 //!
 //! [`Simulation::run_atlas`] starts in the user's chart, moves a rotation to
-//! its second chart when s₁ falls below 0.25 and back when it rises above
-//! 0.5 (the gap is the hysteresis), each switch an event located on the
+//! its second chart when s₁ falls below 0.6 and back when it rises above
+//! 0.8 (the gap is the hysteresis; the chart in use always has s ≥ 0.6), each switch an event located on the
 //! dense output, after which the integrator restarts. A switch keeps the
 //! rotation matrix and the body angular velocity ω = E q̇: the speeds do not
 //! change, only the chart reading them, so it is exact. In the user's chart

@@ -113,7 +113,7 @@ pub(crate) fn atlas_top(system: &'static str) -> Result<Row, Error> {
         })
         .fold(0.0, f64::max);
     let note = format!(
-        "{} chart switches (leave below |sin θ| = 0.25, back above 0.5); orientation within {apart:.0e} of the quaternion top",
+        "{} chart switches (leave below |sin θ| = 0.6, back above 0.8); orientation within {apart:.0e} of the quaternion top",
         run.switches().len()
     );
     let user = run.user_trajectory().ok_or_else(|| {
