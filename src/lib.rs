@@ -312,12 +312,16 @@
 //! `emit(kinematics)` gives the frames' Jacobians with v's columns (an
 //! orientation's three: body-axis ω) and J̇ q̇ at v̇ = 0.
 //!
+//! [`StateFeedback`] applies a gain designed on the tangent linearisation
+//! (e.g. LQR) to q ⊖ q₀, the rotation vector from the operating attitude in
+//! body axes ([`StateFeedback::from_tangent_gain`]): a satellite's attitude
+//! held by LQR follows the linear closed loop to second order in the error
+//! (`tests/torqued_body.rs`).
+//!
 //! Not yet with an orientation: the reduced form (`speeds`,
 //! `formulation(reduced)`), `emit(coriolis)` and `emit(hamiltonian)` (each a
-//! compile error at the orientation); [`StateFeedback`]
-//! (whose q − q₀ has no meaning for a quaternion: write the law as a
-//! `feedback` closure on the quaternion's error) and the constrained
-//! linearisation take Q = N only.
+//! compile error at the orientation); the constrained linearisation takes
+//! Q = N only.
 //!
 //! ```
 //! use lagrange::prelude::*;

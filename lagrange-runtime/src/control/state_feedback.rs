@@ -3,17 +3,23 @@
 
 use super::InputSource;
 use crate::error::Error;
-use crate::linear::{Linear, OperatingPoint};
+use crate::linear::{Linear, OperatingPoint, tangent_states};
 use crate::numeric::Real;
+use crate::numeric::orientation::{self, Orientation};
+use crate::system::Lagrangian;
 use nalgebra::{DMatrix, SMatrix, SVector};
 
-/// The linear law u = u0 − K_q (q − q0) − K_v (q̇ − q̇0) about an operating
-/// point, with the gain split into its coordinate and velocity columns so that
+/// The linear law u = u0 − K_q (q ⊖ q0) − K_v (v − v0) about an operating
+/// point (q ⊖ q0 is q − q0 for ordinary coordinates and, for an orientation,
+/// the rotation vector δθ in body axes with q = q0 ⊗ exp(δθ): the tangent
+/// linearisation's states), with the gain split into its coordinate and velocity columns so that
 /// evaluating it is two small matrix-vector products on the stack: no
 /// allocation per call, as the integrators promise.
 ///
 /// Build it from a gain designed on a [`Linear`] model
-/// ([`from_gain`](Self::from_gain), e.g. [`Lqr::gain`](crate::linear::Lqr)),
+/// ([`from_gain`](Self::from_gain), e.g. [`Lqr::gain`](crate::linear::Lqr);
+/// for a system with orientations, on its tangent linearisation:
+/// [`from_tangent_gain`](Self::from_tangent_gain)),
 /// and pass it to [`Simulation::control`](crate::Simulation::control), or call
 /// [`input`](Self::input) inside a controller of your own.
 ///
@@ -29,12 +35,14 @@ use nalgebra::{DMatrix, SMatrix, SVector};
 /// assert_eq!(u, Vector1::new(-2.1));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StateFeedback<T: Real, const N: usize, const P: usize> {
+pub struct StateFeedback<T: Real, const N: usize, const P: usize, const Q: usize = N> {
     k_q: SMatrix<T, P, N>,
     k_v: SMatrix<T, P, N>,
-    q0: SVector<T, N>,
+    q0: SVector<T, Q>,
     v0: SVector<T, N>,
     u0: SVector<T, P>,
+    /// Where q's quaternions sit: what q ⊖ q0 reads.
+    layout: &'static [Orientation],
 }
 
 impl<T: Real, const N: usize, const P: usize> StateFeedback<T, N, P> {
@@ -46,6 +54,7 @@ impl<T: Real, const N: usize, const P: usize> StateFeedback<T, N, P> {
             q0: SVector::zeros(),
             v0: SVector::zeros(),
             u0: SVector::zeros(),
+            layout: &[],
         }
     }
 
@@ -74,6 +83,57 @@ impl<T: Real, const N: usize, const P: usize> StateFeedback<T, N, P> {
         model: &Linear,
         coordinates: &[&str; N],
     ) -> Result<Self, Error> {
+        let mut law = Self::new(SMatrix::zeros(), SMatrix::zeros());
+        law.fill(gain, model, |state| {
+            let (name, rate) = match state.strip_suffix('\'') {
+                Some(name) => (name, true),
+                None => (state, false),
+            };
+            let i = coordinates.iter().position(|c| *c == name)?;
+            Some(if rate { N + i } else { i })
+        })?;
+        Ok(law)
+    }
+}
+
+impl<T: Real, const N: usize, const P: usize, const Q: usize> StateFeedback<T, N, P, Q> {
+    /// The gain `gain` (inputs × states, the law u = −K x) designed on the
+    /// tangent linearisation `model` of `S`
+    /// ([`Linearizer::tangent_driven`](crate::linear::Linearizer::tangent_driven):
+    /// states δ and δv, a coordinate's name, an orientation's `<name>.θx`, …,
+    /// then the velocities' names with a prime), about the state (q0, v0)
+    /// with inputs u0. States the model does not have get no feedback.
+    ///
+    /// # Errors
+    /// [`Error::InvalidSettings`] if the gain is not P × (the model's
+    /// states), an entry is not finite, or a state is not one of `S`'s
+    /// tangent states.
+    pub fn from_tangent_gain<S: Lagrangian<T, N, Q>>(
+        gain: &DMatrix<f64>,
+        model: &Linear,
+        (q0, v0, u0): (SVector<T, Q>, SVector<T, N>, SVector<T, P>),
+    ) -> Result<Self, Error> {
+        let names = tangent_states::<S, T, N, Q>();
+        let mut law = Self {
+            k_q: SMatrix::zeros(),
+            k_v: SMatrix::zeros(),
+            q0,
+            v0,
+            u0,
+            layout: S::ORIENTATIONS,
+        };
+        law.fill(gain, model, |state| names.iter().position(|n| n == state))?;
+        Ok(law)
+    }
+
+    /// Puts the gain's columns where `index` says (a state's position among
+    /// the N tangent directions, then the N rates).
+    fn fill(
+        &mut self,
+        gain: &DMatrix<f64>,
+        model: &Linear,
+        index: impl Fn(&str) -> Option<usize>,
+    ) -> Result<(), Error> {
         let states = model.states();
         if gain.shape() != (P, states.len()) || !gain.iter().all(|x| x.is_finite()) {
             return Err(Error::InvalidSettings(format!(
@@ -84,36 +144,44 @@ impl<T: Real, const N: usize, const P: usize> StateFeedback<T, N, P> {
                 gain.ncols()
             )));
         }
-        let mut law = Self::new(SMatrix::zeros(), SMatrix::zeros());
         for (j, state) in states.iter().enumerate() {
-            let (name, rate) = match state.strip_suffix('\'') {
-                Some(name) => (name, true),
-                None => (state.as_str(), false),
-            };
-            let i = coordinates.iter().position(|c| *c == name).ok_or_else(|| {
+            let i = index(state).ok_or_else(|| {
                 Error::InvalidSettings(format!(
-                    "state `{state}` of the model is neither a coordinate of {coordinates:?} \
-                     nor a coordinate's rate"
+                    "state `{state}` of the model is neither a coordinate nor a coordinate's \
+                     rate of this system"
                 ))
             })?;
-            let column = if rate { &mut law.k_v } else { &mut law.k_q };
+            let (column, i) = if i < N {
+                (&mut self.k_q, i)
+            } else {
+                (&mut self.k_v, i - N)
+            };
             for r in 0..P {
                 column[(r, i)] = T::lit(gain[(r, j)]);
             }
         }
-        Ok(law)
+        Ok(())
     }
 
-    /// u at (q, q̇).
+    /// u at (q, v).
     #[inline]
-    pub fn input(&self, q: &SVector<T, N>, v: &SVector<T, N>) -> SVector<T, P> {
-        self.u0 - self.k_q * (q - self.q0) - self.k_v * (v - self.v0)
+    pub fn input(&self, q: &SVector<T, Q>, v: &SVector<T, N>) -> SVector<T, P> {
+        let mut delta = SVector::<T, N>::zeros();
+        orientation::difference(
+            self.layout,
+            self.q0.as_slice(),
+            q.as_slice(),
+            delta.as_mut_slice(),
+        );
+        self.u0 - self.k_q * delta - self.k_v * (v - self.v0)
     }
 }
 
-impl<T: Real, const N: usize, const P: usize> InputSource<T, N, P> for StateFeedback<T, N, P> {
+impl<T: Real, const N: usize, const P: usize, const Q: usize> InputSource<T, N, P, Q>
+    for StateFeedback<T, N, P, Q>
+{
     #[inline]
-    fn input(&self, _: T, q: &SVector<T, N>, v: &SVector<T, N>) -> SVector<T, P> {
+    fn input(&self, _: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> SVector<T, P> {
         StateFeedback::input(self, q, v)
     }
 }

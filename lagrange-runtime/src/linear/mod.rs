@@ -143,6 +143,7 @@ pub use lqr::{Lqr, RICCATI_TOLERANCE, lqr};
 pub use settings::{
     DEFAULT_NEWTON_ITERATIONS, DEFAULT_NEWTON_TOLERANCE, Linearizer, OperatingPoint,
 };
+pub(crate) use tangent::states as tangent_states;
 
 use crate::error::Error;
 pub use crate::error::LinearError;

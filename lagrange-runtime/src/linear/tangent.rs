@@ -236,7 +236,8 @@ pub(super) fn column<T: Real, const N: usize>(
 /// The states' names: each velocity's tangent direction (an ordinary
 /// coordinate's own name, an orientation's `<name>.θx`, …), then the
 /// velocities with a prime.
-fn states<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q: usize>() -> Vec<String> {
+pub(crate) fn states<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q: usize>()
+-> Vec<String> {
     let mut tangent: Vec<String> = S::VELOCITIES.iter().map(|v| v.to_string()).collect();
     for o in S::ORIENTATIONS {
         let w = S::COORDINATES[o.q];
