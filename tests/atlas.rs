@@ -5,7 +5,7 @@
 #[path = "../examples/catalog/mod.rs"]
 mod catalog;
 
-use catalog::free::{Brick, EulerTop, QuaternionTop};
+use catalog::free::{Brick, EulerTop, QuaternionTop, sleeping_top_growth, sleeping_top_threshold};
 use lagrange::numeric::euler::EulerChart;
 use lagrange::numeric::orientation::rotation_matrix;
 use lagrange::prelude::*;
@@ -245,7 +245,7 @@ fn a_tumbling_brick_in_yaw_pitch_roll_runs_through_every_orientation() {
 fn the_upright_top_linearises_in_its_second_chart() {
     let top = EULER_TOP;
     let mgl = top.m * top.g * top.l;
-    let threshold = (4.0 * top.a * mgl).sqrt() / top.c;
+    let threshold = sleeping_top_threshold(top.a, top.c, mgl);
     for ratio in [0.9, 0.99, 1.01, 1.5] {
         let n = ratio * threshold;
         let lin = Linearizer::new()
@@ -253,8 +253,7 @@ fn the_upright_top_linearises_in_its_second_chart() {
             .unwrap();
         assert_eq!(lin.states()[..3], ["psi@2", "theta@2", "phi@2"]);
         let growth = lin.eigenvalues()[0].re;
-        let disc = 4.0 * top.a * mgl - (top.c * n).powi(2);
-        let expected = disc.max(0.0).sqrt() / (2.0 * top.a);
+        let expected = sleeping_top_growth(top.a, top.c, mgl, n);
         eprintln!("n/n_c = {ratio}: largest real part {growth:e}, closed form {expected:e}");
         assert!(
             (growth - expected).abs() < 1e-6 * (1.0 + expected),

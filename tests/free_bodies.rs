@@ -9,7 +9,9 @@ mod common;
 #[path = "../examples/catalog/floating.rs"]
 mod floating;
 
-use catalog::free::{Brick, QuaternionTop, flip_half_period};
+use catalog::free::{
+    Brick, QuaternionTop, flip_half_period, sleeping_top_growth, sleeping_top_threshold,
+};
 use common::numeric::Lcg;
 use floating::FloatingArm;
 use lagrange::prelude::*;
@@ -245,7 +247,7 @@ fn the_derived_brick_flips_at_the_elliptic_period() {
 #[test]
 fn the_sleeping_top_is_stable_above_the_threshold_spin() {
     let mgl = TOP.m * TOP.g * TOP.l;
-    let threshold = (4.0 * TOP.a * mgl).sqrt() / TOP.c;
+    let threshold = sleeping_top_threshold(TOP.a, TOP.c, mgl);
     for ratio in [0.9, 0.99, 1.01, 1.5] {
         let n = ratio * threshold;
         let lin = Linearizer::new()
@@ -258,8 +260,7 @@ fn the_sleeping_top_is_stable_above_the_threshold_spin() {
             .unwrap();
         assert_eq!(lin.states()[..3], ["spin.θx", "spin.θy", "spin.θz"]);
         let growth = lin.eigenvalues()[0].re;
-        let disc = 4.0 * TOP.a * mgl - (TOP.c * n).powi(2);
-        let expected = disc.max(0.0).sqrt() / (2.0 * TOP.a);
+        let expected = sleeping_top_growth(TOP.a, TOP.c, mgl, n);
         eprintln!("n/n_c = {ratio}: largest real part {growth:e}, closed form {expected:e}");
         assert!(
             (growth - expected).abs() < 1e-6 * (1.0 + expected),

@@ -81,6 +81,19 @@ pub struct EulerTop {
     pub g: f64,
 }
 
+/// The sleeping top's threshold spin: C² n² = 4 A m g l (A, C the
+/// transverse and axial moments about the pivot).
+pub fn sleeping_top_threshold(a: f64, c: f64, mgl: f64) -> f64 {
+    (4.0 * a * mgl).sqrt() / c
+}
+
+/// The sleeping top's growth rate at spin n: the largest real part of the
+/// roots of A ξ̈ − i C n ξ̇ − m g l ξ = 0, √(4 A m g l − C² n²) / (2A) below
+/// the threshold and zero above it.
+pub fn sleeping_top_growth(a: f64, c: f64, mgl: f64, n: f64) -> f64 {
+    (4.0 * a * mgl - (c * n).powi(2)).max(0.0).sqrt() / (2.0 * a)
+}
+
 /// The time between flips of a body spun near its intermediate axis
 /// (principal moments i1 < i2 < i3, angular velocity w with L² > 2 E i2):
 /// half the period 4K(k)/s of Landau–Lifshitz §37, with

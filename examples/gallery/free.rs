@@ -1,7 +1,9 @@
 //! Free rotations: the intermediate-axis flip and a top spun exactly upright,
 //! each with an animation of its scene.
 
-use crate::catalog::free::{Brick, EulerTop, QuaternionTop, flip_half_period};
+use crate::catalog::free::{
+    Brick, EulerTop, QuaternionTop, flip_half_period, sleeping_top_threshold,
+};
 use crate::figure::Figure;
 use crate::row::Row;
 use lagrange::Posed;
@@ -48,7 +50,7 @@ pub(crate) fn upright_top(system: &'static str) -> Result<Row, Error> {
         l: 0.2,
         g: 9.81,
     };
-    let threshold = (4.0 * top.a * top.m * top.g * top.l).sqrt() / top.c;
+    let threshold = sleeping_top_threshold(top.a, top.c, top.m * top.g * top.l);
     let n = 1.5 * threshold;
     let span = 0.0..4.0;
     let start = Instant::now();
