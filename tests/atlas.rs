@@ -5,7 +5,9 @@
 #[path = "../examples/catalog/mod.rs"]
 mod catalog;
 
-use catalog::free::{Brick, EulerTop, QuaternionTop, sleeping_top_growth, sleeping_top_threshold};
+use catalog::free::{
+    Brick, EulerTop, QuaternionTop, SphericalChain, sleeping_top_growth, sleeping_top_threshold,
+};
 use lagrange::numeric::euler::EulerChart;
 use lagrange::numeric::orientation::rotation_matrix;
 use lagrange::prelude::*;
@@ -318,4 +320,100 @@ fn every_integrator_carries_the_atlas_across() {
         (1.6..2.4).contains(&(coarse / fine)),
         "{coarse:e} -> {fine:e}"
     );
+}
+
+/// Two bodies on spherical joints, each joint written as three successive
+/// `rot_*` of its own angles: z-x-z at the pivot, y-x-z (Tait–Bryan) at the
+/// tip. The atlas finds both rotations, each with its own chart.
+#[derive(Lagrangian)]
+#[lagrange(
+    coordinates(p1, t1, s1, a2, b2, c2),
+    body(arm, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, -l],
+         at = [0, 0, 0], rotation = rot_z(p1) * rot_x(t1) * rot_z(s1)),
+    point(tip, on = arm, at = [0, 0, -2 * l]),
+    body(hand, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, -l],
+         at = [tip.x, tip.y, tip.z],
+         rotation = rot_z(p1) * rot_x(t1) * rot_z(s1) * rot_y(a2) * rot_x(b2) * rot_z(c2)),
+    gravity = [0, 0, -g],
+    emit(atlas),
+)]
+struct EulerChain {
+    m: f64,
+    a: f64,
+    c: f64,
+    l: f64,
+    g: f64,
+}
+
+/// Both joints started on their charts' singular sets (t1 = 0, b2 = π/2):
+/// each rotation starts in its second chart and switches on its own, and the
+/// chain moves as the quaternion chain does.
+#[test]
+fn a_chain_of_two_euler_joints_switches_each_on_its_own() {
+    let (m, a, c, l, g) = (1.0, 0.2, 0.02, 0.3, 9.81);
+    let chain = EulerChain { m, a, c, l, g };
+    assert_eq!(EulerChain::EULER.len(), 2);
+    assert_eq!(
+        (EulerChain::EULER[0].axes, EulerChain::EULER[1].axes),
+        ([2, 0, 2], [1, 0, 2])
+    );
+    let q0 = [0.3, 0.0, -0.2, 0.1, std::f64::consts::FRAC_PI_2, 0.4];
+    let v0 = [0.5, 5.0, -0.7, 2.0, -1.0, 0.3];
+    let span = 0.0..3.0;
+    let run = Simulation::new(&chain)
+        .integrator(Dopri5::tol(1e-11))
+        .run_atlas(q0, v0, span.clone())
+        .unwrap();
+    assert_eq!(run.charts()[0], 0b11);
+    let (upper, lower) = (
+        EulerChart::new([2, 0, 2]).unwrap(),
+        EulerChart::new([1, 0, 2]).unwrap(),
+    );
+    let quaternion = |chart: EulerChart, x: [f64; 3]| {
+        let r = chart.matrix(x);
+        lagrange::numeric::orientation::from_rotation_matrix(
+            [0, 1, 2].map(|i| [0, 1, 2].map(|j| r[(i, j)])),
+        )
+    };
+    let (x1, x2) = ([q0[0], q0[1], q0[2]], [q0[3], q0[4], q0[5]]);
+    let w1 = upper.rates(x1) * Vector3::new(v0[0], v0[1], v0[2]);
+    let w2 = lower.rates(x2) * Vector3::new(v0[3], v0[4], v0[5]);
+    let reference = Simulation::new(&SphericalChain { m, a, c, l, g })
+        .integrator(Dopri5::tol(1e-11))
+        .run(
+            [quaternion(upper, x1), quaternion(lower, x2)]
+                .concat()
+                .as_slice()
+                .try_into()
+                .map(SVector::<f64, 8>::from_row_slice)
+                .unwrap(),
+            [w1[0], w1[1], w1[2], w2[0], w2[1], w2[2]],
+            span,
+        )
+        .unwrap();
+    let traj = run.trajectory();
+    let mut worst: f64 = 0.0;
+    for (i, &t) in traj.times().iter().enumerate() {
+        let (q, _) = reference.state_at(t).unwrap();
+        worst = worst.max(
+            (run.rotation(i, 0) - matrix(&q.as_slice()[0..4]))
+                .abs()
+                .max(),
+        );
+        worst = worst.max(
+            (run.rotation(i, 1) - matrix(&q.as_slice()[4..8]))
+                .abs()
+                .max(),
+        );
+    }
+    let by_rotation = |k| run.switches().iter().filter(|s| s.rotation == k).count();
+    eprintln!(
+        "switches {} + {}, worst {worst:e}, drift {:e}",
+        by_rotation(0),
+        by_rotation(1),
+        traj.integral_drift()
+    );
+    assert!(by_rotation(0) >= 1 && by_rotation(1) >= 1);
+    assert!(worst < 1e-7, "{worst:e}");
+    assert!(traj.integral_drift() < 1e-8);
 }

@@ -10,7 +10,8 @@ mod common;
 mod floating;
 
 use catalog::free::{
-    Brick, QuaternionTop, flip_half_period, sleeping_top_growth, sleeping_top_threshold,
+    Brick, QuaternionTop, SphericalChain, flip_half_period, sleeping_top_growth,
+    sleeping_top_threshold,
 };
 use common::numeric::Lcg;
 use floating::FloatingArm;
@@ -267,28 +268,6 @@ fn the_sleeping_top_is_stable_above_the_threshold_spin() {
             "{growth} vs {expected}"
         );
     }
-}
-
-/// Two rigid bodies on spherical joints: the first on a fixed pivot, the
-/// second at the first's tip, its orientation the first's followed by its own
-/// (`rotation = upper * lower`). The lower joint's speeds are the relative
-/// angular velocity in the lower body's axes.
-#[derive(Lagrangian)]
-#[lagrange(
-    orientation(upper, lower),
-    body(arm, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, -l],
-         at = [0, 0, 0], rotation = upper),
-    point(tip, on = arm, at = [0, 0, -2 * l]),
-    body(hand, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, -l],
-         at = [tip.x, tip.y, tip.z], rotation = upper * lower),
-    gravity = [0, 0, -g],
-)]
-struct SphericalChain {
-    m: f64,
-    a: f64,
-    c: f64,
-    l: f64,
-    g: f64,
 }
 
 /// The same chain in Euler angles z-x-z, each joint its own three angles.

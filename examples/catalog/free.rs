@@ -81,6 +81,28 @@ pub struct EulerTop {
     pub g: f64,
 }
 
+/// Two rigid bodies on spherical joints: the first on a fixed pivot, the
+/// second at the first's tip, its orientation the first's followed by its own
+/// (`rotation = upper * lower`). The lower joint's speeds are the relative
+/// angular velocity in the lower body's axes.
+#[derive(Lagrangian)]
+#[lagrange(
+    orientation(upper, lower),
+    body(arm, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, -l],
+         at = [0, 0, 0], rotation = upper),
+    point(tip, on = arm, at = [0, 0, -2 * l]),
+    body(hand, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, -l],
+         at = [tip.x, tip.y, tip.z], rotation = upper * lower),
+    gravity = [0, 0, -g],
+)]
+pub struct SphericalChain {
+    pub m: f64,
+    pub a: f64,
+    pub c: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
 /// The sleeping top's threshold spin: C² n² = 4 A m g l (A, C the
 /// transverse and axial moments about the pivot).
 pub fn sleeping_top_threshold(a: f64, c: f64, mgl: f64) -> f64 {
