@@ -4,6 +4,7 @@
 use crate::catalog::bicycle::{Bicycle, published};
 use crate::catalog::constrained::RollingDisk;
 use crate::catalog::control::{CartPole, TwoLinkArm};
+use crate::operational::Ur5;
 use crate::row::{Row, TOL, row};
 use lagrange::Posed;
 use lagrange::linear::sweep;
@@ -181,43 +182,6 @@ pub(crate) fn arm(system: &'static str) -> Result<Row, Error> {
         },
     )
 }
-
-/// The UR5 read from its URDF file, with a torque input at each joint.
-#[derive(Lagrangian)]
-#[lagrange(
-    urdf = "robots/ur5.urdf",
-    inputs(u1, u2, u3, u4, u5, u6),
-    generalized_force(
-        shoulder_pan_joint = u1,
-        shoulder_lift_joint = u2,
-        elbow_joint = u3,
-        wrist_1_joint = u4,
-        wrist_2_joint = u5,
-        wrist_3_joint = u6
-    ),
-    gravity = [0, 0, -9.81],
-    emit(inverse_dynamics),
-    // The scene (visual only): the links as a line through the joints, the
-    // joints as cylinders and balls. The file's wrist inertias are far larger
-    // than the wrists, so their default inertia boxes would hide the arm.
-    shape(line(
-        shoulder_pan_joint_origin,
-        shoulder_lift_joint_origin,
-        elbow_joint_origin,
-        wrist_1_joint_origin,
-        wrist_2_joint_origin,
-        wrist_3_joint_origin,
-        ee_fixed_joint_origin
-    )),
-    shape(base_link, cylinder(radius = 0.07, length = 0.09, axis = z), at = [0, 0, 0.045]),
-    shape(shoulder_link, cylinder(radius = 0.06, length = 0.14, axis = y)),
-    shape(upper_arm_link, cylinder(radius = 0.055, length = 0.12, axis = y)),
-    shape(forearm_link, sphere(radius = 0.05)),
-    shape(wrist_1_link, sphere(radius = 0.045)),
-    shape(wrist_2_link, sphere(radius = 0.045)),
-    shape(wrist_3_link, cylinder(radius = 0.04, length = 0.05, axis = y)),
-)]
-struct Ur5 {}
 
 /// The UR5 driven from its home pose to a target by computed torque through
 /// its own inverse dynamics (recursive Newton–Euler): τ = ID(q, q̇, K_p e −
