@@ -187,9 +187,10 @@ pub fn critically_damped(e0: &Task, de0: &Task, omega: f64, t: f64) -> Task {
 /// Jᵀ (J Jᵀ + λ² I)⁻¹ = V diag(σ / (σ² + λ²)) Uᵀ with
 /// λ² = `damping`² (1 − (σ_min / threshold)²), which grows from zero at the
 /// threshold to `damping`² at the singularity (Nakamura and Hanafusa's
-/// variable damping): the inverse is exact away from singularities and
-/// bounded by 1 / (2λ) through one. Returns the inverse and σ_min; `None` if
-/// the SVD does not converge (a J that is not finite).
+/// variable damping): the inverse is exact away from singularities, its norm
+/// at most 1 / `threshold` near one (for `damping` ≥ `threshold`) and
+/// 1 / (2 `damping`) at one. Returns the inverse and σ_min; `None` if the SVD
+/// does not converge (a J that is not finite).
 pub fn damped_inverse(
     j: &Matrix6<f64>,
     threshold: f64,
