@@ -4,6 +4,9 @@
 use crate::catalog::bicycle::{Bicycle, published};
 use crate::catalog::constrained::RollingDisk;
 use crate::catalog::control::{CartPole, TwoLinkArm};
+use crate::operational::{
+    OperationalSpace, Ur5, critically_damped, start_off_the_circle, tool_circle,
+};
 use crate::row::{Row, TOL, row};
 use lagrange::Posed;
 use lagrange::linear::sweep;
@@ -182,43 +185,6 @@ pub(crate) fn arm(system: &'static str) -> Result<Row, Error> {
     )
 }
 
-/// The UR5 read from its URDF file, with a torque input at each joint.
-#[derive(Lagrangian)]
-#[lagrange(
-    urdf = "robots/ur5.urdf",
-    inputs(u1, u2, u3, u4, u5, u6),
-    generalized_force(
-        shoulder_pan_joint = u1,
-        shoulder_lift_joint = u2,
-        elbow_joint = u3,
-        wrist_1_joint = u4,
-        wrist_2_joint = u5,
-        wrist_3_joint = u6
-    ),
-    gravity = [0, 0, -9.81],
-    emit(inverse_dynamics),
-    // The scene (visual only): the links as a line through the joints, the
-    // joints as cylinders and balls. The file's wrist inertias are far larger
-    // than the wrists, so their default inertia boxes would hide the arm.
-    shape(line(
-        shoulder_pan_joint_origin,
-        shoulder_lift_joint_origin,
-        elbow_joint_origin,
-        wrist_1_joint_origin,
-        wrist_2_joint_origin,
-        wrist_3_joint_origin,
-        ee_fixed_joint_origin
-    )),
-    shape(base_link, cylinder(radius = 0.07, length = 0.09, axis = z), at = [0, 0, 0.045]),
-    shape(shoulder_link, cylinder(radius = 0.06, length = 0.14, axis = y)),
-    shape(upper_arm_link, cylinder(radius = 0.055, length = 0.12, axis = y)),
-    shape(forearm_link, sphere(radius = 0.05)),
-    shape(wrist_1_link, sphere(radius = 0.045)),
-    shape(wrist_2_link, sphere(radius = 0.045)),
-    shape(wrist_3_link, cylinder(radius = 0.04, length = 0.05, axis = y)),
-)]
-struct Ur5 {}
-
 /// The UR5 driven from its home pose to a target by computed torque through
 /// its own inverse dynamics (recursive Newton–Euler): τ = ID(q, q̇, K_p e −
 /// K_d q̇), so every joint's error follows e'' + 12 e' + 36 e = 0, e(t) =
@@ -270,4 +236,55 @@ fn tool_distance(ur5: &Ur5, q: &SVector<f64, 6>, target: &SVector<f64, 6>) -> f6
         bodies[tool].origin
     };
     (at(q) - at(target)).norm()
+}
+
+/// The UR5's tool driven round a circle, position and orientation, by
+/// operational-space control through its frame Jacobian, J̇ q̇ and inverse
+/// dynamics, from rest 5 cm off the goal and 0.3 rad behind it: the task
+/// error e = (p_d − p, log(R_d Rᵀ)) follows e'' + 20 e' + 100 e = 0, e(t) =
+/// (e0 + (ė0 + 10 e0) t) e^(−10t).
+pub(crate) fn ur5_circle(system: &'static str) -> Result<Row, Error> {
+    let ur5 = Ur5 {};
+    let omega = 10.0;
+    let osc = OperationalSpace::new(&ur5, "tool0", omega)
+        .ok_or_else(|| Error::InvalidSettings("the UR5 has no tool0 frame".into()))?;
+    let circle = tool_circle();
+    let q0 = start_off_the_circle(&osc, &circle).ok_or_else(|| {
+        Error::InvalidSettings("no joint angles put the UR5's tool at its start".into())
+    })?;
+    let span = 0.0..4.0;
+    row(
+        system,
+        &ur5,
+        span.clone(),
+        false,
+        || {
+            Simulation::new(&ur5)
+                .integrator(Dopri5::tol(TOL))
+                .feedback(|t, q: &SVector<f64, 6>, v: &SVector<f64, 6>| {
+                    osc.torque(&circle.at(t), t, q, v)
+                })
+                .run(q0, SVector::zeros(), span.clone())
+                .map(|run| run.into_trajectory())
+        },
+        |tr| {
+            let (e0, de0) = osc.error(&circle.at(0.0), &q0, &SVector::zeros());
+            let (mut off, mut after, mut smallest) = (0.0f64, 0.0f64, f64::INFINITY);
+            for ((t, q), v) in tr.times().iter().zip(tr.positions()).zip(tr.velocities()) {
+                let (e, _) = osc.error(&circle.at(*t), q, v);
+                off = off.max((e - critically_damped(&e0, &de0, omega, *t)).amax());
+                if *t >= 1.0 {
+                    after = after.max(e.amax());
+                }
+                smallest = smallest.min(osc.accelerations(&circle.at(*t), q, v).1);
+            }
+            let (q, v) = tr.final_state();
+            let (end, _) = osc.error(&circle.at(span.end), &q, &v);
+            format!(
+                "tool error {after:.1e} (m, rad) after 1 s, {:.1e} at {} s; off the closed form (e0 + (ė0 + 10 e0) t) e^(−10t) by {off:.1e}; σ_min(J) ≥ {smallest:.2}",
+                end.amax(),
+                span.end
+            )
+        },
+    )
 }

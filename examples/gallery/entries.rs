@@ -146,6 +146,11 @@ pub(crate) const ENTRIES: &[Entry] = &[
         control::ur5,
     ),
     entry(
+        "UR5 operational-space control, tool on a circle",
+        "task-space computed torque through the frame Jacobian, J̇ q̇ and inverse dynamics: position and orientation (log R_d Rᵀ) tracked with the designed error dynamics",
+        control::ur5_circle,
+    ),
+    entry(
         "cart-pole, LQR from the linearisation",
         "LQR gain from the symbolic linearisation, continuous feedback",
         control::cart_pole_continuous,

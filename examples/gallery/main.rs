@@ -21,6 +21,8 @@ mod free;
 mod layout;
 mod minimal;
 mod nonholonomic;
+#[path = "../catalog/operational.rs"]
+mod operational;
 mod output;
 mod plot;
 mod row;
