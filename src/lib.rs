@@ -318,10 +318,16 @@
 //! held by LQR follows the linear closed loop to second order in the error
 //! (`tests/torqued_body.rs`).
 //!
+//! `emit(coriolis)` gives C with h = C v and Ṁ − 2C skew-symmetric, Ṁ the
+//! rate of M along the motion: the Christoffel factorisation in the chart
+//! that moves with each body, plus ½ M W (W the [ω]× blocks) for the chart's
+//! own turning.
+//!
 //! Not yet with an orientation: the reduced form (`speeds`,
-//! `formulation(reduced)`), `emit(coriolis)` and `emit(hamiltonian)` (each a
-//! compile error at the orientation); the constrained linearisation takes
-//! Q = N only.
+//! `formulation(reduced)`) and `emit(hamiltonian)` (each a compile error at
+//! the orientation; Hamilton's form serves the symplectic [`Gauss`] method,
+//! which integrates (q, p) in coordinates); the constrained linearisation
+//! takes Q = N only.
 //!
 //! ```
 //! use lagrange::prelude::*;

@@ -44,15 +44,10 @@ fn check_orientations(cx: &Ctxt, system: &System) {
     if reduced {
         not_yet.push("`formulation(reduced)`");
     }
-    let supported = [
-        Extra::Reactions,
-        Extra::Articulated,
-        Extra::InverseDynamics,
-        Extra::Jacobians,
-        Extra::Kinematics,
-    ];
-    if system.extras.iter().any(|(_, e)| !supported.contains(e)) {
-        not_yet.push("`emit(coriolis)` or `emit(hamiltonian)`");
+    // Hamilton's form is for the symplectic Gauss method, which integrates
+    // (q, p) in coordinates: a quaternion has no conjugate momentum there.
+    if system.extras.iter().any(|(_, e)| *e == Extra::Hamiltonian) {
+        not_yet.push("`emit(hamiltonian)`");
     }
 
     if !not_yet.is_empty() {

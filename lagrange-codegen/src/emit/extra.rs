@@ -103,7 +103,7 @@ fn reactions(
 /// `coriolis_matrix`: C(q, q̇, t).
 fn coriolis(e: &Emitter, f: &Frame, model: &Model, cm: &[Vec<Sym>]) -> TokenStream {
     let (s, nl) = (&f.s, &f.n);
-    let vec_n = f.vec(nl);
+    let (vec_n, vec_q) = (f.vec(nl), f.qvec());
     let n = model.dof();
     let flat: Vec<Sym> = cm.iter().flatten().copied().collect();
     let (lets, outs) = e.program(&flat);
@@ -112,8 +112,10 @@ fn coriolis(e: &Emitter, f: &Frame, model: &Model, cm: &[Vec<Sym>]) -> TokenStre
     quote! {
         /// The Coriolis matrix C(q, q̇, t), C_ij = Σ_k Γ_ijk q̇_k, with Γ the Christoffel
         /// symbols of M: Ṁ − 2C is skew-symmetric, and C q̇ is the quadratic part of h.
+        /// With free orientations, v holds their body-axis ω and Γ is taken in the
+        /// chart that moves with each body, at its centre (Ṁ along the motion).
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
-        pub fn coriolis_matrix(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #mat {
+        pub fn coriolis_matrix(&self, q: &#vec_q, v: &#vec_n, t: #s) -> #mat {
             #lets
             let mut c = <#mat>::zeros();
             #fill

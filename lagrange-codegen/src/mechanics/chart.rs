@@ -18,15 +18,17 @@ use crate::lowered::{OrientationModel, Poses};
 use crate::mat3::Mat3;
 
 /// Free orientations: every output at the centre of the moving chart, θ = 0,
-/// the inputs' forces and the multiplier form's rows included (derived in θ
-/// before). What takes no orientation yet (the reduced form, and the optional
-/// outputs but the reactions, the articulated q̈, the inverse dynamics and
-/// the Jacobians) is refused before the derivation.
+/// the inputs' forces, the multiplier form's rows and the Coriolis matrix
+/// included (derived in θ before: the Christoffel symbols of M(θ) at θ = 0
+/// give C with h = C ω and Ṁ − 2C skew along the motion). What takes no
+/// orientation yet (the reduced form and Hamilton's form) is refused before
+/// the derivation.
 pub(super) fn at_centre(
     ctx: &mut Context,
     d: &mut Derived,
     constraints: Option<&mut ConstraintSet>,
     frames: Option<&mut Frames>,
+    coriolis: Option<&mut Vec<Vec<Sym>>>,
 ) {
     if d.orientations.is_empty() {
         return;
@@ -63,6 +65,9 @@ pub(super) fn at_centre(
         c.substituted(&mut f.com);
         c.substituted(&mut f.com_jacobian);
     }
+    if let Some(cm) = coriolis {
+        c.rows(cm);
+    }
     if let Some(i) = &mut d.inverse {
         c.all(&mut i.torques);
         c.all(&mut i.gravity);
@@ -88,6 +93,40 @@ pub(super) fn at_centre(
             c.rows(coefficients);
         }
     }
+}
+
+/// C_θ + ½ M W, W the block-diagonal [ω]× at each orientation's ω (zero
+/// elsewhere): the Christoffel factorisation taken in the chart that moves
+/// with the body (C_θ) satisfies Ṁ_θ − 2C_θ skew, where at θ = 0 Ṁ_θ =
+/// Ṁ + ½(W M − M W) with Ṁ the rate of M along the motion (θ enters
+/// through ω = (1 − ½[θ]×) θ̇). Adding ½ M W keeps C v = h (W v = 0, as
+/// ω × ω = 0) and makes Ṁ − 2C skew: Ṁ − 2C = S − ½(W M + M W).
+pub(super) fn along_the_motion(
+    ctx: &mut Context,
+    mut c: Vec<Vec<Sym>>,
+    mass: &[Vec<Sym>],
+    first: usize,
+    orientations: usize,
+) -> Vec<Vec<Sym>> {
+    let v = ctx.velocities();
+    let half = ctx.rational(1, 2);
+    for k in 0..orientations {
+        let o = first + 3 * k;
+        let [x, y, z] = [v[o], v[o + 1], v[o + 2]];
+        let (nx, ny, nz) = (ctx.neg(x), ctx.neg(y), ctx.neg(z));
+        let zero = ctx.zero();
+        let skew = [[zero, nz, y], [z, zero, nx], [ny, x, zero]];
+        for (row, m) in c.iter_mut().zip(mass) {
+            for j in 0..3 {
+                let terms: Vec<Sym> = (0..3).map(|l| ctx.mul(m[o + l], skew[l][j])).collect();
+                let mw = ctx.sum(&terms);
+                let mw = ctx.mul(half, mw);
+                let e = ctx.add(row[o + j], mw);
+                row[o + j] = ctx.collect(e);
+            }
+        }
+    }
+    c
 }
 
 /// θ ↦ 0 for every orientation.

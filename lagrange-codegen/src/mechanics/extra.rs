@@ -66,6 +66,32 @@ pub(super) fn rhs_jacobians(
     [jq, jv]
 }
 
+/// M in the orientations' θ, when `emit(coriolis)` needs its derivatives
+/// there: read off T as written in θ (the recursive route builds M at the
+/// chart's centre, and T is later rewritten from that M).
+pub(super) fn chart_mass(ctx: &mut Context, wanted: bool, kinetic: Sym) -> Option<Vec<Vec<Sym>>> {
+    wanted.then(|| mass_from_kinetic(ctx, kinetic))
+}
+
+/// M_ij = ∂²T/∂q̇_i∂q̇_j: the mass matrix read off the kinetic energy, in
+/// whatever coordinates T is written (a free orientation's θ chart, where
+/// the recursive route builds M at the centre only).
+pub(super) fn mass_from_kinetic(ctx: &mut Context, kinetic: Sym) -> Vec<Vec<Sym>> {
+    let qd = ctx.velocities();
+    let momentum: Vec<Sym> = qd.iter().map(|&v| ctx.diff(kinetic, v)).collect();
+    momentum
+        .iter()
+        .map(|&p| {
+            qd.iter()
+                .map(|&v| {
+                    let m = ctx.diff(p, v);
+                    ctx.collect(m)
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// C_ij = Σ_k Γ_ijk q̇_k with Γ_ijk = ½(∂M_ij/∂q_k + ∂M_ik/∂q_j − ∂M_jk/∂q_i): the
 /// factorisation of the Christoffel terms for which Ṁ − 2C is skew-symmetric.
 pub(super) fn coriolis_matrix(

@@ -169,9 +169,12 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
     let free = !orientations.is_empty();
     let jacobians = (extras.contains(&Extra::Jacobians))
         .then(|| derivatives::rhs_jacobians(&mut ctx, tree.as_ref(), &motion, &sources, free));
+    let chart_mass =
+        extra::chart_mass(&mut ctx, extras.contains(&Extra::Coriolis) && free, kinetic);
     let kinetic = energy::cheaper_kinetic(&mut ctx, rheonomic, kinetic, &motion.mass);
     let integral = energy::integral(&mut ctx, rheonomic, kinetic, forces.potential, &motion.mass);
     let derived = Derived {
+        chart_mass,
         coordinates,
         orientations,
         parameters,
@@ -386,6 +389,8 @@ fn equations(
 
 /// Everything derived before the optional outputs and the constrained forms.
 pub(super) struct Derived {
+    /// M written in the orientations' θ (for `emit(coriolis)` with them).
+    chart_mass: Option<Vec<Vec<Sym>>>,
     coordinates: Vec<String>,
     orientations: Vec<crate::lowered::OrientationModel>,
     parameters: Vec<String>,
@@ -430,6 +435,58 @@ impl<'a> Constrained<'a> {
     }
 }
 
+/// What is derived in the orientations' θ before their centre is taken.
+struct InTheta {
+    constraints: Option<ConstraintSet>,
+    frames: Option<Frames>,
+    coriolis: Option<Vec<Vec<Sym>>>,
+}
+
+/// With orientations the constraint rows (Ġ and γ need their θ-derivatives;
+/// theirs for `emit(jacobians)` would be in θ: not built), the frames
+/// (derivatives of the poses) and the Christoffel symbols (of M in θ) are
+/// derived in θ, then everything is taken at the centre.
+fn in_theta(ctx: &mut Context, d: &mut Derived, c: &Constrained, extras: &[Extra]) -> InTheta {
+    let mut constraints =
+        (!d.orientations.is_empty() && c.multipliers).then(|| multiplier_form(ctx, c, false));
+    let mut frames =
+        (extras.contains(&Extra::Kinematics)).then(|| frames::frames(ctx, &d.poses, &d.particles));
+    let mut coriolis = d.chart_mass.take().map(|mass| {
+        let (q, qd) = (ctx.coordinates(), ctx.velocities());
+        extra::coriolis_matrix(ctx, &mass, &q, &qd)
+    });
+    chart::at_centre(
+        ctx,
+        d,
+        constraints.as_mut(),
+        frames.as_mut(),
+        coriolis.as_mut(),
+    );
+    InTheta {
+        constraints,
+        frames,
+        coriolis,
+    }
+}
+
+/// C: with orientations, the chart's Christoffel factorisation turned along
+/// the motion (`chart::along_the_motion`); otherwise M's, if wanted.
+fn coriolis(
+    ctx: &mut Context,
+    in_theta: Option<Vec<Vec<Sym>>>,
+    mass: &[Vec<Sym>],
+    wanted: bool,
+    (first, orientations): (usize, usize),
+) -> Option<Vec<Vec<Sym>>> {
+    match in_theta {
+        Some(c) => Some(chart::along_the_motion(ctx, c, mass, first, orientations)),
+        None => wanted.then(|| {
+            let (q, qd) = (ctx.coordinates(), ctx.velocities());
+            extra::coriolis_matrix(ctx, mass, &q, &qd)
+        }),
+    }
+}
+
 /// Adds the optional outputs, the constrained forms and the hoisting.
 fn finish(
     mut ctx: Context,
@@ -437,16 +494,8 @@ fn finish(
     c: Constrained,
     extras: &[Extra],
 ) -> Result<Model, DeriveError> {
-    // With orientations the constraint rows (Ġ and γ need their
-    // θ-derivatives; theirs for `emit(jacobians)` would be in θ: not built)
-    // and the frames (derivatives of the poses) are derived in θ, then taken
-    // at the centre with everything else.
     let wants = |e: Extra| extras.contains(&e);
-    let mut early =
-        (!d.orientations.is_empty() && c.multipliers).then(|| multiplier_form(&mut ctx, &c, false));
-    let mut frames =
-        wants(Extra::Kinematics).then(|| frames::frames(&mut ctx, &d.poses, &d.particles));
-    chart::at_centre(&mut ctx, &mut d, early.as_mut(), frames.as_mut());
+    let early = in_theta(&mut ctx, &mut d, &c, extras);
     let Motion {
         mass,
         bias,
@@ -455,14 +504,19 @@ fn finish(
         rhs,
         forces,
     } = d.motion;
-    let coriolis = wants(Extra::Coriolis).then(|| {
-        let (q, qd) = (ctx.coordinates(), ctx.velocities());
-        extra::coriolis_matrix(&mut ctx, &mass, &q, &qd)
-    });
+    let slots = (d.coordinates.len(), d.orientations.len());
+    let coriolis = coriolis(
+        &mut ctx,
+        early.coriolis,
+        &mass,
+        wants(Extra::Coriolis),
+        slots,
+    );
     let hamiltonian = wants(Extra::Hamiltonian);
     let momentum = (hamiltonian || d.rheonomic).then(|| extra::momentum(&mut ctx, d.kinetic));
     let kinetic_gradient = hamiltonian.then(|| extra::kinetic_gradient(&mut ctx, d.kinetic));
-    let constraints = early.or_else(|| {
+    let frames = early.frames;
+    let constraints = early.constraints.or_else(|| {
         c.multipliers
             .then(|| multiplier_form(&mut ctx, &c, wants(Extra::Jacobians)))
     });
