@@ -381,12 +381,9 @@ fn a_chain_of_two_euler_joints_switches_each_on_its_own() {
     let reference = Simulation::new(&SphericalChain { m, a, c, l, g })
         .integrator(Dopri5::tol(1e-11))
         .run(
-            [quaternion(upper, x1), quaternion(lower, x2)]
-                .concat()
-                .as_slice()
-                .try_into()
-                .map(SVector::<f64, 8>::from_row_slice)
-                .unwrap(),
+            SVector::<f64, 8>::from_row_slice(
+                &[quaternion(upper, x1), quaternion(lower, x2)].concat(),
+            ),
             [w1[0], w1[1], w1[2], w2[0], w2[1], w2[2]],
             span,
         )
