@@ -525,7 +525,7 @@ fn the_coriolis_matrix_with_a_free_orientation_factors_h_and_is_passive() {
         let mut out = [0.0; 9];
         let step: Vec<f64> = v.iter().map(|x| x * s).collect();
         lagrange::numeric::orientation::integrate(
-            &CoriolisArm::ORIENTATIONS,
+            CoriolisArm::ORIENTATIONS,
             q.as_slice(),
             &step,
             &mut out,
