@@ -414,3 +414,48 @@ fn a_chain_of_two_euler_joints_switches_each_on_its_own() {
     assert!(worst < 1e-7, "{worst:e}");
     assert!(traj.integral_drift() < 1e-8);
 }
+
+/// A generic scalar: the twin carries the struct's type parameter, and the
+/// atlas runs in f32 as in f64.
+#[derive(Lagrangian, Clone, Copy)]
+#[lagrange(
+    coordinates(psi, theta, phi),
+    body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+         at = [0, 0, 0], rotation = euler_zxz(psi, theta, phi)),
+    gravity = [0, 0, -g],
+    emit(atlas),
+)]
+struct GenericTop<T> {
+    m: T,
+    a: T,
+    c: T,
+    l: T,
+    g: T,
+}
+
+#[test]
+fn the_atlas_runs_a_generic_scalar_in_f32() {
+    let top = GenericTop::<f32> {
+        m: 1.5,
+        a: 0.8,
+        c: 0.5,
+        l: 0.4,
+        g: 9.81,
+    };
+    let run = Simulation::new(&top)
+        .integrator(Dopri5::tol(1e-5))
+        .run_atlas([0.2f32, 0.6, -0.4], [0.0, -6.0, 2.0], 0.0..2.0)
+        .unwrap();
+    assert!(run.switches().len() >= 4);
+    let wide = Simulation::new(&EULER_TOP)
+        .integrator(Dopri5::tol(1e-10))
+        .run_atlas([0.2, 0.6, -0.4], [0.0, -6.0, 2.0], 0.0..2.0)
+        .unwrap();
+    let last = |r: &Matrix3<f64>| r.clone();
+    let narrow = run.rotation(run.trajectory().len() - 1, 0).map(f64::from);
+    let apart = (last(&wide.rotation(wide.trajectory().len() - 1, 0)) - narrow)
+        .abs()
+        .max();
+    assert!(apart < 1e-3, "{apart:e}");
+    assert!(run.trajectory().integral_drift() < 1e-3);
+}
