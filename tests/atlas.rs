@@ -451,9 +451,8 @@ fn the_atlas_runs_a_generic_scalar_in_f32() {
         .integrator(Dopri5::tol(1e-10))
         .run_atlas([0.2, 0.6, -0.4], [0.0, -6.0, 2.0], 0.0..2.0)
         .unwrap();
-    let last = |r: &Matrix3<f64>| r.clone();
     let narrow = run.rotation(run.trajectory().len() - 1, 0).map(f64::from);
-    let apart = (last(&wide.rotation(wide.trajectory().len() - 1, 0)) - narrow)
+    let apart = (wide.rotation(wide.trajectory().len() - 1, 0) - narrow)
         .abs()
         .max();
     assert!(apart < 1e-3, "{apart:e}");
