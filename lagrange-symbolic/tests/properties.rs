@@ -151,6 +151,26 @@ proptest! {
     }
 
     #[test]
+    fn directional_is_the_sum_of_partials_times_rates(
+        t in tree(),
+        vals in prop::array::uniform3(-2.0f64..2.0),
+        rates in prop::array::uniform2(-3i64..=3),
+    ) {
+        // Along (x0 → r0, x1 → r1); x2 has rate zero.
+        let (mut cx, syms) = setup();
+        let e = build(&mut cx, &syms, &t);
+        let (r0, r1) = (cx.int(rates[0]), cx.int(rates[1]));
+        let along = cx.directional(e, &[(syms[0], r0), (syms[1], r1)]);
+        let d0 = cx.diff(e, syms[0]);
+        let d1 = cx.diff(e, syms[1]);
+        let (a, b) = (cx.mul(r0, d0), cx.mul(r1, d1));
+        let partials = cx.add(a, b);
+        let env = point(&cx, &syms, vals);
+        let (x, y) = (cx.eval(along, &env), cx.eval(partials, &env));
+        prop_assert!(close(x, y, 1e-9), "{} along = {x}, partials {y}", cx.display(e));
+    }
+
+    #[test]
     fn rewrites_and_programs_preserve_value(t in tree(), vals in prop::array::uniform3(-2.0f64..2.0)) {
         let (mut cx, syms) = setup();
         let e = build(&mut cx, &syms, &t);

@@ -48,23 +48,32 @@ fn angular(ctx: &mut Context, r: &Mat3, q: &[Sym]) -> [Vec<Sym>; 3] {
     rows
 }
 
-/// J̇ q̇ = ∂(J q̇)/∂q q̇, row by row.
-fn bias(ctx: &mut Context, rows: &[Vec<Sym>], q: &[Sym], v: &[Sym]) -> Vec<Sym> {
-    rows.iter()
-        .map(|row| {
-            let terms: Vec<Sym> = row.iter().zip(v).map(|(&j, &vk)| ctx.mul(j, vk)).collect();
-            let jv = ctx.sum(&terms);
-            let terms: Vec<Sym> = q
-                .iter()
-                .zip(v)
-                .map(|(&qk, &vk)| {
-                    let d = ctx.diff(jv, qk);
-                    ctx.mul(d, vk)
-                })
-                .collect();
-            ctx.sum(&terms)
+/// J̇ q̇ as the frame's classical acceleration at q̈ = 0: p̈ = D(D(p)) for the
+/// origin, and for the angular part the skew matrix d(Ṙ Rᵀ)/dt = R̈ Rᵀ +
+/// Ṙ Ṙᵀ read as a vector, with D the derivative along (q → q̇) in one
+/// forward pass each.
+fn accelerations(ctx: &mut Context, p: &[Sym; 3], r: &Mat3, q: &[Sym], v: &[Sym]) -> Vec<Sym> {
+    let direction: Vec<(Sym, Sym)> = q.iter().copied().zip(v.iter().copied()).collect();
+    let d = |ctx: &mut Context, e: Sym| ctx.directional(e, &direction);
+    let linear: Vec<Sym> = p
+        .iter()
+        .map(|&x| {
+            let dx = d(ctx, x);
+            d(ctx, dx)
         })
-        .collect()
+        .collect();
+    let rd: Mat3 = r.map(|row| row.map(|e| d(ctx, e)));
+    let rdd: Mat3 = rd.map(|row| row.map(|e| d(ctx, e)));
+    // (R̈ Rᵀ + Ṙ Ṙᵀ)_ab.
+    let w = |ctx: &mut Context, a: usize, b: usize| {
+        let terms: Vec<Sym> = (0..3)
+            .flat_map(|k| [(rdd[a][k], r[b][k]), (rd[a][k], rd[b][k])])
+            .map(|(x, y)| ctx.mul(x, y))
+            .collect();
+        ctx.sum(&terms)
+    };
+    let angular = [w(ctx, 2, 1), w(ctx, 0, 2), w(ctx, 1, 0)];
+    linear.into_iter().chain(angular).collect()
 }
 
 /// The frames' Jacobians and biases and the centre of mass of `particles`
@@ -78,7 +87,7 @@ pub(super) fn frames(ctx: &mut Context, poses: &Poses, particles: &[(Sym, Vec<Sy
         let [l0, l1, l2] = jacobian(ctx, &origin, &q);
         let [a0, a1, a2] = angular(ctx, &body.rotation, &q);
         let rows = [l0, l1, l2, a0, a1, a2];
-        biases.push(bias(ctx, &rows, &q, &v));
+        biases.push(accelerations(ctx, &origin, &body.rotation, &q, &v));
         jacobians.push(rows.concat());
     }
     // The moving masses: a mass fixed in space (a robot's base) moves with
