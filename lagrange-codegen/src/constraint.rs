@@ -206,19 +206,18 @@ fn rows(
     out
 }
 
-/// γ = −d/dt(G q̇ + g) at q̈ = 0 for each row.
+/// γ = −d/dt(G q̇ + g) at q̈ = 0 for each row: the derivative along
+/// (t → 1, q → q̇), the velocities' rates zero, in one forward pass.
 fn rates(ctx: &mut Context, rows: &[Row]) -> Vec<Sym> {
     let qd = ctx.velocities();
-    let zero_acc: Vec<(Sym, Sym)> = {
-        let z = ctx.zero();
-        ctx.accelerations().into_iter().map(|a| (a, z)).collect()
-    };
+    let mut along: Vec<(Sym, Sym)> = ctx.coordinates().into_iter().zip(qd.clone()).collect();
+    let (t, one) = (ctx.time(), ctx.one());
+    along.push((t, one));
     rows.iter()
         .map(|r| {
             let e = linear(ctx, &r.g, &qd);
             let e = ctx.add(e, r.g0);
-            let d = ctx.time_derivative(e);
-            let d = ctx.substitute(d, &zero_acc);
+            let d = ctx.directional(e, &along);
             let d = ctx.neg(d);
             ctx.collect(d)
         })
