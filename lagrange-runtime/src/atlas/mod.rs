@@ -91,11 +91,12 @@ where
         }
     }
 
-    /// Moves every rotation whose user's chart is poor at q (below
+    /// Moves every rotation whose user's chart is poor at (t, q) (below
     /// [`LEAVE_BELOW`]) to its second chart, mapping (q, v); `left` receives
     /// the user's angles of each rotation that moved.
     pub fn enter_regular(
         &self,
+        t: T,
         q: &mut SVector<T, N>,
         v: &mut SVector<T, N>,
         left: &mut [[T; 3]],
@@ -105,7 +106,7 @@ where
                 continue;
             }
             left[k] = angles(rotation, q);
-            self.switch(k, q, v, None)?;
+            self.switch(t, k, q, v, None)?;
         }
         Ok(())
     }
@@ -116,6 +117,7 @@ where
     /// left, so that ψ and φ go on from where they were, up to 2π).
     pub fn switch(
         &self,
+        t: T,
         k: usize,
         q: &mut SVector<T, N>,
         v: &mut SVector<T, N>,
@@ -132,7 +134,7 @@ where
             .try_inverse()
             .map(|e| e * omega)
             .filter(|d| d.iter().all(|z| z.is_finite()))
-            .ok_or_else(|| Error::non_finite(T::zero(), q, v))?;
+            .ok_or_else(|| Error::non_finite(t, q, v))?;
         for (j, &i) in rotation.coordinates.iter().enumerate() {
             q[i] = y[j];
             v[i] = dy[j];

@@ -238,7 +238,7 @@ where
     // Where the user's angles stood when each rotation left their chart.
     let left = RefCell::new(vec![[T::zero(); 3]; S::EULER.len()]);
     let (mut q, mut v) = (q0, v0);
-    if let Err(e) = charted.enter_regular(&mut q, &mut v, &mut left.borrow_mut()) {
+    if let Err(e) = charted.enter_regular(t0, &mut q, &mut v, &mut left.borrow_mut()) {
         return Err(unstarted(e, q0, v0));
     }
     let start = charted.charts();
@@ -274,7 +274,7 @@ where
         }
     })
     .falling()
-    .action(move |_, q, v| {
+    .action(move |t, q, v| {
         let near = if in_second() {
             Some(left.borrow()[k])
         } else {
@@ -284,7 +284,7 @@ where
         // The map cannot fail away from the target chart's singular set,
         // which the thresholds keep far off; if it did, the non-finite
         // state ends the run with a typed error.
-        if charted.switch(k, q, v, near).is_err() {
+        if charted.switch(t, k, q, v, near).is_err() {
             q.fill(T::lit(f64::NAN));
         }
     })

@@ -52,7 +52,7 @@ impl Linearizer {
         let dynamics = Dynamics::new(sys).with_singular_tolerance(T::lit(self.singular_tolerance));
         let charted = Charted::<S, T, N, F>::new(dynamics);
         let (mut q, mut v) = (*q, *v);
-        charted.enter_regular(&mut q, &mut v, &mut vec![[T::zero(); 3]; S::EULER.len()])?;
+        charted.enter_regular(t, &mut q, &mut v, &mut vec![[T::zero(); 3]; S::EULER.len()])?;
         let accel = |q: &SVector<T, N>, v: &SVector<T, N>| charted.acceleration(t, q, v);
         let mut a = DMatrix::zeros(2 * N, 2 * N);
         a.view_mut((0, N), (N, N)).fill_with_identity();
