@@ -458,3 +458,41 @@ fn the_atlas_runs_a_generic_scalar_in_f32() {
     assert!(apart < 1e-3, "{apart:e}");
     assert!(run.trajectory().integral_drift() < 1e-3);
 }
+
+/// Released at tilt θ₀ = 0.6 (|sin θ₀| below the switching threshold, so it
+/// starts in the second chart) with spin n, the Euler-angle top nutates
+/// between u₀ = cos θ₀ and the root of β(1 − u²) = a²(u₀ − u), a = C n / A,
+/// β = 2 m g l / A, switching charts on the way: its turning points, found
+/// on the dense output read in the chart of each instant, are the cubic's.
+#[test]
+fn the_atlas_top_nutates_between_the_roots_of_the_cubic() {
+    let top = EULER_TOP;
+    let (theta0, n) = (0.6_f64, 6.0);
+    let run = Simulation::new(&top)
+        .integrator(Dop853::tol(1e-12))
+        .run_atlas([0.0, theta0, 0.0], [0.0, 0.0, n], 0.0..5.0)
+        .unwrap();
+    assert_eq!(run.charts()[0], 1);
+    assert!(!run.switches().is_empty());
+    let a = top.c * n / top.a;
+    let beta = 2.0 * top.m * top.g * top.l / top.a;
+    let u0 = theta0.cos();
+    let u1 = (a * a - (a.powi(4) - 4.0 * beta * (a * a * u0 - beta)).sqrt()) / (2.0 * beta);
+    // d(cos θ)/dt = (R [ω]×)₂₂ = R₂₀ ω_y − R₂₁ ω_x.
+    let tilt_rate = |t: f64| {
+        let (r, w) = run.rotation_at(t, 0).unwrap();
+        r[(2, 0)] * w[1] - r[(2, 1)] * w[0]
+    };
+    let turns = run.trajectory().crossings(|t, _, _| tilt_rate(t)).unwrap();
+    let lowest = (turns.iter())
+        .map(|&t| run.rotation_at(t, 0).unwrap().0[(2, 2)])
+        .fold(1.0, f64::min);
+    eprintln!(
+        "{} turning points, {} switches; lowest cos θ {lowest} vs {u1}",
+        turns.len(),
+        run.switches().len()
+    );
+    assert!(turns.len() >= 4);
+    assert!((lowest - u1).abs() < 1e-9, "{lowest} vs {u1}");
+    assert!(run.trajectory().integral_drift() < 1e-10);
+}

@@ -43,6 +43,8 @@ pub struct AtlasRun<T: Real, const N: usize> {
     rotations: &'static [EulerRotation],
     /// Per point, bit k set while rotation k is in its second chart.
     charts: Vec<u64>,
+    /// The charts the run started in, before any switch.
+    start: u64,
 }
 
 impl<T: Real, const N: usize> AtlasRun<T, N> {
@@ -88,6 +90,33 @@ impl<T: Real, const N: usize> AtlasRun<T, N> {
         } else {
             user
         }
+    }
+
+    /// The charts at time t (bit k for rotation k): those after every switch
+    /// at or before t (a switch's instant reads the state after it).
+    pub fn charts_at(&self, t: T) -> u64 {
+        (self.switches.iter())
+            .take_while(|s| s.t <= t)
+            .fold(self.start, |mask, s| mask ^ (1 << s.rotation))
+    }
+
+    /// Rotation k's matrix and body-axis angular velocity at time t, from the
+    /// dense output read in the chart of that time; `None` outside the run
+    /// (or between the stored points of a thinned recording).
+    pub fn rotation_at(&self, t: T, k: usize) -> Option<(Matrix3<T>, Vector3<T>)> {
+        let (q, v) = self.trajectory.state_at(t)?;
+        let user = user_chart(&self.rotations[k]);
+        let chart = if self.charts_at(t) >> k & 1 == 1 {
+            user.second()
+        } else {
+            user
+        };
+        let rotation = &self.rotations[k];
+        let x = angles(rotation, &q);
+        Some((
+            chart.matrix(x),
+            chart.rates(x) * Vector3::from(angles(rotation, &v)),
+        ))
     }
 
     /// Rotation k's matrix (body axes into the parent's) at point i: no chart.
@@ -325,5 +354,6 @@ fn finish<T: Real, const N: usize>(
         switches,
         rotations,
         charts,
+        start,
     }
 }
