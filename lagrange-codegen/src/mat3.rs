@@ -53,3 +53,24 @@ pub fn quaternion_matrix(ctx: &mut Context, [w, x, y, z]: [Sym; 4]) -> Mat3 {
         [ctx.sub(xz, wy), ctx.add(yz, wx), diagonal(ctx, xx, yy)],
     ]
 }
+
+/// Whether an inertia tensor [Ixx, Iyy, Izz, Ixy, Ixz, Iyz] is that of some
+/// rigid body: S = tr(I)/2·E − I (the second moments ∫ r rᵀ dm) positive
+/// semidefinite, by all its principal minors, to `round_off` relative.
+pub fn second_moments_psd(v: &[f64], round_off: f64) -> bool {
+    let h = 0.5 * (v[0] + v[1] + v[2]);
+    let s = [
+        [h - v[0], -v[3], -v[4]],
+        [-v[3], h - v[1], -v[5]],
+        [-v[4], -v[5], h - v[2]],
+    ];
+    let tol = round_off * h.abs().max(f64::MIN_POSITIVE);
+    let minor = |i: usize, j: usize| s[i][i] * s[j][j] - s[i][j] * s[j][i];
+    let det = s[0][0] * minor(1, 2) - s[0][1] * (s[1][0] * s[2][2] - s[1][2] * s[2][0])
+        + s[0][2] * (s[1][0] * s[2][1] - s[1][1] * s[2][0]);
+    (0..3).all(|i| s[i][i] >= -tol)
+        && [(0, 1), (0, 2), (1, 2)]
+            .iter()
+            .all(|&(i, j)| minor(i, j) >= -tol * h.abs())
+        && det >= -tol * h * h
+}

@@ -117,7 +117,7 @@ pub fn inertia(lw: &Lowerer, b: &Body, i: &Mat3, shape: Shape) -> Option<Physica
     }
     if principal {
         triangle(lw, &name, &list.elems, [v[0], v[1], v[2]]);
-    } else if !second_moments_psd(&v) {
+    } else if !crate::mat3::second_moments_psd(&v, ROUND_OFF) {
         let whose = if moved {
             "its inertia moved from `about` to the centre of mass (parallel-axis theorem, \
              I_com = I_about − m(|d|²E − d dᵀ))"
@@ -231,26 +231,6 @@ fn triangle(
     }
 }
 
-/// Whether S = tr(I)/2·E − I is positive semidefinite, by its principal
-/// minors (all of them, not only the leading ones), to round-off.
-fn second_moments_psd(v: &[f64]) -> bool {
-    let h = 0.5 * (v[0] + v[1] + v[2]);
-    let s = [
-        [h - v[0], -v[3], -v[4]],
-        [-v[3], h - v[1], -v[5]],
-        [-v[4], -v[5], h - v[2]],
-    ];
-    let tol = ROUND_OFF * h.abs().max(f64::MIN_POSITIVE);
-    let minor = |i: usize, j: usize| s[i][i] * s[j][j] - s[i][j] * s[j][i];
-    let det = s[0][0] * minor(1, 2) - s[0][1] * (s[1][0] * s[2][2] - s[1][2] * s[2][0])
-        + s[0][2] * (s[1][0] * s[2][1] - s[1][1] * s[2][0]);
-    (0..3).all(|i| s[i][i] >= -tol)
-        && [(0, 1), (0, 2), (1, 2)]
-            .iter()
-            .all(|&(i, j)| minor(i, j) >= -tol * h.abs())
-        && det >= -tol * h * h
-}
-
 /// D(q, q̇) with a constant numeric Hessian in the velocities (literal damping
 /// coefficients) must be positive semidefinite: the error at the dissipation
 /// names the first velocity where a pivot of ∂²D/∂q̇² is negative.
@@ -336,6 +316,7 @@ mod tests {
 
     #[test]
     fn second_moments() {
+        let second_moments_psd = |v: &[f64]| crate::mat3::second_moments_psd(v, ROUND_OFF);
         // A slender rod along (1, −1, 0)/√2: I = E − u uᵀ, on the boundary.
         assert!(second_moments_psd(&[0.5, 0.5, 1.0, 0.5, 0.0, 0.0]));
         assert!(second_moments_psd(&[1.0, 1.0, 2.0, 0.0, 0.0, 0.0]));

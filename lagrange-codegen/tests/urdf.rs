@@ -101,6 +101,18 @@ fn bad_files_quote_the_file_and_line() {
             "<robot name='r'>\n<link name='a'>\n<inertial><mass value='x'/><inertia ixx='1' iyy='1' izz='1' ixy='0' ixz='0' iyz='0'/></inertial></link>\n</robot>",
             "bad.urdf:3: `x` is not a number",
         ),
+        (
+            "<robot name='r'>\n<link name='a'>\n<inertial><mass value='1'/>\n<inertia ixx='-0.1' iyy='1' izz='1' ixy='0' ixz='0' iyz='0'/></inertial></link>\n</robot>",
+            "bad.urdf:4: <inertia ixx='-0.1'> is negative",
+        ),
+        (
+            "<robot name='r'>\n<link name='a'>\n<inertial><mass value='1'/>\n<inertia ixx='1' iyy='1' izz='3' ixy='0' ixz='0' iyz='0'/></inertial></link>\n</robot>",
+            "bad.urdf:4: <inertia> is that of no rigid body",
+        ),
+        (
+            "<robot name='r'>\n<link name='a'>\n<inertial><mass value='-2'/>\n<inertia ixx='1' iyy='1' izz='1' ixy='0' ixz='0' iyz='0'/></inertial></link>\n</robot>",
+            "bad.urdf:4: <mass value='-2'> is negative",
+        ),
     ];
     for (text, expected) in cases {
         let path = dir.join("bad.urdf");

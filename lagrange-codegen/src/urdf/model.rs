@@ -213,18 +213,50 @@ fn inertial(doc: &Document, node: Node) -> Result<Inertial, ReadError> {
     let tensor =
         child(node, "inertia").ok_or_else(|| error(line, "<inertial> has no <inertia>"))?;
     let entry = |key: &str| number(doc, tensor, required(doc, tensor, key)?);
+    let inertia = [
+        entry("ixx")?,
+        entry("iyy")?,
+        entry("izz")?,
+        entry("ixy")?,
+        entry("ixz")?,
+        entry("iyz")?,
+    ];
+    physical(line_of(doc, tensor), mass.value, &inertia.each_ref().map(|x| x.value))?;
     Ok(Inertial {
         mass,
         origin: origin(doc, node)?,
-        inertia: [
-            entry("ixx")?,
-            entry("iyy")?,
-            entry("izz")?,
-            entry("ixy")?,
-            entry("ixz")?,
-            entry("iyz")?,
-        ],
+        inertia,
     })
+}
+
+/// A mass and inertia some rigid body has, refused at their line otherwise
+/// (the same rules the description's literal inertias meet).
+fn physical(line: u32, mass: f64, inertia: &[f64; 6]) -> Result<(), ReadError> {
+    if mass < 0.0 {
+        return Err(error(
+            line,
+            format!("<mass value='{mass}'> is negative: a mass never is"),
+        ));
+    }
+    let names = ["ixx", "iyy", "izz"];
+    if let Some(k) = (0..3).find(|&k| inertia[k] < 0.0) {
+        return Err(error(
+            line,
+            format!(
+                "<inertia {}='{}'> is negative: a moment of inertia is ∫ r² dm about an axis",
+                names[k], inertia[k]
+            ),
+        ));
+    }
+    if !crate::mat3::second_moments_psd(inertia, 1e-12) {
+        return Err(error(
+            line,
+            "<inertia> is that of no rigid body: a moment exceeds the sum of the other two, \
+             or the products are too large (tr(I)/2·E − I must be positive semidefinite; \
+             URDF's ixy, ixz, iyz are the tensor's entries, −∫xy dm)",
+        ));
+    }
+    Ok(())
 }
 
 fn joint_type(doc: &Document, node: Node, name: &str) -> Result<JointType, ReadError> {
