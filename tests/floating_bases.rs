@@ -15,7 +15,7 @@
 #[path = "../examples/catalog/floating.rs"]
 mod floating;
 
-use floating::{Quadruped, Satellite};
+use floating::{ArmedSatellite, Quadruped};
 use lagrange::prelude::*;
 use lagrange::{Kinematics, Route};
 use nalgebra::{Quaternion, SVector, UnitQuaternion, Vector3};
@@ -178,5 +178,5 @@ fn solo_12_from_its_urdf_on_a_free_root_matches_pinocchio() {
 
 #[test]
 fn a_satellite_with_an_arm_matches_pinocchio_s_free_flyer() {
-    agrees_with_pinocchio::<_, 12, 13>("satellite", &Satellite { g: 9.81 });
+    agrees_with_pinocchio::<_, 12, 13>("satellite", &ArmedSatellite { g: 9.81 });
 }

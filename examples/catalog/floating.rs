@@ -95,7 +95,7 @@ pub struct Quadruped {
     gravity = [0, 0, -g],
     emit(articulated, inverse_dynamics, jacobians),
 )]
-pub struct Satellite {
+pub struct ArmedSatellite {
     pub g: f64,
 }
 

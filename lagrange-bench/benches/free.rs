@@ -189,7 +189,7 @@ fn free(c: &mut Criterion) {
     });
     group.finish();
     floating_base::<_, 18, 19>(c, "quadruped", &floating::Quadruped { g: 9.81 });
-    floating_base::<_, 12, 13>(c, "satellite", &floating::Satellite { g: 9.81 });
+    floating_base::<_, 12, 13>(c, "satellite", &floating::ArmedSatellite { g: 9.81 });
 }
 
 criterion_group!(benches, free);
