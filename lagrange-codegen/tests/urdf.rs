@@ -176,3 +176,23 @@ fn a_floating_joint_at_the_root_is_a_free_base() {
         a.items
     );
 }
+
+/// A lone base link without an `<inertial>` put on a free root has nothing
+/// that resists its motion: one compile error at the `urdf` path, naming the
+/// body, not a singular mass matrix at run time.
+#[test]
+fn a_massless_floating_base_is_refused_at_the_attribute() {
+    let path = std::env::temp_dir().join("lagrange-urdf-massless-base.urdf");
+    std::fs::write(&path, "<robot name='r'>\n<link name='base'/>\n</robot>").unwrap();
+    let src = format!(
+        "#[lagrange(urdf(\"{}\", base = floating))] struct R {{}}",
+        path.display()
+    );
+    let input: syn::DeriveInput = syn::parse_str(&src).unwrap();
+    let out = lagrange_codegen::expand(&input).to_string();
+    assert_eq!(out.matches("compile_error").count(), 1, "{out}");
+    assert!(
+        out.contains("body `base`: a free orientation turns it and nothing else"),
+        "{out}"
+    );
+}

@@ -221,7 +221,11 @@ fn inertial(doc: &Document, node: Node) -> Result<Inertial, ReadError> {
         entry("ixz")?,
         entry("iyz")?,
     ];
-    physical(line_of(doc, tensor), mass.value, &inertia.each_ref().map(|x| x.value))?;
+    physical(
+        line_of(doc, tensor),
+        mass.value,
+        &inertia.each_ref().map(|x| x.value),
+    )?;
     Ok(Inertial {
         mass,
         origin: origin(doc, node)?,
