@@ -417,25 +417,9 @@ fn a_chain_of_two_euler_joints_switches_each_on_its_own() {
 
 /// A generic scalar: the twin carries the struct's type parameter, and the
 /// atlas runs in f32 as in f64.
-#[derive(Lagrangian, Clone, Copy)]
-#[lagrange(
-    coordinates(psi, theta, phi),
-    body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
-         at = [0, 0, 0], rotation = euler_zxz(psi, theta, phi)),
-    gravity = [0, 0, -g],
-    emit(atlas),
-)]
-struct GenericTop<T> {
-    m: T,
-    a: T,
-    c: T,
-    l: T,
-    g: T,
-}
-
 #[test]
 fn the_atlas_runs_a_generic_scalar_in_f32() {
-    let top = GenericTop::<f32> {
+    let top = EulerTop::<f32> {
         m: 1.5,
         a: 0.8,
         c: 0.5,

@@ -474,30 +474,14 @@ fn a_floating_base_matches_pinocchio_s_free_flyer() {
     }
 }
 
-/// The floating arm with its Coriolis matrix: a hub on a free orientation
-/// and a two-joint arm (the tree route builds M at the chart's centre; C
-/// comes from T in the chart).
-#[derive(Lagrangian)]
-#[lagrange(
-    coordinates(x, y, z, j1, j2),
-    orientation(base),
-    body(hub, mass = 5.0, inertia = [0.4, 0.5, 0.6], at = [x, y, z], rotation = base),
-    point(shoulder, on = hub, at = [0.3, 0.1, 0.2]),
-    body(upper, mass = 1.5, inertia = [0.01, 0.05, 0.05], com = [0.2, 0, 0],
-         at = [shoulder.x, shoulder.y, shoulder.z], rotation = base * rot_z(j1)),
-    point(elbow, on = upper, at = [0.4, 0, 0]),
-    body(fore, mass = 1.0, inertia = [0.005, 0.02, 0.02], com = [0.15, 0, 0],
-         at = [elbow.x, elbow.y, elbow.z], rotation = base * rot_z(j1) * rot_y(j2)),
-    emit(coriolis),
-)]
-struct CoriolisArm {}
-
-/// With orientations C is taken in the chart moving with the body, so
-/// C v = h (no gravity here: Q − h = −h) and Ṁ − 2C is skew-symmetric, Ṁ
-/// along the motion (M at q ⊕ ±ε v by central differences).
+/// The floating arm's Coriolis matrix: with orientations C is taken in the
+/// chart moving with the body (the tree route builds M at the chart's
+/// centre; C comes from T in the chart), so C v = h (without gravity, −(Q − h))
+/// and Ṁ − 2C is skew-symmetric, Ṁ along the motion (M at q ⊕ ±ε v by
+/// central differences).
 #[test]
 fn the_coriolis_matrix_with_a_free_orientation_factors_h_and_is_passive() {
-    let arm = CoriolisArm {};
+    let arm = FloatingArm { g: 0.0 };
     let n = (0.8f64 * 0.8 + 0.2 * 0.2 + 0.4 * 0.4 + 0.3 * 0.3).sqrt();
     let q = SVector::<f64, 9>::from([
         0.1,
@@ -511,7 +495,7 @@ fn the_coriolis_matrix_with_a_free_orientation_factors_h_and_is_passive() {
         0.3 / n,
     ]);
     let v = SVector::<f64, 8>::from([0.3, -0.1, 0.2, 0.5, -0.8, 0.4, -0.6, 0.9]);
-    assert_eq!(CoriolisArm::ROUTE, lagrange::Route::Recursive);
+    assert_eq!(FloatingArm::ROUTE, lagrange::Route::Recursive);
     let c = arm.coriolis_matrix(&q, &v, 0.0);
     let (_, rhs) = arm.mass_matrix_and_rhs(&q, &v, 0.0);
     let h = -rhs;
@@ -525,7 +509,7 @@ fn the_coriolis_matrix_with_a_free_orientation_factors_h_and_is_passive() {
         let mut out = [0.0; 9];
         let step: Vec<f64> = v.iter().map(|x| x * s).collect();
         lagrange::numeric::orientation::integrate(
-            CoriolisArm::ORIENTATIONS,
+            FloatingArm::ORIENTATIONS,
             q.as_slice(),
             &step,
             &mut out,

@@ -116,6 +116,7 @@ pub struct ArmedSatellite {
     body(fore, mass = 1.0, inertia = [0.005, 0.02, 0.02], com = [0.15, 0, 0],
          at = [elbow.x, elbow.y, elbow.z], rotation = base * rot_z(j1) * rot_y(j2)),
     gravity = [0, 0, -g],
+    emit(coriolis),
 )]
 pub struct FloatingArm {
     pub g: f64,

@@ -62,7 +62,8 @@ pub struct QuaternionTop {
 
 /// The same top in the user's Euler angles z-x-z (precession ψ, nutation θ,
 /// spin φ) with an atlas: a run through θ = 0, where this chart is singular,
-/// goes on in the second chart and comes back.
+/// goes on in the second chart and comes back. Generic over the scalar (the
+/// atlas runs in f32 as in f64).
 #[derive(Lagrangian, Clone, Copy, Debug)]
 #[lagrange(
     coordinates(psi, theta, phi),
@@ -73,12 +74,12 @@ pub struct QuaternionTop {
     shape(top, cylinder(radius = 0.12, length = 0.04, axis = z), at = [0, 0, l]),
     shape(top, capsule(radius = 0.008, length = 2 * l, axis = z), at = [0, 0, l]),
 )]
-pub struct EulerTop {
-    pub m: f64,
-    pub a: f64,
-    pub c: f64,
-    pub l: f64,
-    pub g: f64,
+pub struct EulerTop<T = f64> {
+    pub m: T,
+    pub a: T,
+    pub c: T,
+    pub l: T,
+    pub g: T,
 }
 
 /// Two rigid bodies on spherical joints: the first on a fixed pivot, the

@@ -121,7 +121,7 @@ pub(crate) fn atlas_top(system: &'static str) -> Result<Row, Error> {
     let user = run.user_trajectory().ok_or_else(|| {
         Error::InvalidSettings("the atlas run has no point in the user's chart".into())
     })?;
-    let figure = Figure::of(&user, &EulerTop::COORDINATES, &[false; 3], true)?;
+    let figure = Figure::of(&user, &EulerTop::<f64>::COORDINATES, &[false; 3], true)?;
     free_row(system, &top, &user, span, (note, wall_ms), figure)
 }
 
