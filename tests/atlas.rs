@@ -480,3 +480,14 @@ fn the_atlas_top_nutates_between_the_roots_of_the_cubic() {
     assert!((lowest - u1).abs() < 1e-9, "{lowest} vs {u1}");
     assert!(run.trajectory().integral_drift() < 1e-10);
 }
+
+/// `EQUATIONS` says which rotations have a second chart and when a run
+/// switches.
+#[test]
+fn the_equations_name_each_rotation_and_its_second_chart() {
+    let text = EulerTop::<f64>::EQUATIONS;
+    assert!(
+        text.contains("atlas: `top`'s (psi, theta, phi) in z-x-z, and z-x-z after rot_x(π/2)"),
+        "{text}"
+    );
+}

@@ -84,6 +84,39 @@ pub fn twin(cx: &Ctxt, system: &System, at: &Ident) -> Option<(System, Vec<Euler
     Some((twin, triples))
 }
 
+/// The line `EQUATIONS` gives an `emit(atlas)` description: each rotation,
+/// its chart and its second one.
+pub fn describe(system: &System) -> Option<String> {
+    system
+        .extras
+        .iter()
+        .find(|(_, e)| *e == crate::ast::Extra::Atlas)?;
+    let mut triples = Vec::new();
+    for body in &system.bodies {
+        if let Some(rotation) = &body.rotation {
+            rewrite(rotation, system, &body.name, &mut triples);
+        }
+    }
+    let axis = |a: usize| ["x", "y", "z"][a];
+    let rotations: Vec<String> = triples
+        .iter()
+        .map(|t| {
+            let names = t.coordinates.map(|i| system.coordinates[i].to_string());
+            let sequence = t.axes.map(axis).join("-");
+            format!(
+                "`{}`'s ({}) in {sequence}, and {sequence} after rot_{}(π/2)",
+                t.body,
+                names.join(", "),
+                axis(t.axes[1])
+            )
+        })
+        .collect();
+    Some(format!(
+        "atlas: {}; a run leaves the user's chart where its conditioning (|sin| or |cos| of the middle angle) falls below 0.6 and comes back above 0.8 (`Simulation::run_atlas`).",
+        rotations.join("; ")
+    ))
+}
+
 /// What the atlas does not cover yet, refused at `at`.
 fn supported(cx: &Ctxt, system: &System, at: &Ident) -> bool {
     let refused = [

@@ -73,7 +73,13 @@ struct Docs {
 
 impl Docs {
     fn new(system: &System, model: &Model) -> Self {
-        let doc::Texts { equations, latex } = doc::texts(model);
+        let doc::Texts {
+            mut equations,
+            latex,
+        } = doc::texts(model);
+        if let Some(line) = crate::atlas::describe(system) {
+            equations.push_str(&format!("\n{line}\n"));
+        }
         let name = format_ident!("__lagrange_equations_{}", system.ident);
         let impl_doc = match doc::rustdoc(&equations, &system.ident.to_string()) {
             Some(summary) => quote!(#[doc = #summary]),
