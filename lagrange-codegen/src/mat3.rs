@@ -9,7 +9,8 @@ pub type Mat3 = [[Sym; 3]; 3];
 /// cos and sin of an angle: exactly 0 and ±1 at a constant that is a
 /// multiple of π/2 to within a few ulp. `pi / 2` in a description is a float
 /// whose cosine is 6e-17, not 0; the exact zeros let the products they enter
-/// vanish at construction (a robot's quarter-turn placements).
+/// vanish at construction (a robot's quarter-turn placements). Any other
+/// constant angle gives two floats.
 pub fn cos_sin(ctx: &mut Context, angle: Sym) -> (Sym, Sym) {
     if let Some(v) = ctx.as_f64(angle) {
         let k = (v / std::f64::consts::FRAC_PI_2).round();
@@ -23,6 +24,10 @@ pub fn cos_sin(ctx: &mut Context, angle: Sym) -> (Sym, Sym) {
             };
             return (ctx.int(c), ctx.int(s));
         }
+        // Any other constant angle (the Panda hand's π/4, the xArm7's
+        // 1.5708) evaluated here, not per call: the placement's products
+        // with other constants fold.
+        return (ctx.float(v.cos()), ctx.float(v.sin()));
     }
     (ctx.cos(angle), ctx.sin(angle))
 }

@@ -5,9 +5,12 @@
 //! terms and like bases, and apply the Pythagorean identity. They deliberately
 //! never distribute a product over a sum: the derivative of a product of sums
 //! must stay factored, or expressions grow exponentially. The one exception
-//! is a *numeric* multiple of a sum appearing inside a sum, which is flattened
-//! (`a + 2(b + c) = a + 2b + 2c`) so that cancellations are found; that is
-//! linear in size.
+//! is an *exact* numeric multiple of a sum appearing inside a sum, which is
+//! flattened (`a + 2(b + c) = a + 2b + 2c`) so that cancellations are found;
+//! that is linear in size. A float multiple stays one product: its
+//! cancellations would not be exact anyway, and a float coefficient (a mass, a
+//! link length) times a sum of k terms costs one multiplication where its k
+//! distributed copies cost k (the recursive dynamics' I a, m v and d × f).
 
 use std::collections::HashMap;
 
@@ -116,7 +119,10 @@ impl Context {
             return;
         }
         let (c, m) = self.split_coeff(e);
-        if !c.is_one() && matches!(self.node(m), Node::Add(_)) {
+        // Exact multiples only (see the module docs): a float one stays a
+        // product.
+        let exact = matches!(c, Num::Rat(r) if r != Rational::ONE);
+        if exact && matches!(self.node(m), Node::Add(_)) {
             self.accumulate(set, scale.mul(c), m);
             return;
         }

@@ -84,11 +84,33 @@ pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result
         Some(g) if g.len() == 3 && g.iter().all(|&x| fixed(ctx, x)) => Some([g[0], g[1], g[2]]),
         Some(_) => return Err("gravity is not a constant vector".into()),
     };
+    for link in &mut links {
+        as_floats(ctx, link);
+    }
     Ok(Tree {
         links,
         gravity,
         spheres,
     })
+}
+
+/// A number as a float constant (an expression otherwise unchanged).
+fn float(ctx: &mut Context, x: Sym) -> Sym {
+    match ctx.as_f64(x) {
+        Some(v) if ctx.is_constant(x) => ctx.float(v),
+        _ => x,
+    }
+}
+
+/// The link's numbers as floats: the engine does not distribute a float
+/// coefficient over a sum, so m a, I α and d × f stay one product each.
+fn as_floats(ctx: &mut Context, link: &mut Link) {
+    link.offset = link.offset.map(|x| float(ctx, x));
+    if let Some(i) = &mut link.inertia {
+        i.mass = float(ctx, i.mass);
+        i.first = i.first.map(|x| float(ctx, x));
+        i.rot = i.rot.map(|r| r.map(|x| float(ctx, x)));
+    }
 }
 
 /// Each body's rotation factors read as joints (about coordinates) and
