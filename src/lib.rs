@@ -320,7 +320,7 @@
 //!
 //! `emit(coriolis)` gives C with h = C v and Ṁ − 2C skew-symmetric, Ṁ the
 //! rate of M along the motion: the Christoffel factorisation in the chart
-//! that moves with each body, plus ½ M W (W the [ω]× blocks) for the chart's
+//! that moves with each body, plus ½ M W (W the \[ω\]× blocks) for the chart's
 //! own turning.
 //!
 //! Not yet with an orientation: the reduced form (`speeds`,
