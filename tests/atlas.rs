@@ -371,9 +371,7 @@ fn a_chain_of_two_euler_joints_switches_each_on_its_own() {
     );
     let quaternion = |chart: EulerChart, x: [f64; 3]| {
         let r = chart.matrix(x);
-        lagrange::numeric::orientation::from_rotation_matrix(
-            [0, 1, 2].map(|i| [0, 1, 2].map(|j| r[(i, j)])),
-        )
+        lagrange::numeric::orientation::from_rotation_matrix(&r)
     };
     let (x1, x2) = ([q0[0], q0[1], q0[2]], [q0[3], q0[4], q0[5]]);
     let w1 = upper.rates(x1) * Vector3::new(v0[0], v0[1], v0[2]);

@@ -97,9 +97,7 @@ pub(crate) fn atlas_top(system: &'static str) -> Result<Row, Error> {
     let chart = lagrange::numeric::euler::EulerChart::new([2, 0, 2]).expect("z-x-z");
     let w = chart.rates(q0) * Vector3::from(v0);
     let r0 = chart.matrix(q0);
-    let quaternion = lagrange::numeric::orientation::from_rotation_matrix(
-        [0, 1, 2].map(|i| [0, 1, 2].map(|j| r0[(i, j)])),
-    );
+    let quaternion = lagrange::numeric::orientation::from_rotation_matrix(&r0);
     let reference = Simulation::new(&twin).integrator(Dopri5::tol(1e-10)).run(
         quaternion,
         [w[0], w[1], w[2]],

@@ -155,7 +155,7 @@ where
         for (k, rotation) in S::EULER.iter().enumerate() {
             let chart = self.chart(k);
             let x = angles(rotation, q);
-            let quaternion = orientation::from_rotation_matrix(rows(&chart.matrix(x)));
+            let quaternion = orientation::from_rotation_matrix(&chart.matrix(x));
             let omega = chart.rates(x) * Vector3::from(angles(rotation, v));
             let (at_q, at_v) = (first + 4 * k, first + 3 * k);
             qf.as_mut_slice()[at_q..at_q + 4].copy_from_slice(&quaternion);
@@ -277,11 +277,6 @@ pub(crate) fn angles<T: Real, const N: usize>(
     x: &SVector<T, N>,
 ) -> [T; 3] {
     rotation.coordinates.map(|i| x[i])
-}
-
-/// A matrix row by row.
-pub(crate) fn rows<T: Real>(m: &Matrix3<T>) -> [[T; 3]; 3] {
-    [0, 1, 2].map(|i| [0, 1, 2].map(|j| m[(i, j)]))
 }
 
 /// The coordinates of q that are no rotation's angles, in order: the twin's

@@ -1,7 +1,7 @@
 //! A run through the atlas: the switching events, and what the run hands
 //! back ([`AtlasRun`]).
 
-use super::{Charted, LEAVE_BELOW, RETURN_ABOVE, angles, layout_agrees, rows, user_chart};
+use super::{Charted, LEAVE_BELOW, RETURN_ABOVE, angles, layout_agrees, user_chart};
 use crate::error::{Error, Failure, Progress};
 use crate::event::{Event, EventRun, Events};
 use crate::mechanics::Dynamics;
@@ -127,7 +127,7 @@ impl<T: Real, const N: usize> AtlasRun<T, N> {
 
     /// Rotation k's unit quaternion (w, x, y, z), w ≥ 0, at point i.
     pub fn quaternion(&self, i: usize, k: usize) -> [T; 4] {
-        orientation::from_rotation_matrix(rows(&self.rotation(i, k)))
+        orientation::from_rotation_matrix(&self.rotation(i, k))
     }
 
     /// Rotation k's angular velocity in body axes at point i.

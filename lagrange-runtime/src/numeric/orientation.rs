@@ -243,52 +243,13 @@ pub fn rotation_matrix<T: Real>([w, x, y, z]: [T; 4]) -> [[T; 3]; 3] {
     ]
 }
 
-/// The unit quaternion (w ≥ 0) of a rotation matrix given row by row, by
-/// Shepperd's method: the largest of 1 + trace and 1 + 2 R_kk − trace is the
-/// one square root taken, so no component is found by cancellation.
-pub fn from_rotation_matrix<T: Real>(r: [[T; 3]; 3]) -> [T; 4] {
-    let (one, quarter) = (T::one(), T::lit(0.25));
-    let trace = r[0][0] + r[1][1] + r[2][2];
-    let diagonal = [0, 1, 2].map(|k| one + T::lit(2.0) * r[k][k] - trace);
-    let big = (0..3).fold(3, |best, k| {
-        let current = if best == 3 {
-            one + trace
-        } else {
-            diagonal[best]
-        };
-        if diagonal[k] > current { k } else { best }
-    });
-    // (w, x, y, z) times 4·(the largest component).
-    let scaled = match big {
-        3 => [
-            one + trace,
-            r[2][1] - r[1][2],
-            r[0][2] - r[2][0],
-            r[1][0] - r[0][1],
-        ],
-        0 => [
-            r[2][1] - r[1][2],
-            diagonal[0],
-            r[0][1] + r[1][0],
-            r[0][2] + r[2][0],
-        ],
-        1 => [
-            r[0][2] - r[2][0],
-            r[0][1] + r[1][0],
-            diagonal[1],
-            r[1][2] + r[2][1],
-        ],
-        _ => [
-            r[1][0] - r[0][1],
-            r[0][2] + r[2][0],
-            r[1][2] + r[2][1],
-            diagonal[2],
-        ],
-    };
-    let largest = if big == 3 { one + trace } else { diagonal[big] };
-    let k = quarter / sqrt(largest * quarter);
-    let sign = if scaled[0] < T::zero() { -k } else { k };
-    scaled.map(|x| x * sign)
+/// The unit quaternion (w ≥ 0) of a rotation matrix (nalgebra's
+/// `UnitQuaternion::from_rotation_matrix`, sign fixed so that w ≥ 0).
+pub fn from_rotation_matrix<T: Real>(r: &nalgebra::Matrix3<T>) -> [T; 4] {
+    let rotation = nalgebra::Rotation3::from_matrix_unchecked(*r);
+    let q = nalgebra::UnitQuaternion::from_rotation_matrix(&rotation);
+    let s = if q.w < T::zero() { -T::one() } else { T::one() };
+    [q.w * s, q.i * s, q.j * s, q.k * s]
 }
 
 #[cfg(test)]
@@ -378,7 +339,8 @@ mod tests {
             [1.0, 0.0, 0.0, 0.0],
         ] {
             let q = unit(q);
-            let back = from_rotation_matrix(rotation_matrix(q));
+            let r = rotation_matrix(q);
+            let back = from_rotation_matrix(&nalgebra::Matrix3::from_fn(|i, j| r[i][j]));
             let s = if q[0] < 0.0 { -1.0 } else { 1.0 };
             for k in 0..4 {
                 assert!((back[k] - s * q[k]).abs() < 1e-15, "{q:?} -> {back:?}");
