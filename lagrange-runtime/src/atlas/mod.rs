@@ -35,7 +35,7 @@ use crate::numeric::euler::EulerChart;
 use crate::numeric::orientation::{self, Orientation};
 use crate::ode::SecondOrder;
 use crate::system::{Atlas, EulerRotation, FreeVisitor, Lagrangian};
-use nalgebra::{Matrix3, SVector, Vector3};
+use nalgebra::{SVector, Vector3};
 use std::cell::Cell;
 
 /// A rotation leaves the user's chart when that chart's conditioning (|sin θ|
