@@ -1,5 +1,6 @@
 //! Writes the spatial chains of issue 10 (n = 6, 10, 12, 14, 30) as derived
-//! models, one module each (`nN`, and `aN` with the articulated-body algorithm), for `benches/spatial.rs` and `tests/spatial.rs`.
+//! models, one module each (`nN`, `aN` with the articulated-body algorithm,
+//! and `wN` written out), for `benches/spatial.rs` and `tests/spatial.rs`.
 
 use std::fmt::Write;
 
@@ -11,10 +12,17 @@ fn main() {
     let variants = sizes
         .iter()
         .map(|&n| (n, "n", ""))
-        .chain(sizes.iter().map(|&n| (n, "a", "emit(articulated), ")));
+        .chain(sizes.iter().map(|&n| (n, "a", "emit(articulated), ")))
+        .chain([6, 12].map(|n| (n, "w", "")));
     for (n, prefix, extra) in variants {
-        let source = lagrange_codegen::chain::spatial_chain_source(n)
-            .replace("#[lagrange(", &format!("#[lagrange({extra}"));
+        // `wN`: the same chain with its poses written out (explicit matrices
+        // of `define`s, ξ(q) as sums), whose tree the derive reads back.
+        let source = if prefix == "w" {
+            lagrange_codegen::chain::spatial_chain_written_source(n)
+        } else {
+            lagrange_codegen::chain::spatial_chain_source(n)
+        }
+        .replace("#[lagrange(", &format!("#[lagrange({extra}"));
         let fields: Vec<String> = (0..n)
             .map(|k| format!("m{k}: 1.0 + 0.1 * {k}.0, l{k}: 1.0 - 0.02 * {k}.0"))
             .collect();

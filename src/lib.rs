@@ -67,8 +67,15 @@
 //! (`at = [j.x, j.y, j.z]` with `point(j, on = parent, ..)`) or a fixed point —
 //! are derived by the recursive algorithms: M by composite rigid bodies, h and
 //! gravity by recursive Newton–Euler, O(n²) and O(n) operations instead of the
-//! O(n³) of differentiating ξ(q) in 3-D. Nothing needs declaring; a small tree is
-//! derived both ways and the cheaper program kept. The parameter-only parts of the
+//! O(n³) of differentiating ξ(q) in 3-D. The same tree with its poses written
+//! out (rotations as explicit matrices, often of `define`s, reference points
+//! as ξ(q)) is read back: relative to the body whose coordinates its own
+//! extend, each body must turn about a constant axis or slide along a fixed
+//! line by one more coordinate (or not move: a fixed joint), which the derive
+//! reads at q = 0 and checks at random configurations. Nothing needs
+//! declaring; a small tree is derived both ways and the cheaper program kept,
+//! and `ROUTE` and `EQUATIONS` say which route a system got and, for the
+//! generic one, which body kept it there and why. The parameter-only parts of the
 //! emitted programs are split off into [`Lagrangian::parameter_terms`], which
 //! [`Simulation`] runs compute once per run.
 //!

@@ -39,12 +39,32 @@ macro_rules! chain_bench {
     }};
 }
 
+/// The chain with its poses written out beside the same chain written with
+/// `rot_*` factors and points, in one group.
+macro_rules! written_bench {
+    ($c:expr, $written:ident, $factored:ident, $n:literal) => {{
+        let written = $written::SpatialChain::benchmark();
+        let factored = $factored::SpatialChain::benchmark();
+        let (q, v) = state::<$n>();
+        let mut group = $c.benchmark_group(concat!("spatial_chain_written_", stringify!($n)));
+        group.bench_function("M + (Q - h), written out", |b| {
+            b.iter(|| written.mass_matrix_and_rhs(black_box(&q), black_box(&v), 0.0))
+        });
+        group.bench_function("M + (Q - h), factors", |b| {
+            b.iter(|| factored.mass_matrix_and_rhs(black_box(&q), black_box(&v), 0.0))
+        });
+        group.finish();
+    }};
+}
+
 fn spatial(c: &mut Criterion) {
     chain_bench!(c, n6, a6, 6);
     chain_bench!(c, n10, a10, 10);
     chain_bench!(c, n12, a12, 12);
     chain_bench!(c, n14, a14, 14);
     chain_bench!(c, n30, a30, 30);
+    written_bench!(c, w6, n6, 6);
+    written_bench!(c, w12, n12, 12);
     // The hand-written recursive Newton–Euler peer (M by n unit-acceleration
     // passes: O(n²), heap-allocated), to n = 30.
     let mut group = c.benchmark_group("spatial_chain_recursive");

@@ -122,3 +122,40 @@ fn articulated_body_matches_cholesky() {
     let ((qa, _), (qb, _)) = (a.final_state(), b.final_state());
     assert!((qa - qb).amax() < 1e-7, "{}", (qa - qb).amax());
 }
+
+/// The chain with its poses written out (explicit matrices of `define`s, ξ(q)
+/// as sums) is read back onto the recursive route and equals the chain
+/// written with factors; Pinocchio's numbers hold for it too.
+#[test]
+fn written_out_chain_takes_the_recursive_route() {
+    fn same<const N: usize>(
+        (wm, wf): (nalgebra::SMatrix<f64, N, N>, SVector<f64, N>),
+        (m, f): (nalgebra::SMatrix<f64, N, N>, SVector<f64, N>),
+    ) {
+        let scale = m.amax();
+        assert!((wm - m).amax() <= 1e-12 * scale, "M: {}", (wm - m).amax());
+        assert!(
+            (wf - f).amax() <= 1e-12 * scale,
+            "Q − h: {}",
+            (wf - f).amax()
+        );
+    }
+    let (q, v) = state::<12>();
+    let written = w12::SpatialChain::benchmark().mass_matrix_and_rhs(&q, &v, 0.0);
+    same(
+        written,
+        n12::SpatialChain::benchmark().mass_matrix_and_rhs(&q, &v, 0.0),
+    );
+    assert_eq!(
+        <w12::SpatialChain as Lagrangian<f64, 12>>::ROUTE,
+        lagrange::Route::Recursive
+    );
+    let (q, v) = state::<6>();
+    let (m, f) = w6::SpatialChain::benchmark().mass_matrix_and_rhs(&q, &v, 0.0);
+    assert!(close(m[(0, 0)], 74.0315975272448), "{}", m[(0, 0)]);
+    assert!(close(f[0], 4.42521592570079), "{}", f[0]);
+    same(
+        (m, f),
+        n6::SpatialChain::benchmark().mass_matrix_and_rhs(&q, &v, 0.0),
+    );
+}

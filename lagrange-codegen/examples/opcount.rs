@@ -7,7 +7,7 @@
 
 use std::time::Instant;
 
-use lagrange_codegen::chain::{n_link_source, spatial_chain_source};
+use lagrange_codegen::chain::{n_link_source, spatial_chain_source, spatial_chain_written_source};
 use lagrange_codegen::mechanics::{Model, Route};
 use lagrange_symbolic::{Expr, Program};
 
@@ -124,6 +124,7 @@ fn main() {
         );
     }
     spatial();
+    written();
     robots();
     catalog();
 }
@@ -215,5 +216,48 @@ fn spatial() {
             "—".into()
         };
         println!("| {n} | {ms:.0} | {ops} | {generic} | {kib:.0} | {eq:.0} |");
+    }
+}
+
+/// The spatial chain with its poses written out (explicit matrices of
+/// `define`s, ξ(q) as sums): the route its tree is read back onto, against
+/// the same chain written with `rot_*` factors and points.
+fn written() {
+    println!(
+        "\n| spatial n, written out | derive + emit (ms) | ops (M, Q − h) | route | ops with factors | generic: ops |"
+    );
+    println!("|---|---|---|---|---|---|");
+    let sizes: Vec<usize> = std::env::args()
+        .nth(1)
+        .map(|a| a.split(',').filter_map(|x| x.parse().ok()).collect())
+        .unwrap_or_else(|| vec![2, 4, 6, 8]);
+    let count = |model: &Model| {
+        let mut outputs: Vec<Expr> = model.mass.iter().flatten().copied().collect();
+        outputs.extend(&model.rhs);
+        Program::new(&model.ctx, &outputs).op_count().total()
+    };
+    for n in sizes {
+        let input: syn::DeriveInput =
+            syn::parse_str(&spatial_chain_written_source(n)).expect("source parses");
+        let start = Instant::now();
+        std::hint::black_box(lagrange_codegen::expand(&input));
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        let model = lagrange_codegen::model(&input).expect("derivation succeeds");
+        let factors: syn::DeriveInput =
+            syn::parse_str(&spatial_chain_source(n)).expect("source parses");
+        let factored = lagrange_codegen::model(&factors).expect("derivation succeeds");
+        let generic = if n <= 14 {
+            let g =
+                lagrange_codegen::model_by(&input, Route::Generic).expect("derivation succeeds");
+            count(&g).to_string()
+        } else {
+            "—".into()
+        };
+        println!(
+            "| {n} | {ms:.0} | {} | {:?} | {} | {generic} |",
+            count(&model),
+            model.bias_route,
+            count(&factored)
+        );
     }
 }

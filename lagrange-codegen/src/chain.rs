@@ -71,3 +71,81 @@ pub fn spatial_chain_source(n: usize) -> String {
     s += "pub r: f64, pub g: f64 }";
     s
 }
+
+/// The same chain as [`spatial_chain_source`] with its poses written out as a
+/// user without the `point(.., on = ..)` language would: each rod's rotation
+/// as an explicit matrix whose entries are `define`s (R_k = R_{k−1}·rot(q_k),
+/// multiplied out column by column), each rod's reference point as
+/// ξ_k = ξ_{k−1} + l_{k−1} R_{k−1} e_x. The recursive route reads the tree
+/// back from these expressions (`tree::written`).
+pub fn spatial_chain_written_source(n: usize) -> String {
+    let coords: Vec<String> = (1..=n).map(|k| format!("q{k}")).collect();
+    let mut defs = Vec::new();
+    for k in 0..n {
+        let (c, s) = (format!("cos(q{})", k + 1), format!("sin(q{})", k + 1));
+        let prev = |i: usize, j: usize| -> String {
+            if k == 0 {
+                (if i == j { "1" } else { "0" }).to_string()
+            } else {
+                format!("r{}_{i}{j}", k - 1)
+            }
+        };
+        for i in 0..3 {
+            let (col0, col1, col2) = if k % 2 == 0 {
+                // · rot_z: e_x' = c e_x + s e_y, e_y' = −s e_x + c e_y.
+                (
+                    format!("{} * {c} + {} * {s}", prev(i, 0), prev(i, 1)),
+                    format!("{} * {c} - {} * {s}", prev(i, 1), prev(i, 0)),
+                    prev(i, 2),
+                )
+            } else {
+                // · rot_y: e_x' = c e_x − s e_z, e_z' = s e_x + c e_z.
+                (
+                    format!("{} * {c} - {} * {s}", prev(i, 0), prev(i, 2)),
+                    prev(i, 1),
+                    format!("{} * {s} + {} * {c}", prev(i, 0), prev(i, 2)),
+                )
+            };
+            for (j, e) in [col0, col1, col2].into_iter().enumerate() {
+                defs.push(format!("r{k}_{i}{j} = {e}"));
+            }
+        }
+        if k > 0 {
+            for (i, x) in ["x", "y", "z"].iter().enumerate() {
+                let before = if k == 1 {
+                    "0".to_string()
+                } else {
+                    format!("{x}{}", k - 1)
+                };
+                defs.push(format!("{x}{k} = {before} + l{} * r{}_{i}0", k - 1, k - 1));
+            }
+        }
+    }
+    let mut s = format!(
+        "#[lagrange(coordinates({}), define({}), ",
+        coords.join(", "),
+        defs.join(", ")
+    );
+    for k in 0..n {
+        let at = if k == 0 {
+            "[0, 0, 0]".to_string()
+        } else {
+            format!("[x{k}, y{k}, z{k}]")
+        };
+        let rows: Vec<String> = (0..3)
+            .map(|i| format!("[r{k}_{i}0, r{k}_{i}1, r{k}_{i}2]"))
+            .collect();
+        let _ = write!(
+            s,
+            "body(rod{k}, mass = m{k}, inertia = [m{k} * (r^2) / 2, m{k} * (3 * (r^2) + (l{k}^2)) / 12, \
+             m{k} * (3 * (r^2) + (l{k}^2)) / 12], at = {at}, com = [l{k} / 2, 0, 0], rotation = [{}]), ",
+            rows.join(", ")
+        );
+    }
+    s += "gravity = [0, 0, -g])] pub struct SpatialChain { ";
+    for k in 0..n {
+        let _ = write!(s, "pub m{k}: f64, pub l{k}: f64, ");
+    }
+    s += "pub r: f64, pub g: f64 }";
+    s
+}

@@ -99,9 +99,11 @@ pub enum Factor {
     },
 }
 
-/// A body's rotation factors (`None` for an explicit matrix) and reference point.
+/// A body's rotation factors (`None` for an explicit matrix), rotation
+/// matrix and reference point.
 pub struct BodyFrame {
     pub factors: Option<Vec<Factor>>,
+    pub matrix: Mat3,
     pub reference: Vec<Sym>,
 }
 

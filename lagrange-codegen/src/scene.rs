@@ -344,6 +344,7 @@ fn record_body(
     };
     items.skeleton.bodies.push(BodyFrame {
         factors: rotation.factors,
+        matrix: rotation.matrix,
         reference: reference.clone(),
     });
     items.skeleton.masses.push(Some((index, local)));

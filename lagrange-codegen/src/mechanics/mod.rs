@@ -63,7 +63,7 @@ pub enum Route {
 const BOTH_ROUTES_UP_TO: usize = 6;
 
 /// What a kinematic tree is, for the errors that need one.
-const TREE: &str = "a kinematic tree of revolute, sliding and spherical joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates or of constant angles, or by a free orientation, its reference point fixed in the parent or sliding along fixed lines of it, every point mass fixed in a body";
+const TREE: &str = "a kinematic tree of revolute, sliding and spherical joints: each body's rotation its parent's followed by rot_x/rot_y/rot_z of coordinates or of constant angles, or by a free orientation, its reference point fixed in the parent or sliding along fixed lines of it, every point mass fixed in a body (with poses written out as matrices and ξ(q): each body turning about a constant axis or sliding along a fixed line, by one coordinate, relative to the body whose coordinates its own extend)";
 
 /// Why a description could not be derived (beyond what lowering reports).
 #[derive(Clone, Debug, PartialEq, Eq)]

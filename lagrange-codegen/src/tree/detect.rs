@@ -14,14 +14,14 @@ use crate::lowered::{Factor, Skeleton};
 use crate::mat3::{Mat3, quaternion_matrix, transpose};
 
 /// Whether `e` depends on parameters only (fixed in space and time).
-fn fixed(ctx: &Context, e: Sym) -> bool {
+pub(super) fn fixed(ctx: &Context, e: Sym) -> bool {
     ctx.free_symbols(e)
         .iter()
         .all(|&s| matches!(ctx.symbol_kind(s), SymbolKind::Parameter(_)))
 }
 
 /// The name of coordinate `i`, for the reasons.
-fn coordinate_name(ctx: &Context, i: usize) -> String {
+pub(super) fn coordinate_name(ctx: &Context, i: usize) -> String {
     let q = ctx.coordinates()[i];
     ctx.as_symbol(q)
         .map_or_else(String::new, |s| ctx.symbol_name(s).to_string())
@@ -65,20 +65,28 @@ struct Chain {
 /// reference point in that link's axes (or in world axes), and the rotation
 /// from its own axes to the link's.
 #[derive(Clone, Copy)]
-struct Frame {
-    link: Option<usize>,
-    origin: [Sym; 3],
-    rotation: Mat3,
+pub(super) struct Frame {
+    pub link: Option<usize>,
+    pub origin: [Sym; 3],
+    pub rotation: Mat3,
 }
+
+/// A point mass's body and its offset in that body's axes (`None`: fixed in
+/// no body).
+pub(super) type PlacedMass = Option<(usize, Vec<Sym>)>;
+
+/// Links with their masses attached, and the spherical joints.
+type Linked = (Vec<Link>, Spheres);
 
 /// The kinematic tree the description spans, or why it is not one.
 pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result<Tree, String> {
     if skeleton.bodies.is_empty() || ctx.coordinates().is_empty() {
         return Err("it has no rigid bodies (point masses alone)".into());
     }
-    let chains = body_chains(ctx, skeleton, masses.body_names)?;
-    let (mut links, frames, spheres) = link_bodies(ctx, skeleton, &chains, masses.body_names)?;
-    attach_masses(ctx, skeleton, masses, &mut links, &frames)?;
+    let (mut links, spheres) = from_factors(ctx, skeleton, masses).or_else(|reason| {
+        let factored = skeleton.bodies.iter().all(|b| b.factors.is_some());
+        from_written(ctx, skeleton, masses).map_err(|why| if factored { reason } else { why })
+    })?;
     let gravity = match masses.gravity {
         None => None,
         Some(g) if g.len() == 3 && g.iter().all(|&x| fixed(ctx, x)) => Some([g[0], g[1], g[2]]),
@@ -92,6 +100,29 @@ pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result
         gravity,
         spheres,
     })
+}
+
+/// The tree read from the bodies' rotation factors and the points their
+/// reference points are fixed at.
+fn from_factors(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result<Linked, String> {
+    let chains = body_chains(ctx, skeleton, masses.body_names)?;
+    let (mut links, frames, spheres) = link_bodies(ctx, skeleton, &chains, masses.body_names)?;
+    attach_masses(ctx, &skeleton.masses, masses, &mut links, &frames)?;
+    Ok((links, spheres))
+}
+
+/// The tree read from written-out positions and rotations
+/// ([`super::written`]).
+fn from_written(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result<Linked, String> {
+    let mut written = super::written::read(ctx, skeleton, masses)?;
+    attach_masses(
+        ctx,
+        &written.masses,
+        masses,
+        &mut written.links,
+        &written.frames,
+    )?;
+    Ok((written.links, Vec::new()))
 }
 
 /// A number as a float constant (an expression otherwise unchanged).
@@ -465,13 +496,13 @@ fn root_point(
 /// fixed in space moves with nothing.
 fn attach_masses(
     ctx: &mut Context,
-    skeleton: &Skeleton,
+    placed: &[PlacedMass],
     masses: &Masses,
     links: &mut [Link],
     frames: &[Frame],
 ) -> Result<(), String> {
     let zero = ctx.zero();
-    for (i, at) in skeleton.masses.iter().enumerate() {
+    for (i, at) in placed.iter().enumerate() {
         match at {
             Some((b, local)) if local.len() == 3 && local.iter().all(|&x| fixed(ctx, x)) => {
                 let frame = frames[*b];

@@ -34,6 +34,7 @@ mod detect;
 mod link;
 mod rnea;
 mod spatial;
+mod written;
 
 pub use aba::{ForwardDynamics, forward_dynamics};
 pub use crba::mass_matrix;
