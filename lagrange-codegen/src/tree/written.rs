@@ -85,12 +85,7 @@ pub(super) fn read(
     let mut frames: Vec<Option<Frame>> = vec![None; poses.len()];
     let mut used = vec![false; ctx.coordinates().len()];
     for (k, &b) in order.iter().enumerate() {
-        let parent = order[..k]
-            .iter()
-            .copied()
-            .filter(|&j| poses[j].depends.is_subset(&poses[b].depends))
-            .max_by_key(|&j| poses[j].depends.len());
-        let joint = joint(ctx, parent.map(|j| &poses[j]), &poses[b])
+        let (parent, joint) = parent_and_joint(ctx, &poses, &order[..k], b)
             .map_err(|why| format!("body `{}`: {why}", names[b]))?;
         if let Some(q) = joint.coordinate() {
             used[q] = true;
@@ -109,6 +104,38 @@ pub(super) fn read(
         frames,
         masses,
     })
+}
+
+/// The parent and joint of body `b` among the bodies `placed`: the
+/// candidates whose coordinates are among `b`'s, the most first (a tree's
+/// parent has all but the joint's own); the first whose joint reads and
+/// checks. Two bodies on the same coordinates that move apart (a mimic
+/// joint's two fingers) are not each other's parent, so the search goes on
+/// to the body they both hang on. The reason is the first candidate's.
+fn parent_and_joint(
+    ctx: &mut Context,
+    poses: &[Pose],
+    placed: &[usize],
+    b: usize,
+) -> Result<(Option<usize>, Joint), String> {
+    let mut candidates: Vec<Option<usize>> = placed
+        .iter()
+        .copied()
+        .filter(|&j| poses[j].depends.is_subset(&poses[b].depends))
+        .map(Some)
+        .collect();
+    candidates.sort_by_key(|j| std::cmp::Reverse(j.map_or(0, |j| poses[j].depends.len())));
+    candidates.push(None);
+    let mut first = None;
+    for parent in candidates {
+        match joint(ctx, parent.map(|j| &poses[j]), &poses[b]) {
+            Ok(joint) => return Ok((parent, joint)),
+            Err(why) => {
+                first.get_or_insert(why);
+            }
+        }
+    }
+    Err(first.expect("the ground is always a candidate"))
 }
 
 impl Joint {
@@ -199,26 +226,33 @@ fn at_zero(ctx: &mut Context, e: Sym) -> Sym {
 /// `mat3::cos_sin` snaps quarter turns). Anything that varies stays as it
 /// is.
 fn settled(ctx: &mut Context, e: Sym) -> Sym {
-    if ctx.as_f64(e).is_some() {
-        return e;
-    }
-    let values: Vec<f64> = (11..14)
-        .map(|seed| ctx.eval(e, &|s| probe(ctx, s, seed)))
-        .collect();
-    let v = values[0];
-    let spread = values.iter().fold(0.0f64, |m, x| m.max((x - v).abs()));
-    // A NaN (a parameter outside an expression's domain) keeps `e` too
-    // (`f64::max` would pass over it in the spread).
-    let finite = values.iter().all(|x| x.is_finite());
-    let constant = finite && spread <= 1e-13 * v.abs().max(1.0);
-    if !constant {
-        return e;
-    }
+    let v = match ctx.as_f64(e) {
+        Some(v) => v,
+        None => {
+            let values: Vec<f64> = (11..14)
+                .map(|seed| ctx.eval(e, &|s| probe(ctx, s, seed)))
+                .collect();
+            let v = values[0];
+            let spread = values.iter().fold(0.0f64, |m, x| m.max((x - v).abs()));
+            // A NaN (a parameter outside an expression's domain) keeps `e`
+            // too (`f64::max` would pass over it in the spread).
+            let finite = values.iter().all(|x| x.is_finite());
+            if !(finite && spread <= 1e-13 * v.abs().max(1.0)) {
+                return e;
+            }
+            v
+        }
+    };
     let near = v.round();
     if near.abs() <= 1.0 && (v - near).abs() <= 4.0 * f64::EPSILON * v.abs().max(1.0) {
         return ctx.int(near as i64);
     }
-    ctx.float(v)
+    // An exact number (a rational) stays exact.
+    if ctx.as_f64(e).is_some() {
+        e
+    } else {
+        ctx.float(v)
+    }
 }
 
 fn matrix_at_zero(ctx: &mut Context, m: &Mat3) -> Mat3 {
