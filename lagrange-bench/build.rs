@@ -59,5 +59,23 @@ fn main() {
         );
     }
     std::fs::write(dir.join("planar_chains.rs"), out).expect("OUT_DIR is writable");
+    // Two arms transcribed by hand from their URDF files (every rotation a
+    // matrix of `define`s, every position ξ(q)), for `benches/urdf.rs`.
+    let mut out = String::new();
+    for (module, file) in [("panda", "panda.urdf"), ("kinova", "kinova.urdf")] {
+        let path = format!("../robots/{file}");
+        println!("cargo::rerun-if-changed={path}");
+        let text = std::fs::read_to_string(&path).expect("the arms' URDFs are in robots/");
+        let urdf = lagrange_codegen::urdf::from_text(&text, file, &[], Default::default())
+            .expect("the arm reads");
+        let items = lagrange_codegen::chain::written_out(&urdf.items);
+        let _ = write!(
+            out,
+            "pub mod {module} {{\n#[derive(lagrange::Lagrangian, Default)]\n\
+             #[lagrange({}, gravity = [0, 0, -9.81])]\npub struct Robot {{}}\n}}\n",
+            items.join(", ")
+        );
+    }
+    std::fs::write(dir.join("written_arms.rs"), out).expect("OUT_DIR is writable");
     println!("cargo::rerun-if-changed=build.rs");
 }
