@@ -1,9 +1,10 @@
-//! ∂q̈/∂q and ∂q̈/∂q̇ of a robot read from its URDF (`emit(jacobians)` and
+//! ∂q̈/∂q and ∂q̈/∂q̇ of robots read from their URDF (`emit(jacobians)` and
 //! [`lagrange::acceleration_derivatives`]) against Pinocchio's
-//! `computeABADerivatives` on the same file
+//! `computeABADerivatives` on the same files
 //! (`lagrange-bench/peer/pinocchio/urdf_derivatives.py`, which wrote
-//! `tests/data/urdf_derivatives.txt`), to 1e-10, at two states; and the
-//! linearisation reads the same numbers.
+//! `tests/data/urdf_derivatives.txt`), to 1e-10, at two states each: the UR5,
+//! UR10, Kinova (continuous joints: (cos, sin) in Pinocchio's q), Z1 and
+//! xArm7; and the linearisation reads the same numbers.
 
 use lagrange::prelude::*;
 use nalgebra::SVector;
@@ -12,10 +13,26 @@ use nalgebra::SVector;
 #[lagrange(urdf = "robots/ur5.urdf", gravity = [0, 0, -9.81], emit(jacobians))]
 struct Ur5 {}
 
+#[derive(Lagrangian)]
+#[lagrange(urdf = "robots/ur10.urdf", gravity = [0, 0, -9.81], emit(jacobians))]
+struct Ur10 {}
+
+#[derive(Lagrangian)]
+#[lagrange(urdf = "robots/kinova.urdf", gravity = [0, 0, -9.81], emit(jacobians))]
+struct Kinova {}
+
+#[derive(Lagrangian)]
+#[lagrange(urdf = "robots/z1.urdf", gravity = [0, 0, -9.81], emit(jacobians))]
+struct Z1 {}
+
+#[derive(Lagrangian)]
+#[lagrange(urdf = "robots/xarm7.urdf", gravity = [0, 0, -9.81], emit(jacobians))]
+struct Xarm7 {}
+
 const REFERENCE: &str = include_str!("data/urdf_derivatives.txt");
 
-fn reference(k: usize, key: &str) -> Vec<f64> {
-    let head = format!("ur5 {k} {key} ");
+fn reference(robot: &str, k: usize, key: &str) -> Vec<f64> {
+    let head = format!("{robot} {k} {key} ");
     let line = REFERENCE.lines().find(|l| l.starts_with(&head));
     let line = line.unwrap_or_else(|| panic!("no {head:?} in the reference file"));
     line[head.len()..]
@@ -24,32 +41,46 @@ fn reference(k: usize, key: &str) -> Vec<f64> {
         .collect()
 }
 
-#[test]
-fn the_ur5_s_acceleration_derivatives_are_pinocchio_s() {
+/// Both derivatives at both states against Pinocchio's, and the tangent
+/// linearisation's A reading the same numbers.
+fn matches_pinocchio<S: Lagrangian<f64, N>, const N: usize>(robot: &str, sys: &S) {
     for k in 0..2 {
-        let q = SVector::<f64, 6>::from_column_slice(&reference(k, "q"));
-        let v = SVector::<f64, 6>::from_column_slice(&reference(k, "v"));
-        let (dq, dv) = lagrange::acceleration_derivatives(&Ur5 {}, &q, &v, 0.0)
+        let q = SVector::<f64, N>::from_column_slice(&reference(robot, k, "q"));
+        let v = SVector::<f64, N>::from_column_slice(&reference(robot, k, "v"));
+        let (dq, dv) = lagrange::acceleration_derivatives(sys, &q, &v, 0.0)
             .expect("a regular state")
             .expect("emit(jacobians)");
         let a = Linearizer::new()
-            .tangent(&Ur5 {}, &q, &v, 0.0)
+            .tangent(sys, &q, &v, 0.0)
             .expect("linearises");
         for (what, got, want) in [
-            ("dq''/dq", dq, reference(k, "dadq")),
-            ("dq''/dv", dv, reference(k, "dadv")),
+            ("dq''/dq", dq, reference(robot, k, "dadq")),
+            ("dq''/dv", dv, reference(robot, k, "dadv")),
         ] {
-            for i in 0..6 {
-                for j in 0..6 {
-                    let (g, w) = (got[(i, j)], want[6 * i + j]);
+            for i in 0..N {
+                for j in 0..N {
+                    let (g, w) = (got[(i, j)], want[N * i + j]);
                     assert!(
                         (g - w).abs() <= 1e-10 * w.abs().max(1.0),
-                        "state {k} {what}[{i}][{j}]: {g} against Pinocchio's {w}"
+                        "{robot}, state {k}: {what}[{i}][{j}]: {g} against Pinocchio's {w}"
                     );
-                    let col = if what == "dq''/dq" { j } else { 6 + j };
-                    assert_eq!(a.a()[(6 + i, col)], g, "the linearisation reads them");
+                    let col = if what == "dq''/dq" { j } else { N + j };
+                    assert_eq!(a.a()[(N + i, col)], g, "the linearisation reads them");
                 }
             }
         }
     }
+}
+
+#[test]
+fn the_ur5_s_acceleration_derivatives_are_pinocchio_s() {
+    matches_pinocchio("ur5", &Ur5 {});
+}
+
+#[test]
+fn four_more_arms_acceleration_derivatives_are_pinocchio_s() {
+    matches_pinocchio("ur10", &Ur10 {});
+    matches_pinocchio("kinova", &Kinova {});
+    matches_pinocchio("z1", &Z1 {});
+    matches_pinocchio("xarm7", &Xarm7 {});
 }

@@ -1,8 +1,10 @@
-//! ∂q̈/∂q and ∂q̈/∂q̇ of a robot read from its URDF (`emit(jacobians)`,
+//! ∂q̈/∂q and ∂q̈/∂q̇ of robots read from their URDF (`emit(jacobians)`,
 //! `lagrange::acceleration_derivatives`), to set beside Pinocchio's
-//! `computeABADerivatives` on the same file (`peer/pinocchio/derivatives.sh`),
-//! at the same state; q̈ alone beside its ABA for scale. The floating bases'
-//! derivatives are in the `free` bench.
+//! `computeABADerivatives` on the same files (`peer/pinocchio/derivatives.sh`),
+//! at the same state; q̈ alone beside its ABA for scale. The arms: the UR5,
+//! UR10, Kinova, Z1 and xArm7 (not the Panda: its mimic finger is a second
+//! joint to Pinocchio). The floating bases' derivatives are in the `free`
+//! bench.
 //!
 //!     cargo bench -p lagrange-bench --bench derivatives
 
@@ -11,21 +13,42 @@ use lagrange::Lagrangian;
 use nalgebra::SVector;
 use std::hint::black_box;
 
-#[derive(Lagrangian)]
-#[lagrange(urdf = "../robots/ur5.urdf", gravity = [0, 0, -9.81], emit(jacobians))]
-struct Ur5 {}
+macro_rules! arm {
+    ($name:ident, $file:tt) => {
+        #[derive(Lagrangian, Default)]
+        #[lagrange(urdf = $file, gravity = [0, 0, -9.81], emit(jacobians))]
+        struct $name {}
+    };
+}
 
-fn derivatives(c: &mut Criterion) {
-    let q = SVector::<f64, 6>::from_fn(|k, _| 0.3 - 0.17 * k as f64);
-    let v = SVector::<f64, 6>::from_fn(|k, _| 0.5 - 0.21 * k as f64);
-    let mut group = c.benchmark_group("derivatives_ur5");
+arm!(Ur5, "../robots/ur5.urdf");
+arm!(Ur10, "../robots/ur10.urdf");
+arm!(Kinova, "../robots/kinova.urdf");
+arm!(Z1, "../robots/z1.urdf");
+arm!(Xarm7, "../robots/xarm7.urdf");
+
+/// One group per arm, `derivatives_<name>`, at q_k = 0.3 − 0.17 k,
+/// q̇_k = 0.5 − 0.21 k.
+fn time<S: Lagrangian<f64, N> + Default, const N: usize>(c: &mut Criterion, name: &str) {
+    let sys = S::default();
+    let q = SVector::<f64, N>::from_fn(|k, _| 0.3 - 0.17 * k as f64);
+    let v = SVector::<f64, N>::from_fn(|k, _| 0.5 - 0.21 * k as f64);
+    let mut group = c.benchmark_group(format!("derivatives_{name}"));
     group.bench_function("accelerations", |b| {
-        b.iter(|| lagrange::accelerations(&Ur5 {}, black_box(&q), black_box(&v), 0.0))
+        b.iter(|| lagrange::accelerations(&sys, black_box(&q), black_box(&v), 0.0))
     });
     group.bench_function("acceleration derivatives", |b| {
-        b.iter(|| lagrange::acceleration_derivatives(&Ur5 {}, black_box(&q), black_box(&v), 0.0))
+        b.iter(|| lagrange::acceleration_derivatives(&sys, black_box(&q), black_box(&v), 0.0))
     });
     group.finish();
+}
+
+fn derivatives(c: &mut Criterion) {
+    time::<Ur5, 6>(c, "ur5");
+    time::<Ur10, 6>(c, "ur10");
+    time::<Kinova, 6>(c, "kinova");
+    time::<Z1, 7>(c, "z1");
+    time::<Xarm7, 7>(c, "xarm7");
 }
 
 criterion_group!(benches, derivatives);
