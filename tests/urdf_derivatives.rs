@@ -1,4 +1,4 @@
-//! ∂q̈/∂q and ∂q̈/∂q̇ of robots read from their URDF (`emit(jacobians)` and
+//! ∂q̈/∂q, ∂q̈/∂q̇ and ∂q̈/∂τ = M⁻¹ of robots read from their URDF (`emit(jacobians)` and
 //! [`lagrange::acceleration_derivatives`]) against Pinocchio's
 //! `computeABADerivatives` on the same files
 //! (`lagrange-bench/peer/pinocchio/urdf_derivatives.py`, which wrote
@@ -47,15 +47,16 @@ fn matches_pinocchio<S: Lagrangian<f64, N>, const N: usize>(robot: &str, sys: &S
     for k in 0..2 {
         let q = SVector::<f64, N>::from_column_slice(&reference(robot, k, "q"));
         let v = SVector::<f64, N>::from_column_slice(&reference(robot, k, "v"));
-        let (dq, dv) = lagrange::acceleration_derivatives(sys, &q, &v, 0.0)
+        let d = lagrange::acceleration_derivatives(sys, &q, &v, 0.0)
             .expect("a regular state")
             .expect("emit(jacobians)");
         let a = Linearizer::new()
             .tangent(sys, &q, &v, 0.0)
             .expect("linearises");
         for (what, got, want) in [
-            ("dq''/dq", dq, reference(robot, k, "dadq")),
-            ("dq''/dv", dv, reference(robot, k, "dadv")),
+            ("dq''/dq", d.dq, reference(robot, k, "dadq")),
+            ("dq''/dv", d.dv, reference(robot, k, "dadv")),
+            ("dq''/dtau", d.dtau, reference(robot, k, "dadtau")),
         ] {
             for i in 0..N {
                 for j in 0..N {
@@ -64,7 +65,11 @@ fn matches_pinocchio<S: Lagrangian<f64, N>, const N: usize>(robot: &str, sys: &S
                         (g - w).abs() <= 1e-10 * w.abs().max(1.0),
                         "{robot}, state {k}: {what}[{i}][{j}]: {g} against Pinocchio's {w}"
                     );
-                    let col = if what == "dq''/dq" { j } else { N + j };
+                    let col = match what {
+                        "dq''/dq" => j,
+                        "dq''/dv" => N + j,
+                        _ => continue,
+                    };
                     assert_eq!(a.a()[(N + i, col)], g, "the linearisation reads them");
                 }
             }

@@ -2,7 +2,7 @@
 (the UR5, UR10, Kinova, Z1 and xArm7; not the Panda, whose mimic finger
 Pinocchio reads as a second joint), at
 the state of the URDF tests (q_k = 0.3 − 0.17 k, q̇_k = 0.5 − 0.21 k) and at
-a second state, with τ = 0: ∂q̈/∂q and ∂q̈/∂q̇ (row-major), written to
+a second state, with τ = 0: ∂q̈/∂q, ∂q̈/∂q̇ and ∂q̈/∂τ = M⁻¹ (`Minv`; row-major), written to
 `tests/data/urdf_derivatives.txt` for `tests/urdf_derivatives.rs`.
 
     python3 lagrange-bench/peer/pinocchio/urdf_derivatives.py
@@ -40,7 +40,9 @@ def main():
         data = model.createData()
         for k, (q, v) in enumerate(states(model.nv)):
             pin.computeABADerivatives(model, data, configuration(model, q), v, np.zeros(model.nv))
-            for key, values in [("q", q), ("v", v), ("dadq", data.ddq_dq.ravel()), ("dadv", data.ddq_dv.ravel())]:
+            minv = data.Minv.copy()
+            for key, values in [("q", q), ("v", v), ("dadq", data.ddq_dq.ravel()), ("dadv", data.ddq_dv.ravel()),
+                                ("dadtau", minv.ravel())]:
                 lines.append(f"{robot} {k} {key} " + " ".join(repr(float(x)) for x in values))
     path = os.path.normpath(os.path.join(ROOT, "tests", "data", "urdf_derivatives.txt"))
     with open(path, "w") as f:

@@ -23,7 +23,7 @@
 use super::Linear;
 use super::settings::Linearizer;
 use crate::error::{Error, check_finite_inputs, check_tolerance, to_vec, unit_quaternions};
-use crate::mechanics::{AccelerationDerivatives, Dynamics, Forcing, NoForcing};
+use crate::mechanics::{Dynamics, ForceJacobians, Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::numeric::orientation;
@@ -132,7 +132,7 @@ impl Linearizer {
         q: &SVector<T, Q>,
         v: &SVector<T, N>,
         t: T,
-        (forcing, forced): (F, Option<AccelerationDerivatives<T, N>>),
+        (forcing, forced): (F, Option<ForceJacobians<T, N>>),
     ) -> Result<(SVector<T, Q>, DMatrix<f64>), Error>
     where
         S: Lagrangian<T, N, Q>,
@@ -158,11 +158,11 @@ impl Linearizer {
                 }
             }
         }
-        if let Some((dq, dv)) = dynamics.acceleration_derivatives(t, &q, v, forced)? {
+        if let Some(d) = dynamics.acceleration_derivatives(t, &q, v, forced)? {
             for i in 0..N {
                 for j in 0..N {
-                    a[(N + i, j)] = dq[(i, j)].to_f64();
-                    a[(N + i, N + j)] = dv[(i, j)].to_f64();
+                    a[(N + i, j)] = d.dq[(i, j)].to_f64();
+                    a[(N + i, N + j)] = d.dv[(i, j)].to_f64();
                 }
             }
             return Ok((q, a));

@@ -1,6 +1,8 @@
 //! ∂q̈/∂q and ∂q̈/∂q̇ from the system's right-hand-side Jacobians
 //! ([`Lagrangian::rhs_jacobians`], `emit(jacobians)`): M⁻¹ J_q and M⁻¹ J_v,
-//! on the stack (the counterpart of Pinocchio's `computeABADerivatives`).
+//! and ∂q̈/∂τ = M⁻¹ from the same factorisation, on the stack (the
+//! counterpart of Pinocchio's `computeABADerivatives`: `ddq_dq`, `ddq_dv`,
+//! `Minv`).
 //! With orientations the derivatives are in the tangent space: ∂/∂δ along
 //! q ⊕ δ, an orientation's δ the rotation vector in body axes, at fixed ω.
 
@@ -12,16 +14,28 @@ use crate::error::Error;
 use crate::numeric::Real;
 use crate::system::Lagrangian;
 
-/// ∂q̈/∂δ and ∂q̈/∂q̇, N × N each.
-pub type AccelerationDerivatives<T, const N: usize> = (SMatrix<T, N, N>, SMatrix<T, N, N>);
+/// The derivatives of q̈ = M⁻¹(Q − h + τ) at a state, N × N each.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AccelerationDerivatives<T, const N: usize> {
+    /// ∂q̈/∂δ: along q ⊕ δ (∂q̈/∂q without orientations), at fixed q̇.
+    pub dq: SMatrix<T, N, N>,
+    /// ∂q̈/∂q̇.
+    pub dv: SMatrix<T, N, N>,
+    /// ∂q̈/∂τ = M⁻¹, for generalized forces τ added to Q (joint torques of
+    /// a robot; for an orientation, a torque in its body axes).
+    pub dtau: SMatrix<T, N, N>,
+}
+
+/// A forcing's own Jacobians (∂ΔQ/∂δ, ∂ΔQ/∂q̇), N × N each.
+pub type ForceJacobians<T, const N: usize> = (SMatrix<T, N, N>, SMatrix<T, N, N>);
 
 impl<S, T, F> Dynamics<'_, S, T, F>
 where
     T: Real,
 {
-    /// ∂q̈/∂δ and ∂q̈/∂q̇ at (q, v, t), with the forcing's own Jacobians
-    /// (∂ΔQ/∂δ, ∂ΔQ/∂v) added when it has any; `Ok(None)` when the system
-    /// does not emit its Jacobians.
+    /// ∂q̈/∂δ, ∂q̈/∂q̇ and ∂q̈/∂τ at (q, v, t), with the forcing's own
+    /// Jacobians (∂ΔQ/∂δ, ∂ΔQ/∂v) added when it has any; `Ok(None)` when the
+    /// system does not emit its Jacobians.
     ///
     /// # Errors
     /// As [`acceleration`](Self::acceleration); [`Error::NonFiniteState`] for
@@ -31,7 +45,7 @@ where
         t: T,
         q: &SVector<T, Q>,
         v: &SVector<T, N>,
-        forced: Option<AccelerationDerivatives<T, N>>,
+        forced: Option<ForceJacobians<T, N>>,
     ) -> Result<Option<AccelerationDerivatives<T, N>>, Error>
     where
         S: Lagrangian<T, N, Q>,
@@ -48,15 +62,17 @@ where
             jv += fv;
         }
         let (dq, dv) = (chol.solve_columns(jq), chol.solve_columns(jv));
-        if !(all_finite(dq.as_slice()) && all_finite(dv.as_slice())) {
+        let dtau = chol.solve_columns(SMatrix::identity());
+        let all = [&dq, &dv, &dtau];
+        if !all.iter().all(|m| all_finite(m.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
-        Ok(Some((dq, dv)))
+        Ok(Some(AccelerationDerivatives { dq, dv, dtau }))
     }
 }
 
-/// ∂q̈/∂δ and ∂q̈/∂q̇ of `sys` at (q, v, t) with the default singular
-/// tolerance, or `None` when it does not emit its Jacobians. See
+/// ∂q̈/∂δ, ∂q̈/∂q̇ and ∂q̈/∂τ = M⁻¹ of `sys` at (q, v, t) with the default
+/// singular tolerance, or `None` when it does not emit its Jacobians. See
 /// [`Dynamics::acceleration_derivatives`].
 ///
 /// # Errors

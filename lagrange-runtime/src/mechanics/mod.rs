@@ -20,7 +20,7 @@ mod hamilton;
 mod rattle;
 pub(crate) mod reduced;
 
-pub use derivatives::{AccelerationDerivatives, acceleration_derivatives};
+pub use derivatives::{AccelerationDerivatives, ForceJacobians, acceleration_derivatives};
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use forcing::{Forcing, NoForcing};
 pub use rattle::Rattle;
