@@ -46,7 +46,7 @@ pub(super) fn derive(
     let kin = points(ctx, point_models, generic, zero_acc);
     let qd = ctx.velocities();
     let zero_vel = at_zero(ctx, &qd);
-    let spin = spins(ctx, spin_models, zero_acc);
+    let spin = spins(ctx, spin_models, generic, zero_acc);
     let rheonomic = is_rheonomic(ctx, &kin, &spin, &zero_vel);
     let kinetic = kinetic_energy(ctx, &kin, &spin);
     (kin, spin, rheonomic, kinetic)
@@ -98,13 +98,30 @@ fn points(
         .collect()
 }
 
-/// ω, W and κ_ω of every body.
-fn spins(ctx: &mut Context, spins: &[SpinModel], zero_acc: &[(Sym, Sym)]) -> Vec<Spin> {
+/// ω of every body, and W and κ_ω where the generic route needs them.
+fn spins(
+    ctx: &mut Context,
+    spins: &[SpinModel],
+    generic: bool,
+    zero_acc: &[(Sym, Sym)],
+) -> Vec<Spin> {
     let qd = ctx.velocities();
+    let zero = ctx.zero();
     spins
         .iter()
         .map(|b| {
             let omega = b.omega.map(|w| ctx.expand_trig(w));
+            // J_ω and κ_ω serve the generic route only; an explicit matrix's
+            // ω = vee(RᵀṘ) is large, and its rate the costliest derivative
+            // of a written-out tree.
+            if !generic {
+                return Spin {
+                    inertia: b.inertia,
+                    omega,
+                    jacobian: Vec::new(),
+                    kappa: [zero; 3],
+                };
+            }
             let jacobian = qd.iter().map(|&v| omega.map(|w| ctx.diff(w, v))).collect();
             let kappa = omega.map(|w| {
                 let a = ctx.time_derivative(w);
