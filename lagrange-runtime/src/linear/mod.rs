@@ -127,6 +127,7 @@
 mod atlas;
 mod build;
 mod complete;
+mod constrained_tangent;
 mod defaults;
 mod dense;
 mod eigen;
