@@ -127,3 +127,125 @@ fn the_quaternion_disk_linearises_as_the_chart_disk() {
         assert!(eig_gap < 1e-8);
     }
 }
+
+/// The critical spin of upright rolling, found on the quaternion disk where
+/// the largest real part of its eigenvalues falls to the tolerance, against
+/// the closed form Ω² = m g a B / (C (C + m a²)) = g / 3a for a thin uniform
+/// disk (B = m a²/4, C = m a²/2; `tests/stability.rs` finds it on the chart
+/// disk).
+///
+/// At Ω_c a neutral pair meets the zero eigenvalue of the conserved heading
+/// momentum, so an error ε in A moves the eigenvalues there by about ε^⅓.
+/// The differences' ε ≈ 1e-11 (relative) leaves real parts up to ~1e-5
+/// just above Ω_c (measured: a threshold τ = 1e-6 lands 4.9e-4 above it,
+/// 1e-5 2.0e-7 above); below it Re λ = √(κ (Ω_c − Ω)), so τ moves the
+/// crossing by only τ²/κ: τ = 1e-4 locates Ω_c to 3.2e-8 (1e-3: 3.1e-8).
+/// The symbolic chart disk, with round-off only, gets 2.3e-10 with 1e-6.
+#[test]
+fn the_quaternion_disk_has_the_critical_spin_of_the_closed_form() {
+    let d = QuaternionDisk::thin(M, A, G);
+    let exact = (G / (3.0 * A)).sqrt();
+    let general = (d.m * d.g * d.a * d.b / (d.c * (d.c + d.m * d.a * d.a))).sqrt();
+    assert!((exact - general).abs() < 1e-15);
+    let tol = 1e-4;
+    let spins: Vec<f64> = (1..=20).map(|i| 0.25 * i as f64).collect();
+    let mut eigen = sweep(&spins, disk_linear).unwrap();
+    let found = eigen.boundaries(tol, 1e-14).unwrap();
+    assert_eq!(found.len(), 1, "{found:?}");
+    let rel = (found[0].parameter - exact).abs() / exact;
+    eprintln!(
+        "quaternion disk: critical spin {:.12} rad/s, √(g/3a) = {exact:.12}: rel. error {rel:.1e}",
+        found[0].parameter
+    );
+    assert!(rel < 1e-7);
+    assert!(!found[0].destabilising);
+    let verdict = |w: f64| disk_linear(w).unwrap().stability(tol).unwrap().verdict;
+    assert_eq!(verdict(0.9 * exact), Verdict::Unstable);
+    assert_eq!(verdict(1.1 * exact), Verdict::Marginal);
+}
+
+/// The homogeneous sphere of the catalog pushed at its centre by a
+/// horizontal force `fx` (an input).
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, z),
+    orientation(ball_q),
+    inputs(fx),
+    body(ball, mass = m, inertia = [j, j, j], at = [x, y, z], rotation = ball_q),
+    point(centre, on = ball, at = [0, 0, 0]),
+    force(centre, [fx, 0, 0]),
+    gravity = [0, 0, -g],
+    holonomic(height = ball.z - a),
+    nonholonomic(slip_x = dot(ball.x) - a * ball.omega_y,
+                 slip_y = dot(ball.y) + a * ball.omega_x),
+)]
+struct PushedSphere {
+    m: f64,
+    j: f64,
+    a: f64,
+    g: f64,
+}
+
+const J: f64 = 0.4 * M * A * A;
+
+fn straight(spin: f64) -> OperatingPoint<f64, 6, 0, 7> {
+    OperatingPoint::on_group(
+        SVector::from([0.3, -0.2, A, 1.0, 0.0, 0.0, 0.0]),
+        SVector::from([A * spin, 0.0, 0.0, 0.0, spin, 0.0]),
+    )
+}
+
+/// A homogeneous sphere rolling straight: every eigenvalue on the imaginary
+/// axis (its angular velocity is constant, and a turn of its orientation is
+/// carried round by the spin: ±iω), the verdict marginal; the catalog's
+/// sphere and the pushed one (input zero) give the same A; B is the closed
+/// form of a force at the centre of a rolling ball: ẍ = F / (m + j/a²),
+/// ω̇_y = ẍ / a, nothing else.
+#[test]
+fn the_rolling_sphere_is_neutrally_stable_and_its_push_is_the_closed_form() {
+    let spin = 3.0;
+    let ball = QuaternionSphere {
+        m: M,
+        j1: J,
+        j2: J,
+        j3: J,
+        a: A,
+        g: G,
+    };
+    let lin = Linearizer::new()
+        .constrained_tangent(&ball, &straight(spin))
+        .unwrap();
+    let stability = lin.stability(1e-9).unwrap();
+    let ev = lin.eigenvalues();
+    let largest_re = ev.iter().map(|z| z.re.abs()).fold(0.0, f64::max);
+    eprintln!(
+        "sphere rolling straight at ω = {spin}: states {:?}, eigenvalues {ev:?}",
+        lin.states()
+    );
+    assert_eq!(stability.verdict, Verdict::Marginal);
+    assert!(largest_re < 1e-9, "{largest_re:e}");
+    assert!(ev.iter().any(|z| (z.im - spin).abs() < 1e-9));
+    let pushed = PushedSphere {
+        m: M,
+        j: J,
+        a: A,
+        g: G,
+    };
+    let driven = Linearizer::new()
+        .constrained_tangent(&pushed, &straight(spin).input(SVector::from([0.0])))
+        .unwrap();
+    assert_eq!(driven.states(), lin.states());
+    let gap = (driven.a() - lin.a()).amax();
+    assert!(gap < 1e-12, "{gap:e}");
+    let xdd = 1.0 / (M + J / (A * A));
+    let mut want = DMatrix::zeros(8, 1);
+    let wy = driven.state_index("ball_q.wy'").unwrap();
+    want[(wy, 0)] = xdd / A;
+    let b_gap = (driven.b() - &want).amax();
+    eprintln!(
+        "pushed sphere: B {:?}, closed form ω̇_y = {:.12}: gap {b_gap:.1e}",
+        driven.b().as_slice(),
+        xdd / A
+    );
+    assert!(b_gap < 1e-9 * xdd, "{}", driven.b());
+}
