@@ -11,7 +11,7 @@ mod catalog;
 use catalog::constrained::RollingDisk;
 use catalog::rolling::{QuaternionDisk, QuaternionSphere};
 use lagrange::linear::{Linear, Linearizer, OperatingPoint, Verdict, sweep};
-use lagrange::nalgebra::{DMatrix, SVector};
+use lagrange::nalgebra::{DMatrix, Matrix3, Quaternion, SVector, UnitQuaternion, Vector3};
 use lagrange::prelude::*;
 
 const M: f64 = 1.0;
@@ -248,4 +248,182 @@ fn the_rolling_sphere_is_neutrally_stable_and_its_push_is_the_closed_form() {
         xdd / A
     );
     assert!(b_gap < 1e-9 * xdd, "{}", driven.b());
+}
+
+/// J_r⁻¹(φ), the inverse right Jacobian of SO(3): d/dt log(E) = J_r⁻¹(φ) ξ
+/// when Ė = E [ξ]× and E = exp(φ).
+fn inverse_right_jacobian(phi: &Vector3<f64>) -> Matrix3<f64> {
+    let (angle, hat) = (phi.norm(), phi.cross_matrix());
+    let c = if angle < 1e-4 {
+        1.0 / 12.0 + angle * angle / 720.0
+    } else {
+        1.0 / (angle * angle) - (1.0 + angle.cos()) / (2.0 * angle * angle.sin())
+    };
+    Matrix3::identity() + 0.5 * hat + c * hat * hat
+}
+
+/// The disk's state from the model's states x = (δx, δy, δθ, δω) about
+/// (q0, v0), on the constraints, as this file reads the fixed axes: the
+/// orientation q0 ⊗ exp(δθ), the angular velocity R0 (ω0 + δω) in space
+/// axes, the centre's height from the holonomic row, its velocity from the
+/// three velocity rows.
+fn disk_state(
+    disk: &QuaternionDisk,
+    (q0, v0): (&SVector<f64, 7>, &SVector<f64, 6>),
+    x: &[f64],
+) -> (SVector<f64, 7>, SVector<f64, 6>) {
+    let start = UnitQuaternion::from_quaternion(Quaternion::new(q0[3], q0[4], q0[5], q0[6]));
+    let turn = start * UnitQuaternion::from_scaled_axis(Vector3::new(x[2], x[3], x[4]));
+    let r = turn.to_rotation_matrix();
+    let nz = r[(2, 1)];
+    let c = turn.quaternion();
+    let q = SVector::from([
+        q0[0] + x[0],
+        q0[1] + x[1],
+        disk.a * (1.0 - nz * nz).sqrt(),
+        c.w,
+        c.i,
+        c.j,
+        c.k,
+    ]);
+    let w0 = Vector3::new(v0[3], v0[4], v0[5]);
+    let omega = start.to_rotation_matrix() * (w0 + Vector3::new(x[5], x[6], x[7]));
+    let body = r.transpose() * omega;
+    let (g, g0) = disk.constraint_jacobian(&q, 0.0);
+    let gl = Matrix3::from_fn(|i, j| g[(i, j)]);
+    let rest =
+        Vector3::from_fn(|i, _| (0..3).map(|j| g[(i, 3 + j)] * body[j]).sum::<f64>() + g0[i]);
+    let centre = gl.lu().solve(&-rest).unwrap();
+    let v = SVector::from([centre[0], centre[1], centre[2], body[0], body[1], body[2]]);
+    (q, v)
+}
+
+/// The rates of the model's states at x (the nonlinear dynamics): δẋ, δẏ
+/// the centre's velocity, δθ̇ = J_r⁻¹(δθ) (ω − ω0) in body axes (the
+/// reference turning on at ω0), δω̇ = R0ᵀ R ω̇.
+fn disk_rates(
+    disk: &QuaternionDisk,
+    (q0, v0): (&SVector<f64, 7>, &SVector<f64, 6>),
+    x: &[f64],
+) -> Vec<f64> {
+    let (q, v) = disk_state(disk, (q0, v0), x);
+    let a = ConstrainedDynamics::<_, f64, 3>::new(disk)
+        .solve(0.0, &q, &v)
+        .unwrap()
+        .accelerations;
+    let start = UnitQuaternion::from_quaternion(Quaternion::new(q0[3], q0[4], q0[5], q0[6]));
+    let turn = start * UnitQuaternion::from_scaled_axis(Vector3::new(x[2], x[3], x[4]));
+    let phi = Vector3::new(x[2], x[3], x[4]);
+    let slip = Vector3::new(v[3] - v0[3], v[4] - v0[4], v[5] - v0[5]);
+    let turning = inverse_right_jacobian(&phi) * slip;
+    let spin = start.to_rotation_matrix().transpose()
+        * (turn.to_rotation_matrix() * Vector3::new(a[3], a[4], a[5]));
+    let mut out = vec![v[0], v[1]];
+    out.extend(turning.iter());
+    out.extend(spin.iter());
+    out
+}
+
+/// A tilted, turning, wobbling disk (not a steady motion: the ω̇ and the
+/// [a*]× terms count): A against central differences (step 1e-6) of the
+/// nonlinear rates of its states, each perturbed state completed on the
+/// constraints exactly (the height from the holonomic row, the centre's
+/// velocity from the velocity rows), entry by entry.
+#[test]
+fn linearisation_of_a_wobbling_disk_matches_central_differences() {
+    let disk = QuaternionDisk::thin(M, A, G);
+    let tilt = UnitQuaternion::from_euler_angles(0.3, 0.0, 0.4);
+    let c = tilt.quaternion();
+    let q = SVector::from([0.1, -0.2, A, c.w, c.i, c.j, c.k]);
+    let v = SVector::from([0.0, 0.0, 0.0, 0.7, 5.0, -0.4]);
+    let (q0, v0) = lagrange::project_consistent(&disk, q, v, 0.0).unwrap();
+    let a0 = ConstrainedDynamics::<_, f64, 3>::new(&disk)
+        .solve(0.0, &q0, &v0)
+        .unwrap();
+    assert!(
+        a0.accelerations.rows(3, 3).amax() > 0.1,
+        "steady: {}",
+        a0.accelerations
+    );
+    let lin = Linearizer::new()
+        .coordinates(&DISK_COORDINATES)
+        .speeds(&DISK_SPEEDS)
+        .constrained_tangent(&disk, &OperatingPoint::on_group(q0, v0))
+        .unwrap();
+    let h = 1e-6;
+    let mut fd = DMatrix::zeros(8, 8);
+    for j in 0..8 {
+        let (mut xp, mut xm) = (vec![0.0; 8], vec![0.0; 8]);
+        xp[j] = h;
+        xm[j] = -h;
+        let (fp, fm) = (
+            disk_rates(&disk, (&q0, &v0), &xp),
+            disk_rates(&disk, (&q0, &v0), &xm),
+        );
+        for i in 0..8 {
+            fd[(i, j)] = (fp[i] - fm[i]) / (2.0 * h);
+        }
+    }
+    let err = (lin.a() - &fd).amax() / lin.a().amax();
+    eprintln!(
+        "wobbling disk: A vs central differences of the nonlinear rates {err:.1e} (relative to max |A| = {:.3})",
+        lin.a().amax()
+    );
+    assert!(err < 1e-7, "{}\nvs\n{fd}", lin.a());
+}
+
+/// Bad input gives typed errors: a quaternion off unit norm, a state off
+/// the constraints, a name that is no tangent direction, a choice of
+/// dependent coordinates the constraints cannot solve for, a disk lying
+/// flat (its rolling rows have no contact point), a NaN.
+#[test]
+fn bad_operating_points_and_partitions_are_typed_errors() {
+    use lagrange::{Error, LinearError};
+    let disk = QuaternionDisk::thin(M, A, G);
+    let lz = Linearizer::new();
+    let mut op = upright(3.0);
+    op.q[4] = 0.1;
+    let err = lz.constrained_tangent(&disk, &op).unwrap_err();
+    assert!(
+        matches!(&err, Error::NonUnitQuaternion { orientation, .. } if orientation == "disk_q"),
+        "{err}"
+    );
+    let mut op = upright(3.0);
+    op.v[0] += 0.01;
+    let err = lz.constrained_tangent(&disk, &op).unwrap_err();
+    assert!(
+        matches!(&err, Error::Linear(LinearError::InconsistentOperatingPoint { worst, .. }) if worst.contains("roll_x")),
+        "{err}"
+    );
+    let err = lz
+        .clone()
+        .coordinates(&["disk_q.w"])
+        .constrained_tangent(&disk, &upright(3.0))
+        .unwrap_err();
+    assert!(
+        matches!(&err, Error::Linear(LinearError::InvalidPartition { .. })),
+        "{err}"
+    );
+    let all_but_heading = ["x", "y", "z", "disk_q.θx", "disk_q.θy"];
+    let err = lz
+        .clone()
+        .coordinates(&all_but_heading)
+        .constrained_tangent(&disk, &upright(3.0))
+        .unwrap_err();
+    assert!(
+        matches!(&err, Error::Linear(LinearError::SingularPartition { dependent, .. }) if dependent == &["disk_q.θz"]),
+        "{err}"
+    );
+    let flat = UnitQuaternion::from_euler_angles(std::f64::consts::FRAC_PI_2, 0.0, 0.0);
+    let c = flat.quaternion();
+    let op = OperatingPoint::on_group(
+        SVector::from([0.0, 0.0, 0.0, c.w, c.i, c.j, c.k]),
+        SVector::zeros(),
+    );
+    let err = lz.constrained_tangent(&disk, &op).unwrap_err();
+    assert!(matches!(&err, Error::NonFiniteState { .. }), "{err}");
+    let mut op = upright(3.0);
+    op.v[4] = f64::NAN;
+    let err = lz.constrained_tangent(&disk, &op).unwrap_err();
+    assert!(matches!(&err, Error::NonFiniteState { .. }), "{err}");
 }
