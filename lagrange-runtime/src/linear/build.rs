@@ -12,17 +12,18 @@ use crate::numeric::Real;
 use crate::system::{Constrained, Driven, Reduced};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-/// M, Q − h + ΔQ, G, g, γ and Φ (holonomic rows) at one state, as f64, and
-/// M and G as the system computed them (for the dynamics' factorisations).
+/// M, Q − h + ΔQ, G, γ, Φ (holonomic rows) and G q̇ + g at one state, as
+/// f64, and M and G as the system computed them (for the dynamics'
+/// factorisations).
 struct Evaluated<T, const N: usize, const K: usize> {
     ms: SMatrix<T, N, N>,
     gs: SMatrix<T, K, N>,
     m: DMatrix<f64>,
     f: DVector<f64>,
     g: DMatrix<f64>,
-    g0: DVector<f64>,
     gamma: DVector<f64>,
     phi: DVector<f64>,
+    vel: DVector<f64>,
 }
 
 impl Linearizer {
@@ -159,8 +160,7 @@ impl Linearizer {
         let u0 = self.inputs_at(sys, op)?;
         let (q, v, u, t) = (&op.q, &op.v, &u0, op.t);
         let ev = self.evaluate(sys, q, v, u, t)?;
-        let vel = &ev.g * dv(v) + &ev.g0;
-        self.check_consistent::<S, T, N, K, N>([&ev.phi, &vel], q, t)?;
+        self.check_consistent::<S, T, N, K, N>([&ev.phi, &ev.vel], q, t)?;
         let part = self.partition::<S, T, N, K, N>(&ev.g, (q, t), [&S::COORDINATES; 2])?;
         let saddle = self.saddle::<S, T, N, K>(&ev, q, t)?;
         let (a0, nu0) = saddle.solve(
@@ -358,12 +358,12 @@ impl Linearizer {
             m: dm(&m),
             f: dv(&f),
             g: dm(&g),
-            g0: dv(&g0),
             gamma: dv(&gamma),
             phi,
+            vel: dv(&(g * v + g0)),
         };
         let parts = [&ev.m, &ev.g];
-        let vecs = [&ev.f, &ev.g0, &ev.gamma, &ev.phi];
+        let vecs = [&ev.f, &ev.gamma, &ev.phi, &ev.vel];
         if !(parts.iter().all(|m| finite(m))
             && vecs.iter().all(|x| x.iter().all(|y| y.is_finite())))
         {
