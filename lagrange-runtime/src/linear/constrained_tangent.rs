@@ -72,6 +72,9 @@ impl Linearizer {
     /// [`input`](OperatingPoint::input)), in independent coordinates and
     /// speeds of the tangent space.
     ///
+    /// A consistent point comes from
+    /// [`project_consistent`](crate::project_consistent) (generic over Q).
+    ///
     /// This is the call for a constrained system with orientations (the rolling
     /// disk or sphere with a quaternion); [`constrained`](Self::constrained)
     /// is the one for a constrained system in coordinates alone (Q = N),
