@@ -31,7 +31,7 @@
 //! upright, a sphere rolling straight, a sleeping top) is then an
 //! equilibrium of a constant A, whose eigenvalues give its stability; in body
 //! axes the perturbations would be carried round by the spin and A would
-//! change with it. With W the block-diagonal [ω*]× (zero on the ordinary
+//! change with it. With W the block-diagonal \[ω*\]× (zero on the ordinary
 //! coordinates) the full tangent model is
 //!
 //! ```text
@@ -269,7 +269,7 @@ fn set(m: &mut DMatrix<f64>, j: usize, column: Vec<f64>) {
 }
 
 /// Re-reads the body-axis derivatives in fixed axes (the module's equations):
-/// X_q + X_v W − [a*_ω]× and D + G W; returns W, the kinematic rows' δ term.
+/// X_q + X_v W − \[a*_ω\]× and D + G W; returns W, the kinematic rows' δ term.
 fn fixed_axes<S, T, const N: usize, const Q: usize>(
     s: &mut Slopes,
     v: &SVector<T, N>,
@@ -285,8 +285,8 @@ where
     w
 }
 
-/// The block-diagonal [x_o]× of each orientation's three entries of x (zero
-/// on the ordinary coordinates): [x]× δ = x × δ.
+/// The block-diagonal \[x_o\]× of each orientation's three entries of x (zero
+/// on the ordinary coordinates): \[x\]× δ = x × δ.
 fn spins<S, T, const N: usize, const Q: usize>(x: &SVector<T, N>) -> DMatrix<f64>
 where
     S: Lagrangian<T, N, Q>,
