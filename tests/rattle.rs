@@ -143,3 +143,18 @@ fn rattle_turns_a_top_held_at_its_tip_with_second_order() {
         assert!((ratio - 4.0).abs() < 0.4, "{ratio}");
     }
 }
+
+/// A quaternion off unit norm is refused by name, as the other integrators
+/// refuse it.
+#[test]
+fn rattle_refuses_a_quaternion_off_unit_norm() {
+    let (_, _, mut q0, v0) = top_start();
+    q0[3] *= 1.1;
+    let err = Rattle::step(0.01)
+        .integrate(&TIPPED, 0.0, 1.0, q0, v0)
+        .unwrap_err();
+    assert!(
+        matches!(&err.error, lagrange::Error::NonUnitQuaternion { orientation, .. } if orientation == "spin"),
+        "{err}"
+    );
+}

@@ -146,7 +146,10 @@ impl Linearizer {
 
     /// Names independent speeds, at most N − K of them, by the coordinates
     /// whose rates they are, in the order the states will have; fewer is
-    /// enough: the rest are chosen.
+    /// enough: the rest are chosen. With orientations
+    /// ([`constrained_tangent`](Self::constrained_tangent)) the speeds are
+    /// named by the velocities (`x`, `<name>.wx`, …) and the coordinates by
+    /// the tangent directions (`x`, `<name>.θx`, …).
     pub fn speeds(mut self, names: &[&str]) -> Self {
         self.speeds = Some(names.iter().map(|s| s.to_string()).collect());
         self
