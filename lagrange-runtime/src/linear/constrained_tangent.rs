@@ -13,7 +13,7 @@
 //! ```
 //!
 //! (G's columns are the tangent directions, so Φ_δ is G's holonomic rows),
-//! each step the cube root of the machine epsilon times the entry's scale (1
+//! each step the cube root of the scalar's epsilon times the entry's scale (1
 //! for δ, max(1, |v_j|), max(1, |u_k|)): a relative error about 1e-10. An
 //! entry below the difference's round-off is set to zero (see `column`).
 //!
@@ -47,7 +47,7 @@ use super::Linear;
 use super::dense::{dm, dv, finite};
 use super::partition::{Partition, embeddings, holonomic};
 use super::settings::{Linearizer, OperatingPoint};
-use super::tangent::{Held, advance, states, step};
+use super::tangent::{Held, advance, states};
 use crate::error::{Error, unit_quaternions};
 use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::numeric::Real;
@@ -240,14 +240,14 @@ where
 /// The central-difference step for an entry of scale `x` and the vector with
 /// that step in entry `j`.
 fn unit<T: Real, const R: usize>(j: usize, x: f64) -> (f64, SVector<T, R>) {
-    let h = step(x);
+    let h = T::default_epsilon().to_f64().cbrt() * x.abs().max(1.0);
     let mut e = SVector::<T, R>::zeros();
     e[j] = T::lit(h);
     (h, e)
 }
 
 /// (f(+h) − f(−h)) / 2h, zero where it is below the round-off of the
-/// difference, 16 ε (|f(+h)| + |f(−h)|) / 2h: a direction the function does
+/// difference, 16 ε (|f(+h)| + |f(−h)|) / 2h (ε the scalar's epsilon): a direction the function does
 /// not depend on (a cyclic coordinate, a spin about an axis of symmetry)
 /// gives an exact zero, as the symbolic derivatives would, so that
 /// [`Linear::stability`] sees its zero eigenvalue as structural.
@@ -256,7 +256,8 @@ fn column<T: Real, const R: usize>(plus: SVector<T, R>, minus: SVector<T, R>, h:
         .map(|i| {
             let (p, m) = (plus[i].to_f64(), minus[i].to_f64());
             let d = (p - m) / (2.0 * h);
-            let floor = 16.0 * f64::EPSILON * (p.abs() + m.abs()) / (2.0 * h);
+            let eps = T::default_epsilon().to_f64();
+            let floor = 16.0 * eps * (p.abs() + m.abs()) / (2.0 * h);
             if d.abs() <= floor { 0.0 } else { d }
         })
         .collect()
