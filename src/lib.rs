@@ -277,7 +277,17 @@
 //!   drifts by the exponential map (first order with the gyroscopic terms).
 //! - **Linearisation in the tangent space**: [`Linearizer::tangent`] takes
 //!   δθ ∈ R³ per orientation (2·N states), so a steady spin linearises to a
-//!   constant A.
+//!   constant A. With constraints, [`Linearizer::constrained_tangent`] (about
+//!   [`OperatingPoint::on_group`](linear::OperatingPoint::on_group)) chooses
+//!   independent tangent directions and speeds as
+//!   [`Linearizer::constrained`] chooses coordinates and speeds, and reads an
+//!   orientation's δθ and δω in its body axes at the operating point held
+//!   fixed in space, so that a body spinning steadily about an axis of
+//!   symmetry (a disk rolling upright, a sphere rolling straight) is an
+//!   equilibrium of a constant A: the quaternion disk's A is the Euler-angle
+//!   disk's in these states to 1e-11, and its critical spin is √(g/3a)
+//!   (`tests/constrained_tangent.rs`). Its derivatives are central
+//!   differences on the group (relative error about 1e-10), not symbolic.
 //!
 //! Events on such a system are written with [`Event::with_orientations`]
 //! (`g` reads q with its quaternions) and run by [`Simulation::event`] as
@@ -333,8 +343,7 @@
 //! Not yet with an orientation: the reduced form (`speeds`,
 //! `formulation(reduced)`) and `emit(hamiltonian)` (each a compile error at
 //! the orientation; Hamilton's form serves the symplectic [`Gauss`] method,
-//! which integrates (q, p) in coordinates); the constrained linearisation
-//! takes Q = N only.
+//! which integrates (q, p) in coordinates).
 //!
 //! ```
 //! use lagrange::prelude::*;

@@ -162,7 +162,9 @@
 //! ```
 //!
 //! [`Rattle`] integrates holonomic constraints with a constant mass matrix
-//! symplectically, keeping Φ = 0 and Φ_q q̇ = 0 to round-off.
+//! symplectically, keeping Φ = 0 and Φ_q q̇ = 0 to round-off; with free
+//! orientations too (a body held by holonomic rows, its inertia constant in
+//! body axes), second order.
 //!
 //! [`Scene`] turns runs of a system into one self-contained HTML page that
 //! plays the motion in 3D (the bodies' poses come from [`Posed`], which the

@@ -12,17 +12,18 @@ use crate::numeric::Real;
 use crate::system::{Constrained, Driven, Reduced};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-/// M, Q − h + ΔQ, G, g, γ and Φ (holonomic rows) at one state, as f64, and
-/// M and G as the system computed them (for the dynamics' factorisations).
+/// M, Q − h + ΔQ, G, γ, Φ (holonomic rows) and G q̇ + g at one state, as
+/// f64, and M and G as the system computed them (for the dynamics'
+/// factorisations).
 struct Evaluated<T, const N: usize, const K: usize> {
     ms: SMatrix<T, N, N>,
     gs: SMatrix<T, K, N>,
     m: DMatrix<f64>,
     f: DVector<f64>,
     g: DMatrix<f64>,
-    g0: DVector<f64>,
     gamma: DVector<f64>,
     phi: DVector<f64>,
+    vel: DVector<f64>,
 }
 
 impl Linearizer {
@@ -159,8 +160,8 @@ impl Linearizer {
         let u0 = self.inputs_at(sys, op)?;
         let (q, v, u, t) = (&op.q, &op.v, &u0, op.t);
         let ev = self.evaluate(sys, q, v, u, t)?;
-        self.check_consistent::<S, T, N, K>(&ev, q, v, t)?;
-        let part = self.partition::<S, T, N, K>(&ev.g, q, t)?;
+        self.check_consistent::<S, T, N, K, N>([&ev.phi, &ev.vel], q, t)?;
+        let part = self.partition::<S, T, N, K, N>(&ev.g, (q, t), [&S::COORDINATES; 2])?;
         let saddle = self.saddle::<S, T, N, K>(&ev, q, t)?;
         let (a0, nu0) = saddle.solve(
             &DMatrix::from_column_slice(N, 1, ev.f.as_slice()),
@@ -185,7 +186,7 @@ impl Linearizer {
         }
         let [xq, xv, xu] = sensitivities(&saddle, [&rq, &rv, &bu], [&dga, &dgv]);
 
-        let (cq, cv, cvq) = embeddings(&part, &ev.g, &dvel, holonomic::<S, T, N, K>());
+        let (cq, cv, cvq) = embeddings(&part, &ev.g, &dvel, holonomic::<S, T, N, K, N>());
         let (ni, ns) = (part.ci.len(), part.si.len());
         let a21 = (&xq * &cq + &xv * &cvq).select_rows(part.si.iter());
         let a22 = (&xv * &cv).select_rows(part.si.iter());
@@ -348,7 +349,7 @@ impl Linearizer {
         let f = f + sys.input_forces(q, v, u, t);
         let (_, g0) = sys.constraint_jacobian(q, t);
         let mut phi = dv(&sys.constraint_positions(q, t));
-        for x in phi.iter_mut().skip(holonomic::<S, T, N, K>()) {
+        for x in phi.iter_mut().skip(holonomic::<S, T, N, K, N>()) {
             *x = 0.0;
         }
         let ev = Evaluated {
@@ -357,12 +358,12 @@ impl Linearizer {
             m: dm(&m),
             f: dv(&f),
             g: dm(&g),
-            g0: dv(&g0),
             gamma: dv(&gamma),
             phi,
+            vel: dv(&(g * v + g0)),
         };
         let parts = [&ev.m, &ev.g];
-        let vecs = [&ev.f, &ev.g0, &ev.gamma, &ev.phi];
+        let vecs = [&ev.f, &ev.gamma, &ev.phi, &ev.vel];
         if !(parts.iter().all(|m| finite(m))
             && vecs.iter().all(|x| x.iter().all(|y| y.is_finite())))
         {
@@ -371,22 +372,23 @@ impl Linearizer {
         Ok(ev)
     }
 
-    fn check_consistent<S, T, const N: usize, const K: usize>(
+    /// An [`LinearError::InconsistentOperatingPoint`] unless Φ (`phi`, zero
+    /// on the nonholonomic rows) and G q̇ + g (`vel`) are within the
+    /// consistency tolerance.
+    pub(super) fn check_consistent<S, T, const N: usize, const K: usize, const Q: usize>(
         &self,
-        ev: &Evaluated<T, N, K>,
-        q: &SVector<T, N>,
-        v: &SVector<T, N>,
+        [phi, vel]: [&DVector<f64>; 2],
+        q: &SVector<T, Q>,
         t: T,
     ) -> Result<(), Error>
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
         T: Real,
     {
-        let vel = &ev.g * dv(v) + &ev.g0;
-        let res = [ev.phi.amax(), vel.amax()];
+        let res = [phi.amax(), vel.amax()];
         let tol = self.consistency_tolerance;
         let worst = if !(res[0] <= tol) {
-            ev.phi.iamax()
+            phi.iamax()
         } else if !(res[1] <= tol) {
             vel.iamax()
         } else {
@@ -422,7 +424,7 @@ impl Linearizer {
         )
         .map_err(|e| match e {
             SaddleError::Mass(ratio) => singular(t, q, ratio),
-            SaddleError::Redundant(ratio, rows) => redundant::<S, T, N, K>(t, q, ratio, rows),
+            SaddleError::Redundant(ratio, rows) => redundant::<S, T, N, K, N>(t, q, ratio, rows),
         })
     }
 }

@@ -122,9 +122,9 @@ impl Linearizer {
         S: Constrained<T, N, K>,
         T: Real,
     {
-        let h = holonomic::<S, T, N, K>();
+        let h = holonomic::<S, T, N, K, N>();
         let (g, _) = sys.constraint_jacobian(&q, t);
-        let part = self.partition::<S, T, N, K>(&dm(&g), &q, t)?;
+        let part = self.partition::<S, T, N, K, N>(&dm(&g), (&q, t), [&S::COORDINATES; 2])?;
         let phi = |q: &SVector<T, N>| dv(&sys.constraint_positions(q, t)).rows(0, h).into_owned();
         let jac = |q: &SVector<T, N>| {
             let g = sys.constraint_jacobian(q, t).0;
@@ -163,7 +163,7 @@ impl Linearizer {
         // The holonomic rows of the stacked velocity rows are Φ_q.
         let jac = |q: &SVector<T, N>| dm(&sys.velocity_rows(q, t).0).rows(K, h).into_owned();
         let named = match &self.coordinates {
-            Some(names) => indices::<S, T, N>("coordinates", names, N - h)?,
+            Some(names) => indices("coordinates", names, N - h, &S::COORDINATES)?,
             None => Vec::new(),
         };
         let (_, dependent, ratio) = complete_coordinates(&jac(&q), &named, &named, N - h);

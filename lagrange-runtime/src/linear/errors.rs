@@ -20,14 +20,14 @@ pub(super) fn singular<T: Real, const N: usize>(t: T, q: &SVector<T, N>, ratio: 
     }
 }
 
-pub(super) fn redundant<S, T, const N: usize, const K: usize>(
+pub(super) fn redundant<S, T, const N: usize, const K: usize, const Q: usize>(
     t: T,
-    q: &SVector<T, N>,
+    q: &SVector<T, Q>,
     ratio: f64,
     rows: Vec<usize>,
 ) -> Error
 where
-    S: Constrained<T, N, K>,
+    S: Constrained<T, N, K, Q>,
     T: Real,
 {
     Error::RedundantConstraints {

@@ -18,13 +18,24 @@
 //!   (δq_i, δq̇_s): independent coordinates and independent speeds, named by the
 //!   user or chosen by column pivoting ([`Linearizer`] documents the rule). Use it
 //!   for closed loops, rolling contact, published benchmarks (the bicycle).
+//! - **Multiplier form with orientations**
+//!   ([`Linearizer::constrained_tangent`], a [`Constrained`](crate::Constrained)
+//!   system whose q holds unit quaternions, Q ≠ N): the same elimination in
+//!   the tangent space (δ: the coordinates' changes and each orientation's
+//!   rotation vector; δv: the velocities' changes), an orientation's read in
+//!   its body axes at the operating point held fixed in space, so that a
+//!   steady spin about an axis of symmetry (a rolling disk or sphere) is an
+//!   equilibrium. Its derivatives are central differences on the group.
 //! - **Reduced form** ([`linearize_reduced`], a [`Reduced`](crate::Reduced)
 //!   system): the state is (δq, δu) with the system's own independent speeds u;
 //!   no elimination is needed, the speeds' equations are linearised directly.
 //!
-//! All three need the symbolic derivatives `#[derive(Lagrangian)]` emits with
-//! `emit(jacobians)`; a system without them is an [`Error::MissingDerivatives`]
-//! (never silent finite differences). The result is a [`Linear`]: A, B, state and
+//! The unconstrained, multiplier and reduced forms need the symbolic
+//! derivatives `#[derive(Lagrangian)]` emits with `emit(jacobians)`; a system
+//! without them is an [`Error::MissingDerivatives`] (never silent finite
+//! differences). The multiplier form with orientations differentiates
+//! numerically, as its documentation states (a description with
+//! orientations has no emitted `constraint_derivatives`). The result is a [`Linear`]: A, B, state and
 //! input names, the second-order form when there is one. [`Linear::select`] drops
 //! ignorable states (heading, position, wheel angles) before a stability analysis;
 //! [`Linear::eigenvalues`], [`Linear::modes`] and [`Linear::stability`] analyse it;
@@ -127,6 +138,7 @@
 mod atlas;
 mod build;
 mod complete;
+mod constrained_tangent;
 mod defaults;
 mod dense;
 mod eigen;

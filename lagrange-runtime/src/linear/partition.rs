@@ -7,7 +7,7 @@ use super::dense::{condition, pivot_columns};
 use super::errors::redundant;
 use crate::error::{Error, LinearError};
 use crate::numeric::Real;
-use crate::system::{Constrained, Lagrangian};
+use crate::system::Constrained;
 use nalgebra::{DMatrix, DVector, SVector};
 
 /// Independent and dependent coordinate and speed indices.
@@ -20,26 +20,29 @@ pub(super) struct Partition {
 }
 
 impl Linearizer {
-    /// The independent/dependent split of the coordinates and speeds at G.
-    pub(super) fn partition<S, T, const N: usize, const K: usize>(
+    /// The independent/dependent split of the coordinates and speeds at G,
+    /// whose N columns are the directions `coordinates` names (without
+    /// orientations the coordinates; with them, the tangent directions) and
+    /// whose rates `speeds` names (the velocities).
+    pub(super) fn partition<S, T, const N: usize, const K: usize, const Q: usize>(
         &self,
         g: &DMatrix<f64>,
-        q: &SVector<T, N>,
-        t: T,
+        (q, t): (&SVector<T, Q>, T),
+        [coordinates, speeds]: [&[&str]; 2],
     ) -> Result<Partition, Error>
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
         T: Real,
     {
-        let h = holonomic::<S, T, N, K>();
+        let h = holonomic::<S, T, N, K, Q>();
         let tol = self.redundant_tolerance;
         let phi_q = g.rows(0, h).into_owned();
         let named_c = match &self.coordinates {
-            Some(names) => indices::<S, T, N>("coordinates", names, N - h)?,
+            Some(names) => indices("coordinates", names, N - h, coordinates)?,
             None => Vec::new(),
         };
         let named_s = match &self.speeds {
-            Some(names) => indices::<S, T, N>("speeds", names, N.saturating_sub(K))?,
+            Some(names) => indices("speeds", names, N.saturating_sub(K), speeds)?,
             None => Vec::new(),
         };
         // Named speeds are kept independent as coordinates too where the
@@ -61,16 +64,16 @@ impl Linearizer {
         }
         if h > 0 && !(ratio >= tol) && !all_c {
             let (_, null) = condition(&phi_q.transpose());
-            return Err(redundant::<S, T, N, K>(t, q, ratio, big_entries(&null)));
+            return Err(redundant::<S, T, N, K, Q>(t, q, ratio, big_entries(&null)));
         }
-        check_square::<S, T, N>("coordinates", &phi_q, &cd, tol)?;
+        check_square("coordinates", &phi_q, &cd, tol, coordinates)?;
         if let Some(&i) = named_s.iter().find(|i| cd.contains(i)) {
             return Err(LinearError::InvalidPartition {
                 what: "speeds",
                 reason: format!(
                     "`{}` is the rate of a dependent coordinate here; name it among the \
                      independent coordinates too",
-                    S::COORDINATES[i]
+                    speeds[i]
                 ),
             }
             .into());
@@ -83,9 +86,9 @@ impl Linearizer {
         if K > h && !(ratio >= tol) && !all_s {
             let (_, null) = condition(&g.rows(h, K - h).transpose());
             let rows = big_entries(&null).iter().map(|r| r + h).collect();
-            return Err(redundant::<S, T, N, K>(t, q, ratio, rows));
+            return Err(redundant::<S, T, N, K, Q>(t, q, ratio, rows));
         }
-        check_square::<S, T, N>("speeds", g, &sd, tol)?;
+        check_square("speeds", g, &sd, tol, speeds)?;
         Ok(Partition { ci, cd, si, sd })
     }
 }
@@ -196,16 +199,14 @@ pub(super) fn embeddings(
     (cq, cv, cvq)
 }
 
-/// Coordinate indices of the given names, checked: known, distinct, `count` of them.
-pub(super) fn indices<S, T, const N: usize>(
+/// Indices in `known` of the given names, checked: known, distinct, at most
+/// `count` of them.
+pub(super) fn indices(
     what: &'static str,
     names: &[String],
     count: usize,
-) -> Result<Vec<usize>, Error>
-where
-    S: Lagrangian<T, N>,
-    T: Real,
-{
+    known: &[&str],
+) -> Result<Vec<usize>, Error> {
     let bad = |reason: String| Error::from(LinearError::InvalidPartition { what, reason });
     if names.len() > count {
         return Err(bad(format!(
@@ -216,15 +217,11 @@ where
     }
     let mut out = Vec::with_capacity(count);
     for name in names {
-        let i = S::COORDINATES
-            .iter()
-            .position(|c| c == name)
-            .ok_or_else(|| {
-                bad(format!(
-                    "no coordinate `{name}`; the coordinates are {:?}",
-                    S::COORDINATES
-                ))
-            })?;
+        let i = known.iter().position(|c| c == name).ok_or_else(|| {
+            bad(format!(
+                "no coordinate `{name}`; the names of the {what} are {known:?}"
+            ))
+        })?;
         if out.contains(&i) {
             return Err(bad(format!("`{name}` named twice")));
         }
@@ -236,16 +233,14 @@ where
 /// Checks that the columns `dependent` of `full` form a square matrix whose
 /// smallest singular value is at least `tol` times the largest singular value of
 /// `full` (relative to the whole Jacobian, so that a 1 × 1 block is judged too).
-fn check_square<S, T, const N: usize>(
+/// `known` names the columns.
+fn check_square(
     what: &'static str,
     full: &DMatrix<f64>,
     dependent: &[usize],
     tol: f64,
-) -> Result<(), Error>
-where
-    S: Lagrangian<T, N>,
-    T: Real,
-{
+    known: &[&str],
+) -> Result<(), Error> {
     let m = full.select_columns(dependent.iter());
     let ratio = if m.is_empty() {
         1.0
@@ -259,10 +254,7 @@ where
     }
     Err(LinearError::SingularPartition {
         what,
-        dependent: dependent
-            .iter()
-            .map(|&i| S::COORDINATES[i].to_string())
-            .collect(),
+        dependent: dependent.iter().map(|&i| known[i].to_string()).collect(),
         ratio,
     }
     .into())
@@ -273,7 +265,10 @@ pub(super) fn big_entries(x: &DVector<f64>) -> Vec<usize> {
     (0..x.len()).filter(|&i| x[i].abs() > 0.1 * big).collect()
 }
 
-pub(super) fn holonomic<S: Constrained<T, N, K>, T: Real, const N: usize, const K: usize>() -> usize
+pub(super) fn holonomic<S, T, const N: usize, const K: usize, const Q: usize>() -> usize
+where
+    S: Constrained<T, N, K, Q>,
+    T: Real,
 {
     S::HOLONOMIC.min(K)
 }

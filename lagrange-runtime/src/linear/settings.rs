@@ -19,11 +19,14 @@ pub const DEFAULT_NEWTON_ITERATIONS: usize = 20;
 /// [`new`](Self::new) makes a point with no inputs given, which every
 /// linearisation reads as all of the system's inputs zero, so a driven system
 /// needs no annotation; [`input`](Self::input) gives them (their number must be
-/// the system's, checked at compile time).
+/// the system's, checked at compile time). A system whose configuration holds
+/// orientations has Q ≠ N numbers in q (each quaternion's four components) and
+/// N in v (body-axis angular velocities): [`on_group`](Self::on_group) makes
+/// its point, for [`Linearizer::constrained_tangent`].
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct OperatingPoint<T: Real, const N: usize, const U: usize = 0> {
-    /// Coordinates q0.
-    pub q: SVector<T, N>,
+pub struct OperatingPoint<T: Real, const N: usize, const U: usize = 0, const Q: usize = N> {
+    /// Coordinates q0 (with orientations, the quaternions' components).
+    pub q: SVector<T, Q>,
     /// Velocities q̇0.
     pub v: SVector<T, N>,
     /// Inputs u0 (none: all zero).
@@ -44,9 +47,23 @@ impl<T: Real, const N: usize> OperatingPoint<T, N> {
     }
 }
 
-impl<T: Real, const N: usize, const U: usize> OperatingPoint<T, N, U> {
+impl<T: Real, const N: usize, const Q: usize> OperatingPoint<T, N, 0, Q> {
+    /// The point (q, v) at t = 0 with all inputs zero, q holding Q numbers
+    /// (each orientation's unit quaternion) and v N (each orientation's
+    /// angular velocity in body axes).
+    pub fn on_group(q: SVector<T, Q>, v: SVector<T, N>) -> Self {
+        Self {
+            q,
+            v,
+            u: SVector::zeros(),
+            t: T::zero(),
+        }
+    }
+}
+
+impl<T: Real, const N: usize, const U: usize, const Q: usize> OperatingPoint<T, N, U, Q> {
     /// Sets the inputs u0.
-    pub fn input<const P: usize>(self, u: SVector<T, P>) -> OperatingPoint<T, N, P> {
+    pub fn input<const P: usize>(self, u: SVector<T, P>) -> OperatingPoint<T, N, P, Q> {
         OperatingPoint {
             q: self.q,
             v: self.v,
@@ -129,7 +146,10 @@ impl Linearizer {
 
     /// Names independent speeds, at most N − K of them, by the coordinates
     /// whose rates they are, in the order the states will have; fewer is
-    /// enough: the rest are chosen.
+    /// enough: the rest are chosen. With orientations
+    /// ([`constrained_tangent`](Self::constrained_tangent)) the speeds are
+    /// named by the velocities (`x`, `<name>.wx`, …) and the coordinates by
+    /// the tangent directions (`x`, `<name>.θx`, …).
     pub fn speeds(mut self, names: &[&str]) -> Self {
         self.speeds = Some(names.iter().map(|s| s.to_string()).collect());
         self
@@ -171,13 +191,13 @@ impl Linearizer {
     /// and the operating point's inputs
     /// (a NaN input is named, not reported as a non-finite state). Returns
     /// the system's P inputs at the point.
-    pub(super) fn inputs_at<S, T, const N: usize, const P: usize, const U: usize>(
+    pub(super) fn inputs_at<S, T, const N: usize, const P: usize, const U: usize, const Q: usize>(
         &self,
         sys: &S,
-        op: &OperatingPoint<T, N, U>,
+        op: &OperatingPoint<T, N, U, Q>,
     ) -> Result<SVector<T, P>, Error>
     where
-        S: Driven<T, N, P>,
+        S: Driven<T, N, P, Q>,
         T: Real,
     {
         self.check_settings()?;

@@ -187,9 +187,9 @@ impl Linearizer {
 /// The inputs held at u: the generalized forces they add, at every state.
 /// (The linearisation sits below the controllers; this is all it needs of
 /// them.)
-struct Held<'s, S, T: Real, const P: usize> {
-    system: &'s S,
-    u: SVector<T, P>,
+pub(super) struct Held<'s, S, T: Real, const P: usize> {
+    pub(super) system: &'s S,
+    pub(super) u: SVector<T, P>,
 }
 
 impl<S, T, const N: usize, const P: usize, const Q: usize> Forcing<T, N, Q> for Held<'_, S, T, P>
@@ -203,7 +203,7 @@ where
 }
 
 /// q ⊕ δ.
-fn advance<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q: usize>(
+pub(super) fn advance<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q: usize>(
     q: &SVector<T, Q>,
     delta: &SVector<T, N>,
 ) -> SVector<T, Q> {

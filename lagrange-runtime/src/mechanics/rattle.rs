@@ -9,6 +9,10 @@
 //!                                       with μ such that Φ_q vₙ₊₁ + Φ_t = 0
 //! ```
 //!
+//! With free orientations (Q ≠ N) the drift is qₙ₊₁ = qₙ ⊕ h v½ (each
+//! quaternion turned by exp(h ω½)) and the end kick is implicit in vₙ₊₁
+//! (see [`Rattle::integrate`]).
+//!
 //! F = Q − h is the right-hand side without constraint forces. λ solves a
 //! nonlinear system of K equations (Newton with the exact Jacobian
 //! Φ_q(qₙ₊₁) M⁻¹ Φ_q(qₙ)ᵀ, iterated to round-off); μ a linear one. Both
@@ -30,13 +34,14 @@
 //! evaluating F at v½ for the end of the step as Störmer–Verlet does, but is
 //! no longer symplectic.
 
-use crate::error::{Error, Failure, to_vec};
+use crate::error::{Error, Failure, to_vec, unit_quaternions};
 use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::mechanics::dynamics::DEFAULT_SINGULAR_TOLERANCE;
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
+use crate::numeric::orientation;
 use crate::ode::{Continuation, Record, Trajectory};
-use crate::ode::{DenseSegment, Sample, Stats, check_problem, fixed_step_count};
+use crate::ode::{DenseSegment, Pair, Sample, Stats, check_problem, fixed_step_count};
 use crate::ode::{Run, fixed_steps};
 use crate::system::Constrained;
 use nalgebra::{SMatrix, SVector};
@@ -152,23 +157,37 @@ impl Rattle {
 
     /// Integrates `system` from the consistent state (q0, v0) at t0 to t1.
     ///
+    /// With free orientations (Q ≠ N: q holds unit quaternions, v the
+    /// body-axis angular velocities) the drift is q ⊕ h v½ (each quaternion
+    /// turned by exp(h ω½)), λ is found by Newton through the exponential's
+    /// right Jacobian, and the end kick is solved for vₙ₊₁ by fixed-point
+    /// iteration, F(qₙ₊₁, vₙ₊₁) (the gyroscopic terms ω × Iω make F depend on
+    /// ω, and the explicit F(qₙ₊₁, v½) would leave the method first order):
+    /// the step is the symmetric composition of an explicit and an implicit
+    /// half kick around the drift, second order, both constraint levels held
+    /// to round-off. The mass matrix in ω must still be constant (a body's
+    /// inertia in body axes is; its centre of mass must be its reference
+    /// point).
+    ///
     /// # Errors
     /// [`Error::InvalidSettings`] for a bad step, span or initial state, a
     /// system with nonholonomic rows, or a mass matrix that changes along the
     /// motion; [`Error::InconsistentInitialConditions`];
-    /// [`Error::SingularMassMatrix`]; [`Error::RedundantConstraints`] when
-    /// Φ_q M⁻¹ Φ_qᵀ is singular; [`Error::NewtonFailure`] when λ does not
+    /// [`Error::NonUnitQuaternion`]; [`Error::SingularMassMatrix`];
+    /// [`Error::RedundantConstraints`] when Φ_q M⁻¹ Φ_qᵀ is singular;
+    /// [`Error::NewtonFailure`] when λ (or, with orientations, vₙ₊₁) does not
     /// converge (the step is too large); [`Error::NonFiniteState`].
-    pub fn integrate<S, T: Real, const N: usize, const K: usize>(
+    #[allow(clippy::type_complexity)]
+    pub fn integrate<S, T: Real, const N: usize, const K: usize, const Q: usize>(
         &self,
         system: &S,
         t0: T,
         t1: T,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>>
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         let dynamics = ConstrainedDynamics::<S, T, K>::new(system);
         let sample = Sample::of(&dynamics, t0, &q0, &v0);
@@ -180,21 +199,22 @@ impl Rattle {
 
     /// Checks the settings, the problem and the initial state, then takes the
     /// fixed steps.
-    fn run<S, T: Real, const N: usize, const K: usize>(
+    fn run<S, T: Real, const N: usize, const K: usize, const Q: usize>(
         &self,
         system: &S,
         dynamics: &ConstrainedDynamics<S, T, K>,
         (t0, t1): (T, T),
-        (q0, v0): (SVector<T, N>, SVector<T, N>),
-        run: &mut Run<T, N>,
+        (q0, v0): (SVector<T, Q>, SVector<T, N>),
+        run: &mut Run<T, N, Q>,
     ) -> Result<(), Error>
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
-        self.record.check_span(t0, t1, 2 * N)?;
+        self.record.check_span(t0, t1, Q + N)?;
         check_problem(t0, t1, &q0, &v0)?;
         let n = fixed_step_count("RATTLE", self.h, self.max_steps, t0, t1)?;
-        self.check_settings::<S, T, N, K>()?;
+        self.check_settings::<S, T, N, K, Q>()?;
+        let q0 = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0)?;
         dynamics.check_consistency(t0, &q0, &v0, T::lit(self.consistency_tolerance))?;
         let m0 = system.mass_matrix(&q0, t0);
         // The constant mass matrix, factorised and judged as the dynamics do.
@@ -233,9 +253,11 @@ impl Rattle {
     }
 
     /// Nonholonomic rows, Newton iterations and the consistency tolerance.
-    fn check_settings<S, T: Real, const N: usize, const K: usize>(&self) -> Result<(), Error>
+    fn check_settings<S, T: Real, const N: usize, const K: usize, const Q: usize>(
+        &self,
+    ) -> Result<(), Error>
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         if S::HOLONOMIC != K {
             return Err(Error::InvalidSettings(format!(
@@ -263,85 +285,155 @@ impl Rattle {
     /// t_next: the new state, Φ_q there, and the step's dense output (the cubic
     /// Hermite interpolant with the constrained accelerations at both ends).
     #[allow(clippy::type_complexity)]
-    fn advance<S, T: Real, const N: usize, const K: usize>(
+    fn advance<S, T: Real, const N: usize, const K: usize, const Q: usize>(
         &self,
         system: &S,
         (m0, chol): (&SMatrix<T, N, N>, &Cholesky<T, N>),
         (t, t_next): (T, T),
-        (q, v, f): (&SVector<T, N>, &SVector<T, N>, &SVector<T, N>),
+        (q, v, f): (&SVector<T, Q>, &SVector<T, N>, &SVector<T, N>),
         g_n: &SMatrix<T, K, N>,
         stats: &mut Stats,
     ) -> Result<
         (
-            SVector<T, N>,
+            SVector<T, Q>,
             SVector<T, N>,
             SMatrix<T, K, N>,
-            DenseSegment<T, N>,
+            DenseSegment<T, N, Q>,
         ),
         Error,
     >
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
     {
         let half = T::lit(0.5);
         let hk = t_next - t;
         // M⁻¹ Φ_q(qₙ)ᵀ, one column per constraint.
         let minv_gt = chol.solve_columns(g_n.transpose());
-        // Position step: q(Λ) = q̂ + M⁻¹ Φ_q(qₙ)ᵀ Λ with Λ = h²/2 λ.
+        // Position step: qₙ ⊕ (δ̂ + M⁻¹ Φ_q(qₙ)ᵀ Λ) with Λ = h²/2 λ.
         let a_free = chol.solve(*f);
-        let q_hat = q + v * hk + a_free * (half * hk * hk);
-        let (q_next, lambda) = self.solve_positions(system, t, hk, t_next, &q_hat, &minv_gt)?;
-        let v_half = (q_next - q) / hk;
+        let drift = v * hk + a_free * (half * hk * hk);
+        let ((q_next, delta), lambda) =
+            self.solve_positions(system, (t, hk, t_next), q, &drift, &minv_gt)?;
+        let v_half = delta / hk;
         // The constraint force over the first half step, as an acceleration.
         let a_start = a_free + minv_gt * (lambda * (T::lit(2.0) / (hk * hk)));
-        let (m_next, f_next) = system.mass_matrix_and_rhs(&q_next, &v_half, t_next);
+        let (m_next, f_half) = system.mass_matrix_and_rhs(&q_next, &v_half, t_next);
         stats.evaluations += 1;
         check_constant_mass(m0, &m_next, t_next, &q_next)?;
-        // Velocity step: G (v̂ + M⁻¹ Gᵀ Μ) + g = 0, linear in Μ = h/2 μ.
-        let (g_next, g_t) = system.constraint_jacobian(&q_next, t_next);
-        let minv_gt_next = chol.solve_columns(g_next.transpose());
-        let a_free_next = chol.solve(f_next);
-        let v_hat = v_half + a_free_next * (half * hk);
-        let schur = g_next * minv_gt_next;
-        let rhs = -(g_next * v_hat + g_t);
-        let mu =
-            solve_square(schur, &rhs).ok_or_else(|| redundant::<S, T, N, K>(t_next, &q_next))?;
-        let v_next = v_hat + minv_gt_next * mu;
-        let a_end = a_free_next + minv_gt_next * (mu * (T::lit(2.0) / hk));
+        let (v_next, a_end, g_next) = self.end_kick(
+            system,
+            chol,
+            (t_next, hk),
+            (&q_next, &v_half, f_half),
+            stats,
+        )?;
         if !(all_finite(&q_next) && all_finite(&v_next)) {
             return Err(Error::non_finite(t_next, &q_next, &v_next));
         }
-        let segment =
-            DenseSegment::cubic_hermite(t, t_next, (q, v, &a_start), (&q_next, &v_next, &a_end));
+        let rate = |q: &SVector<T, Q>, v: &SVector<T, N>| {
+            let mut out = SVector::<T, Q>::zeros();
+            orientation::rate(
+                S::ORIENTATIONS,
+                q.as_slice(),
+                v.as_slice(),
+                out.as_mut_slice(),
+            );
+            out
+        };
+        let segment = DenseSegment::hermite(
+            t,
+            t_next,
+            &Pair::new(*q, *v),
+            &Pair::new(rate(q, v), a_start),
+            &Pair::new(q_next, v_next),
+            &Pair::new(rate(&q_next, &v_next), a_end),
+        );
         Ok((q_next, v_next, g_next, segment))
     }
 
-    /// Newton on Φ(q̂ + M⁻¹Gₙᵀ Λ, t₁) = 0 with the exact Jacobian
-    /// Φ_q(q(Λ)) M⁻¹ Gₙᵀ; returns q(Λ) and Λ. Stops when the correction no
-    /// longer shrinks at round-off level.
-    fn solve_positions<S, T: Real, const N: usize, const K: usize>(
+    /// The second half kick at qₙ₊₁: vₙ₊₁ = v½ + h/2 M⁻¹(F + Gᵀ μ) with μ
+    /// such that G vₙ₊₁ + g = 0 (linear in Μ = h/2 μ), F = `f_half` at v½;
+    /// with orientations F is re-evaluated at vₙ₊₁ until vₙ₊₁ stops moving
+    /// (fixed-point iteration; [`Error::NewtonFailure`] if it does not
+    /// settle within the iteration limit). Returns vₙ₊₁, the constrained
+    /// acceleration there and Φ_q(qₙ₊₁).
+    #[allow(clippy::type_complexity)]
+    fn end_kick<S, T: Real, const N: usize, const K: usize, const Q: usize>(
         &self,
         system: &S,
-        t: T,
-        h: T,
-        t1: T,
-        q_hat: &SVector<T, N>,
-        minv_gt: &SMatrix<T, N, K>,
-    ) -> Result<(SVector<T, N>, SVector<T, K>), Error>
+        chol: &Cholesky<T, N>,
+        (t_next, hk): (T, T),
+        (q_next, v_half, f_half): (&SVector<T, Q>, &SVector<T, N>, SVector<T, N>),
+        stats: &mut Stats,
+    ) -> Result<(SVector<T, N>, SVector<T, N>, SMatrix<T, K, N>), Error>
     where
-        S: Constrained<T, N, K>,
+        S: Constrained<T, N, K, Q>,
+    {
+        let half = T::lit(0.5);
+        let (g_next, g_t) = system.constraint_jacobian(q_next, t_next);
+        let minv_gt_next = chol.solve_columns(g_next.transpose());
+        let schur = g_next * minv_gt_next;
+        let eps = T::default_epsilon();
+        let mut f = f_half;
+        let mut previous = T::max_value().unwrap_or(T::one() / eps);
+        for _ in 0..self.max_iterations {
+            let a_free_next = chol.solve(f);
+            let v_hat = v_half + a_free_next * (half * hk);
+            let rhs = -(g_next * v_hat + g_t);
+            let mu = solve_square(schur, &rhs)
+                .ok_or_else(|| redundant::<S, T, N, K, Q>(t_next, q_next))?;
+            let v_next = v_hat + minv_gt_next * mu;
+            let a_end = a_free_next + minv_gt_next * (mu * (T::lit(2.0) / hk));
+            if S::ORIENTATIONS.is_empty() {
+                return Ok((v_next, a_end, g_next));
+            }
+            let f_next = system.mass_matrix_and_rhs(q_next, &v_next, t_next).1;
+            stats.evaluations += 1;
+            let size = chol.solve(f_next - f).amax() * half * hk / (T::one() + v_next.amax());
+            f = f_next;
+            if size <= T::lit(4.0) * eps || (size >= previous && size <= T::lit(1e3) * eps) {
+                return Ok((v_next, a_end, g_next));
+            }
+            previous = size;
+        }
+        Err(Error::NewtonFailure {
+            t: t_next.to_f64(),
+            h: hk.to_f64(),
+            iterations: self.max_iterations,
+        })
+    }
+
+    /// Newton on Φ(qₙ ⊕ δ(Λ), t₁) = 0, δ(Λ) = δ̂ + M⁻¹Gₙᵀ Λ, with the exact
+    /// Jacobian Φ_q(q(Λ)) J_r(δ) M⁻¹ Gₙᵀ (J_r the exponential's right
+    /// Jacobian on each orientation's three entries, the identity
+    /// elsewhere); returns (q(Λ), δ(Λ)) and Λ. Stops when the correction no
+    /// longer shrinks at round-off level.
+    #[allow(clippy::type_complexity)]
+    fn solve_positions<S, T: Real, const N: usize, const K: usize, const Q: usize>(
+        &self,
+        system: &S,
+        (t, h, t1): (T, T, T),
+        q_n: &SVector<T, Q>,
+        drift: &SVector<T, N>,
+        minv_gt: &SMatrix<T, N, K>,
+    ) -> Result<((SVector<T, Q>, SVector<T, N>), SVector<T, K>), Error>
+    where
+        S: Constrained<T, N, K, Q>,
     {
         let eps = T::default_epsilon();
         let mut lambda = SVector::<T, K>::zeros();
-        let mut q = *q_hat;
+        let mut delta = *drift;
+        let mut q = turned::<S, T, N, K, Q>(q_n, &delta);
         let mut previous = T::max_value().unwrap_or(T::one() / eps);
         for _ in 0..self.max_iterations {
             let phi = system.constraint_positions(&q, t1);
             let (g, _) = system.constraint_jacobian(&q, t1);
-            let step = solve_square(g * minv_gt, &(-phi))
-                .ok_or_else(|| redundant::<S, T, N, K>(t1, &q))?;
+            let along = through_exp::<S, T, N, K, Q>(&delta, minv_gt);
+            let step = solve_square(g * along, &(-phi))
+                .ok_or_else(|| redundant::<S, T, N, K, Q>(t1, &q))?;
             lambda += step;
-            q = q_hat + minv_gt * lambda;
+            delta = drift + minv_gt * lambda;
+            q = turned::<S, T, N, K, Q>(q_n, &delta);
             let size = (minv_gt * step).amax() / (T::one() + q.amax());
             if !size.is_finite() {
                 break;
@@ -349,7 +441,7 @@ impl Rattle {
             // Converged: the last correction moved q by round-off only, or
             // stopped shrinking there.
             if size <= T::lit(4.0) * eps || (size >= previous && size <= T::lit(1e3) * eps) {
-                return Ok((q, lambda));
+                return Ok(((q, delta), lambda));
             }
             previous = size;
         }
@@ -359,6 +451,45 @@ impl Rattle {
             iterations: self.max_iterations,
         })
     }
+}
+
+/// q ⊕ δ.
+fn turned<S, T: Real, const N: usize, const K: usize, const Q: usize>(
+    q: &SVector<T, Q>,
+    delta: &SVector<T, N>,
+) -> SVector<T, Q>
+where
+    S: Constrained<T, N, K, Q>,
+{
+    let mut out = SVector::<T, Q>::zeros();
+    orientation::integrate(
+        S::ORIENTATIONS,
+        q.as_slice(),
+        delta.as_slice(),
+        out.as_mut_slice(),
+    );
+    out
+}
+
+/// J_r(δ) x: each orientation's three rows of `x` turned by the right
+/// Jacobian of exp at its δ, the others as they are.
+fn through_exp<S, T: Real, const N: usize, const K: usize, const Q: usize>(
+    delta: &SVector<T, N>,
+    x: &SMatrix<T, N, K>,
+) -> SMatrix<T, N, K>
+where
+    S: Constrained<T, N, K, Q>,
+{
+    let mut out = *x;
+    for o in S::ORIENTATIONS {
+        let jr = orientation::right_jacobian([delta[o.v], delta[o.v + 1], delta[o.v + 2]]);
+        for c in 0..K {
+            for (i, row) in jr.iter().enumerate() {
+                out[(o.v + i, c)] = (0..3).fold(T::zero(), |s, k| s + row[k] * x[(o.v + k, c)]);
+            }
+        }
+    }
+    out
 }
 
 fn all_finite<T: Real, const N: usize>(x: &SVector<T, N>) -> bool {
@@ -406,9 +537,12 @@ fn solve_square<T: Real, const K: usize>(
 }
 
 /// Φ_q M⁻¹ Φ_qᵀ singular: the constraints are dependent at q.
-fn redundant<S, T: Real, const N: usize, const K: usize>(t: T, q: &SVector<T, N>) -> Error
+fn redundant<S, T: Real, const N: usize, const K: usize, const Q: usize>(
+    t: T,
+    q: &SVector<T, Q>,
+) -> Error
 where
-    S: Constrained<T, N, K>,
+    S: Constrained<T, N, K, Q>,
 {
     Error::RedundantConstraints {
         t: t.to_f64(),
@@ -420,11 +554,11 @@ where
 }
 
 /// RATTLE's splitting assumes M constant; a change beyond round-off is an error.
-fn check_constant_mass<T: Real, const N: usize>(
+fn check_constant_mass<T: Real, const N: usize, const Q: usize>(
     m0: &SMatrix<T, N, N>,
     m: &SMatrix<T, N, N>,
     t: T,
-    q: &SVector<T, N>,
+    q: &SVector<T, Q>,
 ) -> Result<(), Error> {
     let scale = m0.amax();
     let change = (m - m0).amax();

@@ -205,6 +205,32 @@ pub fn exp<T: Real>(theta: [T; 3]) -> [T; 4] {
     [cos(half), theta[0] * k, theta[1] * k, theta[2] * k]
 }
 
+/// The right Jacobian of the exponential map, exp(θ + dθ) = exp(θ) ⊗
+/// exp(J_r(θ) dθ) to first order: J_r = I − (1 − cos a)/a² \[θ\]× +
+/// (a − sin a)/a³ \[θ\]×² with a = |θ| (series below a = 1e-3), so that
+/// ∂(q ⊕ δ)/∂δ reads J_r(δ) in the tangent space at q ⊕ δ.
+pub fn right_jacobian<T: Real>(theta: [T; 3]) -> [[T; 3]; 3] {
+    let a2 = theta.iter().fold(T::zero(), |s, &x| s + x * x);
+    let a = sqrt(a2);
+    let (first, second) = if a < T::lit(1e-3) {
+        (
+            T::lit(0.5) - a2 / T::lit(24.0) + a2 * a2 / T::lit(720.0),
+            T::lit(1.0 / 6.0) - a2 / T::lit(120.0) + a2 * a2 / T::lit(5040.0),
+        )
+    } else {
+        ((T::one() - cos(a)) / a2, (a - sin(a)) / (a2 * a))
+    };
+    let [x, y, z] = theta;
+    let hat = [[T::zero(), -z, y], [z, T::zero(), -x], [-y, x, T::zero()]];
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let hat2 = (0..3).fold(T::zero(), |s, k| s + hat[i][k] * hat[k][j]);
+            let identity = if i == j { T::one() } else { T::zero() };
+            identity - first * hat[i][j] + second * hat2
+        })
+    })
+}
+
 /// The rotation vector of a unit quaternion, taking the shorter way (w ≥ 0).
 pub fn log<T: Real>([w, x, y, z]: [T; 4]) -> [T; 3] {
     let s = if w < T::zero() { -T::one() } else { T::one() };
@@ -271,6 +297,34 @@ mod tests {
         assert!(!fits(&[Orientation { q: 3, v: 3 }], 6, 5));
         let two = [Orientation { q: 0, v: 0 }, Orientation { q: 4, v: 3 }];
         assert!(fits(&two, 8, 6));
+    }
+
+    #[test]
+    fn right_jacobian_is_the_derivative_of_exp() {
+        for theta in [[0.3f64, -1.2, 0.7], [2e-4, -1e-4, 3e-4]] {
+            let jr = right_jacobian(theta);
+            let at = exp(theta);
+            let inverse = [at[0], -at[1], -at[2], -at[3]];
+            for j in 0..3 {
+                let h = 1e-6;
+                let mut plus = theta;
+                let mut minus = theta;
+                plus[j] += h;
+                minus[j] -= h;
+                let (p, m) = (
+                    log(multiply(inverse, exp(plus))),
+                    log(multiply(inverse, exp(minus))),
+                );
+                for i in 0..3 {
+                    let d = (p[i] - m[i]) / (2.0 * h);
+                    assert!(
+                        (d - jr[i][j]).abs() < 1e-9,
+                        "{theta:?} {i} {j}: {d} vs {}",
+                        jr[i][j]
+                    );
+                }
+            }
+        }
     }
 
     #[test]
