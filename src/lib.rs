@@ -466,8 +466,8 @@ pub mod __private {
         Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid,
     };
     pub use lagrange_runtime::{
-        Atlas, Constrained, Driven, EulerRotation, FormVisitor, FreeVisitor, Lagrangian,
-        Orientation, Real, Reduced, Route,
+        Atlas, Constrained, Driven, DrivenAtlas, EulerRotation, FormVisitor, FreeVisitor,
+        Lagrangian, Orientation, Real, Reduced, Route,
     };
     pub use lagrange_runtime::{Error, func, physical};
     pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};

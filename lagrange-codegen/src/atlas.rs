@@ -124,7 +124,6 @@ fn supported(cx: &Ctxt, system: &System, at: &Ident) -> bool {
             !system.holonomic.is_empty() || !system.nonholonomic.is_empty(),
             "constraints",
         ),
-        (!system.inputs.is_empty(), "`inputs`"),
         (
             !system.orientations.is_empty(),
             "free orientations (which need no atlas)",
