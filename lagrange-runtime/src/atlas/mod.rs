@@ -28,7 +28,6 @@ mod drive;
 mod run;
 
 pub(crate) use chart::{Charts, user_view};
-#[allow(unused_imports)]
 pub(crate) use drive::{Held, back_to_charts, finish, integrate, unstarted, watched};
 pub use run::{AtlasRun, ChartSwitch, USER_CHART_VALID};
 
