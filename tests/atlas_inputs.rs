@@ -106,13 +106,27 @@ fn a_torque_signal_drives_the_yaw_pitch_roll_satellite_through_the_vertical() {
     let run = Simulation::new(&EULER_SAT)
         .integrator(Dopri5::tol(1e-11))
         .open_loop(signal)
+        .event(Event::new(|_: f64, q, _| q[1].sin() - 0.99).rising())
         .run_atlas(angles, rates, span.clone())
         .unwrap();
     let reference = Simulation::new(&SAT)
         .integrator(Dopri5::tol(1e-11))
         .open_loop(signal)
+        .event(Event::with_orientations(|_, q, _| -matrix(q)[(2, 0)] - 0.99).rising())
         .run(quaternion, [0.01, 1.0, -0.02], span)
         .unwrap();
+    // sin(pitch) rising through 0.99, in the second chart: located where
+    // the quaternion run locates −R₂₀ rising through it.
+    let (times, expected) = (run.times(0), reference.occurrences());
+    assert_eq!(times.len(), expected.len());
+    let event_gap = (times.iter().zip(expected))
+        .map(|(t, o)| (t - o.t).abs())
+        .fold(0.0f64, f64::max);
+    eprintln!(
+        "signal: {} crossings of sin(pitch) = 0.99, time gap {event_gap:e}",
+        times.len()
+    );
+    assert!(!times.is_empty() && event_gap < 1e-9, "{event_gap:e}");
     let (rotation, omega) = gap(&run, reference.trajectory());
     let switches = run.switches().len();
     eprintln!("signal: {switches} switches, rotation gap {rotation:e}, ω gap {omega:e}");
