@@ -239,7 +239,7 @@ impl<T: Real> Charts<T> {
     /// (q, v) given in the user's coordinates, in the charts of time t:
     /// each rotation in its second chart read there nearest the angles
     /// `held` holds (the state before an event's action).
-    pub fn from_user<const N: usize>(
+    pub fn user_to_charts<const N: usize>(
         &self,
         t: T,
         held: &SVector<T, N>,

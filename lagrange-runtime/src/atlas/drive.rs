@@ -51,7 +51,7 @@ pub(crate) fn back_to_charts<T: Real, const N: usize>(
     q: &mut SVector<T, N>,
     v: &mut SVector<T, N>,
 ) {
-    charts.from_user(t, held, q, v);
+    charts.user_to_charts(t, held, q, v);
     if charts.settle(t, q, v).is_err() {
         q.fill(T::lit(f64::NAN));
     }

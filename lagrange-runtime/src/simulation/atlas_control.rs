@@ -2,7 +2,7 @@
 //! driven by its inputs through every orientation.
 
 use super::ControlledSimulation;
-use super::controlled::Driver;
+use super::controlled::{ControlRun, Driver};
 use crate::atlas::{self, AtlasRun, Charted, Charts, Held, TwinForcing};
 use crate::control::{InputForces, InputSource, check_input};
 use crate::error::{Error, Failure};
@@ -89,7 +89,7 @@ where
             Ok((q, v))
         };
         let make = |f| Charted::<S, T, N, F, _>::new(dynamics.with_forcing(f), &charts);
-        let finish = |run: crate::ControlRun<T, N, P>| {
+        let finish = |run: ControlRun<T, N, P>| {
             let held = Held {
                 trajectory: run.trajectory,
                 inputs: run.inputs,
