@@ -19,7 +19,7 @@ pub const USER_CHART_VALID: f64 = 1e-6;
 pub struct ChartSwitch<T> {
     /// When.
     pub t: T,
-    /// Which rotation ([`Atlas::EULER`]'s order).
+    /// Which rotation ([`Atlas::EULER`](crate::Atlas::EULER)'s order).
     pub rotation: usize,
     /// Into its second chart (`true`) or back into the user's.
     pub to_second: bool,
