@@ -22,6 +22,17 @@
 //! user's own program; otherwise they come from the free twin (each rotation
 //! a quaternion and ω), whose M and h depend on no chart: ω̇ from the twin,
 //! then q̈ = E⁻¹(ω̇ − Ė q̇) in whichever chart each rotation is in.
+//!
+//! The charts of a run (`Charts`: which rotations are in their second
+//! chart, every switch with its time) are shared by the dynamics, the
+//! switching events and whatever reads the user's coordinates: a user's
+//! event, a controller, the inputs recorded at the stored points. Those
+//! read the state held in the charts of its time through
+//! `Charts::user_view`: each rotation in its second chart in the user's
+//! chart, nearest the angles it had when it left it. With inputs the
+//! dynamics carry a `TwinForcing`: in the user's charts the user's own
+//! input forces, in any other the twin's (`DrivenAtlas`), both of the
+//! inputs the source gives at the user's view of the state.
 
 mod chart;
 mod drive;
