@@ -134,6 +134,15 @@ fn a_torque_signal_drives_the_yaw_pitch_roll_satellite_through_the_vertical() {
     assert!(rotation < 1e-8 && omega < 1e-8, "{rotation:e} {omega:e}");
     let traj = run.trajectory();
     assert_eq!(run.inputs().len(), traj.len());
+    assert_eq!(run.input_names(), &["t1", "t2", "t3"]);
+    let mut csv = Vec::new();
+    run.table(&EULER_SAT).unwrap().write(&mut csv).unwrap();
+    let csv = String::from_utf8(csv).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.contains("sat.chart,sat.w,sat.x,sat.y,sat.z,t1,t2,t3"),
+        "{header}"
+    );
     for (u, &t) in run.inputs().iter().zip(traj.times()) {
         assert_eq!(*u, SVector::from(signal(t)));
     }

@@ -19,6 +19,8 @@ pub(crate) struct Logged<T> {
     pub t: T,
     pub rotation: usize,
     pub near: [T; 3],
+    /// The charts after it.
+    pub mask: u64,
 }
 
 /// The charts of a run: bit k of the mask is set while rotation k is in its
@@ -133,6 +135,7 @@ impl<T: Real> Charts<T> {
             t,
             rotation: k,
             near,
+            mask: self.mask(),
         });
         Ok(())
     }
@@ -197,29 +200,29 @@ impl<T: Real> Charts<T> {
     /// time the integrator visits is at or after the last switch.
     pub fn mask_at(&self, t: T) -> u64 {
         let log = self.log.borrow();
-        match log.last() {
-            None => self.start(),
-            Some(last) if last.t <= t => self.mask(),
-            Some(_) => (log.iter())
-                .take_while(|s| s.t <= t)
-                .fold(self.start(), |mask, s| mask ^ (1 << s.rotation)),
+        match log.partition_point(|s| s.t <= t) {
+            0 => self.start(),
+            n => log[n - 1].mask,
         }
     }
 
     /// The charts just before time t: those after every switch strictly
     /// before t (what an occurrence's state before its action is held in).
     pub fn mask_before(&self, t: T) -> u64 {
-        (self.log.borrow().iter())
-            .take_while(|s| s.t < t)
-            .fold(self.start(), |mask, s| mask ^ (1 << s.rotation))
+        let log = self.log.borrow();
+        match log.partition_point(|s| s.t < t) {
+            0 => self.start(),
+            n => log[n - 1].mask,
+        }
     }
 
     /// The user's angles rotation k is read nearest at time t while in its
     /// second chart.
     pub fn near_at(&self, t: T, k: usize) -> [T; 3] {
         let log = self.log.borrow();
-        (log.iter().rev())
-            .find(|s| s.rotation == k && s.t <= t)
+        let n = log.partition_point(|s| s.t <= t);
+        (log[..n].iter().rev())
+            .find(|s| s.rotation == k)
             .map_or(self.start_near.borrow()[k], |s| s.near)
     }
 
@@ -309,4 +312,56 @@ pub(crate) fn user_view<T: Real, const N: usize>(
         }
     }
     (qu, vu)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    static YAW_PITCH_ROLL: [EulerRotation; 1] = [EulerRotation {
+        body: "load",
+        coordinates: [1, 2, 3],
+        axes: [2, 1, 0],
+    }];
+
+    /// The rotation and ω of the state (q, v) in the charts `mask`.
+    fn pose(
+        mask: u64,
+        q: &SVector<f64, 4>,
+        v: &SVector<f64, 4>,
+    ) -> (nalgebra::Matrix3<f64>, Vector3<f64>) {
+        let chart = chart_in(&YAW_PITCH_ROLL, mask, 0);
+        let (x, dx) = (angles(&YAW_PITCH_ROLL[0], q), angles(&YAW_PITCH_ROLL[0], v));
+        (chart.matrix(x), chart.rates(x) * Vector3::from(dx))
+    }
+
+    /// Out to the second chart and back: the same rotation and ω at every
+    /// stage, the user's angles read back where they were, the charts of
+    /// each time from the log, the kept coordinate untouched.
+    #[test]
+    fn a_switch_keeps_the_motion_and_the_log_reads_the_charts_of_each_time() {
+        let charts = Charts::<f64>::new(&YAW_PITCH_ROLL);
+        let q0 = SVector::from([7.0, 0.4, 1.0, -0.3]);
+        let v0 = SVector::from([2.0, 0.5, 1.5, -0.7]);
+        let (r0, w0) = pose(0, &q0, &v0);
+        let (mut q, mut v) = (q0, v0);
+        charts.switch(1.0, 0, &mut q, &mut v).unwrap();
+        assert_eq!((charts.mask(), q[0], v[0]), (1, 7.0, 2.0));
+        let (r1, w1) = pose(1, &q, &v);
+        assert!((r1 - r0).amax() < 1e-14 && (w1 - w0).amax() < 1e-14);
+        // Read in the user's coordinates: the angles it left with.
+        let (qu, vu) = charts.user_view(1.5, &q, &v);
+        assert!(
+            (qu - q0).amax() < 1e-13 && (vu - v0).amax() < 1e-13,
+            "{qu} {vu}"
+        );
+        charts.switch(2.0, 0, &mut q, &mut v).unwrap();
+        assert!((q - q0).amax() < 1e-13 && (v - v0).amax() < 1e-13);
+        let masks = [0.5, 1.0, 1.5, 2.0, 2.5].map(|t| charts.mask_at(t));
+        assert_eq!(masks, [0, 1, 1, 0, 0]);
+        assert_eq!(charts.mask_before(1.0), 0);
+        assert_eq!(charts.mask_before(2.0), 1);
+        assert_eq!(charts.log().len(), 2);
+    }
 }

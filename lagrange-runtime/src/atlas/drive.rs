@@ -82,6 +82,7 @@ pub(crate) fn watched<'v, T: Real, const N: usize>(
 pub(crate) struct Held<T: Real, const N: usize, const P: usize> {
     pub trajectory: Trajectory<T, N>,
     pub inputs: Vec<SVector<T, P>>,
+    pub input_names: [&'static str; P],
     /// Every occurrence, the switches' included.
     pub occurrences: Vec<Occurrence<T, N>>,
     pub terminated_by: Option<usize>,
@@ -135,6 +136,7 @@ pub(crate) fn finish<T: Real, const N: usize, const P: usize>(
         near: log.iter().map(|s| s.near).collect(),
         start_near: charts.start_near(),
         inputs: held.inputs,
+        input_names: held.input_names,
         occurrences,
         terminated_by: held.terminated_by.filter(|&e| e < user),
     }
@@ -149,6 +151,7 @@ pub(crate) fn unstarted<T: Real, const N: usize, const P: usize>(
     let held = Held {
         trajectory,
         inputs,
+        input_names: [""; P],
         occurrences: Vec::new(),
         terminated_by: None,
     };
@@ -197,6 +200,7 @@ where
     let held = |run: crate::event::EventRun<T, N>| Held {
         trajectory: run.trajectory,
         inputs: Vec::new(),
+        input_names: [],
         occurrences: run.occurrences,
         terminated_by: run.terminated_by,
     };

@@ -53,6 +53,7 @@ pub struct AtlasRun<T: Real, const N: usize, const P: usize = 0> {
     pub(super) near: Vec<[T; 3]>,
     pub(super) start_near: Vec<[T; 3]>,
     pub(super) inputs: Vec<SVector<T, P>>,
+    pub(super) input_names: [&'static str; P],
     pub(super) occurrences: Vec<Occurrence<T, N>>,
     pub(super) terminated_by: Option<usize>,
 }
@@ -63,6 +64,11 @@ impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
     /// (empty without inputs).
     pub fn inputs(&self) -> &[SVector<T, P>] {
         &self.inputs
+    }
+
+    /// The inputs' names ([`Driven::INPUTS`](crate::Driven::INPUTS)).
+    pub fn input_names(&self) -> &[&'static str; P] {
+        &self.input_names
     }
 
     /// The user's events' occurrences, in time order, numbered by the order
@@ -184,9 +190,10 @@ impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
             }
         }
         let t = self.trajectory.times()[i];
+        let n = self.switches.partition_point(|s| s.t <= t);
         let near = |k: usize| {
-            (self.switches.iter().zip(&self.near).rev())
-                .find(|(s, _)| s.rotation == k && s.t <= t)
+            (self.switches[..n].iter().zip(&self.near).rev())
+                .find(|(s, _)| s.rotation == k)
                 .map_or(self.start_near[k], |(_, n)| *n)
         };
         Some(user_view(
@@ -222,7 +229,8 @@ impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
     /// angles in the chart of the moment), then per rotation its chart
     /// (`<body>.chart`: 1 the user's, 2 the second) and its unit quaternion
     /// (`<body>.w`, `.x`, `.y`, `.z`, chart-free), then the energies and
-    /// residuals as for any run.
+    /// residuals as for any run; with inputs, then the inputs (named as
+    /// in [`Driven::INPUTS`](crate::Driven::INPUTS)).
     ///
     /// # Errors
     /// None in practice: the columns match the points by construction.
@@ -232,6 +240,12 @@ impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
             names.push(format!("{}.chart", r.body));
             names.extend(["w", "x", "y", "z"].map(|c| format!("{}.{c}", r.body)));
         }
+        let inputs = if self.inputs.len() == self.trajectory.len() {
+            names.extend(self.input_names.iter().map(|n| n.to_string()));
+            P
+        } else {
+            0
+        };
         let values = (0..self.trajectory.len())
             .map(|i| {
                 (0..self.rotations.len())
@@ -239,6 +253,7 @@ impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
                         let chart = T::lit(if self.chart(i, k).offset { 2.0 } else { 1.0 });
                         std::iter::once(chart).chain(self.quaternion(i, k))
                     })
+                    .chain((0..inputs).map(|j| self.inputs[i][j]))
                     .collect()
             })
             .collect();

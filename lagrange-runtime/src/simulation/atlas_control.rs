@@ -93,6 +93,7 @@ where
             let held = Held {
                 trajectory: run.trajectory,
                 inputs: run.inputs,
+                input_names: run.input_names,
                 occurrences: run.occurrences,
                 terminated_by: run.terminated_by,
             };

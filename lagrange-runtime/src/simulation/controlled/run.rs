@@ -26,7 +26,7 @@ pub struct ControlRun<T: Real, const N: usize, const P: usize, const Q: usize = 
     #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
     pub(super) coordinates: [&'static str; Q],
     #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
-    pub(super) input_names: [&'static str; P],
+    pub(crate) input_names: [&'static str; P],
 }
 
 /// Names as a sequence (serde has no impl for arrays of a generic length).
