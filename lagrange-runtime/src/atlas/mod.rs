@@ -36,13 +36,16 @@
 
 mod chart;
 mod drive;
+mod form;
 mod run;
 
 pub(crate) use chart::{Charts, user_view};
+
 pub(crate) use drive::{Held, back_to_charts, finish, integrate, unstarted, watched};
 pub use run::{AtlasRun, ChartSwitch, USER_CHART_VALID};
 
 use crate::error::Error;
+use crate::mechanics::constraint::Drift;
 use crate::mechanics::{Dynamics, Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::euler::EulerChart;
@@ -201,10 +204,26 @@ where
         q: &SVector<T, N>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error> {
-        if self.charts.mask() == 0 {
-            self.dynamics.acceleration(t, q, v)
-        } else {
+        if self.charts.mask() != 0 {
             self.twin_acceleration(t, q, v)
+        } else {
+            (self.system()).visit_form(form::UserAcceleration {
+                dynamics: &self.dynamics,
+                at: form::At { t, q, v },
+            })
+        }
+    }
+
+    /// The constraint residuals [max |Φ|, max |G v + g|], the user's in the
+    /// user's charts, the twin's (the same constraints) in any other.
+    fn residuals(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> [T; 2] {
+        if !S::CONSTRAINED {
+            [T::zero(); 2]
+        } else if self.charts.mask() == 0 {
+            (self.system()).visit_form(form::Residuals(form::At { t, q, v }))
+        } else {
+            let (qf, vf) = self.free_state(q, v);
+            (self.system()).visit_free(TwinResiduals(t, &qf, &vf))
         }
     }
 
@@ -234,13 +253,41 @@ impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F>
 {
     type Output = Result<SVector<T, N>, Error>;
     fn visit<L: Lagrangian<T, N, F>>(self, free: &L) -> Self::Output {
-        let dynamics = Dynamics::new(free).with_singular_tolerance(self.tolerance);
+        let (at, tolerance) = (
+            form::At {
+                t: self.t,
+                q: self.q,
+                v: self.v,
+            },
+            self.tolerance,
+        );
         match self.force {
-            Some(force) => {
-                (dynamics.with_forcing(Given(force))).acceleration(self.t, self.q, self.v)
-            }
-            None => dynamics.acceleration(self.t, self.q, self.v),
+            Some(force) => free.visit_form(form::Acceleration {
+                at,
+                tolerance,
+                forcing: Given(force),
+            }),
+            None => free.visit_form(form::Acceleration {
+                at,
+                tolerance,
+                forcing: NoForcing,
+            }),
         }
+    }
+}
+
+/// The twin's constraint residuals at its state.
+struct TwinResiduals<'x, T: Real, const N: usize, const F: usize>(
+    T,
+    &'x SVector<T, F>,
+    &'x SVector<T, N>,
+);
+
+impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F> for TwinResiduals<'_, T, N, F> {
+    type Output = [T; 2];
+    fn visit<L: Lagrangian<T, N, F>>(self, free: &L) -> [T; 2] {
+        let Self(t, q, v) = self;
+        free.visit_form(form::Residuals(form::At { t, q, v }))
     }
 }
 
@@ -256,6 +303,44 @@ impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F> for TwinInteg
     fn visit<L: Lagrangian<T, N, F>>(self, free: &L) -> T {
         SecondOrder::integral(&Dynamics::new(free), self.t, self.q, self.v)
     }
+}
+
+/// Whether (q0, v0) at t0, in the user's coordinates, satisfies the
+/// system's constraints (if it has any) to `tolerance` at both levels, and
+/// the constraint settings are ones the atlas applies.
+///
+/// # Errors
+/// [`Error::InconsistentInitialConditions`], [`Error::NonFiniteState`];
+/// [`Error::InvalidSettings`] for drift control or least squares.
+pub(crate) fn check_start<S, T, const N: usize, const F: usize>(
+    system: &S,
+    t0: T,
+    (q0, v0): (&SVector<T, N>, &SVector<T, N>),
+    (tolerance, drift, least_squares): (f64, Drift, bool),
+) -> Result<(), Error>
+where
+    S: Atlas<T, N, F>,
+    T: Real,
+{
+    if !S::CONSTRAINED {
+        return Ok(());
+    }
+    if !matches!(drift, Drift::None) || least_squares {
+        return Err(Error::InvalidSettings(
+            "a run through the atlas keeps the constraints by multipliers without drift \
+             control and refuses redundant ones: leave `drift` at Drift::None and \
+             `least_squares` off"
+                .into(),
+        ));
+    }
+    system.visit_form(form::Consistency {
+        at: form::At {
+            t: t0,
+            q: q0,
+            v: v0,
+        },
+        tolerance: T::lit(tolerance),
+    })
 }
 
 /// The user's chart of a rotation.

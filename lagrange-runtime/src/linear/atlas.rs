@@ -44,6 +44,13 @@ impl Linearizer {
     {
         check_tolerance("singular tolerance", self.singular_tolerance)?;
         sys.check_parameters()?;
+        if S::CONSTRAINED {
+            return Err(Error::InvalidSettings(
+                "the atlas's linearisation takes unconstrained systems: with constraints \
+                 its states would not be independent"
+                    .into(),
+            ));
+        }
         if !layout_agrees(sys) {
             return Err(Error::InvalidSettings(
                 "the system's Atlas twin does not have the documented layout".into(),

@@ -6,7 +6,7 @@
 
 use super::{EventSimulation, Simulation};
 use crate::atlas::{self, AtlasRun};
-use crate::error::Failure;
+use crate::error::{Failure, check_tolerance};
 use crate::event::Event;
 use crate::numeric::Real;
 use crate::ode::{Integrator, Sample, Trajectory, check_problem};
@@ -60,9 +60,18 @@ impl<S, I: Integrator> Simulation<'_, S, I> {
     {
         let terms = self.system.parameter_terms();
         let dynamics = self.dynamics().with_parameter_terms(&terms);
+        let c = &self.constraints;
+        let (tolerance, settings) = (
+            c.consistency_tolerance,
+            (c.consistency_tolerance, c.drift, c.least_squares),
+        );
         let checked = self
             .check_singular_tolerance::<T, N, N>()
-            .and_then(|()| check_problem(span.start, span.end, &q0, &v0));
+            .and_then(|()| check_problem(span.start, span.end, &q0, &v0))
+            .and_then(|()| check_tolerance("consistency tolerance", tolerance))
+            .and_then(|()| {
+                atlas::check_start::<S, T, N, F>(self.system, span.start, (&q0, &v0), settings)
+            });
         if let Err(error) = checked {
             let sample = Sample::of(&dynamics, span.start, &q0, &v0);
             let trajectory = Trajectory::start(span.start, q0, v0, sample);

@@ -5,7 +5,7 @@ use super::ControlledSimulation;
 use super::controlled::{ControlRun, Driver};
 use crate::atlas::{self, AtlasRun, Charted, Charts, Held, TwinForcing};
 use crate::control::{InputForces, InputSource, check_input};
-use crate::error::{Error, Failure};
+use crate::error::{Error, Failure, check_tolerance};
 use crate::numeric::Real;
 use crate::ode::{Integrator, check_problem};
 use crate::system::{Driven, DrivenAtlas};
@@ -79,6 +79,11 @@ where
         let prepare = || {
             sim.check_singular_tolerance::<T, N, N>()?;
             check_problem(span.start, span.end, &q0, &v0)?;
+            let tolerance = sim.constraints.consistency_tolerance;
+            check_tolerance("consistency tolerance", tolerance)?;
+            let c = &sim.constraints;
+            let settings = (tolerance, c.drift, c.least_squares);
+            atlas::check_start::<S, T, N, F>(sim.system, span.start, (&q0, &v0), settings)?;
             if !atlas::layout_agrees(sim.system) {
                 return Err(Error::InvalidSettings(
                     "the system's Atlas twin does not have the documented layout".into(),
