@@ -430,8 +430,19 @@
 //! the charts. [`AtlasRun::inputs`] and [`AtlasRun::occurrences`] hold the
 //! inputs and the user's events, in the user's coordinates.
 //!
-//! The atlas covers descriptions without constraints, free orientations or
-//! a URDF; an angle of such a rotation may appear only as that rotation's
+//! **Constraints.** Holonomic constraints (`holonomic(..)`) run with the
+//! atlas in the multiplier form: the twin carries the same rows written on
+//! its free orientation, so a body pinned by a point of it, or a chain
+//! closed by a rod, passes its Euler angles' singular set like a free one.
+//! The start is checked for consistency in the user's coordinates, as
+//! [`Simulation::run`] checks it; drift control (`drift`) and
+//! `least_squares` are refused (the residuals drift at the integrator's
+//! tolerance, recorded in the trajectory), and so is [`Linearizer::atlas`]
+//! for a constrained system.
+//!
+//! The atlas covers descriptions without nonholonomic constraints, free
+//! orientations, a URDF or the reduced form (`speeds`,
+//! `formulation(reduced)`); an angle of such a rotation may appear only as that rotation's
 //! angle (a potential written in θ itself has no meaning in the second
 //! chart: write it from positions, e.g. `gravity`; an input's force from
 //! points of the body, not as a generalized force on an angle). Each is a

@@ -32,9 +32,17 @@ impl<S, I: Integrator> Simulation<'_, S, I> {
     /// [`ControlledSimulation::run_atlas`](crate::ControlledSimulation::run_atlas))
     /// the events and the controller read the user's coordinates.
     ///
+    /// A system with holonomic constraints runs in the multiplier form in
+    /// every chart (the twin carries the same rows): (q0, v0) must satisfy
+    /// them to the [`consistency_tolerance`](Self::consistency_tolerance),
+    /// and no drift control is applied.
+    ///
     /// # Errors
     /// As [`run`](Self::run); [`Error::InvalidSettings`](crate::Error::InvalidSettings) also for an [`Atlas`]
-    /// whose free twin does not have the documented layout.
+    /// whose free twin does not have the documented layout, and for a
+    /// constrained system with [`drift`](Self::drift) control or
+    /// [`least_squares`](Self::least_squares);
+    /// [`Error::InconsistentInitialConditions`](crate::Error::InconsistentInitialConditions).
     pub fn run_atlas<T: Real, const N: usize, const F: usize>(
         &self,
         q0: impl Into<SVector<T, N>>,

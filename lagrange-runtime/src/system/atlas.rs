@@ -25,7 +25,9 @@ pub struct EulerRotation {
 /// `emit(atlas)` and run by [`Simulation::run_atlas`](crate::Simulation::run_atlas).
 ///
 /// F is the length of the free twin's q: N plus one per rotation. The twin
-/// is the same description with every rotation of [`EULER`](Self::EULER)
+/// is the same description (its inputs and holonomic constraints
+/// included, in the form the description asks for through
+/// [`Lagrangian::visit_form`]) with every rotation of [`EULER`](Self::EULER)
 /// replaced by a free orientation: its q holds the other coordinates in
 /// order, then one unit quaternion (w, x, y, z) per rotation in `EULER`'s
 /// order; its v those coordinates' rates, then each rotation's ω in body
