@@ -369,6 +369,31 @@
 //! // linearisation's eigenvalues have no positive real part.
 //! let lin = Linearizer::new().tangent(&top, &Vector4::new(1.0, 0.0, 0.0, 0.0), &Vector3::new(0.0, 0.0, 30.0), 0.0)?;
 //! assert!(lin.eigenvalues()[0].re < 1e-9);
+//!
+//! /// A gimbal's payload in yaw–pitch–roll, turned by a torque about its
+//! /// body y axis.
+//! #[derive(Lagrangian)]
+//! #[lagrange(
+//!     coordinates(yaw, pitch, roll),
+//!     inputs(tau),
+//!     body(load, mass = m, inertia = [a, b, c], at = [0, 0, 0],
+//!          rotation = euler_zyx(yaw, pitch, roll)),
+//!     point(arm, on = load, at = [0, 0, 1]),
+//!     force(arm, [tau * load.axis_x.x, tau * load.axis_x.y, tau * load.axis_x.z]),
+//!     emit(atlas),
+//! )]
+//! pub struct Payload { pub m: f64, pub a: f64, pub b: f64, pub c: f64 }
+//!
+//! // A pitch-rate loop drives the pitch through π/2 and on; an event
+//! // marks where the pitch, read on the user's angles, passes 2 rad.
+//! let load = Payload { m: 2.0, a: 0.1, b: 0.2, c: 0.25 };
+//! let run = Simulation::new(&load)
+//!     .feedback(|_, _, v| [0.5 * (2.0 - v[1])])
+//!     .event(Event::new(|_, q, _| q[1] - 2.0))
+//!     .run_atlas([0.0, 1.0, 0.0], [0.0, 2.0, 0.0], 0.0..2.5)?;
+//! assert_eq!(run.switches().len(), 3);
+//! assert!((run.times(0)[0] - 0.5).abs() < 1e-9);
+//! assert_eq!(run.inputs().len(), run.trajectory().len());
 //! # Ok::<(), lagrange::Error>(())
 //! ```
 //!
@@ -405,10 +430,39 @@
 //! on the same system stays in the user's chart and stops at its singular
 //! set with [`Error::SingularMassMatrix`]: that is the opt-out.
 //!
-//! The atlas covers unconstrained descriptions without `inputs`; an angle
-//! of such a rotation may appear only as that rotation's angle (a potential
-//! written in θ itself has no meaning in the second chart: write it from
-//! positions, e.g. `gravity`). Each is a compile error at its token.
+//! **Inputs and events.** A description with `inputs(..)` keeps them with
+//! the atlas: the twin derives the same inputs (their generalized forces
+//! in its coordinates, `DrivenAtlas`), and every control of
+//! [`Simulation::run`] runs through the atlas with
+//! [`ControlledSimulation::run_atlas`] (`feedback`, `sampled`, `open_loop`,
+//! an [`InputTable`]); events run with [`EventSimulation::run_atlas`] and
+//! with the controlled one. Controllers, event functions, terminal tests and
+//! actions all read the user's coordinates: in the second chart, each
+//! rotation's user's angles nearest those it had when it left the user's
+//! chart (so they run on continuously, pitch past π/2 rather than back
+//! from it) and their rates E⁻¹ ω, which grow as 1/s near the user's
+//! singular set and read NaN on it (a controller or event that passes them
+//! on ends the run with a typed error). An action's state goes back into
+//! the charts. [`AtlasRun::inputs`] and [`AtlasRun::occurrences`] hold the
+//! inputs and the user's events, in the user's coordinates.
+//!
+//! **Constraints.** Holonomic constraints (`holonomic(..)`) run with the
+//! atlas in the multiplier form: the twin carries the same rows written on
+//! its free orientation, so a body pinned by a point of it, or a chain
+//! closed by a rod, passes its Euler angles' singular set like a free one.
+//! The start is checked for consistency in the user's coordinates, as
+//! [`Simulation::run`] checks it; drift control (`drift`) and
+//! `least_squares` are refused (the residuals drift at the integrator's
+//! tolerance, recorded in the trajectory), and so is [`Linearizer::atlas`]
+//! for a constrained system.
+//!
+//! The atlas covers descriptions without nonholonomic constraints, free
+//! orientations, a URDF or the reduced form (`speeds`,
+//! `formulation(reduced)`); an angle of such a rotation may appear only as that rotation's
+//! angle (a potential written in θ itself has no meaning in the second
+//! chart: write it from positions, e.g. `gravity`; an input's force from
+//! points of the body, not as a generalized force on an angle). Each is a
+//! compile error at its token.
 //!
 //! ```
 //! use lagrange::prelude::*;
@@ -435,6 +489,31 @@
 //! let lin = Linearizer::new().atlas(&top, &Vector3::zeros(), &Vector3::new(0.0, 0.0, 30.0), 0.0)?;
 //! assert_eq!(lin.states()[1], "theta@2");
 //! assert!(lin.eigenvalues()[0].re < 1e-9);
+//!
+//! /// A gimbal's payload in yaw–pitch–roll, turned by a torque about its
+//! /// body y axis.
+//! #[derive(Lagrangian)]
+//! #[lagrange(
+//!     coordinates(yaw, pitch, roll),
+//!     inputs(tau),
+//!     body(load, mass = m, inertia = [a, b, c], at = [0, 0, 0],
+//!          rotation = euler_zyx(yaw, pitch, roll)),
+//!     point(arm, on = load, at = [0, 0, 1]),
+//!     force(arm, [tau * load.axis_x.x, tau * load.axis_x.y, tau * load.axis_x.z]),
+//!     emit(atlas),
+//! )]
+//! pub struct Payload { pub m: f64, pub a: f64, pub b: f64, pub c: f64 }
+//!
+//! // A pitch-rate loop drives the pitch through π/2 and on; an event
+//! // marks where the pitch, read on the user's angles, passes 2 rad.
+//! let load = Payload { m: 2.0, a: 0.1, b: 0.2, c: 0.25 };
+//! let run = Simulation::new(&load)
+//!     .feedback(|_, _, v| [0.5 * (2.0 - v[1])])
+//!     .event(Event::new(|_, q, _| q[1] - 2.0))
+//!     .run_atlas([0.0, 1.0, 0.0], [0.0, 2.0, 0.0], 0.0..2.5)?;
+//! assert_eq!(run.switches().len(), 3);
+//! assert!((run.times(0)[0] - 0.5).abs() < 1e-9);
+//! assert_eq!(run.inputs().len(), run.trajectory().len());
 //! # Ok::<(), lagrange::Error>(())
 //! ```
 //!
@@ -482,8 +561,8 @@ pub mod __private {
         Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid,
     };
     pub use lagrange_runtime::{
-        Atlas, Constrained, Driven, EulerRotation, FormVisitor, FreeVisitor, Lagrangian,
-        Orientation, Real, Reduced, Route,
+        Atlas, Constrained, Driven, DrivenAtlas, EulerRotation, FormVisitor, FreeVisitor,
+        Lagrangian, Orientation, Real, Reduced, Route,
     };
     pub use lagrange_runtime::{Error, func, physical};
     pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};

@@ -119,12 +119,14 @@ pub fn describe(system: &System) -> Option<String> {
 
 /// What the atlas does not cover yet, refused at `at`.
 fn supported(cx: &Ctxt, system: &System, at: &Ident) -> bool {
+    let reduced = !system.speeds.is_empty()
+        || (system.formulations.iter()).any(|(_, f)| *f == crate::ast::Formulation::Reduced);
     let refused = [
+        (!system.nonholonomic.is_empty(), "nonholonomic constraints"),
         (
-            !system.holonomic.is_empty() || !system.nonholonomic.is_empty(),
-            "constraints",
+            reduced,
+            "the reduced form (`speeds`, `formulation(reduced)`: the atlas runs constraints with multipliers)",
         ),
-        (!system.inputs.is_empty(), "`inputs`"),
         (
             !system.orientations.is_empty(),
             "free orientations (which need no atlas)",
@@ -135,7 +137,7 @@ fn supported(cx: &Ctxt, system: &System, at: &Ident) -> bool {
         Some((_, what)) => {
             cx.error_at(
                 at.span(),
-                format!("`emit(atlas)` is not available with {what} yet; it covers unconstrained descriptions whose rotations are written in Euler angles"),
+                format!("`emit(atlas)` is not available with {what} yet; it covers descriptions whose rotations are written in Euler angles, with holonomic constraints kept by multipliers"),
             );
             false
         }
@@ -305,6 +307,9 @@ fn used_elsewhere(system: &System, angles: &[String]) -> Option<(Ident, &'static
     }
     for f in &system.forces {
         rest.push((f.value.to_token_stream(), "a force"));
+    }
+    for c in &system.holonomic {
+        rest.push((c.value.to_token_stream(), "a constraint"));
     }
     for g in &system.generalized_forces {
         rest.push((

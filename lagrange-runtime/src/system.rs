@@ -15,7 +15,7 @@ mod form;
 pub mod physical;
 mod route;
 
-pub use atlas::{Atlas, EulerRotation, FreeVisitor};
+pub use atlas::{Atlas, DrivenAtlas, EulerRotation, FreeVisitor};
 pub use constrained::{Constrained, Reduced};
 pub use form::FormVisitor;
 pub use route::Route;

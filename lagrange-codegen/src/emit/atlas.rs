@@ -1,6 +1,7 @@
 //! `impl Atlas` for a description with `emit(atlas)`: its Euler rotations
 //! and its free twin (a private type that derefs to the user's struct, so
-//! the twin's generated code reads the same fields).
+//! the twin's generated code reads the same fields), and `impl DrivenAtlas`:
+//! the twin's forces of the user's inputs.
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -25,6 +26,7 @@ pub fn impl_atlas(
     let nf = Literal::usize_unsuffixed(twin_model.configuration_len());
     let (twin_impl_generics, twin_ty_generics, twin_where) = twin.generics.split_for_impl();
     let twin_ident = &twin.ident;
+    let p = Literal::usize_unsuffixed(twin_model.inputs.as_ref().map_or(0, |i| i.names.len()));
     let twin_lagrangian = impl_lagrangian(twin, twin_model);
     let rotations = triples.iter().map(|t| {
         let (body, [c0, c1, c2], [a0, a1, a2]) = (&t.body, t.coordinates, t.axes);
@@ -50,6 +52,19 @@ pub fn impl_atlas(
             const EULER: &'static [::lagrange::__private::EulerRotation] = &[#(#rotations),*];
             fn visit_free<V: ::lagrange::__private::FreeVisitor<#s, #n, #nf>>(&self, visitor: V) -> V::Output {
                 visitor.visit(&#twin_ident(self))
+            }
+        }
+
+        impl #impl_generics ::lagrange::__private::DrivenAtlas<#s, #n, #p, #nf> for #ident #ty_generics #where_clause {
+            #[inline]
+            fn free_input_forces(
+                &self,
+                q: &::lagrange::__private::SVector<#s, #nf>,
+                v: &::lagrange::__private::SVector<#s, #n>,
+                u: &::lagrange::__private::SVector<#s, #p>,
+                t: #s,
+            ) -> ::lagrange::__private::SVector<#s, #n> {
+                ::lagrange::__private::Driven::<#s, #n, #p, #nf>::input_forces(&#twin_ident(self), q, v, u, t)
             }
         }
     }

@@ -22,21 +22,40 @@
 //! user's own program; otherwise they come from the free twin (each rotation
 //! a quaternion and ω), whose M and h depend on no chart: ω̇ from the twin,
 //! then q̈ = E⁻¹(ω̇ − Ė q̇) in whichever chart each rotation is in.
+//!
+//! The charts of a run (`Charts`: which rotations are in their second
+//! chart, every switch with its time) are shared by the dynamics, the
+//! switching events and whatever reads the user's coordinates: a user's
+//! event, a controller, the inputs recorded at the stored points. Those
+//! read the state held in the charts of its time through
+//! `Charts::user_view`: each rotation in its second chart in the user's
+//! chart, nearest the angles it had when it left it. With inputs the
+//! dynamics carry a `TwinForcing`: in the user's charts the user's own
+//! input forces, in any other the twin's (`DrivenAtlas`), both of the
+//! inputs the source gives at the user's view of the state. With holonomic
+//! constraints both run the multiplier form (the twin's rows are the
+//! user's on its free orientation), chosen through the description's own
+//! form visitor (`form`).
 
+mod chart;
+mod drive;
+mod form;
 mod run;
 
-pub(crate) use run::integrate;
+pub(crate) use chart::{Charts, user_view};
+
+pub(crate) use drive::{Held, back_to_charts, finish, integrate, unstarted, watched};
 pub use run::{AtlasRun, ChartSwitch, USER_CHART_VALID};
 
 use crate::error::Error;
-use crate::mechanics::Dynamics;
+use crate::mechanics::constraint::Drift;
+use crate::mechanics::{Dynamics, Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::euler::EulerChart;
 use crate::numeric::orientation::{self, Orientation};
 use crate::ode::SecondOrder;
 use crate::system::{Atlas, EulerRotation, FreeVisitor, Lagrangian};
 use nalgebra::{SVector, Vector3};
-use std::cell::Cell;
 
 /// A rotation leaves the user's chart when that chart's conditioning (|sin θ|
 /// for z-x-z, |cos θ| for z-y-x) falls below this.
@@ -44,103 +63,70 @@ pub const LEAVE_BELOW: f64 = 0.6;
 /// ... and comes back when it rises above this.
 pub const RETURN_ABOVE: f64 = 0.8;
 
-/// The state in the charts of the moment: the system seen by the integrator
-/// between two switches. Bit k of `second` is set while rotation k is in its
-/// second chart.
-pub(crate) struct Charted<'s, S, T: Real, const N: usize, const F: usize> {
-    dynamics: Dynamics<'s, S, T>,
-    second: Cell<u64>,
+/// A forcing of a run through the atlas: in the user's charts it is the
+/// dynamics' own [`Forcing`] (in the user's coordinates); in any other it
+/// gives the twin's generalized forces at the twin's state.
+pub(crate) trait TwinForcing<S, T: Real, const N: usize, const F: usize>:
+    Forcing<T, N>
+{
+    /// The twin's ΔQ at its state `free`, the state being `held` in the
+    /// charts of the moment.
+    fn free_force(
+        &self,
+        system: &S,
+        t: T,
+        held: (&SVector<T, N>, &SVector<T, N>),
+        free: (&SVector<T, F>, &SVector<T, N>),
+    ) -> Result<SVector<T, N>, Error>;
 }
 
-impl<'s, S, T, const N: usize, const F: usize> Charted<'s, S, T, N, F>
+impl<S, T: Real, const N: usize, const F: usize> TwinForcing<S, T, N, F> for NoForcing {
+    fn free_force(
+        &self,
+        _: &S,
+        _: T,
+        _: (&SVector<T, N>, &SVector<T, N>),
+        _: (&SVector<T, F>, &SVector<T, N>),
+    ) -> Result<SVector<T, N>, Error> {
+        Ok(SVector::zeros())
+    }
+}
+
+/// A generalized force computed beforehand, as a [`Forcing`] of the twin.
+struct Given<T: Real, const N: usize>(SVector<T, N>);
+
+impl<T: Real, const N: usize, const F: usize> Forcing<T, N, F> for Given<T, N> {
+    fn force(&self, _: T, _: &SVector<T, F>, _: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+        Ok(self.0)
+    }
+}
+
+/// The state in the charts of the moment: the system seen by the integrator
+/// between two switches, the charts shared with the switching events.
+pub(crate) struct Charted<'s, 'c, S, T: Real, const N: usize, const F: usize, G = NoForcing> {
+    dynamics: Dynamics<'s, S, T, G>,
+    charts: &'c Charts<T>,
+}
+
+impl<'s, 'c, S, T, G, const N: usize, const F: usize> Charted<'s, 'c, S, T, N, F, G>
 where
     S: Atlas<T, N, F>,
     T: Real,
+    G: TwinForcing<S, T, N, F>,
 {
-    /// All rotations in the user's charts.
-    pub fn new(dynamics: Dynamics<'s, S, T>) -> Self {
-        Self {
-            dynamics,
-            second: Cell::new(0),
-        }
+    /// The dynamics in the charts `charts` holds.
+    pub fn new(dynamics: Dynamics<'s, S, T, G>, charts: &'c Charts<T>) -> Self {
+        Self { dynamics, charts }
     }
 
-    /// Which rotations are in their second chart (bit k for rotation k).
-    pub fn charts(&self) -> u64 {
-        self.second.get()
+    /// The system.
+    pub fn system(&self) -> &'s S {
+        self.dynamics.system()
     }
 
     /// Rotation k's chart at the moment.
     fn chart(&self, k: usize) -> EulerChart {
-        let first = user_chart(&S::EULER[k]);
-        if self.second.get() >> k & 1 == 1 {
-            first.second()
-        } else {
-            first
-        }
-    }
-
-    /// The user's chart's conditioning of rotation k at q (in the charts of
-    /// the moment).
-    pub fn user_conditioning(&self, k: usize, q: &SVector<T, N>) -> T {
-        let (chart, x) = (self.chart(k), angles(&S::EULER[k], q));
-        if chart.offset {
-            user_chart(&S::EULER[k]).conditioning(&chart.matrix(x))
-        } else {
-            chart.own_conditioning(x)
-        }
-    }
-
-    /// Moves every rotation whose user's chart is poor at (t, q) (below
-    /// [`LEAVE_BELOW`]) to its second chart, mapping (q, v); `left` receives
-    /// the user's angles of each rotation that moved.
-    pub fn enter_regular(
-        &self,
-        t: T,
-        q: &mut SVector<T, N>,
-        v: &mut SVector<T, N>,
-        left: &mut [[T; 3]],
-    ) -> Result<(), Error> {
-        for (k, rotation) in S::EULER.iter().enumerate() {
-            if self.chart(k).offset || self.user_conditioning(k, q) >= T::lit(LEAVE_BELOW) {
-                continue;
-            }
-            left[k] = angles(rotation, q);
-            self.switch(t, k, q, v, None)?;
-        }
-        Ok(())
-    }
-
-    /// Moves rotation k to its other chart: the same rotation matrix and the
-    /// same ω, read in the other chart. Coming back to the user's chart the
-    /// angles nearest `near` are taken (the user's angles when the rotation
-    /// left, so that ψ and φ go on from where they were, up to 2π).
-    pub fn switch(
-        &self,
-        t: T,
-        k: usize,
-        q: &mut SVector<T, N>,
-        v: &mut SVector<T, N>,
-        near: Option<[T; 3]>,
-    ) -> Result<(), Error> {
-        let rotation = &S::EULER[k];
-        let (from, to) = (self.chart(k), self.chart(k).second());
-        let (x, dx) = (angles(rotation, q), angles(rotation, v));
-        let r = from.matrix(x);
-        let omega = from.rates(x) * Vector3::from(dx);
-        let y = to.angles(&r, near);
-        let dy = to
-            .rates(y)
-            .try_inverse()
-            .map(|e| e * omega)
-            .filter(|d| d.iter().all(|z| z.is_finite()))
-            .ok_or_else(|| Error::non_finite(t, q, v))?;
-        for (j, &i) in rotation.coordinates.iter().enumerate() {
-            q[i] = y[j];
-            v[i] = dy[j];
-        }
-        self.second.set(self.second.get() ^ (1 << k));
-        Ok(())
+        self.charts.chart_in(self.charts.mask(), k)
     }
 
     /// The free twin's state at (q, v): the kept coordinates in order, then
@@ -173,11 +159,19 @@ where
     ) -> Result<SVector<T, N>, Error> {
         let (qf, vf) = self.free_state(q, v);
         let tolerance = self.dynamics.singular_tolerance();
+        let force = if G::ACTIVE {
+            let system = self.dynamics.system();
+            let forcing = self.dynamics.forcing();
+            Some(forcing.free_force(system, t, (q, v), (&qf, &vf))?)
+        } else {
+            None
+        };
         let af = (self.dynamics.system()).visit_free(TwinAcceleration {
             t,
             q: &qf,
             v: &vf,
             tolerance,
+            force,
         })?;
         let mut a = SVector::<T, N>::zeros();
         for (p, i) in kept::<S, T, N, F>().enumerate() {
@@ -201,10 +195,11 @@ where
     }
 }
 
-impl<S, T, const N: usize, const F: usize> SecondOrder<T, N> for Charted<'_, S, T, N, F>
+impl<S, T, G, const N: usize, const F: usize> SecondOrder<T, N> for Charted<'_, '_, S, T, N, F, G>
 where
     S: Atlas<T, N, F>,
     T: Real,
+    G: TwinForcing<S, T, N, F>,
 {
     fn acceleration(
         &self,
@@ -212,17 +207,33 @@ where
         q: &SVector<T, N>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error> {
-        if self.second.get() == 0 {
-            self.dynamics.acceleration(t, q, v)
-        } else {
+        if self.charts.mask() != 0 {
             self.twin_acceleration(t, q, v)
+        } else {
+            (self.system()).visit_form(form::UserAcceleration {
+                dynamics: &self.dynamics,
+                at: form::At { t, q, v },
+            })
+        }
+    }
+
+    /// The constraint residuals [max |Φ|, max |G v + g|], the user's in the
+    /// user's charts, the twin's (the same constraints) in any other.
+    fn residuals(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> [T; 2] {
+        if !S::CONSTRAINED {
+            [T::zero(); 2]
+        } else if self.charts.mask() == 0 {
+            (self.system()).visit_form(form::Residuals(form::At { t, q, v }))
+        } else {
+            let (qf, vf) = self.free_state(q, v);
+            (self.system()).visit_free(TwinResiduals(t, &qf, &vf))
         }
     }
 
     /// The energy (or Jacobi integral) of the state, the same function in
     /// every chart.
     fn integral(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
-        if self.second.get() == 0 {
+        if self.charts.mask() == 0 {
             SecondOrder::integral(&self.dynamics, t, q, v)
         } else {
             let (qf, vf) = self.free_state(q, v);
@@ -237,6 +248,7 @@ struct TwinAcceleration<'x, T: Real, const N: usize, const F: usize> {
     q: &'x SVector<T, F>,
     v: &'x SVector<T, N>,
     tolerance: T,
+    force: Option<SVector<T, N>>,
 }
 
 impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F>
@@ -244,8 +256,41 @@ impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F>
 {
     type Output = Result<SVector<T, N>, Error>;
     fn visit<L: Lagrangian<T, N, F>>(self, free: &L) -> Self::Output {
-        let dynamics = Dynamics::new(free).with_singular_tolerance(self.tolerance);
-        dynamics.acceleration(self.t, self.q, self.v)
+        let (at, tolerance) = (
+            form::At {
+                t: self.t,
+                q: self.q,
+                v: self.v,
+            },
+            self.tolerance,
+        );
+        match self.force {
+            Some(force) => free.visit_form(form::Acceleration {
+                at,
+                tolerance,
+                forcing: Given(force),
+            }),
+            None => free.visit_form(form::Acceleration {
+                at,
+                tolerance,
+                forcing: NoForcing,
+            }),
+        }
+    }
+}
+
+/// The twin's constraint residuals at its state.
+struct TwinResiduals<'x, T: Real, const N: usize, const F: usize>(
+    T,
+    &'x SVector<T, F>,
+    &'x SVector<T, N>,
+);
+
+impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F> for TwinResiduals<'_, T, N, F> {
+    type Output = [T; 2];
+    fn visit<L: Lagrangian<T, N, F>>(self, free: &L) -> [T; 2] {
+        let Self(t, q, v) = self;
+        free.visit_form(form::Residuals(form::At { t, q, v }))
     }
 }
 
@@ -261,6 +306,44 @@ impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F> for TwinInteg
     fn visit<L: Lagrangian<T, N, F>>(self, free: &L) -> T {
         SecondOrder::integral(&Dynamics::new(free), self.t, self.q, self.v)
     }
+}
+
+/// Whether (q0, v0) at t0, in the user's coordinates, satisfies the
+/// system's constraints (if it has any) to `tolerance` at both levels, and
+/// the constraint settings are ones the atlas applies.
+///
+/// # Errors
+/// [`Error::InconsistentInitialConditions`], [`Error::NonFiniteState`];
+/// [`Error::InvalidSettings`] for drift control or least squares.
+pub(crate) fn check_start<S, T, const N: usize, const F: usize>(
+    system: &S,
+    t0: T,
+    (q0, v0): (&SVector<T, N>, &SVector<T, N>),
+    (tolerance, drift, least_squares): (f64, Drift, bool),
+) -> Result<(), Error>
+where
+    S: Atlas<T, N, F>,
+    T: Real,
+{
+    if !S::CONSTRAINED {
+        return Ok(());
+    }
+    if !matches!(drift, Drift::None) || least_squares {
+        return Err(Error::InvalidSettings(
+            "a run through the atlas keeps the constraints by multipliers without drift \
+             control and refuses redundant ones: leave `drift` at Drift::None and \
+             `least_squares` off"
+                .into(),
+        ));
+    }
+    system.visit_form(form::Consistency {
+        at: form::At {
+            t: t0,
+            q: q0,
+            v: v0,
+        },
+        tolerance: T::lit(tolerance),
+    })
 }
 
 /// The user's chart of a rotation.

@@ -1,17 +1,14 @@
-//! A run through the atlas: the switching events, and what the run hands
-//! back ([`AtlasRun`]).
+//! What a run through the atlas hands back ([`AtlasRun`]).
 
-use super::{Charted, LEAVE_BELOW, RETURN_ABOVE, angles, layout_agrees, user_chart};
-use crate::error::{Error, Failure, Progress};
-use crate::event::{Event, EventRun, Events};
-use crate::mechanics::Dynamics;
+use super::{angles, user_chart, user_view};
+use crate::error::{Error, Progress};
+use crate::event::Occurrence;
 use crate::numeric::Real;
 use crate::numeric::orientation;
-use crate::ode::{Integrator, Sample, Trajectory};
-use crate::system::{Atlas, EulerRotation, Lagrangian};
+use crate::ode::{Sample, Trajectory};
+use crate::system::{EulerRotation, Lagrangian};
 use crate::table::Table;
 use nalgebra::{Matrix3, SVector, Vector3};
-use std::cell::RefCell;
 
 /// Where a rotation's angles may still be read in the user's chart: its
 /// conditioning above this (θ one micro-radian from the pole of z-x-z).
@@ -22,7 +19,7 @@ pub const USER_CHART_VALID: f64 = 1e-6;
 pub struct ChartSwitch<T> {
     /// When.
     pub t: T,
-    /// Which rotation ([`Atlas::EULER`]'s order).
+    /// Which rotation ([`Atlas::EULER`](crate::Atlas::EULER)'s order).
     pub rotation: usize,
     /// Into its second chart (`true`) or back into the user's.
     pub to_second: bool,
@@ -36,24 +33,63 @@ pub struct ChartSwitch<T> {
 /// [`rotation`](Self::rotation) and [`quaternion`](Self::quaternion), or in
 /// the user's coordinates with [`user_state`](Self::user_state) wherever
 /// their chart is valid. A switch's point holds the state after it.
+///
+/// A run with inputs ([`ControlledSimulation::run_atlas`](crate::ControlledSimulation::run_atlas))
+/// has P of them and records them at every point ([`inputs`](Self::inputs));
+/// a run with events records the user's events' occurrences
+/// ([`occurrences`](Self::occurrences)) in the user's coordinates, the
+/// switches apart.
 #[derive(Clone, Debug)]
-pub struct AtlasRun<T: Real, const N: usize> {
-    trajectory: Trajectory<T, N>,
-    switches: Vec<ChartSwitch<T>>,
-    rotations: &'static [EulerRotation],
+pub struct AtlasRun<T: Real, const N: usize, const P: usize = 0> {
+    pub(super) trajectory: Trajectory<T, N>,
+    pub(super) switches: Vec<ChartSwitch<T>>,
+    pub(super) rotations: &'static [EulerRotation],
     /// Per point, bit k set while rotation k is in its second chart.
-    charts: Vec<u64>,
+    pub(super) charts: Vec<u64>,
     /// The charts the run started in, before any switch.
-    start: u64,
+    pub(super) start: u64,
+    /// The user's angles each rotation is read nearest after each switch,
+    /// and after the start.
+    pub(super) near: Vec<[T; 3]>,
+    pub(super) start_near: Vec<[T; 3]>,
+    pub(super) inputs: Vec<SVector<T, P>>,
+    pub(super) input_names: [&'static str; P],
+    pub(super) occurrences: Vec<Occurrence<T, N>>,
+    pub(super) terminated_by: Option<usize>,
 }
 
-impl<T: Real, const N: usize> AtlasRun<T, N> {
-    /// A run that stopped before its first step, in the user's charts.
-    pub(crate) fn unstarted(
-        trajectory: Trajectory<T, N>,
-        rotations: &'static [EulerRotation],
-    ) -> Self {
-        finish(EventRun::unstarted(trajectory), 0, rotations)
+impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
+    /// The inputs at the trajectory's points, one per point, as
+    /// [`ControlRun::inputs`](crate::ControlRun::inputs) records them
+    /// (empty without inputs).
+    pub fn inputs(&self) -> &[SVector<T, P>] {
+        &self.inputs
+    }
+
+    /// The inputs' names ([`Driven::INPUTS`](crate::Driven::INPUTS)).
+    pub fn input_names(&self) -> &[&'static str; P] {
+        &self.input_names
+    }
+
+    /// The user's events' occurrences, in time order, numbered by the order
+    /// the events were added; their states in the user's coordinates (the
+    /// angles nearest those each rotation had when it left the user's
+    /// chart, as [`user_state`](Self::user_state) reads them).
+    pub fn occurrences(&self) -> &[Occurrence<T, N>] {
+        &self.occurrences
+    }
+
+    /// The times of the user's event `event`, in increasing order.
+    pub fn times(&self, event: usize) -> Vec<T> {
+        (self.occurrences.iter())
+            .filter(|o| o.event == event)
+            .map(|o| o.t)
+            .collect()
+    }
+
+    /// The user's terminal event that ended the run, if one did.
+    pub fn terminated_by(&self) -> Option<usize> {
+        self.terminated_by
     }
 
     /// The trajectory, each point in its own charts.
@@ -142,31 +178,31 @@ impl<T: Real, const N: usize> AtlasRun<T, N> {
 
     /// Point i in the user's coordinates, or `None` where some rotation is
     /// within [`USER_CHART_VALID`] of the user's singular set (there the
-    /// angles' rates are unbounded). Each angle is taken nearest the point
-    /// before it, so the user's angles run on continuously across switches.
+    /// angles' rates are unbounded). A rotation in its second chart is read
+    /// in the user's chart nearest the angles it had when it left it, so
+    /// the user's angles run on continuously across switches (up to 2π if
+    /// it stays away long enough to wind round).
     pub fn user_state(&self, i: usize) -> Option<(SVector<T, N>, SVector<T, N>)> {
-        let (mut q, mut v) = (
-            self.trajectory.positions()[i],
-            self.trajectory.velocities()[i],
-        );
-        for (k, rotation) in self.rotations.iter().enumerate() {
-            let user = user_chart(rotation);
-            let r = self.rotation(i, k);
-            if user.conditioning(&r) < T::lit(USER_CHART_VALID) {
+        for k in 0..self.rotations.len() {
+            let user = user_chart(&self.rotations[k]);
+            if user.conditioning(&self.rotation(i, k)) < T::lit(USER_CHART_VALID) {
                 return None;
             }
-            if !self.chart(i, k).offset {
-                continue; // held in the user's chart already
-            }
-            let near = (i > 0).then(|| self.user_angles_before(i, k)).flatten();
-            let x = user.angles(&r, near);
-            let dx = user.rates(x).try_inverse()? * self.angular_velocity(i, k);
-            for (j, &c) in rotation.coordinates.iter().enumerate() {
-                q[c] = x[j];
-                v[c] = dx[j];
-            }
         }
-        Some((q, v))
+        let t = self.trajectory.times()[i];
+        let n = self.switches.partition_point(|s| s.t <= t);
+        let near = |k: usize| {
+            (self.switches[..n].iter().zip(&self.near).rev())
+                .find(|(s, _)| s.rotation == k)
+                .map_or(self.start_near[k], |(_, n)| *n)
+        };
+        Some(user_view(
+            self.rotations,
+            self.charts[i],
+            near,
+            &self.trajectory.positions()[i],
+            &self.trajectory.velocities()[i],
+        ))
     }
 
     /// The run in the user's coordinates, points only (no dense output, as
@@ -193,7 +229,8 @@ impl<T: Real, const N: usize> AtlasRun<T, N> {
     /// angles in the chart of the moment), then per rotation its chart
     /// (`<body>.chart`: 1 the user's, 2 the second) and its unit quaternion
     /// (`<body>.w`, `.x`, `.y`, `.z`, chart-free), then the energies and
-    /// residuals as for any run.
+    /// residuals as for any run; with inputs, then the inputs (named as
+    /// in [`Driven::INPUTS`](crate::Driven::INPUTS)).
     ///
     /// # Errors
     /// None in practice: the columns match the points by construction.
@@ -203,6 +240,12 @@ impl<T: Real, const N: usize> AtlasRun<T, N> {
             names.push(format!("{}.chart", r.body));
             names.extend(["w", "x", "y", "z"].map(|c| format!("{}.{c}", r.body)));
         }
+        let inputs = if self.inputs.len() == self.trajectory.len() {
+            names.extend(self.input_names.iter().map(|n| n.to_string()));
+            P
+        } else {
+            0
+        };
         let values = (0..self.trajectory.len())
             .map(|i| {
                 (0..self.rotations.len())
@@ -210,150 +253,16 @@ impl<T: Real, const N: usize> AtlasRun<T, N> {
                         let chart = T::lit(if self.chart(i, k).offset { 2.0 } else { 1.0 });
                         std::iter::once(chart).chain(self.quaternion(i, k))
                     })
+                    .chain((0..inputs).map(|j| self.inputs[i][j]))
                     .collect()
             })
             .collect();
         Table::of(&self.trajectory, sys).columns(names, values)
     }
-
-    /// The user's angles of rotation k at the last point before i that was
-    /// in the user's chart, if any.
-    fn user_angles_before(&self, i: usize, k: usize) -> Option<[T; 3]> {
-        (0..i)
-            .rev()
-            .find(|&j| !self.chart(j, k).offset)
-            .map(|j| angles(&self.rotations[k], &self.trajectory.positions()[j]))
-    }
 }
 
-impl<T: Real, const N: usize> Progress for AtlasRun<T, N> {
+impl<T: Real, const N: usize, const P: usize> Progress for AtlasRun<T, N, P> {
     fn progress(&self) -> (usize, Option<f64>) {
         self.trajectory.progress()
-    }
-}
-
-/// Integrates `dynamics` from (q0, v0) in the user's charts over [t0, t1],
-/// switching charts as the rotations go.
-///
-/// # Errors
-/// [`Error::InvalidSettings`] if the system's [`Atlas`] layout disagrees
-/// with itself; whatever the integrator and the dynamics report.
-pub(crate) fn integrate<S, T, I, const N: usize, const F: usize>(
-    integrator: &I,
-    dynamics: Dynamics<'_, S, T>,
-    (t0, t1): (T, T),
-    q0: SVector<T, N>,
-    v0: SVector<T, N>,
-) -> Result<AtlasRun<T, N>, Failure<AtlasRun<T, N>>>
-where
-    S: Atlas<T, N, F>,
-    T: Real,
-    I: Integrator,
-{
-    let charted = Charted::<S, T, N, F>::new(dynamics);
-    let unstarted = |error: Error, q: SVector<T, N>, v: SVector<T, N>| {
-        let trajectory = Trajectory::start(t0, q, v, Sample::of(&charted, t0, &q, &v));
-        Failure::new(error, AtlasRun::unstarted(trajectory, S::EULER))
-    };
-    if !layout_agrees(charted.dynamics.system()) {
-        return Err(unstarted(
-            Error::InvalidSettings(
-                "the system's Atlas twin does not have the documented layout".into(),
-            ),
-            q0,
-            v0,
-        ));
-    }
-    // Where the user's angles stood when each rotation left their chart.
-    let left = RefCell::new(vec![[T::zero(); 3]; S::EULER.len()]);
-    let (mut q, mut v) = (q0, v0);
-    if let Err(e) = charted.enter_regular(t0, &mut q, &mut v, &mut left.borrow_mut()) {
-        return Err(unstarted(e, q0, v0));
-    }
-    let start = charted.charts();
-    let events = (0..S::EULER.len())
-        .fold(Events::new().max_events(usize::MAX >> 8), |events, k| {
-            events.with(switching(&charted, &left, k))
-        });
-    match events.integrate(integrator, &charted, t0, t1, q, v) {
-        Ok(run) => Ok(finish(run, start, S::EULER)),
-        Err(failure) => Err(failure.map(|run| finish(run, start, S::EULER))),
-    }
-}
-
-/// The event that moves rotation k out of its chart of the moment when that
-/// chart degrades: g is the margin left before the threshold, falling
-/// through zero.
-fn switching<'e, S, T, const N: usize, const F: usize>(
-    charted: &'e Charted<'_, S, T, N, F>,
-    left: &'e RefCell<Vec<[T; 3]>>,
-    k: usize,
-) -> Event<'e, T, N>
-where
-    S: Atlas<T, N, F>,
-    T: Real,
-{
-    let in_second = move || charted.charts() >> k & 1 == 1;
-    Event::new(move |_, q: &SVector<T, N>, _: &SVector<T, N>| {
-        let s = charted.user_conditioning(k, q);
-        if in_second() {
-            T::lit(RETURN_ABOVE) - s
-        } else {
-            s - T::lit(LEAVE_BELOW)
-        }
-    })
-    .falling()
-    .action(move |t, q, v| {
-        let near = if in_second() {
-            Some(left.borrow()[k])
-        } else {
-            left.borrow_mut()[k] = angles(&S::EULER[k], q);
-            None
-        };
-        // The map cannot fail away from the target chart's singular set,
-        // which the thresholds keep far off; if it did, the non-finite
-        // state ends the run with a typed error.
-        if charted.switch(t, k, q, v, near).is_err() {
-            q.fill(T::lit(f64::NAN));
-        }
-    })
-    .named(format!("chart switch of {}", S::EULER[k].body))
-}
-
-/// The run's switches from its occurrences (event k is rotation k's
-/// switch), and each point's charts.
-fn finish<T: Real, const N: usize>(
-    run: EventRun<T, N>,
-    start: u64,
-    rotations: &'static [EulerRotation],
-) -> AtlasRun<T, N> {
-    let mut mask = start;
-    let switches: Vec<ChartSwitch<T>> = (run.occurrences.iter())
-        .map(|o| {
-            mask ^= 1 << o.event;
-            ChartSwitch {
-                t: o.t,
-                rotation: o.event,
-                to_second: mask >> o.event & 1 == 1,
-            }
-        })
-        .collect();
-    // A switch's point holds the state after it.
-    let mut mask = start;
-    let mut next = switches.iter().peekable();
-    let charts = (run.trajectory.times().iter())
-        .map(|&t| {
-            while let Some(s) = next.next_if(|s| s.t <= t) {
-                mask ^= 1 << s.rotation;
-            }
-            mask
-        })
-        .collect();
-    AtlasRun {
-        trajectory: run.trajectory,
-        switches,
-        rotations,
-        charts,
-        start,
     }
 }

@@ -99,10 +99,12 @@
 
 mod driver;
 mod square;
+mod view;
 mod watch;
 
 pub(crate) use driver::within_budget;
 pub use driver::{DEFAULT_MAX_EVENTS, Events};
+pub(crate) use view::{BackFn, ViewFn};
 
 use crate::error::{Error, Progress, to_vec};
 use crate::numeric::Real;

@@ -4,7 +4,7 @@
 use super::Linear;
 use super::settings::Linearizer;
 use super::tangent::{column, step};
-use crate::atlas::{Charted, layout_agrees};
+use crate::atlas::{Charted, Charts, layout_agrees};
 use crate::error::{Error, check_tolerance};
 use crate::mechanics::Dynamics;
 use crate::numeric::Real;
@@ -44,15 +44,23 @@ impl Linearizer {
     {
         check_tolerance("singular tolerance", self.singular_tolerance)?;
         sys.check_parameters()?;
+        if S::CONSTRAINED {
+            return Err(Error::InvalidSettings(
+                "the atlas's linearisation takes unconstrained systems: with constraints \
+                 its states would not be independent"
+                    .into(),
+            ));
+        }
         if !layout_agrees(sys) {
             return Err(Error::InvalidSettings(
                 "the system's Atlas twin does not have the documented layout".into(),
             ));
         }
         let dynamics = Dynamics::new(sys).with_singular_tolerance(T::lit(self.singular_tolerance));
-        let charted = Charted::<S, T, N, F>::new(dynamics);
+        let charts = Charts::new(S::EULER);
+        let charted = Charted::<S, T, N, F>::new(dynamics, &charts);
         let (mut q, mut v) = (*q, *v);
-        charted.enter_regular(t, &mut q, &mut v, &mut vec![[T::zero(); 3]; S::EULER.len()])?;
+        charts.enter_regular(t, &mut q, &mut v)?;
         let accel = |q: &SVector<T, N>, v: &SVector<T, N>| charted.acceleration(t, q, v);
         let mut a = DMatrix::zeros(2 * N, 2 * N);
         a.view_mut((0, N), (N, N)).fill_with_identity();
@@ -71,7 +79,7 @@ impl Linearizer {
         Ok(Linear::from_parts(
             a,
             DMatrix::zeros(2 * N, 0),
-            states::<S, T, N, F>(charted.charts()),
+            states::<S, T, N, F>(charts.mask()),
             Vec::new(),
             N,
             None,

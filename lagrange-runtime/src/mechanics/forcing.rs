@@ -39,3 +39,13 @@ impl<T: Real, const N: usize, const Q: usize> Forcing<T, N, Q> for NoForcing {
         Ok(SVector::zeros())
     }
 }
+
+/// A borrowed forcing is the same forcing.
+impl<T: Real, const N: usize, const Q: usize, F: Forcing<T, N, Q>> Forcing<T, N, Q> for &F {
+    const ACTIVE: bool = F::ACTIVE;
+
+    #[inline(always)]
+    fn force(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+        (**self).force(t, q, v)
+    }
+}

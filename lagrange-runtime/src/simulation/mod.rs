@@ -1,6 +1,7 @@
 //! The user-facing entry point: system + integrator + initial state → trajectory.
 
 mod atlas;
+mod atlas_control;
 mod controlled;
 mod events;
 mod form;

@@ -3,8 +3,9 @@
 //! system with each of those rotations free (a quaternion and ω), through
 //! which the atlas evaluates the dynamics in any chart.
 
-use super::Lagrangian;
+use super::{Driven, Lagrangian};
 use crate::numeric::Real;
+use nalgebra::SVector;
 
 /// One rotation of a system written as three Euler angles of its coordinates
 /// (`euler_zxz(ψ, θ, φ)`, `euler_zyx(..)`, or three successive `rot_*` about
@@ -24,7 +25,9 @@ pub struct EulerRotation {
 /// `emit(atlas)` and run by [`Simulation::run_atlas`](crate::Simulation::run_atlas).
 ///
 /// F is the length of the free twin's q: N plus one per rotation. The twin
-/// is the same description with every rotation of [`EULER`](Self::EULER)
+/// is the same description (its inputs and holonomic constraints
+/// included, in the form the description asks for through
+/// [`Lagrangian::visit_form`]) with every rotation of [`EULER`](Self::EULER)
 /// replaced by a free orientation: its q holds the other coordinates in
 /// order, then one unit quaternion (w, x, y, z) per rotation in `EULER`'s
 /// order; its v those coordinates' rates, then each rotation's ω in body
@@ -44,4 +47,24 @@ pub trait FreeVisitor<T: Real, const N: usize, const F: usize> {
     type Output;
     /// Visits the twin.
     fn visit<L: Lagrangian<T, N, F>>(self, free: &L) -> Self::Output;
+}
+
+/// An [`Atlas`] system with P inputs ([`Driven`]): the twin's generalized
+/// forces of the same inputs, in its own coordinates (the kept coordinates,
+/// then each rotation's three components of ω in body axes). Emitted with
+/// every `emit(atlas)` (P = 0 without `inputs`); what
+/// [`ControlledSimulation::run_atlas`](crate::ControlledSimulation::run_atlas)
+/// reads while a rotation is in its second chart.
+pub trait DrivenAtlas<T: Real, const N: usize, const P: usize, const F: usize>:
+    Atlas<T, N, F> + Driven<T, N, P>
+{
+    /// The twin's ΔQ(q, v, u, t) at its state (q of F entries with the
+    /// quaternions, v with ω).
+    fn free_input_forces(
+        &self,
+        q: &SVector<T, F>,
+        v: &SVector<T, N>,
+        u: &SVector<T, P>,
+        t: T,
+    ) -> SVector<T, N>;
 }

@@ -5,17 +5,54 @@
 use super::{ControlRun, ControlledSimulation};
 use crate::control::{InputForces, InputSource, check_input};
 use crate::error::{Error, Failure};
+use crate::event::Events;
 use crate::event::Occurrence;
 use crate::event::within_budget;
 use crate::numeric::Real;
 use crate::numeric::func::abs;
 use crate::ode::{Continuation, Integrator, Sample, SecondOrder, Trajectory};
+use crate::simulation::Simulation;
 use crate::system::Driven;
 use nalgebra::SVector;
 use std::ops::Range;
 
+/// What a controlled run is driven by: the simulation, the source and the
+/// events (borrowed from a [`ControlledSimulation`], or assembled by a run
+/// that reads them through other coordinates, as the atlas's).
+pub(crate) struct Driver<
+    'r,
+    'a,
+    'e,
+    S,
+    I,
+    C,
+    T: Real,
+    const N: usize,
+    const P: usize,
+    const Q: usize,
+> {
+    pub simulation: &'r Simulation<'a, S, I>,
+    pub source: &'r C,
+    pub events: &'r Events<'e, T, N, Q>,
+}
+
+impl<'a, 'e, S, I, C, T, const N: usize, const P: usize, const Q: usize>
+    ControlledSimulation<'a, 'e, S, I, C, T, N, P, Q>
+where
+    T: Real,
+{
+    /// The driver of this simulation's runs.
+    pub(super) fn driver(&self) -> Driver<'_, 'a, 'e, S, I, C, T, N, P, Q> {
+        Driver {
+            simulation: &self.simulation,
+            source: &self.source,
+            events: &self.events,
+        }
+    }
+}
+
 impl<S, I, C, T, const N: usize, const P: usize, const Q: usize>
-    ControlledSimulation<'_, '_, S, I, C, T, N, P, Q>
+    Driver<'_, '_, '_, S, I, C, T, N, P, Q>
 where
     I: Integrator,
     T: Real,
@@ -29,7 +66,7 @@ where
     /// pieces, the failed piece's accepted steps, their inputs, the
     /// occurrences; the given initial state alone if none) goes back with the
     /// error.
-    pub(super) fn drive<'s, D: SecondOrder<T, N, Q>>(
+    pub(crate) fn drive<'s, D: SecondOrder<T, N, Q>>(
         &'s self,
         make: impl Fn(InputForces<'s, S, Piece<'s, C, T, P>, P>) -> D,
         span: Range<T>,
@@ -51,7 +88,7 @@ where
             None => {
                 let rhs = make(InputForces::new(
                     self.simulation.system,
-                    Piece::Live(&self.source),
+                    Piece::Live(self.source),
                 ));
                 record.inputs = vec![self.source.input(span.start, &q0, &v0)];
                 Trajectory::start(span.start, q0, v0, Sample::of(&rhs, span.start, &q0, &v0))
@@ -101,7 +138,7 @@ where
                 check_input::<S, T, N, P, Q>(t, &q, &v, &u)?;
                 Piece::Held(u)
             } else {
-                Piece::Live(&self.source)
+                Piece::Live(self.source)
             };
             let rhs = make(InputForces::new(self.simulation.system, source));
             let (piece, stop) = self.piece(&rhs, source, (t, end), (q, v), record)?;

@@ -2,6 +2,8 @@
 //! piecewise driver (`drive`) and its result ([`ControlRun`], `run`).
 
 mod drive;
+
+pub(crate) use drive::Driver;
 mod run;
 mod square;
 
@@ -152,7 +154,7 @@ pub struct ControlledSimulation<
 > {
     simulation: Simulation<'a, S, I>,
     source: C,
-    events: Events<'e, T, N, Q>,
+    pub(super) events: Events<'e, T, N, Q>,
 }
 
 impl<'a, 'e, S, I, C, T, const N: usize, const P: usize, const Q: usize>
@@ -231,7 +233,7 @@ where
             check_problem(span.start, span.end, &q0, &v0)?;
             Ok((unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0)?, v0))
         };
-        self.drive(
+        self.driver().drive(
             |f| dynamics.with_forcing(f),
             span.clone(),
             (q0, v0),
@@ -264,7 +266,7 @@ where
             let (_, q0, v0) = sim.prepare_constrained::<T, N, K, Q>(span.start, q0, v0)?;
             Ok((q0, v0))
         };
-        self.drive(
+        self.driver().drive(
             |f| dynamics.with_forcing(f),
             span.clone(),
             (q0, v0),
@@ -302,7 +304,7 @@ where
             let narrow = SVector::<T, N>::from_fn(|i, _| q0[i]);
             Ok((q0, sim.prepare_reduced(&dynamics, &span, narrow, v0)?))
         };
-        self.drive(
+        self.driver().drive(
             |f| Widened(dynamics.with_forcing(Narrowed(f))),
             span.clone(),
             (q0, v0),

@@ -19,14 +19,14 @@ use std::path::Path;
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct ControlRun<T: Real, const N: usize, const P: usize, const Q: usize = N> {
-    pub(super) trajectory: Trajectory<T, N, Q>,
-    pub(super) inputs: Vec<SVector<T, P>>,
-    pub(super) occurrences: Vec<Occurrence<T, N, Q>>,
-    pub(super) terminated_by: Option<usize>,
+    pub(crate) trajectory: Trajectory<T, N, Q>,
+    pub(crate) inputs: Vec<SVector<T, P>>,
+    pub(crate) occurrences: Vec<Occurrence<T, N, Q>>,
+    pub(crate) terminated_by: Option<usize>,
     #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
     pub(super) coordinates: [&'static str; Q],
     #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
-    pub(super) input_names: [&'static str; P],
+    pub(crate) input_names: [&'static str; P],
 }
 
 /// Names as a sequence (serde has no impl for arrays of a generic length).

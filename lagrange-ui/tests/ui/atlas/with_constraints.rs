@@ -1,6 +1,6 @@
 use lagrange::Lagrangian;
 
-// Constraints are not covered by the atlas yet: one error, at `atlas`.
+// Nonholonomic constraints are not covered by the atlas: one error, at `atlas`.
 #[derive(Lagrangian)]
 #[lagrange(
     coordinates(x, y, psi, theta, phi),

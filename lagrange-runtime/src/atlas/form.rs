@@ -1,0 +1,177 @@
+//! The dynamics of one chart in the form its description asked for: the
+//! unconstrained equations, or holonomic constraints kept by multipliers
+//! (the user's description and its twin carry the same constraints, the
+//! twin's written on its free orientation). The reduced form has no place
+//! in the atlas: the derive refuses it with `emit(atlas)`.
+
+use crate::error::Error;
+use crate::mechanics::constraint::ConstrainedDynamics;
+use crate::mechanics::{Dynamics, Forcing};
+use crate::numeric::Real;
+use crate::ode::SecondOrder;
+use crate::system::{Constrained, FormVisitor, Lagrangian, Reduced};
+use nalgebra::SVector;
+
+/// A state of a chart: q of Q entries (with the twin's quaternions), v.
+#[derive(Clone, Copy)]
+pub(crate) struct At<'x, T: Real, const N: usize, const Q: usize> {
+    pub t: T,
+    pub q: &'x SVector<T, Q>,
+    pub v: &'x SVector<T, N>,
+}
+
+/// The form's accelerations at a state, with a forcing.
+pub(crate) struct Acceleration<'x, T: Real, const N: usize, const Q: usize, G> {
+    pub at: At<'x, T, N, Q>,
+    pub tolerance: T,
+    pub forcing: G,
+}
+
+fn refused() -> Error {
+    Error::InvalidSettings(
+        "the atlas runs constraints with multipliers, not in the reduced form".into(),
+    )
+}
+
+impl<T, L, G, const N: usize, const Q: usize> FormVisitor<T, N, L, Q>
+    for Acceleration<'_, T, N, Q, G>
+where
+    T: Real,
+    L: Lagrangian<T, N, Q>,
+    G: Forcing<T, N, Q>,
+{
+    type Output = Result<SVector<T, N>, Error>;
+
+    fn unconstrained(self, system: &L) -> Self::Output {
+        let dynamics = Dynamics::new(system).with_singular_tolerance(self.tolerance);
+        let At { t, q, v } = self.at;
+        dynamics.with_forcing(self.forcing).acceleration(t, q, v)
+    }
+
+    fn multipliers<const K: usize>(self, system: &L) -> Self::Output
+    where
+        L: Constrained<T, N, K, Q>,
+    {
+        let dynamics = ConstrainedDynamics::<L, T, K>::new(system)
+            .with_singular_tolerance(self.tolerance)
+            .with_forcing(self.forcing);
+        let At { t, q, v } = self.at;
+        SecondOrder::acceleration(&dynamics, t, q, v)
+    }
+
+    fn reduced<const K: usize>(self, _: &L) -> Self::Output
+    where
+        L: Reduced<T, N, K>,
+    {
+        Err(refused())
+    }
+}
+
+/// The user's accelerations in the user's charts: the dynamics of the run
+/// (its parameter terms computed once) without constraints, or the
+/// multiplier form with the same forcing.
+pub(crate) struct UserAcceleration<'d, 'x, S, T: Real, const N: usize, G> {
+    pub dynamics: &'d Dynamics<'d, S, T, G>,
+    pub at: At<'x, T, N, N>,
+}
+
+impl<S, T, G, const N: usize> FormVisitor<T, N, S> for UserAcceleration<'_, '_, S, T, N, G>
+where
+    T: Real,
+    S: Lagrangian<T, N>,
+    G: Forcing<T, N>,
+{
+    type Output = Result<SVector<T, N>, Error>;
+
+    fn unconstrained(self, _: &S) -> Self::Output {
+        let At { t, q, v } = self.at;
+        self.dynamics.acceleration(t, q, v)
+    }
+
+    fn multipliers<const K: usize>(self, system: &S) -> Self::Output
+    where
+        S: Constrained<T, N, K>,
+    {
+        let dynamics = ConstrainedDynamics::<S, T, K>::new(system)
+            .with_singular_tolerance(self.dynamics.singular_tolerance())
+            .with_forcing(self.dynamics.forcing());
+        let At { t, q, v } = self.at;
+        SecondOrder::acceleration(&dynamics, t, q, v)
+    }
+
+    fn reduced<const K: usize>(self, _: &S) -> Self::Output
+    where
+        S: Reduced<T, N, K>,
+    {
+        Err(refused())
+    }
+}
+
+/// The constraint residuals [max |Φ|, max |G v + g|] at a state (zero
+/// without constraints).
+pub(crate) struct Residuals<'x, T: Real, const N: usize, const Q: usize>(pub At<'x, T, N, Q>);
+
+impl<T, L, const N: usize, const Q: usize> FormVisitor<T, N, L, Q> for Residuals<'_, T, N, Q>
+where
+    T: Real,
+    L: Lagrangian<T, N, Q>,
+{
+    type Output = [T; 2];
+
+    fn unconstrained(self, _: &L) -> [T; 2] {
+        [T::zero(); 2]
+    }
+
+    fn multipliers<const K: usize>(self, system: &L) -> [T; 2]
+    where
+        L: Constrained<T, N, K, Q>,
+    {
+        let At { t, q, v } = self.0;
+        SecondOrder::residuals(&ConstrainedDynamics::<L, T, K>::new(system), t, q, v)
+    }
+
+    fn reduced<const K: usize>(self, _: &L) -> [T; 2]
+    where
+        L: Reduced<T, N, K>,
+    {
+        [T::zero(); 2]
+    }
+}
+
+/// Whether a state satisfies the constraints to `tolerance` at both
+/// levels: what a run through the atlas checks at its start, in the
+/// user's coordinates.
+pub(crate) struct Consistency<'x, T: Real, const N: usize> {
+    pub at: At<'x, T, N, N>,
+    pub tolerance: T,
+}
+
+impl<T, L, const N: usize> FormVisitor<T, N, L> for Consistency<'_, T, N>
+where
+    T: Real,
+    L: Lagrangian<T, N>,
+{
+    type Output = Result<(), Error>;
+
+    fn unconstrained(self, _: &L) -> Self::Output {
+        Ok(())
+    }
+
+    fn multipliers<const K: usize>(self, system: &L) -> Self::Output
+    where
+        L: Constrained<T, N, K>,
+    {
+        let At { t, q, v } = self.at;
+        let dynamics = ConstrainedDynamics::<L, T, K>::new(system);
+        dynamics
+            .check_consistency(t, q, v, self.tolerance)
+            .map(|_| ())
+    }
+
+    fn reduced<const K: usize>(self, _: &L) -> Self::Output
+    where
+        L: Reduced<T, N, K>,
+    {
+        Err(refused())
+    }
+}
