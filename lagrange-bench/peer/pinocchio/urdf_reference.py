@@ -24,19 +24,15 @@ import pinocchio as pin
 ROOT = os.path.join(os.path.dirname(__file__), "..", "..", "..", "robots")
 DATA = os.path.join(ROOT, "..", "tests", "data", "urdf_arms_pinocchio.txt")
 
+from urdf_derivatives import configuration  # noqa: E402 (beside this file)
+
+
 def state(model, n_arm):
     """q_k = 0.3 - 0.17 k, v_k = 0.5 - 0.21 k on the arm's coordinates (by
     velocity index), the fingers at 0.02 and at rest; Pinocchio's q from it."""
     angle = np.array([0.3 - 0.17 * k if k < n_arm else 0.02 for k in range(model.nv)])
     v = np.array([0.5 - 0.21 * k if k < n_arm else 0.0 for k in range(model.nv)])
-    q = np.zeros(model.nq)
-    for j in model.joints[1:]:
-        a = angle[j.idx_v]
-        if j.nq == 2:
-            q[j.idx_q : j.idx_q + 2] = [np.cos(a), np.sin(a)]
-        else:
-            q[j.idx_q] = a
-    return q, v
+    return configuration(model, angle), v
 
 # file, the arm's coordinates, the tool frame
 ROBOTS = [
