@@ -34,7 +34,7 @@ use nalgebra::{SMatrix, SVector};
 #[diagnostic::on_unimplemented(
     message = "`{Self}` has no multiplier form with these constraint rows: `run_constrained` and the constrained linearisation need constraints (`holonomic(...)`, `nonholonomic(...)`) in the `multipliers` formulation",
     label = "needs the multiplier form",
-    note = "the multiplier form is the default when a description has constraints and no `speeds(...)`; `formulation(multipliers, reduced)` emits both"
+    note = "the multiplier form is the default when a description has constraints and no `speeds(...)`; `formulation(multipliers, reduced)` emits both; a system with free orientations (quaternions in q) linearises with `Linearizer::constrained_tangent`"
 )]
 pub trait Constrained<T: Real, const N: usize, const K: usize, const Q: usize = N>:
     Lagrangian<T, N, Q>
