@@ -6,26 +6,13 @@
 //! point, and what about it, so that the user can see what keeps a model off
 //! the recursive route.
 
-use lagrange_symbolic::{Context, Expr as Sym, SymbolKind};
+use lagrange_symbolic::{Context, Expr as Sym};
 
+use super::frame::{Frame, PlacedMass, coordinate_name, fixed};
 use super::link::{add3, elementary, mat_mul, mat_vec};
 use super::{Inertia, Link, Masses, Spheres, Tree};
 use crate::lowered::{Factor, Skeleton};
 use crate::mat3::{Mat3, quaternion_matrix, transpose};
-
-/// Whether `e` depends on parameters only (fixed in space and time).
-pub(super) fn fixed(ctx: &Context, e: Sym) -> bool {
-    ctx.free_symbols(e)
-        .iter()
-        .all(|&s| matches!(ctx.symbol_kind(s), SymbolKind::Parameter(_)))
-}
-
-/// The name of coordinate `i`, for the reasons.
-pub(super) fn coordinate_name(ctx: &Context, i: usize) -> String {
-    let q = ctx.coordinates()[i];
-    ctx.as_symbol(q)
-        .map_or_else(String::new, |s| ctx.symbol_name(s).to_string())
-}
 
 /// An elementary rotation factor by a constant angle: (axis, angle).
 type Constant = (usize, Sym);
@@ -60,20 +47,6 @@ struct Chain {
     trailing: Vec<Constant>,
     factors: Vec<Factor>,
 }
-
-/// Where a body sits: the link it is fixed in (`None`: fixed in space), its
-/// reference point in that link's axes (or in world axes), and the rotation
-/// from its own axes to the link's.
-#[derive(Clone, Copy)]
-pub(super) struct Frame {
-    pub link: Option<usize>,
-    pub origin: [Sym; 3],
-    pub rotation: Mat3,
-}
-
-/// A point mass's body and its offset in that body's axes (`None`: fixed in
-/// no body).
-pub(super) type PlacedMass = Option<(usize, Vec<Sym>)>;
 
 /// Links with their masses attached, and the spherical joints.
 type Linked = (Vec<Link>, Spheres);

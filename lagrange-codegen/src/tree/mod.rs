@@ -31,6 +31,7 @@
 mod aba;
 mod crba;
 mod detect;
+mod frame;
 mod link;
 mod rnea;
 mod spatial;

@@ -24,7 +24,7 @@ use std::collections::BTreeSet;
 
 use lagrange_symbolic::{Context, Expr as Sym, SymbolKind};
 
-use super::detect::{Frame, PlacedMass, coordinate_name};
+use super::frame::{Frame, PlacedMass, coordinate_name};
 use super::link::{add3, cross, mat_mul, mat_vec};
 use super::{Link, Masses};
 use crate::lowered::Skeleton;

@@ -6,7 +6,7 @@ use lagrange_symbolic::{Context, Expr as Sym, Symbol, SymbolKind};
 
 use super::Joint;
 use crate::mat3::Mat3;
-use crate::tree::detect::coordinate_name;
+use crate::tree::frame::coordinate_name;
 
 /// `e` as a number when it depends on parameters only in form: a parent
 /// turned by a parameter angle leaves cos²w + sin²w in its child's relative
