@@ -1,6 +1,9 @@
-//! Source text of the generic planar n-link pendulum (distinct masses and lengths,
-//! absolute angles from the downward vertical): the scaling workload of the
-//! derivation benchmarks and the `opcount` report.
+//! Source texts of the benchmark workloads: the generic planar n-link pendulum
+//! (distinct masses and lengths, absolute angles from the downward vertical),
+//! the spatial chain written with factors and written out, and robots'
+//! URDF items transcribed with their poses written out — for the derivation
+//! benchmarks, the `opcount` report, `lagrange-bench` and the tests of the
+//! recursive route.
 
 use std::fmt::Write;
 
