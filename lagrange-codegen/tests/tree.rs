@@ -579,3 +579,23 @@ fn written_out_robot_agrees() {
     articulated_agrees(&src.replace("#[lagrange(", "#[lagrange(emit(articulated), "));
     jacobians_agree(&src);
 }
+
+/// Rotations as factors, positions written out: the factor reading refuses
+/// (no point of the parent at the reference point), the written-out one
+/// reads the tree.
+#[test]
+fn factored_rotations_with_written_out_positions_agree() {
+    routes_agree(
+        "#[lagrange(coordinates(q1, q2, q3),
+            body(rod0, mass = m0, inertia = [i1, i2, i2], com = [l0 / 2, 0, 0],
+                 at = [0, 0, h], rotation = rot_z(q1)),
+            body(rod1, mass = m1, inertia = [i1, i2, i2], com = [l1 / 2, 0, 0],
+                 at = [l0 * cos(q1), l0 * sin(q1), h], rotation = rot_z(q1) * rot_y(q2)),
+            body(rod2, mass = m1, inertia = [i1, i2, i2], com = [l1 / 2, 0, 0],
+                 at = [l0 * cos(q1) + l1 * cos(q1) * cos(q2), l0 * sin(q1) + l1 * sin(q1) * cos(q2),
+                       h - l1 * sin(q2)],
+                 rotation = rot_z(q1) * rot_y(q2) * rot_x(0.3) * rot_z(q3)),
+            gravity = [0, 0, -g])]
+         struct Arm { m0: f64, m1: f64, i1: f64, i2: f64, l0: f64, l1: f64, h: f64, g: f64 }",
+    );
+}
