@@ -426,7 +426,9 @@
 //! chart-free ([`AtlasRun::rotation`], [`AtlasRun::quaternion`],
 //! [`AtlasRun::angular_velocity`]) and in the user's coordinates wherever
 //! their chart is valid ([`AtlasRun::user_state`]). [`Linearizer::atlas`]
-//! linearises in charts regular at the operating point. [`Simulation::run`]
+//! linearises in charts regular at the operating point, and
+//! [`Linearizer::atlas_driven`] adds B for the inputs held there (in a
+//! second chart through the twin's forces). [`Simulation::run`]
 //! on the same system stays in the user's chart and stops at its singular
 //! set with [`Error::SingularMassMatrix`]: that is the opt-out.
 //!

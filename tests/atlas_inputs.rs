@@ -241,3 +241,45 @@ fn a_sampled_controller_drives_the_satellite_through_the_switches() {
     assert!(switches >= 1, "{switches}");
     assert!(rotation < 1e-8 && omega < 1e-8, "{rotation:e} {omega:e}");
 }
+
+/// `Linearizer::atlas_driven`: at a regular state its A and B are the
+/// ordinary linearisation of the user's description; through the pole (pitch
+/// π/2, read in the second chart) the rates' rows of B satisfy E B = I⁻¹,
+/// since the torques act on ω̇ = I⁻¹(τ − ω × Iω) and ω = E(y) ẏ.
+#[test]
+fn atlas_driven_linearisation_has_the_torques_input_matrix_in_either_chart() {
+    let lin = Linearizer::new();
+    let (v, u) = (
+        SVector::from([0.2, -0.3, 0.5]),
+        SVector::from([0.4, -0.1, 0.7]),
+    );
+    let q = SVector::from([0.3, 0.4, -0.2]);
+    let atlas = lin
+        .atlas_driven(&EULER_SAT, &q, &v, &u, 0.0)
+        .expect("linearises");
+    let plain = lin
+        .tangent_driven(&EULER_SAT, &q, &v, &u, 0.0)
+        .expect("linearises");
+    assert_eq!(atlas.states(), plain.states());
+    let off = |x: &nalgebra::DMatrix<f64>, y: &nalgebra::DMatrix<f64>| (x - y).amax() / y.amax();
+    let (off_a, off_b) = (off(atlas.a(), plain.a()), off(atlas.b(), plain.b()));
+    assert!(off_a < 1e-8 && off_b < 1e-8, "A: {off_a:e}, B: {off_b:e}");
+
+    let q = SVector::from([0.3, std::f64::consts::FRAC_PI_2, 0.2]);
+    let atlas = lin
+        .atlas_driven(&EULER_SAT, &q, &v, &u, 0.0)
+        .expect("linearises at the pole");
+    assert_eq!(&atlas.states()[..3], ["yaw@2", "pitch@2", "roll@2"]);
+    let second = zyx().second();
+    let r = zyx().matrix([q[0], q[1], q[2]]);
+    let e = second.rates(second.angles(&r, None));
+    let rates = Matrix3::from_fn(|i, k| atlas.b()[(3 + i, k)]);
+    let inertia = Vector3::new(EULER_SAT.a, EULER_SAT.b, EULER_SAT.c);
+    let gap = (e * rates - Matrix3::from_diagonal(&inertia.map(|x| 1.0 / x))).amax();
+    println!("regular: A {off_a:.1e}, B {off_b:.1e}; at the pole: E B − I⁻¹ {gap:.1e}");
+    assert!(gap < 1e-8, "E B − I⁻¹ = {gap:e}");
+    assert!(
+        atlas.b().rows(0, 3).amax() == 0.0,
+        "no input acts on the angles directly"
+    );
+}
