@@ -412,3 +412,39 @@ fn a_non_finite_state_is_refused() {
     let run = Simulation::new(&SPINNING).run_reduced(q, v, 0.0..1.0);
     assert!(run.is_err());
 }
+
+/// Events watch a reduced run with orientations as they watch the
+/// multiplier form's: the ball's body z axis crossing 26° from the vertical
+/// (cos = 0.9; it tips to 41°) is located at the same times.
+#[test]
+fn events_watch_the_reduced_form_with_orientations() {
+    let w = [1.5, -0.7, 4.0];
+    let q0 = SVector::from([0.0, 0.0, BALL.a, 1.0, 0.0, 0.0, 0.0]);
+    let v0 = SVector::from([BALL.a * w[1], -BALL.a * w[0], 0.0, w[0], w[1], w[2]]);
+    const LEVEL: f64 = 0.9;
+    let tilt = |_: f64, q: &SVector<f64, 7>, _: &SVector<f64, 6>| rotation_of(q)[(2, 2)] - LEVEL;
+    let reduced = Simulation::new(&SPINNING)
+        .integrator(Dopri5::tol(TOL))
+        .event(Event::with_orientations(tilt))
+        .run_reduced(q0, v0, 0.0..5.0)
+        .unwrap();
+    let multipliers = Simulation::new(&SPINNING)
+        .integrator(Dopri5::tol(TOL))
+        .drift(Drift::projection())
+        .event(Event::with_orientations(tilt))
+        .run(q0, v0, 0.0..5.0)
+        .unwrap();
+    let times = |r: &EventRun<f64, 6, 7>| r.occurrences.iter().map(|o| o.t).collect::<Vec<_>>();
+    let (a, b) = (times(&reduced), times(&multipliers));
+    assert!(!a.is_empty() && a.len() == b.len(), "{a:?} {b:?}");
+    let worst = a
+        .iter()
+        .zip(&b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    eprintln!(
+        "events on the reduced sphere: {} crossings, largest time gap to the multipliers {worst:e}",
+        a.len()
+    );
+    assert!(worst < 1e-8, "{worst:e}");
+}
