@@ -346,10 +346,14 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// velocities(q0, speeds(q0, v0)), the admissible velocity with the same
     /// speeds (for speeds the macro picked, with the velocities the constraints
     /// leave free where those are fixed); after every step v is projected back
-    /// onto the constraints keeping the velocities they leave free.
+    /// onto the constraints keeping the velocities they leave free. With free
+    /// orientations q0 holds their unit quaternions (scaled to unit norm
+    /// first) and v0 their body-axis angular velocities; the quaternions are
+    /// stepped on the group, as in [`run_constrained`](Self::run_constrained).
     ///
     /// # Errors
     /// [`Error::InvalidSettings`] for bad settings, time span or initial state;
+    /// [`Error::NonUnitQuaternion`] for an initial quaternion off unit norm;
     /// otherwise what the dynamics or the integrator report
     /// ([`Error::SingularMassMatrix`] for a singular M*, [`Error::NonFiniteState`],
     /// ...).
