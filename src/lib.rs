@@ -340,10 +340,19 @@
 //! that moves with each body, plus ½ M W (W the \[ω\]× blocks) for the chart's
 //! own turning.
 //!
-//! Not yet with an orientation: the reduced form (`speeds`,
-//! `formulation(reduced)`) and `emit(hamiltonian)` (each a compile error at
-//! the orientation; Hamilton's form serves the symplectic [`Gauss`] method,
-//! which integrates (q, p) in coordinates).
+//! The reduced form (`speeds(...)`, `formulation(reduced)`) takes
+//! orientations too: a speed may be a body's `omega_1/2/3` (body axes),
+//! `omega_x/y/z` or `dot(x)` of a coordinate; the rows A = [U; G], b and
+//! their rates c = −(Ȧ q̇ + ḃ) are derived in the moving chart and taken at
+//! its centre, so that A v + b = (u, 0) in v, and the system is
+//! [`Reduced<T, N, K, Q>`](Reduced) ([`ReducedDynamics`] steps the quaternion
+//! on the group; [`Linearizer::reduced`] stays with Q = N). The rolling
+//! sphere and disk with a quaternion on their angular velocities match the
+//! multiplier form and the Euler-angle versions (`tests/reduced_orientation.rs`).
+//!
+//! Not yet with an orientation: `emit(hamiltonian)` (a compile error at the
+//! orientation; Hamilton's form serves the symplectic [`Gauss`] method, which
+//! integrates (q, p) in coordinates).
 //!
 //! ```
 //! use lagrange::prelude::*;

@@ -26,39 +26,21 @@ pub fn check(cx: &Ctxt, system: &System) {
 }
 
 /// What a free orientation does not combine with yet, named at the
-/// orientation: the reduced form (`speeds(...)`, `formulation(reduced)`), the
-/// optional outputs but `reactions`, and a URDF (whose joints are rotations
-/// about axes). Constraints in the multiplier form and inputs combine.
+/// orientation: Hamilton's form (`emit(hamiltonian)`). Constraints in either
+/// form (multipliers, or independent speeds) and inputs combine.
 fn check_orientations(cx: &Ctxt, system: &System) {
     let Some(first) = system.orientations.first() else {
         return;
     };
-    let mut not_yet = Vec::new();
-    if !system.speeds.is_empty() {
-        not_yet.push("`speeds(...)`");
-    }
-    let reduced = system
-        .formulations
-        .iter()
-        .any(|(_, f)| *f == Formulation::Reduced);
-    if reduced {
-        not_yet.push("`formulation(reduced)`");
-    }
     // Hamilton's form is for the symplectic Gauss method, which integrates
     // (q, p) in coordinates: a quaternion has no conjugate momentum there.
     if system.extras.iter().any(|(_, e)| *e == Extra::Hamiltonian) {
-        not_yet.push("`emit(hamiltonian)`");
-    }
-
-    if !not_yet.is_empty() {
         cx.error_at(
             first.span(),
-            format!(
-                "a free orientation does not combine with {} yet: remove them (constraints run \
-                 in the multiplier form, the default, and `emit(reactions)` is available), or \
-                 describe the rotation with `rot_x/rot_y/rot_z` or `euler_zxz` of coordinates",
-                not_yet.join(", ")
-            ),
+            "a free orientation does not combine with `emit(hamiltonian)` yet (Hamilton's \
+             form integrates (q, p) in coordinates, and a quaternion has no conjugate momentum \
+             there): remove it, or describe the rotation with `rot_x/rot_y/rot_z` or \
+             `euler_zxz` of coordinates",
         );
     }
 }

@@ -272,7 +272,8 @@ pub fn multiplier_form(
     }
 }
 
-/// Chooses independent velocities when the user gave no `speeds(...)`: the
+/// Chooses independent velocities when the user gave no `speeds(...)` (named
+/// by `velocities`: the coordinates', then each orientation's `name.wx` …): the
 /// columns left without a pivot when the constraint rows are eliminated, so that
 /// u = (q̇_j for those j). Pivots prefer constant entries (e.g. ẋ in a rolling
 /// constraint) so the dependent velocities are solved for without division by a
@@ -281,10 +282,10 @@ pub fn default_speeds(
     ctx: &mut Context,
     holonomic: &[ConstraintModel],
     nonholonomic: &[ConstraintModel],
-    coordinates: &[String],
+    velocities: &[String],
 ) -> Result<Vec<(String, Sym)>, String> {
     let rows = rows(ctx, holonomic, nonholonomic);
-    let n = coordinates.len();
+    let n = velocities.len();
     let mut a: Vec<Vec<Sym>> = rows.iter().map(|r| r.g.clone()).collect();
     let mut dependent = Vec::new();
     let mut used = vec![false; a.len()];
@@ -309,8 +310,27 @@ pub fn default_speeds(
     let qd = ctx.velocities();
     Ok((0..n)
         .filter(|j| !dependent.contains(j))
-        .map(|j| (format!("dot_{}", coordinates[j]), qd[j]))
+        .map(|j| (speed_name(&velocities[j]), qd[j]))
         .collect())
+}
+
+/// The name of the speed that is velocity `name` itself: `dot_x` for a
+/// coordinate's, `turn_wx` for an orientation's angular velocity `turn.wx`.
+fn speed_name(name: &str) -> String {
+    match name.split_once('.') {
+        Some((orientation, axis)) => format!("{orientation}_{axis}"),
+        None => format!("dot_{name}"),
+    }
+}
+
+/// Velocity `name` as the description writes it: `dot(x)` for a coordinate's,
+/// `turn.wx` (body axes) for an orientation's angular velocity.
+fn written(name: &str) -> String {
+    if name.contains('.') {
+        name.to_string()
+    } else {
+        format!("dot({name})")
+    }
 }
 
 /// The row (not yet used) with the best pivot in column `col`: a nonzero
@@ -352,9 +372,9 @@ pub fn reduce(
     holonomic: &[ConstraintModel],
     nonholonomic: &[ConstraintModel],
     speeds: &[(String, Sym)],
-    coordinates: &[String],
+    velocities: &[String],
 ) -> Result<Reduction, String> {
-    let n = coordinates.len();
+    let n = velocities.len();
     let k = speeds.len();
     let constraints = rows(ctx, holonomic, nonholonomic);
     if k + constraints.len() != n {
@@ -370,8 +390,8 @@ pub fn reduce(
     let matrix: Vec<Vec<Sym>> = stacked.iter().map(|r| r.g.clone()).collect();
     if let Some(col) = unassignable_column(ctx, &matrix) {
         return Err(format!(
-            "the speeds and the constraints do not determine the velocity `dot({})`: choose speeds independent of the constraints",
-            coordinates[col]
+            "the speeds and the constraints do not determine the velocity `{}`: choose speeds independent of the constraints",
+            written(&velocities[col])
         ));
     }
     let rates = rates(ctx, &stacked);

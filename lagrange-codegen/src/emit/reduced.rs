@@ -9,7 +9,9 @@ use super::emitter::Emitter;
 use crate::mechanics::Model;
 
 /// `impl Reduced`: the speeds, the stacked rows A = [U; G] with b, and their
-/// rates c; the runtime solves them (W, κ, M*, F*) with pivoting.
+/// rates c; the runtime solves them (W, κ, M*, F*) with pivoting. With free
+/// orientations q has Q entries (`Reduced<T, N, K, Q>`) and the rows are read
+/// in v, as the multiplier form's are.
 pub(super) fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let Some(r) = &model.reduced else {
         return quote!();
@@ -17,7 +19,8 @@ pub(super) fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream
     let n = model.dof();
     let kl = Literal::usize_unsuffixed(r.names.len());
     let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_k, mat_nn) = (f.vec(nl), f.vec(&kl), f.mat(nl, nl));
+    let (vec_n, vec_k, mat_nn, qvec) = (f.vec(nl), f.vec(&kl), f.mat(nl, nl), f.qvec());
+    let sizes = f.sizes_after(&kl);
 
     let (u_lets, u_outs) = e.program(&r.speeds);
     let mut rows: Vec<Sym> = r.matrix.iter().flatten().copied().collect();
@@ -37,7 +40,7 @@ pub(super) fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream
             ]);
             quote! {
                 #[inline]
-                fn row_derivatives(&self, q: &#vec_n, v: &#vec_n, a: &#vec_n, nu: &#vec_n, t: #s) -> ::core::option::Option<(#mat_nn, #mat_nn, #mat_nn, #mat_nn)> {
+                fn row_derivatives(&self, q: &#qvec, v: &#vec_n, a: &#vec_n, nu: &#vec_n, t: #s) -> ::core::option::Option<(#mat_nn, #mat_nn, #mat_nn, #mat_nn)> {
                     #body
                     ::core::option::Option::Some((danu, dres, drate, dvel))
                 }
@@ -50,13 +53,13 @@ pub(super) fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
-        impl #ig ::lagrange::__private::Reduced<#s, #nl, #kl> for #ident #tg #wc {
+        impl #ig ::lagrange::__private::Reduced<#s, #sizes> for #ident #tg #wc {
             const SPEEDS: [&'static str; #kl] = [#(#names),*];
             const ROWS: [&'static str; #nl] = [#(#row_names),*];
             const FREE_SPEEDS: bool = #free;
 
             #[inline]
-            fn velocity_rows(&self, q: &#vec_n, t: #s) -> (#mat_nn, #vec_n) {
+            fn velocity_rows(&self, q: &#qvec, t: #s) -> (#mat_nn, #vec_n) {
                 #row_lets
                 let mut a = <#mat_nn>::zeros();
                 #a_fill
@@ -64,13 +67,13 @@ pub(super) fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream
             }
 
             #[inline]
-            fn row_rates(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_n {
+            fn row_rates(&self, q: &#qvec, v: &#vec_n, t: #s) -> #vec_n {
                 #rate_lets
                 <#vec_n>::from([#(#rate_outs),*])
             }
 
             #[inline]
-            fn speeds(&self, q: &#vec_n, v: &#vec_n, t: #s) -> #vec_k {
+            fn speeds(&self, q: &#qvec, v: &#vec_n, t: #s) -> #vec_k {
                 #u_lets
                 <#vec_k>::from([#(#u_outs),*])
             }
@@ -88,7 +91,7 @@ fn holonomic_positions(e: &Emitter, f: &Frame, positions: &[Sym]) -> TokenStream
         return quote!();
     }
     let (s, nl) = (&f.s, &f.n);
-    let vec_n = f.vec(nl);
+    let (vec_n, qvec) = (f.vec(nl), f.qvec());
     let h = Literal::usize_unsuffixed(positions.len());
     let (lets, outs) = e.program(positions);
     let index = (0..positions.len()).map(Literal::usize_unsuffixed);
@@ -96,7 +99,7 @@ fn holonomic_positions(e: &Emitter, f: &Frame, positions: &[Sym]) -> TokenStream
         const HOLONOMIC: usize = #h;
 
         #[inline]
-        fn holonomic_positions(&self, q: &#vec_n, t: #s) -> #vec_n {
+        fn holonomic_positions(&self, q: &#qvec, t: #s) -> #vec_n {
             #lets
             let mut phi = <#vec_n>::zeros();
             #(phi[#index] = #outs;)*

@@ -13,20 +13,26 @@ use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::model::InputModel;
 use super::{Derived, Frames};
-use crate::constraint::ConstraintSet;
+use crate::constraint::{ConstraintSet, Reduction};
 use crate::lowered::{OrientationModel, Poses};
 use crate::mat3::Mat3;
 
+/// The constrained forms derived in θ, to be taken at the centre.
+pub(super) struct Forms<'a> {
+    pub constraints: Option<&'a mut ConstraintSet>,
+    pub reduced: Option<&'a mut Reduction>,
+}
+
 /// Free orientations: every output at the centre of the moving chart, θ = 0,
-/// the inputs' forces, the multiplier form's rows and the Coriolis matrix
-/// included (derived in θ before: the Christoffel symbols of M(θ) at θ = 0
-/// give C with h = C ω and Ṁ − 2C skew along the motion). What takes no
-/// orientation yet (the reduced form and Hamilton's form) is refused before
-/// the derivation.
+/// the inputs' forces, both constrained forms' rows and the Coriolis matrix
+/// included (derived in θ before: the rates γ and c = −(Ȧ q̇ + ḃ) need the
+/// rows' θ-derivatives, and the Christoffel symbols of M(θ) at θ = 0 give C
+/// with h = C ω and Ṁ − 2C skew along the motion). What takes no orientation
+/// yet (Hamilton's form) is refused before the derivation.
 pub(super) fn at_centre(
     ctx: &mut Context,
     d: &mut Derived,
-    constraints: Option<&mut ConstraintSet>,
+    forms: Forms<'_>,
     frames: Option<&mut Frames>,
     coriolis: Option<&mut Vec<Vec<Sym>>>,
 ) {
@@ -84,7 +90,7 @@ pub(super) fn at_centre(
     if let Some(inputs) = &mut d.forces.inputs {
         c.inputs(inputs, d.coordinates.len(), d.orientations.len());
     }
-    if let Some(set) = constraints {
+    if let Some(set) = forms.constraints {
         c.all(&mut set.phi);
         c.rows(&mut set.jacobian);
         c.all(&mut set.velocity_term);
@@ -92,6 +98,13 @@ pub(super) fn at_centre(
         for (_, coefficients) in &mut set.reactions {
             c.rows(coefficients);
         }
+    }
+    if let Some(r) = forms.reduced {
+        c.all(&mut r.speeds);
+        c.rows(&mut r.matrix);
+        c.all(&mut r.free);
+        c.all(&mut r.rates);
+        c.all(&mut r.positions);
     }
 }
 

@@ -5,6 +5,7 @@ use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::{Constrained, DeriveError};
 use crate::constraint::{ConstraintSet, Reduction};
+use crate::lowered::OrientationModel;
 
 /// G, g, Φ and γ, with their derivatives when the Jacobians are asked for.
 pub(super) fn multiplier_form(
@@ -19,17 +20,31 @@ pub(super) fn multiplier_form(
     set
 }
 
-/// The reduced form, when `speeds` or `formulation(reduced)` asks for it.
+/// The reduced form, when `speeds` or `formulation(reduced)` asks for it, on
+/// the coordinates' velocities and the orientations' angular velocities.
 pub(super) fn reduced_if_asked(
     ctx: &mut Context,
     c: &Constrained,
     coordinates: &[String],
+    orientations: &[OrientationModel],
     jacobians: bool,
 ) -> Result<Option<Reduction>, DeriveError> {
     let Some(speeds) = &c.speeds else {
         return Ok(None);
     };
-    reduced_form(ctx, c, speeds.as_deref(), coordinates, jacobians).map(Some)
+    let velocities = velocity_names(coordinates, orientations);
+    reduced_form(ctx, c, speeds.as_deref(), &velocities, jacobians).map(Some)
+}
+
+/// The velocities' names, as `Lagrangian::VELOCITIES` gives them: the
+/// coordinates', then each orientation's body-axis angular velocity
+/// `name.wx`, `name.wy`, `name.wz`.
+fn velocity_names(coordinates: &[String], orientations: &[OrientationModel]) -> Vec<String> {
+    let mut names = coordinates.to_vec();
+    for o in orientations {
+        names.extend(["wx", "wy", "wz"].map(|c| format!("{}.{c}", o.name)));
+    }
+    names
 }
 
 /// The reduced form on the user's speeds, or on speeds chosen from the
@@ -38,7 +53,7 @@ fn reduced_form(
     ctx: &mut Context,
     c: &Constrained,
     speeds: Option<&[(String, Sym)]>,
-    coordinates: &[String],
+    velocities: &[String],
     jacobians: bool,
 ) -> Result<Reduction, DeriveError> {
     let chosen;
@@ -46,12 +61,12 @@ fn reduced_form(
         Some(s) => s,
         None => {
             chosen =
-                crate::constraint::default_speeds(ctx, c.holonomic, c.nonholonomic, coordinates)
+                crate::constraint::default_speeds(ctx, c.holonomic, c.nonholonomic, velocities)
                     .map_err(DeriveError::Reduction)?;
             &chosen[..]
         }
     };
-    let mut r = crate::constraint::reduce(ctx, c.holonomic, c.nonholonomic, speeds, coordinates)
+    let mut r = crate::constraint::reduce(ctx, c.holonomic, c.nonholonomic, speeds, velocities)
         .map_err(DeriveError::Reduction)?;
     r.free_speeds = c.speeds.as_ref().is_some_and(|s| s.is_none());
     if jacobians {

@@ -37,7 +37,7 @@ pub use model::{Articulation, BiasRoute, InputModel, Model};
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use crate::ast::Extra;
-use crate::constraint::ConstraintSet;
+use crate::constraint::{ConstraintSet, Reduction};
 use crate::lowered::{ConstraintModel, Lowered, Poses};
 use force::Applied;
 use forms::{multiplier_form, reduced_if_asked};
@@ -438,35 +438,42 @@ impl<'a> Constrained<'a> {
 /// What is derived in the orientations' θ before their centre is taken.
 struct InTheta {
     constraints: Option<ConstraintSet>,
+    reduced: Option<Reduction>,
     frames: Option<Frames>,
     coriolis: Option<Vec<Vec<Sym>>>,
 }
 
-/// With orientations the constraint rows (Ġ and γ need their θ-derivatives;
-/// theirs for `emit(jacobians)` would be in θ: not built), the frames
-/// (derivatives of the poses) and the Christoffel symbols (of M in θ) are
-/// derived in θ, then everything is taken at the centre.
-fn in_theta(ctx: &mut Context, d: &mut Derived, c: &Constrained, extras: &[Extra]) -> InTheta {
-    let mut constraints =
-        (!d.orientations.is_empty() && c.multipliers).then(|| multiplier_form(ctx, c, false));
+/// With orientations both forms' constraint rows (their rates need the
+/// θ-derivatives; their derivatives for `emit(jacobians)` would be in θ: not
+/// built), the frames and the Christoffel symbols (of M in θ) are derived in
+/// θ, then everything is taken at the centre.
+fn in_theta(
+    ctx: &mut Context,
+    d: &mut Derived,
+    c: &Constrained,
+    extras: &[Extra],
+) -> Result<InTheta, DeriveError> {
+    let free = !d.orientations.is_empty();
+    let mut constraints = (free && c.multipliers).then(|| multiplier_form(ctx, c, false));
+    let in_theta = free.then_some((&d.coordinates[..], &d.orientations[..]));
+    let mut reduced = in_theta.map_or(Ok(None), |(q, o)| reduced_if_asked(ctx, c, q, o, false))?;
     let mut frames =
         (extras.contains(&Extra::Kinematics)).then(|| frames::frames(ctx, &d.poses, &d.particles));
     let mut coriolis = d.chart_mass.take().map(|mass| {
         let (q, qd) = (ctx.coordinates(), ctx.velocities());
         extra::coriolis_matrix(ctx, &mass, &q, &qd)
     });
-    chart::at_centre(
-        ctx,
-        d,
-        constraints.as_mut(),
-        frames.as_mut(),
-        coriolis.as_mut(),
-    );
-    InTheta {
+    let forms = chart::Forms {
+        constraints: constraints.as_mut(),
+        reduced: reduced.as_mut(),
+    };
+    chart::at_centre(ctx, d, forms, frames.as_mut(), coriolis.as_mut());
+    Ok(InTheta {
         constraints,
+        reduced,
         frames,
         coriolis,
-    }
+    })
 }
 
 /// C: with orientations, the chart's Christoffel factorisation turned along
@@ -495,7 +502,7 @@ fn finish(
     extras: &[Extra],
 ) -> Result<Model, DeriveError> {
     let wants = |e: Extra| extras.contains(&e);
-    let early = in_theta(&mut ctx, &mut d, &c, extras);
+    let early = in_theta(&mut ctx, &mut d, &c, extras)?;
     let Motion {
         mass,
         bias,
@@ -515,12 +522,15 @@ fn finish(
     let hamiltonian = wants(Extra::Hamiltonian);
     let momentum = (hamiltonian || d.rheonomic).then(|| extra::momentum(&mut ctx, d.kinetic));
     let kinetic_gradient = hamiltonian.then(|| extra::kinetic_gradient(&mut ctx, d.kinetic));
-    let frames = early.frames;
-    let constraints = early.constraints.or_else(|| {
+    let jacobians = wants(Extra::Jacobians);
+    let constraints = (early.constraints).or_else(|| {
         c.multipliers
-            .then(|| multiplier_form(&mut ctx, &c, wants(Extra::Jacobians)))
+            .then(|| multiplier_form(&mut ctx, &c, jacobians))
     });
-    let reduced = reduced_if_asked(&mut ctx, &c, &d.coordinates, wants(Extra::Jacobians))?;
+    let reduced = match early.reduced {
+        None => reduced_if_asked(&mut ctx, &c, &d.coordinates, &[], jacobians)?,
+        r => r,
+    };
     let articulated = d.forces.articulated;
     let hoisted = hoist(
         &mut ctx,
@@ -551,7 +561,7 @@ fn finish(
         jacobians: d.jacobians,
         momentum,
         kinetic_gradient,
-        frames,
+        frames: early.frames,
         particles: d.particles,
         has_spin: d.has_spin,
         articulated,

@@ -61,7 +61,7 @@ where
 
     fn reduced<const K: usize>(self, _: &L) -> Self::Output
     where
-        L: Reduced<T, N, K>,
+        L: Reduced<T, N, K, Q>,
     {
         Err(refused())
     }
@@ -132,7 +132,7 @@ where
 
     fn reduced<const K: usize>(self, _: &L) -> [T; 2]
     where
-        L: Reduced<T, N, K>,
+        L: Reduced<T, N, K, Q>,
     {
         [T::zero(); 2]
     }

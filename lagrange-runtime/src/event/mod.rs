@@ -98,7 +98,6 @@
 //! [`SecondOrder::project`]: crate::ode::SecondOrder::project
 
 mod driver;
-mod square;
 mod view;
 mod watch;
 

@@ -246,6 +246,10 @@ impl Linearizer {
     /// States are the coordinates' names then the speeds' names. No second-order
     /// form.
     ///
+    /// Systems in coordinates alone (Q = N: the bound is [`Reduced`] with its
+    /// default Q); a reduced form with free orientations runs
+    /// ([`ReducedDynamics`](crate::ReducedDynamics)) but is not linearised here.
+    ///
     /// # Errors
     /// [`LinearError::InconsistentOperatingPoint`] if q̇0 ≠ W u0 + w beyond the
     /// tolerance (u0 = speeds(q0, q̇0)); [`Error::SingularMassMatrix`] (M*);

@@ -18,14 +18,21 @@
 //! free at each state (coordinate partitioning): they are finite wherever the
 //! constraints are independent, and a speed that is nearly dependent on them
 //! costs no digits.
+//!
+//! With free orientations (Q = N + 1 per orientation) q holds unit
+//! quaternions and v their body-axis angular velocities: the rows and the
+//! form are read in v, a stage off the unit sphere reads the rotation it is
+//! closest to, and the integrators step the quaternions on the group
+//! ([`SecondOrder::ORIENTATIONS`]); the projection rebuilds v only.
 
 use crate::error::{Error, check_tolerance, to_vec};
-use crate::mechanics::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite};
+use crate::mechanics::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite, on_sphere};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::numeric::elimination::{Dependent, Partition, invert};
 use crate::numeric::func::abs;
+use crate::numeric::orientation::Orientation;
 use crate::ode::SecondOrder;
 use crate::system::Reduced;
 use nalgebra::{SMatrix, SVector};
@@ -122,17 +129,21 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     /// dependent at q; [`Error::SingularMassMatrix`] if M* is not positive
     /// definite or its pivot ratio is below the singular tolerance; whatever the
     /// forcing reports (e.g. [`Error::NonFiniteInput`]).
-    pub fn solve<const N: usize>(
+    pub fn solve<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<(SVector<T, K>, SVector<T, N>), Error>
     where
-        S: Reduced<T, N, K>,
-        F: Forcing<T, N>,
+        S: Reduced<T, N, K, Q>,
+        F: Forcing<T, N, Q>,
     {
         check_state(t, q, v)?;
+        // As in the other forms: a stage off the unit sphere reads the
+        // rotation it is closest to.
+        let unit = on_sphere::<S, T, N, Q>(q);
+        let q = &unit;
         check_tolerance("singular tolerance", self.singular_tolerance.to_f64())?;
         let rows = self.rows(t, q)?;
         let part = self.partition(t, q, &rows)?;
@@ -164,15 +175,17 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     /// # Errors
     /// [`Error::ReducedFormBreakdown`] if the stacked rows are dependent at q;
     /// [`Error::NonFiniteState`] if the system's terms are not finite.
-    pub fn form<const N: usize>(
+    pub fn form<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         u: &SVector<T, K>,
     ) -> Result<ReducedForm<T, N, K>, Error>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
+        let unit = on_sphere::<S, T, N, Q>(q);
+        let q = &unit;
         let rows = self.rows(t, q)?;
         let inverse = self.invert_rows(t, q, &rows.a)?;
         self.assemble(t, q, &rows, inverse, u)
@@ -184,15 +197,17 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     /// # Errors
     /// [`Error::ReducedFormBreakdown`] if the stacked rows are dependent at q;
     /// [`Error::NonFiniteState`] if they are not finite.
-    pub fn velocities<const N: usize>(
+    pub fn velocities<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         u: &SVector<T, K>,
     ) -> Result<SVector<T, N>, Error>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
+        let unit = on_sphere::<S, T, N, Q>(q);
+        let q = &unit;
         let rows = self.rows(t, q)?;
         let inverse = self.invert_rows(t, q, &rows.a)?;
         Ok(rows.velocities(&inverse, u))
@@ -205,14 +220,14 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     ///
     /// # Errors
     /// As [`velocities`](Self::velocities).
-    pub fn consistent_velocities<const N: usize>(
+    pub fn consistent_velocities<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         self.projected(t, q, v, !S::FREE_SPEEDS)
     }
@@ -220,17 +235,19 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     /// v projected onto the constraints keeping its speeds (`keep_speeds`), or
     /// keeping the velocities the constraints leave free at q (see
     /// [`solve`](Self::solve)).
-    fn projected<const N: usize>(
+    fn projected<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         keep_speeds: bool,
     ) -> Result<SVector<T, N>, Error>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         check_state(t, q, v)?;
+        let unit = on_sphere::<S, T, N, Q>(q);
+        let q = &unit;
         let rows = self.rows(t, q)?;
         if keep_speeds {
             let inverse = self.invert_rows(t, q, &rows.a)?;
@@ -243,9 +260,13 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     }
 
     /// The stacked rows at (t, q), checked finite.
-    fn rows<const N: usize>(&self, t: T, q: &SVector<T, N>) -> Result<Rows<T, N, K>, Error>
+    fn rows<const N: usize, const Q: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, Q>,
+    ) -> Result<Rows<T, N, K>, Error>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         let (a, b) = self.system.velocity_rows(q, t);
         if !(all_finite(a.as_slice()) && all_finite(b.as_slice())) {
@@ -255,28 +276,28 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     }
 
     /// A⁻¹, or the breakdown naming the dependent rows.
-    fn invert_rows<const N: usize>(
+    fn invert_rows<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         a: &SMatrix<T, N, N>,
     ) -> Result<SMatrix<T, N, N>, Error>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         invert(a, self.singular_tolerance).map_err(|d| self.breakdown(t, q, d))
     }
 
     /// The constraint rows eliminated with complete pivoting: which K
     /// velocities they leave free at q, and the others in terms of those.
-    fn partition<const N: usize>(
+    fn partition<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         rows: &Rows<T, N, K>,
     ) -> Result<Partition<T, N>, Error>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         Partition::new(&rows.a, K..N, self.singular_tolerance).map_err(|d| self.breakdown(t, q, d))
     }
@@ -285,16 +306,16 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     /// free velocities of v, W spans the constraints' null space with a unit
     /// entry per free velocity, κ solves G κ = γ with its free entries zero.
     /// Also returns the system's rates c (all rows) at q̇.
-    fn partitioned_form<const N: usize>(
+    fn partitioned_form<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         rows: &Rows<T, N, K>,
         part: &Partition<T, N>,
         v: &SVector<T, N>,
     ) -> Result<(Partitioned<T, N, K>, SVector<T, N>), Error>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         let mut velocities = *v;
         part.complete(&mut velocities, &-rows.b);
@@ -322,16 +343,16 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
     }
 
     /// W, κ, q̇, M* and F* from the inverted rows at the speeds u.
-    fn assemble<const N: usize>(
+    fn assemble<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         rows: &Rows<T, N, K>,
         inverse: SMatrix<T, N, N>,
         u: &SVector<T, K>,
     ) -> Result<ReducedForm<T, N, K>, Error>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         let velocities = rows.velocities(&inverse, u);
         let (mass, rhs) = self
@@ -360,9 +381,14 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         })
     }
 
-    fn breakdown<const N: usize>(&self, t: T, q: &SVector<T, N>, d: Dependent) -> Error
+    fn breakdown<const N: usize, const Q: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, Q>,
+        d: Dependent,
+    ) -> Error
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         Error::ReducedFormBreakdown {
             t: t.to_f64(),
@@ -375,9 +401,9 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
 }
 
 /// A finite time and state, or the typed error.
-fn check_state<T: Real, const N: usize>(
+fn check_state<T: Real, const N: usize, const Q: usize>(
     t: T,
-    q: &SVector<T, N>,
+    q: &SVector<T, Q>,
     v: &SVector<T, N>,
 ) -> Result<(), Error> {
     if t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice()) {
@@ -441,23 +467,26 @@ pub struct ReducedForm<T: Real, const N: usize, const K: usize> {
     pub rhs: SVector<T, N>,
 }
 
-impl<S, T, F, const N: usize, const K: usize> SecondOrder<T, N> for ReducedDynamics<'_, S, T, K, F>
+impl<S, T, F, const N: usize, const K: usize, const Q: usize> SecondOrder<T, N, Q>
+    for ReducedDynamics<'_, S, T, K, F>
 where
-    S: Reduced<T, N, K>,
+    S: Reduced<T, N, K, Q>,
     T: Real,
-    F: Forcing<T, N>,
+    F: Forcing<T, N, Q>,
 {
+    const ORIENTATIONS: &'static [Orientation] = S::ORIENTATIONS;
+
     fn acceleration(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error> {
         Ok(self.solve(t, q, v)?.1)
     }
 
-    fn integral(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
-        self.system.integral(q, v, t)
+    fn integral(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> T {
+        self.system.integral(&on_sphere::<S, T, N, Q>(q), v, t)
     }
 
     /// No position constraints are kept (they are built into the coordinates);
@@ -467,7 +496,7 @@ where
     ///
     /// States the trajectory records were accepted, so the rows were regular
     /// there; at a state where they are not, the residual is undefined (NaN).
-    fn residuals(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> [T; 2] {
+    fn residuals(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> [T; 2] {
         match self.projected(t, q, v, false) {
             Ok(w) => [
                 T::zero(),
@@ -477,7 +506,7 @@ where
         }
     }
 
-    fn project(&self, t: T, q: &mut SVector<T, N>, v: &mut SVector<T, N>) -> Result<bool, Error> {
+    fn project(&self, t: T, q: &mut SVector<T, Q>, v: &mut SVector<T, N>) -> Result<bool, Error> {
         // Along the motion any independent velocities serve, as in `solve`.
         let w = self.projected(t, q, v, false)?;
         // A round trip through the speeds moves an admissible v by a few ulps;

@@ -1,7 +1,7 @@
 //! [`EventSimulation`]: a [`Simulation`] that watches events.
 
 use super::{Simulation, form};
-use crate::error::{Error, Failure, unit_quaternions};
+use crate::error::{Failure, unit_quaternions};
 use crate::event::{Event, EventRun, Events};
 use crate::numeric::Real;
 use crate::ode::{Integrator, check_problem, failed_at_start};
@@ -125,55 +125,21 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize, const Q: usize>
     /// As [`Simulation::run_reduced`] and [`Events::integrate`].
     pub fn run_reduced<const K: usize>(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
     ) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
         let terms = sim.system.parameter_terms();
         let dynamics = sim.reduced_dynamics::<T, K>().with_parameter_terms(&terms);
-        let failed = |e| failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted);
-        let events = self.square().map_err(|e| widen_failure(failed(e)))?;
-        let v0 = sim
-            .prepare_reduced(&dynamics, &span, q0, v0)
-            .map_err(|e| widen_failure(failed(e)))?;
-        widen(events.integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0))
+        let (q0, v0) = sim.prepare_reduced(&dynamics, &span, q0, v0).map_err(|e| {
+            failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
+        })?;
+        self.events
+            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
     }
-
-    /// The events over q of N entries, for the reduced form (which takes no
-    /// orientations): an error if q has quaternions.
-    fn square(&self) -> Result<Events<'_, T, N>, Error> {
-        self.events.square().ok_or_else(|| {
-            Error::InvalidSettings(
-                "the reduced form takes no orientations (Q = N): this system's events \
-                 are over a configuration with quaternions"
-                    .into(),
-            )
-        })
-    }
-}
-
-/// A run over q of N entries as the run type of a builder over Q = N
-/// entries: the same type, which stable Rust's const generics cannot state.
-fn widen<T: Real, const N: usize, const Q: usize>(
-    run: Result<EventRun<T, N>, Failure<EventRun<T, N>>>,
-) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>> {
-    run.map(retype).map_err(widen_failure)
-}
-
-fn widen_failure<T: Real, const N: usize, const Q: usize>(
-    failure: Failure<EventRun<T, N>>,
-) -> Failure<EventRun<T, N, Q>> {
-    failure.map(retype)
-}
-
-fn retype<T: Real, const N: usize, const Q: usize>(run: EventRun<T, N>) -> EventRun<T, N, Q> {
-    let boxed: Box<dyn std::any::Any> = Box::new(run);
-    *boxed
-        .downcast()
-        .expect("the reduced form runs only where Q = N (checked by `square`)")
 }

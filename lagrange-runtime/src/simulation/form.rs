@@ -4,10 +4,10 @@
 
 use super::{ControlledSimulation, EventSimulation, Simulation};
 use crate::control::InputSource;
-use crate::error::{Error, Failure};
+use crate::error::Failure;
 use crate::event::EventRun;
 use crate::numeric::Real;
-use crate::ode::{Integrator, Sample, Trajectory};
+use crate::ode::{Integrator, Trajectory};
 use crate::simulation::ControlRun;
 use crate::system::{Constrained, Driven, FormVisitor, Lagrangian, Reduced};
 use nalgebra::SVector;
@@ -44,45 +44,11 @@ where
 
     fn reduced<const K: usize>(self, _: &S) -> Self::Output
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
-        // A system with a reduced form has Q = N (`Reduced` extends
-        // `Lagrangian<T, N>`): the casts only restate that to the compiler.
-        let Some(q0) = same::<_, SVector<T, N>>(self.q0) else {
-            return Err(self.mismatch());
-        };
-        let run = self.builder.run_reduced::<T, N, K>(q0, self.v0, self.span);
-        same(run).expect("the run's type is the output's when q0's was")
+        self.builder
+            .run_reduced::<T, N, K, Q>(self.q0, self.v0, self.span)
     }
-}
-
-impl<B, T: Real, const N: usize, const Q: usize> Start<'_, B, T, N, Q> {
-    /// The failure of a system whose `visit_form` names the reduced form
-    /// for a configuration with orientations, which it does not take (only a
-    /// hand-written `visit_form` can).
-    fn mismatch(self) -> Failure<Trajectory<T, N, Q>> {
-        let zero = T::zero();
-        let sample = Sample {
-            integral: zero,
-            residuals: [zero; 2],
-            unit_error: zero,
-        };
-        Failure::new(
-            Error::InvalidSettings(
-                "the reduced form takes no orientations (Q = N): this system's \
-                 visit_form names it for a configuration with quaternions"
-                    .into(),
-            ),
-            Trajectory::start(self.span.start, self.q0, self.v0, sample),
-        )
-    }
-}
-
-/// `a` as a `B` when `A` and `B` are the same type: the witness that Q = N,
-/// which the const generics of stable Rust cannot state.
-fn same<A: 'static, B: 'static>(a: A) -> Option<B> {
-    let boxed: Box<dyn std::any::Any> = Box::new(a);
-    boxed.downcast::<B>().ok().map(|b| *b)
 }
 
 impl<S, I, T, const N: usize, const Q: usize> FormVisitor<T, N, S, Q>
@@ -108,12 +74,9 @@ where
 
     fn reduced<const K: usize>(self, _: &S) -> Self::Output
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
-        let Some(q0) = same::<_, SVector<T, N>>(self.q0) else {
-            return Err(self.mismatch().map(EventRun::unstarted));
-        };
-        self.builder.run_reduced::<K>(q0, self.v0, self.span)
+        self.builder.run_reduced::<K>(self.q0, self.v0, self.span)
     }
 }
 
@@ -141,7 +104,7 @@ where
 
     fn reduced<const K: usize>(self, _: &S) -> Self::Output
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         self.builder.run_reduced::<K>(self.q0, self.v0, self.span)
     }

@@ -346,48 +346,55 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// velocities(q0, speeds(q0, v0)), the admissible velocity with the same
     /// speeds (for speeds the macro picked, with the velocities the constraints
     /// leave free where those are fixed); after every step v is projected back
-    /// onto the constraints keeping the velocities they leave free.
+    /// onto the constraints keeping the velocities they leave free. With free
+    /// orientations q0 holds their unit quaternions (scaled to unit norm
+    /// first) and v0 their body-axis angular velocities; the quaternions are
+    /// stepped on the group, as in [`run_constrained`](Self::run_constrained).
     ///
     /// # Errors
     /// [`Error::InvalidSettings`] for bad settings, time span or initial state;
+    /// [`Error::NonUnitQuaternion`] for an initial quaternion off unit norm;
     /// otherwise what the dynamics or the integrator report
     /// ([`Error::SingularMassMatrix`] for a singular M*, [`Error::NonFiniteState`],
     /// ...).
-    pub fn run_reduced<T: Real, const N: usize, const K: usize>(
+    pub fn run_reduced<T: Real, const N: usize, const K: usize, const Q: usize>(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<Trajectory<T, N>, Failure<Trajectory<T, N>>>
+    ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         let (q0, v0) = (q0.into(), v0.into());
         let terms = self.system.parameter_terms();
         let dynamics = self.reduced_dynamics::<T, K>().with_parameter_terms(&terms);
-        let v0 = self
+        let (q0, v0) = self
             .prepare_reduced(&dynamics, &span, q0, v0)
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
         self.integrator
             .integrate(&dynamics, span.start, span.end, q0, v0)
     }
 
-    /// The checks of a reduced run and its initial velocities: the admissible
-    /// ones with the speeds of `v0`.
-    pub(crate) fn prepare_reduced<T: Real, const N: usize, const K: usize, F>(
+    /// The checks of a reduced run and its initial state: q0 with its
+    /// quaternions checked and scaled to unit norm, and the admissible
+    /// velocities with the speeds of `v0`.
+    pub(crate) fn prepare_reduced<T: Real, const N: usize, const K: usize, const Q: usize, F>(
         &self,
         dynamics: &ReducedDynamics<'_, S, T, K, F>,
         span: &Range<T>,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
-    ) -> Result<SVector<T, N>, Error>
+    ) -> Result<(SVector<T, Q>, SVector<T, N>), Error>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         self.system.check_parameters()?;
         self.check_tolerances()?;
         check_problem(span.start, span.end, &q0, &v0)?;
-        dynamics.consistent_velocities(span.start, &q0, &v0)
+        let q0 = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0)?;
+        let v0 = dynamics.consistent_velocities(span.start, &q0, &v0)?;
+        Ok((q0, v0))
     }
 
     /// Integrates from (q0, v0) at `span.start` to `span.end`, in the form the

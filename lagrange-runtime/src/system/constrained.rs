@@ -151,12 +151,20 @@ pub trait Constrained<T: Real, const N: usize, const K: usize, const Q: usize = 
 /// A hand-written implementation that runs only in this form sets
 /// [`Lagrangian::CONSTRAINED`] and overrides [`Lagrangian::visit_form`] with
 /// `form.reduced::<K>(self)`, as the derive does.
+///
+/// With free orientations (Q = N + 1 per orientation, see
+/// [`Lagrangian::ORIENTATIONS`]) q holds the quaternions and v the body-axis
+/// angular velocities, as in [`Constrained`]: A's columns are the tangent
+/// space's (an orientation's three are the coefficients of ω), so A is N × N
+/// and A v + b = (u, 0), A v̇ = (u̇, 0) + c read in v as they do without.
 #[diagnostic::on_unimplemented(
     message = "`{Self}` has no reduced form: `run_reduced` and the reduced linearisation need `formulation(reduced)` in its #[lagrange(...)]",
     label = "needs the reduced form",
     note = "add `formulation(reduced)` (with `speeds(...)` to choose the independent speeds, or let the macro pick velocities); `formulation(multipliers, reduced)` emits both"
 )]
-pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
+pub trait Reduced<T: Real, const N: usize, const K: usize, const Q: usize = N>:
+    Lagrangian<T, N, Q>
+{
     /// Names of the independent speeds.
     const SPEEDS: [&'static str; K];
 
@@ -178,19 +186,19 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
     /// [`HOLONOMIC`](Self::HOLONOMIC) entries, zero in the others: what
     /// [`complete_state`](crate::linear::complete_state) projects a starting
     /// state onto. `#[derive(Lagrangian)]` emits it; the default has none.
-    fn holonomic_positions(&self, q: &SVector<T, N>, t: T) -> SVector<T, N> {
+    fn holonomic_positions(&self, q: &SVector<T, Q>, t: T) -> SVector<T, N> {
         let _ = (q, t);
         SVector::zeros()
     }
 
     /// A = [U; G] and b = [u₀; g], so that A q̇ + b = (u, 0).
-    fn velocity_rows(&self, q: &SVector<T, N>, t: T) -> (SMatrix<T, N, N>, SVector<T, N>);
+    fn velocity_rows(&self, q: &SVector<T, Q>, t: T) -> (SMatrix<T, N, N>, SVector<T, N>);
 
     /// c = −(Ȧ q̇ + ḃ), so that A q̈ = (u̇, 0) + c.
-    fn row_rates(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, N>;
+    fn row_rates(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> SVector<T, N>;
 
     /// u = U(q,t) q̇ + u₀(q,t): the first K rows of A q̇ + b.
-    fn speeds(&self, q: &SVector<T, N>, v: &SVector<T, N>, t: T) -> SVector<T, K> {
+    fn speeds(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> SVector<T, K> {
         let (a, b) = self.velocity_rows(q, t);
         (a * v + b).fixed_rows::<K>(0).into_owned()
     }
@@ -208,7 +216,7 @@ pub trait Reduced<T: Real, const N: usize, const K: usize>: Lagrangian<T, N> {
     #[allow(clippy::type_complexity)]
     fn row_derivatives(
         &self,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         a: &SVector<T, N>,
         nu: &SVector<T, N>,

@@ -23,5 +23,5 @@ pub trait FormVisitor<T: Real, const N: usize, S: Lagrangian<T, N, Q>, const Q: 
     /// The reduced form with K independent speeds.
     fn reduced<const K: usize>(self, system: &S) -> Self::Output
     where
-        S: Reduced<T, N, K>;
+        S: Reduced<T, N, K, Q>;
 }

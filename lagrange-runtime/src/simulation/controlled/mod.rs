@@ -5,19 +5,17 @@ mod drive;
 
 pub(crate) use drive::Driver;
 mod run;
-mod square;
 
 pub use run::ControlRun;
 
 use super::Simulation;
 use crate::control::{Feedback, InputSource, IntoInput, OpenLoop, Sampled};
-use crate::error::{Error, Failure, unit_quaternions};
+use crate::error::{Failure, unit_quaternions};
 use crate::event::{Event, Events};
 use crate::numeric::Real;
 use crate::ode::{Integrator, check_problem};
 use crate::system::{Constrained, Driven, Lagrangian, Reduced};
 use nalgebra::SVector;
-use square::{Narrowed, Widened};
 use std::ops::Range;
 
 impl<'a, S, I: Integrator> Simulation<'a, S, I> {
@@ -275,8 +273,6 @@ where
     }
 
     /// [`Simulation::run_reduced`] with the inputs applied: F* gains Wᵀ ΔQ.
-    /// The reduced form takes no orientations: with them (Q ≠ N) the run
-    /// fails at its start with [`Error::InvalidSettings`].
     ///
     /// # Errors
     /// As [`Simulation::run_reduced`] and [`run`](Self::run).
@@ -287,25 +283,15 @@ where
         span: Range<T>,
     ) -> Result<ControlRun<T, N, P, Q>, Failure<ControlRun<T, N, P, Q>>>
     where
-        S: Reduced<T, N, K>,
+        S: Reduced<T, N, K, Q>,
     {
         let sim = &self.simulation;
         let (q0, v0) = (q0.into(), v0.into());
-        let terms = <S as Lagrangian<T, N>>::parameter_terms(sim.system);
+        let terms = sim.system.parameter_terms();
         let dynamics = sim.reduced_dynamics::<T, K>().with_parameter_terms(&terms);
-        let prepare = || {
-            if Q != N {
-                return Err(Error::InvalidSettings(
-                    "the reduced form takes no orientations (Q = N): this system's \
-                     configuration has quaternions"
-                        .into(),
-                ));
-            }
-            let narrow = SVector::<T, N>::from_fn(|i, _| q0[i]);
-            Ok((q0, sim.prepare_reduced(&dynamics, &span, narrow, v0)?))
-        };
+        let prepare = || sim.prepare_reduced(&dynamics, &span, q0, v0);
         self.driver().drive(
-            |f| Widened(dynamics.with_forcing(Narrowed(f))),
+            |f| dynamics.with_forcing(f),
             span.clone(),
             (q0, v0),
             prepare,

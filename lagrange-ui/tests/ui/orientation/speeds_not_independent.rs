@@ -1,8 +1,8 @@
 use lagrange::Lagrangian;
 
-// Constraints on a free orientation run in the multiplier form; the reduced
-// form (`speeds`, `formulation(reduced)`) does not take one yet: one error,
-// at the orientation, naming what does not combine and what does.
+// The reduced form takes a free orientation; speeds that leave an angular
+// velocity undetermined are refused at derive time, the velocity named as
+// `VELOCITIES` names it (`turn.wx` …, body axes).
 #[derive(Lagrangian)]
 #[lagrange(
     coordinates(x, y, z),
@@ -10,8 +10,7 @@ use lagrange::Lagrangian;
     body(b, mass = m, inertia = [1, 1, 1], at = [x, y, z], rotation = turn),
     holonomic(height = z - 1),
     nonholonomic(slip_x = dot(x) - b.omega_y, slip_y = dot(y) + b.omega_x),
-    speeds(u = dot(x)),
-    formulation(reduced),
+    speeds(u = dot(x), v = dot(y), w = dot(z)),
 )]
 struct Rolled {
     m: f64,
