@@ -146,7 +146,8 @@ fn bias_projection(ctx: &mut Context, kin: &[Kinematics], spin: &[Spin], n: usiz
     let euler: Vec<[Sym; 3]> = spin
         .iter()
         .map(|s| {
-            let ik = mat_vec(ctx, &s.inertia, &s.kappa);
+            let kappa = s.kappa.expect("the generic route derives each body's κ_ω");
+            let ik = mat_vec(ctx, &s.inertia, &kappa);
             let iw = mat_vec(ctx, &s.inertia, &s.omega);
             let gyro = cross(ctx, &s.omega, &iw);
             [0, 1, 2].map(|c| ctx.add(ik[c], gyro[c]))

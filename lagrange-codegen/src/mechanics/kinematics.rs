@@ -24,8 +24,10 @@ pub(super) struct Kinematics {
 pub(super) struct Spin {
     pub inertia: Mat3,
     pub omega: [Sym; 3],
+    /// W = ∂ω/∂q̇ and κ_ω = ω̇ at q̈ = 0: derived for the generic route only
+    /// (empty and `None` otherwise).
     pub jacobian: Vec<[Sym; 3]>, // [coordinate][component]
-    pub kappa: [Sym; 3],
+    pub kappa: Option<[Sym; 3]>,
 }
 
 /// The substitution of zero for each of `symbols`.
@@ -106,7 +108,6 @@ fn spins(
     zero_acc: &[(Sym, Sym)],
 ) -> Vec<Spin> {
     let qd = ctx.velocities();
-    let zero = ctx.zero();
     spins
         .iter()
         .map(|b| {
@@ -119,7 +120,7 @@ fn spins(
                     inertia: b.inertia,
                     omega,
                     jacobian: Vec::new(),
-                    kappa: [zero; 3],
+                    kappa: None,
                 };
             }
             let jacobian = qd.iter().map(|&v| omega.map(|w| ctx.diff(w, v))).collect();
@@ -131,7 +132,7 @@ fn spins(
                 inertia: b.inertia,
                 omega,
                 jacobian,
-                kappa,
+                kappa: Some(kappa),
             }
         })
         .collect()
