@@ -220,6 +220,14 @@ fn non_trees_stay_generic_and_say_why() {
              struct Rolling { m: f64 }",
             "body `wheel`: relative to its parent (the body whose coordinates its own extend), it neither turns about a fixed axis nor slides along a fixed line as `th` changes",
         ),
+        (
+            "#[lagrange(coordinates(th),
+                body(spun, mass = m, inertia = [m, m, m], at = [0, 0, 0],
+                     rotation = [[cos(th + w * t), -sin(th + w * t), 0],
+                                 [sin(th + w * t), cos(th + w * t), 0], [0, 0, 1]]))]
+             struct Driven { m: f64, w: f64 }",
+            "body `spun`: its written-out pose depends on time",
+        ),
     ];
     for (src, why) in cases {
         let input: syn::DeriveInput = syn::parse_str(src).unwrap();

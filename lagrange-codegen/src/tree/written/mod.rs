@@ -152,7 +152,7 @@ impl Joint {
     }
 }
 
-/// A body's pose as written, refusing time.
+/// A body's pose as written, refusing time, inputs and quaternions.
 fn pose(ctx: &Context, rotation: Mat3, reference: &[Sym], name: &str) -> Result<Pose, String> {
     let [x, y, z] = reference else {
         return Err(format!("body `{name}`: its reference point is not in 3-D"));
@@ -166,7 +166,18 @@ fn pose(ctx: &Context, rotation: Mat3, reference: &[Sym], name: &str) -> Result<
                     depends.insert(i);
                 }
                 SymbolKind::Parameter(_) => {}
-                _ => return Err(format!("body `{name}`: its pose depends on time or inputs")),
+                kind => {
+                    let what = match kind {
+                        SymbolKind::Time => "time",
+                        SymbolKind::Input(_) => "an input",
+                        // A free orientation's quaternion: read from
+                        // rotation factors, never from a written-out matrix.
+                        _ => "a free orientation",
+                    };
+                    return Err(format!(
+                        "body `{name}`: its written-out pose depends on {what}"
+                    ));
+                }
             }
         }
     }
