@@ -32,6 +32,17 @@ pub fn cos_sin(ctx: &mut Context, angle: Sym) -> (Sym, Sym) {
     (ctx.cos(angle), ctx.sin(angle))
 }
 
+/// The axial vector of the skew part of `w`, ½(w₂₁ − w₁₂, w₀₂ − w₂₀,
+/// w₁₀ − w₀₁), each entry simplified: ω from Rᵀ Ṙ, an axis from R₀ᵀ R′.
+pub fn vee(ctx: &mut Context, w: &Mat3) -> [Sym; 3] {
+    let half = ctx.rational(1, 2);
+    [(2, 1), (0, 2), (1, 0)].map(|(a, b)| {
+        let d = ctx.sub(w[a][b], w[b][a]);
+        let d = ctx.mul(half, d);
+        ctx.simplify(d)
+    })
+}
+
 /// Aᵀ (no new nodes: entries are only moved).
 pub fn transpose(a: &Mat3) -> Mat3 {
     [0, 1, 2].map(|i| [0, 1, 2].map(|j| a[j][i]))

@@ -18,7 +18,7 @@ use syn::{BinOp, Expr};
 
 use crate::lower::{Lowerer, Mode};
 use crate::lowered::Factor;
-use crate::mat3::{Mat3, quaternion_matrix, transpose};
+use crate::mat3::{Mat3, quaternion_matrix, transpose, vee};
 
 /// A lowered rotation: the matrix and the angular velocity in body and world axes.
 pub struct Rotation {
@@ -237,19 +237,9 @@ impl Lowerer<'_> {
         let world = self.mat_mul(&md, &transpose(&m));
         Some(Rotation {
             matrix: m,
-            omega_body: self.vee(&body),
-            omega_world: self.vee(&world),
+            omega_body: vee(&mut self.ctx, &body),
+            omega_world: vee(&mut self.ctx, &world),
             factors: None,
-        })
-    }
-
-    /// The axial vector of the skew part of `w`.
-    fn vee(&mut self, w: &Mat3) -> [Sym; 3] {
-        let half = self.ctx.rational(1, 2);
-        [(2, 1), (0, 2), (1, 0)].map(|(a, b)| {
-            let d = self.ctx.sub(w[a][b], w[b][a]);
-            let d = self.ctx.mul(half, d);
-            self.ctx.simplify(d)
         })
     }
 

@@ -28,7 +28,7 @@ use super::frame::{Frame, PlacedMass, coordinate_name};
 use super::link::{add3, cross, mat_mul, mat_vec};
 use super::{Link, Masses};
 use crate::lowered::Skeleton;
-use crate::mat3::{Mat3, transpose};
+use crate::mat3::{Mat3, transpose, vee};
 use probe::{check, settled};
 
 /// The links, each body's frame and each point mass's body, read from the
@@ -248,7 +248,7 @@ fn one_coordinate(
     let dr = rotation.map(|row| row.map(|e| ctx.diff(e, x)));
     let dr0 = matrix_at_zero(ctx, &dr);
     let w = mat_mul(ctx, &transpose(&r0), &dr0);
-    let n = vee(ctx, &w);
+    let n = vee(ctx, &w).map(|e| settled(ctx, e));
     let o = origin.map(|e| at_zero(ctx, e));
     let d = origin.map(|e| {
         let d = ctx.diff(e, x);
@@ -283,17 +283,6 @@ fn one_coordinate(
         axis,
         a,
         s,
-    })
-}
-
-/// The axial vector of the skew part of `w`.
-fn vee(ctx: &mut Context, w: &Mat3) -> [Sym; 3] {
-    let half = ctx.rational(1, 2);
-    [(2, 1), (0, 2), (1, 0)].map(|(a, b)| {
-        let d = ctx.sub(w[a][b], w[b][a]);
-        let d = ctx.mul(half, d);
-        let d = ctx.simplify(d);
-        settled(ctx, d)
     })
 }
 
