@@ -13,11 +13,10 @@ mod common;
 mod rolling;
 
 use catalog::constrained::RollingDisk;
-use catalog::rolling::QuaternionSphere;
 use common::numeric::Lcg;
 use lagrange::prelude::*;
 use lagrange::project_consistent;
-use nalgebra::{Matrix3, SVector, Vector3};
+use nalgebra::SVector;
 use rolling::*;
 
 const TOL: f64 = 1e-11;
@@ -346,19 +345,6 @@ fn the_reduced_quaternion_disk_follows_the_other_forms_over_seconds() {
     // projects no positions): Φ drifts at the integrator's tolerance.
     assert!(phi <= 1e-9 && vel <= 1e-12, "{phi:e} {vel:e}");
     assert!(r.integral_drift() < 1e-8);
-}
-
-/// The angular momentum about the contact point (see `rolling_quaternion`).
-fn contact_momentum(
-    ball: &QuaternionSphere,
-    q: &SVector<f64, 7>,
-    v: &SVector<f64, 6>,
-) -> Vector3<f64> {
-    let r = rotation_of(q);
-    let inertia = Matrix3::from_diagonal(&Vector3::new(ball.j1, ball.j2, ball.j3));
-    let omega = Vector3::new(v[3], v[4], v[5]);
-    let centre = Vector3::new(v[0], v[1], v[2]) * ball.m;
-    r * (inertia * omega) + Vector3::new(0.0, 0.0, ball.a).cross(&centre)
 }
 
 /// Started with its z axis vertical, where euler_zxz stops, the reduced

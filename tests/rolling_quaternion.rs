@@ -15,7 +15,7 @@ use catalog::rolling::{QuaternionDisk, QuaternionSphere};
 use common::numeric::Lcg;
 use lagrange::prelude::*;
 use lagrange::{check_consistency, project_consistent};
-use nalgebra::{Matrix3, SVector, Vector3};
+use nalgebra::SVector;
 use rolling::*;
 
 const TOL: f64 = 1e-11;
@@ -187,22 +187,6 @@ fn the_quaternion_disk_follows_the_chart_disk_over_seconds() {
     assert!(gap < 1e-7 && speed_gap < 1e-7, "{gap:e} {speed_gap:e}");
     assert!(phi <= 1e-12 && vel <= 1e-12, "{phi:e} {vel:e}");
     assert!(d.integral_drift() < 1e-8);
-}
-
-/// The angular momentum about the contact point, I_world ω + a e_z × m v_c:
-/// conserved for a ball with its centre of mass at its centre (the contact
-/// force and the weight have no moment about it, and the contact point moves
-/// with the centre).
-fn contact_momentum(
-    ball: &QuaternionSphere,
-    q: &SVector<f64, 7>,
-    v: &SVector<f64, 6>,
-) -> Vector3<f64> {
-    let r = rotation_of(q);
-    let inertia = Matrix3::from_diagonal(&Vector3::new(ball.j1, ball.j2, ball.j3));
-    let omega = Vector3::new(v[3], v[4], v[5]);
-    let centre = Vector3::new(v[0], v[1], v[2]) * ball.m;
-    r * (inertia * omega) + Vector3::new(0.0, 0.0, ball.a).cross(&centre)
 }
 
 /// Started with its z axis vertical, where euler_zxz stops (θ = 0, which

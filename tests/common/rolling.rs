@@ -9,7 +9,7 @@ use crate::catalog::rolling::QuaternionSphere;
 use crate::common::numeric::Lcg;
 use lagrange::prelude::*;
 use lagrange::project_consistent;
-use nalgebra::{Matrix3, SVector};
+use nalgebra::{Matrix3, SVector, Vector3};
 use std::ops::{Add, Mul, Neg, Sub};
 
 /// Chaplygin's ball in Euler angles z-x-z: `RollingSphere` with unequal
@@ -265,4 +265,20 @@ pub fn ball_start<S: Constrained<f64, 6, 3>>(
         uniform(rng, -pi, pi),
     ]);
     project_consistent(sys, q, rng.vector::<6>(3.0), 0.0).unwrap()
+}
+
+/// The angular momentum about the contact point, I_world ω + a e_z × m v_c:
+/// conserved for a ball with its centre of mass at its centre (the contact
+/// force and the weight have no moment about it, and the contact point moves
+/// with the centre).
+pub fn contact_momentum(
+    ball: &QuaternionSphere,
+    q: &SVector<f64, 7>,
+    v: &SVector<f64, 6>,
+) -> Vector3<f64> {
+    let r = rotation_of(q);
+    let inertia = Matrix3::from_diagonal(&Vector3::new(ball.j1, ball.j2, ball.j3));
+    let omega = Vector3::new(v[3], v[4], v[5]);
+    let centre = Vector3::new(v[0], v[1], v[2]) * ball.m;
+    r * (inertia * omega) + Vector3::new(0.0, 0.0, ball.a).cross(&centre)
 }
