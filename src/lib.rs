@@ -273,8 +273,14 @@
 //!   output, events and recordings read normalised quaternions. A quaternion
 //!   in an initial state within 1e-6 of unit norm is normalised, further off
 //!   is [`Error::NonUnitQuaternion`] naming the orientation. [`Gauss`]
-//!   (Hamilton's form in p = ∂L/∂q̇) refuses orientations; [`StormerVerlet`]
-//!   drifts by the exponential map (first order with the gyroscopic terms).
+//!   (with `emit(hamiltonian)`) is the symplectic method on the group: it
+//!   takes each quaternion u as four coordinates with a four-number momentum
+//!   P, π = ½ Im(ū ⊗ P) the body angular momentum, where |u|² is a quadratic
+//!   first integral that the method keeps exactly, so it needs no
+//!   normalisation; it also keeps the angular momenta of symmetries (a free
+//!   body's world angular momentum, a top's vertical and axial momenta) to
+//!   round-off, and its energy error stays bounded ([`StormerVerlet`]
+//!   drifts by the exponential map, first order with the gyroscopic terms).
 //! - **Linearisation in the tangent space**: [`Linearizer::tangent`] takes
 //!   δθ ∈ R³ per orientation (2·N states), so a steady spin linearises to a
 //!   constant A. With constraints, [`Linearizer::constrained_tangent`] (about
@@ -350,9 +356,15 @@
 //! sphere and disk with a quaternion on their angular velocities match the
 //! multiplier form and the Euler-angle versions (`tests/reduced_orientation.rs`).
 //!
-//! Not yet with an orientation: `emit(hamiltonian)` (a compile error at the
-//! orientation; Hamilton's form serves the symplectic [`Gauss`] method, which
-//! integrates (q, p) in coordinates).
+//! Hamilton's form (`emit(hamiltonian)`) takes orientations:
+//! [`Lagrangian::momentum`] is p = M v (an orientation's entries the body
+//! angular momentum π) and [`Lagrangian::kinetic_gradient`] gives, for an
+//! orientation, T's derivative along body-axis turns at fixed ω (so that
+//! π̇ = π × ω + ∂T/∂θ + Q, Hamel's form of Euler's equations). [`Gauss`]
+//! integrates it on the group: 50 intermediate-axis flips with
+//! `Gauss::step(0.05)` keep the world angular momentum to 1.4e-14 and the
+//! unit norm to 4e-15, with an energy error of 4e-9 that does not grow
+//! (`tests/symplectic_orientation.rs`).
 //!
 //! ```
 //! use lagrange::prelude::*;

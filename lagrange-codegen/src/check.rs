@@ -22,27 +22,6 @@ pub fn check(cx: &Ctxt, system: &System) {
     check_dimensions(cx, system);
     check_force_targets(cx, system);
     check_formulation(cx, system);
-    check_orientations(cx, system);
-}
-
-/// What a free orientation does not combine with yet, named at the
-/// orientation: Hamilton's form (`emit(hamiltonian)`). Constraints in either
-/// form (multipliers, or independent speeds) and inputs combine.
-fn check_orientations(cx: &Ctxt, system: &System) {
-    let Some(first) = system.orientations.first() else {
-        return;
-    };
-    // Hamilton's form is for the symplectic Gauss method, which integrates
-    // (q, p) in coordinates: a quaternion has no conjugate momentum there.
-    if system.extras.iter().any(|(_, e)| *e == Extra::Hamiltonian) {
-        cx.error_at(
-            first.span(),
-            "a free orientation does not combine with `emit(hamiltonian)` yet (Hamilton's \
-             form integrates (q, p) in coordinates, and a quaternion has no conjugate momentum \
-             there): remove it, or describe the rotation with `rot_x/rot_y/rot_z` or \
-             `euler_zxz` of coordinates",
-        );
-    }
 }
 
 /// The formulations a system is emitted in: what `formulation(...)` asks for, or by

@@ -123,6 +123,12 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// mass matrix. (∂T/∂q rather than ∂L/∂q = ∂T/∂q − ∂V/∂q: −∂V/∂q is already
     /// part of [`generalized_forces`](Self::generalized_forces), and the form
     /// ṗ = ∂T/∂q + Q also covers forces that have no potential.)
+    ///
+    /// For a free orientation the entries are T's derivative along turns of
+    /// the body about its own axes, q ⊕ δθ, at fixed ω (not at fixed θ̇ of a
+    /// chart): with π its entries of p, the body angular momentum,
+    /// π̇ = π × ω + ∂T/∂θ + Q (Hamel's form; Euler's equations for a lone
+    /// body, where ∂T/∂θ = 0).
     fn kinetic_gradient(
         &self,
         q: &SVector<T, Q>,

@@ -27,8 +27,8 @@ pub(super) struct Forms<'a> {
 /// the inputs' forces, both constrained forms' rows and the Coriolis matrix
 /// included (derived in θ before: the rates γ and c = −(Ȧ q̇ + ḃ) need the
 /// rows' θ-derivatives, and the Christoffel symbols of M(θ) at θ = 0 give C
-/// with h = C ω and Ṁ − 2C skew along the motion). What takes no orientation
-/// yet (Hamilton's form) is refused before the derivation.
+/// with h = C ω and Ṁ − 2C skew along the motion), and ∂T/∂θ for
+/// Hamilton's form.
 pub(super) fn at_centre(
     ctx: &mut Context,
     d: &mut Derived,
@@ -74,6 +74,9 @@ pub(super) fn at_centre(
     if let Some(cm) = coriolis {
         c.rows(cm);
     }
+    if let Some(g) = &mut d.chart_gradient {
+        c.all(g);
+    }
     if let Some(i) = &mut d.inverse {
         c.all(&mut i.torques);
         c.all(&mut i.gravity);
@@ -106,6 +109,36 @@ pub(super) fn at_centre(
         c.all(&mut r.rates);
         c.all(&mut r.positions);
     }
+}
+
+/// The kinetic-energy gradient at fixed ω from its value at fixed θ̇ (both
+/// at θ = 0): ω = (1 − ½[θ]×) θ̇ + O(θ²), so at fixed θ̇ a turn δθ also
+/// changes ω by −½ δθ × ω, and ∂T/∂θ|θ̇ = ∂T/∂θ|ω + ½ π × ω with π = ∂T/∂ω.
+/// What Hamilton's form with orientations needs is ∂T/∂θ|ω, the derivative
+/// along body-axis turns (X T, Hamel's equations π̇ = π × ω + X T + Q).
+pub(super) fn at_fixed_omega(
+    ctx: &mut Context,
+    mut gradient: Vec<Sym>,
+    momentum: Option<&[Sym]>,
+    (first, orientations): (usize, usize),
+) -> Vec<Sym> {
+    let p = momentum.expect("the momentum is derived with `emit(hamiltonian)`");
+    let v = ctx.velocities();
+    let half = ctx.rational(1, 2);
+    for k in 0..orientations {
+        let o = first + 3 * k;
+        for j in 0..3 {
+            let (a, b) = (o + (j + 1) % 3, o + (j + 2) % 3);
+            // (π × ω)_j = π_a ω_b − π_b ω_a.
+            let ab = ctx.mul(p[a], v[b]);
+            let ba = ctx.mul(p[b], v[a]);
+            let cross = ctx.sub(ab, ba);
+            let correction = ctx.mul(half, cross);
+            let e = ctx.sub(gradient[o + j], correction);
+            gradient[o + j] = ctx.collect(e);
+        }
+    }
+    gradient
 }
 
 /// C_θ + ½ M W, W the block-diagonal [ω]× at each orientation's ω (zero

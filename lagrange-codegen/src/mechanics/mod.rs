@@ -171,10 +171,13 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
         .then(|| derivatives::rhs_jacobians(&mut ctx, tree.as_ref(), &motion, &sources, free));
     let chart_mass =
         extra::chart_mass(&mut ctx, extras.contains(&Extra::Coriolis) && free, kinetic);
+    let chart_gradient = (extras.contains(&Extra::Hamiltonian) && free)
+        .then(|| extra::kinetic_gradient(&mut ctx, kinetic));
     let kinetic = energy::cheaper_kinetic(&mut ctx, rheonomic, kinetic, &motion.mass);
     let integral = energy::integral(&mut ctx, rheonomic, kinetic, forces.potential, &motion.mass);
     let derived = Derived {
         chart_mass,
+        chart_gradient,
         coordinates,
         orientations,
         parameters,
@@ -391,6 +394,9 @@ fn equations(
 pub(super) struct Derived {
     /// M written in the orientations' θ (for `emit(coriolis)` with them).
     chart_mass: Option<Vec<Vec<Sym>>>,
+    /// ∂T/∂q at fixed q̇ written in the orientations' θ (for
+    /// `emit(hamiltonian)` with them), taken at the centre with the rest.
+    chart_gradient: Option<Vec<Sym>>,
     coordinates: Vec<String>,
     orientations: Vec<crate::lowered::OrientationModel>,
     parameters: Vec<String>,
@@ -521,7 +527,10 @@ fn finish(
     );
     let hamiltonian = wants(Extra::Hamiltonian);
     let momentum = (hamiltonian || d.rheonomic).then(|| extra::momentum(&mut ctx, d.kinetic));
-    let kinetic_gradient = hamiltonian.then(|| extra::kinetic_gradient(&mut ctx, d.kinetic));
+    let kinetic_gradient = hamiltonian.then(|| match d.chart_gradient.take() {
+        Some(g) => chart::at_fixed_omega(&mut ctx, g, momentum.as_deref(), slots),
+        None => extra::kinetic_gradient(&mut ctx, d.kinetic),
+    });
     let jacobians = wants(Extra::Jacobians);
     let constraints = (early.constraints).or_else(|| {
         c.multipliers

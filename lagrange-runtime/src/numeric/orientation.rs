@@ -42,13 +42,13 @@ pub const UNIT_TOLERANCE: f64 = 1e-6;
 
 /// The slots of q and v in step: `Ordinary(i, j)` for a coordinate q_i with
 /// rate v_j, `Rotation(o)` for an orientation.
-enum Slot {
+pub(crate) enum Slot {
     Ordinary(usize, usize),
     Rotation(Orientation),
 }
 
 /// Walks the layout: every slot of q and v exactly once, in order.
-fn slots(layout: &[Orientation], nq: usize) -> impl Iterator<Item = Slot> + '_ {
+pub(crate) fn slots(layout: &[Orientation], nq: usize) -> impl Iterator<Item = Slot> + '_ {
     let (mut i, mut j, mut k) = (0, 0, 0);
     std::iter::from_fn(move || {
         if i >= nq {
@@ -170,7 +170,7 @@ pub fn norm<T: Real>([w, x, y, z]: [T; 4]) -> T {
 }
 
 /// ½ q ⊗ (0, ω).
-fn quaternion_rate<T: Real>([w, x, y, z]: [T; 4], [a, b, c]: [T; 3]) -> [T; 4] {
+pub(crate) fn quaternion_rate<T: Real>([w, x, y, z]: [T; 4], [a, b, c]: [T; 3]) -> [T; 4] {
     let h = T::lit(0.5);
     [
         -h * (x * a + y * b + z * c),

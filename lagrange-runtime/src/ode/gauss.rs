@@ -3,11 +3,11 @@
 // Index loops mirror the block-matrix formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::mechanical::Mechanical;
+use super::canonical::Canonical;
 use super::run::{Run, fixed_steps};
 use super::verlet::fixed_step_count;
 use super::{
-    DenseSegment, Integrator, Pair, SecondOrder, Stats, check_orientations, check_problem, settle,
+    DenseSegment, Integrator, Pair, SecondOrder, Stats, check_orientations, check_problem,
 };
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
@@ -20,20 +20,29 @@ use nalgebra::{DMatrix, SVector};
 /// default) or s = 1 (the implicit midpoint rule, order 2).
 ///
 /// The method is applied to Hamilton's equations in (q, p), p = ∂L/∂q̇,
-/// q̇ = M(q)⁻¹(p − a), ṗ = ∂T/∂q + Q (see [`Mechanical`]), where it is
+/// q̇ = M(q)⁻¹(p − a), ṗ = ∂T/∂q + Q (see [`Mechanical`](super::Mechanical)), where it is
 /// symplectic and symmetric for *any* configuration-dependent mass matrix: the
 /// energy error of a conservative system stays bounded over very long runs, and
 /// quadratic invariants (angular momentum) are conserved to round-off. Applied to
 /// (q, q̇) instead it would not be symplectic unless M is constant.
+///
+/// With free orientations (quaternions in q, body-axis ω in v) each
+/// quaternion u is a coordinate of its own with a four-number momentum P,
+/// π = ½ Im(ū ⊗ P) the body angular momentum (the quaternion embedding of
+/// Miller et al., 2002). There |u|² is a quadratic first integral, so the
+/// quaternions stay unit to round-off without a projection, and the world
+/// angular momentum of a torque-free system (a top's vertical and axial
+/// momenta) is kept to round-off as well: the method is a symplectic
+/// integrator on the rotation group.
 ///
 /// The system must provide that form: [`SecondOrder::mechanical`] must return
 /// `Some` — [`Dynamics`](crate::Dynamics) does when the system implements
 /// [`Lagrangian::kinetic_gradient`](crate::Lagrangian::kinetic_gradient).
 ///
 /// The stage equations are solved by simplified Newton with a finite-difference
-/// Jacobian of (q̇, ṗ) evaluated once per step (2N + 1 evaluations, counted in
+/// Jacobian of (q̇, ṗ) evaluated once per step (2Q + 1 evaluations, counted in
 /// [`Stats::jacobians`] and [`Stats::evaluations`]) and one LU factorisation of
-/// the 2sN × 2sN iteration matrix per step, iterating until the correction
+/// the 2sQ × 2sQ iteration matrix per step, iterating until the correction
 /// reaches round-off. Failure to converge within [`max_iterations`](Self::max_iterations)
 /// is [`Error::NewtonFailure`]. The dense output is the cubic Hermite
 /// interpolant in (q, q̇, q̈).
@@ -137,21 +146,15 @@ impl Gauss {
             ));
         }
         let n = fixed_step_count("Gauss", self.h, self.max_steps, t0, t1)?;
-        if Q != N {
-            return Err(Error::InvalidSettings(
-                "Gauss integrates Hamilton's form, p = ∂L/∂q̇, which a system with \
-                 orientations (quaternions, angular velocities as speeds) does not have: \
-                 use Radau5, Dop853, Dopri5, Rk4 or StormerVerlet"
-                    .into(),
-            ));
-        }
-        let Some(mech) = rhs.mechanical() else {
+        let Some(mechanical) = rhs.mechanical() else {
             return Err(Error::InvalidSettings(
                 "Gauss needs the system in Hamilton's form (momentum, mass matrix and \
                  ∂T/∂q): SecondOrder::mechanical returned None"
                     .into(),
             ));
         };
+        let mech = Canonical::new(mechanical, F::ORIENTATIONS);
+        let mech = &mech;
         let s3 = 3f64.sqrt() / 6.0;
         match self.stages {
             1 => self.run(rhs, mech, (t0, t1, q0, v0), n, [[0.5]], [1.0], [0.5], run),
@@ -174,9 +177,9 @@ impl Gauss {
 
 /// The workspace of one run: sized once, reused at every step.
 struct Work<T: Real> {
-    /// Jacobian of (q̇, ṗ) with respect to (q, p), 2N × 2N.
+    /// Jacobian of (q̇, Ṗ) with respect to (q, P), 2Q × 2Q.
     jac: DMatrix<T>,
-    /// The LU factors of I − h A ⊗ J, 2sN × 2sN.
+    /// The LU factors of I − h A ⊗ J, 2sQ × 2sQ.
     lu: DMatrix<T>,
     pivots: Vec<usize>,
     /// Right-hand side and solution of the Newton system.
@@ -218,7 +221,7 @@ fn update<T: Real, const N: usize, const Q: usize, const S: usize>(
     z1
 }
 
-/// Component k of the 2N vector (q, p) stored as a pair.
+/// Component k of the 2Q vector (q, P) stored as a pair.
 #[inline]
 fn get<T: Real, const N: usize, const Q: usize>(z: &Pair<T, N, Q>, k: usize) -> T {
     if k < Q { z.q[k] } else { z.v[k - Q] }
@@ -229,22 +232,21 @@ fn get_mut<T: Real, const N: usize, const Q: usize>(z: &mut Pair<T, N, Q>, k: us
     if k < Q { &mut z.q[k] } else { &mut z.v[k - Q] }
 }
 
-/// (q̇, ṗ) at (t, q, p), counting one evaluation. A non-finite value at a
-/// finite (q, p) is the system's NaN (a force that overflows), reported as
-/// such: passed on, it would only surface as a Newton failure.
+/// (q̇, Ṗ) at the canonical state z = (q, P), counting one evaluation. A
+/// non-finite value at a finite (q, P) is the system's NaN (a force that
+/// overflows), reported as such: passed on, it would only surface as a
+/// Newton failure.
 fn hamilton<T: Real, const N: usize, const Q: usize>(
-    mech: &dyn Mechanical<T, N, Q>,
+    mech: &Canonical<'_, T, N, Q>,
     t: T,
-    z: &Pair<T, N, Q>,
+    z: &Pair<T, Q, Q>,
     evaluations: &mut usize,
-) -> Result<Pair<T, N, Q>, Error> {
+) -> Result<Pair<T, Q, Q>, Error> {
     *evaluations += 1;
-    let v = mech.velocity(t, &z.q, &z.v)?;
-    let pdot = mech.momentum_rate(t, &z.q, &v)?;
-    // Hamilton's form has q̇ = v: `run_stages` refuses orientations (Q ≠ N).
-    let f = Pair::new(SVector::from_fn(|i, _| v[i]), pdot);
+    let field = mech.field(t, &z.q, &z.v)?;
+    let f = Pair::new(field.q_rate, field.p_rate);
     if !f.is_finite() {
-        return Err(Error::non_finite(t, &z.q, &v));
+        return Err(Error::non_finite(t, &z.q, &field.velocity));
     }
     Ok(f)
 }
@@ -254,7 +256,7 @@ impl Gauss {
     fn run<T: Real, const N: usize, const Q: usize, const S: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
-        mech: &dyn Mechanical<T, N, Q>,
+        mech: &Canonical<'_, T, N, Q>,
         (t0, t1, q0, v0): (T, T, SVector<T, Q>, SVector<T, N>),
         n: usize,
         a: [[f64; S]; S],
@@ -263,7 +265,7 @@ impl Gauss {
         run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
         let (a, b, c) = (a.map(|r| r.map(T::lit)), b.map(T::lit), c.map(T::lit));
-        let dim = Q + N;
+        let dim = 2 * Q;
         let mut work = Work {
             jac: DMatrix::zeros(dim, dim),
             lu: DMatrix::zeros(S * dim, S * dim),
@@ -272,7 +274,9 @@ impl Gauss {
         };
         let h = T::lit(self.h);
         let (mut q, mut v) = (q0, v0);
-        let mut p = mech.momentum(t0, &q, &v)?;
+        // The canonical state: its quaternions are kept unit by the method
+        // itself, so the step goes on from (q, P) as the method left them.
+        let mut z = Pair::new(q, mech.momentum(t0, &q, &v)?);
         let stats = &mut run.stats;
         stats.evaluations += 1;
         let mut acc = rhs.acceleration(t0, &q, &v)?;
@@ -280,10 +284,9 @@ impl Gauss {
         for (t, t_next) in fixed_steps(t0, t1, h, n) {
             let stats = &mut run.stats;
             let hk = t_next - t;
-            let z0 = Pair::new(q, p);
-            let z1 = self.advance(mech, t, hk, &z0, &a, &b, &c, &mut work, stats)?;
-            let (mut q1, p1) = (z1.q, z1.v);
-            let mut v1 = mech.velocity(t_next, &q1, &p1)?;
+            let z1 = self.advance(mech, t, hk, &z, &a, &b, &c, &mut work, stats)?;
+            let mut q1 = z1.q;
+            let mut v1 = mech.velocity(t_next, &z1.q, &z1.v)?;
             stats.evaluations += 1;
             let mut acc1 = rhs.acceleration(t_next, &q1, &v1)?;
             let segment = DenseSegment::hermite(
@@ -294,15 +297,17 @@ impl Gauss {
                 &Pair::new(q1, v1),
                 &Pair::new(rhs.rate(&q1, &v1), acc1),
             );
-            let mut p1 = p1;
-            if settle(rhs, t_next, &mut q1, &mut v1)? {
-                p1 = mech.momentum(t_next, &q1, &v1)?;
+            z = z1;
+            // No normalisation: |u|² is a first integral the method keeps,
+            // and the recorded unit error shows that it does.
+            if rhs.project(t_next, &mut q1, &mut v1)? {
+                z = Pair::new(q1, mech.momentum(t_next, &q1, &v1)?);
                 stats.evaluations += 1;
                 acc1 = rhs.acceleration(t_next, &q1, &v1)?;
             }
             let stop = run.record(rhs, segment, q1, v1)?;
             run.stats.accepted += 1;
-            (q, v, p, acc) = (q1, v1, p1, acc1);
+            (q, v, acc) = (q1, v1, acc1);
             if stop {
                 break;
             }
@@ -314,17 +319,17 @@ impl Gauss {
     #[allow(clippy::too_many_arguments)]
     fn advance<T: Real, const N: usize, const Q: usize, const S: usize>(
         &self,
-        mech: &dyn Mechanical<T, N, Q>,
+        mech: &Canonical<'_, T, N, Q>,
         t: T,
         h: T,
-        z0: &Pair<T, N, Q>,
+        z0: &Pair<T, Q, Q>,
         a: &[[T; S]; S],
         b: &[T; S],
         c: &[T; S],
         work: &mut Work<T>,
         stats: &mut Stats,
-    ) -> Result<Pair<T, N, Q>, Error> {
-        let dim = Q + N;
+    ) -> Result<Pair<T, Q, Q>, Error> {
+        let dim = 2 * Q;
         let eps = T::default_epsilon();
         let f0 = hamilton(mech, t, z0, &mut stats.evaluations)?;
         self.jacobian(mech, t, z0, &f0, &mut work.jac, &mut stats.evaluations)?;
@@ -339,8 +344,8 @@ impl Gauss {
             });
         }
         // Stage increments Z_i = z(t + c_i h) − z0, started on the tangent.
-        let mut zs: [Pair<T, N, Q>; S] = std::array::from_fn(|i| f0.scale(c[i] * h));
-        let mut fs = [Pair::<T, N, Q>::zeros(); S];
+        let mut zs: [Pair<T, Q, Q>; S] = std::array::from_fn(|i| f0.scale(c[i] * h));
+        let mut fs = [Pair::<T, Q, Q>::zeros(); S];
         let mut previous = T::max_value().unwrap_or(T::one() / eps);
         for iteration in 1..=self.max_iterations {
             for i in 0..S {
@@ -390,25 +395,25 @@ impl Gauss {
         })
     }
 
-    /// Forward-difference Jacobian of (q̇, ṗ) at z0 (f0 = its value there), with
+    /// Forward-difference Jacobian of (q̇, Ṗ) at z0 (f0 = its value there), with
     /// Hairer's increment sqrt(ε · max(1e-5, |z_k|)).
     fn jacobian<T: Real, const N: usize, const Q: usize>(
         &self,
-        mech: &dyn Mechanical<T, N, Q>,
+        mech: &Canonical<'_, T, N, Q>,
         t: T,
-        z0: &Pair<T, N, Q>,
-        f0: &Pair<T, N, Q>,
+        z0: &Pair<T, Q, Q>,
+        f0: &Pair<T, Q, Q>,
         jac: &mut DMatrix<T>,
         evaluations: &mut usize,
     ) -> Result<(), Error> {
         let eps = T::default_epsilon();
-        for col in 0..Q + N {
+        for col in 0..2 * Q {
             let mut z = *z0;
             let zk = get(z0, col);
             let delta = (eps * T::lit(1e-5).max(abs(zk))).sqrt();
             *get_mut(&mut z, col) = zk + delta;
             let f = hamilton(mech, t, &z, evaluations)?;
-            for r in 0..Q + N {
+            for r in 0..2 * Q {
                 jac[(r, col)] = (get(&f, r) - get(f0, r)) / delta;
             }
         }

@@ -28,7 +28,10 @@ pub trait Mechanical<T: Real, const N: usize, const Q: usize = N> {
     fn momentum(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error>;
 
     /// ṗ = ∂T/∂q + Q: the kinetic-energy gradient plus all generalized forces
-    /// (a forcing's ΔQ included).
+    /// (a forcing's ΔQ included). For a free orientation, the torque
+    /// ∂T/∂θ + Q_θ in body axes at fixed ω (see
+    /// [`Lagrangian::kinetic_gradient`](crate::Lagrangian::kinetic_gradient));
+    /// the gyroscopic π × ω is not part of it.
     ///
     /// # Errors
     /// Whatever prevents its evaluation, or a system that cannot provide ∂T/∂q.

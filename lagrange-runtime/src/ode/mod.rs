@@ -13,6 +13,7 @@
 //! New integrators implement [`Integrator`].
 
 mod adaptive;
+mod canonical;
 mod controller;
 mod dense;
 mod dop853;
