@@ -352,7 +352,9 @@
 //! their rates c = −(Ȧ q̇ + ḃ) are derived in the moving chart and taken at
 //! its centre, so that A v + b = (u, 0) in v, and the system is
 //! [`Reduced<T, N, K, Q>`](Reduced) ([`ReducedDynamics`] steps the quaternion
-//! on the group; [`Linearizer::reduced`] stays with Q = N). The rolling
+//! on the group; [`Linearizer::reduced_tangent`] linearises it in the tangent
+//! space, as [`Linearizer::constrained_tangent`] does the multiplier form,
+//! while [`Linearizer::reduced`] stays with Q = N). The rolling
 //! sphere and disk with a quaternion on their angular velocities match the
 //! multiplier form and the Euler-angle versions (`tests/reduced_orientation.rs`).
 //!

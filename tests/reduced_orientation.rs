@@ -496,3 +496,108 @@ fn a_controlled_run_takes_the_reduced_form_with_orientations() {
     assert!(gap < 1e-7, "{gap:e}");
     assert!(vr[0].abs() > 1e-3, "the push moved it: {vr:?}");
 }
+
+/// The disk rolling upright along x at spin ω about its axle (body y, here
+/// world y): centre (0, 0, a), identity orientation.
+fn upright(disk: &SpinningDisk, spin: f64) -> lagrange::linear::OperatingPoint<f64, 6, 0, 7> {
+    lagrange::linear::OperatingPoint::on_group(
+        SVector::from([0.0, 0.0, disk.a, 1.0, 0.0, 0.0, 0.0]),
+        SVector::from([disk.a * spin, 0.0, 0.0, 0.0, spin, 0.0]),
+    )
+}
+
+/// The disk's states: its position on the floor, its turn, its spin rates.
+fn disk_linearizer() -> lagrange::linear::Linearizer {
+    lagrange::linear::Linearizer::new()
+        .coordinates(&["x", "y", "disk_q.θx", "disk_q.θy", "disk_q.θz"])
+        .speeds(&["disk_q.wx", "disk_q.wy", "disk_q.wz"])
+}
+
+/// `Linearizer::reduced_tangent` reads the model of the multiplier form's
+/// `constrained_tangent` from the reduced form's dynamics: the upright
+/// rolling disk's A at four spins, the critical spin √(g/3a) from a sweep
+/// of the reduced form, and the pushed sphere's B.
+#[test]
+fn the_reduced_form_linearises_on_the_group_as_the_multiplier_form() {
+    use lagrange::linear::sweep;
+    let disk = thin_disk(1.0, 0.3, 9.81);
+    for spin in [0.5, 2.0, 3.0, 6.0] {
+        let op = upright(&disk, spin);
+        let reduced = disk_linearizer().reduced_tangent(&disk, &op).unwrap();
+        let multipliers = disk_linearizer().constrained_tangent(&disk, &op).unwrap();
+        assert_eq!(reduced.states(), multipliers.states());
+        let gap = (reduced.a() - multipliers.a()).amax();
+        eprintln!("upright disk at spin {spin}: A of the two forms within {gap:.1e}");
+        assert!(gap < 1e-12 * multipliers.a().amax(), "{gap:e}");
+    }
+    let exact = (disk.g / (3.0 * disk.a)).sqrt();
+    let spins: Vec<f64> = (1..=20).map(|i| 0.5 * i as f64).collect();
+    let linear = |w: f64| disk_linearizer().reduced_tangent(&disk, &upright(&disk, w));
+    let found = sweep(&spins, linear)
+        .unwrap()
+        .boundaries(1e-4, 1e-14)
+        .unwrap();
+    assert_eq!(found.len(), 1, "{found:?}");
+    let rel = (found[0].parameter - exact).abs() / exact;
+    eprintln!(
+        "reduced disk: critical spin {:.10}, √(g/3a) {exact:.10}",
+        found[0].parameter
+    );
+    assert!(rel < 1e-7, "{rel:e}");
+
+    let ball = PushedBall {
+        m: BALL.m,
+        j1: BALL.j1,
+        j2: BALL.j2,
+        j3: BALL.j3,
+        a: BALL.a,
+        g: BALL.g,
+    };
+    let q0 = SVector::from([0.2, -0.1, BALL.a, 0.5, 0.5, 0.5, 0.5]);
+    let v0 = SVector::from([0.0, 0.0, 0.0, 0.3, -0.2, 2.0]);
+    let v0 = ReducedDynamics::new(&ball)
+        .consistent_velocities(0.0, &q0, &v0)
+        .unwrap();
+    let op = lagrange::linear::OperatingPoint::on_group(q0, v0).input(SVector::from([0.0]));
+    let lz = lagrange::linear::Linearizer::new();
+    let reduced = lz.reduced_tangent(&ball, &op).unwrap();
+    let multipliers = lz.constrained_tangent(&ball, &op).unwrap();
+    assert_eq!(reduced.states(), multipliers.states());
+    let gaps = [
+        (reduced.a() - multipliers.a()).amax(),
+        (reduced.b() - multipliers.b()).amax(),
+    ];
+    eprintln!("pushed sphere: A and B of the two forms within {gaps:?}");
+    assert!(gaps[0] < 1e-10 && gaps[1] < 1e-12, "{gaps:?}");
+    assert!(reduced.b().amax() > 0.1, "the push acts: {}", reduced.b());
+}
+
+/// An operating point off the constraints or off the unit sphere is a typed
+/// error naming what is wrong.
+#[test]
+fn the_reduced_linearisation_refuses_a_bad_operating_point() {
+    use lagrange::linear::{Linearizer, OperatingPoint};
+    let disk = thin_disk(1.0, 0.3, 9.81);
+    let mut op = upright(&disk, 2.0);
+    op.v[0] += 0.1;
+    match Linearizer::new().reduced_tangent(&disk, &op) {
+        Err(Error::Linear(lagrange::LinearError::InconsistentOperatingPoint {
+            worst,
+            velocity_residual,
+            ..
+        })) => {
+            assert!(worst.contains("roll_x"), "{worst}");
+            assert!((velocity_residual - 0.1).abs() < 1e-12);
+        }
+        other => panic!("{other:?}"),
+    }
+    let off = OperatingPoint::on_group(
+        SVector::from([0.0, 0.0, disk.a, 2.0, 0.0, 0.0, 0.0]),
+        SVector::from([0.6, 0.0, 0.0, 0.0, 2.0, 0.0]),
+    );
+    let result = Linearizer::new().reduced_tangent(&disk, &off);
+    assert!(
+        matches!(result, Err(Error::NonUnitQuaternion { .. })),
+        "{result:?}"
+    );
+}

@@ -247,8 +247,8 @@ impl Linearizer {
     /// form.
     ///
     /// Systems in coordinates alone (Q = N: the bound is [`Reduced`] with its
-    /// default Q); a reduced form with free orientations runs
-    /// ([`ReducedDynamics`](crate::ReducedDynamics)) but is not linearised here.
+    /// default Q); a reduced form with free orientations is linearised by
+    /// [`reduced_tangent`](Self::reduced_tangent), in the tangent space.
     ///
     /// # Errors
     /// [`LinearError::InconsistentOperatingPoint`] if q̇0 ≠ W u0 + w beyond the

@@ -52,16 +52,16 @@ use crate::error::{Error, unit_quaternions};
 use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::numeric::Real;
 use crate::system::{Constrained, Driven, Lagrangian};
-use nalgebra::{DMatrix, SVector};
+use nalgebra::{DMatrix, DVector, SVector};
 
 /// The constrained dynamics' derivatives at the operating point: X_q, X_v,
 /// X_u and D as the module describes, and G.
-struct Slopes {
+pub(super) struct Slopes {
     xq: DMatrix<f64>,
     xv: DMatrix<f64>,
     xu: DMatrix<f64>,
     dvel: DMatrix<f64>,
-    g: DMatrix<f64>,
+    pub(super) g: DMatrix<f64>,
 }
 
 impl Linearizer {
@@ -150,7 +150,12 @@ impl Linearizer {
         let a0 = accel(&q, &v, &u)?;
         let names = states::<S, T, N, Q>();
         let directions: Vec<&str> = names[..N].iter().map(String::as_str).collect();
-        let mut slopes = differences::<S, T, _, N, K, P, Q>(sys, accel, (&q, &v, &u, t))?;
+        let rows = |q: &SVector<T, Q>| {
+            let (g, g0) = sys.constraint_jacobian(q, t);
+            (dm(&g), dv(&g0))
+        };
+        let step = |d: &SVector<T, N>| advance::<S, T, N, Q>(&q, d);
+        let mut slopes = differences(accel, rows, (&q, &v, &u), step)?;
         let part =
             self.partition::<S, T, N, K, Q>(&slopes.g, (&q, t), [&directions, &S::VELOCITIES])?;
         let kinematics = fixed_axes::<S, T, N, Q>(&mut slopes, &v, &a0);
@@ -158,14 +163,26 @@ impl Linearizer {
         if !(finite(&a) && finite(&b)) {
             return Err(Error::non_finite(t, &q, &v));
         }
-        let ni = part.ci.len();
+        Ok(self.model(&part, (a, b), &names, &S::INPUTS))
+    }
+
+    /// The linear model in the partition's independent states, named as
+    /// `names` (the N tangent directions, then the N velocities).
+    pub(super) fn model(
+        &self,
+        part: &Partition,
+        (a, b): (DMatrix<f64>, DMatrix<f64>),
+        names: &[String],
+        inputs: &[&str],
+    ) -> Linear {
+        let (ni, n) = (part.ci.len(), names.len() / 2);
         let mut states: Vec<String> = part.ci.iter().map(|&i| names[i].clone()).collect();
-        states.extend(part.si.iter().map(|&i| names[N + i].clone()));
+        states.extend(part.si.iter().map(|&i| names[n + i].clone()));
         let named = |names: &Option<Vec<String>>| names.as_ref().map_or(0, Vec::len);
         let mut completed = states[named(&self.coordinates)..ni].to_vec();
         completed.extend(states[ni + named(&self.speeds)..].iter().cloned());
-        let inputs = S::INPUTS.iter().map(|s| s.to_string()).collect();
-        Ok(Linear::from_parts(a, b, states, inputs, ni, None).with_completed(completed))
+        let inputs = inputs.iter().map(|s| s.to_string()).collect();
+        Linear::from_parts(a, b, states, inputs, ni, None).with_completed(completed)
     }
 
     /// The operating point's constraint residuals within the consistency
@@ -195,33 +212,37 @@ impl Linearizer {
 }
 
 /// X_q, X_v, X_u and D by central differences at (q, v, u, t), body axes;
-/// `accel` is the multiplier form's a(q, v, u).
-fn differences<S, T, A, const N: usize, const K: usize, const P: usize, const Q: usize>(
-    sys: &S,
+/// `accel` is the form's a(q, v, u), `rows` the constraint rows (G, g) at q.
+pub(super) fn differences<T, A, R, const N: usize, const P: usize, const Q: usize>(
     accel: A,
-    (q, v, u, t): (&SVector<T, Q>, &SVector<T, N>, &SVector<T, P>, T),
+    rows: R,
+    (q, v, u): (&SVector<T, Q>, &SVector<T, N>, &SVector<T, P>),
+    advance: impl Fn(&SVector<T, N>) -> SVector<T, Q>,
 ) -> Result<Slopes, Error>
 where
-    S: Constrained<T, N, K, Q>,
     T: Real,
     A: Fn(&SVector<T, Q>, &SVector<T, N>, &SVector<T, P>) -> Result<SVector<T, N>, Error>,
+    R: Fn(&SVector<T, Q>) -> (DMatrix<f64>, DVector<f64>),
 {
     let velocity = |d: SVector<T, N>| {
-        let (g, g0) = sys.constraint_jacobian(&advance::<S, T, N, Q>(q, &d), t);
-        g * v + g0
+        let (g, g0) = rows(&advance(&d));
+        (g * dv(v) + g0).iter().copied().collect::<Vec<f64>>()
     };
-    let along = |d: SVector<T, N>| accel(&advance::<S, T, N, Q>(q, &d), v, u);
+    let along = |d: SVector<T, N>| accel(&advance(&d), v, u);
+    let g = rows(q).0;
+    let k = g.nrows();
     let mut s = Slopes {
         xq: DMatrix::zeros(N, N),
         xv: DMatrix::zeros(N, N),
         xu: DMatrix::zeros(N, P),
-        dvel: DMatrix::zeros(K, N),
-        g: dm(&sys.constraint_jacobian(q, t).0),
+        dvel: DMatrix::zeros(k, N),
+        g,
     };
     for j in 0..N {
         let (h, e) = unit::<T, N>(j, 1.0);
         set(&mut s.xq, j, column(along(e)?, along(-e)?, h));
-        set(&mut s.dvel, j, column(velocity(e), velocity(-e), h));
+        let (plus, minus) = (velocity(e), velocity(-e));
+        set(&mut s.dvel, j, difference::<T>(&plus, &minus, h));
         let (h, e) = unit::<T, N>(j, v[j].to_f64());
         let rates = column(accel(q, &(v + e), u)?, accel(q, &(v - e), u)?, h);
         set(&mut s.xv, j, rates);
@@ -252,11 +273,16 @@ fn unit<T: Real, const R: usize>(j: usize, x: f64) -> (f64, SVector<T, R>) {
 /// gives an exact zero, as the symbolic derivatives would, so that
 /// [`Linear::stability`] sees its zero eigenvalue as structural.
 fn column<T: Real, const R: usize>(plus: SVector<T, R>, minus: SVector<T, R>, h: f64) -> Vec<f64> {
-    (0..R)
-        .map(|i| {
-            let (p, m) = (plus[i].to_f64(), minus[i].to_f64());
+    let f = |x: SVector<T, R>| x.iter().map(|e| e.to_f64()).collect::<Vec<f64>>();
+    difference::<T>(&f(plus), &f(minus), h)
+}
+
+/// [`column`] of plain numbers.
+fn difference<T: Real>(plus: &[f64], minus: &[f64], h: f64) -> Vec<f64> {
+    let eps = T::default_epsilon().to_f64();
+    (plus.iter().zip(minus))
+        .map(|(&p, &m)| {
             let d = (p - m) / (2.0 * h);
-            let eps = T::default_epsilon().to_f64();
             let floor = 16.0 * eps * (p.abs() + m.abs()) / (2.0 * h);
             if d.abs() <= floor { 0.0 } else { d }
         })
@@ -271,7 +297,7 @@ fn set(m: &mut DMatrix<f64>, j: usize, column: Vec<f64>) {
 
 /// Re-reads the body-axis derivatives in fixed axes (the module's equations):
 /// X_q + X_v W − \[a*_ω\]× and D + G W; returns W, the kinematic rows' δ term.
-fn fixed_axes<S, T, const N: usize, const Q: usize>(
+pub(super) fn fixed_axes<S, T, const N: usize, const Q: usize>(
     s: &mut Slopes,
     v: &SVector<T, N>,
     a: &SVector<T, N>,
@@ -308,7 +334,7 @@ where
 
 /// A and B in (δ_i, δv_s) from the full tangent model (the module's
 /// equations) and the embeddings of the partition.
-fn assemble(
+pub(super) fn assemble(
     part: &Partition,
     s: &Slopes,
     kinematics: &DMatrix<f64>,

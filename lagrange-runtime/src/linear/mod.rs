@@ -145,6 +145,7 @@ mod eigen;
 mod errors;
 mod lqr;
 mod partition;
+mod reduced_tangent;
 mod settings;
 mod solve;
 mod tangent;

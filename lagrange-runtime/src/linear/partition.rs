@@ -28,43 +28,59 @@ impl Linearizer {
         &self,
         g: &DMatrix<f64>,
         (q, t): (&SVector<T, Q>, T),
-        [coordinates, speeds]: [&[&str]; 2],
+        names: [&[&str]; 2],
     ) -> Result<Partition, Error>
     where
         S: Constrained<T, N, K, Q>,
         T: Real,
     {
         let h = holonomic::<S, T, N, K, Q>();
+        self.split(g, h, names, |ratio, rows| {
+            redundant::<S, T, N, K, Q>(t, q, ratio, rows)
+        })
+    }
+
+    /// [`partition`](Self::partition) for constraint rows G (K × N, the
+    /// first `h` holonomic) of any form; `redundant` makes the error naming
+    /// dependent rows from the pivoting's ratio and their indices.
+    pub(super) fn split(
+        &self,
+        g: &DMatrix<f64>,
+        h: usize,
+        [coordinates, speeds]: [&[&str]; 2],
+        redundant: impl Fn(f64, Vec<usize>) -> Error,
+    ) -> Result<Partition, Error> {
+        let (n, k) = (g.ncols(), g.nrows());
         let tol = self.redundant_tolerance;
         let phi_q = g.rows(0, h).into_owned();
         let named_c = match &self.coordinates {
-            Some(names) => indices("coordinates", names, N - h, coordinates)?,
+            Some(names) => indices("coordinates", names, n - h, coordinates)?,
             None => Vec::new(),
         };
         let named_s = match &self.speeds {
-            Some(names) => indices("speeds", names, N.saturating_sub(K), speeds)?,
+            Some(names) => indices("speeds", names, n.saturating_sub(k), speeds)?,
             None => Vec::new(),
         };
         // Named speeds are kept independent as coordinates too where the
         // constraints allow, so that they stay rates of independent coordinates.
         let mut keep = named_c.clone();
         keep.extend(named_s.iter().filter(|i| !named_c.contains(i)));
-        let complement = |named: &[usize]| (0..N).filter(|i| !named.contains(i)).collect();
+        let complement = |named: &[usize]| (0..n).filter(|i| !named.contains(i)).collect();
         // All named: nothing to choose (the checks below still judge the
         // choice, and a singular one is the user's, not redundancy).
-        let all_c = self.coordinates.is_some() && named_c.len() == N - h;
-        let all_s = self.speeds.is_some() && named_s.len() == N.saturating_sub(K);
+        let all_c = self.coordinates.is_some() && named_c.len() == n - h;
+        let all_s = self.speeds.is_some() && named_s.len() == n.saturating_sub(k);
         let (mut ci, mut cd, mut ratio) = if all_c {
             (named_c.clone(), complement(&named_c), 1.0)
         } else {
-            complete_coordinates(&phi_q, &named_c, &keep, N - h)
+            complete_coordinates(&phi_q, &named_c, &keep, n - h)
         };
         if h > 0 && !(ratio >= tol) && keep.len() > named_c.len() {
-            (ci, cd, ratio) = complete_coordinates(&phi_q, &named_c, &named_c, N - h);
+            (ci, cd, ratio) = complete_coordinates(&phi_q, &named_c, &named_c, n - h);
         }
         if h > 0 && !(ratio >= tol) && !all_c {
             let (_, null) = condition(&phi_q.transpose());
-            return Err(redundant::<S, T, N, K, Q>(t, q, ratio, big_entries(&null)));
+            return Err(redundant(ratio, big_entries(&null)));
         }
         check_square("coordinates", &phi_q, &cd, tol, coordinates)?;
         if let Some(&i) = named_s.iter().find(|i| cd.contains(i)) {
@@ -83,10 +99,10 @@ impl Linearizer {
         } else {
             complete_speeds(g, h, &ci, &cd, &named_s)
         };
-        if K > h && !(ratio >= tol) && !all_s {
-            let (_, null) = condition(&g.rows(h, K - h).transpose());
+        if k > h && !(ratio >= tol) && !all_s {
+            let (_, null) = condition(&g.rows(h, k - h).transpose());
             let rows = big_entries(&null).iter().map(|r| r + h).collect();
-            return Err(redundant::<S, T, N, K, Q>(t, q, ratio, rows));
+            return Err(redundant(ratio, rows));
         }
         check_square("speeds", g, &sd, tol, speeds)?;
         Ok(Partition { ci, cd, si, sd })
