@@ -11,6 +11,7 @@ use super::{
 };
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
+use crate::numeric::orientation;
 use crate::numeric::func::abs;
 use crate::numeric::lu::{lu_factor, lu_solve};
 use crate::ode::{Continuation, Record, Trajectory};
@@ -274,6 +275,9 @@ impl Gauss {
         };
         let h = T::lit(self.h);
         let (mut q, mut v) = (q0, v0);
+        // Started on the unit sphere (within the tolerance the start was
+        // checked to), the method keeps it there.
+        orientation::normalise(F::ORIENTATIONS, q.as_mut_slice());
         // The canonical state: its quaternions are kept unit by the method
         // itself, so the step goes on from (q, P) as the method left them.
         let mut z = Pair::new(q, mech.momentum(t0, &q, &v)?);
