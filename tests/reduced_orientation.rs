@@ -460,18 +460,23 @@ struct PushedBall {
     g: f64,
 }
 
-/// A controlled run takes the reduced form with orientations: the pushed
-/// sphere follows its multiplier form under the same open-loop force.
-#[test]
-fn a_controlled_run_takes_the_reduced_form_with_orientations() {
-    let ball = PushedBall {
+/// `BALL` with its push.
+fn pushed_ball() -> PushedBall {
+    PushedBall {
         m: BALL.m,
         j1: BALL.j1,
         j2: BALL.j2,
         j3: BALL.j3,
         a: BALL.a,
         g: BALL.g,
-    };
+    }
+}
+
+/// A controlled run takes the reduced form with orientations: the pushed
+/// sphere follows its multiplier form under the same open-loop force.
+#[test]
+fn a_controlled_run_takes_the_reduced_form_with_orientations() {
+    let ball = pushed_ball();
     let q0 = SVector::from([0.0, 0.0, BALL.a, 0.5, 0.5, 0.5, 0.5]);
     let v0 = SVector::from([0.0, 0.0, 0.0, 0.3, -0.2, 2.0]);
     let v0 = ReducedDynamics::new(&ball)
@@ -545,14 +550,7 @@ fn the_reduced_form_linearises_on_the_group_as_the_multiplier_form() {
     );
     assert!(rel < 1e-7, "{rel:e}");
 
-    let ball = PushedBall {
-        m: BALL.m,
-        j1: BALL.j1,
-        j2: BALL.j2,
-        j3: BALL.j3,
-        a: BALL.a,
-        g: BALL.g,
-    };
+    let ball = pushed_ball();
     let q0 = SVector::from([0.2, -0.1, BALL.a, 0.5, 0.5, 0.5, 0.5]);
     let v0 = SVector::from([0.0, 0.0, 0.0, 0.3, -0.2, 2.0]);
     let v0 = ReducedDynamics::new(&ball)

@@ -381,7 +381,7 @@ impl Linearizer {
     /// consistency tolerance.
     pub(super) fn check_consistent<S, T, const N: usize, const K: usize, const Q: usize>(
         &self,
-        [phi, vel]: [&DVector<f64>; 2],
+        residuals: [&DVector<f64>; 2],
         q: &SVector<T, Q>,
         t: T,
     ) -> Result<(), Error>
@@ -389,6 +389,17 @@ impl Linearizer {
         S: Constrained<T, N, K, Q>,
         T: Real,
     {
+        self.within_tolerance(residuals, (t, q, &S::COORDINATES), &S::CONSTRAINTS)
+    }
+
+    /// Whether the residuals [Φ, G v + g] are within the consistency
+    /// tolerance, else the error naming the worst of the `rows`.
+    pub(super) fn within_tolerance<T: Real, const Q: usize>(
+        &self,
+        [phi, vel]: [&DVector<f64>; 2],
+        (t, q, coordinates): (T, &SVector<T, Q>, &[&'static str]),
+        rows: &[&str],
+    ) -> Result<(), Error> {
         let res = [phi.amax(), vel.amax()];
         let tol = self.consistency_tolerance;
         let worst = if !(res[0] <= tol) {
@@ -401,11 +412,11 @@ impl Linearizer {
         Err(LinearError::InconsistentOperatingPoint {
             t: t.to_f64(),
             q: to_vec(q),
-            coordinates: S::COORDINATES.to_vec(),
+            coordinates: coordinates.to_vec(),
             position_residual: res[0],
             velocity_residual: res[1],
             tolerance: tol,
-            worst: format!("constraint `{}`", S::CONSTRAINTS[worst]),
+            worst: format!("constraint `{}`", rows[worst]),
         }
         .into())
     }

@@ -16,7 +16,7 @@ use super::constrained_tangent::{assemble, differences, fixed_axes};
 use super::dense::{dm, dv, finite};
 use super::settings::{Linearizer, OperatingPoint};
 use super::tangent::{Held, advance, states};
-use crate::error::{Error, LinearError, to_vec, unit_quaternions};
+use crate::error::{Error, to_vec, unit_quaternions};
 use crate::mechanics::ReducedDynamics;
 use crate::numeric::Real;
 use crate::ode::SecondOrder;
@@ -124,23 +124,7 @@ impl Linearizer {
         if !(phi.iter().chain(vel.iter()).all(|x| x.is_finite())) {
             return Err(Error::non_finite(t, q, v));
         }
-        let res = [phi.amax(), vel.amax()];
-        let tol = self.consistency_tolerance;
-        let worst = match (res[0] <= tol, res[1] <= tol) {
-            (true, true) => return Ok(()),
-            (false, _) => phi.iamax(),
-            (true, false) => vel.iamax(),
-        };
-        Err(LinearError::InconsistentOperatingPoint {
-            t: t.to_f64(),
-            q: to_vec(q),
-            coordinates: S::COORDINATES.to_vec(),
-            position_residual: res[0],
-            velocity_residual: res[1],
-            tolerance: tol,
-            worst: format!("constraint `{}`", S::ROWS[K + worst]),
-        }
-        .into())
+        self.within_tolerance([&phi, &vel], (t, q, &S::COORDINATES), &S::ROWS[K..])
     }
 }
 

@@ -11,9 +11,9 @@ use super::{
 };
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
-use crate::numeric::orientation;
 use crate::numeric::func::abs;
 use crate::numeric::lu::{lu_factor, lu_solve};
+use crate::numeric::orientation;
 use crate::ode::{Continuation, Record, Trajectory};
 use nalgebra::{DMatrix, SVector};
 
