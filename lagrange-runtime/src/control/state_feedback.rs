@@ -104,6 +104,17 @@ impl<T: Real, const N: usize, const P: usize, const Q: usize> StateFeedback<T, N
     /// then the velocities' names with a prime), about the state (q0, v0)
     /// with inputs u0. States the model does not have get no feedback.
     ///
+    /// A model of a constrained system from
+    /// [`Linearizer::constrained_tangent`](crate::linear::Linearizer::constrained_tangent)
+    /// (or [`reduced_tangent`](crate::linear::Linearizer::reduced_tangent))
+    /// names its independent states the same way, and its dependent ones get
+    /// no feedback. At a point at rest its axes (the body's at the point,
+    /// fixed in space) and the law's (q ⊖ q0, v − v0) agree to first order,
+    /// so the law is the model's: a rod balanced on a pin made of three
+    /// holonomic rows follows its linear closed loop to second order in the
+    /// error (`tests/constrained_control.rs`). About a moving point (a spin
+    /// ω0 ≠ 0) they differ at first order, and q0 stays where it was.
+    ///
     /// # Errors
     /// [`Error::InvalidSettings`] if the gain is not P × (the model's
     /// states), an entry is not finite, or a state is not one of `S`'s
