@@ -41,9 +41,9 @@ impl Linearizer {
     /// that case too.
     ///
     /// # Errors
-    /// [`Error::NonUnitQuaternion`]; [`LinearError::InconsistentOperatingPoint`]
+    /// [`Error::NonUnitQuaternion`]; [`LinearError::InconsistentOperatingPoint`](crate::LinearError::InconsistentOperatingPoint)
     /// naming the worst row when Φ or the velocity rows do not hold;
-    /// [`LinearError::InvalidPartition`], [`LinearError::SingularPartition`]
+    /// [`LinearError::InvalidPartition`](crate::LinearError::InvalidPartition), [`LinearError::SingularPartition`](crate::LinearError::SingularPartition)
     /// for a bad choice of independent coordinates or speeds;
     /// [`Error::RedundantConstraints`]; [`Error::ReducedFormBreakdown`];
     /// [`Error::SingularMassMatrix`]; [`Error::NonFiniteState`] (also at a
