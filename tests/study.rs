@@ -167,3 +167,58 @@ fn study_of_the_kepler_problem() {
         );
     }
 }
+
+/// A study of a system with an orientation compares rotations on the group
+/// (`.orientations(..)`), and without that call is refused: its errors are
+/// angles, falling at Gauss's order 4, and blind to the quaternion's sign.
+#[test]
+fn a_study_of_a_tumbling_body_measures_angles_on_the_group() {
+    use lagrange::study::Sweep;
+    let sys = TumblingBody {
+        i1: 1.0,
+        i2: 2.0,
+        i3: 3.0,
+    };
+    let omega = [0.3, 1.0, 0.3];
+    let run = |m: Method| {
+        Simulation::new(&sys)
+            .integrator(m)
+            .run([1.0, 0.0, 0.0, 0.0], omega, 0.0..10.0)
+    };
+    let refused = WorkPrecision::new(run)
+        .sweep(Sweep::steps("Gauss", &[0.1], Gauss::step))
+        .run();
+    assert!(
+        matches!(&refused, Err(lagrange::Error::InvalidSettings(m)) if m.contains(".orientations(")),
+        "{refused:?}"
+    );
+    let study = WorkPrecision::new(run)
+        .orientations(TumblingBody::ORIENTATIONS)
+        .sweep(Sweep::steps("Gauss", &[0.2, 0.1], Gauss::step))
+        .repeats(1, std::time::Duration::ZERO)
+        .run()
+        .unwrap();
+    let errors: Vec<f64> = (study.rows().iter())
+        .map(|r| r.measurement().unwrap().error)
+        .collect();
+    let ratio = errors[0] / errors[1];
+    assert!((14.0..18.0).contains(&ratio), "{errors:?}");
+    // Against the run's own final rotation, as q and as −q: no error.
+    let final_q = study.rows()[1].measurement().unwrap().final_state.0.clone();
+    let study_at = |q: [f64; 4]| {
+        WorkPrecision::new(run)
+            .orientations(TumblingBody::ORIENTATIONS)
+            .exact(move |_| SVector::from(q))
+            .sweep(Sweep::steps("Gauss", &[0.1], Gauss::step))
+            .repeats(1, std::time::Duration::ZERO)
+            .run()
+            .unwrap()
+            .rows()[0]
+            .measurement()
+            .unwrap()
+            .error
+    };
+    let q = [final_q[0], final_q[1], final_q[2], final_q[3]];
+    assert!(study_at(q) < 1e-14);
+    assert!(study_at(q.map(|x| -x)) < 1e-14);
+}

@@ -144,3 +144,19 @@ impl KeplerOrbit {
         ]
     }
 }
+
+/// A rigid body turning freely about its centre of mass, principal moments
+/// `i1 < i2 < i3`, its orientation a quaternion (no chart): spun near the
+/// intermediate axis it flips over and over (the Dzhanibekov effect), and
+/// Hamilton's form lets the symplectic Gauss method step it on the group.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    orientation(turn),
+    body(b, mass = 1, inertia = [i1, i2, i3], at = [0, 0, 0], rotation = turn),
+    emit(hamiltonian),
+)]
+pub struct TumblingBody {
+    pub i1: f64,
+    pub i2: f64,
+    pub i3: f64,
+}

@@ -9,7 +9,8 @@
 //! complete elliptic integral), the Kepler problem at e = 0.6 (exact orbit from
 //! Kepler's equation), the spherical pendulum, the double pendulum on a short and
 //! a long horizon (with a Lyapunov-time estimate that says where the reference
-//! itself stops meaning anything), the rolling sphere (reduced form), and a stiff
+//! itself stops meaning anything), the rolling sphere (reduced form), a tumbling
+//! body whose orientation is a quaternion (errors on the group), and a stiff
 //! spring-pendulum (k/m = 1e6, then a sweep of stiffness up to where explicit
 //! methods fail). Last, the pendulum in f32 against f64.
 
@@ -24,6 +25,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use catalog::constrained::RollingSphereReduced;
+use catalog::free::flip_half_period;
 use catalog::study::*;
 use catalog::{DoublePendulum, Pendulum, SphericalPendulum};
 use lagrange::nalgebra::SVector;
@@ -138,6 +140,7 @@ fn main() -> Result<(), Error> {
     let mut scenes = vec![scenes::pendulum()?, scenes::kepler()?, scenes::spherical()?];
     scenes.extend(scenes::double_pendulum()?);
     scenes.push(scenes::rolling_sphere()?);
+    scenes.extend(scenes::tumbling()?);
     scenes.push(stiff::stiff()?);
     let stiffness = stiff::stiffness_sweep()?;
     scenes.push(precision::precision()?);

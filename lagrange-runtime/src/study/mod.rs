@@ -66,6 +66,7 @@ pub use report::{CSV_COLUMNS, MARKDOWN_COLUMNS};
 
 use crate::error::Error;
 use crate::numeric::Real;
+use crate::numeric::orientation::{self, Orientation};
 use crate::ode::Trajectory;
 use crate::ode::{Dop853, Stats};
 use nalgebra::SVector;
@@ -79,28 +80,32 @@ pub const REFERENCE_TOLERANCE: f64 = 1e-14;
 const REFERENCE_MAX_STEPS: usize = 50_000_000;
 
 /// The closure that runs one configuration.
-type RunFn<'a, T, const N: usize> = Box<dyn Fn(Method) -> Result<Trajectory<T, N>, Error> + 'a>;
+type RunFn<'a, T, const N: usize, const Q: usize> =
+    Box<dyn Fn(Method) -> Result<Trajectory<T, N, Q>, Error> + 'a>;
 
 /// The progress callback.
 type RowFn<'a> = Box<dyn FnMut(&Row) + 'a>;
 
 /// Where the reference positions come from.
-enum Reference<'a, const N: usize> {
+enum Reference<'a, const N: usize, const Q: usize> {
     /// DOP853 at the given tolerance through the study's own closure.
     Computed { tolerance: f64, check: bool },
     /// A closed form q(t).
-    Exact(Box<dyn Fn(f64) -> SVector<f64, N> + 'a>),
+    Exact(Box<dyn Fn(f64) -> SVector<f64, Q> + 'a>),
     /// A trajectory the caller computed (e.g. in f64 for an f32 study).
-    Given(Box<Trajectory<f64, N>>),
+    Given(Box<Trajectory<f64, N, Q>>),
 }
 
 /// A work-precision study under construction: the closure that runs one
 /// configuration, the reference, the sweeps. [`run`](Self::run) measures it.
 ///
 /// `T` is the scalar the runs compute in; errors and costs are reported in f64.
-pub struct WorkPrecision<'a, T: Real, const N: usize> {
-    run: RunFn<'a, T, N>,
-    reference: Reference<'a, N>,
+/// A configuration with orientations (Q numbers for N velocities) names them
+/// with [`orientations`](Self::orientations).
+pub struct WorkPrecision<'a, T: Real, const N: usize, const Q: usize = N> {
+    run: RunFn<'a, T, N, Q>,
+    reference: Reference<'a, N, Q>,
+    layout: &'static [Orientation],
     sweeps: Vec<Sweep>,
     repeats: usize,
     repeat_budget: Duration,
@@ -109,7 +114,7 @@ pub struct WorkPrecision<'a, T: Real, const N: usize> {
     on_row: Option<RowFn<'a>>,
 }
 
-impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
+impl<'a, T: Real, const N: usize, const Q: usize> WorkPrecision<'a, T, N, Q> {
     /// A study of the problem that `run` integrates with the method it is given.
     /// The closure must integrate the same initial value problem every time; only
     /// the method changes.
@@ -121,13 +126,16 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
     /// The closure may return any error that converts into [`Error`], such as
     /// the [`Failure`](crate::Failure) of `Simulation::run`: a failed run is a
     /// row with its error, its partial trajectory is not measured.
-    pub fn new<E: Into<Error>>(run: impl Fn(Method) -> Result<Trajectory<T, N>, E> + 'a) -> Self {
+    pub fn new<E: Into<Error>>(
+        run: impl Fn(Method) -> Result<Trajectory<T, N, Q>, E> + 'a,
+    ) -> Self {
         Self {
             run: Box::new(move |m| run(m).map_err(Into::into)),
             reference: Reference::Computed {
                 tolerance: REFERENCE_TOLERANCE,
                 check: true,
             },
+            layout: &[],
             sweeps: Vec::new(),
             repeats: 5,
             repeat_budget: Duration::from_millis(200),
@@ -149,7 +157,7 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
     /// Uses a closed form: `exact(t)` is the exact q(t). It is evaluated only at
     /// the runs' final time, so a solution known only there will do (a periodic
     /// motion after a whole number of periods is back at its initial state).
-    pub fn exact(mut self, exact: impl Fn(f64) -> SVector<f64, N> + 'a) -> Self {
+    pub fn exact(mut self, exact: impl Fn(f64) -> SVector<f64, Q> + 'a) -> Self {
         self.reference = Reference::Exact(Box::new(exact));
         self
     }
@@ -157,7 +165,7 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
     /// Uses a reference trajectory computed by the caller (positions at the final
     /// time are read from its dense output). The way to give an f32 study an
     /// f64 reference.
-    pub fn reference(mut self, reference: Trajectory<f64, N>) -> Self {
+    pub fn reference(mut self, reference: Trajectory<f64, N, Q>) -> Self {
         self.reference = Reference::Given(Box::new(reference));
         self
     }
@@ -168,6 +176,42 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
     pub fn computed_reference(mut self, tolerance: f64, check: bool) -> Self {
         self.reference = Reference::Computed { tolerance, check };
         self
+    }
+
+    /// Names the orientations of a configuration that holds them (a system's
+    /// `ORIENTATIONS`, quaternions in q and body-axis ω in v), so that the
+    /// positions are compared on the group: an orientation's error is the
+    /// angle between the run's rotation and the reference's (the rotation
+    /// vector of q_ref⁻¹ ⊗ q), blind to the sign of the quaternion; the other
+    /// coordinates are compared as they are. A study with Q ≠ N needs it.
+    pub fn orientations(mut self, layout: &'static [Orientation]) -> Self {
+        self.layout = layout;
+        self
+    }
+
+    /// max |q − q_ref| over the coordinates, an orientation's entry the angle
+    /// between the two rotations.
+    fn distance(&self, q: &SVector<f64, Q>, exact: &SVector<f64, Q>) -> f64 {
+        if self.layout.is_empty() {
+            return max_distance(q, exact);
+        }
+        let mut delta = SVector::<f64, N>::zeros();
+        orientation::difference(
+            self.layout,
+            exact.as_slice(),
+            q.as_slice(),
+            delta.as_mut_slice(),
+        );
+        let mut error = max_distance(&delta, &SVector::zeros());
+        for o in self.layout {
+            let angle = delta.fixed_rows::<3>(o.v).norm();
+            error = if angle.is_nan() {
+                f64::NAN
+            } else {
+                error.max(angle)
+            };
+        }
+        error
     }
 
     /// Adds a method's sweep.
@@ -218,6 +262,13 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
                 "work-precision study: the reference's uncertainty must be finite and non-negative, got {u}"
             )));
         }
+        if !orientation::fits(self.layout, Q, N) {
+            return Err(Error::InvalidSettings(format!(
+                "work-precision study: a configuration of {Q} numbers with {N} velocities \
+                 holds orientations; name them with `.orientations(S::ORIENTATIONS)` so that \
+                 rotations are compared on the group"
+            )));
+        }
         let (reference_at, reference) = self.prepare_reference()?;
         let uncertainty = self.uncertainty.or(reference.uncertainty());
         let mut rows = Vec::new();
@@ -247,7 +298,7 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
     #[allow(clippy::type_complexity)]
     fn prepare_reference(
         &mut self,
-    ) -> Result<(Box<dyn Fn(f64) -> Option<State<N>> + 'a>, ReferenceKind), Error> {
+    ) -> Result<(Box<dyn Fn(f64) -> Option<State<N, Q>> + 'a>, ReferenceKind), Error> {
         match std::mem::replace(
             &mut self.reference,
             Reference::Computed {
@@ -274,7 +325,9 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
                 let wall_time = started.elapsed();
                 let uncertainty = if check {
                     let coarse = (self.run)(dop853(10.0 * tolerance))?;
-                    Some(max_distance(&traj.final_state().0, &coarse.final_state().0))
+                    let f64s = |q: SVector<T, Q>| q.map(|x| x.to_f64());
+                    let (fine, coarse) = (traj.final_state().0, coarse.final_state().0);
+                    Some(self.distance(&f64s(fine), &f64s(coarse)))
                 } else {
                     None
                 };
@@ -297,7 +350,7 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
     fn measure(
         &self,
         method: Method,
-        reference_at: &dyn Fn(f64) -> Option<State<N>>,
+        reference_at: &dyn Fn(f64) -> Option<State<N, Q>>,
         uncertainty: f64,
     ) -> Result<Measurement, Error> {
         let started = crate::numeric::clock::Stopwatch::start();
@@ -324,7 +377,7 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
         })?;
         let (q, v) = traj.final_state();
         let (q, v) = (q.map(|x| x.to_f64()), v.map(|x| x.to_f64()));
-        let error = max_distance(&q, &exact);
+        let error = self.distance(&q, &exact);
         let size = exact.amax().max(1e-300);
         let size = if size > 1e-300 { size } else { 1.0 };
         let residual = traj
@@ -346,7 +399,7 @@ impl<'a, T: Real, const N: usize> WorkPrecision<'a, T, N> {
 }
 
 /// Reference positions and, when known, velocities at a time.
-type State<const N: usize> = (SVector<f64, N>, Option<SVector<f64, N>>);
+type State<const N: usize, const Q: usize> = (SVector<f64, Q>, Option<SVector<f64, N>>);
 
 /// max_i |a_i − b_i|, NaN-propagating (a NaN must not pass for a small error).
 fn max_distance<T: Real, const N: usize>(a: &SVector<T, N>, b: &SVector<T, N>) -> f64 {
