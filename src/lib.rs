@@ -279,8 +279,10 @@
 //!   first integral that the method keeps exactly, so it needs no
 //!   normalisation; it also keeps the angular momenta of symmetries (a free
 //!   body's world angular momentum, a top's vertical and axial momenta) to
-//!   round-off, and its energy error stays bounded ([`StormerVerlet`]
-//!   drifts by the exponential map, first order with the gyroscopic terms).
+//!   round-off, and its energy error stays bounded. [`StormerVerlet`]
+//!   drifts by the exponential map and takes its first kick implicitly
+//!   (order 2; on a free body's Euler equations the implicit midpoint rule,
+//!   which keeps its kinetic energy).
 //! - **Linearisation in the tangent space**: [`Linearizer::tangent`] takes
 //!   δθ ∈ R³ per orientation (2·N states), so a steady spin linearises to a
 //!   constant A. With constraints, [`Linearizer::constrained_tangent`] (about

@@ -358,7 +358,8 @@ fn tumbling_over(flips: u32, tightest: i32) -> Result<Scene, Error> {
              the error is the angle between the run's rotation and the reference's. Every \
              method steps the quaternion on the group; Gauss integrates Hamilton's form with \
              the quaternion as four coordinates and four momenta (symplectic, unit norm kept \
-             exactly); Störmer–Verlet is first order here (gyroscopic terms)."
+             exactly); Störmer–Verlet's first kick is implicit with orientations (order 2; on \
+             Euler's equations the implicit midpoint rule, which keeps the kinetic energy)."
         )],
     })
 }

@@ -75,6 +75,16 @@ impl Lagrangian<f64, 6, 7> for FreeBody {
     fn integral(&self, q: &SVector<f64, 7>, v: &SVector<f64, 6>, t: f64) -> f64 {
         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
     }
+
+    /// T depends on neither the position nor, at fixed ω, the rotation.
+    fn kinetic_gradient(
+        &self,
+        _: &SVector<f64, 7>,
+        _: &SVector<f64, 6>,
+        _: f64,
+    ) -> Option<SVector<f64, 6>> {
+        Some(SVector::zeros())
+    }
 }
 
 impl FreeBody {
