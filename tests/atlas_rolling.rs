@@ -4,7 +4,8 @@
 //! sphere's rows) rolled through θ = 0, where z-x-z stops, by
 //! `run_atlas`, against the same bodies with a free orientation
 //! (`catalog::rolling::QuaternionSphere`); and rolled at regular states,
-//! where the user's chart can run them itself, against `run`. The twin
+//! where the user's chart can run them itself, against `run`; and with
+//! events on the user's θ, located in the second chart. The twin
 //! keeps the height and the two rolling rows (written on the ball's
 //! velocity and ω), so both charts run the multiplier form with all three.
 
@@ -313,4 +314,56 @@ fn a_slipping_start_is_refused() {
         }
         e => panic!("{e}"),
     }
+}
+
+/// Events with rolling: Chaplygin's ball from θ = 0 with an event on the
+/// user's θ crossing 0.5 or π − 0.5 (|cos θ| against cos 0.5, the same on
+/// either branch: located in the second chart, where the user's angles
+/// are read back from the rotation) and one on the centre's x crossing 0.5;
+/// located where the quaternion ball's run locates the same functions.
+#[test]
+fn events_on_the_rolling_balls_angles_are_located_as_on_the_quaternion_ball() {
+    let ((q0, v0), (qf, vf)) = rolling_start(BALL.a, [0.4, 0.0, -0.7], [1.5, 2.5, -0.8]);
+    let tilt = 0.5f64.cos();
+    let run = Simulation::new(&ATLAS_BALL)
+        .integrator(Dopri5::tol(TOL))
+        .event(Event::new(move |_, q: &SVector<f64, 6>, _| {
+            q[4].cos().abs() - tilt
+        }))
+        .event(Event::new(|_, q: &SVector<f64, 6>, _| q[0] - 0.5))
+        .run_atlas(q0, v0, 0.0..6.0)
+        .unwrap();
+    let reference = Simulation::new(&BALL)
+        .integrator(Dopri5::tol(TOL))
+        .event(Event::with_orientations(move |_, q, _| {
+            rotation_of(q)[(2, 2)].abs() - tilt
+        }))
+        .event(Event::with_orientations(|_, q: &SVector<f64, 7>, _| {
+            q[0] - 0.5
+        }))
+        .run(qf, vf, 0.0..6.0)
+        .unwrap();
+    let mut worst = 0.0f64;
+    for k in 0..2 {
+        let got = run.times(k);
+        let want: Vec<f64> = (reference.occurrences.iter())
+            .filter(|o| o.event == k)
+            .map(|o| o.t)
+            .collect();
+        assert_eq!(got.len(), want.len(), "event {k}: {got:?} {want:?}");
+        assert!(!got.is_empty(), "event {k} never occurs");
+        for (a, b) in got.iter().zip(&want) {
+            worst = worst.max((a - b).abs());
+        }
+    }
+    // The tilt crossings are located in the second chart.
+    let in_second = (run.times(0).iter()).all(|&t| run.charts_at(t) == 1);
+    eprintln!(
+        "rolling events: {} tilt crossings, {} x crossings, largest time gap {worst:e}, \
+         all tilt crossings in the second chart: {in_second}",
+        run.times(0).len(),
+        run.times(1).len()
+    );
+    assert!(in_second);
+    assert!(worst < 1e-9, "{worst:e}");
 }
