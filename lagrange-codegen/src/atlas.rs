@@ -72,9 +72,13 @@ pub fn twin(cx: &Ctxt, system: &System, at: &Ident) -> Option<(System, Vec<Euler
         .collect();
     if let Some((ident, owner)) = used_elsewhere(&twin, &angles) {
         let instead = if owner == NONHOLONOMIC {
-            "write the row on the bodies' velocities and angular velocities (`dot(ball.x)`, `ball.omega_y`)"
+            let b = &triples[0].body;
+            format!(
+                "write the row on the bodies' velocities and angular velocities (`dot({b}.x)`, `{b}.omega_y`)"
+            )
         } else {
             "write what depends on the orientation from positions (gravity, points of the body)"
+                .into()
         };
         cx.error_at(
             ident.span(),
