@@ -366,6 +366,38 @@ fn first_named(tokens: TokenStream, names: &[String]) -> Option<Ident> {
 mod tests {
     use super::*;
 
+    /// A ball rolling on the plane in both constrained forms, its speeds
+    /// the angles' rates: the twin keeps the rolling rows, in the
+    /// multiplier form alone and without the speeds (which read the
+    /// angles), and the whole description expands without an error.
+    #[test]
+    fn the_twin_of_both_forms_keeps_the_rows_with_multipliers_only() {
+        let input: syn::DeriveInput = syn::parse_str(
+            "#[lagrange(coordinates(x, y, psi, theta, phi),
+               body(ball, mass = m, inertia = [j, j, j], at = [x, y, a],
+                    rotation = euler_zxz(psi, theta, phi)),
+               nonholonomic(slip_x = dot(ball.x) - a * ball.omega_y,
+                            slip_y = dot(ball.y) + a * ball.omega_x),
+               speeds(u1 = dot(psi), u2 = dot(theta), u3 = dot(phi)),
+               formulation(multipliers, reduced),
+               emit(atlas))]
+             struct Ball { m: f64, j: f64, a: f64 }",
+        )
+        .unwrap();
+        let cx = Ctxt::new();
+        let system = crate::attr::parse(&cx, &input).unwrap();
+        let at = &system.extras[0].0;
+        let (twin, triples) = twin(&cx, &system, at).unwrap();
+        assert!(!cx.has_errors());
+        assert_eq!(triples.len(), 1);
+        assert_eq!(twin.nonholonomic.len(), 2);
+        assert!(twin.speeds.is_empty());
+        let forms: Vec<_> = twin.formulations.iter().map(|(_, f)| *f).collect();
+        assert_eq!(forms, [Formulation::Multipliers]);
+        let tokens = crate::expand(&input).to_string();
+        assert!(!tokens.contains("compile_error"), "{tokens}");
+    }
+
     #[test]
     fn every_euler_sequence_has_a_disjoint_second_chart() {
         for a in 0..3 {
