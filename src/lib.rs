@@ -473,23 +473,29 @@
 //! the charts. [`AtlasRun::inputs`] and [`AtlasRun::occurrences`] hold the
 //! inputs and the user's events, in the user's coordinates.
 //!
-//! **Constraints.** Holonomic constraints (`holonomic(..)`) run with the
-//! atlas in the multiplier form: the twin carries the same rows written on
-//! its free orientation, so a body pinned by a point of it, or a chain
-//! closed by a rod, passes its Euler angles' singular set like a free one.
-//! The start is checked for consistency in the user's coordinates, as
+//! **Constraints.** Holonomic and nonholonomic constraints
+//! (`holonomic(..)`, `nonholonomic(..)`) run with the atlas in the
+//! multiplier form: the twin carries the same rows written on its free
+//! orientation (a nonholonomic row on the bodies' velocities and ω, such
+//! as a ball's `dot(ball.x) - a * ball.omega_y`), so a body pinned by a
+//! point of it, a chain closed by a rod or a ball rolling without slipping
+//! passes its Euler angles' singular set like a free one. A description
+//! emitted in both constrained forms (`formulation(multipliers, reduced)`)
+//! runs its multiplier form through the atlas; one emitted only in the
+//! reduced form (`speeds(..)`, `formulation(reduced)`) is refused. The
+//! start is checked for consistency in the user's coordinates, as
 //! [`Simulation::run`] checks it; drift control (`drift`) and
 //! `least_squares` are refused (the residuals drift at the integrator's
 //! tolerance, recorded in the trajectory), and so is [`Linearizer::atlas`]
 //! for a constrained system.
 //!
-//! The atlas covers descriptions without nonholonomic constraints, free
-//! orientations, a URDF or the reduced form (`speeds`,
-//! `formulation(reduced)`); an angle of such a rotation may appear only as that rotation's
-//! angle (a potential written in θ itself has no meaning in the second
-//! chart: write it from positions, e.g. `gravity`; an input's force from
-//! points of the body, not as a generalized force on an angle). Each is a
-//! compile error at its token.
+//! The atlas covers descriptions without free orientations, a URDF or the
+//! reduced form alone; an angle of such a rotation may appear only as that
+//! rotation's angle (a potential written in θ itself has no meaning in the
+//! second chart: write it from positions, e.g. `gravity`; an input's force
+//! from points of the body, not as a generalized force on an angle; a
+//! constraint, holonomic or nonholonomic, on points and velocities of the
+//! body, not on θ or θ̇). Each is a compile error at its token.
 //!
 //! ```
 //! use lagrange::prelude::*;

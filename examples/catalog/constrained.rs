@@ -147,7 +147,7 @@ impl ThreeParticleBody {
 /// C5, Suslov ex. 98: a homogeneous sphere (radius `a`, J = 2/5 m a²) rolling without
 /// slipping on the horizontal plane z = 0: the finite constraint z = a and two
 /// nonholonomic ones (the material point at the contact has zero velocity), kept
-/// with multipliers.
+/// with multipliers; with `emit(atlas)` it rolls through θ = 0.
 #[derive(Lagrangian, Clone, Copy, Debug)]
 #[lagrange(
     coordinates(x, y, z, psi, theta, phi),
@@ -163,7 +163,9 @@ impl ThreeParticleBody {
     // Both forms: the reduced one also eliminates ż through the velocity form of
     // the finite constraint.
     formulation(multipliers, reduced),
-    emit(reactions),
+    // The atlas takes the ball through θ = 0, where z-x-z stops
+    // (`Simulation::run_atlas`, in the multiplier form).
+    emit(reactions, atlas),
 )]
 pub struct RollingSphere {
     pub m: f64,

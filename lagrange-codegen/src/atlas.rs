@@ -4,7 +4,10 @@
 //! point (`euler_zxz(ψ, θ, φ)`, `euler_zyx(..)`, or three successive `rot_*`
 //! whose middle axis differs from both ends) becomes a free orientation in a
 //! copy of the description, the twin: its M and h depend on no chart, and
-//! the runtime's atlas reads any chart's equations from it. This stage works
+//! the runtime's atlas reads any chart's equations from it. Its inputs and
+//! constraints (holonomic and nonholonomic) are the user's, which may read
+//! the bodies but not the angles; it is emitted in the multiplier form
+//! alone, the one the atlas runs. This stage works
 //! on the parsed description (`ast::System` → `ast::System`); the twin
 //! then goes through the same stages as the user's description.
 //!
@@ -18,7 +21,7 @@ use proc_macro2::{Span, TokenStream, TokenTree};
 use quote::ToTokens;
 use syn::{BinOp, Expr, Ident};
 
-use crate::ast::System;
+use crate::ast::{Formulation, System};
 use crate::ctxt::Ctxt;
 
 /// One rotation in Euler angles, as the atlas publishes it.
@@ -68,9 +71,18 @@ pub fn twin(cx: &Ctxt, system: &System, at: &Ident) -> Option<(System, Vec<Euler
         .flat_map(|t| t.coordinates.map(|i| system.coordinates[i].to_string()))
         .collect();
     if let Some((ident, owner)) = used_elsewhere(&twin, &angles) {
+        let instead = if owner == NONHOLONOMIC {
+            let b = &triples[0].body;
+            format!(
+                "write the row on the bodies' velocities and angular velocities (`dot({b}.x)`, `{b}.omega_y`)"
+            )
+        } else {
+            "write what depends on the orientation from positions (gravity, points of the body)"
+                .into()
+        };
         cx.error_at(
             ident.span(),
-            format!("`{ident}` is an Euler angle of a rotation that `emit(atlas)` moves between charts, so it may appear only as that rotation's angle, not in {owner}; write what depends on the orientation from positions (gravity, points of the body), or drop `emit(atlas)`"),
+            format!("`{ident}` is an Euler angle of a rotation that `emit(atlas)` moves between charts, so it (or its rate) may appear only as that rotation's angle, not in {owner}; {instead}, or drop `emit(atlas)`"),
         );
         return None;
     }
@@ -79,6 +91,12 @@ pub fn twin(cx: &Ctxt, system: &System, at: &Ident) -> Option<(System, Vec<Euler
     twin.orientations = triples.iter().map(|t| t.orientation.clone()).collect();
     twin.extras.clear();
     twin.shapes.clear();
+    // The atlas runs the multiplier form in every chart: the twin is
+    // emitted in that form alone (the user's speeds, which may read the
+    // angles, stay the user's).
+    twin.speeds.clear();
+    twin.formulations
+        .retain(|(_, f)| *f == Formulation::Multipliers);
     twin.ident = Ident::new("__AtlasFree", Span::call_site());
     twin.generics.params.insert(0, syn::parse_quote!('__twin));
     Some((twin, triples))
@@ -117,16 +135,22 @@ pub fn describe(system: &System) -> Option<String> {
     ))
 }
 
-/// What the atlas does not cover yet, refused at `at`.
+/// What the atlas does not cover yet, refused at `at`. Constraints,
+/// holonomic and nonholonomic, are run with multipliers: a description
+/// emitted only in the reduced form is refused, one that asks for both
+/// (`formulation(multipliers, reduced)`) runs its multiplier form.
 fn supported(cx: &Ctxt, system: &System, at: &Ident) -> bool {
-    let reduced = !system.speeds.is_empty()
-        || (system.formulations.iter()).any(|(_, f)| *f == crate::ast::Formulation::Reduced);
+    let formulations = crate::check::formulations(system);
+    if formulations.contains(&Formulation::Reduced)
+        && !formulations.contains(&Formulation::Multipliers)
+    {
+        cx.error_at(
+            at.span(),
+            "`emit(atlas)` runs constraints with multipliers, and this description is emitted only in the reduced form (`speeds(..)` or `formulation(reduced)`): ask for both with `formulation(multipliers, reduced)` (the atlas runs the multiplier form, `run_reduced` the reduced one), or drop `emit(atlas)`",
+        );
+        return false;
+    }
     let refused = [
-        (!system.nonholonomic.is_empty(), "nonholonomic constraints"),
-        (
-            reduced,
-            "the reduced form (`speeds`, `formulation(reduced)`: the atlas runs constraints with multipliers)",
-        ),
         (
             !system.orientations.is_empty(),
             "free orientations (which need no atlas)",
@@ -137,7 +161,7 @@ fn supported(cx: &Ctxt, system: &System, at: &Ident) -> bool {
         Some((_, what)) => {
             cx.error_at(
                 at.span(),
-                format!("`emit(atlas)` is not available with {what} yet; it covers descriptions whose rotations are written in Euler angles, with holonomic constraints kept by multipliers"),
+                format!("`emit(atlas)` is not available with {what} yet; it covers descriptions whose rotations are written in Euler angles, with holonomic and nonholonomic constraints kept by multipliers"),
             );
             false
         }
@@ -279,6 +303,9 @@ fn flatten(e: &Expr, out: &mut Vec<Expr>) {
     }
 }
 
+/// Where [`used_elsewhere`] found an angle in a nonholonomic row.
+const NONHOLONOMIC: &str = "a nonholonomic constraint";
+
 /// The first token of the (rewritten) description that names one of
 /// `angles`, with where it is.
 fn used_elsewhere(system: &System, angles: &[String]) -> Option<(Ident, &'static str)> {
@@ -309,7 +336,10 @@ fn used_elsewhere(system: &System, angles: &[String]) -> Option<(Ident, &'static
         rest.push((f.value.to_token_stream(), "a force"));
     }
     for c in &system.holonomic {
-        rest.push((c.value.to_token_stream(), "a constraint"));
+        rest.push((c.value.to_token_stream(), "a holonomic constraint"));
+    }
+    for c in &system.nonholonomic {
+        rest.push((c.value.to_token_stream(), NONHOLONOMIC));
     }
     for g in &system.generalized_forces {
         rest.push((
@@ -335,6 +365,38 @@ fn first_named(tokens: TokenStream, names: &[String]) -> Option<Ident> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A ball rolling on the plane in both constrained forms, its speeds
+    /// the angles' rates: the twin keeps the rolling rows, in the
+    /// multiplier form alone and without the speeds (which read the
+    /// angles), and the whole description expands without an error.
+    #[test]
+    fn the_twin_of_both_forms_keeps_the_rows_with_multipliers_only() {
+        let input: syn::DeriveInput = syn::parse_str(
+            "#[lagrange(coordinates(x, y, psi, theta, phi),
+               body(ball, mass = m, inertia = [j, j, j], at = [x, y, a],
+                    rotation = euler_zxz(psi, theta, phi)),
+               nonholonomic(slip_x = dot(ball.x) - a * ball.omega_y,
+                            slip_y = dot(ball.y) + a * ball.omega_x),
+               speeds(u1 = dot(psi), u2 = dot(theta), u3 = dot(phi)),
+               formulation(multipliers, reduced),
+               emit(atlas))]
+             struct Ball { m: f64, j: f64, a: f64 }",
+        )
+        .unwrap();
+        let cx = Ctxt::new();
+        let system = crate::attr::parse(&cx, &input).unwrap();
+        let at = &system.extras[0].0;
+        let (twin, triples) = twin(&cx, &system, at).unwrap();
+        assert!(!cx.has_errors());
+        assert_eq!(triples.len(), 1);
+        assert_eq!(twin.nonholonomic.len(), 2);
+        assert!(twin.speeds.is_empty());
+        let forms: Vec<_> = twin.formulations.iter().map(|(_, f)| *f).collect();
+        assert_eq!(forms, [Formulation::Multipliers]);
+        let tokens = crate::expand(&input).to_string();
+        assert!(!tokens.contains("compile_error"), "{tokens}");
+    }
 
     #[test]
     fn every_euler_sequence_has_a_disjoint_second_chart() {

@@ -1,8 +1,10 @@
 //! The dynamics of one chart in the form its description asked for: the
-//! unconstrained equations, or holonomic constraints kept by multipliers
-//! (the user's description and its twin carry the same constraints, the
-//! twin's written on its free orientation). The reduced form has no place
-//! in the atlas: the derive refuses it with `emit(atlas)`.
+//! unconstrained equations, or constraints kept by multipliers, holonomic
+//! rows first, then nonholonomic ones (the user's description and its twin
+//! carry the same rows, the twin's written on its free orientation). The
+//! reduced form has no place in the atlas: the derive refuses a
+//! description emitted only in it, and one emitted in both forms answers
+//! `multipliers` to the visitors here.
 
 use crate::error::Error;
 use crate::mechanics::constraint::ConstrainedDynamics;

@@ -32,10 +32,12 @@
 //! chart, nearest the angles it had when it left it. With inputs the
 //! dynamics carry a `TwinForcing`: in the user's charts the user's own
 //! input forces, in any other the twin's (`DrivenAtlas`), both of the
-//! inputs the source gives at the user's view of the state. With holonomic
-//! constraints both run the multiplier form (the twin's rows are the
-//! user's on its free orientation), chosen through the description's own
-//! form visitor (`form`).
+//! inputs the source gives at the user's view of the state. With
+//! constraints, holonomic and nonholonomic, both run the multiplier form
+//! (the twin's rows are the user's on its free orientation: positions of
+//! points, velocities and ω of bodies), chosen through the description's
+//! own form visitor (`form`): the accelerations, the residuals recorded at
+//! each point and the consistency of the start.
 
 mod chart;
 mod drive;

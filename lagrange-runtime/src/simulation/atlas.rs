@@ -32,10 +32,11 @@ impl<S, I: Integrator> Simulation<'_, S, I> {
     /// [`ControlledSimulation::run_atlas`](crate::ControlledSimulation::run_atlas))
     /// the events and the controller read the user's coordinates.
     ///
-    /// A system with holonomic constraints runs in the multiplier form in
-    /// every chart (the twin carries the same rows): (q0, v0) must satisfy
-    /// them to the [`consistency_tolerance`](Self::consistency_tolerance),
-    /// and no drift control is applied.
+    /// A system with constraints, holonomic or nonholonomic (a ball rolling
+    /// without slipping), runs in the multiplier form in every chart (the
+    /// twin carries the same rows): (q0, v0) must satisfy them to the
+    /// [`consistency_tolerance`](Self::consistency_tolerance), and no drift
+    /// control is applied.
     ///
     /// # Errors
     /// As [`run`](Self::run); [`Error::InvalidSettings`](crate::Error::InvalidSettings) also for an [`Atlas`]

@@ -25,8 +25,8 @@ pub struct EulerRotation {
 /// `emit(atlas)` and run by [`Simulation::run_atlas`](crate::Simulation::run_atlas).
 ///
 /// F is the length of the free twin's q: N plus one per rotation. The twin
-/// is the same description (its inputs and holonomic constraints
-/// included, in the form the description asks for through
+/// is the same description (its inputs and constraints included, in the
+/// multiplier form when there are constraints, through
 /// [`Lagrangian::visit_form`]) with every rotation of [`EULER`](Self::EULER)
 /// replaced by a free orientation: its q holds the other coordinates in
 /// order, then one unit quaternion (w, x, y, z) per rotation in `EULER`'s

@@ -1,6 +1,9 @@
 use lagrange::Lagrangian;
 
-// Nonholonomic constraints are not covered by the atlas: one error, at `atlas`.
+// A nonholonomic constraint written on Euler angles and their rates: in the
+// second chart there are no such coordinates. The error points at the first
+// angle the row names; write the row on the body's velocities and ω
+// (`dot(disk.x)`, `disk.omega_y`) instead.
 #[derive(Lagrangian)]
 #[lagrange(
     coordinates(x, y, psi, theta, phi),
