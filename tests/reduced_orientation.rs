@@ -14,6 +14,7 @@ mod rolling;
 
 use catalog::constrained::RollingDisk;
 use common::numeric::Lcg;
+use lagrange::linear::{Linearizer, OperatingPoint, sweep};
 use lagrange::prelude::*;
 use lagrange::project_consistent;
 use nalgebra::SVector;
@@ -504,16 +505,16 @@ fn a_controlled_run_takes_the_reduced_form_with_orientations() {
 
 /// The disk rolling upright along x at spin ω about its axle (body y, here
 /// world y): centre (0, 0, a), identity orientation.
-fn upright(disk: &SpinningDisk, spin: f64) -> lagrange::linear::OperatingPoint<f64, 6, 0, 7> {
-    lagrange::linear::OperatingPoint::on_group(
+fn upright(disk: &SpinningDisk, spin: f64) -> OperatingPoint<f64, 6, 0, 7> {
+    OperatingPoint::on_group(
         SVector::from([0.0, 0.0, disk.a, 1.0, 0.0, 0.0, 0.0]),
         SVector::from([disk.a * spin, 0.0, 0.0, 0.0, spin, 0.0]),
     )
 }
 
 /// The disk's states: its position on the floor, its turn, its spin rates.
-fn disk_linearizer() -> lagrange::linear::Linearizer {
-    lagrange::linear::Linearizer::new()
+fn disk_linearizer() -> Linearizer {
+    Linearizer::new()
         .coordinates(&["x", "y", "disk_q.θx", "disk_q.θy", "disk_q.θz"])
         .speeds(&["disk_q.wx", "disk_q.wy", "disk_q.wz"])
 }
@@ -524,7 +525,6 @@ fn disk_linearizer() -> lagrange::linear::Linearizer {
 /// of the reduced form, and the pushed sphere's B.
 #[test]
 fn the_reduced_form_linearises_on_the_group_as_the_multiplier_form() {
-    use lagrange::linear::sweep;
     let disk = thin_disk(1.0, 0.3, 9.81);
     for spin in [0.5, 2.0, 3.0, 6.0] {
         let op = upright(&disk, spin);
@@ -556,8 +556,8 @@ fn the_reduced_form_linearises_on_the_group_as_the_multiplier_form() {
     let v0 = ReducedDynamics::new(&ball)
         .consistent_velocities(0.0, &q0, &v0)
         .unwrap();
-    let op = lagrange::linear::OperatingPoint::on_group(q0, v0).input(SVector::from([0.0]));
-    let lz = lagrange::linear::Linearizer::new();
+    let op = OperatingPoint::on_group(q0, v0).input(SVector::from([0.0]));
+    let lz = Linearizer::new();
     let reduced = lz.reduced_tangent(&ball, &op).unwrap();
     let multipliers = lz.constrained_tangent(&ball, &op).unwrap();
     assert_eq!(reduced.states(), multipliers.states());
@@ -574,7 +574,6 @@ fn the_reduced_form_linearises_on_the_group_as_the_multiplier_form() {
 /// error naming what is wrong.
 #[test]
 fn the_reduced_linearisation_refuses_a_bad_operating_point() {
-    use lagrange::linear::{Linearizer, OperatingPoint};
     let disk = thin_disk(1.0, 0.3, 9.81);
     let mut op = upright(&disk, 2.0);
     op.v[0] += 0.1;

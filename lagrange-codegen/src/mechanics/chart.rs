@@ -93,22 +93,7 @@ pub(super) fn at_centre(
     if let Some(inputs) = &mut d.forces.inputs {
         c.inputs(inputs, d.coordinates.len(), d.orientations.len());
     }
-    if let Some(set) = forms.constraints {
-        c.all(&mut set.phi);
-        c.rows(&mut set.jacobian);
-        c.all(&mut set.velocity_term);
-        c.all(&mut set.gamma);
-        for (_, coefficients) in &mut set.reactions {
-            c.rows(coefficients);
-        }
-    }
-    if let Some(r) = forms.reduced {
-        c.all(&mut r.speeds);
-        c.rows(&mut r.matrix);
-        c.all(&mut r.free);
-        c.all(&mut r.rates);
-        c.all(&mut r.positions);
-    }
+    c.forms(forms);
 }
 
 /// The kinetic-energy gradient at fixed ω from its value at fixed θ̇ (both
@@ -213,6 +198,26 @@ pub(super) struct AtCentre<'a> {
 }
 
 impl AtCentre<'_> {
+    /// Both constrained forms' rows and rates at the centre.
+    fn forms(&mut self, forms: Forms<'_>) {
+        if let Some(set) = forms.constraints {
+            self.all(&mut set.phi);
+            self.rows(&mut set.jacobian);
+            self.all(&mut set.velocity_term);
+            self.all(&mut set.gamma);
+            for (_, coefficients) in &mut set.reactions {
+                self.rows(coefficients);
+            }
+        }
+        if let Some(r) = forms.reduced {
+            self.all(&mut r.speeds);
+            self.rows(&mut r.matrix);
+            self.all(&mut r.free);
+            self.all(&mut r.rates);
+            self.all(&mut r.positions);
+        }
+    }
+
     pub fn one(&mut self, e: Sym) -> Sym {
         // What the recursions built at the centre already (a spherical
         // joint's links) has no θ: collecting it would only expand it.

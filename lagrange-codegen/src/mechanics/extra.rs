@@ -66,11 +66,21 @@ pub(super) fn rhs_jacobians(
     [jq, jv]
 }
 
-/// M in the orientations' θ, when `emit(coriolis)` needs its derivatives
-/// there: read off T as written in θ (the recursive route builds M at the
-/// chart's centre, and T is later rewritten from that M).
-pub(super) fn chart_mass(ctx: &mut Context, wanted: bool, kinetic: Sym) -> Option<Vec<Vec<Sym>>> {
-    wanted.then(|| mass_from_kinetic(ctx, kinetic))
+/// What is read off T as written in the orientations' θ (the recursive
+/// route builds M at the chart's centre, and T is later rewritten from that
+/// M): M, when `emit(coriolis)` needs its derivatives there, and ∂T/∂θ for
+/// `emit(hamiltonian)`.
+#[allow(clippy::type_complexity)]
+pub(super) fn in_chart(
+    ctx: &mut Context,
+    extras: &[crate::ast::Extra],
+    free: bool,
+    kinetic: Sym,
+) -> (Option<Vec<Vec<Sym>>>, Option<Vec<Sym>>) {
+    let wants = |e| free && extras.contains(&e);
+    let mass = wants(crate::ast::Extra::Coriolis).then(|| mass_from_kinetic(ctx, kinetic));
+    let gradient = wants(crate::ast::Extra::Hamiltonian).then(|| kinetic_gradient(ctx, kinetic));
+    (mass, gradient)
 }
 
 /// M_ij = ∂²T/∂q̇_i∂q̇_j: the mass matrix read off the kinetic energy, in
@@ -123,4 +133,44 @@ pub(super) fn coriolis_matrix(
                 .collect()
         })
         .collect()
+}
+
+/// p = ∂T/∂q̇ (for Hamilton's form or a rheonomic system) and, for
+/// Hamilton's form, ∂T/∂q: with orientations from T in their θ, at fixed ω.
+pub(super) fn hamilton_form(
+    ctx: &mut Context,
+    d: &mut super::Derived,
+    hamiltonian: bool,
+) -> (Option<Vec<Sym>>, Option<Vec<Sym>>) {
+    let momentum = (hamiltonian || d.rheonomic).then(|| momentum(ctx, d.kinetic));
+    let slots = (d.coordinates.len(), d.orientations.len());
+    let gradient = hamiltonian.then(|| match d.chart_gradient.take() {
+        Some(g) => super::chart::at_fixed_omega(ctx, g, momentum.as_deref(), slots),
+        None => kinetic_gradient(ctx, d.kinetic),
+    });
+    (momentum, gradient)
+}
+
+/// C: with orientations, the chart's Christoffel factorisation turned along
+/// the motion (`super::chart::along_the_motion`); otherwise M's, if wanted.
+pub(super) fn coriolis(
+    ctx: &mut Context,
+    in_theta: Option<Vec<Vec<Sym>>>,
+    mass: &[Vec<Sym>],
+    wanted: bool,
+    (first, orientations): (usize, usize),
+) -> Option<Vec<Vec<Sym>>> {
+    match in_theta {
+        Some(c) => Some(super::chart::along_the_motion(
+            ctx,
+            c,
+            mass,
+            first,
+            orientations,
+        )),
+        None => wanted.then(|| {
+            let (q, qd) = (ctx.coordinates(), ctx.velocities());
+            coriolis_matrix(ctx, mass, &q, &qd)
+        }),
+    }
 }

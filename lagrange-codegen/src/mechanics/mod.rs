@@ -169,10 +169,7 @@ pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError>
     let free = !orientations.is_empty();
     let jacobians = (extras.contains(&Extra::Jacobians))
         .then(|| derivatives::rhs_jacobians(&mut ctx, tree.as_ref(), &motion, &sources, free));
-    let chart_mass =
-        extra::chart_mass(&mut ctx, extras.contains(&Extra::Coriolis) && free, kinetic);
-    let chart_gradient = (extras.contains(&Extra::Hamiltonian) && free)
-        .then(|| extra::kinetic_gradient(&mut ctx, kinetic));
+    let (chart_mass, chart_gradient) = extra::in_chart(&mut ctx, &extras, free, kinetic);
     let kinetic = energy::cheaper_kinetic(&mut ctx, rheonomic, kinetic, &motion.mass);
     let integral = energy::integral(&mut ctx, rheonomic, kinetic, forces.potential, &motion.mass);
     let derived = Derived {
@@ -482,24 +479,6 @@ fn in_theta(
     })
 }
 
-/// C: with orientations, the chart's Christoffel factorisation turned along
-/// the motion (`chart::along_the_motion`); otherwise M's, if wanted.
-fn coriolis(
-    ctx: &mut Context,
-    in_theta: Option<Vec<Vec<Sym>>>,
-    mass: &[Vec<Sym>],
-    wanted: bool,
-    (first, orientations): (usize, usize),
-) -> Option<Vec<Vec<Sym>>> {
-    match in_theta {
-        Some(c) => Some(chart::along_the_motion(ctx, c, mass, first, orientations)),
-        None => wanted.then(|| {
-            let (q, qd) = (ctx.coordinates(), ctx.velocities());
-            extra::coriolis_matrix(ctx, mass, &q, &qd)
-        }),
-    }
-}
-
 /// Adds the optional outputs, the constrained forms and the hoisting.
 fn finish(
     mut ctx: Context,
@@ -509,6 +488,8 @@ fn finish(
 ) -> Result<Model, DeriveError> {
     let wants = |e: Extra| extras.contains(&e);
     let early = in_theta(&mut ctx, &mut d, &c, extras)?;
+    let (momentum, kinetic_gradient) =
+        extra::hamilton_form(&mut ctx, &mut d, wants(Extra::Hamiltonian));
     let Motion {
         mass,
         bias,
@@ -518,19 +499,13 @@ fn finish(
         forces,
     } = d.motion;
     let slots = (d.coordinates.len(), d.orientations.len());
-    let coriolis = coriolis(
+    let coriolis = extra::coriolis(
         &mut ctx,
         early.coriolis,
         &mass,
         wants(Extra::Coriolis),
         slots,
     );
-    let hamiltonian = wants(Extra::Hamiltonian);
-    let momentum = (hamiltonian || d.rheonomic).then(|| extra::momentum(&mut ctx, d.kinetic));
-    let kinetic_gradient = hamiltonian.then(|| match d.chart_gradient.take() {
-        Some(g) => chart::at_fixed_omega(&mut ctx, g, momentum.as_deref(), slots),
-        None => extra::kinetic_gradient(&mut ctx, d.kinetic),
-    });
     let jacobians = wants(Extra::Jacobians);
     let constraints = (early.constraints).or_else(|| {
         c.multipliers
