@@ -482,8 +482,9 @@
 //! start is checked for consistency in the user's coordinates, as
 //! [`Simulation::run`] checks it; drift control (`drift`) and
 //! `least_squares` are refused (the residuals drift at the integrator's
-//! tolerance, recorded in the trajectory), and so is [`Linearizer::atlas`]
-//! for a constrained system.
+//! tolerance, recorded in the trajectory). [`Linearizer::atlas`] gives a
+//! constrained system's model on independent states of the charts (the
+//! pinned top at the upright: the pivoted top's A, to 4e-15).
 //!
 //! The atlas covers descriptions without free orientations, a URDF or the
 //! reduced form alone; an angle of such a rotation may appear only as that

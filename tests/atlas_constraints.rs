@@ -233,11 +233,79 @@ fn an_inconsistent_start_is_refused() {
         "{}",
         projected.error
     );
+    // The linearisation checks its point against the rows too.
     let lin = Linearizer::new().atlas(
         &PINNED,
         &nalgebra::SVector::zeros(),
         &nalgebra::SVector::zeros(),
         0.0,
     );
-    assert!(matches!(lin, Err(Error::InvalidSettings(_))));
+    assert!(
+        matches!(&lin, Err(Error::Linear(lagrange::LinearError::InconsistentOperatingPoint { worst, .. })) if worst.contains("pin_z")),
+        "{lin:?}"
+    );
+}
+
+/// The sleeping pinned top linearised where its own chart is singular: in
+/// the second chart, on the angles and their rates as independent states,
+/// A is the pivoted top's (`catalog::free::EulerTop`, unconstrained), and
+/// its largest real part is √(4 A m g l − C² n²) / (2A) below the threshold
+/// spin and zero above it. Tilted, in the user's own chart, it is
+/// `constrained_tangent`'s model of the same description.
+#[test]
+fn the_pinned_top_linearises_in_a_regular_chart() {
+    use catalog::free::{EulerTop, sleeping_top_growth, sleeping_top_threshold};
+    use lagrange::linear::OperatingPoint;
+    use nalgebra::SVector;
+    let pivoted = EulerTop {
+        m: PINNED.m,
+        a: PINNED.a,
+        c: PINNED.c,
+        l: PINNED.l,
+        g: PINNED.g,
+    };
+    let mgl = PINNED.m * PINNED.g * PINNED.l;
+    let threshold = sleeping_top_threshold(PINNED.a, PINNED.c, mgl);
+    let angles = ["psi@2", "theta@2", "phi@2"];
+    let lz = Linearizer::new().coordinates(&angles).speeds(&angles);
+    for ratio in [0.9, 0.99, 1.01, 1.5] {
+        let n = ratio * threshold;
+        let q = SVector::from([0.0, 0.0, PINNED.l, 0.0, 0.0, 0.0]);
+        let v = SVector::from([0.0, 0.0, 0.0, 0.0, 0.0, n]);
+        let lin = lz.atlas(&PINNED, &q, &v, 0.0).unwrap();
+        assert_eq!(lin.states()[..3], angles);
+        let free = Linearizer::new()
+            .atlas(
+                &pivoted,
+                &SVector::zeros(),
+                &SVector::from([0.0, 0.0, n]),
+                0.0,
+            )
+            .unwrap();
+        let gap = (lin.a() - free.a()).amax();
+        let growth = lin.eigenvalues()[0].re;
+        let expected = sleeping_top_growth(PINNED.a, PINNED.c, mgl, n);
+        eprintln!(
+            "n/n_c = {ratio}: A within {gap:.1e} of the pivoted top's; growth {growth:e} vs {expected:e}"
+        );
+        assert!(gap < 1e-12 * free.a().amax(), "{gap:e}");
+        assert!((growth - expected).abs() < 1e-6 * (1.0 + expected));
+    }
+    let arm = Vector3::new(0.0, 0.0, PINNED.l);
+    let x = [0.3, 0.7, -0.2];
+    let r = zxz().matrix(x);
+    let w = zxz().rates(x) * Vector3::new(0.5, -1.0, 4.0);
+    let (c, dc) = (r * arm, r * w.cross(&arm));
+    let q = SVector::from([c.x, c.y, c.z, x[0], x[1], x[2]]);
+    let v = SVector::from([dc.x, dc.y, dc.z, 0.5, -1.0, 4.0]);
+    let names = ["psi", "theta", "phi"];
+    let lz = Linearizer::new().coordinates(&names).speeds(&names);
+    let atlas = lz.atlas(&PINNED, &q, &v, 0.0).unwrap();
+    let tangent = lz
+        .constrained_tangent(&PINNED, &OperatingPoint::on_group(q, v))
+        .unwrap();
+    assert_eq!(atlas.states(), tangent.states());
+    let gap = (atlas.a() - tangent.a()).amax();
+    eprintln!("tilted pinned top: A of the atlas and constrained_tangent within {gap:.1e}");
+    assert!(gap < 1e-9 * tangent.a().amax(), "{gap:e}");
 }

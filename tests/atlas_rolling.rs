@@ -367,3 +367,36 @@ fn events_on_the_rolling_balls_angles_are_located_as_on_the_quaternion_ball() {
     assert!(in_second);
     assert!(worst < 1e-9, "{worst:e}");
 }
+
+/// `Linearizer::atlas` with rolling rows: at a regular state it is
+/// `constrained_tangent`'s model of the user's chart; at θ = 0 it reads the
+/// second chart (states named `@2`), where the ball at rest on the plane
+/// has no restoring force: on its 5 independent coordinates and 3
+/// independent speeds, no column of A reads a coordinate and no speed
+/// changes.
+#[test]
+fn the_rolling_ball_linearises_in_a_regular_chart() {
+    use lagrange::linear::{Linearizer, OperatingPoint};
+    let ((q, v), _) = rolling_start(BALL.a, [0.2, 0.9, 0.5], [0.3, 1.0, 3.0]);
+    let lz = Linearizer::new();
+    let atlas = lz.atlas(&ATLAS_BALL, &q, &v, 0.0).unwrap();
+    let tangent = lz
+        .constrained_tangent(&ATLAS_BALL, &OperatingPoint::on_group(q, v))
+        .unwrap();
+    assert_eq!(atlas.states(), tangent.states());
+    let gap = (atlas.a() - tangent.a()).amax();
+    eprintln!("rolling ball at θ = 0.9: A of the atlas and constrained_tangent within {gap:.1e}");
+    assert!(gap < 1e-9 * tangent.a().amax(), "{gap:e}");
+    let ((q, v), _) = rolling_start(BALL.a, [0.0; 3], [0.0; 3]);
+    let rest = lz.atlas(&ATLAS_BALL, &q, &v, 0.0).unwrap();
+    assert!(
+        rest.states().iter().any(|s| s == "theta@2"),
+        "{:?}",
+        rest.states()
+    );
+    let (states, coordinates) = (rest.states().len(), rest.n_coordinates());
+    assert_eq!((states, coordinates), (8, 5), "{:?}", rest.states());
+    let accelerations = rest.a().rows(coordinates, states - coordinates);
+    assert!(accelerations.amax() < 1e-12, "{}", rest.a());
+    assert!(rest.a().columns(0, coordinates).amax() < 1e-12, "{}", rest.a());
+}

@@ -12,7 +12,7 @@ use crate::mechanics::{Dynamics, Forcing};
 use crate::numeric::Real;
 use crate::ode::SecondOrder;
 use crate::system::{Constrained, FormVisitor, Lagrangian, Reduced};
-use nalgebra::SVector;
+use nalgebra::{DMatrix, DVector, SVector};
 
 /// A state of a chart: q of Q entries (with the twin's quaternions), v.
 #[derive(Clone, Copy)]
@@ -106,6 +106,63 @@ where
         S: Reduced<T, N, K>,
     {
         Err(refused())
+    }
+}
+
+/// A form's constraint rows at a configuration, as numbers: Φ (the
+/// holonomic rows' positions), G and g, how many rows are holonomic (the
+/// first), and the rows' names.
+pub(crate) struct ChartRows {
+    pub phi: DVector<f64>,
+    pub g: DMatrix<f64>,
+    pub g0: DVector<f64>,
+    pub holonomic: usize,
+    pub names: Vec<&'static str>,
+}
+
+/// The constraint rows at `q` (none without constraints; the reduced form
+/// has no place in the atlas).
+pub(crate) struct Rows<'x, T: Real, const N: usize, const Q: usize>(pub At<'x, T, N, Q>);
+
+impl<T, L, const N: usize, const Q: usize> FormVisitor<T, N, L, Q> for Rows<'_, T, N, Q>
+where
+    T: Real,
+    L: Lagrangian<T, N, Q>,
+{
+    type Output = ChartRows;
+
+    fn unconstrained(self, _: &L) -> ChartRows {
+        ChartRows {
+            phi: DVector::zeros(0),
+            g: DMatrix::zeros(0, N),
+            g0: DVector::zeros(0),
+            holonomic: 0,
+            names: Vec::new(),
+        }
+    }
+
+    fn multipliers<const K: usize>(self, system: &L) -> ChartRows
+    where
+        L: Constrained<T, N, K, Q>,
+    {
+        let At { t, q, .. } = self.0;
+        let (g, g0) = system.constraint_jacobian(q, t);
+        let holonomic = L::HOLONOMIC.min(K);
+        let phi = system.constraint_positions(q, t);
+        ChartRows {
+            phi: DVector::from_fn(holonomic, |i, _| phi[i].to_f64()),
+            g: DMatrix::from_fn(K, N, |i, j| g[(i, j)].to_f64()),
+            g0: DVector::from_fn(K, |i, _| g0[i].to_f64()),
+            holonomic,
+            names: L::CONSTRAINTS.to_vec(),
+        }
+    }
+
+    fn reduced<const K: usize>(self, system: &L) -> ChartRows
+    where
+        L: Reduced<T, N, K, Q>,
+    {
+        self.unconstrained(system)
     }
 }
 

@@ -45,6 +45,7 @@ mod form;
 mod run;
 
 pub(crate) use chart::{Charts, user_view};
+pub(crate) use form::ChartRows;
 
 pub(crate) use drive::{Held, back_to_charts, finish, integrate, unstarted, watched};
 pub use run::{AtlasRun, ChartSwitch, USER_CHART_VALID};
@@ -150,6 +151,33 @@ where
             vf.as_mut_slice()[at_v..at_v + 3].copy_from_slice(omega.as_slice());
         }
         (qf, vf)
+    }
+
+    /// The constraint rows in the charts of the moment: Φ, G and g with
+    /// G q̇ + g the rows' velocity form in these charts, the user's own in
+    /// the user's charts, else the twin's with each rotation's ω = E ẋ (no
+    /// rows without constraints).
+    pub fn rows(&self, t: T, q: &SVector<T, N>) -> ChartRows {
+        if self.charts.mask() == 0 {
+            let v = SVector::zeros();
+            return (self.system()).visit_form(form::Rows(form::At { t, q, v: &v }));
+        }
+        let (qf, _) = self.free_state(q, &SVector::zeros());
+        let mut twin = (self.system()).visit_free(TwinRows(t, &qf));
+        let g = twin.g.clone();
+        for (p, i) in kept::<S, T, N, F>().enumerate() {
+            twin.g.set_column(i, &g.column(p));
+        }
+        let first = N - 3 * S::EULER.len();
+        for (k, rotation) in S::EULER.iter().enumerate() {
+            let rates = self.chart(k).rates(angles(rotation, q));
+            let e = nalgebra::DMatrix::from_fn(3, 3, |i, j| rates[(i, j)].to_f64());
+            let turned = g.columns(first + 3 * k, 3) * e;
+            for (j, &i) in rotation.coordinates.iter().enumerate() {
+                twin.g.set_column(i, &turned.column(j));
+            }
+        }
+        twin
     }
 
     /// q̈ in the charts of the moment from the twin's ω̇.
@@ -293,6 +321,21 @@ impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F> for TwinResid
     fn visit<L: Lagrangian<T, N, F>>(self, free: &L) -> [T; 2] {
         let Self(t, q, v) = self;
         free.visit_form(form::Residuals(form::At { t, q, v }))
+    }
+}
+
+/// The twin's constraint rows at its configuration.
+struct TwinRows<'x, T: Real, const F: usize>(T, &'x SVector<T, F>);
+
+impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F> for TwinRows<'_, T, F> {
+    type Output = ChartRows;
+    fn visit<L: Lagrangian<T, N, F>>(self, free: &L) -> ChartRows {
+        let Self(t, q) = self;
+        free.visit_form(form::Rows(form::At {
+            t,
+            q,
+            v: &SVector::<T, N>::zeros(),
+        }))
     }
 }
 

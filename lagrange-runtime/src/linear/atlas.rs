@@ -2,10 +2,12 @@
 //! operating point.
 
 use super::Linear;
+use super::constrained_tangent::{Slopes, assemble};
+use super::dense::dv;
 use super::settings::Linearizer;
 use super::tangent::{Held, column, step};
 use crate::atlas::{Charted, Charts, TwinForcing, layout_agrees};
-use crate::error::{Error, check_finite_inputs, check_tolerance};
+use crate::error::{Error, check_finite_inputs, check_tolerance, to_vec};
 use crate::mechanics::{Dynamics, NoForcing};
 use crate::numeric::Real;
 use crate::ode::SecondOrder;
@@ -27,10 +29,22 @@ impl Linearizer {
     /// in φ of either chart) linearises to a constant A: its stability reads
     /// off A's eigenvalues.
     ///
+    /// With constraints (holonomic and nonholonomic, kept by multipliers) the
+    /// model is on independent coordinates and speeds of those charts, chosen
+    /// as [`constrained`](Self::constrained) chooses them (name them with
+    /// [`coordinates`](Self::coordinates) and [`speeds`](Self::speeds), an
+    /// angle of a second chart as `theta@2`), from the constraint rows in the
+    /// charts: the user's, or the twin's read through ω = E q̇. The top held
+    /// at its tip by three rows linearises at the upright to the pivoted
+    /// top's A (`tests/atlas_constraints.rs`).
+    ///
     /// # Errors
     /// [`Error::InvalidSettings`] for a bad singular tolerance or an [`Atlas`]
     /// whose twin disagrees with its layout; [`Error::NonPhysicalParameter`];
-    /// whatever the forward dynamics report at a perturbed state.
+    /// whatever the forward dynamics report at a perturbed state. With
+    /// constraints: [`LinearError::InconsistentOperatingPoint`](crate::LinearError::InconsistentOperatingPoint)
+    /// naming the worst row, the partition's errors and
+    /// [`Error::RedundantConstraints`].
     pub fn atlas<S, T, const N: usize, const F: usize>(
         &self,
         sys: &S,
@@ -42,15 +56,9 @@ impl Linearizer {
         S: Atlas<T, N, F>,
         T: Real,
     {
-        let (a, charts, _) = self.atlas_a(sys, (q, v), t, NoForcing)?;
-        Ok(Linear::from_parts(
-            a,
-            DMatrix::zeros(2 * N, 0),
-            states::<S, T, N, F>(charts.mask()),
-            Vec::new(),
-            N,
-            None,
-        ))
+        let (a, charts, (q, v)) = self.atlas_a(sys, (q, v), t, NoForcing)?;
+        let b = DMatrix::zeros(2 * N, 0);
+        self.restricted(sys, &charts, (&q, &v, t), (a, b), &[])
     }
 
     /// [`atlas`](Self::atlas) with the inputs held at `u`: A at (q, v, u)
@@ -94,15 +102,65 @@ impl Linearizer {
                 b[(N + i, k)] = du[i];
             }
         }
-        let inputs = S::INPUTS.iter().map(|s| s.to_string()).collect();
-        Ok(Linear::from_parts(
-            a,
-            b,
-            states::<S, T, N, F>(charts.mask()),
-            inputs,
-            N,
-            None,
-        ))
+        self.restricted(sys, &charts, (&q, &v, t), (a, b), &S::INPUTS)
+    }
+
+    /// The model in the charts: A and B as they are without constraints;
+    /// with them, restricted to independent coordinates and speeds of the
+    /// charts, chosen as [`constrained`](Self::constrained) chooses them
+    /// (from the rows in these charts: the user's, or the twin's read
+    /// through ω = E ẋ), after the point is checked against the rows.
+    fn restricted<S, T, const N: usize, const F: usize>(
+        &self,
+        sys: &S,
+        charts: &Charts<T>,
+        (q, v, t): (&SVector<T, N>, &SVector<T, N>, T),
+        (a, b): (DMatrix<f64>, DMatrix<f64>),
+        inputs: &[&str],
+    ) -> Result<Linear, Error>
+    where
+        S: Atlas<T, N, F>,
+        T: Real,
+    {
+        let names = states::<S, T, N, F>(charts.mask());
+        if !S::CONSTRAINED {
+            let inputs = inputs.iter().map(|s| s.to_string()).collect();
+            return Ok(Linear::from_parts(a, b, names, inputs, N, None));
+        }
+        let charted = Charted::<S, T, N, F>::new(Dynamics::new(sys), charts);
+        let rows = charted.rows(t, q);
+        let velocity = |q: &SVector<T, N>| {
+            let r = charted.rows(t, q);
+            r.g * dv(v) + r.g0
+        };
+        let coordinates = (t, q, &S::COORDINATES[..]);
+        self.within_tolerance([&rows.phi, &velocity(q)], coordinates, &rows.names)?;
+        let mut dvel = DMatrix::zeros(rows.g.nrows(), N);
+        for j in 0..N {
+            let h = step(q[j].to_f64());
+            let mut e = SVector::<T, N>::zeros();
+            e[j] = T::lit(h);
+            dvel.set_column(j, &((velocity(&(q + e)) - velocity(&(q - e))) / (2.0 * h)));
+        }
+        let slopes = Slopes {
+            xq: a.view((N, 0), (N, N)).into_owned(),
+            xv: a.view((N, N), (N, N)).into_owned(),
+            xu: b.rows(N, N).into_owned(),
+            dvel,
+            g: rows.g,
+        };
+        let directions: Vec<&str> = names[..N].iter().map(String::as_str).collect();
+        let part = self.split(&slopes.g, rows.holonomic, [&directions; 2], |ratio, r| {
+            Error::RedundantConstraints {
+                t: t.to_f64(),
+                q: to_vec(q),
+                coordinates: S::COORDINATES.to_vec(),
+                ratio,
+                dependent: r.iter().map(|&i| rows.names[i]).collect(),
+            }
+        })?;
+        let (a, b) = assemble(&part, &slopes, &DMatrix::zeros(N, N), rows.holonomic);
+        Ok(self.model(&part, (a, b), &names, inputs))
     }
 
     /// A in regular charts at (q, v) with `forcing` added, the charts, and
@@ -122,13 +180,6 @@ impl Linearizer {
     {
         check_tolerance("singular tolerance", self.singular_tolerance)?;
         sys.check_parameters()?;
-        if S::CONSTRAINED {
-            return Err(Error::InvalidSettings(
-                "the atlas's linearisation takes unconstrained systems: with constraints \
-                 its states would not be independent"
-                    .into(),
-            ));
-        }
         if !layout_agrees(sys) {
             return Err(Error::InvalidSettings(
                 "the system's Atlas twin does not have the documented layout".into(),

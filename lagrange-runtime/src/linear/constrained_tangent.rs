@@ -57,10 +57,10 @@ use nalgebra::{DMatrix, DVector, SVector};
 /// The constrained dynamics' derivatives at the operating point: X_q, X_v,
 /// X_u and D as the module describes, and G.
 pub(super) struct Slopes {
-    xq: DMatrix<f64>,
-    xv: DMatrix<f64>,
-    xu: DMatrix<f64>,
-    dvel: DMatrix<f64>,
+    pub(super) xq: DMatrix<f64>,
+    pub(super) xv: DMatrix<f64>,
+    pub(super) xu: DMatrix<f64>,
+    pub(super) dvel: DMatrix<f64>,
     pub(super) g: DMatrix<f64>,
 }
 
