@@ -398,5 +398,9 @@ fn the_rolling_ball_linearises_in_a_regular_chart() {
     assert_eq!((states, coordinates), (8, 5), "{:?}", rest.states());
     let accelerations = rest.a().rows(coordinates, states - coordinates);
     assert!(accelerations.amax() < 1e-12, "{}", rest.a());
-    assert!(rest.a().columns(0, coordinates).amax() < 1e-12, "{}", rest.a());
+    assert!(
+        rest.a().columns(0, coordinates).amax() < 1e-12,
+        "{}",
+        rest.a()
+    );
 }

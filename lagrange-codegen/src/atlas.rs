@@ -153,15 +153,18 @@ fn supported(cx: &Ctxt, system: &System, at: &Ident) -> bool {
     let refused = [
         (
             !system.orientations.is_empty(),
-            "free orientations (which need no atlas)",
+            "a free orientation in the same description: the atlas runs a configuration of coordinates alone; give the Euler-angle rotation an `orientation(..)` of its own instead (a quaternion needs no chart)",
         ),
-        (system.urdf.is_some(), "a URDF robot"),
+        (
+            system.urdf.is_some(),
+            "a URDF robot: its joints turn about one axis each, so it has no Euler triple to switch; a robot's free root is a quaternion already (`base = floating`)",
+        ),
     ];
     match refused.iter().find(|(yes, _)| *yes) {
-        Some((_, what)) => {
+        Some((_, why)) => {
             cx.error_at(
                 at.span(),
-                format!("`emit(atlas)` is not available with {what} yet; it covers descriptions whose rotations are written in Euler angles, with holonomic and nonholonomic constraints kept by multipliers"),
+                format!("`emit(atlas)` is not available with {why}"),
             );
             false
         }
