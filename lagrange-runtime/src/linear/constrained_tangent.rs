@@ -131,12 +131,7 @@ impl Linearizer {
         S: Constrained<T, N, K, Q> + Driven<T, N, P, Q>,
         T: Real,
     {
-        let u = self.inputs_at(sys, op)?;
-        let (v, t) = (op.v, op.t);
-        if !(t.is_finite() && finite(&dm(&op.q)) && finite(&dm(&v))) {
-            return Err(Error::non_finite(t, &op.q, &v));
-        }
-        let q = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, op.q)?;
+        let (u, q, v, t) = self.point_on_group(sys, op)?;
         self.check_on_group::<S, T, N, K, Q>(sys, &q, &v, t)?;
         let accel = |q: &SVector<T, Q>, v: &SVector<T, N>, u: &SVector<T, P>| {
             let held = Held { system: sys, u: *u };
@@ -183,6 +178,37 @@ impl Linearizer {
         completed.extend(states[ni + named(&self.speeds)..].iter().cloned());
         let inputs = inputs.iter().map(|s| s.to_string()).collect();
         Linear::from_parts(a, b, states, inputs, ni, None).with_completed(completed)
+    }
+
+    /// The inputs at the point, and the point itself with unit quaternions.
+    ///
+    /// # Errors
+    /// Those of `inputs_at`; [`Error::NonFiniteState`];
+    /// [`Error::NonUnitQuaternion`].
+    #[allow(clippy::type_complexity)]
+    pub(super) fn point_on_group<
+        S,
+        T,
+        const N: usize,
+        const P: usize,
+        const U: usize,
+        const Q: usize,
+    >(
+        &self,
+        sys: &S,
+        op: &OperatingPoint<T, N, U, Q>,
+    ) -> Result<(SVector<T, P>, SVector<T, Q>, SVector<T, N>, T), Error>
+    where
+        S: Driven<T, N, P, Q>,
+        T: Real,
+    {
+        let u = self.inputs_at(sys, op)?;
+        let (v, t) = (op.v, op.t);
+        if !(t.is_finite() && finite(&dm(&op.q)) && finite(&dm(&v))) {
+            return Err(Error::non_finite(t, &op.q, &v));
+        }
+        let q = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, op.q)?;
+        Ok((u, q, v, t))
     }
 
     /// The operating point's constraint residuals within the consistency

@@ -16,7 +16,7 @@ use super::constrained_tangent::{assemble, differences, fixed_axes};
 use super::dense::{dm, dv, finite};
 use super::settings::{Linearizer, OperatingPoint};
 use super::tangent::{Held, advance, states};
-use crate::error::{Error, to_vec, unit_quaternions};
+use crate::error::{Error, to_vec};
 use crate::mechanics::ReducedDynamics;
 use crate::numeric::Real;
 use crate::ode::SecondOrder;
@@ -67,12 +67,7 @@ impl Linearizer {
         S: Reduced<T, N, K, Q> + Driven<T, N, P, Q>,
         T: Real,
     {
-        let u = self.inputs_at(sys, op)?;
-        let (v, t) = (op.v, op.t);
-        if !(t.is_finite() && finite(&dm(&op.q)) && finite(&dm(&v))) {
-            return Err(Error::non_finite(t, &op.q, &v));
-        }
-        let q = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, op.q)?;
+        let (u, q, v, t) = self.point_on_group(sys, op)?;
         let rows = |q: &SVector<T, Q>| constraint_rows::<S, T, N, K, Q>(sys, q, t);
         self.check_rows::<S, T, N, K, Q>(sys, (&q, &v, t), &rows)?;
         let accel = |q: &SVector<T, Q>, v: &SVector<T, N>, u: &SVector<T, P>| {
