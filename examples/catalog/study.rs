@@ -153,6 +153,8 @@ impl KeplerOrbit {
 #[lagrange(
     orientation(turn),
     body(b, mass = 1, inertia = [i1, i2, i3], at = [0, 0, 0], rotation = turn),
+    // Drawn as the plate with moments (1, 2, 3): sides √24, √12 (visual only).
+    shape(b, box(size = [4.9, 3.46, 0.15])),
     emit(hamiltonian),
 )]
 pub struct TumblingBody {

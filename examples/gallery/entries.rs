@@ -27,6 +27,11 @@ pub(crate) const ENTRIES: &[Entry] = &[
         free::intermediate_axis,
     ),
     entry(
+        "tumbling body, 200 flips, symplectic on the group",
+        "emit(hamiltonian) with a quaternion: Gauss steps each quaternion as four coordinates with four momenta; the energy error stays where it started",
+        free::symplectic_tumbling,
+    ),
+    entry(
         "heavy top spun exactly upright",
         "θ = 0, where Euler angles stop, is an ordinary state; stability from the tangent-space linearisation",
         free::upright_top,
