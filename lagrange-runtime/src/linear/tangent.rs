@@ -158,11 +158,11 @@ impl Linearizer {
                 }
             }
         }
-        if let Some(d) = dynamics.acceleration_derivatives(t, &q, v, forced)? {
+        if let Some((dq, dv)) = dynamics.state_derivatives(t, &q, v, forced)? {
             for i in 0..N {
                 for j in 0..N {
-                    a[(N + i, j)] = d.dq[(i, j)].to_f64();
-                    a[(N + i, N + j)] = d.dv[(i, j)].to_f64();
+                    a[(N + i, j)] = dq[(i, j)].to_f64();
+                    a[(N + i, N + j)] = dv[(i, j)].to_f64();
                 }
             }
             return Ok((q, a));

@@ -12,6 +12,7 @@ use super::dynamics::{Dynamics, all_finite};
 use super::forcing::{Forcing, NoForcing};
 use crate::error::Error;
 use crate::numeric::Real;
+use crate::numeric::cholesky::Cholesky;
 use crate::system::Lagrangian;
 
 /// The derivatives of q̈ = M⁻¹(Q − h + τ) at a state, N × N each.
@@ -51,7 +52,49 @@ where
         S: Lagrangian<T, N, Q>,
         F: Forcing<T, N, Q>,
     {
-        // One factorisation of M for q̈ and for M⁻¹ J.
+        let Some((chol, dq, dv)) = self.derivatives(t, q, v, forced)? else {
+            return Ok(None);
+        };
+        let dtau = chol.solve_columns(SMatrix::identity());
+        if !all_finite(dtau.as_slice()) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        Ok(Some(AccelerationDerivatives { dq, dv, dtau }))
+    }
+
+    /// ∂q̈/∂δ and ∂q̈/∂q̇ alone: what a linearisation without inputs reads,
+    /// without forming M⁻¹.
+    ///
+    /// # Errors
+    /// As [`acceleration_derivatives`](Self::acceleration_derivatives).
+    pub(crate) fn state_derivatives<const N: usize, const Q: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        forced: Option<ForceJacobians<T, N>>,
+    ) -> Result<Option<ForceJacobians<T, N>>, Error>
+    where
+        S: Lagrangian<T, N, Q>,
+        F: Forcing<T, N, Q>,
+    {
+        let found = self.derivatives(t, q, v, forced)?;
+        Ok(found.map(|(_, dq, dv)| (dq, dv)))
+    }
+
+    /// M's factorisation (the one q̈ takes), M⁻¹ J_q and M⁻¹ J_v.
+    #[allow(clippy::type_complexity)]
+    fn derivatives<const N: usize, const Q: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        forced: Option<ForceJacobians<T, N>>,
+    ) -> Result<Option<(Cholesky<T, N>, SMatrix<T, N, N>, SMatrix<T, N, N>)>, Error>
+    where
+        S: Lagrangian<T, N, Q>,
+        F: Forcing<T, N, Q>,
+    {
         let (unit, tau) = self.checked(t, q, v)?;
         let (chol, accel) = self.factorised(t, &unit, v, tau)?;
         let Some((mut jq, mut jv)) = self.system().rhs_jacobians(&unit, v, &accel, t) else {
@@ -62,12 +105,10 @@ where
             jv += fv;
         }
         let (dq, dv) = (chol.solve_columns(jq), chol.solve_columns(jv));
-        let dtau = chol.solve_columns(SMatrix::identity());
-        let all = [&dq, &dv, &dtau];
-        if !all.iter().all(|m| all_finite(m.as_slice())) {
+        if !(all_finite(dq.as_slice()) && all_finite(dv.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
-        Ok(Some(AccelerationDerivatives { dq, dv, dtau }))
+        Ok(Some((chol, dq, dv)))
     }
 }
 
