@@ -165,7 +165,7 @@ fn html(rows: &[Row], gifs: &[(String, &str)]) -> String {
              <td class=\"n\">{}</td><td>{}</td><td class=\"n\">{:.1}</td><td>{}</td></tr>",
             escape(r.about),
             r.dof,
-            r.span,
+            span(r.span),
             r.accepted,
             r.rejected,
             r.drift.map_or("—".into(), |d| format!("{d:.1e}")),
@@ -191,4 +191,15 @@ fn html(rows: &[Row], gifs: &[(String, &str)]) -> String {
     }
     s.push_str("</body></html>\n");
     s
+}
+
+/// A run's span for the table: as written when it is a round number, else
+/// to four significant figures (a span of whole flip periods is not).
+fn span(x: f64) -> String {
+    if x == x.round() {
+        return format!("{x}");
+    }
+    let decimals = (3 - x.abs().log10().floor() as i32).max(0) as usize;
+    let text = format!("{x:.decimals$}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
