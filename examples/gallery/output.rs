@@ -125,7 +125,8 @@ fn html(rows: &[Row], gifs: &[(String, &str)]) -> String {
          .anim{display:flex;gap:1em;flex-wrap:wrap}figure{margin:0}\
          section{margin-top:2em;border-top:1px solid #ddd}img{max-width:100%}</style></head><body>\n\
          <h1>lagrange gallery</h1>\n<p>Every catalog system simulated with DOPRI5 at \
-         rtol = atol = 1e-10 in f64 (controlled and linearised systems included). \
+         rtol = atol = 1e-10 in f64 (controlled and linearised systems included), \
+         but for the 200 flips of the tumbling body, with the symplectic Gauss method. \
          <i>drift</i> is the largest relative change of the conserved quantity \
          (T + V, or the Jacobi integral); <i>residuals</i> the largest |&Phi;| and \
          |G q&#775; + g| along the run. Each system has a plot and its trajectory as CSV below, and a 3D scene \
