@@ -484,7 +484,8 @@
 //! `least_squares` are refused (the residuals drift at the integrator's
 //! tolerance, recorded in the trajectory). [`Linearizer::atlas`] gives a
 //! constrained system's model on independent states of the charts (the
-//! pinned top at the upright: the pivoted top's A, to 4e-15).
+//! pinned top at the upright: the pivoted top's A, to 5e-10, the
+//! accuracy of the central differences both are read by).
 //!
 //! The atlas covers descriptions without free orientations, a URDF or the
 //! reduced form alone; an angle of such a rotation may appear only as that

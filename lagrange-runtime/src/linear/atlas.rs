@@ -2,12 +2,12 @@
 //! operating point.
 
 use super::Linear;
-use super::constrained_tangent::{Slopes, assemble};
-use super::dense::dv;
+use super::constrained_tangent::{GroupForm, GroupStates};
+use super::difference::{column, unit};
 use super::settings::Linearizer;
-use super::tangent::{Held, column, step};
+use super::tangent::Held;
 use crate::atlas::{Charted, Charts, TwinForcing, layout_agrees};
-use crate::error::{Error, check_finite_inputs, check_tolerance, to_vec};
+use crate::error::{Error, check_finite_inputs, check_tolerance};
 use crate::mechanics::{Dynamics, NoForcing};
 use crate::numeric::Real;
 use crate::ode::SecondOrder;
@@ -56,9 +56,8 @@ impl Linearizer {
         S: Atlas<T, N, F>,
         T: Real,
     {
-        let (a, charts, (q, v)) = self.atlas_a(sys, (q, v), t, NoForcing)?;
-        let b = DMatrix::zeros(2 * N, 0);
-        self.restricted(sys, &charts, (&q, &v, t), (a, b), &[])
+        let none = SVector::<T, 0>::zeros();
+        self.atlas_model(sys, (q, v, &none, t), |_| NoForcing, &[])
     }
 
     /// [`atlas`](Self::atlas) with the inputs held at `u`: A at (q, v, u)
@@ -85,98 +84,27 @@ impl Linearizer {
     {
         check_finite_inputs(&S::INPUTS, t, q, v, u)?;
         let held = |u: SVector<T, P>| Held { system: sys, u };
-        let (a, charts, (q, v)) = self.atlas_a(sys, (q, v), t, held(*u))?;
-        let mut b = DMatrix::zeros(2 * N, P);
-        for k in 0..P {
-            let h = step(u[k].to_f64());
-            let mut e = SVector::<T, P>::zeros();
-            e[k] = T::lit(h);
-            let at = |u: SVector<T, P>| {
-                let dynamics = Dynamics::new(sys)
-                    .with_singular_tolerance(T::lit(self.singular_tolerance))
-                    .with_forcing(held(u));
-                Charted::<S, T, N, F, _>::new(dynamics, &charts).acceleration(t, &q, &v)
-            };
-            let du = column(at(*u + e)?, at(*u - e)?, h);
-            for i in 0..N {
-                b[(N + i, k)] = du[i];
-            }
-        }
-        self.restricted(sys, &charts, (&q, &v, t), (a, b), &S::INPUTS)
+        self.atlas_model(sys, (q, v, u, t), held, &S::INPUTS)
     }
 
-    /// The model in the charts: A and B as they are without constraints;
-    /// with them, restricted to independent coordinates and speeds of the
-    /// charts, chosen as [`constrained`](Self::constrained) chooses them
-    /// (from the rows in these charts: the user's, or the twin's read
-    /// through ω = E ẋ), after the point is checked against the rows.
-    fn restricted<S, T, const N: usize, const F: usize>(
+    /// The model in charts regular at (q, v), the inputs held at `u` acting
+    /// through `forcing(u)`: A and B by central differences of the dynamics
+    /// in those charts; with constraints, on independent coordinates and
+    /// speeds of the charts, from the rows in them (the user's, or the
+    /// twin's read through ω = E ẋ), as the constrained forms' tangent
+    /// linearisations take them.
+    fn atlas_model<S, T, G, H, const N: usize, const P: usize, const F: usize>(
         &self,
         sys: &S,
-        charts: &Charts<T>,
-        (q, v, t): (&SVector<T, N>, &SVector<T, N>, T),
-        (a, b): (DMatrix<f64>, DMatrix<f64>),
-        inputs: &[&str],
+        (q, v, u, t): (&SVector<T, N>, &SVector<T, N>, &SVector<T, P>, T),
+        forcing: H,
+        inputs: &[&'static str],
     ) -> Result<Linear, Error>
     where
         S: Atlas<T, N, F>,
         T: Real,
-    {
-        let names = states::<S, T, N, F>(charts.mask());
-        if !S::CONSTRAINED {
-            let inputs = inputs.iter().map(|s| s.to_string()).collect();
-            return Ok(Linear::from_parts(a, b, names, inputs, N, None));
-        }
-        let charted = Charted::<S, T, N, F>::new(Dynamics::new(sys), charts);
-        let rows = charted.rows(t, q);
-        let velocity = |q: &SVector<T, N>| {
-            let r = charted.rows(t, q);
-            r.g * dv(v) + r.g0
-        };
-        let coordinates = (t, q, &S::COORDINATES[..]);
-        self.within_tolerance([&rows.phi, &velocity(q)], coordinates, &rows.names)?;
-        let mut dvel = DMatrix::zeros(rows.g.nrows(), N);
-        for j in 0..N {
-            let h = step(q[j].to_f64());
-            let mut e = SVector::<T, N>::zeros();
-            e[j] = T::lit(h);
-            dvel.set_column(j, &((velocity(&(q + e)) - velocity(&(q - e))) / (2.0 * h)));
-        }
-        let slopes = Slopes {
-            xq: a.view((N, 0), (N, N)).into_owned(),
-            xv: a.view((N, N), (N, N)).into_owned(),
-            xu: b.rows(N, N).into_owned(),
-            dvel,
-            g: rows.g,
-        };
-        let directions: Vec<&str> = names[..N].iter().map(String::as_str).collect();
-        let part = self.split(&slopes.g, rows.holonomic, [&directions; 2], |ratio, r| {
-            Error::RedundantConstraints {
-                t: t.to_f64(),
-                q: to_vec(q),
-                coordinates: S::COORDINATES.to_vec(),
-                ratio,
-                dependent: r.iter().map(|&i| rows.names[i]).collect(),
-            }
-        })?;
-        let (a, b) = assemble(&part, &slopes, &DMatrix::zeros(N, N), rows.holonomic);
-        Ok(self.model(&part, (a, b), &names, inputs))
-    }
-
-    /// A in regular charts at (q, v) with `forcing` added, the charts, and
-    /// (q, v) read in them.
-    #[allow(clippy::type_complexity)]
-    fn atlas_a<S, T, G, const N: usize, const F: usize>(
-        &self,
-        sys: &S,
-        (q, v): (&SVector<T, N>, &SVector<T, N>),
-        t: T,
-        forcing: G,
-    ) -> Result<(DMatrix<f64>, Charts<T>, (SVector<T, N>, SVector<T, N>)), Error>
-    where
-        S: Atlas<T, N, F>,
-        T: Real,
         G: TwinForcing<S, T, N, F>,
+        H: Fn(SVector<T, P>) -> G,
     {
         check_tolerance("singular tolerance", self.singular_tolerance)?;
         sys.check_parameters()?;
@@ -185,31 +113,73 @@ impl Linearizer {
                 "the system's Atlas twin does not have the documented layout".into(),
             ));
         }
-        let dynamics = Dynamics::new(sys)
-            .with_singular_tolerance(T::lit(self.singular_tolerance))
-            .with_forcing(forcing);
         let charts = Charts::new(S::EULER);
-        let charted = Charted::<S, T, N, F, G>::new(dynamics, &charts);
         let (mut q, mut v) = (*q, *v);
         charts.enter_regular(t, &mut q, &mut v)?;
-        let accel = |q: &SVector<T, N>, v: &SVector<T, N>| charted.acceleration(t, q, v);
-        let mut a = DMatrix::zeros(2 * N, 2 * N);
-        a.view_mut((0, N), (N, N)).fill_with_identity();
-        for j in 0..N {
-            let (hq, hv) = (step(q[j].to_f64()), step(v[j].to_f64()));
-            let mut e = SVector::<T, N>::zeros();
-            e[j] = T::lit(hq);
-            let dq = column(accel(&(q + e), &v)?, accel(&(q - e), &v)?, hq);
-            e[j] = T::lit(hv);
-            let dv = column(accel(&q, &(v + e))?, accel(&q, &(v - e))?, hv);
-            for i in 0..N {
-                a[(N + i, j)] = dq[i];
-                a[(N + i, N + j)] = dv[i];
-            }
+        let accel = |q: &SVector<T, N>, v: &SVector<T, N>, u: &SVector<T, P>| {
+            let dynamics = Dynamics::new(sys)
+                .with_singular_tolerance(T::lit(self.singular_tolerance))
+                .with_forcing(forcing(*u));
+            Charted::<S, T, N, F, G>::new(dynamics, &charts).acceleration(t, q, v)
+        };
+        let names = states::<S, T, N, F>(charts.mask());
+        if !S::CONSTRAINED {
+            let (a, b) = full_model(accel, (&q, &v, u))?;
+            let inputs = inputs.iter().map(|s| s.to_string()).collect();
+            return Ok(Linear::from_parts(a, b, names, inputs, N, None));
         }
-        drop(charted);
-        Ok((a, charts, (q, v)))
+        let charted = Charted::<S, T, N, F>::new(Dynamics::new(sys), &charts);
+        let at = charted.rows(t, &q);
+        let form = GroupForm {
+            accel,
+            rows: |q: &SVector<T, N>| {
+                let r = charted.rows(t, q);
+                (r.g, r.g0)
+            },
+            phi: at.phi,
+            holonomic: at.holonomic,
+            row_names: &at.names,
+        };
+        let directions: Vec<&str> = names[..N].iter().map(String::as_str).collect();
+        let states = GroupStates {
+            names: &names,
+            partition: [&directions; 2],
+            inputs,
+        };
+        self.group_model::<S, T, _, _, N, P, N>(form, (&q, &v, u, t), states)
     }
+}
+
+/// A = [[0, I], [∂a/∂q, ∂a/∂v]] and B = [0; ∂a/∂u] by central differences.
+fn full_model<T, A, const N: usize, const P: usize>(
+    accel: A,
+    (q, v, u): (&SVector<T, N>, &SVector<T, N>, &SVector<T, P>),
+) -> Result<(DMatrix<f64>, DMatrix<f64>), Error>
+where
+    T: Real,
+    A: Fn(&SVector<T, N>, &SVector<T, N>, &SVector<T, P>) -> Result<SVector<T, N>, Error>,
+{
+    let mut a = DMatrix::zeros(2 * N, 2 * N);
+    a.view_mut((0, N), (N, N)).fill_with_identity();
+    for j in 0..N {
+        let (h, e) = unit::<T, N>(j, q[j].to_f64());
+        let dq = column(accel(&(q + e), v, u)?, accel(&(q - e), v, u)?, h);
+        let (h, e) = unit::<T, N>(j, v[j].to_f64());
+        let dv = column(accel(q, &(v + e), u)?, accel(q, &(v - e), u)?, h);
+        for i in 0..N {
+            a[(N + i, j)] = dq[i];
+            a[(N + i, N + j)] = dv[i];
+        }
+    }
+    let mut b = DMatrix::zeros(2 * N, P);
+    for k in 0..P {
+        let (h, e) = unit::<T, P>(k, u[k].to_f64());
+        let du = column(accel(q, v, &(u + e))?, accel(q, v, &(u - e))?, h);
+        for i in 0..N {
+            b[(N + i, k)] = du[i];
+        }
+    }
+    Ok((a, b))
 }
 
 /// q's names in the charts `second` (bit k: rotation k in its second chart),

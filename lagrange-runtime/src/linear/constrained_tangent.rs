@@ -45,23 +45,43 @@
 
 use super::Linear;
 use super::dense::{dm, dv, finite};
+use super::difference::{column, difference, unit};
 use super::partition::{Partition, embeddings, holonomic};
 use super::settings::{Linearizer, OperatingPoint};
 use super::tangent::{Held, advance, states};
-use crate::error::{Error, unit_quaternions};
+use crate::error::{Error, to_vec, unit_quaternions};
 use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::numeric::Real;
 use crate::system::{Constrained, Driven, Lagrangian};
 use nalgebra::{DMatrix, DVector, SVector};
 
+/// A constrained form as its tangent linearisation reads it: its
+/// accelerations a(q, v, u), its rows (G, g) at q, Φ at the point (the
+/// first `holonomic` rows), and the rows' names.
+pub(super) struct GroupForm<'n, A, R> {
+    pub accel: A,
+    pub rows: R,
+    pub phi: DVector<f64>,
+    pub holonomic: usize,
+    pub row_names: &'n [&'static str],
+}
+
+/// The names of a tangent model: its 2N states (directions, then rates),
+/// the names the partition reads for coordinates and speeds, its inputs.
+pub(super) struct GroupStates<'n> {
+    pub names: &'n [String],
+    pub partition: [&'n [&'n str]; 2],
+    pub inputs: &'n [&'static str],
+}
+
 /// The constrained dynamics' derivatives at the operating point: X_q, X_v,
 /// X_u and D as the module describes, and G.
-pub(super) struct Slopes {
-    pub(super) xq: DMatrix<f64>,
-    pub(super) xv: DMatrix<f64>,
-    pub(super) xu: DMatrix<f64>,
-    pub(super) dvel: DMatrix<f64>,
-    pub(super) g: DMatrix<f64>,
+struct Slopes {
+    xq: DMatrix<f64>,
+    xv: DMatrix<f64>,
+    xu: DMatrix<f64>,
+    dvel: DMatrix<f64>,
+    g: DMatrix<f64>,
 }
 
 impl Linearizer {
@@ -132,7 +152,6 @@ impl Linearizer {
         T: Real,
     {
         let (u, q, v, t) = self.point_on_group(sys, op)?;
-        self.check_on_group::<S, T, N, K, Q>(sys, &q, &v, t)?;
         let accel = |q: &SVector<T, Q>, v: &SVector<T, N>, u: &SVector<T, P>| {
             let held = Held { system: sys, u: *u };
             let solution = ConstrainedDynamics::<_, _, K>::new(sys)
@@ -142,23 +161,84 @@ impl Linearizer {
                 .solve(t, q, v)?;
             Ok(solution.accelerations)
         };
-        let a0 = accel(&q, &v, &u)?;
-        let names = states::<S, T, N, Q>();
-        let directions: Vec<&str> = names[..N].iter().map(String::as_str).collect();
         let rows = |q: &SVector<T, Q>| {
             let (g, g0) = sys.constraint_jacobian(q, t);
             (dm(&g), dv(&g0))
         };
-        let step = |d: &SVector<T, N>| advance::<S, T, N, Q>(&q, d);
-        let mut slopes = differences(accel, rows, (&q, &v, &u), step)?;
-        let part =
-            self.partition::<S, T, N, K, Q>(&slopes.g, (&q, t), [&directions, &S::VELOCITIES])?;
-        let kinematics = fixed_axes::<S, T, N, Q>(&mut slopes, &v, &a0);
-        let (a, b) = assemble(&part, &slopes, &kinematics, holonomic::<S, T, N, K, Q>());
-        if !(finite(&a) && finite(&b)) {
-            return Err(Error::non_finite(t, &q, &v));
+        let h = holonomic::<S, T, N, K, Q>();
+        let phi = dv(&sys.constraint_positions(&q, t)).rows(0, h).into_owned();
+        let names = states::<S, T, N, Q>();
+        let directions: Vec<&str> = names[..N].iter().map(String::as_str).collect();
+        let form = GroupForm {
+            accel,
+            rows,
+            phi,
+            holonomic: h,
+            row_names: &S::CONSTRAINTS,
+        };
+        let states = GroupStates {
+            names: &names,
+            partition: [&directions, &S::VELOCITIES],
+            inputs: &S::INPUTS,
+        };
+        self.group_model::<S, T, _, _, N, P, Q>(form, (&q, &v, &u, t), states)
+    }
+
+    /// A constrained form's linear model on the group at (q, v, u, t), the
+    /// part every tangent linearisation of constraints shares: the point
+    /// checked against the rows, the derivatives by central differences on
+    /// the group, the independent states chosen, the model in axes fixed at
+    /// the point (no turn without orientations), named by `states`.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteState`] (also at a perturbed state);
+    /// [`LinearError::InconsistentOperatingPoint`](crate::LinearError::InconsistentOperatingPoint)
+    /// naming the worst row; the partition's errors;
+    /// [`Error::RedundantConstraints`] naming the dependent rows; whatever
+    /// `accel` reports.
+    pub(super) fn group_model<S, T, A, R, const N: usize, const P: usize, const Q: usize>(
+        &self,
+        form: GroupForm<'_, A, R>,
+        (q, v, u, t): (&SVector<T, Q>, &SVector<T, N>, &SVector<T, P>, T),
+        states: GroupStates<'_>,
+    ) -> Result<Linear, Error>
+    where
+        S: Lagrangian<T, N, Q>,
+        T: Real,
+        A: Fn(&SVector<T, Q>, &SVector<T, N>, &SVector<T, P>) -> Result<SVector<T, N>, Error>,
+        R: Fn(&SVector<T, Q>) -> (DMatrix<f64>, DVector<f64>),
+    {
+        let GroupForm {
+            accel,
+            rows,
+            phi,
+            holonomic,
+            row_names,
+        } = form;
+        let (g, g0) = rows(q);
+        let vel = g * dv(v) + g0;
+        if !(phi.iter().chain(vel.iter()).all(|x| x.is_finite())) {
+            return Err(Error::non_finite(t, q, v));
         }
-        Ok(self.model(&part, (a, b), &names, &S::INPUTS))
+        self.within_tolerance([&phi, &vel], (t, q, &S::COORDINATES), row_names)?;
+        let a0 = accel(q, v, u)?;
+        let step = |d: &SVector<T, N>| advance::<S, T, N, Q>(q, d);
+        let mut slopes = differences(accel, rows, (q, v, u), step)?;
+        let part = self.split(&slopes.g, holonomic, states.partition, |ratio, r| {
+            Error::RedundantConstraints {
+                t: t.to_f64(),
+                q: to_vec(q),
+                coordinates: S::COORDINATES.to_vec(),
+                ratio,
+                dependent: r.iter().map(|&i| row_names[i]).collect(),
+            }
+        })?;
+        let kinematics = fixed_axes::<S, T, N, Q>(&mut slopes, v, &a0);
+        let (a, b) = assemble(&part, &slopes, &kinematics, holonomic);
+        if !(finite(&a) && finite(&b)) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        Ok(self.model(&part, (a, b), states.names, states.inputs))
     }
 
     /// The linear model in the partition's independent states, named as
@@ -210,36 +290,11 @@ impl Linearizer {
         let q = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, op.q)?;
         Ok((u, q, v, t))
     }
-
-    /// The operating point's constraint residuals within the consistency
-    /// tolerance, or the error naming the worst.
-    fn check_on_group<S, T, const N: usize, const K: usize, const Q: usize>(
-        &self,
-        sys: &S,
-        q: &SVector<T, Q>,
-        v: &SVector<T, N>,
-        t: T,
-    ) -> Result<(), Error>
-    where
-        S: Constrained<T, N, K, Q>,
-        T: Real,
-    {
-        let mut phi = dv(&sys.constraint_positions(q, t));
-        for x in phi.iter_mut().skip(holonomic::<S, T, N, K, Q>()) {
-            *x = 0.0;
-        }
-        let (g, g0) = sys.constraint_jacobian(q, t);
-        let vel = dv(&(g * v + g0));
-        if !(phi.iter().chain(vel.iter()).all(|x| x.is_finite())) {
-            return Err(Error::non_finite(t, q, v));
-        }
-        self.check_consistent::<S, T, N, K, Q>([&phi, &vel], q, t)
-    }
 }
 
 /// X_q, X_v, X_u and D by central differences at (q, v, u, t), body axes;
 /// `accel` is the form's a(q, v, u), `rows` the constraint rows (G, g) at q.
-pub(super) fn differences<T, A, R, const N: usize, const P: usize, const Q: usize>(
+fn differences<T, A, R, const N: usize, const P: usize, const Q: usize>(
     accel: A,
     rows: R,
     (q, v, u): (&SVector<T, Q>, &SVector<T, N>, &SVector<T, P>),
@@ -284,37 +339,6 @@ where
     Ok(s)
 }
 
-/// The central-difference step for an entry of scale `x` and the vector with
-/// that step in entry `j`.
-fn unit<T: Real, const R: usize>(j: usize, x: f64) -> (f64, SVector<T, R>) {
-    let h = T::default_epsilon().to_f64().cbrt() * x.abs().max(1.0);
-    let mut e = SVector::<T, R>::zeros();
-    e[j] = T::lit(h);
-    (h, e)
-}
-
-/// (f(+h) − f(−h)) / 2h, zero where it is below the round-off of the
-/// difference, 16 ε (|f(+h)| + |f(−h)|) / 2h (ε the scalar's epsilon): a direction the function does
-/// not depend on (a cyclic coordinate, a spin about an axis of symmetry)
-/// gives an exact zero, as the symbolic derivatives would, so that
-/// [`Linear::stability`] sees its zero eigenvalue as structural.
-fn column<T: Real, const R: usize>(plus: SVector<T, R>, minus: SVector<T, R>, h: f64) -> Vec<f64> {
-    let f = |x: SVector<T, R>| x.iter().map(|e| e.to_f64()).collect::<Vec<f64>>();
-    difference::<T>(&f(plus), &f(minus), h)
-}
-
-/// [`column`] of plain numbers.
-fn difference<T: Real>(plus: &[f64], minus: &[f64], h: f64) -> Vec<f64> {
-    let eps = T::default_epsilon().to_f64();
-    (plus.iter().zip(minus))
-        .map(|(&p, &m)| {
-            let d = (p - m) / (2.0 * h);
-            let floor = 16.0 * eps * (p.abs() + m.abs()) / (2.0 * h);
-            if d.abs() <= floor { 0.0 } else { d }
-        })
-        .collect()
-}
-
 fn set(m: &mut DMatrix<f64>, j: usize, column: Vec<f64>) {
     for (i, x) in column.into_iter().enumerate() {
         m[(i, j)] = x;
@@ -323,7 +347,7 @@ fn set(m: &mut DMatrix<f64>, j: usize, column: Vec<f64>) {
 
 /// Re-reads the body-axis derivatives in fixed axes (the module's equations):
 /// X_q + X_v W − \[a*_ω\]× and D + G W; returns W, the kinematic rows' δ term.
-pub(super) fn fixed_axes<S, T, const N: usize, const Q: usize>(
+fn fixed_axes<S, T, const N: usize, const Q: usize>(
     s: &mut Slopes,
     v: &SVector<T, N>,
     a: &SVector<T, N>,
@@ -360,7 +384,7 @@ where
 
 /// A and B in (δ_i, δv_s) from the full tangent model (the module's
 /// equations) and the embeddings of the partition.
-pub(super) fn assemble(
+fn assemble(
     part: &Partition,
     s: &Slopes,
     kinematics: &DMatrix<f64>,

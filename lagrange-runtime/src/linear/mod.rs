@@ -141,6 +141,7 @@ mod complete;
 mod constrained_tangent;
 mod defaults;
 mod dense;
+mod difference;
 mod eigen;
 mod errors;
 mod lqr;

@@ -12,11 +12,11 @@
 //! first [`Reduced::HOLONOMIC`] of them Φ_q.
 
 use super::Linear;
-use super::constrained_tangent::{assemble, differences, fixed_axes};
-use super::dense::{dm, dv, finite};
+use super::constrained_tangent::{GroupForm, GroupStates};
+use super::dense::{dm, dv};
 use super::settings::{Linearizer, OperatingPoint};
-use super::tangent::{Held, advance, states};
-use crate::error::{Error, to_vec};
+use super::tangent::{Held, states};
+use crate::error::Error;
 use crate::mechanics::ReducedDynamics;
 use crate::numeric::Real;
 use crate::ode::SecondOrder;
@@ -68,58 +68,28 @@ impl Linearizer {
         T: Real,
     {
         let (u, q, v, t) = self.point_on_group(sys, op)?;
-        let rows = |q: &SVector<T, Q>| constraint_rows::<S, T, N, K, Q>(sys, q, t);
-        self.check_rows::<S, T, N, K, Q>(sys, (&q, &v, t), &rows)?;
         let accel = |q: &SVector<T, Q>, v: &SVector<T, N>, u: &SVector<T, P>| {
             let dynamics = ReducedDynamics::<_, _, K>::new(sys)
                 .with_singular_tolerance(T::lit(self.singular_tolerance))
                 .with_forcing(Held { system: sys, u: *u });
             SecondOrder::acceleration(&dynamics, t, q, v)
         };
-        let a0 = accel(&q, &v, &u)?;
+        let h = S::HOLONOMIC.min(N - K);
         let names = states::<S, T, N, Q>();
         let directions: Vec<&str> = names[..N].iter().map(String::as_str).collect();
-        let step = |d: &SVector<T, N>| advance::<S, T, N, Q>(&q, d);
-        let mut slopes = differences(accel, rows, (&q, &v, &u), step)?;
-        let h = S::HOLONOMIC.min(N - K);
-        let part = self.split(&slopes.g, h, [&directions, &S::VELOCITIES], |ratio, r| {
-            Error::RedundantConstraints {
-                t: t.to_f64(),
-                q: to_vec(&q),
-                coordinates: S::COORDINATES.to_vec(),
-                ratio,
-                dependent: r.iter().map(|&i| S::ROWS[K + i]).collect(),
-            }
-        })?;
-        let kinematics = fixed_axes::<S, T, N, Q>(&mut slopes, &v, &a0);
-        let (a, b) = assemble(&part, &slopes, &kinematics, h);
-        if !(finite(&a) && finite(&b)) {
-            return Err(Error::non_finite(t, &q, &v));
-        }
-        Ok(self.model(&part, (a, b), &names, &S::INPUTS))
-    }
-
-    /// The operating point's holonomic positions Φ and velocity rows
-    /// G v + g within the consistency tolerance, or the error naming the
-    /// worst row.
-    fn check_rows<S, T, const N: usize, const K: usize, const Q: usize>(
-        &self,
-        sys: &S,
-        (q, v, t): (&SVector<T, Q>, &SVector<T, N>, T),
-        rows: &impl Fn(&SVector<T, Q>) -> (DMatrix<f64>, DVector<f64>),
-    ) -> Result<(), Error>
-    where
-        S: Reduced<T, N, K, Q>,
-        T: Real,
-    {
-        let h = S::HOLONOMIC.min(N - K);
-        let phi = dv(&sys.holonomic_positions(q, t)).rows(0, h).into_owned();
-        let (g, g0) = rows(q);
-        let vel = g * dv(v) + g0;
-        if !(phi.iter().chain(vel.iter()).all(|x| x.is_finite())) {
-            return Err(Error::non_finite(t, q, v));
-        }
-        self.within_tolerance([&phi, &vel], (t, q, &S::COORDINATES), &S::ROWS[K..])
+        let form = GroupForm {
+            accel,
+            rows: |q: &SVector<T, Q>| constraint_rows::<S, T, N, K, Q>(sys, q, t),
+            phi: dv(&sys.holonomic_positions(&q, t)).rows(0, h).into_owned(),
+            holonomic: h,
+            row_names: &S::ROWS[K..],
+        };
+        let states = GroupStates {
+            names: &names,
+            partition: [&directions, &S::VELOCITIES],
+            inputs: &S::INPUTS,
+        };
+        self.group_model::<S, T, _, _, N, P, Q>(form, (&q, &v, &u, t), states)
     }
 }
 

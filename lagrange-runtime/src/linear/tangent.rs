@@ -21,6 +21,7 @@
 //! about 1e-10.
 
 use super::Linear;
+use super::difference::{column, unit};
 use super::settings::Linearizer;
 use crate::error::{Error, check_finite_inputs, check_tolerance, to_vec, unit_quaternions};
 use crate::mechanics::{Dynamics, ForceJacobians, Forcing, NoForcing};
@@ -167,11 +168,8 @@ impl Linearizer {
             }
             return Ok((q, a));
         }
-        let zero = SVector::<T, N>::zeros();
         for j in 0..N {
-            let h = step(v[j].to_f64());
-            let mut e = zero;
-            e[j] = T::lit(h);
+            let (h, e) = unit::<T, N>(j, v[j].to_f64());
             let along = |d: SVector<T, N>| accel(&advance::<S, T, N, Q>(&q, &d), v);
             let dq = column(along(e)?, along(-e)?, h);
             let dv = column(accel(&q, &(v + e))?, accel(&q, &(v - e))?, h);
@@ -215,22 +213,6 @@ pub(super) fn advance<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q: 
         out.as_mut_slice(),
     );
     out
-}
-
-/// The central-difference step for an entry of scale `x`.
-pub(super) fn step(x: f64) -> f64 {
-    f64::EPSILON.cbrt() * x.abs().max(1.0)
-}
-
-/// (f(+h) − f(−h)) / 2h.
-pub(super) fn column<T: Real, const N: usize>(
-    plus: SVector<T, N>,
-    minus: SVector<T, N>,
-    h: f64,
-) -> Vec<f64> {
-    (0..N)
-        .map(|i| (plus[i].to_f64() - minus[i].to_f64()) / (2.0 * h))
-        .collect()
 }
 
 /// The states' names: each velocity's tangent direction (an ordinary
