@@ -48,10 +48,11 @@ use super::dense::{dm, dv, finite};
 use super::difference::{column, difference, unit};
 use super::partition::{Partition, embeddings, holonomic};
 use super::settings::{Linearizer, OperatingPoint};
-use super::tangent::{Held, advance, states};
+use super::tangent::{Held, states};
 use crate::error::{Error, to_vec, unit_quaternions};
 use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::numeric::Real;
+use crate::numeric::orientation;
 use crate::system::{Constrained, Driven, Lagrangian};
 use nalgebra::{DMatrix, DVector, SVector};
 
@@ -222,7 +223,7 @@ impl Linearizer {
         }
         self.within_tolerance([&phi, &vel], (t, q, &S::COORDINATES), row_names)?;
         let a0 = accel(q, v, u)?;
-        let step = |d: &SVector<T, N>| advance::<S, T, N, Q>(q, d);
+        let step = |d: &SVector<T, N>| orientation::plus(S::ORIENTATIONS, q, d);
         let mut slopes = differences(accel, rows, (q, v, u), step)?;
         let part = self.split(&slopes.g, holonomic, states.partition, |ratio, r| {
             Error::RedundantConstraints {

@@ -170,7 +170,7 @@ impl Linearizer {
         }
         for j in 0..N {
             let (h, e) = unit::<T, N>(j, v[j].to_f64());
-            let along = |d: SVector<T, N>| accel(&advance::<S, T, N, Q>(&q, &d), v);
+            let along = |d: SVector<T, N>| accel(&orientation::plus(S::ORIENTATIONS, &q, &d), v);
             let dq = column(along(e)?, along(-e)?, h);
             let dv = column(accel(&q, &(v + e))?, accel(&q, &(v - e))?, h);
             for i in 0..N {
@@ -198,21 +198,6 @@ where
     fn force(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
         Ok(self.system.input_forces(q, v, &self.u, t))
     }
-}
-
-/// q ⊕ δ.
-pub(super) fn advance<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q: usize>(
-    q: &SVector<T, Q>,
-    delta: &SVector<T, N>,
-) -> SVector<T, Q> {
-    let mut out = SVector::<T, Q>::zeros();
-    orientation::integrate(
-        S::ORIENTATIONS,
-        q.as_slice(),
-        delta.as_slice(),
-        out.as_mut_slice(),
-    );
-    out
 }
 
 /// The states' names: each velocity's tangent direction (an ordinary

@@ -423,7 +423,7 @@ impl Rattle {
         let eps = T::default_epsilon();
         let mut lambda = SVector::<T, K>::zeros();
         let mut delta = *drift;
-        let mut q = turned::<S, T, N, K, Q>(q_n, &delta);
+        let mut q = orientation::plus(S::ORIENTATIONS, q_n, &delta);
         let mut previous = T::max_value().unwrap_or(T::one() / eps);
         for _ in 0..self.max_iterations {
             let phi = system.constraint_positions(&q, t1);
@@ -433,7 +433,7 @@ impl Rattle {
                 .ok_or_else(|| redundant::<S, T, N, K, Q>(t1, &q))?;
             lambda += step;
             delta = drift + minv_gt * lambda;
-            q = turned::<S, T, N, K, Q>(q_n, &delta);
+            q = orientation::plus(S::ORIENTATIONS, q_n, &delta);
             let size = (minv_gt * step).amax() / (T::one() + q.amax());
             if !size.is_finite() {
                 break;
@@ -451,24 +451,6 @@ impl Rattle {
             iterations: self.max_iterations,
         })
     }
-}
-
-/// q ⊕ δ.
-fn turned<S, T: Real, const N: usize, const K: usize, const Q: usize>(
-    q: &SVector<T, Q>,
-    delta: &SVector<T, N>,
-) -> SVector<T, Q>
-where
-    S: Constrained<T, N, K, Q>,
-{
-    let mut out = SVector::<T, Q>::zeros();
-    orientation::integrate(
-        S::ORIENTATIONS,
-        q.as_slice(),
-        delta.as_slice(),
-        out.as_mut_slice(),
-    );
-    out
 }
 
 /// J_r(δ) x: each orientation's three rows of `x` turned by the right

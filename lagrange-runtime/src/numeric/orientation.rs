@@ -111,6 +111,18 @@ pub fn integrate<T: Real>(layout: &[Orientation], q: &[T], delta: &[T], out: &mu
     }
 }
 
+/// q ⊕ δ as a vector: [`integrate`] of a configuration of Q numbers by a
+/// tangent vector of N.
+pub fn plus<T: Real, const N: usize, const Q: usize>(
+    layout: &[Orientation],
+    q: &nalgebra::SVector<T, Q>,
+    delta: &nalgebra::SVector<T, N>,
+) -> nalgebra::SVector<T, Q> {
+    let mut out = nalgebra::SVector::<T, Q>::zeros();
+    integrate(layout, q.as_slice(), delta.as_slice(), out.as_mut_slice());
+    out
+}
+
 /// δ with q0 ⊕ δ = q1: the tangent vector from q0 to q1, an orientation's the
 /// rotation vector of q0⁻¹ ⊗ q1 (the shorter way round): Pinocchio's
 /// `difference`.

@@ -98,14 +98,7 @@ pub trait SecondOrder<T: Real, const N: usize, const Q: usize = N> {
     /// q ⊕ δ: q moved by the tangent vector δ, an orientation turned by the
     /// rotation vector δ in body axes (q ⊗ exp(δ)); q + δ without orientations.
     fn advance(&self, q: &SVector<T, Q>, delta: &SVector<T, N>) -> SVector<T, Q> {
-        let mut out = SVector::<T, Q>::zeros();
-        orientation::integrate(
-            Self::ORIENTATIONS,
-            q.as_slice(),
-            delta.as_slice(),
-            out.as_mut_slice(),
-        );
-        out
+        orientation::plus(Self::ORIENTATIONS, q, delta)
     }
 
     /// A quantity recorded at every accepted step as an accuracy diagnostic (the
