@@ -311,10 +311,7 @@ fn the_reduced_quaternion_sphere_follows_the_other_forms_over_seconds() {
 fn the_reduced_quaternion_disk_follows_the_other_forms_over_seconds() {
     let chart = RollingDisk::thin(1.2, 0.4, 9.81);
     let disk = thin_disk(1.2, 0.4, 9.81);
-    let q = SVector::from([0.0, 0.0, 0.2, 0.3, 0.0]);
-    let v = SVector::from([0.0, 0.0, 1.0, 0.5, 6.0]);
-    let (q, v) = project_consistent(&chart, q, v, 0.0).unwrap();
-    let (qq, vq, _) = disk_state(&chart, &q, &v, &SVector::zeros());
+    let ((q, v), (qq, vq)) = wobbling_start(&chart);
     let c = Simulation::new(&chart)
         .integrator(Dopri5::tol(TOL))
         .drift(Drift::projection())

@@ -173,6 +173,23 @@ pub fn ball_state(
     )
 }
 
+/// The wobbling start of the disk comparisons (rolling at 6 rad/s, tilted
+/// 0.3 and turning: it wobbles, it does not fall), made consistent in the
+/// chart, and the same state of a quaternion disk.
+#[allow(clippy::type_complexity)]
+pub fn wobbling_start(
+    chart: &RollingDisk,
+) -> (
+    (SVector<f64, 5>, SVector<f64, 5>),
+    (SVector<f64, 7>, SVector<f64, 6>),
+) {
+    let q = SVector::from([0.0, 0.0, 0.2, 0.3, 0.0]);
+    let v = SVector::from([0.0, 0.0, 1.0, 0.5, 6.0]);
+    let (q, v) = project_consistent(chart, q, v, 0.0).unwrap();
+    let (qq, vq, _) = disk_state(chart, &q, &v, &SVector::zeros());
+    ((q, v), (qq, vq))
+}
+
 /// The disk's chart state (contact x, y, ψ, θ, φ) as the quaternion disk's
 /// (centre, quaternion; centre velocity, ω in body axes) and its rate.
 pub fn disk_state(
