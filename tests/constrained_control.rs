@@ -6,6 +6,9 @@
 //! rest the law is the model's to first order: the nonlinear closed loop
 //! follows the linear one to second order in the error, then settles upright.
 
+mod common;
+
+use common::numeric::apart_from_linear;
 use lagrange::control::StateFeedback;
 use lagrange::linear::{Linearizer, OperatingPoint};
 use lagrange::numeric::orientation;
@@ -137,13 +140,7 @@ fn lqr_on_the_constrained_tangent_model_balances_the_pinned_rod() {
             .unwrap();
         let traj = run.trajectory();
         let x0 = state(&q0, &v0);
-        let apart = [0.5, 1.0, 2.0, 3.0]
-            .map(|t| {
-                let (q, v) = traj.state_at(t).unwrap();
-                (state(&q, &v) - (&closed * t).exp() * &x0).norm()
-            })
-            .into_iter()
-            .fold(0.0, f64::max);
+        let apart = apart_from_linear(traj, state, (&closed, &x0), &[0.5, 1.0, 2.0, 3.0]);
         let (q, v) = traj.final_state();
         let residual = traj.max_residuals();
         (apart, state(&q, &v).norm(), residual)

@@ -6,8 +6,10 @@
 
 #[path = "../examples/catalog/mod.rs"]
 mod catalog;
+mod common;
 
 use catalog::free::Satellite;
+use common::numeric::apart_from_linear;
 use lagrange::control::{InputForces, OpenLoop, StateFeedback};
 use lagrange::prelude::*;
 use nalgebra::{DVector, SVector, Vector3, Vector4};
@@ -205,13 +207,7 @@ fn lqr_on_the_tangent_linearisation_holds_a_tilted_attitude() {
             );
             DVector::from_column_slice(&[delta, [v[0], v[1], v[2]]].concat())
         };
-        let apart = [0.5, 1.0, 2.0, 4.0]
-            .map(|t| {
-                let (q, v) = traj.state_at(t).unwrap();
-                (state(&q, &v) - (&closed * t).exp() * &x0).norm()
-            })
-            .into_iter()
-            .fold(0.0, f64::max);
+        let apart = apart_from_linear(traj, state, (&closed, &x0), &[0.5, 1.0, 2.0, 4.0]);
         let (q, v) = traj.final_state();
         (apart, state(&q, &v).norm())
     };

@@ -1,7 +1,8 @@
-//! A deterministic random generator, central differences and a relative
-//! comparison of matrices.
+//! A deterministic random generator, central differences, a relative
+//! comparison of matrices, and a run's distance from its linear model.
 
-use nalgebra::{SMatrix, SVector};
+use lagrange::Trajectory;
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 /// A deterministic pseudo-random sequence in [−1, 1).
 pub struct Lcg(pub u64);
@@ -42,4 +43,22 @@ pub fn fd<const R: usize, const C: usize>(
         e[j] = h;
         (f(&(x + e))[i] - f(&(x - e))[i]) / (2.0 * h)
     })
+}
+
+/// The largest distance, at `times`, between the state a run reaches (read
+/// by `state` as the linear model's states) and the linear model's
+/// exp(A t) x₀: how far a closed loop strays from its linearisation.
+pub fn apart_from_linear<const N: usize, const Q: usize>(
+    traj: &Trajectory<f64, N, Q>,
+    state: impl Fn(&SVector<f64, Q>, &SVector<f64, N>) -> DVector<f64>,
+    (a, x0): (&DMatrix<f64>, &DVector<f64>),
+    times: &[f64],
+) -> f64 {
+    times
+        .iter()
+        .map(|&t| {
+            let (q, v) = traj.state_at(t).unwrap();
+            (state(&q, &v) - (a * t).exp() * x0).norm()
+        })
+        .fold(0.0, f64::max)
 }
