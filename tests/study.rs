@@ -174,12 +174,7 @@ fn study_of_the_kepler_problem() {
 #[test]
 fn a_study_of_a_tumbling_body_measures_angles_on_the_group() {
     use lagrange::study::Sweep;
-    let sys = TumblingBody {
-        i1: 1.0,
-        i2: 2.0,
-        i3: 3.0,
-    };
-    let omega = [0.3, 1.0, 0.3];
+    let (sys, omega) = (TumblingBody::PLATE, TumblingBody::SPIN);
     let run = |m: Method| {
         Simulation::new(&sys)
             .integrator(m)

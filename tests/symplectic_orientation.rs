@@ -10,24 +10,11 @@ mod catalog;
 mod common;
 
 use catalog::free::flip_half_period;
+use catalog::study::TumblingBody;
 use common::numeric::Lcg;
 use lagrange::numeric::orientation;
 use lagrange::prelude::*;
 use nalgebra::{Matrix3, SVector, Vector3};
-
-/// A lone body turning freely (Euler's equations).
-#[derive(Lagrangian, Clone, Copy)]
-#[lagrange(
-    orientation(turn),
-    body(b, mass = m, inertia = [i1, i2, i3], at = [0, 0, 0], rotation = turn),
-    emit(hamiltonian),
-)]
-struct Tumbler {
-    m: f64,
-    i1: f64,
-    i2: f64,
-    i3: f64,
-}
 
 /// A free body whose reference point is off its centre of mass: with ẋ in
 /// world axes, T depends on the rotation, and ∂T/∂θ at fixed ω is not zero.
@@ -92,12 +79,8 @@ struct Chain {
     g: f64,
 }
 
-const TUMBLER: Tumbler = Tumbler {
-    m: 1.0,
-    i1: 1.0,
-    i2: 2.0,
-    i3: 3.0,
-};
+/// A lone body turning freely (Euler's equations): the catalog's plate.
+const TUMBLER: TumblingBody = TumblingBody::PLATE;
 const OFF_CENTRE: OffCentre = OffCentre {
     m: 2.0,
     i1: 0.3,

@@ -162,3 +162,15 @@ pub struct TumblingBody {
     pub i2: f64,
     pub i3: f64,
 }
+
+impl TumblingBody {
+    /// The body of the studies: principal moments 1, 2, 3 (a plate).
+    pub const PLATE: TumblingBody = TumblingBody {
+        i1: 1.0,
+        i2: 2.0,
+        i3: 3.0,
+    };
+    /// Its spin in the studies, in body axes: near the intermediate axis,
+    /// a flip every 7.42 s.
+    pub const SPIN: [f64; 3] = [0.3, 1.0, 0.3];
+}

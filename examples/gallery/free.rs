@@ -47,12 +47,7 @@ pub(crate) fn intermediate_axis(system: &'static str) -> Result<Row, Error> {
 /// error stays where it started, its world angular momentum and unit norm
 /// at round-off.
 pub(crate) fn symplectic_tumbling(system: &'static str) -> Result<Row, Error> {
-    let body = TumblingBody {
-        i1: 1.0,
-        i2: 2.0,
-        i3: 3.0,
-    };
-    let w = [0.3, 1.0, 0.3];
+    let (body, w) = (TumblingBody::PLATE, TumblingBody::SPIN);
     let half = flip_half_period([body.i1, body.i2, body.i3], w);
     let span = 0.0..200.0 * half;
     let start = Instant::now();

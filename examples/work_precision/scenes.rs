@@ -319,12 +319,7 @@ pub(crate) fn tumbling() -> Result<[Scene; 2], Error> {
 fn tumbling_over(flips: u32, tightest: i32) -> Result<Scene, Error> {
     let title = format!("Tumbling body (quaternion), {flips} intermediate-axis flips");
     let started = header(&title);
-    let sys = TumblingBody {
-        i1: 1.0,
-        i2: 2.0,
-        i3: 3.0,
-    };
-    let omega = [0.3, 1.0, 0.3];
+    let (sys, omega) = (TumblingBody::PLATE, TumblingBody::SPIN);
     let half = flip_half_period([sys.i1, sys.i2, sys.i3], omega);
     let t_end = f64::from(flips) * half;
     let study = WorkPrecision::new(|m: Method| {
