@@ -113,7 +113,7 @@ pub fn integrate<T: Real>(layout: &[Orientation], q: &[T], delta: &[T], out: &mu
 
 /// q ⊕ δ as a vector: [`integrate`] of a configuration of Q numbers by a
 /// tangent vector of N.
-pub fn plus<T: Real, const N: usize, const Q: usize>(
+pub(crate) fn plus<T: Real, const N: usize, const Q: usize>(
     layout: &[Orientation],
     q: &nalgebra::SVector<T, Q>,
     delta: &nalgebra::SVector<T, N>,
