@@ -15,12 +15,19 @@ impl Lowerer<'_> {
                     None
                 }
             },
-            Lit::Float(f) => Some(
-                decimal(&mut self.ctx, f.base10_digits()).unwrap_or_else(|| {
-                    let v = f.base10_parse::<f64>().unwrap_or(f64::NAN);
-                    self.ctx.float(v)
-                }),
-            ),
+            Lit::Float(f) => {
+                if let Some(e) = decimal(&mut self.ctx, f.base10_digits()) {
+                    return Some(e);
+                }
+                let v = f.base10_parse::<f64>().unwrap_or(f64::NAN);
+                match unrepresentable(v, f.base10_digits()) {
+                    Some(why) => {
+                        self.cx.error_spanned_by(f, why);
+                        None
+                    }
+                    None => Some(self.ctx.float(v)),
+                }
+            }
             other => {
                 self.cx.error_spanned_by(other, "expected a number");
                 None
@@ -83,6 +90,27 @@ impl Lowerer<'_> {
 
 /// A decimal literal as an exact rational: `9.81` → 981/100, `1e-3` → 1/1000.
 /// Exactness matters: `0.1 * 10` must fold to 1, not to 1.0000000000000002.
+/// Why a float literal that is not an exact small decimal cannot stand for
+/// its value in f64: it overflows to an infinity (`1e400`) or underflows to
+/// zero (`1e-400`), either of which the equations would carry silently.
+fn unrepresentable(v: f64, digits: &str) -> Option<String> {
+    let nonzero = digits
+        .split(['e', 'E'])
+        .next()
+        .is_some_and(|m| m.chars().any(|c| c.is_ascii_digit() && c != '0'));
+    if !v.is_finite() {
+        Some(format!(
+            "`{digits}` is beyond f64's range (it would be an infinity); the largest finite value is about 1.8e308: write the quantity in other units"
+        ))
+    } else if v == 0.0 && nonzero {
+        Some(format!(
+            "`{digits}` is below f64's smallest value (it would be 0); the smallest is about 4.9e-324: write the quantity in other units"
+        ))
+    } else {
+        None
+    }
+}
+
 fn decimal(ctx: &mut Context, digits: &str) -> Option<Sym> {
     let (mantissa, exp) = match digits.find(['e', 'E']) {
         Some(i) => (&digits[..i], digits[i + 1..].parse::<i32>().ok()?),
