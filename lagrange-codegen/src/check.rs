@@ -13,15 +13,21 @@ use crate::ctxt::Ctxt;
 /// Names the expression language gives a meaning of its own.
 const RESERVED: &[&str] = &["t", "pi", "PI", "dot", "self"];
 
-pub fn check(cx: &Ctxt, system: &System) {
+/// Applies every structural rule; returns whether each name stands for one
+/// thing. A name declared twice makes every use of it ambiguous, so the
+/// caller must not resolve expressions (it would report, beside the
+/// duplicate, whatever the wrong reading of each use implies: a cycle
+/// through a body named like the parameter it reads).
+pub fn check(cx: &Ctxt, system: &System) -> bool {
     check_has_coordinates(cx, system);
     check_has_points(cx, system);
     check_point_keys(cx, system);
     check_body_keys(cx, system);
-    check_unique_names(cx, system);
+    let unique = check_unique_names(cx, system);
     check_dimensions(cx, system);
     check_force_targets(cx, system);
     check_formulation(cx, system);
+    unique
 }
 
 /// The formulations a system is emitted in: what `formulation(...)` asks for, or by
@@ -165,6 +171,33 @@ pub fn mass_rows(cx: &Ctxt, system: &System, zero_rows: &[bool]) {
             );
         }
     }
+    // An orientation's three rows follow the coordinates' (its body-axis ω).
+    let turns = zero_rows[system.coordinates.len()..].chunks(3);
+    for (name, rows) in system.orientations.iter().zip(turns) {
+        let axes: Vec<&str> = ["x", "y", "z"]
+            .into_iter()
+            .zip(rows)
+            .filter_map(|(axis, &zero)| zero.then_some(axis))
+            .collect();
+        let msg = if axes.len() == 3 {
+            format!(
+                "orientation `{name}` turns no mass: no body's `rotation` is `{name}` (nor is a \
+                 point placed on such a body), so nothing resists its angular velocity and the \
+                 mass matrix is singular at every state; give a body `rotation = {name}`, or \
+                 remove `{name}` from `orientation(...)`"
+            )
+        } else if axes.is_empty() {
+            continue;
+        } else {
+            format!(
+                "orientation `{name}`: no inertia resists turning about its body axis {}: the \
+                 mass matrix is singular at every state; give the body it turns a positive \
+                 moment about that axis",
+                axes.join(", ")
+            )
+        };
+        cx.error_at(name.span(), msg);
+    }
 }
 
 /// An input that no force, potential or dissipation reads would be ignored by
@@ -293,8 +326,9 @@ fn check_point_keys(cx: &Ctxt, system: &System) {
 /// Coordinates, parameters, inputs, definitions and points share one namespace.
 /// Inputs are declared last, so a clash involving an input is reported at the
 /// input's name.
-fn check_unique_names(cx: &Ctxt, system: &System) {
+fn check_unique_names(cx: &Ctxt, system: &System) -> bool {
     let mut seen: BTreeMap<String, &'static str> = BTreeMap::new();
+    let mut unique = true;
     let mut declare = |name: &Ident, what: &'static str| {
         let key = name.to_string();
         if RESERVED.contains(&key.as_str()) {
@@ -302,15 +336,17 @@ fn check_unique_names(cx: &Ctxt, system: &System) {
                 name.span(),
                 format!("`{key}` is reserved in #[lagrange] expressions; rename this {what}"),
             );
+            unique = false;
         } else if let Some(prev) = seen.get(&key) {
             let msg = if what == "input" {
                 format!(
-                    "duplicate name `{key}`: already used as a {prev}; give the input another name (names of inputs, coordinates, parameters, definitions, points, bodies and speeds must all differ)"
+                    "duplicate name `{key}`: already used as a {prev}; give the input another name (names of inputs, coordinates, orientations, parameters, definitions, points, bodies and speeds must all differ)"
                 )
             } else {
                 format!("duplicate name `{key}`: already used as a {prev}")
             };
             cx.error_at(name.span(), msg);
+            unique = false;
         } else {
             seen.insert(key, what);
         }
@@ -320,6 +356,9 @@ fn check_unique_names(cx: &Ctxt, system: &System) {
     }
     for q in &system.coordinates {
         declare(q, "coordinate");
+    }
+    for o in &system.orientations {
+        declare(o, "orientation");
     }
     for d in &system.definitions {
         declare(&d.name, "definition");
@@ -342,6 +381,7 @@ fn check_unique_names(cx: &Ctxt, system: &System) {
     for u in &system.inputs {
         declare(u, "input");
     }
+    unique
 }
 
 /// "unknown `wanted` `name`", or "`name`, which is a parameter, not a

@@ -148,8 +148,11 @@ fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Mod
     if cx.has_errors() {
         return None;
     }
-    check::check(cx, system);
+    let names_unique = check::check(cx, system);
     shape::check(cx, system);
+    if !names_unique {
+        return None;
+    }
     let lowered = scene::lower(cx, system);
     if cx.has_errors() {
         return None;
