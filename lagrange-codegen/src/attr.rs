@@ -97,11 +97,7 @@ impl Parse for Item {
                 crate::urdf::parse_attribute(input).map(|(path, options)| Item::Urdf(path, options))
             }
             "force" => parse_force(input).map(Item::Force),
-            "generalized_force" => Ok(Item::GeneralizedForce(
-                parse_name_values(input)?
-                    .map(|(coordinate, value)| GeneralizedForce { coordinate, value })
-                    .collect(),
-            )),
+            "generalized_force" => parse_generalized_forces(input).map(Item::GeneralizedForce),
             "shape" => crate::shape::parse(input).map(Item::Shape),
             other => Err(unknown_key(&key, other)),
         }
@@ -123,6 +119,45 @@ fn parse_coordinates(input: ParseStream, key: &Ident) -> syn::Result<Vec<Ident>>
         ));
     }
     Ok(names.into_iter().collect())
+}
+
+/// `generalized_force(q = expr, ...)`. An orientation's angular velocity
+/// (`att.wz`) is not a coordinate it can name: the error says how a torque is
+/// applied to a turning body instead.
+fn parse_generalized_forces(input: ParseStream) -> syn::Result<Vec<GeneralizedForce>> {
+    let content;
+    syn::parenthesized!(content in input);
+    let fork = content.fork();
+    while !fork.is_empty() {
+        let name: Ident = fork.parse()?;
+        if fork.peek(Token![.]) {
+            let dot: Token![.] = fork.parse()?;
+            let part = fork
+                .parse::<Ident>()
+                .map_or("…".to_string(), |p| p.to_string());
+            return Err(syn::Error::new(
+                dot.span,
+                format!(
+                    "`generalized_force` names coordinates, and `{name}.{part}` is not one (an \
+                     orientation's angular velocity is not a coordinate); apply a torque to the \
+                     body `b` it turns as a force on a point of that body: a torque t about b's \
+                     z axis is `point(arm, on = b, at = [1, 0, 0])` with `force(arm, [t * b.axis_y.x, \
+                     t * b.axis_y.y, t * b.axis_y.z])`, plus the opposite force at b's centre if b \
+                     is free to move (a pure couple)"
+                ),
+            ));
+        }
+        // Skip to the next entry; the real parse below reports any other error.
+        while !fork.is_empty() && !fork.peek(Token![,]) {
+            fork.parse::<proc_macro2::TokenTree>()?;
+        }
+        let _ = fork.parse::<Option<Token![,]>>()?;
+    }
+    let items = Punctuated::<NameValue, Token![,]>::parse_terminated(&content)?;
+    Ok(items
+        .into_iter()
+        .map(|NameValue(coordinate, value)| GeneralizedForce { coordinate, value })
+        .collect())
 }
 
 /// `(name = value, ...)`, the shape of `define`, the constraints, `speeds` and
