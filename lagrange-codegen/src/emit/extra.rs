@@ -43,6 +43,7 @@ fn reactions(
     let dl = Literal::usize_unsuffixed(dim);
     let vec_k = f.vec(&kl);
     let vec_d = f.vec(&dl);
+    let sizes = f.sizes_after(&kl);
     let coeffs: Vec<Sym> = c
         .reactions
         .iter()
@@ -90,12 +91,24 @@ fn reactions(
 
         /// Cartesian constraint reactions R = Σ_α ν_α ∂f_α/∂ξ on each of
         /// [`Self::REACTION_POINTS`], from the multipliers ν the constrained
-        /// dynamics compute. Constraints written in generalized coordinates only
-        /// do not act on a point and do not appear here.
+        /// dynamics compute. A constraint written in generalized coordinates
+        /// only acts on no point and adds nothing here: its reaction is a
+        /// generalized force, given by [`Self::generalized_reactions`].
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
         pub fn reactions(&self, q: &#qvec, v: &#vec_n, t: #s, nu: &#vec_k) -> [#vec_d; #pl] {
             #lets
             [#(#vectors),*]
+        }
+
+        /// Each constraint's generalized reaction G_αᵀ ν_α, in the order of
+        /// `CONSTRAINTS`: the force (per velocity, an orientation's entries
+        /// a torque in body axes) that constraint α adds to M q̈ + h = Q +
+        /// Gᵀν. Defined for every constraint, on points or on coordinates;
+        /// the sum over α is the whole constraint force Gᵀν.
+        #[allow(clippy::all)]
+        pub fn generalized_reactions(&self, q: &#qvec, t: #s, nu: &#vec_k) -> [#vec_n; #kl] {
+            let (g, _) = <Self as ::lagrange::__private::Constrained<#s, #sizes>>::constraint_jacobian(self, q, t);
+            ::core::array::from_fn(|a| g.row(a).transpose() * nu[a])
         }
     }
 }
