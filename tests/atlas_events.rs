@@ -120,19 +120,14 @@ fn events_on_the_users_angles_are_located_as_on_the_quaternion() {
     let sin_pitch = |q: &SVector<f64, 7>| -quaternion_matrix(q)[(2, 0)];
     let reference = Simulation::new(&brick)
         .integrator(Dopri5::tol(1e-11))
-        .event(Event::with_orientations(|_, q, _| {
-            (quaternion_matrix(q) * CORNER)[2]
-        }))
-        .event(Event::with_orientations(move |_, q, _| sin_pitch(q) - 1.0f64.sin()).rising())
+        .event(Event::new(|_, q, _| (quaternion_matrix(q) * CORNER)[2]))
+        .event(Event::new(move |_, q, _| sin_pitch(q) - 1.0f64.sin()).rising())
         .event(
-            Event::with_orientations(|_, q: &SVector<f64, 7>, _| q[2] + 2.0)
+            Event::new(|_, q: &SVector<f64, 7>, _| q[2] + 2.0)
                 .falling()
                 .terminal(),
         )
-        .event(
-            Event::with_orientations(move |_, q, _| (1.0 - sin_pitch(q).powi(2)).sqrt() - 0.601)
-                .falling(),
-        )
+        .event(Event::new(move |_, q, _| (1.0 - sin_pitch(q).powi(2)).sqrt() - 0.601).falling())
         .run(qq0, vq0, 0.0..3.0)
         .unwrap();
     let worst = time_gap(4, run.occurrences(), &reference.occurrences);
@@ -191,7 +186,7 @@ fn an_action_on_the_users_rates_goes_back_into_the_charts() {
     let reference = Simulation::new(&brick)
         .integrator(Dopri5::tol(1e-11))
         .event(
-            Event::with_orientations(|_, q, _| -quaternion_matrix(q)[(2, 0)] - 0.9)
+            Event::new(|_, q, _| -quaternion_matrix(q)[(2, 0)] - 0.9)
                 .rising()
                 .action(|_, _, v| *v = -*v),
         )

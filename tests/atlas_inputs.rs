@@ -112,7 +112,7 @@ fn a_torque_signal_drives_the_yaw_pitch_roll_satellite_through_the_vertical() {
     let reference = Simulation::new(&SAT)
         .integrator(Dopri5::tol(1e-11))
         .open_loop(signal)
-        .event(Event::with_orientations(|_, q, _| -matrix(q)[(2, 0)] - 0.99).rising())
+        .event(Event::new(|_, q, _| -matrix(q)[(2, 0)] - 0.99).rising())
         .run(quaternion, [0.01, 1.0, -0.02], span)
         .unwrap();
     // sin(pitch) rising through 0.99, in the second chart: located where

@@ -335,12 +335,10 @@ fn events_on_the_rolling_balls_angles_are_located_as_on_the_quaternion_ball() {
         .unwrap();
     let reference = Simulation::new(&BALL)
         .integrator(Dopri5::tol(TOL))
-        .event(Event::with_orientations(move |_, q, _| {
+        .event(Event::new(move |_, q, _| {
             rotation_of(q)[(2, 2)].abs() - tilt
         }))
-        .event(Event::with_orientations(|_, q: &SVector<f64, 7>, _| {
-            q[0] - 0.5
-        }))
+        .event(Event::new(|_, q: &SVector<f64, 7>, _| q[0] - 0.5))
         .run(qf, vf, 0.0..6.0)
         .unwrap();
     let mut worst = 0.0f64;

@@ -409,13 +409,13 @@ fn events_watch_the_reduced_form_with_orientations() {
     let tilt = |_: f64, q: &SVector<f64, 7>, _: &SVector<f64, 6>| rotation_of(q)[(2, 2)] - LEVEL;
     let reduced = Simulation::new(&SPINNING)
         .integrator(Dopri5::tol(TOL))
-        .event(Event::with_orientations(tilt))
+        .event(Event::new(tilt))
         .run_reduced(q0, v0, 0.0..5.0)
         .unwrap();
     let multipliers = Simulation::new(&SPINNING)
         .integrator(Dopri5::tol(TOL))
         .drift(Drift::projection())
-        .event(Event::with_orientations(tilt))
+        .event(Event::new(tilt))
         .run(q0, v0, 0.0..5.0)
         .unwrap();
     let times = |r: &EventRun<f64, 6, 7>| r.occurrences.iter().map(|o| o.t).collect::<Vec<_>>();

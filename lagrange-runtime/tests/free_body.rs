@@ -380,7 +380,7 @@ fn events_locate_impacts_of_a_tumbling_body() {
     };
     let (mut q0, v0) = spinning([1.0, 0.0, 0.0, 0.0], [0.3, 2.0, -1.0]);
     q0[2] = 1.0;
-    let floor = Event::with_orientations(|_, q: &SVector<f64, 7>, _: &SVector<f64, 6>| q[2] - 0.5)
+    let floor = Event::new(|_, q: &SVector<f64, 7>, _: &SVector<f64, 6>| q[2] - 0.5)
         .falling()
         .action(|_, _, v: &mut SVector<f64, 6>| v[2] = -v[2]);
     let run = Events::new()
@@ -388,7 +388,7 @@ fn events_locate_impacts_of_a_tumbling_body() {
         .integrate(&Dop853::tol(1e-12), &Dynamics::new(&body), 0.0, 2.0, q0, v0)
         .unwrap();
     // The builder runs the same events the same way.
-    let floor = Event::with_orientations(|_, q: &SVector<f64, 7>, _: &SVector<f64, 6>| q[2] - 0.5)
+    let floor = Event::new(|_, q: &SVector<f64, 7>, _: &SVector<f64, 6>| q[2] - 0.5)
         .falling()
         .action(|_, _, v: &mut SVector<f64, 6>| v[2] = -v[2]);
     let built = Simulation::new(&body)

@@ -151,6 +151,11 @@ impl<T: Real, const P: usize> IntoInput<T, P> for SVector<T, P> {
 /// ([`next_break`](Self::next_break): sample instants, table breakpoints) and
 /// whether its value is held between those instants
 /// ([`held`](Self::held): zero-order hold); see the [module docs](self).
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not a source of this system's inputs: the system declares {P} input(s) in `inputs(..)`, with {N} velocities and {Q} configuration entries",
+    label = "this must give {P} input(s)",
+    note = "an `InputTable` needs one column per declared input ({P}); a controller built by hand (`Feedback`, `Sampled`, `OpenLoop`) must return {P} value(s) and read q of {Q} and v of {N} entries"
+)]
 pub trait InputSource<T: Real, const N: usize, const P: usize, const Q: usize = N> {
     /// The inputs at (t, q, q̇) (q of Q entries: with free orientations it
     /// holds their quaternions). For a held source, called once per break,

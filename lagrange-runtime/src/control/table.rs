@@ -149,9 +149,13 @@ impl<T: Real, const P: usize> InputTable<T, P> {
     }
 }
 
-impl<T: Real, const N: usize, const P: usize> InputSource<T, N, P> for InputTable<T, P> {
+// A table reads only the time, so it drives a system with or without
+// orientations alike (any Q).
+impl<T: Real, const N: usize, const P: usize, const Q: usize> InputSource<T, N, P, Q>
+    for InputTable<T, P>
+{
     #[inline]
-    fn input(&self, t: T, _: &SVector<T, N>, _: &SVector<T, N>) -> SVector<T, P> {
+    fn input(&self, t: T, _: &SVector<T, Q>, _: &SVector<T, N>) -> SVector<T, P> {
         self.value_at(t)
     }
 

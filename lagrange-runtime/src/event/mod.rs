@@ -157,7 +157,7 @@ enum Terminal<'a, T, const N: usize, const Q: usize> {
 /// use lagrange_runtime::Event;
 /// use nalgebra::SVector;
 /// let e = 0.8;
-/// let floor = Event::new(|_t, q: &SVector<f64, 1>, _v| q[0])
+/// let floor = Event::new(|_t, q: &SVector<f64, 1>, _v: &SVector<f64, 1>| q[0])
 ///     .falling()
 ///     .named("floor")
 ///     .action(move |_t, _q, v| *v *= -e);
@@ -191,9 +191,14 @@ impl<T: Real, const N: usize, const Q: usize> fmt::Debug for Event<'_, T, N, Q> 
     }
 }
 
-impl<'a, T: Real, const N: usize> Event<'a, T, N> {
+impl<'a, T: Real, const N: usize, const Q: usize> Event<'a, T, N, Q> {
     /// An event on the zero crossings of `g(t, q, v)` in both directions, not
     /// terminal, without action: it is only recorded.
+    ///
+    /// `g` reads the configuration as the system holds it: with free
+    /// orientations q has Q entries (each orientation's unit quaternion) and
+    /// v has N (each orientation's body-axis ω), so `Event::new` fits every
+    /// system, with or without orientations.
     ///
     /// Given to a simulation (`Simulation::new(&sys).event(Event::new(..))`),
     /// the event takes the system's scalar and dimension, so closures that
@@ -205,7 +210,9 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
     /// scalar once, on the time, `|_: f64, q, _| q[1].cos()`; the compiler's
     /// suggestion points there too. An event built outside a simulation (a
     /// `let`, [`Events::with`]) has nothing to take its types from: annotate
-    /// the state, `|_, q: &SVector<f64, 2>, _|`.
+    /// the state and the velocities, `|_, q: &SVector<f64, 2>, _: &SVector<f64, 2>|`
+    /// (once the event reaches a simulation in the same function, the
+    /// simulation fixes what is left unannotated).
     ///
     /// ```
     /// # use lagrange_runtime::{Dopri5, Event, Lagrangian, Simulation};
@@ -234,7 +241,7 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
     /// assert!(!run.times(0).is_empty() && !run.times(1).is_empty());
     /// # Ok::<(), lagrange_runtime::Error>(())
     /// ```
-    pub fn new(g: impl Fn(T, &SVector<T, N>, &SVector<T, N>) -> T + 'a) -> Self {
+    pub fn new(g: impl Fn(T, &SVector<T, Q>, &SVector<T, N>) -> T + 'a) -> Self {
         Event {
             name: None,
             g: Box::new(g),
@@ -244,21 +251,14 @@ impl<'a, T: Real, const N: usize> Event<'a, T, N> {
             restart: false,
         }
     }
-}
 
-impl<'a, T: Real, const N: usize, const Q: usize> Event<'a, T, N, Q> {
-    /// [`new`](Event::new) for a system whose configuration holds
-    /// orientations (unit quaternions, so q has Q ≠ N entries): `g` reads q
-    /// with its quaternions and v with the angular velocities.
+    /// The same as [`new`](Event::new), which takes q with its quaternions
+    /// for every system.
+    #[deprecated(
+        note = "`Event::new` now reads q with its quaternions on systems with orientations; call it instead"
+    )]
     pub fn with_orientations(g: impl Fn(T, &SVector<T, Q>, &SVector<T, N>) -> T + 'a) -> Self {
-        Self {
-            name: None,
-            g: Box::new(g),
-            direction: Direction::Both,
-            terminal: Terminal::Never,
-            action: None,
-            restart: false,
-        }
+        Self::new(g)
     }
 
     /// Only crossings from negative to positive count.
