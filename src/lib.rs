@@ -25,12 +25,13 @@
 //! assert!(traj.integral_drift() < 1e-8);
 //! ```
 //!
+//! New here? Read the [guide] (nine short chapters); what follows is the reference.
+//!
 //! ## The description language
 //!
 //! All items go in `#[lagrange(...)]` (several such attributes are concatenated).
-//! The struct's fields are the physical parameters; they must all be of one float
-//! type — `f64`, `f32`, or a type parameter `T` — and the generated code computes in
-//! that type.
+//! The fields are the parameters, all of one float type (`f64`, `f32` or a
+//! type parameter `T`), the type the generated code computes in.
 //!
 //! | item | meaning |
 //! |---|---|
@@ -297,9 +298,8 @@
 //!   (`tests/constrained_tangent.rs`). Its derivatives are central
 //!   differences on the group (relative error about 1e-10), not symbolic.
 //!
-//! Events on such a system are written with [`Event::new`] as on any other
-//! (`g` reads q with its quaternions) and run by [`Simulation::event`] as
-//! usual; an action's result is normalised.
+//! Events on such a system are [`Event::new`] (`g` reads q with its quaternions);
+//! an action's result is normalised.
 //!
 //! **Floating bases on the recursive route.** An orientation is a spherical
 //! joint to the tree route (its motion subspace is the identity on ω, the
@@ -558,10 +558,11 @@
 pub use lagrange_macros::Lagrangian;
 pub use lagrange_runtime::*;
 pub use nalgebra;
+pub mod guide;
 
-/// Everything a typical program needs: the derive, the trait, the simulation
-/// builder, the integrators and nalgebra's fixed-size vectors; with the
-/// feature `parallel`, `Ensemble` too.
+/// Everything a typical program needs: the derive, the traits, the simulation
+/// builder, the integrators and nalgebra's fixed-size vectors (`Ensemble` too
+/// with the feature `parallel`).
 pub mod prelude {
     pub use lagrange_macros::Lagrangian;
     /// Many independent runs on all cores (feature `parallel`).
@@ -579,8 +580,7 @@ pub mod prelude {
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }
 
-/// The README's code examples, compiled and run as doctests
-/// (`cargo test --doc -p lagrange`).
+/// The README's code examples, run as doctests (`cargo test --doc -p lagrange`).
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;

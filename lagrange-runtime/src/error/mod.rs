@@ -226,7 +226,8 @@ pub enum Error {
     /// rest with restitution e < 1). Raise the budget, or model the resting
     /// contact as a constraint.
     #[error(
-        "more than {max_events} events stopped the integration; the last one,          `{event}`, at t = {t} (impacts accumulating?)"
+        "more than {max_events} events stopped the integration; the last one, \
+         `{event}`, at t = {t} (impacts accumulating?)"
     )]
     TooManyEvents {
         /// Time of the last event.
@@ -242,7 +243,9 @@ pub enum Error {
     /// once, e.g. an impact law that does not reverse the normal velocity), or
     /// impacts accumulating at round-off scale (Zeno point).
     #[error(
-        "event `{event}` fired {count} times in a row at t = {t} without the          integration advancing: its action does not resolve the event, or          impacts accumulate there (Zeno point)"
+        "event `{event}` fired {count} times in a row at t = {t} without the \
+         integration advancing: its action does not resolve the event, or \
+         impacts accumulate there (Zeno point)"
     )]
     EventsAccumulate {
         /// Time where the events pile up.
