@@ -42,7 +42,7 @@
 //! | `point(name, mass = m, at = [x, y(, z)])` | a point mass at ξ(q, t); planar or spatial |
 //! | `gravity = [gx, gy(, gz)]` | uniform gravity acting on every point |
 //! | `potential = expr` | potential energy V(q, t) |
-//! | `force(point, [fx, fy(, fz)])` | a Cartesian force at a point; may depend on q, `dot(q)`, t |
+//! | `force(point, [fx, fy(, fz)])`, `torque(body, [tx, ty, tz])` | a Cartesian force at a point; a torque on a body, in world axes (or its own, `axes = body`); both may read q, `dot(q)`, t and inputs |
 //! | `generalized_force(q = expr)` | a generalized force on one coordinate; several entries on one coordinate are added |
 //! | `dissipation = expr` | Rayleigh dissipation function D(q, q̇), Q −= ∂D/∂q̇ |
 //! | `body(name, mass = m, inertia = [A, B, C], at = [x, y, z], rotation = R, com = [..], about = [..])` | a rigid body: reference point `at` (the centre of mass unless `com = [bx, by, bz]` places it in body axes), principal moments (or six entries `[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`, entries of the inertia tensor: I_xy = −∫xy dm) in body axes about the centre of mass, or about the body point `about = [ax, ay, az]` (relative to `at`; the macro applies the parallel-axis theorem), orientation R(q, t) body → world |

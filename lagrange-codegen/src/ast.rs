@@ -100,6 +100,16 @@ pub struct Force {
     pub value: Expr,
 }
 
+/// `torque(body, [tx, ty, tz])`: a torque on a body, in world axes or (with
+/// `axes = body`) in the body's own.
+#[derive(Clone, Debug)]
+pub struct Torque {
+    pub body: Ident,
+    pub value: Expr,
+    /// Whether the components are in the body's axes (else the world's).
+    pub body_axes: bool,
+}
+
 /// `generalized_force(q = expr)`.
 #[derive(Clone, Debug)]
 pub struct GeneralizedForce {
@@ -182,6 +192,7 @@ pub struct System {
     pub potential: Option<Expr>,
     pub dissipation: Option<Expr>,
     pub forces: Vec<Force>,
+    pub torques: Vec<Torque>,
     pub generalized_forces: Vec<GeneralizedForce>,
     /// `shape(...)`: visual shapes for the scene, in order.
     pub shapes: Vec<Shape>,

@@ -338,6 +338,9 @@ fn used_elsewhere(system: &System, angles: &[String]) -> Option<(Ident, &'static
     for f in &system.forces {
         rest.push((f.value.to_token_stream(), "a force"));
     }
+    for t in &system.torques {
+        rest.push((t.value.to_token_stream(), "a torque"));
+    }
     for c in &system.holonomic {
         rest.push((c.value.to_token_stream(), "a holonomic constraint"));
     }

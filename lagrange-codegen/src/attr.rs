@@ -11,13 +11,14 @@ use syn::{Data, DeriveInput, Expr, Fields, GenericParam, Ident, Token, Type};
 
 use crate::ast::{
     Body, Constraint, Definition, Extra, Force, Formulation, GeneralizedForce, Parameter, Point,
-    Scalar, Shape, System,
+    Scalar, Shape, System, Torque,
 };
 use crate::ctxt::Ctxt;
+use crate::loads;
 use crate::spelling::closest;
 
 /// Keys accepted at the top level of `#[lagrange(...)]`, for the "unknown key" message.
-const KEYS: &str = "urdf, coordinates, orientation, inputs, define, point, body, gravity, potential, force, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit, shape";
+const KEYS: &str = "urdf, coordinates, orientation, inputs, define, point, body, gravity, potential, force, torque, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit, shape";
 
 /// One top-level item of the attribute.
 enum Item {
@@ -36,6 +37,7 @@ enum Item {
     Potential(Ident, Expr),
     Dissipation(Ident, Expr),
     Force(Force),
+    Torque(Torque),
     GeneralizedForce(Vec<GeneralizedForce>),
     /// The path, and the tolerance within which angles snap to multiples of π/2.
     Urdf(syn::LitStr, crate::urdf::Options),
@@ -96,8 +98,11 @@ impl Parse for Item {
             "urdf" => {
                 crate::urdf::parse_attribute(input).map(|(path, options)| Item::Urdf(path, options))
             }
-            "force" => parse_force(input).map(Item::Force),
-            "generalized_force" => parse_generalized_forces(input).map(Item::GeneralizedForce),
+            "force" => loads::parse_force(input).map(Item::Force),
+            "torque" => loads::parse_torque(input).map(Item::Torque),
+            "generalized_force" => {
+                loads::parse_generalized_forces(input).map(Item::GeneralizedForce)
+            }
             "shape" => crate::shape::parse(input).map(Item::Shape),
             other => Err(unknown_key(&key, other)),
         }
@@ -119,45 +124,6 @@ fn parse_coordinates(input: ParseStream, key: &Ident) -> syn::Result<Vec<Ident>>
         ));
     }
     Ok(names.into_iter().collect())
-}
-
-/// `generalized_force(q = expr, ...)`. An orientation's angular velocity
-/// (`att.wz`) is not a coordinate it can name: the error says how a torque is
-/// applied to a turning body instead.
-fn parse_generalized_forces(input: ParseStream) -> syn::Result<Vec<GeneralizedForce>> {
-    let content;
-    syn::parenthesized!(content in input);
-    let fork = content.fork();
-    while !fork.is_empty() {
-        let name: Ident = fork.parse()?;
-        if fork.peek(Token![.]) {
-            let dot: Token![.] = fork.parse()?;
-            let part = fork
-                .parse::<Ident>()
-                .map_or("…".to_string(), |p| p.to_string());
-            return Err(syn::Error::new(
-                dot.span,
-                format!(
-                    "`generalized_force` names coordinates, and `{name}.{part}` is not one (an \
-                     orientation's angular velocity is not a coordinate); apply a torque to the \
-                     body `b` it turns as a force on a point of that body: a torque t about b's \
-                     z axis is `point(arm, on = b, at = [1, 0, 0])` with `force(arm, [t * b.axis_y.x, \
-                     t * b.axis_y.y, t * b.axis_y.z])`, plus the opposite force at b's centre if b \
-                     is free to move (a pure couple)"
-                ),
-            ));
-        }
-        // Skip to the next entry; the real parse below reports any other error.
-        while !fork.is_empty() && !fork.peek(Token![,]) {
-            fork.parse::<proc_macro2::TokenTree>()?;
-        }
-        let _ = fork.parse::<Option<Token![,]>>()?;
-    }
-    let items = Punctuated::<NameValue, Token![,]>::parse_terminated(&content)?;
-    Ok(items
-        .into_iter()
-        .map(|NameValue(coordinate, value)| GeneralizedForce { coordinate, value })
-        .collect())
 }
 
 /// `(name = value, ...)`, the shape of `define`, the constraints, `speeds` and
@@ -192,20 +158,6 @@ fn parse_keywords<T>(
     Ok(out)
 }
 
-/// `force(point, [fx, fy, fz])`.
-fn parse_force(input: ParseStream) -> syn::Result<Force> {
-    let content;
-    syn::parenthesized!(content in input);
-    let point: Ident = content.parse()?;
-    content.parse::<Token![,]>()?;
-    let value: Expr = content.parse()?;
-    let _ = content.parse::<Option<Token![,]>>()?;
-    if !content.is_empty() {
-        return Err(content.error("expected `force(point, [fx, fy, fz])`"));
-    }
-    Ok(Force { point, value })
-}
-
 /// The error for a key that is none of [`KEYS`], with the likely one if the key
 /// is a typo of it.
 fn unknown_key(key: &Ident, other: &str) -> syn::Error {
@@ -223,7 +175,7 @@ fn unknown_key(key: &Ident, other: &str) -> syn::Error {
 }
 
 /// The form each list key takes, for the error when it is written `key = ...`.
-const LISTS: [(&str, &str); 14] = [
+const LISTS: [(&str, &str); 15] = [
     ("coordinates", "coordinates(q1, q2, ...)"),
     ("orientation", "orientation(name, ...)"),
     ("inputs", "inputs(u1, u2, ...)"),
@@ -242,6 +194,7 @@ const LISTS: [(&str, &str); 14] = [
         "emit(reactions, coriolis, jacobians, hamiltonian, articulated)",
     ),
     ("force", "force(point, [fx, fy, fz])"),
+    ("torque", "torque(body, [tx, ty, tz])"),
     ("generalized_force", "generalized_force(q = expr, ...)"),
     (
         "shape",
@@ -403,6 +356,7 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
         potential: None,
         dissipation: None,
         forces: Vec::new(),
+        torques: Vec::new(),
         generalized_forces: Vec::new(),
         shapes: Vec::new(),
         span: input.ident.span(),
@@ -497,6 +451,7 @@ fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
         Item::Formulation(f) => system.formulations.extend(f),
         Item::Emit(e) => system.extras.extend(e),
         Item::Force(f) => system.forces.push(f),
+        Item::Torque(t) => system.torques.push(t),
         Item::GeneralizedForce(g) => system.generalized_forces.extend(g),
         Item::Shape(s) => system.shapes.push(s),
         Item::Gravity(k, v) => set_once(cx, &mut system.gravity, k, v),

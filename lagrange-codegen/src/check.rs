@@ -25,7 +25,7 @@ pub fn check(cx: &Ctxt, system: &System) -> bool {
     check_body_keys(cx, system);
     let unique = check_unique_names(cx, system);
     check_dimensions(cx, system);
-    check_force_targets(cx, system);
+    check_load_targets(cx, system);
     check_formulation(cx, system);
     unique
 }
@@ -464,9 +464,21 @@ fn check_dimensions(cx: &Ctxt, system: &System) {
     for f in &system.forces {
         agree(&f.value, format!("the force on `{}`", f.point));
     }
+    // A torque turns a body, which is spatial: always three components.
+    for t in &system.torques {
+        let what = format!("the torque on `{}`", t.body);
+        if let Some(n) = vector_len(cx, &t.value, &what).filter(|&n| n != 3) {
+            cx.error_spanned_by(
+                &t.value,
+                format!("{what} has {n} components; it needs three"),
+            );
+        }
+    }
 }
 
-fn check_force_targets(cx: &Ctxt, system: &System) {
+/// Each load names a target of the right kind: a force a point or a body, a
+/// torque a body, a generalized force a coordinate.
+fn check_load_targets(cx: &Ctxt, system: &System) {
     for f in &system.forces {
         let known = system.points.iter().any(|p| p.name == f.point)
             || system.bodies.iter().any(|b| b.name == f.point);
@@ -482,6 +494,18 @@ fn check_force_targets(cx: &Ctxt, system: &System) {
             };
             let what = what_is(system, &f.point, "point");
             cx.error_at(f.point.span(), format!("force on {what}; {hint}"));
+        }
+    }
+    for t in &system.torques {
+        if !system.bodies.iter().any(|b| b.name == t.body) {
+            let what = what_is(system, &t.body, "body");
+            cx.error_at(
+                t.body.span(),
+                format!(
+                    "torque on {what}; a torque turns a body declared with `body(name, ...)` \
+                     (on a coordinate, it is `generalized_force(q = ...)`)"
+                ),
+            );
         }
     }
     for g in &system.generalized_forces {

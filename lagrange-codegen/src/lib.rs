@@ -30,6 +30,7 @@ pub mod constraint;
 pub mod ctxt;
 pub mod doc;
 pub mod emit;
+pub mod loads;
 pub mod lower;
 pub mod lowered;
 pub mod mat3;

@@ -123,6 +123,9 @@ fn applied(lw: &mut Lowerer, system: &System) -> Applied {
             forces.push((at, v));
         }
     }
+    for t in &system.torques {
+        forces.extend(lw.torque(t).into_iter().flatten());
+    }
     let mut generalized_forces = Vec::new();
     for g in &system.generalized_forces {
         let target = system.coordinates.iter().position(|c| *c == g.coordinate);

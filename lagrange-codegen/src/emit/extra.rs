@@ -18,6 +18,7 @@ pub(super) fn extras(e: &Emitter, f: &Frame, model: &Model, system: &System) -> 
         && let Some(c) = &model.constraints
     {
         out.extend(reactions(e, f, model, system, c));
+        out.extend(generalized_reactions(f, c));
     }
     if let Some(cm) = &model.coriolis {
         out.extend(coriolis(e, f, model, cm));
@@ -43,7 +44,6 @@ fn reactions(
     let dl = Literal::usize_unsuffixed(dim);
     let vec_k = f.vec(&kl);
     let vec_d = f.vec(&dl);
-    let sizes = f.sizes_after(&kl);
     let coeffs: Vec<Sym> = c
         .reactions
         .iter()
@@ -99,7 +99,15 @@ fn reactions(
             #lets
             [#(#vectors),*]
         }
+    }
+}
 
+/// `generalized_reactions`: G_αᵀ ν_α per constraint, from the emitted G.
+fn generalized_reactions(f: &Frame, c: &ConstraintSet) -> TokenStream {
+    let kl = Literal::usize_unsuffixed(c.names.len());
+    let (s, vec_n, vec_k, qvec) = (&f.s, f.vec(&f.n), f.vec(&kl), f.qvec());
+    let sizes = f.sizes_after(&kl);
+    quote! {
         /// Each constraint's generalized reaction G_αᵀ ν_α, in the order of
         /// `CONSTRAINTS`: the force (per velocity, an orientation's entries
         /// a torque in body axes) that constraint α adds to M q̈ + h = Q +

@@ -20,6 +20,7 @@ mod field;
 mod input;
 mod name;
 pub mod rotation;
+mod torque;
 
 pub use input::NoInputs;
 
