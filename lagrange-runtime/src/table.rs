@@ -211,6 +211,12 @@ impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
     /// numbers in the shortest form that reads back exactly. (With the system
     /// at hand, [`table`](Self::table) adds the energies and the multipliers.)
     ///
+    /// What it keeps and drops: the stored points read back bit for bit
+    /// (every value is written in Rust's shortest round-trip form); the dense
+    /// output, the statistics and the recording policy are not written, so a
+    /// run read from CSV has no `state_at` between its points (serialize it
+    /// with the `serde` feature to keep them).
+    ///
     /// `names` are the coordinate names (e.g. [`Lagrangian::COORDINATES`]): the
     /// columns are then `t,theta,phi,dot_theta,dot_phi,integral,…`. An empty
     /// slice gives `q0,q1,..,dot_q0,dot_q1,..`.
