@@ -513,7 +513,7 @@
 //! // Swung over the top through θ = 0: the user's chart alone stops there.
 //! let sim = Simulation::new(&top).integrator(Dop853::tol(1e-10));
 //! let run = sim.run_atlas([0.2, 0.6, -0.4], [0.0, -6.0, 2.0], 0.0..4.0)?;
-//! assert!(run.switches().len() >= 4 && run.trajectory().integral_drift() < 1e-8);
+//! assert!(run.switches().len() >= 4 && run.charted().integral_drift() < 1e-8);
 //! let upright = run.quaternion(0, 0); // (w, x, y, z) of the first point
 //! assert!((upright[0] - 0.9505).abs() < 1e-4);
 //! // Spun exactly upright, the sleeping top linearises in the second chart.

@@ -196,7 +196,7 @@ pub mod study;
 mod system;
 mod table;
 
-pub use atlas::{AtlasRun, ChartSwitch};
+pub use atlas::{AtlasRun, ChartSwitch, ChartedTrajectory};
 pub use control::{
     Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,
     StateFeedback,

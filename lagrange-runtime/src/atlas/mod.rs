@@ -40,6 +40,7 @@
 //! each point and the consistency of the start.
 
 mod chart;
+mod held;
 mod drive;
 mod form;
 mod run;
@@ -48,6 +49,7 @@ pub(crate) use chart::{Charts, user_view};
 pub(crate) use form::ChartRows;
 
 pub(crate) use drive::{Held, back_to_charts, finish, integrate, unstarted, watched};
+pub use held::ChartedTrajectory;
 pub use run::{AtlasRun, ChartSwitch, USER_CHART_VALID};
 
 use crate::error::Error;
