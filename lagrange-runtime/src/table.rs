@@ -90,7 +90,10 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
     }
 
     /// [`of`](Self::of) a borrowed or an owned trajectory.
-    pub(crate) fn of_cow<S: Lagrangian<T, N, Q>>(traj: Cow<'a, Trajectory<T, N, Q>>, sys: &S) -> Self {
+    pub(crate) fn of_cow<S: Lagrangian<T, N, Q>>(
+        traj: Cow<'a, Trajectory<T, N, Q>>,
+        sys: &S,
+    ) -> Self {
         let energies = traj
             .times()
             .iter()

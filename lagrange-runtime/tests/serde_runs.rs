@@ -144,7 +144,11 @@ fn a_run_with_orientations_reads_back_bit_for_bit() {
     }
     assert!(worst_norm < 1e-15, "{worst_norm:e}");
     // A layout that does not fit q and v is refused, not read out of bounds.
-    let bad = json.replacen("\"orientations\":[{\"q\":0,\"v\":0}]", "\"orientations\":[{\"q\":2,\"v\":2}]", 1);
+    let bad = json.replacen(
+        "\"orientations\":[{\"q\":0,\"v\":0}]",
+        "\"orientations\":[{\"q\":2,\"v\":2}]",
+        1,
+    );
     assert_ne!(bad, json);
     let err = serde_json::from_str::<Trajectory<f64, 3, 4>>(&bad).unwrap_err();
     assert!(err.to_string().contains("do not fit"), "{err}");

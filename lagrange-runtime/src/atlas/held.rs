@@ -11,9 +11,9 @@
 //! its scene [`AtlasRun::scene`](super::AtlasRun::scene), its table
 //! [`AtlasRun::table`](super::AtlasRun::table).
 
+use super::ChartSwitch;
 use crate::numeric::Real;
 use crate::ode::{Stats, Trajectory};
-use super::ChartSwitch;
 use nalgebra::SVector;
 
 /// A run through the atlas as computed: q and q̇ hold each rotation's angles

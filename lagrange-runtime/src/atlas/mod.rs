@@ -40,9 +40,9 @@
 //! each point and the consistency of the start.
 
 mod chart;
-mod held;
 mod drive;
 mod form;
+mod held;
 mod run;
 
 pub(crate) use chart::{Charts, user_view};

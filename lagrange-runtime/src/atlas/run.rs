@@ -8,8 +8,8 @@ use crate::numeric::orientation;
 use crate::ode::{Sample, Trajectory};
 use crate::system::{EulerRotation, Lagrangian};
 use crate::table::{Cell, Table};
-use std::borrow::Cow;
 use nalgebra::{Matrix3, SVector, Vector3};
+use std::borrow::Cow;
 
 /// Where a rotation's angles may still be read in the user's chart: its
 /// conditioning above this (θ one micro-radian from the pole of z-x-z).

@@ -351,51 +351,57 @@ impl Gauss {
         let mut zs: [Pair<T, Q, Q>; S] = std::array::from_fn(|i| f0.scale(c[i] * h));
         let mut fs = [Pair::<T, Q, Q>::zeros(); S];
         let mut previous = T::max_value().unwrap_or(T::one() / eps);
-        for iteration in 1..=self.max_iterations {
-            for i in 0..S {
-                let zi = z0.add_combination(T::one(), [T::one()], [&zs[i]]);
-                fs[i] = hamilton(mech, t + c[i] * h, &zi, &mut stats.evaluations)?;
-            }
-            // Newton right-hand side −G = h Σ_j a_ij F_j − Z_i.
-            for i in 0..S {
-                for r in 0..dim {
-                    let mut s = T::zero();
-                    for j in 0..S {
-                        s += a[i][j] * get(&fs[j], r);
+        let iterations = 'iterate: {
+            for iteration in 1..=self.max_iterations {
+                for i in 0..S {
+                    let zi = z0.add_combination(T::one(), [T::one()], [&zs[i]]);
+                    // The field is finite at z0: an iterate where it is not has
+                    // left the region the step can reach (the iteration
+                    // diverges), which a smaller step answers, not the system.
+                    fs[i] = match hamilton(mech, t + c[i] * h, &zi, &mut stats.evaluations) {
+                        Err(Error::NonFiniteState { .. }) => break 'iterate iteration,
+                        f => f?,
+                    };
+                }
+                // Newton right-hand side −G = h Σ_j a_ij F_j − Z_i.
+                for i in 0..S {
+                    for r in 0..dim {
+                        let mut s = T::zero();
+                        for j in 0..S {
+                            s += a[i][j] * get(&fs[j], r);
+                        }
+                        work.b[i * dim + r] = h * s - get(&zs[i], r);
                     }
-                    work.b[i * dim + r] = h * s - get(&zs[i], r);
                 }
-            }
-            lu_solve(&work.lu, &work.pivots, &mut work.b);
-            let mut size = T::zero();
-            for i in 0..S {
-                for r in 0..dim {
-                    let d = work.b[i * dim + r];
-                    *get_mut(&mut zs[i], r) += d;
-                    size = size.max(abs(d) / (T::one() + abs(get(z0, r))));
+                lu_solve(&work.lu, &work.pivots, &mut work.b);
+                let mut size = T::zero();
+                for i in 0..S {
+                    for r in 0..dim {
+                        let d = work.b[i * dim + r];
+                        *get_mut(&mut zs[i], r) += d;
+                        size = size.max(abs(d) / (T::one() + abs(get(z0, r))));
+                    }
                 }
+                if !size.is_finite() {
+                    break 'iterate iteration;
+                }
+                // Converged at round-off, or stagnating there (the correction no
+                // longer shrinks although it is already tiny).
+                let floor = T::lit(10.0) * eps;
+                let stagnant = size >= previous && size <= T::lit(1e3) * eps;
+                if size <= floor || stagnant {
+                    // One more evaluation would only move the result by round-off:
+                    // update with the stage derivatives of the last iterate.
+                    return Ok(update(z0, h, b, &fs));
+                }
+                previous = size;
             }
-            if !size.is_finite() {
-                break;
-            }
-            // Converged at round-off, or stagnating there (the correction no
-            // longer shrinks although it is already tiny).
-            let floor = T::lit(10.0) * eps;
-            let stagnant = size >= previous && size <= T::lit(1e3) * eps;
-            if size <= floor || stagnant {
-                // One more evaluation would only move the result by round-off:
-                // update with the stage derivatives of the last iterate.
-                return Ok(update(z0, h, b, &fs));
-            }
-            previous = size;
-            if iteration == self.max_iterations {
-                break;
-            }
-        }
+            self.max_iterations
+        };
         Err(Error::NewtonFailure {
             t: t.to_f64(),
             h: h.to_f64(),
-            iterations: self.max_iterations,
+            iterations,
         })
     }
 

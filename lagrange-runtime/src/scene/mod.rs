@@ -313,7 +313,11 @@ impl<'a, T: Real, const N: usize, S: Posed<T, N> + Lagrangian<T, N>> Scene<'a, T
     /// where a rotation is in it, which the description's poses would draw
     /// as a different rotation: that is why a scene takes the run, not its
     /// points.
-    pub fn atlas_run<const P: usize>(self, run: &AtlasRun<T, N, P>, label: impl Into<String>) -> Self {
+    pub fn atlas_run<const P: usize>(
+        self,
+        run: &AtlasRun<T, N, P>,
+        label: impl Into<String>,
+    ) -> Self {
         self.add(Cow::Owned(run.user_points().0), label.into())
     }
 }

@@ -43,7 +43,10 @@ impl<T: Real, const N: usize, const Q: usize> TryFrom<Saved<T, N, Q>> for DenseS
     /// out of bounds.
     fn try_from(s: Saved<T, N, Q>) -> Result<Self, String> {
         if !(1..=8).contains(&s.used) {
-            return Err(format!("a dense segment uses {} coefficients (1 to 8)", s.used));
+            return Err(format!(
+                "a dense segment uses {} coefficients (1 to 8)",
+                s.used
+            ));
         }
         if !orientation::fits(&s.orientations, Q, N) {
             return Err(format!(
