@@ -451,3 +451,34 @@ fn stormer_verlet_keeps_a_tumbling_body_s_energy() {
     eprintln!("{} steps: energy drift {drift:e}", traj.len());
     assert!(drift < 1e-12, "{drift:e}");
 }
+
+/// A step far too large for a tumbling body: Gauss and Störmer–Verlet say
+/// their implicit iteration did not converge, with the step and the advice
+/// to take a smaller one, at h = 5 as at h = 2 (at h = 5 an iterate left
+/// the region where the dynamics are finite, once reported as a non-finite
+/// state at t = 0).
+#[test]
+fn a_step_far_too_large_for_a_tumbling_body_is_a_convergence_failure() {
+    let body = FreeBody {
+        m: 2.0,
+        inertia: [1.0, 2.0, 3.0],
+        g: 0.0,
+    };
+    let (q0, v0) = spinning([1.0, 0.0, 0.0, 0.0], [0.1, 6.0, 0.1]);
+    let dynamics = Simulation::new(&body).dynamics();
+    for h in [2.0, 5.0, 50.0] {
+        let errors = [
+            lagrange_runtime::Gauss::step(h).integrate(&dynamics, 0.0, 100.0, q0, v0),
+            lagrange_runtime::Gauss::midpoint(h).integrate(&dynamics, 0.0, 100.0, q0, v0),
+            lagrange_runtime::StormerVerlet::step(h).integrate(&dynamics, 0.0, 100.0, q0, v0),
+        ]
+        .map(|r| r.unwrap_err());
+        for e in errors {
+            assert!(
+                matches!(e.error, Error::NewtonFailure { h: step, .. } if step == h),
+                "h = {h}: {e}"
+            );
+            assert!(e.to_string().contains("try a smaller step"), "{e}");
+        }
+    }
+}

@@ -45,7 +45,8 @@ use nalgebra::{DMatrix, SVector};
 /// [`Stats::jacobians`] and [`Stats::evaluations`]) and one LU factorisation of
 /// the 2sQ × 2sQ iteration matrix per step, iterating until the correction
 /// reaches round-off. Failure to converge within [`max_iterations`](Self::max_iterations)
-/// is [`Error::NewtonFailure`]. The dense output is the cubic Hermite
+/// is [`Error::NewtonFailure`], and so is an iterate where the dynamics are
+/// not finite (the iteration diverging: a step too large). The dense output is the cubic Hermite
 /// interpolant in (q, q̇, q̈).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Gauss {
@@ -234,9 +235,9 @@ fn get_mut<T: Real, const N: usize, const Q: usize>(z: &mut Pair<T, N, Q>, k: us
 }
 
 /// (q̇, Ṗ) at the canonical state z = (q, P), counting one evaluation. A
-/// non-finite value at a finite (q, P) is the system's NaN (a force that
-/// overflows), reported as such: passed on, it would only surface as a
-/// Newton failure.
+/// non-finite value is reported as such at the step's start (the system's
+/// NaN, a force that overflows); at a Newton iterate the iteration reads it
+/// as divergence.
 fn hamilton<T: Real, const N: usize, const Q: usize>(
     mech: &Canonical<'_, T, N, Q>,
     t: T,
