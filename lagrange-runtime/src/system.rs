@@ -10,6 +10,7 @@ use crate::numeric::orientation::Orientation;
 use nalgebra::{SMatrix, SVector};
 
 mod atlas;
+mod configuration;
 mod constrained;
 mod form;
 pub mod physical;
@@ -17,6 +18,7 @@ mod route;
 
 pub use atlas::{Atlas, DrivenAtlas, EulerRotation, FreeVisitor};
 pub use constrained::{Constrained, Reduced};
+pub use configuration::Configuration;
 pub use form::FormVisitor;
 pub use route::Route;
 
@@ -29,6 +31,11 @@ pub use route::Route;
 /// `T` is the scalar the parameters are stored in (f64, f32, or any [`Real`]);
 /// `N` is the number of degrees of freedom, a type-level constant so that every
 /// state is a stack-allocated [`SVector`].
+///
+/// The evaluation methods check nothing (they are called at every stage of
+/// a run): at a quaternion off the unit sphere they answer for a scaled
+/// rotation, at a NaN with NaN. [`Configuration`] evaluates at q checked as
+/// a run checks its initial state, with typed errors.
 pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// Names of the numbers in q, in order: a coordinate's name, and for an
     /// orientation its quaternion's four components (`body.w`, `body.x`, …).
