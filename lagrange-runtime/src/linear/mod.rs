@@ -143,6 +143,7 @@ mod defaults;
 mod dense;
 mod difference;
 mod eigen;
+mod jordan;
 mod errors;
 mod lqr;
 mod partition;
@@ -153,6 +154,7 @@ mod tangent;
 
 pub use defaults::{complete_state, linearize, linearize_constrained, linearize_reduced};
 pub use eigen::{Boundary, EigenSweep, Mode, Stability, SweepPoint, Verdict, sweep};
+pub use jordan::RANK_TOLERANCE;
 pub use lqr::{Lqr, RICCATI_TOLERANCE, lqr};
 pub use settings::{
     DEFAULT_NEWTON_ITERATIONS, DEFAULT_NEWTON_TOLERANCE, Linearizer, OperatingPoint,
