@@ -315,6 +315,7 @@ impl Linear {
             t: 0.0,
             q: vec![],
             ratio: 0.0,
+            direction: String::new(),
         };
         let minv_k = lu.solve(&stiffness).ok_or_else(singular)?;
         let minv_c = lu.solve(&damping).ok_or_else(singular)?;
