@@ -160,9 +160,7 @@ fn the_quaternion_disk_has_the_critical_spin_of_the_closed_form() {
     assert!(rel < 1e-7);
     assert!(!found[0].destabilising);
     // About the tilt and its rates (the heading and position left out).
-    let verdict = |w: f64| {
-        (disk_linear(w).unwrap().stability(tol).unwrap()).without_structural
-    };
+    let verdict = |w: f64| (disk_linear(w).unwrap().stability(tol).unwrap()).without_structural;
     assert_eq!(verdict(0.9 * exact), Verdict::Unstable);
     assert_eq!(verdict(1.1 * exact), Verdict::Marginal);
 }

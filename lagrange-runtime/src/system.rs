@@ -17,8 +17,8 @@ pub mod physical;
 mod route;
 
 pub use atlas::{Atlas, DrivenAtlas, EulerRotation, FreeVisitor};
-pub use constrained::{Constrained, Reduced};
 pub use configuration::Configuration;
+pub use constrained::{Constrained, Reduced};
 pub use form::FormVisitor;
 pub use route::Route;
 
@@ -83,6 +83,11 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// recursive route was not taken: which body, and what about it).
     /// `#[derive(Lagrangian)]` sets it; the default is [`Route::HandWritten`].
     const ROUTE: Route = Route::HandWritten;
+    /// Whether the description has `emit(atlas)` (an [`Atlas`]): a run that
+    /// meets a singular M then says to call
+    /// [`run_atlas`](crate::Simulation::run_atlas), which runs through its
+    /// Euler charts' singular sets. `#[derive(Lagrangian)]` sets it.
+    const ATLAS: bool = false;
 
     /// Mass matrix M(q,t): symmetric, positive definite where the chart is regular.
     fn mass_matrix(&self, q: &SVector<T, Q>, t: T) -> SMatrix<T, N, N>;

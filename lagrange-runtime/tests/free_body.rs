@@ -496,7 +496,10 @@ fn evaluations_check_the_configuration_as_a_run_does() {
         mgl: 2.0,
     };
     let u = SVector::from([0.9, 0.3, -0.2, 0.1]).normalize();
-    let (v, acc) = (SVector::from([0.3, -1.0, 6.0]), SVector::from([1.0, 2.0, 3.0]));
+    let (v, acc) = (
+        SVector::from([0.3, -1.0, 6.0]),
+        SVector::from([1.0, 2.0, 3.0]),
+    );
     let at = |q| Configuration::new(&top, q, 0.0);
     let unit = at(u).unwrap();
     // The raw method at 2u answers for another rotation (V scales by 4).
@@ -528,8 +531,17 @@ fn evaluations_check_the_configuration_as_a_run_does() {
     assert!(matches!(at(nan).unwrap_err(), Error::NonFiniteState { .. }));
     let mut bad_v = v;
     bad_v[0] = f64::NAN;
-    assert!(matches!(unit.kinetic_energy(&bad_v), Err(Error::NonFiniteState { .. })));
-    assert!(matches!(unit.inverse_dynamics(&v, &bad_v), Err(Error::NonFiniteState { .. })));
-    assert!(matches!(unit.momentum(&bad_v), Err(Error::NonFiniteState { .. })));
+    assert!(matches!(
+        unit.kinetic_energy(&bad_v),
+        Err(Error::NonFiniteState { .. })
+    ));
+    assert!(matches!(
+        unit.inverse_dynamics(&v, &bad_v),
+        Err(Error::NonFiniteState { .. })
+    ));
+    assert!(matches!(
+        unit.momentum(&bad_v),
+        Err(Error::NonFiniteState { .. })
+    ));
     assert_eq!(unit.mass_matrix(), top.mass_matrix(&u, 0.0));
 }

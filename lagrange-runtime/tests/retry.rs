@@ -21,6 +21,7 @@ impl SecondOrder<f64, 1> for Fenced {
         if q[0].abs() > 1.5 || t > self.wall {
             return Err(Error::SingularMassMatrix {
                 direction: String::new(),
+                atlas: false,
                 t,
                 q: vec![q[0]],
                 ratio: 0.0,

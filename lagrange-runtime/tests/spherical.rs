@@ -49,7 +49,9 @@ fn start_at_the_pole_is_a_singular_mass_matrix() {
             q,
             ratio,
             direction,
+            atlas,
         } => {
+            assert!(!atlas);
             assert_eq!((*t, q.as_slice()), (0.0, &[0.0, 0.0][..]));
             assert!(*ratio <= 0.0);
             // At the pole φ turns nothing: the message names it.

@@ -119,6 +119,17 @@ fn lagrangian_trait(
     let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
     let cyclic = cyclic_const(model, nl);
     let route = route_const(model);
+    // Set only with `emit(atlas)`, so a run that meets a singular M can say
+    // to run through the atlas.
+    let atlas = (system
+        .extras
+        .iter()
+        .any(|(_, e)| *e == crate::ast::Extra::Atlas))
+    .then(|| {
+        quote!(
+            const ATLAS: bool = true;
+        )
+    });
     let hamiltonian = optional_methods(e, f, model);
     let visit_form = visit_form(f, model);
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
@@ -138,6 +149,7 @@ fn lagrangian_trait(
             const CONSTRAINED: bool = #has_constraints;
             #cyclic
             #route
+            #atlas
 
             #[inline]
             fn mass_matrix(&self, q: &#qvec_t, t: #s) -> #mat_t {

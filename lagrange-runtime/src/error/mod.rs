@@ -21,8 +21,14 @@ pub enum Error {
     /// orientation no body turns.
     #[error(
         "mass matrix singular or not positive definite at t = {t}, q = {q:?} \
-         (pivot ratio min L_ii^2 / max L_ii^2 = {ratio:e}){}",
-        no_inertia(direction)
+         (pivot ratio min L_ii^2 / max L_ii^2 = {ratio:e}){}{}",
+        no_inertia(direction),
+        if *atlas {
+            "; this description has `emit(atlas)`: call `run_atlas`, which runs through \
+             its Euler charts' singular sets"
+        } else {
+            ""
+        }
     )]
     SingularMassMatrix {
         /// Time of the failed evaluation.
@@ -34,6 +40,10 @@ pub enum Error {
         /// The direction of least inertia, in the velocities' names
         /// ("0.707 psi - 0.707 phi"); empty where the matrix was not at hand.
         direction: String,
+        /// Whether the system has `emit(atlas)`
+        /// ([`Lagrangian::ATLAS`](crate::Lagrangian::ATLAS)): then the message
+        /// says to call `run_atlas`.
+        atlas: bool,
     },
 
     /// A state, a mass matrix, a right-hand side or an acceleration contains a NaN
@@ -388,8 +398,7 @@ fn no_inertia(direction: &str) -> String {
     } else {
         format!(
             "; no inertia along {direction}: if those are angles, their chart is singular \
-             here (with `emit(atlas)`, `run_atlas` runs through it); otherwise give that \
-             direction a mass or an inertia"
+             here; otherwise give that direction a mass or an inertia"
         )
     }
 }
@@ -525,12 +534,14 @@ mod tests {
             q: vec![1e-9, 2.0],
             ratio: 1e-18,
             direction: "1.000 y".into(),
+            atlas: false,
         };
         let s = e.to_string();
         assert!(s.contains("t = 0.5"), "{s}");
         assert!(s.contains("[1e-9, 2.0]"), "{s}");
         assert!(s.contains("1e-18"), "{s}");
         assert!(s.contains("no inertia along 1.000 y"), "{s}");
+        assert!(!s.contains("run_atlas`, which"), "{s}");
         let e = Error::non_finite(
             1.5_f64,
             &SVector::<f64, 1>::new(f64::NAN),

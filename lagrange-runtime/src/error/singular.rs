@@ -33,19 +33,21 @@ pub(crate) fn null_direction<T: Real, const N: usize>(
 
 impl Error {
     /// [`Error::SingularMassMatrix`] at (t, q) with the pivot ratio and the
-    /// direction M has no inertia along, named by `names` (v's).
+    /// direction M has no inertia along, named by `names` (v's); `atlas`:
+    /// the system has `emit(atlas)`.
     pub(crate) fn singular_mass<T: Real, const N: usize, const Q: usize>(
         t: T,
         q: &SVector<T, Q>,
         ratio: T,
         m: &SMatrix<T, N, N>,
-        names: &[&str],
+        (names, atlas): (&[&str], bool),
     ) -> Self {
         Error::SingularMassMatrix {
             t: t.to_f64(),
             q: to_vec(q),
             ratio: ratio.to_f64(),
             direction: null_direction(m, names),
+            atlas,
         }
     }
 }

@@ -18,6 +18,7 @@ pub(super) fn singular<T: Real, const N: usize>(t: T, q: &SVector<T, N>, ratio: 
         q: to_vec(q),
         ratio,
         direction: String::new(),
+        atlas: false,
     }
 }
 

@@ -143,8 +143,8 @@ mod defaults;
 mod dense;
 mod difference;
 mod eigen;
-mod jordan;
 mod errors;
+mod jordan;
 mod lqr;
 mod partition;
 mod reduced_tangent;
@@ -316,6 +316,7 @@ impl Linear {
             q: vec![],
             ratio: 0.0,
             direction: String::new(),
+            atlas: false,
         };
         let minv_k = lu.solve(&stiffness).ok_or_else(singular)?;
         let minv_c = lu.solve(&damping).ok_or_else(singular)?;

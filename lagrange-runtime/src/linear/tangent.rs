@@ -97,7 +97,7 @@ impl Linearizer {
         let (q, a) = self.tangent_a(sys, q, v, t, (held, Some((dq, dv))))?;
         let m = sys.mass_matrix(&q, t);
         let chol = Cholesky::new(m, T::lit(self.singular_tolerance))
-            .map_err(|ratio| Error::singular_mass(t, &q, ratio, &m, &S::VELOCITIES))?;
+            .map_err(|ratio| Error::singular_mass(t, &q, ratio, &m, (&S::VELOCITIES, S::ATLAS)))?;
         let mut b = DMatrix::zeros(2 * N, P);
         for k in 0..P {
             let column = chol.solve(du.column(k).into_owned());

@@ -178,7 +178,7 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
             return Err(Error::non_finite(t, q, v));
         }
         let chol = Cholesky::new(m, self.singular_tolerance)
-            .map_err(|ratio| Error::singular_mass(t, q, ratio, &m, &S::VELOCITIES))?;
+            .map_err(|ratio| Error::singular_mass(t, q, ratio, &m, (&S::VELOCITIES, S::ATLAS)))?;
         let a = chol.solve(rhs);
         // Finite M and rhs with acceptable pivots can still overflow.
         if !all_finite(a.as_slice()) {
@@ -208,7 +208,13 @@ impl<S, T: Real, F> Dynamics<'_, S, T, F> {
         // A NaN ratio (a NaN pivot) is refused too; the ratio is at most 1.
         if !ratio.is_finite() || ratio < self.singular_tolerance {
             let m = self.system.mass_matrix(q, t);
-            return Err(Error::singular_mass(t, q, ratio, &m, &S::VELOCITIES));
+            return Err(Error::singular_mass(
+                t,
+                q,
+                ratio,
+                &m,
+                (&S::VELOCITIES, S::ATLAS),
+            ));
         }
         if !all_finite(a.as_slice()) {
             return Err(Error::non_finite(t, q, v));
@@ -271,7 +277,7 @@ where
                     q,
                     ratio,
                     &m,
-                    &S::VELOCITIES,
+                    (&S::VELOCITIES, S::ATLAS),
                 )));
             }
         };

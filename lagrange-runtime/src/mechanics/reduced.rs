@@ -156,7 +156,7 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         }
         let dw = Cholesky::new(form.mass, self.singular_tolerance)
             // M* is in the independent speeds, which have no names here.
-            .map_err(|ratio| Error::singular_mass(t, q, ratio, &form.mass, &[]))?
+            .map_err(|ratio| Error::singular_mass(t, q, ratio, &form.mass, (&[], false)))?
             .solve(form.force);
         let a = form.w * dw + form.kappa;
         let du = (rows.a * a - rates).fixed_rows::<K>(0).into_owned();

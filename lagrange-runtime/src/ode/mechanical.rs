@@ -53,7 +53,7 @@ pub trait Mechanical<T: Real, const N: usize, const Q: usize = N> {
         // that is not positive definite, as before (the symplectic method has
         // no singular-tolerance setting of its own).
         let chol = Cholesky::new(m, T::zero())
-            .map_err(|ratio| Error::singular_mass(t, q, ratio, &m, &[]))?;
+            .map_err(|ratio| Error::singular_mass(t, q, ratio, &m, (&[], false)))?;
         Ok(chol.solve(p - a))
     }
 }

@@ -229,7 +229,12 @@ fn reference_problems_are_errors_of_the_study() {
         "{e}"
     );
     // At the floor it runs.
-    assert!(oscillator().computed_reference(f64::EPSILON, false).run().is_ok());
+    assert!(
+        oscillator()
+            .computed_reference(f64::EPSILON, false)
+            .run()
+            .is_ok()
+    );
     // A reference run that fails leaves the study without a yardstick.
     let failing = WorkPrecision::<f64, 1>::new(|_| Err(Error::InvalidSettings("boom".into())));
     assert!(matches!(failing.run(), Err(Error::InvalidSettings(s)) if s == "boom"));

@@ -33,9 +33,7 @@ impl<S, T: Real, const N: usize, const Q: usize> Clone for Configuration<'_, S, 
 }
 
 /// q and t (the system need not be `Debug`).
-impl<S, T: Real, const N: usize, const Q: usize> std::fmt::Debug
-    for Configuration<'_, S, T, N, Q>
-{
+impl<S, T: Real, const N: usize, const Q: usize> std::fmt::Debug for Configuration<'_, S, T, N, Q> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Configuration")
             .field("q", &self.q)
@@ -180,7 +178,11 @@ impl<S: Lagrangian<T, N, Q> + Kinematics<T, N, Q>, T: Real, const N: usize, cons
     ///
     /// # Errors
     /// [`Error::NonFiniteState`] for a NaN or ∞ in v.
-    pub fn frame_bias(&self, body: usize, v: &SVector<T, N>) -> Result<Option<SVector<T, 6>>, Error> {
+    pub fn frame_bias(
+        &self,
+        body: usize,
+        v: &SVector<T, N>,
+    ) -> Result<Option<SVector<T, 6>>, Error> {
         finite(self.t, &self.q, v)?;
         Ok(self.sys.frame_bias(body, &self.q, v, self.t))
     }

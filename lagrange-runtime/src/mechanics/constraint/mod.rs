@@ -408,7 +408,7 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
         S: crate::system::Lagrangian<T, N, Q>,
     {
         Cholesky::new(m, self.singular_tolerance)
-            .map_err(|ratio| Error::singular_mass(t, q, ratio, &m, &S::VELOCITIES))
+            .map_err(|ratio| Error::singular_mass(t, q, ratio, &m, (&S::VELOCITIES, S::ATLAS)))
     }
 }
 

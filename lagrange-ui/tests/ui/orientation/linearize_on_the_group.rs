@@ -1,6 +1,6 @@
 use lagrange::Lagrangian;
 use lagrange::linear::{OperatingPoint, linearize};
-use nalgebra::SVector;
+use lagrange::nalgebra::SVector;
 
 // A body with a quaternion is linearised on its group (`tangent_driven`),
 // not by `linearize`, which takes a system in N coordinates: the message
