@@ -19,7 +19,11 @@ use crate::system::Lagrangian;
 use nalgebra::{SMatrix, SVector, Vector3};
 
 /// A configuration q of `S` at time t, checked and normalised as a run checks
-/// its initial state (see the [module docs](self)).
+/// its initial state: every entry finite, each quaternion within
+/// [`UNIT_TOLERANCE`](crate::numeric::orientation::UNIT_TOLERANCE) (1e-6) of
+/// unit norm and scaled to it (q / |q|), one further refused. The trait
+/// methods it calls check nothing: at a quaternion of norm s they answer for
+/// the rotation scaled by s².
 pub struct Configuration<'a, S, T: Real, const N: usize, const Q: usize = N> {
     sys: &'a S,
     q: SVector<T, Q>,
