@@ -442,15 +442,11 @@
 //! the equations are the user's own; in the second they come from the
 //! description's free twin (each rotation a quaternion and ω, derived as
 //! for `orientation`), whose M and h have no chart: q̈ = E⁻¹(ω̇ − Ė q̇).
-//! The [`AtlasRun`] records each point in the charts it was computed in
-//! ([`AtlasRun::charted`], [`AtlasRun::charts`], [`AtlasRun::switches`]),
-//! reports the orientation chart-free ([`AtlasRun::rotation`],
-//! [`AtlasRun::quaternion`], [`AtlasRun::angular_velocity`]) and in the
-//! user's coordinates wherever their chart is valid ([`AtlasRun::user_state`],
-//! [`AtlasRun::user_trajectory`]); its scene ([`AtlasRun::scene`]) and its
-//! table ([`AtlasRun::table`]) read every rotation in the user's chart. It
-//! hands out no bare `Trajectory` of the charts' numbers, which a scene or a
-//! CSV would read as the user's angles. [`Linearizer::atlas`]
+//! The [`AtlasRun`] gives each point with its charts ([`AtlasRun::charted`],
+//! never a bare `Trajectory` a scene would misread), the orientation
+//! chart-free ([`AtlasRun::rotation`], [`AtlasRun::quaternion`]), the user's
+//! coordinates where valid ([`AtlasRun::user_state`]), and draws and writes
+//! every rotation in the user's chart ([`AtlasRun::scene`], [`AtlasRun::table`]). [`Linearizer::atlas`]
 //! linearises in charts regular at the operating point, and
 //! [`Linearizer::atlas_driven`] adds B for the inputs held there (in a
 //! second chart through the twin's forces). [`Simulation::run`]

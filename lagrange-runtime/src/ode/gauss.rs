@@ -234,6 +234,26 @@ fn get_mut<T: Real, const N: usize, const Q: usize>(z: &mut Pair<T, N, Q>, k: us
     if k < Q { &mut z.q[k] } else { &mut z.v[k - Q] }
 }
 
+/// The Newton right-hand side −G = h Σ_j a_ij F_j − Z_i, stage after stage.
+fn newton_rhs<T: Real, const Q: usize, const S: usize>(
+    h: T,
+    a: &[[T; S]; S],
+    fs: &[Pair<T, Q, Q>; S],
+    zs: &[Pair<T, Q, Q>; S],
+    out: &mut [T],
+) {
+    let dim = 2 * Q;
+    for i in 0..S {
+        for r in 0..dim {
+            let mut s = T::zero();
+            for j in 0..S {
+                s += a[i][j] * get(&fs[j], r);
+            }
+            out[i * dim + r] = h * s - get(&zs[i], r);
+        }
+    }
+}
+
 /// (q̇, Ṗ) at the canonical state z = (q, P), counting one evaluation. A
 /// non-finite value is reported as such at the step's start (the system's
 /// NaN, a force that overflows); at a Newton iterate the iteration reads it
@@ -356,24 +376,13 @@ impl Gauss {
             for iteration in 1..=self.max_iterations {
                 for i in 0..S {
                     let zi = z0.add_combination(T::one(), [T::one()], [&zs[i]]);
-                    // The field is finite at z0: an iterate where it is not has
-                    // left the region the step can reach (the iteration
-                    // diverges), which a smaller step answers, not the system.
+                    // Finite at z0, not at an iterate: the iteration diverges.
                     fs[i] = match hamilton(mech, t + c[i] * h, &zi, &mut stats.evaluations) {
                         Err(Error::NonFiniteState { .. }) => break 'iterate iteration,
                         f => f?,
                     };
                 }
-                // Newton right-hand side −G = h Σ_j a_ij F_j − Z_i.
-                for i in 0..S {
-                    for r in 0..dim {
-                        let mut s = T::zero();
-                        for j in 0..S {
-                            s += a[i][j] * get(&fs[j], r);
-                        }
-                        work.b[i * dim + r] = h * s - get(&zs[i], r);
-                    }
-                }
+                newton_rhs(h, a, &fs, &zs, &mut work.b);
                 lu_solve(&work.lu, &work.pivots, &mut work.b);
                 let mut size = T::zero();
                 for i in 0..S {
