@@ -414,7 +414,7 @@
 //!     .run_atlas([0.0, 1.0, 0.0], [0.0, 2.0, 0.0], 0.0..2.5)?;
 //! assert_eq!(run.switches().len(), 3);
 //! assert!((run.times(0)[0] - 0.5).abs() < 1e-9);
-//! assert_eq!(run.inputs().len(), run.trajectory().len());
+//! assert_eq!(run.inputs().len(), run.charted().len());
 //! # Ok::<(), lagrange::Error>(())
 //! ```
 //!
@@ -544,7 +544,7 @@
 //!     .run_atlas([0.0, 1.0, 0.0], [0.0, 2.0, 0.0], 0.0..2.5)?;
 //! assert_eq!(run.switches().len(), 3);
 //! assert!((run.times(0)[0] - 0.5).abs() < 1e-9);
-//! assert_eq!(run.inputs().len(), run.trajectory().len());
+//! assert_eq!(run.inputs().len(), run.charted().len());
 //! # Ok::<(), lagrange::Error>(())
 //! ```
 //!
