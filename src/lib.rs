@@ -414,7 +414,7 @@
 //!     .run_atlas([0.0, 1.0, 0.0], [0.0, 2.0, 0.0], 0.0..2.5)?;
 //! assert_eq!(run.switches().len(), 3);
 //! assert!((run.times(0)[0] - 0.5).abs() < 1e-9);
-//! assert_eq!(run.inputs().len(), run.trajectory().len());
+//! assert_eq!(run.inputs().len(), run.charted().len());
 //! # Ok::<(), lagrange::Error>(())
 //! ```
 //!
@@ -442,11 +442,11 @@
 //! the equations are the user's own; in the second they come from the
 //! description's free twin (each rotation a quaternion and ω, derived as
 //! for `orientation`), whose M and h have no chart: q̈ = E⁻¹(ω̇ − Ė q̇).
-//! The [`AtlasRun`] records each point in the charts it was computed in
-//! ([`AtlasRun::charts`], [`AtlasRun::switches`]), reports the orientation
-//! chart-free ([`AtlasRun::rotation`], [`AtlasRun::quaternion`],
-//! [`AtlasRun::angular_velocity`]) and in the user's coordinates wherever
-//! their chart is valid ([`AtlasRun::user_state`]). [`Linearizer::atlas`]
+//! The [`AtlasRun`] gives each point with its charts ([`AtlasRun::charted`],
+//! never a bare `Trajectory` a scene would misread), the orientation
+//! chart-free ([`AtlasRun::rotation`], [`AtlasRun::quaternion`]), the user's
+//! coordinates where valid ([`AtlasRun::user_state`]), and draws and writes
+//! every rotation in the user's chart ([`AtlasRun::scene`], [`AtlasRun::table`]). [`Linearizer::atlas`]
 //! linearises in charts regular at the operating point, and
 //! [`Linearizer::atlas_driven`] adds B for the inputs held there (in a
 //! second chart through the twin's forces). [`Simulation::run`]
@@ -513,7 +513,7 @@
 //! // Swung over the top through θ = 0: the user's chart alone stops there.
 //! let sim = Simulation::new(&top).integrator(Dop853::tol(1e-10));
 //! let run = sim.run_atlas([0.2, 0.6, -0.4], [0.0, -6.0, 2.0], 0.0..4.0)?;
-//! assert!(run.switches().len() >= 4 && run.trajectory().integral_drift() < 1e-8);
+//! assert!(run.switches().len() >= 4 && run.charted().integral_drift() < 1e-8);
 //! let upright = run.quaternion(0, 0); // (w, x, y, z) of the first point
 //! assert!((upright[0] - 0.9505).abs() < 1e-4);
 //! // Spun exactly upright, the sleeping top linearises in the second chart.
@@ -544,7 +544,7 @@
 //!     .run_atlas([0.0, 1.0, 0.0], [0.0, 2.0, 0.0], 0.0..2.5)?;
 //! assert_eq!(run.switches().len(), 3);
 //! assert!((run.times(0)[0] - 0.5).abs() < 1e-9);
-//! assert_eq!(run.inputs().len(), run.trajectory().len());
+//! assert_eq!(run.inputs().len(), run.charted().len());
 //! # Ok::<(), lagrange::Error>(())
 //! ```
 //!

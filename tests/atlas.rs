@@ -48,7 +48,7 @@ fn the_upright_top_in_euler_angles_matches_the_quaternion_top() {
         .unwrap();
     // It starts in the second chart and, sleeping, stays there.
     assert_eq!(run.charts()[0], 1);
-    let traj = run.trajectory();
+    let traj = run.charted();
     let mut worst: f64 = 0.0;
     for (i, &t) in traj.times().iter().enumerate() {
         let (q, _) = reference.state_at(t).unwrap();
@@ -56,11 +56,18 @@ fn the_upright_top_in_euler_angles_matches_the_quaternion_top() {
     }
     assert!(worst < 1e-7, "{worst:e}");
     assert!(traj.integral_drift() < 1e-8, "{:e}", traj.integral_drift());
-    // The user's own run refuses that start.
+    // The user's own run refuses that start, naming the direction with no
+    // inertia (ψ and φ turn about the same axis) and saying to run through
+    // the atlas.
+    let e = sim
+        .run([0.0, 0.0, 0.0], [0.0, nudge, spin], 0.0..3.0)
+        .unwrap_err();
     assert!(
-        sim.run([0.0, 0.0, 0.0], [0.0, nudge, spin], 0.0..3.0)
-            .is_err()
+        matches!(&e.error, Error::SingularMassMatrix { direction, atlas: true, .. }
+            if direction.contains("psi") && direction.contains("phi") && !direction.contains("theta")),
+        "{e}"
     );
+    assert!(e.to_string().contains("call `run_atlas`"), "{e}");
 }
 
 /// The quaternion of the z-x-z angles (ψ, θ, φ).
@@ -90,7 +97,7 @@ fn a_top_swung_through_the_upright_switches_charts_and_back() {
             0.0..4.0,
         )
         .unwrap();
-    let traj = run.trajectory();
+    let traj = run.charted();
     let mut worst: f64 = 0.0;
     for (i, &t) in traj.times().iter().enumerate() {
         let (q, _) = reference.state_at(t).unwrap();
@@ -210,7 +217,7 @@ fn a_tumbling_brick_in_yaw_pitch_roll_runs_through_every_orientation() {
             span,
         )
         .unwrap();
-    let traj = run.trajectory();
+    let traj = run.charted();
     let inertia = Matrix3::from_diagonal(&Vector3::new(brick.a, brick.b, brick.c));
     let momentum = |i: usize| run.rotation(i, 0) * inertia * run.angular_velocity(i, 0);
     let (mut worst, mut drift, mut parabola) = (0.0f64, 0.0f64, 0.0f64);
@@ -296,7 +303,7 @@ fn every_integrator_carries_the_atlas_across() {
             .run_atlas([0.2, 0.6, -0.4], [0.0, -6.0, 2.0], 0.0..2.0)
             .unwrap();
         assert!(run.switches().len() >= 4);
-        (run.rotation(run.trajectory().len() - 1, 0) - exact)
+        (run.rotation(run.charted().len() - 1, 0) - exact)
             .abs()
             .max()
     }
@@ -386,7 +393,7 @@ fn a_chain_of_two_euler_joints_switches_each_on_its_own() {
             span,
         )
         .unwrap();
-    let traj = run.trajectory();
+    let traj = run.charted();
     let mut worst: f64 = 0.0;
     for (i, &t) in traj.times().iter().enumerate() {
         let (q, _) = reference.state_at(t).unwrap();
@@ -433,12 +440,12 @@ fn the_atlas_runs_a_generic_scalar_in_f32() {
         .integrator(Dopri5::tol(1e-10))
         .run_atlas([0.2, 0.6, -0.4], [0.0, -6.0, 2.0], 0.0..2.0)
         .unwrap();
-    let narrow = run.rotation(run.trajectory().len() - 1, 0).map(f64::from);
-    let apart = (wide.rotation(wide.trajectory().len() - 1, 0) - narrow)
+    let narrow = run.rotation(run.charted().len() - 1, 0).map(f64::from);
+    let apart = (wide.rotation(wide.charted().len() - 1, 0) - narrow)
         .abs()
         .max();
     assert!(apart < 1e-3, "{apart:e}");
-    assert!(run.trajectory().integral_drift() < 1e-3);
+    assert!(run.charted().integral_drift() < 1e-3);
 }
 
 /// Released at tilt θ₀ = 0.6 (|sin θ₀| below the switching threshold, so it
@@ -465,7 +472,7 @@ fn the_atlas_top_nutates_between_the_roots_of_the_cubic() {
         let (r, w) = run.rotation_at(t, 0).unwrap();
         r[(2, 0)] * w[1] - r[(2, 1)] * w[0]
     };
-    let turns = run.trajectory().crossings(|t, _, _| tilt_rate(t)).unwrap();
+    let turns = run.charted().crossings(|t, _, _, _| tilt_rate(t)).unwrap();
     let lowest = (turns.iter())
         .map(|&t| run.rotation_at(t, 0).unwrap().0[(2, 2)])
         .fold(1.0, f64::min);
@@ -476,7 +483,7 @@ fn the_atlas_top_nutates_between_the_roots_of_the_cubic() {
     );
     assert!(turns.len() >= 4);
     assert!((lowest - u1).abs() < 1e-9, "{lowest} vs {u1}");
-    assert!(run.trajectory().integral_drift() < 1e-10);
+    assert!(run.charted().integral_drift() < 1e-10);
 }
 
 /// `EQUATIONS` says which rotations have a second chart and when a run
@@ -488,4 +495,97 @@ fn the_equations_name_each_rotation_and_its_second_chart() {
         text.contains("atlas: `top`'s (psi, theta, phi) in z-x-z, and z-x-z after rot_x(π/2)"),
         "{text}"
     );
+}
+
+/// The segments of a still with length, rounded away from round-off: the
+/// shapes (the paths of a top's fixed pivot are points).
+fn drawn(segments: Vec<[nalgebra::Vector2<f64>; 2]>) -> Vec<[nalgebra::Vector2<f64>; 2]> {
+    segments
+        .into_iter()
+        .filter(|[a, b]| (a - b).norm() > 1e-9)
+        .collect()
+}
+
+/// Every consumer of an atlas run's points reads each point in its own
+/// chart: the top started exactly upright runs in the second chart, and
+/// its scene, its still, its table and its chart-aware crossings draw and
+/// write the rotation the quaternion top has, not the second chart's angles
+/// read as the user's.
+#[test]
+fn the_upright_tops_scene_and_table_show_the_rotation_it_has() {
+    let (spin, nudge) = (30.0, 0.3);
+    let run = Simulation::new(&EULER_TOP)
+        .integrator(Dopri5::tol(1e-11))
+        .run_atlas([0.0, 0.0, 0.0], [0.0, nudge, spin], 0.0..1.0)
+        .unwrap();
+    let twin = Simulation::new(&TOP)
+        .integrator(Dopri5::tol(1e-11))
+        .run([1.0, 0.0, 0.0, 0.0], [nudge, 0.0, spin], 0.0..1.0)
+        .unwrap();
+    let held = run.charted();
+    // A point in the second chart, tilted: its held angles are not the user's.
+    let i = held.len() / 2;
+    let t = held.times()[i];
+    assert_eq!(held.charts()[i], 1);
+    let (q, w) = twin.state_at(t).unwrap();
+    let exact = matrix(q.as_slice());
+    let user = EulerChart::new([2, 0, 2]).unwrap();
+    let x = held.positions()[i];
+    let misread = (user.matrix([x[0], x[1], x[2]]) - exact).abs().max();
+    assert!(misread > 0.1, "{misread}");
+    // The scene draws the twin's rotation at that point.
+    let atlas_still = drawn(run.scene(&EULER_TOP).still(t).unwrap());
+    let twin_still = drawn(twin.scene(&TOP).still(t).unwrap());
+    assert_eq!(atlas_still.len(), twin_still.len());
+    assert!(!atlas_still.is_empty());
+    let apart = (atlas_still.iter().zip(&twin_still))
+        .map(|(a, b)| (a[0] - b[0]).norm().max((a[1] - b[1]).norm()))
+        .fold(0.0, f64::max);
+    assert!(apart < 1e-6, "{apart:e}");
+    // The table writes the user's angles and rates at that point, and leaves
+    // the rates empty at the exactly upright start, where they do not exist.
+    let mut csv = Vec::new();
+    run.table(&EULER_TOP).unwrap().write(&mut csv).unwrap();
+    let csv = String::from_utf8(csv).unwrap();
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    let header = rows[0][..7].join(",");
+    assert_eq!(header, "t,psi,theta,phi,dot_psi,dot_theta,dot_phi");
+    let kinetic = rows[0].iter().position(|&c| c == "kinetic").unwrap();
+    assert_eq!(&rows[1][4..7], ["", "", ""]);
+    assert_eq!(rows[1][kinetic], "");
+    let row: Vec<f64> = rows[i + 1][..7]
+        .iter()
+        .map(|c| c.parse().unwrap())
+        .collect();
+    assert_eq!(row[0], t);
+    let angles = [row[1], row[2], row[3]];
+    assert!((user.matrix(angles) - exact).abs().max() < 1e-7);
+    let omega = user.rates(angles) * Vector3::new(row[4], row[5], row[6]);
+    assert!((omega - Vector3::new(w[0], w[1], w[2])).norm() < 1e-6 * spin);
+    let energy: f64 = rows[i + 1][kinetic].parse().unwrap();
+    let expected = TOP.kinetic_energy(&q, &w, t);
+    assert!(
+        (energy - expected).abs() < 1e-6 * expected,
+        "{energy} {expected}"
+    );
+    // Crossings read each state with its charts: the tilt's cosine (chart-free
+    // through the chart given) crosses half way down its range where the
+    // twin's does.
+    let lowest = (twin.positions().iter())
+        .map(|q| matrix(q.as_slice())[(2, 2)])
+        .fold(1.0, f64::min);
+    let level = 0.5 * (1.0 + lowest);
+    let tilt = |charts: u64, q: &SVector<f64, 3>| {
+        let chart = if charts & 1 == 1 { user.second() } else { user };
+        chart.matrix([q[0], q[1], q[2]])[(2, 2)] - level
+    };
+    let atlas_turns = held.crossings(|_, q, _, c| tilt(c, q)).unwrap();
+    let twin_turns = twin
+        .crossings(|_, q, _| matrix(q.as_slice())[(2, 2)] - level)
+        .unwrap();
+    assert_eq!(atlas_turns.len(), twin_turns.len());
+    assert!(!atlas_turns.is_empty());
+    for (a, b) in atlas_turns.iter().zip(&twin_turns) {
+        assert!((a - b).abs() < 1e-6, "{a} {b}");
+    }
 }

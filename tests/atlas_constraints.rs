@@ -129,7 +129,7 @@ fn a_pinned_top_swung_through_the_upright_matches_the_top_on_a_pivot() {
         .integrator(Dopri5::tol(1e-11))
         .run([q.w, q.i, q.j, q.k], [w0[0], w0[1], w0[2]], 0.0..4.0)
         .unwrap();
-    let traj = run.trajectory();
+    let traj = run.charted();
     let (mut worst, mut pin): (f64, f64) = (0.0, 0.0);
     for (i, &t) in traj.times().iter().enumerate() {
         let (qr, _) = reference.state_at(t).unwrap();
@@ -192,7 +192,7 @@ fn a_driven_pinned_top_matches_the_driven_top_on_a_pivot() {
         )
         .run([q.w, q.i, q.j, q.k], [w0[0], w0[1], w0[2]], 0.0..4.0)
         .unwrap();
-    let traj = run.trajectory();
+    let traj = run.charted();
     let (mut worst, mut pin): (f64, f64) = (0.0, 0.0);
     for (i, &t) in traj.times().iter().enumerate() {
         let (qr, _) = reference.trajectory().state_at(t).unwrap();
@@ -223,7 +223,7 @@ fn an_inconsistent_start_is_refused() {
         "{}",
         failure.error
     );
-    assert_eq!(failure.partial.trajectory().len(), 1);
+    assert_eq!(failure.partial.charted().len(), 1);
     let projected = Simulation::new(&PINNED)
         .drift(Drift::projection())
         .run_atlas([0.0, 0.0, 0.4, 0.0, 0.0, 0.0], [0.0; 6], 0.0..1.0)

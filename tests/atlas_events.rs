@@ -193,14 +193,14 @@ fn an_action_on_the_users_rates_goes_back_into_the_charts() {
         .run(qq0, vq0, 0.0..2.0)
         .unwrap();
     let worst_time = time_gap(1, run.occurrences(), &reference.occurrences);
-    let traj = run.trajectory();
+    let traj = run.charted();
     let mut worst: f64 = 0.0;
     for (i, &t) in traj.times().iter().enumerate() {
         let (q, _) = reference.trajectory.state_at(t).unwrap();
         worst = worst.max((run.rotation(i, 0) - quaternion_matrix(&q)).abs().max());
     }
     let in_second = (run.occurrences().iter())
-        .filter(|o| run.trajectory().state_at(o.t).is_some() && run.charts_at(o.t) & 1 == 1)
+        .filter(|o| run.charted().state_at(o.t).is_some() && run.charts_at(o.t) & 1 == 1)
         .count();
     eprintln!(
         "{} reversals ({in_second} in the second chart), {} switches; time gap {worst_time:e}, rotation gap {worst:e}",

@@ -71,7 +71,7 @@ fn start(angles: [f64; 3], w: Vector3<f64>) -> ([f64; 3], [f64; 3], SVector<f64,
 /// and the quaternion run's, over the atlas run's points.
 fn gap<const P: usize>(run: &AtlasRun<f64, 3, P>, reference: &Trajectory<f64, 3, 4>) -> (f64, f64) {
     let (mut rotation, mut omega) = (0.0f64, 0.0f64);
-    for (i, &t) in run.trajectory().times().iter().enumerate() {
+    for (i, &t) in run.charted().times().iter().enumerate() {
         let (q, w) = reference.state_at(t).unwrap();
         rotation = rotation.max((run.rotation(i, 0) - matrix(&q)).abs().max());
         omega = omega.max((run.angular_velocity(i, 0) - w).amax());
@@ -82,7 +82,7 @@ fn gap<const P: usize>(run: &AtlasRun<f64, 3, P>, reference: &Trajectory<f64, 3,
 /// The least angle between the body's x axis and the vertical over the
 /// run's points (|π/2 − |pitch||).
 fn closest_to_vertical<const P: usize>(run: &AtlasRun<f64, 3, P>) -> f64 {
-    (0..run.trajectory().len())
+    (0..run.charted().len())
         .map(|i| run.rotation(i, 0)[(2, 0)].abs().min(1.0).acos())
         .fold(f64::INFINITY, f64::min)
 }
@@ -132,7 +132,7 @@ fn a_torque_signal_drives_the_yaw_pitch_roll_satellite_through_the_vertical() {
     eprintln!("signal: {switches} switches, rotation gap {rotation:e}, ω gap {omega:e}");
     assert!(switches >= 4, "{switches}");
     assert!(rotation < 1e-8 && omega < 1e-8, "{rotation:e} {omega:e}");
-    let traj = run.trajectory();
+    let traj = run.charted();
     assert_eq!(run.inputs().len(), traj.len());
     assert_eq!(run.input_names(), &["t1", "t2", "t3"]);
     let mut csv = Vec::new();
@@ -187,7 +187,7 @@ fn state_feedback_on_the_users_angles_holds_the_satellite_near_the_vertical() {
         .run(quaternion, [0.3, -0.5, 0.2], span)
         .unwrap();
     let (rotation, omega) = gap(&run, reference.trajectory());
-    let last = run.trajectory().len() - 1;
+    let last = run.charted().len() - 1;
     let x_axis = run.rotation(last, 0).column(0).into_owned();
     let target = Vector3::new(-(0.3f64.sin()), 0.0, 0.3f64.cos());
     let (off, spin) = (

@@ -125,7 +125,7 @@ fn compare<const N: usize>(
     reference: &Trajectory<f64, 6, 7>,
     ball: &QuaternionSphere,
 ) -> Agreement {
-    let traj = run.trajectory();
+    let traj = run.charted();
     let (mut rotation, mut centre, mut momentum) = (0.0f64, 0.0f64, 0.0f64);
     let mut first = None;
     for (i, &t) in traj.times().iter().enumerate() {
@@ -230,7 +230,7 @@ fn the_catalog_sphere_rolls_through_the_upright_as_the_quaternion_sphere() {
         .run(qf, vf, 0.0..5.0)
         .unwrap();
     let got = compare(&run, &reference, &QUATERNION_SPHERE);
-    let upright = (0..run.trajectory().len())
+    let upright = (0..run.charted().len())
         .map(|i| 1.0 - run.rotation(i, 0)[(2, 2)])
         .fold(f64::INFINITY, f64::min);
     eprintln!(
@@ -272,7 +272,7 @@ fn at_regular_states_the_atlas_matches_the_users_chart() {
         .integrator(Dopri5::tol(TOL))
         .run(q0, v0, 0.0..4.0)
         .unwrap();
-    let traj = run.trajectory();
+    let traj = run.charted();
     let (mut gap, mut lowest) = (0.0f64, f64::INFINITY);
     for (i, &t) in traj.times().iter().enumerate() {
         let (q, v) = run.user_state(i).unwrap();

@@ -149,7 +149,7 @@ pub(crate) fn atlas_top(system: &'static str) -> Result<Row, Error> {
         [w[0], w[1], w[2]],
         span.clone(),
     )?;
-    let traj = run.trajectory();
+    let traj = run.charted();
     let apart = (0..traj.len())
         .filter_map(|i| {
             let (q, _) = reference.state_at(traj.times()[i])?;

@@ -196,7 +196,7 @@ pub mod study;
 mod system;
 mod table;
 
-pub use atlas::{AtlasRun, ChartSwitch};
+pub use atlas::{AtlasRun, ChartSwitch, ChartedTrajectory};
 pub use control::{
     Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,
     StateFeedback,
@@ -225,6 +225,6 @@ pub use scene::Scene;
 pub use simulation::{ControlRun, ControlledSimulation, EventSimulation, Simulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::physical;
-pub use system::{Atlas, DrivenAtlas, EulerRotation, FreeVisitor};
+pub use system::{Atlas, Configuration, DrivenAtlas, EulerRotation, FreeVisitor};
 pub use system::{Constrained, Driven, FormVisitor, Lagrangian, Reduced, Route};
 pub use table::Table;

@@ -118,6 +118,11 @@ pub trait Posed<T: Real, const N: usize, const Q: usize = N> {
 /// time: a rheonomic description's explicit ∂/∂t terms are left out. With
 /// orientations (Q ≠ N) q holds the quaternions and the Jacobians' columns
 /// are v's: an orientation's three the body-axis ω (the tangent space).
+///
+/// These methods check nothing (they are the generated code): q must hold
+/// unit quaternions and finite numbers, or the answer is that of another
+/// rotation, or NaN. [`Configuration`](crate::Configuration) evaluates them
+/// at q checked as a run checks its start, with typed errors.
 pub trait Kinematics<T: Real, const N: usize, const Q: usize = N>: Posed<T, N, Q> {
     /// The geometric Jacobian of the frame at its origin in world-aligned
     /// axes: rows 0–2 map q̇ to the origin's velocity, rows 3–5 to the

@@ -10,12 +10,14 @@ use crate::numeric::orientation::Orientation;
 use nalgebra::{SMatrix, SVector};
 
 mod atlas;
+mod configuration;
 mod constrained;
 mod form;
 pub mod physical;
 mod route;
 
 pub use atlas::{Atlas, DrivenAtlas, EulerRotation, FreeVisitor};
+pub use configuration::Configuration;
 pub use constrained::{Constrained, Reduced};
 pub use form::FormVisitor;
 pub use route::Route;
@@ -29,6 +31,11 @@ pub use route::Route;
 /// `T` is the scalar the parameters are stored in (f64, f32, or any [`Real`]);
 /// `N` is the number of degrees of freedom, a type-level constant so that every
 /// state is a stack-allocated [`SVector`].
+///
+/// The evaluation methods check nothing (they are called at every stage of
+/// a run): at a quaternion off the unit sphere they answer for a scaled
+/// rotation, at a NaN with NaN. [`Configuration`] evaluates at q checked as
+/// a run checks its initial state, with typed errors.
 pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// Names of the numbers in q, in order: a coordinate's name, and for an
     /// orientation its quaternion's four components (`body.w`, `body.x`, …).
@@ -76,6 +83,11 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// recursive route was not taken: which body, and what about it).
     /// `#[derive(Lagrangian)]` sets it; the default is [`Route::HandWritten`].
     const ROUTE: Route = Route::HandWritten;
+    /// Whether the description has `emit(atlas)` (an [`Atlas`]): a run that
+    /// meets a singular M then says to call
+    /// [`run_atlas`](crate::Simulation::run_atlas), which runs through its
+    /// Euler charts' singular sets. `#[derive(Lagrangian)]` sets it.
+    const ATLAS: bool = false;
 
     /// Mass matrix M(q,t): symmetric, positive definite where the chart is regular.
     fn mass_matrix(&self, q: &SVector<T, Q>, t: T) -> SMatrix<T, N, N>;
@@ -334,9 +346,10 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
 /// default for P = 0 (and only for P = 0: a driven hand-written system must
 /// implement them, or the build stops at its impl).
 #[diagnostic::on_unimplemented(
-    message = "`{Self}` is not driven by {P} input(s): a controller, input signal or operating point supplies a different number of inputs than `inputs(...)` declares",
-    label = "{P} input(s) supplied here",
-    note = "a controller returns `[T; P]` or `SVector<T, P>` with P the number of names in `inputs(...)`; a system without inputs takes P = 0"
+    message = "`{Self}` is not driven by {P} input(s) with {Q} numbers in q: a controller, input signal or operating point supplies a different number of inputs than `inputs(...)` declares, or the system holds orientations and this call takes it in N coordinates",
+    label = "{P} input(s) and {Q} numbers in q supplied here",
+    note = "a controller returns `[T; P]` or `SVector<T, P>` with P the number of names in `inputs(...)`; a system without inputs takes P = 0",
+    note = "a system with `orientation(...)` has four numbers per quaternion in q: linearise it with `Linearizer::tangent_driven` (or `Linearizer::tangent`), with constraints `Linearizer::constrained_tangent` at `OperatingPoint::on_group(q, v)`; `linearize` and `Linearizer::unconstrained` take systems without orientations"
 )]
 pub trait Driven<T: Real, const N: usize, const P: usize, const Q: usize = N>:
     Lagrangian<T, N, Q>

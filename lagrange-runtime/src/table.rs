@@ -16,13 +16,16 @@ use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::numeric::Real;
 use crate::ode::Trajectory;
 use crate::system::{Constrained, Lagrangian};
+use std::borrow::Cow;
 use std::io::Write;
 use std::path::Path;
 
 /// The columns of a run, built from a trajectory and what the system adds.
 #[derive(Clone, Debug)]
 pub struct Table<'a, T: Real, const N: usize, const Q: usize = N> {
-    traj: &'a Trajectory<T, N, Q>,
+    /// Borrowed, or built for the table (a run through the atlas in the
+    /// user's coordinates).
+    traj: Cow<'a, Trajectory<T, N, Q>>,
     /// The columns of q (Q of them).
     names: Vec<String>,
     /// The columns of v (N of them).
@@ -31,6 +34,18 @@ pub struct Table<'a, T: Real, const N: usize, const Q: usize = N> {
     energies: Option<Vec<(T, T)>>,
     /// Named extra column groups, one value per point each (inputs, ν).
     extra: Vec<(Vec<String>, Vec<Vec<T>>)>,
+    /// Cells written empty, by row, in row order: a value that does not
+    /// exist there (a rate at its chart's singular set).
+    blank: Vec<(usize, Cell)>,
+}
+
+/// A cell of a row that may be left empty.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Cell {
+    /// The rate of velocity j.
+    Rate(usize),
+    /// The kinetic energy.
+    Kinetic,
 }
 
 impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
@@ -56,11 +71,12 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
             (0..N).map(|j| format!("v{j}")).collect()
         };
         Ok(Self {
-            traj,
+            traj: Cow::Borrowed(traj),
             names,
             rates,
             energies: None,
             extra: Vec::new(),
+            blank: Vec::new(),
         })
     }
 
@@ -70,6 +86,14 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
     /// [`VELOCITIES`](Lagrangian::VELOCITIES) name, `turn.wx`) and its kinetic
     /// and potential energy at every point.
     pub fn of<S: Lagrangian<T, N, Q>>(traj: &'a Trajectory<T, N, Q>, sys: &S) -> Self {
+        Self::of_cow(Cow::Borrowed(traj), sys)
+    }
+
+    /// [`of`](Self::of) a borrowed or an owned trajectory.
+    pub(crate) fn of_cow<S: Lagrangian<T, N, Q>>(
+        traj: Cow<'a, Trajectory<T, N, Q>>,
+        sys: &S,
+    ) -> Self {
         let energies = traj
             .times()
             .iter()
@@ -90,7 +114,15 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
             rates,
             energies: Some(energies),
             extra: Vec::new(),
+            blank: Vec::new(),
         }
+    }
+
+    /// Leaves the given cells empty (`(row, cell)` in row order).
+    pub(crate) fn blank(mut self, cells: Vec<(usize, Cell)>) -> Self {
+        debug_assert!(cells.windows(2).all(|w| w[0].0 <= w[1].0));
+        self.blank = cells;
+        self
     }
 
     /// Adds the multipliers ν of the multiplier form at every point, one
@@ -104,7 +136,8 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
         S: Constrained<T, N, K>,
     {
         // A constrained system has Q = N (`Constrained` extends `Lagrangian<T, N>`).
-        let Some(tr) = (self.traj as &dyn std::any::Any).downcast_ref::<Trajectory<T, N>>() else {
+        let traj: &Trajectory<T, N, Q> = &self.traj;
+        let Some(tr) = (traj as &dyn std::any::Any).downcast_ref::<Trajectory<T, N>>() else {
             return Err(Error::InvalidSettings(
                 "CSV: multipliers of a run with orientations: no constrained form takes them"
                     .into(),
@@ -167,7 +200,8 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
     pub fn write(&self, w: impl Write) -> Result<(), Error> {
         let mut out = csv::Writer::from_writer(w);
         out.write_record(self.header()).map_err(io)?;
-        let tr = self.traj;
+        let tr = &*self.traj;
+        let kinetic = 1 + Q + N + self.extra.iter().map(|(n, _)| n.len()).sum::<usize>();
         for k in 0..tr.len() {
             let mut row: Vec<T> = vec![tr.times()[k]];
             row.extend(tr.positions()[k].iter().chain(tr.velocities()[k].iter()));
@@ -182,8 +216,16 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
             if Q != N {
                 row.push(tr.unit_errors()[k]);
             }
-            out.write_record(row.iter().map(|x| x.to_f64().to_string()))
-                .map_err(io)?;
+            let mut cells: Vec<String> = row.iter().map(|x| x.to_f64().to_string()).collect();
+            let from = self.blank.partition_point(|&(r, _)| r < k);
+            for &(_, cell) in self.blank[from..].iter().take_while(|&&(r, _)| r == k) {
+                let column = match cell {
+                    Cell::Rate(j) => 1 + Q + j,
+                    Cell::Kinetic => kinetic,
+                };
+                cells[column].clear();
+            }
+            out.write_record(&cells).map_err(io)?;
         }
         out.flush()?;
         Ok(())
@@ -210,6 +252,12 @@ impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
     /// integral,residual_position,residual_velocity` and one row per point,
     /// numbers in the shortest form that reads back exactly. (With the system
     /// at hand, [`table`](Self::table) adds the energies and the multipliers.)
+    ///
+    /// What it keeps and drops: the stored points read back bit for bit
+    /// (every value is written in Rust's shortest round-trip form); the dense
+    /// output, the statistics and the recording policy are not written, so a
+    /// run read from CSV has no `state_at` between its points (serialize it
+    /// with the `serde` feature to keep them).
     ///
     /// `names` are the coordinate names (e.g. [`Lagrangian::COORDINATES`]): the
     /// columns are then `t,theta,phi,dot_theta,dot_phi,integral,…`. An empty

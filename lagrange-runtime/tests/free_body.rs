@@ -451,3 +451,97 @@ fn stormer_verlet_keeps_a_tumbling_body_s_energy() {
     eprintln!("{} steps: energy drift {drift:e}", traj.len());
     assert!(drift < 1e-12, "{drift:e}");
 }
+
+/// A step far too large for a tumbling body: Gauss and Störmer–Verlet say
+/// their implicit iteration did not converge, with the step and the advice
+/// to take a smaller one, at h = 5 as at h = 2 (at h = 5 an iterate left
+/// the region where the dynamics are finite, once reported as a non-finite
+/// state at t = 0).
+#[test]
+fn a_step_far_too_large_for_a_tumbling_body_is_a_convergence_failure() {
+    let body = FreeBody {
+        m: 2.0,
+        inertia: [1.0, 2.0, 3.0],
+        g: 0.0,
+    };
+    let (q0, v0) = spinning([1.0, 0.0, 0.0, 0.0], [0.1, 6.0, 0.1]);
+    let dynamics = Simulation::new(&body).dynamics();
+    for h in [2.0, 5.0, 50.0] {
+        let errors = [
+            lagrange_runtime::Gauss::step(h).integrate(&dynamics, 0.0, 100.0, q0, v0),
+            lagrange_runtime::Gauss::midpoint(h).integrate(&dynamics, 0.0, 100.0, q0, v0),
+            lagrange_runtime::StormerVerlet::step(h).integrate(&dynamics, 0.0, 100.0, q0, v0),
+        ]
+        .map(|r| r.unwrap_err());
+        for e in errors {
+            assert!(
+                matches!(e.error, Error::NewtonFailure { h: step, .. } if step == h),
+                "h = {h}: {e}"
+            );
+            assert!(e.to_string().contains("try a smaller step"), "{e}");
+        }
+    }
+}
+
+/// Evaluations at a configuration take it as a run takes its start: a
+/// quaternion within the unit tolerance (1e-6) normalised, one beyond it
+/// refused by name, a NaN refused; the raw trait methods, which check
+/// nothing, answer for the scaled quaternion.
+#[test]
+fn evaluations_check_the_configuration_as_a_run_does() {
+    use lagrange_runtime::{Configuration, Lagrangian};
+    let top = HeavyTop {
+        a: 0.8,
+        c: 0.5,
+        mgl: 2.0,
+    };
+    let u = SVector::from([0.9, 0.3, -0.2, 0.1]).normalize();
+    let (v, acc) = (
+        SVector::from([0.3, -1.0, 6.0]),
+        SVector::from([1.0, 2.0, 3.0]),
+    );
+    let at = |q| Configuration::new(&top, q, 0.0);
+    let unit = at(u).unwrap();
+    // The raw method at 2u answers for another rotation (V scales by 4).
+    let raw = top.potential_energy(&(u * 2.0), 0.0) - top.potential_energy(&u, 0.0);
+    assert!(raw.abs() > 0.1, "{raw}");
+    for scale in [2.0, 1.0 + 2e-6, 1.0 - 2e-6] {
+        let e = at(u * scale).unwrap_err();
+        assert!(
+            matches!(e, Error::NonUnitQuaternion { ref orientation, norm, tolerance }
+                if orientation == "top" && (norm - scale).abs() < 1e-12 && tolerance == 1e-6),
+            "{e}"
+        );
+    }
+    for scale in [1.0 + 9e-7, 1.0 - 9e-7] {
+        let near = at(u * scale).unwrap();
+        assert!((near.q() - u).amax() < 1e-15);
+        assert!((near.potential_energy() - unit.potential_energy()).abs() < 1e-15);
+        let tau = near.inverse_dynamics(&v, &acc).unwrap();
+        assert!((tau - unit.inverse_dynamics(&v, &acc).unwrap()).amax() < 1e-14);
+    }
+    // A run refuses and normalises on the same side of the tolerance.
+    let sim = Simulation::new(&top).integrator(Dopri5::tol(1e-8));
+    assert!(sim.run(u * (1.0 + 9e-7), v, 0.0..0.1).is_ok());
+    let e = sim.run(u * (1.0 + 2e-6), v, 0.0..0.1).unwrap_err();
+    assert!(matches!(e.error, Error::NonUnitQuaternion { .. }), "{e}");
+    // NaN: a typed error, not a NaN answer.
+    let mut nan = u;
+    nan[2] = f64::NAN;
+    assert!(matches!(at(nan).unwrap_err(), Error::NonFiniteState { .. }));
+    let mut bad_v = v;
+    bad_v[0] = f64::NAN;
+    assert!(matches!(
+        unit.kinetic_energy(&bad_v),
+        Err(Error::NonFiniteState { .. })
+    ));
+    assert!(matches!(
+        unit.inverse_dynamics(&v, &bad_v),
+        Err(Error::NonFiniteState { .. })
+    ));
+    assert!(matches!(
+        unit.momentum(&bad_v),
+        Err(Error::NonFiniteState { .. })
+    ));
+    assert_eq!(unit.mass_matrix(), top.mass_matrix(&u, 0.0));
+}

@@ -20,6 +20,8 @@ impl SecondOrder<f64, 1> for Fenced {
     ) -> Result<SVector<f64, 1>, Error> {
         if q[0].abs() > 1.5 || t > self.wall {
             return Err(Error::SingularMassMatrix {
+                direction: String::new(),
+                atlas: false,
                 t,
                 q: vec![q[0]],
                 ratio: 0.0,

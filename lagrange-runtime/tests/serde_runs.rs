@@ -111,3 +111,67 @@ fn control_runs_serialize_with_their_inputs() {
     );
     assert!(value["trajectory"]["times"].is_array());
 }
+
+/// A run with a quaternion comes back bit for bit: its dense output keeps
+/// where the quaternion sits (normalised where it is read), so `state_at`
+/// between the points is the same number after the round trip, and so is
+/// the unit norm there.
+#[test]
+fn a_run_with_orientations_reads_back_bit_for_bit() {
+    let top = common::rigid::HeavyTop {
+        a: 0.8,
+        c: 0.5,
+        mgl: 2.0,
+    };
+    let (theta0, spin) = (0.6_f64, 6.0);
+    let q0 = sv([(theta0 / 2.0).cos(), (theta0 / 2.0).sin(), 0.0, 0.0]);
+    let traj = Simulation::new(&top)
+        .integrator(Dopri5::tol(1e-6))
+        .run(q0, sv([0.3, 0.0, spin]), 0.0..3.0)
+        .unwrap();
+    let json = serde_json::to_string(&traj).unwrap();
+    let back: Trajectory<f64, 3, 4> = serde_json::from_str(&json).unwrap();
+    assert_eq!(back.segments(), traj.segments());
+    let mut worst_norm: f64 = 0.0;
+    for k in 0..=997 {
+        let t = 3.0 * f64::from(k) / 997.0;
+        let (q, v) = traj.state_at(t).unwrap();
+        let (qb, vb) = back.state_at(t).unwrap();
+        for (a, b) in q.iter().chain(&v).zip(qb.iter().chain(&vb)) {
+            assert_eq!(a.to_bits(), b.to_bits(), "t = {t}");
+        }
+        worst_norm = worst_norm.max((qb.norm() - 1.0).abs());
+    }
+    assert!(worst_norm < 1e-15, "{worst_norm:e}");
+    // A layout that does not fit q and v is refused, not read out of bounds.
+    let bad = json.replacen(
+        "\"orientations\":[{\"q\":0,\"v\":0}]",
+        "\"orientations\":[{\"q\":2,\"v\":2}]",
+        1,
+    );
+    assert_ne!(bad, json);
+    let err = serde_json::from_str::<Trajectory<f64, 3, 4>>(&bad).unwrap_err();
+    assert!(err.to_string().contains("do not fit"), "{err}");
+}
+
+/// serde_json (with `float_roundtrip`, as this crate's tests and the
+/// README's advice use it) reads back every finite f64 it writes exactly,
+/// down to subnormals and the extremes.
+#[test]
+fn json_floats_round_trip_exactly() {
+    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut values = vec![f64::MIN_POSITIVE, 5e-324, f64::MAX, -0.0, 0.1, 1.0 / 3.0];
+    for _ in 0..20_000 {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        let f = f64::from_bits(x);
+        if f.is_finite() {
+            values.push(f);
+        }
+    }
+    for f in values {
+        let back: f64 = serde_json::from_str(&serde_json::to_string(&f).unwrap()).unwrap();
+        assert_eq!(back.to_bits(), f.to_bits(), "{f:e}");
+    }
+}

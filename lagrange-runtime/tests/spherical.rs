@@ -44,13 +44,23 @@ fn start_at_the_pole_is_a_singular_mass_matrix() {
         .run(sv([0.0, 0.0]), sv([0.1, 1.0]), 0.0..1.0)
         .unwrap_err();
     match &e.error {
-        Error::SingularMassMatrix { t, q, ratio } => {
+        Error::SingularMassMatrix {
+            t,
+            q,
+            ratio,
+            direction,
+            atlas,
+        } => {
+            assert!(!atlas);
             assert_eq!((*t, q.as_slice()), (0.0, &[0.0, 0.0][..]));
             assert!(*ratio <= 0.0);
+            // At the pole φ turns nothing: the message names it.
+            assert_eq!(direction, "1.000 phi");
         }
         other => panic!("expected SingularMassMatrix, got {other:?}"),
     }
     assert!(e.to_string().contains("t = 0,"), "{e}");
+    assert!(e.to_string().contains("no inertia along 1.000 phi"), "{e}");
 }
 
 #[test]
@@ -66,7 +76,7 @@ fn planar_swing_through_the_pole_is_caught_at_the_quarter_period() {
         .run(sv([theta0, 0.0]), sv([0.0, 0.0]), 0.0..2.0 * quarter)
         .unwrap_err();
     match &e.error {
-        Error::SingularMassMatrix { t, q, ratio } => {
+        Error::SingularMassMatrix { t, q, ratio, .. } => {
             eprintln!("caught at t = {t} (quarter period {quarter}), q = {q:?}, ratio {ratio:e}");
             assert!((t - quarter).abs() < 1e-12, "{t} vs {quarter}");
             assert!(q[0].abs() < 1e-6 && *ratio < 1e-12);

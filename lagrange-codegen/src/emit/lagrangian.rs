@@ -118,7 +118,7 @@ fn lagrangian_trait(
     let rheonomic = model.rheonomic;
     let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
     let cyclic = cyclic_const(model, nl);
-    let route = route_const(model);
+    let (route, atlas) = (route_const(model), atlas_const(system));
     let hamiltonian = optional_methods(e, f, model);
     let visit_form = visit_form(f, model);
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
@@ -137,7 +137,7 @@ fn lagrangian_trait(
             const RHEONOMIC: bool = #rheonomic;
             const CONSTRAINED: bool = #has_constraints;
             #cyclic
-            #route
+            #route #atlas
 
             #[inline]
             fn mass_matrix(&self, q: &#qvec_t, t: #s) -> #mat_t {
@@ -224,6 +224,18 @@ fn cyclic_const(model: &Model, nl: &Literal) -> TokenStream {
     }
     let cyclic = &model.cyclic;
     quote!(const CYCLIC: [bool; #nl] = [#(#cyclic),*];)
+}
+
+/// `ATLAS = true` with `emit(atlas)` (else the default, false): a run that
+/// meets a singular M then says to run through the atlas.
+fn atlas_const(system: &System) -> Option<TokenStream> {
+    (system.extras.iter())
+        .any(|(_, e)| *e == crate::ast::Extra::Atlas)
+        .then(|| {
+            quote!(
+                const ATLAS: bool = true;
+            )
+        })
 }
 
 /// `ROUTE`: recursive, or generic with the reason.

@@ -42,12 +42,14 @@
 mod chart;
 mod drive;
 mod form;
+mod held;
 mod run;
 
 pub(crate) use chart::{Charts, user_view};
 pub(crate) use form::ChartRows;
 
 pub(crate) use drive::{Held, back_to_charts, finish, integrate, unstarted, watched};
+pub use held::ChartedTrajectory;
 pub use run::{AtlasRun, ChartSwitch, USER_CHART_VALID};
 
 use crate::error::Error;

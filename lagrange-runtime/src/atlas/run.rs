@@ -1,14 +1,15 @@
 //! What a run through the atlas hands back ([`AtlasRun`]).
 
-use super::{angles, user_chart, user_view};
+use super::{ChartedTrajectory, angles, user_chart, user_view};
 use crate::error::{Error, Progress};
 use crate::event::Occurrence;
 use crate::numeric::Real;
 use crate::numeric::orientation;
 use crate::ode::{Sample, Trajectory};
 use crate::system::{EulerRotation, Lagrangian};
-use crate::table::Table;
+use crate::table::{Cell, Table};
 use nalgebra::{Matrix3, SVector, Vector3};
+use std::borrow::Cow;
 
 /// Where a rotation's angles may still be read in the user's chart: its
 /// conditioning above this (θ one micro-radian from the pole of z-x-z).
@@ -28,11 +29,15 @@ pub struct ChartSwitch<T> {
 /// A run through the atlas: the trajectory, each point in the charts it was
 /// computed in, and the switches between them.
 ///
-/// The trajectory's q holds every rotation's angles in the chart of the
-/// moment ([`charts`](Self::charts)); read the motion chart-free with
-/// [`rotation`](Self::rotation) and [`quaternion`](Self::quaternion), or in
+/// The run computes every rotation's angles in the chart of the moment
+/// ([`charted`](Self::charted), [`charts`](Self::charts)), which are the
+/// user's angles only where that chart is the user's; so it hands out no
+/// bare [`Trajectory`] of those numbers. Read the motion chart-free with
+/// [`rotation`](Self::rotation) and [`quaternion`](Self::quaternion), in
 /// the user's coordinates with [`user_state`](Self::user_state) wherever
-/// their chart is valid. A switch's point holds the state after it.
+/// their chart is valid (all of it as [`user_trajectory`](Self::user_trajectory)),
+/// draw it with [`scene`](Self::scene), write it with [`table`](Self::table).
+/// A switch's point holds the state after it.
 ///
 /// A run with inputs ([`ControlledSimulation::run_atlas`](crate::ControlledSimulation::run_atlas))
 /// has P of them and records them at every point ([`inputs`](Self::inputs));
@@ -92,14 +97,18 @@ impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
         self.terminated_by
     }
 
-    /// The trajectory, each point in its own charts.
-    pub fn trajectory(&self) -> &Trajectory<T, N> {
-        &self.trajectory
-    }
-
-    /// The trajectory, each point in its own charts.
-    pub fn into_trajectory(self) -> Trajectory<T, N> {
-        self.trajectory
+    /// The run as computed, each point in its own charts ([`ChartedTrajectory`]):
+    /// what reads points without their charts (a scene, a table, a CSV,
+    /// `crossings`) takes the run in the user's coordinates instead
+    /// ([`user_trajectory`](Self::user_trajectory), [`scene`](Self::scene),
+    /// [`table`](Self::table)).
+    pub fn charted(&self) -> ChartedTrajectory<'_, T, N> {
+        ChartedTrajectory {
+            trajectory: &self.trajectory,
+            charts: &self.charts,
+            switches: &self.switches,
+            start: self.start,
+        }
     }
 
     /// Every switch, in time order.
@@ -131,9 +140,7 @@ impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
     /// The charts at time t (bit k for rotation k): those after every switch
     /// at or before t (a switch's instant reads the state after it).
     pub fn charts_at(&self, t: T) -> u64 {
-        (self.switches.iter())
-            .take_while(|s| s.t <= t)
-            .fold(self.start, |mask, s| mask ^ (1 << s.rotation))
+        self.charted().charts_at(t)
     }
 
     /// Rotation k's matrix and body-axis angular velocity at time t, from the
@@ -183,12 +190,23 @@ impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
     /// the user's angles run on continuously across switches (up to 2π if
     /// it stays away long enough to wind round).
     pub fn user_state(&self, i: usize) -> Option<(SVector<T, N>, SVector<T, N>)> {
-        for k in 0..self.rotations.len() {
-            let user = user_chart(&self.rotations[k]);
-            if user.conditioning(&self.rotation(i, k)) < T::lit(USER_CHART_VALID) {
-                return None;
-            }
+        if (0..self.rotations.len()).any(|k| !self.user_valid(i, k)) {
+            return None;
         }
+        Some(self.user_view(i))
+    }
+
+    /// Whether rotation k's user chart is valid at point i (conditioning at
+    /// least [`USER_CHART_VALID`]).
+    fn user_valid(&self, i: usize, k: usize) -> bool {
+        let user = user_chart(&self.rotations[k]);
+        user.conditioning(&self.rotation(i, k)) >= T::lit(USER_CHART_VALID)
+    }
+
+    /// Point i in the user's chart, each rotation in its second chart read
+    /// nearest the angles it had when it left the user's; the rates of a
+    /// rotation where the user's chart is not valid are not finite.
+    fn user_view(&self, i: usize) -> (SVector<T, N>, SVector<T, N>) {
         let t = self.trajectory.times()[i];
         let n = self.switches.partition_point(|s| s.t <= t);
         let near = |k: usize| {
@@ -196,19 +214,53 @@ impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
                 .find(|(s, _)| s.rotation == k)
                 .map_or(self.start_near[k], |(_, n)| *n)
         };
-        Some(user_view(
+        user_view(
             self.rotations,
             self.charts[i],
             near,
             &self.trajectory.positions()[i],
             &self.trajectory.velocities()[i],
-        ))
+        )
+    }
+
+    /// Every point in the user's coordinates, with the cells that do not
+    /// exist there: the rates of a rotation at a point where the user's
+    /// chart is not valid (within [`USER_CHART_VALID`] of its singular set),
+    /// held as zero in the trajectory and listed in the second part. The
+    /// angles exist at every point (a rotation matrix has angles in any
+    /// chart; only their rates blow up at its singular set).
+    pub(crate) fn user_points(&self) -> (Trajectory<T, N>, Vec<(usize, usize)>) {
+        let traj = &self.trajectory;
+        let mut missing = Vec::new();
+        let points = (0..traj.len())
+            .map(|i| {
+                let (q, mut v) = self.user_view(i);
+                for (k, rotation) in self.rotations.iter().enumerate() {
+                    if !self.user_valid(i, k) {
+                        for &j in &rotation.coordinates {
+                            v[j] = T::zero();
+                            missing.push((i, j));
+                        }
+                    }
+                }
+                let sample = Sample {
+                    integral: traj.integrals()[i],
+                    residuals: traj.residuals()[i],
+                    unit_error: T::zero(),
+                };
+                (traj.times()[i], q, v, sample)
+            })
+            .collect();
+        let user = Trajectory::from_points(points, *traj.stats());
+        (user.expect("a run has its first point"), missing)
     }
 
     /// The run in the user's coordinates, points only (no dense output, as
     /// a thinned recording): every point where [`user_state`](Self::user_state)
-    /// has one, with its energy and statistics. What a figure or a
-    /// [`Scene`](crate::Scene) of the user's description reads.
+    /// has one, with its energy and statistics (the points within
+    /// [`USER_CHART_VALID`] of the user's singular set are left out: their
+    /// rates do not exist). What a figure of the user's description reads;
+    /// its scene, every point drawn, is [`scene`](Self::scene).
     pub fn user_trajectory(&self) -> Option<Trajectory<T, N>> {
         let traj = &self.trajectory;
         let points = (0..traj.len())
@@ -225,12 +277,20 @@ impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
         Trajectory::from_points(points, *traj.stats())
     }
 
-    /// The run as a CSV table ([`Table`]): q and q̇ as held (each rotation's
-    /// angles in the chart of the moment), then per rotation its chart
-    /// (`<body>.chart`: 1 the user's, 2 the second) and its unit quaternion
-    /// (`<body>.w`, `.x`, `.y`, `.z`, chart-free), then the energies and
-    /// residuals as for any run; with inputs, then the inputs (named as
-    /// in [`Driven::INPUTS`](crate::Driven::INPUTS)).
+    /// The run as a CSV table ([`Table`]) in the user's coordinates: t, q
+    /// and q̇ by the system's names, each rotation's angles read in the
+    /// user's chart at every point (nearest the angles it had when it left
+    /// it, as [`user_state`](Self::user_state) reads them); then per
+    /// rotation its chart (`<body>.chart`: 1 the user's, 2 the second, the
+    /// one the run computed in) and its unit quaternion (`<body>.w`, `.x`,
+    /// `.y`, `.z`, chart-free); with inputs, the inputs (named as in
+    /// [`Driven::INPUTS`](crate::Driven::INPUTS)); then the energies and
+    /// residuals as for any run.
+    ///
+    /// Where a rotation is within [`USER_CHART_VALID`] of the user's
+    /// singular set its angles' rates do not exist (ω does, in the
+    /// quaternion's derivative): those cells, and the kinetic energy's, are
+    /// written empty.
     ///
     /// # Errors
     /// None in practice: the columns match the points by construction.
@@ -257,7 +317,16 @@ impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
                     .collect()
             })
             .collect();
-        Table::of(&self.trajectory, sys).columns(names, values)
+        let (user, missing) = self.user_points();
+        let mut blank = Vec::with_capacity(missing.len() * 2);
+        for (i, j) in missing {
+            if !matches!(blank.last(), Some(&(r, _)) if r == i) {
+                blank.push((i, Cell::Kinetic));
+            }
+            blank.push((i, Cell::Rate(j)));
+        }
+        let table = Table::of_cow(Cow::Owned(user), sys).blank(blank);
+        table.columns(names, values)
     }
 }
 

@@ -22,7 +22,7 @@ macro_rules! clone_variants {
 impl Clone for Error {
     fn clone(&self) -> Self {
         clone_variants!(self, e => clone_io(e);
-            SingularMassMatrix { t, q, ratio },
+            SingularMassMatrix { t, q, ratio, direction, atlas },
             NonFiniteState { t, q, v },
             NonFinitePose { t, name },
             RedundantConstraints { t, q, coordinates, ratio, dependent },

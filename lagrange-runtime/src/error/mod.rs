@@ -14,12 +14,21 @@ pub enum Error {
     /// The mass matrix is not positive definite (its Cholesky factorisation
     /// breaks down) or is numerically singular: the smallest squared pivot of the
     /// factorisation divided by the largest one, `ratio`, fell below the singular
-    /// tolerance. Typically a chart singularity, e.g. the pole θ = 0 of a spherical
-    /// pendulum in (θ, φ).
+    /// tolerance. `direction` names what M has no inertia along: a chart
+    /// singularity when those are angles (the pole θ = 0 of a spherical
+    /// pendulum in (θ, φ); a description with `emit(atlas)` runs through
+    /// its Euler charts' with `run_atlas`), else a massless body or an
+    /// orientation no body turns.
     #[error(
         "mass matrix singular or not positive definite at t = {t}, q = {q:?} \
-         (pivot ratio min L_ii^2 / max L_ii^2 = {ratio:e}); the coordinates are \
-         probably at a chart singularity"
+         (pivot ratio min L_ii^2 / max L_ii^2 = {ratio:e}){}{}",
+        no_inertia(direction),
+        if *atlas {
+            "; this description has `emit(atlas)`: call `run_atlas`, which runs through \
+             its Euler charts' singular sets"
+        } else {
+            ""
+        }
     )]
     SingularMassMatrix {
         /// Time of the failed evaluation.
@@ -28,6 +37,13 @@ pub enum Error {
         q: Vec<f64>,
         /// min_i L_ii² / max_i L_ii² of the Cholesky factor (≤ 0 when a pivot is not positive).
         ratio: f64,
+        /// The direction of least inertia, in the velocities' names
+        /// ("0.707 psi - 0.707 phi"); empty where the matrix was not at hand.
+        direction: String,
+        /// Whether the system has `emit(atlas)`
+        /// ([`Lagrangian::ATLAS`](crate::Lagrangian::ATLAS)): then the message
+        /// says to call `run_atlas`.
+        atlas: bool,
     },
 
     /// A state, a mass matrix, a right-hand side or an acceleration contains a NaN
@@ -362,6 +378,7 @@ pub enum Error {
 mod clone;
 mod failure;
 mod linear;
+mod singular;
 
 pub use failure::{Failure, Progress};
 pub use linear::LinearError;
@@ -373,6 +390,20 @@ use nalgebra::SVector;
 /// Converts a state vector to `f64`s for an error report.
 pub(crate) fn to_vec<T: Real, const N: usize>(x: &SVector<T, N>) -> Vec<f64> {
     x.iter().map(|&c| c.to_f64()).collect()
+}
+
+/// What a singular M has no inertia along, for its message.
+fn no_inertia(direction: &str) -> String {
+    if direction.is_empty() {
+        "; no inertia along some direction (a chart singularity of angle coordinates, \
+         a massless body, an orientation no body turns)"
+            .to_string()
+    } else {
+        format!(
+            "; no inertia along {direction}: if those are angles, their chart is singular \
+             here; otherwise give that direction a mass or an inertia"
+        )
+    }
 }
 
 /// "(x = 1, y = -2)" when the names fit, else the bare numbers.
@@ -505,11 +536,15 @@ mod tests {
             t: 0.5,
             q: vec![1e-9, 2.0],
             ratio: 1e-18,
+            direction: "1.000 y".into(),
+            atlas: false,
         };
         let s = e.to_string();
         assert!(s.contains("t = 0.5"), "{s}");
         assert!(s.contains("[1e-9, 2.0]"), "{s}");
         assert!(s.contains("1e-18"), "{s}");
+        assert!(s.contains("no inertia along 1.000 y"), "{s}");
+        assert!(!s.contains("run_atlas`, which"), "{s}");
         let e = Error::non_finite(
             1.5_f64,
             &SVector::<f64, 1>::new(f64::NAN),

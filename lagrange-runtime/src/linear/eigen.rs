@@ -1,6 +1,7 @@
 //! Eigenvalues, modes, stability verdicts, parameter sweeps and stability
 //! boundaries of a [`Linear`] model.
 
+use super::jordan::growth_degree;
 use super::{Linear, LinearError};
 use crate::error::{Error, check_tolerance};
 use crate::numeric::root::brent_bracket;
@@ -72,17 +73,26 @@ pub struct Mode {
     pub residual: f64,
 }
 
-/// The stability verdict of a linear model.
+/// The stability verdict of a linear model, in Lyapunov's sense.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Verdict {
     /// Every eigenvalue has Re λ < −tolerance.
     AsymptoticallyStable,
-    /// max Re λ within ±tolerance: eigenvalues on the imaginary axis (to the
-    /// tolerance), none to the right of it. Marginal in the spectral sense: a
-    /// repeated eigenvalue on the axis with a Jordan block still grows
-    /// polynomially.
+    /// Bounded: max Re λ within ±tolerance, and every eigenvalue on the
+    /// imaginary axis (to the tolerance) semisimple (as many eigenvectors as
+    /// its multiplicity: an undamped oscillator's ±iω, a cyclic coordinate
+    /// whose velocity is damped), none to the right of the axis.
     Marginal,
-    /// Some eigenvalue has Re λ > tolerance.
+    /// Unstable with polynomial growth: nothing to the right of the axis,
+    /// but an eigenvalue on it with a Jordan block of size `degree` + 1, so
+    /// a perturbation along it grows like t^`degree` (the double integrator
+    /// ẍ = 0: degree 1; a quadrotor's position ← velocity ← attitude ← rate
+    /// at hover: degree 3).
+    PolynomialGrowth {
+        /// The power of t: the largest Jordan block on the axis, less one.
+        degree: usize,
+    },
+    /// Some eigenvalue has Re λ > tolerance: exponential growth.
     Unstable,
 }
 
@@ -98,10 +108,19 @@ pub struct Stability {
     /// The tolerance used.
     pub tolerance: f64,
     /// The states whose zero eigenvalues are structural (cyclic coordinates
-    /// and what only they feed, see [`Linear::structural_zeros`]): left out of
-    /// the verdict, which is about the other states. A model whose every
-    /// state is structural is [`Verdict::Marginal`].
+    /// and what only they feed, see [`Linear::structural_zeros`]): their
+    /// zeros are exact. They count in [`verdict`](Self::verdict) (a heading
+    /// feeding a position is a Jordan block, polynomial growth) and not in
+    /// [`without_structural`](Self::without_structural).
     pub structural: Vec<String>,
+    /// The degree of polynomial growth along the eigenvalues on the axis
+    /// (0: bounded there); see [`Verdict::PolynomialGrowth`].
+    pub growth: usize,
+    /// The verdict about the states that are not structural alone (a
+    /// bicycle's lean and steer, its heading and position left out): the
+    /// stability of the motion up to the cyclic coordinates. A model whose
+    /// every state is structural is [`Verdict::Marginal`] here.
+    pub without_structural: Verdict,
 }
 
 impl Linear {
@@ -176,9 +195,16 @@ impl Linear {
     /// The stability verdict with tolerance `tol` on the real parts (see
     /// [`Verdict`]).
     ///
-    /// The verdict is about the states that are not
-    /// [structural zeros](Self::structural_zeros); those are named in
-    /// [`Stability::structural`].
+    /// How it decides: an eigenvalue with Re λ > `tol` is
+    /// [`Verdict::Unstable`]. Otherwise each eigenvalue with |Re λ| ≤ `tol`
+    /// (and the exact zeros of the [structural](Self::structural_zeros)
+    /// states) is tested for a Jordan block: its index ν, the k at which the
+    /// kernel dimension of (A − λI)^k stops growing, singular values at most
+    /// [`RANK_TOLERANCE`](super::RANK_TOLERANCE) · max(1, ‖A‖₂) counting as
+    /// zero. ν > 1 anywhere is [`Verdict::PolynomialGrowth`] with degree
+    /// ν − 1; all ν = 1 is [`Verdict::Marginal`] (bounded). The verdict
+    /// about the non-structural states alone is
+    /// [`Stability::without_structural`].
     ///
     /// # Errors
     /// [`Error::InvalidSettings`] if `tol` is negative or not finite (a
@@ -191,8 +217,37 @@ impl Linear {
             .iter()
             .map(|&i| self.states()[i].clone())
             .collect();
-        Ok(stability_of(&ev, names, tol))
+        let mut stability = stability_of(&ev, names, tol);
+        stability.without_structural = stability.verdict;
+        if stability.verdict == Verdict::Unstable {
+            return Ok(stability);
+        }
+        let on_axis = axis_eigenvalues(&ev, !structural.is_empty(), tol, self.a().amax());
+        stability.growth = growth_degree(self.a(), &on_axis);
+        stability.verdict = match (stability.growth, on_axis.is_empty()) {
+            (0, true) => stability.verdict,
+            (0, false) => Verdict::Marginal,
+            (degree, _) => Verdict::PolynomialGrowth { degree },
+        };
+        Ok(stability)
     }
+}
+
+/// The eigenvalues with |Re λ| ≤ tol and Im λ ≥ 0, one per cluster (a
+/// Jordan block's computed eigenvalues spread by about ε^(1/m) ‖A‖), and 0
+/// when there are structural zeros.
+fn axis_eigenvalues(ev: &[Complex<f64>], zero: bool, tol: f64, scale: f64) -> Vec<Complex<f64>> {
+    let apart = 1e-6 * scale.max(1.0);
+    let mut out: Vec<Complex<f64>> = Vec::new();
+    if zero {
+        out.push(Complex::new(0.0, 0.0));
+    }
+    for &lambda in ev.iter().filter(|z| z.re.abs() <= tol && z.im >= -apart) {
+        if out.iter().all(|mu| (lambda - mu).norm() > apart) {
+            out.push(lambda);
+        }
+    }
+    out
 }
 
 fn check_stability_tolerance(tol: f64) -> Result<(), Error> {
@@ -207,6 +262,8 @@ fn stability_of(ev: &[Complex<f64>], structural: Vec<String>, tol: f64) -> Stabi
             critical: Complex::new(0.0, 0.0),
             tolerance: tol,
             structural,
+            growth: 0,
+            without_structural: Verdict::Marginal,
         };
     }
     let max = max_real(ev);
@@ -229,6 +286,8 @@ fn stability_of(ev: &[Complex<f64>], structural: Vec<String>, tol: f64) -> Stabi
         critical,
         tolerance: tol,
         structural,
+        growth: 0,
+        without_structural: verdict,
     }
 }
 
@@ -359,7 +418,11 @@ where
             .collect()
     }
 
-    /// The stability verdicts at every point, with tolerance `tol`.
+    /// The stability verdicts at every point, with tolerance `tol`: from the
+    /// spectrum alone, about the states that are not structural (as
+    /// [`Stability::without_structural`]); a sweep keeps no A, so a Jordan
+    /// block on the axis is not looked for here (call
+    /// [`Linear::stability`] on the model at a point for that).
     ///
     /// # Errors
     /// [`Error::InvalidSettings`] for a negative or non-finite `tol`.

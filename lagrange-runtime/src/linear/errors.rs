@@ -17,6 +17,8 @@ pub(super) fn singular<T: Real, const N: usize>(t: T, q: &SVector<T, N>, ratio: 
         t: t.to_f64(),
         q: to_vec(q),
         ratio,
+        direction: String::new(),
+        atlas: false,
     }
 }
 

@@ -144,6 +144,7 @@ mod dense;
 mod difference;
 mod eigen;
 mod errors;
+mod jordan;
 mod lqr;
 mod partition;
 mod reduced_tangent;
@@ -153,6 +154,7 @@ mod tangent;
 
 pub use defaults::{complete_state, linearize, linearize_constrained, linearize_reduced};
 pub use eigen::{Boundary, EigenSweep, Mode, Stability, SweepPoint, Verdict, sweep};
+pub use jordan::RANK_TOLERANCE;
 pub use lqr::{Lqr, RICCATI_TOLERANCE, lqr};
 pub use settings::{
     DEFAULT_NEWTON_ITERATIONS, DEFAULT_NEWTON_TOLERANCE, Linearizer, OperatingPoint,
@@ -313,6 +315,8 @@ impl Linear {
             t: 0.0,
             q: vec![],
             ratio: 0.0,
+            direction: String::new(),
+            atlas: false,
         };
         let minv_k = lu.solve(&stiffness).ok_or_else(singular)?;
         let minv_c = lu.solve(&damping).ok_or_else(singular)?;

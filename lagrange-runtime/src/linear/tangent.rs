@@ -23,7 +23,7 @@
 use super::Linear;
 use super::difference::{column, unit};
 use super::settings::Linearizer;
-use crate::error::{Error, check_finite_inputs, check_tolerance, to_vec, unit_quaternions};
+use crate::error::{Error, check_finite_inputs, check_tolerance, unit_quaternions};
 use crate::mechanics::{Dynamics, ForceJacobians, Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
@@ -96,13 +96,8 @@ impl Linearizer {
         let held = Held { system: sys, u: *u };
         let (q, a) = self.tangent_a(sys, q, v, t, (held, Some((dq, dv))))?;
         let m = sys.mass_matrix(&q, t);
-        let chol = Cholesky::new(m, T::lit(self.singular_tolerance)).map_err(|ratio| {
-            Error::SingularMassMatrix {
-                t: t.to_f64(),
-                q: to_vec(&q),
-                ratio: ratio.to_f64(),
-            }
-        })?;
+        let chol = Cholesky::new(m, T::lit(self.singular_tolerance))
+            .map_err(|ratio| Error::singular_mass(t, &q, ratio, &m, (&S::VELOCITIES, S::ATLAS)))?;
         let mut b = DMatrix::zeros(2 * N, P);
         for k in 0..P {
             let column = chol.solve(du.column(k).into_owned());

@@ -5,7 +5,7 @@
 //! pivot ratio tells a *near*-singular mass matrix (a chart singularity such as the
 //! pole of a spherical pendulum) from a healthy one.
 
-use crate::error::{Error, check_tolerance, to_vec};
+use crate::error::{Error, check_tolerance};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
@@ -177,13 +177,8 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
         if !(all_finite(m.as_slice()) && all_finite(rhs.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
-        let chol = Cholesky::new(m, self.singular_tolerance).map_err(|ratio| {
-            Error::SingularMassMatrix {
-                t: t.to_f64(),
-                q: to_vec(q),
-                ratio: ratio.to_f64(),
-            }
-        })?;
+        let chol = Cholesky::new(m, self.singular_tolerance)
+            .map_err(|ratio| Error::singular_mass(t, q, ratio, &m, (&S::VELOCITIES, S::ATLAS)))?;
         let a = chol.solve(rhs);
         // Finite M and rhs with acceptable pivots can still overflow.
         if !all_finite(a.as_slice()) {
@@ -212,11 +207,14 @@ impl<S, T: Real, F> Dynamics<'_, S, T, F> {
         };
         // A NaN ratio (a NaN pivot) is refused too; the ratio is at most 1.
         if !ratio.is_finite() || ratio < self.singular_tolerance {
-            return Err(Error::SingularMassMatrix {
-                t: t.to_f64(),
-                q: to_vec(q),
-                ratio: ratio.to_f64(),
-            });
+            let m = self.system.mass_matrix(q, t);
+            return Err(Error::singular_mass(
+                t,
+                q,
+                ratio,
+                &m,
+                (&S::VELOCITIES, S::ATLAS),
+            ));
         }
         if !all_finite(a.as_slice()) {
             return Err(Error::non_finite(t, q, v));
@@ -274,11 +272,13 @@ where
         let chol = match Cholesky::new(m, self.singular_tolerance) {
             Ok(c) => c,
             Err(ratio) => {
-                return Some(Err(Error::SingularMassMatrix {
-                    t: t.to_f64(),
-                    q: to_vec(q),
-                    ratio: ratio.to_f64(),
-                }));
+                return Some(Err(Error::singular_mass(
+                    t,
+                    q,
+                    ratio,
+                    &m,
+                    (&S::VELOCITIES, S::ATLAS),
+                )));
             }
         };
         let solve = |j: SMatrix<T, N, N>| {

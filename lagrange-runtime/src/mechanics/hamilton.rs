@@ -33,9 +33,11 @@ where
         let sys = self.system();
         let grad = sys.kinetic_gradient(q, v, t).ok_or_else(|| {
             Error::InvalidSettings(
-                "the symplectic integrator needs ∂T/∂q, but this system's \
-                 Lagrangian::kinetic_gradient returns None; implement it (and \
-                 Lagrangian::momentum for a rheonomic system) or choose another integrator"
+                "the symplectic integrator (Gauss) needs Hamilton's form, ∂T/∂q, but this \
+                 system's Lagrangian::kinetic_gradient returns None: for a \
+                 #[derive(Lagrangian)] description add `emit(hamiltonian)`; for a \
+                 hand-written system implement Lagrangian::kinetic_gradient (and \
+                 Lagrangian::momentum if it is rheonomic); or choose another integrator"
                     .into(),
             )
         })?;

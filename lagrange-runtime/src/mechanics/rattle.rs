@@ -219,10 +219,8 @@ impl Rattle {
         let m0 = system.mass_matrix(&q0, t0);
         // The constant mass matrix, factorised and judged as the dynamics do.
         let tolerance = T::lit(DEFAULT_SINGULAR_TOLERANCE);
-        let chol = Cholesky::new(m0, tolerance).map_err(|ratio| Error::SingularMassMatrix {
-            t: t0.to_f64(),
-            q: to_vec(&q0),
-            ratio: ratio.to_f64(),
+        let chol = Cholesky::new(m0, tolerance).map_err(|ratio| {
+            Error::singular_mass(t0, &q0, ratio, &m0, (&S::VELOCITIES, S::ATLAS))
         })?;
         run.traj.reserve(n);
         let h = T::lit(self.h);

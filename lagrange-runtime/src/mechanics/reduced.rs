@@ -155,11 +155,8 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
             return Err(Error::non_finite(t, q, v));
         }
         let dw = Cholesky::new(form.mass, self.singular_tolerance)
-            .map_err(|ratio| Error::SingularMassMatrix {
-                t: t.to_f64(),
-                q: to_vec(q),
-                ratio: ratio.to_f64(),
-            })?
+            // M* is in the independent speeds, which have no names here.
+            .map_err(|ratio| Error::singular_mass(t, q, ratio, &form.mass, (&[], false)))?
             .solve(form.force);
         let a = form.w * dw + form.kappa;
         let du = (rows.a * a - rates).fixed_rows::<K>(0).into_owned();

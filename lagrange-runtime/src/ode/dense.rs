@@ -17,8 +17,16 @@ use nalgebra::SVector;
 /// own stop at r₄, the cubic Hermite interpolant through the values and
 /// derivatives at both ends (local error O(h⁴), so 3rd order uniformly). Only the
 /// coefficients in use are evaluated.
+///
+/// With the `serde` feature a segment saves its coefficients and where the
+/// quaternions sit in q (normalised where it is read), so a saved run's
+/// dense output reads back bit for bit.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(into = "saved::Saved<T, N, Q>", try_from = "saved::Saved<T, N, Q>")
+)]
 pub struct DenseSegment<T: Real, const N: usize, const Q: usize = N> {
     t0: T,
     t1: T,
@@ -27,7 +35,6 @@ pub struct DenseSegment<T: Real, const N: usize, const Q: usize = N> {
     /// How many of the r's are in use (4, 5 or 8).
     used: usize,
     /// The quaternions in q, normalised where the segment is read.
-    #[cfg_attr(feature = "serde", serde(skip))]
     orientations: &'static [Orientation],
 }
 
@@ -164,6 +171,9 @@ impl<T: Real, const N: usize> DenseSegment<T, N> {
         )
     }
 }
+
+#[cfg(feature = "serde")]
+mod saved;
 
 #[cfg(test)]
 mod tests {

@@ -45,7 +45,8 @@ use nalgebra::{DMatrix, SVector};
 /// [`Stats::jacobians`] and [`Stats::evaluations`]) and one LU factorisation of
 /// the 2sQ × 2sQ iteration matrix per step, iterating until the correction
 /// reaches round-off. Failure to converge within [`max_iterations`](Self::max_iterations)
-/// is [`Error::NewtonFailure`]. The dense output is the cubic Hermite
+/// is [`Error::NewtonFailure`], and so is an iterate where the dynamics are
+/// not finite (the iteration diverging: a step too large). The dense output is the cubic Hermite
 /// interpolant in (q, q̇, q̈).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Gauss {
@@ -233,10 +234,30 @@ fn get_mut<T: Real, const N: usize, const Q: usize>(z: &mut Pair<T, N, Q>, k: us
     if k < Q { &mut z.q[k] } else { &mut z.v[k - Q] }
 }
 
+/// The Newton right-hand side −G = h Σ_j a_ij F_j − Z_i, stage after stage.
+fn newton_rhs<T: Real, const Q: usize, const S: usize>(
+    h: T,
+    a: &[[T; S]; S],
+    fs: &[Pair<T, Q, Q>; S],
+    zs: &[Pair<T, Q, Q>; S],
+    out: &mut [T],
+) {
+    let dim = 2 * Q;
+    for i in 0..S {
+        for r in 0..dim {
+            let mut s = T::zero();
+            for j in 0..S {
+                s += a[i][j] * get(&fs[j], r);
+            }
+            out[i * dim + r] = h * s - get(&zs[i], r);
+        }
+    }
+}
+
 /// (q̇, Ṗ) at the canonical state z = (q, P), counting one evaluation. A
-/// non-finite value at a finite (q, P) is the system's NaN (a force that
-/// overflows), reported as such: passed on, it would only surface as a
-/// Newton failure.
+/// non-finite value is reported as such at the step's start (the system's
+/// NaN, a force that overflows); at a Newton iterate the iteration reads it
+/// as divergence.
 fn hamilton<T: Real, const N: usize, const Q: usize>(
     mech: &Canonical<'_, T, N, Q>,
     t: T,
@@ -351,51 +372,46 @@ impl Gauss {
         let mut zs: [Pair<T, Q, Q>; S] = std::array::from_fn(|i| f0.scale(c[i] * h));
         let mut fs = [Pair::<T, Q, Q>::zeros(); S];
         let mut previous = T::max_value().unwrap_or(T::one() / eps);
-        for iteration in 1..=self.max_iterations {
-            for i in 0..S {
-                let zi = z0.add_combination(T::one(), [T::one()], [&zs[i]]);
-                fs[i] = hamilton(mech, t + c[i] * h, &zi, &mut stats.evaluations)?;
-            }
-            // Newton right-hand side −G = h Σ_j a_ij F_j − Z_i.
-            for i in 0..S {
-                for r in 0..dim {
-                    let mut s = T::zero();
-                    for j in 0..S {
-                        s += a[i][j] * get(&fs[j], r);
+        let iterations = 'iterate: {
+            for iteration in 1..=self.max_iterations {
+                for i in 0..S {
+                    let zi = z0.add_combination(T::one(), [T::one()], [&zs[i]]);
+                    // Finite at z0, not at an iterate: the iteration diverges.
+                    fs[i] = match hamilton(mech, t + c[i] * h, &zi, &mut stats.evaluations) {
+                        Err(Error::NonFiniteState { .. }) => break 'iterate iteration,
+                        f => f?,
+                    };
+                }
+                newton_rhs(h, a, &fs, &zs, &mut work.b);
+                lu_solve(&work.lu, &work.pivots, &mut work.b);
+                let mut size = T::zero();
+                for i in 0..S {
+                    for r in 0..dim {
+                        let d = work.b[i * dim + r];
+                        *get_mut(&mut zs[i], r) += d;
+                        size = size.max(abs(d) / (T::one() + abs(get(z0, r))));
                     }
-                    work.b[i * dim + r] = h * s - get(&zs[i], r);
                 }
-            }
-            lu_solve(&work.lu, &work.pivots, &mut work.b);
-            let mut size = T::zero();
-            for i in 0..S {
-                for r in 0..dim {
-                    let d = work.b[i * dim + r];
-                    *get_mut(&mut zs[i], r) += d;
-                    size = size.max(abs(d) / (T::one() + abs(get(z0, r))));
+                if !size.is_finite() {
+                    break 'iterate iteration;
                 }
+                // Converged at round-off, or stagnating there (the correction no
+                // longer shrinks although it is already tiny).
+                let floor = T::lit(10.0) * eps;
+                let stagnant = size >= previous && size <= T::lit(1e3) * eps;
+                if size <= floor || stagnant {
+                    // One more evaluation would only move the result by round-off:
+                    // update with the stage derivatives of the last iterate.
+                    return Ok(update(z0, h, b, &fs));
+                }
+                previous = size;
             }
-            if !size.is_finite() {
-                break;
-            }
-            // Converged at round-off, or stagnating there (the correction no
-            // longer shrinks although it is already tiny).
-            let floor = T::lit(10.0) * eps;
-            let stagnant = size >= previous && size <= T::lit(1e3) * eps;
-            if size <= floor || stagnant {
-                // One more evaluation would only move the result by round-off:
-                // update with the stage derivatives of the last iterate.
-                return Ok(update(z0, h, b, &fs));
-            }
-            previous = size;
-            if iteration == self.max_iterations {
-                break;
-            }
-        }
+            self.max_iterations
+        };
         Err(Error::NewtonFailure {
             t: t.to_f64(),
             h: h.to_f64(),
-            iterations: self.max_iterations,
+            iterations,
         })
     }
 

@@ -1,6 +1,6 @@
 //! The Hamiltonian view of a mechanical system, for the symplectic integrators.
 
-use crate::error::{Error, to_vec};
+use crate::error::Error;
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use nalgebra::{SMatrix, SVector};
@@ -52,11 +52,8 @@ pub trait Mechanical<T: Real, const N: usize, const Q: usize = N> {
         // The runtime's one Cholesky; a zero tolerance refuses only a matrix
         // that is not positive definite, as before (the symplectic method has
         // no singular-tolerance setting of its own).
-        let chol = Cholesky::new(m, T::zero()).map_err(|ratio| Error::SingularMassMatrix {
-            t: t.to_f64(),
-            q: to_vec(q),
-            ratio: ratio.to_f64(),
-        })?;
+        let chol = Cholesky::new(m, T::zero())
+            .map_err(|ratio| Error::singular_mass(t, q, ratio, &m, (&[], false)))?;
         Ok(chol.solve(p - a))
     }
 }

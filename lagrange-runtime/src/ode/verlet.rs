@@ -208,15 +208,30 @@ fn implicit_kick<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q
 ) -> Result<SVector<T, N>, Error> {
     let half = T::lit(0.5) * h;
     let mut w = v + a * half;
-    for _ in 0..KICK_ITERATIONS {
+    for iteration in 1..=KICK_ITERATIONS {
         stats.evaluations += 1;
-        a = rhs.acceleration(t, q, &w)?;
+        // a is finite at the start of the step: an iterate where it is not
+        // has diverged (h too large), which a smaller step answers.
+        a = match rhs.acceleration(t, q, &w) {
+            Err(Error::NonFiniteState { .. }) => {
+                return Err(Error::NewtonFailure {
+                    t: t.to_f64(),
+                    h: h.to_f64(),
+                    iterations: iteration,
+                });
+            }
+            a => a?,
+        };
         let next = v + a * half;
         let change = (next - w).amax();
         let scale = T::one() + next.amax();
         w = next;
         if !change.is_finite() {
-            break;
+            return Err(Error::NewtonFailure {
+                t: t.to_f64(),
+                h: h.to_f64(),
+                iterations: iteration,
+            });
         }
         if change <= T::lit(4.0) * T::default_epsilon() * scale {
             return Ok(w);

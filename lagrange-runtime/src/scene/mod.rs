@@ -65,8 +65,10 @@ mod still;
 pub use sample::MAX_FRAMES;
 pub use still::Segment;
 
+use std::borrow::Cow;
 use std::path::Path;
 
+use crate::atlas::AtlasRun;
 use crate::error::Error;
 use crate::numeric::Real;
 use crate::ode::Trajectory;
@@ -80,7 +82,9 @@ const PALETTE: [&str; 6] = [
 
 /// One run of a scene with its label, colour and opacity.
 struct Run<'a, T: Real, const N: usize, const Q: usize> {
-    traj: &'a Trajectory<T, N, Q>,
+    /// Borrowed, or built for the scene (a run through the atlas in the
+    /// user's coordinates).
+    traj: Cow<'a, Trajectory<T, N, Q>>,
     label: String,
     color: String,
     opacity: f64,
@@ -114,11 +118,15 @@ impl<'a, T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q> + Lagrangian
 
     /// Adds a run, drawn in the next colour of the palette; the first run is
     /// opaque, the ones overlaid on it a little transparent.
-    pub fn run(mut self, traj: &'a Trajectory<T, N, Q>, label: impl Into<String>) -> Self {
+    pub fn run(self, traj: &'a Trajectory<T, N, Q>, label: impl Into<String>) -> Self {
+        self.add(Cow::Borrowed(traj), label.into())
+    }
+
+    fn add(mut self, traj: Cow<'a, Trajectory<T, N, Q>>, label: String) -> Self {
         let k = self.runs.len();
         self.runs.push(Run {
             traj,
-            label: label.into(),
+            label,
             color: PALETTE[k % PALETTE.len()].to_string(),
             opacity: if k == 0 { 1.0 } else { 0.6 },
         });
@@ -174,7 +182,7 @@ impl<'a, T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q> + Lagrangian
         let plotted = self.plotted()?;
         let mut frames = Vec::new();
         for r in &self.runs {
-            frames.push(sample::sample(self.sys, r.traj, self.fps, &plotted)?);
+            frames.push(sample::sample(self.sys, &r.traj, self.fps, &plotted)?);
         }
         let drawn = shapes::drawn(self.sys, &frames[0].centres)?;
         let names: Vec<&str> = plotted.iter().map(|&j| S::COORDINATES[j]).collect();
@@ -211,7 +219,7 @@ impl<'a, T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q> + Lagrangian
     /// As [`Scene::to_html`] for the shapes and the run.
     pub fn still(&self, t: f64) -> Result<Vec<Segment>, Error> {
         self.check()?;
-        still::segments(self.sys, self.runs[0].traj, t)
+        still::segments(self.sys, &self.runs[0].traj, t)
     }
 
     /// Writes the page to `path`.
@@ -293,5 +301,31 @@ impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
         sys: &'a S,
     ) -> Scene<'a, T, N, S, Q> {
         Scene::new(sys).run(self, "run")
+    }
+}
+
+impl<'a, T: Real, const N: usize, S: Posed<T, N> + Lagrangian<T, N>> Scene<'a, T, N, S> {
+    /// Adds a run through the atlas, drawn in the user's coordinates: at
+    /// each stored point every rotation's angles read in the user's chart
+    /// (a rotation has angles in any chart), whatever chart the run
+    /// computed it in; frames at the stored points. Its trajectory as
+    /// computed ([`AtlasRun::charted`]) holds the second chart's angles
+    /// where a rotation is in it, which the description's poses would draw
+    /// as a different rotation: that is why a scene takes the run, not its
+    /// points.
+    pub fn atlas_run<const P: usize>(
+        self,
+        run: &AtlasRun<T, N, P>,
+        label: impl Into<String>,
+    ) -> Self {
+        self.add(Cow::Owned(run.user_points().0), label.into())
+    }
+}
+
+impl<T: Real, const N: usize, const P: usize> AtlasRun<T, N, P> {
+    /// A [`Scene`] of this run of `sys`, drawn as [`Scene::atlas_run`]
+    /// draws it (each rotation in the user's chart at every point).
+    pub fn scene<'a, S: Posed<T, N> + Lagrangian<T, N>>(&self, sys: &'a S) -> Scene<'a, T, N, S> {
+        Scene::new(sys).atlas_run(self, "run")
     }
 }

@@ -245,8 +245,9 @@ impl<'a, T: Real, const N: usize, const Q: usize> WorkPrecision<'a, T, N, Q> {
     /// Runs the reference and every sweep.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] for zero repeats or a non-positive reference
-    /// tolerance; whatever the reference run reports if it fails (the study
+    /// [`Error::InvalidSettings`] for zero repeats, a non-positive reference
+    /// tolerance or one below the scalar's unit round-off ε (2.2e-16 in f64,
+    /// which no run attains: refused rather than reported as attained); whatever the reference run reports if it fails (the study
     /// has no yardstick then). A failing *method* run is not an error: its row
     /// holds the error.
     pub fn run(mut self) -> Result<Study, Error> {
@@ -317,6 +318,18 @@ impl<'a, T: Real, const N: usize, const Q: usize> WorkPrecision<'a, T, N, Q> {
                 if !(tolerance.is_finite() && tolerance > 0.0) {
                     return Err(Error::InvalidSettings(format!(
                         "work-precision study: reference tolerance must be positive, got {tolerance}"
+                    )));
+                }
+                // Below the scalar's unit round-off no run attains the
+                // tolerance, and the study would report an accuracy the
+                // reference does not have: refused, not clamped.
+                let floor = T::default_epsilon().to_f64();
+                if tolerance < floor {
+                    return Err(Error::InvalidSettings(format!(
+                        "work-precision study: reference tolerance {tolerance:e} is below what {} \
+                         can attain (its unit round-off ε = {floor:e}); give at least ε \
+                         (the default is {REFERENCE_TOLERANCE:e})",
+                        std::any::type_name::<T>()
                     )));
                 }
                 let dop853 = |tol| Method::Dop853(Dop853::tol(tol).max_steps(REFERENCE_MAX_STEPS));

@@ -218,6 +218,23 @@ fn reference_problems_are_errors_of_the_study() {
         .run()
         .unwrap_err();
     assert!(matches!(e, Error::InvalidSettings(_)), "{e}");
+    // Below what f64 can attain: refused, naming the setting and the floor.
+    let e = oscillator()
+        .computed_reference(1e-20, false)
+        .run()
+        .unwrap_err();
+    assert!(
+        matches!(e, Error::InvalidSettings(ref s)
+            if s.contains("reference tolerance 1e-20") && s.contains("2.220446049250313e-16")),
+        "{e}"
+    );
+    // At the floor it runs.
+    assert!(
+        oscillator()
+            .computed_reference(f64::EPSILON, false)
+            .run()
+            .is_ok()
+    );
     // A reference run that fails leaves the study without a yardstick.
     let failing = WorkPrecision::<f64, 1>::new(|_| Err(Error::InvalidSettings("boom".into())));
     assert!(matches!(failing.run(), Err(Error::InvalidSettings(s)) if s == "boom"));

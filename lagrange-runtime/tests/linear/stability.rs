@@ -172,3 +172,102 @@ fn lqr_refuses_an_unstabilisable_pair() {
         Error::Linear(LinearError::NotStabilisable { re, .. }) if (re - 1.0).abs() < 1e-12
     ));
 }
+
+// ------------------------------------------------------ growth on the axis
+
+/// A model of ẋ = A x with states named s0, s1, ….
+fn model(a: DMatrix<f64>) -> Linear {
+    let n = a.nrows();
+    let names: Vec<String> = (0..n).map(|i| format!("s{i}")).collect();
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    Linear::new(a, DMatrix::zeros(n, 0), &names, &[], n / 2).unwrap()
+}
+
+/// A chain of n integrators: s0' = s1, s1' = s2, …
+fn chain(n: usize) -> DMatrix<f64> {
+    DMatrix::from_fn(n, n, |i, j| if j == i + 1 { 1.0 } else { 0.0 })
+}
+
+/// Chains of integrators grow polynomially (the double integrator like t,
+/// the triple like t²); an undamped oscillator, a cyclic coordinate with
+/// damped velocity and the zero matrix are bounded.
+#[test]
+fn jordan_blocks_on_the_axis_are_polynomial_growth() {
+    let verdict = |a: DMatrix<f64>| model(a).stability(1e-9).unwrap();
+    let double = verdict(chain(2));
+    assert_eq!(double.verdict, Verdict::PolynomialGrowth { degree: 1 });
+    assert_eq!((double.growth, double.structural.len()), (1, 2));
+    assert_eq!(double.without_structural, Verdict::Marginal);
+    assert_eq!(
+        verdict(chain(3)).verdict,
+        Verdict::PolynomialGrowth { degree: 2 }
+    );
+    let w = 2.5;
+    let oscillator = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -w * w, 0.0]);
+    let bounded = verdict(oscillator.clone());
+    assert_eq!((bounded.verdict, bounded.growth), (Verdict::Marginal, 0));
+    // Two equal oscillators, one driving the other's position: resonance, t.
+    let mut driven = DMatrix::zeros(4, 4);
+    driven.view_mut((0, 0), (2, 2)).copy_from(&oscillator);
+    driven.view_mut((2, 2), (2, 2)).copy_from(&oscillator);
+    driven[(1, 2)] = 1.0;
+    assert_eq!(
+        verdict(driven).verdict,
+        Verdict::PolynomialGrowth { degree: 1 }
+    );
+    // Two equal uncoupled oscillators: a double ±iω, semisimple.
+    let mut twins = DMatrix::zeros(4, 4);
+    twins.view_mut((0, 0), (2, 2)).copy_from(&oscillator);
+    twins.view_mut((2, 2), (2, 2)).copy_from(&oscillator);
+    assert_eq!(verdict(twins).verdict, Verdict::Marginal);
+    let damped = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, 0.0, -0.7]);
+    let cyclic = verdict(damped);
+    assert_eq!(cyclic.verdict, Verdict::Marginal);
+    assert_eq!(cyclic.structural, ["s0"]);
+    assert_eq!(cyclic.without_structural, Verdict::AsymptoticallyStable);
+    assert_eq!(verdict(DMatrix::zeros(3, 3)).verdict, Verdict::Marginal);
+    // A damped pendulum stays asymptotically stable; an inverted one unstable.
+    let pendulum = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -4.0, -0.3]);
+    assert_eq!(verdict(pendulum).verdict, Verdict::AsymptoticallyStable);
+    let inverted = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, 4.0, 0.0]);
+    assert_eq!(verdict(inverted).verdict, Verdict::Unstable);
+}
+
+/// The open-loop hover of a quadrotor, its 12 states (x, y, z, φ, θ, ψ and
+/// their rates): position ← velocity ← attitude ← rate, a chain of four
+/// integrators, so a rate perturbation grows like t³ (once reported
+/// Marginal, all 12 states structural).
+#[test]
+fn a_quadrotor_hover_grows_like_t_cubed() {
+    let g = 9.81;
+    let a = hover_matrix(g);
+    let hover = model(a.clone()).stability(1e-9).unwrap();
+    assert_eq!(hover.verdict, Verdict::PolynomialGrowth { degree: 3 });
+    assert_eq!((hover.growth, hover.structural.len()), (3, 12));
+    // The degree is the motion's: A is nilpotent (A⁴ = 0), so e^(At) is a
+    // cubic in t, and a pitch-rate kick ω moves x by g ω t³ / 6.
+    let a4 = &a * &a * &a * &a;
+    assert_eq!(a4.amax(), 0.0);
+    assert!((&a * &a * &a).amax() > 0.0);
+    let (omega, t) = (1e-3, 2.0);
+    let mut kick = nalgebra::DVector::zeros(12);
+    kick[10] = omega;
+    let (mut term, mut x) = (kick.clone(), kick);
+    for k in 1..4 {
+        term = &a * term * (t / k as f64);
+        x += &term;
+    }
+    assert!((x[0] - g * omega * t.powi(3) / 6.0).abs() < 1e-15);
+}
+
+/// The 12-state linear model of a quadrotor at hover, states (x, y, z, φ,
+/// θ, ψ, ẋ, ẏ, ż, φ̇, θ̇, ψ̇): ẍ = g θ, ÿ = −g φ, the rest inputs only.
+fn hover_matrix(g: f64) -> DMatrix<f64> {
+    let mut a = DMatrix::zeros(12, 12);
+    for i in 0..6 {
+        a[(i, i + 6)] = 1.0;
+    }
+    a[(6, 4)] = g;
+    a[(7, 3)] = -g;
+    a
+}

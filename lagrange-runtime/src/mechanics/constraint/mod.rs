@@ -403,12 +403,12 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
         t: T,
         q: &SVector<T, Q>,
         m: nalgebra::SMatrix<T, N, N>,
-    ) -> Result<Cholesky<T, N>, Error> {
-        Cholesky::new(m, self.singular_tolerance).map_err(|ratio| Error::SingularMassMatrix {
-            t: t.to_f64(),
-            q: to_vec(q),
-            ratio: ratio.to_f64(),
-        })
+    ) -> Result<Cholesky<T, N>, Error>
+    where
+        S: crate::system::Lagrangian<T, N, Q>,
+    {
+        Cholesky::new(m, self.singular_tolerance)
+            .map_err(|ratio| Error::singular_mass(t, q, ratio, &m, (&S::VELOCITIES, S::ATLAS)))
     }
 }
 
