@@ -11,7 +11,7 @@ use crate::ast::{Extra, Formulation, System};
 use crate::ctxt::Ctxt;
 
 /// Names the expression language gives a meaning of its own.
-const RESERVED: &[&str] = &["t", "pi", "PI", "dot", "self"];
+pub(crate) const RESERVED: &[&str] = &["t", "pi", "PI", "dot", "self"];
 
 pub fn check(cx: &Ctxt, system: &System) {
     check_has_coordinates(cx, system);

@@ -297,9 +297,11 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
         moved: b.about.is_some(),
         spatial,
     };
-    items
-        .checks
-        .extend(physical::inertia(lw, b, &inertia, shape));
+    if !b.inertia_unchecked {
+        items
+            .checks
+            .extend(physical::inertia(lw, b, &inertia, shape));
+    }
     let centre = match &com {
         None => reference.clone(),
         Some(Some(offset)) if offset.len() == 3 => {

@@ -294,6 +294,13 @@ fn urdf_consts(system: &System) -> TokenStream {
         );
         quote!((#at, #w, #e))
     });
+    let repaired = u.repaired.iter().map(|(link, written, used)| {
+        let (w, r) = (
+            written.map(Literal::f64_suffixed),
+            used.map(Literal::f64_suffixed),
+        );
+        quote!((#link, [#(#w),*], [#(#r),*]))
+    });
     quote! {
         /// The robot's name in its URDF file.
         pub const ROBOT: &'static str = #robot;
@@ -306,6 +313,11 @@ fn urdf_consts(system: &System) -> TokenStream {
         /// (where, as the file writes it, as used). Empty without `snap`.
         #[allow(clippy::approx_constant)]
         pub const URDF_SNAPPED: &'static [(&'static str, f64, f64)] = &[#(#snapped),*];
+        /// The inertias `urdf(.., inertia = repair)` made physical: (link,
+        /// [ixx, iyy, izz, ixy, ixz, iyz] as the file writes them, as used).
+        /// Empty without `inertia = repair` or where every inertia is physical.
+        pub const URDF_REPAIRED: &'static [(&'static str, [f64; 6], [f64; 6])] =
+            &[#(#repaired),*];
     }
 }
 
