@@ -126,6 +126,7 @@ fn lagrangian_trait(
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     let (sizes, nq) = (f.sizes(), &f.nq);
     let orientations = orientation_consts(model);
+    let limits = position_limits(system, &names);
     quote! {
         /// The system as `#[derive(Lagrangian)]` derived it; the equations are
         /// on the type's inherent impl (`EQUATIONS`).
@@ -177,6 +178,46 @@ fn lagrangian_trait(
             #hamiltonian
             #forward_dynamics
             #visit_form
+            #limits
+        }
+    }
+}
+
+/// `position_limits` of a robot read from URDF: each coordinate with a finite
+/// limit, by its index in q (`names`, q's entries); nothing otherwise (the
+/// trait's default has none).
+fn position_limits(system: &System, names: &[String]) -> TokenStream {
+    let Some(u) = &system.urdf else {
+        return TokenStream::new();
+    };
+    let limits: Vec<TokenStream> = u
+        .coordinates
+        .iter()
+        .zip(&u.limits)
+        .filter(|(_, (lo, hi))| lo.is_finite() || hi.is_finite())
+        .filter_map(|(name, &(lo, hi))| {
+            let at = Literal::usize_unsuffixed(names.iter().position(|n| n == name)?);
+            let bound = |x: f64| match x {
+                f64::INFINITY => quote!(f64::INFINITY),
+                f64::NEG_INFINITY => quote!(f64::NEG_INFINITY),
+                _ => {
+                    let x = Literal::f64_suffixed(x);
+                    quote!(#x)
+                }
+            };
+            let (lo, hi) = (bound(lo), bound(hi));
+            Some(quote! {
+                ::lagrange::__private::JointLimit { joint: #name, coordinate: #at, lower: #lo, upper: #hi }
+            })
+        })
+        .collect();
+    if limits.is_empty() {
+        return TokenStream::new();
+    }
+    quote! {
+        #[allow(clippy::approx_constant)]
+        fn position_limits(&self) -> &'static [::lagrange::__private::JointLimit] {
+            &[#(#limits),*]
         }
     }
 }

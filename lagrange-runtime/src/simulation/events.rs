@@ -2,7 +2,7 @@
 
 use super::{Simulation, form};
 use crate::error::{Failure, unit_quaternions};
-use crate::event::{Event, EventRun, Events};
+use crate::event::{Event, EventRun, Events, Limited};
 use crate::numeric::Real;
 use crate::ode::{Integrator, check_problem, failed_at_start};
 use crate::system::{Constrained, Lagrangian, Reduced};
@@ -82,6 +82,7 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize, const Q: usize>
         let failed = |e| failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted);
         sim.check_singular_tolerance::<T, N, Q>().map_err(failed)?;
         let q0 = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0).map_err(failed)?;
+        let dynamics = Limited::new(dynamics, sim.system.position_limits(), sim.limits);
         self.events
             .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
     }
@@ -113,6 +114,7 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize, const Q: usize>
             .map_err(start)?;
         let terms = sim.system.parameter_terms();
         let dynamics = dynamics.with_parameter_terms(&terms);
+        let dynamics = Limited::new(dynamics, sim.system.position_limits(), sim.limits);
         self.events
             .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
     }
@@ -139,6 +141,7 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize, const Q: usize>
         let (q0, v0) = sim.prepare_reduced(&dynamics, &span, q0, v0).map_err(|e| {
             failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
         })?;
+        let dynamics = Limited::new(dynamics, sim.system.position_limits(), sim.limits);
         self.events
             .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
     }
