@@ -205,3 +205,24 @@ fn repair_uses_the_nearest_physical_inertia_and_lists_it() {
     assert!(derive("written", &unphysical(), ", inertia = as_written").is_ok());
     assert!(derive("refused", &unphysical(), "").is_err());
 }
+
+/// A joint named as a field of the struct is refused at the joint's line,
+/// not at the path alone.
+#[test]
+fn a_joint_named_as_a_field_quotes_the_file_and_line() {
+    let path = std::env::temp_dir().join("lagrange-urdf-options-field.urdf");
+    std::fs::write(&path, format!("<robot name='r'>{ARM}</robot>")).unwrap();
+    let src = format!(
+        "#[lagrange(urdf = \"{}\")] struct R {{ shoulder: f64 }}",
+        path.display()
+    );
+    let input: syn::DeriveInput = syn::parse_str(&src).unwrap();
+    let e = lagrange_codegen::model_by(&input, Route::Auto)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("lagrange-urdf-options-field.urdf:3: `shoulder` is named `shoulder`"),
+        "{e}"
+    );
+}

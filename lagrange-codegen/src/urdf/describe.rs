@@ -262,7 +262,7 @@ impl Names {
             line,
             format!(
                 "`{name}` is named `{id}` in the description, which another link, joint or \
-                 point already is; rename one of them in the file"
+                 point, or a field of the struct, already is; rename one of them"
             ),
         ))
     }
@@ -331,7 +331,8 @@ pub fn describe(robot: &Robot, fields: &[String], base: Base) -> Result<Descript
         .iter()
         .map(|l| (l.name.as_str(), l.line))
         .collect();
-    let mut names = Names::default();
+    // The struct's fields are parameters, in the description's one name space.
+    let mut names = Names(fields.iter().cloned().collect());
     let root_line = lines[order[0].0];
     let turn = match floating {
         true => Some(names.unique(&format!("{}_turn", identifier(order[0].0)), root_line)?),

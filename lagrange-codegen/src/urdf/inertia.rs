@@ -62,9 +62,9 @@ fn refusal(link: &str, i: &[f64; 6]) -> String {
             .to_string(),
     };
     format!(
-        "link `{link}`: {what}. If the file is right but for round-off, write `urdf(\"..\", \
-         inertia = repair)` for the nearest physical inertia (listed in `URDF_REPAIRED`), or \
-         `inertia = as_written` to use it unchecked"
+        "link `{link}`: {what}. To load the file as it is (a placeholder or rounded inertia), \
+         write `urdf(\"..\", inertia = repair)` for the nearest physical inertia (listed in \
+         `URDF_REPAIRED`), or `inertia = as_written` to use it unchecked"
     )
 }
 
@@ -131,16 +131,14 @@ fn symmetric_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
             let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
             let t = if theta == 0.0 { 1.0 } else { t };
             let (c, s) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
-            for k in 0..3 {
-                let (akp, akq) = (a[k][p], a[k][q]);
-                a[k][p] = c * akp - s * akq;
-                a[k][q] = s * akp + c * akq;
+            for row in &mut a {
+                let (akp, akq) = (row[p], row[q]);
+                row[p] = c * akp - s * akq;
+                row[q] = s * akp + c * akq;
             }
-            for k in 0..3 {
-                let (apk, aqk) = (a[p][k], a[q][k]);
-                a[p][k] = c * apk - s * aqk;
-                a[q][k] = s * apk + c * aqk;
-            }
+            let (rp, rq) = (a[p], a[q]);
+            a[p] = [0, 1, 2].map(|k| c * rp[k] - s * rq[k]);
+            a[q] = [0, 1, 2].map(|k| s * rp[k] + c * rq[k]);
             for row in &mut v {
                 let (vp, vq) = (row[p], row[q]);
                 row[p] = c * vp - s * vq;
