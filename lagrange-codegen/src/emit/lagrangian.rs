@@ -347,7 +347,9 @@ fn urdf_consts(system: &System) -> TokenStream {
         pub const ROBOT: &'static str = #robot;
         /// Each coordinate's position limits (lower, upper) from the URDF
         /// file, in coordinate order; ±∞ for a continuous joint or one without
-        /// limits. Pair them with events to stop or bounce at a limit.
+        /// limits. Runs watch them (`Error::JointLimit`) unless told
+        /// `.joint_limits(LimitPolicy::Ignore)`; pair them with events to
+        /// bounce at a limit.
         #[allow(clippy::approx_constant)] // as the file writes them: 3.14159 is not π
         pub const JOINT_LIMITS: [(f64, f64); #n] = [#(#limits),*];
         /// The angles `urdf(.., snap = tol)` made exact multiples of π/2:

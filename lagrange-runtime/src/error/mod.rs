@@ -255,8 +255,8 @@ pub enum Error {
 
     /// A coordinate left its position limits (a URDF joint's `<limit>`, see
     /// [`Lagrangian::position_limits`](crate::Lagrangian::position_limits)):
-    /// the run stops at the first point of the step's dense output past the
-    /// limit, located by root finding. Limits are not yet contacts; turn the
+    /// the run stops at the first point of the step's dense output on or past
+    /// the limit, located by root finding. Limits are not yet contacts; turn the
     /// watch off with
     /// [`Simulation::joint_limits`](crate::Simulation::joint_limits)`(LimitPolicy::Ignore)`.
     #[error(
@@ -269,7 +269,7 @@ pub enum Error {
         joint: &'static str,
         /// The coordinate's index in q.
         coordinate: usize,
-        /// Its value at `t`, just past the limit.
+        /// Its value at `t`: on the limit or just past it.
         value: f64,
         /// The lower limit.
         lower: f64,

@@ -31,22 +31,54 @@ pub enum LimitPolicy {
     Ignore,
 }
 
+/// The limits watched under `policy`: all of them, or none.
+pub(crate) fn watched(limits: &'static [JointLimit], policy: LimitPolicy) -> &'static [JointLimit] {
+    match policy {
+        LimitPolicy::Stop => limits,
+        LimitPolicy::Ignore => &[],
+    }
+}
+
 /// The system `rhs` with its limits watched: everything is delegated, and
-/// [`after_step`](SecondOrder::after_step) fails at a crossing.
-pub(crate) struct Limited<F> {
-    rhs: F,
+/// [`after_step`](SecondOrder::after_step) fails at a crossing. A run with
+/// events watches the limits in its event observer instead, which sees them
+/// only up to the first stopping event of the step.
+pub(crate) struct Limited<'r, F> {
+    rhs: &'r F,
     limits: &'static [JointLimit],
 }
 
-impl<F> Limited<F> {
+impl<'r, F> Limited<'r, F> {
     /// `rhs` watched for `limits` under `policy` (none watched with `Ignore`).
-    pub fn new(rhs: F, limits: &'static [JointLimit], policy: LimitPolicy) -> Self {
-        let limits = match policy {
-            LimitPolicy::Stop => limits,
-            LimitPolicy::Ignore => &[],
-        };
-        Self { rhs, limits }
+    pub fn new(rhs: &'r F, limits: &'static [JointLimit], policy: LimitPolicy) -> Self {
+        Self {
+            rhs,
+            limits: watched(limits, policy),
+        }
     }
+}
+
+/// The earliest crossing of any of `limits` on `segment` (ending at `q`)
+/// up to `until`, as the error that stops the run.
+pub(crate) fn first_crossing<T: Real, const N: usize, const Q: usize>(
+    limits: &[JointLimit],
+    segment: &DenseSegment<T, N, Q>,
+    q: &SVector<T, Q>,
+    until: T,
+) -> Option<Error> {
+    let (l, t, value) = limits
+        .iter()
+        .filter(|l| l.coordinate < Q)
+        .filter_map(|l| crossing(l, segment, q, until).map(|(t, x)| (l, t, x)))
+        .min_by(|a, b| a.1.partial_cmp(&b.1).unwrap_or(std::cmp::Ordering::Equal))?;
+    Some(Error::JointLimit {
+        joint: l.joint,
+        coordinate: l.coordinate,
+        value,
+        lower: l.lower,
+        upper: l.upper,
+        t: t.to_f64(),
+    })
 }
 
 /// The signed distance of x past the nearer violated bound of `limit`
@@ -61,16 +93,17 @@ fn past(limit: &JointLimit, x: f64) -> Option<(f64, f64)> {
     }
 }
 
-/// The first crossing of `limit` on `segment` (ending at `q`): its time and
-/// the coordinate's value there, just past the limit.
+/// The first crossing of `limit` on `segment` (ending at `q`) up to `until`:
+/// its time and the coordinate's value there, on or just past the limit.
 fn crossing<T: Real, const N: usize, const Q: usize>(
     limit: &JointLimit,
     segment: &DenseSegment<T, N, Q>,
     q: &SVector<T, Q>,
+    until: T,
 ) -> Option<(T, f64)> {
     let i = limit.coordinate;
     let (ta, tb) = (segment.start(), segment.end());
-    let at = |k: usize| ta + (tb - ta) * T::lit(k as f64 / SAMPLES as f64);
+    let at = |k: usize| ta + (until - ta) * T::lit(k as f64 / SAMPLES as f64);
     let value = |t: T| match t == tb {
         true => q[i].to_f64(),
         false => segment.eval(t).0[i].to_f64(),
@@ -84,8 +117,9 @@ fn crossing<T: Real, const N: usize, const Q: usize>(
     let side = |t: T| T::lit((value(t) - bound) * (x1 - bound).signum());
     let t0 = at(first - 1);
     let (b, fb, c, fc) = brent_bracket(side, t0, t1, side(t0), side(t1));
-    // The end of the final bracket on the far side of the limit.
-    let t = if fb > T::zero() || fc <= T::zero() {
+    // The end of the final bracket past the limit; b itself when it is on
+    // the limit exactly (Brent then stops with c anywhere in the bracket).
+    let t = if fb >= T::zero() || fc <= T::zero() {
         b
     } else {
         c
@@ -94,7 +128,7 @@ fn crossing<T: Real, const N: usize, const Q: usize>(
 }
 
 impl<F: SecondOrder<T, N, Q>, T: Real, const N: usize, const Q: usize> SecondOrder<T, N, Q>
-    for Limited<F>
+    for Limited<'_, F>
 {
     const ORIENTATIONS: &'static [crate::numeric::orientation::Orientation] = F::ORIENTATIONS;
 
@@ -139,22 +173,9 @@ impl<F: SecondOrder<T, N, Q>, T: Real, const N: usize, const Q: usize> SecondOrd
         v: &SVector<T, N>,
     ) -> Result<bool, Error> {
         let stop = self.rhs.after_step(segment, q, v)?;
-        let first = self
-            .limits
-            .iter()
-            .filter(|l| l.coordinate < Q)
-            .filter_map(|l| crossing(l, segment, q).map(|(t, x)| (l, t, x)))
-            .min_by(|a, b| a.1.partial_cmp(&b.1).unwrap_or(std::cmp::Ordering::Equal));
-        match first {
+        match first_crossing(self.limits, segment, q, segment.end()) {
             None => Ok(stop),
-            Some((l, t, value)) => Err(Error::JointLimit {
-                joint: l.joint,
-                coordinate: l.coordinate,
-                value,
-                lower: l.lower,
-                upper: l.upper,
-                t: t.to_f64(),
-            }),
+            Some(error) => Err(error),
         }
     }
 }

@@ -105,7 +105,7 @@ mod watch;
 pub(crate) use driver::within_budget;
 pub use driver::{DEFAULT_MAX_EVENTS, Events};
 pub use limits::LimitPolicy;
-pub(crate) use limits::Limited;
+pub(crate) use limits::{Limited, watched};
 pub(crate) use view::{BackFn, ViewFn};
 
 use crate::error::{Error, Progress, to_vec};

@@ -144,7 +144,10 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// the run with [`Error::JointLimit`], located on the dense output;
     /// [`LimitPolicy::Ignore`] runs through them. Every run of this builder,
     /// with events or inputs too, follows it (the atlas runs do not watch
-    /// limits yet).
+    /// limits yet); with events a limit is watched up to the step's first
+    /// stopping event, so an event that acts at the limit (a bounce) comes
+    /// first. The trajectory the [`Failure`] keeps ends at the last accepted
+    /// step before the crossing; the error's `t` is the crossing.
     pub fn joint_limits(mut self, policy: LimitPolicy) -> Self {
         self.limits = policy;
         self
@@ -267,9 +270,9 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
             .map_err(start)?;
         let terms = self.system.parameter_terms();
         let dynamics = dynamics.with_parameter_terms(&terms);
-        let dynamics = Limited::new(dynamics, self.system.position_limits(), self.limits);
+        let limited = Limited::new(&dynamics, self.system.position_limits(), self.limits);
         self.integrator
-            .integrate(&dynamics, span.start, span.end, q0, v0)
+            .integrate(&limited, span.start, span.end, q0, v0)
     }
 
     /// The constrained dynamics and the checked (or projected) initial state.
@@ -389,9 +392,9 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         let (q0, v0) = self
             .prepare_reduced(&dynamics, &span, q0, v0)
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
-        let dynamics = Limited::new(dynamics, self.system.position_limits(), self.limits);
+        let limited = Limited::new(&dynamics, self.system.position_limits(), self.limits);
         self.integrator
-            .integrate(&dynamics, span.start, span.end, q0, v0)
+            .integrate(&limited, span.start, span.end, q0, v0)
     }
 
     /// The checks of a reduced run and its initial state: q0 with its
@@ -470,9 +473,9 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
         let q0 = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0)
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
-        let dynamics = Limited::new(dynamics, self.system.position_limits(), self.limits);
+        let limited = Limited::new(&dynamics, self.system.position_limits(), self.limits);
         self.integrator
-            .integrate(&dynamics, span.start, span.end, q0, v0)
+            .integrate(&limited, span.start, span.end, q0, v0)
     }
 }
 

@@ -11,7 +11,7 @@ pub use run::ControlRun;
 use super::Simulation;
 use crate::control::{Feedback, InputSource, IntoInput, OpenLoop, Sampled};
 use crate::error::{Failure, unit_quaternions};
-use crate::event::{Event, Events, Limited};
+use crate::event::{Event, Events};
 use crate::numeric::Real;
 use crate::ode::{Integrator, check_problem};
 use crate::system::{Constrained, Driven, Lagrangian, Reduced};
@@ -231,9 +231,8 @@ where
             check_problem(span.start, span.end, &q0, &v0)?;
             Ok((unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0)?, v0))
         };
-        let limits = sim.system.position_limits();
         self.driver().drive(
-            |f| Limited::new(dynamics.with_forcing(f), limits, sim.limits),
+            |f| dynamics.with_forcing(f),
             span.clone(),
             (q0, v0),
             prepare,
@@ -265,9 +264,8 @@ where
             let (_, q0, v0) = sim.prepare_constrained::<T, N, K, Q>(span.start, q0, v0)?;
             Ok((q0, v0))
         };
-        let limits = sim.system.position_limits();
         self.driver().drive(
-            |f| Limited::new(dynamics.with_forcing(f), limits, sim.limits),
+            |f| dynamics.with_forcing(f),
             span.clone(),
             (q0, v0),
             prepare,
@@ -292,9 +290,8 @@ where
         let terms = sim.system.parameter_terms();
         let dynamics = sim.reduced_dynamics::<T, K>().with_parameter_terms(&terms);
         let prepare = || sim.prepare_reduced(&dynamics, &span, q0, v0);
-        let limits = sim.system.position_limits();
         self.driver().drive(
-            |f| Limited::new(dynamics.with_forcing(f), limits, sim.limits),
+            |f| dynamics.with_forcing(f),
             span.clone(),
             (q0, v0),
             prepare,
