@@ -326,14 +326,13 @@ fn coordinates<'r>(
 pub fn describe(robot: &Robot, fields: &[String], base: Base) -> Result<Description, ReadError> {
     let (robot, floating) = based(robot, base)?;
     let order = tree_order(&robot)?;
-    let lines: BTreeMap<&str, u32> = robot
-        .links
-        .iter()
-        .map(|l| (l.name.as_str(), l.line))
-        .collect();
     // The struct's fields are parameters, in the description's one name space.
     let mut names = Names(fields.iter().cloned().collect());
-    let root_line = lines[order[0].0];
+    let root_line = robot
+        .links
+        .iter()
+        .find(|l| l.name == order[0].0)
+        .map_or(0, |l| l.line);
     let turn = match floating {
         true => Some(names.unique(&format!("{}_turn", identifier(order[0].0)), root_line)?),
         false => None,
@@ -350,17 +349,7 @@ pub fn describe(robot: &Robot, fields: &[String], base: Base) -> Result<Descript
             ),
         ));
     }
-    let mut points = BTreeMap::new();
-    for j in order.iter().filter_map(|(_, j)| *j) {
-        points.insert(
-            j.name.as_str(),
-            names.unique(&format!("{}_origin", j.name), j.line)?,
-        );
-    }
-    let mut bodies = BTreeMap::new();
-    for (link, _) in &order {
-        bodies.insert(*link, names.body(link, lines[link])?);
-    }
+    let (points, bodies) = points_and_bodies(&robot, &order, &mut names)?;
     let mut items = vec![format!("coordinates({})", c.names.join(", "))];
     items.extend(turn.iter().map(|t| format!("orientation({t})")));
     let inertials: BTreeMap<&str, Option<&Inertial>> = robot
@@ -401,6 +390,31 @@ pub fn describe(robot: &Robot, fields: &[String], base: Base) -> Result<Descript
         coordinates: c.names,
         limits: c.limits,
     })
+}
+
+/// Each joint's point `<joint>_origin`, then each link's body (named after
+/// the joints, so that a link whose name a joint took is `<link>_link`).
+#[allow(clippy::type_complexity)]
+fn points_and_bodies<'r>(
+    robot: &'r Robot,
+    order: &[(&'r str, Option<&'r Joint>)],
+    names: &mut Names,
+) -> Result<(BTreeMap<&'r str, String>, BTreeMap<&'r str, String>), ReadError> {
+    let mut points = BTreeMap::new();
+    for j in order.iter().filter_map(|(_, j)| *j) {
+        let point = names.unique(&format!("{}_origin", j.name), j.line)?;
+        points.insert(j.name.as_str(), point);
+    }
+    let mut bodies = BTreeMap::new();
+    for &(link, _) in order {
+        let line = robot
+            .links
+            .iter()
+            .find(|l| l.name == link)
+            .map_or(0, |l| l.line);
+        bodies.insert(link, names.body(link, line)?);
+    }
+    Ok((points, bodies))
 }
 
 /// The root link's body and its rotation factors: fixed in space, or on a
