@@ -297,11 +297,9 @@ fn lower_body(lw: &mut Lowerer, b: &crate::ast::Body, items: &mut Items) {
         moved: b.about.is_some(),
         spatial,
     };
-    if !b.inertia_unchecked {
-        items
-            .checks
-            .extend(physical::inertia(lw, b, &inertia, shape));
-    }
+    items
+        .checks
+        .extend(physical::inertia(lw, b, &inertia, shape));
     let centre = match &com {
         None => reference.clone(),
         Some(Some(offset)) if offset.len() == 3 => {

@@ -125,8 +125,7 @@ fn lagrangian_trait(
     let (vec_t, mat_t, qvec_t) = (f.vec(nl), f.mat(nl, nl), f.qvec());
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     let (sizes, nq) = (f.sizes(), &f.nq);
-    let orientations = orientation_consts(model);
-    let limits = position_limits(system, &names);
+    let (orientations, limits) = (orientation_consts(model), position_limits(system, &names));
     quote! {
         /// The system as `#[derive(Lagrangian)]` derived it; the equations are
         /// on the type's inherent impl (`EQUATIONS`).
@@ -177,8 +176,7 @@ fn lagrangian_trait(
 
             #hamiltonian
             #forward_dynamics
-            #visit_form
-            #limits
+            #visit_form #limits
         }
     }
 }
