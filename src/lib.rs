@@ -573,8 +573,8 @@ pub mod prelude {
     pub use lagrange_runtime::{
         Atlas, AtlasRun, Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation,
         Direction, Dop853, Dopri5, Drift, Driven, Error, Event, EventRun, Failure, Gauss,
-        InputTable, Integrator, Interpolation, Lagrangian, Occurrence, Radau5, Rattle, Real,
-        Record, Reduced, ReducedDynamics, ReducedForm, Rk4, Scene, Simulation, StateFeedback,
+        InputTable, Integrator, Interpolation, Lagrangian, LimitPolicy, Occurrence, Radau5, Rattle,
+        Real, Record, Reduced, ReducedDynamics, ReducedForm, Rk4, Scene, Simulation, StateFeedback,
         StormerVerlet, Study, Trajectory, WorkPrecision,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
@@ -593,7 +593,7 @@ pub mod __private {
     };
     pub use lagrange_runtime::{
         Atlas, Constrained, Driven, DrivenAtlas, EulerRotation, FormVisitor, FreeVisitor,
-        Lagrangian, Orientation, Real, Reduced, Route,
+        JointLimit, Lagrangian, Orientation, Real, Reduced, Route,
     };
     pub use lagrange_runtime::{Error, func, physical};
     pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};

@@ -50,6 +50,9 @@ pub struct Body {
     /// macro moves it to the centre of mass by the parallel-axis theorem.
     pub about: Option<Expr>,
     pub rotation: Option<Expr>,
+    /// The inertia is used as written, its physical check skipped: a body
+    /// read by `urdf("..", inertia = as_written)`.
+    pub inertia_unchecked: bool,
 }
 
 /// A named constraint: `holonomic(name = f(q, t))` or `nonholonomic(name = a(q,t)·q̇ + b)`.
@@ -210,8 +213,12 @@ pub struct UrdfSource {
     pub path: String,
     /// The robot's name.
     pub robot: String,
+    /// The coordinates the file's joints give, in coordinate order.
+    pub coordinates: Vec<String>,
     /// Each coordinate's position limits, in coordinate order.
     pub limits: Vec<(f64, f64)>,
     /// `snap`: the angles made exact multiples of π/2 (where, written, snapped).
     pub snapped: Vec<(String, f64, f64)>,
+    /// `inertia = repair`: the links' inertias changed (link, written, used).
+    pub repaired: Vec<(String, [f64; 6], [f64; 6])>,
 }

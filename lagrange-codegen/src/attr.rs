@@ -308,6 +308,7 @@ fn parse_body(input: ParseStream) -> syn::Result<Body> {
         rotation: s[3].take(),
         com: s[4].take(),
         about: s[5].take(),
+        inertia_unchecked: false,
     })
 }
 
@@ -481,6 +482,7 @@ fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr, options: crate::
         Ok(urdf) => urdf,
         Err(message) => return cx.error_at(path.span(), message),
     };
+    let first_body = system.bodies.len();
     for (text, tokens) in urdf.tokens_at(path.span()) {
         match syn::parse2::<Item>(tokens) {
             Ok(item) => add_item(cx, system, item),
@@ -490,11 +492,18 @@ fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr, options: crate::
             ),
         }
     }
+    if options.inertia == crate::urdf::InertiaRule::AsWritten {
+        for body in &mut system.bodies[first_body..] {
+            body.inertia_unchecked = true;
+        }
+    }
     system.urdf = Some(crate::ast::UrdfSource {
         path: urdf.path,
         robot: urdf.name,
+        coordinates: urdf.coordinates,
         limits: urdf.limits,
         snapped: urdf.snapped,
+        repaired: urdf.repaired,
     });
 }
 

@@ -11,7 +11,7 @@ use crate::ast::{Extra, Formulation, System};
 use crate::ctxt::Ctxt;
 
 /// Names the expression language gives a meaning of its own.
-const RESERVED: &[&str] = &["t", "pi", "PI", "dot", "self"];
+pub(crate) const RESERVED: &[&str] = &["t", "pi", "PI", "dot", "self"];
 
 /// Applies every structural rule; returns whether each name stands for one
 /// thing. A name declared twice makes every use of it ambiguous, so the

@@ -62,8 +62,12 @@ pub struct Shape {
 }
 
 /// A body's inertia about its centre of mass: checked now if its entries are
-/// constants, else recorded.
+/// constants, else recorded; left alone when the body says so (read by
+/// `urdf(.., inertia = as_written)`).
 pub fn inertia(lw: &Lowerer, b: &Body, i: &Mat3, shape: Shape) -> Option<PhysicalCheck> {
+    if b.inertia_unchecked {
+        return None;
+    }
     let syntax = b.inertia.as_ref()?;
     let Expr::Array(list) = syntax else {
         return None;

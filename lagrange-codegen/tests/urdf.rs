@@ -6,6 +6,7 @@
 mod common;
 use common::{Lcg, close, eval, random_point};
 use lagrange_codegen::mechanics::{BiasRoute, Model, Route};
+use lagrange_codegen::urdf::Base;
 
 fn robot(file: &str) -> String {
     format!(
@@ -103,15 +104,15 @@ fn bad_files_quote_the_file_and_line() {
         ),
         (
             "<robot name='r'>\n<link name='a'>\n<inertial><mass value='1'/>\n<inertia ixx='-0.1' iyy='1' izz='1' ixy='0' ixz='0' iyz='0'/></inertial></link>\n</robot>",
-            "bad.urdf:4: <inertia ixx='-0.1'> is negative",
+            "bad.urdf:4: link `a`: <inertia ixx='-0.1'> is negative",
         ),
         (
             "<robot name='r'>\n<link name='a'>\n<inertial><mass value='1'/>\n<inertia ixx='1' iyy='1' izz='3' ixy='0' ixz='0' iyz='0'/></inertial></link>\n</robot>",
-            "bad.urdf:4: <inertia> is that of no rigid body",
+            "bad.urdf:4: link `a`: <inertia> is that of no rigid body",
         ),
         (
             "<robot name='r'>\n<link name='a'>\n<inertial><mass value='-2'/>\n<inertia ixx='1' iyy='1' izz='1' ixy='0' ixz='0' iyz='0'/></inertial></link>\n</robot>",
-            "bad.urdf:4: <mass value='-2'> is negative",
+            "bad.urdf:3: <mass value='-2'> is negative",
         ),
     ];
     for (text, expected) in cases {
@@ -159,15 +160,15 @@ fn a_floating_joint_at_the_root_is_a_free_base() {
         "<robot name='r'><link name='world'/><joint name='free' type='floating'><parent link='world'/><child link='base'/></joint>{arm}</robot>"
     );
     let based = format!("<robot name='r'>{arm}</robot>");
-    let read = |text: &str, floating: bool| {
+    let read = |text: &str, base: Base| {
         let options = lagrange_codegen::urdf::Options {
-            floating,
+            base,
             ..Default::default()
         };
         lagrange_codegen::urdf::from_text(text, "r.urdf", &[], options)
             .unwrap_or_else(|e| panic!("{e}"))
     };
-    let (a, b) = (read(&free, false), read(&based, true));
+    let (a, b) = (read(&free, Base::AsFile), read(&based, Base::Floating));
     assert_eq!(a.items, b.items);
     assert_eq!(a.coordinates, ["base_x", "base_y", "base_z", "shoulder"]);
     assert!(

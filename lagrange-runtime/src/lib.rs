@@ -202,7 +202,7 @@ pub use control::{
     StateFeedback,
 };
 pub use error::{Error, Failure, LinearError};
-pub use event::{Direction, Event, EventRun, Events, Occurrence};
+pub use event::{Direction, Event, EventRun, Events, LimitPolicy, Occurrence};
 pub use linear::{
     Linear, Linearizer, OperatingPoint, complete_state, linearize, linearize_constrained,
     linearize_reduced,
@@ -226,5 +226,5 @@ pub use simulation::{ControlRun, ControlledSimulation, EventSimulation, Simulati
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::physical;
 pub use system::{Atlas, Configuration, DrivenAtlas, EulerRotation, FreeVisitor};
-pub use system::{Constrained, Driven, FormVisitor, Lagrangian, Reduced, Route};
+pub use system::{Constrained, Driven, FormVisitor, JointLimit, Lagrangian, Reduced, Route};
 pub use table::Table;

@@ -22,6 +22,20 @@ pub use constrained::{Constrained, Reduced};
 pub use form::FormVisitor;
 pub use route::Route;
 
+/// A coordinate's position limits, watched by the runs (see
+/// [`Lagrangian::position_limits`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointLimit {
+    /// The joint's name (its coordinate's).
+    pub joint: &'static str,
+    /// The coordinate's index in q.
+    pub coordinate: usize,
+    /// The lower limit (−∞ for none).
+    pub lower: f64,
+    /// The upper limit (+∞ for none).
+    pub upper: f64,
+}
+
 /// A holonomic system in minimal coordinates q ∈ Rᴺ, with equations of motion
 ///
 /// ```text
@@ -301,6 +315,16 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// naming the body, the entry and the rule.
     fn check_parameters(&self) -> Result<(), crate::error::Error> {
         Ok(())
+    }
+
+    /// The coordinates' position limits a run watches: a run stops with
+    /// [`Error::JointLimit`](crate::Error::JointLimit) when one leaves them
+    /// (unless [`Simulation::joint_limits`](crate::Simulation::joint_limits)
+    /// says otherwise). `#[derive(Lagrangian)]` overrides it for a robot read
+    /// from URDF with the file's finite `<limit>`s; the default, for a
+    /// hand-written system, has none.
+    fn position_limits(&self) -> &'static [JointLimit] {
+        &[]
     }
 
     /// Hands `form` the equations this system runs in: the unconstrained

@@ -125,7 +125,7 @@ fn lagrangian_trait(
     let (vec_t, mat_t, qvec_t) = (f.vec(nl), f.mat(nl, nl), f.qvec());
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
     let (sizes, nq) = (f.sizes(), &f.nq);
-    let orientations = orientation_consts(model);
+    let (orientations, limits) = (orientation_consts(model), position_limits(system, &names));
     quote! {
         /// The system as `#[derive(Lagrangian)]` derived it; the equations are
         /// on the type's inherent impl (`EQUATIONS`).
@@ -176,7 +176,46 @@ fn lagrangian_trait(
 
             #hamiltonian
             #forward_dynamics
-            #visit_form
+            #visit_form #limits
+        }
+    }
+}
+
+/// `position_limits` of a robot read from URDF: each coordinate with a finite
+/// limit, by its index in q (`names`, q's entries); nothing otherwise (the
+/// trait's default has none).
+fn position_limits(system: &System, names: &[String]) -> TokenStream {
+    let Some(u) = &system.urdf else {
+        return TokenStream::new();
+    };
+    let limits: Vec<TokenStream> = u
+        .coordinates
+        .iter()
+        .zip(&u.limits)
+        .filter(|(_, (lo, hi))| lo.is_finite() || hi.is_finite())
+        .filter_map(|(name, &(lo, hi))| {
+            let at = Literal::usize_unsuffixed(names.iter().position(|n| n == name)?);
+            let bound = |x: f64| match x {
+                f64::INFINITY => quote!(f64::INFINITY),
+                f64::NEG_INFINITY => quote!(f64::NEG_INFINITY),
+                _ => {
+                    let x = Literal::f64_suffixed(x);
+                    quote!(#x)
+                }
+            };
+            let (lo, hi) = (bound(lo), bound(hi));
+            Some(quote! {
+                ::lagrange::__private::JointLimit { joint: #name, coordinate: #at, lower: #lo, upper: #hi }
+            })
+        })
+        .collect();
+    if limits.is_empty() {
+        return TokenStream::new();
+    }
+    quote! {
+        #[allow(clippy::approx_constant)]
+        fn position_limits(&self) -> &'static [::lagrange::__private::JointLimit] {
+            &[#(#limits),*]
         }
     }
 }
@@ -306,18 +345,32 @@ fn urdf_consts(system: &System) -> TokenStream {
         );
         quote!((#at, #w, #e))
     });
+    let repaired = u.repaired.iter().map(|(link, written, used)| {
+        let (w, r) = (
+            written.map(Literal::f64_suffixed),
+            used.map(Literal::f64_suffixed),
+        );
+        quote!((#link, [#(#w),*], [#(#r),*]))
+    });
     quote! {
         /// The robot's name in its URDF file.
         pub const ROBOT: &'static str = #robot;
         /// Each coordinate's position limits (lower, upper) from the URDF
         /// file, in coordinate order; ±∞ for a continuous joint or one without
-        /// limits. Pair them with events to stop or bounce at a limit.
+        /// limits. Runs watch them (`Error::JointLimit`) unless told
+        /// `.joint_limits(LimitPolicy::Ignore)`; pair them with events to
+        /// bounce at a limit.
         #[allow(clippy::approx_constant)] // as the file writes them: 3.14159 is not π
         pub const JOINT_LIMITS: [(f64, f64); #n] = [#(#limits),*];
         /// The angles `urdf(.., snap = tol)` made exact multiples of π/2:
         /// (where, as the file writes it, as used). Empty without `snap`.
         #[allow(clippy::approx_constant)]
         pub const URDF_SNAPPED: &'static [(&'static str, f64, f64)] = &[#(#snapped),*];
+        /// The inertias `urdf(.., inertia = repair)` made physical: (link,
+        /// [ixx, iyy, izz, ixy, ixz, iyz] as the file writes them, as used).
+        /// Empty without `inertia = repair` or where every inertia is physical.
+        pub const URDF_REPAIRED: &'static [(&'static str, [f64; 6], [f64; 6])] =
+            &[#(#repaired),*];
     }
 }
 

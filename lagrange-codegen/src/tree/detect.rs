@@ -41,7 +41,7 @@ enum Sphere {
 }
 
 /// A body's rotation read as joints, the constant factors after the last one,
-/// and the factors in all.
+/// and the factors in all (but turns by zero, which are none).
 struct Chain {
     joints: Vec<Joint>,
     trailing: Vec<Constant>,
@@ -172,7 +172,14 @@ fn body_chains(ctx: &Context, skeleton: &Skeleton, names: &[String]) -> Result<V
                 ));
             }
         }
-        let factors = factors.clone();
+        // A turn by zero is no factor: a body written `rotation = rot_z(0)`
+        // (a sliding link, whose joint turns nothing) is the parent of one
+        // whose factors begin with its parent's and go on with a placement.
+        let factors = factors
+            .iter()
+            .filter(|f| !matches!(f, Factor::Turn(_, angle) if ctx.is_zero(*angle)))
+            .copied()
+            .collect();
         chains.push(Chain {
             joints,
             trailing: pending,

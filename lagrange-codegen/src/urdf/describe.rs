@@ -5,9 +5,11 @@
 //! as the file writes them, so the tree route recognises the description and
 //! the equations read like the file.
 
+use std::borrow::Cow;
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::model::{Inertial, Joint, JointType, Number, ReadError, Robot};
+use super::options::Base;
 
 /// The description's items as source text, with what the derive publishes
 /// beside the equations.
@@ -25,7 +27,8 @@ fn error(line: u32, message: String) -> ReadError {
 }
 
 /// A name usable as a Rust identifier: other characters become `_`, a
-/// leading digit gets a `_` before it, a keyword one after it.
+/// leading digit gets a `_` before it, a keyword or a name the description
+/// reserves (`t`, `pi`, `PI`, `dot`) one after it.
 fn identifier(name: &str) -> String {
     let mut s: String = name
         .chars()
@@ -40,7 +43,7 @@ fn identifier(name: &str) -> String {
     if s.is_empty() || s.starts_with(|c: char| c.is_ascii_digit()) {
         s.insert(0, '_');
     }
-    if syn::parse_str::<syn::Ident>(&s).is_err() {
+    if syn::parse_str::<syn::Ident>(&s).is_err() || crate::check::RESERVED.contains(&s.as_str()) {
         s.push('_');
     }
     s
@@ -241,12 +244,15 @@ fn mass_items(inertial: Option<&Inertial>, mass_field: Option<&str>) -> String {
     )
 }
 
-/// The names given so far, so that no two items share one.
+/// The names given so far, so that no two items share one. URDF keeps links
+/// and joints in separate name spaces, the description has one: the joints'
+/// names (coordinates, points) are given first, and a link whose name is
+/// taken is the body `<link>_link`.
 #[derive(Default)]
 struct Names(BTreeSet<String>);
 
 impl Names {
-    /// `name` as an identifier, or an error if another item has it.
+    /// `name` as an identifier, or an error at `line` if another item has it.
     fn unique(&mut self, name: &str, line: u32) -> Result<String, ReadError> {
         let id = identifier(name);
         if self.0.insert(id.clone()) {
@@ -255,9 +261,20 @@ impl Names {
         Err(error(
             line,
             format!(
-                "`{name}` is named `{id}` in the description, which another link, joint or point already is"
+                "`{name}` is named `{id}` in the description, which another link, joint or \
+                 point, or a field of the struct, already is; rename one of them"
             ),
         ))
+    }
+
+    /// The body of link `name`: its name, or `<name>_link` where a joint's
+    /// coordinate or point (or another link) already has it.
+    fn body(&mut self, name: &str, line: u32) -> Result<String, ReadError> {
+        let id = identifier(name);
+        match self.0.contains(&id) {
+            false => self.unique(name, line),
+            true => self.unique(&format!("{id}_link"), line),
+        }
     }
 }
 
@@ -273,17 +290,18 @@ struct Coordinates<'r> {
 fn coordinates<'r>(
     order: &[(&'r str, Option<&'r Joint>)],
     names: &mut Names,
-    turn: Option<&str>,
+    turn: Option<(&str, u32)>,
 ) -> Result<Coordinates<'r>, ReadError> {
     let mut out = Coordinates {
         names: Vec::new(),
         limits: Vec::new(),
         angle_of: BTreeMap::new(),
     };
-    if turn.is_some() {
+    if let Some((_, line)) = turn {
         let root = identifier(order[0].0);
         for axis in ["x", "y", "z"] {
-            out.names.push(names.unique(&format!("{root}_{axis}"), 0)?);
+            out.names
+                .push(names.unique(&format!("{root}_{axis}"), line)?);
             out.limits.push((f64::NEG_INFINITY, f64::INFINITY));
         }
     }
@@ -301,50 +319,69 @@ fn coordinates<'r>(
     Ok(out)
 }
 
-/// The robot as description items; `floating` puts the root link on a free
-/// joint: coordinates `<root>_x`, `_y`, `_z` for its origin in world axes
-/// (first, as Pinocchio's free flyer), an orientation `<root>_turn` for its
-/// rotation, which every other link's rotation begins with.
-pub fn describe(
-    robot: &Robot,
-    fields: &[String],
-    floating: bool,
-) -> Result<Description, ReadError> {
-    let freed = free_root(robot)?;
-    let (robot, floating) = match &freed {
-        Some(r) => (r, true),
-        None => (robot, floating),
+/// The robot as description items, its base as `base` says: on a free root
+/// (coordinates `<root>_x`, `_y`, `_z` for its origin in world axes, first as
+/// in Pinocchio's free flyer, and an orientation `<root>_turn` for its
+/// rotation, which every other link's rotation begins with) or fixed.
+pub fn describe(robot: &Robot, fields: &[String], base: Base) -> Result<Description, ReadError> {
+    let (robot, floating) = based(robot, base)?;
+    let order = tree_order(&robot)?;
+    // The struct's fields are parameters, in the description's one name space.
+    let mut names = Names(fields.iter().cloned().collect());
+    let root_line = robot
+        .links
+        .iter()
+        .find(|l| l.name == order[0].0)
+        .map_or(0, |l| l.line);
+    let turn = match floating {
+        true => Some(names.unique(&format!("{}_turn", identifier(order[0].0)), root_line)?),
+        false => None,
     };
-    let order = tree_order(robot)?;
+    let c = coordinates(&order, &mut names, turn.as_deref().map(|t| (t, root_line)))?;
+    if c.names.is_empty() {
+        return Err(error(
+            0,
+            format!(
+                "the robot `{}` has no moving joint (every joint is fixed): nothing in it can \
+                 move; give a joint a moving type in the file, or put the base on a free root \
+                 with `urdf(\"..\", base = floating)`",
+                robot.name
+            ),
+        ));
+    }
+    let (points, bodies) = points_and_bodies(&robot, &order, &mut names)?;
+    let mut items = vec![format!("coordinates({})", c.names.join(", "))];
+    items.extend(turn.iter().map(|t| format!("orientation({t})")));
     let inertials: BTreeMap<&str, Option<&Inertial>> = robot
         .links
         .iter()
         .map(|l| (l.name.as_str(), l.inertial.as_ref()))
         .collect();
-    let mut names = Names::default();
-    let turn = match floating {
-        true => Some(names.unique(&format!("{}_turn", identifier(order[0].0)), 0)?),
-        false => None,
-    };
-    let c = coordinates(&order, &mut names, turn.as_deref())?;
-    let mut items = vec![format!("coordinates({})", c.names.join(", "))];
-    items.extend(turn.iter().map(|t| format!("orientation({t})")));
     let mut factors: BTreeMap<&str, Vec<String>> = BTreeMap::new();
     for (link, joint) in &order {
-        let body = names.unique(link, 0)?;
+        let body = &bodies[link];
         let field = format!("{body}_mass");
         let masses = mass_items(
             inertials[link],
             fields.contains(&field).then_some(field.as_str()),
         );
         let Some(j) = joint else {
-            let (item, mine) = root_body(&body, &masses, turn.as_deref(), &c.names);
+            let (item, mine) = root_body(body, &masses, turn.as_deref(), &c.names);
             items.push(item);
             factors.insert(link, mine);
             continue;
         };
-        let parent = &factors[j.parent.as_str()];
-        let (item, mine) = hang(j, (&body, &masses), parent, &c.angle_of, &mut names)?;
+        let parent = (
+            bodies[j.parent.as_str()].as_str(),
+            &factors[j.parent.as_str()][..],
+        );
+        let (item, mine) = hang(
+            j,
+            (body, &masses),
+            parent,
+            &c.angle_of,
+            &points[j.name.as_str()],
+        )?;
         items.extend(item);
         factors.insert(link, mine);
     }
@@ -353,6 +390,31 @@ pub fn describe(
         coordinates: c.names,
         limits: c.limits,
     })
+}
+
+/// Each joint's point `<joint>_origin`, then each link's body (named after
+/// the joints, so that a link whose name a joint took is `<link>_link`).
+#[allow(clippy::type_complexity)]
+fn points_and_bodies<'r>(
+    robot: &'r Robot,
+    order: &[(&'r str, Option<&'r Joint>)],
+    names: &mut Names,
+) -> Result<(BTreeMap<&'r str, String>, BTreeMap<&'r str, String>), ReadError> {
+    let mut points = BTreeMap::new();
+    for j in order.iter().filter_map(|(_, j)| *j) {
+        let point = names.unique(&format!("{}_origin", j.name), j.line)?;
+        points.insert(j.name.as_str(), point);
+    }
+    let mut bodies = BTreeMap::new();
+    for &(link, _) in order {
+        let line = robot
+            .links
+            .iter()
+            .find(|l| l.name == link)
+            .map_or(0, |l| l.line);
+        bodies.insert(link, names.body(link, line)?);
+    }
+    Ok((points, bodies))
 }
 
 /// The root link's body and its rotation factors: fixed in space, or on a
@@ -372,18 +434,20 @@ fn root_body(
     (item, vec![turn.to_string()])
 }
 
-/// A file's floating joint puts its child on a free root: the robot without
-/// that joint and its parent (the world link, fixed in space), to be read
-/// with `base = floating`. `None` without a floating joint; an error for one
-/// that does not hang on the tree's root, or for two.
-fn free_root(robot: &Robot) -> Result<Option<Robot>, ReadError> {
+/// The robot with its base as `base` says, and whether that base is on a
+/// free root. A file's floating joint (which must hang a bare root link, the
+/// world, and be the only one) puts its child on a free root: the robot
+/// without that joint and the world link, as `base = floating` reads a file
+/// without one. With `base = fixed` that joint becomes a fixed joint, so the
+/// base stays where the joint's origin puts it.
+fn based(robot: &Robot, base: Base) -> Result<(Cow<'_, Robot>, bool), ReadError> {
     let floating: Vec<&Joint> = robot
         .joints
         .iter()
         .filter(|j| matches!(j.kind, JointType::Floating))
         .collect();
     let Some(&free) = floating.first() else {
-        return Ok(None);
+        return Ok((Cow::Borrowed(robot), base == Base::Floating));
     };
     if let Some(second) = floating.get(1) {
         return Err(error(
@@ -407,9 +471,15 @@ fn free_root(robot: &Robot) -> Result<Option<Robot>, ReadError> {
         ));
     }
     let mut out = robot.clone();
+    if base == Base::Fixed {
+        for j in out.joints.iter_mut().filter(|j| j.name == free.name) {
+            j.kind = JointType::Fixed;
+        }
+        return Ok((Cow::Owned(out), false));
+    }
     out.joints.retain(|j| j.name != free.name);
     out.links.retain(|l| l.name != parent);
-    Ok(Some(out))
+    Ok((Cow::Owned(out), true))
 }
 
 /// The point where joint `j` sits on its parent and the child body hung
@@ -417,12 +487,10 @@ fn free_root(robot: &Robot) -> Result<Option<Robot>, ReadError> {
 fn hang(
     j: &Joint,
     (body, masses): (&str, &str),
-    parent: &[String],
+    (parent_body, parent): (&str, &[String]),
     angle_of: &BTreeMap<&str, String>,
-    names: &mut Names,
+    point: &str,
 ) -> Result<(Vec<String>, Vec<String>), ReadError> {
-    let parent_body = identifier(&j.parent);
-    let point = names.unique(&format!("{}_origin", j.name), j.line)?;
     let angle = match &j.mimic {
         None => angle_of.get(j.name.as_str()).cloned(),
         Some(m) => {
@@ -430,7 +498,8 @@ fn hang(
                 return Err(error(
                     j.line,
                     format!(
-                        "joint `{}` mimics `{}`, which is not a moving joint",
+                        "joint `{}` mimics `{}`, which is not a moving joint; a joint that \
+                         follows a fixed one is fixed too: make it `type=\"fixed\"`",
                         j.name, m.joint
                     ),
                 ));

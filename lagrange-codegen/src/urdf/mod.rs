@@ -9,22 +9,13 @@
 //! line).
 
 mod describe;
+mod inertia;
 mod model;
+mod options;
+
+pub use options::{Base, InertiaRule, Options, SNAP_BOUND, parse_attribute};
 
 use proc_macro2::{Group, Span, TokenStream, TokenTree};
-use syn::parse::ParseStream;
-use syn::{Ident, Token};
-
-/// The options of `urdf("path", ..)`.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Options {
-    /// `snap = tol`: angles within `tol` of a multiple of π/2 become it.
-    pub snap: Option<f64>,
-    /// `base = floating`: the root link on a free joint (three coordinates
-    /// for its position, an orientation for its rotation), Pinocchio's
-    /// `JointModelFreeFlyer` root.
-    pub floating: bool,
-}
 
 /// A URDF file read into description items.
 pub struct Urdf {
@@ -40,6 +31,9 @@ pub struct Urdf {
     pub limits: Vec<(f64, f64)>,
     /// The angles snapped to multiples of π/2: where, as written, as snapped.
     pub snapped: Vec<(String, f64, f64)>,
+    /// The inertias `inertia = repair` changed: the link, the entries (ixx,
+    /// iyy, izz, ixy, ixz, iyz) as written and as used.
+    pub repaired: Vec<inertia::Repaired>,
 }
 
 /// Rewrites every `rpy` angle within `tol` of a multiple of π/2 (but not
@@ -137,10 +131,11 @@ pub fn from_text(
         line => format!("{path}:{line}: {}", e.message),
     };
     let mut robot = model::parse(text).map_err(at)?;
+    let repaired = inertia::apply(&mut robot, options.inertia).map_err(at)?;
     let snapped = options
         .snap
         .map_or_else(Vec::new, |tol| snap(&mut robot, tol));
-    let d = describe::describe(&robot, fields, options.floating).map_err(at)?;
+    let d = describe::describe(&robot, fields, options.base).map_err(at)?;
     Ok(Urdf {
         path: path.to_string(),
         items: d.items,
@@ -148,67 +143,6 @@ pub fn from_text(
         coordinates: d.coordinates,
         limits: d.limits,
         snapped,
+        repaired,
     })
-}
-
-/// The attribute's `urdf = "path"`, or `urdf("path", snap = 1e-6, base =
-/// floating)`: the path and the options.
-pub fn parse_attribute(input: ParseStream) -> syn::Result<(syn::LitStr, Options)> {
-    let mut options = Options::default();
-    if input.peek(Token![=]) {
-        input.parse::<Token![=]>()?;
-        return Ok((input.parse()?, options));
-    }
-    let content;
-    syn::parenthesized!(content in input);
-    let path: syn::LitStr = content.parse()?;
-    while !content.is_empty() {
-        content.parse::<Token![,]>()?;
-        if content.is_empty() {
-            break;
-        }
-        let key: Ident = content.parse()?;
-        content.parse::<Token![=]>()?;
-        match key.to_string().as_str() {
-            "snap" => options.snap = Some(snap_tolerance(&content)?),
-            "base" => options.floating = floating_base(&content)?,
-            _ => {
-                return Err(syn::Error::new(
-                    key.span(),
-                    format!(
-                        "unknown `urdf` option `{key}`; the options are `snap = tolerance` (angles that close to a multiple of π/2 become it) and `base = floating` (the root link on a free joint)"
-                    ),
-                ));
-            }
-        }
-    }
-    Ok((path, options))
-}
-
-/// `snap = tol`: a positive, finite tolerance.
-fn snap_tolerance(content: ParseStream) -> syn::Result<f64> {
-    let tol: syn::LitFloat = content.parse()?;
-    let value: f64 = tol.base10_parse()?;
-    if !(value.is_finite() && value > 0.0) {
-        return Err(syn::Error::new(
-            tol.span(),
-            "`snap` needs a positive, finite tolerance, such as 1e-6",
-        ));
-    }
-    Ok(value)
-}
-
-/// `base = floating` or `base = fixed`.
-fn floating_base(content: ParseStream) -> syn::Result<bool> {
-    let kind: Ident = content.parse()?;
-    match kind.to_string().as_str() {
-        "floating" => Ok(true),
-        "fixed" => Ok(false),
-        _ => Err(syn::Error::new(
-            kind.span(),
-            format!(
-                "unknown base `{kind}`: write `base = floating` (a free root joint) or `base = fixed` (the default)"
-            ),
-        )),
-    }
 }

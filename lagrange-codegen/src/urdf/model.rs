@@ -39,6 +39,8 @@ pub struct Inertial {
     pub origin: Origin,
     /// ixx, iyy, izz, ixy, ixz, iyz.
     pub inertia: [Number; 6],
+    /// The `<inertia>` element's line.
+    pub line: u32,
 }
 
 #[derive(Clone, Debug)]
@@ -188,7 +190,7 @@ fn origin(doc: &Document, node: Node) -> Result<Origin, ReadError> {
         }),
         Some(o) => Ok(Origin {
             xyz: triple(doc, o, o.attribute("xyz"))?,
-            rpy: triple(doc, o, o.attribute("rpy"))?,
+            rpy: angles(doc, o, triple(doc, o, o.attribute("rpy"))?)?,
         }),
     }
 }
@@ -208,8 +210,8 @@ fn link(doc: &Document, node: Node) -> Result<Link, ReadError> {
 
 fn inertial(doc: &Document, node: Node) -> Result<Inertial, ReadError> {
     let line = line_of(doc, node);
-    let mass = child(node, "mass").ok_or_else(|| error(line, "<inertial> has no <mass>"))?;
-    let mass = number(doc, mass, required(doc, mass, "value")?)?;
+    let element = child(node, "mass").ok_or_else(|| error(line, "<inertial> has no <mass>"))?;
+    let mass = number(doc, element, required(doc, element, "value")?)?;
     let tensor =
         child(node, "inertia").ok_or_else(|| error(line, "<inertial> has no <inertia>"))?;
     let entry = |key: &str| number(doc, tensor, required(doc, tensor, key)?);
@@ -221,46 +223,40 @@ fn inertial(doc: &Document, node: Node) -> Result<Inertial, ReadError> {
         entry("ixz")?,
         entry("iyz")?,
     ];
-    physical(
-        line_of(doc, tensor),
-        mass.value,
-        &inertia.each_ref().map(|x| x.value),
-    )?;
+    if mass.value < 0.0 {
+        return Err(error(
+            line_of(doc, element),
+            format!("<mass value='{}'> is negative: a mass never is", mass.text),
+        ));
+    }
     Ok(Inertial {
         mass,
         origin: origin(doc, node)?,
         inertia,
+        line: line_of(doc, tensor),
     })
 }
 
-/// A mass and inertia some rigid body has, refused at their line otherwise
-/// (the same rules the description's literal inertias meet).
-fn physical(line: u32, mass: f64, inertia: &[f64; 6]) -> Result<(), ReadError> {
-    if mass < 0.0 {
+/// The largest angle a file may write, in magnitude: a full turn (and the
+/// round-off of a file's 6.28318530718). Beyond it an angle is almost surely
+/// in degrees.
+const TURN: f64 = std::f64::consts::TAU * (1.0 + 1e-9);
+
+/// An `rpy` in radians, refused at its line when an angle exceeds a turn.
+fn angles(doc: &Document, node: Node, rpy: [Number; 3]) -> Result<[Number; 3], ReadError> {
+    if let Some(a) = rpy.iter().find(|a| a.value.abs() > TURN) {
         return Err(error(
-            line,
-            format!("<mass value='{mass}'> is negative: a mass never is"),
-        ));
-    }
-    let names = ["ixx", "iyy", "izz"];
-    if let Some(k) = (0..3).find(|&k| inertia[k] < 0.0) {
-        return Err(error(
-            line,
+            line_of(doc, node),
             format!(
-                "<inertia {}='{}'> is negative: a moment of inertia is ∫ r² dm about an axis",
-                names[k], inertia[k]
+                "rpy angle `{}` exceeds a full turn (2π = 6.2832): URDF angles are in radians, \
+                 so this looks like degrees; write it in radians (90° = 1.5708, {}° = {:.4})",
+                a.text,
+                a.text,
+                a.value.to_radians()
             ),
         ));
     }
-    if !crate::mat3::second_moments_psd(inertia, 1e-12) {
-        return Err(error(
-            line,
-            "<inertia> is that of no rigid body: a moment exceeds the sum of the other two, \
-             or the products are too large (tr(I)/2·E − I must be positive semidefinite; \
-             URDF's ixy, ixz, iyz are the tensor's entries, −∫xy dm)",
-        ));
-    }
-    Ok(())
+    Ok(rpy)
 }
 
 fn joint_type(doc: &Document, node: Node, name: &str) -> Result<JointType, ReadError> {
@@ -308,8 +304,11 @@ fn joint(doc: &Document, node: Node) -> Result<Joint, ReadError> {
         )),
         _ => None,
     };
+    // A fixed (or floating) joint's <mimic> has no coordinate to follow: a
+    // gripper locked by hand keeps its followers' tags, and they stay fixed.
     let mimic = match child(node, "mimic") {
         None => None,
+        Some(_) if matches!(kind, JointType::Fixed | JointType::Floating) => None,
         Some(m) => Some(Mimic {
             joint: required(doc, m, "joint")?.to_string(),
             multiplier: number(doc, m, m.attribute("multiplier").unwrap_or("1"))?,

@@ -41,7 +41,8 @@ impl Clone for Error {
             NonFiniteInput { t, input, value, q, v },
             MissingDerivatives { method, needed_for },
             NonPhysicalParameter { body, entry, value, reason },
-            NonUnitQuaternion { orientation, norm, tolerance };
+            NonUnitQuaternion { orientation, norm, tolerance },
+            JointLimit { joint, coordinate, value, lower, upper, t };
             InvalidSettings, Linear
         )
     }

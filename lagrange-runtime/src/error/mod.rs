@@ -272,6 +272,32 @@ pub enum Error {
         count: usize,
     },
 
+    /// A coordinate left its position limits (a URDF joint's `<limit>`, see
+    /// [`Lagrangian::position_limits`](crate::Lagrangian::position_limits)):
+    /// the run stops at the first point of the step's dense output on or past
+    /// the limit, located by root finding. Limits are not yet contacts; turn the
+    /// watch off with
+    /// [`Simulation::joint_limits`](crate::Simulation::joint_limits)`(LimitPolicy::Ignore)`.
+    #[error(
+        "joint `{joint}` (coordinate {coordinate}) left its limits [{lower}, {upper}]: \
+         {value} at t = {t}; the limits are watched, not enforced (turn the watch off \
+         with `.joint_limits(LimitPolicy::Ignore)`)"
+    )]
+    JointLimit {
+        /// The joint's name (its coordinate's).
+        joint: &'static str,
+        /// The coordinate's index in q.
+        coordinate: usize,
+        /// Its value at `t`: on the limit or just past it.
+        value: f64,
+        /// The lower limit.
+        lower: f64,
+        /// The upper limit.
+        upper: f64,
+        /// Time of the crossing.
+        t: f64,
+    },
+
     /// An orientation's quaternion in an initial state is not a rotation:
     /// not finite, or its norm further from 1 than
     /// [`UNIT_TOLERANCE`] (within

@@ -78,11 +78,13 @@ impl<'a, T: Real, const N: usize, const Q: usize> Events<'a, T, N, Q> {
         q0: SVector<T, Q>,
         v0: SVector<T, N>,
     ) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>> {
-        self.continue_run(integrator, rhs, Continuation::start(t0), t0, t1, q0, v0)
+        let from = Continuation::start(t0);
+        self.continue_run(integrator, (rhs, &[]), from, t0, t1, q0, v0)
     }
 
     /// [`integrate`](Self::integrate) as the next piece of a run whose
-    /// recording stands at `from` (see [`Integrator::continue_run`]).
+    /// recording stands at `from` (see [`Integrator::continue_run`]), watching
+    /// `limits` too (up to each step's first stopping event).
     ///
     /// # Errors
     /// As [`integrate`](Self::integrate).
@@ -90,7 +92,7 @@ impl<'a, T: Real, const N: usize, const Q: usize> Events<'a, T, N, Q> {
     pub(crate) fn continue_run<I: Integrator, F: SecondOrder<T, N, Q>>(
         &self,
         integrator: &I,
-        rhs: &F,
+        (rhs, limits): (&F, &'static [crate::system::JointLimit]),
         from: Continuation<T>,
         t0: T,
         t1: T,
@@ -98,7 +100,7 @@ impl<'a, T: Real, const N: usize, const Q: usize> Events<'a, T, N, Q> {
         v0: SVector<T, N>,
     ) -> Result<EventRun<T, N, Q>, Failure<EventRun<T, N, Q>>> {
         let started = crate::numeric::clock::Stopwatch::start();
-        let watch = Watch::new(rhs, &self.events);
+        let watch = Watch::new(rhs, &self.events, limits);
         // Everything computed before a failure (the pieces so far, the failed
         // piece's accepted steps, the occurrences) goes back with it.
         let mut so_far = SoFar {

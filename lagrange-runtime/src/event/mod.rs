@@ -98,11 +98,14 @@
 //! [`SecondOrder::project`]: crate::ode::SecondOrder::project
 
 mod driver;
+mod limits;
 mod view;
 mod watch;
 
 pub(crate) use driver::within_budget;
 pub use driver::{DEFAULT_MAX_EVENTS, Events};
+pub use limits::LimitPolicy;
+pub(crate) use limits::{Limited, watched};
 pub(crate) use view::{BackFn, ViewFn};
 
 use crate::error::{Error, Progress, to_vec};

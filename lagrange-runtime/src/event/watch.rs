@@ -8,6 +8,7 @@ use crate::numeric::Real;
 use crate::numeric::func::abs;
 use crate::numeric::root::brent_bracket;
 use crate::ode::{DenseSegment, Mechanical, SecondOrder};
+use crate::system::JointLimit;
 use nalgebra::{SMatrix, SVector};
 use std::cell::RefCell;
 
@@ -38,17 +39,24 @@ struct WatchState<T: Real, const N: usize, const Q: usize> {
 pub(super) struct Watch<'w, 'e, F, T: Real, const N: usize, const Q: usize> {
     pub rhs: &'w F,
     events: &'w [Event<'e, T, N, Q>],
+    /// The position limits watched up to the step's first stopping event.
+    limits: &'static [JointLimit],
     state: RefCell<WatchState<T, N, Q>>,
 }
 
 impl<'w, 'e, F: SecondOrder<T, N, Q>, T: Real, const N: usize, const Q: usize>
     Watch<'w, 'e, F, T, N, Q>
 {
-    /// `rhs` watched for `events`, nothing found yet.
-    pub fn new(rhs: &'w F, events: &'w [Event<'e, T, N, Q>]) -> Self {
+    /// `rhs` watched for `events` and `limits`, nothing found yet.
+    pub fn new(
+        rhs: &'w F,
+        events: &'w [Event<'e, T, N, Q>],
+        limits: &'static [JointLimit],
+    ) -> Self {
         Self {
             rhs,
             events,
+            limits,
             state: RefCell::new(WatchState {
                 last: Vec::with_capacity(events.len()),
                 fired: None,
@@ -228,7 +236,10 @@ impl<F: SecondOrder<T, N, Q>, T: Real, const N: usize, const Q: usize> SecondOrd
         // another): if it alone stops, the run ends there, before t1.
         let inner_stop = self.rhs.after_step(segment, q, v)?;
         if self.events.is_empty() {
-            return Ok(inner_stop);
+            return match super::limits::first_crossing(self.limits, segment, q, segment.end()) {
+                None => Ok(inner_stop),
+                Some(error) => Err(error),
+            };
         }
         let mut guard = self.state.borrow_mut();
         let st = &mut *guard;
@@ -271,6 +282,13 @@ impl<F: SecondOrder<T, N, Q>, T: Real, const N: usize, const Q: usize> SecondOrd
                     v_after: vc,
                 });
             }
+        }
+        // A limit crossed before the step's first stop ends the run; the
+        // step is not recorded, nor are its occurrences.
+        let until = stop.map_or(tb, |s| s.t);
+        if let Some(error) = super::limits::first_crossing(self.limits, segment, q, until) {
+            st.found.truncate(first_new);
+            return Err(error);
         }
         if let Some(s) = &stop {
             // Crossings after the stop belong to a motion that will not happen.

@@ -2,9 +2,9 @@
 
 use super::{Simulation, form};
 use crate::error::{Failure, unit_quaternions};
-use crate::event::{Event, EventRun, Events};
+use crate::event::{Event, EventRun, Events, watched};
 use crate::numeric::Real;
-use crate::ode::{Integrator, check_problem, failed_at_start};
+use crate::ode::{Continuation, Integrator, check_problem, failed_at_start};
 use crate::system::{Constrained, Lagrangian, Reduced};
 use nalgebra::SVector;
 use std::ops::Range;
@@ -82,8 +82,17 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize, const Q: usize>
         let failed = |e| failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted);
         sim.check_singular_tolerance::<T, N, Q>().map_err(failed)?;
         let q0 = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0).map_err(failed)?;
-        self.events
-            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
+        let limits = watched(sim.system.position_limits(), sim.limits);
+        let from = Continuation::start(span.start);
+        self.events.continue_run(
+            &sim.integrator,
+            (&dynamics, limits),
+            from,
+            span.start,
+            span.end,
+            q0,
+            v0,
+        )
     }
 
     /// [`Simulation::run_constrained`] watching the events; after an action
@@ -113,8 +122,17 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize, const Q: usize>
             .map_err(start)?;
         let terms = sim.system.parameter_terms();
         let dynamics = dynamics.with_parameter_terms(&terms);
-        self.events
-            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
+        let limits = watched(sim.system.position_limits(), sim.limits);
+        let from = Continuation::start(span.start);
+        self.events.continue_run(
+            &sim.integrator,
+            (&dynamics, limits),
+            from,
+            span.start,
+            span.end,
+            q0,
+            v0,
+        )
     }
 
     /// [`Simulation::run_reduced`] watching the events; after an action the
@@ -139,7 +157,16 @@ impl<'a, 'e, S, I: Integrator, T: Real, const N: usize, const Q: usize>
         let (q0, v0) = sim.prepare_reduced(&dynamics, &span, q0, v0).map_err(|e| {
             failed_at_start(&dynamics, span.start, q0, v0, e).map(EventRun::unstarted)
         })?;
-        self.events
-            .integrate(&sim.integrator, &dynamics, span.start, span.end, q0, v0)
+        let limits = watched(sim.system.position_limits(), sim.limits);
+        let from = Continuation::start(span.start);
+        self.events.continue_run(
+            &sim.integrator,
+            (&dynamics, limits),
+            from,
+            span.start,
+            span.end,
+            q0,
+            v0,
+        )
     }
 }

@@ -10,7 +10,7 @@ pub use controlled::{ControlRun, ControlledSimulation};
 pub use events::EventSimulation;
 
 use crate::error::{Error, Failure, Progress, check_tolerance, unit_quaternions};
-use crate::event::{Event, Events};
+use crate::event::{Event, Events, LimitPolicy, Limited};
 use crate::mechanics::constraint::{
     ConstrainedDynamics, DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE, Drift,
 };
@@ -68,6 +68,7 @@ pub struct Simulation<'a, S, I = Dopri5> {
     pub(crate) integrator: I,
     singular_tolerance: f64,
     constraints: ConstraintSettings,
+    pub(crate) limits: LimitPolicy,
 }
 
 /// The settings that only matter to [`Simulation::run_constrained`].
@@ -99,6 +100,7 @@ impl<S, I: Clone> Clone for Simulation<'_, S, I> {
             integrator: self.integrator.clone(),
             singular_tolerance: self.singular_tolerance,
             constraints: self.constraints,
+            limits: self.limits,
         }
     }
 }
@@ -112,6 +114,7 @@ impl<'a, S> Simulation<'a, S> {
             integrator: Dopri5::default(),
             singular_tolerance: DEFAULT_SINGULAR_TOLERANCE,
             constraints: ConstraintSettings::default(),
+            limits: LimitPolicy::Stop,
         }
     }
 }
@@ -124,6 +127,7 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
             integrator,
             singular_tolerance: self.singular_tolerance,
             constraints: self.constraints,
+            limits: self.limits,
         }
     }
 
@@ -131,6 +135,21 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
     /// below which the run stops with [`Error::SingularMassMatrix`].
     pub fn singular_tolerance(mut self, tolerance: f64) -> Self {
         self.singular_tolerance = tolerance;
+        self
+    }
+
+    /// Whether the runs watch the system's position limits
+    /// ([`Lagrangian::position_limits`]: a URDF robot's `<limit>`s): by
+    /// default ([`LimitPolicy::Stop`]) a coordinate leaving its limits stops
+    /// the run with [`Error::JointLimit`], located on the dense output;
+    /// [`LimitPolicy::Ignore`] runs through them. Every run of this builder,
+    /// with events or inputs too, follows it (the atlas runs do not watch
+    /// limits yet); with events a limit is watched up to the step's first
+    /// stopping event, so an event that acts at the limit (a bounce) comes
+    /// first. The trajectory the [`Failure`] keeps ends at the last accepted
+    /// step before the crossing; the error's `t` is the crossing.
+    pub fn joint_limits(mut self, policy: LimitPolicy) -> Self {
+        self.limits = policy;
         self
     }
 
@@ -251,8 +270,9 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
             .map_err(start)?;
         let terms = self.system.parameter_terms();
         let dynamics = dynamics.with_parameter_terms(&terms);
+        let limited = Limited::new(&dynamics, self.system.position_limits(), self.limits);
         self.integrator
-            .integrate(&dynamics, span.start, span.end, q0, v0)
+            .integrate(&limited, span.start, span.end, q0, v0)
     }
 
     /// The constrained dynamics and the checked (or projected) initial state.
@@ -372,8 +392,9 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
         let (q0, v0) = self
             .prepare_reduced(&dynamics, &span, q0, v0)
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
+        let limited = Limited::new(&dynamics, self.system.position_limits(), self.limits);
         self.integrator
-            .integrate(&dynamics, span.start, span.end, q0, v0)
+            .integrate(&limited, span.start, span.end, q0, v0)
     }
 
     /// The checks of a reduced run and its initial state: q0 with its
@@ -452,8 +473,9 @@ impl<'a, S, I: Integrator> Simulation<'a, S, I> {
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
         let q0 = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0)
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
+        let limited = Limited::new(&dynamics, self.system.position_limits(), self.limits);
         self.integrator
-            .integrate(&dynamics, span.start, span.end, q0, v0)
+            .integrate(&limited, span.start, span.end, q0, v0)
     }
 }
 

@@ -5,9 +5,9 @@
 use super::{ControlRun, ControlledSimulation};
 use crate::control::{InputForces, InputSource, check_input};
 use crate::error::{Error, Failure};
-use crate::event::Events;
 use crate::event::Occurrence;
 use crate::event::within_budget;
+use crate::event::{Events, LimitPolicy, Limited, watched};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
 use crate::ode::{Continuation, Integrator, Sample, SecondOrder, Trajectory};
@@ -196,8 +196,11 @@ where
             .whole
             .as_ref()
             .map_or(record.from, Trajectory::continuation);
+        let sim = self.simulation;
+        let limits = watched(sim.system.position_limits(), sim.limits);
         if self.events.events().is_empty() {
-            return match integrator.continue_run(rhs, from, t, end, q, v) {
+            let rhs = Limited::new(rhs, limits, LimitPolicy::Stop);
+            return match integrator.continue_run(&rhs, from, t, end, q, v) {
                 Ok(piece) => Ok((piece, None)),
                 Err(f) => {
                     self.record(*f.partial, source, record, false)?;
@@ -207,7 +210,7 @@ where
         }
         match self
             .events
-            .continue_run(integrator, rhs, from, t, end, q, v)
+            .continue_run(integrator, (rhs, limits), from, t, end, q, v)
         {
             Ok(run) => {
                 record.occurrences.extend(run.occurrences);

@@ -1,0 +1,156 @@
+//! The options of `urdf("path", ..)`, each refused at its token when it
+//! cannot hold: an unknown key, a key given twice, an unknown value, a snap
+//! tolerance that could move a real angle.
+
+use syn::parse::ParseStream;
+use syn::{Ident, Token};
+
+/// The largest `snap` tolerance, in radians: a file's π/2 written to ten or
+/// more digits is within 1e-10 of it, while a real angle is never that close
+/// to a multiple of π/2 without being one.
+pub const SNAP_BOUND: f64 = 1e-6;
+
+/// Where the robot's base is (`base = ..`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Base {
+    /// As the file says: on a free root if its root link holds a floating
+    /// joint, fixed in space otherwise.
+    #[default]
+    AsFile,
+    /// `base = fixed`: fixed in space; a file's floating joint at the root
+    /// becomes a fixed joint, so the base stays where its origin puts it.
+    Fixed,
+    /// `base = floating`: the root link on a free joint (three coordinates for
+    /// its position, an orientation for its rotation), Pinocchio's
+    /// `JointModelFreeFlyer` root; the same as the file's own floating joint.
+    Floating,
+}
+
+/// What becomes of an `<inertia>` that is no rigid body's (`inertia = ..`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum InertiaRule {
+    /// Refused, at the file and line, naming the link.
+    #[default]
+    Check,
+    /// `inertia = repair`: the nearest physical inertia (principal moments
+    /// projected onto the triangle inequalities, principal axes kept), each
+    /// change listed in `URDF_REPAIRED`.
+    Repair,
+    /// `inertia = as_written`: used as the file writes it, unchecked.
+    AsWritten,
+}
+
+/// The options of `urdf("path", ..)`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Options {
+    /// `snap = tol`: angles within `tol` (at most [`SNAP_BOUND`]) of a
+    /// multiple of π/2 become it.
+    pub snap: Option<f64>,
+    /// `base = fixed | floating`.
+    pub base: Base,
+    /// `inertia = repair | as_written`.
+    pub inertia: InertiaRule,
+}
+
+const OPTIONS: &str = "the options are `snap = tolerance` (angles within it, at most 1e-6 rad, \
+     of a multiple of π/2 become it), `base = fixed | floating` and `inertia = repair | \
+     as_written` (an inertia that is no rigid body's made the nearest physical one, or used \
+     unchecked)";
+
+/// The attribute's `urdf = "path"`, or `urdf("path", snap = 1e-6, base =
+/// floating, inertia = repair)`: the path and the options.
+pub fn parse_attribute(input: ParseStream) -> syn::Result<(syn::LitStr, Options)> {
+    let mut options = Options::default();
+    if input.peek(Token![=]) {
+        input.parse::<Token![=]>()?;
+        return Ok((input.parse()?, options));
+    }
+    let content;
+    syn::parenthesized!(content in input);
+    let path: syn::LitStr = content.parse()?;
+    let mut seen: Vec<String> = Vec::new();
+    while !content.is_empty() {
+        content.parse::<Token![,]>()?;
+        if content.is_empty() {
+            break;
+        }
+        let key: Ident = content.parse()?;
+        content.parse::<Token![=]>()?;
+        let name = key.to_string();
+        if seen.contains(&name) {
+            return Err(syn::Error::new(
+                key.span(),
+                format!("`urdf` option `{key}` given twice; write it once"),
+            ));
+        }
+        match name.as_str() {
+            "snap" => options.snap = Some(snap_tolerance(&content)?),
+            "base" => options.base = base(&content)?,
+            "inertia" => options.inertia = inertia(&content)?,
+            _ => {
+                return Err(syn::Error::new(
+                    key.span(),
+                    format!("unknown `urdf` option `{key}`; {OPTIONS}"),
+                ));
+            }
+        }
+        seen.push(name);
+    }
+    Ok((path, options))
+}
+
+/// `snap = tol`: positive, finite and at most [`SNAP_BOUND`].
+fn snap_tolerance(content: ParseStream) -> syn::Result<f64> {
+    let tol: syn::LitFloat = content.parse()?;
+    let value: f64 = tol.base10_parse()?;
+    if !(value.is_finite() && value > 0.0) {
+        return Err(syn::Error::new(
+            tol.span(),
+            "`snap` needs a positive, finite tolerance, such as 1e-6",
+        ));
+    }
+    if value > SNAP_BOUND {
+        return Err(syn::Error::new(
+            tol.span(),
+            format!(
+                "`snap = {tol}` could move a real angle onto a multiple of π/2: the tolerance is \
+                 at most 1e-6 rad (a file's π/2 written to ten digits is within 1e-10 of it); \
+                 write `snap = 1e-6`"
+            ),
+        ));
+    }
+    Ok(value)
+}
+
+/// `base = floating` or `base = fixed`.
+fn base(content: ParseStream) -> syn::Result<Base> {
+    let kind: Ident = content.parse()?;
+    match kind.to_string().as_str() {
+        "floating" => Ok(Base::Floating),
+        "fixed" => Ok(Base::Fixed),
+        _ => Err(syn::Error::new(
+            kind.span(),
+            format!(
+                "unknown base `{kind}`: write `base = floating` (a free root joint) or `base = \
+                 fixed` (fixed in space; a file's floating joint at the root becomes fixed)"
+            ),
+        )),
+    }
+}
+
+/// `inertia = repair` or `inertia = as_written`.
+fn inertia(content: ParseStream) -> syn::Result<InertiaRule> {
+    let kind: Ident = content.parse()?;
+    match kind.to_string().as_str() {
+        "repair" => Ok(InertiaRule::Repair),
+        "as_written" => Ok(InertiaRule::AsWritten),
+        _ => Err(syn::Error::new(
+            kind.span(),
+            format!(
+                "unknown inertia rule `{kind}`: write `inertia = repair` (the nearest physical \
+                 inertia, listed in `URDF_REPAIRED`) or `inertia = as_written` (unchecked); \
+                 without it an inertia that is no rigid body's is refused"
+            ),
+        )),
+    }
+}

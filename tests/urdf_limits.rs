@@ -1,0 +1,183 @@
+//! A URDF robot's joint limits are watched: a prismatic carriage falling
+//! under gravity through its lower limit stops with `Error::JointLimit`
+//! naming the joint, at the time s = g t²/2 gives, in a plain and an event run, with adaptive and fixed steps; with
+//! `LimitPolicy::Ignore` it falls through.
+
+use lagrange::prelude::*;
+
+#[derive(Lagrangian)]
+#[lagrange(urdf = "tests/data/slider.urdf", gravity = [0, 0, -9.81])]
+struct Slider {}
+
+/// The fall of 0.5 m from rest: s = g t²/2.
+fn closed_form() -> f64 {
+    (2.0 * 0.5 / 9.81f64).sqrt()
+}
+
+/// The run's error is the limit of `drop`, crossed at the closed form's time
+/// to 1e-9 s, on or just past −0.5; the trajectory kept ends before it.
+fn stopped_at_the_limit(error: &Error, kept_until: f64) {
+    let Error::JointLimit {
+        joint,
+        coordinate,
+        value,
+        lower,
+        upper,
+        t,
+    } = *error
+    else {
+        panic!("{error}")
+    };
+    assert_eq!((joint, coordinate, lower, upper), ("drop", 0, -0.5, 0.5));
+    println!(
+        "crossing at t = {t}, {:.1e} from s = g t²/2",
+        (t - closed_form()).abs()
+    );
+    assert!(
+        (t - closed_form()).abs() < 1e-9,
+        "t = {t}, {}",
+        closed_form()
+    );
+    assert!(value <= -0.5 && value > -0.5 - 1e-9, "{value}");
+    assert!(kept_until < t && kept_until > 0.0, "{kept_until}");
+    assert!(error.to_string().contains("joint `drop`"), "{error}");
+}
+
+#[test]
+fn a_run_stops_where_the_carriage_leaves_its_limits() {
+    assert_eq!(Slider::JOINT_LIMITS, [(-0.5, 0.5)]);
+    let failure = Simulation::new(&Slider {})
+        .integrator(Dopri5::tol(1e-10))
+        .run([0.0], [0.0], 0.0..1.0)
+        .unwrap_err();
+    let kept = *failure.partial.times().last().unwrap();
+    stopped_at_the_limit(&failure.error, kept);
+}
+
+#[test]
+fn event_runs_and_fixed_steps_stop_there_too() {
+    let failure = Simulation::new(&Slider {})
+        .integrator(Dopri5::tol(1e-10))
+        .event(Event::new(|_, q, _| q[0] - 10.0))
+        .run([0.0], [0.0], 0.0..1.0)
+        .unwrap_err();
+    let kept = *failure.partial.trajectory.times().last().unwrap();
+    stopped_at_the_limit(&failure.error, kept);
+    let fixed_step = Simulation::new(&Slider {})
+        .integrator(Rk4::step(0.01))
+        .run([0.0], [0.0], 0.0..1.0)
+        .unwrap_err();
+    let kept = *fixed_step.partial.times().last().unwrap();
+    stopped_at_the_limit(&fixed_step.error, kept);
+}
+
+#[test]
+fn the_opt_out_runs_through_the_limit() {
+    let traj = Simulation::new(&Slider {})
+        .integrator(Dopri5::tol(1e-10))
+        .joint_limits(LimitPolicy::Ignore)
+        .run([0.0], [0.0], 0.0..1.0)
+        .unwrap();
+    let (q, _) = traj.final_state();
+    assert!((q[0] + 9.81 / 2.0).abs() < 1e-9, "{}", q[0]);
+}
+
+/// A start already past a limit is refused at the start time.
+#[test]
+fn a_start_outside_the_limits_stops_at_once() {
+    let failure = Simulation::new(&Slider {})
+        .run([0.6], [0.0], 0.0..1.0)
+        .unwrap_err();
+    let Error::JointLimit { t, value, .. } = failure.error else {
+        panic!("{}", failure.error)
+    };
+    assert_eq!((t, value), (0.0, 0.6));
+}
+
+#[derive(Lagrangian)]
+#[lagrange(urdf("robots/solo12.urdf", base = floating), gravity = [0, 0, -9.81])]
+struct Solo {}
+
+/// On a free root q holds the base's position, the joints, then the base's
+/// quaternion: each watched limit names the entry of q that is its joint's,
+/// with the file's bounds, and the free base has none.
+#[test]
+fn limits_index_q_on_a_free_root() {
+    let limits = Solo {}.position_limits();
+    assert_eq!(limits.len(), 12);
+    let names = <Solo as Lagrangian<f64, 18, 19>>::COORDINATES;
+    for l in limits {
+        assert_eq!(names[l.coordinate], l.joint);
+        // JOINT_LIMITS follows the coordinates, which q begins with.
+        assert_eq!((l.lower, l.upper), Solo::JOINT_LIMITS[l.coordinate]);
+    }
+    assert!(limits.iter().all(|l| !l.joint.starts_with("base_")));
+}
+
+/// An event that bounces the carriage at its lower limit comes first: the
+/// limit is watched only up to a step's first stopping event, so the run
+/// bounces (impacts at 0.319, 0.638, 0.798 and 0.878 s with restitution
+/// 1/2) instead of stopping.
+#[test]
+fn an_event_that_bounces_at_the_limit_comes_first() {
+    let run = Simulation::new(&Slider {})
+        .integrator(Dopri5::tol(1e-10))
+        .event(
+            Event::new(|_, q, _| q[0] + 0.5)
+                .falling()
+                .action(|_, _, v| *v *= -0.5),
+        )
+        .run([0.0], [0.0], 0.0..0.9)
+        .unwrap();
+    let impacts = run.times(0);
+    assert_eq!(impacts.len(), 4, "{impacts:?}");
+    assert!((impacts[0] - closed_form()).abs() < 1e-9);
+    assert!((impacts[1] - 2.0 * closed_form()).abs() < 1e-9);
+}
+
+#[derive(Lagrangian)]
+#[lagrange(
+    urdf = "tests/data/slider.urdf",
+    gravity = [0, 0, -9.81],
+    inputs(push),
+    generalized_force(drop = push)
+)]
+struct Pushed {}
+
+/// A controlled run stops there too: pushed down with 2 · 9.81 N on 2 kg,
+/// the carriage falls at 2g and leaves its limit at √(2 · 0.5 / 2g); with
+/// an event watched as well, and sampled (pieces between samples).
+#[test]
+fn controlled_runs_stop_there_too() {
+    let at = (0.5 / 9.81f64).sqrt();
+    let check = |error: &Error| {
+        let Error::JointLimit {
+            joint, t, value, ..
+        } = *error
+        else {
+            panic!("{error}")
+        };
+        assert_eq!(joint, "drop");
+        assert!((t - at).abs() < 1e-9, "{t} vs {at}");
+        assert!(value <= -0.5 && value > -0.5 - 1e-9, "{value}");
+    };
+    let open = Simulation::new(&Pushed {})
+        .integrator(Dopri5::tol(1e-10))
+        .open_loop(|_| [-2.0 * 9.81])
+        .run([0.0], [0.0], 0.0..1.0)
+        .unwrap_err();
+    check(&open.error);
+    let watched = Simulation::new(&Pushed {})
+        .integrator(Dopri5::tol(1e-10))
+        .open_loop(|_| [-2.0 * 9.81])
+        .event(Event::new(|_, q, _| q[0] - 10.0))
+        .run([0.0], [0.0], 0.0..1.0)
+        .unwrap_err();
+    check(&watched.error);
+    let sampled = Simulation::new(&Pushed {})
+        .integrator(Dopri5::tol(1e-10))
+        .sampled(0.01, |_, _, _| [-2.0 * 9.81])
+        .run([0.0], [0.0], 0.0..1.0)
+        .unwrap_err();
+    check(&sampled.error);
+}
