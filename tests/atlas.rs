@@ -2,8 +2,7 @@
 //! Euler angles runs through its chart's singular set by switching to the
 //! second chart, against the same system with a quaternion.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::free::{
     Brick, EulerTop, QuaternionTop, SphericalChain, sleeping_top_growth, sleeping_top_threshold,

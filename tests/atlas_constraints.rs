@@ -4,8 +4,7 @@
 //! twin carries the same rows on its quaternion. Against the quaternion top
 //! on a fixed pivot (`catalog::free::QuaternionTop`).
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::free::QuaternionTop;
 use lagrange::numeric::euler::EulerChart;

@@ -4,8 +4,7 @@
 //! user's coordinates in every chart; located against the same brick with
 //! a free orientation (`catalog::free::Brick`).
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::free::Brick;
 use lagrange::numeric::euler::EulerChart;

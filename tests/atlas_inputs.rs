@@ -5,8 +5,7 @@
 //! controller, against the same satellite with a free orientation
 //! (`catalog::free::Satellite`).
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::free::Satellite;
 use lagrange::numeric::euler::EulerChart;

@@ -9,11 +9,8 @@
 //! keeps the height and the two rolling rows (written on the ball's
 //! velocity and ω), so both charts run the multiplier form with all three.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
-mod common;
-#[path = "common/rolling.rs"]
-mod rolling;
+use crate::catalog;
+use crate::rolling;
 
 use catalog::constrained::RollingSphere;
 use catalog::rolling::QuaternionSphere;

@@ -1,7 +1,6 @@
 //! The Whipple bicycle (Meijaard, Papadopoulos, Ruina & Schwab 2007).
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::bicycle::{Bicycle, published};
 use lagrange::linear::{Verdict, sweep};

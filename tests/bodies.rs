@@ -3,7 +3,7 @@
 //! parallel-axis theorem applied by the macro) and a body's axes in
 //! expressions (`B.axis_z.x`, entries of its rotation matrix).
 
-mod common;
+use crate::common;
 
 use common::numeric::Lcg;
 use lagrange::prelude::*;

@@ -2,8 +2,7 @@
 //! constraint |x| ≤ R): impacts located as events, Newton's impact law,
 //! sliding contact with the multiplier's sign deciding release.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::cavity::{Cavity, Phase};
 use lagrange::prelude::*;

@@ -2,8 +2,7 @@
 //! and second formulations: multipliers vs minimal coordinates, bodies vs
 //! particles, reduced vs multiplier form, Gibbs–Appell vs Cartesian.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::constrained::*;
 use catalog::{Dumbbell, SphericalPendulum};

@@ -6,7 +6,7 @@
 //! rest the law is the model's to first order: the nonlinear closed loop
 //! follows the linear one to second order in the error, then settles upright.
 
-mod common;
+use crate::common;
 
 use common::numeric::apart_from_linear;
 use lagrange::control::StateFeedback;

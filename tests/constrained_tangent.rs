@@ -5,8 +5,7 @@
 //! stability and its input matrix against the closed form, and A against
 //! central differences of the nonlinear dynamics on the constraints.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::constrained::RollingDisk;
 use catalog::rolling::{QuaternionDisk, QuaternionSphere};

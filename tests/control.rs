@@ -1,8 +1,7 @@
 //! Catalog systems driven by controllers: computed-torque tracking of the two-link
 //! arm, LQR on the cart-pole (continuous and sampled).
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::control::{CartPole, TwoLinkArm};
 use lagrange::linear::Lqr;

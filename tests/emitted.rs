@@ -5,8 +5,7 @@
 
 #![allow(clippy::needless_range_loop)] // index loops mirror the formulas
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use lagrange::ode::SecondOrder;
 use lagrange::prelude::*;

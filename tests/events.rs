@@ -2,8 +2,7 @@
 //! (The runtime's own tests, lagrange-runtime/tests/events.rs, cover the
 //! bouncing ball with every integrator, terminal events and the errors.)
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::{Pendulum, elliptic_k};
 use lagrange::Dop853;

@@ -4,8 +4,7 @@
 //! (10⁶ steps, 10⁴ periods) are too slow for a debug test and live in
 //! `examples/extremes.rs`, with their figures in `docs/extremes.md`.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::constrained::{CartesianSphericalPendulum, RollingSphereReduced};
 use catalog::extremes::{HeavyTop, SpringPendulum};

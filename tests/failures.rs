@@ -4,8 +4,7 @@
 //! error says when that is the step), is monotone and finite, and equals an
 //! uninterrupted run with the same settings up to there.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::control::CartPole;
 use catalog::{Pendulum, SphericalPendulum};

@@ -12,8 +12,7 @@
 //! Newton–Euler) agrees with `computeABADerivatives`, mapped to this
 //! convention by the chain rule, to 1e-10.
 
-#[path = "../examples/catalog/floating.rs"]
-mod floating;
+use crate::floating;
 
 use floating::{ArmedSatellite, Quadruped};
 use lagrange::prelude::*;

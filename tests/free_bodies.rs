@@ -3,11 +3,9 @@
 //! against Euler's equations, the same top in Euler angles where that chart
 //! is regular, and the elliptic period of the intermediate-axis flip.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
-mod common;
-#[path = "../examples/catalog/floating.rs"]
-mod floating;
+use crate::catalog;
+use crate::common;
+use crate::floating;
 
 use catalog::free::{
     Brick, QuaternionTop, SphericalChain, flip_half_period, sleeping_top_growth,

@@ -6,7 +6,7 @@
 
 #![allow(clippy::needless_range_loop)] // index loops mirror the formulas
 
-mod common;
+use crate::common;
 
 use common::numeric::{Lcg, close, fd};
 use lagrange::Driven;

@@ -4,8 +4,7 @@
 //! is the rotation vector of R_d Rᵀ, and a singular pose gets a finite,
 //! bounded command.
 
-#[path = "../examples/catalog/operational.rs"]
-mod operational;
+use crate::operational;
 
 use lagrange::nalgebra::{Matrix6, Rotation3, Unit, Vector3};
 use lagrange::prelude::*;

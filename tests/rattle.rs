@@ -3,8 +3,7 @@
 //! holonomic rows). The long-run study is examples/rattle.rs; the runtime's
 //! tests cover order, long runs against RK4 and the errors.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::constrained::CartesianSphericalPendulum;
 use catalog::free::QuaternionTop;

@@ -2,8 +2,7 @@
 //! the full recording of the same run, and memory that stays bounded however
 //! many steps are taken.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::{DoublePendulum, Pendulum};
 use lagrange::prelude::*;

@@ -3,8 +3,7 @@
 //! (the runtime solves the rows with complete pivoting at each state); where
 //! they are not, the error names the dependent rows and the state.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::constrained::{ChaplyginSleigh, RollingDisk};
 use lagrange::prelude::*;

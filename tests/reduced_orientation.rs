@@ -6,11 +6,9 @@
 //! where euler_zxz stops, with its energy and its angular momentum about the
 //! contact point.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
-mod common;
-#[path = "common/rolling.rs"]
-mod rolling;
+use crate::catalog;
+use crate::common;
+use crate::rolling;
 
 use catalog::constrained::RollingDisk;
 use common::numeric::Lcg;

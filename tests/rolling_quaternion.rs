@@ -4,11 +4,9 @@
 //! where euler_zxz stops (its z axis vertical), with its conserved energy
 //! and angular momentum about the contact point.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
-mod common;
-#[path = "common/rolling.rs"]
-mod rolling;
+use crate::catalog;
+use crate::common;
+use crate::rolling;
 
 use catalog::constrained::{RollingDisk, RollingSphere};
 use catalog::rolling::{QuaternionDisk, QuaternionSphere};

@@ -18,8 +18,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::bicycle::Bicycle;
 use catalog::constrained::{RollingDisk, ThreadedTops};

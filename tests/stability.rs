@@ -2,8 +2,7 @@
 //! from its eigenvalues, and its linearisation about steady turning against
 //! central differences of the nonlinear dynamics.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::constrained::RollingDisk;
 use lagrange::linear::{Linearizer, OperatingPoint, Verdict, sweep};

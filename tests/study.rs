@@ -1,8 +1,7 @@
 //! The work-precision study's building blocks: the closed forms it measures
 //! against, the new catalog systems, and the study API on a derived system.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::study::*;
 use catalog::{Pendulum, SphericalPendulum, elliptic_k};

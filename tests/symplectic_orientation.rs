@@ -5,9 +5,8 @@
 //! unit quaternions without a projection, the angular momenta of the
 //! symmetries to round-off, and a bounded energy error.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
-mod common;
+use crate::catalog;
+use crate::common;
 
 use catalog::free::flip_half_period;
 use catalog::study::TumblingBody;

@@ -4,9 +4,8 @@
 //! despins and reorients it, and its tangent linearisation's B against the
 //! closed form M⁻¹ and finite differences.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
-mod common;
+use crate::catalog;
+use crate::common;
 
 use catalog::free::Satellite;
 use common::numeric::apart_from_linear;

@@ -2,8 +2,7 @@
 //! the derive macro's equations, integrated by the runtime, reproduce what the
 //! texts derive by hand.
 
-#[path = "../examples/catalog/mod.rs"]
-mod catalog;
+use crate::catalog;
 
 use catalog::*;
 use lagrange::prelude::*;
