@@ -11,9 +11,9 @@ mod floating;
 #[path = "../examples/catalog/operational.rs"]
 mod operational;
 // The gallery's choice of motion panels, pure, with its tests inside.
+mod common;
 #[path = "../examples/gallery/layout.rs"]
 mod layout;
-mod common;
 #[path = "common/rolling.rs"]
 mod rolling;
 
