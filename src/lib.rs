@@ -457,9 +457,8 @@
 //! the atlas: the twin derives the same inputs (their generalized forces
 //! in its coordinates, `DrivenAtlas`), and every control of
 //! [`Simulation::run`] runs through the atlas with
-//! [`ControlledSimulation::run_atlas`] (`feedback`, `sampled`, `open_loop`,
-//! an [`InputTable`]); events run with [`EventSimulation::run_atlas`] and
-//! with the controlled one. Controllers, event functions, terminal tests and
+//! [`Simulation::run_atlas`] (`feedback`, `sampled`, `open_loop`,
+//! an [`InputTable`]), and so do events, with or without inputs. Controllers, event functions, terminal tests and
 //! actions all read the user's coordinates: in the second chart, each
 //! rotation's user's angles nearest those it had when it left the user's
 //! chart (so they run on continuously, pitch past π/2 rather than back
@@ -571,11 +570,11 @@ pub mod prelude {
     pub use lagrange_runtime::linear::{Linear, Linearizer, OperatingPoint, Verdict};
     pub use lagrange_runtime::study::{Method, Sweep};
     pub use lagrange_runtime::{
-        Atlas, AtlasRun, Constrained, ConstrainedDynamics, ControlRun, ControlledSimulation,
-        Direction, Dop853, Dopri5, Drift, Driven, Error, Event, EventRun, Failure, Gauss,
-        InputTable, Integrator, Interpolation, Lagrangian, LimitPolicy, Occurrence, Radau5, Rattle,
-        Real, Record, Reduced, ReducedDynamics, ReducedForm, Rk4, Scene, Simulation, StateFeedback,
-        StormerVerlet, Study, Trajectory, WorkPrecision,
+        Atlas, AtlasRun, Constrained, ConstrainedDynamics, ControlRun, Direction, Dop853, Dopri5,
+        Drift, Driven, Error, Event, EventRun, Failure, Gauss, InputTable, Integrator,
+        Interpolation, Lagrangian, LimitPolicy, Occurrence, Radau5, Rattle, Real, Record, Reduced,
+        ReducedDynamics, ReducedForm, Rk4, Scene, Simulation, StateFeedback, StormerVerlet, Study,
+        Trajectory, WorkPrecision,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }

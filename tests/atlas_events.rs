@@ -1,4 +1,4 @@
-//! Events with the atlas (`EventSimulation::run_atlas`): a brick tumbling
+//! Events with the atlas (`Simulation::event` then `run_atlas`): a brick tumbling
 //! under gravity, its turn in yaw–pitch–roll, with events on a corner's
 //! height, on the pitch angle and on the centre's height, read on the
 //! user's coordinates in every chart; located against the same brick with

@@ -1,5 +1,5 @@
 //! Inputs with the atlas (`inputs(..)` with `emit(atlas)`,
-//! `ControlledSimulation::run_atlas`): a satellite turned by body-axis
+//! `Simulation::run_atlas` with a source): a satellite turned by body-axis
 //! torques, its attitude written in yaw–pitch–roll, driven through pitch
 //! ±π/2 by a signal of time, by state feedback and by a sampled
 //! controller, against the same satellite with a free orientation

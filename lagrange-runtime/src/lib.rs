@@ -222,7 +222,9 @@ pub use ode::{
 };
 pub use pose::{Kinematics, Posed};
 pub use scene::Scene;
-pub use simulation::{ControlRun, ControlledSimulation, EventSimulation, Simulation};
+pub use simulation::{
+    AtlasRunOf, AtlasRuns, Control, ControlRun, NoEvents, Run, Runs, Simulation, Unforced,
+};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::physical;
 pub use system::{Atlas, Configuration, DrivenAtlas, EulerRotation, FreeVisitor};

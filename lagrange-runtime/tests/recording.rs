@@ -11,7 +11,7 @@ use common::constrained::CartesianPendulum;
 use common::driven::Skate;
 use common::{Ball, Oscillator, Pendulum};
 use lagrange_runtime::{
-    ControlRun, Dopri5, Error, Event, Failure, Rattle, Record, Simulation, Trajectory,
+    ControlRun, Dopri5, Error, Event, Events, Failure, Rattle, Record, Simulation, Trajectory,
 };
 use nalgebra::{SVector, Vector1, Vector3};
 
@@ -160,9 +160,11 @@ fn a_bouncing_ball_recorded_on_a_grid_stays_on_its_flight() {
 fn sampled(r: Record, with_bounce: bool) -> ControlRun<f64, 1, 1> {
     let s = Oscillator { m: 1.0, k: 0.0 };
     let sim = Simulation::new(&s).integrator(Dopri5::tol(1e-10).record(r));
-    let mut run = sim.sampled(0.1, |_, q: &Vector1<f64>, v: &Vector1<f64>| {
-        [-4.0 * (q[0] - 0.2) - v[0]]
-    });
+    let mut run = sim
+        .sampled(0.1, |_, q: &Vector1<f64>, v: &Vector1<f64>| {
+            [-4.0 * (q[0] - 0.2) - v[0]]
+        })
+        .events(Events::new());
     if with_bounce {
         let floor = Event::new(|_, q: &Vector1<f64>, _| q[0] + 0.1).falling();
         run = run.event(floor.action(|_, _, v| *v *= -0.5));

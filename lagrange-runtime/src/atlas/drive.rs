@@ -1,7 +1,7 @@
 //! A run through the atlas: the switching events beside the user's, and
 //! the record of the run as an [`AtlasRun`].
 
-use super::{Charted, Charts, LEAVE_BELOW, RETURN_ABOVE, layout_agrees, user_view};
+use super::{Charted, Charts, LEAVE_BELOW, RETURN_ABOVE, user_view};
 use crate::error::{Error, Failure};
 use crate::event::{BackFn, Event, Events, Occurrence, ViewFn};
 use crate::mechanics::Dynamics;
@@ -162,9 +162,10 @@ pub(crate) fn unstarted<T: Real, const N: usize, const P: usize>(
 /// switching charts as the rotations go, watching the user's events `user`
 /// on the user's coordinates.
 ///
+/// The caller has checked the start (the twin's layout among it).
+///
 /// # Errors
-/// [`Error::InvalidSettings`] if the system's [`Atlas`] layout disagrees
-/// with itself; whatever the integrator, the events and the dynamics report.
+/// Whatever the integrator, the events and the dynamics report.
 pub(crate) fn integrate<S, T, I, const N: usize, const F: usize>(
     integrator: &I,
     dynamics: Dynamics<'_, S, T>,
@@ -184,10 +185,6 @@ where
         let trajectory = Trajectory::start(t0, q, v, Sample::of(&charted, t0, &q, &v));
         Failure::new(error, unstarted(trajectory, Vec::new(), S::EULER))
     };
-    if !layout_agrees(charted.system()) {
-        let error = "the system's Atlas twin does not have the documented layout";
-        return Err(unstarted(Error::InvalidSettings(error.into()), q0, v0));
-    }
     let (mut q, mut v) = (q0, v0);
     if let Err(e) = charts.enter_regular(t0, &mut q, &mut v) {
         return Err(unstarted(e, q0, v0));

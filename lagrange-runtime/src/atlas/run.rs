@@ -39,7 +39,7 @@ pub struct ChartSwitch<T> {
 /// draw it with [`scene`](Self::scene), write it with [`table`](Self::table).
 /// A switch's point holds the state after it.
 ///
-/// A run with inputs ([`ControlledSimulation::run_atlas`](crate::ControlledSimulation::run_atlas))
+/// A run with inputs ([`Simulation::run_atlas`](crate::Simulation::run_atlas) with an input source)
 /// has P of them and records them at every point ([`inputs`](Self::inputs));
 /// a run with events records the user's events' occurrences
 /// ([`occurrences`](Self::occurrences)) in the user's coordinates, the

@@ -19,12 +19,12 @@
 //! - [`InputForces`]: a source and a driven system as a [`Forcing`]; it checks
 //!   every input and reports NaN or ∞ as [`Error::NonFiniteInput`] naming the
 //!   input, never as a NaN force.
-//! - [`ControlledSimulation`](crate::ControlledSimulation), built from a [`Simulation`](crate::Simulation) by
+//! - A [`Simulation`](crate::Simulation) given a source by
 //!   [`feedback`](crate::Simulation::feedback), [`sampled`](crate::Simulation::sampled),
 //!   [`open_loop`](crate::Simulation::open_loop) or
-//!   [`control`](crate::Simulation::control), runs all three forms
-//!   (`run`, `run_constrained`, `run_reduced`) with the simulation's checks,
-//!   drift control and [`event`](crate::ControlledSimulation::event)s, and returns a
+//!   [`control`](crate::Simulation::control) runs every form
+//!   (`run`, `run_constrained`, `run_reduced`, `run_atlas`) with the simulation's checks,
+//!   drift control and [`event`](crate::Simulation::event)s, and returns a
 //!   [`ControlRun`](crate::ControlRun): the trajectory, the inputs at every stored point, a CSV
 //!   writer.
 //!

@@ -63,7 +63,7 @@ impl Linearizer {
     /// [`atlas`](Self::atlas) with the inputs held at `u`: A at (q, v, u)
     /// and B (2·N × P), ∂q̈/∂u in the same charts, both by central
     /// differences (in a second chart the inputs act through the twin's
-    /// forces, as in [`ControlledSimulation::run_atlas`](crate::ControlledSimulation::run_atlas)).
+    /// forces, as in [`Simulation::run_atlas`](crate::Simulation::run_atlas) with inputs).
     /// States as for [`atlas`](Self::atlas); the inputs are named as the
     /// system names them.
     ///
@@ -106,7 +106,7 @@ impl Linearizer {
         G: TwinForcing<S, T, N, F>,
         H: Fn(SVector<T, P>) -> G,
     {
-        check_tolerance("singular tolerance", self.singular_tolerance)?;
+        check_tolerance("singular tolerance", self.tolerances.singular)?;
         sys.check_parameters()?;
         if !layout_agrees(sys) {
             return Err(Error::InvalidSettings(
@@ -118,7 +118,7 @@ impl Linearizer {
         charts.enter_regular(t, &mut q, &mut v)?;
         let accel = |q: &SVector<T, N>, v: &SVector<T, N>, u: &SVector<T, P>| {
             let dynamics = Dynamics::new(sys)
-                .with_singular_tolerance(T::lit(self.singular_tolerance))
+                .with_singular_tolerance(T::lit(self.tolerances.singular))
                 .with_forcing(forcing(*u));
             Charted::<S, T, N, F, G>::new(dynamics, &charts).acceleration(t, q, v)
         };

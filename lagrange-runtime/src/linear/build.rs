@@ -69,7 +69,7 @@ impl Linearizer {
         if !(finite(&m) && finite(&dm(&rhs)) && finite(&dm(q)) && finite(&dm(v))) {
             return Err(non_finite());
         }
-        let chol = MassFactor::new(&m_s, self.singular_tolerance)
+        let chol = MassFactor::new(&m_s, self.tolerances.singular)
             .map_err(|ratio| singular(t, q, ratio))?;
         let a0 = chol.solve(&dm(&rhs));
         let acc: SVector<T, N> = SVector::from_fn(|i, _| T::lit(a0[i]));
@@ -276,18 +276,18 @@ impl Linearizer {
         }
         let u = sys.speeds(q, v, t);
         let form = ReducedDynamics::new(sys)
-            .with_singular_tolerance(T::lit(self.singular_tolerance))
+            .with_singular_tolerance(T::lit(self.tolerances.singular))
             .form(t, q, &u)?;
         let d = dv(&(form.velocities - v));
         let res = d.amax();
-        if !(res <= self.consistency_tolerance) {
+        if !(res <= self.tolerances.consistency) {
             return Err(LinearError::InconsistentOperatingPoint {
                 t: t.to_f64(),
                 q: to_vec(q),
                 coordinates: S::COORDINATES.to_vec(),
                 position_residual: 0.0,
                 velocity_residual: res,
-                tolerance: self.consistency_tolerance,
+                tolerance: self.tolerances.consistency,
                 worst: format!(
                     "velocity of `{}` differs from W u + w",
                     S::COORDINATES[d.iamax()]
@@ -301,7 +301,7 @@ impl Linearizer {
         if !(finite(&ms) && finite(&w_d) && f.iter().all(|x| x.is_finite())) {
             return Err(Error::non_finite(t, q, v));
         }
-        let chol = MassFactor::new(&form.mass, self.singular_tolerance)
+        let chol = MassFactor::new(&form.mass, self.tolerances.singular)
             .map_err(|ratio| singular(t, q, ratio))?;
         let du0 = chol.solve(&DMatrix::from_column_slice(K, 1, f.as_slice()));
         let du: SVector<T, K> = SVector::from_fn(|i, _| T::lit(du0[i]));
@@ -401,7 +401,7 @@ impl Linearizer {
         rows: &[&str],
     ) -> Result<(), Error> {
         let res = [phi.amax(), vel.amax()];
-        let tol = self.consistency_tolerance;
+        let tol = self.tolerances.consistency;
         let worst = if !(res[0] <= tol) {
             phi.iamax()
         } else if !(res[1] <= tol) {
@@ -434,8 +434,8 @@ impl Linearizer {
         SaddleFactor::new(
             &ev.ms,
             &ev.gs,
-            self.singular_tolerance,
-            self.redundant_tolerance,
+            self.tolerances.singular,
+            self.tolerances.redundant,
         )
         .map_err(|e| match e {
             SaddleError::Mass(ratio) => singular(t, q, ratio),

@@ -167,7 +167,7 @@ impl Linearizer {
             None => Vec::new(),
         };
         let (_, dependent, ratio) = complete_coordinates(&jac(&q), &named, &named, N - h);
-        if h > 0 && !(ratio >= self.redundant_tolerance) {
+        if h > 0 && !(ratio >= self.tolerances.redundant) {
             // No well-conditioned choice of dependent coordinates among those
             // not named: the named ones (or redundant constraints) leave none.
             return Err(LinearError::SingularPartition {
@@ -187,7 +187,7 @@ impl Linearizer {
             self.project_holonomic((q, &v, t), S::COORDINATES, &dependent, phi, jac)?
         };
         let v = ReducedDynamics::new(sys)
-            .with_singular_tolerance(T::lit(self.singular_tolerance))
+            .with_singular_tolerance(T::lit(self.tolerances.singular))
             .consistent_velocities(t, &q, &v)?;
         checked(t, q, v)
     }

@@ -156,8 +156,8 @@ impl Linearizer {
         let accel = |q: &SVector<T, Q>, v: &SVector<T, N>, u: &SVector<T, P>| {
             let held = Held { system: sys, u: *u };
             let solution = ConstrainedDynamics::<_, _, K>::new(sys)
-                .with_singular_tolerance(T::lit(self.singular_tolerance))
-                .with_redundant_tolerance(T::lit(self.redundant_tolerance))
+                .with_singular_tolerance(T::lit(self.tolerances.singular))
+                .with_redundant_tolerance(T::lit(self.tolerances.redundant))
                 .with_forcing(held)
                 .solve(t, q, v)?;
             Ok(solution.accelerations)

@@ -51,7 +51,7 @@ impl Linearizer {
         redundant: impl Fn(f64, Vec<usize>) -> Error,
     ) -> Result<Partition, Error> {
         let (n, k) = (g.ncols(), g.nrows());
-        let tol = self.redundant_tolerance;
+        let tol = self.tolerances.redundant;
         let phi_q = g.rows(0, h).into_owned();
         let named_c = match &self.coordinates {
             Some(names) => indices("coordinates", names, n - h, coordinates)?,

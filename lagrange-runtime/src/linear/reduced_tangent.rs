@@ -70,7 +70,7 @@ impl Linearizer {
         let (u, q, v, t) = self.point_on_group(sys, op)?;
         let accel = |q: &SVector<T, Q>, v: &SVector<T, N>, u: &SVector<T, P>| {
             let dynamics = ReducedDynamics::<_, _, K>::new(sys)
-                .with_singular_tolerance(T::lit(self.singular_tolerance))
+                .with_singular_tolerance(T::lit(self.tolerances.singular))
                 .with_forcing(Held { system: sys, u: *u });
             SecondOrder::acceleration(&dynamics, t, q, v)
         };

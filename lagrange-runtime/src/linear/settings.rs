@@ -2,8 +2,7 @@
 //! the [`Linearizer`]'s settings.
 
 use crate::error::{Error, check_finite_inputs, check_tolerance};
-use crate::mechanics::constraint::{DEFAULT_CONSISTENCY_TOLERANCE, DEFAULT_REDUNDANT_TOLERANCE};
-use crate::mechanics::dynamics::DEFAULT_SINGULAR_TOLERANCE;
+use crate::mechanics::Tolerances;
 use crate::numeric::Real;
 use crate::system::Driven;
 use nalgebra::SVector;
@@ -107,9 +106,7 @@ impl<T: Real, const N: usize, const U: usize, const Q: usize> OperatingPoint<T, 
 pub struct Linearizer {
     pub(super) coordinates: Option<Vec<String>>,
     pub(super) speeds: Option<Vec<String>>,
-    pub(super) consistency_tolerance: f64,
-    pub(super) singular_tolerance: f64,
-    pub(super) redundant_tolerance: f64,
+    pub(super) tolerances: Tolerances,
     pub(super) newton_tolerance: f64,
     pub(super) newton_iterations: usize,
 }
@@ -128,9 +125,7 @@ impl Linearizer {
         Self {
             coordinates: None,
             speeds: None,
-            consistency_tolerance: DEFAULT_CONSISTENCY_TOLERANCE,
-            singular_tolerance: DEFAULT_SINGULAR_TOLERANCE,
-            redundant_tolerance: DEFAULT_REDUNDANT_TOLERANCE,
+            tolerances: Tolerances::default(),
             newton_tolerance: DEFAULT_NEWTON_TOLERANCE,
             newton_iterations: DEFAULT_NEWTON_ITERATIONS,
         }
@@ -155,23 +150,32 @@ impl Linearizer {
         self
     }
 
+    /// Sets every tolerance at once: the same [`Tolerances`] a
+    /// [`Simulation`](crate::Simulation) takes
+    /// ([`Simulation::tolerances`](crate::Simulation::tolerances)), so that a
+    /// linearisation refuses a point exactly when a run from it would stop.
+    pub fn tolerances(mut self, tolerances: Tolerances) -> Self {
+        self.tolerances = tolerances;
+        self
+    }
+
     /// Absolute tolerance on max |Φ| and max |G q̇ + g| at the operating point
     /// (default 1e-10).
     pub fn consistency_tolerance(mut self, tol: f64) -> Self {
-        self.consistency_tolerance = tol;
+        self.tolerances.consistency = tol;
         self
     }
 
     /// Threshold on the mass matrix's Cholesky pivot ratio (default 1e-12).
     pub fn singular_tolerance(mut self, tol: f64) -> Self {
-        self.singular_tolerance = tol;
+        self.tolerances.singular = tol;
         self
     }
 
     /// Threshold on σ_min/σ_max (or the pivot ratio) below which constraint rows,
     /// Φ_{q_d} or G_d count as singular (default 1e-12).
     pub fn redundant_tolerance(mut self, tol: f64) -> Self {
-        self.redundant_tolerance = tol;
+        self.tolerances.redundant = tol;
         self
     }
 
@@ -212,10 +216,10 @@ impl Linearizer {
         for (name, tol) in [
             (
                 "Linearizer: consistency tolerance",
-                self.consistency_tolerance,
+                self.tolerances.consistency,
             ),
-            ("Linearizer: singular tolerance", self.singular_tolerance),
-            ("Linearizer: redundant tolerance", self.redundant_tolerance),
+            ("Linearizer: singular tolerance", self.tolerances.singular),
+            ("Linearizer: redundant tolerance", self.tolerances.redundant),
             ("Linearizer: Newton tolerance", self.newton_tolerance),
         ] {
             check_tolerance(name, tol)?;

@@ -96,7 +96,7 @@ impl Linearizer {
         let held = Held { system: sys, u: *u };
         let (q, a) = self.tangent_a(sys, q, v, t, (held, Some((dq, dv))))?;
         let m = sys.mass_matrix(&q, t);
-        let chol = Cholesky::new(m, T::lit(self.singular_tolerance))
+        let chol = Cholesky::new(m, T::lit(self.tolerances.singular))
             .map_err(|ratio| Error::singular_mass(t, &q, ratio, &m, (&S::VELOCITIES, S::ATLAS)))?;
         let mut b = DMatrix::zeros(2 * N, P);
         for k in 0..P {
@@ -135,11 +135,11 @@ impl Linearizer {
         T: Real,
         F: Forcing<T, N, Q>,
     {
-        check_tolerance("singular tolerance", self.singular_tolerance)?;
+        check_tolerance("singular tolerance", self.tolerances.singular)?;
         sys.check_parameters()?;
         let q = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, *q)?;
         let dynamics = Dynamics::new(sys)
-            .with_singular_tolerance(T::lit(self.singular_tolerance))
+            .with_singular_tolerance(T::lit(self.tolerances.singular))
             .with_forcing(forcing);
         let accel = |q: &SVector<T, Q>, v: &SVector<T, N>| dynamics.acceleration(t, q, v);
         let mut a = DMatrix::zeros(2 * N, 2 * N);

@@ -19,9 +19,11 @@ mod forcing;
 mod hamilton;
 mod rattle;
 pub(crate) mod reduced;
+mod tolerances;
 
 pub use derivatives::{AccelerationDerivatives, ForceJacobians, acceleration_derivatives};
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use forcing::{Forcing, NoForcing};
 pub use rattle::Rattle;
 pub use reduced::{ReducedDynamics, ReducedForm};
+pub use tolerances::Tolerances;

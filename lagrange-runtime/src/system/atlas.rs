@@ -53,7 +53,7 @@ pub trait FreeVisitor<T: Real, const N: usize, const F: usize> {
 /// forces of the same inputs, in its own coordinates (the kept coordinates,
 /// then each rotation's three components of ω in body axes). Emitted with
 /// every `emit(atlas)` (P = 0 without `inputs`); what
-/// [`ControlledSimulation::run_atlas`](crate::ControlledSimulation::run_atlas)
+/// [`Simulation::run_atlas`](crate::Simulation::run_atlas) with inputs
 /// reads while a rotation is in its second chart.
 pub trait DrivenAtlas<T: Real, const N: usize, const P: usize, const F: usize>:
     Atlas<T, N, F> + Driven<T, N, P>

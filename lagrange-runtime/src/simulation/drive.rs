@@ -2,57 +2,32 @@
 //! consecutive breaks of the source (sample instants, table breakpoints),
 //! each with its inputs recorded at the stored points.
 
-use super::{ControlRun, ControlledSimulation};
+use super::ControlRun;
 use crate::control::{InputForces, InputSource, check_input};
 use crate::error::{Error, Failure};
 use crate::event::Occurrence;
 use crate::event::within_budget;
-use crate::event::{Events, LimitPolicy, Limited, watched};
+use crate::event::{Events, LimitPolicy, Limited};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
 use crate::ode::{Continuation, Integrator, Sample, SecondOrder, Trajectory};
-use crate::simulation::Simulation;
-use crate::system::Driven;
+use crate::system::{Driven, JointLimit};
 use nalgebra::SVector;
 use std::ops::Range;
 
-/// What a controlled run is driven by: the simulation, the source and the
-/// events (borrowed from a [`ControlledSimulation`], or assembled by a run
-/// that reads them through other coordinates, as the atlas's).
-pub(crate) struct Driver<
-    'r,
-    'a,
-    'e,
-    S,
-    I,
-    C,
-    T: Real,
-    const N: usize,
-    const P: usize,
-    const Q: usize,
-> {
-    pub simulation: &'r Simulation<'a, S, I>,
+/// What a controlled run is driven by: the integrator, the system, the
+/// source, the events and the watched limits (assembled by a controlled
+/// run, or by one that reads them through other coordinates, as the atlas's).
+pub(crate) struct Driver<'r, 'e, S, I, C, T: Real, const N: usize, const P: usize, const Q: usize> {
+    pub integrator: &'r I,
+    pub system: &'r S,
     pub source: &'r C,
     pub events: &'r Events<'e, T, N, Q>,
+    /// The limits watched (none when they are ignored).
+    pub limits: &'static [JointLimit],
 }
 
-impl<'a, 'e, S, I, C, T, const N: usize, const P: usize, const Q: usize>
-    ControlledSimulation<'a, 'e, S, I, C, T, N, P, Q>
-where
-    T: Real,
-{
-    /// The driver of this simulation's runs.
-    pub(super) fn driver(&self) -> Driver<'_, 'a, 'e, S, I, C, T, N, P, Q> {
-        Driver {
-            simulation: &self.simulation,
-            source: &self.source,
-            events: &self.events,
-        }
-    }
-}
-
-impl<S, I, C, T, const N: usize, const P: usize, const Q: usize>
-    Driver<'_, '_, '_, S, I, C, T, N, P, Q>
+impl<S, I, C, T, const N: usize, const P: usize, const Q: usize> Driver<'_, '_, S, I, C, T, N, P, Q>
 where
     I: Integrator,
     T: Real,
@@ -86,10 +61,7 @@ where
         let mut trajectory = match record.whole {
             Some(w) => w,
             None => {
-                let rhs = make(InputForces::new(
-                    self.simulation.system,
-                    Piece::Live(self.source),
-                ));
+                let rhs = make(InputForces::new(self.system, Piece::Live(self.source)));
                 record.inputs = vec![self.source.input(span.start, &q0, &v0)];
                 Trajectory::start(span.start, q0, v0, Sample::of(&rhs, span.start, &q0, &v0))
             }
@@ -140,7 +112,7 @@ where
             } else {
                 Piece::Live(self.source)
             };
-            let rhs = make(InputForces::new(self.simulation.system, source));
+            let rhs = make(InputForces::new(self.system, source));
             let (piece, stop) = self.piece(&rhs, source, (t, end), (q, v), record)?;
             (q, v) = piece.final_state();
             let reached = *piece.times().last().expect("a trajectory holds its start");
@@ -152,7 +124,7 @@ where
             if end >= t1 {
                 break;
             }
-            let max_steps = self.simulation.integrator.max_steps();
+            let max_steps = self.integrator.max_steps();
             within_budget(record.whole.as_ref(), max_steps, reached)?;
             t = reached;
         }
@@ -191,13 +163,12 @@ where
         (q, v): (SVector<T, Q>, SVector<T, N>),
         record: &mut Record<T, N, P, Q>,
     ) -> Result<(Trajectory<T, N, Q>, Option<usize>), Error> {
-        let integrator = &self.simulation.integrator;
+        let integrator = self.integrator;
         let from = record
             .whole
             .as_ref()
             .map_or(record.from, Trajectory::continuation);
-        let sim = self.simulation;
-        let limits = watched(sim.system.position_limits(), sim.limits);
+        let limits = self.limits;
         if self.events.events().is_empty() {
             let rhs = Limited::new(rhs, limits, LimitPolicy::Stop);
             return match integrator.continue_run(&rhs, from, t, end, q, v) {
@@ -242,7 +213,7 @@ where
     /// the integrator's step budget for the whole run: every piece between
     /// two breaks takes at least one step.
     fn check_budget(&self, t0: T, t1: T) -> Result<(), Error> {
-        let max_steps = self.simulation.integrator.max_steps();
+        let max_steps = self.integrator.max_steps();
         match self.source.breaks_within(t0, t1) {
             Some(n) if n >= max_steps as f64 => Err(Error::InvalidSettings(format!(
                 "the input source restarts the run {n:.3e} times in [{}, {}] (each piece \
