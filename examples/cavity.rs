@@ -13,7 +13,12 @@ fn main() -> Result<(), Error> {
     let e: f64 = std::env::args()
         .nth(1)
         .map_or(Ok(0.7), |s| s.parse())
-        .map_err(|err| Error::InvalidSettings(format!("restitution: {err}")))?;
+        .map_err(|err| {
+            Error::Settings(SettingsError::Data {
+                owner: "restitution",
+                problem: format!("{err}"),
+            })
+        })?;
     let cavity = Cavity::new(1.0, 9.81, 1.0, e);
     let (q0, v0) = (Vector3::new(0.3, 0.0, 0.2), Vector3::new(0.5, 2.0, 1.0));
     let energy = |q: &Vector3<f64>, v: &Vector3<f64>| cavity.particle.integral(q, v, 0.0);

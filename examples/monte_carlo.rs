@@ -82,10 +82,14 @@ fn parse_shard() -> Result<(usize, usize), Error> {
             .and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?)))
             .filter(|&(k, n)| n > 0 && k < n)
             .ok_or_else(|| {
-                Error::InvalidSettings(format!("--shard {spec}: expected k/K with k < K"))
+                Error::Settings(SettingsError::Data {
+                    owner: "--shard",
+                    problem: format!("{spec}: expected k/K with k < K"),
+                })
             }),
-        _ => Err(Error::InvalidSettings(
-            "usage: monte_carlo [--shard k/K]".into(),
-        )),
+        _ => Err(Error::Settings(SettingsError::Data {
+            owner: "monte_carlo",
+            problem: "usage: monte_carlo [--shard k/K]".into(),
+        })),
     }
 }

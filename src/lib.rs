@@ -573,8 +573,8 @@ pub mod prelude {
         Atlas, AtlasRun, Constrained, ConstrainedDynamics, ControlRun, Direction, Dop853, Dopri5,
         Drift, Driven, Error, Event, EventRun, Failure, Gauss, InputTable, Integrator,
         Interpolation, Lagrangian, LimitPolicy, Occurrence, Radau5, Rattle, Real, Record, Reduced,
-        ReducedDynamics, ReducedForm, Rk4, Scene, Simulation, StateFeedback, StormerVerlet, Study,
-        Trajectory, WorkPrecision,
+        ReducedDynamics, ReducedForm, Rk4, Scene, SettingsError, Simulation, StateFeedback,
+        StormerVerlet, Study, Trajectory, WorkPrecision,
     };
     pub use nalgebra::{SMatrix, SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
 }

@@ -228,7 +228,7 @@ fn an_inconsistent_start_is_refused() {
         .run_atlas([0.0, 0.0, 0.4, 0.0, 0.0, 0.0], [0.0; 6], 0.0..1.0)
         .unwrap_err();
     assert!(
-        matches!(projected.error, Error::InvalidSettings(_)),
+        matches!(projected.error, Error::Settings(_)),
         "{}",
         projected.error
     );

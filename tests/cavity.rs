@@ -188,7 +188,7 @@ fn start_outside_is_a_typed_error() {
         )
         .unwrap_err();
     assert!(
-        matches!(&err, Error::InvalidSettings(s) if s.contains("outside")),
+        matches!(&err, Error::Settings(s) if s.to_string().contains("outside")),
         "{err}"
     );
 }

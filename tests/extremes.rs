@@ -456,8 +456,8 @@ fn named_nan<const N: usize>(what: &str, r: Run<N>, t0: f64, entry: &str) {
 /// A non-finite initial state or time span is refused before any step.
 fn refused<const N: usize>(what: &str, r: Result<Trajectory<f64, N>, Failure<Trajectory<f64, N>>>) {
     assert!(
-        matches!(&r, Err(Failure { error: Error::InvalidSettings(_), partial }) if partial.len() == 1),
-        "{what}: expected InvalidSettings, got {r:?}"
+        matches!(&r, Err(Failure { error: Error::Settings(_), partial }) if partial.len() == 1),
+        "{what}: expected a settings error, got {r:?}"
     );
 }
 

@@ -190,7 +190,7 @@ fn bad_recordings_are_typed_errors() {
             .integrator(Rk4::step(0.1).record(record))
             .run([1.0], [0.0], 0.0..1.0);
         assert!(
-            matches!(&run, Err(Failure { error: Error::InvalidSettings(m), .. }) if m.contains("record")),
+            matches!(&run, Err(Failure { error: Error::Settings(m), .. }) if m.to_string().contains("record")),
             "{record:?}: {:?}",
             run.err().map(|f| f.error)
         );

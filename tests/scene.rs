@@ -278,12 +278,12 @@ fn errors_are_typed() -> Result<(), Error> {
     let negative = Drawn { r: -0.2, ..drawn() };
     assert!(matches!(
         traj.scene(&negative).to_html(),
-        Err(Error::InvalidSettings(_))
+        Err(Error::Settings(_))
     ));
     let unknown = traj.scene(&sys).plot(&["psi"]).to_html();
-    assert!(matches!(unknown, Err(Error::InvalidSettings(m)) if m.contains("psi")));
+    assert!(matches!(unknown, Err(Error::Settings(m)) if m.to_string().contains("psi")));
     let style = traj.scene(&sys).style("red", 1.0).to_html();
-    assert!(matches!(style, Err(Error::InvalidSettings(_))));
+    assert!(matches!(style, Err(Error::Settings(_))));
     Ok(())
 }
 

@@ -117,7 +117,9 @@ fn gauss_runs_on_the_derived_spherical_pendulum() {
         .integrator(Gauss::step(0.01))
         .run([0.0, 0.0], [1.0, 1.0], 0.0..1.0)
         .unwrap_err();
-    assert!(matches!(e.error, Error::InvalidSettings(ref m) if m.contains("kinetic_gradient")));
+    assert!(
+        matches!(e.error, Error::Settings(ref m) if m.to_string().contains("kinetic_gradient"))
+    );
 }
 
 /// The study API end to end on a derived system with a closed form: the
@@ -183,7 +185,7 @@ fn a_study_of_a_tumbling_body_measures_angles_on_the_group() {
         .sweep(Sweep::steps("Gauss", &[0.1], Gauss::step))
         .run();
     assert!(
-        matches!(&refused, Err(lagrange::Error::InvalidSettings(m)) if m.contains(".orientations(")),
+        matches!(&refused, Err(lagrange::Error::Settings(m)) if m.to_string().contains(".orientations(")),
         "{refused:?}"
     );
     let study = WorkPrecision::new(run)

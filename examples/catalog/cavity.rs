@@ -25,7 +25,8 @@
 
 use super::constrained::CartesianSphericalPendulum;
 use lagrange::{
-    ConstrainedDynamics, Dopri5, Drift, Error, Event, Lagrangian, Simulation, Trajectory,
+    ConstrainedDynamics, Dopri5, Drift, Error, Event, Lagrangian, SettingsError, Simulation,
+    Trajectory,
 };
 use nalgebra::Vector3;
 
@@ -189,7 +190,7 @@ impl Cavity {
     /// in the module docs.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] if the start is outside the cavity or the
+    /// [`Error::Settings`] if the start is outside the cavity or the
     /// parameters are not physical; whatever the runs report.
     pub fn simulate(
         &self,
@@ -231,17 +232,21 @@ impl Cavity {
     fn check(&self, q0: &Vector3<f64>) -> Result<f64, Error> {
         let (r, e) = (self.r, self.e);
         if !(r > 0.0 && (0.0..=1.0).contains(&e) && self.slide_speed >= 0.0) {
-            return Err(Error::InvalidSettings(format!(
-                "cavity: need R > 0, 0 <= e <= 1, slide speed >= 0; got R = {r}, e = {e}, \
-                 slide speed {}",
-                self.slide_speed
-            )));
+            return Err(Error::Settings(SettingsError::Data {
+                owner: "cavity",
+                problem: format!(
+                    "need R > 0, 0 <= e <= 1, slide speed >= 0; got R = {r}, e = {e}, \
+                     slide speed {}",
+                    self.slide_speed
+                ),
+            }));
         }
         let on_wall = 16.0 * f64::EPSILON * r * r;
         if q0.norm_squared() - r * r > on_wall {
-            return Err(Error::InvalidSettings(format!(
-                "cavity: the start q0 = {q0:?} is outside the cavity of radius {r}"
-            )));
+            return Err(Error::Settings(SettingsError::Data {
+                owner: "cavity",
+                problem: format!("the start q0 = {q0:?} is outside the cavity of radius {r}"),
+            }));
         }
         Ok(on_wall)
     }

@@ -1,4 +1,7 @@
-//! The system catalog (DESIGN.md §4) as `#[derive(Lagrangian)]` descriptions.
+//! The system catalog as `#[derive(Lagrangian)]` descriptions: the systems
+//! the project keeps running, each checked against its closed form, a
+//! published benchmark or a second formulation in `tests/closed_forms.rs` and
+//! the other behaviour tests, and shown by the gallery.
 //!
 //! Shared by the gallery example, the other examples and the behaviour tests
 //! (`tests/` includes this file by path), so every system is written once.

@@ -4,6 +4,7 @@
 use crate::catalog::bicycle::{Bicycle, published};
 use crate::catalog::constrained::RollingDisk;
 use crate::catalog::control::{CartPole, TwoLinkArm};
+use crate::gallery_error;
 use crate::operational::{
     OperationalSpace, Ur5, critically_damped, start_off_the_circle, tool_circle,
 };
@@ -247,11 +248,10 @@ pub(crate) fn ur5_circle(system: &'static str) -> Result<Row, Error> {
     let ur5 = Ur5 {};
     let omega = 10.0;
     let osc = OperationalSpace::new(&ur5, "tool0", omega)
-        .ok_or_else(|| Error::InvalidSettings("the UR5 has no tool0 frame".into()))?;
+        .ok_or_else(|| gallery_error("the UR5 has no tool0 frame"))?;
     let circle = tool_circle();
-    let q0 = start_off_the_circle(&osc, &circle).ok_or_else(|| {
-        Error::InvalidSettings("no joint angles put the UR5's tool at its start".into())
-    })?;
+    let q0 = start_off_the_circle(&osc, &circle)
+        .ok_or_else(|| gallery_error("no joint angles put the UR5's tool at its start"))?;
     let span = 0.0..4.0;
     row(
         system,

@@ -7,6 +7,7 @@ use crate::catalog::free::{
 };
 use crate::catalog::study::TumblingBody;
 use crate::figure::Figure;
+use crate::gallery_error;
 use crate::row::Row;
 use lagrange::Posed;
 use lagrange::prelude::*;
@@ -162,9 +163,9 @@ pub(crate) fn atlas_top(system: &'static str) -> Result<Row, Error> {
         "{} chart switches (leave below |sin θ| = 0.6, back above 0.8); orientation within {apart:.0e} of the quaternion top",
         run.switches().len()
     );
-    let user = run.user_trajectory().ok_or_else(|| {
-        Error::InvalidSettings("the atlas run has no point in the user's chart".into())
-    })?;
+    let user = run
+        .user_trajectory()
+        .ok_or_else(|| gallery_error("the atlas run has no point in the user's chart"))?;
     let figure = Figure::of(&user, &EulerTop::<f64>::COORDINATES, &[false; 3], true)?;
     free_row(system, &top, &user, span, (note, wall_ms), figure)
 }

@@ -29,7 +29,7 @@ mod row;
 mod still;
 mod table;
 
-use lagrange::Error;
+use lagrange::{Error, SettingsError};
 
 fn main() -> Result<(), Error> {
     let out = output_dir()?;
@@ -60,8 +60,16 @@ fn output_dir() -> Result<std::path::PathBuf, Error> {
     match (args.next().as_deref(), args.next()) {
         (None, _) => Ok("target/gallery".into()),
         (Some("--out"), Some(dir)) => Ok(dir.into()),
-        _ => Err(Error::InvalidSettings(
-            "usage: cargo run --release --example gallery [-- --out DIR]".into(),
+        _ => Err(gallery_error(
+            "usage: cargo run --release --example gallery [-- --out DIR]",
         )),
     }
+}
+
+/// A gallery entry that cannot be drawn, or a bad command line.
+pub(crate) fn gallery_error(problem: &str) -> Error {
+    Error::Settings(SettingsError::Data {
+        owner: "gallery",
+        problem: problem.into(),
+    })
 }

@@ -177,31 +177,46 @@
 //! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
 //! number of degrees of freedom `N`, a type-level constant.
 
-// The layers, bottom to top; each imports only from the layers above it in
-// this list (ARCHITECTURE.md has the map, tests/layers.rs holds it true).
+// The modules by layer, bottom up: each imports only from its own layer and
+// the layers listed before it (ARCHITECTURE.md has the map; the workspace's
+// tests/architecture.rs holds it true).
+
+// 0 numerics
+pub mod numeric;
+
+// 1 errors
+pub mod error;
+
+// 2 integrators
+pub mod ode;
+
+// 3 the contract the derive implements
+pub mod pose;
+mod system;
+
+// 4 mechanical forms
+pub mod mechanics;
+
+// 5 services
 pub mod atlas;
 pub mod control;
 #[cfg(feature = "parallel")]
 pub mod ensemble;
-pub mod error;
 pub mod event;
 pub mod linear;
-pub mod mechanics;
-pub mod numeric;
-pub mod ode;
-pub mod pose;
 pub mod scene;
-mod simulation;
 pub mod study;
-mod system;
 mod table;
+
+// 6 top: the one builder
+mod simulation;
 
 pub use atlas::{AtlasRun, ChartSwitch, ChartedTrajectory};
 pub use control::{
     Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,
     StateFeedback,
 };
-pub use error::{Error, Failure, LinearError};
+pub use error::{Error, Failure, LinearError, SettingsError};
 pub use event::{Direction, Event, EventRun, Events, LimitPolicy, Occurrence};
 pub use linear::{
     Linear, Linearizer, OperatingPoint, complete_state, linearize, linearize_constrained,

@@ -12,6 +12,7 @@
 //! ```
 
 use crate::error::Error;
+use crate::error::SettingsError;
 use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::numeric::Real;
 use crate::ode::Trajectory;
@@ -54,15 +55,13 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
     /// v0, v1, … when q holds quaternions (Q ≠ N).
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] for a wrong number of names.
+    /// [`Error::Settings`] for a wrong number of names.
     pub fn new(traj: &'a Trajectory<T, N, Q>, names: &[&str]) -> Result<Self, Error> {
         let names: Vec<String> = match names.len() {
             0 => (0..Q).map(|i| format!("q{i}")).collect(),
             n if n == Q => names.iter().map(|s| s.to_string()).collect(),
             n => {
-                return Err(Error::InvalidSettings(format!(
-                    "CSV: {n} coordinate names for {Q} entries of q"
-                )));
+                return Err(csv(format!("{n} coordinate names for {Q} entries of q")));
             }
         };
         let rates = if Q == N {
@@ -138,9 +137,8 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
         // A constrained system has Q = N (`Constrained` extends `Lagrangian<T, N>`).
         let traj: &Trajectory<T, N, Q> = &self.traj;
         let Some(tr) = (traj as &dyn std::any::Any).downcast_ref::<Trajectory<T, N>>() else {
-            return Err(Error::InvalidSettings(
-                "CSV: multipliers of a run with orientations: no constrained form takes them"
-                    .into(),
+            return Err(csv(
+                "multipliers of a run with orientations: no constrained form takes them".into(),
             ));
         };
         let dynamics = ConstrainedDynamics::<S, T, K>::new(sys);
@@ -159,12 +157,12 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
     /// inputs of a controlled run).
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] if there is not one row per point, or a row
+    /// [`Error::Settings`] if there is not one row per point, or a row
     /// has not one value per name.
     pub fn columns(mut self, names: Vec<String>, values: Vec<Vec<T>>) -> Result<Self, Error> {
         if values.len() != self.traj.len() || values.iter().any(|r| r.len() != names.len()) {
-            return Err(Error::InvalidSettings(format!(
-                "CSV: {} rows of {} values for {} points",
+            return Err(csv(format!(
+                "{} rows of {} values for {} points",
                 values.len(),
                 names.len(),
                 self.traj.len()
@@ -266,7 +264,7 @@ impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
     /// [`Lagrangian::COORDINATES`]: crate::Lagrangian::COORDINATES
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] if `names` has neither Q nor 0 entries;
+    /// [`Error::Settings`] if `names` has neither Q nor 0 entries;
     /// [`Error::Io`] if writing fails.
     pub fn write_csv(&self, w: impl Write, names: &[&str]) -> Result<(), Error> {
         Table::new(self, names)?.write(w)
@@ -287,4 +285,13 @@ impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
         let file = std::fs::File::create(path)?;
         self.write_csv(std::io::BufWriter::new(file), names)
     }
+}
+
+/// A table whose columns do not fit its points.
+fn csv(problem: String) -> Error {
+    SettingsError::Data {
+        owner: "CSV",
+        problem,
+    }
+    .into()
 }

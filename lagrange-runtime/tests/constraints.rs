@@ -317,7 +317,7 @@ fn projection_that_cannot_converge_is_an_error() {
         })
         .run_constrained(q, v, 0.0..1.0)
         .unwrap_err();
-    assert!(matches!(e.error, Error::InvalidSettings(_)), "{e:?}");
+    assert!(matches!(e.error, Error::Settings(_)), "{e:?}");
 }
 
 #[test]
@@ -365,7 +365,7 @@ fn non_finite_states_are_typed_errors() {
     assert!(matches!(
         Simulation::new(&sys).run_constrained(bad, v, 0.0..1.0),
         Err(Failure {
-            error: Error::InvalidSettings(_),
+            error: Error::Settings(_),
             ..
         })
     ));

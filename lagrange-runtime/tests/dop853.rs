@@ -229,7 +229,7 @@ fn settings_and_failures_are_typed() {
             matches!(
                 go(m),
                 Err(Failure {
-                    error: Error::InvalidSettings(_),
+                    error: Error::Settings(_),
                     ..
                 })
             ),

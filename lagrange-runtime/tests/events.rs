@@ -371,7 +371,7 @@ fn misbehaving_events_are_typed_errors() {
     assert!(matches!(
         zero,
         Err(Failure {
-            error: Error::InvalidSettings(_),
+            error: Error::Settings(_),
             ..
         })
     ));

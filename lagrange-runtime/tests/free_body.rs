@@ -220,7 +220,7 @@ fn a_quaternion_off_the_unit_sphere_is_refused_naming_the_body() {
     assert!(
         matches!(
             e.error,
-            Error::NonUnitQuaternion { .. } | Error::InvalidSettings(_)
+            Error::NonUnitQuaternion { .. } | Error::Settings(_)
         ),
         "{e}"
     );

@@ -105,13 +105,13 @@ fn typed_errors() {
         let e = Rattle::step(h)
             .integrate(&sys, 0.0, 1.0, q0, v0)
             .unwrap_err();
-        assert!(matches!(e.error, Error::InvalidSettings(_)), "{e}");
+        assert!(matches!(e.error, Error::Settings(_)), "{e}");
     }
     let e = Rattle::step(0.01)
         .max_iterations(0)
         .integrate(&sys, 0.0, 1.0, q0, v0)
         .unwrap_err();
-    assert!(matches!(e.error, Error::InvalidSettings(_)), "{e}");
+    assert!(matches!(e.error, Error::Settings(_)), "{e}");
     // A step so large that the position constraint has no solution along
     // M⁻¹Φ_qᵀ(qₙ) (the pendulum would turn by more than a quarter turn).
     let (q1, v1) = sys.state(0.0, 20.0);

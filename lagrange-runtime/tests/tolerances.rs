@@ -18,11 +18,11 @@ use systems::{DoublePendulum, Rod};
 
 const BAD: [f64; 4] = [-1e-9, -1.0, f64::NAN, f64::INFINITY];
 
-/// The error is an `InvalidSettings` whose message names `setting`.
+/// The error is an `Error::Settings` whose message names `setting`.
 fn names_setting(result: Result<impl std::fmt::Debug, Error>, setting: &str, bad: f64) {
     match result {
-        Err(Error::InvalidSettings(m)) if m.contains(setting) => {}
-        other => panic!("{setting} = {bad}: expected InvalidSettings naming it, got {other:?}"),
+        Err(Error::Settings(m)) if m.to_string().contains(setting) => {}
+        other => panic!("{setting} = {bad}: expected a settings error naming it, got {other:?}"),
     }
 }
 

@@ -7,6 +7,7 @@
 //! `multipliers` to the visitors here.
 
 use crate::error::Error;
+use crate::error::SettingsError;
 use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::mechanics::{Dynamics, Forcing};
 use crate::numeric::Real;
@@ -30,9 +31,12 @@ pub(crate) struct Acceleration<'x, T: Real, const N: usize, const Q: usize, G> {
 }
 
 fn refused() -> Error {
-    Error::InvalidSettings(
-        "the atlas runs constraints with multipliers, not in the reduced form".into(),
-    )
+    SettingsError::Unsupported {
+        owner: "the atlas",
+        needs: "constraints in the multiplier form".into(),
+        remedy: "it does not run the reduced form; emit `formulation(multipliers)`".into(),
+    }
+    .into()
 }
 
 impl<T, L, G, const N: usize, const Q: usize> FormVisitor<T, N, L, Q>

@@ -53,6 +53,7 @@ pub use held::ChartedTrajectory;
 pub use run::{AtlasRun, ChartSwitch, USER_CHART_VALID};
 
 use crate::error::Error;
+use crate::error::SettingsError;
 use crate::mechanics::constraint::Drift;
 use crate::mechanics::{Dynamics, Forcing, NoForcing};
 use crate::numeric::Real;
@@ -361,7 +362,7 @@ impl<T: Real, const N: usize, const F: usize> FreeVisitor<T, N, F> for TwinInteg
 ///
 /// # Errors
 /// [`Error::InconsistentInitialConditions`], [`Error::NonFiniteState`];
-/// [`Error::InvalidSettings`] for drift control or least squares.
+/// [`Error::Settings`] for drift control or least squares.
 pub(crate) fn check_start<S, T, const N: usize, const F: usize>(
     system: &S,
     t0: T,
@@ -376,12 +377,13 @@ where
         return Ok(());
     }
     if !matches!(drift, Drift::None) || least_squares {
-        return Err(Error::InvalidSettings(
-            "a run through the atlas keeps the constraints by multipliers without drift \
-             control and refuses redundant ones: leave `drift` at Drift::None and \
-             `least_squares` off"
+        return Err(SettingsError::Unsupported {
+            owner: "run_atlas",
+            needs: "constraints kept by multipliers without drift control, redundant ones refused"
                 .into(),
-        ));
+            remedy: "leave `drift` at Drift::None and `least_squares` off".into(),
+        }
+        .into());
     }
     system.visit_form(form::Consistency {
         at: form::At {
@@ -414,6 +416,19 @@ pub(crate) fn angles<T: Real, const N: usize>(
 fn kept<S: Atlas<T, N, F>, T: Real, const N: usize, const F: usize>() -> impl Iterator<Item = usize>
 {
     (0..N).filter(|i| !S::EULER.iter().any(|r| r.coordinates.contains(i)))
+}
+
+/// The error of a system whose [`Atlas`] twin disagrees with itself
+/// ([`layout_agrees`] is false).
+pub(crate) fn layout_error() -> Error {
+    SettingsError::Unsupported {
+        owner: "the atlas",
+        needs: "the twin's layout documented on `Atlas`".into(),
+        remedy: "the system's Atlas twin does not have it; a hand-written Atlas must \
+                 follow that layout (the derive's does)"
+            .into(),
+    }
+    .into()
 }
 
 /// Whether the twin's layout is the one documented on [`Atlas`]: checked

@@ -109,6 +109,7 @@ mod table;
 pub use state_feedback::StateFeedback;
 pub use table::{InputTable, Interpolation};
 
+use crate::error::SettingsError;
 use crate::error::{Error, check_finite_inputs};
 use crate::mechanics::Forcing;
 use crate::numeric::Real;
@@ -188,7 +189,7 @@ pub trait InputSource<T: Real, const N: usize, const P: usize, const Q: usize = 
     /// Checks the source's settings before a run.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] naming the bad setting.
+    /// [`Error::Settings`] naming the bad setting.
     fn check(&self) -> Result<(), Error> {
         Ok(())
     }
@@ -344,9 +345,13 @@ where
     fn check(&self) -> Result<(), Error> {
         let h = self.period;
         if !(h.is_finite() && h > 0.0) {
-            return Err(Error::InvalidSettings(format!(
-                "sampling period must be positive and finite, got {h}"
-            )));
+            return Err(SettingsError::Value {
+                owner: "sampled",
+                setting: "sampling period",
+                value: h,
+                requirement: "positive and finite".into(),
+            }
+            .into());
         }
         Ok(())
     }

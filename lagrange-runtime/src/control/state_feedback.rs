@@ -3,6 +3,7 @@
 
 use super::InputSource;
 use crate::error::Error;
+use crate::error::SettingsError;
 use crate::linear::{Linear, OperatingPoint, tangent_states};
 use crate::numeric::Real;
 use crate::numeric::orientation::{self, Orientation};
@@ -74,7 +75,7 @@ impl<T: Real, const N: usize, const P: usize> StateFeedback<T, N, P> {
     /// feedback.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] if the gain is not P × (the model's
+    /// [`Error::Settings`] if the gain is not P × (the model's
     /// states), an entry is not finite, or a state is neither a coordinate
     /// nor a coordinate's rate (a reduced model's speed: feed it back with a
     /// controller of your own).
@@ -116,7 +117,7 @@ impl<T: Real, const N: usize, const P: usize, const Q: usize> StateFeedback<T, N
     /// ω0 ≠ 0) they differ at first order, and q0 stays where it was.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] if the gain is not P × (the model's
+    /// [`Error::Settings`] if the gain is not P × (the model's
     /// states), an entry is not finite, or a state is not one of `S`'s
     /// tangent states.
     pub fn from_tangent_gain<S: Lagrangian<T, N, Q>>(
@@ -147,20 +148,25 @@ impl<T: Real, const N: usize, const P: usize, const Q: usize> StateFeedback<T, N
     ) -> Result<(), Error> {
         let states = model.states();
         if gain.shape() != (P, states.len()) || !gain.iter().all(|x| x.is_finite()) {
-            return Err(Error::InvalidSettings(format!(
-                "a state-feedback gain must be a finite {P} x {} matrix (inputs x the model's \
-                 states), got {} x {}",
-                states.len(),
-                gain.nrows(),
-                gain.ncols()
-            )));
+            return Err(SettingsError::Shape {
+                owner: "StateFeedback",
+                name: "the gain",
+                expected: (P, states.len()),
+                got: gain.shape(),
+                finite: gain.iter().all(|x| x.is_finite()),
+                meaning: "inputs x the model's states",
+            }
+            .into());
         }
         for (j, state) in states.iter().enumerate() {
             let i = index(state).ok_or_else(|| {
-                Error::InvalidSettings(format!(
-                    "state `{state}` of the model is neither a coordinate nor a coordinate's \
-                     rate of this system"
-                ))
+                Error::from(SettingsError::Data {
+                    owner: "StateFeedback",
+                    problem: format!(
+                        "state `{state}` of the model is neither a coordinate nor a \
+                         coordinate's rate of this system"
+                    ),
+                })
             })?;
             let (column, i) = if i < N {
                 (&mut self.k_q, i)

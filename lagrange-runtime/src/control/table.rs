@@ -2,6 +2,7 @@
 
 use super::{InputSource, IntoInput};
 use crate::error::Error;
+use crate::error::SettingsError;
 use crate::numeric::Real;
 use nalgebra::SVector;
 
@@ -72,7 +73,7 @@ impl<T: Real, const P: usize> InputTable<T, P> {
     /// `times[i]`.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] if the table is empty, the two lists differ in
+    /// [`Error::Settings`] if the table is empty, the two lists differ in
     /// length, a time or a value is not finite, or the times are not strictly
     /// increasing; the message names the offending entry.
     pub fn new<V: IntoInput<T, P>>(
@@ -82,7 +83,13 @@ impl<T: Real, const P: usize> InputTable<T, P> {
     ) -> Result<Self, Error> {
         let times: Vec<T> = times.into_iter().collect();
         let values: Vec<SVector<T, P>> = values.into_iter().map(IntoInput::into_input).collect();
-        let bad = |msg: String| Err(Error::InvalidSettings(format!("input table: {msg}")));
+        let bad = |problem: String| {
+            Err(SettingsError::Data {
+                owner: "input table",
+                problem,
+            }
+            .into())
+        };
         if times.is_empty() {
             return bad("no breakpoints".into());
         }

@@ -43,7 +43,7 @@ impl Clone for Error {
             NonPhysicalParameter { body, entry, value, reason },
             NonUnitQuaternion { orientation, norm, tolerance },
             JointLimit { joint, coordinate, value, lower, upper, t };
-            InvalidSettings, Linear
+            Settings, Linear
         )
     }
 }
@@ -68,7 +68,10 @@ mod tests {
                 max_steps: 10,
                 needed: Some(20),
             },
-            Error::InvalidSettings("bad".into()),
+            Error::Settings(crate::error::SettingsError::ZeroCount {
+                owner: "events",
+                setting: "max_events",
+            }),
             std::io::Error::other("disk full").into(),
             std::io::Error::from(std::io::ErrorKind::NotFound).into(),
             std::io::Error::from_raw_os_error(2).into(),

@@ -371,10 +371,12 @@ pub enum Error {
         name: String,
     },
 
-    /// The settings or the initial value problem are invalid (non-positive
-    /// tolerance, empty or reversed time span, non-finite initial state, ...).
+    /// A setting, the time span, the initial state or data given to a
+    /// builder cannot be used (a negative tolerance, an empty span, a NaN
+    /// initial state, an input table whose times go back, ...); see
+    /// [`SettingsError`] for the cause.
     #[error("invalid settings: {0}")]
-    InvalidSettings(String),
+    Settings(#[from] SettingsError),
 
     /// A method the computation needs is not provided by the system (a trait
     /// method whose default returns `None`). Linearisation uses symbolic
@@ -401,16 +403,20 @@ pub enum Error {
     Io(#[from] std::io::Error),
 }
 
+mod checks;
 mod clone;
 mod failure;
 mod linear;
+mod settings;
 mod singular;
 
+pub(crate) use checks::{check_finite_inputs, check_tolerance, unit_quaternions};
 pub use failure::{Failure, Progress};
 pub use linear::LinearError;
+pub use settings::SettingsError;
 
 use crate::numeric::Real;
-use crate::numeric::orientation::{self, Orientation, UNIT_TOLERANCE};
+
 use nalgebra::SVector;
 
 /// Converts a state vector to `f64`s for an error report.
@@ -473,65 +479,6 @@ impl Error {
             q: to_vec(q),
             v: to_vec(v),
         }
-    }
-}
-
-/// Refuses a tolerance that is negative, NaN or infinite, naming the setting:
-/// every tolerance of the library is checked this way, so a sign slip is an
-/// error rather than a verdict (a negative stability tolerance would call an
-/// undamped oscillator asymptotically stable; a negative consistency
-/// tolerance would call an exactly consistent state inconsistent).
-pub(crate) fn check_tolerance(setting: &str, tol: f64) -> Result<(), Error> {
-    if tol.is_finite() && tol >= 0.0 {
-        Ok(())
-    } else {
-        Err(Error::InvalidSettings(format!(
-            "{setting} must be non-negative and finite, got {tol}"
-        )))
-    }
-}
-
-/// The initial configuration with its quaternions normalised, or
-/// [`Error::NonUnitQuaternion`] naming the first one that is further than
-/// [`UNIT_TOLERANCE`] from unit norm (or not finite). `names` are the
-/// coordinates' names; an orientation is named by its `w`'s name without the
-/// `.w`.
-pub(crate) fn unit_quaternions<T: Real, const Q: usize>(
-    layout: &[Orientation],
-    names: &[&'static str; Q],
-    mut q: SVector<T, Q>,
-) -> Result<SVector<T, Q>, Error> {
-    if let Some((o, norm)) = orientation::first_off_unit(layout, q.as_slice()) {
-        let name = names[o.q];
-        return Err(Error::NonUnitQuaternion {
-            orientation: name.strip_suffix(".w").unwrap_or(name).to_string(),
-            norm,
-            tolerance: UNIT_TOLERANCE,
-        });
-    }
-    orientation::normalise(layout, q.as_mut_slice());
-    Ok(q)
-}
-
-/// The first non-finite entry of the inputs `u` as
-/// [`Error::NonFiniteInput`], named from `names`, with the state it was
-/// computed for.
-pub(crate) fn check_finite_inputs<T: Real, const N: usize, const P: usize, const Q: usize>(
-    names: &[&'static str; P],
-    t: T,
-    q: &SVector<T, Q>,
-    v: &SVector<T, N>,
-    u: &SVector<T, P>,
-) -> Result<(), Error> {
-    match u.iter().position(|x| !x.is_finite()) {
-        None => Ok(()),
-        Some(i) => Err(Error::NonFiniteInput {
-            t: t.to_f64(),
-            input: names[i],
-            value: u[i].to_f64(),
-            q: to_vec(q),
-            v: to_vec(v),
-        }),
     }
 }
 

@@ -3,6 +3,7 @@
 
 use super::watch::{Stop, Watch};
 use super::{Event, EventRun, Occurrence};
+use crate::error::SettingsError;
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
@@ -64,7 +65,7 @@ impl<'a, T: Real, const N: usize, const Q: usize> Events<'a, T, N, Q> {
     /// from the first step.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] for a zero event budget or a bad span or
+    /// [`Error::Settings`] for a zero event budget or a bad span or
     /// initial state; [`Error::EventFunction`] if an event function is not
     /// finite; [`Error::NonFiniteState`] if an action produces a non-finite
     /// state; [`Error::TooManyEvents`], [`Error::EventsAccumulate`]; whatever
@@ -140,9 +141,12 @@ impl<'a, T: Real, const N: usize, const Q: usize> Events<'a, T, N, Q> {
     ) -> Result<(), Error> {
         check_problem(t0, t1, &q0, &v0)?;
         if self.max_events == 0 {
-            return Err(Error::InvalidSettings(
-                "events: max_events must be positive".into(),
-            ));
+            let setting = "max_events";
+            return Err(SettingsError::ZeroCount {
+                owner: "events",
+                setting,
+            }
+            .into());
         }
         watch.reset(t0, &q0, &v0, None)?;
         // Two restarts closer than this are "no progress".

@@ -39,7 +39,7 @@ impl Linearizer {
     /// top's A (`tests/atlas_constraints.rs`).
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] for a bad singular tolerance or an [`Atlas`]
+    /// [`Error::Settings`] for a bad singular tolerance or an [`Atlas`]
     /// whose twin disagrees with its layout; [`Error::NonPhysicalParameter`];
     /// whatever the forward dynamics report at a perturbed state. With
     /// constraints: [`LinearError::InconsistentOperatingPoint`](crate::LinearError::InconsistentOperatingPoint)
@@ -106,12 +106,10 @@ impl Linearizer {
         G: TwinForcing<S, T, N, F>,
         H: Fn(SVector<T, P>) -> G,
     {
-        check_tolerance("singular tolerance", self.tolerances.singular)?;
+        check_tolerance("Linearizer", "singular tolerance", self.tolerances.singular)?;
         sys.check_parameters()?;
         if !layout_agrees(sys) {
-            return Err(Error::InvalidSettings(
-                "the system's Atlas twin does not have the documented layout".into(),
-            ));
+            return Err(crate::atlas::layout_error());
         }
         let charts = Charts::new(S::EULER);
         let (mut q, mut v) = (*q, *v);

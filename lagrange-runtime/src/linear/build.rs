@@ -41,7 +41,7 @@ impl Linearizer {
     /// # Errors
     /// [`Error::NonFiniteState`]; [`Error::SingularMassMatrix`];
     /// [`Error::MissingDerivatives`] if the system has no `rhs_jacobians`.
-    /// Before any of these: [`Error::InvalidSettings`] for a negative or
+    /// Before any of these: [`Error::Settings`] for a negative or
     /// non-finite tolerance or a zero Newton limit, [`Error::NonPhysicalParameter`]
     /// from [`check_parameters`](crate::Lagrangian::check_parameters), and
     /// [`Error::NonFiniteInput`] naming a non-finite input of the point.
@@ -144,7 +144,7 @@ impl Linearizer {
     /// [`Error::SingularMassMatrix`]; [`Error::NonFiniteState`];
     /// [`Error::MissingDerivatives`] without `rhs_jacobians` or
     /// `constraint_derivatives`.
-    /// Before any of these: [`Error::InvalidSettings`] for a negative or
+    /// Before any of these: [`Error::Settings`] for a negative or
     /// non-finite tolerance or a zero Newton limit, [`Error::NonPhysicalParameter`]
     /// from [`check_parameters`](crate::Lagrangian::check_parameters), and
     /// [`Error::NonFiniteInput`] naming a non-finite input of the point.
@@ -256,7 +256,7 @@ impl Linearizer {
     /// [`Error::NonFiniteState`]; [`Error::ReducedFormBreakdown`] if the
     /// stacked rows are dependent at q0; [`Error::MissingDerivatives`] without
     /// `rhs_jacobians` or `row_derivatives` (`emit(jacobians)`).
-    /// Before any of these: [`Error::InvalidSettings`] for a negative or
+    /// Before any of these: [`Error::Settings`] for a negative or
     /// non-finite tolerance or a zero Newton limit, [`Error::NonPhysicalParameter`]
     /// from [`check_parameters`](crate::Lagrangian::check_parameters), and
     /// [`Error::NonFiniteInput`] naming a non-finite input of the point.

@@ -5,6 +5,7 @@
 use super::dense::{dm, dv, finite};
 use super::partition::{complete_coordinates, holonomic, indices};
 use super::settings::Linearizer;
+use crate::error::SettingsError;
 use crate::error::{Error, LinearError, to_vec};
 use crate::mechanics::reduced::ReducedDynamics;
 use crate::numeric::Real;
@@ -34,7 +35,7 @@ impl Linearizer {
     /// [`Error::ProjectionFailed`] (where, the residual, the iterations) if Newton
     /// does not reach the tolerance; [`LinearError::InvalidPartition`],
     /// [`LinearError::SingularPartition`], [`Error::RedundantConstraints`] for the
-    /// partition; [`Error::NonFiniteState`]; [`Error::InvalidSettings`] for a
+    /// partition; [`Error::NonFiniteState`]; [`Error::Settings`] for a
     /// hand-written system that has constraints but does not name its form
     /// (implement [`Lagrangian::visit_form`]).
     ///
@@ -222,11 +223,14 @@ where
 
     fn unconstrained(self, _: &S) -> Self::Output {
         if S::CONSTRAINED {
-            return Err(Error::InvalidSettings(
-                "this system has constraints but does not name the form it runs in; \
-                 implement `Lagrangian::visit_form` (the derive does) to complete its state"
+            return Err(SettingsError::Unsupported {
+                owner: "complete_state",
+                needs: "the form a constrained system runs in".into(),
+                remedy: "this system has constraints but does not name it; implement \
+                         `Lagrangian::visit_form` (the derive does)"
                     .into(),
-            ));
+            }
+            .into());
         }
         Ok((self.q, self.v))
     }

@@ -133,7 +133,7 @@ impl Linearizer {
     /// for a bad choice of independent coordinates or speeds;
     /// [`Error::RedundantConstraints`]; [`Error::SingularMassMatrix`];
     /// [`Error::NonFiniteState`] (also at a perturbed state). Before any of
-    /// these: [`Error::InvalidSettings`], [`Error::NonPhysicalParameter`] and
+    /// these: [`Error::Settings`], [`Error::NonPhysicalParameter`] and
     /// [`Error::NonFiniteInput`], as [`constrained`](Self::constrained).
     pub fn constrained_tangent<
         S,

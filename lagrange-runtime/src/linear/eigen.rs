@@ -3,6 +3,7 @@
 
 use super::jordan::growth_degree;
 use super::{Linear, LinearError};
+use crate::error::SettingsError;
 use crate::error::{Error, check_tolerance};
 use crate::numeric::root::brent_bracket;
 use nalgebra::{Complex, DMatrix, DVector};
@@ -207,7 +208,7 @@ impl Linear {
     /// [`Stability::without_structural`].
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] if `tol` is negative or not finite (a
+    /// [`Error::Settings`] if `tol` is negative or not finite (a
     /// negative tolerance would call an undamped oscillator asymptotically
     /// stable).
     pub fn stability(&self, tol: f64) -> Result<Stability, Error> {
@@ -251,7 +252,7 @@ fn axis_eigenvalues(ev: &[Complex<f64>], zero: bool, tol: f64, scale: f64) -> Ve
 }
 
 fn check_stability_tolerance(tol: f64) -> Result<(), Error> {
-    check_tolerance("the stability tolerance on the real parts", tol)
+    check_tolerance("stability", "stability tolerance (on the real parts)", tol)
 }
 
 fn stability_of(ev: &[Complex<f64>], structural: Vec<String>, tol: f64) -> Stability {
@@ -425,7 +426,7 @@ where
     /// [`Linear::stability`] on the model at a point for that).
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] for a negative or non-finite `tol`.
+    /// [`Error::Settings`] for a negative or non-finite `tol`.
     pub fn verdicts(&self, tol: f64) -> Result<Vec<(f64, Verdict)>, Error> {
         check_stability_tolerance(tol)?;
         Ok(self
@@ -450,13 +451,17 @@ where
     /// # Errors
     /// The first error the model returns; [`LinearError::BoundaryNotResolved`]
     /// if the bracket is not within `rtol` after Brent stops;
-    /// [`Error::InvalidSettings`] for a negative or non-finite `tol` or `rtol`.
+    /// [`Error::Settings`] for a negative or non-finite `tol` or `rtol`.
     pub fn boundaries(&mut self, tol: f64, rtol: f64) -> Result<Vec<Boundary>, Error> {
         check_stability_tolerance(tol)?;
         if !(rtol.is_finite() && rtol >= 0.0) {
-            return Err(Error::InvalidSettings(format!(
-                "the boundary's relative tolerance must be finite and >= 0, got rtol = {rtol}"
-            )));
+            return Err(SettingsError::Value {
+                owner: "stability boundary",
+                setting: "relative tolerance rtol",
+                value: rtol,
+                requirement: "non-negative and finite".into(),
+            }
+            .into());
         }
         let mut out = Vec::new();
         for k in 1..self.points.len() {

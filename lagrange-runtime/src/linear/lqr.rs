@@ -15,6 +15,7 @@
 
 use super::{Linear, LinearError};
 use crate::error::Error;
+use crate::error::SettingsError;
 use nalgebra::{Complex, DMatrix};
 
 /// Largest relative residual accepted for the Riccati solution.
@@ -53,7 +54,7 @@ impl Linear {
 /// A − BK is checked to be Hurwitz.
 ///
 /// # Errors
-/// [`Error::InvalidSettings`] for inconsistent sizes, non-finite entries, Q not
+/// [`Error::Settings`] for inconsistent sizes, non-finite entries, Q not
 /// symmetric positive semidefinite or R not symmetric positive definite;
 /// [`LinearError::NotStabilisable`] if the PBH test finds an uncontrollable mode
 /// with Re λ ≥ 0 or the closed loop is not Hurwitz; [`LinearError::Riccati`] if
@@ -112,20 +113,27 @@ fn check_problem(
 ) -> Result<nalgebra::Cholesky<f64, nalgebra::Dyn>, Error> {
     let (n, m) = (a.nrows(), b.ncols());
     if m == 0 {
-        return Err(Error::InvalidSettings(
-            "LQR: the model has no inputs (B has no columns), so there is no control to \
-             design; declare them with `inputs(...)` in the description and use them in a \
-             force, or linearise a model that has them"
+        return Err(SettingsError::Unsupported {
+            owner: "LQR",
+            needs: "a model with inputs".into(),
+            remedy: "this one has no inputs (B has no columns), so there is no control to \
+                     design; declare them with `inputs(...)` in the description and use them \
+                     in a force, or linearise a model that has them"
                 .into(),
-        ));
+        }
+        .into());
     }
-    let shape = |name: &str, x: &DMatrix<f64>, rows: usize, cols: usize| {
-        if x.nrows() != rows || x.ncols() != cols || !x.iter().all(|v| v.is_finite()) {
-            Err(Error::InvalidSettings(format!(
-                "LQR: {name} must be a finite {rows}x{cols} matrix, got {}x{}",
-                x.nrows(),
-                x.ncols()
-            )))
+    let shape = |name: &'static str, x: &DMatrix<f64>, rows: usize, cols: usize| {
+        let finite = x.iter().all(|v| v.is_finite());
+        if x.nrows() != rows || x.ncols() != cols || !finite {
+            Err(SettingsError::Shape {
+                owner: "LQR",
+                name,
+                expected: (rows, cols),
+                got: x.shape(),
+                finite,
+                meaning: "",
+            })
         } else {
             Ok(())
         }
@@ -136,17 +144,22 @@ fn check_problem(
     shape("R", r, m, m)?;
     let symmetric = |x: &DMatrix<f64>| (x - x.transpose()).amax() <= 1e-12 * x.amax();
     if !symmetric(q) || !symmetric(r) {
-        return Err(Error::InvalidSettings(
-            "LQR: Q and R must be symmetric".into(),
-        ));
+        return Err(lqr_weights("Q and R must be symmetric"));
     }
     if n > 0 && q.clone().symmetric_eigenvalues().min() < -1e-12 * q.amax().max(1.0) {
-        return Err(Error::InvalidSettings(
-            "LQR: Q must be positive semidefinite".into(),
-        ));
+        return Err(lqr_weights("Q must be positive semidefinite"));
     }
-    nalgebra::Cholesky::new(r.clone())
-        .ok_or_else(|| Error::InvalidSettings("LQR: R must be positive definite".into()))
+    nalgebra::Cholesky::new(r.clone()).ok_or_else(|| lqr_weights("R must be positive definite"))
+}
+
+/// LQR weights that are not a cost.
+fn lqr_weights(problem: &str) -> Error {
+    let problem = problem.into();
+    SettingsError::Data {
+        owner: "LQR",
+        problem,
+    }
+    .into()
 }
 
 /// The Hamiltonian matrix [[A, −S], [−Q, −Aᵀ]] with S = B R⁻¹ Bᵀ.

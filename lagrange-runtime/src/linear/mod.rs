@@ -163,6 +163,7 @@ pub(crate) use tangent::states as tangent_states;
 
 use crate::error::Error;
 pub use crate::error::LinearError;
+use crate::error::SettingsError;
 use nalgebra::DMatrix;
 
 /// Default tolerance of [`Linear::select`]: a kept state may depend on a dropped
@@ -263,7 +264,7 @@ impl Linear {
     /// does not provide).
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] if the sizes disagree or an entry is not finite.
+    /// [`Error::Settings`] if the sizes disagree or an entry is not finite.
     pub fn new(
         a: DMatrix<f64>,
         b: DMatrix<f64>,
@@ -275,9 +276,11 @@ impl Linear {
         check_shape("A", &a, n, n)?;
         check_shape("B", &b, n, inputs.len())?;
         if n_coordinates > n {
-            return Err(Error::InvalidSettings(format!(
-                "{n_coordinates} coordinate states out of {n} states"
-            )));
+            return Err(SettingsError::Data {
+                owner: "Linear",
+                problem: format!("{n_coordinates} coordinate states out of {n} states"),
+            }
+            .into());
         }
         Ok(Self {
             a,
@@ -295,7 +298,7 @@ impl Linear {
     /// `B = [[0], [M⁻¹B_u]]`. Builds a model from published matrices (the bicycle's).
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] if the sizes disagree or an entry is not finite;
+    /// [`Error::Settings`] if the sizes disagree or an entry is not finite;
     /// [`Error::SingularMassMatrix`] if M is not invertible.
     pub fn from_second_order(
         mass: DMatrix<f64>,
@@ -442,9 +445,9 @@ impl Linear {
     /// # Errors
     /// [`LinearError::UnknownState`] for a name that is not a state;
     /// [`LinearError::CoupledStates`] naming the largest coupling to a dropped
-    /// state; [`Error::InvalidSettings`] for a negative or non-finite `tol`.
+    /// state; [`Error::Settings`] for a negative or non-finite `tol`.
     pub fn select_with_tolerance(&self, names: &[&str], tol: f64) -> Result<Linear, Error> {
-        crate::error::check_tolerance("select: the coupling tolerance", tol)?;
+        crate::error::check_tolerance("Linear::select", "coupling tolerance", tol)?;
         let mut keep = vec![false; self.states.len()];
         for &name in names {
             let i = self
@@ -546,16 +549,23 @@ impl Linear {
     }
 }
 
-fn check_shape(name: &str, m: &DMatrix<f64>, rows: usize, cols: usize) -> Result<(), Error> {
-    if m.nrows() != rows || m.ncols() != cols {
-        return Err(Error::InvalidSettings(format!(
-            "{name} is {}x{}, expected {rows}x{cols}",
-            m.nrows(),
-            m.ncols()
-        )));
-    }
-    if !m.iter().all(|x| x.is_finite()) {
-        return Err(Error::InvalidSettings(format!("{name} is not finite")));
+fn check_shape(
+    name: &'static str,
+    m: &DMatrix<f64>,
+    rows: usize,
+    cols: usize,
+) -> Result<(), Error> {
+    let finite = m.iter().all(|x| x.is_finite());
+    if m.nrows() != rows || m.ncols() != cols || !finite {
+        return Err(SettingsError::Shape {
+            owner: "Linear",
+            name,
+            expected: (rows, cols),
+            got: m.shape(),
+            finite,
+            meaning: "",
+        }
+        .into());
     }
     Ok(())
 }

@@ -47,7 +47,7 @@ impl Linearizer {
     /// for a bad choice of independent coordinates or speeds;
     /// [`Error::RedundantConstraints`]; [`Error::ReducedFormBreakdown`];
     /// [`Error::SingularMassMatrix`]; [`Error::NonFiniteState`] (also at a
-    /// perturbed state). Before any of these: [`Error::InvalidSettings`],
+    /// perturbed state). Before any of these: [`Error::Settings`],
     /// [`Error::NonPhysicalParameter`] and [`Error::NonFiniteInput`], as
     /// [`reduced`](Self::reduced).
     pub fn reduced_tangent<

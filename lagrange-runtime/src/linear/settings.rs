@@ -1,7 +1,7 @@
 //! What a linearisation is about and how it is done: the operating point and
 //! the [`Linearizer`]'s settings.
 
-use crate::error::{Error, check_finite_inputs, check_tolerance};
+use crate::error::{Error, SettingsError, check_finite_inputs, check_tolerance};
 use crate::mechanics::Tolerances;
 use crate::numeric::Real;
 use crate::system::Driven;
@@ -213,21 +213,21 @@ impl Linearizer {
 
     /// The tolerances non-negative and finite, the Newton budget positive.
     pub(super) fn check_settings(&self) -> Result<(), Error> {
+        let t = &self.tolerances;
         for (name, tol) in [
-            (
-                "Linearizer: consistency tolerance",
-                self.tolerances.consistency,
-            ),
-            ("Linearizer: singular tolerance", self.tolerances.singular),
-            ("Linearizer: redundant tolerance", self.tolerances.redundant),
-            ("Linearizer: Newton tolerance", self.newton_tolerance),
+            ("consistency tolerance", t.consistency),
+            ("singular tolerance", t.singular),
+            ("redundant tolerance", t.redundant),
+            ("Newton tolerance", self.newton_tolerance),
         ] {
-            check_tolerance(name, tol)?;
+            check_tolerance("Linearizer", name, tol)?;
         }
         if self.newton_iterations == 0 {
-            return Err(Error::InvalidSettings(
-                "Linearizer: the Newton iteration limit must be at least 1".into(),
-            ));
+            return Err(SettingsError::ZeroCount {
+                owner: "Linearizer",
+                setting: "Newton iteration limit",
+            }
+            .into());
         }
         Ok(())
     }

@@ -43,7 +43,7 @@ impl Linearizer {
     ///
     /// # Errors
     /// [`Error::NonUnitQuaternion`] for a quaternion further than the
-    /// tolerance from unit norm; [`Error::InvalidSettings`] for a bad singular
+    /// tolerance from unit norm; [`Error::Settings`] for a bad singular
     /// tolerance; [`Error::NonPhysicalParameter`] from
     /// [`check_parameters`](Lagrangian::check_parameters); whatever the forward
     /// dynamics report at a perturbed state ([`Error::SingularMassMatrix`],
@@ -135,7 +135,7 @@ impl Linearizer {
         T: Real,
         F: Forcing<T, N, Q>,
     {
-        check_tolerance("singular tolerance", self.tolerances.singular)?;
+        check_tolerance("Linearizer", "singular tolerance", self.tolerances.singular)?;
         sys.check_parameters()?;
         let q = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, *q)?;
         let dynamics = Dynamics::new(sys)

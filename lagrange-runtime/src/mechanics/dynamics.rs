@@ -94,7 +94,7 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
 
     /// Sets the threshold on min L_ii² / max L_ii² below which the mass matrix is
     /// reported as singular; a negative or non-finite one is refused
-    /// ([`Error::InvalidSettings`]) at the first evaluation.
+    /// ([`Error::Settings`]) at the first evaluation.
     pub fn with_singular_tolerance(mut self, tolerance: T) -> Self {
         self.singular_tolerance = tolerance;
         self
@@ -152,7 +152,11 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
             return Err(Error::non_finite(t, q, v));
         }
         let unit = on_sphere::<S, T, N, Q>(q);
-        check_tolerance("singular tolerance", self.singular_tolerance.to_f64())?;
+        check_tolerance(
+            "Dynamics",
+            "singular tolerance",
+            self.singular_tolerance.to_f64(),
+        )?;
         let tau = if F::ACTIVE {
             self.forcing.force(t, &unit, v)?
         } else {

@@ -4,6 +4,7 @@
 use super::Forcing;
 use super::dynamics::{Dynamics, refuse_constrained};
 use crate::error::Error;
+use crate::error::SettingsError;
 use crate::numeric::Real;
 use crate::ode::Mechanical;
 use crate::system::Lagrangian;
@@ -32,14 +33,16 @@ where
     ) -> Result<SVector<T, N>, Error> {
         let sys = self.system();
         let grad = sys.kinetic_gradient(q, v, t).ok_or_else(|| {
-            Error::InvalidSettings(
-                "the symplectic integrator (Gauss) needs Hamilton's form, ∂T/∂q, but this \
-                 system's Lagrangian::kinetic_gradient returns None: for a \
-                 #[derive(Lagrangian)] description add `emit(hamiltonian)`; for a \
-                 hand-written system implement Lagrangian::kinetic_gradient (and \
-                 Lagrangian::momentum if it is rheonomic); or choose another integrator"
+            Error::from(SettingsError::Unsupported {
+                owner: "the symplectic integrator (Gauss)",
+                needs: "Hamilton's form, ∂T/∂q".into(),
+                remedy: "this system's Lagrangian::kinetic_gradient returns None: for a \
+                         #[derive(Lagrangian)] description add `emit(hamiltonian)`; for a \
+                         hand-written system implement Lagrangian::kinetic_gradient (and \
+                         Lagrangian::momentum if it is rheonomic); or choose another \
+                         integrator"
                     .into(),
-            )
+            })
         })?;
         let q_total = sys.generalized_forces(q, v, t);
         if F::ACTIVE {

@@ -34,6 +34,7 @@
 //! evaluating F at v½ for the end of the step as Störmer–Verlet does, but is
 //! no longer symplectic.
 
+use crate::error::SettingsError;
 use crate::error::{Error, Failure, to_vec, unit_quaternions};
 use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::mechanics::dynamics::DEFAULT_SINGULAR_TOLERANCE;
@@ -170,7 +171,7 @@ impl Rattle {
     /// point).
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] for a bad step, span or initial state, a
+    /// [`Error::Settings`] for a bad step, span or initial state, a
     /// system with nonholonomic rows, or a mass matrix that changes along the
     /// motion; [`Error::InconsistentInitialConditions`];
     /// [`Error::NonUnitQuaternion`]; [`Error::SingularMassMatrix`];
@@ -258,23 +259,34 @@ impl Rattle {
         S: Constrained<T, N, K, Q>,
     {
         if S::HOLONOMIC != K {
-            return Err(Error::InvalidSettings(format!(
-                "RATTLE handles holonomic constraints only; {} of the {K} constraints \
-                 ({:?}) are nonholonomic",
-                K - S::HOLONOMIC,
-                &S::CONSTRAINTS[S::HOLONOMIC..]
-            )));
+            return Err(SettingsError::Unsupported {
+                owner: "RATTLE",
+                needs: "holonomic constraints only".into(),
+                remedy: format!(
+                    "{} of the {K} constraints ({:?}) are nonholonomic; choose another integrator",
+                    K - S::HOLONOMIC,
+                    &S::CONSTRAINTS[S::HOLONOMIC..]
+                ),
+            }
+            .into());
         }
         if self.max_iterations == 0 {
-            return Err(Error::InvalidSettings(
-                "RATTLE: max_iterations must be positive".into(),
-            ));
+            let setting = "max_iterations";
+            return Err(SettingsError::ZeroCount {
+                owner: "RATTLE",
+                setting,
+            }
+            .into());
         }
         let tol = self.consistency_tolerance;
         if !(tol.is_finite() && tol > 0.0) {
-            return Err(Error::InvalidSettings(format!(
-                "RATTLE: consistency tolerance must be positive and finite, got {tol}"
-            )));
+            return Err(SettingsError::Value {
+                owner: "RATTLE",
+                setting: "consistency tolerance",
+                value: tol,
+                requirement: "positive and finite".into(),
+            }
+            .into());
         }
         Ok(())
     }
@@ -545,13 +557,18 @@ fn check_constant_mass<T: Real, const N: usize, const Q: usize>(
     if change <= T::lit(1e-12) * scale {
         return Ok(());
     }
-    Err(Error::InvalidSettings(format!(
-        "RATTLE needs a constant mass matrix, but M changed by {:e} (relative) at t = {}, \
-         q = {:?}; use a Cartesian model or another integrator",
-        (change / scale).to_f64(),
-        t.to_f64(),
-        to_vec(q)
-    )))
+    Err(SettingsError::Unsupported {
+        owner: "RATTLE",
+        needs: "a constant mass matrix".into(),
+        remedy: format!(
+            "M changed by {:e} (relative) at t = {}, q = {:?}; use a Cartesian model or \
+             another integrator",
+            (change / scale).to_f64(),
+            t.to_f64(),
+            to_vec(q)
+        ),
+    }
+    .into())
 }
 
 #[cfg(test)]

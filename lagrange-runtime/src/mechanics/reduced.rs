@@ -103,7 +103,7 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
 
     /// Sets the threshold on the pivot ratio of M* below which it is reported as
     /// singular; a negative or non-finite one is refused
-    /// ([`Error::InvalidSettings`]) at the first evaluation.
+    /// ([`Error::Settings`]) at the first evaluation.
     pub fn with_singular_tolerance(mut self, tolerance: T) -> Self {
         self.singular_tolerance = tolerance;
         self
@@ -144,7 +144,11 @@ impl<'a, S, T: Real, const K: usize, F> ReducedDynamics<'a, S, T, K, F> {
         // rotation it is closest to.
         let unit = on_sphere::<S, T, N, Q>(q);
         let q = &unit;
-        check_tolerance("singular tolerance", self.singular_tolerance.to_f64())?;
+        check_tolerance(
+            "ReducedDynamics",
+            "singular tolerance",
+            self.singular_tolerance.to_f64(),
+        )?;
         let rows = self.rows(t, q)?;
         let part = self.partition(t, q, &rows)?;
         let (mut form, rates) = self.partitioned_form(t, q, &rows, &part, v)?;

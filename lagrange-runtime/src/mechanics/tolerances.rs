@@ -48,10 +48,10 @@ impl Tolerances {
     /// Checks every tolerance is non-negative and finite.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] naming the first that is not.
+    /// [`Error::Settings`] naming the first that is not.
     pub fn check(&self) -> Result<(), Error> {
-        check_tolerance("singular tolerance", self.singular)?;
-        check_tolerance("redundant tolerance", self.redundant)?;
-        check_tolerance("consistency tolerance", self.consistency)
+        check_tolerance("tolerances", "singular tolerance", self.singular)?;
+        check_tolerance("tolerances", "redundant tolerance", self.redundant)?;
+        check_tolerance("tolerances", "consistency tolerance", self.consistency)
     }
 }

@@ -378,7 +378,7 @@ mod tests {
                 matches!(
                     go(m),
                     Err(Failure {
-                        error: Error::InvalidSettings(_),
+                        error: Error::Settings(_),
                         ..
                     })
                 ),

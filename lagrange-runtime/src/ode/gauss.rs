@@ -9,6 +9,7 @@ use super::verlet::fixed_step_count;
 use super::{
     DenseSegment, Integrator, Pair, SecondOrder, Stats, check_orientations, check_problem,
 };
+use crate::error::SettingsError;
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
@@ -143,17 +144,21 @@ impl Gauss {
         check_problem(t0, t1, &q0, &v0)?;
         check_orientations(rhs, &q0)?;
         if self.max_iterations == 0 {
-            return Err(Error::InvalidSettings(
-                "Gauss: max_iterations must be positive".into(),
-            ));
+            let setting = "max_iterations";
+            return Err(SettingsError::ZeroCount {
+                owner: "Gauss",
+                setting,
+            }
+            .into());
         }
         let n = fixed_step_count("Gauss", self.h, self.max_steps, t0, t1)?;
         let Some(mechanical) = rhs.mechanical() else {
-            return Err(Error::InvalidSettings(
-                "Gauss needs the system in Hamilton's form (momentum, mass matrix and \
-                 ∂T/∂q): SecondOrder::mechanical returned None"
-                    .into(),
-            ));
+            return Err(SettingsError::Unsupported {
+                owner: "Gauss",
+                needs: "the system in Hamilton's form (momentum, mass matrix and ∂T/∂q)".into(),
+                remedy: "SecondOrder::mechanical returned None; choose another integrator".into(),
+            }
+            .into());
         };
         let mech = Canonical::new(mechanical, F::ORIENTATIONS);
         let mech = &mech;
@@ -170,9 +175,13 @@ impl Gauss {
                 [0.5 - s3, 0.5 + s3],
                 run,
             ),
-            s => Err(Error::InvalidSettings(format!(
-                "Gauss: {s} stages are not implemented (1 or 2)"
-            ))),
+            s => Err(SettingsError::Choice {
+                owner: "Gauss",
+                setting: "stages",
+                value: s,
+                allowed: "1 or 2",
+            }
+            .into()),
         }
     }
 }

@@ -43,6 +43,7 @@ pub use trajectory::Trajectory;
 pub use verlet::StormerVerlet;
 pub(crate) use verlet::fixed_step_count;
 
+use crate::error::SettingsError;
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::orientation::{self, Orientation};
@@ -216,7 +217,7 @@ pub trait Integrator {
     /// # Errors
     /// A [`Failure`] holding the error and the trajectory up to the last
     /// accepted step (at least the initial state). The error is
-    /// [`Error::InvalidSettings`] for invalid settings (a recording that would
+    /// [`Error::Settings`] for invalid settings (a recording that would
     /// exceed [`Record::MAX_POINTS`] among them), a span that is empty,
     /// reversed or not finite, or a non-finite initial state; any error of the
     /// right-hand side; [`Error::StepSizeUnderflow`] and [`Error::TooManySteps`] for
@@ -424,26 +425,13 @@ pub fn check_problem<T: Real, const N: usize, const Q: usize>(
     q0: &SVector<T, Q>,
     v0: &SVector<T, N>,
 ) -> Result<(), Error> {
-    if !(t0.is_finite() && t1.is_finite()) {
-        return Err(Error::InvalidSettings(format!(
-            "time span {}..{} is not finite",
-            t0.to_f64(),
-            t1.to_f64()
-        )));
-    }
-    if t1 <= t0 {
-        return Err(Error::InvalidSettings(format!(
-            "time span {}..{} is empty or reversed; the end must be after the start",
-            t0.to_f64(),
-            t1.to_f64()
-        )));
+    if !(t0.is_finite() && t1.is_finite()) || t1 <= t0 {
+        let (start, end) = (t0.to_f64(), t1.to_f64());
+        return Err(SettingsError::TimeSpan { start, end }.into());
     }
     if !Pair::new(*q0, *v0).is_finite() {
-        return Err(Error::InvalidSettings(format!(
-            "initial state is not finite: q0 = {:?}, v0 = {:?}",
-            crate::error::to_vec(q0),
-            crate::error::to_vec(v0)
-        )));
+        let (q, v) = (crate::error::to_vec(q0), crate::error::to_vec(v0));
+        return Err(SettingsError::InitialState { q, v }.into());
     }
     Ok(())
 }
@@ -511,7 +499,7 @@ mod tests {
         ] {
             assert!(matches!(
                 check_problem(t0, t1, &z, &z),
-                Err(Error::InvalidSettings(_))
+                Err(Error::Settings(_))
             ));
         }
         let nan = SVector::<f64, 1>::new(f64::NAN);

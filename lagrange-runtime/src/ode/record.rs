@@ -3,13 +3,14 @@
 //! ([`Continuation`]).
 
 use crate::error::Error;
+use crate::error::SettingsError;
 use crate::numeric::Real;
 
 /// What a run keeps of its steps, set on the integrator, e.g.
 /// `Dopri5::tol(1e-10).record(Record::Every(100))`. `Every(0)`, an `Interval`
 /// that is not positive and finite, and an `Interval` that would record more
 /// than [`Record::MAX_POINTS`] points are refused when the run starts
-/// ([`Error::InvalidSettings`], with the count and the memory it would need).
+/// ([`Error::Settings`], with the count and the memory it would need).
 ///
 /// A run made of pieces (restarts after events, the instants of a sampled
 /// controller or the breakpoints of an input table) is recorded as one run:
@@ -49,15 +50,21 @@ impl Record {
     /// Refuses `Every(0)` and an interval that is not positive and finite.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`].
+    /// [`Error::Settings`].
     pub fn check(&self) -> Result<(), Error> {
         match *self {
-            Record::Every(0) => Err(Error::InvalidSettings(
-                "record: Every(k) needs k ≥ 1".into(),
-            )),
-            Record::Interval(dt) if !(dt.is_finite() && dt > 0.0) => Err(Error::InvalidSettings(
-                format!("record: Interval(dt) needs a positive, finite dt, got {dt}"),
-            )),
+            Record::Every(0) => Err(SettingsError::ZeroCount {
+                owner: "record",
+                setting: "k of Every(k)",
+            }
+            .into()),
+            Record::Interval(dt) if !(dt.is_finite() && dt > 0.0) => Err(SettingsError::Value {
+                owner: "record",
+                setting: "dt of Interval(dt)",
+                value: dt,
+                requirement: "positive and finite".into(),
+            }
+            .into()),
             _ => Ok(()),
         }
     }
@@ -68,7 +75,7 @@ impl Record {
     /// `len` numbers (Q + N) of `T`.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`].
+    /// [`Error::Settings`].
     pub fn check_span<T: Real>(&self, t0: T, t1: T, len: usize) -> Result<(), Error> {
         self.check()?;
         let Record::Interval(dt) = *self else {
@@ -78,16 +85,19 @@ impl Record {
         if points.is_nan() || points <= Self::MAX_POINTS {
             return Ok(());
         }
-        let bytes = points * Self::point_bytes::<T>(len) as f64;
-        Err(Error::InvalidSettings(format!(
-            "record: Interval({dt:e}) over [{}, {}] asks for {points:.3e} points, \
-             {:.3e} bytes of memory; at most {:e} points are recorded: take a larger \
-             dt, or Record::Every(k) / Record::Final",
-            t0.to_f64(),
-            t1.to_f64(),
-            bytes,
-            Self::MAX_POINTS
-        )))
+        Err(SettingsError::Budget {
+            owner: "record",
+            what: "Interval(dt) asks to record a point",
+            asked: points,
+            limit: Self::MAX_POINTS,
+            start: t0.to_f64(),
+            end: t1.to_f64(),
+            advice: format!(
+                "{:.3e} bytes of memory; take a larger dt, or Record::Every(k) / Record::Final",
+                points * Self::point_bytes::<T>(len) as f64
+            ),
+        }
+        .into())
     }
 
     /// The memory of one stored point without its dense segment: t, the

@@ -5,6 +5,7 @@ use super::verlet::fixed_step_count;
 use super::{
     DenseSegment, Integrator, Pair, SecondOrder, check_orientations, check_problem, settle,
 };
+use crate::error::SettingsError;
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::ode::{Continuation, Record, Trajectory};
@@ -88,10 +89,13 @@ impl Rk4 {
     ) -> Result<(), Error> {
         self.record.check_span(t0, t1, Q + N)?;
         if !(self.h.is_finite() && self.h > 0.0) {
-            return Err(Error::InvalidSettings(format!(
-                "RK4 step size must be positive and finite, got {}",
-                self.h
-            )));
+            return Err(SettingsError::Value {
+                owner: "RK4",
+                setting: "step size",
+                value: self.h,
+                requirement: "positive and finite".into(),
+            }
+            .into());
         }
         check_problem(t0, t1, &y0.q, &y0.v)?;
         check_orientations(rhs, &y0.q)?;
@@ -220,7 +224,7 @@ pub(crate) mod tests {
             assert!(matches!(
                 e,
                 Err(Failure {
-                    error: Error::InvalidSettings(_),
+                    error: Error::Settings(_),
                     ..
                 })
             ));

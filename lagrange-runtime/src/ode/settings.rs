@@ -3,6 +3,7 @@
 //! validation and one set of builder methods instead of a copy per method.
 
 use crate::error::Error;
+use crate::error::SettingsError;
 
 /// Tolerances and step limits of an adaptive method.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -28,15 +29,24 @@ impl StepControl {
 
     /// rtol must exceed `min_rtol`; atol must be ≥ 0 (> 0 with `positive_atol`);
     /// h0 and hmax, if set, positive and finite; the step budget positive.
-    pub fn validate(&self, method: &str, min_rtol: f64, positive_atol: bool) -> Result<(), Error> {
-        let bad = |what: String, x: f64| {
-            Err(Error::InvalidSettings(format!("{method}: {what}, got {x}")))
+    pub fn validate(
+        &self,
+        method: &'static str,
+        min_rtol: f64,
+        positive_atol: bool,
+    ) -> Result<(), Error> {
+        let bad = |setting, requirement: String, value| {
+            Err(SettingsError::Value {
+                owner: method,
+                setting,
+                value,
+                requirement,
+            }
+            .into())
         };
         if !(self.rtol.is_finite() && self.rtol > min_rtol) {
-            return bad(
-                format!("rtol must be finite and above {min_rtol}"),
-                self.rtol,
-            );
+            let requirement = format!("finite and above {min_rtol}");
+            return bad("rtol", requirement, self.rtol);
         }
         let atol_ok = if positive_atol {
             self.atol > 0.0
@@ -49,17 +59,20 @@ impl StepControl {
             } else {
                 "non-negative"
             };
-            return bad(format!("atol must be {what} and finite"), self.atol);
+            return bad("atol", format!("{what} and finite"), self.atol);
         }
         for (name, x) in [("h0", self.h0), ("hmax", self.hmax)] {
             if let Some(x) = x.filter(|x| !(x.is_finite() && *x > 0.0)) {
-                return bad(format!("{name} must be positive and finite"), x);
+                return bad(name, "positive and finite".into(), x);
             }
         }
         if self.max_steps == 0 {
-            return Err(Error::InvalidSettings(format!(
-                "{method}: max_steps must be positive"
-            )));
+            let setting = "max_steps";
+            return Err(SettingsError::ZeroCount {
+                owner: method,
+                setting,
+            }
+            .into());
         }
         Ok(())
     }
@@ -74,16 +87,25 @@ impl StepControl {
     /// `TooManySteps` at t = 0.03): a settings error up front. Tolerances between
     /// that and ε are allowed: tiny steps still meet them locally, and the
     /// work-precision study measured f32's best DOPRI5 result at 1e-10.
-    pub fn check_precision<T: crate::numeric::Real>(&self, method: &str) -> Result<(), Error> {
+    pub fn check_precision<T: crate::numeric::Real>(
+        &self,
+        method: &'static str,
+    ) -> Result<(), Error> {
         let eps = T::default_epsilon().to_f64();
         let floor = 16.0 * eps * eps;
         if self.rtol < floor {
-            return Err(Error::InvalidSettings(format!(
-                "{method}: rtol = {:e} is below what {} can meet with any step size \
-                 (16 ε² = {floor:.1e}); loosen the tolerance or compute in a wider type",
-                self.rtol,
+            let requirement = format!(
+                "at least 16 ε² = {floor:.1e}, below which {} meets it with no step size; \
+                 loosen the tolerance or compute in a wider type",
                 std::any::type_name::<T>()
-            )));
+            );
+            return Err(SettingsError::Value {
+                owner: method,
+                setting: "rtol",
+                value: self.rtol,
+                requirement,
+            }
+            .into());
         }
         Ok(())
     }

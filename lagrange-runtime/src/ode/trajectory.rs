@@ -2,6 +2,7 @@
 //! quantity along them, and dense output in between.
 
 use crate::error::Error;
+use crate::error::SettingsError;
 use crate::numeric::Real;
 use crate::numeric::func::abs;
 use crate::numeric::root::brent;
@@ -440,7 +441,7 @@ impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
     /// faster than the step size.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] on a thinned recording ([`Record::Every`],
+    /// [`Error::Settings`] on a thinned recording ([`Record::Every`],
     /// [`Record::Interval`], [`Record::Final`]): it keeps no dense output, and
     /// sign changes between its stored points would miss crossings (a pair
     /// between two stored points cancels) and misplace the others. Record
@@ -450,13 +451,18 @@ impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
         g: impl Fn(T, &SVector<T, Q>, &SVector<T, N>) -> T,
     ) -> Result<Vec<T>, Error> {
         if self.segments.len() + 1 != self.len() {
-            return Err(Error::InvalidSettings(format!(
-                "crossings: the run was recorded with {:?}, which keeps no dense output, so \
-                 crossings between its {} stored points cannot be found; record \
-                 Record::Steps, or watch the crossing as an event during the run",
-                self.record,
-                self.len()
-            )));
+            return Err(SettingsError::Unsupported {
+                owner: "crossings",
+                needs: "the dense output".into(),
+                remedy: format!(
+                    "the run was recorded with {:?}, which keeps none, so crossings \
+                     between its {} stored points cannot be found; record Record::Steps, \
+                     or watch the crossing as an event during the run",
+                    self.record,
+                    self.len()
+                ),
+            }
+            .into());
         }
         let mut out = Vec::new();
         let mut g_prev = g(self.times[0], &self.q[0], &self.v[0]);

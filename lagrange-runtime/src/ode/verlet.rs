@@ -4,6 +4,7 @@ use super::run::{Run, fixed_steps};
 use super::{
     DenseSegment, Integrator, Pair, SecondOrder, check_orientations, check_problem, settle,
 };
+use crate::error::SettingsError;
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::ode::{Continuation, Record, Trajectory};
@@ -82,16 +83,20 @@ impl StormerVerlet {
 /// `max_steps`. A span that is a whole number of steps up to rounding is not
 /// followed by a sliver of a step.
 pub(crate) fn fixed_step_count<T: Real>(
-    name: &str,
+    name: &'static str,
     h: f64,
     max_steps: usize,
     t0: T,
     t1: T,
 ) -> Result<usize, Error> {
     if !(h.is_finite() && h > 0.0) {
-        return Err(Error::InvalidSettings(format!(
-            "{name}: step size must be positive and finite, got {h}"
-        )));
+        return Err(SettingsError::Value {
+            owner: name,
+            setting: "step size",
+            value: h,
+            requirement: "positive and finite".into(),
+        }
+        .into());
     }
     let ratio = ((t1 - t0) / T::lit(h)).to_f64();
     let n = (ratio - 1e-9 * ratio.max(1.0)).ceil().max(1.0);
@@ -287,7 +292,7 @@ mod tests {
                 matches!(
                     e,
                     Err(Failure {
-                        error: Error::InvalidSettings(_),
+                        error: Error::Settings(_),
                         ..
                     })
                 ),

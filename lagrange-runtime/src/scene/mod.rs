@@ -65,6 +65,7 @@ mod still;
 pub use sample::MAX_FRAMES;
 pub use still::Segment;
 
+use crate::error::SettingsError;
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -173,7 +174,7 @@ impl<'a, T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q> + Lagrangian
     /// The page as a string.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] for no run, an empty trajectory, a bad frame
+    /// [`Error::Settings`] for no run, an empty trajectory, a bad frame
     /// rate, a style that is not `#rrggbb` with an opacity in [0, 1], an
     /// unknown coordinate to plot or a shape size that is not positive;
     /// [`Error::NonFinitePose`] for a NaN or ∞ in a pose.
@@ -233,7 +234,13 @@ impl<'a, T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q> + Lagrangian
     }
 
     fn check(&self) -> Result<(), Error> {
-        let bad = |m: String| Err(Error::InvalidSettings(m));
+        let bad = |problem: String| {
+            Err(SettingsError::Data {
+                owner: "scene",
+                problem,
+            }
+            .into())
+        };
         if self.runs.is_empty() {
             return bad("a scene needs a run: add one with `.run(&trajectory, \"label\")`".into());
         }
@@ -276,10 +283,13 @@ impl<'a, T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q> + Lagrangian
             .iter()
             .map(|n| {
                 S::COORDINATES.iter().position(|c| c == n).ok_or_else(|| {
-                    Error::InvalidSettings(format!(
-                        "cannot plot `{n}`: the coordinates are {:?}",
-                        S::COORDINATES
-                    ))
+                    Error::from(SettingsError::Data {
+                        owner: "scene",
+                        problem: format!(
+                            "cannot plot `{n}`: the coordinates are {:?}",
+                            S::COORDINATES
+                        ),
+                    })
                 })
             })
             .collect()

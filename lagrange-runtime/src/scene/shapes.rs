@@ -4,6 +4,7 @@
 //! point as a dot, and, when the description draws no line, each point fixed
 //! in a body is joined to the body's reference point.
 
+use crate::error::SettingsError;
 use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 
 use crate::error::Error;
@@ -26,7 +27,7 @@ pub(super) struct Drawn {
 /// checked positive and finite.
 ///
 /// # Errors
-/// [`Error::InvalidSettings`] for a size from a parameter that is not positive.
+/// [`Error::Settings`] for a size from a parameter that is not positive.
 pub(super) fn drawn<T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q>>(
     sys: &S,
     centres: &[Vector3<f64>],
@@ -104,9 +105,13 @@ fn to_f64<T: Real>(s: &Shape<T>) -> Result<Drawn, Error> {
         Solid::Line { .. } => Vec::new(),
     };
     if let Some(bad) = sizes.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
-        return Err(Error::InvalidSettings(format!(
-            "a shape's size is {bad}; sizes must be positive and finite (check the parameters its sizes are written in)"
-        )));
+        return Err(SettingsError::Value {
+            owner: "shape",
+            setting: "size (check the parameters it is written in)",
+            value: *bad,
+            requirement: "positive and finite".into(),
+        }
+        .into());
     }
     Ok(Drawn {
         on: s.on,

@@ -61,7 +61,7 @@ impl<S, I: Integrator, C, E> Simulation<'_, S, I, C, E> {
     /// control is applied.
     ///
     /// # Errors
-    /// As [`run`](Self::run); [`Error::InvalidSettings`](crate::Error::InvalidSettings) also for an [`Atlas`]
+    /// As [`run`](Self::run); [`Error::Settings`](crate::Error::Settings) also for an [`Atlas`]
     /// whose free twin does not have the documented layout, and for a
     /// constrained system with [`drift`](Self::drift) control or
     /// [`least_squares`](Self::least_squares);
@@ -98,9 +98,7 @@ impl<S, I: Integrator, C, E> Simulation<'_, S, I, C, E> {
         let constraints = (s.tolerances.consistency, s.drift, s.least_squares);
         atlas::check_start::<S, T, N, F>(self.system, span.start, (q0, v0), constraints)?;
         if !atlas::layout_agrees(self.system) {
-            return Err(Error::InvalidSettings(
-                "the system's Atlas twin does not have the documented layout".into(),
-            ));
+            return Err(atlas::layout_error());
         }
         Ok(())
     }

@@ -99,7 +99,7 @@ impl<T: Real, const N: usize, const P: usize, const Q: usize> ControlRun<T, N, P
     /// [`Trajectory::table`].
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] if the inputs do not match the points (they
+    /// [`Error::Settings`] if the inputs do not match the points (they
     /// always do for a run built here).
     pub fn table<S: Lagrangian<T, N, Q>>(
         &self,

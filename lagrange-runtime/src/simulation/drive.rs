@@ -4,6 +4,7 @@
 
 use super::ControlRun;
 use crate::control::{InputForces, InputSource, check_input};
+use crate::error::SettingsError;
 use crate::error::{Error, Failure};
 use crate::event::Occurrence;
 use crate::event::within_budget;
@@ -215,14 +216,19 @@ where
     fn check_budget(&self, t0: T, t1: T) -> Result<(), Error> {
         let max_steps = self.integrator.max_steps();
         match self.source.breaks_within(t0, t1) {
-            Some(n) if n >= max_steps as f64 => Err(Error::InvalidSettings(format!(
-                "the input source restarts the run {n:.3e} times in [{}, {}] (each piece \
-                 at least one step), but the integrator's step budget for the whole run is \
-                 max_steps = {max_steps}: sample less often, shorten the span, or raise \
-                 .max_steps(n) on the integrator",
-                t0.to_f64(),
-                t1.to_f64()
-            ))),
+            Some(n) if n >= max_steps as f64 => Err(SettingsError::Budget {
+                owner: "input source",
+                what: "restarts the run (each piece at least one step)",
+                asked: n,
+                limit: max_steps as f64,
+                start: t0.to_f64(),
+                end: t1.to_f64(),
+                advice: "the integrator's max_steps is the step budget of the whole run: \
+                         sample less often, shorten the span, or raise .max_steps(n) on the \
+                         integrator"
+                    .into(),
+            }
+            .into()),
             _ => Ok(()),
         }
     }

@@ -282,7 +282,7 @@ impl<S, I: Integrator, C, E> Simulation<'_, S, I, C, E> {
     ///
     /// # Errors
     /// A [`Failure`] with the error and what was computed before it:
-    /// [`Error::InvalidSettings`] for a bad tolerance, integrator setting,
+    /// [`Error::Settings`] for a bad tolerance, integrator setting,
     /// time span or initial state; [`Error::NonUnitQuaternion`] for an
     /// initial quaternion off unit norm; otherwise whatever the dynamics,
     /// the events, the inputs or the integrator report

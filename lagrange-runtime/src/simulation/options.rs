@@ -244,7 +244,7 @@ impl<'a, S, I, E> Simulation<'a, S, I, Unforced, E> {
     /// [module docs](crate::control)). `k` may keep state between samples
     /// (`FnMut`): it is called once per sample, in time order. A period that is
     /// not positive and finite makes the run fail with
-    /// [`Error::InvalidSettings`](crate::Error::InvalidSettings).
+    /// [`Error::Settings`](crate::Error::Settings).
     pub fn sampled<T, F, U, const N: usize, const P: usize, const Q: usize>(
         self,
         period: f64,

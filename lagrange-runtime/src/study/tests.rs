@@ -1,5 +1,6 @@
 use super::report::{CSV_COLUMNS, MARKDOWN_COLUMNS};
 use super::*;
+use crate::error::SettingsError;
 use crate::ode::test_problems::Oscillator;
 use crate::ode::{Dopri5, Integrator, Rk4};
 use nalgebra::Vector1;
@@ -210,22 +211,31 @@ fn markdown_and_csv_have_the_expected_columns() {
 fn reference_problems_are_errors_of_the_study() {
     let e = oscillator().repeats(0, Duration::ZERO).run().unwrap_err();
     assert!(
-        matches!(e, Error::InvalidSettings(ref s) if s.contains("repeats")),
+        matches!(
+            e,
+            Error::Settings(SettingsError::ZeroCount {
+                setting: "repeats",
+                ..
+            })
+        ),
         "{e}"
     );
     let e = oscillator()
         .computed_reference(-1.0, false)
         .run()
         .unwrap_err();
-    assert!(matches!(e, Error::InvalidSettings(_)), "{e}");
+    assert!(
+        matches!(e, Error::Settings(SettingsError::Value { value, .. }) if value == -1.0),
+        "{e}"
+    );
     // Below what f64 can attain: refused, naming the setting and the floor.
     let e = oscillator()
         .computed_reference(1e-20, false)
         .run()
         .unwrap_err();
     assert!(
-        matches!(e, Error::InvalidSettings(ref s)
-            if s.contains("reference tolerance 1e-20") && s.contains("2.220446049250313e-16")),
+        matches!(e, Error::Settings(SettingsError::Value { setting: "reference tolerance", value, .. }) if value == 1e-20)
+            && e.to_string().contains("2.220446049250313e-16"),
         "{e}"
     );
     // At the floor it runs.
@@ -236,8 +246,12 @@ fn reference_problems_are_errors_of_the_study() {
             .is_ok()
     );
     // A reference run that fails leaves the study without a yardstick.
-    let failing = WorkPrecision::<f64, 1>::new(|_| Err(Error::InvalidSettings("boom".into())));
-    assert!(matches!(failing.run(), Err(Error::InvalidSettings(s)) if s == "boom"));
+    let boom = || SettingsError::ZeroCount {
+        owner: "boom",
+        setting: "boom",
+    };
+    let failing = WorkPrecision::<f64, 1>::new(|_| Err(Error::from(boom())));
+    assert!(matches!(failing.run(), Err(Error::Settings(s)) if s == boom()));
     // A given reference that ends before the runs: the rows say so.
     let short = Dopri5::tol(1e-10)
         .integrate(
@@ -255,7 +269,7 @@ fn reference_problems_are_errors_of_the_study() {
         .unwrap();
     assert!(matches!(
         &study.rows()[0].outcome,
-        Err(Error::InvalidSettings(s)) if s.contains("outside the reference")
+        Err(Error::Settings(SettingsError::Data { problem, .. })) if problem.contains("outside the reference")
     ));
 }
 
@@ -367,7 +381,7 @@ fn a_bad_uncertainty_is_refused() {
             .run()
             .unwrap_err();
         assert!(
-            matches!(e, Error::InvalidSettings(ref m) if m.contains("uncertainty")),
+            matches!(e, Error::Settings(SettingsError::Value { setting, .. }) if setting.contains("uncertainty")),
             "{e}"
         );
     }

@@ -68,7 +68,9 @@
 //! # Ok::<(), lagrange_runtime::Error>(())
 //! ```
 //!
-//! - `saddle`: the range-space solve shared by the dynamics and the projections;
+//! The range-space solve shared by the dynamics and the projections is
+//! `numeric::saddle` (layer 0); here:
+//!
 //! - `projection`: Gauss–Newton onto Φ = 0 and the velocity correction;
 //! - `consistency`: residuals, the initial-condition check and its repair.
 
@@ -77,6 +79,7 @@ mod projection;
 
 pub use consistency::{check_consistency, project_consistent};
 
+use crate::error::SettingsError;
 use crate::error::{Error, check_tolerance, to_vec};
 use crate::mechanics::dynamics::{DEFAULT_SINGULAR_TOLERANCE, all_finite, on_sphere};
 use crate::mechanics::{Forcing, NoForcing};
@@ -154,25 +157,32 @@ impl Drift {
     /// and at least one iteration.
     ///
     /// # Errors
-    /// [`Error::InvalidSettings`] naming the bad parameter.
+    /// [`Error::Settings`] naming the bad parameter.
     pub fn check(&self) -> Result<(), Error> {
+        let value = |setting, value, requirement: &str| SettingsError::Value {
+            owner: "drift",
+            setting,
+            value,
+            requirement: requirement.into(),
+        };
         let bad = match *self {
             Drift::None => None,
-            Drift::Baumgarte { alpha, beta } => [("alpha", alpha), ("beta", beta)]
-                .into_iter()
-                .find(|&(_, x)| !(x.is_finite() && x >= 0.0))
-                .map(|(n, x)| format!("Baumgarte {n} must be finite and >= 0, got {x}")),
-            Drift::Projection { tol, max_iter } => {
-                if !(tol.is_finite() && tol > 0.0) {
-                    Some(format!("projection tol must be finite and > 0, got {tol}"))
-                } else if max_iter == 0 {
-                    Some("projection max_iter must be at least 1".to_string())
-                } else {
-                    None
-                }
+            Drift::Baumgarte { alpha, beta } => {
+                [("Baumgarte alpha", alpha), ("Baumgarte beta", beta)]
+                    .into_iter()
+                    .find(|&(_, x)| !(x.is_finite() && x >= 0.0))
+                    .map(|(n, x)| value(n, x, "non-negative and finite"))
             }
+            Drift::Projection { tol, .. } if !(tol.is_finite() && tol > 0.0) => {
+                Some(value("projection tol", tol, "positive and finite"))
+            }
+            Drift::Projection { max_iter: 0, .. } => Some(SettingsError::ZeroCount {
+                owner: "drift",
+                setting: "projection max_iter",
+            }),
+            Drift::Projection { .. } => None,
         };
-        bad.map_or(Ok(()), |msg| Err(Error::InvalidSettings(msg)))
+        bad.map_or(Ok(()), |e| Err(e.into()))
     }
 }
 
@@ -282,7 +292,7 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
 
     /// Sets the threshold on the pivot ratio of G M⁻¹ Gᵀ below which constraint
     /// rows count as redundant (default 1e-12); a negative or non-finite one
-    /// is refused ([`Error::InvalidSettings`]) at the first evaluation.
+    /// is refused ([`Error::Settings`]) at the first evaluation.
     pub fn with_redundant_tolerance(mut self, tolerance: T) -> Self {
         self.redundant_tolerance = tolerance;
         self
@@ -345,8 +355,16 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
         // it is closest to.
         let unit = on_sphere::<S, T, N, Q>(q);
         let q = &unit;
-        check_tolerance("singular tolerance", self.singular_tolerance.to_f64())?;
-        check_tolerance("redundant tolerance", self.redundant_tolerance.to_f64())?;
+        check_tolerance(
+            "ConstrainedDynamics",
+            "singular tolerance",
+            self.singular_tolerance.to_f64(),
+        )?;
+        check_tolerance(
+            "ConstrainedDynamics",
+            "redundant tolerance",
+            self.redundant_tolerance.to_f64(),
+        )?;
         let (m, mut f, g, mut gamma) = self.system.constrained_system_with(self.terms, q, v, t);
         if F::ACTIVE {
             f += self.forcing.force(t, q, v)?;

@@ -7,6 +7,7 @@ mod step;
 use super::run::Run;
 use super::settings::{StepControl, step_control_builders};
 use super::{Integrator, SecondOrder, check_orientations, check_problem};
+use crate::error::SettingsError;
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::ode::{Continuation, Record, Trajectory};
@@ -87,9 +88,12 @@ impl Radau5 {
     fn validate(&self) -> Result<(), Error> {
         self.control.validate("RADAU5", 1e-15, true)?;
         if self.max_newton == 0 {
-            return Err(Error::InvalidSettings(
-                "RADAU5: max_newton must be positive".into(),
-            ));
+            let setting = "max_newton";
+            return Err(SettingsError::ZeroCount {
+                owner: "RADAU5",
+                setting,
+            }
+            .into());
         }
         Ok(())
     }
