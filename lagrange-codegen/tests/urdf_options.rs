@@ -227,3 +227,23 @@ fn a_joint_named_as_a_field_quotes_the_file_and_line() {
         "{e}"
     );
 }
+
+/// An inertia used as written that no f64 holds once turned into its link's
+/// axes (the `<inertial>`'s rpy) is refused at the file's line, not written
+/// as a literal no compiler reads.
+#[test]
+fn an_inertia_that_overflows_in_the_links_axes_is_refused_at_its_line() {
+    let text = "<robot name='r'><link name='base'/>\n<link name='arm'><inertial><origin rpy='0.7 0.3 0'/>\n\
+        <mass value='1'/><inertia ixx='1.7e308' iyy='1.7e308' izz='1.7e308' ixy='1.7e308' ixz='0' iyz='0'/>\
+        </inertial></link><joint name='j' type='revolute'><parent link='base'/><child link='arm'/>\
+        <axis xyz='0 0 1'/></joint></robot>";
+    let as_written = Options {
+        inertia: InertiaRule::AsWritten,
+        ..Default::default()
+    };
+    let e = read(text, as_written).err().unwrap_or_default();
+    assert!(
+        e.starts_with("r.urdf:3: a number computed from the file here is inf"),
+        "{e}"
+    );
+}
