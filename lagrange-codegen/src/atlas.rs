@@ -394,7 +394,7 @@ mod tests {
         let system = crate::attr::parse(&cx, &input).unwrap();
         let at = &system.extras[0].0;
         let (twin, triples) = twin(&cx, &system, at).unwrap();
-        assert!(!cx.has_errors());
+        cx.check().unwrap();
         assert_eq!(triples.len(), 1);
         assert_eq!(twin.nonholonomic.len(), 2);
         assert!(twin.speeds.is_empty());

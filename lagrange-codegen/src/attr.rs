@@ -483,12 +483,12 @@ fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr, options: crate::
         Err(message) => return cx.error_at(path.span(), message),
     };
     let first_body = system.bodies.len();
-    for (text, tokens) in urdf.tokens_at(path.span()) {
-        match syn::parse2::<Item>(tokens) {
+    for tokens in urdf.items_at(path.span()) {
+        match syn::parse2::<Item>(tokens.clone()) {
             Ok(item) => add_item(cx, system, item),
             Err(e) => cx.error_at(
                 path.span(),
-                format!("{}: generated `{text}`: {e}", path.value()),
+                format!("{}: generated `{tokens}`: {e}", path.value()),
             ),
         }
     }

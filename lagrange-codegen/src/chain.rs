@@ -163,17 +163,17 @@ pub fn spatial_chain_written_source(n: usize) -> String {
 ///
 /// # Panics
 /// On items that are not of that shape (this is a benchmark fixture).
-pub fn written_out(items: &[String]) -> Vec<String> {
+pub fn written_out(items: &[proc_macro2::TokenStream]) -> Vec<String> {
     let mut w = Transcriber::default();
     let mut out = Vec::new();
     for item in items {
-        let call: syn::ExprCall = syn::parse_str(item).expect("an item is a call");
+        let call: syn::ExprCall = syn::parse2(item.clone()).expect("an item is a call");
         let kind = quote::ToTokens::to_token_stream(&call.func).to_string();
         let args: Vec<&syn::Expr> = call.args.iter().collect();
         match kind.as_str() {
             "body" => out.push(w.body(&args)),
             "point" => out.extend(w.point(&args)),
-            _ => out.push(item.clone()),
+            _ => out.push(item.to_string()),
         }
     }
     out.insert(1, format!("define({})", w.defines.join(", ")));

@@ -18,8 +18,9 @@
 //! A module imports only from its own stage or the ones before it; [`mat3`],
 //! [`ctxt`] and [`spelling`] are shared by all.
 //!
-//! Errors are collected in a [`ctxt::Ctxt`] across stages; on error the output is
-//! `compile_error!`s plus a stub impl, never a panic.
+//! Errors are collected in a [`ctxt::Ctxt`] across stages, consumed before
+//! anything is emitted; on error the output is `compile_error!`s plus a stub
+//! impl, never a panic.
 
 pub mod ast;
 pub mod atlas;
@@ -78,46 +79,63 @@ pub fn derive(input: TokenStream) -> TokenStream {
 }
 
 /// Expands a parsed derive input into the trait impl (or errors plus a stub impl).
+///
+/// The stages record their errors in one [`Ctxt`], consumed ([`Ctxt::finish`])
+/// before anything is emitted: code comes out only for a description without
+/// errors, and every error recorded comes out.
 pub fn expand(input: &DeriveInput) -> TokenStream {
     let cx = Ctxt::new();
     let Some(system) = attr::parse(&cx, input) else {
-        return cx.to_compile_errors();
+        // Not a struct with named fields, as the errors say: nothing to stub.
+        let nothing: Option<TokenStream> = None;
+        return cx
+            .finish(nothing, input.ident.span())
+            .unwrap_or_else(|e| e.to_compile_error());
     };
-    match build(&cx, &system, mechanics::Route::Auto) {
-        Some(model) => {
-            let body = emit::impl_lagrangian(&system, &model);
-            let atlas = atlas_impl(&cx, &system, &model);
-            if cx.has_errors() {
-                let errors = cx.to_compile_errors();
-                let stub = emit::stub_impl(&system);
-                return quote::quote!(#errors const _: () = { #stub };);
-            }
-            quote::quote!(const _: () = { #body #atlas };)
-        }
-        None => {
-            let errors = cx.to_compile_errors();
+    let derived = derive_models(&cx, &system);
+    match cx.finish(derived, system.span) {
+        Ok(derived) => derived.emit(&system),
+        Err(errors) => {
+            let errors = errors.to_compile_error();
             let stub = emit::stub_impl(&system);
             quote::quote!(#errors const _: () = { #stub };)
         }
     }
 }
 
-/// `impl Atlas` and the free twin, if `emit(atlas)` asks for them: the
-/// twin's description goes through the same stages as the user's.
-fn atlas_impl(cx: &Ctxt, system: &ast::System, model: &Model) -> Option<TokenStream> {
-    let (at, _) = system
-        .extras
-        .iter()
-        .find(|(_, e)| *e == ast::Extra::Atlas)?;
-    let (twin, triples) = atlas::twin(cx, system, at)?;
-    let twin_model = build(cx, &twin, mechanics::Route::Auto)?;
-    Some(emit::impl_atlas(
-        system,
-        model,
-        &twin,
-        &twin_model,
-        &triples,
-    ))
+/// The models a description's code is emitted from, derived while its errors
+/// are still being collected and emitted only once none was.
+struct Derived {
+    model: Model,
+    /// `emit(atlas)`'s free twin: its description, its model, and the Euler
+    /// rotations it replaces.
+    atlas: Option<(ast::System, Model, Vec<atlas::EulerTriple>)>,
+}
+
+impl Derived {
+    fn emit(&self, system: &ast::System) -> TokenStream {
+        let body = emit::impl_lagrangian(system, &self.model);
+        let atlas = self.atlas.as_ref().map(|(twin, twin_model, triples)| {
+            emit::impl_atlas(system, &self.model, twin, twin_model, triples)
+        });
+        quote::quote!(const _: () = { #body #atlas };)
+    }
+}
+
+/// The user's model and, if `emit(atlas)` asks for them, the free twin's:
+/// the twin's description goes through the same stages as the user's.
+fn derive_models(cx: &Ctxt, system: &ast::System) -> Option<Derived> {
+    let model = build(cx, system, mechanics::Route::Auto)?;
+    let asked = system.extras.iter().find(|(_, e)| *e == ast::Extra::Atlas);
+    let atlas = match asked {
+        None => None,
+        Some((at, _)) => {
+            let (twin, triples) = atlas::twin(cx, system, at)?;
+            let twin_model = build(cx, &twin, mechanics::Route::Auto)?;
+            Some((twin, twin_model, triples))
+        }
+    };
+    Some(Derived { model, atlas })
 }
 
 /// Runs the stages up to the symbolic model, for tools and benchmarks that want the
@@ -132,14 +150,7 @@ pub fn model_by(input: &DeriveInput, route: mechanics::Route) -> Result<Model, s
     let cx = Ctxt::new();
     let system = attr::parse(&cx, input);
     let model = system.as_ref().and_then(|s| build(&cx, s, route));
-    match (model, cx.take()) {
-        (Some(m), None) => Ok(m),
-        (_, Some(e)) => Err(e),
-        (None, None) => Err(syn::Error::new(
-            input.ident.span(),
-            "could not derive the equations",
-        )),
-    }
+    cx.finish(model, input.ident.span())
 }
 
 fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Model> {

@@ -169,13 +169,40 @@ fn a_floating_joint_at_the_root_is_a_free_base() {
             .unwrap_or_else(|e| panic!("{e}"))
     };
     let (a, b) = (read(&free, Base::AsFile), read(&based, Base::Floating));
-    assert_eq!(a.items, b.items);
+    let texts = |urdf: &lagrange_codegen::urdf::Urdf| -> Vec<String> {
+        urdf.items.iter().map(ToString::to_string).collect()
+    };
+    assert_eq!(texts(&a), texts(&b));
     assert_eq!(a.coordinates, ["base_x", "base_y", "base_z", "shoulder"]);
-    assert!(
-        a.items.iter().any(|i| i == "orientation(base_turn)"),
-        "{:?}",
-        a.items
-    );
+    let turn = quote::quote!(orientation(base_turn)).to_string();
+    assert!(texts(&a).contains(&turn), "{:?}", texts(&a));
+}
+
+/// A file's numbers read as their values whichever way XML spells them,
+/// `.5`, `1.e0` and `+2` among them, which are no Rust literals: the robot
+/// expands as the one written `0.5`, `1` and `2`.
+#[test]
+fn numbers_read_as_their_values_in_any_spelling() {
+    let file = |mass: &str, x: &str, z: &str| {
+        format!(
+            "<robot name='r'><link name='base'/><link name='a'><inertial><mass value='{mass}'/>\
+             <inertia ixx='0.01' iyy='0.01' izz='0.01' ixy='0' ixz='0' iyz='0'/></inertial></link>\
+             <joint name='j' type='revolute'><parent link='base'/><child link='a'/>\
+             <origin xyz='{x} 0 {z}'/><axis xyz='0 1 0'/></joint></robot>"
+        )
+    };
+    let path = std::env::temp_dir().join("lagrange-urdf-spellings.urdf");
+    let expand = |text: String| {
+        std::fs::write(&path, text).unwrap();
+        let src = format!(
+            "#[lagrange(urdf = \"{}\", gravity = [0, 0, -9.81])] struct R {{}}",
+            path.display()
+        );
+        lagrange_codegen::expand(&syn::parse_str(&src).unwrap()).to_string()
+    };
+    let spelled = expand(file("1.e0", ".5", "+2"));
+    assert!(!spelled.contains("compile_error"), "{spelled}");
+    assert_eq!(spelled, expand(file("1", "0.5", "2")));
 }
 
 /// A lone base link without an `<inertial>` put on a free root has nothing

@@ -21,6 +21,11 @@ fn read(text: &str, options: Options) -> Result<lagrange_codegen::urdf::Urdf, St
     from_text(text, "r.urdf", &[], options)
 }
 
+/// The items as token text (`point (p , on = b , ..)`), to compare and search.
+fn texts(urdf: &lagrange_codegen::urdf::Urdf) -> Vec<String> {
+    urdf.items.iter().map(ToString::to_string).collect()
+}
+
 fn with_base(base: Base) -> Options {
     Options {
         base,
@@ -45,14 +50,10 @@ fn derive(name: &str, text: &str, options: &str) -> Result<Model, String> {
 fn base_fixed_fixes_a_files_floating_joint_where_it_places_the_base() {
     let fixed = read(&floating_file(), with_base(Base::Fixed)).unwrap();
     assert_eq!(fixed.coordinates, ["shoulder"]);
-    assert!(!fixed.items.iter().any(|i| i.starts_with("orientation")));
-    assert!(
-        fixed
-            .items
-            .contains(&"point(free_origin, on = world, at = [(0), (0), (0.5)])".to_string()),
-        "{:?}",
-        fixed.items
-    );
+    let items = texts(&fixed);
+    assert!(!items.iter().any(|i| i.starts_with("orientation")));
+    let placed = quote::quote!(point(free_origin, on = world, at = [(0.0), (0.0), (0.5)]));
+    assert!(items.contains(&placed.to_string()), "{items:?}");
     let model = derive("fixed", &floating_file(), ", base = fixed").unwrap();
     assert_eq!(model.coordinates, ["shoulder"]);
 }
@@ -76,7 +77,7 @@ fn every_base_option_against_every_file_shape() {
     // The file's own floating joint and `base = floating` read it alike.
     let a = read(&floating_file(), with_base(Base::AsFile)).unwrap();
     let b = read(&floating_file(), with_base(Base::Floating)).unwrap();
-    assert_eq!(a.items, b.items);
+    assert_eq!(texts(&a), texts(&b));
 }
 
 #[test]
@@ -106,12 +107,12 @@ fn a_joint_and_a_link_of_one_name_both_keep_a_name() {
 <joint name='fr_tele' type='prismatic'><parent link='base'/><child link='fr_tele'/><axis xyz='0 0 1'/></joint></robot>";
     let urdf = read(text, Options::default()).unwrap();
     assert_eq!(urdf.coordinates, ["fr_tele"]);
-    let body = urdf
-        .items
+    let items = texts(&urdf);
+    let body = items
         .iter()
-        .find(|i| i.starts_with("body(fr_tele_link,"))
-        .unwrap_or_else(|| panic!("{:?}", urdf.items));
-    assert!(body.contains("at = [fr_tele_origin.x"), "{body}");
+        .find(|i| i.starts_with("body (fr_tele_link ,"))
+        .unwrap_or_else(|| panic!("{items:?}"));
+    assert!(body.contains("at = [fr_tele_origin . x"), "{body}");
     let model = derive("clash", text, "").unwrap();
     assert_eq!(model.coordinates, ["fr_tele"]);
 }
@@ -223,6 +224,26 @@ fn a_joint_named_as_a_field_quotes_the_file_and_line() {
         .to_string();
     assert!(
         e.contains("lagrange-urdf-options-field.urdf:3: `shoulder` is named `shoulder`"),
+        "{e}"
+    );
+}
+
+/// An inertia used as written that no f64 holds once turned into its link's
+/// axes (the `<inertial>`'s rpy) is refused at the file's line, not written
+/// as a literal no compiler reads.
+#[test]
+fn an_inertia_that_overflows_in_the_links_axes_is_refused_at_its_line() {
+    let text = "<robot name='r'><link name='base'/>\n<link name='arm'><inertial><origin rpy='0.7 0.3 0'/>\n\
+        <mass value='1'/><inertia ixx='1.7e308' iyy='1.7e308' izz='1.7e308' ixy='1.7e308' ixz='0' iyz='0'/>\
+        </inertial></link><joint name='j' type='revolute'><parent link='base'/><child link='arm'/>\
+        <axis xyz='0 0 1'/></joint></robot>";
+    let as_written = Options {
+        inertia: InertiaRule::AsWritten,
+        ..Default::default()
+    };
+    let e = read(text, as_written).err().unwrap_or_default();
+    assert!(
+        e.starts_with("r.urdf:3: a number computed from the file here is inf"),
         "{e}"
     );
 }

@@ -1,21 +1,26 @@
 //! A robot read from URDF written as the description a user would write by
 //! hand: one coordinate per moving joint, one body per link (its rotation its
 //! parent's followed by the joint's `rpy` and its axis rotation), and one
-//! point per joint on the parent link where the child hangs. Numbers are kept
-//! as the file writes them, so the tree route recognises the description and
-//! the equations read like the file.
+//! point per joint on the parent link where the child hangs. The items are
+//! built as tokens (`tokens`), never as text: numbers as f64 literals that
+//! read back as the file's values bit for bit, the rotations as the products
+//! of elementary turns the tree route recognises.
 
 use std::borrow::Cow;
 use std::collections::{BTreeMap, BTreeSet};
 
+use proc_macro2::{Ident, TokenStream};
+use quote::{format_ident, quote};
+
 use super::model::{Inertial, Joint, JointType, Number, ReadError, Robot};
 use super::options::Base;
+use super::tokens::{identifier, product};
 
-/// The description's items as source text, with what the derive publishes
-/// beside the equations.
+/// The description's items, with what the derive publishes beside the
+/// equations.
 pub struct Description {
-    /// Items of `#[lagrange(...)]`, each one parseable on its own.
-    pub items: Vec<String>,
+    /// Items of `#[lagrange(...)]`, each one item's tokens.
+    pub items: Vec<TokenStream>,
     /// The coordinates' names (the moving, non-mimic joints), in tree order.
     pub coordinates: Vec<String>,
     /// Each coordinate's position limits (±∞ where the file gives none).
@@ -26,43 +31,24 @@ fn error(line: u32, message: String) -> ReadError {
     ReadError { line, message }
 }
 
-/// A name usable as a Rust identifier: other characters become `_`, a
-/// leading digit gets a `_` before it, a keyword or a name the description
-/// reserves (`t`, `pi`, `PI`, `dot`) one after it.
-fn identifier(name: &str) -> String {
-    let mut s: String = name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if s.is_empty() || s.starts_with(|c: char| c.is_ascii_digit()) {
-        s.insert(0, '_');
-    }
-    if syn::parse_str::<syn::Ident>(&s).is_err() || crate::check::RESERVED.contains(&s.as_str()) {
-        s.push('_');
-    }
-    s
+/// `x` as an f64 literal (see `tokens::number`), or an error at `line` when
+/// it is beyond f64's range: a file's numbers are finite, but one computed
+/// from them (an inertia turned into the link's axes) may overflow.
+fn number(x: f64, line: u32) -> Result<TokenStream, ReadError> {
+    super::tokens::number(x).ok_or_else(|| {
+        error(
+            line,
+            format!(
+                "a number computed from the file here is {x}, beyond f64's range: write the \
+                 file's quantities in other units"
+            ),
+        )
+    })
 }
 
-/// A number as a Rust expression: as written where that is one, else its value.
-fn lit(n: &Number) -> String {
-    let t = n.text.trim_start_matches('+');
-    let ok = syn::parse_str::<syn::Expr>(t).is_ok()
-        && t.chars().all(|c| c.is_ascii_digit() || "-.eE+".contains(c));
-    if ok {
-        format!("({t})")
-    } else {
-        format!("({:?})", n.value)
-    }
-}
-
-fn value(x: f64) -> String {
-    format!("({x:?})")
+/// The file's numbers `ns` as literals (see [`number`]).
+fn numbers(ns: &[Number], line: u32) -> Result<Vec<TokenStream>, ReadError> {
+    ns.iter().map(|n| number(n.value, line)).collect()
 }
 
 /// The links in tree order (parents first) with the joint each hangs on.
@@ -143,43 +129,59 @@ fn tree_order(robot: &Robot) -> Result<Vec<(&str, Option<&Joint>)>, ReadError> {
     Ok(order)
 }
 
-/// `rot_z(yaw) * rot_y(pitch) * rot_x(roll)` of an origin's rpy, zeros left out.
-fn rpy_factors(rpy: &[Number; 3]) -> Vec<String> {
-    [(2, "z"), (1, "y"), (0, "x")]
-        .iter()
-        .filter(|&&(i, _)| !rpy[i].is_zero())
-        .map(|&(i, axis)| format!("rot_{axis}({})", lit(&rpy[i])))
-        .collect()
+/// `rot_z(yaw) * rot_y(pitch) * rot_x(roll)` of an origin's rpy, zeros left
+/// out; `line` is the origin's element's.
+fn rpy_factors(rpy: &[Number; 3], line: u32) -> Result<Vec<TokenStream>, ReadError> {
+    let mut out = Vec::new();
+    for (i, axis) in [(2, "z"), (1, "y"), (0, "x")] {
+        if !rpy[i].is_zero() {
+            let (rot, angle) = (elementary(axis), number(rpy[i].value, line)?);
+            out.push(quote!(#rot(#angle)));
+        }
+    }
+    Ok(out)
+}
+
+/// `rot_x`, `rot_y` or `rot_z`: the elementary turn about `axis`.
+fn elementary(axis: &str) -> Ident {
+    format_ident!("rot_{axis}")
 }
 
 /// The rotation by `angle` about the unit axis `n`: an elementary factor when
 /// n is a coordinate axis, else that factor conjugated by the constant
-/// rotation taking z onto n.
-fn axis_factors(n: [f64; 3], angle: &str) -> Vec<String> {
+/// rotation taking z onto n; `line` is the joint's.
+fn axis_factors(
+    n: [f64; 3],
+    angle: &TokenStream,
+    line: u32,
+) -> Result<Vec<TokenStream>, ReadError> {
     let names = ["x", "y", "z"];
     for (i, name) in names.iter().enumerate() {
         let others_zero = (0..3).all(|k| k == i || n[k] == 0.0);
+        let rot = elementary(name);
         if others_zero && n[i] == 1.0 {
-            return vec![format!("rot_{name}({angle})")];
+            return Ok(vec![quote!(#rot(#angle))]);
         }
         if others_zero && n[i] == -1.0 {
-            let flip = names[(i + 1) % 3];
-            return vec![
-                format!("rot_{flip}(pi)"),
-                format!("rot_{name}({angle})"),
-                format!("rot_{flip}(-pi)"),
-            ];
+            let flip = elementary(names[(i + 1) % 3]);
+            return Ok(vec![
+                quote!(#flip(pi)),
+                quote!(#rot(#angle)),
+                quote!(#flip(-pi)),
+            ]);
         }
     }
     let alpha = n[1].atan2(n[0]);
     let beta = n[2].clamp(-1.0, 1.0).acos();
-    vec![
-        format!("rot_z({})", value(alpha)),
-        format!("rot_y({})", value(beta)),
-        format!("rot_z({angle})"),
-        format!("rot_y({})", value(-beta)),
-        format!("rot_z({})", value(-alpha)),
-    ]
+    let [a, b, minus_b, minus_a] = [alpha, beta, -beta, -alpha].map(|x| number(x, line));
+    let (a, b, minus_b, minus_a) = (a?, b?, minus_b?, minus_a?);
+    Ok(vec![
+        quote!(rot_z(#a)),
+        quote!(rot_y(#b)),
+        quote!(rot_z(#angle)),
+        quote!(rot_y(#minus_b)),
+        quote!(rot_z(#minus_a)),
+    ])
 }
 
 /// The joint's axis as a unit vector.
@@ -215,13 +217,16 @@ fn rpy_matrix(rpy: &[Number; 3]) -> [[f64; 3]; 3] {
 
 /// `mass = .., inertia = [..], com = [..]` in link axes; `mass_field`, a
 /// struct field named `<link>_mass`, replaces the file's mass (a payload).
-fn mass_items(inertial: Option<&Inertial>, mass_field: Option<&str>) -> String {
+fn mass_items(
+    inertial: Option<&Inertial>,
+    mass_field: Option<&Ident>,
+) -> Result<TokenStream, ReadError> {
     let Some(i) = inertial else {
-        let mass = mass_field.unwrap_or("0");
-        return format!("mass = {mass}, inertia = [0, 0, 0]");
+        let mass = mass_field.map_or_else(|| quote!(0), |f| quote!(#f));
+        return Ok(quote!(mass = #mass, inertia = [0, 0, 0]));
     };
-    let entries: Vec<String> = if i.origin.rpy.iter().all(Number::is_zero) {
-        i.inertia.iter().map(lit).collect()
+    let entries = if i.origin.rpy.iter().all(Number::is_zero) {
+        numbers(&i.inertia, i.line)?
     } else {
         let [xx, yy, zz, xy, xz, yz] = i.inertia.clone().map(|n| n.value);
         let t = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
@@ -232,16 +237,16 @@ fn mass_items(inertial: Option<&Inertial>, mass_field: Option<&str>) -> String {
                 .sum()
         };
         [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
-            .map(|(a, b)| value(rt(a, b)))
-            .to_vec()
+            .into_iter()
+            .map(|(a, b)| number(rt(a, b), i.line))
+            .collect::<Result<_, _>>()?
     };
-    let com: Vec<String> = i.origin.xyz.iter().map(lit).collect();
-    format!(
-        "mass = {}, inertia = [{}], com = [{}]",
-        mass_field.map_or_else(|| lit(&i.mass), str::to_string),
-        entries.join(", "),
-        com.join(", ")
-    )
+    let com = numbers(&i.origin.xyz, i.line)?;
+    let mass = match mass_field {
+        Some(field) => quote!(#field),
+        None => number(i.mass.value, i.line)?,
+    };
+    Ok(quote!(mass = #mass, inertia = [#(#entries),*], com = [#(#com),*]))
 }
 
 /// The names given so far, so that no two items share one. URDF keeps links
@@ -253,9 +258,9 @@ struct Names(BTreeSet<String>);
 
 impl Names {
     /// `name` as an identifier, or an error at `line` if another item has it.
-    fn unique(&mut self, name: &str, line: u32) -> Result<String, ReadError> {
+    fn unique(&mut self, name: &str, line: u32) -> Result<Ident, ReadError> {
         let id = identifier(name);
-        if self.0.insert(id.clone()) {
+        if self.0.insert(id.to_string()) {
             return Ok(id);
         }
         Err(error(
@@ -269,36 +274,36 @@ impl Names {
 
     /// The body of link `name`: its name, or `<name>_link` where a joint's
     /// coordinate or point (or another link) already has it.
-    fn body(&mut self, name: &str, line: u32) -> Result<String, ReadError> {
+    fn body(&mut self, name: &str, line: u32) -> Result<Ident, ReadError> {
         let id = identifier(name);
-        match self.0.contains(&id) {
+        match self.0.contains(&id.to_string()) {
             false => self.unique(name, line),
             true => self.unique(&format!("{id}_link"), line),
         }
     }
 }
 
-/// The coordinates: a free root's position first (when `turn`, its
-/// orientation's name, is given), then one per moving, non-mimic joint in
-/// tree order; their limits; and each joint's coordinate.
+/// The coordinates: a free root's position first (when the root is free,
+/// `free_root` the line of its link), then one per moving, non-mimic joint
+/// in tree order; their limits; and each joint's coordinate.
 struct Coordinates<'r> {
-    names: Vec<String>,
+    names: Vec<Ident>,
     limits: Vec<(f64, f64)>,
-    angle_of: BTreeMap<&'r str, String>,
+    angle_of: BTreeMap<&'r str, Ident>,
 }
 
 fn coordinates<'r>(
     order: &[(&'r str, Option<&'r Joint>)],
     names: &mut Names,
-    turn: Option<(&str, u32)>,
+    free_root: Option<u32>,
 ) -> Result<Coordinates<'r>, ReadError> {
     let mut out = Coordinates {
         names: Vec::new(),
         limits: Vec::new(),
         angle_of: BTreeMap::new(),
     };
-    if let Some((_, line)) = turn {
-        let root = identifier(order[0].0);
+    if let (Some(line), Some((root, _))) = (free_root, order.first()) {
+        let root = identifier(root);
         for axis in ["x", "y", "z"] {
             out.names
                 .push(names.unique(&format!("{root}_{axis}"), line)?);
@@ -337,7 +342,7 @@ pub fn describe(robot: &Robot, fields: &[String], base: Base) -> Result<Descript
         true => Some(names.unique(&format!("{}_turn", identifier(order[0].0)), root_line)?),
         false => None,
     };
-    let c = coordinates(&order, &mut names, turn.as_deref().map(|t| (t, root_line)))?;
+    let c = coordinates(&order, &mut names, turn.as_ref().map(|_| root_line))?;
     if c.names.is_empty() {
         return Err(error(
             0,
@@ -350,31 +355,29 @@ pub fn describe(robot: &Robot, fields: &[String], base: Base) -> Result<Descript
         ));
     }
     let (points, bodies) = points_and_bodies(&robot, &order, &mut names)?;
-    let mut items = vec![format!("coordinates({})", c.names.join(", "))];
-    items.extend(turn.iter().map(|t| format!("orientation({t})")));
+    let coordinate_names = &c.names;
+    let mut items = vec![quote!(coordinates(#(#coordinate_names),*))];
+    items.extend(turn.iter().map(|t| quote!(orientation(#t))));
     let inertials: BTreeMap<&str, Option<&Inertial>> = robot
         .links
         .iter()
         .map(|l| (l.name.as_str(), l.inertial.as_ref()))
         .collect();
-    let mut factors: BTreeMap<&str, Vec<String>> = BTreeMap::new();
+    let mut factors: BTreeMap<&str, Vec<TokenStream>> = BTreeMap::new();
     for (link, joint) in &order {
         let body = &bodies[link];
-        let field = format!("{body}_mass");
+        let field = format_ident!("{body}_mass");
         let masses = mass_items(
             inertials[link],
-            fields.contains(&field).then_some(field.as_str()),
-        );
+            fields.contains(&field.to_string()).then_some(&field),
+        )?;
         let Some(j) = joint else {
-            let (item, mine) = root_body(body, &masses, turn.as_deref(), &c.names);
+            let (item, mine) = root_body(body, &masses, turn.as_ref(), &c.names);
             items.push(item);
             factors.insert(link, mine);
             continue;
         };
-        let parent = (
-            bodies[j.parent.as_str()].as_str(),
-            &factors[j.parent.as_str()][..],
-        );
+        let parent = (&bodies[j.parent.as_str()], &factors[j.parent.as_str()][..]);
         let (item, mine) = hang(
             j,
             (body, &masses),
@@ -387,7 +390,7 @@ pub fn describe(robot: &Robot, fields: &[String], base: Base) -> Result<Descript
     }
     Ok(Description {
         items,
-        coordinates: c.names,
+        coordinates: c.names.iter().map(Ident::to_string).collect(),
         limits: c.limits,
     })
 }
@@ -399,7 +402,7 @@ fn points_and_bodies<'r>(
     robot: &'r Robot,
     order: &[(&'r str, Option<&'r Joint>)],
     names: &mut Names,
-) -> Result<(BTreeMap<&'r str, String>, BTreeMap<&'r str, String>), ReadError> {
+) -> Result<(BTreeMap<&'r str, Ident>, BTreeMap<&'r str, Ident>), ReadError> {
     let mut points = BTreeMap::new();
     for j in order.iter().filter_map(|(_, j)| *j) {
         let point = names.unique(&format!("{}_origin", j.name), j.line)?;
@@ -420,18 +423,18 @@ fn points_and_bodies<'r>(
 /// The root link's body and its rotation factors: fixed in space, or on a
 /// free root turned by the orientation `turn` at the first three coordinates.
 fn root_body(
-    body: &str,
-    masses: &str,
-    turn: Option<&str>,
-    coordinates: &[String],
-) -> (String, Vec<String>) {
+    body: &Ident,
+    masses: &TokenStream,
+    turn: Option<&Ident>,
+    coordinates: &[Ident],
+) -> (TokenStream, Vec<TokenStream>) {
     let Some(turn) = turn else {
-        let item = format!("body({body}, {masses}, at = [0, 0, 0], rotation = rot_z(0))");
+        let item = quote!(body(#body, #masses, at = [0, 0, 0], rotation = rot_z(0)));
         return (item, Vec::new());
     };
-    let at = coordinates[..3].join(", ");
-    let item = format!("body({body}, {masses}, at = [{at}], rotation = {turn})");
-    (item, vec![turn.to_string()])
+    let at = coordinates.iter().take(3);
+    let item = quote!(body(#body, #masses, at = [#(#at),*], rotation = #turn));
+    (item, vec![quote!(#turn)])
 }
 
 /// The robot with its base as `base` says, and whether that base is on a
@@ -486,13 +489,13 @@ fn based(robot: &Robot, base: Base) -> Result<(Cow<'_, Robot>, bool), ReadError>
 /// there, with the child's rotation factors.
 fn hang(
     j: &Joint,
-    (body, masses): (&str, &str),
-    (parent_body, parent): (&str, &[String]),
-    angle_of: &BTreeMap<&str, String>,
-    point: &str,
-) -> Result<(Vec<String>, Vec<String>), ReadError> {
+    (body, masses): (&Ident, &TokenStream),
+    (parent_body, parent): (&Ident, &[TokenStream]),
+    angle_of: &BTreeMap<&str, Ident>,
+    point: &Ident,
+) -> Result<(Vec<TokenStream>, Vec<TokenStream>), ReadError> {
     let angle = match &j.mimic {
-        None => angle_of.get(j.name.as_str()).cloned(),
+        None => angle_of.get(j.name.as_str()).map(|q| quote!(#q)),
         Some(m) => {
             let Some(q) = angle_of.get(m.joint.as_str()) else {
                 return Err(error(
@@ -504,35 +507,34 @@ fn hang(
                     ),
                 ));
             };
-            Some(format!("{} * {q} + {}", lit(&m.multiplier), lit(&m.offset)))
+            let factor = number(m.multiplier.value, j.line)?;
+            let offset = number(m.offset.value, j.line)?;
+            Some(quote!(#factor * #q + #offset))
         }
     };
-    let mut mine: Vec<String> = parent.to_vec();
-    mine.extend(rpy_factors(&j.origin.rpy));
-    let xyz: Vec<String> = j.origin.xyz.iter().map(lit).collect();
+    let mut mine: Vec<TokenStream> = parent.to_vec();
+    mine.extend(rpy_factors(&j.origin.rpy, j.line)?);
+    let xyz = numbers(&j.origin.xyz, j.line)?;
     let at = match (j.kind, &angle) {
         (JointType::Prismatic, Some(s)) => {
             let a = rotate_rpy(&j.origin.rpy, unit_axis(j)?);
-            let moved: Vec<String> = (0..3)
-                .map(|k| format!("{} + {} * ({s})", xyz[k], value(a[k])))
-                .collect();
-            moved.join(", ")
+            xyz.iter()
+                .zip(a)
+                .map(|(x, a)| {
+                    let a = number(a, j.line)?;
+                    Ok(quote!(#x + #a * (#s)))
+                })
+                .collect::<Result<_, _>>()?
         }
-        _ => xyz.join(", "),
+        _ => xyz,
     };
     if let (JointType::Revolute | JointType::Continuous, Some(q)) = (j.kind, &angle) {
-        mine.extend(axis_factors(unit_axis(j)?, q));
+        mine.extend(axis_factors(unit_axis(j)?, q, j.line)?);
     }
-    let rotation = if mine.is_empty() {
-        "rot_z(0)".to_string()
-    } else {
-        mine.join(" * ")
-    };
+    let rotation = product(&mine);
     let items = vec![
-        format!("point({point}, on = {parent_body}, at = [{at}])"),
-        format!(
-            "body({body}, {masses}, at = [{point}.x, {point}.y, {point}.z], rotation = {rotation})"
-        ),
+        quote!(point(#point, on = #parent_body, at = [#(#at),*])),
+        quote!(body(#body, #masses, at = [#point.x, #point.y, #point.z], rotation = #rotation)),
     ];
     Ok((items, mine))
 }

@@ -12,6 +12,7 @@ mod describe;
 mod inertia;
 mod model;
 mod options;
+mod tokens;
 
 pub use options::{Base, InertiaRule, Options, SNAP_BOUND, parse_attribute};
 
@@ -21,8 +22,9 @@ use proc_macro2::{Group, Span, TokenStream, TokenTree};
 pub struct Urdf {
     /// The file's absolute path (for `include_bytes!`).
     pub path: String,
-    /// The description's items, as source text.
-    pub items: Vec<String>,
+    /// The description's items, each one item of `#[lagrange(...)]` as
+    /// tokens (spanned at the call site; see [`Urdf::items_at`]).
+    pub items: Vec<TokenStream>,
     /// The robot's name.
     pub name: String,
     /// The coordinates (moving, non-mimic joints, in tree order).
@@ -68,17 +70,12 @@ fn snap(robot: &mut model::Robot, tol: f64) -> Vec<(String, f64, f64)> {
 }
 
 impl Urdf {
-    /// Each item as its text and its tokens, every token spanned at `span`
-    /// (the path in the attribute), so that an error an item raises points
-    /// there.
-    pub fn tokens_at(&self, span: Span) -> Vec<(&str, TokenStream)> {
+    /// The items with every token spanned at `span` (the path in the
+    /// attribute), so that an error an item raises points there.
+    pub fn items_at(&self, span: Span) -> impl Iterator<Item = TokenStream> + '_ {
         self.items
             .iter()
-            .map(|text| {
-                let tokens: TokenStream = text.parse().expect("generated items are tokens");
-                (text.as_str(), respan(tokens, span))
-            })
-            .collect()
+            .map(move |item| respan(item.clone(), span))
     }
 }
 
