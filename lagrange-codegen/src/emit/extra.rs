@@ -15,13 +15,13 @@ pub(super) fn extras(e: &Emitter, f: &Frame, model: &Model, system: &System) -> 
     let mut out = TokenStream::new();
     let wants = |x: Extra| system.extras.iter().any(|(_, e)| *e == x);
     if wants(Extra::Reactions)
-        && let Some(c) = &model.constraints
+        && let Some(c) = &model.constraints.multipliers
     {
         out.extend(reactions(e, f, model, system, c));
         out.extend(generalized_reactions(f, c));
     }
-    if let Some(cm) = &model.coriolis {
-        out.extend(coriolis(e, f, model, cm));
+    if let Some(cm) = &model.outputs.coriolis {
+        out.extend(coriolis(e, f, model, &cm.matrix));
     }
     out
 }

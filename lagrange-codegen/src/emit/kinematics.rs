@@ -49,7 +49,7 @@ fn per_body(
 
 /// The `Kinematics` impl, when the model has its frames.
 pub(super) fn impl_kinematics(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
-    let Some(frames) = &model.frames else {
+    let Some(frames) = &model.outputs.frames else {
         return TokenStream::new();
     };
     let (s, nl) = (&f.s, &f.n);

@@ -111,11 +111,11 @@ fn lagrangian_trait(
     let n = model.dof();
     let (m_lets, m_outs) = e.program(&e.upper());
     let m_fill = e.symmetric_matrix(&m_outs, n);
-    let bias = e.vector_body(&model.bias, s, nl);
-    let forces = e.vector_body(&model.forces, s, nl);
+    let bias = e.vector_body(&model.motion.bias, s, nl);
+    let forces = e.vector_body(&model.motion.forces, s, nl);
     let energies = energy_methods(e, f, model);
     let names = configuration_names(model);
-    let rheonomic = model.rheonomic;
+    let rheonomic = model.motion.rheonomic;
     let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
     let cyclic = cyclic_const(model, nl);
     let (route, atlas) = (route_const(model), atlas_const(system));
@@ -223,8 +223,8 @@ fn position_limits(system: &System, names: &[String]) -> TokenStream {
 /// The names of q's entries: the coordinates', then each orientation's
 /// quaternion components `name.w`, `name.x`, `name.y`, `name.z`.
 fn configuration_names(model: &Model) -> Vec<String> {
-    let mut names = model.coordinates.clone();
-    for o in &model.orientations {
+    let mut names = model.variables.coordinates.clone();
+    for o in &model.variables.orientations {
         names.extend(["w", "x", "y", "z"].map(|c| format!("{}.{c}", o.name)));
     }
     names
@@ -233,16 +233,16 @@ fn configuration_names(model: &Model) -> Vec<String> {
 /// `VELOCITIES` and `ORIENTATIONS` of a description with free orientations
 /// (nothing without: the trait's defaults are right).
 fn orientation_consts(model: &Model) -> TokenStream {
-    if model.orientations.is_empty() {
+    if model.variables.orientations.is_empty() {
         return TokenStream::new();
     }
-    let mut velocities = model.coordinates.clone();
-    for o in &model.orientations {
+    let mut velocities = model.variables.coordinates.clone();
+    for o in &model.variables.orientations {
         velocities.extend(["wx", "wy", "wz"].map(|c| format!("{}.{c}", o.name)));
     }
     let n = Literal::usize_unsuffixed(velocities.len());
-    let first = model.coordinates.len();
-    let layout = (0..model.orientations.len()).map(|k| {
+    let first = model.variables.coordinates.len();
+    let layout = (0..model.variables.orientations.len()).map(|k| {
         let (q, v) = (
             Literal::usize_unsuffixed(first + 4 * k),
             Literal::usize_unsuffixed(first + 3 * k),
@@ -258,10 +258,10 @@ fn orientation_consts(model: &Model) -> TokenStream {
 /// `CYCLIC`, where some coordinate is; the trait's default (none) otherwise, so
 /// that most expansions do not carry a line of `false`s.
 fn cyclic_const(model: &Model, nl: &Literal) -> TokenStream {
-    if !model.cyclic.iter().any(|&c| c) {
+    if !model.variables.cyclic.iter().any(|&c| c) {
         return TokenStream::new();
     }
-    let cyclic = &model.cyclic;
+    let cyclic = &model.variables.cyclic;
     quote!(const CYCLIC: [bool; #nl] = [#(#cyclic),*];)
 }
 
@@ -279,7 +279,7 @@ fn atlas_const(system: &System) -> Option<TokenStream> {
 
 /// `ROUTE`: recursive, or generic with the reason.
 fn route_const(model: &Model) -> TokenStream {
-    match &model.route_reason {
+    match &model.motion.derivation.reason {
         None => quote!(
             const ROUTE: ::lagrange::__private::Route = ::lagrange::__private::Route::Recursive;
         ),
@@ -293,9 +293,9 @@ fn route_const(model: &Model) -> TokenStream {
 /// `kinetic_energy`, `potential_energy` and `integral`.
 fn energy_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let (s, vec_t, qvec_t) = (&f.s, f.vec(&f.n), f.qvec());
-    let (k_lets, k_out) = e.program(&[model.kinetic]);
-    let (p_lets, p_out) = e.program(&[model.potential]);
-    let (i_lets, i_out) = e.program(&[model.integral]);
+    let (k_lets, k_out) = e.program(&[model.energies.kinetic]);
+    let (p_lets, p_out) = e.program(&[model.energies.potential]);
+    let (i_lets, i_out) = e.program(&[model.energies.integral]);
     let (k_out, p_out, i_out) = (&k_out[0], &p_out[0], &i_out[0]);
     quote! {
         #[inline]

@@ -18,7 +18,8 @@ pub(super) fn optional_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
     let n = model.dof();
     let (vec_n, mat, qvec) = (f.vec(nl), f.mat(nl, nl), f.qvec());
     let mut out = TokenStream::new();
-    if let Some(p) = &model.momentum {
+    let hamilton = model.outputs.hamilton.as_ref();
+    if let Some(p) = hamilton.map(|h| &h.momentum) {
         let (lets, outs) = e.program(p);
         out.extend(quote! {
             #[inline]
@@ -28,7 +29,7 @@ pub(super) fn optional_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
             }
         });
     }
-    if let Some(g) = &model.kinetic_gradient {
+    if let Some(g) = hamilton.and_then(|h| h.kinetic_gradient.as_ref()) {
         let (lets, outs) = e.program(g);
         out.extend(quote! {
             #[inline]
@@ -38,9 +39,9 @@ pub(super) fn optional_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
             }
         });
     }
-    if let Some([jq, jv]) = &model.jacobians {
-        let mut all: Vec<Sym> = jq.iter().flatten().copied().collect();
-        all.extend(jv.iter().flatten());
+    if let Some(j) = &model.outputs.jacobians {
+        let mut all: Vec<Sym> = j.position.iter().flatten().copied().collect();
+        all.extend(j.velocity.iter().flatten());
         let (lets, outs) = e.program(&all);
         let fq = e.fill_dense(&quote!(jq), &outs[..n * n], n);
         let fv = e.fill_dense(&quote!(jv), &outs[n * n..], n);
@@ -64,11 +65,11 @@ pub(super) fn optional_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
 /// `Lagrangian::check_parameters` for the masses and inertias computed from
 /// parameters (nothing when every one is a literal, checked at compile time).
 fn check_parameters(e: &Emitter, model: &Model) -> TokenStream {
-    if model.checks.is_empty() {
+    if model.masses.checks.is_empty() {
         return TokenStream::new();
     }
     let mut values: Vec<Sym> = Vec::new();
-    for c in &model.checks {
+    for c in &model.masses.checks {
         match c {
             PhysicalCheck::Mass(_, m) => values.push(*m),
             PhysicalCheck::Principal(_, m) => values.extend(m),
@@ -79,7 +80,7 @@ fn check_parameters(e: &Emitter, model: &Model) -> TokenStream {
     let (lets, outs) = e.program(&values);
     let mut outs = outs.into_iter();
     let p = quote!(::lagrange::__private);
-    let calls = model.checks.iter().map(|c| {
+    let calls = model.masses.checks.iter().map(|c| {
         let (rule, name, k) = match c {
             PhysicalCheck::Mass(n, _) => (quote!(mass), n, 1),
             PhysicalCheck::Principal(n, _) => (quote!(principal), n, 3),
@@ -111,7 +112,7 @@ pub(super) fn forward_dynamics(
     f: &Frame,
     model: &Model,
 ) -> (TokenStream, TokenStream) {
-    let Some(a) = &model.articulated else {
+    let Some(a) = &model.outputs.articulated else {
         return (TokenStream::new(), TokenStream::new());
     };
     let Frame { s, n, .. } = f;
@@ -153,7 +154,7 @@ pub(super) fn forward_dynamics(
 
 /// `inverse_dynamics` and `gravity_torques`, with `emit(inverse_dynamics)`.
 fn inverse_dynamics(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
-    let Some(inverse) = &model.inverse else {
+    let Some(inverse) = &model.outputs.inverse else {
         return TokenStream::new();
     };
     let (s, vec_n, qvec) = (&f.s, f.vec(&f.n), f.qvec());
@@ -179,7 +180,7 @@ fn inverse_dynamics(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
 /// emitted, else the reduced form; nothing for an unconstrained one.
 pub(super) fn visit_form(f: &Frame, model: &Model) -> TokenStream {
     let (s, nl) = (&f.s, &f.n);
-    let (method, k) = match (&model.constraints, &model.reduced) {
+    let (method, k) = match (&model.constraints.multipliers, &model.constraints.reduced) {
         (Some(c), _) => (quote!(multipliers), c.names.len()),
         (None, Some(r)) => (quote!(reduced), r.names.len()),
         (None, None) => return quote!(),
