@@ -7,9 +7,8 @@ use quote::{format_ident, quote};
 use super::constrained::impl_constrained;
 use super::driven::impl_driven;
 use super::emitter::Emitter;
-use super::extra::extras;
-use super::kinematics::impl_kinematics;
-use super::method::{forward_dynamics, optional_methods, visit_form};
+use super::method::{check_parameters, visit_form};
+use super::output::{Pieces, outputs};
 use super::posed::impl_posed;
 use super::reduced::impl_reduced;
 use super::{Frame, constant};
@@ -24,9 +23,13 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let e = Emitter::new(model, &system.scalar);
     let f = Frame::new(system, model.dof(), model.configuration_len());
     let docs = Docs::new(system, model);
-    let (forward_dynamics, articulated_inner) = forward_dynamics(&e, &f, model);
-    let lagrangian = lagrangian_trait(&e, &f, system, model, forward_dynamics);
-    let mut inherent = extras(&e, &f, model, system);
+    let Pieces {
+        lagrangian: output_methods,
+        mut inherent,
+        hoisted: output_hoisted,
+        items: output_items,
+    } = outputs(&e, &f, model, system);
+    let lagrangian = lagrangian_trait(&e, &f, system, model, output_methods);
     inherent.extend(urdf_consts(system));
     let equations = equations_impl(&f, &docs, inherent);
     let urdf_file = system.urdf.as_ref().map(|u| {
@@ -36,12 +39,11 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
             const _: &[u8] = include_bytes!(#path);
         )
     });
-    let hoisted = hoisted_impl(&e, &f, system, model, articulated_inner);
+    let hoisted = hoisted_impl(&e, &f, system, model, output_hoisted);
     let constrained = impl_constrained(&e, &f, model);
     let reduced = impl_reduced(&e, &f, model);
     let driven = impl_driven(&e, &f, model);
     let posed = impl_posed(&e, &f, model, &system.scalar);
-    let kinematics = impl_kinematics(&e, &f, model);
     let (docs_macro, docs_text) = (&docs.name, &docs.equations);
     quote! {
         macro_rules! #docs_macro {
@@ -58,7 +60,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
         #reduced
         #driven
         #posed
-        #kinematics
+        #output_items
     }
 }
 
@@ -99,13 +101,13 @@ impl Docs {
 }
 
 /// `impl Lagrangian`: M, h, Q, the energies and the methods over the hoisted
-/// terms, with the optional methods the model has.
+/// terms, with the optional outputs' methods (`outputs`).
 fn lagrangian_trait(
     e: &Emitter,
     f: &Frame,
     system: &System,
     model: &Model,
-    forward_dynamics: TokenStream,
+    outputs: TokenStream,
 ) -> TokenStream {
     let (s, nl) = (&f.s, &f.n);
     let n = model.dof();
@@ -119,7 +121,7 @@ fn lagrangian_trait(
     let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
     let cyclic = cyclic_const(model, nl);
     let (route, atlas) = (route_const(model), atlas_const(system));
-    let hamiltonian = optional_methods(e, f, model);
+    let check_parameters = check_parameters(e, model);
     let visit_form = visit_form(f, model);
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
     let (vec_t, mat_t, qvec_t) = (f.vec(nl), f.mat(nl, nl), f.qvec());
@@ -174,8 +176,8 @@ fn lagrangian_trait(
 
             #energies
 
-            #hamiltonian
-            #forward_dynamics
+            #outputs
+            #check_parameters
             #visit_form #limits
         }
     }
@@ -456,7 +458,7 @@ fn hoisted_impl(
     f: &Frame,
     system: &System,
     model: &Model,
-    articulated_inner: TokenStream,
+    outputs: TokenStream,
 ) -> TokenStream {
     let (s, nl) = (&f.s, &f.n);
     let (vec_t, mat_t, qvec_t) = (f.vec(nl), f.mat(nl, nl), f.qvec());
@@ -492,7 +494,7 @@ fn hoisted_impl(
 
             #j_pieces
 
-            #articulated_inner
+            #outputs
         }
     }
 }
