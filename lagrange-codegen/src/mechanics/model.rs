@@ -253,8 +253,10 @@ pub struct Outputs {
 }
 
 impl Expressions for Outputs {
-    /// The outputs the cyclic coordinates are read off (the frames, a
-    /// question of geometry, and the inverse dynamics are not).
+    /// The outputs the cyclic coordinates are read off, as before they were
+    /// parts: not the frames (a body's pose may read a coordinate the motion
+    /// does not, a wheel's spin angle) nor the inverse dynamics (which read
+    /// what M, h and Q read).
     fn expressions(&self, out: &mut Vec<Sym>) {
         self.coriolis.expressions(out);
         self.jacobians.expressions(out);
