@@ -17,9 +17,9 @@ fn derive(c: &mut Criterion) {
         let model = lagrange_codegen::model(&input).expect("derivation succeeds");
         let mut outputs: Vec<_> = (0..n)
             .flat_map(|i| (i..n).map(move |j| (i, j)))
-            .map(|(i, j)| model.mass[i][j])
+            .map(|(i, j)| model.motion.mass[i][j])
             .collect();
-        outputs.extend(&model.rhs);
+        outputs.extend(&model.motion.rhs);
         let ops = Program::new(&model.ctx, &outputs).op_count();
         println!(
             "n = {n:2}: M + (Q - h) program: {} ops ({} add, {} mul, {} div, {} calls)",

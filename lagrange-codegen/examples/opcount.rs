@@ -69,15 +69,15 @@ fn catalog() {
                 continue;
             };
             let n = model.dof();
-            let mut core: Vec<Expr> = model.mass.iter().flatten().copied().collect();
-            core.extend(&model.rhs);
-            let multipliers = model.constraints.as_ref().map(|c| {
+            let mut core: Vec<Expr> = model.motion.mass.iter().flatten().copied().collect();
+            core.extend(&model.motion.rhs);
+            let multipliers = model.constraints.multipliers.as_ref().map(|c| {
                 let mut all = core.clone();
                 all.extend(c.jacobian.iter().flatten());
                 all.extend(&c.gamma);
                 ops(&model, &all).to_string()
             });
-            let reduced = model.reduced.as_ref().map(|r| {
+            let reduced = model.constraints.reduced.as_ref().map(|r| {
                 // M, Q − h and the rows the runtime solves (A, b, c).
                 let mut all = core.clone();
                 all.extend(r.matrix.iter().flatten());
@@ -91,7 +91,7 @@ fn catalog() {
                 ops(&model, &core),
                 multipliers.unwrap_or_else(|| "—".into()),
                 reduced.unwrap_or_else(|| "—".into()),
-                model.bias_route,
+                model.motion.derivation.route,
             );
         }
     }
@@ -109,9 +109,9 @@ fn main() {
         let model = lagrange_codegen::model(&input).expect("derivation succeeds");
         let mut outputs: Vec<_> = (0..n)
             .flat_map(|i| (i..n).map(move |j| (i, j)))
-            .map(|(i, j)| model.mass[i][j])
+            .map(|(i, j)| model.motion.mass[i][j])
             .collect();
-        outputs.extend(&model.rhs);
+        outputs.extend(&model.motion.rhs);
         let ops = Program::new(&model.ctx, &outputs).op_count();
         println!(
             "| {n} | {ms:.1} | {} | {} | {} | {} | {} | {:?} |",
@@ -120,7 +120,7 @@ fn main() {
             ops.mul,
             ops.div,
             ops.call,
-            model.bias_route
+            model.motion.derivation.route
         );
     }
     spatial();
@@ -156,17 +156,19 @@ fn robots() {
             let start = Instant::now();
             let model = lagrange_codegen::model_by(&input, route).expect("derivation succeeds");
             let ms = start.elapsed().as_secs_f64() * 1e3;
-            let mut outputs: Vec<Expr> = model.mass.iter().flatten().copied().collect();
-            outputs.extend(&model.rhs);
+            let mut outputs: Vec<Expr> = model.motion.mass.iter().flatten().copied().collect();
+            outputs.extend(&model.motion.rhs);
             (ms, ops(&model, &outputs), model)
         };
         let (rm, rops, model) = by(Route::Recursive);
         let (gm, gops, _) = by(Route::Generic);
         let auto = lagrange_codegen::model_by(&input, Route::Auto).expect("derivation succeeds");
-        let mut outputs: Vec<Expr> = auto.mass.iter().flatten().copied().collect();
-        outputs.extend(&auto.rhs);
+        let mut outputs: Vec<Expr> = auto.motion.mass.iter().flatten().copied().collect();
+        outputs.extend(&auto.motion.rhs);
         let route = auto
-            .route_reason
+            .motion
+            .derivation
+            .reason
             .as_deref()
             .map_or("recursive".into(), |why| format!("generic: {why}"));
         println!(
@@ -196,8 +198,8 @@ fn spatial() {
         let ms = start.elapsed().as_secs_f64() * 1e3;
         let kib = tokens.to_string().len() as f64 / 1024.0;
         let model = lagrange_codegen::model(&input).expect("derivation succeeds");
-        let mut outputs: Vec<Expr> = model.mass.iter().flatten().copied().collect();
-        outputs.extend(&model.rhs);
+        let mut outputs: Vec<Expr> = model.motion.mass.iter().flatten().copied().collect();
+        outputs.extend(&model.motion.rhs);
         let ops = Program::new(&model.ctx, &outputs).op_count().total();
         let eq = lagrange_codegen::doc::equations(&model).len() as f64 / 1024.0;
         // The generic route (differentiating ξ(q)) for comparison, while it is quick.
@@ -206,8 +208,8 @@ fn spatial() {
             let g =
                 lagrange_codegen::model_by(&input, Route::Generic).expect("derivation succeeds");
             let ms = start.elapsed().as_secs_f64() * 1e3;
-            let mut outputs: Vec<Expr> = g.mass.iter().flatten().copied().collect();
-            outputs.extend(&g.rhs);
+            let mut outputs: Vec<Expr> = g.motion.mass.iter().flatten().copied().collect();
+            outputs.extend(&g.motion.rhs);
             format!(
                 "{ms:.0}, {}",
                 Program::new(&g.ctx, &outputs).op_count().total()
@@ -232,8 +234,8 @@ fn written() {
         .map(|a| a.split(',').filter_map(|x| x.parse().ok()).collect())
         .unwrap_or_else(|| vec![2, 4, 6, 8]);
     let count = |model: &Model| {
-        let mut outputs: Vec<Expr> = model.mass.iter().flatten().copied().collect();
-        outputs.extend(&model.rhs);
+        let mut outputs: Vec<Expr> = model.motion.mass.iter().flatten().copied().collect();
+        outputs.extend(&model.motion.rhs);
         Program::new(&model.ctx, &outputs).op_count().total()
     };
     for n in sizes {
@@ -256,7 +258,7 @@ fn written() {
         println!(
             "| {n} | {ms:.0} | {} | {:?} | {} | {generic} |",
             count(&model),
-            model.bias_route,
+            model.motion.derivation.route,
             count(&factored)
         );
     }

@@ -62,7 +62,8 @@ pub struct Constraint {
     pub value: Expr,
 }
 
-/// How constrained equations are emitted.
+/// How constrained equations are emitted, spelled in
+/// `attr::keyword::FORMULATIONS`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Formulation {
     /// M q̈ + h = Q + Gᵀν with G q̈ = γ: gives reactions.
@@ -71,7 +72,8 @@ pub enum Formulation {
     Reduced,
 }
 
-/// Optional outputs a scene asks for with `emit(...)`.
+/// Optional outputs a scene asks for with `emit(...)`, spelled (with what
+/// each gives, for the errors) in `attr::keyword::OUTPUTS`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Extra {
     /// Cartesian reactions on points and bodies from the multipliers.

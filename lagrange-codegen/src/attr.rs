@@ -15,10 +15,9 @@ use crate::ast::{
 };
 use crate::ctxt::Ctxt;
 use crate::loads;
-use crate::spelling::closest;
+use keyword::{FORMULATIONS, KEYS, Key, OUTPUTS, Words};
 
-/// Keys accepted at the top level of `#[lagrange(...)]`, for the "unknown key" message.
-const KEYS: &str = "urdf, coordinates, orientation, inputs, define, point, body, gravity, potential, force, torque, generalized_force, dissipation, holonomic, nonholonomic, speeds, formulation, emit, shape";
+mod keyword;
 
 /// One top-level item of the attribute.
 enum Item {
@@ -47,70 +46,55 @@ enum Item {
 impl Parse for Item {
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let key: Ident = input.parse()?;
-        expect_list(input, &key)?;
+        let Some(which) = KEYS.find(&key.to_string()) else {
+            return Err(unknown_key(&key));
+        };
+        expect_list(input, &key, which.list_form())?;
         let definition = |(name, value)| Definition { name, value };
         let constraint = |(name, value)| Constraint { name, value };
-        match key.to_string().as_str() {
-            "coordinates" => parse_coordinates(input, &key).map(Item::Coordinates),
-            "orientation" => parse_names(input).map(Item::Orientations),
-            "inputs" => parse_names(input).map(Item::Inputs),
-            "define" => Ok(Item::Define(
+        match which {
+            Key::Coordinates => parse_coordinates(input, &key).map(Item::Coordinates),
+            Key::Orientation => parse_names(input).map(Item::Orientations),
+            Key::Inputs => parse_names(input).map(Item::Inputs),
+            Key::Define => Ok(Item::Define(
                 parse_name_values(input)?.map(definition).collect(),
             )),
-            "point" => parse_point(input).map(Item::Point),
-            "body" => parse_body(input).map(|b| Item::Body(Box::new(b))),
-            "holonomic" => Ok(Item::Holonomic(
+            Key::Point => parse_point(input).map(Item::Point),
+            Key::Body => parse_body(input).map(|b| Item::Body(Box::new(b))),
+            Key::Holonomic => Ok(Item::Holonomic(
                 parse_name_values(input)?.map(constraint).collect(),
             )),
-            "nonholonomic" => Ok(Item::Nonholonomic(
+            Key::Nonholonomic => Ok(Item::Nonholonomic(
                 parse_name_values(input)?.map(constraint).collect(),
             )),
-            "speeds" => Ok(Item::Speeds(
+            Key::Speeds => Ok(Item::Speeds(
                 parse_name_values(input)?.map(definition).collect(),
             )),
-            "formulation" => parse_keywords(input, "formulation", FORMULATIONS, |w| match w {
-                "multipliers" => Some(Formulation::Multipliers),
-                "reduced" => Some(Formulation::Reduced),
-                _ => None,
-            })
-            .map(Item::Formulation),
-            "emit" => parse_keywords(input, "output", OUTPUTS, |w| match w {
-                "reactions" => Some(Extra::Reactions),
-                "coriolis" => Some(Extra::Coriolis),
-                "jacobians" => Some(Extra::Jacobians),
-                "hamiltonian" => Some(Extra::Hamiltonian),
-                "articulated" => Some(Extra::Articulated),
-                "inverse_dynamics" => Some(Extra::InverseDynamics),
-                "kinematics" => Some(Extra::Kinematics),
-                "atlas" => Some(Extra::Atlas),
-                _ => None,
-            })
-            .map(Item::Emit),
-            "gravity" | "potential" | "dissipation" => {
+            Key::Formulation => {
+                parse_keywords(input, "formulation", &FORMULATIONS).map(Item::Formulation)
+            }
+            Key::Emit => parse_keywords(input, "output", &OUTPUTS).map(Item::Emit),
+            Key::Gravity | Key::Potential | Key::Dissipation => {
                 input.parse::<Token![=]>()?;
                 let value: Expr = input.parse()?;
-                Ok(match key.to_string().as_str() {
-                    "gravity" => Item::Gravity(key, value),
-                    "potential" => Item::Potential(key, value),
+                Ok(match which {
+                    Key::Gravity => Item::Gravity(key, value),
+                    Key::Potential => Item::Potential(key, value),
                     _ => Item::Dissipation(key, value),
                 })
             }
-            "urdf" => {
+            Key::Urdf => {
                 crate::urdf::parse_attribute(input).map(|(path, options)| Item::Urdf(path, options))
             }
-            "force" => loads::parse_force(input).map(Item::Force),
-            "torque" => loads::parse_torque(input).map(Item::Torque),
-            "generalized_force" => {
+            Key::Force => loads::parse_force(input).map(Item::Force),
+            Key::Torque => loads::parse_torque(input).map(Item::Torque),
+            Key::GeneralizedForce => {
                 loads::parse_generalized_forces(input).map(Item::GeneralizedForce)
             }
-            "shape" => crate::shape::parse(input).map(Item::Shape),
-            other => Err(unknown_key(&key, other)),
+            Key::Shape => crate::shape::parse(input).map(Item::Shape),
         }
     }
 }
-
-const FORMULATIONS: &str = "`multipliers` or `reduced`";
-const OUTPUTS: &str = "`reactions`, `coriolis`, `jacobians`, `hamiltonian`, `articulated`, `inverse_dynamics`, `kinematics` or `atlas`";
 
 /// `coordinates(q1, q2, ...)`, which must name at least one.
 fn parse_coordinates(input: ParseStream, key: &Ident) -> syn::Result<Vec<Ident>> {
@@ -135,23 +119,29 @@ fn parse_name_values(input: ParseStream) -> syn::Result<impl Iterator<Item = (Id
     Ok(items.into_iter().map(|NameValue(n, v)| (n, v)))
 }
 
-/// `(word, ...)` where each word is one of a fixed set (`what` and `expected`
-/// name the set in the error).
-fn parse_keywords<T>(
+/// `(word, ...)` where each word is one of `words` (`what` names them in
+/// the error, which suggests the word a typo meant or lists them all).
+fn parse_keywords<T: Copy + PartialEq>(
     input: ParseStream,
     what: &str,
-    expected: &str,
-    meaning: impl Fn(&str) -> Option<T>,
+    words: &Words<T>,
 ) -> syn::Result<Vec<(Ident, T)>> {
     let names = parse_names(input)?;
     let mut out = Vec::new();
     for n in names {
         let word = n.to_string();
-        let Some(value) = meaning(&word) else {
-            return Err(syn::Error::new(
-                n.span(),
-                format!("unknown {what} `{word}`; expected {expected}"),
-            ));
+        let Some(value) = words.find(&word) else {
+            let expected = words.alternatives();
+            let message = match words.closest(&word) {
+                Some(w) => {
+                    format!("unknown {what} `{word}`; did you mean `{w}`? (expected {expected})")
+                }
+                None => format!(
+                    "unknown {what} `{word}`; expected {expected}:\n{}",
+                    words.described()
+                ),
+            };
+            return Err(syn::Error::new(n.span(), message));
         };
         out.push((n, value));
     }
@@ -160,52 +150,25 @@ fn parse_keywords<T>(
 
 /// The error for a key that is none of [`KEYS`], with the likely one if the key
 /// is a typo of it.
-fn unknown_key(key: &Ident, other: &str) -> syn::Error {
+fn unknown_key(key: &Ident) -> syn::Error {
+    let (other, keys) = (key.to_string(), KEYS.joined(", "));
     syn::Error::new(
         key.span(),
-        match closest(other, KEYS.split(", ")) {
+        match KEYS.closest(&other) {
             Some(k) => format!(
-                "unknown key `{other}` in #[lagrange(...)]; did you mean `{k}`? (keys: {KEYS})"
+                "unknown key `{other}` in #[lagrange(...)]; did you mean `{k}`? (keys: {keys})"
             ),
             None => {
-                format!("unknown key `{other}` in #[lagrange(...)]; expected one of: {KEYS}")
+                format!("unknown key `{other}` in #[lagrange(...)]; expected one of: {keys}")
             }
         },
     )
 }
 
-/// The form each list key takes, for the error when it is written `key = ...`.
-const LISTS: [(&str, &str); 15] = [
-    ("coordinates", "coordinates(q1, q2, ...)"),
-    ("orientation", "orientation(name, ...)"),
-    ("inputs", "inputs(u1, u2, ...)"),
-    ("define", "define(name = expr, ...)"),
-    ("point", "point(name, mass = m, at = [x, y, z])"),
-    (
-        "body",
-        "body(name, mass = m, inertia = [..], at = [..], rotation = ..)",
-    ),
-    ("holonomic", "holonomic(name = f(q, t), ...)"),
-    ("nonholonomic", "nonholonomic(name = a(q, t)·q̇ + b, ...)"),
-    ("speeds", "speeds(name = expr, ...)"),
-    ("formulation", "formulation(multipliers, reduced)"),
-    (
-        "emit",
-        "emit(reactions, coriolis, jacobians, hamiltonian, articulated)",
-    ),
-    ("force", "force(point, [fx, fy, fz])"),
-    ("torque", "torque(body, [tx, ty, tz])"),
-    ("generalized_force", "generalized_force(q = expr, ...)"),
-    (
-        "shape",
-        "shape(body, cylinder(radius = r, length = l, axis = y))",
-    ),
-];
-
 /// A list key written as an assignment (`coordinates = [x, y]`) is one error
 /// at the `=` that shows the list form.
-fn expect_list(input: ParseStream, key: &Ident) -> syn::Result<()> {
-    let Some((_, form)) = LISTS.iter().find(|(k, _)| key == k) else {
+fn expect_list(input: ParseStream, key: &Ident, form: Option<String>) -> syn::Result<()> {
+    let Some(form) = form else {
         return Ok(());
     };
     if input.peek(Token![=]) {

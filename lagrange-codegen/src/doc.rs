@@ -68,7 +68,7 @@ const SYMMETRIC: &str =
 /// quantity, the route of h, the constraint and reduced rows.
 fn header(model: &Model) -> String {
     let mut s = String::new();
-    let args = if model.rheonomic { "q, t" } else { "q" };
+    let args = if model.motion.rheonomic { "q, t" } else { "q" };
     match &model.inputs {
         None => {
             let _ = writeln!(s, "M({args}) q'' + h({args}, q') = Q({args}, q')");
@@ -80,8 +80,8 @@ fn header(model: &Model) -> String {
             );
         }
     }
-    let _ = writeln!(s, "q = ({})", model.coordinates.join(", "));
-    for o in &model.orientations {
+    let _ = writeln!(s, "q = ({})", model.variables.coordinates.join(", "));
+    for o in &model.variables.orientations {
         let n = &o.name;
         let _ = writeln!(
             s,
@@ -90,9 +90,13 @@ fn header(model: &Model) -> String {
              the equations hold at |q| = 1 (no chart: they are derived in the chart that moves with the body, at its centre)"
         );
     }
-    let cyclic: Vec<&str> = (model.coordinates.iter().zip(&model.cyclic))
-        .filter_map(|(name, &c)| c.then_some(name.as_str()))
-        .collect();
+    let cyclic: Vec<&str> = (model
+        .variables
+        .coordinates
+        .iter()
+        .zip(&model.variables.cyclic))
+    .filter_map(|(name, &c)| c.then_some(name.as_str()))
+    .collect();
     if !cyclic.is_empty() {
         let _ = writeln!(
             s,
@@ -110,14 +114,14 @@ fn header(model: &Model) -> String {
     let _ = writeln!(
         s,
         "{}",
-        if model.rheonomic {
+        if model.motion.rheonomic {
             "rheonomic: the position maps depend on t; conserved (if forces are conservative): Jacobi integral T2 - T0 + V"
         } else {
             "scleronomic: conserved (if forces are conservative): T + V"
         }
     );
     let _ = writeln!(s, "{}; T kinetic, V potential energy.", route_line(model));
-    if let Some(c) = &model.constraints {
+    if let Some(c) = &model.constraints.multipliers {
         let _ = writeln!(
             s,
             "constraints (multipliers): G q' + g = 0, G q'' = gamma, rows ({}); the first {} holonomic (Phi = 0)",
@@ -125,7 +129,7 @@ fn header(model: &Model) -> String {
             c.holonomic
         );
     }
-    if let Some(r) = &model.reduced {
+    if let Some(r) = &model.constraints.reduced {
         let _ = writeln!(
             s,
             "reduced form on the speeds u = ({}): rows A q' + b = (u, 0), rates c (A q'' = (u', 0) + c), rows ({}), solved with pivoting at run time",
@@ -237,21 +241,17 @@ fn outputs(model: &Model) -> Vec<(String, Sym)> {
     };
     for i in 0..n {
         for j in i..n {
-            push(format!("M[{i}][{j}]"), model.mass[i][j]);
+            push(format!("M[{i}][{j}]"), model.motion.mass[i][j]);
         }
     }
-    model
-        .bias
-        .iter()
+    (model.motion.bias.iter())
         .enumerate()
         .for_each(|(i, &h)| push(format!("h[{i}]"), h));
-    model
-        .forces
-        .iter()
+    (model.motion.forces.iter())
         .enumerate()
         .for_each(|(i, &f)| push(format!("Q[{i}]"), f));
-    push("T".into(), model.kinetic);
-    push("V".into(), model.potential);
+    push("T".into(), model.energies.kinetic);
+    push("V".into(), model.energies.potential);
     if let Some(inputs) = &model.inputs {
         for (i, row) in inputs.jacobian_u.iter().enumerate() {
             for (j, &d) in row.iter().enumerate() {
@@ -259,7 +259,7 @@ fn outputs(model: &Model) -> Vec<(String, Sym)> {
             }
         }
     }
-    if let Some(c) = &model.constraints {
+    if let Some(c) = &model.constraints.multipliers {
         for (k, name) in c.names.iter().enumerate() {
             push(format!("Phi[{name}]"), c.phi[k]);
             for (j, &g) in c.jacobian[k].iter().enumerate() {
@@ -269,7 +269,7 @@ fn outputs(model: &Model) -> Vec<(String, Sym)> {
             push(format!("gamma[{name}]"), c.gamma[k]);
         }
     }
-    if let Some(r) = &model.reduced {
+    if let Some(r) = &model.constraints.reduced {
         for (k, name) in r.rows.iter().enumerate() {
             for (j, &a) in r.matrix[k].iter().enumerate() {
                 push(format!("A[{name}][{j}]"), a);
@@ -284,7 +284,7 @@ fn outputs(model: &Model) -> Vec<(String, Sym)> {
 /// The `route:` line: how M and h are computed and, off the recursive route,
 /// why (which body, and what about it).
 fn route_line(model: &Model) -> String {
-    let h = match model.bias_route {
+    let h = match model.motion.derivation.route {
         BiasRoute::Projection => "d'Alembert projection",
         BiasRoute::Christoffel => "Christoffel symbols",
         BiasRoute::MassMatrix => "Christoffel symbols of M",
@@ -292,6 +292,6 @@ fn route_line(model: &Model) -> String {
             return "route: recursive: M by composite rigid bodies, h by recursive Newton–Euler over the kinematic tree".into();
         }
     };
-    let why = model.route_reason.as_deref().unwrap_or("");
+    let why = model.motion.derivation.reason.as_deref().unwrap_or("");
     format!("route: generic: M from the positions, h by {h}; not recursive because {why}")
 }

@@ -171,9 +171,7 @@ fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Mod
     }
     match mechanics::derive_with(lowered?, route) {
         Ok(model) => {
-            let zero_rows: Vec<bool> = model
-                .mass
-                .iter()
+            let zero_rows: Vec<bool> = (model.motion.mass.iter())
                 .map(|row| row.iter().all(|&e| model.ctx.is_zero(e)))
                 .collect();
             check::mass_rows(cx, system, &zero_rows);

@@ -25,7 +25,11 @@ fn shifted(p: &Point, dq: &[f64], dv: &[f64], dt: f64) -> Point {
 /// central differences along the motion.
 fn check_constraint_terms(src: &str) {
     let model = model(src);
-    let c = model.constraints.as_ref().expect("multiplier form");
+    let c = model
+        .constraints
+        .multipliers
+        .as_ref()
+        .expect("multiplier form");
     let n = model.dof();
     let mut rng = Lcg(7);
     for _ in 0..10 {
@@ -110,7 +114,7 @@ fn reduced_form_equals_multiplier_form() {
            formulation(reduced))]
          struct S { m: f64, j: f64, a: f64, g: f64 }",
     );
-    let r = reduced.reduced.as_ref().expect("reduced form");
+    let r = reduced.constraints.reduced.as_ref().expect("reduced form");
     assert_eq!(r.names, ["dot_psi", "dot_theta", "dot_phi"]);
     let mut rng = Lcg(99);
     for _ in 0..10 {
@@ -146,16 +150,20 @@ fn reduced_form_equals_multiplier_form() {
 
 /// Solves [M −Gᵀ; G 0] [q̈; ν] = [Q − h; γ] densely.
 fn saddle_point(model: &Model, p: &Point) -> Vec<f64> {
-    let c = model.constraints.as_ref().expect("multiplier form");
+    let c = model
+        .constraints
+        .multipliers
+        .as_ref()
+        .expect("multiplier form");
     let n = model.dof();
     let k = c.names.len();
     let mut a = DMatrix::zeros(n + k, n + k);
     let mut b = DVector::zeros(n + k);
     for i in 0..n {
         for j in 0..n {
-            a[(i, j)] = eval(model, model.mass[i][j], p);
+            a[(i, j)] = eval(model, model.motion.mass[i][j], p);
         }
-        b[i] = eval(model, model.rhs[i], p);
+        b[i] = eval(model, model.motion.rhs[i], p);
     }
     for r in 0..k {
         for j in 0..n {
@@ -216,7 +224,7 @@ struct NumericReduced {
 }
 
 fn reduced_at(m: &Model, p: &mut Point) -> NumericReduced {
-    let r = m.reduced.as_ref().expect("reduced form");
+    let r = m.constraints.reduced.as_ref().expect("reduced form");
     let (n, k) = (m.dof(), r.names.len());
     let a = DMatrix::from_fn(n, n, |i, j| eval(m, r.matrix[i][j], p));
     let b = DVector::from_fn(n, |i, _| eval(m, r.free[i], p));
@@ -224,8 +232,8 @@ fn reduced_at(m: &Model, p: &mut Point) -> NumericReduced {
     let target = DVector::from_fn(n, |i, _| if i < k { p.u[i] } else { 0.0 }) - b;
     p.v = (&inv * target).iter().copied().collect();
     let c = DVector::from_fn(n, |i, _| eval(m, r.rates[i], p));
-    let mm = DMatrix::from_fn(n, n, |i, j| eval(m, m.mass[i][j], p));
-    let rhs = DVector::from_fn(n, |i, _| eval(m, m.rhs[i], p));
+    let mm = DMatrix::from_fn(n, n, |i, j| eval(m, m.motion.mass[i][j], p));
+    let rhs = DVector::from_fn(n, |i, _| eval(m, m.motion.rhs[i], p));
     let w = inv.columns(0, k).into_owned();
     let kappa = &inv * c;
     NumericReduced {
@@ -246,7 +254,12 @@ fn coriolis_matrix_properties() {
            gravity = [0, -g], emit(coriolis))]
          struct S { m1: f64, m2: f64, l1: f64, l2: f64, g: f64 }",
     );
-    let c = m.coriolis.as_ref().expect("coriolis asked for");
+    let c = &m
+        .outputs
+        .coriolis
+        .as_ref()
+        .expect("coriolis asked for")
+        .matrix;
     let mut rng = Lcg(5);
     for _ in 0..10 {
         let p = random_point(&m, &mut rng);
@@ -256,8 +269,8 @@ fn coriolis_matrix_properties() {
             let dq: Vec<f64> = p.v.iter().map(|v| v * h).collect();
             let mdq: Vec<f64> = dq.iter().map(|x| -x).collect();
             let z = vec![0.0; n];
-            (eval(&m, m.mass[i][j], &shifted(&p, &dq, &z, 0.0))
-                - eval(&m, m.mass[i][j], &shifted(&p, &mdq, &z, 0.0)))
+            (eval(&m, m.motion.mass[i][j], &shifted(&p, &dq, &z, 0.0))
+                - eval(&m, m.motion.mass[i][j], &shifted(&p, &mdq, &z, 0.0)))
                 / (2.0 * h)
         };
         for i in 0..n {
@@ -267,7 +280,7 @@ fn coriolis_matrix_properties() {
                 assert!((s_ij + s_ji).abs() < 1e-7, "({i},{j}): {s_ij} vs {s_ji}");
             }
             let cq: f64 = (0..n).map(|j| eval(&m, c[i][j], &p) * p.v[j]).sum();
-            assert!(close(cq, eval(&m, m.bias[i], &p), 1e-12));
+            assert!(close(cq, eval(&m, m.motion.bias[i], &p), 1e-12));
         }
     }
 }
@@ -279,14 +292,17 @@ fn coriolis_matrix_properties() {
 /// and κ.
 fn check_gibbs_appell(src: &str) {
     let mut m = model(src);
-    assert!(!m.has_spin, "the Gibbs function here covers particles only");
+    assert!(
+        !m.masses.has_spin,
+        "the Gibbs function here covers particles only"
+    );
     let n = m.dof();
     let qdd = m.ctx.accelerations();
     let zero = m.ctx.zero();
     let at_rest: Vec<_> = qdd.iter().map(|&a| (a, zero)).collect();
     // Per particle component: (mass, J row, ξ̈ at q̈ = 0).
     let mut components = Vec::new();
-    for (mass, position) in m.particles.clone() {
+    for (mass, position) in m.masses.particles.clone() {
         for x in position {
             let v = m.ctx.time_derivative(x);
             let a = m.ctx.time_derivative(v);
@@ -311,7 +327,7 @@ fn check_gibbs_appell(src: &str) {
             hess += mass * jw.transpose() * &jw;
             grad += mass * a * jw.transpose().column(0);
         }
-        let q = DVector::from_fn(n, |i, _| eval(&m, m.forces[i], &p));
+        let q = DVector::from_fn(n, |i, _| eval(&m, m.motion.forces[i], &p));
         let wq = red.w.transpose() * q;
         for a in 0..k {
             for b in 0..k {

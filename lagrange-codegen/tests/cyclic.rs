@@ -30,9 +30,10 @@ fn catalog(source: &str, name: &str) -> syn::DeriveInput {
 fn cyclic(source: &str, name: &str) -> Vec<String> {
     let input = catalog(source, name);
     let m = model(&quote::quote!(#input).to_string());
-    m.coordinates
+    m.variables
+        .coordinates
         .iter()
-        .zip(&m.cyclic)
+        .zip(&m.variables.cyclic)
         .filter(|&(_, &c)| c)
         .map(|(q, _)| q.clone())
         .collect()

@@ -98,10 +98,11 @@ fn accepted_in_forces() {
     // The unforced system has no input left in it.
     let u = inputs.symbols[0];
     let all = m
+        .motion
         .forces
         .iter()
-        .chain(&m.rhs)
-        .chain([&m.potential, &m.integral]);
+        .chain(&m.motion.rhs)
+        .chain([&m.energies.potential, &m.energies.integral]);
     for &e in all {
         assert!(!m.ctx.depends_on(e, u));
     }

@@ -14,8 +14,8 @@ fn check_model(src: &str) {
         let p = random_point(&model, &mut rng);
         // 1. The projection and Christoffel routes give the same h (or the recursive
         // and the cheaper generic one; a large tree derives only the recursive one).
-        for (i, &other) in model.bias_other.iter().enumerate() {
-            let a = eval(&model, model.bias[i], &p);
+        for (i, &other) in model.motion.derivation.other_bias.iter().enumerate() {
+            let a = eval(&model, model.motion.bias[i], &p);
             let b = eval(&model, other, &p);
             assert!(close(a, b, 1e-12), "h[{i}]: {a} vs {b} in\n{src}");
         }
@@ -30,7 +30,7 @@ fn check_model(src: &str) {
                 u: Vec::new(),
                 quaternions: p.quaternions.clone(),
             };
-            eval(&model, model.kinetic, &pp)
+            eval(&model, model.energies.kinetic, &pp)
         };
         let d = 1e-3;
         for i in 0..n {
@@ -43,7 +43,7 @@ fn check_model(src: &str) {
                 };
                 let fd = (shifted(d, d) - shifted(d, -d) - shifted(-d, d) + shifted(-d, -d))
                     / (4.0 * d * d);
-                let m = eval(&model, model.mass[i][j], &p);
+                let m = eval(&model, model.motion.mass[i][j], &p);
                 assert!(close(m, fd, 1e-6), "M[{i}][{j}]: {m} vs {fd}");
             }
         }
@@ -60,11 +60,11 @@ fn check_model(src: &str) {
                     u: Vec::new(),
                     quaternions: p.quaternions.clone(),
                 };
-                eval(&model, model.potential, &pp)
+                eval(&model, model.energies.potential, &pp)
             };
             let h = 1e-5;
             let fd = -(pot(h) - pot(-h)) / (2.0 * h);
-            let qf = eval(&model, model.forces[i], &p);
+            let qf = eval(&model, model.motion.forces[i], &p);
             assert!(close(qf, fd, 1e-7), "Q[{i}]: {qf} vs {fd}");
         }
     }
@@ -125,12 +125,12 @@ fn pendulum_mass_matrix_is_simplified() {
         "#[lagrange(coordinates(theta), point(bob, mass = m, at = [l*sin(theta), -l*cos(theta)]), gravity = [0, -g])]
          struct S { m: f64, l: f64, g: f64 }",
     );
-    let text = model.ctx.display(model.mass[0][0]);
+    let text = model.ctx.display(model.motion.mass[0][0]);
     assert!(!text.contains("sin") && !text.contains("cos"), "M = {text}");
     assert!(
-        model.ctx.is_zero(model.bias[0]),
+        model.ctx.is_zero(model.motion.bias[0]),
         "h = {}",
-        model.ctx.display(model.bias[0])
+        model.ctx.display(model.motion.bias[0])
     );
 }
 
@@ -162,10 +162,10 @@ fn heavy_top_output_is_free_of_cyclic_coordinates() {
     );
     let q = model.ctx.coordinates();
     let (psi, phi) = (q[0], q[2]);
-    let mut outputs = model.bias.clone();
-    outputs.extend(model.mass.iter().flatten());
-    outputs.extend(&model.rhs);
-    outputs.push(model.kinetic);
+    let mut outputs = model.motion.bias.clone();
+    outputs.extend(model.motion.mass.iter().flatten());
+    outputs.extend(&model.motion.rhs);
+    outputs.push(model.energies.kinetic);
     for &e in &outputs {
         for (name, c) in [("psi", psi), ("phi", phi)] {
             assert!(
@@ -187,7 +187,7 @@ fn heavy_top_output_is_free_of_cyclic_coordinates() {
             -c * dpsi * dth * th.sin(),
         ];
         for (i, w) in want.into_iter().enumerate() {
-            let got = eval(&model, model.bias[i], &p);
+            let got = eval(&model, model.motion.bias[i], &p);
             assert!(close(got, w, 1e-12), "h[{i}]: {got} vs {w}");
         }
     }
@@ -207,8 +207,8 @@ fn angle_sums_in_positions_give_closed_forms() {
     check_model(src);
     let model = model(src);
     let b = model.ctx.coordinates()[0];
-    let mut outputs = model.bias.clone();
-    outputs.extend(model.mass.iter().flatten());
+    let mut outputs = model.motion.bias.clone();
+    outputs.extend(model.motion.mass.iter().flatten());
     for &e in &outputs {
         assert!(!model.ctx.depends_on(e, b), "b in {}", model.ctx.display(e));
     }
@@ -224,7 +224,7 @@ fn angle_sums_in_positions_give_closed_forms() {
         [0.0, m2 * d * d + m3 * rr * rr],
     ];
     for (i, j) in [(0, 0), (1, 1)] {
-        let got = eval(&model, model.mass[i][j], &p);
+        let got = eval(&model, model.motion.mass[i][j], &p);
         assert!(
             close(got, want[i][j], 1e-13),
             "M[{i}][{j}]: {got} vs {}",
@@ -232,7 +232,7 @@ fn angle_sums_in_positions_give_closed_forms() {
         );
     }
     assert_eq!(
-        model.ctx.display(model.mass[1][1]),
+        model.ctx.display(model.motion.mass[1][1]),
         "m2*d^2 + m3*rr^2",
         "M₁₁ as the closed form"
     );

@@ -21,8 +21,8 @@ fn model_by(src: &str, route: Route) -> Model {
 fn routes_agree(src: &str) {
     let generic = model_by(src, Route::Generic);
     let recursive = model_by(src, Route::Recursive);
-    assert_eq!(recursive.bias_route, BiasRoute::Recursive);
-    assert_ne!(generic.bias_route, BiasRoute::Recursive);
+    assert_eq!(recursive.motion.derivation.route, BiasRoute::Recursive);
+    assert_ne!(generic.motion.derivation.route, BiasRoute::Recursive);
     let n = generic.dof();
     let mut rng = Lcg(2024);
     for _ in 0..20 {
@@ -32,13 +32,13 @@ fn routes_agree(src: &str) {
         };
         for i in 0..n {
             for j in 0..n {
-                let (a, b) = pair(generic.mass[i][j], recursive.mass[i][j]);
+                let (a, b) = pair(generic.motion.mass[i][j], recursive.motion.mass[i][j]);
                 assert!(close(a, b, 1e-12), "M[{i}][{j}]: {a} vs {b}\n{src}");
             }
             for (what, a, b) in [
-                ("Q - h", generic.rhs[i], recursive.rhs[i]),
-                ("h", generic.bias[i], recursive.bias[i]),
-                ("Q", generic.forces[i], recursive.forces[i]),
+                ("Q - h", generic.motion.rhs[i], recursive.motion.rhs[i]),
+                ("h", generic.motion.bias[i], recursive.motion.bias[i]),
+                ("Q", generic.motion.forces[i], recursive.motion.forces[i]),
             ] {
                 let (a, b) = pair(a, b);
                 assert!(close(a, b, 1e-12), "{what}[{i}]: {a} vs {b}\n{src}");
@@ -238,9 +238,9 @@ fn non_trees_stay_generic_and_say_why() {
             "not a tree, yet not refused with the reason {why:?} (message {message:?}):\n{src}"
         );
         let model = model_by(src, Route::Auto);
-        assert_ne!(model.bias_route, BiasRoute::Recursive);
+        assert_ne!(model.motion.derivation.route, BiasRoute::Recursive);
         let text = lagrange_codegen::doc::equations(&model);
-        let reason = model.route_reason.unwrap_or_default();
+        let reason = model.motion.derivation.reason.unwrap_or_default();
         assert!(reason.starts_with(why), "{reason:?} is not {why:?}:\n{src}");
         assert!(
             text.contains(&format!("not recursive because {why}")),
@@ -253,8 +253,8 @@ fn non_trees_stay_generic_and_say_why() {
 fn long_chains_take_the_recursive_route_alone() {
     let src = lagrange_codegen::chain::spatial_chain_source(8);
     let model = model_by(&src, Route::Auto);
-    assert_eq!(model.bias_route, BiasRoute::Recursive);
-    assert!(model.bias_other.is_empty());
+    assert_eq!(model.motion.derivation.route, BiasRoute::Recursive);
+    assert!(model.motion.derivation.other_bias.is_empty());
 }
 
 /// Solves M x = b by Gaussian elimination with partial pivoting (small n).
@@ -288,6 +288,7 @@ fn solve(mut m: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
 fn articulated_agrees(src: &str) {
     let model = model_by(src, Route::Auto);
     let fd = model
+        .outputs
         .articulated
         .as_ref()
         .expect("emit(articulated) was asked for");
@@ -306,10 +307,14 @@ fn articulated_agrees(src: &str) {
             None => base(s),
         };
         let m: Vec<Vec<f64>> = (0..n)
-            .map(|i| (0..n).map(|j| eval(&model, model.mass[i][j], &p)).collect())
+            .map(|i| {
+                (0..n)
+                    .map(|j| eval(&model, model.motion.mass[i][j], &p))
+                    .collect()
+            })
             .collect();
         let rhs: Vec<f64> = (0..n)
-            .map(|i| eval(&model, model.rhs[i], &p) + tau[i])
+            .map(|i| eval(&model, model.motion.rhs[i], &p) + tau[i])
             .collect();
         let expected = solve(m, rhs);
         for (i, &want) in expected.iter().enumerate() {
@@ -411,8 +416,9 @@ fn jacobians_agree(src: &str) {
                 _ => base(s),
             })
         };
-        let [gq, gv] = generic.jacobians.as_ref().expect("asked for");
-        let [rq, rv] = recursive.jacobians.as_ref().expect("asked for");
+        let g = generic.outputs.jacobians.as_ref().expect("asked for");
+        let r = recursive.outputs.jacobians.as_ref().expect("asked for");
+        let (gq, gv, rq, rv) = (&g.position, &g.velocity, &r.position, &r.velocity);
         for i in 0..n {
             for k in 0..n {
                 for (what, g, r) in [("J_q", gq, rq), ("J_v", gv, rv)] {

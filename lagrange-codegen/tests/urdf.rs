@@ -29,14 +29,14 @@ fn routes_agree(generic: &Model, recursive: &Model) {
         for i in 0..n {
             for j in 0..n {
                 let (a, b) = (
-                    eval(generic, generic.mass[i][j], &p),
-                    eval(recursive, recursive.mass[i][j], &p),
+                    eval(generic, generic.motion.mass[i][j], &p),
+                    eval(recursive, recursive.motion.mass[i][j], &p),
                 );
                 assert!(close(a, b, 1e-12), "M[{i}][{j}]: {a} vs {b}");
             }
             let (a, b) = (
-                eval(generic, generic.rhs[i], &p),
-                eval(recursive, recursive.rhs[i], &p),
+                eval(generic, generic.motion.rhs[i], &p),
+                eval(recursive, recursive.motion.rhs[i], &p),
             );
             assert!(close(a, b, 1e-12), "(Q - h)[{i}]: {a} vs {b}");
         }
@@ -47,14 +47,14 @@ fn routes_agree(generic: &Model, recursive: &Model) {
 fn ur5_takes_the_recursive_route_and_agrees_with_the_generic_one() {
     let src = robot("ur5.urdf");
     let recursive = model_by(&src, Route::Recursive).unwrap();
-    assert_eq!(recursive.coordinates.len(), 6);
-    assert_eq!(recursive.bias_route, BiasRoute::Recursive);
+    assert_eq!(recursive.variables.coordinates.len(), 6);
+    assert_eq!(recursive.motion.derivation.route, BiasRoute::Recursive);
     routes_agree(&model_by(&src, Route::Generic).unwrap(), &recursive);
     // Six joints are derived both ways, and the cheaper program kept.
     let auto = model_by(&src, Route::Auto).unwrap();
     println!(
         "UR5 by Auto: {:?}, {:?}",
-        auto.bias_route, auto.route_reason
+        auto.motion.derivation.route, auto.motion.derivation.reason
     );
 }
 
@@ -63,12 +63,17 @@ fn panda_with_its_sliding_fingers_takes_the_recursive_route() {
     let src = robot("panda.urdf");
     let model = model_by(&src, Route::Auto).unwrap();
     // Seven arm joints and one finger: the second finger mimics the first.
-    assert_eq!(model.coordinates.len(), 8, "{:?}", model.coordinates);
     assert_eq!(
-        model.bias_route,
+        model.variables.coordinates.len(),
+        8,
+        "{:?}",
+        model.variables.coordinates
+    );
+    assert_eq!(
+        model.motion.derivation.route,
         BiasRoute::Recursive,
         "{:?}",
-        model.route_reason
+        model.motion.derivation.reason
     );
     routes_agree(&model_by(&src, Route::Generic).unwrap(), &model);
 }
@@ -227,8 +232,9 @@ fn a_massless_floating_base_is_refused_at_the_attribute() {
 
 /// M and Q − h of a model, counted as the emitted program's operations.
 fn operations(model: &Model) -> usize {
-    let mut outputs: Vec<lagrange_symbolic::Expr> = model.mass.iter().flatten().copied().collect();
-    outputs.extend(&model.rhs);
+    let mut outputs: Vec<lagrange_symbolic::Expr> =
+        model.motion.mass.iter().flatten().copied().collect();
+    outputs.extend(&model.motion.rhs);
     lagrange_symbolic::Program::new(&model.ctx, &outputs)
         .op_count()
         .total()

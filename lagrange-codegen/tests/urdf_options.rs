@@ -55,7 +55,7 @@ fn base_fixed_fixes_a_files_floating_joint_where_it_places_the_base() {
     let placed = quote::quote!(point(free_origin, on = world, at = [(0.0), (0.0), (0.5)]));
     assert!(items.contains(&placed.to_string()), "{items:?}");
     let model = derive("fixed", &floating_file(), ", base = fixed").unwrap();
-    assert_eq!(model.coordinates, ["shoulder"]);
+    assert_eq!(model.variables.coordinates, ["shoulder"]);
 }
 
 #[test]
@@ -114,14 +114,14 @@ fn a_joint_and_a_link_of_one_name_both_keep_a_name() {
         .unwrap_or_else(|| panic!("{items:?}"));
     assert!(body.contains("at = [fr_tele_origin . x"), "{body}");
     let model = derive("clash", text, "").unwrap();
-    assert_eq!(model.coordinates, ["fr_tele"]);
+    assert_eq!(model.variables.coordinates, ["fr_tele"]);
 }
 
 #[test]
 fn a_name_the_description_reserves_gets_an_underscore() {
     let text = format!("<robot name='r'>{ARM}</robot>").replace("'shoulder'", "'pi'");
     let model = derive("pi", &text, "").unwrap();
-    assert_eq!(model.coordinates, ["pi_"]);
+    assert_eq!(model.variables.coordinates, ["pi_"]);
 }
 
 /// Two names that are one identifier are refused at the second one's line.
@@ -159,7 +159,7 @@ fn a_fixed_joints_mimic_is_ignored() {
 <joint name='finger2' type='fixed'><parent link='arm'/><child link='right'/><mimic joint='finger' multiplier='-1'/></joint></robot>"
     );
     let model = derive("mimic", &text, "").unwrap();
-    assert_eq!(model.coordinates, ["shoulder"]);
+    assert_eq!(model.variables.coordinates, ["shoulder"]);
 }
 
 /// The arm's link with moments (1, 1, 3) · 10⁻², a tenth beyond a rigid
@@ -202,7 +202,7 @@ fn repair_uses_the_nearest_physical_inertia_and_lists_it() {
         "{used:?}"
     );
     let model = derive("repair", &unphysical(), ", inertia = repair").unwrap();
-    assert_eq!(model.coordinates, ["shoulder"]);
+    assert_eq!(model.variables.coordinates, ["shoulder"]);
     assert!(derive("written", &unphysical(), ", inertia = as_written").is_ok());
     assert!(derive("refused", &unphysical(), "").is_err());
 }

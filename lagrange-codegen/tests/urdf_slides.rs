@@ -108,7 +108,7 @@ fn solve(mut m: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
 fn articulated_against_generic(text: &str, name: &str) -> f64 {
     let aba = model_by(text, name, ", emit(articulated)", Route::Auto);
     let generic = model_by(text, name, "", Route::Generic);
-    let fd = aba.articulated.as_ref().expect("emit(articulated)");
+    let fd = aba.outputs.articulated.as_ref().expect("emit(articulated)");
     let n = generic.dof();
     let mut worst: f64 = 0.0;
     let mut rng = Lcg(11);
@@ -117,11 +117,13 @@ fn articulated_against_generic(text: &str, name: &str) -> f64 {
         let m: Vec<Vec<f64>> = (0..n)
             .map(|i| {
                 (0..n)
-                    .map(|j| eval(&generic, generic.mass[i][j], &p))
+                    .map(|j| eval(&generic, generic.motion.mass[i][j], &p))
                     .collect()
             })
             .collect();
-        let rhs: Vec<f64> = (0..n).map(|i| eval(&generic, generic.rhs[i], &p)).collect();
+        let rhs: Vec<f64> = (0..n)
+            .map(|i| eval(&generic, generic.motion.rhs[i], &p))
+            .collect();
         let want = solve(m, rhs);
         let env = common::env(&aba, &p);
         let tau = |s| match fd.extra.iter().any(|&e| aba.ctx.as_symbol(e) == Some(s)) {

@@ -11,7 +11,7 @@ use crate::mechanics::Model;
 
 /// `impl Constrained`: Φ, (G, g), γ and all of them with M and Q − h in one pass.
 pub(super) fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
-    let Some(c) = &model.constraints else {
+    let Some(c) = &model.constraints.multipliers else {
         return quote!();
     };
     let n = model.dof();
@@ -113,7 +113,11 @@ fn derivatives(e: &Emitter, f: &Frame, c: &ConstraintSet, kl: &Literal) -> Token
 /// program over the hoisted parameter terms `p`.
 fn constrained_system(e: &Emitter, f: &Frame, model: &Model, kl: &Literal) -> TokenStream {
     let n = model.dof();
-    let k = model.constraints.as_ref().map_or(0, |c| c.names.len());
+    let k = model
+        .constraints
+        .multipliers
+        .as_ref()
+        .map_or(0, |c| c.names.len());
     let (s, nl) = (&f.s, &f.n);
     let (vec_n, vec_k, qvec) = (f.vec(nl), f.vec(kl), f.qvec());
     let (mat_nn, mat_kn) = (f.mat(nl, nl), f.mat(kl, nl));

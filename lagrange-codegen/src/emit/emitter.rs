@@ -32,8 +32,8 @@ impl<'a> Emitter<'a> {
     pub(super) fn new(model: &'a Model, scalar: &'a Scalar) -> Self {
         let mut free = Vec::new();
         // The quaternions follow the coordinates in q.
-        let first = model.coordinates.len();
-        for (k, o) in model.orientations.iter().enumerate() {
+        let first = model.variables.coordinates.len();
+        for (k, o) in model.variables.orientations.iter().enumerate() {
             for (c, &e) in o.quaternion.iter().enumerate() {
                 if let Some(s) = model.ctx.as_symbol(e) {
                     let i = Literal::usize_unsuffixed(first + 4 * k + c);
@@ -50,18 +50,20 @@ impl<'a> Emitter<'a> {
                 }
             }
         };
-        if let Some(d) = model.reduced.as_ref().and_then(|r| r.derivatives.as_ref()) {
+        if let Some(d) = model
+            .constraints
+            .reduced
+            .as_ref()
+            .and_then(|r| r.derivatives.as_ref())
+        {
             add(&d.nu_symbols, "nu");
         }
-        if let Some(a) = &model.articulated {
+        if let Some(a) = &model.outputs.articulated {
             add(&a.extra, "tau");
         }
         add(&model.hoisted.symbols, "p");
-        if let Some(d) = model
-            .constraints
-            .as_ref()
-            .and_then(|c| c.derivatives.as_ref())
-        {
+        let multipliers = model.constraints.multipliers.as_ref();
+        if let Some(d) = multipliers.and_then(|c| c.derivatives.as_ref()) {
             add(&d.nu_symbols, "nu");
         }
         Emitter {
@@ -91,7 +93,7 @@ impl<'a> Emitter<'a> {
     ) -> R {
         let ctx = &self.model.ctx;
         let program = Program::new(ctx, outputs);
-        let params = &self.model.parameters;
+        let params = &self.model.variables.parameters;
         let symbol = |s| match ctx.symbol_kind(s) {
             SymbolKind::Coordinate(i) => {
                 let i = Literal::usize_unsuffixed(i);
@@ -191,7 +193,7 @@ impl<'a> Emitter<'a> {
         let n = self.model.dof();
         (0..n)
             .flat_map(|i| (i..n).map(move |j| (i, j)))
-            .map(|(i, j)| self.model.mass[i][j])
+            .map(|(i, j)| self.model.motion.mass[i][j])
             .collect()
     }
 

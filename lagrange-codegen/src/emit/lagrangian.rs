@@ -7,9 +7,8 @@ use quote::{format_ident, quote};
 use super::constrained::impl_constrained;
 use super::driven::impl_driven;
 use super::emitter::Emitter;
-use super::extra::extras;
-use super::kinematics::impl_kinematics;
-use super::method::{forward_dynamics, optional_methods, visit_form};
+use super::method::{check_parameters, visit_form};
+use super::output::{Pieces, outputs};
 use super::posed::impl_posed;
 use super::reduced::impl_reduced;
 use super::{Frame, constant};
@@ -24,9 +23,13 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let e = Emitter::new(model, &system.scalar);
     let f = Frame::new(system, model.dof(), model.configuration_len());
     let docs = Docs::new(system, model);
-    let (forward_dynamics, articulated_inner) = forward_dynamics(&e, &f, model);
-    let lagrangian = lagrangian_trait(&e, &f, system, model, forward_dynamics);
-    let mut inherent = extras(&e, &f, model, system);
+    let Pieces {
+        lagrangian: output_methods,
+        mut inherent,
+        hoisted: output_hoisted,
+        items: output_items,
+    } = outputs(&e, &f, model, system);
+    let lagrangian = lagrangian_trait(&e, &f, system, model, output_methods);
     inherent.extend(urdf_consts(system));
     let equations = equations_impl(&f, &docs, inherent);
     let urdf_file = system.urdf.as_ref().map(|u| {
@@ -36,12 +39,11 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
             const _: &[u8] = include_bytes!(#path);
         )
     });
-    let hoisted = hoisted_impl(&e, &f, system, model, articulated_inner);
+    let hoisted = hoisted_impl(&e, &f, system, model, output_hoisted);
     let constrained = impl_constrained(&e, &f, model);
     let reduced = impl_reduced(&e, &f, model);
     let driven = impl_driven(&e, &f, model);
     let posed = impl_posed(&e, &f, model, &system.scalar);
-    let kinematics = impl_kinematics(&e, &f, model);
     let (docs_macro, docs_text) = (&docs.name, &docs.equations);
     quote! {
         macro_rules! #docs_macro {
@@ -58,7 +60,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
         #reduced
         #driven
         #posed
-        #kinematics
+        #output_items
     }
 }
 
@@ -99,27 +101,27 @@ impl Docs {
 }
 
 /// `impl Lagrangian`: M, h, Q, the energies and the methods over the hoisted
-/// terms, with the optional methods the model has.
+/// terms, with the optional outputs' methods (`outputs`).
 fn lagrangian_trait(
     e: &Emitter,
     f: &Frame,
     system: &System,
     model: &Model,
-    forward_dynamics: TokenStream,
+    outputs: TokenStream,
 ) -> TokenStream {
     let (s, nl) = (&f.s, &f.n);
     let n = model.dof();
     let (m_lets, m_outs) = e.program(&e.upper());
     let m_fill = e.symmetric_matrix(&m_outs, n);
-    let bias = e.vector_body(&model.bias, s, nl);
-    let forces = e.vector_body(&model.forces, s, nl);
+    let bias = e.vector_body(&model.motion.bias, s, nl);
+    let forces = e.vector_body(&model.motion.forces, s, nl);
     let energies = energy_methods(e, f, model);
     let names = configuration_names(model);
-    let rheonomic = model.rheonomic;
+    let rheonomic = model.motion.rheonomic;
     let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
     let cyclic = cyclic_const(model, nl);
     let (route, atlas) = (route_const(model), atlas_const(system));
-    let hamiltonian = optional_methods(e, f, model);
+    let check_parameters = check_parameters(e, model);
     let visit_form = visit_form(f, model);
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
     let (vec_t, mat_t, qvec_t) = (f.vec(nl), f.mat(nl, nl), f.qvec());
@@ -174,8 +176,8 @@ fn lagrangian_trait(
 
             #energies
 
-            #hamiltonian
-            #forward_dynamics
+            #outputs
+            #check_parameters
             #visit_form #limits
         }
     }
@@ -223,8 +225,8 @@ fn position_limits(system: &System, names: &[String]) -> TokenStream {
 /// The names of q's entries: the coordinates', then each orientation's
 /// quaternion components `name.w`, `name.x`, `name.y`, `name.z`.
 fn configuration_names(model: &Model) -> Vec<String> {
-    let mut names = model.coordinates.clone();
-    for o in &model.orientations {
+    let mut names = model.variables.coordinates.clone();
+    for o in &model.variables.orientations {
         names.extend(["w", "x", "y", "z"].map(|c| format!("{}.{c}", o.name)));
     }
     names
@@ -233,16 +235,16 @@ fn configuration_names(model: &Model) -> Vec<String> {
 /// `VELOCITIES` and `ORIENTATIONS` of a description with free orientations
 /// (nothing without: the trait's defaults are right).
 fn orientation_consts(model: &Model) -> TokenStream {
-    if model.orientations.is_empty() {
+    if model.variables.orientations.is_empty() {
         return TokenStream::new();
     }
-    let mut velocities = model.coordinates.clone();
-    for o in &model.orientations {
+    let mut velocities = model.variables.coordinates.clone();
+    for o in &model.variables.orientations {
         velocities.extend(["wx", "wy", "wz"].map(|c| format!("{}.{c}", o.name)));
     }
     let n = Literal::usize_unsuffixed(velocities.len());
-    let first = model.coordinates.len();
-    let layout = (0..model.orientations.len()).map(|k| {
+    let first = model.variables.coordinates.len();
+    let layout = (0..model.variables.orientations.len()).map(|k| {
         let (q, v) = (
             Literal::usize_unsuffixed(first + 4 * k),
             Literal::usize_unsuffixed(first + 3 * k),
@@ -258,10 +260,10 @@ fn orientation_consts(model: &Model) -> TokenStream {
 /// `CYCLIC`, where some coordinate is; the trait's default (none) otherwise, so
 /// that most expansions do not carry a line of `false`s.
 fn cyclic_const(model: &Model, nl: &Literal) -> TokenStream {
-    if !model.cyclic.iter().any(|&c| c) {
+    if !model.variables.cyclic.iter().any(|&c| c) {
         return TokenStream::new();
     }
-    let cyclic = &model.cyclic;
+    let cyclic = &model.variables.cyclic;
     quote!(const CYCLIC: [bool; #nl] = [#(#cyclic),*];)
 }
 
@@ -279,7 +281,7 @@ fn atlas_const(system: &System) -> Option<TokenStream> {
 
 /// `ROUTE`: recursive, or generic with the reason.
 fn route_const(model: &Model) -> TokenStream {
-    match &model.route_reason {
+    match &model.motion.derivation.reason {
         None => quote!(
             const ROUTE: ::lagrange::__private::Route = ::lagrange::__private::Route::Recursive;
         ),
@@ -293,9 +295,9 @@ fn route_const(model: &Model) -> TokenStream {
 /// `kinetic_energy`, `potential_energy` and `integral`.
 fn energy_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     let (s, vec_t, qvec_t) = (&f.s, f.vec(&f.n), f.qvec());
-    let (k_lets, k_out) = e.program(&[model.kinetic]);
-    let (p_lets, p_out) = e.program(&[model.potential]);
-    let (i_lets, i_out) = e.program(&[model.integral]);
+    let (k_lets, k_out) = e.program(&[model.energies.kinetic]);
+    let (p_lets, p_out) = e.program(&[model.energies.potential]);
+    let (i_lets, i_out) = e.program(&[model.energies.integral]);
     let (k_out, p_out, i_out) = (&k_out[0], &p_out[0], &i_out[0]);
     quote! {
         #[inline]
@@ -456,7 +458,7 @@ fn hoisted_impl(
     f: &Frame,
     system: &System,
     model: &Model,
-    articulated_inner: TokenStream,
+    outputs: TokenStream,
 ) -> TokenStream {
     let (s, nl) = (&f.s, &f.n);
     let (vec_t, mat_t, qvec_t) = (f.vec(nl), f.mat(nl, nl), f.qvec());
@@ -492,7 +494,7 @@ fn hoisted_impl(
 
             #j_pieces
 
-            #articulated_inner
+            #outputs
         }
     }
 }

@@ -13,7 +13,7 @@ use crate::mechanics::Model;
 /// orientations q has Q entries (`Reduced<T, N, K, Q>`) and the rows are read
 /// in v, as the multiplier form's are.
 pub(super) fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
-    let Some(r) = &model.reduced else {
+    let Some(r) = &model.constraints.reduced else {
         return quote!();
     };
     let n = model.dof();

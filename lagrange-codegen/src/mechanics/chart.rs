@@ -36,11 +36,12 @@ pub(super) fn at_centre(
     frames: Option<&mut Frames>,
     coriolis: Option<&mut Vec<Vec<Sym>>>,
 ) {
-    if d.orientations.is_empty() {
+    let variables = &d.variables;
+    if variables.orientations.is_empty() {
         return;
     }
-    let at = centre(ctx, &d.orientations);
-    let norms = unit_norms(ctx, &d.orientations);
+    let at = centre(ctx, &variables.orientations);
+    let norms = unit_norms(ctx, &variables.orientations);
     let mut c = AtCentre {
         ctx,
         at: &at,
@@ -48,7 +49,8 @@ pub(super) fn at_centre(
     };
     let m = &mut d.motion;
     c.rows(&mut m.mass);
-    for v in [&mut m.bias, &mut m.bias_other, &mut m.rhs, &mut m.forces] {
+    let other = &mut m.derivation.other_bias;
+    for v in [&mut m.bias, other, &mut m.rhs, &mut m.forces] {
         c.all(v);
     }
     c.all(&mut d.forces.generalized);
@@ -59,8 +61,8 @@ pub(super) fn at_centre(
     // Derivatives are substituted only: R(θ) → 1 makes most of their terms
     // vanish at construction, and collecting a few hundred of them costs
     // seconds of build time for no fewer operations.
-    if let Some([jq, jv]) = &mut d.jacobians {
-        for row in jq.iter_mut().chain(jv.iter_mut()) {
+    if let Some(j) = &mut d.jacobians {
+        for row in j.position.iter_mut().chain(j.velocity.iter_mut()) {
             c.substituted(row);
         }
     }
@@ -81,17 +83,23 @@ pub(super) fn at_centre(
         c.all(&mut i.torques);
         c.all(&mut i.gravity);
     }
-    for e in [&mut d.kinetic, &mut d.integral, &mut d.forces.potential] {
+    let energies = &mut d.energies;
+    for e in [
+        &mut energies.kinetic,
+        &mut energies.integral,
+        &mut energies.potential,
+    ] {
         *e = c.one(*e);
     }
     d.forces.gravity_potential = c.one(d.forces.gravity_potential);
-    for (mass, position) in &mut d.particles {
+    for (mass, position) in &mut d.masses.particles {
         *mass = c.one(*mass);
         c.all(position);
     }
     c.poses(&mut d.poses);
     if let Some(inputs) = &mut d.forces.inputs {
-        c.inputs(inputs, d.coordinates.len(), d.orientations.len());
+        let v = &d.variables;
+        c.inputs(inputs, v.coordinates.len(), v.orientations.len());
     }
     c.forms(forms);
 }
@@ -104,10 +112,9 @@ pub(super) fn at_centre(
 pub(super) fn at_fixed_omega(
     ctx: &mut Context,
     mut gradient: Vec<Sym>,
-    momentum: Option<&[Sym]>,
+    p: &[Sym],
     (first, orientations): (usize, usize),
 ) -> Vec<Sym> {
-    let p = momentum.expect("the momentum is derived with `emit(hamiltonian)`");
     let v = ctx.velocities();
     let half = ctx.rational(1, 2);
     for k in 0..orientations {

@@ -18,14 +18,13 @@ use std::collections::HashSet;
 use lagrange_symbolic::{Context, Expr as Sym, Program, Symbol, SymbolKind};
 
 use super::model::Model;
-use crate::constraint::{ConstraintDerivatives, ConstraintSet, Reduction};
 
 /// `cyclic[j]`: no derived expression depends on q_j.
 pub(super) fn cyclic(model: &Model) -> Vec<bool> {
     let mut cyclic = read_nowhere(model);
     // θ is zero in every output, but an orientation's angular velocity is no
     // cyclic coordinate's rate.
-    for c in cyclic.iter_mut().skip(model.coordinates.len()) {
+    for c in cyclic.iter_mut().skip(model.variables.coordinates.len()) {
         *c = false;
     }
     cyclic
@@ -34,7 +33,7 @@ pub(super) fn cyclic(model: &Model) -> Vec<bool> {
 /// Which coordinates no output reads (or reads only in terms that cancel).
 fn read_nowhere(model: &Model) -> Vec<bool> {
     let ctx = &model.ctx;
-    let outputs = expressions(model);
+    let outputs = model.expressions();
     let read = reached(ctx, outputs.clone());
     let q = ctx.coordinates();
     let appears: Vec<bool> = q.iter().map(|x| read.contains(x)).collect();
@@ -104,75 +103,4 @@ fn reached(ctx: &Context, roots: Vec<Sym>) -> HashSet<Sym> {
         }
     }
     seen
-}
-
-/// The expressions the generated code evaluates (the route not chosen, kept
-/// for tests, is left out).
-fn expressions(model: &Model) -> Vec<Sym> {
-    let mut out: Vec<Sym> = model.mass.iter().flatten().copied().collect();
-    out.extend(&model.bias);
-    out.extend(&model.forces);
-    out.extend(&model.rhs);
-    out.extend([model.kinetic, model.potential, model.integral]);
-    if let Some(u) = &model.inputs {
-        out.extend(&u.forces);
-        for m in [&u.jacobian_u, &u.jacobian_q, &u.jacobian_v] {
-            out.extend(m.iter().flatten());
-        }
-    }
-    if let Some(c) = &model.constraints {
-        constraint_rows(c, &mut out);
-    }
-    if let Some(r) = &model.reduced {
-        reduced_rows(r, &mut out);
-    }
-    for m in model
-        .coriolis
-        .iter()
-        .chain(model.jacobians.iter().flatten())
-    {
-        out.extend(m.iter().flatten());
-    }
-    for v in [&model.momentum, &model.kinetic_gradient]
-        .into_iter()
-        .flatten()
-    {
-        out.extend(v);
-    }
-    if let Some(a) = &model.articulated {
-        out.extend(&a.accelerations);
-        out.extend(&a.pivots);
-    }
-    out
-}
-
-/// Φ, G, g, γ, the reactions and their derivatives.
-fn constraint_rows(c: &ConstraintSet, out: &mut Vec<Sym>) {
-    out.extend(&c.phi);
-    out.extend(c.jacobian.iter().flatten());
-    out.extend(&c.velocity_term);
-    out.extend(&c.gamma);
-    for (_, r) in &c.reactions {
-        out.extend(r.iter().flatten());
-    }
-    if let Some(d) = &c.derivatives {
-        derivatives(d, out);
-    }
-}
-
-/// The speeds, A, b, c and their derivatives.
-fn reduced_rows(r: &Reduction, out: &mut Vec<Sym>) {
-    out.extend(&r.speeds);
-    out.extend(r.matrix.iter().flatten());
-    out.extend(&r.free);
-    out.extend(&r.rates);
-    if let Some(d) = &r.derivatives {
-        derivatives(d, out);
-    }
-}
-
-fn derivatives(d: &ConstraintDerivatives, out: &mut Vec<Sym>) {
-    for m in [&d.force_q, &d.acceleration_q, &d.gamma_v, &d.velocity_q] {
-        out.extend(m.iter().flatten());
-    }
 }

@@ -11,11 +11,24 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::{DeriveError, Motion, Sources};
+use super::model::{EquationsOfMotion, Expressions, entries};
+use super::{DeriveError, Sources};
 use crate::tree::Tree;
 
-/// The two Jacobians, N × N each.
-pub type Jacobians = [Vec<Vec<Sym>>; 2];
+/// The right-hand side's Jacobians at the accelerations' symbols q̈, N × N
+/// each, row-major (`emit(jacobians)`).
+pub struct RhsJacobians {
+    /// J_q = ∂(Q − h)/∂q − [∂M/∂q_k q̈]_k.
+    pub position: Vec<Vec<Sym>>,
+    /// J_v = ∂(Q − h)/∂q̇.
+    pub velocity: Vec<Vec<Sym>>,
+}
+
+impl Expressions for RhsJacobians {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        entries(out, [&self.position, &self.velocity]);
+    }
+}
 
 /// J_q and J_v from the tree where M and h come from it, or where there are
 /// free orientations, else from M and Q − h; an error for orientations
@@ -24,10 +37,10 @@ pub type Jacobians = [Vec<Vec<Sym>>; 2];
 pub(super) fn rhs_jacobians(
     ctx: &mut Context,
     tree: Option<&Tree>,
-    motion: &Motion,
+    motion: &EquationsOfMotion,
     sources: &Sources,
     orientations: bool,
-) -> Result<Jacobians, DeriveError> {
+) -> Result<RhsJacobians, DeriveError> {
     let tree = tree.filter(|_| sources.recursive || orientations);
     match (tree, orientations) {
         (Some(tree), _) => {
@@ -47,7 +60,7 @@ pub(super) fn rhs_jacobians(
 }
 
 /// −∂τ/∂q, −∂τ/∂q̇ with τ = RNEA(q, q̇, q̈; gravity) − rest.
-fn of_the_tree(ctx: &mut Context, tree: &Tree, rest: &[Sym]) -> Jacobians {
+fn of_the_tree(ctx: &mut Context, tree: &Tree, rest: &[Sym]) -> RhsJacobians {
     let turned = tree.perturbed(ctx);
     let inertial = crate::tree::inverse_dynamics_at_accelerations(ctx, &turned, true);
     let tau: Vec<Sym> = inertial
@@ -69,7 +82,7 @@ fn of_the_tree(ctx: &mut Context, tree: &Tree, rest: &[Sym]) -> Jacobians {
             })
             .collect()
     };
-    let jq = minus_d(ctx, &q);
-    let jv = minus_d(ctx, &qd);
-    [jq, jv]
+    let position = minus_d(ctx, &q);
+    let velocity = minus_d(ctx, &qd);
+    RhsJacobians { position, velocity }
 }

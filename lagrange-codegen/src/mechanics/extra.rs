@@ -4,6 +4,38 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
+use super::derivatives::RhsJacobians;
+use super::model::{Expressions, entries};
+
+/// Hamilton's form (`emit(hamiltonian)`), or the momentum alone of a
+/// rheonomic system (where the runtime's default M q̇ would be wrong).
+pub struct Hamilton {
+    /// p = ∂T/∂q̇.
+    pub momentum: Vec<Sym>,
+    /// ∂T/∂q at fixed q̇ (with orientations: at fixed ω), with
+    /// `emit(hamiltonian)`.
+    pub kinetic_gradient: Option<Vec<Sym>>,
+}
+
+impl Expressions for Hamilton {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        out.extend(&self.momentum);
+        out.extend(self.kinetic_gradient.iter().flatten());
+    }
+}
+
+/// C(q, q̇) with C_ij = Σ_k Γ_ijk q̇_k (`emit(coriolis)`).
+pub struct Coriolis {
+    /// N × N, row-major.
+    pub matrix: Vec<Vec<Sym>>,
+}
+
+impl Expressions for Coriolis {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        entries(out, [&self.matrix]);
+    }
+}
+
 /// p = ∂T/∂q̇.
 pub(super) fn momentum(ctx: &mut Context, kinetic: Sym) -> Vec<Sym> {
     ctx.velocities()
@@ -28,16 +60,12 @@ pub(super) fn kinetic_gradient(ctx: &mut Context, kinetic: Sym) -> Vec<Sym> {
 
 /// J_q = ∂(Q − h)/∂q − [∂M/∂q_k q̈]_k and J_v = ∂(Q − h)/∂q̇, with q̈ left as the
 /// acceleration symbols (the runtime passes the current q̈).
-pub(super) fn rhs_jacobians(
-    ctx: &mut Context,
-    mass: &[Vec<Sym>],
-    rhs: &[Sym],
-) -> [Vec<Vec<Sym>>; 2] {
+pub(super) fn rhs_jacobians(ctx: &mut Context, mass: &[Vec<Sym>], rhs: &[Sym]) -> RhsJacobians {
     let q = ctx.coordinates();
     let qd = ctx.velocities();
     let qdd = ctx.accelerations();
     let n = q.len();
-    let jq = (0..n)
+    let position = (0..n)
         .map(|i| {
             (0..n)
                 .map(|k| {
@@ -53,7 +81,7 @@ pub(super) fn rhs_jacobians(
                 .collect()
         })
         .collect();
-    let jv = (0..n)
+    let velocity = (0..n)
         .map(|i| {
             (0..n)
                 .map(|k| {
@@ -63,7 +91,7 @@ pub(super) fn rhs_jacobians(
                 .collect()
         })
         .collect();
-    [jq, jv]
+    RhsJacobians { position, velocity }
 }
 
 /// What is read off T as written in the orientations' θ (the recursive
@@ -141,14 +169,24 @@ pub(super) fn hamilton_form(
     ctx: &mut Context,
     d: &mut super::Derived,
     hamiltonian: bool,
-) -> (Option<Vec<Sym>>, Option<Vec<Sym>>) {
-    let momentum = (hamiltonian || d.rheonomic).then(|| momentum(ctx, d.kinetic));
-    let slots = (d.coordinates.len(), d.orientations.len());
-    let gradient = hamiltonian.then(|| match d.chart_gradient.take() {
-        Some(g) => super::chart::at_fixed_omega(ctx, g, momentum.as_deref(), slots),
-        None => kinetic_gradient(ctx, d.kinetic),
+) -> Option<Hamilton> {
+    let kinetic = d.energies.kinetic;
+    if !(hamiltonian || d.motion.rheonomic) {
+        return None;
+    }
+    let momentum = momentum(ctx, kinetic);
+    let slots = (
+        d.variables.coordinates.len(),
+        d.variables.orientations.len(),
+    );
+    let kinetic_gradient = hamiltonian.then(|| match d.chart_gradient.take() {
+        Some(g) => super::chart::at_fixed_omega(ctx, g, &momentum, slots),
+        None => kinetic_gradient(ctx, kinetic),
     });
-    (momentum, gradient)
+    Some(Hamilton {
+        momentum,
+        kinetic_gradient,
+    })
 }
 
 /// C: with orientations, the chart's Christoffel factorisation turned along
@@ -159,8 +197,8 @@ pub(super) fn coriolis(
     mass: &[Vec<Sym>],
     wanted: bool,
     (first, orientations): (usize, usize),
-) -> Option<Vec<Vec<Sym>>> {
-    match in_theta {
+) -> Option<Coriolis> {
+    let matrix = match in_theta {
         Some(c) => Some(super::chart::along_the_motion(
             ctx,
             c,
@@ -172,5 +210,6 @@ pub(super) fn coriolis(
             let (q, qd) = (ctx.coordinates(), ctx.velocities());
             coriolis_matrix(ctx, mass, &q, &qd)
         }),
-    }
+    };
+    matrix.map(|matrix| Coriolis { matrix })
 }

@@ -10,10 +10,12 @@
 //!
 //! [`derive_with`] reads as the stages: per-point and per-body `kinematics` and
 //! T; M and h by the `generic` route and/or the `recursive` one (the cheaper
-//! kept); Q by `force` with the inputs split off; the `energy` functions;
-//! the optional outputs (`extra`), the constrained forms and one hoisting.
-//! Every step builds nodes in the order the single function did, so the emitted
-//! code is unchanged byte for byte.
+//! kept, assembled in `motion`); Q by `force` with the inputs split off; the
+//! `energy` functions; the optional outputs (`extra`, `derivatives`,
+//! `inverse`, `frames`), the constrained forms (`forms`), all at the chart's
+//! centre (`chart`), and one hoisting. The result is a [`Model`] of parts
+//! (`model`), each its own type. Every step builds nodes in the order the
+//! single function did, so the emitted code is unchanged byte for byte.
 
 mod chart;
 mod cyclic;
@@ -27,12 +29,20 @@ mod generic;
 mod inverse;
 mod kinematics;
 mod model;
+mod motion;
 mod recursive;
 mod vector;
 
+pub use derivatives::RhsJacobians;
+pub use extra::{Coriolis, Hamilton};
 pub use frames::Frames;
 pub use inverse::InverseDynamics;
-pub use model::{Articulation, BiasRoute, InputModel, Model};
+pub use model::{
+    Articulation, BiasRoute, ConstraintForms, Derivation, Energies, EquationsOfMotion, Expressions,
+    InputModel, Masses, Model, Outputs, Variables,
+};
+
+use std::mem::take;
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
@@ -41,9 +51,7 @@ use crate::constraint::{ConstraintSet, Reduction};
 use crate::lowered::{ConstraintModel, Lowered, Poses};
 use force::Applied;
 use forms::{multiplier_form, reduced_if_asked};
-use generic::GenericTerms;
 use kinematics::at_zero;
-use recursive::RecursiveTerms;
 
 /// Which derivation of M and h to use.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -114,85 +122,98 @@ pub fn derive(lowered: Lowered) -> Result<Model, DeriveError> {
 /// # Errors
 /// As [`derive()`], and [`DeriveError::NotATree`] for [`Route::Recursive`] on a
 /// description that is not a tree.
-pub fn derive_with(lowered: Lowered, route: Route) -> Result<Model, DeriveError> {
+pub fn derive_with(mut lowered: Lowered, route: Route) -> Result<Model, DeriveError> {
+    let mut ctx = take(&mut lowered.ctx);
+    let derived = unconstrained(&mut ctx, &mut lowered, route)?;
     let Lowered {
-        mut ctx,
-        coordinates,
-        orientations,
-        inputs: input_names,
-        parameters,
-        points,
-        spins,
-        skeleton,
-        gravity,
-        potential,
-        dissipation,
-        forces,
-        generalized_forces,
         holonomic,
         nonholonomic,
         speeds,
         multipliers,
         extras,
-        checks,
-        poses,
+        ..
     } = lowered;
+    let constrained = Constrained::new(&holonomic, &nonholonomic, multipliers, speeds);
+    finish(ctx, derived, constrained, &extras)
+}
+
+/// The unconstrained system: M and h by the route chosen, Q with the inputs'
+/// share split off, the energies and the outputs derived before the chart's
+/// centre; the variables, checks and poses taken over from `lowered`.
+fn unconstrained(
+    ctx: &mut Context,
+    lowered: &mut Lowered,
+    route: Route,
+) -> Result<Derived, DeriveError> {
     let qdd = ctx.accelerations();
-    let zero_acc = at_zero(&mut ctx, &qdd);
-    let masses = (&points[..], &spins[..], &skeleton);
-    let tree = recursive::detect(&mut ctx, route, masses, gravity.as_deref());
+    let zero_acc = at_zero(ctx, &qdd);
+    let masses = (&lowered.points[..], &lowered.spins[..], &lowered.skeleton);
+    let gravity = lowered.gravity.as_deref();
+    let tree = recursive::detect(ctx, route, masses, gravity);
     let generic = wants_generic(route, &tree)?;
     let (tree, not_a_tree) = tree.map_or_else(|why| (None, Some(why)), |t| (Some(t), None));
+    let (points, spins) = (&lowered.points, &lowered.spins);
     let (kin, spin, rheonomic, kinetic) =
-        kinematics::derive(&mut ctx, &points, &spins, generic, &zero_acc);
+        kinematics::derive(ctx, points, spins, generic, &zero_acc);
     let generic_terms =
-        generic.then(|| generic::derive(&mut ctx, &kin, &spin, kinetic, rheonomic, &zero_acc));
-    let recursive_terms = recursive::cheaper(&mut ctx, tree.as_ref(), generic_terms.as_ref());
+        generic.then(|| generic::derive(ctx, &kin, &spin, kinetic, rheonomic, &zero_acc));
+    let recursive_terms = recursive::cheaper(ctx, tree.as_ref(), generic_terms.as_ref());
     let route_reason = route_reason(recursive_terms.is_some(), tree.as_ref(), not_a_tree);
-    let applied = Applied {
-        dissipation,
-        forces: &forces,
-        generalized: &generalized_forces,
-    };
+    let extras = &lowered.extras;
     let sources = Sources {
-        gravity: gravity.as_deref(),
-        potential,
-        applied,
+        gravity,
+        potential: lowered.potential,
+        applied: Applied {
+            dissipation: lowered.dissipation,
+            forces: &lowered.forces,
+            generalized: &lowered.generalized_forces,
+        },
         tree: tree.as_ref(),
         recursive: recursive_terms.is_some(),
         articulated: extras.contains(&Extra::Articulated),
         route_reason: route_reason.clone(),
     };
-    let forces = applied_forces(&mut ctx, &kin, &sources, input_names)?;
-    let motion = equations(&mut ctx, recursive_terms, generic_terms, &forces);
-    let inverse = inverse_if_asked(&mut ctx, &extras, tree.as_ref(), &motion, &forces);
-    let free = !orientations.is_empty();
+    let input_names = take(&mut lowered.inputs);
+    let (forces, potential) = applied_forces(ctx, &kin, &sources, input_names)?;
+    let q_at_zero = motion::Generalized {
+        forces: &forces.generalized,
+        gravity_potential: forces.gravity_potential,
+    };
+    let terms = (recursive_terms, generic_terms);
+    let motion = motion::equations(ctx, terms, q_at_zero, (rheonomic, route_reason));
+    let inverse = inverse_if_asked(ctx, extras, tree.as_ref(), &motion, &forces);
+    let free = !lowered.orientations.is_empty();
     let jacobians = (extras.contains(&Extra::Jacobians))
-        .then(|| derivatives::rhs_jacobians(&mut ctx, tree.as_ref(), &motion, &sources, free));
-    let (chart_mass, chart_gradient) = extra::in_chart(&mut ctx, &extras, free, kinetic);
-    let kinetic = energy::cheaper_kinetic(&mut ctx, rheonomic, kinetic, &motion.mass);
-    let integral = energy::integral(&mut ctx, rheonomic, kinetic, forces.potential, &motion.mass);
-    let derived = Derived {
+        .then(|| derivatives::rhs_jacobians(ctx, tree.as_ref(), &motion, &sources, free));
+    let (chart_mass, chart_gradient) = extra::in_chart(ctx, extras, free, kinetic);
+    let kinetic = energy::cheaper_kinetic(ctx, rheonomic, kinetic, &motion.mass);
+    let integral = energy::integral(ctx, rheonomic, kinetic, potential, &motion.mass);
+    let particles = kin.iter().map(|k| (k.mass, k.position.clone())).collect();
+    Ok(Derived {
         chart_mass,
         chart_gradient,
-        coordinates,
-        orientations,
-        parameters,
-        rheonomic,
-        kinetic,
-        integral,
-        particles: kin.iter().map(|k| (k.mass, k.position.clone())).collect(),
-        has_spin: !spin.is_empty(),
+        variables: Variables {
+            coordinates: take(&mut lowered.coordinates),
+            orientations: take(&mut lowered.orientations),
+            parameters: take(&mut lowered.parameters),
+            cyclic: Vec::new(),
+        },
+        energies: Energies {
+            kinetic,
+            potential,
+            integral,
+        },
+        masses: Masses {
+            particles,
+            has_spin: !spin.is_empty(),
+            checks: take(&mut lowered.checks),
+        },
         forces,
         motion,
-        route_reason,
         inverse,
         jacobians: jacobians.transpose()?,
-        checks,
-        poses,
-    };
-    let constrained = Constrained::new(&holonomic, &nonholonomic, multipliers, speeds);
-    finish(ctx, derived, constrained, &extras)
+        poses: take(&mut lowered.poses),
+    })
 }
 
 /// Whether to derive the generic route (besides the recursive one, if there is a
@@ -213,13 +234,13 @@ fn inverse_if_asked(
     ctx: &mut Context,
     extras: &[Extra],
     tree: Option<&crate::tree::Tree>,
-    motion: &Motion,
+    motion: &EquationsOfMotion,
     forces: &Forces,
 ) -> Option<InverseDynamics> {
     let terms = (&motion.mass[..], &motion.bias[..], &motion.forces[..]);
     let asked = extras.contains(&Extra::InverseDynamics);
     // On the recursive route Q leaves gravity out.
-    let rest = (motion.bias_route == BiasRoute::Recursive).then_some(&forces.generalized[..]);
+    let rest = (motion.derivation.route == BiasRoute::Recursive).then_some(&forces.generalized[..]);
     let gravity = (forces.gravity_potential, rest);
     asked.then(|| inverse::inverse_dynamics(ctx, tree, terms, gravity))
 }
@@ -261,25 +282,24 @@ struct Sources<'a> {
     route_reason: Option<String>,
 }
 
-/// Q at zero input, V at zero input, and what depends on them.
+/// Q at zero input and what depends on it.
 struct Forces {
     generalized: Vec<Sym>,
     /// −Σ m g·ξ alone (the recursive route adds its gradient back into Q).
     gravity_potential: Sym,
-    /// The user's V plus gravity's, at zero input.
-    potential: Sym,
     inputs: Option<InputModel>,
     articulated: Option<Articulation>,
 }
 
-/// Q (with or without gravity's share, by the route), V, the inputs' share of
-/// both and the articulated q̈.
+/// Q (with or without gravity's share, by the route), the inputs' share of
+/// Q and V, and the articulated q̈; and V (the user's plus gravity's) at zero
+/// input.
 fn applied_forces(
     ctx: &mut Context,
     kin: &[kinematics::Kinematics],
     s: &Sources,
     input_names: Vec<String>,
-) -> Result<Forces, DeriveError> {
+) -> Result<(Forces, Sym), DeriveError> {
     let gravity_potential = energy::gravity_potential(ctx, s.gravity, kin);
     let potential_total = energy::total_potential(ctx, s.potential, gravity_potential);
     // Q without gravity's share, for the recursive algorithms (which take
@@ -314,77 +334,13 @@ fn applied_forces(
     // The `Lagrangian` methods are the unforced system: every input at zero.
     let (generalized, potential, inputs) =
         force::split_inputs(ctx, input_names, generalized, potential_total);
-    Ok(Forces {
+    let forces = Forces {
         generalized,
         gravity_potential,
-        potential,
         inputs,
         articulated,
-    })
-}
-
-/// M q̈ + h = Q by the route chosen, with Q − h.
-struct Motion {
-    mass: Vec<Vec<Sym>>,
-    bias: Vec<Sym>,
-    bias_other: Vec<Sym>,
-    bias_route: BiasRoute,
-    rhs: Vec<Sym>,
-    /// Q with gravity's share.
-    forces: Vec<Sym>,
-}
-
-/// Assembles M, h and Q − h from the route kept: the recursive right-hand side is
-/// Q (without gravity) − (h − Q_gravity), and its Q gets gravity's share back for
-/// the `forces` output.
-fn equations(
-    ctx: &mut Context,
-    recursive: Option<RecursiveTerms>,
-    generic: Option<GenericTerms>,
-    forces: &Forces,
-) -> Motion {
-    let q = ctx.coordinates();
-    let n = q.len();
-    let generalized = &forces.generalized;
-    match recursive {
-        Some(r) => {
-            let rhs: Vec<Sym> = (0..n)
-                .map(|i| ctx.sub(generalized[i], r.with_gravity[i]))
-                .collect();
-            let total = (0..n)
-                .map(|i| {
-                    let dv = ctx.diff(forces.gravity_potential, q[i]);
-                    let e = ctx.sub(generalized[i], dv);
-                    ctx.collect(e)
-                })
-                .collect();
-            Motion {
-                mass: r.mass,
-                bias: r.bias,
-                bias_other: generic.map(|g| g.bias).unwrap_or_default(),
-                bias_route: BiasRoute::Recursive,
-                rhs,
-                forces: total,
-            }
-        }
-        None => {
-            let g = generic.expect("the generic route was derived");
-            let rhs: Vec<Sym> = (0..n)
-                .map(|i| {
-                    let r = ctx.sub(generalized[i], g.bias[i]);
-                    ctx.collect(r)
-                })
-                .collect();
-            Motion {
-                mass: g.mass,
-                bias: g.bias,
-                bias_other: g.other,
-                bias_route: g.route,
-                rhs,
-                forces: generalized.clone(),
-            }
-        }
-    }
+    };
+    Ok((forces, potential))
 }
 
 /// Everything derived before the optional outputs and the constrained forms.
@@ -394,23 +350,15 @@ pub(super) struct Derived {
     /// ∂T/∂q at fixed q̇ written in the orientations' θ (for
     /// `emit(hamiltonian)` with them), taken at the centre with the rest.
     chart_gradient: Option<Vec<Sym>>,
-    coordinates: Vec<String>,
-    orientations: Vec<crate::lowered::OrientationModel>,
-    parameters: Vec<String>,
-    rheonomic: bool,
-    kinetic: Sym,
-    integral: Sym,
-    particles: Vec<(Sym, Vec<Sym>)>,
-    has_spin: bool,
+    variables: Variables,
+    motion: EquationsOfMotion,
+    energies: Energies,
+    masses: Masses,
     forces: Forces,
-    motion: Motion,
-    /// Why M and h are not by the recursive route (`None` when they are).
-    route_reason: Option<String>,
     /// `emit(inverse_dynamics)`.
     inverse: Option<InverseDynamics>,
     /// `emit(jacobians)`, before the chart's centre.
-    jacobians: Option<derivatives::Jacobians>,
-    checks: Vec<crate::lowered::PhysicalCheck>,
+    jacobians: Option<RhsJacobians>,
     poses: Poses,
 }
 
@@ -456,12 +404,14 @@ fn in_theta(
     c: &Constrained,
     extras: &[Extra],
 ) -> Result<InTheta, DeriveError> {
-    let free = !d.orientations.is_empty();
+    let v = &d.variables;
+    let free = !v.orientations.is_empty();
     let mut constraints = (free && c.multipliers).then(|| multiplier_form(ctx, c, false));
-    let in_theta = free.then_some((&d.coordinates[..], &d.orientations[..]));
+    let in_theta = free.then_some((&v.coordinates[..], &v.orientations[..]));
     let mut reduced = in_theta.map_or(Ok(None), |(q, o)| reduced_if_asked(ctx, c, q, o, false))?;
+    let particles = &d.masses.particles;
     let mut frames =
-        (extras.contains(&Extra::Kinematics)).then(|| frames::frames(ctx, &d.poses, &d.particles));
+        (extras.contains(&Extra::Kinematics)).then(|| frames::frames(ctx, &d.poses, particles));
     let mut coriolis = d.chart_mass.take().map(|mass| {
         let (q, qd) = (ctx.coordinates(), ctx.velocities());
         extra::coriolis_matrix(ctx, &mass, &q, &qd)
@@ -488,75 +438,54 @@ fn finish(
 ) -> Result<Model, DeriveError> {
     let wants = |e: Extra| extras.contains(&e);
     let early = in_theta(&mut ctx, &mut d, &c, extras)?;
-    let (momentum, kinetic_gradient) =
-        extra::hamilton_form(&mut ctx, &mut d, wants(Extra::Hamiltonian));
-    let Motion {
-        mass,
-        bias,
-        bias_other,
-        bias_route,
-        rhs,
-        forces,
-    } = d.motion;
-    let slots = (d.coordinates.len(), d.orientations.len());
+    let hamilton = extra::hamilton_form(&mut ctx, &mut d, wants(Extra::Hamiltonian));
+    let slots = (
+        d.variables.coordinates.len(),
+        d.variables.orientations.len(),
+    );
+    let mass = &d.motion.mass;
     let coriolis = extra::coriolis(
         &mut ctx,
         early.coriolis,
-        &mass,
+        mass,
         wants(Extra::Coriolis),
         slots,
     );
     let jacobians = wants(Extra::Jacobians);
-    let constraints = (early.constraints).or_else(|| {
+    let multipliers = (early.constraints).or_else(|| {
         c.multipliers
             .then(|| multiplier_form(&mut ctx, &c, jacobians))
     });
     let reduced = match early.reduced {
-        None => reduced_if_asked(&mut ctx, &c, &d.coordinates, &[], jacobians)?,
+        None => reduced_if_asked(&mut ctx, &c, &d.variables.coordinates, &[], jacobians)?,
         r => r,
     };
     let articulated = d.forces.articulated;
-    let hoisted = hoist(
-        &mut ctx,
-        &mass,
-        &rhs,
-        articulated.as_ref(),
-        constraints.as_ref(),
-    );
+    let programs = (&d.motion, articulated.as_ref(), multipliers.as_ref());
+    let hoisted = hoist(&mut ctx, programs);
     let mut model = Model {
         ctx,
-        coordinates: d.coordinates,
-        orientations: d.orientations,
-        parameters: d.parameters,
-        rheonomic: d.rheonomic,
-        mass,
-        bias,
-        forces,
-        rhs,
-        kinetic: d.kinetic,
-        potential: d.forces.potential,
-        integral: d.integral,
-        bias_route,
-        bias_other,
+        variables: d.variables,
+        motion: d.motion,
+        energies: d.energies,
+        masses: d.masses,
         inputs: d.forces.inputs,
-        constraints,
-        reduced,
-        coriolis,
-        jacobians: d.jacobians,
-        momentum,
-        kinetic_gradient,
-        frames: early.frames,
-        particles: d.particles,
-        has_spin: d.has_spin,
-        articulated,
+        constraints: ConstraintForms {
+            multipliers,
+            reduced,
+        },
+        outputs: Outputs {
+            hamilton,
+            coriolis,
+            jacobians: d.jacobians,
+            articulated,
+            inverse: d.inverse,
+            frames: early.frames,
+        },
         hoisted,
-        cyclic: Vec::new(),
-        route_reason: d.route_reason,
-        inverse: d.inverse,
-        checks: d.checks,
         poses: d.poses,
     };
-    model.cyclic = cyclic::cyclic(&model);
+    model.variables.cyclic = cyclic::cyclic(&model);
     Ok(model)
 }
 
@@ -564,12 +493,14 @@ fn finish(
 /// `Model::hoisted_*` reads.
 fn hoist(
     ctx: &mut Context,
-    mass: &[Vec<Sym>],
-    rhs: &[Sym],
-    articulated: Option<&Articulation>,
-    constraints: Option<&ConstraintSet>,
+    (motion, articulated, constraints): (
+        &EquationsOfMotion,
+        Option<&Articulation>,
+        Option<&ConstraintSet>,
+    ),
 ) -> lagrange_symbolic::Hoisted {
-    let mut outputs: Vec<Sym> = mass.iter().flatten().chain(rhs).copied().collect();
+    let mass = motion.mass.iter().flatten();
+    let mut outputs: Vec<Sym> = mass.chain(&motion.rhs).copied().collect();
     if let Some(a) = articulated {
         outputs.extend(&a.accelerations);
         outputs.extend(&a.pivots);

@@ -1,131 +1,55 @@
-//! The equations of motion M q̈ + h = Q and the energies, as the derivation hands
-//! them to `emit` and `doc`.
+//! The derivation's result, as `emit` and `doc` read it: a [`Model`] made of
+//! parts, each a type of its own, so that an output touches its own part.
 
-use lagrange_symbolic::{Context, Expr as Sym};
+use lagrange_symbolic::{Context, Expr as Sym, Hoisted};
 
-use crate::constraint::{ConstraintSet, Reduction};
+use super::extra::{Coriolis, Hamilton};
+use super::{Frames, InverseDynamics, RhsJacobians};
+use crate::constraint::{ConstraintDerivatives, ConstraintSet, Reduction};
+use crate::lowered::{OrientationModel, PhysicalCheck, Poses};
 
-/// Which derivation of h the emitted code uses.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub enum BiasRoute {
-    /// h = Σ_ν m_ν J_νᵀ κ_ν (d'Alembert's principle).
-    Projection,
-    /// h = d/dt ∂T/∂q̇ − ∂T/∂q with q̈ = 0 (Christoffel symbols, rheonomic terms).
-    Christoffel,
-    /// Recursive Newton–Euler over the kinematic tree, with M by composite rigid
-    /// bodies ([`crate::tree`]).
-    Recursive,
-    /// h_i = Σ_jk (∂M_ij/∂q_k − ½ ∂M_jk/∂q_i) q̇_j q̇_k, the Christoffel symbols of
-    /// the derived M (scleronomic systems only).
-    MassMatrix,
-}
+pub use super::motion::{BiasRoute, Derivation, EquationsOfMotion};
 
-/// How the inputs u enter: Q(q, q̇, u, t) = Q(q, q̇, 0, t) + ΔQ.
-pub struct InputModel {
-    pub names: Vec<String>,
-    /// The input symbols, in order (emitted as `u[i]`).
-    pub symbols: Vec<Sym>,
-    /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t).
-    pub forces: Vec<Sym>,
-    /// ∂Q/∂u (N × P), row-major.
-    pub jacobian_u: Vec<Vec<Sym>>,
-    /// ∂ΔQ/∂q (N × N).
-    pub jacobian_q: Vec<Vec<Sym>>,
-    /// ∂ΔQ/∂q̇ (N × N).
-    pub jacobian_v: Vec<Vec<Sym>>,
-}
-
-/// q̈(q, q̇, τ) by the articulated-body algorithm (`emit(articulated)`).
-pub struct Articulation {
-    /// q̈, with the extra generalized forces as the free symbols `extra`.
-    pub accelerations: Vec<Sym>,
-    /// The articulated pivots D_i, for the singularity check.
-    pub pivots: Vec<Sym>,
-    /// Free symbols for the extra generalized forces (emitted as `tau[i]`).
-    pub extra: Vec<Sym>,
-}
-
-/// The equations of motion M q̈ + h = Q and the energies, as expressions.
+/// The equations of motion M q̈ + h = Q, the energies, the constrained forms
+/// and the optional outputs, as expressions in one [`Context`].
 ///
 /// With inputs, everything here but [`Model::inputs`] is the unforced system
 /// (every input at zero); the inputs' share of Q is in [`InputModel`].
 pub struct Model {
+    /// The arena every expression of the parts lives in.
     pub ctx: Context,
-    pub coordinates: Vec<String>,
-    /// Free orientations: their θ coordinates follow `coordinates` (and are
-    /// zero in every output), their quaternions follow the coordinates in q.
-    pub orientations: Vec<crate::lowered::OrientationModel>,
-    pub parameters: Vec<String>,
-    pub rheonomic: bool,
-    /// Row-major N×N, symmetric (the same `Sym` at (i,j) and (j,i)).
-    pub mass: Vec<Vec<Sym>>,
-    pub bias: Vec<Sym>,
-    pub forces: Vec<Sym>,
-    /// Q − h, the right-hand side the integrators need.
-    pub rhs: Vec<Sym>,
-    pub kinetic: Sym,
-    pub potential: Sym,
-    pub integral: Sym,
-    pub bias_route: BiasRoute,
-    /// Why M and h are not by the recursive route: which body or point, and
-    /// what about it (`None` when they are).
-    pub route_reason: Option<String>,
-    /// τ = M q̈ + h − Q and the gravity torques, if asked for
-    /// (`emit(inverse_dynamics)`).
-    pub inverse: Option<super::InverseDynamics>,
-    /// The frames' Jacobians and the centre of mass, if asked for
-    /// (`emit(kinematics)`).
-    pub frames: Option<super::Frames>,
-    /// The route not chosen, kept so tests can check the two agree (empty when
-    /// only the recursive route was derived).
-    pub bias_other: Vec<Sym>,
+    /// q, q̇ and the parameters: names, layout, which coordinates are cyclic.
+    pub variables: Variables,
+    /// M, h, Q and Q − h, and the route they were derived by.
+    pub motion: EquationsOfMotion,
+    /// T, V and the energy integral.
+    pub energies: Energies,
+    /// The point masses and bodies, and the checks of those computed from
+    /// parameters.
+    pub masses: Masses,
     /// The inputs' generalized forces and their Jacobians, if inputs were declared.
     pub inputs: Option<InputModel>,
-    /// Constraint terms for the multiplier form.
-    pub constraints: Option<ConstraintSet>,
-    /// The reduced (Maggi / Gibbs–Appell) form.
-    pub reduced: Option<Reduction>,
-    /// C(q, q̇) with C_ij = Σ_k Γ_ijk q̇_k, if asked for.
-    pub coriolis: Option<Vec<Vec<Sym>>>,
-    /// (J_q, J_v) of the right-hand side at the accelerations q̈ (acceleration
-    /// symbols): J_q = ∂(Q − h)/∂q − [∂M/∂q_k q̈]_k, J_v = ∂(Q − h)/∂q̇; if asked for.
-    pub jacobians: Option<[Vec<Vec<Sym>>; 2]>,
-    /// The momentum ∂T/∂q̇ (emitted when asked for, and always for a rheonomic
-    /// system, where the runtime's default M q̇ would be wrong).
-    pub momentum: Option<Vec<Sym>>,
-    /// ∂T/∂q at fixed q̇, if asked for.
-    pub kinetic_gradient: Option<Vec<Sym>>,
-    /// (mass, position ξ(q, t)) of every point mass and body centre, for tools and
-    /// tests that form other functions of the motion (the Gibbs function, say).
-    pub particles: Vec<(Sym, Vec<Sym>)>,
-    /// Whether any body has rotational inertia (then `particles` alone does not
-    /// give T).
-    pub has_spin: bool,
-    /// The articulated-body forward dynamics, if asked for.
-    pub articulated: Option<Articulation>,
-    /// Per coordinate, whether it is cyclic: read by none of the expressions
-    /// above (only its rate enters the motion).
-    pub cyclic: Vec<bool>,
+    /// The multiplier form and the reduced form, those the description has.
+    pub constraints: ConstraintForms,
+    /// What `emit(...)` asked for (and the momentum of a rheonomic system).
+    pub outputs: Outputs,
     /// M (row-major, N²), Q − h and the articulated outputs with their
     /// parameter-only parts split off, computed once per parameter set by the
     /// generated code ([`lagrange_symbolic::Context::hoist`]).
-    pub hoisted: lagrange_symbolic::Hoisted,
-    /// The masses and inertias computed from parameters, which the generated
-    /// `check_parameters` checks before a run.
-    pub checks: Vec<crate::lowered::PhysicalCheck>,
+    pub hoisted: Hoisted,
     /// The bodies' poses, the points' positions and the shapes, for the scene.
-    pub poses: crate::lowered::Poses,
+    pub poses: Poses,
 }
 
 impl Model {
     /// The number of velocities N: the coordinates and three per orientation.
     pub fn dof(&self) -> usize {
-        self.coordinates.len() + 3 * self.orientations.len()
+        self.variables.dof()
     }
 
     /// The number of entries of q: the coordinates and four per orientation.
     pub fn configuration_len(&self) -> usize {
-        self.coordinates.len() + 4 * self.orientations.len()
+        self.variables.configuration_len()
     }
 
     /// M's upper triangle (row-major) and then Q − h, over the hoisted terms.
@@ -144,18 +68,216 @@ impl Model {
     pub fn hoisted_articulated(&self) -> Option<&[Sym]> {
         let n = self.dof();
         let start = n * n + n;
-        self.articulated
-            .as_ref()
-            .map(|_| &self.hoisted.outputs[start..start + 2 * n])
+        (self.outputs.articulated.as_ref()).map(|_| &self.hoisted.outputs[start..start + 2 * n])
     }
 
     /// G (row-major) and then γ, over the hoisted terms.
     pub fn hoisted_constraints(&self) -> Option<&[Sym]> {
         let n = self.dof();
-        let start = n * n + n + if self.articulated.is_some() { 2 * n } else { 0 };
-        self.constraints.as_ref().map(|c| {
+        let articulated = self.outputs.articulated.is_some();
+        let start = n * n + n + if articulated { 2 * n } else { 0 };
+        self.constraints.multipliers.as_ref().map(|c| {
             let k = c.names.len();
             &self.hoisted.outputs[start..start + n * k + k]
         })
+    }
+
+    /// Every expression the generated code evaluates (the route not chosen,
+    /// kept for tests, is left out), in no particular order.
+    pub fn expressions(&self) -> Vec<Sym> {
+        let mut out = Vec::new();
+        self.motion.expressions(&mut out);
+        self.energies.expressions(&mut out);
+        self.inputs.expressions(&mut out);
+        self.constraints.expressions(&mut out);
+        self.outputs.expressions(&mut out);
+        out
+    }
+}
+
+/// A part of the model as the expressions the generated code evaluates of it,
+/// for the questions asked of all of them (which coordinates they read).
+pub trait Expressions {
+    /// Appends the part's expressions to `out`.
+    fn expressions(&self, out: &mut Vec<Sym>);
+}
+
+impl<T: Expressions> Expressions for Option<T> {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        if let Some(part) = self {
+            part.expressions(out);
+        }
+    }
+}
+
+/// Appends the entries of matrices, row by row.
+pub(super) fn entries<'a>(
+    out: &mut Vec<Sym>,
+    matrices: impl IntoIterator<Item = &'a Vec<Vec<Sym>>>,
+) {
+    for m in matrices {
+        out.extend(m.iter().flatten());
+    }
+}
+
+/// What q, q̇ and the parameters are.
+pub struct Variables {
+    pub coordinates: Vec<String>,
+    /// Free orientations: their θ coordinates follow `coordinates` (and are
+    /// zero in every output), their quaternions follow the coordinates in q.
+    pub orientations: Vec<OrientationModel>,
+    pub parameters: Vec<String>,
+    /// Per coordinate, whether it is cyclic: read by no expression of the
+    /// model (only its rate enters the motion).
+    pub cyclic: Vec<bool>,
+}
+
+impl Variables {
+    /// The number of velocities N: the coordinates and three per orientation.
+    pub fn dof(&self) -> usize {
+        self.coordinates.len() + 3 * self.orientations.len()
+    }
+
+    /// The number of entries of q: the coordinates and four per orientation.
+    pub fn configuration_len(&self) -> usize {
+        self.coordinates.len() + 4 * self.orientations.len()
+    }
+}
+
+/// T, V (gravity's and the user's, at zero input) and the energy integral.
+pub struct Energies {
+    pub kinetic: Sym,
+    pub potential: Sym,
+    pub integral: Sym,
+}
+
+impl Expressions for Energies {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        out.extend([self.kinetic, self.potential, self.integral]);
+    }
+}
+
+/// The masses of the description, for tools and tests that form other
+/// functions of the motion (the Gibbs function, say), and for the emitted
+/// `check_parameters`.
+pub struct Masses {
+    /// (mass, position ξ(q, t)) of every point mass and body centre.
+    pub particles: Vec<(Sym, Vec<Sym>)>,
+    /// Whether any body has rotational inertia (then `particles` alone does not
+    /// give T).
+    pub has_spin: bool,
+    /// The masses and inertias computed from parameters, which the generated
+    /// `check_parameters` checks before a run.
+    pub checks: Vec<PhysicalCheck>,
+}
+
+/// How the inputs u enter: Q(q, q̇, u, t) = Q(q, q̇, 0, t) + ΔQ.
+pub struct InputModel {
+    pub names: Vec<String>,
+    /// The input symbols, in order (emitted as `u[i]`).
+    pub symbols: Vec<Sym>,
+    /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t).
+    pub forces: Vec<Sym>,
+    /// ∂Q/∂u (N × P), row-major.
+    pub jacobian_u: Vec<Vec<Sym>>,
+    /// ∂ΔQ/∂q (N × N).
+    pub jacobian_q: Vec<Vec<Sym>>,
+    /// ∂ΔQ/∂q̇ (N × N).
+    pub jacobian_v: Vec<Vec<Sym>>,
+}
+
+impl Expressions for InputModel {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        out.extend(&self.forces);
+        entries(out, [&self.jacobian_u, &self.jacobian_q, &self.jacobian_v]);
+    }
+}
+
+/// The constrained forms the description has: the multiplier form (Φ, G, g,
+/// γ) and the reduced (Maggi / Gibbs–Appell) form.
+#[derive(Default)]
+pub struct ConstraintForms {
+    pub multipliers: Option<ConstraintSet>,
+    pub reduced: Option<Reduction>,
+}
+
+impl Expressions for ConstraintForms {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        if let Some(c) = &self.multipliers {
+            out.extend(&c.phi);
+            out.extend(c.jacobian.iter().flatten());
+            out.extend(&c.velocity_term);
+            out.extend(&c.gamma);
+            entries(out, c.reactions.iter().map(|(_, r)| r));
+            c.derivatives.expressions(out);
+        }
+        if let Some(r) = &self.reduced {
+            out.extend(&r.speeds);
+            out.extend(r.matrix.iter().flatten());
+            out.extend(&r.free);
+            out.extend(&r.rates);
+            r.derivatives.expressions(out);
+        }
+    }
+}
+
+impl Expressions for ConstraintDerivatives {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        let d = self;
+        entries(
+            out,
+            [&d.force_q, &d.acceleration_q, &d.gamma_v, &d.velocity_q],
+        );
+    }
+}
+
+/// The optional outputs, each its own part: what `emit(...)` asked for, and
+/// the momentum a rheonomic system always has.
+#[derive(Default)]
+pub struct Outputs {
+    /// Hamilton's form: the momentum ∂T/∂q̇ (also alone, for a rheonomic
+    /// system, where the runtime's default M q̇ would be wrong) and ∂T/∂q
+    /// (`emit(hamiltonian)`).
+    pub hamilton: Option<Hamilton>,
+    /// C(q, q̇) with C_ij = Σ_k Γ_ijk q̇_k (`emit(coriolis)`).
+    pub coriolis: Option<Coriolis>,
+    /// The right-hand side's Jacobians at the accelerations q̈
+    /// (`emit(jacobians)`).
+    pub jacobians: Option<RhsJacobians>,
+    /// The articulated-body forward dynamics (`emit(articulated)`).
+    pub articulated: Option<Articulation>,
+    /// τ = M q̈ + h − Q and the gravity torques (`emit(inverse_dynamics)`).
+    pub inverse: Option<InverseDynamics>,
+    /// The frames' Jacobians and the centre of mass (`emit(kinematics)`).
+    pub frames: Option<Frames>,
+}
+
+impl Expressions for Outputs {
+    /// The outputs the cyclic coordinates are read off, as before they were
+    /// parts: not the frames (a body's pose may read a coordinate the motion
+    /// does not, a wheel's spin angle) nor the inverse dynamics (which read
+    /// what M, h and Q read).
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        self.coriolis.expressions(out);
+        self.jacobians.expressions(out);
+        self.hamilton.expressions(out);
+        self.articulated.expressions(out);
+    }
+}
+
+/// q̈(q, q̇, τ) by the articulated-body algorithm (`emit(articulated)`).
+pub struct Articulation {
+    /// q̈, with the extra generalized forces as the free symbols `extra`.
+    pub accelerations: Vec<Sym>,
+    /// The articulated pivots D_i, for the singularity check.
+    pub pivots: Vec<Sym>,
+    /// Free symbols for the extra generalized forces (emitted as `tau[i]`).
+    pub extra: Vec<Sym>,
+}
+
+impl Expressions for Articulation {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        out.extend(&self.accelerations);
+        out.extend(&self.pivots);
     }
 }

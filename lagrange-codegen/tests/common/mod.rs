@@ -30,13 +30,18 @@ pub struct Point {
 
 /// The value of a free orientation's quaternion symbol `s`, if it is one.
 fn quaternion_value(model: &Model, p: &Point, s: Symbol) -> Option<f64> {
-    model.orientations.iter().enumerate().find_map(|(k, o)| {
-        let c = o
-            .quaternion
-            .iter()
-            .position(|&e| model.ctx.as_symbol(e) == Some(s))?;
-        Some(p.quaternions[k][c])
-    })
+    model
+        .variables
+        .orientations
+        .iter()
+        .enumerate()
+        .find_map(|(k, o)| {
+            let c = o
+                .quaternion
+                .iter()
+                .position(|&e| model.ctx.as_symbol(e) == Some(s))?;
+            Some(p.quaternions[k][c])
+        })
 }
 
 pub fn env<'a>(model: &'a Model, p: &'a Point) -> impl Fn(Symbol) -> f64 + 'a {
@@ -65,15 +70,18 @@ pub fn random_point(model: &Model, rng: &mut Lcg) -> Point {
         v: (0..n).map(|_| 2.0 * rng.next()).collect(),
         t: 1.5 + rng.next(),
         params: model
+            .variables
             .parameters
             .iter()
             .map(|_| 1.0 + 0.5 * rng.next())
             .collect(),
         u: model
+            .constraints
             .reduced
             .as_ref()
             .map_or(Vec::new(), |r| r.names.iter().map(|_| rng.next()).collect()),
         quaternions: model
+            .variables
             .orientations
             .iter()
             .map(|_| {

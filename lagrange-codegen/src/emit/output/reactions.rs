@@ -1,29 +1,28 @@
-//! Inherent methods for the optional outputs asked for with `emit(...)`.
+//! The constraints' reactions (`emit(reactions)`, with the multiplier form):
+//! the inherent `REACTION_POINTS`, `reactions` and `generalized_reactions`.
 
 use lagrange_symbolic::Expr as Sym;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use super::emitter::Emitter;
-use super::{Frame, constant};
+use super::Pieces;
 use crate::ast::{Extra, System};
 use crate::constraint::ConstraintSet;
+use crate::emit::emitter::Emitter;
+use crate::emit::{Frame, constant};
 use crate::mechanics::Model;
 
-/// Inherent methods for the optional outputs: reactions and the Coriolis matrix.
-pub(super) fn extras(e: &Emitter, f: &Frame, model: &Model, system: &System) -> TokenStream {
-    let mut out = TokenStream::new();
-    let wants = |x: Extra| system.extras.iter().any(|(_, e)| *e == x);
-    if wants(Extra::Reactions)
-        && let Some(c) = &model.constraints
-    {
-        out.extend(reactions(e, f, model, system, c));
-        out.extend(generalized_reactions(f, c));
+pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, system: &System) -> Pieces {
+    let wanted = system.extras.iter().any(|(_, x)| *x == Extra::Reactions);
+    let Some(c) = model.constraints.multipliers.as_ref().filter(|_| wanted) else {
+        return Pieces::default();
+    };
+    let mut inherent = reactions(e, f, model, system, c);
+    inherent.extend(generalized_reactions(f, c));
+    Pieces {
+        inherent,
+        ..Pieces::default()
     }
-    if let Some(cm) = &model.coriolis {
-        out.extend(coriolis(e, f, model, cm));
-    }
-    out
 }
 
 /// `REACTION_POINTS` and `reactions`: R = Σ_α ν_α ∂f_α/∂ξ per point.
@@ -117,30 +116,6 @@ fn generalized_reactions(f: &Frame, c: &ConstraintSet) -> TokenStream {
         pub fn generalized_reactions(&self, q: &#qvec, t: #s, nu: &#vec_k) -> [#vec_n; #kl] {
             let (g, _) = <Self as ::lagrange::__private::Constrained<#s, #sizes>>::constraint_jacobian(self, q, t);
             ::core::array::from_fn(|a| g.row(a).transpose() * nu[a])
-        }
-    }
-}
-
-/// `coriolis_matrix`: C(q, q̇, t).
-fn coriolis(e: &Emitter, f: &Frame, model: &Model, cm: &[Vec<Sym>]) -> TokenStream {
-    let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_q) = (f.vec(nl), f.qvec());
-    let n = model.dof();
-    let flat: Vec<Sym> = cm.iter().flatten().copied().collect();
-    let (lets, outs) = e.program(&flat);
-    let fill = e.fill_dense(&quote!(c), &outs, n);
-    let mat = f.mat(nl, nl);
-    quote! {
-        /// The Coriolis matrix C(q, q̇, t), C_ij = Σ_k Γ_ijk q̇_k, with Γ the Christoffel
-        /// symbols of M: Ṁ − 2C is skew-symmetric, and C q̇ is the quadratic part of h.
-        /// With free orientations, v holds their body-axis ω and Γ is taken in the
-        /// chart that moves with each body, at its centre (Ṁ along the motion).
-        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
-        pub fn coriolis_matrix(&self, q: &#vec_q, v: &#vec_n, t: #s) -> #mat {
-            #lets
-            let mut c = <#mat>::zeros();
-            #fill
-            c
         }
     }
 }

@@ -9,8 +9,10 @@ use lagrange_symbolic::Expr as Sym;
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
-use super::Frame;
-use super::emitter::Emitter;
+use super::Pieces;
+use crate::ast::System;
+use crate::emit::Frame;
+use crate::emit::emitter::Emitter;
 use crate::mechanics::Model;
 
 /// A `match` on `body` with one arm per body, each calling that body's
@@ -48,9 +50,9 @@ fn per_body(
 }
 
 /// The `Kinematics` impl, when the model has its frames.
-pub(super) fn impl_kinematics(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
-    let Some(frames) = &model.frames else {
-        return TokenStream::new();
+pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Pieces {
+    let Some(frames) = &model.outputs.frames else {
+        return Pieces::default();
     };
     let (s, nl) = (&f.s, &f.n);
     let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
@@ -76,7 +78,7 @@ pub(super) fn impl_kinematics(e: &Emitter, f: &Frame, model: &Model) -> TokenStr
     );
     let (com_lets, com) = e.program(&frames.com);
     let (jc_lets, jc) = e.program(&frames.com_jacobian);
-    quote! {
+    let items = quote! {
         #[automatically_derived]
         #[allow(unused_variables, clippy::all)]
         impl #ig #ident #tg #wc {
@@ -105,5 +107,9 @@ pub(super) fn impl_kinematics(e: &Emitter, f: &Frame, model: &Model) -> TokenStr
                 #p::SMatrix::<#s, 3, #nl>::from_row_slice(&[#(#jc),*])
             }
         }
+    };
+    Pieces {
+        items,
+        ..Pieces::default()
     }
 }
