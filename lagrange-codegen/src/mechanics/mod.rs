@@ -220,10 +220,10 @@ fn unconstrained(
 /// tree), or the error when the recursive route was required of a non-tree.
 fn wants_generic(
     route: Route,
-    tree: &Result<crate::tree::Tree, String>,
+    tree: &Result<crate::tree::Tree, crate::tree::NotATree>,
 ) -> Result<bool, DeriveError> {
     match (route, tree) {
-        (Route::Recursive, Err(why)) => Err(DeriveError::NotATree(why.clone())),
+        (Route::Recursive, Err(why)) => Err(DeriveError::NotATree(why.to_string())),
         (_, Err(_)) => Ok(true),
         (_, Ok(t)) => Ok(route == Route::Auto && t.len() <= BOTH_ROUTES_UP_TO),
     }
@@ -250,12 +250,12 @@ fn inverse_if_asked(
 fn route_reason(
     recursive: bool,
     tree: Option<&crate::tree::Tree>,
-    not_a_tree: Option<String>,
+    not_a_tree: Option<crate::tree::NotATree>,
 ) -> Option<String> {
     if recursive {
         return None;
     }
-    not_a_tree.or_else(|| {
+    not_a_tree.map(|why| why.to_string()).or_else(|| {
         tree.map(|t| {
             format!(
                 "the generic program is the cheaper one on this small tree ({} joints)",

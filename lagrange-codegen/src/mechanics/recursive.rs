@@ -8,6 +8,7 @@ use super::generic::{GenericTerms, cost};
 use super::model::Articulation;
 use crate::lowered::{PointModel, Skeleton, SpinModel};
 use crate::mat3::Mat3;
+use crate::tree::NotATree;
 use crate::tree::Tree;
 
 /// M, h − Q_gravity (the right-hand side's share) and h by the recursions.
@@ -24,9 +25,9 @@ pub(super) fn detect(
     route: super::Route,
     (points, spins, skeleton): (&[PointModel], &[SpinModel], &Skeleton),
     gravity: Option<&[Sym]>,
-) -> Result<Tree, String> {
+) -> Result<Tree, NotATree> {
     if route == super::Route::Generic {
-        return Err("the generic route was asked for".to_string());
+        return Err(NotATree::GenericAsked);
     }
     let point_masses: Vec<Sym> = points.iter().map(|p| p.mass).collect();
     let point_names: Vec<String> = points.iter().map(|p| p.name.clone()).collect();

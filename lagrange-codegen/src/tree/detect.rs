@@ -10,7 +10,7 @@ use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::frame::{Frame, PlacedMass, coordinate_name, fixed};
 use super::link::{add3, elementary, mat_mul, mat_vec};
-use super::{Inertia, Link, Masses, Spheres, Tree};
+use super::{BodyFault, Inertia, Link, Masses, NotATree, Spheres, Tree};
 use crate::lowered::{Factor, Skeleton};
 use crate::mat3::{Mat3, quaternion_matrix, transpose};
 
@@ -52,9 +52,9 @@ struct Chain {
 type Linked = (Vec<Link>, Spheres);
 
 /// The kinematic tree the description spans, or why it is not one.
-pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result<Tree, String> {
+pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result<Tree, NotATree> {
     if skeleton.bodies.is_empty() || ctx.coordinates().is_empty() {
-        return Err("it has no rigid bodies (point masses alone)".into());
+        return Err(NotATree::NoRigidBodies);
     }
     let (mut links, spheres) = from_factors(ctx, skeleton, masses).or_else(|reason| {
         let factored = skeleton.bodies.iter().all(|b| b.factors.is_some());
@@ -63,7 +63,7 @@ pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result
     let gravity = match masses.gravity {
         None => None,
         Some(g) if g.len() == 3 && g.iter().all(|&x| fixed(ctx, x)) => Some([g[0], g[1], g[2]]),
-        Some(_) => return Err("gravity is not a constant vector".into()),
+        Some(_) => return Err(NotATree::GravityNotConstant),
     };
     for link in &mut links {
         as_floats(ctx, link);
@@ -77,7 +77,11 @@ pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result
 
 /// The tree read from the bodies' rotation factors and the points their
 /// reference points are fixed at.
-fn from_factors(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result<Linked, String> {
+fn from_factors(
+    ctx: &mut Context,
+    skeleton: &Skeleton,
+    masses: &Masses,
+) -> Result<Linked, NotATree> {
     let chains = body_chains(ctx, skeleton, masses.body_names)?;
     let (mut links, frames, spheres) = link_bodies(ctx, skeleton, &chains, masses.body_names)?;
     attach_masses(ctx, &skeleton.masses, masses, &mut links, &frames)?;
@@ -86,7 +90,11 @@ fn from_factors(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Resu
 
 /// The tree read from written-out positions and rotations
 /// ([`super::written`]).
-fn from_written(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result<Linked, String> {
+fn from_written(
+    ctx: &mut Context,
+    skeleton: &Skeleton,
+    masses: &Masses,
+) -> Result<Linked, NotATree> {
     let mut written = super::written::read(ctx, skeleton, masses)?;
     attach_masses(
         ctx,
@@ -119,15 +127,16 @@ fn as_floats(ctx: &mut Context, link: &mut Link) {
 
 /// Each body's rotation factors read as joints (about coordinates) and
 /// placements (by constant angles).
-fn body_chains(ctx: &Context, skeleton: &Skeleton, names: &[String]) -> Result<Vec<Chain>, String> {
+fn body_chains(
+    ctx: &Context,
+    skeleton: &Skeleton,
+    names: &[String],
+) -> Result<Vec<Chain>, NotATree> {
     let coordinates = ctx.coordinates();
     let mut chains = Vec::new();
     for (b, body) in skeleton.bodies.iter().enumerate() {
         let Some(factors) = body.factors.as_ref() else {
-            return Err(format!(
-                "body `{}`: its rotation is not a product of rot_x/rot_y/rot_z factors",
-                names[b]
-            ));
+            return Err(NotATree::body(&names[b], BodyFault::NotFactored));
         };
         let (mut joints, mut pending) = (Vec::new(), Vec::new());
         for &factor in factors {
@@ -165,11 +174,8 @@ fn body_chains(ctx: &Context, skeleton: &Skeleton, names: &[String]) -> Result<V
             } else if fixed(ctx, angle) {
                 pending.push((axis, angle));
             } else {
-                return Err(format!(
-                    "body `{}`: its factor rot_{} turns by an angle that is neither one coordinate nor constant",
-                    names[b],
-                    ["x", "y", "z"][axis]
-                ));
+                let fault = BodyFault::AngleNotACoordinate { axis };
+                return Err(NotATree::body(&names[b], fault));
             }
         }
         // A turn by zero is no factor: a body written `rotation = rot_z(0)`
@@ -282,7 +288,7 @@ fn hook(
     frames: &[Option<Frame>],
     (placed, b): (&[usize], usize),
     names: &[String],
-) -> Result<Hook, String> {
+) -> Result<Hook, NotATree> {
     let Some((p, anchor)) = parent_of(skeleton, chains, placed, b) else {
         let reference = skeleton.bodies[b].reference.clone();
         if let Some((at, slides)) = sliding(ctx, &reference) {
@@ -311,9 +317,10 @@ fn hook(
             .collect();
         (c, turned)
     } else {
-        return Err(format!(
-            "body `{}`: its reference point moves in its parent `{}`, and not along a fixed line",
-            names[b], names[p]
+        let parent = names[p].clone();
+        return Err(NotATree::body(
+            &names[b],
+            BodyFault::SlidesOffALine { parent },
         ));
     };
     let turned = mat_vec(ctx, &parent.rotation, local);
@@ -336,11 +343,12 @@ fn claim(
     q: usize,
     b: usize,
     body: &str,
-) -> Result<(), String> {
+) -> Result<(), NotATree> {
     if used[q] == Some(b) {
-        let q = coordinate_name(ctx, q);
-        return Err(format!(
-            "body `{body}`: coordinate `{q}` moves two of its joints"
+        let coordinate = coordinate_name(ctx, q);
+        return Err(NotATree::body(
+            body,
+            BodyFault::CoordinateTwice { coordinate },
         ));
     }
     used[q] = Some(b);
@@ -356,7 +364,7 @@ fn link_bodies(
     skeleton: &Skeleton,
     chains: &[Chain],
     names: &[String],
-) -> Result<(Vec<Link>, Vec<Frame>, Spheres), String> {
+) -> Result<(Vec<Link>, Vec<Frame>, Spheres), NotATree> {
     let mut order: Vec<usize> = (0..chains.len()).collect();
     order.sort_by_key(|&b| chains[b].factors.len());
     let mut links: Vec<Link> = Vec::new();
@@ -397,10 +405,11 @@ fn link_bodies(
         });
     }
     if let Some(q) = used.iter().position(Option::is_none) {
-        let q = coordinate_name(ctx, q);
-        return Err(format!(
-            "coordinate `{q}` moves no joint (it enters a position other than along a fixed line)"
-        ));
+        let coordinate = coordinate_name(ctx, q);
+        return Err(NotATree::IdleCoordinate {
+            coordinate,
+            written: false,
+        });
     }
     let frames = frames
         .into_iter()
@@ -451,7 +460,7 @@ fn root_point(
     chains: &[Chain],
     b: usize,
     names: &[String],
-) -> Result<[Sym; 3], String> {
+) -> Result<[Sym; 3], NotATree> {
     let at = &skeleton.bodies[b].reference;
     if at.len() == 3 && at.iter().all(|&x| fixed(ctx, x)) {
         return Ok([at[0], at[1], at[2]]);
@@ -459,16 +468,13 @@ fn root_point(
     let extended = (0..chains.len()).find(|&p| {
         p != b && !chains[p].joints.is_empty() && chains[b].factors.starts_with(&chains[p].factors)
     });
-    Err(match extended {
-        Some(p) => format!(
-            "body `{}`: its reference point is not a point fixed in its parent `{}`",
-            names[b], names[p]
-        ),
-        None => format!(
-            "body `{}`: its reference point moves, but it has no parent body",
-            names[b]
-        ),
-    })
+    let fault = match extended {
+        Some(p) => BodyFault::NotFixedInParent {
+            parent: names[p].clone(),
+        },
+        None => BodyFault::MovesWithoutParent,
+    };
+    Err(NotATree::body(&names[b], fault))
 }
 
 /// Masses: point masses fixed in bodies (body centres included) and the bodies'
@@ -480,7 +486,7 @@ fn attach_masses(
     masses: &Masses,
     links: &mut [Link],
     frames: &[Frame],
-) -> Result<(), String> {
+) -> Result<(), NotATree> {
     let zero = ctx.zero();
     for (i, at) in placed.iter().enumerate() {
         match at {
@@ -494,10 +500,8 @@ fn attach_masses(
             }
             None if masses.point_positions[i].iter().all(|&x| fixed(ctx, x)) => {}
             _ => {
-                return Err(format!(
-                    "point `{}`: it has mass and moves, but is not fixed in a body",
-                    masses.point_names[i]
-                ));
+                let point = masses.point_names[i].clone();
+                return Err(NotATree::LoosePoint { point });
             }
         }
     }

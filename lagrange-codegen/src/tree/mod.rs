@@ -33,6 +33,7 @@ mod crba;
 mod detect;
 mod frame;
 mod link;
+mod not_a_tree;
 mod rnea;
 mod spatial;
 mod written;
@@ -40,6 +41,7 @@ mod written;
 pub use aba::{ForwardDynamics, forward_dynamics};
 pub use crba::mass_matrix;
 pub use detect::detect;
+pub use not_a_tree::{BodyFault, NotATree};
 pub use rnea::{inverse_dynamics, inverse_dynamics_at_accelerations};
 
 use lagrange_symbolic::{Context, Expr as Sym};

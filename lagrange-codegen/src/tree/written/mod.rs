@@ -26,7 +26,7 @@ use lagrange_symbolic::{Context, Expr as Sym, SymbolKind};
 
 use super::frame::{Frame, PlacedMass, coordinate_name};
 use super::link::{add3, cross, mat_mul, mat_vec};
-use super::{Link, Masses};
+use super::{BodyFault, Link, Masses, NotATree};
 use crate::lowered::Skeleton;
 use crate::mat3::{Mat3, transpose, vee};
 use probe::{check, settled};
@@ -74,7 +74,7 @@ pub(super) fn read(
     ctx: &mut Context,
     skeleton: &Skeleton,
     masses: &Masses,
-) -> Result<Written, String> {
+) -> Result<Written, NotATree> {
     let names = masses.body_names;
     let poses = skeleton
         .bodies
@@ -89,7 +89,7 @@ pub(super) fn read(
     let mut used = vec![false; ctx.coordinates().len()];
     for (k, &b) in order.iter().enumerate() {
         let (parent, joint) = parent_and_joint(ctx, &poses, &order[..k], b)
-            .map_err(|why| format!("body `{}`: {why}", names[b]))?;
+            .map_err(|fault| NotATree::body(&names[b], fault))?;
         if let Some(q) = joint.coordinate() {
             used[q] = true;
         }
@@ -97,8 +97,11 @@ pub(super) fn read(
         frames[b] = Some(hang(ctx, joint, up, &mut links));
     }
     if let Some(q) = used.iter().position(|&u| !u) {
-        let q = coordinate_name(ctx, q);
-        return Err(format!("coordinate `{q}` moves no joint of a body"));
+        let coordinate = coordinate_name(ctx, q);
+        return Err(NotATree::IdleCoordinate {
+            coordinate,
+            written: true,
+        });
     }
     let frames: Vec<Frame> = frames.into_iter().map(|f| f.expect("placed")).collect();
     let masses = point_bodies(ctx, skeleton, masses.point_positions, &poses);
@@ -120,7 +123,7 @@ fn parent_and_joint(
     poses: &[Pose],
     placed: &[usize],
     b: usize,
-) -> Result<(Option<usize>, Joint), String> {
+) -> Result<(Option<usize>, Joint), BodyFault> {
     let mut candidates: Vec<Option<usize>> = placed
         .iter()
         .copied()
@@ -153,9 +156,9 @@ impl Joint {
 }
 
 /// A body's pose as written, refusing time, inputs and quaternions.
-fn pose(ctx: &Context, rotation: Mat3, reference: &[Sym], name: &str) -> Result<Pose, String> {
+fn pose(ctx: &Context, rotation: Mat3, reference: &[Sym], name: &str) -> Result<Pose, NotATree> {
     let [x, y, z] = reference else {
-        return Err(format!("body `{name}`: its reference point is not in 3-D"));
+        return Err(NotATree::body(name, BodyFault::ReferenceNot3D));
     };
     let origin = [*x, *y, *z];
     let mut depends = BTreeSet::new();
@@ -174,9 +177,7 @@ fn pose(ctx: &Context, rotation: Mat3, reference: &[Sym], name: &str) -> Result<
                         // rotation factors, never from a written-out matrix.
                         _ => "a free orientation",
                     };
-                    return Err(format!(
-                        "body `{name}`: its written-out pose depends on {what}"
-                    ));
+                    return Err(NotATree::body(name, BodyFault::PoseDependsOn(what)));
                 }
             }
         }
@@ -189,7 +190,7 @@ fn pose(ctx: &Context, rotation: Mat3, reference: &[Sym], name: &str) -> Result<
 }
 
 /// The joint that carries `body` in `parent`'s axes (the ground's: none).
-fn joint(ctx: &mut Context, parent: Option<&Pose>, body: &Pose) -> Result<Joint, String> {
+fn joint(ctx: &mut Context, parent: Option<&Pose>, body: &Pose) -> Result<Joint, BodyFault> {
     let (rotation, origin) = relative(ctx, parent, body);
     let inherited = parent.map(|p| p.depends.clone()).unwrap_or_default();
     let new: Vec<usize> = body.depends.difference(&inherited).copied().collect();
@@ -200,12 +201,8 @@ fn joint(ctx: &mut Context, parent: Option<&Pose>, body: &Pose) -> Result<Joint,
         },
         [q] => one_coordinate(ctx, q, &rotation, origin)?,
         _ => {
-            let list: Vec<String> = new.iter().map(|&q| coordinate_name(ctx, q)).collect();
-            return Err(format!(
-                "it moves by {} coordinates ({}) relative to its parent; read from written-out positions, a body hangs on one joint (write a rotation as rot_x/rot_y/rot_z factors for several)",
-                new.len(),
-                list.join(", ")
-            ));
+            let coordinates = new.iter().map(|&q| coordinate_name(ctx, q)).collect();
+            return Err(BodyFault::SeveralCoordinates { coordinates });
         }
     };
     check(ctx, &joint, (&rotation, &origin)).map(|()| joint)
@@ -242,7 +239,7 @@ fn one_coordinate(
     q: usize,
     rotation: &Mat3,
     origin: [Sym; 3],
-) -> Result<Joint, String> {
+) -> Result<Joint, BodyFault> {
     let x = ctx.coordinates()[q];
     let r0 = matrix_at_zero(ctx, rotation);
     let dr = rotation.map(|row| row.map(|e| ctx.diff(e, x)));
@@ -289,7 +286,7 @@ fn one_coordinate(
 /// A placement P with P e_axis = n for a constant unit axis n: the identity
 /// or a half turn for ±e_i (exact), otherwise the shortest turn taking e_z
 /// to n (floats, evaluated here once).
-fn axis_placement(ctx: &mut Context, n: [Sym; 3]) -> Result<(Mat3, usize), String> {
+fn axis_placement(ctx: &mut Context, n: [Sym; 3]) -> Result<(Mat3, usize), BodyFault> {
     let values: Vec<Option<f64>> = n
         .iter()
         .map(|&e| {
@@ -301,10 +298,7 @@ fn axis_placement(ctx: &mut Context, n: [Sym; 3]) -> Result<(Mat3, usize), Strin
         })
         .collect();
     let Some(v) = values.into_iter().collect::<Option<Vec<f64>>>() else {
-        return Err(
-            "its joint axis depends on parameters; the recursive route needs a constant axis"
-                .into(),
-        );
+        return Err(BodyFault::AxisDependsOnParameters);
     };
     let (zero, one, minus) = (ctx.zero(), ctx.one(), ctx.int(-1));
     for i in 0..3 {

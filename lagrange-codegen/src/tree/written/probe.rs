@@ -6,6 +6,7 @@ use lagrange_symbolic::{Context, Expr as Sym, Symbol, SymbolKind};
 
 use super::Joint;
 use crate::mat3::Mat3;
+use crate::tree::BodyFault;
 use crate::tree::frame::coordinate_name;
 
 /// `e` as a number when it depends on parameters only in form: a parent
@@ -51,7 +52,7 @@ pub(super) fn check(
     ctx: &Context,
     joint: &Joint,
     (rotation, origin): (&Mat3, &[Sym; 3]),
-) -> Result<(), String> {
+) -> Result<(), BodyFault> {
     for seed in 1..=3 {
         let env = |s: Symbol| probe(ctx, s, seed);
         let eval = |e: Sym| ctx.eval(e, &env);
@@ -74,12 +75,11 @@ pub(super) fn check(
         let close = finite && off_r <= 1e-9 && off_o <= 1e-9 * scale;
         if !close {
             return Err(match joint.coordinate() {
-                Some(q) => format!(
-                    "relative to its parent (the body whose coordinates its own extend), it neither turns about a fixed axis nor slides along a fixed line as `{}` changes (checked at random configurations: off by {:.1e})",
-                    coordinate_name(ctx, q),
-                    off_r.max(off_o)
-                ),
-                None => "it depends on no coordinate beyond its parent's, yet moves in it".into(),
+                Some(q) => BodyFault::NotAJoint {
+                    coordinate: coordinate_name(ctx, q),
+                    off: off_r.max(off_o),
+                },
+                None => BodyFault::MovesWithoutCoordinate,
             });
         }
     }
