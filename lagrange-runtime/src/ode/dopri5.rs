@@ -10,8 +10,7 @@
 //! then at every step while h·|λ| stays beyond 3.25; 15 times ends the run with
 //! [`Error::ProbablyStiff`]). What is left out: per-component tolerances.
 
-use super::adaptive::{Stepping, first_step};
-use super::controller::PiController;
+use super::explicit::{PiController, Stepping, StiffnessTest, first_step};
 use super::run::Run;
 use super::settings::{StepControl, step_control_builders};
 use super::{
@@ -222,7 +221,7 @@ impl Dopri5 {
             &mut stats.evaluations,
         )?;
         let mut steps = Stepping::new(&self.control, PiController::dopri5(), t0, t1, h);
-        let mut stiffness = super::StiffnessTest::new("DOPRI5", self.stiffness_test, 3.25);
+        let mut stiffness = StiffnessTest::new("DOPRI5", self.stiffness_test, 3.25);
         loop {
             let (t_new, last) = steps.begin(&run.stats)?;
             let (t, h) = (steps.t, steps.h);

@@ -12,12 +12,11 @@
 //!
 //! New integrators implement [`Integrator`].
 
-mod adaptive;
 mod canonical;
-mod controller;
 mod dense;
 mod dop853;
 mod dopri5;
+mod explicit;
 mod gauss;
 mod mechanical;
 mod radau5;
@@ -25,7 +24,6 @@ mod record;
 mod rk4;
 mod run;
 mod settings;
-mod stiffness;
 mod trajectory;
 mod verlet;
 
@@ -38,7 +36,6 @@ pub use radau5::Radau5;
 pub use record::{Continuation, Record};
 pub use rk4::Rk4;
 pub(crate) use run::{Run, fixed_steps};
-pub(crate) use stiffness::StiffnessTest;
 pub use trajectory::Trajectory;
 pub use verlet::StormerVerlet;
 pub(crate) use verlet::fixed_step_count;

@@ -18,8 +18,7 @@
 //! every step while h·|λ| stays beyond 6.1; 15 times ends the run with
 //! [`Error::ProbablyStiff`]). What is left out: per-component tolerances.
 
-use super::adaptive::{Stepping, first_step};
-use super::controller::PiController;
+use super::explicit::{PiController, Stepping, StiffnessTest, first_step};
 use super::run::Run;
 use super::settings::{StepControl, step_control_builders};
 use super::{
@@ -225,7 +224,7 @@ impl Dop853 {
             &mut stats.evaluations,
         )?;
         let mut steps = Stepping::new(&self.control, PiController::dop853(), t0, t1, h);
-        let mut stiffness = super::StiffnessTest::new("DOP853", self.stiffness_test, 6.1);
+        let mut stiffness = StiffnessTest::new("DOP853", self.stiffness_test, 6.1);
         loop {
             let (t_new, last) = steps.begin(&run.stats)?;
             let (t, h) = (steps.t, steps.h);
