@@ -6,11 +6,24 @@
 //! [`Trajectory`].
 //!
 //! - [`Rk4`]: classic fixed-step Runge–Kutta of order 4.
-//! - [`Dopri5`]: Dormand–Prince 5(4) with Hairer's step-size control and dense output.
+//! - [`Dopri5`]: Dormand–Prince 5(4) with Hairer's step-size control, stiffness
+//!   test and Shampine's dense output of order 4.
+//! - [`Dop853`]: Dormand–Prince 8(5,3), the same control with its own error
+//!   estimate and a 7th-order dense output, for tight tolerances.
+//! - [`Radau5`]: Radau IIA of order 5, implicit, for stiff systems.
+//! - [`Gauss`]: Gauss–Legendre collocation in canonical (q, P), symplectic.
+//! - [`StormerVerlet`]: velocity Verlet with a fixed step, symplectic.
 //! - [`Rattle`](crate::Rattle): RATTLE for [`Constrained`](crate::Constrained) systems with
 //!   holonomic constraints (its own entry point: it needs Φ, not only a).
 //!
-//! New integrators implement [`Integrator`].
+//! DOPRI5 and DOP853 run in one loop, `explicit`, as Hairer's two codes share
+//! theirs: step-size control, first step, stiffness test, dense output,
+//! recording and failure; each method file holds its tableau, its stages, its
+//! error estimate and its continuous extension. Every run records through
+//! `run::Run`, which returns the partial trajectory with a failure.
+//!
+//! New integrators implement [`Integrator`]; a new explicit embedded method
+//! implements `explicit::EmbeddedMethod`.
 
 mod canonical;
 mod dense;
