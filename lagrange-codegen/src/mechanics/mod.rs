@@ -28,7 +28,6 @@ mod inverse;
 mod kinematics;
 mod model;
 mod recursive;
-mod vector;
 
 pub use frames::Frames;
 pub use inverse::InverseDynamics;
