@@ -1,5 +1,8 @@
-//! 3×3 matrices of expressions, shared by the rotations of the lowering and the
-//! recursions of the derivation (so neither stage imports the other for it).
+//! 3×3 matrices and 3-vectors of expressions, shared by the rotations of the
+//! lowering, the generic derivation and the tree recursions (so no stage
+//! imports another for them): one copy of each product, in the order of
+//! operations the derivation has always used (node order shows in the emitted
+//! code).
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
@@ -46,6 +49,75 @@ pub fn vee(ctx: &mut Context, w: &Mat3) -> [Sym; 3] {
 /// Aᵀ (no new nodes: entries are only moved).
 pub fn transpose(a: &Mat3) -> Mat3 {
     [0, 1, 2].map(|i| [0, 1, 2].map(|j| a[j][i]))
+}
+
+/// a · b, the products summed in order.
+pub fn dot(ctx: &mut Context, a: &[Sym], b: &[Sym]) -> Sym {
+    let terms: Vec<Sym> = a.iter().zip(b).map(|(&x, &y)| ctx.mul(x, y)).collect();
+    ctx.sum(&terms)
+}
+
+/// a × b.
+pub fn cross(ctx: &mut Context, a: [Sym; 3], b: [Sym; 3]) -> [Sym; 3] {
+    [0, 1, 2].map(|i| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let p = ctx.mul(a[j], b[k]);
+        let m = ctx.mul(a[k], b[j]);
+        ctx.sub(p, m)
+    })
+}
+
+/// A v.
+pub fn mat_vec(ctx: &mut Context, a: &Mat3, v: [Sym; 3]) -> [Sym; 3] {
+    [0, 1, 2].map(|i| dot(ctx, &a[i], &v))
+}
+
+/// A B.
+pub fn mat_mul(ctx: &mut Context, a: &Mat3, b: &Mat3) -> Mat3 {
+    [0, 1, 2].map(|i| [0, 1, 2].map(|j| dot(ctx, &a[i], &[b[0][j], b[1][j], b[2][j]])))
+}
+
+/// [v]×, the matrix of v × ·.
+pub fn skew(ctx: &mut Context, [x, y, z]: [Sym; 3]) -> Mat3 {
+    let zero = ctx.zero();
+    let (nx, ny, nz) = (ctx.neg(x), ctx.neg(y), ctx.neg(z));
+    [[zero, nz, y], [z, zero, nx], [ny, x, zero]]
+}
+
+/// R(θ) = 1 + [θ]× + ½[θ]×², the exponential map to the second order: a free
+/// orientation's chart as the lowering writes it and the tree reads it.
+pub fn second_order_turn(ctx: &mut Context, theta: [Sym; 3]) -> Mat3 {
+    let k = skew(ctx, theta);
+    let k2 = mat_mul(ctx, &k, &k);
+    let half = ctx.rational(1, 2);
+    let (zero, one) = (ctx.zero(), ctx.one());
+    [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            let id = if i == j { one } else { zero };
+            let s2 = ctx.mul(half, k2[i][j]);
+            ctx.sum(&[id, k[i][j], s2])
+        })
+    })
+}
+
+/// m(|d|² E − d dᵀ): the inertia about the origin of a point mass m at d,
+/// which is what the parallel-axis theorem adds to an inertia tensor moved
+/// from a body's centre of mass to a point at −d from it (and subtracts
+/// moving it back).
+pub fn parallel_axis(ctx: &mut Context, mass: Sym, d: [Sym; 3]) -> Mat3 {
+    let squares: Vec<Sym> = d.iter().map(|&x| ctx.mul(x, x)).collect();
+    let norm = ctx.sum(&squares);
+    [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            let outer = ctx.mul(d[i], d[j]);
+            let e = if i == j {
+                ctx.sub(norm, outer)
+            } else {
+                ctx.neg(outer)
+            };
+            ctx.mul(mass, e)
+        })
+    })
 }
 
 /// R(q) of a unit quaternion (w, x, y, z), body axes to the parent's.

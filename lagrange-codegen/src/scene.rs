@@ -13,7 +13,7 @@ use crate::lower::{CartesianRef, Frame, Lowerer, Mode, NoInputs};
 use crate::lowered::{
     BodyFrame, ConstraintModel, Lowered, PhysicalCheck, PointModel, Skeleton, SpinModel,
 };
-use crate::mat3::Mat3;
+use crate::mat3::{Mat3, mat_vec, parallel_axis};
 use crate::order::Item;
 use crate::physical;
 
@@ -380,20 +380,12 @@ fn to_centre_of_mass(
     about: &[Sym],
     com: &[Sym],
 ) -> [[Sym; 3]; 3] {
-    let d: Vec<Sym> = (0..3).map(|i| lw.ctx.sub(com[i], about[i])).collect();
-    let squares: Vec<Sym> = d.iter().map(|&x| lw.ctx.mul(x, x)).collect();
-    let norm = lw.ctx.sum(&squares);
+    let d = [0, 1, 2].map(|i| lw.ctx.sub(com[i], about[i]));
+    let shift = parallel_axis(&mut lw.ctx, mass, d);
     let mut out = about_point;
     for i in 0..3 {
         for j in 0..3 {
-            let outer = lw.ctx.mul(d[i], d[j]);
-            let shift = if i == j {
-                lw.ctx.sub(norm, outer)
-            } else {
-                lw.ctx.neg(outer)
-            };
-            let shift = lw.ctx.mul(mass, shift);
-            let entry = lw.ctx.sub(out[i][j], shift);
+            let entry = lw.ctx.sub(out[i][j], shift[i][j]);
             out[i][j] = lw.ctx.collect(entry);
         }
     }
@@ -402,7 +394,7 @@ fn to_centre_of_mass(
 
 /// origin + R·local: a point given in body coordinates.
 fn offset_in_body(lw: &mut Lowerer, r: &Mat3, origin: &[Sym], local: &[Sym]) -> Vec<Sym> {
-    let rb = lw.mat_vec(r, local);
+    let rb = mat_vec(&mut lw.ctx, r, [local[0], local[1], local[2]]);
     (0..3).map(|i| lw.ctx.add(origin[i], rb[i])).collect()
 }
 

@@ -18,7 +18,9 @@ use syn::{BinOp, Expr};
 
 use crate::lower::{Lowerer, Mode};
 use crate::lowered::Factor;
-use crate::mat3::{Mat3, quaternion_matrix, transpose, vee};
+use crate::mat3::{
+    Mat3, mat_mul, mat_vec, quaternion_matrix, second_order_turn, skew, transpose, vee,
+};
 
 /// A lowered rotation: the matrix and the angular velocity in body and world axes.
 pub struct Rotation {
@@ -128,28 +130,18 @@ impl Lowerer<'_> {
     fn free_orientation(&mut self, k: usize) -> Rotation {
         let theta = self.orientations[k].theta;
         let r0 = quaternion_matrix(&mut self.ctx, self.orientations[k].quaternion);
-        let skew = self.skew(theta);
-        let square = self.mat_mul(&skew, &skew);
-        let half = self.ctx.rational(1, 2);
-        let (zero, one) = (self.ctx.zero(), self.ctx.one());
-        let mut local = [[zero; 3]; 3];
-        for (i, row) in local.iter_mut().enumerate() {
-            for (j, x) in row.iter_mut().enumerate() {
-                let s2 = self.ctx.mul(half, square[i][j]);
-                let id = if i == j { one } else { zero };
-                *x = self.ctx.sum(&[id, skew[i][j], s2]);
-            }
-        }
-        let matrix = self.mat_mul(&r0, &local);
+        let local = second_order_turn(&mut self.ctx, theta);
+        let matrix = mat_mul(&mut self.ctx, &r0, &local);
         let rates = theta.map(|x| self.ctx.time_derivative(x));
         // θ̇ × θ = [θ̇]× θ.
-        let rate_skew = self.skew(rates);
-        let turn = self.mat_vec(&rate_skew, &theta);
+        let rate_skew = skew(&mut self.ctx, rates);
+        let turn = mat_vec(&mut self.ctx, &rate_skew, theta);
+        let half = self.ctx.rational(1, 2);
         let omega_body = [0, 1, 2].map(|i| {
             let h = self.ctx.mul(half, turn[i]);
             self.ctx.add(rates[i], h)
         });
-        let omega_world = self.mat_vec(&matrix, &omega_body);
+        let omega_world = mat_vec(&mut self.ctx, &matrix, omega_body);
         let quaternion = self.orientations[k].quaternion;
         Rotation {
             matrix,
@@ -157,13 +149,6 @@ impl Lowerer<'_> {
             omega_world,
             factors: Some(vec![Factor::Free { theta, quaternion }]),
         }
-    }
-
-    /// [v]×, the matrix of v × ·.
-    fn skew(&mut self, [x, y, z]: [Sym; 3]) -> Mat3 {
-        let zero = self.ctx.zero();
-        let (nx, ny, nz) = (self.ctx.neg(x), self.ctx.neg(y), self.ctx.neg(z));
-        [[zero, nz, y], [z, zero, nx], [ny, x, zero]]
     }
 
     /// rot_axis(a) and ω = ȧ e_axis.
@@ -233,8 +218,8 @@ impl Lowerer<'_> {
             return None;
         }
         let md = m.map(|row| row.map(|x| self.ctx.time_derivative(x)));
-        let body = self.mat_mul_tn(&m, &md);
-        let world = self.mat_mul(&md, &transpose(&m));
+        let body = mat_mul(&mut self.ctx, &transpose(&m), &md);
+        let world = mat_mul(&mut self.ctx, &md, &transpose(&m));
         Some(Rotation {
             matrix: m,
             omega_body: vee(&mut self.ctx, &body),
@@ -245,10 +230,10 @@ impl Lowerer<'_> {
 
     /// R₁R₂ with ω = R₂ᵀ ω₁ + ω₂ and Ω = Ω₁ + R₁ Ω₂.
     fn compose(&mut self, a: Rotation, b: Rotation) -> Rotation {
-        let matrix = self.mat_mul(&a.matrix, &b.matrix);
-        let rotated = self.mat_vec_t(&b.matrix, &a.omega_body);
+        let matrix = mat_mul(&mut self.ctx, &a.matrix, &b.matrix);
+        let rotated = mat_vec(&mut self.ctx, &transpose(&b.matrix), a.omega_body);
         let omega_body = [0, 1, 2].map(|k| self.ctx.add(rotated[k], b.omega_body[k]));
-        let carried = self.mat_vec(&a.matrix, &b.omega_world);
+        let carried = mat_vec(&mut self.ctx, &a.matrix, b.omega_world);
         let omega_world = [0, 1, 2].map(|k| self.ctx.add(a.omega_world[k], carried[k]));
         let factors = match (a.factors, b.factors) {
             (Some(mut x), Some(y)) => {
@@ -263,40 +248,6 @@ impl Lowerer<'_> {
             omega_world,
             factors,
         }
-    }
-
-    fn mat_mul(&mut self, a: &Mat3, b: &Mat3) -> Mat3 {
-        let zero = self.ctx.zero();
-        let mut m = [[zero; 3]; 3];
-        for (i, row) in m.iter_mut().enumerate() {
-            for (j, x) in row.iter_mut().enumerate() {
-                let terms: Vec<Sym> = (0..3).map(|k| self.ctx.mul(a[i][k], b[k][j])).collect();
-                *x = self.ctx.sum(&terms);
-            }
-        }
-        m
-    }
-
-    /// aᵀ b.
-    fn mat_mul_tn(&mut self, a: &Mat3, b: &Mat3) -> Mat3 {
-        let at = transpose(a);
-        self.mat_mul(&at, b)
-    }
-
-    /// aᵀ v.
-    fn mat_vec_t(&mut self, a: &Mat3, v: &[Sym; 3]) -> [Sym; 3] {
-        [0, 1, 2].map(|j| {
-            let terms: Vec<Sym> = (0..3).map(|k| self.ctx.mul(a[k][j], v[k])).collect();
-            self.ctx.sum(&terms)
-        })
-    }
-
-    /// a v.
-    pub fn mat_vec(&mut self, a: &Mat3, v: &[Sym]) -> [Sym; 3] {
-        [0, 1, 2].map(|i| {
-            let terms: Vec<Sym> = (0..3).map(|k| self.ctx.mul(a[i][k], v[k])).collect();
-            self.ctx.sum(&terms)
-        })
     }
 }
 

@@ -4,7 +4,7 @@
 use lagrange_symbolic::{Context, Expr as Sym, Program};
 
 use super::kinematics::{Kinematics, at_zero};
-use super::vector::dot;
+use crate::mat3::dot;
 
 /// The potential of uniform gravity, −Σ m g·ξ.
 pub(super) fn gravity_potential(

@@ -3,7 +3,7 @@
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::model::InputModel;
-use super::vector::dot;
+use crate::mat3::dot;
 
 /// What the description applies besides gravity: a dissipation function,
 /// Cartesian forces at points and explicit generalized forces.

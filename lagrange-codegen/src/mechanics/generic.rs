@@ -8,7 +8,7 @@ use lagrange_symbolic::{Context, Expr as Sym, Program};
 
 use super::kinematics::{Kinematics, Spin};
 use super::model::BiasRoute;
-use super::vector::{cross, dot, mat_vec};
+use crate::mat3::{cross, dot, mat_vec};
 
 /// M and h by the generic route, with the route h was kept from and the h not kept.
 pub(super) struct GenericTerms {
@@ -81,7 +81,7 @@ fn mass_matrix(ctx: &mut Context, kin: &[Kinematics], spin: &[Spin], n: usize) -
                 })
                 .collect();
             for s in spin {
-                let iw = mat_vec(ctx, &s.inertia, &s.jacobian[j]);
+                let iw = mat_vec(ctx, &s.inertia, s.jacobian[j]);
                 terms.push(dot(ctx, &s.jacobian[i], &iw));
             }
             let s = ctx.sum(&terms);
@@ -147,9 +147,9 @@ fn bias_projection(ctx: &mut Context, kin: &[Kinematics], spin: &[Spin], n: usiz
         .iter()
         .map(|s| {
             let kappa = s.kappa.expect("the generic route derives each body's κ_ω");
-            let ik = mat_vec(ctx, &s.inertia, &kappa);
-            let iw = mat_vec(ctx, &s.inertia, &s.omega);
-            let gyro = cross(ctx, &s.omega, &iw);
+            let ik = mat_vec(ctx, &s.inertia, kappa);
+            let iw = mat_vec(ctx, &s.inertia, s.omega);
+            let gyro = cross(ctx, s.omega, iw);
             [0, 1, 2].map(|c| ctx.add(ik[c], gyro[c]))
         })
         .collect();

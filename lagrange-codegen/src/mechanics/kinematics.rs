@@ -6,9 +6,8 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::vector::{dot, mat_vec};
 use crate::lowered::{PointModel, SpinModel};
-use crate::mat3::Mat3;
+use crate::mat3::{Mat3, dot, mat_vec};
 
 /// Per-point kinematics: ξ, ξ̇, J = ∂ξ/∂q, ∂ξ/∂t and κ = ξ̈ − J q̈.
 pub(super) struct Kinematics {
@@ -165,7 +164,7 @@ fn kinetic_energy(ctx: &mut Context, kin: &[Kinematics], spin: &[Spin]) -> Sym {
         })
         .collect();
     for s in spin {
-        let iw = mat_vec(ctx, &s.inertia, &s.omega);
+        let iw = mat_vec(ctx, &s.inertia, s.omega);
         terms.push(dot(ctx, &s.omega, &iw));
     }
     let s = ctx.sum(&terms);

@@ -31,7 +31,6 @@ mod kinematics;
 mod model;
 mod motion;
 mod recursive;
-mod vector;
 
 pub use derivatives::RhsJacobians;
 pub use extra::{Coriolis, Hamilton};

@@ -3,12 +3,12 @@
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::link::{
-    add_motion, add3, cross, force_to_parent, joint_velocity, mat_add, mat_vec, mirror_upper,
-    origin, project, to_link, trig,
+    add_motion, add3, force_to_parent, joint_velocity, mat_add, mirror_upper, origin, project,
+    to_link, trig,
 };
 use super::spatial::{Spatial, rigid_spatial, spatial_apply, spatial_to_parent};
 use super::{Link, Tree};
-use crate::mat3::Mat3;
+use crate::mat3::{Mat3, cross, mat_vec};
 
 /// The accelerations by the articulated-body algorithm and its pivots.
 pub struct ForwardDynamics {

@@ -5,8 +5,9 @@
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::detect::add_inertia;
-use super::link::{cross, force_to_parent, mirror_upper, origin, project, to_parent, trig};
+use super::link::{force_to_parent, mirror_upper, origin, project, to_parent, trig};
 use super::{Inertia, Link, Tree};
+use crate::mat3::cross;
 
 /// The joint-space mass matrix by composite rigid bodies: O(n²) entries, each
 /// one force transform up the tree from the last.

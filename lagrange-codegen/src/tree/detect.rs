@@ -9,10 +9,10 @@
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::frame::{Frame, PlacedMass, coordinate_name, fixed};
-use super::link::{add3, elementary, mat_mul, mat_vec};
+use super::link::{add3, elementary};
 use super::{BodyFault, Inertia, Link, Masses, NotATree, Spheres, Tree};
 use crate::lowered::{Factor, Skeleton};
-use crate::mat3::{Mat3, quaternion_matrix, transpose};
+use crate::mat3::{Mat3, mat_mul, mat_vec, parallel_axis, quaternion_matrix, transpose};
 
 /// An elementary rotation factor by a constant angle: (axis, angle).
 type Constant = (usize, Sym);
@@ -522,19 +522,7 @@ fn attach_masses(
 /// A point mass μ at r: (μ, μ r, μ(|r|² 1 − r rᵀ)).
 pub(super) fn point_inertia(ctx: &mut Context, mass: Sym, r: [Sym; 3]) -> Inertia {
     let first = r.map(|x| ctx.mul(mass, x));
-    let squares: Vec<Sym> = r.iter().map(|&x| ctx.mul(x, x)).collect();
-    let norm = ctx.sum(&squares);
-    let rot = [0, 1, 2].map(|i| {
-        [0, 1, 2].map(|j| {
-            let outer = ctx.mul(r[i], r[j]);
-            let e = if i == j {
-                ctx.sub(norm, outer)
-            } else {
-                ctx.neg(outer)
-            };
-            ctx.mul(mass, e)
-        })
-    });
+    let rot = parallel_axis(ctx, mass, r);
     Inertia { mass, first, rot }
 }
 

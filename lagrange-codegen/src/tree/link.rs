@@ -5,7 +5,7 @@
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::Link;
-use crate::mat3::{Mat3, transpose};
+use crate::mat3::{Mat3, cross, mat_vec, transpose};
 
 /// Copies the upper triangle below the diagonal, so a symmetric matrix holds
 /// one node per pair.
@@ -150,24 +150,8 @@ pub(super) fn rotate_back(
     rotate(ctx, axis, (c, ms), x)
 }
 
-pub(super) fn cross(ctx: &mut Context, a: [Sym; 3], b: [Sym; 3]) -> [Sym; 3] {
-    [0, 1, 2].map(|i| {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        let p = ctx.mul(a[j], b[k]);
-        let m = ctx.mul(a[k], b[j]);
-        ctx.sub(p, m)
-    })
-}
-
 pub(super) fn add3(ctx: &mut Context, a: [Sym; 3], b: [Sym; 3]) -> [Sym; 3] {
     [0, 1, 2].map(|i| ctx.add(a[i], b[i]))
-}
-
-pub(super) fn mat_vec(ctx: &mut Context, m: &Mat3, v: [Sym; 3]) -> [Sym; 3] {
-    [0, 1, 2].map(|i| {
-        let terms: Vec<Sym> = (0..3).map(|k| ctx.mul(m[i][k], v[k])).collect();
-        ctx.sum(&terms)
-    })
 }
 
 /// x × e_axis q̇ without forming the zero products.
@@ -196,27 +180,6 @@ pub(super) fn force_to_parent(
     [add3(ctx, n, moment), f]
 }
 
-/// [d]×, with [d]× x = d × x.
-pub(super) fn skew(ctx: &mut Context, d: [Sym; 3]) -> Mat3 {
-    let zero = ctx.zero();
-    let mut m = [[zero; 3]; 3];
-    for (r, row) in m.iter_mut().enumerate() {
-        let (j, k) = ((r + 1) % 3, (r + 2) % 3);
-        row[k] = d[j];
-        row[j] = ctx.neg(d[k]);
-    }
-    m
-}
-
-pub(super) fn mat_mul(ctx: &mut Context, x: &Mat3, y: &Mat3) -> Mat3 {
-    [0, 1, 2].map(|i| {
-        [0, 1, 2].map(|j| {
-            let terms: Vec<Sym> = (0..3).map(|k| ctx.mul(x[i][k], y[k][j])).collect();
-            ctx.sum(&terms)
-        })
-    })
-}
-
 pub(super) fn mat_add(ctx: &mut Context, x: &Mat3, y: &Mat3, sign: i64) -> Mat3 {
     [0, 1, 2].map(|i| {
         [0, 1, 2].map(|j| {
@@ -225,22 +188,6 @@ pub(super) fn mat_add(ctx: &mut Context, x: &Mat3, y: &Mat3, sign: i64) -> Mat3 
             } else {
                 ctx.add(x[i][j], y[i][j])
             }
-        })
-    })
-}
-
-/// R(θ) = 1 + [θ]× + ½[θ]×², the exponential map to the second order (as the
-/// lowering writes a free orientation's chart).
-pub(super) fn second_order_turn(ctx: &mut Context, theta: [Sym; 3]) -> Mat3 {
-    let k = skew(ctx, theta);
-    let k2 = mat_mul(ctx, &k, &k);
-    let half = ctx.rational(1, 2);
-    let (zero, one) = (ctx.zero(), ctx.one());
-    [0, 1, 2].map(|i| {
-        [0, 1, 2].map(|j| {
-            let id = if i == j { one } else { zero };
-            let s2 = ctx.mul(half, k2[i][j]);
-            ctx.sum(&[id, k[i][j], s2])
         })
     })
 }

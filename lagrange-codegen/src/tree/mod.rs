@@ -128,10 +128,10 @@ impl Tree {
     pub fn perturbed(&self, ctx: &mut Context) -> Tree {
         let mut links = self.links.clone();
         for &(k, theta) in &self.spheres {
-            let turn = link::second_order_turn(ctx, theta);
+            let turn = crate::mat3::second_order_turn(ctx, theta);
             let placed = match &links[k].placement {
                 None => turn,
-                Some(p) => link::mat_mul(ctx, p, &turn),
+                Some(p) => crate::mat3::mat_mul(ctx, p, &turn),
             };
             links[k].placement = Some(placed);
         }

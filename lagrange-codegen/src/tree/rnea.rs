@@ -6,10 +6,9 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::link::{
-    add_motion, add3, cross, cross_axis, force_to_parent, mat_vec, origin, project, to_link, trig,
-};
+use super::link::{add_motion, add3, cross_axis, force_to_parent, origin, project, to_link, trig};
 use super::{Inertia, Tree};
+use crate::mat3::{cross, mat_vec};
 
 /// Recursive Newton–Euler at q̈ = 0: τ = h(q, q̇) − Q_gravity(q) with gravity, h
 /// alone without. Angular velocities and accelerations go out from the root

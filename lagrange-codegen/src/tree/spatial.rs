@@ -3,9 +3,9 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::link::{add3, mat_add, mat_mul, mat_vec, mirror_upper, origin, skew, to_parent, trig};
+use super::link::{add3, mat_add, mirror_upper, origin, to_parent, trig};
 use super::{Inertia, Link};
-use crate::mat3::{Mat3, transpose};
+use crate::mat3::{Mat3, mat_mul, mat_vec, skew, transpose};
 
 /// A spatial inertia as three 3×3 blocks acting on (ω, v): moment A ω + B v,
 /// force Bᵀ ω + C v. A rigid body has A = I_o, B = [h]×, C = m 1; an articulated

@@ -9,17 +9,17 @@
 //! extension for dense output, and the stiffness test (every 1000 accepted steps,
 //! then at every step while h·|λ| stays beyond 3.25; 15 times ends the run with
 //! [`Error::ProbablyStiff`]). What is left out: per-component tolerances.
+//!
+//! The loop around the stages is the one DOP853 runs too
+//! ([`explicit`](super::explicit)); this file holds the tableau, the stages,
+//! the error estimate and Shampine's extension.
 
-use super::adaptive::{Stepping, first_step};
-use super::controller::PiController;
-use super::run::Run;
+use super::explicit::{self, Attempt, EmbeddedMethod, PiController, Settings, Tolerance};
 use super::settings::{StepControl, step_control_builders};
-use super::{
-    DenseSegment, Integrator, Pair, SecondOrder, check_orientations, check_problem, settle,
-};
+use super::{DenseSegment, Integrator, Pair, SecondOrder};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
-use crate::numeric::func::{abs, sqrt};
+use crate::numeric::func::sqrt;
 use crate::ode::{Continuation, Record, Trajectory};
 use nalgebra::SVector;
 
@@ -77,10 +77,6 @@ impl Dopri5 {
     pub fn stiffness_test(mut self, n: usize) -> Self {
         self.stiffness_test = n;
         self
-    }
-
-    fn validate(&self) -> Result<(), Error> {
-        self.control.validate("DOPRI5", 0.0, false)
     }
 }
 
@@ -169,10 +165,13 @@ impl Integrator for Dopri5 {
         q0: SVector<T, Q>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>> {
-        let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
-        // Everything computed before a failure goes back with it.
-        let outcome = self.run(rhs, (t0, t1), Pair::new(q0, v0), &mut run);
-        run.finish(outcome)
+        let settings = Settings {
+            control: self.control,
+            stiffness_test: self.stiffness_test,
+            record: self.record,
+        };
+        let method = Coefficients::<T>::new();
+        explicit::continue_run(&method, &settings, rhs, from, (t0, t1), (q0, v0))
     }
 
     fn max_steps(&self) -> usize {
@@ -194,141 +193,95 @@ struct Stages<T: Real, const N: usize, const Q: usize> {
     k7: Pair<T, N, Q>,
 }
 
-impl Dopri5 {
-    /// Checks the settings and the problem, then steps from y0 at t0 to t1.
-    fn run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
+impl<T: Real, const N: usize, const Q: usize> EmbeddedMethod<T, N, Q> for Coefficients<T> {
+    const NAME: &'static str = "DOPRI5";
+    const ORDER: u32 = 5;
+    const STABILITY_LIMIT: f64 = 3.25;
+    type Stages = Stages<T, N, Q>;
+
+    fn controller() -> PiController<T> {
+        PiController::dopri5()
+    }
+
+    /// k2..k7: the 7th stage is evaluated at the 5th-order solution (its row
+    /// is the weights), so the error estimate can use it and an accepted step
+    /// hands it on as the next k1 (FSAL).
+    fn stages<F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
-        (t0, t1): (T, T),
-        y0: Pair<T, N, Q>,
-        run: &mut Run<T, N, Q>,
-    ) -> Result<(), Error> {
-        self.record.check_span(t0, t1, Q + N)?;
-        self.validate()?;
-        self.control.check_precision::<T>("DOPRI5")?;
-        check_problem(t0, t1, &y0.q, &y0.v)?;
-        check_orientations(rhs, &y0.q)?;
-        let co = Coefficients::<T>::new();
-        let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
-        let stats = &mut run.stats;
-        let (mut y, mut k1) = (y0, y0.derivative(rhs, t0, &mut stats.evaluations)?);
-        let h = first_step(
-            &self.control,
-            5,
-            rhs,
-            (t0, t1),
-            &y,
-            &k1,
-            &mut stats.evaluations,
-        )?;
-        let mut steps = Stepping::new(&self.control, PiController::dopri5(), t0, t1, h);
-        let mut stiffness = super::StiffnessTest::new("DOPRI5", self.stiffness_test, 3.25);
-        loop {
-            let (t_new, last) = steps.begin(&run.stats)?;
-            let (t, h) = (steps.t, steps.h);
-            let s = match stages(rhs, &co, t, h, t_new, &y, &k1, &mut run.stats.evaluations) {
-                Ok(s) => s,
-                Err(e) => {
-                    steps.stage_failed(e, &mut run.stats)?;
-                    continue;
-                }
-            };
-            let err_vec = Pair::combination(h, co.e, [&k1, &s.k3, &s.k4, &s.k5, &s.k6, &s.k7]);
-            let err = error_norm(&err_vec, &y, &s.y_new, atol, rtol);
-            if !steps.judge(err, t_new, &s.y_new, &mut run.stats)? {
-                continue;
-            }
-            // The step is accepted: a stiffness verdict is reported after it
-            // is recorded, so the partial trajectory ends where the error says.
-            let stiff = stiffness.check(
-                run.stats.accepted,
-                t_new,
-                h,
-                [&s.y_new, &s.y6, &s.k7, &s.k6],
-            );
-            let (r1, r2, r3, r4) = DenseSegment::cubic_part(h, &y, &k1, &s.y_new, &s.k7);
-            let r5 = Pair::combination(h, co.d, [&k1, &s.k3, &s.k4, &s.k5, &s.k6, &s.k7]);
-            let segment = DenseSegment::new(t, t_new, h, [r1, r2, r3, r4, r5]);
-            // A projection moves the end point by about the local error; the
-            // dense output keeps the unprojected polynomial, and the first stage
-            // of the next step (FSAL) is re-evaluated at the projected state.
-            let (mut y_new, mut k7) = (s.y_new, s.k7);
-            if settle(rhs, t_new, &mut y_new.q, &mut y_new.v)? {
-                k7 = y_new.derivative(rhs, t_new, &mut run.stats.evaluations)?;
-            }
-            let stop = run.record(rhs, segment, y_new.q, y_new.v)?;
-            stiff?;
-            (y, k1) = (y_new, k7);
-            steps.advance(t_new);
-            if last || stop {
-                return Ok(());
-            }
-        }
+        &Attempt { t, h, t_new, y, k1 }: &Attempt<'_, T, N, Q>,
+        ev: &mut usize,
+    ) -> Result<Stages<T, N, Q>, Error> {
+        let [c2, c3, c4, c5] = self.c;
+        let k2 = y
+            .add_combination(h, self.a2, [k1])
+            .derivative(rhs, t + c2 * h, ev)?;
+        let k3 = y
+            .add_combination(h, self.a3, [k1, &k2])
+            .derivative(rhs, t + c3 * h, ev)?;
+        let k4 = y
+            .add_combination(h, self.a4, [k1, &k2, &k3])
+            .derivative(rhs, t + c4 * h, ev)?;
+        let k5 = y
+            .add_combination(h, self.a5, [k1, &k2, &k3, &k4])
+            .derivative(rhs, t + c5 * h, ev)?;
+        let y6 = y.add_combination(h, self.a6, [k1, &k2, &k3, &k4, &k5]);
+        let k6 = y6.derivative(rhs, t_new, ev)?;
+        let y_new = y.add_combination(h, self.a7, [k1, &k3, &k4, &k5, &k6]);
+        let k7 = y_new.derivative(rhs, t_new, ev)?;
+        Ok(Stages {
+            k3,
+            k4,
+            k5,
+            k6,
+            y6,
+            y_new,
+            k7,
+        })
     }
-}
 
-/// The stages k2..k7 of an attempt of size h from (t, y) with first stage k1.
-#[allow(clippy::too_many_arguments)]
-fn stages<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
-    rhs: &F,
-    co: &Coefficients<T>,
-    t: T,
-    h: T,
-    t_new: T,
-    y: &Pair<T, N, Q>,
-    k1: &Pair<T, N, Q>,
-    ev: &mut usize,
-) -> Result<Stages<T, N, Q>, Error> {
-    let [c2, c3, c4, c5] = co.c;
-    let k2 = y
-        .add_combination(h, co.a2, [k1])
-        .derivative(rhs, t + c2 * h, ev)?;
-    let k3 = y
-        .add_combination(h, co.a3, [k1, &k2])
-        .derivative(rhs, t + c3 * h, ev)?;
-    let k4 = y
-        .add_combination(h, co.a4, [k1, &k2, &k3])
-        .derivative(rhs, t + c4 * h, ev)?;
-    let k5 = y
-        .add_combination(h, co.a5, [k1, &k2, &k3, &k4])
-        .derivative(rhs, t + c5 * h, ev)?;
-    let y6 = y.add_combination(h, co.a6, [k1, &k2, &k3, &k4, &k5]);
-    let k6 = y6.derivative(rhs, t_new, ev)?;
-    let y_new = y.add_combination(h, co.a7, [k1, &k3, &k4, &k5, &k6]);
-    let k7 = y_new.derivative(rhs, t_new, ev)?;
-    Ok(Stages {
-        k3,
-        k4,
-        k5,
-        k6,
-        y6,
-        y_new,
-        k7,
-    })
-}
-
-/// Hairer's norm sqrt(1/n Σ (e_i / (atol + rtol·max(|y_i|, |y_new_i|)))²) over all
-/// Q + N components.
-fn error_norm<T: Real, const N: usize, const Q: usize>(
-    e: &Pair<T, N, Q>,
-    y: &Pair<T, N, Q>,
-    y_new: &Pair<T, N, Q>,
-    atol: T,
-    rtol: T,
-) -> T {
-    let mut sum = T::zero();
-    let parts = [
-        (e.q.as_slice(), y.q.as_slice(), y_new.q.as_slice()),
-        (e.v.as_slice(), y.v.as_slice(), y_new.v.as_slice()),
-    ];
-    for (e, y, y_new) in parts {
-        for ((&e, &y), &y_new) in e.iter().zip(y).zip(y_new) {
-            let sk = atol + rtol * abs(y).max(abs(y_new));
-            let r = e / sk;
-            sum += r * r;
-        }
+    fn solution(s: &Stages<T, N, Q>) -> &Pair<T, N, Q> {
+        &s.y_new
     }
-    sqrt(sum / T::lit((Q + N) as f64))
+
+    /// Hairer's norm sqrt(1/n Σ (e_i / sk_i)²) of the embedded difference
+    /// e = h Σ (b_i − b̂_i) k_i over all n = Q + N components.
+    fn error(&self, a: &Attempt<'_, T, N, Q>, s: &Stages<T, N, Q>, tol: &Tolerance<T>) -> T {
+        let e = Pair::combination(a.h, self.e, [a.k1, &s.k3, &s.k4, &s.k5, &s.k6, &s.k7]);
+        let [sum] = tol.scaled_squares([&e], a.y, &s.y_new);
+        sqrt(sum / T::lit((Q + N) as f64))
+    }
+
+    /// k7, already evaluated for the error estimate.
+    fn end_slope<F: SecondOrder<T, N, Q>>(
+        &self,
+        _: &F,
+        _: T,
+        s: &Stages<T, N, Q>,
+        _: &mut usize,
+    ) -> Result<Pair<T, N, Q>, Error> {
+        Ok(s.k7)
+    }
+
+    fn last_stage(s: &Stages<T, N, Q>) -> [&Pair<T, N, Q>; 2] {
+        [&s.y6, &s.k6]
+    }
+
+    /// Shampine's 4th-order interpolant: the cubic Hermite part and r₅.
+    fn dense<F: SecondOrder<T, N, Q>>(
+        &self,
+        _: &F,
+        &Attempt {
+            t, h, t_new, y, k1, ..
+        }: &Attempt<'_, T, N, Q>,
+        s: &Stages<T, N, Q>,
+        k7: &Pair<T, N, Q>,
+        _: &mut usize,
+    ) -> Result<DenseSegment<T, N, Q>, Error> {
+        let (r1, r2, r3, r4) = DenseSegment::cubic_part(h, y, k1, &s.y_new, k7);
+        let r5 = Pair::combination(h, self.d, [k1, &s.k3, &s.k4, &s.k5, &s.k6, k7]);
+        Ok(DenseSegment::new(t, t_new, h, [r1, r2, r3, r4, r5]))
+    }
 }
 
 #[cfg(test)]

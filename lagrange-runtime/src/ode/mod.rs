@@ -6,18 +6,30 @@
 //! [`Trajectory`].
 //!
 //! - [`Rk4`]: classic fixed-step Runge–Kutta of order 4.
-//! - [`Dopri5`]: Dormand–Prince 5(4) with Hairer's step-size control and dense output.
+//! - [`Dopri5`]: Dormand–Prince 5(4) with Hairer's step-size control, stiffness
+//!   test and Shampine's dense output of order 4.
+//! - [`Dop853`]: Dormand–Prince 8(5,3), the same control with its own error
+//!   estimate and a 7th-order dense output, for tight tolerances.
+//! - [`Radau5`]: Radau IIA of order 5, implicit, for stiff systems.
+//! - [`Gauss`]: Gauss–Legendre collocation in canonical (q, P), symplectic.
+//! - [`StormerVerlet`]: velocity Verlet with a fixed step, symplectic.
 //! - [`Rattle`](crate::Rattle): RATTLE for [`Constrained`](crate::Constrained) systems with
 //!   holonomic constraints (its own entry point: it needs Φ, not only a).
 //!
-//! New integrators implement [`Integrator`].
+//! DOPRI5 and DOP853 run in one loop, `explicit`, as Hairer's two codes share
+//! theirs: step-size control, first step, stiffness test, dense output,
+//! recording and failure; each method file holds its tableau, its stages, its
+//! error estimate and its continuous extension. Every run records through
+//! `run::Run`, which returns the partial trajectory with a failure.
+//!
+//! New integrators implement [`Integrator`]; a new explicit embedded method
+//! implements `explicit::EmbeddedMethod`.
 
-mod adaptive;
 mod canonical;
-mod controller;
 mod dense;
 mod dop853;
 mod dopri5;
+mod explicit;
 mod gauss;
 mod mechanical;
 mod radau5;
@@ -25,7 +37,6 @@ mod record;
 mod rk4;
 mod run;
 mod settings;
-mod stiffness;
 mod trajectory;
 mod verlet;
 
@@ -38,7 +49,6 @@ pub use radau5::Radau5;
 pub use record::{Continuation, Record};
 pub use rk4::Rk4;
 pub(crate) use run::{Run, fixed_steps};
-pub(crate) use stiffness::StiffnessTest;
 pub use trajectory::Trajectory;
 pub use verlet::StormerVerlet;
 pub(crate) use verlet::fixed_step_count;

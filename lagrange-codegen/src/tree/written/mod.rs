@@ -25,10 +25,10 @@ use std::collections::BTreeSet;
 use lagrange_symbolic::{Context, Expr as Sym, SymbolKind};
 
 use super::frame::{Frame, PlacedMass, coordinate_name};
-use super::link::{add3, cross, mat_mul, mat_vec};
+use super::link::add3;
 use super::{BodyFault, Link, Masses, NotATree};
 use crate::lowered::Skeleton;
-use crate::mat3::{Mat3, transpose, vee};
+use crate::mat3::{Mat3, cross, mat_mul, mat_vec, transpose, vee};
 use probe::{check, settled};
 
 /// The links, each body's frame and each point mass's body, read from the

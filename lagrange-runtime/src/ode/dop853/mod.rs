@@ -17,14 +17,14 @@
 //! accepted step), and the stiffness test (every 1000 accepted steps, then at
 //! every step while h·|λ| stays beyond 6.1; 15 times ends the run with
 //! [`Error::ProbablyStiff`]). What is left out: per-component tolerances.
+//!
+//! The loop around the stages is the one DOPRI5 runs too
+//! ([`explicit`](super::explicit)); this file holds the stages, the error
+//! estimate and the continuous extension, `tableau` the coefficients.
 
-use super::adaptive::{Stepping, first_step};
-use super::controller::PiController;
-use super::run::Run;
+use super::explicit::{self, Attempt, EmbeddedMethod, PiController, Settings, Tolerance};
 use super::settings::{StepControl, step_control_builders};
-use super::{
-    DenseSegment, Integrator, Pair, SecondOrder, Stats, check_orientations, check_problem, settle,
-};
+use super::{DenseSegment, Integrator, Pair, SecondOrder};
 use crate::error::{Error, Failure};
 use crate::numeric::Real;
 use crate::numeric::func::{abs, sqrt};
@@ -106,10 +106,6 @@ impl Dop853 {
         self.dense7 = false;
         self
     }
-
-    fn validate(&self) -> Result<(), Error> {
-        self.control.validate("DOP853", 0.0, false)
-    }
 }
 
 mod tableau;
@@ -177,15 +173,29 @@ impl Integrator for Dop853 {
         q0: SVector<T, Q>,
         v0: SVector<T, N>,
     ) -> Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>> {
-        let mut run = Run::of(self.record, from, rhs, t0, q0, v0);
-        // Everything computed before a failure goes back with it.
-        let outcome = self.run(rhs, (t0, t1), Pair::new(q0, v0), &mut run);
-        run.finish(outcome)
+        let settings = Settings {
+            control: self.control,
+            stiffness_test: self.stiffness_test,
+            record: self.record,
+        };
+        let method = Method {
+            co: Coefficients::<T>::new(),
+            dense7: self.dense7,
+        };
+        explicit::continue_run(&method, &settings, rhs, from, (t0, t1), (q0, v0))
     }
 
     fn max_steps(&self) -> usize {
         self.control.max_steps
     }
+}
+
+/// DOP853 as the explicit loop runs it: the tableau, and which dense output
+/// the accepted steps get.
+struct Method<T> {
+    co: Coefficients<T>,
+    /// The 7th-order continuous extension, rather than the cubic Hermite one.
+    dense7: bool,
 }
 
 /// The stages of one attempt that the solution, the error estimate, the dense
@@ -195,163 +205,162 @@ struct Stages<T: Real, const N: usize, const Q: usize> {
     k: [Pair<T, N, Q>; 7],
     /// The argument of the 12th stage, at t_new (for the stiffness test).
     y12: Pair<T, N, Q>,
+    /// Σ b_i k_i, kept without the factor h for the 3rd-order estimate.
+    slope: Pair<T, N, Q>,
+    /// The 8th-order solution y + h · slope.
+    y_new: Pair<T, N, Q>,
 }
 
-impl Dop853 {
-    /// Checks the settings and the problem, then steps from y0 at t0 to t1.
-    fn run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
+impl<T: Real, const N: usize, const Q: usize> Stages<T, N, Q> {
+    /// k1 and k6..k12, the stages the 8th-order weights combine.
+    fn main<'a>(&'a self, k1: &'a Pair<T, N, Q>) -> [&'a Pair<T, N, Q>; 8] {
+        let [k6, k7, k8, k9, k10, k11, k12] = &self.k;
+        [k1, k6, k7, k8, k9, k10, k11, k12]
+    }
+}
+
+impl<T: Real, const N: usize, const Q: usize> EmbeddedMethod<T, N, Q> for Method<T> {
+    const NAME: &'static str = "DOP853";
+    const ORDER: u32 = 8;
+    const STABILITY_LIMIT: f64 = 6.1;
+    type Stages = Stages<T, N, Q>;
+
+    fn controller() -> PiController<T> {
+        PiController::dop853()
+    }
+
+    /// k2..k12 and the 8th-order solution; each row of the tableau names the
+    /// stages it combines.
+    fn stages<F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
-        (t0, t1): (T, T),
-        y0: Pair<T, N, Q>,
-        run: &mut Run<T, N, Q>,
-    ) -> Result<(), Error> {
-        self.record.check_span(t0, t1, Q + N)?;
-        self.validate()?;
-        self.control.check_precision::<T>("DOP853")?;
-        check_problem(t0, t1, &y0.q, &y0.v)?;
-        check_orientations(rhs, &y0.q)?;
-        let co = Coefficients::<T>::new();
-        let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
-        let stats = &mut run.stats;
-        let (mut y, mut k1) = (y0, y0.derivative(rhs, t0, &mut stats.evaluations)?);
-        let h = first_step(
-            &self.control,
-            8,
-            rhs,
-            (t0, t1),
-            &y,
-            &k1,
-            &mut stats.evaluations,
+        &Attempt { t, h, t_new, y, k1 }: &Attempt<'_, T, N, Q>,
+        ev: &mut usize,
+    ) -> Result<Stages<T, N, Q>, Error> {
+        let co = &self.co;
+        let c = co.c;
+        let stage = |a: Pair<T, N, Q>, ci: T, ev: &mut usize| a.derivative(rhs, t + ci * h, ev);
+        let k2 = stage(y.add_combination(h, co.a2, [k1]), c[1], ev)?;
+        let k3 = stage(y.add_combination(h, co.a3, [k1, &k2]), c[2], ev)?;
+        let k4 = stage(y.add_combination(h, co.a4, [k1, &k3]), c[3], ev)?;
+        let k5 = stage(y.add_combination(h, co.a5, [k1, &k3, &k4]), c[4], ev)?;
+        let k6 = stage(y.add_combination(h, co.a6, [k1, &k4, &k5]), c[5], ev)?;
+        let k7 = stage(y.add_combination(h, co.a7, [k1, &k4, &k5, &k6]), c[6], ev)?;
+        let k8 = stage(
+            y.add_combination(h, co.a8, [k1, &k4, &k5, &k6, &k7]),
+            c[7],
+            ev,
         )?;
-        let mut steps = Stepping::new(&self.control, PiController::dop853(), t0, t1, h);
-        let mut stiffness = super::StiffnessTest::new("DOP853", self.stiffness_test, 6.1);
-        loop {
-            let (t_new, last) = steps.begin(&run.stats)?;
-            let (t, h) = (steps.t, steps.h);
-            let s = match stages(rhs, &co, t, h, t_new, &y, &k1, &mut run.stats.evaluations) {
-                Ok(s) => s,
-                Err(e) => {
-                    steps.stage_failed(e, &mut run.stats)?;
-                    continue;
-                }
-            };
-            let [k6, k7, k8, k9, k10, k11, k12] = &s.k;
-            let main = [&k1, k6, k7, k8, k9, k10, k11, k12];
-            // Σ b_i k_i, kept without the factor h for the 3rd-order estimate.
-            let slope = Pair::combination(T::one(), co.b, main);
-            let y_new = y.add_combination(h, [T::one()], [&slope]);
-            let e5 = Pair::combination(T::one(), co.er, main);
-            let e3 = slope.add_combination(-T::one(), co.bhh, [&k1, k9, k12]);
-            let err = error_norm(h, &e5, &e3, &y, &y_new, atol, rtol);
-            if !steps.judge(err, t_new, &y_new, &mut run.stats)? {
-                continue;
-            }
-            let k13 = y_new.derivative(rhs, t_new, &mut run.stats.evaluations)?;
-            // The step is accepted: a stiffness verdict is reported after it
-            // is recorded, so the partial trajectory ends where the error says.
-            let stiff = stiffness.check(run.stats.accepted, t_new, h, [&y_new, &s.y12, &k13, k12]);
-            let segment = if self.dense7 {
-                self.dense(rhs, &co, t, h, &y, &y_new, main, &k13, &mut run.stats)?
-            } else {
-                DenseSegment::hermite(t, t_new, &y, &k1, &y_new, &k13)
-            };
-            // As in DOPRI5: the dense output keeps the unprojected polynomial;
-            // the next first stage is re-evaluated at the projected state.
-            let (mut y_new, mut k13) = (y_new, k13);
-            if settle(rhs, t_new, &mut y_new.q, &mut y_new.v)? {
-                k13 = y_new.derivative(rhs, t_new, &mut run.stats.evaluations)?;
-            }
-            let stop = run.record(rhs, segment, y_new.q, y_new.v)?;
-            stiff?;
-            (y, k1) = (y_new, k13);
-            steps.advance(t_new);
-            if last || stop {
-                return Ok(());
-            }
+        let k9 = stage(
+            y.add_combination(h, co.a9, [k1, &k4, &k5, &k6, &k7, &k8]),
+            c[8],
+            ev,
+        )?;
+        let k10 = stage(
+            y.add_combination(h, co.a10, [k1, &k4, &k5, &k6, &k7, &k8, &k9]),
+            c[9],
+            ev,
+        )?;
+        let k11 = stage(
+            y.add_combination(h, co.a11, [k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10]),
+            c[10],
+            ev,
+        )?;
+        let y12 = y.add_combination(h, co.a12, [k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10, &k11]);
+        let k12 = y12.derivative(rhs, t_new, ev)?;
+        let slope = Pair::combination(T::one(), co.b, [k1, &k6, &k7, &k8, &k9, &k10, &k11, &k12]);
+        let y_new = y.add_combination(h, [T::one()], [&slope]);
+        Ok(Stages {
+            k: [k6, k7, k8, k9, k10, k11, k12],
+            y12,
+            slope,
+            y_new,
+        })
+    }
+
+    fn solution(s: &Stages<T, N, Q>) -> &Pair<T, N, Q> {
+        &s.y_new
+    }
+
+    /// DOP853's blend of the 5th-order difference e₅ = Σ er_i k_i and the
+    /// 3rd-order one e₃ = slope − Σ bhh_i k_i: with s₅, s₃ their scaled
+    /// squares over all Q + N components,
+    /// err = |h| s₅ / sqrt(n (s₅ + 0.01 s₃)).
+    fn error(&self, a: &Attempt<'_, T, N, Q>, s: &Stages<T, N, Q>, tol: &Tolerance<T>) -> T {
+        let main = s.main(a.k1);
+        let e5 = Pair::combination(T::one(), self.co.er, main);
+        let e3 = s
+            .slope
+            .add_combination(-T::one(), self.co.bhh, [a.k1, main[4], main[7]]);
+        let [s5, s3] = tol.scaled_squares([&e5, &e3], a.y, &s.y_new);
+        let mut deno = s5 + T::lit(0.01) * s3;
+        if deno <= T::zero() {
+            deno = T::one();
+        }
+        abs(a.h) * s5 * sqrt(T::one() / (deno * T::lit((Q + N) as f64)))
+    }
+
+    /// k13 = f(t_new, y_new), evaluated only for an accepted step, as in
+    /// `dop853.f`.
+    fn end_slope<F: SecondOrder<T, N, Q>>(
+        &self,
+        rhs: &F,
+        t_new: T,
+        s: &Stages<T, N, Q>,
+        ev: &mut usize,
+    ) -> Result<Pair<T, N, Q>, Error> {
+        s.y_new.derivative(rhs, t_new, ev)
+    }
+
+    fn last_stage(s: &Stages<T, N, Q>) -> [&Pair<T, N, Q>; 2] {
+        [&s.y12, &s.k[6]]
+    }
+
+    /// The 7th-order continuous extension (three more stages), or the cubic
+    /// Hermite interpolant with [`hermite_dense`](Dop853::hermite_dense).
+    fn dense<F: SecondOrder<T, N, Q>>(
+        &self,
+        rhs: &F,
+        a: &Attempt<'_, T, N, Q>,
+        s: &Stages<T, N, Q>,
+        k13: &Pair<T, N, Q>,
+        ev: &mut usize,
+    ) -> Result<DenseSegment<T, N, Q>, Error> {
+        if self.dense7 {
+            self.co.dense(rhs, a, s.main(a.k1), &s.y_new, k13, ev)
+        } else {
+            Ok(DenseSegment::hermite(
+                a.t, a.t_new, a.y, a.k1, &s.y_new, k13,
+            ))
         }
     }
 }
 
-/// The stages k2..k12 of an attempt of size h from (t, y) with first stage k1;
-/// each row of the tableau names the stages it combines.
-#[allow(clippy::too_many_arguments)]
-fn stages<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
-    rhs: &F,
-    co: &Coefficients<T>,
-    t: T,
-    h: T,
-    t_new: T,
-    y: &Pair<T, N, Q>,
-    k1: &Pair<T, N, Q>,
-    ev: &mut usize,
-) -> Result<Stages<T, N, Q>, Error> {
-    let c = co.c;
-    let stage = |a: Pair<T, N, Q>, ci: T, ev: &mut usize| a.derivative(rhs, t + ci * h, ev);
-    let k2 = stage(y.add_combination(h, co.a2, [k1]), c[1], ev)?;
-    let k3 = stage(y.add_combination(h, co.a3, [k1, &k2]), c[2], ev)?;
-    let k4 = stage(y.add_combination(h, co.a4, [k1, &k3]), c[3], ev)?;
-    let k5 = stage(y.add_combination(h, co.a5, [k1, &k3, &k4]), c[4], ev)?;
-    let k6 = stage(y.add_combination(h, co.a6, [k1, &k4, &k5]), c[5], ev)?;
-    let k7 = stage(y.add_combination(h, co.a7, [k1, &k4, &k5, &k6]), c[6], ev)?;
-    let k8 = stage(
-        y.add_combination(h, co.a8, [k1, &k4, &k5, &k6, &k7]),
-        c[7],
-        ev,
-    )?;
-    let k9 = stage(
-        y.add_combination(h, co.a9, [k1, &k4, &k5, &k6, &k7, &k8]),
-        c[8],
-        ev,
-    )?;
-    let k10 = stage(
-        y.add_combination(h, co.a10, [k1, &k4, &k5, &k6, &k7, &k8, &k9]),
-        c[9],
-        ev,
-    )?;
-    let k11 = stage(
-        y.add_combination(h, co.a11, [k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10]),
-        c[10],
-        ev,
-    )?;
-    let y12 = y.add_combination(h, co.a12, [k1, &k4, &k5, &k6, &k7, &k8, &k9, &k10, &k11]);
-    let k12 = y12.derivative(rhs, t_new, ev)?;
-    Ok(Stages {
-        k: [k6, k7, k8, k9, k10, k11, k12],
-        y12,
-    })
-}
-
-impl Dop853 {
+impl<T: Real> Coefficients<T> {
     /// The 7th-order continuous extension of an accepted step: three more stages
-    /// (at 0.1, 0.2 and 7/9 of the step) and the coefficients r₁..r₈.
-    #[allow(clippy::too_many_arguments)]
-    fn dense<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
+    /// (at 0.1, 0.2 and 7/9 of the step) and the coefficients r₅..r₈.
+    fn dense<const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
         &self,
         rhs: &F,
-        co: &Coefficients<T>,
-        t: T,
-        h: T,
-        y: &Pair<T, N, Q>,
-        y_new: &Pair<T, N, Q>,
+        &Attempt { t, h, y, .. }: &Attempt<'_, T, N, Q>,
         [k1, k6, k7, k8, k9, k10, k11, k12]: [&Pair<T, N, Q>; 8],
+        y_new: &Pair<T, N, Q>,
         k13: &Pair<T, N, Q>,
-        stats: &mut Stats,
+        ev: &mut usize,
     ) -> Result<DenseSegment<T, N, Q>, Error> {
-        let ev = &mut stats.evaluations;
-        let c = co.c;
+        let c = self.c;
         let k14 = y
-            .add_combination(h, co.a14, [k1, k7, k8, k9, k10, k11, k12, k13])
+            .add_combination(h, self.a14, [k1, k7, k8, k9, k10, k11, k12, k13])
             .derivative(rhs, t + c[13] * h, ev)?;
         let k15 = y
-            .add_combination(h, co.a15, [k1, k6, k7, k8, k11, k12, k13, &k14])
+            .add_combination(h, self.a15, [k1, k6, k7, k8, k11, k12, k13, &k14])
             .derivative(rhs, t + c[14] * h, ev)?;
         let k16 = y
-            .add_combination(h, co.a16, [k1, k6, k7, k8, k9, k13, &k14, &k15])
+            .add_combination(h, self.a16, [k1, k6, k7, k8, k9, k13, &k14, &k15])
             .derivative(rhs, t + c[15] * h, ev)?;
         let (r1, r2, r3, r4) = DenseSegment::cubic_part(h, y, k1, y_new, k13);
         let ks = [k1, k6, k7, k8, k9, k10, k11, k12, k13, &k14, &k15, &k16];
-        let [r5, r6, r7, r8] = co.d.map(|d| Pair::combination(h, d, ks));
+        let [r5, r6, r7, r8] = self.d.map(|d| Pair::combination(h, d, ks));
         let t_new = t + h;
         Ok(DenseSegment::new(
             t,
@@ -360,46 +369,4 @@ impl Dop853 {
             [r1, r2, r3, r4, r5, r6, r7, r8],
         ))
     }
-}
-
-/// DOP853's error norm: with sk = atol + rtol·max(|y|, |y_new|) over all Q + N
-/// components, s₅ = Σ (e₅/sk)², s₃ = Σ (e₃/sk)²,
-/// err = |h| s₅ / sqrt(2N (s₅ + 0.01 s₃)).
-fn error_norm<T: Real, const N: usize, const Q: usize>(
-    h: T,
-    e5: &Pair<T, N, Q>,
-    e3: &Pair<T, N, Q>,
-    y: &Pair<T, N, Q>,
-    y_new: &Pair<T, N, Q>,
-    atol: T,
-    rtol: T,
-) -> T {
-    let (mut s5, mut s3) = (T::zero(), T::zero());
-    let parts = [
-        (
-            e5.q.as_slice(),
-            e3.q.as_slice(),
-            y.q.as_slice(),
-            y_new.q.as_slice(),
-        ),
-        (
-            e5.v.as_slice(),
-            e3.v.as_slice(),
-            y.v.as_slice(),
-            y_new.v.as_slice(),
-        ),
-    ];
-    for (e5, e3, y, y_new) in parts {
-        for i in 0..e5.len() {
-            let sk = atol + rtol * abs(y[i]).max(abs(y_new[i]));
-            let (a, b) = (e5[i] / sk, e3[i] / sk);
-            s5 += a * a;
-            s3 += b * b;
-        }
-    }
-    let mut deno = s5 + T::lit(0.01) * s3;
-    if deno <= T::zero() {
-        deno = T::one();
-    }
-    abs(h) * s5 * sqrt(T::one() / (deno * T::lit((Q + N) as f64)))
 }

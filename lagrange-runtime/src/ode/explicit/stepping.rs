@@ -6,11 +6,11 @@
 //! Each method keeps its stages, its error norm and its dense output.
 
 use super::controller::PiController;
-use super::settings::StepControl;
-use super::{Pair, SecondOrder, Stats};
 use crate::error::Error;
 use crate::numeric::Real;
 use crate::numeric::func::{abs, sqrt};
+use crate::ode::settings::StepControl;
+use crate::ode::{Pair, SecondOrder, Stats};
 
 /// Where an explicit embedded method stands: the time reached, the step to
 /// try next, and what the controller remembers.

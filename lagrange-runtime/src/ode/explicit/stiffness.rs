@@ -1,8 +1,8 @@
 //! Hairer's stiffness test, shared by DOPRI5 and DOP853.
 
-use super::Pair;
 use crate::error::Error;
 use crate::numeric::Real;
+use crate::ode::Pair;
 
 /// Hairer's stiffness test of DOPRI5 and DOP853: every `every` accepted steps,
 /// and at every step while suspicion lasts, h·|λ| is estimated from the last
