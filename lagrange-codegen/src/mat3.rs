@@ -56,9 +56,15 @@ pub fn quaternion_matrix(ctx: &mut Context, [w, x, y, z]: [Sym; 4]) -> Mat3 {
         let p = ctx.mul(a, b);
         ctx.mul(two, p)
     };
-    let (xx, yy, zz) = (product(x, x), product(y, y), product(z, z));
-    let (xy, xz, yz) = (product(x, y), product(x, z), product(y, z));
-    let (wx, wy, wz) = (product(w, x), product(w, y), product(w, z));
+    let xx = product(x, x);
+    let yy = product(y, y);
+    let zz = product(z, z);
+    let xy = product(x, y);
+    let xz = product(x, z);
+    let yz = product(y, z);
+    let wx = product(w, x);
+    let wy = product(w, y);
+    let wz = product(w, z);
     let diagonal = |ctx: &mut Context, a: Sym, b: Sym| {
         let s = ctx.add(a, b);
         ctx.sub(one, s)

@@ -131,7 +131,8 @@ impl Lowerer<'_> {
         let skew = self.skew(theta);
         let square = self.mat_mul(&skew, &skew);
         let half = self.ctx.rational(1, 2);
-        let (zero, one) = (self.ctx.zero(), self.ctx.one());
+        let zero = self.ctx.zero();
+        let one = self.ctx.one();
         let mut local = [[zero; 3]; 3];
         for (i, row) in local.iter_mut().enumerate() {
             for (j, x) in row.iter_mut().enumerate() {
@@ -162,16 +163,20 @@ impl Lowerer<'_> {
     /// [v]×, the matrix of v × ·.
     fn skew(&mut self, [x, y, z]: [Sym; 3]) -> Mat3 {
         let zero = self.ctx.zero();
-        let (nx, ny, nz) = (self.ctx.neg(x), self.ctx.neg(y), self.ctx.neg(z));
+        let nx = self.ctx.neg(x);
+        let ny = self.ctx.neg(y);
+        let nz = self.ctx.neg(z);
         [[zero, nz, y], [z, zero, nx], [ny, x, zero]]
     }
 
     /// rot_axis(a) and ω = ȧ e_axis.
     fn elementary(&mut self, axis: usize, angle: Sym) -> Rotation {
-        let (zero, one) = (self.ctx.zero(), self.ctx.one());
+        let zero = self.ctx.zero();
+        let one = self.ctx.one();
         let (c, s) = crate::mat3::cos_sin(&mut self.ctx, angle);
         let ms = self.ctx.neg(s);
-        let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+        let i = (axis + 1) % 3;
+        let j = (axis + 2) % 3;
         let mut m = [[zero; 3]; 3];
         m[axis][axis] = one;
         m[i][i] = c;

@@ -11,7 +11,8 @@ pub(super) fn mat_vec(ctx: &mut Context, a: &Mat3, v: &[Sym; 3]) -> [Sym; 3] {
 
 pub(super) fn cross(ctx: &mut Context, a: &[Sym; 3], b: &[Sym; 3]) -> [Sym; 3] {
     [0, 1, 2].map(|i| {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let j = (i + 1) % 3;
+        let k = (i + 2) % 3;
         let p = ctx.mul(a[j], b[k]);
         let m = ctx.mul(a[k], b[j]);
         ctx.sub(p, m)

@@ -26,11 +26,14 @@ pub(super) fn trig(ctx: &mut Context, link: &Link) -> (Sym, Sym) {
 
 /// E x, E = rot_axis(q) (link axes to parent axes).
 pub(super) fn rotate(ctx: &mut Context, axis: usize, (c, s): (Sym, Sym), x: [Sym; 3]) -> [Sym; 3] {
-    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let i = (axis + 1) % 3;
+    let j = (axis + 2) % 3;
     let mut out = x;
-    let (ci, sj) = (ctx.mul(c, x[i]), ctx.mul(s, x[j]));
+    let ci = ctx.mul(c, x[i]);
+    let sj = ctx.mul(s, x[j]);
     out[i] = ctx.sub(ci, sj);
-    let (si, cj) = (ctx.mul(s, x[i]), ctx.mul(c, x[j]));
+    let si = ctx.mul(s, x[i]);
+    let cj = ctx.mul(c, x[j]);
     out[j] = ctx.add(si, cj);
     out
 }
@@ -127,9 +130,11 @@ pub(super) fn add_motion(ctx: &mut Context, link: &Link, a: &mut [[Sym; 3]; 2], 
 
 /// The rotation about `axis` by a constant `angle`, as a matrix.
 pub(super) fn elementary(ctx: &mut Context, axis: usize, angle: Sym) -> Mat3 {
-    let (zero, one) = (ctx.zero(), ctx.one());
+    let zero = ctx.zero();
+    let one = ctx.one();
     let (c, s) = crate::mat3::cos_sin(ctx, angle);
-    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let i = (axis + 1) % 3;
+    let j = (axis + 2) % 3;
     let mut m = [[zero; 3]; 3];
     m[axis][axis] = one;
     m[i][i] = c;
@@ -152,7 +157,8 @@ pub(super) fn rotate_back(
 
 pub(super) fn cross(ctx: &mut Context, a: [Sym; 3], b: [Sym; 3]) -> [Sym; 3] {
     [0, 1, 2].map(|i| {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let j = (i + 1) % 3;
+        let k = (i + 2) % 3;
         let p = ctx.mul(a[j], b[k]);
         let m = ctx.mul(a[k], b[j]);
         ctx.sub(p, m)
@@ -172,7 +178,8 @@ pub(super) fn mat_vec(ctx: &mut Context, m: &Mat3, v: [Sym; 3]) -> [Sym; 3] {
 
 /// x × e_axis q̇ without forming the zero products.
 pub(super) fn cross_axis(ctx: &mut Context, x: [Sym; 3], axis: usize, rate: Sym) -> [Sym; 3] {
-    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let i = (axis + 1) % 3;
+    let j = (axis + 2) % 3;
     let zero = ctx.zero();
     let mut out = [zero; 3];
     out[i] = ctx.mul(x[j], rate);
@@ -201,7 +208,8 @@ pub(super) fn skew(ctx: &mut Context, d: [Sym; 3]) -> Mat3 {
     let zero = ctx.zero();
     let mut m = [[zero; 3]; 3];
     for (r, row) in m.iter_mut().enumerate() {
-        let (j, k) = ((r + 1) % 3, (r + 2) % 3);
+        let j = (r + 1) % 3;
+        let k = (r + 2) % 3;
         row[k] = d[j];
         row[j] = ctx.neg(d[k]);
     }
@@ -235,7 +243,8 @@ pub(super) fn second_order_turn(ctx: &mut Context, theta: [Sym; 3]) -> Mat3 {
     let k = skew(ctx, theta);
     let k2 = mat_mul(ctx, &k, &k);
     let half = ctx.rational(1, 2);
-    let (zero, one) = (ctx.zero(), ctx.one());
+    let zero = ctx.zero();
+    let one = ctx.one();
     [0, 1, 2].map(|i| {
         [0, 1, 2].map(|j| {
             let id = if i == j { one } else { zero };

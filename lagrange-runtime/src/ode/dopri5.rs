@@ -209,9 +209,11 @@ impl Dopri5 {
         check_problem(t0, t1, &y0.q, &y0.v)?;
         check_orientations(rhs, &y0.q)?;
         let co = Coefficients::<T>::new();
-        let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
+        let rtol = T::lit(self.control.rtol);
+        let atol = T::lit(self.control.atol);
         let stats = &mut run.stats;
-        let (mut y, mut k1) = (y0, y0.derivative(rhs, t0, &mut stats.evaluations)?);
+        let mut y = y0;
+        let mut k1 = y0.derivative(rhs, t0, &mut stats.evaluations)?;
         let h = first_step(
             &self.control,
             5,
@@ -225,7 +227,8 @@ impl Dopri5 {
         let mut stiffness = super::StiffnessTest::new("DOPRI5", self.stiffness_test, 3.25);
         loop {
             let (t_new, last) = steps.begin(&run.stats)?;
-            let (t, h) = (steps.t, steps.h);
+            let t = steps.t;
+            let h = steps.h;
             let s = match stages(rhs, &co, t, h, t_new, &y, &k1, &mut run.stats.evaluations) {
                 Ok(s) => s,
                 Err(e) => {
@@ -252,7 +255,8 @@ impl Dopri5 {
             // A projection moves the end point by about the local error; the
             // dense output keeps the unprojected polynomial, and the first stage
             // of the next step (FSAL) is re-evaluated at the projected state.
-            let (mut y_new, mut k7) = (s.y_new, s.k7);
+            let mut y_new = s.y_new;
+            let mut k7 = s.k7;
             if settle(rhs, t_new, &mut y_new.q, &mut y_new.v)? {
                 k7 = y_new.derivative(rhs, t_new, &mut run.stats.evaluations)?;
             }

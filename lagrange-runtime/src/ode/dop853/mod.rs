@@ -212,9 +212,11 @@ impl Dop853 {
         check_problem(t0, t1, &y0.q, &y0.v)?;
         check_orientations(rhs, &y0.q)?;
         let co = Coefficients::<T>::new();
-        let (rtol, atol) = (T::lit(self.control.rtol), T::lit(self.control.atol));
+        let rtol = T::lit(self.control.rtol);
+        let atol = T::lit(self.control.atol);
         let stats = &mut run.stats;
-        let (mut y, mut k1) = (y0, y0.derivative(rhs, t0, &mut stats.evaluations)?);
+        let mut y = y0;
+        let mut k1 = y0.derivative(rhs, t0, &mut stats.evaluations)?;
         let h = first_step(
             &self.control,
             8,
@@ -228,7 +230,8 @@ impl Dop853 {
         let mut stiffness = super::StiffnessTest::new("DOP853", self.stiffness_test, 6.1);
         loop {
             let (t_new, last) = steps.begin(&run.stats)?;
-            let (t, h) = (steps.t, steps.h);
+            let t = steps.t;
+            let h = steps.h;
             let s = match stages(rhs, &co, t, h, t_new, &y, &k1, &mut run.stats.evaluations) {
                 Ok(s) => s,
                 Err(e) => {
@@ -258,7 +261,8 @@ impl Dop853 {
             };
             // As in DOPRI5: the dense output keeps the unprojected polynomial;
             // the next first stage is re-evaluated at the projected state.
-            let (mut y_new, mut k13) = (y_new, k13);
+            let mut y_new = y_new;
+            let mut k13 = k13;
             if settle(rhs, t_new, &mut y_new.q, &mut y_new.v)? {
                 k13 = y_new.derivative(rhs, t_new, &mut run.stats.evaluations)?;
             }
@@ -374,7 +378,8 @@ fn error_norm<T: Real, const N: usize, const Q: usize>(
     atol: T,
     rtol: T,
 ) -> T {
-    let (mut s5, mut s3) = (T::zero(), T::zero());
+    let mut s5 = T::zero();
+    let mut s3 = T::zero();
     let parts = [
         (
             e5.q.as_slice(),
@@ -392,7 +397,8 @@ fn error_norm<T: Real, const N: usize, const Q: usize>(
     for (e5, e3, y, y_new) in parts {
         for i in 0..e5.len() {
             let sk = atol + rtol * abs(y[i]).max(abs(y_new[i]));
-            let (a, b) = (e5[i] / sk, e3[i] / sk);
+            let a = e5[i] / sk;
+            let b = e3[i] / sk;
             s5 += a * a;
             s3 += b * b;
         }
