@@ -49,7 +49,9 @@ impl SerialChain {
     pub fn benchmark(n: usize) -> Self {
         let links = (0..n)
             .map(|k| {
-                let (m, l, r) = (1.0 + 0.1 * k as f64, 1.0 - 0.02 * k as f64, 0.05);
+                let m = 1.0 + 0.1 * k as f64;
+                let l = 1.0 - 0.02 * k as f64;
+                let r = 0.05;
                 let previous = if k == 0 {
                     0.0
                 } else {
@@ -95,7 +97,8 @@ impl SerialChain {
             (Vector3::zeros(), Vector3::zeros());
         let mut joint_next: Option<Vector3<f64>> = None;
         for i in (0..n).rev() {
-            let (b, link) = (&bodies[i], &self.links[i]);
+            let b = &bodies[i];
+            let link = &self.links[i];
             let inertia = b.rotation * link.inertia * b.rotation.transpose();
             let force = link.mass * b.com_acc + f_next;
             let mut moment = inertia * b.alpha
@@ -157,7 +160,8 @@ impl SerialChain {
         v: &DVector<f64>,
     ) -> (DMatrix<f64>, DVector<f64>) {
         let n = self.links.len();
-        let (zero, none) = (DVector::zeros(n), Vector3::zeros());
+        let zero = DVector::zeros(n);
+        let none = Vector3::zeros();
         let mut m = DMatrix::zeros(n, n);
         for j in 0..n {
             let mut e = DVector::zeros(n);

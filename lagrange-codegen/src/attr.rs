@@ -151,7 +151,8 @@ fn parse_keywords<T: Copy + PartialEq>(
 /// The error for a key that is none of [`KEYS`], with the likely one if the key
 /// is a typo of it.
 fn unknown_key(key: &Ident) -> syn::Error {
-    let (other, keys) = (key.to_string(), KEYS.joined(", "));
+    let other = key.to_string();
+    let keys = KEYS.joined(", ");
     syn::Error::new(
         key.span(),
         match KEYS.closest(&other) {

@@ -85,7 +85,8 @@ pub fn spatial_chain_written_source(n: usize) -> String {
     let coords: Vec<String> = (1..=n).map(|k| format!("q{k}")).collect();
     let mut defs = Vec::new();
     for k in 0..n {
-        let (c, s) = (format!("cos(q{})", k + 1), format!("sin(q{})", k + 1));
+        let c = format!("cos(q{})", k + 1);
+        let s = format!("sin(q{})", k + 1);
         let prev = |i: usize, j: usize| -> String {
             if k == 0 {
                 (if i == j { "1" } else { "0" }).to_string()
@@ -235,7 +236,8 @@ impl Transcriber {
             .position(|r| f.starts_with(r))
             .expect("a factor is rot_x/rot_y/rot_z");
         let angle = f[5..].trim().to_string();
-        let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+        let i = (axis + 1) % 3;
+        let j = (axis + 2) % 3;
         self.matrix(&name, |r, c| match (r, c) {
             _ if r == axis && c == axis => "1".into(),
             _ if r == axis || c == axis => "0".into(),

@@ -92,7 +92,8 @@ fn row_derivatives(
     let q = ctx.coordinates();
     let qd = ctx.velocities();
     let qdd = ctx.accelerations();
-    let (n, k) = (q.len(), names.len());
+    let n = q.len();
+    let k = names.len();
     let nu_symbols: Vec<Sym> = names
         .iter()
         .map(|name| ctx.free_symbol(&format!("{prefix}:{name}")))
@@ -211,7 +212,8 @@ fn rows(
 fn rates(ctx: &mut Context, rows: &[Row]) -> Vec<Sym> {
     let qd = ctx.velocities();
     let mut along: Vec<(Sym, Sym)> = ctx.coordinates().into_iter().zip(qd.clone()).collect();
-    let (t, one) = (ctx.time(), ctx.one());
+    let t = ctx.time();
+    let one = ctx.one();
     along.push((t, one));
     rows.iter()
         .map(|r| {

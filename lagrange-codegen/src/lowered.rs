@@ -44,9 +44,8 @@ pub struct Lowered {
     pub generalized_forces: Vec<(usize, Sym)>,
     pub holonomic: Vec<ConstraintModel>,
     pub nonholonomic: Vec<ConstraintModel>,
-    /// The reduced form, if asked for: with the user's speeds (name, u(q, q̇, t)), or
-    /// `Some(None)` to choose independent velocities automatically.
-    pub speeds: Option<Option<Vec<(String, Sym)>>>,
+    /// The reduced form's speeds, if that form is asked for.
+    pub speeds: Option<ReducedSpeeds>,
     /// Whether to build the multiplier form.
     pub multipliers: bool,
     /// Optional outputs asked for with `emit(...)`.
@@ -191,4 +190,23 @@ pub enum SolidModel {
         axis: usize,
     },
     Line(Anchor),
+}
+
+/// The independent speeds of the reduced form.
+#[derive(Clone, Debug)]
+pub enum ReducedSpeeds {
+    /// The user's speeds, (name, u(q, q̇, t)), each linear in the velocities.
+    Named(Vec<(String, Sym)>),
+    /// Velocities chosen from the constraints.
+    Chosen,
+}
+
+impl ReducedSpeeds {
+    /// The user's speeds, if named.
+    pub fn named(&self) -> Option<&[(String, Sym)]> {
+        match self {
+            ReducedSpeeds::Named(speeds) => Some(speeds),
+            ReducedSpeeds::Chosen => None,
+        }
+    }
 }

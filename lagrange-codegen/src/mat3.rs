@@ -60,7 +60,8 @@ pub fn dot(ctx: &mut Context, a: &[Sym], b: &[Sym]) -> Sym {
 /// a × b.
 pub fn cross(ctx: &mut Context, a: [Sym; 3], b: [Sym; 3]) -> [Sym; 3] {
     [0, 1, 2].map(|i| {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let j = (i + 1) % 3;
+        let k = (i + 2) % 3;
         let p = ctx.mul(a[j], b[k]);
         let m = ctx.mul(a[k], b[j]);
         ctx.sub(p, m)
@@ -80,7 +81,9 @@ pub fn mat_mul(ctx: &mut Context, a: &Mat3, b: &Mat3) -> Mat3 {
 /// [v]×, the matrix of v × ·.
 pub fn skew(ctx: &mut Context, [x, y, z]: [Sym; 3]) -> Mat3 {
     let zero = ctx.zero();
-    let (nx, ny, nz) = (ctx.neg(x), ctx.neg(y), ctx.neg(z));
+    let nx = ctx.neg(x);
+    let ny = ctx.neg(y);
+    let nz = ctx.neg(z);
     [[zero, nz, y], [z, zero, nx], [ny, x, zero]]
 }
 
@@ -90,7 +93,8 @@ pub fn second_order_turn(ctx: &mut Context, theta: [Sym; 3]) -> Mat3 {
     let k = skew(ctx, theta);
     let k2 = mat_mul(ctx, &k, &k);
     let half = ctx.rational(1, 2);
-    let (zero, one) = (ctx.zero(), ctx.one());
+    let zero = ctx.zero();
+    let one = ctx.one();
     [0, 1, 2].map(|i| {
         [0, 1, 2].map(|j| {
             let id = if i == j { one } else { zero };
@@ -128,9 +132,15 @@ pub fn quaternion_matrix(ctx: &mut Context, [w, x, y, z]: [Sym; 4]) -> Mat3 {
         let p = ctx.mul(a, b);
         ctx.mul(two, p)
     };
-    let (xx, yy, zz) = (product(x, x), product(y, y), product(z, z));
-    let (xy, xz, yz) = (product(x, y), product(x, z), product(y, z));
-    let (wx, wy, wz) = (product(w, x), product(w, y), product(w, z));
+    let xx = product(x, x);
+    let yy = product(y, y);
+    let zz = product(z, z);
+    let xy = product(x, y);
+    let xz = product(x, z);
+    let yz = product(y, z);
+    let wx = product(w, x);
+    let wy = product(w, y);
+    let wz = product(w, z);
     let diagonal = |ctx: &mut Context, a: Sym, b: Sym| {
         let s = ctx.add(a, b);
         ctx.sub(one, s)

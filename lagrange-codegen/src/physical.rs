@@ -218,9 +218,12 @@ fn triangle(
     let names = ["A", "B", "C"];
     let tol = ROUND_OFF * (m[0] + m[1] + m[2]);
     for k in 0..3 {
-        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        let i = (k + 1) % 3;
+        let j = (k + 2) % 3;
         if m[i] + m[j] < m[k] - tol {
-            let (a, b, c) = (names[i], names[j], names[k]);
+            let a = names[i];
+            let b = names[j];
+            let c = names[k];
             lw.cx.error_spanned_by(
                 &elems[k],
                 format!(

@@ -129,7 +129,8 @@ fn solid(keyword: &Ident, keys: Vec<KeyValue>) -> syn::Result<Solid> {
         "box" => Solid::Box { size: take(0)? },
         "sphere" => Solid::Sphere { radius: take(0)? },
         _ => {
-            let (radius, length) = (take(0)?, take(1)?);
+            let radius = take(0)?;
+            let length = take(1)?;
             // The axis defaults to z, the axis of symmetry of most tops.
             let axis = slots[2].take().map_or(Ok(2), |a| axis(&a))?;
             if word == "cylinder" {

@@ -160,7 +160,8 @@ pub fn shard(len: usize, k: usize, count: usize) -> Range<usize> {
     if k >= count {
         return len..len;
     }
-    let (base, extra) = (len / count, len % count);
+    let base = len / count;
+    let extra = len % count;
     let start = k * base + k.min(extra);
     let size = base + usize::from(k < extra);
     start..start + size
@@ -194,7 +195,8 @@ mod tests {
                     "len {len}, count {count}"
                 );
                 let sizes: Vec<usize> = ranges.iter().map(|r| r.len()).collect();
-                let (lo, hi) = (sizes.iter().min().unwrap(), sizes.iter().max().unwrap());
+                let lo = sizes.iter().min().unwrap();
+                let hi = sizes.iter().max().unwrap();
                 assert!(hi - lo <= 1);
             }
         }

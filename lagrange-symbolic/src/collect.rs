@@ -67,7 +67,8 @@ impl Context {
             return self.common_coefficient(terms);
         };
         let inv = self.powi(best, -1);
-        let (mut with, mut without) = (Vec::new(), Vec::new());
+        let mut with = Vec::new();
+        let mut without = Vec::new();
         for t in terms {
             if self.units(t).contains(&best) {
                 with.push(self.mul(t, inv));

@@ -407,7 +407,9 @@ impl Context {
 
     /// sign(x): 1, 0 or −1 (0 at 0).
     pub fn sign(&mut self, x: Expr) -> Expr {
-        let (one, zero, minus) = (self.int(1), self.int(0), self.int(-1));
+        let one = self.int(1);
+        let zero = self.int(0);
+        let minus = self.int(-1);
         let neg = self.neg(x);
         let below = self.select(neg, minus, zero);
         self.select(x, one, below)
@@ -443,7 +445,8 @@ impl Context {
                 }
             }
             Node::Pow(b, x) => {
-                let (nb, nx) = (f(self, b), f(self, x));
+                let nb = f(self, b);
+                let nx = f(self, x);
                 if (nb, nx) == (b, x) {
                     e
                 } else {
@@ -455,7 +458,8 @@ impl Context {
                 if na == a { e } else { self.func(func, na) }
             }
             Node::Atan2(y, x) => {
-                let (ny, nx) = (f(self, y), f(self, x));
+                let ny = f(self, y);
+                let nx = f(self, x);
                 if (ny, nx) == (y, x) {
                     e
                 } else {
@@ -463,7 +467,9 @@ impl Context {
                 }
             }
             Node::Select(t, a, b) => {
-                let (nt, na, nb) = (f(self, t), f(self, a), f(self, b));
+                let nt = f(self, t);
+                let na = f(self, a);
+                let nb = f(self, b);
                 if (nt, na, nb) == (t, a, b) {
                     e
                 } else {

@@ -93,7 +93,8 @@ impl Context {
                 self.sum(&terms)
             }
             Node::Pow(b, x) => {
-                let (db, dx) = (d(self, b), d(self, x));
+                let db = d(self, b);
+                let dx = d(self, x);
                 self.pow_rule(b, x, db, dx)
             }
             Node::Call(f, u) => {
@@ -103,18 +104,21 @@ impl Context {
             }
             Node::Atan2(y, x) => {
                 // d atan2(y, x) = (x dy - y dx) / (x² + y²)
-                let (dy, dx) = (d(self, y), d(self, x));
+                let dy = d(self, y);
+                let dx = d(self, x);
                 let a = self.mul(x, dy);
                 let b = self.mul(y, dx);
                 let num = self.sub(a, b);
-                let (x2, y2) = (self.powi(x, 2), self.powi(y, 2));
+                let x2 = self.powi(x, 2);
+                let y2 = self.powi(y, 2);
                 let den = self.add(x2, y2);
                 self.div(num, den)
             }
             // Piecewise: the derivative of the branch taken (the switching
             // surface itself has measure zero; there the else branch's).
             Node::Select(t, a, b) => {
-                let (da, db) = (d(self, a), d(self, b));
+                let da = d(self, a);
+                let db = d(self, b);
                 self.select(t, da, db)
             }
         }

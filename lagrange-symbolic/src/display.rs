@@ -53,7 +53,8 @@ impl Context {
             },
             &Node::Call(f, a) => (self.show_call(f, a, None, st), ATOM),
             &Node::Atan2(y, x) => {
-                let (ys, xs) = (self.show(y, st).0, self.show(x, st).0);
+                let ys = self.show(y, st).0;
+                let xs = self.show(x, st).0;
                 let text = match st {
                     Style::Text => format!("atan2({ys}, {xs})"),
                     Style::Latex => format!("\\operatorname{{atan2}}\\left({ys}, {xs}\\right)"),
@@ -61,7 +62,9 @@ impl Context {
                 (text, ATOM)
             }
             &Node::Select(t, a, b) => {
-                let (ts, as_, bs) = (self.show(t, st).0, self.show(a, st).0, self.show(b, st).0);
+                let ts = self.show(t, st).0;
+                let as_ = self.show(a, st).0;
+                let bs = self.show(b, st).0;
                 let text = match st {
                     Style::Text => format!("(if {ts} > 0 {{ {as_} }} else {{ {bs} }})"),
                     Style::Latex => format!(

@@ -70,7 +70,8 @@ impl Program {
     /// (symbols and constants cost nothing); `None` if there is one piece.
     fn pieces(&self, max_ops: usize) -> Option<Vec<usize>> {
         let mut piece = vec![0usize; self.ops.len()];
-        let (mut count, mut current) = (0, 0);
+        let mut count = 0;
+        let mut current = 0;
         for (i, op) in self.ops.iter().enumerate() {
             if !is_inline(op) {
                 if count == max_ops {
@@ -215,11 +216,13 @@ impl Program {
                 quote!(#f::#name(#a))
             }
             Op::Atan2(y, x) => {
-                let (y, x) = (o(y), o(x));
+                let y = o(y);
+                let x = o(x);
                 quote!(#f::atan2(#y, #x))
             }
             Op::Powf(a, b) => {
-                let (a, b) = (o(a), o(b));
+                let a = o(a);
+                let b = o(b);
                 quote!(#f::powf(#a, #b))
             }
             Op::Powi(a, n) => {
@@ -227,7 +230,9 @@ impl Program {
                 quote!(#f::powi(#a, #n))
             }
             Op::Select(t, a, b) => {
-                let (t, a, b) = (o(t), o(a), o(b));
+                let t = o(t);
+                let a = o(a);
+                let b = o(b);
                 quote!(#f::select(#t, #a, #b))
             }
         })

@@ -147,7 +147,8 @@ impl Context {
         };
         let same = self.sub(a.coefficient, b.coefficient);
         let opposite = self.add(a.coefficient, b.coefficient);
-        let (plus, minus) = (self.add(lo, hi), self.sub(lo, hi));
+        let plus = self.add(lo, hi);
+        let minus = self.sub(lo, hi);
         let (func, angle) = match a.pair {
             // c sin lo cos hi ± c cos lo sin hi = c sin(lo ± hi)
             Pair::SinCos if self.is_zero(same) => (Func::Sin, plus),

@@ -276,7 +276,9 @@ mod tests {
     fn the_listing_evaluates_like_the_program() {
         // Parenthesisation: (a + b)·(a − b) and a − (b − c) must survive.
         let mut cx = Context::new();
-        let (a, b, c) = (cx.coordinate("a"), cx.coordinate("b"), cx.coordinate("c"));
+        let a = cx.coordinate("a");
+        let b = cx.coordinate("b");
+        let c = cx.coordinate("c");
         let s = cx.add(a, b);
         let d = cx.sub(a, b);
         let p1 = cx.mul(s, d);

@@ -160,11 +160,14 @@ impl Lowering<'_> {
                 (self.push(Op::Call(f, a)), false)
             }
             &Node::Atan2(y, x) => {
-                let (y, x) = (self.lower(y), self.lower(x));
+                let y = self.lower(y);
+                let x = self.lower(x);
                 (self.push(Op::Atan2(y, x)), false)
             }
             &Node::Select(t, a, b) => {
-                let (t, a, b) = (self.lower(t), self.lower(a), self.lower(b));
+                let t = self.lower(t);
+                let a = self.lower(a);
+                let b = self.lower(b);
                 (self.push(Op::Select(t, a, b)), false)
             }
         };
@@ -175,7 +178,8 @@ impl Lowering<'_> {
     fn lower_sum(&mut self, terms: &[Expr]) -> (Value, bool) {
         let cx = self.cx;
         let mut constant = 0.0;
-        let (mut pos, mut neg) = (Vec::new(), Vec::new());
+        let mut pos = Vec::new();
+        let mut neg = Vec::new();
         for &t in terms {
             if let Some(n) = cx.num(t) {
                 constant += n.to_f64();
@@ -193,7 +197,8 @@ impl Lowering<'_> {
         }
         // The same sum with every sign flipped, if it was computed already.
         let key = |a: &[Value], b: &[Value], c: f64| {
-            let (mut a, mut b) = (a.to_vec(), b.to_vec());
+            let mut a = a.to_vec();
+            let mut b = b.to_vec();
             a.sort_unstable();
             b.sort_unstable();
             (a, b, (c + 0.0).to_bits())
@@ -254,7 +259,8 @@ impl Lowering<'_> {
 
     fn lower_product(&mut self, coeff: Num, factors: &[Expr]) -> (Value, bool) {
         let cx = self.cx;
-        let (mut num, mut den) = (Vec::new(), Vec::new());
+        let mut num = Vec::new();
+        let mut den = Vec::new();
         let mut flipped = false;
         for &f in factors {
             let Node::Pow(b, x) = *cx.node(f) else {

@@ -55,7 +55,8 @@ impl Rational {
             return None;
         }
         let g = gcd(num, den).max(1);
-        let (mut n, mut d) = (num / g, den / g);
+        let mut n = num / g;
+        let mut d = den / g;
         if d < 0 {
             n = -n;
             d = -d;
@@ -115,7 +116,8 @@ impl Rational {
     pub fn checked_pow(self, n: i64) -> Option<Rational> {
         let base = if n < 0 { self.checked_recip()? } else { self };
         let mut e = n.unsigned_abs();
-        let (mut acc, mut sq) = (Rational::ONE, base);
+        let mut acc = Rational::ONE;
+        let mut sq = base;
         while e > 0 {
             if e & 1 == 1 {
                 acc = acc.checked_mul(sq)?;

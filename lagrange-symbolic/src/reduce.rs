@@ -67,7 +67,9 @@ mod tests {
         let mut cx = Context::new();
         let [w, x, y, z] = ["w", "x", "y", "z"].map(|n| cx.free_symbol(n));
         let sq = |cx: &mut Context, a| cx.powi(a, 2);
-        let (x2, y2, z2) = (sq(&mut cx, x), sq(&mut cx, y), sq(&mut cx, z));
+        let x2 = sq(&mut cx, x);
+        let y2 = sq(&mut cx, y);
+        let z2 = sq(&mut cx, z);
         let one = cx.one();
         let sum = cx.sum(&[x2, y2, z2]);
         let s = cx.sub(one, sum);

@@ -20,7 +20,9 @@ pub fn impl_atlas(
     triples: &[EulerTriple],
 ) -> TokenStream {
     let f = Frame::new(system, model.dof(), model.configuration_len());
-    let (s, n, ident) = (&f.s, &f.n, f.ident);
+    let s = &f.s;
+    let n = &f.n;
+    let ident = f.ident;
     let (impl_generics, ty_generics, where_clause) =
         (&f.impl_generics, &f.ty_generics, &f.where_clause);
     let nf = Literal::usize_unsuffixed(twin_model.configuration_len());

@@ -17,9 +17,13 @@ pub(super) fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
     let n = model.dof();
     let k = c.names.len();
     let kl = Literal::usize_unsuffixed(k);
-    let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_k, qvec) = (f.vec(nl), f.vec(&kl), f.qvec());
-    let (mat_nn, mat_kn) = (f.mat(nl, nl), f.mat(&kl, nl));
+    let s = &f.s;
+    let nl = &f.n;
+    let vec_n = f.vec(nl);
+    let vec_k = f.vec(&kl);
+    let qvec = f.qvec();
+    let mat_nn = f.mat(nl, nl);
+    let mat_kn = f.mat(&kl, nl);
     let sizes = f.sizes_after(&kl);
     let g_flat: Vec<Sym> = c.jacobian.iter().flatten().copied().collect();
 
@@ -36,7 +40,10 @@ pub(super) fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
     let derivatives = derivatives(e, f, c, &kl);
     let names = &c.names;
     let holonomic = c.holonomic;
-    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
@@ -86,9 +93,12 @@ pub(super) fn impl_constrained(e: &Emitter, f: &Frame, model: &Model) -> TokenSt
 
 /// `constraint_derivatives`, when the Jacobians were asked for.
 fn derivatives(e: &Emitter, f: &Frame, c: &ConstraintSet, kl: &Literal) -> TokenStream {
-    let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_k) = (f.vec(nl), f.vec(kl));
-    let (mat_nn, mat_kn) = (f.mat(nl, nl), f.mat(kl, nl));
+    let s = &f.s;
+    let nl = &f.n;
+    let vec_n = f.vec(nl);
+    let vec_k = f.vec(kl);
+    let mat_nn = f.mat(nl, nl);
+    let mat_kn = f.mat(kl, nl);
     match &c.derivatives {
         None => quote!(),
         Some(d) => {
@@ -118,9 +128,13 @@ fn constrained_system(e: &Emitter, f: &Frame, model: &Model, kl: &Literal) -> To
         .multipliers
         .as_ref()
         .map_or(0, |c| c.names.len());
-    let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_k, qvec) = (f.vec(nl), f.vec(kl), f.qvec());
-    let (mat_nn, mat_kn) = (f.mat(nl, nl), f.mat(kl, nl));
+    let s = &f.s;
+    let nl = &f.n;
+    let vec_n = f.vec(nl);
+    let vec_k = f.vec(kl);
+    let qvec = f.qvec();
+    let mat_nn = f.mat(nl, nl);
+    let mat_kn = f.mat(kl, nl);
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
     let mut all = model.hoisted_upper_and_rhs();
     let upper_len = all.len() - n;
@@ -132,7 +146,10 @@ fn constrained_system(e: &Emitter, f: &Frame, model: &Model, kl: &Literal) -> To
     let m_fill = e.symmetric_matrix(mu, n);
     let g_fill_all = e.fill_dense(&quote!(g), gs, n);
 
-    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]

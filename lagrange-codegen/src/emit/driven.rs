@@ -11,8 +11,12 @@ use crate::mechanics::Model;
 /// defaults (ΔQ = 0). Every derived system is `Driven` exactly once, so the
 /// number of inputs is inferred wherever one is needed.
 fn driven_by_nothing(f: &Frame) -> TokenStream {
-    let (s, sizes) = (&f.s, f.sizes_after(&Literal::usize_unsuffixed(0)));
-    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let s = &f.s;
+    let sizes = f.sizes_after(&Literal::usize_unsuffixed(0));
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
     quote! {
         #[automatically_derived]
         impl #ig ::lagrange::__private::Driven<#s, #sizes> for #ident #tg #wc {}
@@ -27,10 +31,14 @@ pub(super) fn impl_driven(e: &Emitter, f: &Frame, model: &Model) -> TokenStream 
     };
     let p = inputs.names.len();
     let pl = Literal::usize_unsuffixed(p);
-    let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_p, qvec) = (f.vec(nl), f.vec(&pl), f.qvec());
+    let s = &f.s;
+    let nl = &f.n;
+    let vec_n = f.vec(nl);
+    let vec_p = f.vec(&pl);
+    let qvec = f.qvec();
     let sizes = f.sizes_after(&pl);
-    let (mat_np, mat_nn) = (f.mat(nl, &pl), f.mat(nl, nl));
+    let mat_np = f.mat(nl, &pl);
+    let mat_nn = f.mat(nl, nl);
     let forces = e.vector_body(&inputs.forces, s, nl);
     let body = e.dense_matrices(&[
         ("du", &inputs.jacobian_u, mat_np.clone()),
@@ -38,7 +46,10 @@ pub(super) fn impl_driven(e: &Emitter, f: &Frame, model: &Model) -> TokenStream 
         ("dv", &inputs.jacobian_v, mat_nn.clone()),
     ]);
     let names = &inputs.names;
-    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]

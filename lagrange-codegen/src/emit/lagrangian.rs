@@ -44,7 +44,8 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let reduced = impl_reduced(&e, &f, model);
     let driven = impl_driven(&e, &f, model);
     let posed = impl_posed(&e, &f, model, &system.scalar);
-    let (docs_macro, docs_text) = (&docs.name, &docs.equations);
+    let docs_macro = &docs.name;
+    let docs_text = &docs.equations;
     quote! {
         macro_rules! #docs_macro {
             () => {
@@ -109,7 +110,8 @@ fn lagrangian_trait(
     model: &Model,
     outputs: TokenStream,
 ) -> TokenStream {
-    let (s, nl) = (&f.s, &f.n);
+    let s = &f.s;
+    let nl = &f.n;
     let n = model.dof();
     let (m_lets, m_outs) = e.program(&e.upper());
     let m_fill = e.symmetric_matrix(&m_outs, n);
@@ -120,14 +122,22 @@ fn lagrangian_trait(
     let rheonomic = model.motion.rheonomic;
     let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
     let cyclic = cyclic_const(model, nl);
-    let (route, atlas) = (route_const(model), atlas_const(system));
+    let route = route_const(model);
+    let atlas = atlas_const(system);
     let check_parameters = check_parameters(e, model);
     let visit_form = visit_form(f, model);
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
-    let (vec_t, mat_t, qvec_t) = (f.vec(nl), f.mat(nl, nl), f.qvec());
-    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
-    let (sizes, nq) = (f.sizes(), &f.nq);
-    let (orientations, limits) = (orientation_consts(model), position_limits(system, &names));
+    let vec_t = f.vec(nl);
+    let mat_t = f.mat(nl, nl);
+    let qvec_t = f.qvec();
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
+    let sizes = f.sizes();
+    let nq = &f.nq;
+    let orientations = orientation_consts(model);
+    let limits = position_limits(system, &names);
     quote! {
         /// The system as `#[derive(Lagrangian)]` derived it; the equations are
         /// on the type's inherent impl (`EQUATIONS`).
@@ -205,7 +215,8 @@ fn position_limits(system: &System, names: &[String]) -> TokenStream {
                     quote!(#x)
                 }
             };
-            let (lo, hi) = (bound(lo), bound(hi));
+            let lo = bound(lo);
+            let hi = bound(hi);
             Some(quote! {
                 ::lagrange::__private::JointLimit { joint: #name, coordinate: #at, lower: #lo, upper: #hi }
             })
@@ -294,11 +305,15 @@ fn route_const(model: &Model) -> TokenStream {
 
 /// `kinetic_energy`, `potential_energy` and `integral`.
 fn energy_methods(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
-    let (s, vec_t, qvec_t) = (&f.s, f.vec(&f.n), f.qvec());
+    let s = &f.s;
+    let vec_t = f.vec(&f.n);
+    let qvec_t = f.qvec();
     let (k_lets, k_out) = e.program(&[model.energies.kinetic]);
     let (p_lets, p_out) = e.program(&[model.energies.potential]);
     let (i_lets, i_out) = e.program(&[model.energies.integral]);
-    let (k_out, p_out, i_out) = (&k_out[0], &p_out[0], &i_out[0]);
+    let k_out = &k_out[0];
+    let p_out = &p_out[0];
+    let i_out = &i_out[0];
     quote! {
         #[inline]
         fn kinetic_energy(&self, q: &#qvec_t, v: &#vec_t, t: #s) -> #s {
@@ -336,10 +351,12 @@ fn urdf_consts(system: &System) -> TokenStream {
         }
     };
     let limits = u.limits.iter().map(|&(lo, hi)| {
-        let (lo, hi) = (bound(lo), bound(hi));
+        let lo = bound(lo);
+        let hi = bound(hi);
         quote!((#lo, #hi))
     });
-    let (robot, n) = (&u.robot, Literal::usize_unsuffixed(u.limits.len()));
+    let robot = &u.robot;
+    let n = Literal::usize_unsuffixed(u.limits.len());
     let snapped = u.snapped.iter().map(|(at, written, exact)| {
         let (w, e) = (
             Literal::f64_suffixed(*written),
@@ -378,8 +395,13 @@ fn urdf_consts(system: &System) -> TokenStream {
 
 /// The inherent impl with `EQUATIONS`, `EQUATIONS_LATEX` and the optional outputs.
 fn equations_impl(f: &Frame, docs: &Docs, extras: TokenStream) -> TokenStream {
-    let (docs_macro, latex, impl_doc) = (&docs.name, &docs.latex, &docs.impl_doc);
-    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let docs_macro = &docs.name;
+    let latex = &docs.latex;
+    let impl_doc = &docs.impl_doc;
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
     quote! {
         #impl_doc
         #[automatically_derived]
@@ -408,7 +430,8 @@ struct Joint {
 }
 
 fn joint_program(e: &Emitter, f: &Frame, system: &System, model: &Model) -> Joint {
-    let (s, nl) = (&f.s, &f.n);
+    let s = &f.s;
+    let nl = &f.n;
     let n = model.dof();
     let joint = model.hoisted_upper_and_rhs();
     let upper_len = joint.len() - n;
@@ -427,7 +450,8 @@ fn joint_program(e: &Emitter, f: &Frame, system: &System, model: &Model) -> Join
                 .collect();
             let bodies = &chunked.chunks;
             let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
-            let (vec_t, qvec_t) = (f.vec(nl), f.qvec());
+            let vec_t = f.vec(nl);
+            let qvec_t = f.qvec();
             let lets = quote! {
                 let mut s = [#zero; #slots];
                 #(self.#names(p, q, v, t, &mut s);)*
@@ -460,8 +484,11 @@ fn hoisted_impl(
     model: &Model,
     outputs: TokenStream,
 ) -> TokenStream {
-    let (s, nl) = (&f.s, &f.n);
-    let (vec_t, mat_t, qvec_t) = (f.vec(nl), f.mat(nl, nl), f.qvec());
+    let s = &f.s;
+    let nl = &f.n;
+    let vec_t = f.vec(nl);
+    let mat_t = f.mat(nl, nl);
+    let qvec_t = f.qvec();
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
     let (t_lets, t_outs) = e.program(&model.hoisted.terms);
     let Joint {
@@ -470,7 +497,10 @@ fn hoisted_impl(
         rhs: j_rhs,
         pieces: j_pieces,
     } = joint_program(e, f, system, model);
-    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
     quote! {
         /// The parameter-only terms and the programs over them.
         #[automatically_derived]

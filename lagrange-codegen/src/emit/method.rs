@@ -57,7 +57,8 @@ pub(super) fn check_parameters(e: &Emitter, model: &Model) -> TokenStream {
 /// a constrained description in its form: the multiplier form when it is
 /// emitted, else the reduced form; nothing for an unconstrained one.
 pub(super) fn visit_form(f: &Frame, model: &Model) -> TokenStream {
-    let (s, nl) = (&f.s, &f.n);
+    let s = &f.s;
+    let nl = &f.n;
     let (method, k) = match (&model.constraints.multipliers, &model.constraints.reduced) {
         (Some(c), _) => (quote!(multipliers), c.names.len()),
         (None, Some(r)) => (quote!(reduced), r.names.len()),

@@ -94,7 +94,8 @@ impl<'a> Frame<'a> {
 
     /// The trait arguments after the scalar: `N`, or `N, Q` with orientations.
     fn sizes(&self) -> TokenStream {
-        let (n, nq) = (&self.n, &self.nq);
+        let n = &self.n;
+        let nq = &self.nq;
         if n.to_string() == nq.to_string() {
             quote!(#n)
         } else {
@@ -106,7 +107,8 @@ impl<'a> Frame<'a> {
     /// `k` after N (`Constrained<T, N, K, Q>`): `N, K`, or `N, K, Q` with
     /// orientations.
     fn sizes_after(&self, k: &Literal) -> TokenStream {
-        let (n, nq) = (&self.n, &self.nq);
+        let n = &self.n;
+        let nq = &self.nq;
         if n.to_string() == nq.to_string() {
             quote!(#n, #k)
         } else {
@@ -117,7 +119,8 @@ impl<'a> Frame<'a> {
     /// The arguments after `Self` of the form visitor: none, or `Q` with
     /// orientations.
     fn configuration_after_self(&self) -> TokenStream {
-        let (n, nq) = (&self.n, &self.nq);
+        let n = &self.n;
+        let nq = &self.nq;
         if n.to_string() == nq.to_string() {
             quote!()
         } else {

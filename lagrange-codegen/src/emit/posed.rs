@@ -17,8 +17,13 @@ use crate::mechanics::Model;
 /// The `Posed` impl of a derived description.
 pub(super) fn impl_posed(e: &Emitter, f: &Frame, model: &Model, scalar: &Scalar) -> TokenStream {
     let poses = &model.poses;
-    let (s, sizes, qvec) = (&f.s, f.sizes(), f.qvec());
-    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let s = &f.s;
+    let sizes = f.sizes();
+    let qvec = f.qvec();
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
     let p = quote!(::lagrange::__private);
     let bodies: Vec<&String> = poses.bodies.iter().map(|b| &b.name).collect();
     let points: Vec<&String> = poses.points.iter().map(|b| &b.name).collect();
@@ -68,7 +73,8 @@ fn option(i: Option<usize>) -> TokenStream {
 fn vector3(outs: &[TokenStream], scalar: &Scalar) -> TokenStream {
     let zero = constant(scalar, 0.0);
     let z = outs.get(2).cloned().unwrap_or(zero);
-    let (x, y) = (&outs[0], &outs[1]);
+    let x = &outs[0];
+    let y = &outs[1];
     quote!(::lagrange::__private::Vector3::new(#x, #y, #z))
 }
 
@@ -94,7 +100,8 @@ fn pose_program(e: &Emitter, poses: &Poses, scalar: &Scalar) -> TokenStream {
     for i in (0..poses.bodies.len()).map(index) {
         let (mine, tail) = rest.split_at(15);
         rest = tail;
-        let (origin, centre) = (vector3(&mine[..3], scalar), vector3(&mine[3..6], scalar));
+        let origin = vector3(&mine[..3], scalar);
+        let centre = vector3(&mine[3..6], scalar);
         let rotation = matrix3(&mine[6..]);
         sets.extend(quote! {
             bodies[#i] = ::lagrange::__private::BodyPose { origin: #origin, centre: #centre, rotation: #rotation };
@@ -103,7 +110,8 @@ fn pose_program(e: &Emitter, poses: &Poses, scalar: &Scalar) -> TokenStream {
     for (i, x) in poses.points.iter().enumerate() {
         let (mine, tail) = rest.split_at(x.position.len());
         rest = tail;
-        let (i, position) = (index(i), vector3(mine, scalar));
+        let i = index(i);
+        let position = vector3(mine, scalar);
         sets.extend(quote!(points[#i] = #position;));
     }
     quote!(#lets #sets)
@@ -118,7 +126,9 @@ fn inertia_program(e: &Emitter, poses: &Poses) -> TokenStream {
     }
     let (lets, outs) = e.program(&all);
     let sets = outs.chunks(10).enumerate().map(|(i, c)| {
-        let (i, mass, inertia) = (index(i), &c[0], matrix3(&c[1..]));
+        let i = index(i);
+        let mass = &c[0];
+        let inertia = matrix3(&c[1..]);
         quote!(out[#i] = ::lagrange::__private::BodyInertia { mass: #mass, inertia: #inertia };)
     });
     quote!(#lets #(#sets)*)
@@ -189,7 +199,8 @@ fn solid(solid: &SolidModel, sz: &[TokenStream], scalar: &Scalar) -> TokenStream
             quote!(#p::Sphere { radius: #r })
         }
         SolidModel::Cylinder { axis, .. } | SolidModel::Capsule { axis, .. } => {
-            let (r, l) = (&sz[0], &sz[1]);
+            let r = &sz[0];
+            let l = &sz[1];
             let axis = index(*axis);
             let kind = match solid {
                 SolidModel::Cylinder { .. } => quote!(Cylinder),

@@ -18,8 +18,12 @@ pub(super) fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream
     };
     let n = model.dof();
     let kl = Literal::usize_unsuffixed(r.names.len());
-    let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_k, mat_nn, qvec) = (f.vec(nl), f.vec(&kl), f.mat(nl, nl), f.qvec());
+    let s = &f.s;
+    let nl = &f.n;
+    let vec_n = f.vec(nl);
+    let vec_k = f.vec(&kl);
+    let mat_nn = f.mat(nl, nl);
+    let qvec = f.qvec();
     let sizes = f.sizes_after(&kl);
 
     let (u_lets, u_outs) = e.program(&r.speeds);
@@ -48,8 +52,13 @@ pub(super) fn impl_reduced(e: &Emitter, f: &Frame, model: &Model) -> TokenStream
         }
     };
     let positions = holonomic_positions(e, f, &r.positions);
-    let (names, row_names, free) = (&r.names, &r.rows, r.free_speeds);
-    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let names = &r.names;
+    let row_names = &r.rows;
+    let free = r.free_speeds;
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
@@ -90,8 +99,10 @@ fn holonomic_positions(e: &Emitter, f: &Frame, positions: &[Sym]) -> TokenStream
     if positions.is_empty() {
         return quote!();
     }
-    let (s, nl) = (&f.s, &f.n);
-    let (vec_n, qvec) = (f.vec(nl), f.qvec());
+    let s = &f.s;
+    let nl = &f.n;
+    let vec_n = f.vec(nl);
+    let qvec = f.qvec();
     let h = Literal::usize_unsuffixed(positions.len());
     let (lets, outs) = e.program(positions);
     let index = (0..positions.len()).map(Literal::usize_unsuffixed);

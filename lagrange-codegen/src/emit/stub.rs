@@ -57,14 +57,20 @@ fn stub_constraint_impls(system: &System) -> TokenStream {
     let n = system.coordinates.len();
     let m = system.holonomic.len() + system.nonholonomic.len();
     let f = Frame::new(system, n, n);
-    let (s, nl) = (&f.s, &f.n);
+    let s = &f.s;
+    let nl = &f.n;
     let vec_n = f.vec(nl);
-    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
     let mut out = TokenStream::new();
     if !system.inputs.is_empty() {
         let p = system.inputs.len();
         let pl = Literal::usize_unsuffixed(p);
-        let (vec_p, mat_np, mat_nn) = (f.vec(&pl), f.mat(nl, &pl), f.mat(nl, nl));
+        let vec_p = f.vec(&pl);
+        let mat_np = f.mat(nl, &pl);
+        let mat_nn = f.mat(nl, nl);
         let names: Vec<String> = system.inputs.iter().map(|u| u.to_string()).collect();
         out.extend(quote! {
             #[allow(unused_variables)]
@@ -78,7 +84,9 @@ fn stub_constraint_impls(system: &System) -> TokenStream {
     let chosen = crate::check::formulations(system);
     if chosen.contains(&Formulation::Multipliers) && m > 0 {
         let kl = Literal::usize_unsuffixed(m);
-        let (vec_k, mat_kn, mat_nn) = (f.vec(&kl), f.mat(&kl, nl), f.mat(nl, nl));
+        let vec_k = f.vec(&kl);
+        let mat_kn = f.mat(&kl, nl);
+        let mat_nn = f.mat(nl, nl);
         let names: Vec<String> = system
             .holonomic
             .iter()

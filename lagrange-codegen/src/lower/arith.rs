@@ -55,7 +55,8 @@ impl Lowerer<'_> {
         }
         let l = self.expr(&b.left, mode);
         let r = self.expr(&b.right, mode);
-        let (l, r) = (l?, r?);
+        let l = l?;
+        let r = r?;
         match &b.op {
             BinOp::Add(_) => Some(self.ctx.add(l, r)),
             BinOp::Sub(_) => Some(self.ctx.sub(l, r)),

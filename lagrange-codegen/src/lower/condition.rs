@@ -38,7 +38,9 @@ impl Lowerer<'_> {
                 None
             }
         };
-        let (cond, then, otherwise) = (cond?, then?, otherwise?);
+        let cond = cond?;
+        let then = then?;
+        let otherwise = otherwise?;
         Some(self.branch(&cond, then, otherwise))
     }
 
@@ -70,7 +72,8 @@ impl Lowerer<'_> {
             Expr::Binary(b) if matches!(b.op, BinOp::And(_) | BinOp::Or(_)) => {
                 let l = self.condition(&b.left, mode);
                 let r = self.condition(&b.right, mode);
-                let (l, r) = (Box::new(l?), Box::new(r?));
+                let l = Box::new(l?);
+                let r = Box::new(r?);
                 Some(match b.op {
                     BinOp::And(_) => Cond::And(l, r),
                     _ => Cond::Or(l, r),
@@ -110,7 +113,8 @@ impl Lowerer<'_> {
         };
         let l = self.expr(&b.left, mode);
         let r = self.expr(&b.right, mode);
-        let (l, r) = (l?, r?);
+        let l = l?;
+        let r = r?;
         let left_larger_is_positive = matches!(b.op, BinOp::Gt(_) | BinOp::Le(_));
         let d = if left_larger_is_positive {
             self.ctx.sub(l, r)

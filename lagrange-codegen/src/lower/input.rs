@@ -54,7 +54,9 @@ impl NoInputs {
         "apply the input as a force (`force`, `generalized_force`, `potential` or `dissipation`)";
 
     pub(super) fn message(self, input: &str, via: Option<&str>) -> String {
-        let (place, why, fix) = (self.place, self.why, Self::FIX);
+        let place = self.place;
+        let why = self.why;
+        let fix = Self::FIX;
         match via {
             None => format!("input `{input}` cannot appear in {place}: {why}; {fix}"),
             Some(d) => format!(

@@ -153,10 +153,12 @@ impl Lowerer<'_> {
 
     /// rot_axis(a) and ω = ȧ e_axis.
     fn elementary(&mut self, axis: usize, angle: Sym) -> Rotation {
-        let (zero, one) = (self.ctx.zero(), self.ctx.one());
+        let zero = self.ctx.zero();
+        let one = self.ctx.one();
         let (c, s) = crate::mat3::cos_sin(&mut self.ctx, angle);
         let ms = self.ctx.neg(s);
-        let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+        let i = (axis + 1) % 3;
+        let j = (axis + 2) % 3;
         let mut m = [[zero; 3]; 3];
         m[axis][axis] = one;
         m[i][i] = c;

@@ -120,7 +120,8 @@ pub(super) fn at_fixed_omega(
     for k in 0..orientations {
         let o = first + 3 * k;
         for j in 0..3 {
-            let (a, b) = (o + (j + 1) % 3, o + (j + 2) % 3);
+            let a = o + (j + 1) % 3;
+            let b = o + (j + 2) % 3;
             // (π × ω)_j = π_a ω_b − π_b ω_a.
             let ab = ctx.mul(p[a], v[b]);
             let ba = ctx.mul(p[b], v[a]);
@@ -151,7 +152,9 @@ pub(super) fn along_the_motion(
     for k in 0..orientations {
         let o = first + 3 * k;
         let [x, y, z] = [v[o], v[o + 1], v[o + 2]];
-        let (nx, ny, nz) = (ctx.neg(x), ctx.neg(y), ctx.neg(z));
+        let nx = ctx.neg(x);
+        let ny = ctx.neg(y);
+        let nz = ctx.neg(z);
         let zero = ctx.zero();
         let skew = [[zero, nz, y], [z, zero, nx], [ny, x, zero]];
         for (row, m) in c.iter_mut().zip(mass) {

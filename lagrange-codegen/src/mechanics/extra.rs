@@ -207,7 +207,8 @@ pub(super) fn coriolis(
             orientations,
         )),
         None => wanted.then(|| {
-            let (q, qd) = (ctx.coordinates(), ctx.velocities());
+            let q = ctx.coordinates();
+            let qd = ctx.velocities();
             coriolis_matrix(ctx, mass, &q, &qd)
         }),
     };

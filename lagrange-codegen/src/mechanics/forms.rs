@@ -5,7 +5,7 @@ use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::{Constrained, DeriveError};
 use crate::constraint::{ConstraintSet, Reduction};
-use crate::lowered::OrientationModel;
+use crate::lowered::{OrientationModel, ReducedSpeeds};
 
 /// G, g, Φ and γ, with their derivatives when the Jacobians are asked for.
 pub(super) fn multiplier_form(
@@ -33,7 +33,7 @@ pub(super) fn reduced_if_asked(
         return Ok(None);
     };
     let velocities = velocity_names(coordinates, orientations);
-    reduced_form(ctx, c, speeds.as_deref(), &velocities, jacobians).map(Some)
+    reduced_form(ctx, c, speeds.named(), &velocities, jacobians).map(Some)
 }
 
 /// The velocities' names, as `Lagrangian::VELOCITIES` gives them: the
@@ -68,7 +68,7 @@ fn reduced_form(
     };
     let mut r = crate::constraint::reduce(ctx, c.holonomic, c.nonholonomic, speeds, velocities)
         .map_err(DeriveError::Reduction)?;
-    r.free_speeds = c.speeds.as_ref().is_some_and(|s| s.is_none());
+    r.free_speeds = matches!(c.speeds, Some(ReducedSpeeds::Chosen));
     if jacobians {
         r.derivatives = Some(crate::constraint::reduced_derivatives(ctx, &r));
     }

@@ -79,7 +79,8 @@ fn accelerations(ctx: &mut Context, p: &[Sym; 3], r: &Mat3, q: &[Sym], v: &[Sym]
 /// The frames' Jacobians and biases and the centre of mass of `particles`
 /// (mass, position), bodies' centres included.
 pub(super) fn frames(ctx: &mut Context, poses: &Poses, particles: &[(Sym, Vec<Sym>)]) -> Frames {
-    let (q, v) = (ctx.coordinates(), ctx.velocities());
+    let q = ctx.coordinates();
+    let v = ctx.velocities();
     let mut jacobians = Vec::new();
     let mut biases = Vec::new();
     for body in &poses.bodies {

@@ -47,7 +47,7 @@ use lagrange_symbolic::{Context, Expr as Sym};
 
 use crate::ast::Extra;
 use crate::constraint::{ConstraintSet, Reduction};
-use crate::lowered::{ConstraintModel, Lowered, Poses};
+use crate::lowered::{ConstraintModel, Lowered, Poses, ReducedSpeeds};
 use force::Applied;
 use forms::{multiplier_form, reduced_if_asked};
 use kinematics::at_zero;
@@ -151,7 +151,8 @@ fn unconstrained(
     let tree = recursive::detect(ctx, route, masses, gravity);
     let generic = wants_generic(route, &tree)?;
     let (tree, not_a_tree) = tree.map_or_else(|why| (None, Some(why)), |t| (Some(t), None));
-    let (points, spins) = (&lowered.points, &lowered.spins);
+    let points = &lowered.points;
+    let spins = &lowered.spins;
     let (kin, spin, rheonomic, kinetic) =
         kinematics::derive(ctx, points, spins, generic, &zero_acc);
     let generic_terms =
@@ -366,7 +367,7 @@ pub(super) struct Constrained<'a> {
     pub holonomic: &'a [ConstraintModel],
     pub nonholonomic: &'a [ConstraintModel],
     pub multipliers: bool,
-    pub speeds: Option<Option<Vec<(String, Sym)>>>,
+    pub speeds: Option<ReducedSpeeds>,
 }
 
 impl<'a> Constrained<'a> {
@@ -374,7 +375,7 @@ impl<'a> Constrained<'a> {
         holonomic: &'a [ConstraintModel],
         nonholonomic: &'a [ConstraintModel],
         multipliers: bool,
-        speeds: Option<Option<Vec<(String, Sym)>>>,
+        speeds: Option<ReducedSpeeds>,
     ) -> Self {
         Constrained {
             holonomic,
@@ -412,7 +413,8 @@ fn in_theta(
     let mut frames =
         (extras.contains(&Extra::Kinematics)).then(|| frames::frames(ctx, &d.poses, particles));
     let mut coriolis = d.chart_mass.take().map(|mass| {
-        let (q, qd) = (ctx.coordinates(), ctx.velocities());
+        let q = ctx.coordinates();
+        let qd = ctx.velocities();
         extra::coriolis_matrix(ctx, &mass, &q, &qd)
     });
     let forms = chart::Forms {

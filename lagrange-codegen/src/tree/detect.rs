@@ -138,7 +138,8 @@ fn body_chains(
         let Some(factors) = body.factors.as_ref() else {
             return Err(NotATree::body(&names[b], BodyFault::NotFactored));
         };
-        let (mut joints, mut pending) = (Vec::new(), Vec::new());
+        let mut joints = Vec::new();
+        let mut pending = Vec::new();
         for &factor in factors {
             let (axis, angle) = match factor {
                 Factor::Turn(axis, angle) => (axis, angle),
@@ -209,7 +210,8 @@ fn constant_rotation(ctx: &mut Context, factors: &[Constant]) -> Option<Mat3> {
 }
 
 fn identity(ctx: &mut Context) -> Mat3 {
-    let (zero, one) = (ctx.zero(), ctx.one());
+    let zero = ctx.zero();
+    let one = ctx.one();
     [0, 1, 2].map(|i| [0, 1, 2].map(|j| if i == j { one } else { zero }))
 }
 
@@ -374,7 +376,8 @@ fn link_bodies(
     let zero = ctx.zero();
     for (k, &b) in order.iter().enumerate() {
         let hook = hook(ctx, skeleton, chains, &frames, (&order[..k], b), names)?;
-        let (mut up, mut offset) = (hook.up, Some(hook.at));
+        let mut up = hook.up;
+        let mut offset = Some(hook.at);
         for &(dir, q) in &hook.slides {
             claim(ctx, &mut used, q, b, &names[b])?;
             links.push(Link {

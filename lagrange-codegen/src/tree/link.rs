@@ -26,11 +26,14 @@ pub(super) fn trig(ctx: &mut Context, link: &Link) -> (Sym, Sym) {
 
 /// E x, E = rot_axis(q) (link axes to parent axes).
 pub(super) fn rotate(ctx: &mut Context, axis: usize, (c, s): (Sym, Sym), x: [Sym; 3]) -> [Sym; 3] {
-    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let i = (axis + 1) % 3;
+    let j = (axis + 2) % 3;
     let mut out = x;
-    let (ci, sj) = (ctx.mul(c, x[i]), ctx.mul(s, x[j]));
+    let ci = ctx.mul(c, x[i]);
+    let sj = ctx.mul(s, x[j]);
     out[i] = ctx.sub(ci, sj);
-    let (si, cj) = (ctx.mul(s, x[i]), ctx.mul(c, x[j]));
+    let si = ctx.mul(s, x[i]);
+    let cj = ctx.mul(c, x[j]);
     out[j] = ctx.add(si, cj);
     out
 }
@@ -127,9 +130,11 @@ pub(super) fn add_motion(ctx: &mut Context, link: &Link, a: &mut [[Sym; 3]; 2], 
 
 /// The rotation about `axis` by a constant `angle`, as a matrix.
 pub(super) fn elementary(ctx: &mut Context, axis: usize, angle: Sym) -> Mat3 {
-    let (zero, one) = (ctx.zero(), ctx.one());
+    let zero = ctx.zero();
+    let one = ctx.one();
     let (c, s) = crate::mat3::cos_sin(ctx, angle);
-    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let i = (axis + 1) % 3;
+    let j = (axis + 2) % 3;
     let mut m = [[zero; 3]; 3];
     m[axis][axis] = one;
     m[i][i] = c;
@@ -156,7 +161,8 @@ pub(super) fn add3(ctx: &mut Context, a: [Sym; 3], b: [Sym; 3]) -> [Sym; 3] {
 
 /// x × e_axis q̇ without forming the zero products.
 pub(super) fn cross_axis(ctx: &mut Context, x: [Sym; 3], axis: usize, rate: Sym) -> [Sym; 3] {
-    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let i = (axis + 1) % 3;
+    let j = (axis + 2) % 3;
     let zero = ctx.zero();
     let mut out = [zero; 3];
     out[i] = ctx.mul(x[j], rate);

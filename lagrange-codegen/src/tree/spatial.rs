@@ -29,7 +29,8 @@ pub(super) fn rigid_spatial(ctx: &mut Context, i: Option<&Inertia>) -> Spatial {
     let h = i.first;
     let mut b = [[zero; 3]; 3];
     for (r, row) in b.iter_mut().enumerate() {
-        let (j, k) = ((r + 1) % 3, (r + 2) % 3);
+        let j = (r + 1) % 3;
+        let k = (r + 2) % 3;
         row[k] = h[j];
         row[j] = ctx.neg(h[k]);
     }

@@ -135,7 +135,8 @@ fn rpy_factors(rpy: &[Number; 3], line: u32) -> Result<Vec<TokenStream>, ReadErr
     let mut out = Vec::new();
     for (i, axis) in [(2, "z"), (1, "y"), (0, "x")] {
         if !rpy[i].is_zero() {
-            let (rot, angle) = (elementary(axis), number(rpy[i].value, line)?);
+            let rot = elementary(axis);
+            let angle = number(rpy[i].value, line)?;
             out.push(quote!(#rot(#angle)));
         }
     }
@@ -174,7 +175,10 @@ fn axis_factors(
     let alpha = n[1].atan2(n[0]);
     let beta = n[2].clamp(-1.0, 1.0).acos();
     let [a, b, minus_b, minus_a] = [alpha, beta, -beta, -alpha].map(|x| number(x, line));
-    let (a, b, minus_b, minus_a) = (a?, b?, minus_b?, minus_a?);
+    let a = a?;
+    let b = b?;
+    let minus_b = minus_b?;
+    let minus_a = minus_a?;
     Ok(vec![
         quote!(rot_z(#a)),
         quote!(rot_y(#b)),

@@ -130,17 +130,21 @@ fn symmetric_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
             let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
             let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
             let t = if theta == 0.0 { 1.0 } else { t };
-            let (c, s) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
+            let c = 1.0 / (t * t + 1.0).sqrt();
+            let s = t / (t * t + 1.0).sqrt();
             for row in &mut a {
-                let (akp, akq) = (row[p], row[q]);
+                let akp = row[p];
+                let akq = row[q];
                 row[p] = c * akp - s * akq;
                 row[q] = s * akp + c * akq;
             }
-            let (rp, rq) = (a[p], a[q]);
+            let rp = a[p];
+            let rq = a[q];
             a[p] = [0, 1, 2].map(|k| c * rp[k] - s * rq[k]);
             a[q] = [0, 1, 2].map(|k| s * rp[k] + c * rq[k]);
             for row in &mut v {
-                let (vp, vq) = (row[p], row[q]);
+                let vp = row[p];
+                let vq = row[q];
                 row[p] = c * vp - s * vq;
                 row[q] = s * vp + c * vq;
             }

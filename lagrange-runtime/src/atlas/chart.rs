@@ -177,7 +177,8 @@ impl<T: Real> Charts<T> {
         let rotation = &self.rotations[k];
         let from = self.chart_in(self.mask(), k);
         let to = from.second();
-        let (x, dx) = (angles(rotation, q), angles(rotation, v));
+        let x = angles(rotation, q);
+        let dx = angles(rotation, v);
         let r = from.matrix(x);
         let omega = from.rates(x) * Vector3::from(dx);
         let y = to.angles(&r, near);
@@ -256,7 +257,8 @@ impl<T: Real> Charts<T> {
                 continue;
             }
             let user = user_chart(rotation);
-            let (x, dx) = (angles(rotation, q), angles(rotation, v));
+            let x = angles(rotation, q);
+            let dx = angles(rotation, v);
             let r = user.matrix(x);
             let omega = user.rates(x) * Vector3::from(dx);
             let y = chart.angles(&r, Some(angles(rotation, held)));
@@ -292,14 +294,16 @@ pub(crate) fn user_view<T: Real, const N: usize>(
     q: &SVector<T, N>,
     v: &SVector<T, N>,
 ) -> (SVector<T, N>, SVector<T, N>) {
-    let (mut qu, mut vu) = (*q, *v);
+    let mut qu = *q;
+    let mut vu = *v;
     for (k, rotation) in rotations.iter().enumerate() {
         let chart = chart_in(rotations, mask, k);
         if !chart.offset {
             continue;
         }
         let user = user_chart(rotation);
-        let (y, dy) = (angles(rotation, q), angles(rotation, v));
+        let y = angles(rotation, q);
+        let dy = angles(rotation, v);
         let r = chart.matrix(y);
         let omega = chart.rates(y) * Vector3::from(dy);
         let x = user.angles(&r, Some(near(k)));
@@ -332,7 +336,8 @@ mod tests {
         v: &SVector<f64, 4>,
     ) -> (nalgebra::Matrix3<f64>, Vector3<f64>) {
         let chart = chart_in(&YAW_PITCH_ROLL, mask, 0);
-        let (x, dx) = (angles(&YAW_PITCH_ROLL[0], q), angles(&YAW_PITCH_ROLL[0], v));
+        let x = angles(&YAW_PITCH_ROLL[0], q);
+        let dx = angles(&YAW_PITCH_ROLL[0], v);
         (chart.matrix(x), chart.rates(x) * Vector3::from(dx))
     }
 
@@ -345,7 +350,8 @@ mod tests {
         let q0 = SVector::from([7.0, 0.4, 1.0, -0.3]);
         let v0 = SVector::from([2.0, 0.5, 1.5, -0.7]);
         let (r0, w0) = pose(0, &q0, &v0);
-        let (mut q, mut v) = (q0, v0);
+        let mut q = q0;
+        let mut v = v0;
         charts.switch(1.0, 0, &mut q, &mut v).unwrap();
         assert_eq!((charts.mask(), q[0], v[0]), (1, 7.0, 2.0));
         let (r1, w1) = pose(1, &q, &v);

@@ -97,7 +97,8 @@ pub(crate) fn finish<T: Real, const N: usize, const P: usize>(
     rotations: &'static [EulerRotation],
     user: usize,
 ) -> AtlasRun<T, N, P> {
-    let (log, start) = (charts.log(), charts.start());
+    let log = charts.log();
+    let start = charts.start();
     let mut mask = start;
     let switches: Vec<ChartSwitch<T>> = (log.iter())
         .map(|s| {
@@ -185,7 +186,8 @@ where
         let trajectory = Trajectory::start(t0, q, v, Sample::of(&charted, t0, &q, &v));
         Failure::new(error, unstarted(trajectory, Vec::new(), S::EULER))
     };
-    let (mut q, mut v) = (q0, v0);
+    let mut q = q0;
+    let mut v = v0;
     if let Err(e) = charts.enter_regular(t0, &mut q, &mut v) {
         return Err(unstarted(e, q0, v0));
     }

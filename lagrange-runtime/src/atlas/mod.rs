@@ -149,7 +149,8 @@ where
             let x = angles(rotation, q);
             let quaternion = orientation::from_rotation_matrix(&chart.matrix(x));
             let omega = chart.rates(x) * Vector3::from(angles(rotation, v));
-            let (at_q, at_v) = (first + 4 * k, first + 3 * k);
+            let at_q = first + 4 * k;
+            let at_v = first + 3 * k;
             qf.as_mut_slice()[at_q..at_q + 4].copy_from_slice(&quaternion);
             vf.as_mut_slice()[at_v..at_v + 3].copy_from_slice(omega.as_slice());
         }
@@ -213,7 +214,8 @@ where
         let first = N - 3 * S::EULER.len();
         for (k, rotation) in S::EULER.iter().enumerate() {
             let chart = self.chart(k);
-            let (x, dx) = (angles(rotation, q), angles(rotation, v));
+            let x = angles(rotation, q);
+            let dx = angles(rotation, v);
             let dw = Vector3::from_fn(|j, _| af[first + 3 * k + j]);
             let ddx = chart
                 .rates(x)

@@ -145,9 +145,11 @@ impl<T: Real, const P: usize> InputTable<T, P> {
         if i == self.times.len() || self.interpolation == Interpolation::Hold {
             return self.values[i - 1];
         }
-        let (t0, t1) = (self.times[i - 1], self.times[i]);
+        let t0 = self.times[i - 1];
+        let t1 = self.times[i];
         let s = (t - t0) / (t1 - t0);
-        let (u0, u1) = (&self.values[i - 1], &self.values[i]);
+        let u0 = &self.values[i - 1];
+        let u1 = &self.values[i];
         let mut u = *u0;
         for k in 0..P {
             u[k] += s * (u1[k] - u0[k]);

@@ -151,8 +151,11 @@ impl<'a, T: Real, const N: usize, const Q: usize> Events<'a, T, N, Q> {
         watch.reset(t0, &q0, &v0, None)?;
         // Two restarts closer than this are "no progress".
         let stalled_within = T::lit(64.0) * T::default_epsilon() * (abs(t0) + abs(t1));
-        let (mut t, mut q, mut v) = (t0, q0, v0);
-        let (mut restarts, mut stalled) = (0usize, 0usize);
+        let mut t = t0;
+        let mut q = q0;
+        let mut v = v0;
+        let mut restarts = 0usize;
+        let mut stalled = 0usize;
         loop {
             let from = so_far.continuation();
             let piece = match integrator.continue_run(watch, from, t, t1, q, v) {
@@ -204,7 +207,8 @@ impl<'a, T: Real, const N: usize, const Q: usize> Events<'a, T, N, Q> {
         so_far: &mut SoFar<T, N, Q>,
     ) -> Result<(SVector<T, Q>, SVector<T, N>), Error> {
         let rhs = watch.rhs;
-        let (mut qa, mut va) = (stop.q, stop.v);
+        let mut qa = stop.q;
+        let mut va = stop.v;
         if let Some(action) = &self.events[stop.event].action {
             action(stop.t, &mut qa, &mut va);
             if !qa.iter().chain(va.iter()).all(|x| x.is_finite()) {

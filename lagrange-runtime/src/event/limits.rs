@@ -102,14 +102,16 @@ fn crossing<T: Real, const N: usize, const Q: usize>(
     until: T,
 ) -> Option<(T, f64)> {
     let i = limit.coordinate;
-    let (ta, tb) = (segment.start(), segment.end());
+    let ta = segment.start();
+    let tb = segment.end();
     let at = |k: usize| ta + (until - ta) * T::lit(k as f64 / SAMPLES as f64);
     let value = |t: T| match t == tb {
         true => q[i].to_f64(),
         false => segment.eval(t).0[i].to_f64(),
     };
     let first = (0..=SAMPLES).find(|&k| past(limit, value(at(k))).is_some())?;
-    let (t1, x1) = (at(first), value(at(first)));
+    let t1 = at(first);
+    let x1 = value(at(first));
     if first == 0 {
         return Some((t1, x1));
     }

@@ -243,7 +243,8 @@ impl<F: SecondOrder<T, N, Q>, T: Real, const N: usize, const Q: usize> SecondOrd
         }
         let mut guard = self.state.borrow_mut();
         let st = &mut *guard;
-        let (ta, tb) = (segment.start(), segment.end());
+        let ta = segment.start();
+        let tb = segment.end();
         let tm = ta + (tb - ta) * T::lit(0.5);
         let (qm, vm) = segment.eval(tm);
         let first_new = st.found.len();
@@ -291,19 +292,28 @@ impl<F: SecondOrder<T, N, Q>, T: Real, const N: usize, const Q: usize> SecondOrd
             return Err(error);
         }
         if let Some(s) = &stop {
-            // Crossings after the stop belong to a motion that will not happen.
-            let mut k = first_new;
-            while k < st.found.len() {
-                if st.found[k].t > s.t {
-                    st.found.swap_remove(k);
-                } else {
-                    k += 1;
-                }
-            }
+            drop_after(&mut st.found, first_new, s.t);
         }
         st.found[first_new..]
             .sort_by(|a, b| a.t.partial_cmp(&b.t).unwrap_or(std::cmp::Ordering::Equal));
         st.stop = stop;
         Ok(stop.is_some() || inner_stop)
+    }
+}
+
+/// Drops the occurrences from index `from` on that come after `t`: crossings
+/// after a stop belong to a motion that will not happen.
+fn drop_after<T: Real, const N: usize, const Q: usize>(
+    found: &mut Vec<Occurrence<T, N, Q>>,
+    from: usize,
+    t: T,
+) {
+    let mut k = from;
+    while k < found.len() {
+        if found[k].t > t {
+            found.swap_remove(k);
+        } else {
+            k += 1;
+        }
     }
 }

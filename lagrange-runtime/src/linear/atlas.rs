@@ -112,7 +112,8 @@ impl Linearizer {
             return Err(crate::atlas::layout_error());
         }
         let charts = Charts::new(S::EULER);
-        let (mut q, mut v) = (*q, *v);
+        let mut q = *q;
+        let mut v = *v;
         charts.enter_regular(t, &mut q, &mut v)?;
         let accel = |q: &SVector<T, N>, v: &SVector<T, N>, u: &SVector<T, P>| {
             let dynamics = Dynamics::new(sys)

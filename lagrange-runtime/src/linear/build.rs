@@ -61,7 +61,10 @@ impl Linearizer {
             )
         };
         let u0 = self.inputs_at(sys, op)?;
-        let (q, v, u, t) = (&op.q, &op.v, &u0, op.t);
+        let q = &op.q;
+        let v = &op.v;
+        let u = &u0;
+        let t = op.t;
         let non_finite = || Error::non_finite(t, q, v);
         let (m_s, rhs) = sys.mass_matrix_and_rhs(q, v, t);
         let rhs = rhs + sys.input_forces(q, v, u, t);
@@ -83,7 +86,9 @@ impl Linearizer {
         if !(finite(&k) && finite(&c) && finite(&bu)) {
             return Err(non_finite());
         }
-        let (a21, a22, b2) = (chol.solve(&-&k), chol.solve(&-&c), chol.solve(&bu));
+        let a21 = chol.solve(&-&k);
+        let a22 = chol.solve(&-&c);
+        let b2 = chol.solve(&bu);
         let mut a = DMatrix::zeros(2 * N, 2 * N);
         a.view_mut((0, N), (N, N)).fill_with_identity();
         a.view_mut((N, 0), (N, N)).copy_from(&a21);
@@ -158,7 +163,10 @@ impl Linearizer {
         T: Real,
     {
         let u0 = self.inputs_at(sys, op)?;
-        let (q, v, u, t) = (&op.q, &op.v, &u0, op.t);
+        let q = &op.q;
+        let v = &op.v;
+        let u = &u0;
+        let t = op.t;
         let ev = self.evaluate(sys, q, v, u, t)?;
         self.check_consistent::<S, T, N, K, N>([&ev.phi, &ev.vel], q, t)?;
         let part = self.partition::<S, T, N, K, N>(&ev.g, (q, t), [&S::COORDINATES; 2])?;
@@ -179,7 +187,9 @@ impl Linearizer {
         let rq = dm(&jq) + dm(&dqq) + dm(&dgn);
         let rv = dm(&jv) + dm(&dqv);
         let bu = dm(&bu);
-        let (dga, dgv, dvel) = (dm(&dga), dm(&dgv), dm(&dvel));
+        let dga = dm(&dga);
+        let dgv = dm(&dgv);
+        let dvel = dm(&dvel);
         let all = [&rq, &rv, &bu, &dga, &dgv, &dvel];
         if !all.iter().all(|m| finite(m)) {
             return Err(Error::non_finite(t, q, v));
@@ -187,7 +197,8 @@ impl Linearizer {
         let [xq, xv, xu] = sensitivities(&saddle, [&rq, &rv, &bu], [&dga, &dgv]);
 
         let (cq, cv, cvq) = embeddings(&part, &ev.g, &dvel, holonomic::<S, T, N, K, N>());
-        let (ni, ns) = (part.ci.len(), part.si.len());
+        let ni = part.ci.len();
+        let ns = part.si.len();
         let a21 = (&xq * &cq + &xv * &cvq).select_rows(part.si.iter());
         let a22 = (&xv * &cv).select_rows(part.si.iter());
         let b2 = xu.select_rows(part.si.iter());
@@ -270,7 +281,10 @@ impl Linearizer {
         T: Real,
     {
         let u0 = self.inputs_at(sys, op)?;
-        let (q, v, uin, t) = (&op.q, &op.v, &u0, op.t);
+        let q = &op.q;
+        let v = &op.v;
+        let uin = &u0;
+        let t = op.t;
         if !(t.is_finite() && finite(&dm(q)) && finite(&dm(v))) {
             return Err(Error::non_finite(t, q, v));
         }
@@ -296,7 +310,8 @@ impl Linearizer {
             .into());
         }
         let e = sys.input_forces(q, v, uin, t);
-        let (ms, w_d) = (dm(&form.mass), dm(&form.w));
+        let ms = dm(&form.mass);
+        let w_d = dm(&form.w);
         let f = dv(&form.force) + w_d.transpose() * dv(&e);
         if !(finite(&ms) && finite(&w_d) && f.iter().all(|x| x.is_finite())) {
             return Err(Error::non_finite(t, q, v));
@@ -307,7 +322,9 @@ impl Linearizer {
         let du: SVector<T, K> = SVector::from_fn(|i, _| T::lit(du0[i]));
         let (dq, dfu, wq) = reduced_jacobians(sys, q, &form, &du, &e, t)?;
         let (bu, dqq, dqv) = sys.input_jacobians(q, v, uin, t);
-        let (bu, dqq, dqv) = (dm(&bu), dm(&dqq), dm(&dqv));
+        let bu = dm(&bu);
+        let dqq = dm(&dqq);
+        let dqv = dm(&dqv);
         let wt = w_d.transpose();
         let rq = dq + &wt * (dqq + &dqv * &wq);
         let ru = dfu + &wt * &dqv * &w_d;
@@ -481,8 +498,15 @@ where
     let (tq, sq, cv, rq) = sys
         .row_derivatives(q, v, &accel, &mu, t)
         .ok_or(missing("Reduced::row_derivatives"))?;
-    let (inv, w, m) = (dm(&form.rows_inverse), dm(&form.w), dm(&form.full_mass));
-    let (jq, jv, tq, sq, cv, rq) = (dm(&jq), dm(&jv), dm(&tq), dm(&sq), dm(&cv), dm(&rq));
+    let inv = dm(&form.rows_inverse);
+    let w = dm(&form.w);
+    let m = dm(&form.full_mass);
+    let jq = dm(&jq);
+    let jv = dm(&jv);
+    let tq = dm(&tq);
+    let sq = dm(&sq);
+    let cv = dm(&cv);
+    let rq = dm(&rq);
     let vq = -&inv * rq;
     let aq = &inv * (sq + &cv * &vq);
     let zq = jq + &jv * &vq - &m * aq;

@@ -251,7 +251,8 @@ impl Linearizer {
         names: &[String],
         inputs: &[&str],
     ) -> Linear {
-        let (ni, n) = (part.ci.len(), names.len() / 2);
+        let ni = part.ci.len();
+        let n = names.len() / 2;
         let mut states: Vec<String> = part.ci.iter().map(|&i| names[i].clone()).collect();
         states.extend(part.si.iter().map(|&i| names[n + i].clone()));
         let named = |names: &Option<Vec<String>>| names.as_ref().map_or(0, Vec::len);
@@ -284,7 +285,8 @@ impl Linearizer {
         T: Real,
     {
         let u = self.inputs_at(sys, op)?;
-        let (v, t) = (op.v, op.t);
+        let v = op.v;
+        let t = op.t;
         if !(t.is_finite() && finite(&dm(&op.q)) && finite(&dm(&v))) {
             return Err(Error::non_finite(t, &op.q, &v));
         }
@@ -323,7 +325,8 @@ where
     for j in 0..N {
         let (h, e) = unit::<T, N>(j, 1.0);
         set(&mut s.xq, j, column(along(e)?, along(-e)?, h));
-        let (plus, minus) = (velocity(e), velocity(-e));
+        let plus = velocity(e);
+        let minus = velocity(-e);
         set(&mut s.dvel, j, difference::<T>(&plus, &minus, h));
         let (h, e) = unit::<T, N>(j, v[j].to_f64());
         let rates = column(accel(q, &(v + e), u)?, accel(q, &(v - e), u)?, h);
@@ -392,7 +395,8 @@ fn assemble(
     holonomic: usize,
 ) -> (DMatrix<f64>, DMatrix<f64>) {
     let (cq, cv, cvq) = embeddings(part, &s.g, &s.dvel, holonomic);
-    let (ni, ns) = (part.ci.len(), part.si.len());
+    let ni = part.ci.len();
+    let ns = part.si.len();
     let top = kinematics * &cq + &cvq;
     let a21 = (&s.xq * &cq + &s.xv * &cvq).select_rows(part.si.iter());
     let a22 = (&s.xv * &cv).select_rows(part.si.iter());

@@ -465,8 +465,10 @@ where
         }
         let mut out = Vec::new();
         for k in 1..self.points.len() {
-            let (a, b) = (&self.points[k - 1], &self.points[k]);
-            let (fa, fb) = (a.max_real() - tol, b.max_real() - tol);
+            let a = &self.points[k - 1];
+            let b = &self.points[k];
+            let fa = a.max_real() - tol;
+            let fb = b.max_real() - tol;
             if (fa > 0.0) != (fb > 0.0) {
                 let ends = [(a.parameter, fa), (b.parameter, fb)];
                 out.push(locate(&mut self.model, ends, tol, rtol)?);
@@ -504,7 +506,8 @@ where
     if let Some(e) = failure {
         return Err(e);
     }
-    let (lo, hi) = (p.min(c), p.max(c));
+    let lo = p.min(c);
+    let hi = p.max(c);
     // Brent's own stopping rule is 4 ε |p| (+ the smallest normal).
     let reachable = 4.0 * f64::EPSILON * p.abs() + f64::MIN_POSITIVE;
     if hi - lo > (rtol * p.abs()).max(reachable) {

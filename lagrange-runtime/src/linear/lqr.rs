@@ -67,7 +67,8 @@ pub fn lqr(
     q: &DMatrix<f64>,
     r: &DMatrix<f64>,
 ) -> Result<Lqr, Error> {
-    let (n, m) = (a.nrows(), b.ncols());
+    let n = a.nrows();
+    let m = b.ncols();
     let r_chol = check_problem(a, b, q, r)?;
     if n == 0 {
         return Ok(Lqr {
@@ -111,7 +112,8 @@ fn check_problem(
     q: &DMatrix<f64>,
     r: &DMatrix<f64>,
 ) -> Result<nalgebra::Cholesky<f64, nalgebra::Dyn>, Error> {
-    let (n, m) = (a.nrows(), b.ncols());
+    let n = a.nrows();
+    let m = b.ncols();
     if m == 0 {
         return Err(SettingsError::Unsupported {
             owner: "LQR",

@@ -50,7 +50,8 @@ impl Linearizer {
         [coordinates, speeds]: [&[&str]; 2],
         redundant: impl Fn(f64, Vec<usize>) -> Error,
     ) -> Result<Partition, Error> {
-        let (n, k) = (g.ncols(), g.nrows());
+        let n = g.ncols();
+        let k = g.nrows();
         let tol = self.tolerances.redundant;
         let phi_q = g.rows(0, h).into_owned();
         let named_c = match &self.coordinates {
@@ -179,7 +180,8 @@ pub(super) fn embeddings(
     h: usize,
 ) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
     let n = g.ncols();
-    let (ni, ns) = (part.ci.len(), part.si.len());
+    let ni = part.ci.len();
+    let ns = part.si.len();
     let mut cq = DMatrix::zeros(n, ni);
     for (k, &i) in part.ci.iter().enumerate() {
         cq[(i, k)] = 1.0;

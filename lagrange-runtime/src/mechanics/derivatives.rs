@@ -104,7 +104,8 @@ where
             jq += fq;
             jv += fv;
         }
-        let (dq, dv) = (chol.solve_columns(jq), chol.solve_columns(jv));
+        let dq = chol.solve_columns(jq);
+        let dv = chol.solve_columns(jv);
         if !(all_finite(dq.as_slice()) && all_finite(dv.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }

@@ -292,7 +292,8 @@ where
             }
             out
         };
-        let (dq, dv) = (solve(jq), solve(jv));
+        let dq = solve(jq);
+        let dv = solve(jv);
         if !(all_finite(dq.as_slice()) && all_finite(dv.as_slice())) {
             return Some(Err(Error::non_finite(t, q, v)));
         }

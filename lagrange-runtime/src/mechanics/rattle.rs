@@ -225,7 +225,8 @@ impl Rattle {
         })?;
         run.traj.reserve(n);
         let h = T::lit(self.h);
-        let (mut q, mut v) = (q0, v0);
+        let mut q = q0;
+        let mut v = v0;
         let (_, mut f) = system.mass_matrix_and_rhs(&q, &v, t0);
         run.stats.evaluations += 1;
         // Φ_q at the current point: computed once, at the end of the step that

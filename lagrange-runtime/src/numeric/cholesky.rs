@@ -256,7 +256,8 @@ impl<T: Real, const K: usize> PivotedCholesky<T, K> {
     /// `None` only if C is not numerically positive definite, which the pivot
     /// threshold rules out in practice.
     pub fn solve_min_norm(&self, b: &SVector<T, K>) -> Option<SVector<T, K>> {
-        let (n, r) = (self.n, self.rank);
+        let n = self.n;
+        let r = self.rank;
         let mut w = SVector::<T, K>::zeros();
         for i in 0..n {
             w[i] = b[self.perm[i]];

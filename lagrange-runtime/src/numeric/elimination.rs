@@ -174,7 +174,8 @@ impl<T: Real, const N: usize> Elimination<T, N> {
 
     /// Scales row p to a unit pivot and clears column c from the other rows.
     fn pivot(&mut self, p: usize, c: usize, rows: Range<usize>) {
-        let (m, ops) = (&mut self.m, &mut self.ops);
+        let m = &mut self.m;
+        let ops = &mut self.ops;
         let inv = T::one() / m[(p, c)];
         m.row_mut(p).scale_mut(inv);
         ops.row_mut(p).scale_mut(inv);
@@ -184,7 +185,8 @@ impl<T: Real, const N: usize> Elimination<T, N> {
                 continue;
             }
             for j in 0..N {
-                let (mp, op) = (m[(p, j)], ops[(p, j)]);
+                let mp = m[(p, j)];
+                let op = ops[(p, j)];
                 m[(r, j)] -= f * mp;
                 ops[(r, j)] -= f * op;
             }

@@ -242,7 +242,8 @@ mod tests {
 
     #[test]
     fn rates_and_their_bias_match_finite_differences() {
-        let (x, dx) = ([0.3, 1.1, -2.0], [0.7, -1.3, 0.4]);
+        let x = [0.3, 1.1, -2.0];
+        let dx = [0.7, -1.3, 0.4];
         let h = 1e-6;
         for chart in charts() {
             let at = |t: f64| [0, 1, 2].map(|k| x[k] + dx[k] * t);
@@ -264,7 +265,8 @@ mod tests {
         for chart in charts() {
             for x in ANGLES {
                 let r = chart.matrix(x);
-                let (s1, s2) = (chart.conditioning(&r), chart.second().conditioning(&r));
+                let s1 = chart.conditioning(&r);
+                let s2 = chart.second().conditioning(&r);
                 assert!(s1 * s1 + s2 * s2 >= 1.0 - 1e-14);
             }
             // On the first chart's singular set the second is at its best.

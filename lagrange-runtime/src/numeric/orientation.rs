@@ -49,7 +49,9 @@ pub(crate) enum Slot {
 
 /// Walks the layout: every slot of q and v exactly once, in order.
 pub(crate) fn slots(layout: &[Orientation], nq: usize) -> impl Iterator<Item = Slot> + '_ {
-    let (mut i, mut j, mut k) = (0, 0, 0);
+    let mut i = 0;
+    let mut j = 0;
+    let mut k = 0;
     std::iter::from_fn(move || {
         if i >= nq {
             return None;
@@ -71,7 +73,8 @@ pub const fn fits(layout: &[Orientation], nq: usize, nv: usize) -> bool {
     if nq != nv + layout.len() {
         return false;
     }
-    let (mut k, mut before) = (0, 0);
+    let mut k = 0;
+    let mut before = 0;
     while k < layout.len() {
         let o = layout[k];
         if o.q < before || o.q + 4 > nq || o.q < k || o.v != o.q - k {
@@ -246,7 +249,10 @@ pub fn right_jacobian<T: Real>(theta: [T; 3]) -> [[T; 3]; 3] {
 /// The rotation vector of a unit quaternion, taking the shorter way (w ≥ 0).
 pub fn log<T: Real>([w, x, y, z]: [T; 4]) -> [T; 3] {
     let s = if w < T::zero() { -T::one() } else { T::one() };
-    let (w, x, y, z) = (w * s, x * s, y * s, z * s);
+    let w = w * s;
+    let x = x * s;
+    let y = y * s;
+    let z = z * s;
     let sin_half = sqrt(x * x + y * y + z * z);
     let angle = T::lit(2.0) * sin_half.atan2(w);
     // angle / sin(angle/2) → 2 as the angle → 0.
@@ -373,7 +379,8 @@ mod tests {
         let omega = [0.4, -1.1, 2.3];
         let at = |t: f64| multiply(q0, exp(omega.map(|w| w * t)));
         let h = 1e-6;
-        let (a, b) = (at(h), at(-h));
+        let a = at(h);
+        let b = at(-h);
         let d = quaternion_rate(q0, omega);
         for k in 0..4 {
             assert!(((a[k] - b[k]) / (2.0 * h) - d[k]).abs() < 1e-9);

@@ -31,7 +31,8 @@ pub(crate) fn brent_bracket<T: Real>(
     let two = T::lit(2.0);
     let half = T::lit(0.5);
     let three = T::lit(3.0);
-    let (mut c, mut fc) = (a, fa);
+    let mut c = a;
+    let mut fc = fa;
     let mut d = b - a;
     let mut e = d;
     for _ in 0..200 {

@@ -187,7 +187,8 @@ mod tests {
         let v = |t: f64| 3.0 * t * t - 2.0;
         let a = |t: f64| 6.0 * t;
         let p = |x: f64| SVector::<f64, 1>::new(x);
-        let (t0, t1) = (0.5, 1.25);
+        let t0 = 0.5;
+        let t1 = 1.25;
         let y0 = Pair::new(p(q(t0)), p(v(t0)));
         let y1 = Pair::new(p(q(t1)), p(v(t1)));
         let f0 = Pair::new(p(v(t0)), p(a(t0)));

@@ -295,7 +295,9 @@ impl Gauss {
         c: [f64; S],
         run: &mut Run<T, N, Q>,
     ) -> Result<(), Error> {
-        let (a, b, c) = (a.map(|r| r.map(T::lit)), b.map(T::lit), c.map(T::lit));
+        let a = a.map(|r| r.map(T::lit));
+        let b = b.map(T::lit);
+        let c = c.map(T::lit);
         let dim = 2 * Q;
         let mut work = Work {
             jac: DMatrix::zeros(dim, dim),
@@ -304,7 +306,8 @@ impl Gauss {
             b: vec![T::zero(); S * dim],
         };
         let h = T::lit(self.h);
-        let (mut q, mut v) = (q0, v0);
+        let mut q = q0;
+        let mut v = v0;
         // Started on the unit sphere (within the tolerance the start was
         // checked to), the method keeps it there.
         orientation::normalise(F::ORIENTATIONS, q.as_mut_slice());

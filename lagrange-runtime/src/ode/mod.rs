@@ -436,11 +436,13 @@ pub fn check_problem<T: Real, const N: usize, const Q: usize>(
     v0: &SVector<T, N>,
 ) -> Result<(), Error> {
     if !(t0.is_finite() && t1.is_finite()) || t1 <= t0 {
-        let (start, end) = (t0.to_f64(), t1.to_f64());
+        let start = t0.to_f64();
+        let end = t1.to_f64();
         return Err(SettingsError::TimeSpan { start, end }.into());
     }
     if !Pair::new(*q0, *v0).is_finite() {
-        let (q, v) = (crate::error::to_vec(q0), crate::error::to_vec(v0));
+        let q = crate::error::to_vec(q0);
+        let v = crate::error::to_vec(v0);
         return Err(SettingsError::InitialState { q, v }.into());
     }
     Ok(())

@@ -135,7 +135,8 @@ fn step<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
     ev: &mut usize,
 ) -> Result<Pair<T, N, Q>, Error> {
     let hk = t_next - t;
-    let (half, two) = (T::lit(0.5), T::lit(2.0));
+    let half = T::lit(0.5);
+    let two = T::lit(2.0);
     let k2 = y
         .add_combination(hk * half, [T::one()], [f])
         .derivative(rhs, t + hk * half, ev)?;

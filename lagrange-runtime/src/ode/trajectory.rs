@@ -470,7 +470,9 @@ impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
             out.push(self.times[0]);
         }
         for (k, segment) in self.segments.iter().enumerate() {
-            let (t, q, v) = (self.times[k + 1], &self.q[k + 1], &self.v[k + 1]);
+            let t = self.times[k + 1];
+            let q = &self.q[k + 1];
+            let v = &self.v[k + 1];
             let g_next = g(t, q, v);
             if g_next == T::zero() {
                 out.push(t);

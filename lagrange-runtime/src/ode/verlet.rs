@@ -147,7 +147,8 @@ impl StormerVerlet {
         let h = T::lit(self.h);
         let half = T::lit(0.5);
 
-        let (mut q, mut v) = (q0, v0);
+        let mut q = q0;
+        let mut v = v0;
         let stats = &mut run.stats;
         stats.evaluations += 1;
         let mut a = rhs.acceleration(t0, &q, &v)?;

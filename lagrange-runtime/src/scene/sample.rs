@@ -38,7 +38,8 @@ fn frame_times<T: Real, const N: usize, const Q: usize>(
     fps: f64,
 ) -> (f64, f64, usize) {
     let times = traj.times();
-    let (t0, t1) = (times[0].to_f64(), times[times.len() - 1].to_f64());
+    let t0 = times[0].to_f64();
+    let t1 = times[times.len() - 1].to_f64();
     let wanted = if traj.segments().is_empty() {
         times.len()
     } else {
@@ -81,7 +82,8 @@ pub(super) fn sample<T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q>>
     plotted: &[usize],
 ) -> Result<Frames, Error> {
     let (t0, dt, count) = frame_times(traj, fps);
-    let (nb, np) = (S::BODIES.len(), S::POINTS.len());
+    let nb = S::BODIES.len();
+    let np = S::POINTS.len();
     let mut bodies = vec![BodyPose::default(); nb];
     let mut points = vec![Vector3::zeros(); np];
     let mut frames = Frames {

@@ -165,7 +165,10 @@ mod tests {
     /// equivalent box of those moments is that box again.
     #[test]
     fn the_box_of_a_box_s_inertia_is_that_box() {
-        let (m, a, b, c) = (3.0_f64, 0.4, 1.0, 2.5);
+        let m = 3.0_f64;
+        let a = 0.4;
+        let b = 1.0;
+        let c = 2.5;
         let moment = |y: f64, z: f64| m * (y * y + z * z) / 12.0;
         let inertia = BodyInertia {
             mass: m,

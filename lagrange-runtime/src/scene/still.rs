@@ -98,7 +98,8 @@ fn spread(segments: &[[Vector3<f64>; 2]]) -> f64 {
 /// Rows: the page's starting camera's right and up directions (azimuth −1,
 /// elevation 0.35, z up).
 fn view() -> Matrix3<f64> {
-    let (az, el) = (-1.0_f64, 0.35_f64);
+    let az = -1.0_f64;
+    let el = 0.35_f64;
     let eye = Vector3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());
     let right = (-eye).cross(&Vector3::z()).normalize();
     let up = right.cross(&(-eye));
@@ -113,7 +114,8 @@ fn trails<T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q>>(
     out: &mut Vec<[Vector3<f64>; 2]>,
 ) {
     let times = traj.times();
-    let (t0, t1) = (times[0].to_f64(), times[times.len() - 1].to_f64());
+    let t0 = times[0].to_f64();
+    let t1 = times[times.len() - 1].to_f64();
     let frames: Vec<Frame> = (0..=48)
         .map(|k| frame(sys, traj, t0 + (t1 - t0) * f64::from(k) / 48.0))
         .collect();
@@ -173,7 +175,8 @@ fn solid(f: &Frame, d: &Drawn, out: &mut Vec<[Vector3<f64>; 2]>) {
             for end in [centre + along, centre - along] {
                 ring(end, &axes, axis, radius, out);
             }
-            let (u, v) = (axes.column((axis + 1) % 3), axes.column((axis + 2) % 3));
+            let u = axes.column((axis + 1) % 3);
+            let v = axes.column((axis + 2) % 3);
             for side in [u * radius, -u * radius, v * radius, -v * radius] {
                 out.push([centre + along + side, centre - along + side]);
             }
@@ -190,7 +193,8 @@ fn box_edges(
 ) {
     let e: Vec<Vector3<f64>> = (0..3).map(|j| axes.column(j) * (size[j] / 2.0)).collect();
     for j in 0..3 {
-        let (u, v) = (e[(j + 1) % 3], e[(j + 2) % 3]);
+        let u = e[(j + 1) % 3];
+        let v = e[(j + 2) % 3];
         for (a, b) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
             let mid = c + u * a + v * b;
             out.push([mid - e[j], mid + e[j]]);
@@ -206,7 +210,8 @@ fn ring(
     radius: f64,
     out: &mut Vec<[Vector3<f64>; 2]>,
 ) {
-    let (u, v) = (axes.column((axis + 1) % 3), axes.column((axis + 2) % 3));
+    let u = axes.column((axis + 1) % 3);
+    let v = axes.column((axis + 2) % 3);
     let at = |k: usize| {
         let th = std::f64::consts::TAU * k as f64 / 16.0;
         c + u * (radius * th.cos()) + v * (radius * th.sin())

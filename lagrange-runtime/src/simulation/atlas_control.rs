@@ -79,7 +79,8 @@ where
         let dynamics = self.dynamics::<T>().with_parameter_terms(&terms);
         let prepare = || {
             self.atlas_checks::<T, N, F>(&span, &q0, &v0)?;
-            let (mut q, mut v) = (q0, v0);
+            let mut q = q0;
+            let mut v = v0;
             charts.enter_regular(span.start, &mut q, &mut v)?;
             Ok((q, v))
         };

@@ -94,13 +94,16 @@ where
         record: &mut Record<T, N, P, Q>,
     ) -> Result<(), Error> {
         self.source.check()?;
-        let (t0, t1) = (span.start, span.end);
+        let t0 = span.start;
+        let t1 = span.end;
         self.check_budget(t0, t1)?;
         // Breaks within this of each other (or of t1) are one instant.
         let eps = T::lit(64.0) * T::default_epsilon() * (abs(t0) + abs(t1));
         let held = self.source.held();
         let mut ends_on_break = false;
-        let (mut t, mut q, mut v) = (t0, q0, v0);
+        let mut t = t0;
+        let mut q = q0;
+        let mut v = v0;
         loop {
             let (end, on_break) = self.piece_end((t0, t1), t, eps);
             if let Some(on_break) = on_break {

@@ -88,7 +88,8 @@ where
         })?;
         let limits = watched(self.system.position_limits(), self.settings.limits);
         let from = Continuation::start(span.start);
-        let (t0, t1) = (span.start, span.end);
+        let t0 = span.start;
+        let t1 = span.end;
         (self.events).continue_run(&self.integrator, (&dynamics, limits), from, t0, t1, q, v)
     }
 }

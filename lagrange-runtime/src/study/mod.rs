@@ -367,7 +367,8 @@ impl<'a, T: Real, const N: usize, const Q: usize> WorkPrecision<'a, T, N, Q> {
                 let uncertainty = if check {
                     let coarse = (self.run)(dop853(10.0 * tolerance))?;
                     let f64s = |q: SVector<T, Q>| q.map(|x| x.to_f64());
-                    let (fine, coarse) = (traj.final_state().0, coarse.final_state().0);
+                    let fine = traj.final_state().0;
+                    let coarse = coarse.final_state().0;
                     Some(self.distance(&f64s(fine), &f64s(coarse)))
                 } else {
                     None
@@ -418,7 +419,8 @@ impl<'a, T: Real, const N: usize, const Q: usize> WorkPrecision<'a, T, N, Q> {
             })
         })?;
         let (q, v) = traj.final_state();
-        let (q, v) = (q.map(|x| x.to_f64()), v.map(|x| x.to_f64()));
+        let q = q.map(|x| x.to_f64());
+        let v = v.map(|x| x.to_f64());
         let error = self.distance(&q, &exact);
         let size = exact.amax().max(1e-300);
         let size = if size > 1e-300 { size } else { 1.0 };

@@ -135,7 +135,8 @@ fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     }
     // A factor 2 on each side keeps markers off the frame; a single point
     // still gets a decade.
-    let (lo, hi) = (lo / 2.0, hi * 2.0);
+    let lo = lo / 2.0;
+    let hi = hi * 2.0;
     if hi / lo < 10.0 {
         lo / 3.0..hi * 3.0
     } else {
@@ -179,7 +180,8 @@ fn draw_panel(
             .iter()
             .filter_map(|r| {
                 let m = r.measurement()?;
-                let (x, y) = ((panel.x)(m), (panel.y)(m)?);
+                let x = (panel.x)(m);
+                let y = (panel.y)(m)?;
                 (x.is_finite() && x > 0.0 && y.is_finite())
                     .then(|| ((x, y.max(FLOOR)), format!("{:.0e}", r.setting.value())))
             })

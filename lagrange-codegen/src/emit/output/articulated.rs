@@ -41,7 +41,8 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
         pub fn __lagrange_forward_dynamics(&self, p: &[#s; #h_len], q: &#qvec, v: &#vec_t, tau: &#vec_t, t: #s) -> (#vec_t, #s) {
             #lets
             let pivots: [#s; #n] = [#(#pivots),*];
-            let (mut lo, mut hi) = (pivots[0], pivots[0]);
+            let mut lo = pivots[0];
+            let mut hi = pivots[0];
             for &d in &pivots[1..] {
                 if d < lo { lo = d; }
                 if d > hi { hi = d; }

@@ -22,8 +22,10 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
 
 /// `coriolis_matrix`: C(q, q̇, t).
 fn coriolis(e: &Emitter, f: &Frame, model: &Model, cm: &[Vec<Sym>]) -> TokenStream {
-    let (s, nl) = (&f.s, &f.n);
-    let (vec_n, vec_q) = (f.vec(nl), f.qvec());
+    let s = &f.s;
+    let nl = &f.n;
+    let vec_n = f.vec(nl);
+    let vec_q = f.qvec();
     let n = model.dof();
     let flat: Vec<Sym> = cm.iter().flatten().copied().collect();
     let (lets, outs) = e.program(&flat);

@@ -13,7 +13,9 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
     let Some(hamilton) = &model.outputs.hamilton else {
         return Pieces::default();
     };
-    let (s, vec_n, qvec) = (&f.s, f.vec(&f.n), f.qvec());
+    let s = &f.s;
+    let vec_n = f.vec(&f.n);
+    let qvec = f.qvec();
     let (lets, outs) = e.program(&hamilton.momentum);
     let mut lagrangian = quote! {
         #[inline]

@@ -14,9 +14,12 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
     let Some(j) = &model.outputs.jacobians else {
         return Pieces::default();
     };
-    let (s, nl) = (&f.s, &f.n);
+    let s = &f.s;
+    let nl = &f.n;
     let n = model.dof();
-    let (vec_n, mat, qvec) = (f.vec(nl), f.mat(nl, nl), f.qvec());
+    let vec_n = f.vec(nl);
+    let mat = f.mat(nl, nl);
+    let qvec = f.qvec();
     let mut all: Vec<Sym> = j.position.iter().flatten().copied().collect();
     all.extend(j.velocity.iter().flatten());
     let (lets, outs) = e.program(&all);

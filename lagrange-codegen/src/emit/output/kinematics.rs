@@ -29,7 +29,8 @@ fn per_body(
     for (b, outputs) in programs.iter().enumerate() {
         let (lets, outs) = e.program(outputs);
         let method = format_ident!("__lagrange_{name}_{b}");
-        let (b, value) = (Literal::usize_unsuffixed(b), build(&outs));
+        let b = Literal::usize_unsuffixed(b);
+        let value = build(&outs);
         arms.push(quote!(#b => ::core::option::Option::Some(self.#method(#args)),));
         methods.push(quote! {
             #[doc(hidden)]
@@ -54,16 +55,22 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
     let Some(frames) = &model.outputs.frames else {
         return Pieces::default();
     };
-    let (s, nl) = (&f.s, &f.n);
-    let (ident, ig, tg, wc) = (f.ident, &f.impl_generics, &f.ty_generics, &f.where_clause);
+    let s = &f.s;
+    let nl = &f.n;
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
     let p = quote!(::lagrange::__private);
     let vec_n = quote!(#p::SVector<#s, #nl>);
-    let (qvec, sizes) = (f.qvec(), f.sizes());
+    let qvec = f.qvec();
+    let sizes = f.sizes();
     let (q_t, v_t) = (
         quote!(q: &#qvec, t: #s),
         quote!(q: &#qvec, v: &#vec_n, t: #s),
     );
-    let (jacobian_ty, bias_ty) = (quote!(#p::SMatrix<#s, 6, #nl>), quote!(#p::SVector<#s, 6>));
+    let jacobian_ty = quote!(#p::SMatrix<#s, 6, #nl>);
+    let bias_ty = quote!(#p::SVector<#s, 6>);
     let (jacobian, jacobian_methods) = per_body(
         e,
         ("frame_jacobian", &q_t, &quote!(q, t), &jacobian_ty),

@@ -33,8 +33,10 @@ fn reactions(
     system: &System,
     c: &ConstraintSet,
 ) -> TokenStream {
-    let (s, nl) = (&f.s, &f.n);
-    let (vec_n, qvec) = (f.vec(nl), f.qvec());
+    let s = &f.s;
+    let nl = &f.n;
+    let vec_n = f.vec(nl);
+    let qvec = f.qvec();
     let k = c.names.len();
     let kl = Literal::usize_unsuffixed(k);
     let p = c.reactions.len();
@@ -104,7 +106,10 @@ fn reactions(
 /// `generalized_reactions`: G_αᵀ ν_α per constraint, from the emitted G.
 fn generalized_reactions(f: &Frame, c: &ConstraintSet) -> TokenStream {
     let kl = Literal::usize_unsuffixed(c.names.len());
-    let (s, vec_n, vec_k, qvec) = (&f.s, f.vec(&f.n), f.vec(&kl), f.qvec());
+    let s = &f.s;
+    let vec_n = f.vec(&f.n);
+    let vec_k = f.vec(&kl);
+    let qvec = f.qvec();
     let sizes = f.sizes_after(&kl);
     quote! {
         /// Each constraint's generalized reaction G_αᵀ ν_α, in the order of

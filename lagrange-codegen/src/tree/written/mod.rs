@@ -300,9 +300,12 @@ fn axis_placement(ctx: &mut Context, n: [Sym; 3]) -> Result<(Mat3, usize), BodyF
     let Some(v) = values.into_iter().collect::<Option<Vec<f64>>>() else {
         return Err(BodyFault::AxisDependsOnParameters);
     };
-    let (zero, one, minus) = (ctx.zero(), ctx.one(), ctx.int(-1));
+    let zero = ctx.zero();
+    let one = ctx.one();
+    let minus = ctx.int(-1);
     for i in 0..3 {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let j = (i + 1) % 3;
+        let k = (i + 2) % 3;
         if v[j] != 0.0 || v[k] != 0.0 || v[i].abs() != 1.0 {
             continue;
         }

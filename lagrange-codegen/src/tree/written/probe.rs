@@ -127,9 +127,11 @@ fn predicted(
             a,
             s,
         } => {
-            let (c, sn) = (value(*coordinate).cos(), value(*coordinate).sin());
+            let c = value(*coordinate).cos();
+            let sn = value(*coordinate).sin();
             let mut e = [[0.0; 3]; 3];
-            let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+            let i = (axis + 1) % 3;
+            let j = (axis + 2) % 3;
             (e[*axis][*axis], e[i][i], e[j][j], e[i][j], e[j][i]) = (1.0, c, c, -sn, sn);
             let r = mul(
                 &mul(&turn.map(|r| r.map(eval)), &e),

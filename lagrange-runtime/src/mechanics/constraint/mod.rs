@@ -373,7 +373,8 @@ impl<'a, S, T: Real, const K: usize, F> ConstrainedDynamics<'a, S, T, K, F> {
             let (_, g0) = self.system.constraint_jacobian(q, t);
             let phi = self.system.constraint_positions(q, t);
             let velocity = g * v + g0;
-            let (two_alpha, beta2) = (T::lit(2.0 * alpha), T::lit(beta * beta));
+            let two_alpha = T::lit(2.0 * alpha);
+            let beta2 = T::lit(beta * beta);
             for i in 0..K {
                 gamma[i] -= two_alpha * velocity[i];
                 if i < holonomic::<S, T, N, K, Q>() {

@@ -237,13 +237,15 @@ fn integrate<
     let control = &settings.control;
     let tolerance = Tolerance::of(control);
     let evaluations = &mut run.stats.evaluations;
-    let (mut y, mut k1) = (y0, y0.derivative(rhs, t0, evaluations)?);
+    let mut y = y0;
+    let mut k1 = y0.derivative(rhs, t0, evaluations)?;
     let h = first_step(control, M::ORDER, rhs, (t0, t1), &y, &k1, evaluations)?;
     let mut steps = Stepping::new(control, M::controller(), t0, t1, h);
     let mut stiffness = StiffnessTest::new(M::NAME, settings.stiffness_test, M::STABILITY_LIMIT);
     loop {
         let (t_new, last) = steps.begin(&run.stats)?;
-        let (t, h) = (steps.t, steps.h);
+        let t = steps.t;
+        let h = steps.h;
         let attempt = Attempt {
             t,
             h,
@@ -278,7 +280,8 @@ fn integrate<
         // A projection moves the end point by about the local error; the
         // dense output keeps the unprojected polynomial, and the first stage
         // of the next step is re-evaluated at the projected state.
-        let (mut y_new, mut k_new) = (*y_new, k_new);
+        let mut y_new = *y_new;
+        let mut k_new = k_new;
         if settle(rhs, t_new, &mut y_new.q, &mut y_new.v)? {
             k_new = y_new.derivative(rhs, t_new, evaluations)?;
         }

@@ -55,7 +55,8 @@ impl<T: Real> Stepping<T> {
     /// shortens the step to land on t1. Returns the attempt's end time and
     /// whether it is the last step.
     pub fn begin(&mut self, stats: &Stats) -> Result<(T, bool), Error> {
-        let (t, h) = (self.t, self.h);
+        let t = self.t;
+        let h = self.h;
         if stats.steps() >= self.max_steps {
             return Err(Error::TooManySteps {
                 t: t.to_f64(),
@@ -152,7 +153,8 @@ pub(crate) fn first_step<T: Real, const N: usize, const Q: usize, F: SecondOrder
     evaluations: &mut usize,
 ) -> Result<T, Error> {
     let hmax = largest_step(control, t0, t1);
-    let (rtol, atol) = (T::lit(control.rtol), T::lit(control.atol));
+    let rtol = T::lit(control.rtol);
+    let atol = T::lit(control.atol);
     match control.h0 {
         Some(h0) => Ok(T::lit(h0).min(hmax)),
         None => hinit(rhs, t0, y, f0, hmax, rtol, atol, order, evaluations),

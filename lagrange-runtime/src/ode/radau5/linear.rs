@@ -165,7 +165,8 @@ pub(super) fn decompose<T: Real>(w: &mut Work<T>, fac1: T, alphn: T, betan: T) -
 pub(super) fn solve_stages<T: Real>(w: &mut Work<T>, fac1: T, alphn: T, betan: T) {
     let n = w.n;
     for i in 0..n {
-        let (s2, s3) = (-w.f[1][i], -w.f[2][i]);
+        let s2 = -w.f[1][i];
+        let s3 = -w.f[2][i];
         w.z[0][i] -= w.f[0][i] * fac1;
         w.z[1][i] += s2 * alphn - s3 * betan;
         w.z[2][i] += s3 * alphn + s2 * betan;
@@ -218,7 +219,8 @@ pub(super) fn estimate<T: Real, const N: usize, const Q: usize, F: SecondOrder<T
         for i in 0..n {
             w.tmp[i] += y[i];
         }
-        let (tmp, f0) = (&w.tmp, &mut w.f[0]);
+        let tmp = &w.tmp;
+        let f0 = &mut w.f[0];
         rhs_into::<T, N, Q, F>(rhs, t, tmp, f0, &mut stats.evaluations)?;
         for i in 0..n {
             w.tmp[i] = w.f[0][i] + w.f[1][i];

@@ -189,7 +189,8 @@ impl<T: Real, const N: usize, const Q: usize> State<T, N, Q> {
             self.caljac = true;
             self.entry = Entry::Factorise;
         }
-        let (k, h) = (&self.k, self.h);
+        let k = &self.k;
+        let h = self.h;
         (self.fac1, self.alphn, self.betan) = (k.u1 / h, k.alph / h, k.beta / h);
         if self.entry == Entry::Factorise {
             stats.factorizations += 1;
@@ -212,7 +213,8 @@ impl<T: Real, const N: usize, const Q: usize> State<T, N, Q> {
     /// budget, and a step that no longer moves t (reported as the pending
     /// failure of the right-hand side, if there is one).
     pub fn check_attempt(&mut self, stats: &Stats) -> Result<(), Error> {
-        let (t, h) = (self.t, self.h);
+        let t = self.t;
+        let h = self.h;
         if stats.steps() >= self.p.max_steps {
             return Err(Error::TooManySteps {
                 t: t.to_f64(),
@@ -248,7 +250,8 @@ impl<T: Real, const N: usize, const Q: usize> State<T, N, Q> {
     /// Starting values of the stages: zero at the first step, else the
     /// previous collocation polynomial extrapolated.
     pub fn starting_values(&mut self) {
-        let (k, w) = (&self.k, &mut self.w);
+        let k = &self.k;
+        let w = &mut self.w;
         if self.first {
             for s in 0..3 {
                 w.z[s].fill(T::zero());
@@ -259,7 +262,9 @@ impl<T: Real, const N: usize, const Q: usize> State<T, N, Q> {
         let c3q = self.h / self.hold;
         let cq = [k.c1 * c3q, k.c2 * c3q, c3q];
         for i in 0..Q + N {
-            let (ak1, ak2, ak3) = (w.cont[0][i], w.cont[1][i], w.cont[2][i]);
+            let ak1 = w.cont[0][i];
+            let ak2 = w.cont[1][i];
+            let ak3 = w.cont[2][i];
             let zi = cq.map(|c| c * (ak1 + (c - k.c2m1) * (ak2 + (c - k.c1m1) * ak3)));
             for s in 0..3 {
                 w.z[s][i] = zi[s];
@@ -278,11 +283,14 @@ impl<T: Real, const N: usize, const Q: usize> State<T, N, Q> {
         rhs: &F,
         stats: &mut Stats,
     ) -> Result<Newton<T>, Error> {
-        let (nit, uround, fnewt) = (self.p.nit, self.p.uround, self.p.fnewt);
+        let nit = self.p.nit;
+        let uround = self.p.uround;
+        let fnewt = self.p.fnewt;
         let mut newt = 0;
         self.faccon = self.faccon.max(uround).powf(T::lit(0.8));
         self.theta = abs(self.p.thet);
-        let (mut dynold, mut thqold) = (T::zero(), T::zero());
+        let mut dynold = T::zero();
+        let mut thqold = T::zero();
         loop {
             if newt >= nit || !self.stage_residuals(rhs, stats)? {
                 return Ok(Newton::Failed);
@@ -326,14 +334,18 @@ impl<T: Real, const N: usize, const Q: usize> State<T, N, Q> {
         rhs: &F,
         stats: &mut Stats,
     ) -> Result<bool, Error> {
-        let (k, w, t, h) = (&self.k, &mut self.w, self.t, self.h);
+        let k = &self.k;
+        let w = &mut self.w;
+        let t = self.t;
+        let h = self.h;
         let cs = [k.c1, k.c2, T::one()];
         for s in 0..3 {
             for i in 0..Q + N {
                 w.tmp[i] = self.y[i] + w.z[s][i];
             }
             let ts = if s == 2 { t + h } else { t + cs[s] * h };
-            let (tmp, zs) = (&w.tmp, &mut w.z[s]);
+            let tmp = &w.tmp;
+            let zs = &mut w.z[s];
             match rhs_into::<T, N, Q, F>(rhs, ts, tmp, zs, &mut stats.evaluations) {
                 Ok(()) => {}
                 // A Newton iterate the right-hand side cannot evaluate (far
@@ -372,7 +384,8 @@ impl<T: Real, const N: usize, const Q: usize> State<T, N, Q> {
     /// Adds the correction to the transformed stages f and transforms back
     /// into the stage increments z = T f.
     fn update_stages(&mut self) {
-        let (k, w) = (&self.k, &mut self.w);
+        let k = &self.k;
+        let w = &mut self.w;
         for i in 0..Q + N {
             let fi = [0, 1, 2].map(|s| w.f[s][i] + w.z[s][i]);
             for s in 0..3 {
@@ -391,7 +404,10 @@ impl<T: Real, const N: usize, const Q: usize> State<T, N, Q> {
         stats: &mut Stats,
     ) -> Result<T, Error> {
         let again = self.first || self.reject;
-        let (k, w, y, y0) = (&self.k, &mut self.w, &self.y, &self.y0);
+        let k = &self.k;
+        let w = &mut self.w;
+        let y = &self.y;
+        let y0 = &self.y0;
         estimate(rhs, k, w, self.t, self.h, y, y0, again, stats)
     }
 
@@ -413,7 +429,8 @@ impl<T: Real, const N: usize, const Q: usize> State<T, N, Q> {
         (mut quot, mut hnew): (T, T),
         run: &mut Run<T, N, Q>,
     ) -> Result<bool, Error> {
-        let (h, p) = (self.h, &self.p);
+        let h = self.h;
+        let p = &self.p;
         self.first = false;
         run.stats.accepted += 1;
         self.pending_error = None;
@@ -445,12 +462,16 @@ impl<T: Real, const N: usize, const Q: usize> State<T, N, Q> {
         rhs: &F,
         run: &mut Run<T, N, Q>,
     ) -> Result<bool, Error> {
-        let (k, w, y) = (&self.k, &mut self.w, &mut self.y);
+        let k = &self.k;
+        let w = &mut self.w;
+        let y = &mut self.y;
         let y_old = to_pair::<T, N, Q>(y);
         let f_old = to_pair::<T, N, Q>(&self.y0);
         for i in 0..Q + N {
             y[i] += w.z[2][i];
-            let (z1, z2, z3) = (w.z[0][i], w.z[1][i], w.z[2][i]);
+            let z1 = w.z[0][i];
+            let z2 = w.z[1][i];
+            let z3 = w.z[2][i];
             w.cont[0][i] = (z2 - z3) / k.c2m1;
             let ak = (z1 - z2) / k.c1mc2;
             let acont3 = (ak - z1 / k.c1) / k.c2;
