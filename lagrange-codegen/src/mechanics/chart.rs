@@ -11,7 +11,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::model::InputModel;
+use super::force::InputModel;
 use super::{Derived, Frames};
 use crate::constraint::{ConstraintSet, Reduction};
 use crate::lowered::{OrientationModel, Poses};

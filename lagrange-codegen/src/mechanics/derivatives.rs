@@ -11,7 +11,8 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::model::{EquationsOfMotion, Expressions, entries};
+use super::expressions::{Expressions, entries};
+use super::motion::EquationsOfMotion;
 use super::{DeriveError, Sources};
 use crate::tree::Tree;
 
@@ -52,7 +53,7 @@ pub(super) fn rhs_jacobians(
             let rest: Vec<Sym> = rest.iter().map(|&f| ctx.substitute(f, &at_zero)).collect();
             Ok(of_the_tree(ctx, tree, &rest))
         }
-        (None, false) => Ok(super::extra::rhs_jacobians(ctx, &motion.mass, &motion.rhs)),
+        (None, false) => Ok(of_the_generic_form(ctx, &motion.mass, &motion.rhs)),
         (None, true) => Err(DeriveError::JacobiansNeedTree(
             sources.route_reason.clone().unwrap_or_default(),
         )),
@@ -84,5 +85,41 @@ fn of_the_tree(ctx: &mut Context, tree: &Tree, rest: &[Sym]) -> RhsJacobians {
     };
     let position = minus_d(ctx, &q);
     let velocity = minus_d(ctx, &qd);
+    RhsJacobians { position, velocity }
+}
+
+/// J_q = ∂(Q − h)/∂q − [∂M/∂q_k q̈]_k and J_v = ∂(Q − h)/∂q̇, with q̈ left as the
+/// acceleration symbols (the runtime passes the current q̈).
+fn of_the_generic_form(ctx: &mut Context, mass: &[Vec<Sym>], rhs: &[Sym]) -> RhsJacobians {
+    let q = ctx.coordinates();
+    let qd = ctx.velocities();
+    let qdd = ctx.accelerations();
+    let n = q.len();
+    let position = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|k| {
+                    let mut terms = vec![ctx.diff(rhs[i], q[k])];
+                    for j in 0..n {
+                        let dm = ctx.diff(mass[i][j], q[k]);
+                        let t = ctx.mul(dm, qdd[j]);
+                        terms.push(ctx.neg(t));
+                    }
+                    let s = ctx.sum(&terms);
+                    ctx.collect(s)
+                })
+                .collect()
+        })
+        .collect();
+    let velocity = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|k| {
+                    let d = ctx.diff(rhs[i], qd[k]);
+                    ctx.collect(d)
+                })
+                .collect()
+        })
+        .collect();
     RhsJacobians { position, velocity }
 }

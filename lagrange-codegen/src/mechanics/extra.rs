@@ -4,8 +4,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::derivatives::RhsJacobians;
-use super::model::{Expressions, entries};
+use super::expressions::{Expressions, entries};
 
 /// Hamilton's form (`emit(hamiltonian)`), or the momentum alone of a
 /// rheonomic system (where the runtime's default M q̇ would be wrong).
@@ -56,42 +55,6 @@ pub(super) fn kinetic_gradient(ctx: &mut Context, kinetic: Sym) -> Vec<Sym> {
             ctx.collect(g)
         })
         .collect()
-}
-
-/// J_q = ∂(Q − h)/∂q − [∂M/∂q_k q̈]_k and J_v = ∂(Q − h)/∂q̇, with q̈ left as the
-/// acceleration symbols (the runtime passes the current q̈).
-pub(super) fn rhs_jacobians(ctx: &mut Context, mass: &[Vec<Sym>], rhs: &[Sym]) -> RhsJacobians {
-    let q = ctx.coordinates();
-    let qd = ctx.velocities();
-    let qdd = ctx.accelerations();
-    let n = q.len();
-    let position = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|k| {
-                    let mut terms = vec![ctx.diff(rhs[i], q[k])];
-                    for j in 0..n {
-                        let dm = ctx.diff(mass[i][j], q[k]);
-                        let t = ctx.mul(dm, qdd[j]);
-                        terms.push(ctx.neg(t));
-                    }
-                    let s = ctx.sum(&terms);
-                    ctx.collect(s)
-                })
-                .collect()
-        })
-        .collect();
-    let velocity = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|k| {
-                    let d = ctx.diff(rhs[i], qd[k]);
-                    ctx.collect(d)
-                })
-                .collect()
-        })
-        .collect();
-    RhsJacobians { position, velocity }
 }
 
 /// What is read off T as written in the orientations' θ (the recursive

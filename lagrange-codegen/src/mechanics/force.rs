@@ -2,7 +2,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::model::InputModel;
+use super::expressions::{Expressions, entries};
 use crate::mat3::dot;
 
 /// What the description applies besides gravity: a dissipation function,
@@ -132,4 +132,26 @@ pub(super) fn split_inputs(
         forces,
     };
     (q0, v0, Some(model))
+}
+
+/// How the inputs u enter: Q(q, q̇, u, t) = Q(q, q̇, 0, t) + ΔQ.
+pub struct InputModel {
+    pub names: Vec<String>,
+    /// The input symbols, in order (emitted as `u[i]`).
+    pub symbols: Vec<Sym>,
+    /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t).
+    pub forces: Vec<Sym>,
+    /// ∂Q/∂u (N × P), row-major.
+    pub jacobian_u: Vec<Vec<Sym>>,
+    /// ∂ΔQ/∂q (N × N).
+    pub jacobian_q: Vec<Vec<Sym>>,
+    /// ∂ΔQ/∂q̇ (N × N).
+    pub jacobian_v: Vec<Vec<Sym>>,
+}
+
+impl Expressions for InputModel {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        out.extend(&self.forces);
+        entries(out, [&self.jacobian_u, &self.jacobian_q, &self.jacobian_v]);
+    }
 }

@@ -7,8 +7,22 @@
 use lagrange_symbolic::{Context, Expr as Sym, Program};
 
 use super::kinematics::{Kinematics, Spin};
-use super::model::BiasRoute;
 use crate::mat3::{cross, dot, mat_vec};
+
+/// Which derivation of h the emitted code uses.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum BiasRoute {
+    /// h = Σ_ν m_ν J_νᵀ κ_ν (d'Alembert's principle).
+    Projection,
+    /// h = d/dt ∂T/∂q̇ − ∂T/∂q with q̈ = 0 (Christoffel symbols, rheonomic terms).
+    Christoffel,
+    /// Recursive Newton–Euler over the kinematic tree, with M by composite rigid
+    /// bodies ([`crate::tree`]).
+    Recursive,
+    /// h_i = Σ_jk (∂M_ij/∂q_k − ½ ∂M_jk/∂q_i) q̇_j q̇_k, the Christoffel symbols of
+    /// the derived M (scleronomic systems only).
+    MassMatrix,
+}
 
 /// M and h by the generic route, with the route h was kept from and the h not kept.
 pub(super) struct GenericTerms {

@@ -21,6 +21,7 @@ mod chart;
 mod cyclic;
 mod derivatives;
 mod energy;
+mod expressions;
 mod extra;
 mod force;
 mod forms;
@@ -33,12 +34,13 @@ mod motion;
 mod recursive;
 
 pub use derivatives::RhsJacobians;
+pub use expressions::Expressions;
 pub use extra::{Coriolis, Hamilton};
 pub use frames::Frames;
 pub use inverse::InverseDynamics;
 pub use model::{
-    Articulation, BiasRoute, ConstraintForms, Derivation, Energies, EquationsOfMotion, Expressions,
-    InputModel, Masses, Model, Outputs, Variables,
+    Articulation, BiasRoute, ConstraintForms, Derivation, Energies, EquationsOfMotion, InputModel,
+    Masses, Model, Outputs, Variables,
 };
 
 use std::mem::take;

@@ -3,12 +3,16 @@
 
 use lagrange_symbolic::{Context, Expr as Sym, Hoisted};
 
+use super::expressions::{Expressions, entries};
 use super::extra::{Coriolis, Hamilton};
 use super::{Frames, InverseDynamics, RhsJacobians};
 use crate::constraint::{ConstraintDerivatives, ConstraintSet, Reduction};
 use crate::lowered::{OrientationModel, PhysicalCheck, Poses};
 
-pub use super::motion::{BiasRoute, Derivation, EquationsOfMotion};
+pub use super::force::InputModel;
+pub use super::generic::BiasRoute;
+pub use super::motion::{Derivation, EquationsOfMotion};
+pub use super::recursive::Articulation;
 
 /// The equations of motion M q̈ + h = Q, the energies, the constrained forms
 /// and the optional outputs, as expressions in one [`Context`].
@@ -95,31 +99,6 @@ impl Model {
     }
 }
 
-/// A part of the model as the expressions the generated code evaluates of it,
-/// for the questions asked of all of them (which coordinates they read).
-pub trait Expressions {
-    /// Appends the part's expressions to `out`.
-    fn expressions(&self, out: &mut Vec<Sym>);
-}
-
-impl<T: Expressions> Expressions for Option<T> {
-    fn expressions(&self, out: &mut Vec<Sym>) {
-        if let Some(part) = self {
-            part.expressions(out);
-        }
-    }
-}
-
-/// Appends the entries of matrices, row by row.
-pub(super) fn entries<'a>(
-    out: &mut Vec<Sym>,
-    matrices: impl IntoIterator<Item = &'a Vec<Vec<Sym>>>,
-) {
-    for m in matrices {
-        out.extend(m.iter().flatten());
-    }
-}
-
 /// What q, q̇ and the parameters are.
 pub struct Variables {
     pub coordinates: Vec<String>,
@@ -169,28 +148,6 @@ pub struct Masses {
     /// The masses and inertias computed from parameters, which the generated
     /// `check_parameters` checks before a run.
     pub checks: Vec<PhysicalCheck>,
-}
-
-/// How the inputs u enter: Q(q, q̇, u, t) = Q(q, q̇, 0, t) + ΔQ.
-pub struct InputModel {
-    pub names: Vec<String>,
-    /// The input symbols, in order (emitted as `u[i]`).
-    pub symbols: Vec<Sym>,
-    /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t).
-    pub forces: Vec<Sym>,
-    /// ∂Q/∂u (N × P), row-major.
-    pub jacobian_u: Vec<Vec<Sym>>,
-    /// ∂ΔQ/∂q (N × N).
-    pub jacobian_q: Vec<Vec<Sym>>,
-    /// ∂ΔQ/∂q̇ (N × N).
-    pub jacobian_v: Vec<Vec<Sym>>,
-}
-
-impl Expressions for InputModel {
-    fn expressions(&self, out: &mut Vec<Sym>) {
-        out.extend(&self.forces);
-        entries(out, [&self.jacobian_u, &self.jacobian_q, &self.jacobian_v]);
-    }
 }
 
 /// The constrained forms the description has: the multiplier form (Φ, G, g,
@@ -262,22 +219,5 @@ impl Expressions for Outputs {
         self.jacobians.expressions(out);
         self.hamilton.expressions(out);
         self.articulated.expressions(out);
-    }
-}
-
-/// q̈(q, q̇, τ) by the articulated-body algorithm (`emit(articulated)`).
-pub struct Articulation {
-    /// q̈, with the extra generalized forces as the free symbols `extra`.
-    pub accelerations: Vec<Sym>,
-    /// The articulated pivots D_i, for the singularity check.
-    pub pivots: Vec<Sym>,
-    /// Free symbols for the extra generalized forces (emitted as `tau[i]`).
-    pub extra: Vec<Sym>,
-}
-
-impl Expressions for Articulation {
-    fn expressions(&self, out: &mut Vec<Sym>) {
-        out.extend(&self.accelerations);
-        out.extend(&self.pivots);
     }
 }

@@ -3,24 +3,9 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use super::generic::GenericTerms;
-use super::model::{Expressions, entries};
+use super::expressions::{Expressions, entries};
+use super::generic::{BiasRoute, GenericTerms};
 use super::recursive::RecursiveTerms;
-
-/// Which derivation of h the emitted code uses.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub enum BiasRoute {
-    /// h = Σ_ν m_ν J_νᵀ κ_ν (d'Alembert's principle).
-    Projection,
-    /// h = d/dt ∂T/∂q̇ − ∂T/∂q with q̈ = 0 (Christoffel symbols, rheonomic terms).
-    Christoffel,
-    /// Recursive Newton–Euler over the kinematic tree, with M by composite rigid
-    /// bodies ([`crate::tree`]).
-    Recursive,
-    /// h_i = Σ_jk (∂M_ij/∂q_k − ½ ∂M_jk/∂q_i) q̇_j q̇_k, the Christoffel symbols of
-    /// the derived M (scleronomic systems only).
-    MassMatrix,
-}
 
 /// M q̈ + h = Q at zero input, by the route chosen, with Q − h.
 pub struct EquationsOfMotion {

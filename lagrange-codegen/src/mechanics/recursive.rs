@@ -4,8 +4,8 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
+use super::expressions::Expressions;
 use super::generic::{GenericTerms, cost};
-use super::model::Articulation;
 use crate::lowered::{PointModel, Skeleton, SpinModel};
 use crate::mat3::Mat3;
 use crate::tree::NotATree;
@@ -96,5 +96,22 @@ pub(super) fn articulation(
         accelerations: fd.accelerations,
         pivots: fd.pivots,
         extra,
+    }
+}
+
+/// q̈(q, q̇, τ) by the articulated-body algorithm (`emit(articulated)`).
+pub struct Articulation {
+    /// q̈, with the extra generalized forces as the free symbols `extra`.
+    pub accelerations: Vec<Sym>,
+    /// The articulated pivots D_i, for the singularity check.
+    pub pivots: Vec<Sym>,
+    /// Free symbols for the extra generalized forces (emitted as `tau[i]`).
+    pub extra: Vec<Sym>,
+}
+
+impl Expressions for Articulation {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        out.extend(&self.accelerations);
+        out.extend(&self.pivots);
     }
 }
