@@ -78,7 +78,7 @@ pub fn mat_mul(ctx: &mut Context, a: &Mat3, b: &Mat3) -> Mat3 {
     [0, 1, 2].map(|i| [0, 1, 2].map(|j| dot(ctx, &a[i], &[b[0][j], b[1][j], b[2][j]])))
 }
 
-/// [v]×, the matrix of v × ·.
+/// \[v\]×, the matrix of v × ·.
 pub fn skew(ctx: &mut Context, [x, y, z]: [Sym; 3]) -> Mat3 {
     let zero = ctx.zero();
     let nx = ctx.neg(x);
@@ -87,7 +87,7 @@ pub fn skew(ctx: &mut Context, [x, y, z]: [Sym; 3]) -> Mat3 {
     [[zero, nz, y], [z, zero, nx], [ny, x, zero]]
 }
 
-/// R(θ) = 1 + [θ]× + ½[θ]×², the exponential map to the second order: a free
+/// R(θ) = 1 + \[θ\]× + ½\[θ\]×², the exponential map to the second order: a free
 /// orientation's chart as the lowering writes it and the tree reads it.
 pub fn second_order_turn(ctx: &mut Context, theta: [Sym; 3]) -> Mat3 {
     let k = skew(ctx, theta);

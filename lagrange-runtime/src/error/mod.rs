@@ -300,7 +300,7 @@ pub enum Error {
 
     /// An orientation's quaternion in an initial state is not a rotation:
     /// not finite, or its norm further from 1 than
-    /// [`UNIT_TOLERANCE`] (within
+    /// [`UNIT_TOLERANCE`](crate::numeric::orientation::UNIT_TOLERANCE) (within
     /// it, the run normalises it silently).
     #[error(
         "the quaternion of `{orientation}` in the initial state has norm {norm}, not 1 \

@@ -119,7 +119,7 @@ impl Study {
     }
 
     /// The reference's own error: the one given with
-    /// [`WorkPrecision::uncertainty`], else the reference kind's estimate.
+    /// [`WorkPrecision::uncertainty`](super::WorkPrecision::uncertainty), else the reference kind's estimate.
     pub fn uncertainty(&self) -> Option<f64> {
         self.uncertainty
     }
