@@ -5,6 +5,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
+use super::motion::EquationsOfMotion;
 use crate::tree::Tree;
 
 /// τ(q, q̇, q̈, t) and the gravity torques g(q, t).
@@ -21,9 +22,13 @@ pub struct InverseDynamics {
 pub(super) fn inverse_dynamics(
     ctx: &mut Context,
     tree: Option<&Tree>,
-    (mass, bias, forces): (&[Vec<Sym>], &[Sym], &[Sym]),
-    (gravity_potential, rest): (Sym, Option<&[Sym]>),
+    motion: &EquationsOfMotion,
+    gravity_potential: Sym,
+    rest: Option<&[Sym]>,
 ) -> InverseDynamics {
+    let mass = &motion.mass;
+    let bias = &motion.bias;
+    let forces = &motion.forces;
     let q = ctx.coordinates();
     let Some(tree) = tree else {
         let a = ctx.accelerations();

@@ -161,28 +161,23 @@ fn unconstrained(
         generic.then(|| generic::derive(ctx, &kin, &spin, kinetic, rheonomic, &zero_acc));
     let recursive_terms = recursive::cheaper(ctx, tree.as_ref(), generic_terms.as_ref());
     let route_reason = route_reason(recursive_terms.is_some(), tree.as_ref(), not_a_tree);
-    let extras = &lowered.extras;
-    let sources = Sources {
-        gravity,
-        potential: lowered.potential,
-        applied: Applied {
-            dissipation: lowered.dissipation,
-            forces: &lowered.forces,
-            generalized: &lowered.generalized_forces,
-        },
-        tree: tree.as_ref(),
-        recursive: recursive_terms.is_some(),
-        articulated: extras.contains(&Extra::Articulated),
-        route_reason: route_reason.clone(),
-    };
     let input_names = take(&mut lowered.inputs);
+    let recursive = recursive_terms.is_some();
+    let sources = sources(lowered, tree.as_ref(), recursive, route_reason.clone());
+    let extras = &lowered.extras;
     let (forces, potential) = applied_forces(ctx, &kin, &sources, input_names)?;
     let q_at_zero = motion::Generalized {
         forces: &forces.generalized,
         gravity_potential: forces.gravity_potential,
     };
-    let terms = (recursive_terms, generic_terms);
-    let motion = motion::equations(ctx, terms, q_at_zero, (rheonomic, route_reason));
+    let motion = motion::equations(
+        ctx,
+        recursive_terms,
+        generic_terms,
+        q_at_zero,
+        rheonomic,
+        route_reason,
+    );
     let inverse = inverse_if_asked(ctx, extras, tree.as_ref(), &motion, &forces);
     let free = !lowered.orientations.is_empty();
     let jacobians = (extras.contains(&Extra::Jacobians))
@@ -218,6 +213,29 @@ fn unconstrained(
     })
 }
 
+/// Where Q comes from, as the description gives it and the route chosen
+/// needs it.
+fn sources<'a>(
+    lowered: &'a Lowered,
+    tree: Option<&'a crate::tree::Tree>,
+    recursive: bool,
+    route_reason: Option<String>,
+) -> Sources<'a> {
+    Sources {
+        gravity: lowered.gravity.as_deref(),
+        potential: lowered.potential,
+        applied: Applied {
+            dissipation: lowered.dissipation,
+            forces: &lowered.forces,
+            generalized: &lowered.generalized_forces,
+        },
+        tree,
+        recursive,
+        articulated: lowered.extras.contains(&Extra::Articulated),
+        route_reason,
+    }
+}
+
 /// Whether to derive the generic route (besides the recursive one, if there is a
 /// tree), or the error when the recursive route was required of a non-tree.
 fn wants_generic(
@@ -239,12 +257,11 @@ fn inverse_if_asked(
     motion: &EquationsOfMotion,
     forces: &Forces,
 ) -> Option<InverseDynamics> {
-    let terms = (&motion.mass[..], &motion.bias[..], &motion.forces[..]);
     let asked = extras.contains(&Extra::InverseDynamics);
     // On the recursive route Q leaves gravity out.
     let rest = (motion.derivation.route == BiasRoute::Recursive).then_some(&forces.generalized[..]);
-    let gravity = (forces.gravity_potential, rest);
-    asked.then(|| inverse::inverse_dynamics(ctx, tree, terms, gravity))
+    let potential = forces.gravity_potential;
+    asked.then(|| inverse::inverse_dynamics(ctx, tree, motion, potential, rest))
 }
 
 /// Why M and h are not by the recursive route (`None` when they are): the
@@ -464,8 +481,12 @@ fn finish(
         r => r,
     };
     let articulated = d.forces.articulated;
-    let programs = (&d.motion, articulated.as_ref(), multipliers.as_ref());
-    let hoisted = hoist(&mut ctx, programs);
+    let hoisted = hoist(
+        &mut ctx,
+        &d.motion,
+        articulated.as_ref(),
+        multipliers.as_ref(),
+    );
     let mut model = Model {
         ctx,
         variables: d.variables,
@@ -496,11 +517,9 @@ fn finish(
 /// `Model::hoisted_*` reads.
 fn hoist(
     ctx: &mut Context,
-    (motion, articulated, constraints): (
-        &EquationsOfMotion,
-        Option<&Articulation>,
-        Option<&ConstraintSet>,
-    ),
+    motion: &EquationsOfMotion,
+    articulated: Option<&Articulation>,
+    constraints: Option<&ConstraintSet>,
 ) -> lagrange_symbolic::Hoisted {
     let mass = motion.mass.iter().flatten();
     let mut outputs: Vec<Sym> = mass.chain(&motion.rhs).copied().collect();

@@ -55,9 +55,11 @@ pub(super) struct Generalized<'a> {
 /// the `forces` output.
 pub(super) fn equations(
     ctx: &mut Context,
-    (recursive, generic): (Option<RecursiveTerms>, Option<GenericTerms>),
+    recursive: Option<RecursiveTerms>,
+    generic: Option<GenericTerms>,
     q_at_zero: Generalized,
-    (rheonomic, reason): (bool, Option<String>),
+    rheonomic: bool,
+    reason: Option<String>,
 ) -> EquationsOfMotion {
     let q = ctx.coordinates();
     let n = q.len();

@@ -369,7 +369,9 @@ pub(crate) fn check_start<S, T, const N: usize, const F: usize>(
     system: &S,
     t0: T,
     (q0, v0): (&SVector<T, N>, &SVector<T, N>),
-    (tolerance, drift, least_squares): (f64, Drift, bool),
+    consistency: f64,
+    drift: Drift,
+    least_squares: bool,
 ) -> Result<(), Error>
 where
     S: Atlas<T, N, F>,
@@ -393,7 +395,7 @@ where
             q: q0,
             v: v0,
         },
-        tolerance: T::lit(tolerance),
+        tolerance: T::lit(consistency),
     })
 }
 

@@ -95,8 +95,16 @@ impl<S, I: Integrator, C, E> Simulation<'_, S, I, C, E> {
         self.settings.check()?;
         check_problem(span.start, span.end, q0, v0)?;
         let s = &self.settings;
-        let constraints = (s.tolerances.consistency, s.drift, s.least_squares);
-        atlas::check_start::<S, T, N, F>(self.system, span.start, (q0, v0), constraints)?;
+        let consistency = s.tolerances.consistency;
+        let state = (q0, v0);
+        atlas::check_start::<S, T, N, F>(
+            self.system,
+            span.start,
+            state,
+            consistency,
+            s.drift,
+            s.least_squares,
+        )?;
         if !atlas::layout_agrees(self.system) {
             return Err(atlas::layout_error());
         }

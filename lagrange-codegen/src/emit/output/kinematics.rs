@@ -15,15 +15,30 @@ use crate::emit::Frame;
 use crate::emit::emitter::Emitter;
 use crate::mechanics::Model;
 
+/// The per-body methods' signature: the stem of their names, their
+/// parameters, the arguments the dispatch passes, their return type.
+struct Signature<'a> {
+    name: &'a str,
+    params: &'a TokenStream,
+    args: TokenStream,
+    ty: &'a TokenStream,
+}
+
 /// A `match` on `body` with one arm per body, each calling that body's
 /// method `__lagrange_<name>_<b>(&self, <args>)`, and those methods, each
 /// evaluating `program(b)` into `build(outs)` of type `ty`.
 fn per_body(
     e: &Emitter,
-    (name, params, args, ty): (&str, &TokenStream, &TokenStream, &TokenStream),
+    signature: Signature,
     programs: &[Vec<Sym>],
     build: impl Fn(&[TokenStream]) -> TokenStream,
 ) -> (TokenStream, TokenStream) {
+    let Signature {
+        name,
+        params,
+        args,
+        ty,
+    } = signature;
     let mut arms = Vec::new();
     let mut methods = Vec::new();
     for (b, outputs) in programs.iter().enumerate() {
@@ -73,13 +88,23 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
     let bias_ty = quote!(#p::SVector<#s, 6>);
     let (jacobian, jacobian_methods) = per_body(
         e,
-        ("frame_jacobian", &q_t, &quote!(q, t), &jacobian_ty),
+        Signature {
+            name: "frame_jacobian",
+            params: &q_t,
+            args: quote!(q, t),
+            ty: &jacobian_ty,
+        },
         &frames.jacobians,
         |outs| quote!(#p::SMatrix::<#s, 6, #nl>::from_row_slice(&[#(#outs),*])),
     );
     let (bias, bias_methods) = per_body(
         e,
-        ("frame_bias", &v_t, &quote!(q, v, t), &bias_ty),
+        Signature {
+            name: "frame_bias",
+            params: &v_t,
+            args: quote!(q, v, t),
+            ty: &bias_ty,
+        },
         &frames.biases,
         |outs| quote!(#p::SVector::<#s, 6>::from_column_slice(&[#(#outs),*])),
     );
