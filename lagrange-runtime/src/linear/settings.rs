@@ -152,8 +152,9 @@ impl Linearizer {
 
     /// Sets every tolerance at once: the same [`Tolerances`] a
     /// [`Simulation`](crate::Simulation) takes
-    /// ([`Simulation::tolerances`](crate::Simulation::tolerances)), so that a
-    /// linearisation refuses a point exactly when a run from it would stop.
+    /// ([`Simulation::tolerances`](crate::Simulation::tolerances)), so that
+    /// both judge singularity, redundancy and consistency at the same
+    /// thresholds.
     pub fn tolerances(mut self, tolerances: Tolerances) -> Self {
         self.tolerances = tolerances;
         self

@@ -9,8 +9,9 @@ use crate::error::{Error, check_tolerance};
 ///
 /// A [`Simulation`](crate::Simulation) and a
 /// [`Linearizer`](crate::linear::Linearizer) both hold one: given the same
-/// `Tolerances`, a linearisation refuses a point exactly when a run started
-/// there would stop.
+/// `Tolerances`, a linearisation judges a singular mass matrix, redundant
+/// constraints and an inconsistent state at the thresholds a run started
+/// there would use.
 ///
 /// ```
 /// # use lagrange_runtime::mechanics::Tolerances;

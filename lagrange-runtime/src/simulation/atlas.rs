@@ -3,12 +3,13 @@
 //! makes of it ([`AtlasRuns`]). The controlled run is in `atlas_control`.
 
 use super::Simulation;
+use super::formulation::checked_start;
 use super::options::{NoEvents, Unforced};
 use crate::atlas::{self, AtlasRun};
 use crate::error::{Error, Failure};
 use crate::event::{Event, Events};
 use crate::numeric::Real;
-use crate::ode::{Integrator, Sample, Trajectory, check_problem};
+use crate::ode::{Integrator, Sample, Trajectory};
 use crate::system::Atlas;
 use nalgebra::SVector;
 use std::ops::Range;
@@ -91,9 +92,7 @@ impl<S, I: Integrator, C, E> Simulation<'_, S, I, C, E> {
     where
         S: Atlas<T, N, F>,
     {
-        self.system.check_parameters()?;
-        self.settings.check()?;
-        check_problem(span.start, span.end, q0, v0)?;
+        checked_start(self.system, &self.settings, span, *q0, v0)?;
         let s = &self.settings;
         let consistency = s.tolerances.consistency;
         let state = (q0, v0);

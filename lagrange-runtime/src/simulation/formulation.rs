@@ -39,9 +39,9 @@ pub trait Formulation<T: Real, const N: usize, const Q: usize> {
     ) -> Result<(SVector<T, Q>, SVector<T, N>), Error>;
 }
 
-/// What every formulation checks first; gives q0 with its quaternions scaled
-/// to unit norm.
-fn checked_start<S, T, const N: usize, const Q: usize>(
+/// What every run checks first (the formulations here, and the atlas's
+/// runs); gives q0 with its quaternions scaled to unit norm.
+pub(super) fn checked_start<S, T, const N: usize, const Q: usize>(
     system: &S,
     settings: &Settings,
     span: &Range<T>,

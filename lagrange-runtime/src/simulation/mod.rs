@@ -176,8 +176,8 @@ impl<'a, S, I, C, E> Simulation<'a, S, I, C, E> {
     }
 
     /// Sets every tolerance at once: the same [`Tolerances`] a
-    /// [`Linearizer`](crate::linear::Linearizer) takes, so that the
-    /// linearisation fails exactly where this run would.
+    /// [`Linearizer`](crate::linear::Linearizer) takes, so that both judge
+    /// singularity, redundancy and consistency at the same thresholds.
     pub fn tolerances(mut self, tolerances: Tolerances) -> Self {
         self.settings.tolerances = tolerances;
         self
