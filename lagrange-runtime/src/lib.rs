@@ -177,6 +177,8 @@
 //! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
 //! number of degrees of freedom `N`, a type-level constant.
 
+#![warn(missing_docs)]
+
 // The modules by layer, bottom up: each imports only from its own layer and
 // the layers listed before it (ARCHITECTURE.md has the map; the workspace's
 // tests/architecture.rs holds it true).
