@@ -242,6 +242,8 @@ pub use scene::Scene;
 pub use simulation::{
     AtlasRunOf, AtlasRuns, Control, ControlRun, NoEvents, Run, Runs, Simulation, Unforced,
 };
+#[allow(deprecated)]
+pub use simulation::{ControlledSimulation, EventSimulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::physical;
 pub use system::{Atlas, Configuration, DrivenAtlas, EulerRotation, FreeVisitor};
