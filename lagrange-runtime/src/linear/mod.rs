@@ -142,6 +142,7 @@ mod constrained_tangent;
 mod defaults;
 mod dense;
 mod difference;
+mod discrete;
 mod eigen;
 mod errors;
 mod jordan;
@@ -153,6 +154,7 @@ mod solve;
 mod tangent;
 
 pub use defaults::{complete_state, linearize, linearize_constrained, linearize_reduced};
+pub use discrete::{Discrete, dlqr, zero_order_hold};
 pub use eigen::{Boundary, EigenSweep, Mode, Stability, SweepPoint, Verdict, sweep};
 pub use jordan::RANK_TOLERANCE;
 pub use lqr::{Lqr, RICCATI_TOLERANCE, lqr};
