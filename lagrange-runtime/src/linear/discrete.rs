@@ -44,8 +44,8 @@ impl Linear {
     /// inputs keep their names.
     ///
     /// ```
-    /// use lagrange::linear::Linear;
-    /// use lagrange::nalgebra::DMatrix;
+    /// use lagrange_runtime::linear::Linear;
+    /// use nalgebra::DMatrix;
     ///
     /// // A double integrator: x = (position, velocity), u a force on unit mass.
     /// let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, 0.0, 0.0]);
@@ -56,11 +56,11 @@ impl Linear {
     /// assert!((sampled.a()[(0, 1)] - 0.1).abs() < 1e-15);
     /// assert!((sampled.b()[(0, 0)] - 0.005).abs() < 1e-15);
     /// // The discrete LQR gain for u_k = −K x_k at 10 Hz.
-    /// let q = DMatrix::from_diagonal(&[1.0, 0.5].into());
+    /// let q = DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, 0.5]);
     /// let r = DMatrix::from_element(1, 1, 0.2);
     /// let design = sampled.lqr(&q, &r)?;
     /// assert!(design.closed_loop.iter().all(|z| z.norm() < 1.0));
-    /// # Ok::<(), lagrange::Error>(())
+    /// # Ok::<(), lagrange_runtime::Error>(())
     /// ```
     ///
     /// # Errors
