@@ -412,7 +412,7 @@ mod singular;
 
 pub(crate) use checks::{check_finite_inputs, check_tolerance, unit_quaternions};
 pub use failure::{Failure, Progress};
-pub use linear::LinearError;
+pub use linear::{LinearError, StatePoint};
 pub use settings::SettingsError;
 
 use crate::numeric::Real;

@@ -144,6 +144,7 @@ mod dense;
 mod difference;
 mod discrete;
 mod eigen;
+mod equilibrium;
 mod errors;
 mod jordan;
 mod lqr;
@@ -156,6 +157,7 @@ mod tangent;
 pub use defaults::{complete_state, linearize, linearize_constrained, linearize_reduced};
 pub use discrete::{Discrete, dlqr, zero_order_hold};
 pub use eigen::{Boundary, EigenSweep, Mode, Stability, SweepPoint, Verdict, sweep};
+pub use equilibrium::{Equilibrium, Trim};
 pub use jordan::RANK_TOLERANCE;
 pub use lqr::{Lqr, RICCATI_TOLERANCE, lqr};
 pub use settings::{
