@@ -57,6 +57,7 @@ mod study;
 mod symplectic_orientation;
 mod torqued_body;
 mod torques;
+mod trim;
 mod urdf;
 mod urdf_arms;
 mod urdf_derivatives;
