@@ -153,6 +153,9 @@ mod reduced_tangent;
 mod settings;
 mod solve;
 mod tangent;
+#[cfg(test)]
+mod test_systems;
+mod transition;
 
 pub use defaults::{complete_state, linearize, linearize_constrained, linearize_reduced};
 pub use discrete::{Discrete, dlqr, zero_order_hold};
@@ -164,6 +167,7 @@ pub use settings::{
     DEFAULT_NEWTON_ITERATIONS, DEFAULT_NEWTON_TOLERANCE, Linearizer, OperatingPoint,
 };
 pub(crate) use tangent::states as tangent_states;
+pub use transition::{StepDerivatives, StepMethod, Transition};
 
 use crate::error::Error;
 pub use crate::error::LinearError;
