@@ -206,6 +206,7 @@ pub mod control;
 pub mod ensemble;
 pub mod event;
 pub mod linear;
+pub mod plan;
 pub mod scene;
 pub mod study;
 mod table;

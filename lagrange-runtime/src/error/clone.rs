@@ -43,7 +43,7 @@ impl Clone for Error {
             NonPhysicalParameter { body, entry, value, reason },
             NonUnitQuaternion { orientation, norm, tolerance },
             JointLimit { joint, coordinate, value, lower, upper, t };
-            Settings, Linear
+            Settings, Linear, Plan
         )
     }
 }

@@ -154,7 +154,7 @@ mod settings;
 mod solve;
 mod tangent;
 #[cfg(test)]
-mod test_systems;
+pub(crate) mod test_systems;
 mod transition;
 
 pub use defaults::{complete_state, linearize, linearize_constrained, linearize_reduced};
