@@ -167,7 +167,8 @@ impl Ddp {
             let derivatives =
                 derivatives.map_err(|e| self.fail(problem, &nominal, &last, &log, e))?;
             let backward = loop {
-                match backward_pass(problem, &nominal, &derivatives, mu, last.as_ref()) {
+                let pass = backward_pass(problem, &nominal, &derivatives, mu, last.as_ref());
+                match pass.map_err(|e| self.fail(problem, &nominal, &last, &log, e))? {
                     Some(b) => break b,
                     None if mu * 10.0 > MU_MAX => {
                         let why = "Q_uu is not positive definite at the largest regularisation";
@@ -183,6 +184,7 @@ impl Ddp {
                 // The gains without the regularisation's bias where Q_uu allows.
                 let exact = (mu > 0.0)
                     .then(|| backward_pass(problem, &nominal, &derivatives, 0.0, Some(&backward)))
+                    .and_then(Result::ok)
                     .flatten();
                 let gains = exact.map_or(backward.gains, |b| b.gains);
                 return Ok(plan(problem, nominal, gains, log));
@@ -367,7 +369,7 @@ where
 }
 
 /// The backward pass with regularisation μ, warm-starting each box QP from
-/// the last pass's feed-forward; `None` if some Q_uu is not positive
+/// the last pass's feed-forward; `Ok(None)` if some Q_uu is not positive
 /// definite on its free inputs.
 fn backward_pass<S, const N: usize, const P: usize>(
     problem: &OptimalControl<S, N, P>,
@@ -375,32 +377,32 @@ fn backward_pass<S, const N: usize, const P: usize>(
     derivatives: &[StepDerivatives<N>],
     mu: f64,
     last: Option<&Backward>,
-) -> Option<Backward>
+) -> Result<Option<Backward>, Error>
 where
     S: Driven<f64, N, P>,
 {
     let steps = problem.steps;
     let n2 = 2 * N;
-    let w_f = problem.final_weight_or_running();
-    let mut vx = w_f * (&nominal.xs[steps] - &problem.goal);
-    let mut vxx = w_f.clone();
+    let terminal = problem.final_model(&nominal.xs[steps])?;
+    let (mut vx, mut vxx) = (terminal.lx, terminal.lxx);
     let mut feedforward = vec![DVector::zeros(P); steps];
     let mut gains = vec![DMatrix::zeros(P, n2); steps];
     let mut expected = (0.0, 0.0);
     for k in (0..steps).rev() {
         let (fx, fu) = (&derivatives[k].dx, &derivatives[k].du);
-        let lx = &problem.weight_x * (&nominal.xs[k] - &problem.goal);
-        let lu = &problem.weight_u * (&nominal.us[k] - &problem.input_target);
-        let qx = lx + fx.transpose() * &vx;
-        let qu = lu + fu.transpose() * &vx;
+        let l = problem.running_model(k, &nominal.xs[k], &nominal.us[k])?;
+        let qx = &l.lx + fx.transpose() * &vx;
+        let qu = &l.lu + fu.transpose() * &vx;
         let v_reg = &vxx + DMatrix::identity(n2, n2) * mu;
-        let qxx = &problem.weight_x + fx.transpose() * &vxx * fx;
-        let quu = &problem.weight_u + fu.transpose() * &v_reg * fu;
-        let qux = fu.transpose() * &v_reg * fx;
+        let qxx = &l.lxx + fx.transpose() * &vxx * fx;
+        let quu = &l.luu + fu.transpose() * &v_reg * fu;
+        let qux = &l.lux + fu.transpose() * &v_reg * fx;
         let start = last.map_or_else(|| DVector::zeros(P), |b| b.feedforward[k].clone());
         let lower = &problem.lower - &nominal.us[k];
         let upper = &problem.upper - &nominal.us[k];
-        let qp = box_qp::solve(&quu, &qu, &lower, &upper, &start)?;
+        let Some(qp) = box_qp::solve(&quu, &qu, &lower, &upper, &start) else {
+            return Ok(None);
+        };
         let mut gain = DMatrix::zeros(P, n2);
         if let Some(chol) = &qp.factor {
             let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| qux[(qp.free[i], j)]);
@@ -420,11 +422,11 @@ where
         feedforward[k] = kff;
         gains[k] = gain;
     }
-    Some(Backward {
+    Ok(Some(Backward {
         feedforward,
         gains,
         expected,
-    })
+    }))
 }
 
 /// The first step α of 1, ½, … 2⁻¹⁰ whose rollout lowers the cost by at

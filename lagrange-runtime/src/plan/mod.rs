@@ -16,10 +16,12 @@
 //! systems are not planned for yet.
 
 mod box_qp;
+mod cost;
 mod ddp;
 mod mpc;
 mod problem;
 
+pub use cost::{Cost, CostFn, CostModel, FramePosition};
 pub use ddp::{Ddp, Iteration, Plan};
 pub use mpc::{Mpc, Sample};
 pub use problem::OptimalControl;

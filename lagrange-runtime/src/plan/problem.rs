@@ -1,5 +1,6 @@
 //! An optimal control problem over a fixed horizon of fixed steps.
 
+use super::cost::{Cost, CostModel};
 use crate::error::{Error, SettingsError};
 use crate::linear::Transition;
 use crate::system::Driven;
@@ -14,7 +15,11 @@ use nalgebra::{DMatrix, DVector, SVector};
 /// subject to x_{k+1} = F(x_k, u_k) (a [`Transition`]: RK4 or semi-implicit
 /// Euler of the system's dynamics), x₀ given and lower ≤ u_k ≤ upper. The
 /// state is x = (q, v) (2N numbers); the goal x* defaults to zero, the input
-/// target u* to zero, W_f to W_x and the bounds to none.
+/// target u* to zero, W_f to W_x and the bounds to none. More terms join
+/// either sum with [`running_cost`](Self::running_cost) and
+/// [`final_cost`](Self::final_cost): a frame's position
+/// ([`FramePosition`](super::FramePosition)), or your own
+/// ([`CostFn`](super::CostFn)).
 pub struct OptimalControl<'a, S, const N: usize, const P: usize> {
     pub(super) transition: Transition<'a, S>,
     pub(super) steps: usize,
@@ -27,6 +32,8 @@ pub struct OptimalControl<'a, S, const N: usize, const P: usize> {
     pub(super) input_target: DVector<f64>,
     pub(super) lower: DVector<f64>,
     pub(super) upper: DVector<f64>,
+    pub(super) running_terms: Vec<Box<dyn Cost<N, P> + 'a>>,
+    pub(super) final_terms: Vec<Box<dyn Cost<N, P> + 'a>>,
 }
 
 /// (q, v) as one state vector of 2N numbers.
@@ -67,7 +74,21 @@ where
             input_target: DVector::zeros(P),
             lower: DVector::from_element(P, f64::NEG_INFINITY),
             upper: DVector::from_element(P, f64::INFINITY),
+            running_terms: Vec::new(),
+            final_terms: Vec::new(),
         }
+    }
+
+    /// Adds a term to the running cost (at every step).
+    pub fn running_cost(mut self, term: impl Cost<N, P> + 'a) -> Self {
+        self.running_terms.push(Box::new(term));
+        self
+    }
+
+    /// Adds a term to the final cost (at the last state).
+    pub fn final_cost(mut self, term: impl Cost<N, P> + 'a) -> Self {
+        self.final_terms.push(Box::new(term));
+        self
     }
 
     /// The goal state x* = (q*, v*) both costs measure from.
@@ -116,21 +137,91 @@ where
         self.weight_final.as_ref().unwrap_or(&self.weight_x)
     }
 
-    /// The running cost of (x, u).
-    pub(super) fn running(&self, x: &DVector<f64>, u: &DVector<f64>) -> f64 {
+    /// The running cost of (x, u) at step k.
+    pub(super) fn running(&self, k: usize, x: &DVector<f64>, u: &DVector<f64>) -> f64 {
         let (dx, du) = (x - &self.goal, u - &self.input_target);
-        0.5 * (dx.dot(&(&self.weight_x * &dx)) + du.dot(&(&self.weight_u * &du)))
+        let quadratic = 0.5 * (dx.dot(&(&self.weight_x * &dx)) + du.dot(&(&self.weight_u * &du)));
+        let (q, v) = split::<N>(x);
+        let u = SVector::<f64, P>::from_column_slice(u.as_slice());
+        let t = self.time(k);
+        let terms: f64 = self
+            .running_terms
+            .iter()
+            .map(|c| c.value(t, &q, &v, Some(&u)))
+            .sum();
+        quadratic + terms
     }
 
     /// The terminal cost of x.
     pub(super) fn terminal(&self, x: &DVector<f64>) -> f64 {
         let dx = x - &self.goal;
-        0.5 * dx.dot(&(self.final_weight_or_running() * &dx))
+        let (q, v) = split::<N>(x);
+        let t = self.time(self.steps);
+        let terms: f64 = self
+            .final_terms
+            .iter()
+            .map(|c| c.value(t, &q, &v, None))
+            .sum();
+        0.5 * dx.dot(&(self.final_weight_or_running() * &dx)) + terms
+    }
+
+    /// The running cost's quadratic model at step k.
+    ///
+    /// # Errors
+    /// [`Error::Settings`] for a term whose model has the wrong sizes or is
+    /// not finite.
+    pub(super) fn running_model(
+        &self,
+        k: usize,
+        x: &DVector<f64>,
+        u: &DVector<f64>,
+    ) -> Result<CostModel, Error> {
+        let mut model = CostModel {
+            value: 0.0,
+            lx: &self.weight_x * (x - &self.goal),
+            lu: &self.weight_u * (u - &self.input_target),
+            lxx: self.weight_x.clone(),
+            luu: self.weight_u.clone(),
+            lux: DMatrix::zeros(P, 2 * N),
+        };
+        let (q, v) = split::<N>(x);
+        let u = SVector::<f64, P>::from_column_slice(u.as_slice());
+        for term in &self.running_terms {
+            let m = term.model(self.time(k), &q, &v, Some(&u));
+            check_model(&m, 2 * N, P)?;
+            model.add(&m);
+        }
+        Ok(model)
+    }
+
+    /// The final cost's quadratic model (its u parts empty).
+    ///
+    /// # Errors
+    /// As [`running_model`](Self::running_model).
+    pub(super) fn final_model(&self, x: &DVector<f64>) -> Result<CostModel, Error> {
+        let w = self.final_weight_or_running();
+        let mut model = CostModel {
+            value: 0.0,
+            lx: w * (x - &self.goal),
+            lu: DVector::zeros(0),
+            lxx: w.clone(),
+            luu: DMatrix::zeros(0, 0),
+            lux: DMatrix::zeros(0, 2 * N),
+        };
+        let (q, v) = split::<N>(x);
+        for term in &self.final_terms {
+            let m = term.model(self.time(self.steps), &q, &v, None);
+            check_model(&m, 2 * N, 0)?;
+            model.add(&m);
+        }
+        Ok(model)
     }
 
     /// The whole cost of a state and input sequence.
     pub(super) fn cost(&self, xs: &[DVector<f64>], us: &[DVector<f64>]) -> f64 {
-        let running: f64 = xs.iter().zip(us).map(|(x, u)| self.running(x, u)).sum();
+        let running: f64 = (xs.iter().zip(us).enumerate())
+            .map(|(k, (x, u))| self.running(k, x, u))
+            .sum();
         running + self.terminal(&xs[self.steps])
     }
 
@@ -201,4 +292,31 @@ fn data(problem: &str) -> Error {
         problem: problem.into(),
     }
     .into()
+}
+
+/// A term's model of the right sizes, every entry finite.
+fn check_model(m: &CostModel, n2: usize, p: usize) -> Result<(), Error> {
+    let sizes = [
+        ("lx", m.lx.shape(), (n2, 1)),
+        ("lu", m.lu.shape(), (p, 1)),
+        ("lxx", m.lxx.shape(), (n2, n2)),
+        ("luu", m.luu.shape(), (p, p)),
+        ("lux", m.lux.shape(), (p, n2)),
+    ];
+    if let Some((name, got, expected)) = sizes.iter().find(|(_, got, expected)| got != expected) {
+        return Err(data(&format!(
+            "a cost term's model has {name} of shape {got:?}, not {expected:?}"
+        )));
+    }
+    let finite = [&m.lx, &m.lu]
+        .iter()
+        .all(|x| x.iter().all(|v| v.is_finite()))
+        && [&m.lxx, &m.luu, &m.lux]
+            .iter()
+            .all(|x| x.iter().all(|v| v.is_finite()))
+        && m.value.is_finite();
+    if !finite {
+        return Err(data("a cost term's value or model is not finite"));
+    }
+    Ok(())
 }

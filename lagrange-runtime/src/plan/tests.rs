@@ -93,6 +93,7 @@ fn rollout_cost(
     let mut cost = 0.0;
     for (k, u) in us.iter().enumerate() {
         cost += problem.running(
+            k,
             &x(q, v),
             &nalgebra::DVector::from_column_slice(u.as_slice()),
         );
@@ -236,5 +237,48 @@ fn mpc_brings_the_oscillator_to_rest() {
     assert_eq!(
         mpc.budget_hits(),
         mpc.samples().iter().filter(|s| s.stopped.is_some()).count()
+    );
+}
+
+/// A user's term written as closures gives the plan the built-in goal gives:
+/// ½ (x − 1)² on the position by `CostFn` against the quadratic cost about
+/// the goal x* = 1.
+#[test]
+fn a_closure_term_is_a_goal_written_by_hand() {
+    let tr = Transition::new(&OSCILLATOR, 0.05).unwrap();
+    let start = (Vector1::new(0.0), Vector1::new(0.0));
+    let r = diagonal(&[0.1]);
+    let built_in = OptimalControl::new(tr.clone(), 30, start, diagonal(&[1.0, 0.0]), r.clone())
+        .goal(Vector1::new(1.0), Vector1::new(0.0))
+        .final_weight(diagonal(&[0.0, 0.0]));
+    let pull = |_: f64, q: &Vector1<f64>, _: &Vector1<f64>, _: Option<&Vector1<f64>>| {
+        0.5 * (q[0] - 1.0).powi(2)
+    };
+    let model = |t: f64, q: &Vector1<f64>, v: &Vector1<f64>, u: Option<&Vector1<f64>>| {
+        let mut m = CostModel::zero(2, usize::from(u.is_some()));
+        m.value = pull(t, q, v, u);
+        m.lx[0] = q[0] - 1.0;
+        m.lxx[(0, 0)] = 1.0;
+        m
+    };
+    let by_hand = OptimalControl::new(tr, 30, start, diagonal(&[0.0, 0.0]), r)
+        .final_weight(diagonal(&[0.0, 0.0]))
+        .running_cost(CostFn::new(pull, model));
+    let a = Ddp::new().tolerance(1e-10).solve(&built_in, &[]).unwrap();
+    let b = Ddp::new().tolerance(1e-10).solve(&by_hand, &[]).unwrap();
+    assert!((a.cost - b.cost).abs() < 1e-12, "{} vs {}", a.cost, b.cost);
+    let gap = (a.u.iter().zip(&b.u))
+        .map(|(x, y)| (x - y).amax())
+        .fold(0.0, f64::max);
+    assert!(gap < 1e-10, "inputs differ by {gap:e}");
+    // A model of the wrong size is refused, not used.
+    let wrong = |_: f64, _: &Vector1<f64>, _: &Vector1<f64>, _: Option<&Vector1<f64>>| {
+        CostModel::zero(3, 1)
+    };
+    let bad = oscillator_problem(5).running_cost(CostFn::new(pull, wrong));
+    let e = Ddp::new().solve(&bad, &[]).unwrap_err().error;
+    assert!(
+        e.to_string().contains("lx of shape (3, 1), not (2, 1)"),
+        "{e}"
     );
 }
