@@ -144,6 +144,44 @@ fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     }
 }
 
+/// A setting as its point's label: the fewest significant digits (at most
+/// [`SETTING_DIGITS`]) that give back the value run, so that 2.5e-4 is not
+/// printed as 3e-4 and read as another run's.
+pub(super) fn setting_label(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    (0..SETTING_DIGITS)
+        .map(|decimals| format!("{x:.decimals$e}"))
+        .find(|s| s.parse::<f64>() == Ok(x))
+        .unwrap_or_else(|| format!("{x:.prec$e}", prec = SETTING_DIGITS - 1))
+}
+
+/// The most significant digits a point's label shows (a setting that needs
+/// more, h = 0.1 / 3, is shown rounded to these).
+const SETTING_DIGITS: usize = 4;
+
+/// A log axis's tick label: the decades (`1e-3`), and nothing at the ticks
+/// between them, whose labels would overlap the decades'.
+pub(super) fn decade_label(v: f64) -> String {
+    if !(v.is_finite() && v > 0.0) {
+        return String::new();
+    }
+    let exponent = v.log10().round();
+    let decade = 10f64.powi(exponent as i32);
+    if ((v - decade) / decade).abs() < 1e-9 {
+        format!("1e{exponent}")
+    } else {
+        String::new()
+    }
+}
+
+/// How many labels of `label` pixels (with their spacing) fit along an axis
+/// of `length` pixels; at least 2, so that an axis is never left bare.
+pub(super) fn labels_that_fit(length: u32, label: u32) -> usize {
+    (length / label.max(1)).max(2) as usize
+}
+
 fn draw_panel(
     area: &DrawingArea<BitMapBackend<'_>, Shift>,
     panel: &Panel,
@@ -163,8 +201,13 @@ fn draw_panel(
         .configure_mesh()
         .x_desc(panel.x_label)
         .y_desc(panel.y_label)
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
+        // Decades only, and no more of them than fit: plotters adds
+        // intermediate ticks (2e-3, 3e-3, ...) on a short log axis, and their
+        // labels ran into one another.
+        .x_labels(labels_that_fit(area.dim_in_pixel().0, 44))
+        .y_labels(labels_that_fit(area.dim_in_pixel().1, 20))
+        .x_label_formatter(&|v| decade_label(*v))
+        .y_label_formatter(&|v| decade_label(*v))
         .label_style(("sans-serif", 13))
         .axis_desc_style(("sans-serif", 15))
         // Only the decades: the minor lines of a log mesh triple the PNG's size
@@ -183,7 +226,7 @@ fn draw_panel(
                 let x = (panel.x)(m);
                 let y = (panel.y)(m)?;
                 (x.is_finite() && x > 0.0 && y.is_finite())
-                    .then(|| ((x, y.max(FLOOR)), format!("{:.0e}", r.setting.value())))
+                    .then(|| ((x, y.max(FLOOR)), setting_label(r.setting.value())))
             })
             .collect::<Vec<_>>();
         // Offset from the marker so the label does not sit under it.
