@@ -19,7 +19,7 @@ const RUNTIME_LAYERS: &[&[&str]] = &[
     &["system", "pose"],
     &["mechanics"],
     &[
-        "atlas", "control", "event", "linear", "study", "table", "ensemble", "scene",
+        "atlas", "control", "event", "linear", "study", "table", "ensemble", "scene", "picture",
     ],
     &["simulation"],
 ];

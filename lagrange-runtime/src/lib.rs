@@ -204,6 +204,8 @@ pub mod control;
 pub mod ensemble;
 pub mod event;
 pub mod linear;
+#[cfg(feature = "plot")]
+pub mod picture;
 pub mod scene;
 pub mod study;
 mod table;

@@ -156,6 +156,11 @@ impl Rattle {
         self.h
     }
 
+    /// The step budget set by [`max_steps`](Self::max_steps).
+    pub fn step_budget(&self) -> usize {
+        self.max_steps
+    }
+
     /// Integrates `system` from the consistent state (q0, v0) at t0 to t1.
     ///
     /// With free orientations (Q ≠ N: q holds unit quaternions, v the

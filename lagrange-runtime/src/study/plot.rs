@@ -1,56 +1,16 @@
-//! Work-precision diagrams as PNG, with plotters and a bundled font.
-//!
-//! plotters' default text rendering asks the system for fonts (fontconfig); many
-//! build machines and containers have none, so the `plot` feature enables
-//! plotters' `ab_glyph` text backend and registers DejaVu Sans, shipped in
-//! `fonts/` with its licence, as the "sans-serif" family.
+//! Work-precision diagrams as PNG, with plotters and the bundled font
+//! (`picture` holds what every picture shares).
 
 use super::{Measurement, Row, Study};
 use crate::error::Error;
+use crate::picture::{COLORS, plot_error, register_font};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
-use std::sync::OnceLock;
-
-const FONT: &[u8] = include_bytes!("../../fonts/DejaVuSans.ttf");
 
 /// Errors and drifts below this are drawn at it: a log axis has no zero, and
 /// nothing below f64 round-off is meaningful anyway.
 const FLOOR: f64 = 1e-17;
-
-/// Tableau 10: distinguishable, and legible on white.
-const COLORS: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
-
-/// Registers the bundled font once per process; the outcome is remembered, so a
-/// failure is reported on every call rather than only the first.
-fn register_font() -> Result<(), Error> {
-    static REGISTERED: OnceLock<bool> = OnceLock::new();
-    let ok = *REGISTERED.get_or_init(|| {
-        plotters::style::register_font("sans-serif", FontStyle::Normal, FONT).is_ok()
-    });
-    if ok {
-        Ok(())
-    } else {
-        Err(plot_error(
-            "the bundled font DejaVuSans.ttf could not be parsed",
-        ))
-    }
-}
-
-fn plot_error(e: impl std::fmt::Display) -> Error {
-    Error::Io(std::io::Error::other(format!("plot: {e}")))
-}
 
 /// One panel: which cost on x, which accuracy measure on y.
 struct Panel {
