@@ -45,13 +45,13 @@ impl Default for StillPicture {
 
 impl StillPicture {
     /// Seen from the page's starting camera ([`View::Camera`]), 480 × 360
-    /// pixels, lines 1 pixel wide, no title.
+    /// pixels, lines 2 pixels wide, no title.
     pub fn new() -> Self {
         Self {
             view: View::Camera,
             size: (480, 360),
             title: None,
-            line_width: 1,
+            line_width: 2,
         }
     }
 
@@ -74,7 +74,7 @@ impl StillPicture {
         self
     }
 
-    /// The segments' width in pixels (default 1).
+    /// The segments' width in pixels (default 2).
     pub fn line_width(mut self, pixels: u32) -> Self {
         self.line_width = pixels;
         self

@@ -3,7 +3,7 @@ use super::still::{self, Fit};
 use super::{StillPicture, TablePlot, segments_png};
 use crate::error::{Error, SettingsError};
 use crate::ode::test_problems::Oscillator;
-use crate::ode::{Integrator, Rk4, Trajectory};
+use crate::ode::{Dopri5, Integrator, Rk4, Trajectory};
 use crate::pose::{Anchor, BodyInertia, BodyPose, Posed, Shape, Solid};
 use crate::scene::{Scene, View};
 use crate::system::Lagrangian;
@@ -223,9 +223,10 @@ impl Posed<f64, 1> for Rod {
 
 #[test]
 fn a_still_seen_from_the_side_draws_the_rod_below_its_pivot() {
-    let run = crate::Simulation::new(&Rod)
-        .integrator(crate::ode::Dopri5::tol(1e-10))
-        .run([0.6], [0.0], 0.0..3.0)
+    let dynamics = crate::mechanics::Dynamics::new(&Rod);
+    let (q0, v0) = (Vector1::new(0.6), Vector1::new(0.0));
+    let run = Dopri5::tol(1e-10)
+        .integrate(&dynamics, 0.0, 3.0, q0, v0)
         .unwrap();
     let scene = Scene::new(&Rod).run(&run, "run");
     let t = 1.0;

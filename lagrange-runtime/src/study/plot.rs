@@ -142,6 +142,20 @@ pub(super) fn labels_that_fit(length: u32, label: u32) -> usize {
     (length / label.max(1)).max(2) as usize
 }
 
+/// Each point with its setting (step or tolerance), so that a reader can find
+/// the run in the table.
+fn setting_labels(rows: &[&Row], panel: &Panel) -> Vec<((f64, f64), String)> {
+    rows.iter()
+        .filter_map(|r| {
+            let m = r.measurement()?;
+            let x = (panel.x)(m);
+            let y = (panel.y)(m)?;
+            (x.is_finite() && x > 0.0 && y.is_finite())
+                .then(|| ((x, y.max(FLOOR)), setting_label(r.setting.value())))
+        })
+        .collect()
+}
+
 fn draw_panel(
     area: &DrawingArea<BitMapBackend<'_>, Shift>,
     panel: &Panel,
@@ -177,21 +191,9 @@ fn draw_panel(
         .map_err(plot_error)?;
     for (k, ((name, rows), pts)) in groups.iter().zip(&series).enumerate() {
         let color = COLORS[k % COLORS.len()];
-        // Each point carries its setting (step or tolerance), so that a reader
-        // can find the run in the table.
-        let labels = rows
-            .iter()
-            .filter_map(|r| {
-                let m = r.measurement()?;
-                let x = (panel.x)(m);
-                let y = (panel.y)(m)?;
-                (x.is_finite() && x > 0.0 && y.is_finite())
-                    .then(|| ((x, y.max(FLOOR)), setting_label(r.setting.value())))
-            })
-            .collect::<Vec<_>>();
         // Offset from the marker so the label does not sit under it.
         chart
-            .draw_series(labels.into_iter().map(|(p, text)| {
+            .draw_series(setting_labels(rows, panel).into_iter().map(|(p, text)| {
                 EmptyElement::at(p)
                     + Text::new(text, (6, -4), ("sans-serif", 10).into_font().color(&color))
             }))
