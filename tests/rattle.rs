@@ -185,7 +185,7 @@ fn rattle_in_a_study_falls_at_second_order() {
         .map(|r| r.measurement().expect("RATTLE runs").error)
         .collect();
     // Each halving of h divides the error by 4: slope 2 on log–log.
-    println!("RATTLE's errors at h = 0.02 / 2^k: {errors:?}");
+    eprintln!("RATTLE's errors at h = 0.02 / 2^k: {errors:?}");
     for pair in errors.windows(2) {
         let slope = (pair[0] / pair[1]).log2();
         assert!((slope - 2.0).abs() < 0.15, "slope {slope} from {errors:?}");
