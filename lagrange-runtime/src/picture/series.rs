@@ -118,7 +118,6 @@ impl<T: Real, const N: usize, const Q: usize> Table<'_, T, N, Q> {
     pub fn plot_png(&self, path: impl AsRef<Path>, plot: &TablePlot) -> Result<(), Error> {
         let curves = self.curves(plot)?;
         check_size(OWNER, plot.size)?;
-        register_font()?;
         let root = BitMapBackend::new(path.as_ref(), plot.size).into_drawing_area();
         draw(&root, plot, &curves)?;
         root.present().map_err(plot_error)
@@ -179,12 +178,14 @@ pub(super) fn padded(values: impl Iterator<Item = f64>) -> Range<f64> {
     lo - pad..hi + pad
 }
 
-/// The plot on `area`; gives the mapping from (t, value) to pixels.
+/// The plot on `area` (the font registered first); gives the mapping from
+/// (t, value) to pixels.
 pub(super) fn draw<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     plot: &TablePlot,
     curves: &[Curve],
 ) -> Result<Cartesian2d<RangedCoordf64, RangedCoordf64>, Error> {
+    register_font()?;
     area.fill(&WHITE).map_err(plot_error)?;
     let body = match &plot.title {
         Some(title) => area.titled(title, ("sans-serif", 20)).map_err(plot_error)?,

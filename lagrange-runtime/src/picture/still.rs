@@ -125,18 +125,18 @@ pub fn segments_png(
     picture: &StillPicture,
 ) -> Result<(), Error> {
     check_size(OWNER, picture.size)?;
-    register_font()?;
     let root = BitMapBackend::new(path.as_ref(), picture.size).into_drawing_area();
     draw(&root, segments, picture)?;
     root.present().map_err(plot_error)
 }
 
-/// The still on `area`, on white.
+/// The still on `area`, on white (the font registered first, for the title).
 pub(super) fn draw<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     segments: &[Segment],
     picture: &StillPicture,
 ) -> Result<Option<Fit>, Error> {
+    register_font()?;
     area.fill(&WHITE).map_err(plot_error)?;
     let below = match &picture.title {
         Some(title) => {
