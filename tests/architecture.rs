@@ -20,6 +20,7 @@ const RUNTIME_LAYERS: &[&[&str]] = &[
     &["mechanics"],
     &[
         "atlas", "control", "event", "linear", "plan", "study", "table", "ensemble", "scene",
+        "picture",
     ],
     &["simulation"],
 ];

@@ -173,6 +173,8 @@
 //! [`study`] runs work-precision studies: integrators × tolerances or step sizes
 //! on one problem, each run's error against a closed form or a DOP853 reference
 //! and its cost, as a markdown/CSV table and (feature `plot`) a log-log PNG.
+//! With the feature `plot`, `picture` draws a run's columns against t and a
+//! scene's still as PNGs.
 //!
 //! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
 //! number of degrees of freedom `N`, a type-level constant.
@@ -207,6 +209,8 @@ pub mod ensemble;
 pub mod event;
 pub mod linear;
 pub mod plan;
+#[cfg(feature = "plot")]
+pub mod picture;
 pub mod scene;
 pub mod study;
 mod table;
