@@ -44,7 +44,7 @@ fn a_satellite_kept_spinning_off_its_principal_axes() {
         m: 10.0,
         a: 1.0,
         b: 2.0,
-        c: 3.5,
+        c: 2.5,
     };
     let half: f64 = 0.4;
     let attitude = SVector::<f64, 4>::new(half.cos(), half.sin() * 0.6, 0.0, half.sin() * 0.8);
