@@ -191,6 +191,7 @@ pub mod error;
 pub mod ode;
 
 // 3 the contract the derive implements
+pub mod orientation;
 pub mod pose;
 mod system;
 
