@@ -106,6 +106,13 @@ impl EulerSequence {
     pub fn matrix<T: Real>(&self, angles: [T; 3]) -> Matrix3<T> {
         self.0.matrix(angles)
     }
+
+    /// The angular velocity in body axes of the angles moving at `rates`:
+    /// ω = E(α, β, γ) (α̇, β̇, γ̇), what v holds for a free orientation in
+    /// the attitude these angles give.
+    pub fn angular_velocity<T: Real>(&self, angles: [T; 3], rates: [T; 3]) -> Vector3<T> {
+        self.0.rates(angles) * Vector3::from(rates)
+    }
 }
 
 /// The identity orientation (1, 0, 0, 0).

@@ -176,6 +176,22 @@ proptest! {
         }
         prop_assert!(same_orientation(&from_rotation_matrix(&r)?, &q, 1e-14));
     }
+
+    #[test]
+    fn the_angular_velocity_of_euler_rates_turns_the_quaternion_alike(
+        k in 0..12usize,
+        angles in (-3.0..3.0f64, -3.0..3.0f64, -3.0..3.0f64),
+        rates in (-2.0..2.0f64, -2.0..2.0f64, -2.0..2.0f64),
+    ) {
+        // (q(angles + h rates) ⊖ q(angles)) / h → ω in body axes.
+        let sequence = EulerSequence::new(SEQUENCES[k])?;
+        let (angles, rates) = ([angles.0, angles.1, angles.2], [rates.0, rates.1, rates.2]);
+        let h = 1e-6;
+        let at = |s: f64| from_euler(sequence, [0, 1, 2].map(|i| angles[i] + s * rates[i]));
+        let omega = minus(&at(h)?, &at(-h)?)? / (2.0 * h);
+        let expected = sequence.angular_velocity(angles, rates);
+        prop_assert!((omega - expected).amax() < 1e-8, "{omega} vs {expected}");
+    }
 }
 
 /// A sliding cart x and a free spherical body of unit inertia: no forces,
