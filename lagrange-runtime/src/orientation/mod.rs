@@ -45,7 +45,7 @@
 
 mod state;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 pub use state::{TangentError, configuration_minus, configuration_plus, state_minus};
 

@@ -196,7 +196,7 @@ proptest! {
 
 /// A sliding cart x and a free spherical body of unit inertia: no forces,
 /// so x moves steadily and the body spins steadily, q(t) = q0 ⊗ exp(ω t).
-struct CartAndBall;
+pub(crate) struct CartAndBall;
 
 impl Lagrangian<f64, 4, 5> for CartAndBall {
     const COORDINATES: [&'static str; 5] = ["x", "ball.w", "ball.x", "ball.y", "ball.z"];
@@ -236,7 +236,7 @@ impl Lagrangian<f64, 4, 5> for CartAndBall {
     }
 }
 
-fn configuration(x: f64, q: Vector4<f64>) -> SVector<f64, 5> {
+pub(crate) fn configuration(x: f64, q: Vector4<f64>) -> SVector<f64, 5> {
     SVector::from([x, q[0], q[1], q[2], q[3]])
 }
 

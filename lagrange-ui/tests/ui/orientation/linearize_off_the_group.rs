@@ -4,8 +4,9 @@ use lagrange::nalgebra::SVector;
 
 // A body with a quaternion is linearised at a point on its group
 // (`OperatingPoint::on_group`, four numbers per quaternion in q); a point
-// made with `OperatingPoint::new` holds N numbers in q, and the message says
-// how to make the right one instead of miscounting the system's inputs.
+// made with `OperatingPoint::new` holds N numbers in q, and the error says
+// that the point's q must hold the system's Q = 4 (not a miscount of its
+// inputs).
 #[derive(Lagrangian)]
 #[lagrange(
     orientation(turn),
