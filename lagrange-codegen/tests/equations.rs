@@ -55,6 +55,12 @@ fn an_angular_velocity_is_named_as_the_runtime_names_it() {
         "{text}"
     );
     // h = ω × Iω reads the angular velocities by those names.
-    let h = text.lines().find(|l| l.starts_with("h[0]")).unwrap_or_default();
-    assert!(h.contains("turn.wy") && h.contains("turn.wz") && !h.contains("dot("), "{text}");
+    let h = text
+        .lines()
+        .find(|l| l.starts_with("h[0]"))
+        .unwrap_or_default();
+    assert!(
+        h.contains("turn.wy") && h.contains("turn.wz") && !h.contains("dot("),
+        "{text}"
+    );
 }
