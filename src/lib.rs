@@ -285,10 +285,9 @@
 //!   (order 2; on a free body's Euler equations the implicit midpoint rule,
 //!   which keeps its kinetic energy).
 //! - **Linearisation in the tangent space**: [`linearize`] at
-//!   [`OperatingPoint::on_group`](linear::OperatingPoint::on_group) (or
-//!   [`Linearizer::tangent`]) takes δθ ∈ R³ per orientation (2·N states,
-//!   `name.θx`, … then the velocities, `name.wx`, …), so a steady spin
-//!   linearises to a constant A. With constraints, [`Linearizer::constrained_tangent`] (about
+//!   [`OperatingPoint::on_group`](linear::OperatingPoint::on_group) takes
+//!   δθ ∈ R³ per orientation (`name.θx`, …, then `name.wx`, …), so a
+//!   steady spin linearises to a constant A. With constraints, [`Linearizer::constrained_tangent`] (about
 //!   [`OperatingPoint::on_group`](linear::OperatingPoint::on_group)) chooses
 //!   independent tangent directions and speeds as
 //!   [`Linearizer::constrained`] chooses coordinates and speeds, and reads an
@@ -339,15 +338,10 @@
 //! `emit(kinematics)` gives the frames' Jacobians with v's columns (an
 //! orientation's three: body-axis ω) and J̇ q̇ at v̇ = 0.
 //!
-//! [`orientation`] builds and compares quaternions: from an axis and an
-//! angle, from Euler angles of a sequence, q ⊕ δ and q ⊖ q₀ (alone or over
-//! a system's whole q), and a run's error in the tangent space
-//! ([`Trajectory::tangent_error`]).
-//!
 //! [`StateFeedback`] applies a gain designed on the tangent linearisation
-//! (e.g. LQR) to q ⊖ q₀, the rotation vector from the operating attitude in
-//! body axes ([`StateFeedback::from_tangent_gain`]): a satellite's attitude
-//! held by LQR follows the linear closed loop to second order in the error
+//! (e.g. LQR) to q ⊖ q₀ ([`orientation::minus`]), the rotation vector from
+//! the operating attitude in body axes: a satellite's attitude held by LQR
+//! follows the linear closed loop to second order in the error
 //! (`tests/torqued_body.rs`).
 //!
 //! `emit(coriolis)` gives C with h = C v and Ṁ − 2C skew-symmetric, Ṁ the

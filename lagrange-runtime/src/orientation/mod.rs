@@ -244,7 +244,9 @@ pub fn minus<T: Real>(q: &Vector4<T>, q0: &Vector4<T>) -> Result<Vector3<T>, Err
 fn unit<T: Real>(q: &Vector4<T>, what: &str) -> Result<[T; 4], Error> {
     let q: [T; 4] = (*q).into();
     let norm = group::norm(q);
-    if !((norm.to_f64() - 1.0).abs() <= UNIT_TOLERANCE) {
+    // A NaN norm fails the test too.
+    let unit = (norm.to_f64() - 1.0).abs() <= UNIT_TOLERANCE;
+    if !unit {
         return Err(Error::NonUnitQuaternion {
             orientation: what.to_string(),
             norm: norm.to_f64(),

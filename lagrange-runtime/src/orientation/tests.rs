@@ -236,7 +236,7 @@ impl Lagrangian<f64, 4, 5> for CartAndBall {
     }
 }
 
-impl crate::Driven<f64, 4, 0, 5> for CartAndBall {}
+impl crate::system::Driven<f64, 4, 0, 5> for CartAndBall {}
 
 pub(crate) fn configuration(x: f64, q: Vector4<f64>) -> SVector<f64, 5> {
     SVector::from([x, q[0], q[1], q[2], q[3]])
