@@ -284,9 +284,9 @@
 //!   drifts by the exponential map and takes its first kick implicitly
 //!   (order 2; on a free body's Euler equations the implicit midpoint rule,
 //!   which keeps its kinetic energy).
-//! - **Linearisation in the tangent space**: [`Linearizer::tangent`] takes
-//!   δθ ∈ R³ per orientation (2·N states), so a steady spin linearises to a
-//!   constant A. With constraints, [`Linearizer::constrained_tangent`] (about
+//! - **Linearisation in the tangent space**: [`linearize`] takes δθ ∈ R³ per
+//!   orientation (`name.θx`, then `name.wx`), so a steady spin linearises to
+//!   a constant A. With constraints, [`Linearizer::constrained_tangent`] (about
 //!   [`OperatingPoint::on_group`](linear::OperatingPoint::on_group)) chooses
 //!   independent tangent directions and speeds as
 //!   [`Linearizer::constrained`] chooses coordinates and speeds, and reads an
@@ -338,10 +338,9 @@
 //! orientation's three: body-axis ω) and J̇ q̇ at v̇ = 0.
 //!
 //! [`StateFeedback`] applies a gain designed on the tangent linearisation
-//! (e.g. LQR) to q ⊖ q₀, the rotation vector from the operating attitude in
-//! body axes ([`StateFeedback::from_tangent_gain`]): a satellite's attitude
-//! held by LQR follows the linear closed loop to second order in the error
-//! (`tests/torqued_body.rs`).
+//! (e.g. LQR) to q ⊖ q₀ ([`orientation::minus`], in body axes): a
+//! satellite's attitude held by LQR follows the linear closed loop to second
+//! order in the error (`tests/torqued_body.rs`).
 //!
 //! `emit(coriolis)` gives C with h = C v and Ṁ − 2C skew-symmetric, Ṁ the
 //! rate of M along the motion: the Christoffel factorisation in the chart

@@ -16,7 +16,7 @@ const RUNTIME_LAYERS: &[&[&str]] = &[
     &["numeric"],
     &["error"],
     &["ode"],
-    &["system", "pose"],
+    &["system", "pose", "orientation"],
     &["mechanics"],
     &[
         "atlas", "control", "event", "linear", "plan", "study", "table", "ensemble", "scene",

@@ -99,7 +99,7 @@ fn lqr_on_the_constrained_tangent_model_balances_the_pinned_rod() {
     assert_eq!(
         lin.states(),
         [
-            "turn.θx", "turn.θy", "turn.θz", "turn.wx'", "turn.wy'", "turn.wz'"
+            "turn.θx", "turn.θy", "turn.θz", "turn.wx", "turn.wy", "turn.wz"
         ]
     );
     // Upright is unstable: ±√(m g l / A_pin) on each tilt.

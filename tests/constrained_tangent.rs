@@ -37,7 +37,7 @@ fn disk_linear(spin: f64) -> Result<Linear, lagrange::Error> {
 }
 
 /// The chart disk's states (x, y, ψ, θ, φ, ψ', θ', φ') to the quaternion
-/// disk's (x, y, θx, θy, θz, wx', wy', wz') about upright rolling at spin ω:
+/// disk's (x, y, θx, θy, θz, wx, wy, wz) about upright rolling at spin ω:
 /// the centre is the contact point less a θ in y; the rotation
 /// rot_z(ψ) rot_x(θ) rot_y(ωt + φ) is the fixed-axes turn (θ, φ, ψ) of the
 /// reference; its angular velocity in space axes changes by
@@ -102,9 +102,9 @@ fn the_quaternion_disk_linearises_as_the_chart_disk() {
                 "disk_q.θx",
                 "disk_q.θy",
                 "disk_q.θz",
-                "disk_q.wx'",
-                "disk_q.wy'",
-                "disk_q.wz'"
+                "disk_q.wx",
+                "disk_q.wy",
+                "disk_q.wz"
             ]
         );
         let chart = chart_linear(spin);

@@ -88,7 +88,7 @@ fn header(model: &Model) -> String {
         let _ = writeln!(
             s,
             "orientation {n}: unit quaternion ({n}.w, {n}.x, {n}.y, {n}.z) in q (body axes to world), \
-             angular velocity in body axes q' = (dot({n}.wx), dot({n}.wy), dot({n}.wz)); \
+             angular velocity in body axes q' = ({n}.wx, {n}.wy, {n}.wz), its rate q'' = (dot({n}.wx), dot({n}.wy), dot({n}.wz)); \
              the equations hold at |q| = 1 (no chart: they are derived in the chart that moves with the body, at its centre)"
         );
     }

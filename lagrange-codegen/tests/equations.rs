@@ -36,3 +36,31 @@ fn listings_state_the_symmetry() {
     );
     assert!(text.contains(&note), "{}", &text[..text.len().min(2000)]);
 }
+
+/// A free orientation's angular velocity is written as `VELOCITIES` and the
+/// CSV tables name it, `turn.wx`, and its rate `dot(turn.wx)`: never
+/// `dot(turn.wx)` for ω itself, as if `turn.wx` were a coordinate.
+#[test]
+fn an_angular_velocity_is_named_as_the_runtime_names_it() {
+    let m = model(
+        "#[lagrange(orientation(turn),
+           body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+                at = [0, 0, 0], rotation = turn),
+           gravity = [0, 0, -g])]
+         struct Top { m: f64, a: f64, c: f64, l: f64, g: f64 }",
+    );
+    let text = lagrange_codegen::doc::equations(&m);
+    assert!(
+        text.contains("angular velocity in body axes q' = (turn.wx, turn.wy, turn.wz), its rate q'' = (dot(turn.wx), dot(turn.wy), dot(turn.wz))"),
+        "{text}"
+    );
+    // h = ω × Iω reads the angular velocities by those names.
+    let h = text
+        .lines()
+        .find(|l| l.starts_with("h[0]"))
+        .unwrap_or_default();
+    assert!(
+        h.contains("turn.wy") && h.contains("turn.wz") && !h.contains("dot("),
+        "{text}"
+    );
+}

@@ -170,6 +170,12 @@
 //! plays the motion in 3D (the bodies' poses come from [`Posed`], which the
 //! derive implements); see [`scene`].
 //!
+//! [`orientation`] builds and compares the unit quaternions of systems with
+//! free orientations: from an axis and an angle or Euler angles, q ⊕ δ and
+//! q ⊖ q₀ (the tangent space the linearisations and controllers use), over
+//! one quaternion or a system's whole configuration, and a run's error in
+//! that tangent space.
+//!
 //! [`study`] runs work-precision studies: integrators × tolerances or step sizes
 //! on one problem, each run's error against a closed form or a DOP853 reference
 //! and its cost, as a markdown/CSV table and (feature `plot`) a log-log PNG.
@@ -195,6 +201,7 @@ pub mod error;
 pub mod ode;
 
 // 3 the contract the derive implements
+pub mod orientation;
 pub mod pose;
 mod system;
 

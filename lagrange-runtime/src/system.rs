@@ -373,7 +373,7 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     message = "`{Self}` is not driven by {P} input(s) with {Q} numbers in q: a controller, input signal or operating point supplies a different number of inputs than `inputs(...)` declares, or the system holds orientations and this call takes it in N coordinates",
     label = "{P} input(s) and {Q} numbers in q supplied here",
     note = "a controller returns `[T; P]` or `SVector<T, P>` with P the number of names in `inputs(...)`; a system without inputs takes P = 0",
-    note = "a system with `orientation(...)` has four numbers per quaternion in q: linearise it with `Linearizer::tangent_driven` (or `Linearizer::tangent`), with constraints `Linearizer::constrained_tangent` at `OperatingPoint::on_group(q, v)`; `linearize` and `Linearizer::unconstrained` take systems without orientations"
+    note = "a system with `orientation(...)` has four numbers per quaternion in q: give `linearize` (or `Linearizer::tangent_driven`) its point as `OperatingPoint::on_group(q, v)`, q with each unit quaternion (w, x, y, z) and v with each angular velocity in body axes; with constraints use `Linearizer::constrained_tangent` or `Linearizer::reduced_tangent`"
 )]
 pub trait Driven<T: Real, const N: usize, const P: usize, const Q: usize = N>:
     Lagrangian<T, N, Q>

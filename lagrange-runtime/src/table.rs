@@ -51,8 +51,15 @@ pub(crate) enum Cell {
 
 impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
     /// The trajectory's own columns, the entries of q named `names` (Q of
-    /// them, or none for q0, q1, …); the velocities are `dot_<name>`, or
-    /// v0, v1, … when q holds quaternions (Q ≠ N).
+    /// them, or none for q0, q1, …), and the velocities named as
+    /// [`of`](Self::of) names them: a coordinate's rate `dot_<name>`, and
+    /// where q holds quaternions (Q ≠ N), each quaternion named as a
+    /// system's [`COORDINATES`](Lagrangian::COORDINATES) name it
+    /// (`turn.w`, `turn.x`, `turn.y`, `turn.z`), its angular velocity
+    /// `turn.wx`, `turn.wy`, `turn.wz`. Without names, or with quaternions
+    /// named otherwise, the velocities of a configuration with quaternions
+    /// are v0, v1, …: [`Trajectory::table`] with the system names every
+    /// column.
     ///
     /// # Errors
     /// [`Error::Settings`] for a wrong number of names.
@@ -67,7 +74,9 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
         let rates = if Q == N {
             names.iter().map(|n| format!("dot_{n}")).collect()
         } else {
-            (0..N).map(|j| format!("v{j}")).collect()
+            rates_of_named_quaternions(&names)
+                .filter(|r| r.len() == N)
+                .unwrap_or_else(|| (0..N).map(|j| format!("v{j}")).collect())
         };
         Ok(Self {
             traj: Cow::Borrowed(traj),
@@ -100,18 +109,29 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
             .map(|(&t, (q, v))| (sys.kinetic_energy(q, v, t), sys.potential_energy(q, t)))
             .collect();
         let names: Vec<String> = S::COORDINATES.iter().map(|s| s.to_string()).collect();
-        let rates = S::VELOCITIES
-            .iter()
-            .map(|v| match names.contains(&v.to_string()) {
-                true => format!("dot_{v}"),
-                false => v.to_string(),
-            })
-            .collect();
+        let rates = rate_names(&names, &S::VELOCITIES);
         Self {
             traj,
             names,
             rates,
             energies: Some(energies),
+            extra: Vec::new(),
+            blank: Vec::new(),
+        }
+    }
+
+    /// [`new`](Self::new) with the velocities named too (N names).
+    pub(crate) fn named(
+        traj: &'a Trajectory<T, N, Q>,
+        names: &[&str; Q],
+        velocities: &[&str; N],
+    ) -> Self {
+        let names: Vec<String> = names.iter().map(|s| s.to_string()).collect();
+        Self {
+            traj: Cow::Borrowed(traj),
+            rates: rate_names(&names, velocities),
+            names,
+            energies: None,
             extra: Vec::new(),
             blank: Vec::new(),
         }
@@ -260,6 +280,48 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
     }
 }
 
+/// The velocities' columns: a coordinate's rate `dot_<name>`, any other
+/// velocity (an orientation's angular velocity `turn.wx`) by its own name.
+fn rate_names(coordinates: &[String], velocities: &[&str]) -> Vec<String> {
+    velocities
+        .iter()
+        .map(|v| match coordinates.iter().any(|c| c == v) {
+            true => format!("dot_{v}"),
+            false => v.to_string(),
+        })
+        .collect()
+}
+
+/// The velocities of a configuration whose quaternions are named as a
+/// derived system's are (`turn.w`, `turn.x`, `turn.y`, `turn.z` in a row):
+/// `dot_<name>` for every other coordinate, `turn.wx`, `turn.wy`, `turn.wz`
+/// for each quaternion. `None` if no quaternion is named so.
+fn rates_of_named_quaternions(names: &[String]) -> Option<Vec<String>> {
+    let mut rates = Vec::new();
+    let mut i = 0;
+    let mut found = false;
+    while i < names.len() {
+        let quaternion = names[i].strip_suffix(".w").filter(|base| {
+            names.len() >= i + 4
+                && ["x", "y", "z"]
+                    .iter()
+                    .zip(&names[i + 1..i + 4])
+                    .all(|(c, n)| *n == format!("{base}.{c}"))
+        });
+        match quaternion {
+            Some(base) => {
+                rates.extend(["wx", "wy", "wz"].map(|a| format!("{base}.{a}")));
+                (i, found) = (i + 4, true);
+            }
+            None => {
+                rates.push(format!("dot_{}", names[i]));
+                i += 1;
+            }
+        }
+    }
+    found.then_some(rates)
+}
+
 fn io(e: csv::Error) -> Error {
     Error::Io(std::io::Error::other(e))
 }
@@ -280,7 +342,11 @@ impl<T: Real, const N: usize, const Q: usize> Trajectory<T, N, Q> {
     ///
     /// `names` are the coordinate names (e.g. [`Lagrangian::COORDINATES`]): the
     /// columns are then `t,theta,phi,dot_theta,dot_phi,integral,…`. An empty
-    /// slice gives `q0,q1,..,dot_q0,dot_q1,..`.
+    /// slice gives `q0,q1,..,dot_q0,dot_q1,..`. With orientations the
+    /// velocities are named as [`table`](Self::table) names them (`x`,
+    /// `turn.w`, … `turn.z` give `dot_x`, `turn.wx`, `turn.wy`, `turn.wz`),
+    /// or v0, v1, … without names (see [`Table::new`](crate::Table::new)),
+    /// and a column `unit_error` follows the residuals.
     ///
     /// [`Lagrangian::COORDINATES`]: crate::Lagrangian::COORDINATES
     ///
@@ -315,4 +381,43 @@ fn csv(problem: String) -> Error {
         problem,
     }
     .into()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::orientation::identity;
+    use crate::orientation::tests::{CartAndBall, configuration};
+    use crate::{Dopri5, Dynamics, Lagrangian, ode::Integrator};
+    use nalgebra::SVector;
+
+    fn header(write: impl FnOnce(&mut Vec<u8>)) -> String {
+        let mut buf = Vec::new();
+        write(&mut buf);
+        String::from_utf8(buf)
+            .unwrap()
+            .lines()
+            .next()
+            .unwrap()
+            .to_string()
+    }
+
+    #[test]
+    fn an_angular_velocity_has_one_name_in_every_header() {
+        let v0 = SVector::<f64, 4>::from([0.5, 0.0, 0.0, 0.8]);
+        let dynamics = Dynamics::new(&CartAndBall);
+        let run = Dopri5::tol(1e-8)
+            .integrate(&dynamics, 0.0, 1.0, configuration(0.0, identity()), v0)
+            .unwrap();
+        let named = "t,x,ball.w,ball.x,ball.y,ball.z,dot_x,ball.wx,ball.wy,ball.wz,";
+        let system = header(|w| run.table(&CartAndBall).write(w).unwrap());
+        assert!(system.starts_with(named), "{system}");
+        let by_names = header(|w| run.write_csv(w, &CartAndBall::COORDINATES).unwrap());
+        assert!(by_names.starts_with(named), "{by_names}");
+        assert!(by_names.ends_with(",unit_error"), "{by_names}");
+        let bare = header(|w| run.write_csv(w, &[]).unwrap());
+        assert!(bare.starts_with("t,q0,q1,q2,q3,q4,v0,v1,v2,v3,"), "{bare}");
+        // Quaternions named otherwise: the velocities by number.
+        let other = header(|w| run.write_csv(w, &["x", "a", "b", "c", "d"]).unwrap());
+        assert!(other.starts_with("t,x,a,b,c,d,v0,v1,v2,v3,"), "{other}");
+    }
 }

@@ -149,13 +149,27 @@ impl Context {
     /// declares its velocity `dot(name)` and acceleration `ddot(name)`.
     /// Indices follow declaration order.
     pub fn coordinate(&mut self, name: &str) -> Expr {
+        self.coordinate_with_rates(name, &format!("dot({name})"), &format!("ddot({name})"))
+    }
+
+    /// Declare (or look up) the generalized coordinate `name` whose velocity
+    /// and acceleration are shown as `velocity` and `acceleration`: a chart
+    /// coordinate whose rate has a name of its own (a free orientation's
+    /// rotation vector `turn.θx`, whose rate at the chart's centre is the
+    /// angular velocity `turn.wx`, and its rate `dot(turn.wx)`).
+    pub fn coordinate_with_rates(
+        &mut self,
+        name: &str,
+        velocity: &str,
+        acceleration: &str,
+    ) -> Expr {
         if let Some(e) = self.find_symbol(name, |k| matches!(k, SymbolKind::Coordinate(_))) {
             return e;
         }
         let i = self.coords.len();
         let q = self.new_symbol(name, SymbolKind::Coordinate(i));
-        let dq = self.new_symbol(&format!("dot({name})"), SymbolKind::Velocity(i));
-        let ddq = self.new_symbol(&format!("ddot({name})"), SymbolKind::Acceleration(i));
+        let dq = self.new_symbol(velocity, SymbolKind::Velocity(i));
+        let ddq = self.new_symbol(acceleration, SymbolKind::Acceleration(i));
         self.coords.push(CoordinateSymbols { q, dq, ddq });
         q
     }

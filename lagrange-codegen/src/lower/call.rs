@@ -221,9 +221,10 @@ fn not_a_coordinate(target: &Ident, binding: Option<Binding>) -> Option<String> 
             "`{target}` is a point or body; `dot` takes one of its coordinates, `dot({target}.x)`"
         ),
         Binding::Orientation(_) => format!(
-            "`{target}` is an orientation; its rate is the angular velocity in body axes, \
-             which expressions do not read yet: give the torque as a `force` pair or a \
-             potential instead"
+            "`{target}` is an orientation; its rate is its angular velocity (`{target}.wx`, \
+             `{target}.wy`, `{target}.wz` in body axes, as `VELOCITIES` and the tables name \
+             it), which expressions read from a body it turns: `<body>.omega_1`, `omega_2`, \
+             `omega_3` (body axes) or `omega_x`, `omega_y`, `omega_z` (world axes)"
         ),
         Binding::Failed | Binding::Coordinate(_) => return None,
     })

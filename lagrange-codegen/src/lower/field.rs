@@ -39,6 +39,7 @@ impl Lowerer<'_> {
                 Some(_) => Some("a definition"),
             };
             let msg = match kind {
+                Some("an orientation") => orientation_field(base, &f.member),
                 Some(kind) => format!(
                     "`{base}` is {kind}, a number: only points and bodies have coordinates `.x`, `.y`, `.z`; write `{base}` itself"
                 ),
@@ -232,4 +233,16 @@ pub(super) fn component(name: &str) -> Option<usize> {
         "z" => Some(2),
         _ => None,
     }
+}
+
+/// `turn.wx` in an expression: the angular velocity has that name in the
+/// runtime, and is read in expressions from a body the orientation turns.
+fn orientation_field(base: &Ident, member: &syn::Member) -> String {
+    let member = quote::ToTokens::to_token_stream(member);
+    format!(
+        "`{base}.{member}` is not read in expressions: `{base}` is an orientation, and its \
+         angular velocity (`{base}.wx`, `{base}.wy`, `{base}.wz` in body axes, as `VELOCITIES` \
+         and the tables name it) is read from a body it turns, `<body>.omega_1`, `omega_2`, \
+         `omega_3` (body axes) or `omega_x`, `omega_y`, `omega_z` (world axes)"
+    )
 }

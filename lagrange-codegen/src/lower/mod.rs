@@ -212,12 +212,18 @@ impl<'a> Lowerer<'a> {
         q
     }
 
-    /// Declares a free orientation `name`: its θ coordinates (`name.wx`,
-    /// `name.wy`, `name.wz`, whose rates are ω in body axes) and its
+    /// Declares a free orientation `name`: its θ coordinates (`name.θx`, …,
+    /// named as the tangent linearisation's states; their rates, at the
+    /// chart's centre, are ω in body axes, shown as `Lagrangian::VELOCITIES`
+    /// names them, `name.wx`, …, and ω's rates as `dot(name.wx)`) and its
     /// quaternion's components (`name.w`, `name.x`, `name.y`, `name.z`).
     pub fn declare_orientation(&mut self, name: &Ident) {
         let n = name.to_string();
-        let theta = ["wx", "wy", "wz"].map(|a| self.ctx.coordinate(&format!("{n}.{a}")));
+        let theta = ["x", "y", "z"].map(|a| {
+            let omega = format!("{n}.w{a}");
+            self.ctx
+                .coordinate_with_rates(&format!("{n}.θ{a}"), &omega, &format!("dot({omega})"))
+        });
         let quaternion = ["w", "x", "y", "z"].map(|c| self.ctx.free_symbol(&format!("{n}.{c}")));
         let index = self.orientations.len();
         self.scope.insert(n.clone(), Binding::Orientation(index));

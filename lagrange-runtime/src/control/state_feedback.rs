@@ -102,7 +102,7 @@ impl<T: Real, const N: usize, const P: usize, const Q: usize> StateFeedback<T, N
     /// tangent linearisation `model` of `S`
     /// ([`Linearizer::tangent_driven`](crate::linear::Linearizer::tangent_driven):
     /// states δ and δv, a coordinate's name, an orientation's `<name>.θx`, …,
-    /// then the velocities' names with a prime), about the state (q0, v0)
+    /// then the rates, `x'`, `<name>.wx`, …), about the state (q0, v0)
     /// with inputs u0. States the model does not have get no feedback.
     ///
     /// A model of a constrained system from

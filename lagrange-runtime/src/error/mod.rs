@@ -298,17 +298,19 @@ pub enum Error {
         t: f64,
     },
 
-    /// An orientation's quaternion in an initial state is not a rotation:
-    /// not finite, or its norm further from 1 than
+    /// An orientation's quaternion in an initial state, an operating point,
+    /// a configuration to evaluate at or an argument of the
+    /// [`orientation`](crate::orientation) utilities is not a rotation: not
+    /// finite, or its norm further from 1 than
     /// [`UNIT_TOLERANCE`](crate::numeric::orientation::UNIT_TOLERANCE) (within
-    /// it, the run normalises it silently).
+    /// it, the quaternion is normalised silently).
     #[error(
-        "the quaternion of `{orientation}` in the initial state has norm {norm}, not 1 \
-         (within {tolerance} it is normalised): give a unit quaternion (w, x, y, z), \
-         scalar first"
+        "the quaternion of `{orientation}` has norm {norm}, not 1 (within {tolerance} \
+         it is normalised): give a unit quaternion (w, x, y, z), scalar first"
     )]
     NonUnitQuaternion {
-        /// The orientation's name (its body), from the coordinates' names.
+        /// The orientation's name (its body), from the coordinates' names;
+        /// for a lone quaternion, the argument's name (`q`, `q0`).
         orientation: String,
         /// The quaternion's norm (NaN if a component is not finite).
         norm: f64,

@@ -38,6 +38,17 @@ impl Linearizer {
     /// at a = q̈0. The second-order form has C = −(J_v + ∂ΔQ/∂q̇),
     /// K = −(J_q + ∂ΔQ/∂q), B_u = ∂Q/∂u. States `q…`, `q…'`.
     ///
+    /// A system with free orientations (q holding Q = N + 1 per orientation
+    /// numbers, the point made with [`OperatingPoint::on_group`]) is
+    /// linearised in its tangent space instead, as
+    /// [`tangent_driven`](Self::tangent_driven) does: the states are δ (an
+    /// orientation's rotation vector `<name>.θx`, … in body axes) and δv, and
+    /// a gain designed on it becomes a controller with
+    /// [`StateFeedback::from_tangent_gain`](crate::StateFeedback::from_tangent_gain).
+    /// That model has no second-order form, and without `emit(jacobians)` it
+    /// takes central differences (relative error about 1e-10) instead of
+    /// failing with [`Error::MissingDerivatives`].
+    ///
     /// # Errors
     /// [`Error::NonFiniteState`]; [`Error::SingularMassMatrix`];
     /// [`Error::MissingDerivatives`] if the system has no `rhs_jacobians`.
@@ -45,21 +56,25 @@ impl Linearizer {
     /// non-finite tolerance or a zero Newton limit, [`Error::NonPhysicalParameter`]
     /// from [`check_parameters`](crate::Lagrangian::check_parameters), and
     /// [`Error::NonFiniteInput`] naming a non-finite input of the point.
-    pub fn unconstrained<S, T, const N: usize, const P: usize, const U: usize>(
+    pub fn unconstrained<S, T, const N: usize, const P: usize, const U: usize, const Q: usize>(
         &self,
         sys: &S,
-        op: &OperatingPoint<T, N, U>,
+        op: &OperatingPoint<T, N, U, Q>,
     ) -> Result<Linear, Error>
     where
-        S: Driven<T, N, P>,
+        S: Driven<T, N, P, Q>,
         T: Real,
     {
         const {
             assert!(
-                !<S as crate::system::Lagrangian<T, N>>::CONSTRAINED,
-                "this system has constraints, which an unconstrained linearisation would ignore: use `Linearizer::constrained` (multipliers) or `Linearizer::reduced`"
+                !<S as crate::system::Lagrangian<T, N, Q>>::CONSTRAINED,
+                "this system has constraints, which an unconstrained linearisation would ignore: use `Linearizer::constrained` (multipliers) or `Linearizer::reduced` (with orientations `Linearizer::constrained_tangent` or `Linearizer::reduced_tangent`)"
             )
         };
+        if !S::ORIENTATIONS.is_empty() {
+            let u = self.inputs_at(sys, op)?;
+            return self.tangent_driven(sys, &op.q, &op.v, &u, op.t);
+        }
         let u0 = self.inputs_at(sys, op)?;
         let q = &op.q;
         let v = &op.v;

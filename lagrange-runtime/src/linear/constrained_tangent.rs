@@ -105,8 +105,8 @@ impl Linearizer {
     /// **States.** The coordinates are the tangent directions, named as
     /// [`tangent`](Self::tangent) names them: an ordinary coordinate's own
     /// name, an orientation's rotation vector `<name>.θx`, `<name>.θy`,
-    /// `<name>.θz`; the speeds are the velocities' changes, named by the
-    /// velocities with a prime (`x'`, `<name>.wx'`, …). Name independent
+    /// `<name>.θz`; the speeds are the velocities' changes, named as
+    /// [`tangent`](Self::tangent) names them (`x'`, `<name>.wx`, …). Name independent
     /// ones with [`coordinates`](Self::coordinates) (tangent directions) and
     /// [`speeds`](Self::speeds) (velocities); the rest are chosen as
     /// [`Linearizer`] describes.

@@ -424,9 +424,19 @@ impl Linear {
         self.second_order.as_ref()
     }
 
-    /// The index of the state named `name`.
+    /// The index of the state named `name`. An orientation's angular
+    /// velocity in a tangent model is `<name>.wx` (formerly `<name>.wx'`, a
+    /// spelling still accepted here and by [`select`](Self::select)).
     pub fn state_index(&self, name: &str) -> Option<usize> {
-        self.states.iter().position(|s| s == name)
+        let exact = self.states.iter().position(|s| s == name);
+        exact.or_else(|| {
+            let former = name.strip_suffix('\'')?;
+            let n = self.states.len() / 2;
+            self.states[n..]
+                .iter()
+                .position(|s| s == former && s.contains('.'))
+                .map(|i| n + i)
+        })
     }
 
     /// Keeps the named states (in their original order), with the default

@@ -36,7 +36,8 @@ impl Linearizer {
     /// orientations (unit quaternions, `orientation(..)` in a description)
     /// about the state (q, v) at time t, in the tangent space: the states are
     /// δ (the coordinates' changes and each orientation's rotation vector in
-    /// body axes, named `<name>.θx`, …) and δv (named with a prime), 2·N in
+    /// body axes, named `<name>.θx`, …) and δv (an ordinary coordinate's rate
+    /// named with a prime, `x'`, an angular velocity by its name, `<name>.wx`), 2·N in
     /// all. A steady motion (a spinning body) linearises to a constant A when
     /// it is a relative equilibrium, and its stability reads off A's
     /// eigenvalues as for an equilibrium.
@@ -197,7 +198,10 @@ where
 
 /// The states' names: each velocity's tangent direction (an ordinary
 /// coordinate's own name, an orientation's `<name>.θx`, …), then the
-/// velocities with a prime.
+/// velocities: an ordinary coordinate's rate with a prime (`x'`), an
+/// orientation's angular velocity by its own name (`<name>.wx`, …: it is
+/// the rate of `<name>.θx` at the operating point, and `<name>.wx'` would
+/// read as ω's rate).
 pub(crate) fn states<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q: usize>()
 -> Vec<String> {
     let mut tangent: Vec<String> = S::VELOCITIES.iter().map(|v| v.to_string()).collect();
@@ -208,6 +212,42 @@ pub(crate) fn states<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q: u
             tangent[o.v + k] = format!("{body}.θ{axis}");
         }
     }
-    let speeds = S::VELOCITIES.iter().map(|v| format!("{v}'"));
-    tangent.iter().cloned().chain(speeds).collect()
+    let mut speeds: Vec<String> = S::VELOCITIES.iter().map(|v| format!("{v}'")).collect();
+    for o in S::ORIENTATIONS {
+        for k in 0..3 {
+            speeds[o.v + k] = S::VELOCITIES[o.v + k].to_string();
+        }
+    }
+    tangent.into_iter().chain(speeds).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::linear::{Linearizer, OperatingPoint, linearize};
+    use crate::orientation::identity;
+    use crate::orientation::tests::{CartAndBall, configuration};
+    use nalgebra::SVector;
+
+    #[test]
+    fn an_angular_velocity_state_is_named_as_the_velocity_it_is() {
+        let q = configuration(0.0, identity());
+        let v = SVector::<f64, 4>::from([0.0, 0.0, 0.0, 1.5]);
+        let lin = Linearizer::new()
+            .tangent(&CartAndBall, &q, &v, 0.0)
+            .unwrap();
+        let states = [
+            "x", "ball.θx", "ball.θy", "ball.θz", "x'", "ball.wx", "ball.wy", "ball.wz",
+        ];
+        assert_eq!(lin.states(), states);
+        // The former spelling of an angular velocity still finds it; a
+        // coordinate's rate keeps its prime.
+        assert_eq!(lin.state_index("ball.wz'"), Some(7));
+        assert_eq!(lin.state_index("x'"), Some(4));
+        assert_eq!(lin.state_index("ball.θx'"), None);
+        assert_eq!(lin.select(&["x", "x'"]).unwrap().states(), ["x", "x'"]);
+        // `linearize` at the point on the group is the same model.
+        let same = linearize(&CartAndBall, &OperatingPoint::on_group(q, v)).unwrap();
+        assert_eq!(same.a(), lin.a());
+        assert_eq!(same.states(), lin.states());
+    }
 }

@@ -25,6 +25,9 @@ pub struct ControlRun<T: Real, const N: usize, const P: usize, const Q: usize = 
     pub(crate) terminated_by: Option<usize>,
     #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
     pub(super) coordinates: [&'static str; Q],
+    /// The velocities' names, for the CSV header.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pub(super) velocities: [&'static str; N],
     #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
     pub(crate) input_names: [&'static str; P],
 }
@@ -80,17 +83,19 @@ impl<T: Real, const N: usize, const P: usize, const Q: usize> ControlRun<T, N, P
     }
 
     /// Writes the recorded points as CSV: the header
-    /// `t,<coordinates>,dot_<coordinates>,<inputs>` (e.g. `t,x,theta,dot_x,dot_theta,force`,
-    /// named as in [`Trajectory::write_csv`]) and one row per point, numbers in
-    /// the shortest form that reads back exactly.
+    /// `t,<coordinates>,<velocities>,<inputs>,…` (e.g.
+    /// `t,x,theta,dot_x,dot_theta,force,…`; an orientation's angular velocity
+    /// `turn.wx`, …, as [`table`](Self::table) names it) and one row per
+    /// point, numbers in the shortest form that reads back exactly.
     ///
     /// # Errors
     /// [`Error::Io`] if writing fails.
     pub fn write_csv(&self, w: impl Write) -> Result<(), Error> {
-        self.table_of(crate::table::Table::new(
+        self.table_of(crate::table::Table::named(
             &self.trajectory,
             &self.coordinates,
-        )?)?
+            &self.velocities,
+        ))?
         .write(w)
     }
 

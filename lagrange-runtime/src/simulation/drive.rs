@@ -76,6 +76,7 @@ where
             occurrences: record.occurrences,
             terminated_by: record.terminated_by,
             coordinates: S::COORDINATES,
+            velocities: S::VELOCITIES,
             input_names: S::INPUTS,
         };
         match outcome {

@@ -2,9 +2,11 @@ use lagrange::Lagrangian;
 use lagrange::linear::{OperatingPoint, linearize};
 use lagrange::nalgebra::SVector;
 
-// A body with a quaternion is linearised on its group (`tangent_driven`),
-// not by `linearize`, which takes a system in N coordinates: the message
-// says so instead of miscounting its inputs.
+// A body with a quaternion is linearised at a point on its group
+// (`OperatingPoint::on_group`, four numbers per quaternion in q); a point
+// made with `OperatingPoint::new` holds N numbers in q, and the error says
+// that the point's q must hold the system's Q = 4 (not a miscount of its
+// inputs).
 #[derive(Lagrangian)]
 #[lagrange(
     orientation(turn),
@@ -16,7 +18,7 @@ use lagrange::nalgebra::SVector;
 struct Top {}
 
 fn main() {
-    let q = SVector::<f64, 4>::new(1.0, 0.0, 0.0, 0.0);
+    let q = SVector::<f64, 3>::zeros();
     let v = SVector::<f64, 3>::zeros();
-    let _ = linearize(&Top {}, &OperatingPoint::on_group(q, v));
+    let _ = linearize(&Top {}, &OperatingPoint::new(q, v));
 }
