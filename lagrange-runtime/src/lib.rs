@@ -215,9 +215,9 @@ pub mod control;
 pub mod ensemble;
 pub mod event;
 pub mod linear;
-pub mod plan;
 #[cfg(feature = "plot")]
 pub mod picture;
+pub mod plan;
 pub mod scene;
 pub mod study;
 mod table;
