@@ -19,7 +19,15 @@ const RUNTIME_LAYERS: &[&[&str]] = &[
     &["system", "pose"],
     &["mechanics"],
     &[
-        "atlas", "control", "event", "linear", "study", "table", "ensemble", "scene",
+        "atlas",
+        "control",
+        "event",
+        "linear",
+        "study",
+        "table",
+        "ensemble",
+        "scene",
+        "task_space",
     ],
     &["simulation"],
 ];

@@ -207,6 +207,7 @@ pub mod linear;
 pub mod scene;
 pub mod study;
 mod table;
+pub mod task_space;
 
 // 6 top: the one builder
 mod simulation;
