@@ -398,8 +398,8 @@ pub enum Error {
         body: &'static str,
         /// The iterations made.
         iterations: usize,
-        /// The smallest residual reached (the largest component of the task
-        /// error: metres and radians).
+        /// The smallest residual reached (the norm of the task error:
+        /// metres and radians).
         residual: f64,
         /// The tolerance asked for.
         tolerance: f64,

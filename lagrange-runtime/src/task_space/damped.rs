@@ -71,6 +71,14 @@ pub fn damped_inverse<const R: usize, const N: usize>(
     j: &SMatrix<f64, R, N>,
     damping: &Damping,
 ) -> Option<DampedInverse<R, N>> {
+    damped_with(j, |smallest| damping.lambda2(smallest))
+}
+
+/// [`damped_inverse`] with λ² a function of σ_min.
+pub(super) fn damped_with<const R: usize, const N: usize>(
+    j: &SMatrix<f64, R, N>,
+    lambda2: impl Fn(f64) -> f64,
+) -> Option<DampedInverse<R, N>> {
     if !j.iter().all(|x| x.is_finite()) {
         return None;
     }
@@ -84,7 +92,7 @@ pub fn damped_inverse<const R: usize, const N: usize>(
     } else {
         norms[order[rank - 1]]
     };
-    let lambda2 = damping.lambda2(smallest);
+    let lambda2 = lambda2(smallest);
     let mut inverse = SMatrix::<f64, N, R>::zeros();
     for &i in order.iter().take(rank) {
         // v_i (σ_i / (σ_i² + λ²)) u_iᵀ with u_i = w_i / σ_i.

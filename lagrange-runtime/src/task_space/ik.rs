@@ -2,7 +2,7 @@
 
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
-use super::damped::{Damping, damped_inverse};
+use super::damped::{Damping, damped_with};
 use super::{rotation_error, stack};
 use crate::error::{Error, Failure, Progress, SettingsError, to_vec};
 use crate::pose::Kinematics;
@@ -25,8 +25,9 @@ pub enum Target {
 }
 
 /// An iterate of inverse kinematics: the joint positions, the residual
-/// there (the largest component of the task error (p_d − p, log(R_d Rᵀ)),
-/// metres and radians) and the iterations it took. The answer when it
+/// there (the Euclidean norm of the task error (p_d − p, log(R_d Rᵀ)),
+/// metres and radians, which the steps decrease) and the iterations it
+/// took. The answer when it
 /// converged, the best iterate (smallest residual) in the
 /// [`Failure`] when it did not.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -51,10 +52,12 @@ impl<const N: usize> Progress for Solution<N> {
 /// q ← q + J⁺ e, J⁺ = Jᵀ (J Jᵀ + λ² I)⁻¹ ([`damped_inverse`]),
 /// with e = (p_d − p, log(R_d Rᵀ)) for a [`Target::Pose`] (J the frame's
 /// world-aligned Jacobian) or e = p_d − p for a [`Target::Position`] (J's
-/// rows 0–2), until the largest component of e is within the tolerance.
-/// λ is zero while J's smallest singular value stays above the damping's
-/// threshold, so the steps are Newton's (quadratic convergence) away from
-/// singularities, and bounded near them. With
+/// rows 0–2), until |e| is within the tolerance. λ is zero while J's
+/// smallest singular value stays above the damping's threshold, so the
+/// steps are Newton's (quadratic convergence) away from singularities, and
+/// bounded near them; near the target λ² is at most |e|² (Levenberg–
+/// Marquardt after Yamashita and Fukushima), so a target close to a
+/// singularity is still reached fast. With
 /// [`joint_limits`](Self::joint_limits) each iterate is clamped into
 /// [`Lagrangian::position_limits`].
 ///
@@ -125,7 +128,7 @@ impl InverseKinematics {
         }
     }
 
-    /// The largest component of the task error accepted as converged.
+    /// The norm of the task error accepted as converged.
     pub fn tolerance(mut self, tolerance: f64) -> Self {
         self.tolerance = tolerance;
         self
@@ -274,7 +277,7 @@ impl InverseKinematics {
             let Some((e, j)) = evaluated else {
                 return Err((Some(non_finite(&q)), best));
             };
-            let residual = e.amax();
+            let residual = e.norm();
             if residual < best.residual {
                 best = Solution {
                     q,
@@ -288,7 +291,11 @@ impl InverseKinematics {
             if iterations == self.max_iterations {
                 break;
             }
-            let inverse = damped_inverse(&j, &self.damping).ok_or((Some(non_finite(&q)), best))?;
+            // Levenberg–Marquardt's λ² ≤ |e|² (Yamashita and Fukushima): the
+            // damping fades as the target nears, so that the steps become
+            // Newton's even where the solution sits close to a singularity.
+            let lambda2 = |smallest| self.damping.lambda2(smallest).min(residual * residual);
+            let inverse = damped_with(&j, lambda2).ok_or((Some(non_finite(&q)), best))?;
             q += inverse.inverse * e;
             clamp(&mut q);
         }

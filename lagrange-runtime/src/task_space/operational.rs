@@ -188,6 +188,11 @@ where
         Ok(self)
     }
 
+    /// The robot.
+    pub fn robot(&self) -> &'a S {
+        self.robot
+    }
+
     /// The driven body's index in [`Posed::BODIES`](crate::Posed::BODIES).
     pub fn frame(&self) -> usize {
         self.frame
