@@ -170,12 +170,17 @@
 //! plays the motion in 3D (the bodies' poses come from [`Posed`], which the
 //! derive implements); see [`scene`].
 //!
+//! [`task_space`] holds what robot programs ask of a frame, for any number of
+//! joints: damped least-squares inverse kinematics, and the operational-space
+//! controller as a feedback law for a run (in `f64`, on the emitted
+//! [`Kinematics`]).
+//!
 //! [`study`] runs work-precision studies: integrators × tolerances or step sizes
 //! on one problem, each run's error against a closed form or a DOP853 reference
 //! and its cost, as a markdown/CSV table and (feature `plot`) a log-log PNG.
 //!
-//! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
-//! number of degrees of freedom `N`, a type-level constant.
+//! Everything else is generic over the scalar `T: `[`Real`] (f64, f32, ...) and
+//! the number of degrees of freedom `N`, a type-level constant.
 
 // The modules by layer, bottom up: each imports only from its own layer and
 // the layers listed before it (ARCHITECTURE.md has the map; the workspace's
