@@ -57,7 +57,8 @@ impl<const N: usize> Progress for Solution<N> {
 /// steps are Newton's (quadratic convergence) away from singularities, and
 /// bounded near them; near the target λ² is at most |e|² (Levenberg–
 /// Marquardt after Yamashita and Fukushima), so a target close to a
-/// singularity is still reached fast. With
+/// singularity is still reached fast. A step that does not decrease |e|
+/// is halved until it does (at most ten times). With
 /// [`joint_limits`](Self::joint_limits) each iterate is clamped into
 /// [`Lagrangian::position_limits`].
 ///
@@ -264,6 +265,11 @@ impl InverseKinematics {
                 }
             }
         };
+        let finite = |q: &SVector<f64, N>| {
+            evaluate(q)
+                .filter(|(e, j)| e.iter().chain(j.iter()).all(|x| x.is_finite()))
+                .ok_or_else(|| non_finite(q))
+        };
         let mut q = *start;
         clamp(&mut q);
         let mut best = Solution {
@@ -271,12 +277,8 @@ impl InverseKinematics {
             residual: f64::INFINITY,
             iterations: 0,
         };
+        let (mut e, mut j) = finite(&q).map_err(|error| (Some(error), best))?;
         for iterations in 0..=self.max_iterations {
-            let evaluated =
-                evaluate(&q).filter(|(e, j)| e.iter().chain(j.iter()).all(|x| x.is_finite()));
-            let Some((e, j)) = evaluated else {
-                return Err((Some(non_finite(&q)), best));
-            };
             let residual = e.norm();
             if residual < best.residual {
                 best = Solution {
@@ -296,8 +298,21 @@ impl InverseKinematics {
             // Newton's even where the solution sits close to a singularity.
             let lambda2 = |smallest| self.damping.lambda2(smallest).min(residual * residual);
             let inverse = damped_with(&j, lambda2).ok_or((Some(non_finite(&q)), best))?;
-            q += inverse.inverse * e;
-            clamp(&mut q);
+            let step = inverse.inverse * e;
+            // The step is a descent direction of |e|²: halved until |e|
+            // falls (at most ten times), so that the iterates do not bounce
+            // about a singularity on the way to an unreachable target.
+            let mut scale = 1.0;
+            loop {
+                let mut trial = q + step * scale;
+                clamp(&mut trial);
+                let (trial_e, trial_j) = finite(&trial).map_err(|error| (Some(error), best))?;
+                if trial_e.norm() < residual || scale < 1e-3 {
+                    (q, e, j) = (trial, trial_e, trial_j);
+                    break;
+                }
+                scale /= 2.0;
+            }
         }
         Err((None, best))
     }
