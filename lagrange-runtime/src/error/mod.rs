@@ -391,7 +391,7 @@ pub enum Error {
     #[error(
         "inverse kinematics of `{body}` did not converge in {iterations} iterations: \
          residual {residual:e} > tolerance {tolerance:e} (unreachable target, or a start \
-         that leads into a singularity); the best iterate is in `Failure::partial`"
+         that leads into a singularity)"
     )]
     InverseKinematics {
         /// The frame's body.
