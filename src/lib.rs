@@ -554,6 +554,8 @@
 //! `Ensemble::new().run(&inputs, |i, x| ...)`. Sweeps larger than one machine
 //! split into shards with `lagrange::ensemble::shard`.
 
+#![warn(missing_docs)]
+
 pub use lagrange_macros::Lagrangian;
 pub use lagrange_runtime::*;
 pub use nalgebra;

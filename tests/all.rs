@@ -44,6 +44,7 @@ mod operational_space;
 mod order;
 mod physical;
 mod piecewise;
+mod planning;
 mod rattle;
 mod reactions;
 mod recording;

@@ -157,3 +157,91 @@ fn rattle_refuses_a_quaternion_off_unit_norm() {
         "{err}"
     );
 }
+
+/// A work-precision study of the Cartesian spherical pendulum with RATTLE
+/// among its methods, run through the study's one closure.
+fn rattle_study(steps: &[f64]) -> lagrange::study::Study {
+    let sys = CartesianSphericalPendulum {
+        m: 0.8,
+        l: 1.3,
+        g: 9.81,
+    };
+    let th = 0.9f64;
+    let q0 = Vector3::new(sys.l * th.sin(), 0.0, -sys.l * th.cos());
+    let v0 = Vector3::new(0.4 * th.cos(), 1.5, 0.4 * th.sin());
+    WorkPrecision::new(|m| Simulation::new(&sys).integrator(m).run(q0, v0, 0.0..2.0))
+        .repeats(1, std::time::Duration::ZERO)
+        .sweep(Sweep::steps("RATTLE", steps, Rattle::step))
+        .run()
+        .unwrap()
+}
+
+#[test]
+fn rattle_in_a_study_falls_at_second_order() {
+    let study = rattle_study(&[0.02, 0.01, 0.005, 0.0025]);
+    let errors: Vec<f64> = study
+        .rows()
+        .iter()
+        .map(|r| r.measurement().expect("RATTLE runs").error)
+        .collect();
+    // Each halving of h divides the error by 4: slope 2 on log–log.
+    eprintln!("RATTLE's errors at h = 0.02 / 2^k: {errors:?}");
+    for pair in errors.windows(2) {
+        let slope = (pair[0] / pair[1]).log2();
+        assert!((slope - 2.0).abs() < 0.15, "slope {slope} from {errors:?}");
+    }
+    // And the constraint held to round-off on every run.
+    for row in study.rows() {
+        assert!(row.measurement().unwrap().residual < 1e-13);
+    }
+}
+
+#[test]
+fn rattle_where_it_does_not_apply_is_a_failed_row() {
+    use catalog::Pendulum;
+    use catalog::constrained::ChaplyginSleigh;
+    use lagrange::SettingsError;
+    let unsupported = |study: &lagrange::study::Study| {
+        let row = &study.rows()[0];
+        match &row.outcome {
+            Err(Error::Settings(SettingsError::Unsupported { owner, .. })) => {
+                assert_eq!(*owner, "RATTLE");
+            }
+            other => panic!("expected RATTLE's refusal, got {other:?}"),
+        }
+    };
+    // No constraints: nothing to hand RATTLE.
+    let pendulum = Pendulum::<f64> {
+        m: 1.0,
+        l: 1.0,
+        g: 9.81,
+    };
+    let study = WorkPrecision::new(|m| {
+        Simulation::new(&pendulum)
+            .integrator(m)
+            .run([0.5], [0.0], 0.0..1.0)
+    })
+    .repeats(1, std::time::Duration::ZERO)
+    .sweep(Sweep::steps("RATTLE", &[0.01], Rattle::step))
+    .run()
+    .unwrap();
+    unsupported(&study);
+    // A nonholonomic row has no position level for RATTLE to hold.
+    let sleigh = ChaplyginSleigh {
+        m: 1.0,
+        i: 0.2,
+        b: 0.3,
+    };
+    let study = WorkPrecision::new(|m| {
+        let (q0, v0) = (Vector3::zeros(), Vector3::new(1.0, 0.0, 0.5));
+        Simulation::new(&sleigh)
+            .integrator(m)
+            .run_constrained(q0, v0, 0.0..1.0)
+    })
+    .conservative(false)
+    .repeats(1, std::time::Duration::ZERO)
+    .sweep(Sweep::steps("RATTLE", &[0.01], Rattle::step))
+    .run()
+    .unwrap();
+    unsupported(&study);
+}

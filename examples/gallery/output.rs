@@ -4,6 +4,7 @@
 use crate::plot;
 use crate::row::Row;
 use lagrange::Error;
+use lagrange::picture::{StillPicture, segments_png};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -30,7 +31,7 @@ pub(crate) fn slug(name: &str) -> String {
 /// Writes everything under `out` and returns the path of `index.html`.
 pub(crate) fn write(out: &Path, rows: &[Row], animations: &Animations) -> Result<PathBuf, Error> {
     std::fs::create_dir_all(out)?;
-    plot::register_font()?;
+    lagrange::picture::register_font()?;
     for row in rows {
         let Some(fig) = &row.figure else { continue };
         let name = slug(row.system);
@@ -42,7 +43,9 @@ pub(crate) fn write(out: &Path, rows: &[Row], animations: &Animations) -> Result
             std::fs::write(out.join(scene_file(row.system)), page)?;
         }
         if let Some(segments) = &row.still {
-            crate::still::png(&out.join(still_file(row.system)), segments)?;
+            // The table's thumbnail: small, without a title.
+            let thumbnail = StillPicture::new().size(180, 120).line_width(1);
+            segments_png(out.join(still_file(row.system)), segments, &thumbnail)?;
         }
     }
     let mut gifs = Vec::new();

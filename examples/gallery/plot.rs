@@ -5,38 +5,16 @@
 use crate::figure::Figure;
 use crate::layout::{self, Shown};
 use lagrange::Error;
+use lagrange::picture::COLORS;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
-
-const FONT: &[u8] = include_bytes!("../../lagrange-runtime/fonts/DejaVuSans.ttf");
-
-/// Tableau 10.
-const COLORS: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
 
 /// Values below this are drawn at it on the log panels.
 const FLOOR: f64 = 1e-17;
 
 fn err(e: impl std::fmt::Display) -> Error {
     Error::Io(std::io::Error::other(format!("gallery plot: {e}")))
-}
-
-/// Registers the bundled font as "sans-serif" (machines without fontconfig
-/// fonts still get text).
-pub(crate) fn register_font() -> Result<(), Error> {
-    plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
-        .map_err(|_| err("the bundled font could not be parsed"))
 }
 
 /// The system's PNG: the coordinates that carry the behaviour against t, the

@@ -1,6 +1,6 @@
-//! The small picture of each system's scene in the index's table: the scene's
-//! still (its shapes' edges at mid-run, `Scene::still`) drawn with plotters,
-//! and animations made of stills at successive times.
+//! Animations made of a scene's stills at successive times (`Scene::still`),
+//! all at one scale; the single still of each system's row is drawn by the
+//! library (`lagrange::picture::segments_png`).
 
 use lagrange::Error;
 use lagrange::scene::Segment;
@@ -9,17 +9,6 @@ use std::path::Path;
 
 fn err(e: impl std::fmt::Display) -> Error {
     Error::Io(std::io::Error::other(format!("gallery still: {e}")))
-}
-
-/// Draws the segments, equal scales on both axes, into a 180 × 120 PNG.
-pub(crate) fn png(path: &Path, segments: &[Segment]) -> Result<(), Error> {
-    let (w, h) = (180_u32, 120_u32);
-    let root = BitMapBackend::new(path, (w, h)).into_drawing_area();
-    root.fill(&WHITE).map_err(err)?;
-    if let Some(view) = View::fitting(segments.iter(), (w, h)) {
-        draw(&root, &view, segments)?;
-    }
-    root.present().map_err(err)
 }
 
 /// An animation of a scene: one frame per set of segments (the scene's

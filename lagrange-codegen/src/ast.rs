@@ -7,7 +7,9 @@ use syn::{Expr, Generics, Ident};
 /// The scalar the generated code computes in.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Scalar {
+    /// `f64` (the default).
     F64,
+    /// `f32`.
     F32,
     /// A type parameter of the struct, e.g. `T` in `struct Pendulum<T> { m: T }`.
     Generic(Ident),
@@ -16,6 +18,7 @@ pub enum Scalar {
 /// One float field of the struct: a physical parameter.
 #[derive(Clone, Debug)]
 pub struct Parameter {
+    /// The field's name, as expressions use it.
     pub name: Ident,
 }
 
@@ -25,9 +28,13 @@ pub struct Parameter {
 /// the point so its name still resolves.
 #[derive(Clone, Debug)]
 pub struct Point {
+    /// The point's name.
     pub name: Ident,
+    /// `mass = m`; `None` for a massless point.
     pub mass: Option<Expr>,
+    /// `at = [x, y, z]`: world position ξ(q, t), or body coordinates with `on`.
     pub at: Option<Expr>,
+    /// `on = body`: the body the point is fixed in.
     pub on: Option<Ident>,
 }
 
@@ -38,9 +45,13 @@ pub struct Point {
 /// and orientation R(q,t) mapping body to world coordinates.
 #[derive(Clone, Debug)]
 pub struct Body {
+    /// The body's name.
     pub name: Ident,
+    /// `mass = m`.
     pub mass: Option<Expr>,
+    /// `inertia = [..]`: three principal moments or six tensor entries.
     pub inertia: Option<Expr>,
+    /// `at = [x, y, z]`: the reference point's world position ξ(q, t).
     pub at: Option<Expr>,
     /// `com = [bx, by, bz]`: the centre of mass in body coordinates relative to
     /// the reference point `at`; absent, `at` is the centre of mass.
@@ -49,6 +60,7 @@ pub struct Body {
     /// the inertia tensor is given about; absent, the centre of mass. The
     /// macro moves it to the centre of mass by the parallel-axis theorem.
     pub about: Option<Expr>,
+    /// `rotation = R`: R(q, t), body → world.
     pub rotation: Option<Expr>,
     /// The inertia is used as written, its physical check skipped: a body
     /// read by `urdf("..", inertia = as_written)`.
@@ -58,7 +70,9 @@ pub struct Body {
 /// A named constraint: `holonomic(name = f(q, t))` or `nonholonomic(name = a(q,t)·q̇ + b)`.
 #[derive(Clone, Debug)]
 pub struct Constraint {
+    /// The constraint's name (its multiplier's and its row's).
     pub name: Ident,
+    /// f(q, t), or a(q, t)·q̇ + b(q, t).
     pub value: Expr,
 }
 
@@ -101,7 +115,9 @@ pub enum Extra {
 /// `force(point, [fx, fy, fz])`: a Cartesian force applied at a point.
 #[derive(Clone, Debug)]
 pub struct Force {
+    /// The point the force acts at.
     pub point: Ident,
+    /// The force `[fx, fy, fz]`, world axes.
     pub value: Expr,
 }
 
@@ -109,7 +125,9 @@ pub struct Force {
 /// `axes = body`) in the body's own.
 #[derive(Clone, Debug)]
 pub struct Torque {
+    /// The body the torque turns.
     pub body: Ident,
+    /// The torque `[tx, ty, tz]`.
     pub value: Expr,
     /// Whether the components are in the body's axes (else the world's).
     pub body_axes: bool,
@@ -118,14 +136,18 @@ pub struct Torque {
 /// `generalized_force(q = expr)`.
 #[derive(Clone, Debug)]
 pub struct GeneralizedForce {
+    /// The coordinate the force is conjugate to.
     pub coordinate: Ident,
+    /// The generalized force Q_q.
     pub value: Expr,
 }
 
 /// `define(name = expr)`: an intermediate quantity usable in later expressions.
 #[derive(Clone, Debug)]
 pub struct Definition {
+    /// The quantity's name.
     pub name: Ident,
+    /// Its expression.
     pub value: Expr,
 }
 
@@ -134,20 +156,32 @@ pub struct Definition {
 #[derive(Clone, Debug)]
 pub enum Solid {
     /// `box(size = [lx, ly, lz])`: full edge lengths along the body axes.
-    Box { size: Expr },
+    Box {
+        /// Edge lengths `[lx, ly, lz]`.
+        size: Expr,
+    },
     /// `sphere(radius = r)`.
-    Sphere { radius: Expr },
+    Sphere {
+        /// The radius.
+        radius: Expr,
+    },
     /// `cylinder(radius = r, length = l, axis = x|y|z)`, centred on its place.
     Cylinder {
+        /// The radius.
         radius: Expr,
+        /// The full length along `axis`.
         length: Expr,
+        /// The body axis: 0 = x, 1 = y, 2 = z.
         axis: usize,
     },
     /// `capsule(radius = r, length = l, axis = x|y|z)`: a cylinder of length l
     /// with hemispherical ends.
     Capsule {
+        /// The radius of the cylinder and its ends.
         radius: Expr,
+        /// The cylinder's length between the ends' centres.
         length: Expr,
+        /// The body axis: 0 = x, 1 = y, 2 = z.
         axis: usize,
     },
 }
@@ -159,10 +193,13 @@ pub enum Shape {
     /// A solid fixed in a body (at body coordinates `at` from its reference
     /// point, in its axes) or centred on a point (world axes).
     Solid {
+        /// The body or point the solid is fixed to.
         target: Ident,
+        /// The solid and its sizes.
         solid: Box<Solid>,
         /// The keyword as written, where errors about the solid point.
         keyword: Ident,
+        /// `at = [..]`: the centre relative to the target; `None` for the target itself.
         at: Option<Box<Expr>>,
     },
     /// A polyline through points and bodies' reference points.
@@ -172,10 +209,15 @@ pub enum Shape {
 /// Everything `#[lagrange(...)]` says about one struct.
 #[derive(Clone, Debug)]
 pub struct System {
+    /// The struct's name.
     pub ident: Ident,
+    /// The struct's generics (a scalar type parameter, if any).
     pub generics: Generics,
+    /// The scalar the generated code computes in.
     pub scalar: Scalar,
+    /// The struct's float fields.
     pub parameters: Vec<Parameter>,
+    /// `coordinates(q1, q2, ...)`: the generalized coordinates.
     pub coordinates: Vec<Ident>,
     /// `orientation(a, ...)`: free orientations, each a unit quaternion in q
     /// and a body-axis angular velocity in v, usable as a rotation factor.
@@ -183,21 +225,33 @@ pub struct System {
     /// `inputs(u1, u2, ...)`: named scalar signals supplied at run time, allowed
     /// in forces, generalized forces, the potential and the dissipation.
     pub inputs: Vec<Ident>,
+    /// `define(...)`: intermediate quantities, in order.
     pub definitions: Vec<Definition>,
+    /// `point(...)` items, in order.
     pub points: Vec<Point>,
+    /// `body(...)` items, in order.
     pub bodies: Vec<Body>,
+    /// `holonomic(...)` constraints f(q, t) = 0.
     pub holonomic: Vec<Constraint>,
+    /// `nonholonomic(...)` constraints, linear in the velocities.
     pub nonholonomic: Vec<Constraint>,
     /// `speeds(u = expr, ...)`: independent speeds of the reduced form.
     pub speeds: Vec<Definition>,
     /// `formulation(...)`; empty means the default (multipliers when there are constraints).
     pub formulations: Vec<(Ident, Formulation)>,
+    /// `emit(...)`: the optional outputs, each with the keyword where it was written.
     pub extras: Vec<(Ident, Extra)>,
+    /// `gravity = [gx, gy, gz]`: a uniform field acting on every mass.
     pub gravity: Option<Expr>,
+    /// `potential = V`: the user's potential energy V(q, t).
     pub potential: Option<Expr>,
+    /// `dissipation = D`: Rayleigh's dissipation function, D(q, q̇, t).
     pub dissipation: Option<Expr>,
+    /// `force(...)` items.
     pub forces: Vec<Force>,
+    /// `torque(...)` items.
     pub torques: Vec<Torque>,
+    /// `generalized_force(...)` items.
     pub generalized_forces: Vec<GeneralizedForce>,
     /// `shape(...)`: visual shapes for the scene, in order.
     pub shapes: Vec<Shape>,

@@ -22,7 +22,9 @@ use crate::lowered::ConstraintModel;
 
 /// The multiplier form: K rows, holonomic first.
 pub struct ConstraintSet {
+    /// The rows' names, holonomic first.
     pub names: Vec<String>,
+    /// How many of the K rows are holonomic.
     pub holonomic: usize,
     /// Φ(q,t) in the holonomic rows, 0 in the others.
     pub phi: Vec<Sym>,

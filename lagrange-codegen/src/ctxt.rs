@@ -12,12 +12,16 @@ use std::fmt::Display;
 use proc_macro2::Span;
 use quote::ToTokens;
 
+/// Collects the errors of one derive, so that all of them are reported at once
+/// (each at its token). Must be consumed by `check`; dropping it unchecked is a
+/// bug, caught by a panic in `Drop`.
 pub struct Ctxt {
     /// The errors in the order they were found; `None` once checked.
     errors: RefCell<Option<Vec<syn::Error>>>,
 }
 
 impl Ctxt {
+    /// An empty collection.
     pub fn new() -> Self {
         Ctxt {
             errors: RefCell::new(Some(Vec::new())),

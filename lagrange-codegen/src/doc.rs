@@ -15,7 +15,9 @@ use crate::mechanics::{BiasRoute, Model};
 /// pass over the outputs: a large system's straight-line program is built once
 /// for both listings.
 pub struct Texts {
+    /// The plain-text listing (the emitted `EQUATIONS`).
     pub equations: String,
+    /// The LaTeX listing (the emitted `EQUATIONS_LATEX`).
     pub latex: String,
 }
 

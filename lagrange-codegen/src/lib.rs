@@ -22,6 +22,8 @@
 //! anything is emitted; on error the output is `compile_error!`s plus a stub
 //! impl, never a panic.
 
+#![warn(missing_docs)]
+
 pub mod ast;
 pub mod atlas;
 pub mod attr;

@@ -9,40 +9,56 @@ use crate::mat3::Mat3;
 
 /// A point mass (or a body's centre of mass) after lowering.
 pub struct PointModel {
+    /// The point's (or body's) name.
     pub name: String,
+    /// Its mass.
     pub mass: Sym,
+    /// Its world position ξ(q, t).
     pub position: Vec<Sym>,
 }
 
 /// The rotational part of a rigid body: inertia about the centre in body axes and
 /// the body-frame angular velocity ω(q, q̇, t).
 pub struct SpinModel {
+    /// The body's name.
     pub name: String,
+    /// Its inertia about the centre of mass, body axes.
     pub inertia: Mat3,
+    /// Its angular velocity ω(q, q̇, t), body axes.
     pub omega: [Sym; 3],
 }
 
 /// The lowered description: everything as expressions, names resolved.
 pub struct Lowered {
+    /// The context every expression of the description lives in.
     pub ctx: Context,
+    /// The coordinates' names, in the order of q.
     pub coordinates: Vec<String>,
     /// The free orientations, whose θ coordinates follow `coordinates`.
     pub orientations: Vec<OrientationModel>,
     /// Names of the inputs, in the order of their symbols (`Context::inputs`).
     pub inputs: Vec<String>,
+    /// The parameters' names (the struct's float fields).
     pub parameters: Vec<String>,
+    /// Every point mass and body centre, in declaration order.
     pub points: Vec<PointModel>,
+    /// Every body's rotational part, in declaration order.
     pub spins: Vec<SpinModel>,
     /// Where the masses sit relative to the bodies (for the recursive route).
     pub skeleton: Skeleton,
+    /// The uniform gravity field, if any.
     pub gravity: Option<Vec<Sym>>,
+    /// The user's potential V(q, t), if any.
     pub potential: Option<Sym>,
+    /// Rayleigh's dissipation function D(q, q̇, t), if any.
     pub dissipation: Option<Sym>,
     /// (position of the point of application, Cartesian force)
     pub forces: Vec<(Vec<Sym>, Vec<Sym>)>,
     /// (coordinate index, generalized force)
     pub generalized_forces: Vec<(usize, Sym)>,
+    /// The holonomic constraints, in declaration order.
     pub holonomic: Vec<ConstraintModel>,
+    /// The nonholonomic constraints, in declaration order.
     pub nonholonomic: Vec<ConstraintModel>,
     /// The reduced form's speeds, if that form is asked for.
     pub speeds: Option<ReducedSpeeds>,
@@ -60,6 +76,7 @@ pub struct Lowered {
 /// `Lagrangian::check_parameters` (one given by literals is checked at compile
 /// time, in `physical`). Each names its point or body.
 pub enum PhysicalCheck {
+    /// The mass of the named point or body.
     Mass(String, Sym),
     /// Principal moments [A, B, C] of a body turning about all three axes.
     Principal(String, [Sym; 3]),
@@ -93,7 +110,9 @@ pub enum Factor {
     /// A free orientation, R₀(quaternion)·exp(θ): a spherical joint whose
     /// velocity is the angular velocity in its own axes.
     Free {
+        /// θ: the chart's three coordinates (zero where evaluated).
         theta: [Sym; 3],
+        /// (w, x, y, z), read from q.
         quaternion: [Sym; 4],
     },
 }
@@ -101,13 +120,17 @@ pub enum Factor {
 /// A body's rotation factors (`None` for an explicit matrix), rotation
 /// matrix and reference point.
 pub struct BodyFrame {
+    /// The elementary factors of R in order; `None` when R was written as a matrix.
     pub factors: Option<Vec<Factor>>,
+    /// The rotation matrix R, body → world.
     pub matrix: Mat3,
+    /// The body's reference point, world axes.
     pub reference: Vec<Sym>,
 }
 
 /// One constraint after lowering and composition with ξ(q,t).
 pub struct ConstraintModel {
+    /// The constraint's name.
     pub name: String,
     /// f(q,t) for a holonomic constraint, a(q,t)·q̇ + b(q,t) for a nonholonomic one.
     pub value: Sym,
@@ -126,6 +149,7 @@ pub struct Poses {
     pub bodies: Vec<BodyPose>,
     /// Every point, with or without mass, in declaration order.
     pub points: Vec<PointPose>,
+    /// The `shape(...)` items, in declaration order.
     pub shapes: Vec<ShapeModel>,
 }
 
@@ -135,60 +159,87 @@ pub struct Poses {
 /// read from q.
 #[derive(Clone)]
 pub struct OrientationModel {
+    /// The orientation's name.
     pub name: String,
+    /// θ: the chart's three coordinates (zero where evaluated).
     pub theta: [Sym; 3],
+    /// (w, x, y, z), read from q.
     pub quaternion: [Sym; 4],
 }
 
 /// A body's reference point, centre of mass and rotation (body → world), and
 /// its mass and inertia about the centre in body axes (for the default shape).
 pub struct BodyPose {
+    /// The body's name.
     pub name: String,
+    /// The reference point, world axes.
     pub origin: Vec<Sym>,
+    /// The centre of mass, world axes.
     pub centre: Vec<Sym>,
+    /// R, body → world.
     pub rotation: Mat3,
+    /// The body's mass.
     pub mass: Sym,
+    /// Its inertia about the centre, body axes.
     pub inertia: Mat3,
 }
 
 /// A point's world position (two components in a planar description) and the
 /// body it is fixed in, if any.
 pub struct PointPose {
+    /// The point's name.
     pub name: String,
+    /// Its world position.
     pub position: Vec<Sym>,
+    /// The body it is fixed in (index into `Poses::bodies`).
     pub body: Option<usize>,
 }
 
 /// What a shape is attached to: an index into [`Poses::bodies`] or [`Poses::points`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Anchor {
+    /// A body, by its index in `Poses::bodies`.
     Body(usize),
+    /// A point, by its index in `Poses::points`.
     Point(usize),
 }
 
 /// A `shape(...)` item with its sizes as parameter-only expressions.
 pub struct ShapeModel {
+    /// What the shape is fixed to.
     pub on: Anchor,
     /// The centre, in body coordinates from the reference point (world axes
     /// from a point); empty for none.
     pub at: Vec<Sym>,
+    /// The solid and its sizes.
     pub solid: SolidModel,
 }
 
 /// The lowered solid; a line runs from the shape's anchor to another.
 pub enum SolidModel {
+    /// A box's full edge lengths along the body axes.
     Box([Sym; 3]),
+    /// A sphere's radius.
     Sphere(Sym),
+    /// A cylinder centred on its place.
     Cylinder {
+        /// The radius.
         radius: Sym,
+        /// The full length along `axis`.
         length: Sym,
+        /// The body axis: 0 = x, 1 = y, 2 = z.
         axis: usize,
     },
+    /// A cylinder with hemispherical ends.
     Capsule {
+        /// The radius of the cylinder and its ends.
         radius: Sym,
+        /// The cylinder's length between the ends' centres.
         length: Sym,
+        /// The body axis: 0 = x, 1 = y, 2 = z.
         axis: usize,
     },
+    /// A line from the shape's anchor to this one.
     Line(Anchor),
 }
 

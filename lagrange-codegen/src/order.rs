@@ -17,8 +17,11 @@ use crate::ctxt::Ctxt;
 /// One item that brings a name into scope.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum Item {
+    /// `define(..)` item k.
     Definition(usize),
+    /// `body(..)` item k.
     Body(usize),
+    /// `point(..)` item k.
     Point(usize),
 }
 

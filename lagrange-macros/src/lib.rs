@@ -2,6 +2,8 @@
 //! `lagrange-codegen`, an ordinary library that can be tested and benchmarked
 //! without a compiler in the loop.
 
+#![warn(missing_docs)]
+
 use proc_macro::TokenStream;
 
 /// Derives `lagrange::Lagrangian` from a `#[lagrange(...)]` description of the system.

@@ -178,9 +178,13 @@
 //! [`study`] runs work-precision studies: integrators × tolerances or step sizes
 //! on one problem, each run's error against a closed form or a DOP853 reference
 //! and its cost, as a markdown/CSV table and (feature `plot`) a log-log PNG.
+//! With the feature `plot`, `picture` draws a run's columns against t and a
+//! scene's still as PNGs.
 //!
 //! Everything else is generic over the scalar `T: `[`Real`] (f64, f32, ...) and
 //! the number of degrees of freedom `N`, a type-level constant.
+
+#![warn(missing_docs)]
 
 // The modules by layer, bottom up: each imports only from its own layer and
 // the layers listed before it (ARCHITECTURE.md has the map; the workspace's
@@ -209,6 +213,9 @@ pub mod control;
 pub mod ensemble;
 pub mod event;
 pub mod linear;
+#[cfg(feature = "plot")]
+pub mod picture;
+pub mod plan;
 pub mod scene;
 pub mod study;
 mod table;
@@ -246,6 +253,8 @@ pub use scene::Scene;
 pub use simulation::{
     AtlasRunOf, AtlasRuns, Control, ControlRun, NoEvents, Run, Runs, Simulation, Unforced,
 };
+#[allow(deprecated)]
+pub use simulation::{ControlledSimulation, EventSimulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::physical;
 pub use system::{Atlas, Configuration, DrivenAtlas, EulerRotation, FreeVisitor};

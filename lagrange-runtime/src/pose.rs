@@ -15,8 +15,11 @@ use crate::numeric::Real;
 /// in world components).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BodyPose<T> {
+    /// The body's reference point (`at` in the description), world axes.
     pub origin: Vector3<T>,
+    /// The body's centre of mass, world axes.
     pub centre: Vector3<T>,
+    /// R, body → world: column j is the body's j-th axis in world components.
     pub rotation: Matrix3<T>,
 }
 
@@ -33,7 +36,9 @@ impl<T: Real> Default for BodyPose<T> {
 /// A body's mass and its inertia tensor about the centre of mass, in body axes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BodyInertia<T> {
+    /// The body's mass.
     pub mass: T,
+    /// The inertia tensor about the centre of mass, body axes.
     pub inertia: Matrix3<T>,
 }
 
@@ -49,7 +54,9 @@ impl<T: Real> Default for BodyInertia<T> {
 /// What a shape is fixed to: an index into [`Posed::BODIES`] or [`Posed::POINTS`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Anchor {
+    /// Body k of [`Posed::BODIES`]: the shape turns with it.
     Body(usize),
+    /// Point k of [`Posed::POINTS`]: the shape moves with it, world axes.
     Point(usize),
 }
 
@@ -59,24 +66,35 @@ pub enum Anchor {
 pub enum Solid<T> {
     /// Full edge lengths along the body axes.
     Box {
+        /// Edge lengths along x, y and z.
         size: Vector3<T>,
     },
+    /// A ball.
     Sphere {
+        /// Its radius.
         radius: T,
     },
+    /// A right circular cylinder centred on its anchor point.
     Cylinder {
+        /// Its radius.
         radius: T,
+        /// Its full length along `axis`.
         length: T,
+        /// The body axis it lies along (0 = x, 1 = y, 2 = z).
         axis: usize,
     },
     /// A cylinder of `length` with hemispherical ends.
     Capsule {
+        /// The radius of the cylinder and of its end caps.
         radius: T,
+        /// The cylinder's length between the caps' centres.
         length: T,
+        /// The body axis it lies along (0 = x, 1 = y, 2 = z).
         axis: usize,
     },
     /// A straight line from the shape's anchor to `to`.
     Line {
+        /// The other end: a body's reference point or a point.
         to: Anchor,
     },
 }
@@ -85,8 +103,12 @@ pub enum Solid<T> {
 /// reference point, or world axes from a point) on its anchor.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shape<T> {
+    /// What the shape is fixed to.
     pub on: Anchor,
+    /// The solid's centre relative to the anchor (body axes on a body, world
+    /// axes on a point).
     pub at: Vector3<T>,
+    /// The solid itself.
     pub solid: Solid<T>,
 }
 

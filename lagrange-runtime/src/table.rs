@@ -174,7 +174,7 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
 
     /// The header: t, q…, dot_q…, extra groups, T and V (if known), the
     /// integral, the residuals.
-    fn header(&self) -> Vec<String> {
+    pub(crate) fn header(&self) -> Vec<String> {
         let mut h = vec!["t".to_string()];
         h.extend(self.names.iter().cloned());
         h.extend(self.rates.iter().cloned());
@@ -198,35 +198,56 @@ impl<'a, T: Real, const N: usize, const Q: usize> Table<'a, T, N, Q> {
     pub fn write(&self, w: impl Write) -> Result<(), Error> {
         let mut out = csv::Writer::from_writer(w);
         out.write_record(self.header()).map_err(io)?;
-        let tr = &*self.traj;
-        let kinetic = 1 + Q + N + self.extra.iter().map(|(n, _)| n.len()).sum::<usize>();
-        for k in 0..tr.len() {
-            let mut row: Vec<T> = vec![tr.times()[k]];
-            row.extend(tr.positions()[k].iter().chain(tr.velocities()[k].iter()));
-            for (_, values) in &self.extra {
-                row.extend(values[k].iter().copied());
-            }
-            if let Some(e) = &self.energies {
-                row.extend([e[k].0, e[k].1]);
-            }
-            row.push(tr.integrals()[k]);
-            row.extend(tr.residuals()[k]);
-            if Q != N {
-                row.push(tr.unit_errors()[k]);
-            }
-            let mut cells: Vec<String> = row.iter().map(|x| x.to_f64().to_string()).collect();
-            let from = self.blank.partition_point(|&(r, _)| r < k);
-            for &(_, cell) in self.blank[from..].iter().take_while(|&&(r, _)| r == k) {
-                let column = match cell {
-                    Cell::Rate(j) => 1 + Q + j,
-                    Cell::Kinetic => kinetic,
-                };
-                cells[column].clear();
-            }
-            out.write_record(&cells).map_err(io)?;
+        for k in 0..self.traj.len() {
+            let cells = self.row(k).into_iter().map(|x| match x {
+                Some(x) => x.to_string(),
+                None => String::new(),
+            });
+            out.write_record(cells).map_err(io)?;
         }
         out.flush()?;
         Ok(())
+    }
+
+    /// The number of rows: one a stored point.
+    #[cfg(feature = "plot")]
+    pub(crate) fn len(&self) -> usize {
+        self.traj.len()
+    }
+
+    /// Row `k` in the header's order, `None` where the cell is written empty.
+    pub(crate) fn row(&self, k: usize) -> Vec<Option<f64>> {
+        let tr = &*self.traj;
+        let kinetic = 1 + Q + N + self.extra.iter().map(|(n, _)| n.len()).sum::<usize>();
+        let mut row: Vec<T> = vec![tr.times()[k]];
+        row.extend(tr.positions()[k].iter().chain(tr.velocities()[k].iter()));
+        for (_, values) in &self.extra {
+            row.extend(values[k].iter().copied());
+        }
+        if let Some(e) = &self.energies {
+            row.extend([e[k].0, e[k].1]);
+        }
+        row.push(tr.integrals()[k]);
+        row.extend(tr.residuals()[k]);
+        if Q != N {
+            row.push(tr.unit_errors()[k]);
+        }
+        let mut cells: Vec<Option<f64>> = row.iter().map(|x| Some(x.to_f64())).collect();
+        let from = self.blank.partition_point(|&(r, _)| r < k);
+        for &(_, cell) in self.blank[from..].iter().take_while(|&&(r, _)| r == k) {
+            let column = match cell {
+                Cell::Rate(j) => 1 + Q + j,
+                Cell::Kinetic => kinetic,
+            };
+            cells[column] = None;
+        }
+        cells
+    }
+
+    /// The names of the columns of q, the coordinates.
+    #[cfg(feature = "plot")]
+    pub(crate) fn coordinates(&self) -> &[String] {
+        &self.names
     }
 
     /// [`write`](Self::write) to a new file at `path`.

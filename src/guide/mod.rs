@@ -15,6 +15,8 @@
 //! 8. [Speed and accuracy](accuracy): choosing an integrator, work-precision
 //!    studies.
 //! 9. [When things go wrong](errors): the errors and what each means.
+//! 10. [Planning](planning): equilibria, discrete time, optimal control and
+//!     MPC.
 
 #[doc = include_str!("1-first-model.md")]
 pub mod first_model {}
@@ -42,3 +44,6 @@ pub mod accuracy {}
 
 #[doc = include_str!("9-errors.md")]
 pub mod errors {}
+
+#[doc = include_str!("10-planning.md")]
+pub mod planning {}

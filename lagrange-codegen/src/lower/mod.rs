@@ -62,7 +62,9 @@ enum Binding {
 /// and angular velocity.
 #[derive(Clone, Debug)]
 pub struct Frame {
+    /// The point's or body's name.
     pub name: String,
+    /// Its world position ξ(q, t) (a body's: its reference point).
     pub position: Vec<Sym>,
     /// World- and body-frame angular velocity, for bodies.
     pub omega: Option<[[Sym; 3]; 2]>,
@@ -76,17 +78,23 @@ pub struct Frame {
 /// with ξ(q,t).
 #[derive(Copy, Clone, Debug)]
 pub struct CartesianRef {
+    /// The free symbol standing for the component.
     pub symbol: Sym,
+    /// The frame (index into `Lowerer::frames`) it belongs to.
     pub frame: usize,
+    /// The Cartesian component: 0 = x, 1 = y, 2 = z.
     pub component: usize,
+    /// Whether it is a velocity component (`dot(P.x)`) rather than a position.
     pub velocity: bool,
 }
 
 /// Names in scope and the context the expressions are built in.
 pub struct Lowerer<'a> {
+    /// The context the expressions are built in.
     pub ctx: Context,
     pub(crate) cx: &'a Ctxt,
     scope: BTreeMap<String, Binding>,
+    /// Every point and body lowered so far, by the index their names bind to.
     pub frames: Vec<Frame>,
     /// When set, point coordinates lower to free symbols recorded here.
     pub cartesian: Option<Vec<CartesianRef>>,
@@ -107,6 +115,7 @@ pub struct Lowerer<'a> {
 /// taken at θ = 0 (the derivation substitutes it last), are then the
 /// equations in ω with no chart at all: R₀ has no singular set.
 pub struct OrientationSymbols {
+    /// The orientation's name.
     pub name: String,
     /// θ: three coordinates, zero wherever an equation is evaluated.
     pub theta: [Sym; 3],
@@ -117,6 +126,7 @@ pub struct OrientationSymbols {
 const FUNCTIONS: &str = "sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, exp, ln, log, sqrt, abs, sign, min, max, clamp, pow, powi, powf, dot; and `if a > b { .. } else { .. }`";
 
 impl<'a> Lowerer<'a> {
+    /// A lowerer with time declared and nothing in scope; errors go to `cx`.
     pub fn new(cx: &'a Ctxt) -> Self {
         let mut ctx = Context::new();
         ctx.time();
@@ -195,6 +205,7 @@ impl<'a> Lowerer<'a> {
         }
     }
 
+    /// Brings coordinate `name` into scope and returns its symbol.
     pub fn declare_coordinate(&mut self, name: &Ident) -> Sym {
         let q = self.ctx.coordinate(&name.to_string());
         self.scope.insert(name.to_string(), Binding::Coordinate(q));
@@ -235,6 +246,7 @@ impl<'a> Lowerer<'a> {
         }
     }
 
+    /// Brings parameter `name` (a struct field) into scope and returns its symbol.
     pub fn declare_parameter(&mut self, name: &Ident) -> Sym {
         let p = self.ctx.parameter(&name.to_string());
         self.scope.insert(name.to_string(), Binding::Parameter(p));
@@ -276,6 +288,9 @@ impl<'a> Lowerer<'a> {
         parts.into_iter().collect()
     }
 
+    /// Lowers an expression of the description; `None` after reporting an error
+    /// at its token (an unknown name, a function it does not know, a velocity
+    /// where `mode` allows none).
     pub fn expr(&mut self, e: &Expr, mode: Mode) -> Option<Sym> {
         match e {
             Expr::Lit(l) => self.literal(&l.lit),

@@ -24,8 +24,11 @@ use crate::mat3::{
 
 /// A lowered rotation: the matrix and the angular velocity in body and world axes.
 pub struct Rotation {
+    /// R, body → world.
     pub matrix: Mat3,
+    /// The angular velocity in body axes.
     pub omega_body: [Sym; 3],
+    /// The angular velocity in world axes.
     pub omega_world: [Sym; 3],
     /// The elementary factors (axis, angle) in order, when every factor is one
     /// (an explicit matrix has none): the joints of a kinematic tree.

@@ -136,6 +136,7 @@ pub(super) fn split_inputs(
 
 /// How the inputs u enter: Q(q, q̇, u, t) = Q(q, q̇, 0, t) + ΔQ.
 pub struct InputModel {
+    /// The inputs' names, in order.
     pub names: Vec<String>,
     /// The input symbols, in order (emitted as `u[i]`).
     pub symbols: Vec<Sym>,

@@ -13,9 +13,14 @@ use crate::mat3::Mat3;
 /// Per body, J (6 × N, row-major) and J̇ q̇ (6); the centre of mass (3) and its
 /// Jacobian (3 × N, row-major).
 pub struct Frames {
+    /// Per body, J (6 × N, row-major): rows 0–2 the reference point's velocity,
+    /// rows 3–5 the angular velocity, world axes.
     pub jacobians: Vec<Vec<Sym>>,
+    /// Per body, J̇ q̇ (6), in the rows of J.
     pub biases: Vec<Vec<Sym>>,
+    /// The system's centre of mass, world axes.
     pub com: Vec<Sym>,
+    /// The centre of mass's Jacobian (3 × N, row-major).
     pub com_jacobian: Vec<Sym>,
 }
 

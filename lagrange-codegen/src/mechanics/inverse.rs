@@ -10,7 +10,9 @@ use crate::tree::Tree;
 
 /// τ(q, q̇, q̈, t) and the gravity torques g(q, t).
 pub struct InverseDynamics {
+    /// τ = M q̈ + h − Q, one per velocity.
     pub torques: Vec<Sym>,
+    /// The gravity torques g(q, t) = ∂V_g/∂q.
     pub gravity: Vec<Sym>,
 }
 

@@ -101,10 +101,12 @@ impl Model {
 
 /// What q, q̇ and the parameters are.
 pub struct Variables {
+    /// The coordinates' names, in the order of q.
     pub coordinates: Vec<String>,
     /// Free orientations: their θ coordinates follow `coordinates` (and are
     /// zero in every output), their quaternions follow the coordinates in q.
     pub orientations: Vec<OrientationModel>,
+    /// The parameters' names.
     pub parameters: Vec<String>,
     /// Per coordinate, whether it is cyclic: read by no expression of the
     /// model (only its rate enters the motion).
@@ -125,8 +127,12 @@ impl Variables {
 
 /// T, V (gravity's and the user's, at zero input) and the energy integral.
 pub struct Energies {
+    /// The kinetic energy T(q, q̇, t).
     pub kinetic: Sym,
+    /// The potential energy V(q, t): gravity's and the user's.
     pub potential: Sym,
+    /// The energy integral (Jacobi's integral T₂ − T₀ + V, which is T + V for a
+    /// scleronomic system).
     pub integral: Sym,
 }
 
@@ -154,7 +160,9 @@ pub struct Masses {
 /// γ) and the reduced (Maggi / Gibbs–Appell) form.
 #[derive(Default)]
 pub struct ConstraintForms {
+    /// The multiplier form, if the description has constraints and asks for it.
     pub multipliers: Option<ConstraintSet>,
+    /// The reduced form, if asked for.
     pub reduced: Option<Reduction>,
 }
 

@@ -11,6 +11,7 @@ use super::recursive::RecursiveTerms;
 pub struct EquationsOfMotion {
     /// Row-major N×N, symmetric (the same `Sym` at (i,j) and (j,i)).
     pub mass: Vec<Vec<Sym>>,
+    /// h(q, q̇, t): the Coriolis, centrifugal and rheonomic terms.
     pub bias: Vec<Sym>,
     /// Q with gravity's share.
     pub forces: Vec<Sym>,
@@ -24,6 +25,7 @@ pub struct EquationsOfMotion {
 
 /// The route M and h were derived by, why, and the other route's h.
 pub struct Derivation {
+    /// The route M and h were derived by.
     pub route: BiasRoute,
     /// Why M and h are not by the recursive route: which body or point, and
     /// what about it (`None` when they are).

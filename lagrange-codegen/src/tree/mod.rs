@@ -99,10 +99,15 @@ pub struct Masses<'a> {
     /// The bodies' names (parallel to the skeleton's bodies) and the point
     /// masses' names, for the reason a description is not a tree.
     pub body_names: &'a [String],
+    /// The point masses' names.
     pub point_names: &'a [String],
+    /// The point masses' masses.
     pub point_masses: &'a [Sym],
+    /// The point masses' world positions.
     pub point_positions: &'a [Vec<Sym>],
+    /// The bodies' inertias about their centres, body axes.
     pub inertias: &'a [Mat3],
+    /// The gravity field, if any.
     pub gravity: Option<&'a [Sym]>,
 }
 

@@ -112,6 +112,30 @@ pub enum LinearError {
         ratio: f64,
     },
 
+    /// No equilibrium was found: the Gauss–Newton iteration of
+    /// [`Trim`](crate::linear::Trim) stopped (out of iterations, or no step
+    /// lowered the accelerations) with q̈ still above the tolerance. The best
+    /// iterate is kept: there q̈ is smallest.
+    #[error(
+        "no equilibrium found: after {iterations} iteration(s) the largest acceleration is \
+         {residual:e} ({worst}), above the tolerance {tolerance:e}; {why}. The best point \
+         reached is in the error (`best`)"
+    )]
+    NoEquilibrium {
+        /// max |q̈| at the best iterate.
+        residual: f64,
+        /// The acceleration that is largest there, by the velocity's name.
+        worst: String,
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// Iterations done.
+        iterations: usize,
+        /// Why the iteration stopped.
+        why: String,
+        /// The best iterate: where |q̈| is smallest.
+        best: Box<StatePoint>,
+    },
+
     /// The Riccati iteration failed or its residual is too large.
     #[error("Riccati equation not solved: {reason} (relative residual {residual:e})")]
     Riccati {
@@ -120,4 +144,16 @@ pub enum LinearError {
         /// The relative residual reached (NaN if none).
         residual: f64,
     },
+}
+
+/// A state and its inputs as plain numbers: the best point an iteration
+/// reached ([`LinearError::NoEquilibrium`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StatePoint {
+    /// The configuration (Q numbers: unit quaternions for orientations).
+    pub q: Vec<f64>,
+    /// The velocities.
+    pub v: Vec<f64>,
+    /// The inputs.
+    pub u: Vec<f64>,
 }

@@ -432,6 +432,10 @@ pub enum Error {
     #[error(transparent)]
     Linear(#[from] LinearError),
 
+    /// Trajectory optimisation failed; see [`PlanError`].
+    #[error(transparent)]
+    Plan(#[from] PlanError),
+
     /// Writing output (CSV) failed.
     #[error("i/o error: {0}")]
     Io(#[from] std::io::Error),
@@ -441,12 +445,14 @@ mod checks;
 mod clone;
 mod failure;
 mod linear;
+mod plan;
 mod settings;
 mod singular;
 
 pub(crate) use checks::{check_finite_inputs, check_tolerance, unit_quaternions};
 pub use failure::{Failure, Progress};
-pub use linear::LinearError;
+pub use linear::{LinearError, StatePoint};
+pub use plan::PlanError;
 pub use settings::SettingsError;
 
 use crate::numeric::Real;

@@ -80,7 +80,8 @@ pub fn lqr(
             newton_steps: 0,
         });
     }
-    pbh(a, b)?;
+    let scale = 1.0 + a.amax();
+    pbh(a, b, |z| z.re >= -1e-9 * scale)?;
     let s = b * r_chol.solve(&b.transpose());
     let (w, iterations) = sign(hamiltonian(a, &s, q))?;
     let p = stable_graph(&w, n)?;
@@ -106,7 +107,7 @@ pub fn lqr(
 
 /// Checks the sizes, finiteness and definiteness of the design problem;
 /// returns R's Cholesky factor.
-fn check_problem(
+pub(super) fn check_problem(
     a: &DMatrix<f64>,
     b: &DMatrix<f64>,
     q: &DMatrix<f64>,
@@ -276,13 +277,17 @@ fn residual(
     (r, rel)
 }
 
-/// PBH test: every eigenvalue λ of A with Re λ ≥ −1e-9 (1 + ‖A‖) must keep
+/// PBH test: every eigenvalue λ of A that is `unstable` (continuous time:
+/// Re λ ≥ −1e-9 (1 + ‖A‖); discrete: |λ| ≥ 1 − 1e-9 (1 + ‖A‖)) must keep
 /// [A − λI, B] at full row rank.
-fn pbh(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Result<(), Error> {
+pub(super) fn pbh(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    unstable: impl Fn(Complex<f64>) -> bool,
+) -> Result<(), Error> {
     let n = a.nrows();
-    let scale = 1.0 + a.amax();
     for z in a.complex_eigenvalues().iter() {
-        if z.re < -1e-9 * scale {
+        if !unstable(*z) {
             continue;
         }
         let mut mtx = DMatrix::<Complex<f64>>::zeros(n, n + b.ncols());

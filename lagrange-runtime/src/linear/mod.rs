@@ -142,7 +142,9 @@ mod constrained_tangent;
 mod defaults;
 mod dense;
 mod difference;
+mod discrete;
 mod eigen;
+mod equilibrium;
 mod errors;
 mod jordan;
 mod lqr;
@@ -151,15 +153,21 @@ mod reduced_tangent;
 mod settings;
 mod solve;
 mod tangent;
+#[cfg(test)]
+pub(crate) mod test_systems;
+mod transition;
 
 pub use defaults::{complete_state, linearize, linearize_constrained, linearize_reduced};
+pub use discrete::{Discrete, dlqr, zero_order_hold};
 pub use eigen::{Boundary, EigenSweep, Mode, Stability, SweepPoint, Verdict, sweep};
+pub use equilibrium::{Equilibrium, Trim};
 pub use jordan::RANK_TOLERANCE;
 pub use lqr::{Lqr, RICCATI_TOLERANCE, lqr};
 pub use settings::{
     DEFAULT_NEWTON_ITERATIONS, DEFAULT_NEWTON_TOLERANCE, Linearizer, OperatingPoint,
 };
 pub(crate) use tangent::states as tangent_states;
+pub use transition::{StepDerivatives, StepMethod, Transition};
 
 use crate::error::Error;
 pub use crate::error::LinearError;

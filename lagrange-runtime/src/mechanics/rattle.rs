@@ -24,7 +24,9 @@
 //! Why a dedicated entry point rather than an [`Integrator`](super::Integrator):
 //! the method needs the constraints themselves (Φ and Φ_q separately, not only
 //! the accelerations a [`SecondOrder`](super::SecondOrder) system provides), so
-//! it takes a [`Constrained`] system directly.
+//! it takes a [`Constrained`] system directly. A `Simulation` given the study's
+//! [`Method::Rattle`](crate::study::Method::Rattle) calls it in the multiplier
+//! form, which is how a work-precision study sweeps it.
 //!
 //! **Assumptions**, checked where they can be: a constant mass matrix (checked
 //! at every step; a configuration-dependent M brings Coriolis terms that this
@@ -154,6 +156,11 @@ impl Rattle {
     /// The step size.
     pub fn step_size(&self) -> f64 {
         self.h
+    }
+
+    /// The step budget set by [`max_steps`](Self::max_steps).
+    pub fn step_budget(&self) -> usize {
+        self.max_steps
     }
 
     /// Integrates `system` from the consistent state (q0, v0) at t0 to t1.

@@ -22,7 +22,10 @@ use nalgebra::{Matrix3, Vector3};
 /// offset C = R_b(π/2) comes first.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EulerChart {
+    /// The three rotation axes in order (0 = x, 1 = y, 2 = z).
     pub axes: [usize; 3],
+    /// Whether the constant offset C = R_b(π/2) precedes the three
+    /// rotations (the second chart of an atlas).
     pub offset: bool,
 }
 

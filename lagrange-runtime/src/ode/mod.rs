@@ -263,6 +263,15 @@ pub trait Integrator {
     /// The step budget of one run (`.max_steps(n)`): a run made of pieces
     /// spends it across all of them.
     fn max_steps(&self) -> usize;
+
+    /// The integrator as a value a run can inspect, for a method that is not
+    /// only an integrator of accelerations: the study's `Method` holds RATTLE,
+    /// which a run of a constrained system hands the constraints themselves.
+    /// `None` (the default) for a method that only integrates a
+    /// [`SecondOrder`] problem, as every method of this module does.
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        None
+    }
 }
 
 /// Work done by one integration.

@@ -63,7 +63,7 @@ mod shapes;
 mod still;
 
 pub use sample::MAX_FRAMES;
-pub use still::Segment;
+pub use still::{Segment, View};
 
 use crate::error::SettingsError;
 use std::borrow::Cow;
@@ -219,8 +219,17 @@ impl<'a, T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q> + Lagrangian
     /// # Errors
     /// As [`Scene::to_html`] for the shapes and the run.
     pub fn still(&self, t: f64) -> Result<Vec<Segment>, Error> {
+        self.still_from(t, View::Camera)
+    }
+
+    /// [`still`](Self::still) seen from `view`: the page's starting camera
+    /// or one of the coordinate planes.
+    ///
+    /// # Errors
+    /// As [`Scene::still`].
+    pub fn still_from(&self, t: f64, view: View) -> Result<Vec<Segment>, Error> {
         self.check()?;
-        still::segments(self.sys, &self.runs[0].traj, t)
+        still::segments(self.sys, &self.runs[0].traj, t, view)
     }
 
     /// Writes the page to `path`.

@@ -16,6 +16,37 @@ use crate::pose::{Anchor, BodyPose, Posed, Solid};
 /// A segment on the picture plane: x to the right, y up.
 pub type Segment = [Vector2<f64>; 2];
 
+/// Where a still is seen from: an orthographic projection onto the picture
+/// plane.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum View {
+    /// The page's starting camera (azimuth −1, elevation 0.35, z up), or, for
+    /// a planar description (points only, all in z = 0), its own plane.
+    #[default]
+    Camera,
+    /// The x–y plane seen from +z: x right, y up.
+    Xy,
+    /// The x–z plane seen from −y: x right, z up (a pendulum swinging under
+    /// gravity along −z).
+    Xz,
+    /// The y–z plane seen from +x: y right, z up.
+    Yz,
+}
+
+impl View {
+    /// Rows: the picture's right and up directions, then the direction
+    /// towards the viewer.
+    fn rows(self, planar: bool) -> Matrix3<f64> {
+        match self {
+            View::Camera if planar => Matrix3::identity(),
+            View::Camera => view(),
+            View::Xy => Matrix3::identity(),
+            View::Xz => Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0),
+            View::Yz => Matrix3::new(0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0),
+        }
+    }
+}
+
 /// The poses at `t` in f64.
 struct Frame {
     bodies: Vec<BodyPose<f64>>,
@@ -51,6 +82,7 @@ pub(super) fn segments<T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q
     sys: &S,
     traj: &Trajectory<T, N, Q>,
     t: f64,
+    seen: View,
 ) -> Result<Vec<Segment>, Error> {
     let f = frame(sys, traj, t);
     let centres: Vec<Vector3<f64>> = f
@@ -76,7 +108,7 @@ pub(super) fn segments<T: Real, const N: usize, const Q: usize, S: Posed<T, N, Q
         crosses(&f, &mut out);
     }
     let planar = S::BODIES.is_empty() && f.points.iter().all(|p| p.z == 0.0);
-    let view = if planar { Matrix3::identity() } else { view() };
+    let view = seen.rows(planar);
     let project = |p: &Vector3<f64>| {
         let v = view * p;
         Vector2::new(v.x, v.y)

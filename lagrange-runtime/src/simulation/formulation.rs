@@ -5,13 +5,14 @@
 //! [`Formulation::start`], so the checks live here and nowhere else.
 
 use super::Settings;
-use crate::error::{Error, unit_quaternions};
-use crate::mechanics::Forcing;
+use crate::error::{Error, Failure, SettingsError, unit_quaternions};
 use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::mechanics::dynamics::Dynamics;
 use crate::mechanics::reduced::ReducedDynamics;
+use crate::mechanics::{Forcing, NoForcing, Rattle};
 use crate::numeric::Real;
-use crate::ode::{SecondOrder, check_problem};
+use crate::ode::{SecondOrder, Trajectory, check_problem, failed_at_start};
+use crate::system::JointLimit;
 use crate::system::{Constrained, Lagrangian, Reduced};
 use nalgebra::SVector;
 use std::ops::Range;
@@ -37,7 +38,26 @@ pub trait Formulation<T: Real, const N: usize, const Q: usize> {
         q0: SVector<T, Q>,
         v0: SVector<T, N>,
     ) -> Result<(SVector<T, Q>, SVector<T, N>), Error>;
+
+    /// A run with RATTLE from the checked start, for a form that can hand it
+    /// the holonomic constraints (the multiplier form); `None` for the
+    /// others, where the method refuses the run as an integrator of
+    /// accelerations. `limits` are the position limits the run watches,
+    /// which RATTLE does not.
+    fn rattle(
+        &self,
+        _rattle: &Rattle,
+        _limits: &'static [JointLimit],
+        _span: &Range<T>,
+        _start: (SVector<T, Q>, SVector<T, N>),
+    ) -> Option<RattleRun<T, N, Q>> {
+        None
+    }
 }
+
+/// What a run with RATTLE gives: the trajectory, or a failure with its part.
+pub(super) type RattleRun<T, const N: usize, const Q: usize> =
+    Result<Trajectory<T, N, Q>, Failure<Trajectory<T, N, Q>>>;
 
 /// What every run checks first (the formulations here, and the atlas's
 /// runs); gives q0 with its quaternions scaled to unit norm.
@@ -119,6 +139,31 @@ where
         let tolerance = T::lit(self.settings.tolerances.consistency);
         (self.dynamics).check_consistency(span.start, &q0, &v0, tolerance)?;
         Ok((q0, v0))
+    }
+
+    /// RATTLE on the system's constraints, from the start checked (or
+    /// projected) as any run of this form's; refused with position limits
+    /// watched.
+    fn rattle(
+        &self,
+        rattle: &Rattle,
+        limits: &'static [JointLimit],
+        span: &Range<T>,
+        (q0, v0): (SVector<T, Q>, SVector<T, N>),
+    ) -> Option<RattleRun<T, N, Q>> {
+        let refuse = |e: Error| failed_at_start(&self.dynamics(NoForcing), span.start, q0, v0, e);
+        if !limits.is_empty() {
+            let e = SettingsError::Unsupported {
+                owner: "RATTLE",
+                needs: "a run without watched position limits (it does not stop at one)".into(),
+                remedy: "`.joint_limits(LimitPolicy::Ignore)`, or another integrator".into(),
+            };
+            return Some(Err(refuse(e.into())));
+        }
+        Some(match self.start(span, q0, v0) {
+            Ok((q, v)) => rattle.integrate(self.dynamics.system(), span.start, span.end, q, v),
+            Err(e) => Err(refuse(e)),
+        })
     }
 }
 

@@ -13,6 +13,7 @@ use crate::event::{EventRun, Events, LimitPolicy, Limited, watched};
 use crate::mechanics::NoForcing;
 use crate::numeric::Real;
 use crate::ode::{Continuation, Integrator, Trajectory, failed_at_start};
+use crate::study::Method;
 use crate::system::{Driven, Lagrangian};
 use nalgebra::SVector;
 use std::ops::Range;
@@ -56,10 +57,15 @@ where
         v0: SVector<T, N>,
         span: Range<T>,
     ) -> Result<Self::Output, Failure<Self::Output>> {
+        let limits = watched(self.system.position_limits(), self.settings.limits);
+        if let Some(Method::Rattle(rattle)) = method_in(&self.integrator)
+            && let Some(run) = form.rattle(rattle, limits, &span, (q0, v0))
+        {
+            return run;
+        }
         let dynamics = form.dynamics(NoForcing);
         let (q, v) = (form.start(&span, q0, v0))
             .map_err(|e| failed_at_start(&dynamics, span.start, q0, v0, e))?;
-        let limits = watched(self.system.position_limits(), self.settings.limits);
         let limited = Limited::new(&dynamics, limits, LimitPolicy::Stop);
         self.integrator
             .integrate(&limited, span.start, span.end, q, v)
@@ -125,4 +131,9 @@ where
             driver.drive(|f| form.dynamics(f), span.clone(), (q0, v0), start)
         })
     }
+}
+
+/// The study's [`Method`] an integrator is, if it is one (RATTLE among them).
+fn method_in<I: Integrator>(integrator: &I) -> Option<&Method> {
+    integrator.as_any()?.downcast_ref::<Method>()
 }

@@ -21,7 +21,8 @@ mod options;
 pub use atlas::{AtlasRunOf, AtlasRuns};
 pub use control_run::ControlRun;
 pub use kind::Runs;
-pub use options::{Control, NoEvents, Unforced};
+#[allow(deprecated)]
+pub use options::{Control, ControlledSimulation, EventSimulation, NoEvents, Unforced};
 
 use crate::error::{Error, Failure, Progress};
 use crate::event::LimitPolicy;

@@ -28,6 +28,34 @@ pub struct Control<C, T, const N: usize, const P: usize, const Q: usize> {
     types: PhantomData<fn() -> T>,
 }
 
+/// The former builder of a run with events, now a [`Simulation`] whose event
+/// slot is filled: `Simulation::event` returns this type, and its methods are
+/// `Simulation`'s.
+#[deprecated(
+    since = "0.1.0",
+    note = "one builder: use `Simulation<'a, S, I, Unforced, Events<'e, T, N, Q>>` (what `Simulation::event` returns); see the CHANGELOG"
+)]
+pub type EventSimulation<'a, 'e, S, I, T, const N: usize, const Q: usize = N> =
+    Simulation<'a, S, I, Unforced, Events<'e, T, N, Q>>;
+
+/// The former builder of a driven run, now a [`Simulation`] whose input slot
+/// is filled (and, as the old builder always had, an event list).
+#[deprecated(
+    since = "0.1.0",
+    note = "one builder: use `Simulation<'a, S, I, Control<C, T, N, P, Q>, E>` (what `Simulation::feedback`, `sampled`, `open_loop` and `control` return); see the CHANGELOG"
+)]
+pub type ControlledSimulation<
+    'a,
+    'e,
+    S,
+    I,
+    C,
+    T,
+    const N: usize,
+    const P: usize,
+    const Q: usize = N,
+> = Simulation<'a, S, I, Control<C, T, N, P, Q>, Events<'e, T, N, Q>>;
+
 /// An event slot: adding an event fills it.
 pub trait EventSlot<'e, T: Real, const N: usize, const Q: usize> {
     /// The events with `event` added last.
@@ -306,5 +334,25 @@ impl<S, I, C, T, E, const N: usize, const P: usize, const Q: usize>
     /// The input source.
     pub fn source(&self) -> &C {
         &self.control.source
+    }
+}
+
+/// The deprecated names are the builder's types (a program naming them keeps
+/// compiling): these functions compile only if each alias is that type.
+#[cfg(test)]
+#[allow(deprecated, dead_code)]
+mod former_names {
+    use super::*;
+
+    fn event_simulation<'a, 'e, S, I, T: Real, const N: usize, const Q: usize>(
+        s: Simulation<'a, S, I, Unforced, Events<'e, T, N, Q>>,
+    ) -> EventSimulation<'a, 'e, S, I, T, N, Q> {
+        s
+    }
+
+    fn controlled_simulation<'a, 'e, S, I, C, T: Real, const N: usize, const P: usize>(
+        s: Simulation<'a, S, I, Control<C, T, N, P, N>, Events<'e, T, N, N>>,
+    ) -> ControlledSimulation<'a, 'e, S, I, C, T, N, P> {
+        s
     }
 }

@@ -2,9 +2,10 @@
 //! a study can hand "the configuration to run" to a closure: [`Integrator`] has a
 //! generic method and cannot be a trait object.
 
-use crate::error::Failure;
+use crate::error::{Error, Failure, SettingsError};
+use crate::mechanics::Rattle;
 use crate::numeric::Real;
-use crate::ode::{Continuation, Trajectory};
+use crate::ode::{Continuation, Trajectory, failed_at_start};
 use crate::ode::{Dop853, Dopri5, Gauss, Integrator, Radau5, Rk4, SecondOrder, StormerVerlet};
 use nalgebra::SVector;
 use std::fmt;
@@ -27,6 +28,13 @@ pub enum Method {
     Gauss(Gauss),
     /// Radau IIA of order 5, adaptive, for stiff systems.
     Radau5(Radau5),
+    /// RATTLE, fixed step, for holonomic constraints with a constant mass
+    /// matrix. It steps the constraints themselves, not accelerations: a
+    /// `Simulation` runs it in the multiplier form (`run`, or
+    /// `run_constrained`) of a system without events or inputs; anywhere
+    /// else (an unconstrained system, the reduced form, events, inputs) the
+    /// run fails with [`SettingsError::Unsupported`], a study's row with it.
+    Rattle(Rattle),
 }
 
 macro_rules! from_integrator {
@@ -38,7 +46,7 @@ macro_rules! from_integrator {
         }
     )*};
 }
-from_integrator!(Rk4, Dopri5, Dop853, StormerVerlet, Gauss, Radau5);
+from_integrator!(Rk4, Dopri5, Dop853, StormerVerlet, Gauss, Radau5, Rattle);
 
 impl Integrator for Method {
     fn continue_run<T: Real, const N: usize, const Q: usize, F: SecondOrder<T, N, Q>>(
@@ -57,6 +65,7 @@ impl Integrator for Method {
             Method::StormerVerlet(m) => m.continue_run(rhs, from, t0, t1, q0, v0),
             Method::Gauss(m) => m.continue_run(rhs, from, t0, t1, q0, v0),
             Method::Radau5(m) => m.continue_run(rhs, from, t0, t1, q0, v0),
+            Method::Rattle(_) => Err(failed_at_start(rhs, t0, q0, v0, rattle_elsewhere())),
         }
     }
 
@@ -68,8 +77,29 @@ impl Integrator for Method {
             Method::StormerVerlet(m) => m.max_steps(),
             Method::Gauss(m) => m.max_steps(),
             Method::Radau5(m) => m.max_steps(),
+            Method::Rattle(m) => m.step_budget(),
         }
     }
+
+    /// Itself, so that a run of a constrained system finds RATTLE in it.
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+}
+
+/// RATTLE asked to integrate accelerations alone: a run that cannot hand it
+/// the constraints.
+fn rattle_elsewhere() -> Error {
+    SettingsError::Unsupported {
+        owner: "RATTLE",
+        needs: "a system's holonomic constraints themselves, in the multiplier form of a run \
+                without events or inputs"
+            .into(),
+        remedy: "run a constrained system with `run` or `run_constrained` and no events, \
+                 inputs or watched position limits; choose another integrator otherwise"
+            .into(),
+    }
+    .into()
 }
 
 /// The swept parameter of one run: a fixed step size or a tolerance.

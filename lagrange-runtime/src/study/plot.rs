@@ -1,56 +1,16 @@
-//! Work-precision diagrams as PNG, with plotters and a bundled font.
-//!
-//! plotters' default text rendering asks the system for fonts (fontconfig); many
-//! build machines and containers have none, so the `plot` feature enables
-//! plotters' `ab_glyph` text backend and registers DejaVu Sans, shipped in
-//! `fonts/` with its licence, as the "sans-serif" family.
+//! Work-precision diagrams as PNG, with plotters and the bundled font
+//! (`picture` holds what every picture shares).
 
 use super::{Measurement, Row, Study};
 use crate::error::Error;
+use crate::picture::{COLORS, plot_error, register_font};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
-use std::sync::OnceLock;
-
-const FONT: &[u8] = include_bytes!("../../fonts/DejaVuSans.ttf");
 
 /// Errors and drifts below this are drawn at it: a log axis has no zero, and
 /// nothing below f64 round-off is meaningful anyway.
 const FLOOR: f64 = 1e-17;
-
-/// Tableau 10: distinguishable, and legible on white.
-const COLORS: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
-
-/// Registers the bundled font once per process; the outcome is remembered, so a
-/// failure is reported on every call rather than only the first.
-fn register_font() -> Result<(), Error> {
-    static REGISTERED: OnceLock<bool> = OnceLock::new();
-    let ok = *REGISTERED.get_or_init(|| {
-        plotters::style::register_font("sans-serif", FontStyle::Normal, FONT).is_ok()
-    });
-    if ok {
-        Ok(())
-    } else {
-        Err(plot_error(
-            "the bundled font DejaVuSans.ttf could not be parsed",
-        ))
-    }
-}
-
-fn plot_error(e: impl std::fmt::Display) -> Error {
-    Error::Io(std::io::Error::other(format!("plot: {e}")))
-}
 
 /// One panel: which cost on x, which accuracy measure on y.
 struct Panel {
@@ -144,6 +104,58 @@ fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     }
 }
 
+/// A setting as its point's label: the fewest significant digits (at most
+/// [`SETTING_DIGITS`]) that give back the value run, so that 2.5e-4 is not
+/// printed as 3e-4 and read as another run's.
+pub(super) fn setting_label(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    (0..SETTING_DIGITS)
+        .map(|decimals| format!("{x:.decimals$e}"))
+        .find(|s| s.parse::<f64>() == Ok(x))
+        .unwrap_or_else(|| format!("{x:.prec$e}", prec = SETTING_DIGITS - 1))
+}
+
+/// The most significant digits a point's label shows (a setting that needs
+/// more, h = 0.1 / 3, is shown rounded to these).
+const SETTING_DIGITS: usize = 4;
+
+/// A log axis's tick label: the decades (`1e-3`), and nothing at the ticks
+/// between them, whose labels would overlap the decades'.
+pub(super) fn decade_label(v: f64) -> String {
+    if !(v.is_finite() && v > 0.0) {
+        return String::new();
+    }
+    let exponent = v.log10().round();
+    let decade = 10f64.powi(exponent as i32);
+    if ((v - decade) / decade).abs() < 1e-9 {
+        format!("1e{exponent}")
+    } else {
+        String::new()
+    }
+}
+
+/// How many labels of `label` pixels (with their spacing) fit along an axis
+/// of `length` pixels; at least 2, so that an axis is never left bare.
+pub(super) fn labels_that_fit(length: u32, label: u32) -> usize {
+    (length / label.max(1)).max(2) as usize
+}
+
+/// Each point with its setting (step or tolerance), so that a reader can find
+/// the run in the table.
+fn setting_labels(rows: &[&Row], panel: &Panel) -> Vec<((f64, f64), String)> {
+    rows.iter()
+        .filter_map(|r| {
+            let m = r.measurement()?;
+            let x = (panel.x)(m);
+            let y = (panel.y)(m)?;
+            (x.is_finite() && x > 0.0 && y.is_finite())
+                .then(|| ((x, y.max(FLOOR)), setting_label(r.setting.value())))
+        })
+        .collect()
+}
+
 fn draw_panel(
     area: &DrawingArea<BitMapBackend<'_>, Shift>,
     panel: &Panel,
@@ -163,8 +175,13 @@ fn draw_panel(
         .configure_mesh()
         .x_desc(panel.x_label)
         .y_desc(panel.y_label)
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
+        // Decades only, and no more of them than fit: plotters adds
+        // intermediate ticks (2e-3, 3e-3, ...) on a short log axis, and their
+        // labels ran into one another.
+        .x_labels(labels_that_fit(area.dim_in_pixel().0, 44))
+        .y_labels(labels_that_fit(area.dim_in_pixel().1, 20))
+        .x_label_formatter(&|v| decade_label(*v))
+        .y_label_formatter(&|v| decade_label(*v))
         .label_style(("sans-serif", 13))
         .axis_desc_style(("sans-serif", 15))
         // Only the decades: the minor lines of a log mesh triple the PNG's size
@@ -174,21 +191,9 @@ fn draw_panel(
         .map_err(plot_error)?;
     for (k, ((name, rows), pts)) in groups.iter().zip(&series).enumerate() {
         let color = COLORS[k % COLORS.len()];
-        // Each point carries its setting (step or tolerance), so that a reader
-        // can find the run in the table.
-        let labels = rows
-            .iter()
-            .filter_map(|r| {
-                let m = r.measurement()?;
-                let x = (panel.x)(m);
-                let y = (panel.y)(m)?;
-                (x.is_finite() && x > 0.0 && y.is_finite())
-                    .then(|| ((x, y.max(FLOOR)), format!("{:.0e}", r.setting.value())))
-            })
-            .collect::<Vec<_>>();
         // Offset from the marker so the label does not sit under it.
         chart
-            .draw_series(labels.into_iter().map(|(p, text)| {
+            .draw_series(setting_labels(rows, panel).into_iter().map(|(p, text)| {
                 EmptyElement::at(p)
                     + Text::new(text, (6, -4), ("sans-serif", 10).into_font().color(&color))
             }))

@@ -338,6 +338,39 @@ fn plot_writes_a_png() {
     assert!(matches!(e, Error::Io(_)), "{e}");
 }
 
+#[cfg(feature = "plot")]
+#[test]
+fn a_setting_is_labelled_as_the_value_run() {
+    use super::plot::setting_label;
+    assert_eq!(setting_label(2.5e-4), "2.5e-4");
+    assert_eq!(setting_label(1e-2), "1e-2");
+    assert_eq!(setting_label(0.125), "1.25e-1");
+    // Every label reads back as the value run, up to four digits.
+    for x in [2.5e-4, 3e-4, 1.5e-3, 0.02, 7.25e-9] {
+        assert_eq!(setting_label(x).parse::<f64>(), Ok(x), "{x}");
+    }
+    // More digits than that are rounded, not printed in full.
+    assert_eq!(setting_label(0.1 / 3.0), "3.333e-2");
+}
+
+#[cfg(feature = "plot")]
+#[test]
+fn log_ticks_are_labelled_at_decades_only_and_as_many_as_fit() {
+    use super::plot::{decade_label, labels_that_fit};
+    assert_eq!(decade_label(1e-3), "1e-3");
+    assert_eq!(decade_label(1e5), "1e5");
+    assert_eq!(decade_label(1.0), "1e0");
+    // A decade computed by repeated multiplication is still a decade.
+    assert_eq!(decade_label(0.1 * 0.1 * 0.1), "1e-3");
+    // The ticks plotters puts between decades get no label.
+    assert_eq!(decade_label(2e-3), "");
+    assert_eq!(decade_label(5e-3), "");
+    assert_eq!(decade_label(0.0), "");
+    assert_eq!(decade_label(f64::NAN), "");
+    assert_eq!(labels_that_fit(500, 44), 11);
+    assert_eq!(labels_that_fit(30, 44), 2);
+}
+
 #[test]
 fn a_given_reference_with_its_uncertainty_marks_unresolved_runs() {
     let reference = Dop853::tol(1e-13)

@@ -1,0 +1,424 @@
+//! Equilibria and trim: a state where the driven system does not accelerate,
+//! q̈(q, v, u, t) = 0, found from a guess by varying the coordinates and
+//! inputs that are not held.
+//!
+//! With v = 0 that is an equilibrium (a pendulum at rest, a robot holding a
+//! pose against gravity, a hover); with the speeds given it is a steady
+//! motion (a steady turn, a spinning top's precession at constant rate), the
+//! velocities held as given. The unknowns are the free coordinates (an
+//! orientation moves in its tangent space, q ⊕ δ, as the linearisations do)
+//! and the free inputs; the equations are the N accelerations. The iteration
+//! is Gauss–Newton with the minimum-norm step through the SVD of
+//! J = [∂q̈/∂δ | ∂q̈/∂u] (from [`Linearizer::tangent_driven`]), and a
+//! backtracking line search on |q̈|: where more unknowns than needed are
+//! free, the step is the smallest change from the guess, so a guess with
+//! zero inputs and the configuration held gives the least-norm inputs
+//! (exactly, when q̈ is affine in u).
+
+use super::settings::{Linearizer, OperatingPoint};
+use super::tangent::Held;
+use crate::error::{
+    Error, LinearError, SettingsError, StatePoint, check_finite_inputs, check_tolerance,
+    unit_quaternions,
+};
+use crate::mechanics::Dynamics;
+use crate::numeric::orientation;
+use crate::system::Driven;
+use nalgebra::{DMatrix, DVector, SVector};
+
+/// How to look for an equilibrium: which coordinates and inputs stay at the
+/// guess, the tolerance on q̈ and the iteration budget. By default everything
+/// is free, the tolerance is 1e-10 (in the accelerations' units) and the
+/// budget 50 iterations.
+///
+/// ```
+/// # use lagrange_runtime::{Driven, Lagrangian};
+/// # use nalgebra::{Matrix1, SMatrix, Vector1};
+/// # struct Pendulum;
+/// # impl Lagrangian<f64, 1> for Pendulum {
+/// #     const COORDINATES: [&'static str; 1] = ["theta"];
+/// #     const RHEONOMIC: bool = false;
+/// #     fn mass_matrix(&self, _: &Vector1<f64>, _: f64) -> Matrix1<f64> { Matrix1::new(1.0) }
+/// #     fn bias(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> { Vector1::zeros() }
+/// #     fn generalized_forces(&self, q: &Vector1<f64>, _: &Vector1<f64>, _: f64) -> Vector1<f64> {
+/// #         Vector1::new(-9.81 * q[0].sin())
+/// #     }
+/// #     fn mass_matrix_and_rhs(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> (Matrix1<f64>, Vector1<f64>) {
+/// #         (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+/// #     }
+/// #     fn kinetic_energy(&self, _: &Vector1<f64>, v: &Vector1<f64>, _: f64) -> f64 { 0.5 * v[0] * v[0] }
+/// #     fn potential_energy(&self, q: &Vector1<f64>, _: f64) -> f64 { -9.81 * q[0].cos() }
+/// #     fn integral(&self, q: &Vector1<f64>, v: &Vector1<f64>, t: f64) -> f64 {
+/// #         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+/// #     }
+/// # }
+/// # impl Driven<f64, 1, 1> for Pendulum {
+/// #     const INPUTS: [&'static str; 1] = ["torque"];
+/// #     fn input_forces(&self, _: &Vector1<f64>, _: &Vector1<f64>, u: &Vector1<f64>, _: f64) -> Vector1<f64> { *u }
+/// #     fn input_jacobians(&self, _: &Vector1<f64>, _: &Vector1<f64>, _: &Vector1<f64>, _: f64)
+/// #         -> (SMatrix<f64, 1, 1>, SMatrix<f64, 1, 1>, SMatrix<f64, 1, 1>) {
+/// #         (SMatrix::identity(), SMatrix::zeros(), SMatrix::zeros())
+/// #     }
+/// # }
+/// use lagrange_runtime::linear::{OperatingPoint, Trim};
+///
+/// // A unit pendulum (θ̈ = −g sin θ + torque) held out at θ = 0.5: the torque
+/// // that holds it there is g sin 0.5.
+/// let at = OperatingPoint::new(Vector1::new(0.5), Vector1::new(0.0));
+/// let held = Trim::new().hold(&["theta"]).solve(&Pendulum, &at)?;
+/// assert!((held.u[0] - 9.81 * 0.5_f64.sin()).abs() < 1e-12);
+/// # Ok::<(), lagrange_runtime::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Trim {
+    held: Vec<String>,
+    held_inputs: Vec<String>,
+    tolerance: f64,
+    max_iterations: usize,
+    linearizer: Linearizer,
+}
+
+/// An equilibrium or steady motion found by [`Trim::solve`]: the state, the
+/// inputs, and how close q̈ came to zero.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Equilibrium<const N: usize, const P: usize, const Q: usize = N> {
+    /// The configuration (unit quaternions for orientations).
+    pub q: SVector<f64, Q>,
+    /// The velocities, as given (they are held).
+    pub v: SVector<f64, N>,
+    /// The inputs.
+    pub u: SVector<f64, P>,
+    /// The time, as given.
+    pub t: f64,
+    /// max |q̈| there.
+    pub residual: f64,
+    /// Gauss–Newton iterations done.
+    pub iterations: usize,
+}
+
+impl<const N: usize, const P: usize, const Q: usize> Equilibrium<N, P, Q> {
+    /// The point to linearise about (inputs included).
+    pub fn operating_point(&self) -> OperatingPoint<f64, N, P, Q> {
+        OperatingPoint {
+            q: self.q,
+            v: self.v,
+            u: self.u,
+            t: self.t,
+        }
+    }
+}
+
+impl Default for Trim {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Which tangent directions and inputs vary.
+struct Unknowns {
+    tangent: Vec<usize>,
+    inputs: Vec<usize>,
+}
+
+impl Trim {
+    /// Everything free, tolerance 1e-10, 50 iterations, the default
+    /// [`Linearizer`] for the Jacobians.
+    pub fn new() -> Self {
+        Self {
+            held: Vec::new(),
+            held_inputs: Vec::new(),
+            tolerance: 1e-10,
+            max_iterations: 50,
+            linearizer: Linearizer::new(),
+        }
+    }
+
+    /// Holds these coordinates at the guess: ordinary coordinates by name, an
+    /// orientation by its name (all three of its directions). Added to the
+    /// ones held before.
+    pub fn hold(mut self, coordinates: &[&str]) -> Self {
+        self.held.extend(coordinates.iter().map(|s| s.to_string()));
+        self
+    }
+
+    /// Holds these inputs at the guess's values.
+    pub fn hold_inputs(mut self, inputs: &[&str]) -> Self {
+        self.held_inputs
+            .extend(inputs.iter().map(|s| s.to_string()));
+        self
+    }
+
+    /// Stops when max |q̈| ≤ `tolerance` (non-negative and finite).
+    pub fn tolerance(mut self, tolerance: f64) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// At most this many Gauss–Newton iterations (at least one).
+    pub fn max_iterations(mut self, n: usize) -> Self {
+        self.max_iterations = n;
+        self
+    }
+
+    /// The linearisation settings the Jacobians are taken with (its
+    /// tolerances judge a singular mass matrix).
+    pub fn linearizer(mut self, linearizer: Linearizer) -> Self {
+        self.linearizer = linearizer;
+        self
+    }
+
+    /// The equilibrium (v = 0 in `guess`) or steady motion (the speeds of
+    /// `guess`) nearest `guess`, varying what is not held. The guess's
+    /// inputs start the search (zero when it has none).
+    ///
+    /// # Errors
+    /// [`Error::Settings`] for a bad tolerance or budget and for a name
+    /// that is no coordinate, orientation or input of the system;
+    /// [`Error::NonFiniteState`], [`Error::NonFiniteInput`] or
+    /// [`Error::NonUnitQuaternion`] for a bad guess; the dynamics' errors at
+    /// the guess (a singular mass matrix); [`LinearError::NoEquilibrium`],
+    /// holding the best point reached, when q̈ cannot be brought below the
+    /// tolerance.
+    pub fn solve<S, const N: usize, const P: usize, const U: usize, const Q: usize>(
+        &self,
+        sys: &S,
+        guess: &OperatingPoint<f64, N, U, Q>,
+    ) -> Result<Equilibrium<N, P, Q>, Error>
+    where
+        S: Driven<f64, N, P, Q>,
+    {
+        check_tolerance("Trim", "tolerance", self.tolerance)?;
+        if self.max_iterations == 0 {
+            return Err(SettingsError::ZeroCount {
+                owner: "Trim",
+                setting: "max_iterations",
+            }
+            .into());
+        }
+        let unknowns = self.unknowns::<S, N, P, Q>()?;
+        let (v, t) = (guess.v, guess.t);
+        let u = guess.inputs::<P>();
+        check_finite_inputs(&S::INPUTS, t, &guess.q, &v, &u)?;
+        let q = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, guess.q)?;
+        let a = accelerations(sys, &q, &v, &u, t)?;
+        let mut best = Equilibrium {
+            q,
+            v,
+            u,
+            t,
+            residual: a.amax(),
+            iterations: 0,
+        };
+        let mut a = a;
+        while best.residual > self.tolerance {
+            if best.iterations == self.max_iterations {
+                return Err(self.failed(&best, &a, &S::VELOCITIES, "out of iterations"));
+            }
+            if unknowns.tangent.is_empty() && unknowns.inputs.is_empty() {
+                return Err(self.failed(&best, &a, &S::VELOCITIES, "everything is held"));
+            }
+            best.iterations += 1;
+            let step = self.step(sys, &best, &a, &unknowns)?;
+            let Some((next, a_next)) = line_search(sys, &best, &a, &step) else {
+                let why = "no step along the Gauss–Newton direction lowers the accelerations \
+                           (a minimum of |q̈| that is not zero: hold fewer coordinates or inputs, \
+                           or start elsewhere)";
+                return Err(self.failed(&best, &a, &S::VELOCITIES, why));
+            };
+            best = next;
+            a = a_next;
+        }
+        Ok(best)
+    }
+
+    /// The tangent directions and inputs not held, or the first unknown name.
+    fn unknowns<S, const N: usize, const P: usize, const Q: usize>(&self) -> Result<Unknowns, Error>
+    where
+        S: Driven<f64, N, P, Q>,
+    {
+        let mut held_tangent = [false; N];
+        for name in &self.held {
+            let columns = tangent_columns::<S, N, P, Q>(name).ok_or_else(|| {
+                unknown_name(
+                    name,
+                    "coordinate or orientation",
+                    S::VELOCITIES
+                        .iter()
+                        .filter(|v| S::COORDINATES.contains(v))
+                        .copied()
+                        .chain(
+                            S::ORIENTATIONS
+                                .iter()
+                                .map(|o| orientation_name::<S, N, P, Q>(o.q)),
+                        )
+                        .collect(),
+                )
+            })?;
+            columns.into_iter().for_each(|j| held_tangent[j] = true);
+        }
+        let mut held_input = [false; P];
+        for name in &self.held_inputs {
+            let k = S::INPUTS.iter().position(|i| i == name);
+            let k = k.ok_or_else(|| unknown_name(name, "input", S::INPUTS.to_vec()))?;
+            held_input[k] = true;
+        }
+        Ok(Unknowns {
+            tangent: (0..N).filter(|&j| !held_tangent[j]).collect(),
+            inputs: (0..P).filter(|&k| !held_input[k]).collect(),
+        })
+    }
+
+    /// The minimum-norm Gauss–Newton step −J⁺ q̈ over the unknowns, as a
+    /// tangent vector (N) and an input change (P).
+    fn step<S, const N: usize, const P: usize, const Q: usize>(
+        &self,
+        sys: &S,
+        at: &Equilibrium<N, P, Q>,
+        a: &SVector<f64, N>,
+        unknowns: &Unknowns,
+    ) -> Result<(SVector<f64, N>, SVector<f64, P>), Error>
+    where
+        S: Driven<f64, N, P, Q>,
+    {
+        let lin = self
+            .linearizer
+            .tangent_driven(sys, &at.q, &at.v, &at.u, at.t)?;
+        let (nt, ni) = (unknowns.tangent.len(), unknowns.inputs.len());
+        let jacobian = DMatrix::from_fn(N, nt + ni, |i, c| match c < nt {
+            true => lin.a()[(N + i, unknowns.tangent[c])],
+            false => lin.b()[(N + i, unknowns.inputs[c - nt])],
+        });
+        let svd = jacobian.svd(true, true);
+        let cutoff = 1e-12 * svd.singular_values.max();
+        let rhs = -DVector::from_column_slice(a.as_slice());
+        let x = svd.solve(&rhs, cutoff).map_err(|e| LinearError::Riccati {
+            reason: format!("the trim's least-squares step failed: {e}"),
+            residual: f64::NAN,
+        })?;
+        let mut delta = SVector::zeros();
+        let mut du = SVector::zeros();
+        unknowns
+            .tangent
+            .iter()
+            .enumerate()
+            .for_each(|(c, &j)| delta[j] = x[c]);
+        unknowns
+            .inputs
+            .iter()
+            .enumerate()
+            .for_each(|(c, &k)| du[k] = x[nt + c]);
+        Ok((delta, du))
+    }
+
+    /// The error for a search that stopped at `best` (where q̈ = `a`), with
+    /// the largest acceleration named from `velocities`.
+    fn failed<const N: usize, const P: usize, const Q: usize>(
+        &self,
+        best: &Equilibrium<N, P, Q>,
+        a: &SVector<f64, N>,
+        velocities: &[&str; N],
+        why: &str,
+    ) -> Error {
+        LinearError::NoEquilibrium {
+            residual: best.residual,
+            worst: velocities[a.iamax()].to_string(),
+            tolerance: self.tolerance,
+            iterations: best.iterations,
+            why: why.into(),
+            best: Box::new(StatePoint {
+                q: best.q.iter().copied().collect(),
+                v: best.v.iter().copied().collect(),
+                u: best.u.iter().copied().collect(),
+            }),
+        }
+        .into()
+    }
+}
+
+/// q̈ of `sys` at (q, v) under the inputs u held.
+fn accelerations<S, const N: usize, const P: usize, const Q: usize>(
+    sys: &S,
+    q: &SVector<f64, Q>,
+    v: &SVector<f64, N>,
+    u: &SVector<f64, P>,
+    t: f64,
+) -> Result<SVector<f64, N>, Error>
+where
+    S: Driven<f64, N, P, Q>,
+{
+    let held = Held { system: sys, u: *u };
+    Dynamics::new(sys).with_forcing(held).acceleration(t, q, v)
+}
+
+/// The first of 1, ½, ¼, … (down to 2⁻³⁰) of `step` that lowers |q̈|
+/// (Armijo's sufficient decrease on the Euclidean norm), with q̈ there;
+/// `None` if none does. A trial where the dynamics fail (a singular mass
+/// matrix) counts as no decrease.
+fn line_search<S, const N: usize, const P: usize, const Q: usize>(
+    sys: &S,
+    at: &Equilibrium<N, P, Q>,
+    a: &SVector<f64, N>,
+    (delta, du): &(SVector<f64, N>, SVector<f64, P>),
+) -> Option<(Equilibrium<N, P, Q>, SVector<f64, N>)>
+where
+    S: Driven<f64, N, P, Q>,
+{
+    let norm = a.norm();
+    let mut alpha = 1.0;
+    for _ in 0..=30 {
+        let q = orientation::plus(S::ORIENTATIONS, &at.q, &(delta * alpha));
+        let u = at.u + du * alpha;
+        if let Ok(trial) = accelerations(sys, &q, &at.v, &u, at.t)
+            && trial.norm() < (1.0 - 1e-4 * alpha) * norm
+        {
+            let next = Equilibrium {
+                q,
+                u,
+                residual: trial.amax(),
+                ..at.clone()
+            };
+            return Some((next, trial));
+        }
+        alpha *= 0.5;
+    }
+    None
+}
+
+/// The tangent directions of a coordinate or an orientation named `name`.
+fn tangent_columns<S, const N: usize, const P: usize, const Q: usize>(
+    name: &str,
+) -> Option<Vec<usize>>
+where
+    S: Driven<f64, N, P, Q>,
+{
+    if S::COORDINATES.contains(&name)
+        && let Some(j) = S::VELOCITIES.iter().position(|v| *v == name)
+    {
+        return Some(vec![j]);
+    }
+    let o = S::ORIENTATIONS
+        .iter()
+        .find(|o| orientation_name::<S, N, P, Q>(o.q) == name)?;
+    Some(vec![o.v, o.v + 1, o.v + 2])
+}
+
+/// An orientation's name: its first entry of q is `<name>.w`.
+fn orientation_name<S, const N: usize, const P: usize, const Q: usize>(at: usize) -> &'static str
+where
+    S: Driven<f64, N, P, Q>,
+{
+    let w = S::COORDINATES[at];
+    w.strip_suffix(".w").unwrap_or(w)
+}
+
+fn unknown_name(name: &str, what: &str, known: Vec<&str>) -> Error {
+    SettingsError::Data {
+        owner: "Trim",
+        problem: format!("no {what} named `{name}` to hold; the system has {known:?}"),
+    }
+    .into()
+}
+
+#[cfg(test)]
+#[path = "equilibrium_tests.rs"]
+mod tests;

@@ -1,0 +1,302 @@
+//! The discrete dynamics of one fixed step, x⁺ = F(x, u) with x = (q, v) and
+//! the input held over the step, and its derivatives ∂F/∂x and ∂F/∂u: what
+//! trajectory optimisation (DDP, multiple shooting) and MPC work with.
+//!
+//! The derivatives are exact for the step as computed: the chain rule
+//! through the stages, each stage's ∂f/∂x and ∂f/∂u (f = (v, q̈)) from
+//! [`Linearizer::tangent_driven`] — the system's emitted Jacobians where it
+//! has them (`emit(jacobians)`), else central differences. For RK4 with
+//! stages k₁ … k₄ at x + c h k,
+//!
+//! ```text
+//! dk₁ = A₁ dx + B₁ du,   dk₂ = A₂ (dx + h/2 dk₁) + B₂ du,   …
+//! dx⁺ = dx + h/6 (dk₁ + 2 dk₂ + 2 dk₃ + dk₄)
+//! ```
+//!
+//! and for the semi-implicit Euler step v⁺ = v + h q̈(q, v, u),
+//! q⁺ = q + h v⁺ (symplectic for a constant mass matrix, as in MuJoCo's
+//! default), dv⁺ = dv + h (A_q dq + A_v dv + B du), dq⁺ = dq + h dv⁺.
+//!
+//! Systems with free orientations are not stepped here yet: their step lives
+//! on the rotation group, and its derivatives in the tangent space need the
+//! group's chain rule through the stages.
+
+use super::settings::Linearizer;
+use super::tangent::Held;
+use crate::error::{Error, SettingsError, check_finite_inputs};
+use crate::mechanics::Dynamics;
+use crate::system::Driven;
+use nalgebra::{DMatrix, SVector};
+
+/// The one-step method of a [`Transition`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StepMethod {
+    /// The classic fourth-order Runge–Kutta step.
+    Rk4,
+    /// Semi-implicit (symplectic) Euler: the velocity first, then the
+    /// configuration with the new velocity. First order.
+    SemiImplicitEuler,
+}
+
+/// The discrete dynamics of a driven system over steps of `h` seconds with
+/// its inputs held (zero-order hold): [`step`](Self::step) gives
+/// x⁺ = F(x, u), [`derivatives`](Self::derivatives) also ∂F/∂x (2N × 2N)
+/// and ∂F/∂u (2N × P), the state ordered (q, v).
+pub struct Transition<'a, S> {
+    system: &'a S,
+    h: f64,
+    method: StepMethod,
+    linearizer: Linearizer,
+}
+
+// By hand: the system need be neither `Clone` nor `Debug`.
+impl<S> Clone for Transition<'_, S> {
+    fn clone(&self) -> Self {
+        Self {
+            system: self.system,
+            h: self.h,
+            method: self.method,
+            linearizer: self.linearizer.clone(),
+        }
+    }
+}
+
+impl<S> std::fmt::Debug for Transition<'_, S> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Transition")
+            .field("h", &self.h)
+            .field("method", &self.method)
+            .finish_non_exhaustive()
+    }
+}
+
+/// One step and its derivatives: x⁺ = (q⁺, v⁺), ∂x⁺/∂x and ∂x⁺/∂u.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepDerivatives<const N: usize> {
+    /// q⁺.
+    pub q: SVector<f64, N>,
+    /// v⁺.
+    pub v: SVector<f64, N>,
+    /// ∂x⁺/∂x, 2N × 2N, rows and columns (q, v).
+    pub dx: DMatrix<f64>,
+    /// ∂x⁺/∂u, 2N × P.
+    pub du: DMatrix<f64>,
+}
+
+impl<'a, S> Transition<'a, S> {
+    /// Steps of `h` seconds of `system` by RK4.
+    ///
+    /// # Errors
+    /// [`Error::Settings`] unless `h` is positive and finite.
+    pub fn new(system: &'a S, h: f64) -> Result<Self, Error> {
+        if !(h.is_finite() && h > 0.0) {
+            return Err(SettingsError::Value {
+                owner: "Transition",
+                setting: "step h",
+                value: h,
+                requirement: "positive and finite (seconds)".into(),
+            }
+            .into());
+        }
+        Ok(Self {
+            system,
+            h,
+            method: StepMethod::Rk4,
+            linearizer: Linearizer::new(),
+        })
+    }
+
+    /// The one-step method (RK4 by default).
+    pub fn method(mut self, method: StepMethod) -> Self {
+        self.method = method;
+        self
+    }
+
+    /// The linearisation settings each stage's derivatives are taken with.
+    pub fn linearizer(mut self, linearizer: Linearizer) -> Self {
+        self.linearizer = linearizer;
+        self
+    }
+
+    /// The step h.
+    pub fn h(&self) -> f64 {
+        self.h
+    }
+
+    /// x⁺ = F(x, u) from (q, v) at t.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteInput`] for a non-finite u; the dynamics' errors at
+    /// a stage ([`Error::NonFiniteState`], [`Error::SingularMassMatrix`]).
+    pub fn step<const N: usize, const P: usize>(
+        &self,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        u: &SVector<f64, P>,
+        t: f64,
+    ) -> Result<(SVector<f64, N>, SVector<f64, N>), Error>
+    where
+        S: Driven<f64, N, P>,
+    {
+        let stages = self.stages(q, v, u, t)?;
+        Ok(self.combine(q, v, &stages))
+    }
+
+    /// The step and its derivatives by the chain rule through the stages
+    /// (see the module notes).
+    ///
+    /// # Errors
+    /// As [`step`](Self::step); a stage's linearisation errors.
+    pub fn derivatives<const N: usize, const P: usize>(
+        &self,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        u: &SVector<f64, P>,
+        t: f64,
+    ) -> Result<StepDerivatives<N>, Error>
+    where
+        S: Driven<f64, N, P>,
+    {
+        let stages = self.stages(q, v, u, t)?;
+        let (q_next, v_next) = self.combine(q, v, &stages);
+        let mut jacobians = Vec::with_capacity(stages.len());
+        for s in &stages {
+            let lin = self
+                .linearizer
+                .tangent_driven(self.system, &s.q, &s.v, u, s.t)?;
+            jacobians.push((lin.a().clone(), lin.b().clone()));
+        }
+        let (dx, du) = match self.method {
+            StepMethod::SemiImplicitEuler => semi_implicit_chain(&jacobians[0], N, self.h),
+            StepMethod::Rk4 => rk4_chain(&jacobians, self.h),
+        };
+        Ok(StepDerivatives {
+            q: q_next,
+            v: v_next,
+            dx,
+            du,
+        })
+    }
+
+    /// The stages' states and accelerations: one for semi-implicit Euler,
+    /// four for RK4 (each at x + c h k of the one before).
+    fn stages<const N: usize, const P: usize>(
+        &self,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        u: &SVector<f64, P>,
+        t: f64,
+    ) -> Result<Vec<Stage<N>>, Error>
+    where
+        S: Driven<f64, N, P>,
+    {
+        check_finite_inputs(&S::INPUTS, t, q, v, u)?;
+        let held = Held {
+            system: self.system,
+            u: *u,
+        };
+        let dynamics = Dynamics::new(self.system).with_forcing(held);
+        let at = |q: SVector<f64, N>, v: SVector<f64, N>, t: f64| {
+            let a = dynamics.acceleration(t, &q, &v)?;
+            Ok::<_, Error>(Stage { q, v, t, a })
+        };
+        let first = at(*q, *v, t)?;
+        if self.method == StepMethod::SemiImplicitEuler {
+            return Ok(vec![first]);
+        }
+        let h = self.h;
+        let mut stages = vec![first];
+        for c in RK4_NODES[1..].iter().copied() {
+            let k = stages.last().expect("the first stage is in");
+            let next = at(q + k.v * (c * h), v + k.a * (c * h), t + c * h)?;
+            stages.push(next);
+        }
+        Ok(stages)
+    }
+
+    /// x⁺ from the stages.
+    fn combine<const N: usize>(
+        &self,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        stages: &[Stage<N>],
+    ) -> (SVector<f64, N>, SVector<f64, N>) {
+        let h = self.h;
+        match self.method {
+            StepMethod::SemiImplicitEuler => {
+                let v1 = v + stages[0].a * h;
+                (q + v1 * h, v1)
+            }
+            StepMethod::Rk4 => {
+                let (mut dq, mut dv) = (SVector::zeros(), SVector::zeros());
+                for (s, w) in stages.iter().zip(RK4_WEIGHTS) {
+                    dq += s.v * w;
+                    dv += s.a * w;
+                }
+                (q + dq * (h / 6.0), v + dv * (h / 6.0))
+            }
+        }
+    }
+}
+
+/// RK4's nodes c and weights (×6).
+const RK4_NODES: [f64; 4] = [0.0, 0.5, 0.5, 1.0];
+const RK4_WEIGHTS: [f64; 4] = [1.0, 2.0, 2.0, 1.0];
+
+/// A stage: its state, time and acceleration.
+struct Stage<const N: usize> {
+    q: SVector<f64, N>,
+    v: SVector<f64, N>,
+    t: f64,
+    a: SVector<f64, N>,
+}
+
+/// (∂/∂x, ∂/∂u) of something over the step's (dx, du).
+type Jacobians = (DMatrix<f64>, DMatrix<f64>);
+
+/// RK4's chain rule: each stage's state is x + c h k_{i−1}, so
+/// d(stage) = dx + c h dk_{i−1} and dk_i = A_i d(stage) + B_i du;
+/// dx⁺ = dx + h/6 Σ w_i dk_i.
+fn rk4_chain(stages: &[Jacobians], h: f64) -> Jacobians {
+    let (n2, p) = (stages[0].0.nrows(), stages[0].1.ncols());
+    let identity = DMatrix::<f64>::identity(n2, n2);
+    let (mut sum_x, mut sum_u) = (DMatrix::zeros(n2, n2), DMatrix::zeros(n2, p));
+    let mut previous: Option<Jacobians> = None;
+    for ((a, b), (c, w)) in stages.iter().zip(RK4_NODES.into_iter().zip(RK4_WEIGHTS)) {
+        let (ds_x, ds_u) = match &previous {
+            None => (identity.clone(), DMatrix::zeros(n2, p)),
+            Some((dk_x, dk_u)) => (&identity + dk_x * (c * h), dk_u * (c * h)),
+        };
+        let dk = (a * ds_x, a * ds_u + b);
+        sum_x += &dk.0 * w;
+        sum_u += &dk.1 * w;
+        previous = Some(dk);
+    }
+    (identity + sum_x * (h / 6.0), sum_u * (h / 6.0))
+}
+
+/// Semi-implicit Euler's chain rule: with A = [[0, I], [A_q, A_v]] and
+/// B = [[0], [B_u]], dv⁺ = dv + h (A_q dq + A_v dv + B_u du) and
+/// dq⁺ = dq + h dv⁺.
+fn semi_implicit_chain((a, b): &Jacobians, n: usize, h: f64) -> Jacobians {
+    let (n2, p) = (2 * n, b.ncols());
+    let mut dv_x = DMatrix::<f64>::zeros(n, n2);
+    dv_x.view_mut((0, n), (n, n)).fill_with_identity();
+    dv_x += a.view((n, 0), (n, n2)) * h;
+    let dv_u = b.view((n, 0), (n, p)) * h;
+    let mut dx = DMatrix::zeros(n2, n2);
+    let mut dq_x = dv_x.clone() * h;
+    for i in 0..n {
+        dq_x[(i, i)] += 1.0;
+    }
+    dx.view_mut((0, 0), (n, n2)).copy_from(&dq_x);
+    dx.view_mut((n, 0), (n, n2)).copy_from(&dv_x);
+    let mut du = DMatrix::zeros(n2, p);
+    du.view_mut((0, 0), (n, p)).copy_from(&(&dv_u * h));
+    du.view_mut((n, 0), (n, p)).copy_from(&dv_u);
+    (dx, du)
+}
+
+#[cfg(test)]
+#[path = "transition_tests.rs"]
+mod tests;

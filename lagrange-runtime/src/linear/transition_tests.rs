@@ -1,0 +1,179 @@
+//! The step against closed forms (a body under constant thrust, a linear
+//! oscillator whose RK4 step is the Taylor polynomial of e^{hA}) and its
+//! derivatives against central differences of the step itself.
+
+use super::*;
+use crate::linear::test_systems::{G, Oscillator, Pendulum, Spherical, Thrusters};
+use nalgebra::{Matrix2, Vector1, Vector2};
+
+const METHODS: [StepMethod; 2] = [StepMethod::Rk4, StepMethod::SemiImplicitEuler];
+
+/// ∂x⁺/∂(x, u) by central differences of `step`, ε = 1e-6.
+fn differences<S, const N: usize, const P: usize>(
+    tr: &Transition<S>,
+    q: SVector<f64, N>,
+    v: SVector<f64, N>,
+    u: SVector<f64, P>,
+) -> (DMatrix<f64>, DMatrix<f64>)
+where
+    S: Driven<f64, N, P>,
+{
+    let eps = 1e-6;
+    let flat = |(q, v): (SVector<f64, N>, SVector<f64, N>)| {
+        DMatrix::from_iterator(2 * N, 1, q.iter().chain(v.iter()).copied())
+    };
+    let at = |q: SVector<f64, N>, v: SVector<f64, N>, u: SVector<f64, P>| {
+        flat(tr.step(&q, &v, &u, 0.3).unwrap())
+    };
+    let mut dx = DMatrix::zeros(2 * N, 2 * N);
+    for j in 0..2 * N {
+        let (mut qp, mut vp, mut qm, mut vm) = (q, v, q, v);
+        if j < N {
+            qp[j] += eps;
+            qm[j] -= eps;
+        } else {
+            vp[j - N] += eps;
+            vm[j - N] -= eps;
+        }
+        dx.set_column(
+            j,
+            &((at(qp, vp, u) - at(qm, vm, u)) / (2.0 * eps)).column(0),
+        );
+    }
+    let mut du = DMatrix::zeros(2 * N, P);
+    for k in 0..P {
+        let (mut up, mut um) = (u, u);
+        up[k] += eps;
+        um[k] -= eps;
+        du.set_column(k, &((at(q, v, up) - at(q, v, um)) / (2.0 * eps)).column(0));
+    }
+    (dx, du)
+}
+
+/// ÿ = u₁ + u₂ − g is a polynomial motion: RK4 is exact, semi-implicit
+/// Euler puts the velocity's change into the position a step early.
+#[test]
+fn constant_thrust_in_closed_form() {
+    let (h, y, vy) = (0.1, 2.0, -0.5);
+    let u = Vector2::new(3.0, 4.0);
+    let acc = u.sum() - G;
+    for method in METHODS {
+        let tr = Transition::new(&Thrusters, h).unwrap().method(method);
+        let d = tr
+            .derivatives(&Vector1::new(y), &Vector1::new(vy), &u, 0.0)
+            .unwrap();
+        let (y1, dq_dv, dq_du) = match method {
+            StepMethod::Rk4 => (y + vy * h + 0.5 * acc * h * h, h, 0.5 * h * h),
+            StepMethod::SemiImplicitEuler => (y + (vy + acc * h) * h, h, h * h),
+        };
+        assert!((d.q[0] - y1).abs() < 1e-14, "{method:?}: y⁺ = {}", d.q[0]);
+        assert!((d.v[0] - (vy + acc * h)).abs() < 1e-14);
+        let dx = DMatrix::from_row_slice(2, 2, &[1.0, dq_dv, 0.0, 1.0]);
+        let du = DMatrix::from_row_slice(2, 2, &[dq_du, dq_du, h, h]);
+        assert!((&d.dx - dx).amax() < 1e-12, "{method:?}: {}", d.dx);
+        assert!((&d.du - du).amax() < 1e-12, "{method:?}: {}", d.du);
+    }
+}
+
+/// For ẋ = A x + B u, RK4's step is x⁺ = T(hA) x + h S(hA) B u with T the
+/// Taylor polynomial of e^z to degree 4 and S(z) = Σ_{k<4} z^k / (k+1)!.
+#[test]
+fn rk4_on_a_linear_oscillator_is_the_taylor_polynomial() {
+    let (k, c, h) = (4.0, 0.3, 0.2);
+    let osc = Oscillator { k, c };
+    let a = Matrix2::new(0.0, 1.0, -k, -c);
+    let z = a * h;
+    let (mut t, mut s, mut power, mut factorial) = (
+        Matrix2::identity(),
+        Matrix2::zeros(),
+        Matrix2::identity(),
+        1.0,
+    );
+    for n in 1..=4 {
+        s += power / (factorial * n as f64);
+        power *= z;
+        factorial *= n as f64;
+        t += power / factorial;
+    }
+    let tr = Transition::new(&osc, h).unwrap();
+    let d = tr
+        .derivatives(
+            &Vector1::new(0.4),
+            &Vector1::new(-1.0),
+            &Vector1::new(0.7),
+            0.0,
+        )
+        .unwrap();
+    let du = s * Vector2::new(0.0, 1.0) * h;
+    assert!(
+        (d.dx.clone() - DMatrix::from_iterator(2, 2, t.iter().copied())).amax() < 1e-14,
+        "{}",
+        d.dx
+    );
+    assert!((d.du.column(0) - du).amax() < 1e-14, "{}", d.du);
+    let x1 = t * Vector2::new(0.4, -1.0) + du * 0.7;
+    assert!((Vector2::new(d.q[0], d.v[0]) - x1).amax() < 1e-14);
+}
+
+/// Nonlinear, velocity-dependent, two inputs: the chain rule through the
+/// stages against central differences of the step, at several states.
+#[test]
+fn derivatives_match_differences_of_the_step() {
+    let sys = Spherical { l: 0.9 };
+    let states = [
+        (
+            Vector2::new(0.7, 0.2),
+            Vector2::new(0.3, 2.0),
+            Vector2::new(0.5, -0.2),
+        ),
+        (
+            Vector2::new(1.9, -1.0),
+            Vector2::new(-1.2, 0.4),
+            Vector2::new(0.0, 1.5),
+        ),
+        (
+            Vector2::new(0.4, 3.0),
+            Vector2::new(2.0, -3.0),
+            Vector2::new(-2.0, 0.3),
+        ),
+    ];
+    for method in METHODS {
+        let tr = Transition::new(&sys, 0.05).unwrap().method(method);
+        for (q, v, u) in states {
+            let d = tr.derivatives(&q, &v, &u, 0.3).unwrap();
+            let (dx, du) = differences(&tr, q, v, u);
+            let (ex, eu) = ((&d.dx - &dx).amax(), (&d.du - &du).amax());
+            assert!(
+                ex < 1e-7 && eu < 1e-7,
+                "{method:?} at {q:?}: ∂x {ex:e}, ∂u {eu:e}"
+            );
+        }
+    }
+    let tr = Transition::new(&Pendulum, 0.01).unwrap();
+    let (q, v, u) = (Vector1::new(2.0), Vector1::new(-0.5), Vector1::new(1.0));
+    let d = tr.derivatives(&q, &v, &u, 0.3).unwrap();
+    let (dx, du) = differences(&tr, q, v, u);
+    assert!((&d.dx - dx).amax() < 1e-8 && (&d.du - du).amax() < 1e-8);
+}
+
+#[test]
+fn bad_steps_and_inputs() {
+    for h in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let e = Transition::new(&Pendulum, h).unwrap_err();
+        assert!(
+            matches!(e, Error::Settings(SettingsError::Value { .. })),
+            "h = {h}: {e}"
+        );
+    }
+    let tr = Transition::new(&Pendulum, 0.01).unwrap();
+    let e = tr
+        .step(
+            &Vector1::new(0.1),
+            &Vector1::new(0.0),
+            &Vector1::new(f64::NAN),
+            0.0,
+        )
+        .unwrap_err();
+    assert!(matches!(e, Error::NonFiniteInput { .. }), "{e}");
+    assert_eq!(tr.h(), 0.01);
+}

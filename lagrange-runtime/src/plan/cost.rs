@@ -1,0 +1,191 @@
+//! Cost terms beyond the problem's quadratic one: a frame's position
+//! against a target (through the system's emitted kinematics) and any
+//! user's term given with its derivatives.
+//!
+//! Each term gives its value and a quadratic model at (x, u): the gradient
+//! and a Hessian, Gauss–Newton's JᵀWJ for a squared residual (what DDP
+//! needs: positive semidefinite, exact at a zero residual).
+
+use crate::pose::{BodyPose, Kinematics};
+use nalgebra::{DMatrix, DVector, SVector, Vector3};
+
+/// A cost term's value and quadratic model at (x, u), x = (q, v) with 2N
+/// numbers; at the final state the u parts are empty.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CostModel {
+    /// The value.
+    pub value: f64,
+    /// ∂l/∂x (2N).
+    pub lx: DVector<f64>,
+    /// ∂l/∂u (P, or 0 at the final state).
+    pub lu: DVector<f64>,
+    /// ∂²l/∂x² (2N × 2N), or a positive semidefinite model of it.
+    pub lxx: DMatrix<f64>,
+    /// ∂²l/∂u² (P × P).
+    pub luu: DMatrix<f64>,
+    /// ∂²l/∂u∂x (P × 2N).
+    pub lux: DMatrix<f64>,
+}
+
+impl CostModel {
+    /// A zero model for 2N states and `p` inputs.
+    pub fn zero(n2: usize, p: usize) -> Self {
+        Self {
+            value: 0.0,
+            lx: DVector::zeros(n2),
+            lu: DVector::zeros(p),
+            lxx: DMatrix::zeros(n2, n2),
+            luu: DMatrix::zeros(p, p),
+            lux: DMatrix::zeros(p, n2),
+        }
+    }
+
+    /// Adds another term's model.
+    pub(super) fn add(&mut self, other: &CostModel) {
+        self.value += other.value;
+        self.lx += &other.lx;
+        self.lu += &other.lu;
+        self.lxx += &other.lxx;
+        self.luu += &other.luu;
+        self.lux += &other.lux;
+    }
+}
+
+/// A cost term of an [`OptimalControl`](super::OptimalControl) problem: at
+/// each step (time t, state (q, v), input u) or, with `u = None`, at the
+/// final state.
+pub trait Cost<const N: usize, const P: usize> {
+    /// The term's value.
+    fn value(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        u: Option<&SVector<f64, P>>,
+    ) -> f64;
+
+    /// The term's value, gradient and a positive semidefinite Hessian model.
+    fn model(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        u: Option<&SVector<f64, P>>,
+    ) -> CostModel;
+}
+
+/// ½ w ‖p(q) − p*‖²: a body's frame origin p (its reference point, world
+/// axes) against a target, through the system's
+/// [`Kinematics`]: the gradient w J_pᵀ (p − p*) and the Gauss–Newton
+/// Hessian w J_pᵀ J_p, J_p the frame Jacobian's rows 0–2.
+pub struct FramePosition<'s, S> {
+    system: &'s S,
+    body: usize,
+    target: Vector3<f64>,
+    weight: f64,
+}
+
+impl<'s, S> FramePosition<'s, S> {
+    /// The origin of body `body` (an index into `Posed::BODIES`; see
+    /// `Posed::body_index`) drawn to `target` with weight `weight`.
+    pub fn new(system: &'s S, body: usize, target: Vector3<f64>, weight: f64) -> Self {
+        Self {
+            system,
+            body,
+            target,
+            weight,
+        }
+    }
+
+    /// The frame's origin at q (NaN for a body index past the bodies, which
+    /// a plan then refuses as a non-finite cost).
+    fn origin<const N: usize>(&self, q: &SVector<f64, N>, t: f64) -> Vector3<f64>
+    where
+        S: Kinematics<f64, N>,
+    {
+        let mut bodies = vec![BodyPose::default(); S::BODIES.len()];
+        let mut points = vec![Vector3::zeros(); S::POINTS.len()];
+        self.system.poses(q, t, &mut bodies, &mut points);
+        bodies
+            .get(self.body)
+            .map_or(Vector3::repeat(f64::NAN), |b| b.origin)
+    }
+}
+
+impl<S, const N: usize, const P: usize> Cost<N, P> for FramePosition<'_, S>
+where
+    S: Kinematics<f64, N>,
+{
+    fn value(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        _: &SVector<f64, N>,
+        _: Option<&SVector<f64, P>>,
+    ) -> f64 {
+        0.5 * self.weight * (self.origin(q, t) - self.target).norm_squared()
+    }
+
+    fn model(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        u: Option<&SVector<f64, P>>,
+    ) -> CostModel {
+        let p = if u.is_some() { P } else { 0 };
+        let mut model = CostModel::zero(2 * N, p);
+        let residual = self.origin(q, t) - self.target;
+        model.value = self.value(t, q, v, u);
+        let Some(jacobian) = self.system.frame_jacobian(self.body, q, t) else {
+            model.value = f64::NAN;
+            return model;
+        };
+        let jp = jacobian.fixed_rows::<3>(0);
+        let gradient = jp.transpose() * residual * self.weight;
+        let hessian = jp.transpose() * jp * self.weight;
+        model.lx.rows_mut(0, N).copy_from(&gradient);
+        model.lxx.view_mut((0, 0), (N, N)).copy_from(&hessian);
+        model
+    }
+}
+
+/// A user's term from closures: `value(t, q, v, u)` and `model(t, q, v, u)`
+/// (which must agree with it). `u` is `None` at the final state.
+pub struct CostFn<V, M> {
+    value: V,
+    model: M,
+}
+
+impl<V, M> CostFn<V, M> {
+    /// The term of these closures.
+    pub fn new(value: V, model: M) -> Self {
+        Self { value, model }
+    }
+}
+
+impl<V, M, const N: usize, const P: usize> Cost<N, P> for CostFn<V, M>
+where
+    V: Fn(f64, &SVector<f64, N>, &SVector<f64, N>, Option<&SVector<f64, P>>) -> f64,
+    M: Fn(f64, &SVector<f64, N>, &SVector<f64, N>, Option<&SVector<f64, P>>) -> CostModel,
+{
+    fn value(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        u: Option<&SVector<f64, P>>,
+    ) -> f64 {
+        (self.value)(t, q, v, u)
+    }
+
+    fn model(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        u: Option<&SVector<f64, P>>,
+    ) -> CostModel {
+        (self.model)(t, q, v, u)
+    }
+}

@@ -1,0 +1,30 @@
+//! Planning with the model: optimal control over a horizon and
+//! model-predictive control.
+//!
+//! An [`OptimalControl`] problem takes a [`Transition`](crate::linear::Transition)
+//! (one fixed step of the system's dynamics, RK4 or semi-implicit Euler,
+//! with its derivatives by the chain rule), a horizon of K steps, quadratic
+//! running and terminal costs about a goal state and an input target, and
+//! box bounds on the inputs. [`Ddp`] solves it by box-constrained
+//! differential dynamic programming and returns a [`Plan`]: states, inputs,
+//! feedback gains, and the log of every iteration (cost, stationarity,
+//! step, regularisation). [`Mpc`] re-solves it at every sample of a
+//! [`Simulation::sampled`](crate::Simulation::sampled) run, warm-started,
+//! within an iteration budget.
+//!
+//! The state is x = (q, v); systems with free orientations and constrained
+//! systems are not planned for yet.
+
+mod box_qp;
+mod cost;
+mod ddp;
+mod mpc;
+mod problem;
+
+pub use cost::{Cost, CostFn, CostModel, FramePosition};
+pub use ddp::{Ddp, Iteration, Plan};
+pub use mpc::{Mpc, Sample};
+pub use problem::OptimalControl;
+
+#[cfg(test)]
+mod tests;

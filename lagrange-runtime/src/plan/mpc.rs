@@ -1,0 +1,103 @@
+//! Model-predictive control: re-plan at every sample from the state
+//! measured, warm-started from the last plan shifted by one step, within an
+//! iteration budget, and apply the plan's first input.
+
+use super::ddp::{Ddp, Plan};
+use super::problem::{OptimalControl, state};
+use crate::system::Driven;
+use nalgebra::SVector;
+
+/// A receding-horizon controller over an [`OptimalControl`] problem, for
+/// [`Simulation::sampled`](crate::Simulation::sampled): its
+/// [`control`](Self::control) is the sampled controller k(t, q, v). The
+/// problem's horizon recedes with the samples (its start becomes each
+/// measured state and time); the solver's `max_iterations` is the budget of
+/// each sample.
+pub struct Mpc<'a, S, const N: usize, const P: usize> {
+    problem: OptimalControl<'a, S, N, P>,
+    solver: Ddp,
+    warm: Vec<SVector<f64, P>>,
+    samples: Vec<Sample>,
+}
+
+/// What one sample's solve did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sample {
+    /// The sample's time.
+    pub t: f64,
+    /// Iterations used.
+    pub iterations: usize,
+    /// Whether the plan met the solver's tolerance within the budget.
+    pub converged: bool,
+    /// The plan's cost.
+    pub cost: f64,
+    /// Why the solve stopped short (the budget ran out, it stalled), as its
+    /// message; the best plan's first input was applied all the same.
+    pub stopped: Option<String>,
+}
+
+impl<'a, S, const N: usize, const P: usize> Mpc<'a, S, N, P>
+where
+    S: Driven<f64, N, P>,
+{
+    /// The controller re-solving `problem` with `solver` at each sample.
+    pub fn new(problem: OptimalControl<'a, S, N, P>, solver: Ddp) -> Self {
+        Self {
+            problem,
+            solver,
+            warm: Vec::new(),
+            samples: Vec::new(),
+        }
+    }
+
+    /// The input at the sample (t, q, v): the first of the plan from there.
+    /// A solve that stops short of its tolerance (the budget hit) still gives
+    /// its best plan's first input, and is recorded in
+    /// [`samples`](Self::samples); one that produced no input at all gives
+    /// NaN, so that the run stops with `Error::NonFiniteInput` at that
+    /// sample rather than apply a made-up input.
+    pub fn control(&mut self, t: f64, q: &SVector<f64, N>, v: &SVector<f64, N>) -> SVector<f64, P> {
+        self.problem.start = state(q, v);
+        self.problem.t0 = t;
+        let (plan, stopped) = match self.solver.solve(&self.problem, &self.warm) {
+            Ok(plan) => (plan, None),
+            Err(failure) => {
+                let (error, plan) = failure.into_parts();
+                (plan, Some(error.to_string()))
+            }
+        };
+        self.samples.push(Sample {
+            t,
+            iterations: plan.log.len(),
+            converged: stopped.is_none(),
+            cost: plan.cost,
+            stopped,
+        });
+        let Some(first) = plan.u.first().copied() else {
+            self.warm.clear();
+            return SVector::repeat(f64::NAN);
+        };
+        self.warm = shifted(&plan);
+        first
+    }
+
+    /// Every sample's record, in time order.
+    pub fn samples(&self) -> &[Sample] {
+        &self.samples
+    }
+
+    /// How many samples stopped short of the tolerance.
+    pub fn budget_hits(&self) -> usize {
+        self.samples.iter().filter(|s| !s.converged).count()
+    }
+}
+
+/// The plan's inputs one step on, the last repeated: the next sample's
+/// warm start.
+fn shifted<const N: usize, const P: usize>(plan: &Plan<N, P>) -> Vec<SVector<f64, P>> {
+    let mut u: Vec<_> = plan.u.iter().skip(1).copied().collect();
+    if let Some(last) = plan.u.last() {
+        u.push(*last);
+    }
+    u
+}

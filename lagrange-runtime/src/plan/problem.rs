@@ -1,0 +1,322 @@
+//! An optimal control problem over a fixed horizon of fixed steps.
+
+use super::cost::{Cost, CostModel};
+use crate::error::{Error, SettingsError};
+use crate::linear::Transition;
+use crate::system::Driven;
+use nalgebra::{DMatrix, DVector, SVector};
+
+/// Minimise, over the inputs u₀ … u_{K−1} held on each step,
+///
+/// ```text
+/// Σ_k ½ (x_k − x*)ᵀ W_x (x_k − x*) + ½ (u_k − u*)ᵀ W_u (u_k − u*)   +   ½ (x_K − x*)ᵀ W_f (x_K − x*)
+/// ```
+///
+/// subject to x_{k+1} = F(x_k, u_k) (a [`Transition`]: RK4 or semi-implicit
+/// Euler of the system's dynamics), x₀ given and lower ≤ u_k ≤ upper. The
+/// state is x = (q, v) (2N numbers); the goal x* defaults to zero, the input
+/// target u* to zero, W_f to W_x and the bounds to none. More terms join
+/// either sum with [`running_cost`](Self::running_cost) and
+/// [`final_cost`](Self::final_cost): a frame's position
+/// ([`FramePosition`](super::FramePosition)), or your own
+/// ([`CostFn`](super::CostFn)).
+pub struct OptimalControl<'a, S, const N: usize, const P: usize> {
+    pub(super) transition: Transition<'a, S>,
+    pub(super) steps: usize,
+    pub(super) start: DVector<f64>,
+    pub(super) t0: f64,
+    pub(super) weight_x: DMatrix<f64>,
+    pub(super) weight_u: DMatrix<f64>,
+    pub(super) weight_final: Option<DMatrix<f64>>,
+    pub(super) goal: DVector<f64>,
+    pub(super) input_target: DVector<f64>,
+    pub(super) lower: DVector<f64>,
+    pub(super) upper: DVector<f64>,
+    pub(super) running_terms: Vec<Box<dyn Cost<N, P> + 'a>>,
+    pub(super) final_terms: Vec<Box<dyn Cost<N, P> + 'a>>,
+}
+
+/// (q, v) as one state vector of 2N numbers.
+pub(super) fn state<const N: usize>(q: &SVector<f64, N>, v: &SVector<f64, N>) -> DVector<f64> {
+    DVector::from_iterator(2 * N, q.iter().chain(v.iter()).copied())
+}
+
+/// A state vector split into (q, v).
+pub(super) fn split<const N: usize>(x: &DVector<f64>) -> (SVector<f64, N>, SVector<f64, N>) {
+    (
+        SVector::from_fn(|i, _| x[i]),
+        SVector::from_fn(|i, _| x[N + i]),
+    )
+}
+
+impl<'a, S, const N: usize, const P: usize> OptimalControl<'a, S, N, P>
+where
+    S: Driven<f64, N, P>,
+{
+    /// `steps` steps of `transition` from (q₀, v₀) at t = 0, with the
+    /// running weights W_x (2N × 2N, on (q, v)) and W_u (P × P).
+    pub fn new(
+        transition: Transition<'a, S>,
+        steps: usize,
+        start: (SVector<f64, N>, SVector<f64, N>),
+        weight_x: DMatrix<f64>,
+        weight_u: DMatrix<f64>,
+    ) -> Self {
+        Self {
+            transition,
+            steps,
+            start: state(&start.0, &start.1),
+            t0: 0.0,
+            weight_x,
+            weight_u,
+            weight_final: None,
+            goal: DVector::zeros(2 * N),
+            input_target: DVector::zeros(P),
+            lower: DVector::from_element(P, f64::NEG_INFINITY),
+            upper: DVector::from_element(P, f64::INFINITY),
+            running_terms: Vec::new(),
+            final_terms: Vec::new(),
+        }
+    }
+
+    /// Adds a term to the running cost (at every step).
+    pub fn running_cost(mut self, term: impl Cost<N, P> + 'a) -> Self {
+        self.running_terms.push(Box::new(term));
+        self
+    }
+
+    /// Adds a term to the final cost (at the last state).
+    pub fn final_cost(mut self, term: impl Cost<N, P> + 'a) -> Self {
+        self.final_terms.push(Box::new(term));
+        self
+    }
+
+    /// The goal state x* = (q*, v*) both costs measure from.
+    pub fn goal(mut self, q: SVector<f64, N>, v: SVector<f64, N>) -> Self {
+        self.goal = state(&q, &v);
+        self
+    }
+
+    /// The input target u* the running cost measures from (a hover's thrust).
+    pub fn input_target(mut self, u: SVector<f64, P>) -> Self {
+        self.input_target = DVector::from_column_slice(u.as_slice());
+        self
+    }
+
+    /// The terminal weight W_f (2N × 2N).
+    pub fn final_weight(mut self, weight: DMatrix<f64>) -> Self {
+        self.weight_final = Some(weight);
+        self
+    }
+
+    /// Box bounds on every input (±∞ for none).
+    pub fn input_bounds(mut self, lower: SVector<f64, P>, upper: SVector<f64, P>) -> Self {
+        self.lower = DVector::from_column_slice(lower.as_slice());
+        self.upper = DVector::from_column_slice(upper.as_slice());
+        self
+    }
+
+    /// The time of x₀ (for time-dependent systems).
+    pub fn start_time(mut self, t0: f64) -> Self {
+        self.t0 = t0;
+        self
+    }
+
+    /// The number of steps K.
+    pub fn steps(&self) -> usize {
+        self.steps
+    }
+
+    /// The step's time t_k = t₀ + k h.
+    pub(super) fn time(&self, k: usize) -> f64 {
+        self.t0 + k as f64 * self.transition.h()
+    }
+
+    /// W_f, or W_x when none was given.
+    pub(super) fn final_weight_or_running(&self) -> &DMatrix<f64> {
+        self.weight_final.as_ref().unwrap_or(&self.weight_x)
+    }
+
+    /// The running cost of (x, u) at step k.
+    pub(super) fn running(&self, k: usize, x: &DVector<f64>, u: &DVector<f64>) -> f64 {
+        let (dx, du) = (x - &self.goal, u - &self.input_target);
+        let quadratic = 0.5 * (dx.dot(&(&self.weight_x * &dx)) + du.dot(&(&self.weight_u * &du)));
+        let (q, v) = split::<N>(x);
+        let u = SVector::<f64, P>::from_column_slice(u.as_slice());
+        let t = self.time(k);
+        let terms: f64 = self
+            .running_terms
+            .iter()
+            .map(|c| c.value(t, &q, &v, Some(&u)))
+            .sum();
+        quadratic + terms
+    }
+
+    /// The terminal cost of x.
+    pub(super) fn terminal(&self, x: &DVector<f64>) -> f64 {
+        let dx = x - &self.goal;
+        let (q, v) = split::<N>(x);
+        let t = self.time(self.steps);
+        let terms: f64 = self
+            .final_terms
+            .iter()
+            .map(|c| c.value(t, &q, &v, None))
+            .sum();
+        0.5 * dx.dot(&(self.final_weight_or_running() * &dx)) + terms
+    }
+
+    /// The running cost's quadratic model at step k.
+    ///
+    /// # Errors
+    /// [`Error::Settings`] for a term whose model has the wrong sizes or is
+    /// not finite.
+    pub(super) fn running_model(
+        &self,
+        k: usize,
+        x: &DVector<f64>,
+        u: &DVector<f64>,
+    ) -> Result<CostModel, Error> {
+        let mut model = CostModel {
+            value: 0.0,
+            lx: &self.weight_x * (x - &self.goal),
+            lu: &self.weight_u * (u - &self.input_target),
+            lxx: self.weight_x.clone(),
+            luu: self.weight_u.clone(),
+            lux: DMatrix::zeros(P, 2 * N),
+        };
+        let (q, v) = split::<N>(x);
+        let u = SVector::<f64, P>::from_column_slice(u.as_slice());
+        for term in &self.running_terms {
+            let m = term.model(self.time(k), &q, &v, Some(&u));
+            check_model(&m, 2 * N, P)?;
+            model.add(&m);
+        }
+        Ok(model)
+    }
+
+    /// The final cost's quadratic model (its u parts empty).
+    ///
+    /// # Errors
+    /// As [`running_model`](Self::running_model).
+    pub(super) fn final_model(&self, x: &DVector<f64>) -> Result<CostModel, Error> {
+        let w = self.final_weight_or_running();
+        let mut model = CostModel {
+            value: 0.0,
+            lx: w * (x - &self.goal),
+            lu: DVector::zeros(0),
+            lxx: w.clone(),
+            luu: DMatrix::zeros(0, 0),
+            lux: DMatrix::zeros(0, 2 * N),
+        };
+        let (q, v) = split::<N>(x);
+        for term in &self.final_terms {
+            let m = term.model(self.time(self.steps), &q, &v, None);
+            check_model(&m, 2 * N, 0)?;
+            model.add(&m);
+        }
+        Ok(model)
+    }
+
+    /// The whole cost of a state and input sequence.
+    pub(super) fn cost(&self, xs: &[DVector<f64>], us: &[DVector<f64>]) -> f64 {
+        let running: f64 = (xs.iter().zip(us).enumerate())
+            .map(|(k, (x, u))| self.running(k, x, u))
+            .sum();
+        running + self.terminal(&xs[self.steps])
+    }
+
+    /// u clamped into the bounds.
+    pub(super) fn clamp(&self, u: &DVector<f64>) -> DVector<f64> {
+        DVector::from_fn(P, |i, _| u[i].clamp(self.lower[i], self.upper[i]))
+    }
+
+    /// The problem's sizes, weights and bounds, checked before solving.
+    pub(super) fn check(&self) -> Result<(), Error> {
+        if self.steps == 0 {
+            return Err(SettingsError::ZeroCount {
+                owner: "OptimalControl",
+                setting: "steps",
+            }
+            .into());
+        }
+        let n2 = 2 * N;
+        check_weight("W_x", &self.weight_x, n2)?;
+        check_weight("W_u", &self.weight_u, P)?;
+        if let Some(w) = &self.weight_final {
+            check_weight("W_f", w, n2)?;
+        }
+        let finite = |x: &DVector<f64>| x.iter().all(|v| v.is_finite());
+        if !finite(&self.start) || !finite(&self.goal) || !finite(&self.input_target) {
+            return Err(data(
+                "the start, the goal and the input target must be finite",
+            ));
+        }
+        let ordered = (0..P).all(|i| self.lower[i] <= self.upper[i] && !self.lower[i].is_nan());
+        if !ordered {
+            return Err(data(
+                "each input's lower bound must be at most its upper bound",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// A weight: `n` × `n`, finite, symmetric and positive semidefinite.
+fn check_weight(name: &'static str, w: &DMatrix<f64>, n: usize) -> Result<(), Error> {
+    let finite = w.iter().all(|x| x.is_finite());
+    if w.shape() != (n, n) || !finite {
+        return Err(SettingsError::Shape {
+            owner: "OptimalControl",
+            name,
+            expected: (n, n),
+            got: w.shape(),
+            finite,
+            meaning: "",
+        }
+        .into());
+    }
+    if (w - w.transpose()).amax() > 1e-12 * w.amax() {
+        return Err(data(&format!("the weight {name} must be symmetric")));
+    }
+    if n > 0 && w.clone().symmetric_eigenvalues().min() < -1e-12 * w.amax().max(1.0) {
+        return Err(data(&format!(
+            "the weight {name} must be positive semidefinite"
+        )));
+    }
+    Ok(())
+}
+
+fn data(problem: &str) -> Error {
+    SettingsError::Data {
+        owner: "OptimalControl",
+        problem: problem.into(),
+    }
+    .into()
+}
+
+/// A term's model of the right sizes, every entry finite.
+fn check_model(m: &CostModel, n2: usize, p: usize) -> Result<(), Error> {
+    let sizes = [
+        ("lx", m.lx.shape(), (n2, 1)),
+        ("lu", m.lu.shape(), (p, 1)),
+        ("lxx", m.lxx.shape(), (n2, n2)),
+        ("luu", m.luu.shape(), (p, p)),
+        ("lux", m.lux.shape(), (p, n2)),
+    ];
+    if let Some((name, got, expected)) = sizes.iter().find(|(_, got, expected)| got != expected) {
+        return Err(data(&format!(
+            "a cost term's model has {name} of shape {got:?}, not {expected:?}"
+        )));
+    }
+    let finite = [&m.lx, &m.lu]
+        .iter()
+        .all(|x| x.iter().all(|v| v.is_finite()))
+        && [&m.lxx, &m.luu, &m.lux]
+            .iter()
+            .all(|x| x.iter().all(|v| v.is_finite()))
+        && m.value.is_finite();
+    if !finite {
+        return Err(data("a cost term's value or model is not finite"));
+    }
+    Ok(())
+}

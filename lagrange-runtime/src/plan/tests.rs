@@ -1,0 +1,284 @@
+//! DDP against the discrete LQR (a linear system with the Riccati solution
+//! as terminal weight is solved exactly, and its gains are the LQR gain),
+//! against its own optimality conditions under input bounds, on a
+//! pendulum's swing-up with a torque below its weight, and in closed loop as
+//! MPC.
+
+use super::ddp::Ddp;
+use super::problem::OptimalControl;
+use super::*;
+use crate::Simulation;
+use crate::error::{Error, PlanError, SettingsError};
+use crate::linear::test_systems::{G, Oscillator, Pendulum};
+use crate::linear::{StepMethod, Transition, dlqr};
+use nalgebra::{DMatrix, SVector, Vector1};
+
+fn diagonal(d: &[f64]) -> DMatrix<f64> {
+    DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(d))
+}
+
+const OSCILLATOR: Oscillator = Oscillator { k: 4.0, c: 0.3 };
+
+fn oscillator_problem(steps: usize) -> OptimalControl<'static, Oscillator, 1, 1> {
+    let tr = Transition::new(&OSCILLATOR, 0.05).unwrap();
+    let start = (Vector1::new(2.0), Vector1::new(-1.0));
+    OptimalControl::new(tr, steps, start, diagonal(&[1.0, 0.5]), diagonal(&[0.1]))
+}
+
+/// With the DARE's P as terminal weight, the finite horizon's optimal law is
+/// the stationary LQR one, u_k = −K x_k, at every step.
+#[test]
+fn a_linear_problem_is_the_discrete_lqr() {
+    let tr = Transition::new(&OSCILLATOR, 0.05).unwrap();
+    let d = tr
+        .derivatives(&Vector1::zeros(), &Vector1::zeros(), &Vector1::zeros(), 0.0)
+        .unwrap();
+    let lqr = dlqr(&d.dx, &d.du, &diagonal(&[1.0, 0.5]), &diagonal(&[0.1])).unwrap();
+    let problem = oscillator_problem(40).final_weight(lqr.riccati.clone());
+    let plan = Ddp::new().tolerance(1e-10).solve(&problem, &[]).unwrap();
+    assert!(
+        plan.log.len() <= 3,
+        "{} iterations for a quadratic problem",
+        plan.log.len()
+    );
+    for k in [0, 17, 39] {
+        let x = nalgebra::DVector::from_column_slice(&[plan.q[k][0], plan.v[k][0]]);
+        let lqr_u = -(&lqr.gain * &x)[0];
+        assert!(
+            (plan.u[k][0] - lqr_u).abs() < 1e-9,
+            "step {k}: {} vs {lqr_u}",
+            plan.u[k][0]
+        );
+        assert!(
+            (&plan.gains[k] + &lqr.gain).amax() < 1e-9,
+            "step {k}: gain {}",
+            plan.gains[k]
+        );
+    }
+}
+
+/// Under |u| ≤ 0.3 the plan stays inside the bounds, saturates early, and no
+/// feasible perturbation of its inputs lowers its cost.
+#[test]
+fn bounded_inputs_are_locally_optimal() {
+    let problem = oscillator_problem(60).input_bounds(Vector1::new(-0.3), Vector1::new(0.3));
+    let plan = Ddp::new().tolerance(1e-9).solve(&problem, &[]).unwrap();
+    assert!(plan.u.iter().all(|u| u[0].abs() <= 0.3 + 1e-15));
+    assert!(
+        plan.u.iter().any(|u| u[0].abs() >= 0.3 - 1e-12),
+        "never saturates"
+    );
+    let start = (Vector1::new(2.0), Vector1::new(-1.0));
+    let cost_of = |us: &[SVector<f64, 1>]| rollout_cost(&problem, start, us);
+    let base = cost_of(&plan.u);
+    assert!((base - plan.cost).abs() < 1e-12 * plan.cost);
+    for (k, delta) in [(0, 0.01), (5, -0.02), (30, 0.01), (59, -0.01)] {
+        let mut us = plan.u.clone();
+        us[k][0] = (us[k][0] + delta).clamp(-0.3, 0.3);
+        assert!(
+            cost_of(&us) >= plan.cost - 1e-12,
+            "step {k} by {delta} lowers the cost"
+        );
+    }
+}
+
+/// The cost of applying `us` open loop from (q, v): step by step with the
+/// problem's transition.
+fn rollout_cost(
+    problem: &OptimalControl<Oscillator, 1, 1>,
+    (mut q, mut v): (Vector1<f64>, Vector1<f64>),
+    us: &[SVector<f64, 1>],
+) -> f64 {
+    let x = |q: Vector1<f64>, v: Vector1<f64>| nalgebra::DVector::from_column_slice(&[q[0], v[0]]);
+    let mut cost = 0.0;
+    for (k, u) in us.iter().enumerate() {
+        cost += problem.running(
+            k,
+            &x(q, v),
+            &nalgebra::DVector::from_column_slice(u.as_slice()),
+        );
+        (q, v) = problem.transition.step(&q, &v, u, problem.time(k)).unwrap();
+    }
+    cost + problem.terminal(&x(q, v))
+}
+
+fn swing_up() -> OptimalControl<'static, Pendulum, 1, 1> {
+    let tr = Transition::new(&Pendulum, 0.02).unwrap();
+    let start = (Vector1::new(0.0), Vector1::new(0.0));
+    OptimalControl::new(tr, 200, start, diagonal(&[0.0, 0.0]), diagonal(&[0.01]))
+        .goal(Vector1::new(std::f64::consts::PI), Vector1::new(0.0))
+        .final_weight(diagonal(&[1000.0, 100.0]))
+        .input_bounds(Vector1::new(-3.0), Vector1::new(3.0))
+}
+
+/// A torque of at most 3 against a weight of g = 9.81: the pendulum must be
+/// pumped up. The plan ends upright and at rest, within the bounds, with a
+/// cost that never rose along the log.
+#[test]
+fn a_pendulum_swings_up_under_a_torque_below_its_weight() {
+    let plan = Ddp::new().tolerance(1e-5).solve(&swing_up(), &[]).unwrap();
+    let (theta, omega) = (plan.q[200][0], plan.v[200][0]);
+    assert!((theta - std::f64::consts::PI).abs() < 0.02, "θ_K = {theta}");
+    assert!(omega.abs() < 0.05, "ω_K = {omega}");
+    assert!(plan.u.iter().all(|u| u[0].abs() <= 3.0));
+    assert!(
+        plan.u.iter().filter(|u| u[0].abs() > 3.0 - 1e-9).count() > 20,
+        "hardly saturates"
+    );
+    let costs: Vec<f64> = plan.log.iter().map(|i| i.cost).collect();
+    assert!(
+        costs.windows(2).all(|w| w[1] <= w[0]),
+        "cost rose: {costs:?}"
+    );
+    const { assert!(G > 3.0) };
+}
+
+/// Out of budget: the error says so and the failure holds the best plan so
+/// far, whole.
+#[test]
+fn a_budget_hit_keeps_the_best_plan() {
+    let failure = Ddp::new()
+        .max_iterations(2)
+        .solve(&swing_up(), &[])
+        .unwrap_err();
+    assert!(
+        matches!(
+            failure.error,
+            Error::Plan(PlanError::NotConverged { iterations: 2, .. })
+        ),
+        "{}",
+        failure.error
+    );
+    assert_eq!(
+        (failure.partial.q.len(), failure.partial.u.len()),
+        (201, 200)
+    );
+    assert_eq!(failure.partial.log.len(), 2);
+    assert!(
+        failure
+            .to_string()
+            .contains("did not converge in 2 iteration(s)")
+    );
+}
+
+#[test]
+fn bad_problems_and_settings() {
+    let e = Ddp::new()
+        .solve(&oscillator_problem(0), &[])
+        .unwrap_err()
+        .error;
+    assert!(
+        matches!(e, Error::Settings(SettingsError::ZeroCount { .. })),
+        "{e}"
+    );
+    let e = Ddp::new()
+        .solve(&oscillator_problem(5), &[Vector1::new(1.0)])
+        .unwrap_err()
+        .error;
+    assert!(
+        e.to_string().contains("1 guessed inputs for 5 steps"),
+        "{e}"
+    );
+    let e = Ddp::new()
+        .tolerance(0.0)
+        .solve(&oscillator_problem(5), &[])
+        .unwrap_err()
+        .error;
+    assert!(
+        matches!(e, Error::Settings(SettingsError::Value { .. })),
+        "{e}"
+    );
+    let bad = oscillator_problem(5).input_bounds(Vector1::new(1.0), Vector1::new(-1.0));
+    let e = Ddp::new().solve(&bad, &[]).unwrap_err().error;
+    assert!(e.to_string().contains("lower bound must be at most"), "{e}");
+    let tr = Transition::new(&OSCILLATOR, 0.05)
+        .unwrap()
+        .method(StepMethod::SemiImplicitEuler);
+    let start = (Vector1::new(1.0), Vector1::new(0.0));
+    let bad = OptimalControl::new(tr, 5, start, diagonal(&[1.0, -1.0]), diagonal(&[0.1]));
+    let e = Ddp::new().solve(&bad, &[]).unwrap_err().error;
+    assert!(
+        e.to_string().contains("W_x must be positive semidefinite"),
+        "{e}"
+    );
+}
+
+/// MPC on the oscillator: every sample re-plans from the measured state;
+/// the closed loop brings it to rest within the bounds.
+#[test]
+fn mpc_brings_the_oscillator_to_rest() {
+    let problem = oscillator_problem(30).input_bounds(Vector1::new(-1.0), Vector1::new(1.0));
+    let mut mpc = Mpc::new(problem, Ddp::new().max_iterations(5).tolerance(1e-8));
+    let run = Simulation::new(&OSCILLATOR)
+        .sampled(0.05, |t, q: &Vector1<f64>, v: &Vector1<f64>| {
+            mpc.control(t, q, v)
+        })
+        .run([2.0], [-1.0], 0.0..8.0)
+        .unwrap();
+    let traj = run.trajectory();
+    let (q, v) = (
+        traj.positions().last().unwrap(),
+        traj.velocities().last().unwrap(),
+    );
+    assert!(
+        q[0].abs() < 5e-3 && v[0].abs() < 5e-3,
+        "ends at ({}, {})",
+        q[0],
+        v[0]
+    );
+    assert!(run.inputs().iter().all(|u| u[0].abs() <= 1.0 + 1e-15));
+    assert!(
+        run.inputs().iter().any(|u| u[0].abs() >= 1.0 - 1e-12),
+        "never saturates"
+    );
+    // Samples at t = 0, 0.05, …, 8.
+    assert_eq!(mpc.samples().len(), 161);
+    assert!(mpc.samples().iter().all(|s| s.iterations <= 5));
+    assert_eq!(
+        mpc.budget_hits(),
+        mpc.samples().iter().filter(|s| s.stopped.is_some()).count()
+    );
+}
+
+/// A user's term written as closures gives the plan the built-in goal gives:
+/// ½ (x − 1)² on the position by `CostFn` against the quadratic cost about
+/// the goal x* = 1.
+#[test]
+fn a_closure_term_is_a_goal_written_by_hand() {
+    let tr = Transition::new(&OSCILLATOR, 0.05).unwrap();
+    let start = (Vector1::new(0.0), Vector1::new(0.0));
+    let r = diagonal(&[0.1]);
+    let built_in = OptimalControl::new(tr.clone(), 30, start, diagonal(&[1.0, 0.0]), r.clone())
+        .goal(Vector1::new(1.0), Vector1::new(0.0))
+        .final_weight(diagonal(&[0.0, 0.0]));
+    let pull = |_: f64, q: &Vector1<f64>, _: &Vector1<f64>, _: Option<&Vector1<f64>>| {
+        0.5 * (q[0] - 1.0).powi(2)
+    };
+    let model = |t: f64, q: &Vector1<f64>, v: &Vector1<f64>, u: Option<&Vector1<f64>>| {
+        let mut m = CostModel::zero(2, usize::from(u.is_some()));
+        m.value = pull(t, q, v, u);
+        m.lx[0] = q[0] - 1.0;
+        m.lxx[(0, 0)] = 1.0;
+        m
+    };
+    let by_hand = OptimalControl::new(tr, 30, start, diagonal(&[0.0, 0.0]), r)
+        .final_weight(diagonal(&[0.0, 0.0]))
+        .running_cost(CostFn::new(pull, model));
+    let a = Ddp::new().tolerance(1e-10).solve(&built_in, &[]).unwrap();
+    let b = Ddp::new().tolerance(1e-10).solve(&by_hand, &[]).unwrap();
+    assert!((a.cost - b.cost).abs() < 1e-12, "{} vs {}", a.cost, b.cost);
+    let gap = (a.u.iter().zip(&b.u))
+        .map(|(x, y)| (x - y).amax())
+        .fold(0.0, f64::max);
+    assert!(gap < 1e-10, "inputs differ by {gap:e}");
+    // A model of the wrong size is refused, not used.
+    let wrong = |_: f64, _: &Vector1<f64>, _: &Vector1<f64>, _: Option<&Vector1<f64>>| {
+        CostModel::zero(3, 1)
+    };
+    let bad = oscillator_problem(5).running_cost(CostFn::new(pull, wrong));
+    let e = Ddp::new().solve(&bad, &[]).unwrap_err().error;
+    assert!(
+        e.to_string().contains("lx of shape (3, 1), not (2, 1)"),
+        "{e}"
+    );
+}

@@ -1,0 +1,130 @@
+//! Planning on derived systems: equilibria and steady motions
+//! (`linear::Trim`) against closed forms — an arm holding a pose against
+//! gravity, a satellite kept spinning about a non-principal axis (an
+//! orientation, in its tangent space), the trimmed point linearised and
+//! stabilised — and a plan (`plan::Ddp`) moving the UR5's tool to a target
+//! within its torque limits through its emitted kinematics.
+
+use crate::catalog;
+use crate::operational::Ur5;
+
+use catalog::control::TwoLinkArm;
+use catalog::free::Satellite;
+use lagrange::linear::{OperatingPoint, Transition, Trim, linearize};
+use lagrange::nalgebra::{DMatrix, DVector, SVector, Vector2, Vector3};
+use lagrange::plan::{Ddp, FramePosition, OptimalControl};
+use lagrange::pose::Kinematics;
+use lagrange::prelude::*;
+
+/// The torques that hold the arm still at (q1, q2) are its gravity torques:
+/// τ1 = g (m1 l1 cos q1 + m2 (l1 cos q1 + l2 cos(q1 + q2))),
+/// τ2 = g m2 l2 cos(q1 + q2).
+#[test]
+fn an_arm_holds_a_pose_against_gravity() {
+    let arm = TwoLinkArm::standard();
+    let (q1, q2) = (0.3, 0.8);
+    let at = OperatingPoint::new(Vector2::new(q1, q2), Vector2::zeros());
+    let held = Trim::new().hold(&["q1", "q2"]).solve(&arm, &at).unwrap();
+    let TwoLinkArm { m1, m2, l1, l2, g } = arm;
+    let tau2 = g * m2 * l2 * (q1 + q2).cos();
+    let tau1 = g * (m1 * l1 * q1.cos() + m2 * l1 * q1.cos()) + tau2;
+    assert!(
+        (held.u - Vector2::new(tau1, tau2)).amax() < 1e-12,
+        "u = {}",
+        held.u
+    );
+    assert!(held.residual < 1e-12);
+}
+
+/// Euler's equations I ω̇ + ω × I ω = τ: a steady spin ω needs τ = ω × I ω,
+/// whatever the attitude (held here at a tilted one).
+#[test]
+fn a_satellite_kept_spinning_off_its_principal_axes() {
+    let sat = Satellite {
+        m: 10.0,
+        a: 1.0,
+        b: 2.0,
+        c: 3.5,
+    };
+    let half: f64 = 0.4;
+    let attitude = SVector::<f64, 4>::new(half.cos(), half.sin() * 0.6, 0.0, half.sin() * 0.8);
+    let omega = Vector3::new(0.7, -0.4, 1.1);
+    let at = OperatingPoint::on_group(attitude, omega);
+    let found = Trim::new().hold(&["attitude"]).solve(&sat, &at).unwrap();
+    let inertia_omega = Vector3::new(sat.a * omega.x, sat.b * omega.y, sat.c * omega.z);
+    let expected = omega.cross(&inertia_omega);
+    assert!(
+        (found.u - expected).amax() < 1e-12,
+        "u = {} vs {expected}",
+        found.u
+    );
+    assert_eq!(found.q, attitude);
+}
+
+/// The arm trimmed at a pose, then linearised there with the inputs found
+/// and stabilised by LQR: the closed loop's eigenvalues are in the left
+/// half-plane (unheld, the arm falls from that pose).
+#[test]
+fn a_trimmed_pose_is_an_operating_point() {
+    let arm = TwoLinkArm::standard();
+    let at = OperatingPoint::new(Vector2::new(-0.5, 1.4), Vector2::zeros());
+    let held = Trim::new().hold(&["q1", "q2"]).solve(&arm, &at).unwrap();
+    let lin = linearize(&arm, &held.operating_point()).unwrap();
+    let q = DMatrix::identity(4, 4);
+    let r = DMatrix::identity(2, 2);
+    let design = lin.lqr(&q, &r).unwrap();
+    assert!(design.closed_loop.iter().all(|z| z.re < 0.0));
+    let a = lagrange::accelerations(&arm, &held.q, &held.v, 0.0).unwrap();
+    let gravity_alone = a.amax();
+    assert!(
+        gravity_alone > 1.0,
+        "unheld, the arm falls: |q̈| = {gravity_alone}"
+    );
+}
+
+/// The UR5's tool drawn to a point 20 cm away in 0.6 s, its torques held
+/// within ±40 N·m (the file allows 150): the plan ends within a millimetre
+/// of the target, at rest, inside the bounds.
+#[test]
+fn the_ur5_reaches_a_point_within_its_torque_limits() {
+    let ur5 = Ur5 {};
+    let tool = Ur5::body_index("tool0").expect("the UR5 has tool0");
+    let home = SVector::<f64, 6>::from([0.0, -1.2, 1.5, -1.8, -1.57, 0.0]);
+    let zero = SVector::<f64, 6>::zeros();
+    let start = lagrange::Configuration::new(&ur5, home, 0.0).unwrap();
+    let (bodies, _) = start.poses();
+    let target = bodies[tool].origin + Vector3::new(0.1, 0.15, -0.05);
+    // Gravity compensation at home is the input target, so that holding
+    // still costs nothing.
+    let hold = Trim::new()
+        .hold(&Ur5::COORDINATES)
+        .solve(&ur5, &OperatingPoint::new(home, zero))
+        .unwrap();
+    let weight = |d: [f64; 12]| DMatrix::from_diagonal(&DVector::from_column_slice(&d));
+    let still = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1];
+    let problem = OptimalControl::new(
+        Transition::new(&ur5, 0.02).unwrap(),
+        30,
+        (home, zero),
+        weight([0.0; 12]),
+        DMatrix::identity(6, 6) * 1e-4,
+    )
+    .input_target(hold.u)
+    .final_weight(weight(still) * 100.0)
+    .final_cost(FramePosition::new(&ur5, tool, target, 1e4))
+    .input_bounds(SVector::repeat(-40.0), SVector::repeat(40.0));
+    let plan = Ddp::new()
+        .tolerance(1e-4)
+        .solve(&problem, &[hold.u; 30])
+        .unwrap();
+    let end = lagrange::Configuration::new(&ur5, plan.q[30], 0.0).unwrap();
+    let (bodies, _) = end.poses();
+    let miss = (bodies[tool].origin - target).norm();
+    assert!(miss < 1e-3, "the tool ends {miss:e} m from the target");
+    assert!(
+        plan.v[30].amax() < 0.05,
+        "moving at the end: {}",
+        plan.v[30]
+    );
+    assert!(plan.u.iter().all(|u| u.amax() <= 40.0));
+}
