@@ -56,6 +56,7 @@ fn the_tool_error_follows_the_critically_damped_closed_form() {
         off = off.max((e - critically_damped(&e0, &de0, OMEGA, *t)).amax());
         smallest = smallest.min(osc.accelerations(&goal, q, v).1);
     }
+    println!("UR5 on the circle: off the closed form by {off:e}, σ_min(J) ≥ {smallest}");
     assert!(off < 1e-8, "task error off the closed form by {off:e}");
     // The inverse was never damped, or the closed form would not hold.
     assert!(
