@@ -6,6 +6,7 @@
 
 use crate::catalog::constrained::ThreadedTops;
 use crate::floating::Quadruped;
+use crate::floating_bases::Solo12;
 use crate::operational::Ur5;
 use crate::urdf_arms::Xarm7;
 
@@ -71,6 +72,19 @@ fn frame_pose_off<S: Posed<f64, N, Q>, const N: usize, const Q: usize>(
     off
 }
 
+/// q with each orientation's quaternion scaled to unit norm.
+fn on_the_sphere<S: Lagrangian<f64, N, Q>, const N: usize, const Q: usize>(
+    _: &S,
+    mut q: SVector<f64, Q>,
+) -> SVector<f64, Q> {
+    assert!(!S::ORIENTATIONS.is_empty());
+    for o in S::ORIENTATIONS {
+        let norm = q.fixed_rows::<4>(o.q).norm();
+        q.fixed_rows_mut::<4>(o.q).unscale_mut(norm);
+    }
+    q
+}
+
 /// A pseudo-random number in [−1, 1) from a linear congruential state.
 fn uniform(state: &mut u64) -> f64 {
     *state = state
@@ -85,8 +99,9 @@ fn random<const N: usize>(state: &mut u64, scale: f64) -> SVector<f64, N> {
 
 /// One frame's pose (emitted per body with `emit(kinematics)`, the default
 /// otherwise) is `poses`'s entry to round-off: the UR5 and the xArm7 from
-/// their URDF, the two-link arm, a catalog quadruped on a free base
-/// (quaternion in q) and the catalog's threaded tops (Euler angles).
+/// their URDF, Solo 12 from its URDF on a free base (a quaternion in q),
+/// the two-link arm, a catalog quadruped on a free base (the default) and
+/// the catalog's threaded tops (Euler angles, the default).
 #[test]
 fn one_frame_s_pose_is_the_one_poses_gives() {
     let mut state = 7;
@@ -97,10 +112,10 @@ fn one_frame_s_pose_is_the_one_poses_gives() {
         assert!(frame_pose_off(&Xarm7 {}, &q) < 1e-15);
         let q: SVector<f64, 2> = random(&mut state, 3.0);
         assert!(frame_pose_off(&TwoLink {}, &q) < 1e-15);
-        let mut q: SVector<f64, 19> = random(&mut state, 1.0);
-        let norm = q.fixed_rows::<4>(3).norm();
-        q.fixed_rows_mut::<4>(3).unscale_mut(norm);
+        let q = on_the_sphere::<_, 18, 19>(&Quadruped { g: 9.81 }, random(&mut state, 1.0));
         assert!(frame_pose_off(&Quadruped { g: 9.81 }, &q) < 1e-15);
+        let q = on_the_sphere::<_, 18, 19>(&Solo12 {}, random(&mut state, 1.0));
+        assert!(frame_pose_off(&Solo12 {}, &q) < 1e-15);
         let q: SVector<f64, 6> = random(&mut state, 3.0);
         let tops = ThreadedTops {
             m: 1.0,
