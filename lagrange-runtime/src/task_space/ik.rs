@@ -34,7 +34,8 @@ pub enum Target {
 pub struct Solution<const N: usize> {
     /// The joint positions.
     pub q: SVector<f64, N>,
-    /// The residual at q.
+    /// The residual at q (∞ in a failure found before q was evaluated:
+    /// bad settings, target, body or start).
     pub residual: f64,
     /// The damped least-squares steps taken to reach q.
     pub iterations: usize,
