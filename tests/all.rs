@@ -56,6 +56,7 @@ mod scene_browser;
 mod stability;
 mod study;
 mod symplectic_orientation;
+mod task_space;
 mod torqued_body;
 mod torques;
 mod urdf;

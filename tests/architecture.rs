@@ -19,8 +19,17 @@ const RUNTIME_LAYERS: &[&[&str]] = &[
     &["system", "pose", "orientation"],
     &["mechanics"],
     &[
-        "atlas", "control", "event", "linear", "plan", "study", "table", "ensemble", "scene",
+        "atlas",
+        "control",
+        "event",
+        "linear",
+        "plan",
+        "study",
+        "table",
+        "ensemble",
+        "scene",
         "picture",
+        "task_space",
     ],
     &["simulation"],
 ];

@@ -151,7 +151,7 @@ fn a_quadruped_matches_pinocchio_s_free_flyer() {
     gravity = [0, 0, -9.81],
     emit(articulated, inverse_dynamics, jacobians, kinematics)
 )]
-struct Solo12 {}
+pub(crate) struct Solo12 {}
 
 #[test]
 fn solo_12_from_its_urdf_on_a_free_root_matches_pinocchio() {

@@ -1,16 +1,24 @@
-//! Operational-space control of the UR5 read from its URDF
-//! (`examples/catalog/operational.rs`): with the exact model the tool's task
-//! error follows the designed linear error dynamics, the orientation error
-//! is the rotation vector of R_d Rᵀ, and a singular pose gets a finite,
-//! bounded command.
+//! Operational-space control (`lagrange::task_space::OperationalSpace`) of
+//! the UR5 read from its URDF (`examples/catalog/operational.rs`): with the
+//! exact model the tool's task error follows the designed linear error
+//! dynamics, the orientation error is the rotation vector of R_d Rᵀ, and a
+//! singular pose gets a finite, bounded command.
 
 use crate::operational;
 
-use lagrange::nalgebra::{Matrix6, Rotation3, Unit, Vector3};
+use lagrange::nalgebra::{Matrix6, Rotation3, Unit, Vector3, Vector6};
 use lagrange::prelude::*;
-use operational::{
-    OperationalSpace, Task, Ur5, critically_damped, damped_inverse, rotation_vector,
-    start_off_the_circle, tool_circle,
+use lagrange::task_space::{
+    Damping, OperationalSpace, critically_damped, damped_inverse, rotation_error,
+};
+use operational::{Ur5, start_off_the_circle, tool_circle};
+
+type Task = Vector6<f64>;
+
+/// The controllers' damping: below σ_min = 0.01, λ up to 0.05.
+const DAMPING: Damping = Damping {
+    threshold: 0.01,
+    damping: 0.05,
 };
 
 const OMEGA: f64 = 10.0;
@@ -32,7 +40,7 @@ fn the_tool_error_follows_the_critically_damped_closed_form() {
     assert!((e0 - asked).amax() < 1e-12, "start error {e0}");
     let run = Simulation::new(&ur5)
         .integrator(Dopri5::tol(1e-11))
-        .feedback(|t, q: &SVector<f64, 6>, v: &SVector<f64, 6>| osc.torque(&circle.at(t), t, q, v))
+        .feedback(osc.feedback(move |t| circle.at(t)))
         .run(q0, v0, 0.0..1.0)
         .expect("the run completes");
     let traj = run.trajectory();
@@ -48,9 +56,13 @@ fn the_tool_error_follows_the_critically_damped_closed_form() {
         off = off.max((e - critically_damped(&e0, &de0, OMEGA, *t)).amax());
         smallest = smallest.min(osc.accelerations(&goal, q, v).1);
     }
+    println!("UR5 on the circle: off the closed form by {off:e}, σ_min(J) ≥ {smallest}");
     assert!(off < 1e-8, "task error off the closed form by {off:e}");
     // The inverse was never damped, or the closed form would not hold.
-    assert!(smallest > osc.threshold, "σ_min(J) fell to {smallest}");
+    assert!(
+        smallest > osc.damping_settings().threshold,
+        "σ_min(J) fell to {smallest}"
+    );
     let (q1, v1) = traj.final_state();
     let (e1, _) = osc.error(&circle.at(1.0), &q1, &v1);
     assert!(e1.amax() < 1e-3, "tool error at 1 s {e1}");
@@ -66,15 +78,16 @@ fn a_singular_pose_gets_a_finite_bounded_command() {
     let osc = OperationalSpace::new(&ur5, "tool0", OMEGA).expect("the UR5 has tool0");
     let circle = tool_circle();
     let q0 = start_off_the_circle(&osc, &circle).expect("inverse kinematics converges");
-    let (inverse, smallest) = damped_inverse(&osc.jacobian(&q0), 0.01, 0.05).expect("finite J");
+    let damped = damped_inverse(&osc.jacobian(&q0), &DAMPING).expect("finite J");
+    let (inverse, smallest) = (damped.inverse, damped.smallest);
     assert!(smallest > 0.01);
     let identity = osc.jacobian(&q0) * inverse - Matrix6::identity();
     assert!(identity.amax() < 1e-12, "J J⁺ − I = {identity}");
 
     let mut singular = q0;
     singular[4] = 0.0;
-    let (inverse, smallest) =
-        damped_inverse(&osc.jacobian(&singular), 0.01, 0.05).expect("finite J");
+    let damped = damped_inverse(&osc.jacobian(&singular), &DAMPING).expect("finite J");
+    let (inverse, smallest) = (damped.inverse, damped.smallest);
     assert!(
         smallest < 1e-12,
         "σ_min(J) = {smallest} at the wrist singularity"
@@ -95,14 +108,12 @@ fn the_rotation_vector_inverts_the_exponential() {
     let axis = Unit::new_normalize(Vector3::new(0.3, -0.5, 0.8));
     for angle in [1e-9, 1e-4, 0.3, 2.0, 3.0, std::f64::consts::PI - 1e-7] {
         let r = Rotation3::from_axis_angle(&axis, angle).into_inner();
-        let log = rotation_vector(&r);
+        let log = rotation_error(&r, &Rotation3::identity().into_inner());
         let error = (log - axis.into_inner() * angle).amax();
         assert!(error < 1e-15, "θ = {angle}: {log} ({error:e})");
     }
-    assert_eq!(
-        rotation_vector(&Rotation3::identity().into_inner()),
-        Vector3::zeros()
-    );
+    let identity = Rotation3::identity().into_inner();
+    assert_eq!(rotation_error(&identity, &identity), Vector3::zeros());
 }
 
 /// Started at rest exactly at the wrist singularity (σ_min(J) ≈ 1e-17) with
@@ -120,11 +131,11 @@ fn a_run_from_the_wrist_singularity_reaches_the_circle() {
     assert!(osc.accelerations(&circle.at(0.0), &q0, &v0).1 < 1e-12);
     let run = Simulation::new(&ur5)
         .integrator(Dopri5::tol(1e-10))
-        .feedback(|t, q: &SVector<f64, 6>, v: &SVector<f64, 6>| osc.torque(&circle.at(t), t, q, v))
+        .feedback(osc.feedback(move |t| circle.at(t)))
         .run(q0, v0, 0.0..2.0)
         .expect("the run goes through the damped region");
     let (q, v) = run.trajectory().final_state();
     let (e, _) = osc.error(&circle.at(2.0), &q, &v);
     assert!(e.amax() < 1e-5, "tool error at 2 s {e}");
-    assert!(osc.accelerations(&circle.at(2.0), &q, &v).1 > osc.threshold);
+    assert!(osc.accelerations(&circle.at(2.0), &q, &v).1 > DAMPING.threshold);
 }

@@ -44,7 +44,7 @@ struct Z1 {}
     gravity = [0, 0, -9.81],
     emit(inverse_dynamics, kinematics)
 )]
-struct Xarm7 {}
+pub(crate) struct Xarm7 {}
 
 const REFERENCE: &str = include_str!("data/urdf_arms_pinocchio.txt");
 

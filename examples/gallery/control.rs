@@ -4,15 +4,13 @@
 use crate::catalog::bicycle::{Bicycle, published};
 use crate::catalog::constrained::RollingDisk;
 use crate::catalog::control::{CartPole, TwoLinkArm};
-use crate::gallery_error;
-use crate::operational::{
-    OperationalSpace, Ur5, critically_damped, start_off_the_circle, tool_circle,
-};
+use crate::operational::{Ur5, start_off_the_circle, tool_circle};
 use crate::row::{Row, TOL, row};
 use lagrange::Posed;
 use lagrange::linear::sweep;
 use lagrange::pose::BodyPose;
 use lagrange::prelude::*;
+use lagrange::task_space::{OperationalSpace, critically_damped};
 use nalgebra::SVector;
 
 /// The cart-pole caught from a 0.3 rad tilt by continuous LQR feedback.
@@ -247,11 +245,9 @@ fn tool_distance(ur5: &Ur5, q: &SVector<f64, 6>, target: &SVector<f64, 6>) -> f6
 pub(crate) fn ur5_circle(system: &'static str) -> Result<Row, Error> {
     let ur5 = Ur5 {};
     let omega = 10.0;
-    let osc = OperationalSpace::new(&ur5, "tool0", omega)
-        .ok_or_else(|| gallery_error("the UR5 has no tool0 frame"))?;
+    let osc = OperationalSpace::new(&ur5, "tool0", omega)?;
     let circle = tool_circle();
-    let q0 = start_off_the_circle(&osc, &circle)
-        .ok_or_else(|| gallery_error("no joint angles put the UR5's tool at its start"))?;
+    let q0 = start_off_the_circle(&osc, &circle)?;
     let span = 0.0..4.0;
     row(
         system,
@@ -261,9 +257,7 @@ pub(crate) fn ur5_circle(system: &'static str) -> Result<Row, Error> {
         || {
             Simulation::new(&ur5)
                 .integrator(Dopri5::tol(TOL))
-                .feedback(|t, q: &SVector<f64, 6>, v: &SVector<f64, 6>| {
-                    osc.torque(&circle.at(t), t, q, v)
-                })
+                .feedback(osc.feedback(move |t| circle.at(t)))
                 .run(q0, SVector::zeros(), span.clone())
                 .map(|run| run.into_trajectory())
         },

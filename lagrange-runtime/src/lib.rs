@@ -176,14 +176,19 @@
 //! one quaternion or a system's whole configuration, and a run's error in
 //! that tangent space.
 //!
+//! [`task_space`] holds what robot programs ask of a frame, for any number of
+//! joints: damped least-squares inverse kinematics, and the operational-space
+//! controller as a feedback law for a run (in `f64`, on the emitted
+//! [`Kinematics`]).
+//!
 //! [`study`] runs work-precision studies: integrators × tolerances or step sizes
 //! on one problem, each run's error against a closed form or a DOP853 reference
 //! and its cost, as a markdown/CSV table and (feature `plot`) a log-log PNG.
 //! With the feature `plot`, `picture` draws a run's columns against t and a
 //! scene's still as PNGs.
 //!
-//! Everything is generic over the scalar `T: `[`Real`] (f64, f32, ...) and the
-//! number of degrees of freedom `N`, a type-level constant.
+//! Everything else is generic over the scalar `T: `[`Real`] (f64, f32, ...) and
+//! the number of degrees of freedom `N`, a type-level constant.
 
 #![warn(missing_docs)]
 
@@ -221,6 +226,7 @@ pub mod plan;
 pub mod scene;
 pub mod study;
 mod table;
+pub mod task_space;
 
 // 6 top: the one builder
 mod simulation;

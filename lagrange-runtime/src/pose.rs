@@ -126,6 +126,26 @@ pub trait Posed<T: Real, const N: usize, const Q: usize = N> {
     /// (q, t). The slices hold `BODIES.len()` and `POINTS.len()` entries.
     fn poses(&self, q: &SVector<T, Q>, t: T, bodies: &mut [BodyPose<T>], points: &mut [Vector3<T>]);
 
+    /// The pose of one body at (q, t): `poses(..)`'s entry `body`, without
+    /// the caller allocating a slice for every body and point; `None` for an
+    /// index past [`BODIES`](Self::BODIES). With `emit(kinematics)` the
+    /// derive overrides it with one program per body, which computes that
+    /// body's pose alone; the default evaluates every pose (allocating the
+    /// slices) and keeps the one asked for.
+    ///
+    /// Like [`poses`](Self::poses) it checks nothing:
+    /// [`Configuration::frame_pose`](crate::Configuration::frame_pose)
+    /// evaluates it at a q checked as a run checks its start.
+    fn frame_pose(&self, body: usize, q: &SVector<T, Q>, t: T) -> Option<BodyPose<T>> {
+        if body >= Self::BODIES.len() {
+            return None;
+        }
+        let mut bodies = vec![BodyPose::default(); Self::BODIES.len()];
+        let mut points = vec![Vector3::zeros(); Self::POINTS.len()];
+        self.poses(q, t, &mut bodies, &mut points);
+        Some(bodies[body])
+    }
+
     /// Writes each body's mass and inertia (`BODIES.len()` entries).
     fn inertias(&self, out: &mut [BodyInertia<T>]);
 
@@ -172,8 +192,7 @@ pub trait Kinematics<T: Real, const N: usize, const Q: usize = N>: Posed<T, N, Q
 
     /// The frame Jacobian in the frame's own axes (Pinocchio's `LOCAL`):
     /// [`frame_jacobian`](Self::frame_jacobian) with both blocks turned by Rᵀ,
-    /// R the body's rotation from [`Posed::poses`] (which this evaluates for
-    /// every body and point, allocating their slices: not for a hot loop).
+    /// R the body's rotation from [`Posed::frame_pose`].
     fn frame_jacobian_local(
         &self,
         body: usize,
@@ -181,10 +200,7 @@ pub trait Kinematics<T: Real, const N: usize, const Q: usize = N>: Posed<T, N, Q
         t: T,
     ) -> Option<SMatrix<T, 6, N>> {
         let world = self.frame_jacobian(body, q, t)?;
-        let mut bodies = vec![BodyPose::default(); Self::BODIES.len()];
-        let mut points = vec![Vector3::zeros(); Self::POINTS.len()];
-        self.poses(q, t, &mut bodies, &mut points);
-        let rt = bodies[body].rotation.transpose();
+        let rt = self.frame_pose(body, q, t)?.rotation.transpose();
         let mut local = world;
         local
             .fixed_rows_mut::<3>(0)

@@ -2,13 +2,16 @@
 //! as one straight-line program in (q, t), the bodies' masses and inertias, and
 //! the `shape(...)` items. Emitted for every description: the methods are
 //! `#[inline]`, so a program that never draws a scene never compiles their
-//! machine code.
+//! machine code. With `emit(kinematics)` it also overrides `frame_pose`: one
+//! program per body (a hidden inherent method each, as the frame Jacobians),
+//! so asking for one frame computes that frame alone.
 
 use lagrange_symbolic::Expr as Sym;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 use super::emitter::Emitter;
+use super::output::{Signature, per_body};
 use super::{Frame, constant};
 use crate::ast::Scalar;
 use crate::lowered::{Anchor, Poses, SolidModel};
@@ -31,7 +34,10 @@ pub(super) fn impl_posed(e: &Emitter, f: &Frame, model: &Model, scalar: &Scalar)
     let pose_body = pose_program(e, poses, scalar);
     let inertia_body = inertia_program(e, poses);
     let shape_body = shape_program(e, poses, scalar);
+    let (frame_pose, frame_pose_methods) = frame_pose(e, f, model, scalar);
     quote! {
+        #frame_pose_methods
+
         #[automatically_derived]
         #[allow(unused_variables, clippy::all)]
         impl #ig #p::Posed<#s, #sizes> for #ident #tg #wc {
@@ -53,8 +59,77 @@ pub(super) fn impl_posed(e: &Emitter, f: &Frame, model: &Model, scalar: &Scalar)
             fn shapes(&self, out: &mut dyn FnMut(#p::Shape<#s>)) {
                 #shape_body
             }
+
+            #frame_pose
         }
     }
+}
+
+/// With the model's frames (`emit(kinematics)`), the override of
+/// `Posed::frame_pose` dispatching on the body to one hidden method per body,
+/// each evaluating that body's pose alone, and the inherent impl holding
+/// those methods; without, nothing (the trait's default fills every pose).
+fn frame_pose(
+    e: &Emitter,
+    f: &Frame,
+    model: &Model,
+    scalar: &Scalar,
+) -> (TokenStream, TokenStream) {
+    if model.outputs.frames.is_none() {
+        return (TokenStream::new(), TokenStream::new());
+    }
+    let s = &f.s;
+    let qvec = f.qvec();
+    let p = quote!(::lagrange::__private);
+    let params = quote!(q: &#qvec, t: #s);
+    let ty = quote!(#p::BodyPose<#s>);
+    let programs: Vec<Vec<Sym>> = model
+        .poses
+        .bodies
+        .iter()
+        .map(|b| {
+            let mut all = b.origin.clone();
+            all.extend(&b.centre);
+            all.extend(b.rotation.iter().flatten());
+            all
+        })
+        .collect();
+    let (dispatch, methods) = per_body(
+        e,
+        Signature {
+            name: "frame_pose",
+            params: &params,
+            args: quote!(q, t),
+            ty: &ty,
+        },
+        &programs,
+        |outs| {
+            // Origin and centre have two components each in a planar
+            // description, three otherwise; the rotation has nine.
+            let k = (outs.len() - 9) / 2;
+            let origin = vector3(&outs[..k], scalar);
+            let centre = vector3(&outs[k..2 * k], scalar);
+            let rotation = matrix3(&outs[2 * k..]);
+            quote!(#p::BodyPose { origin: #origin, centre: #centre, rotation: #rotation })
+        },
+    );
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
+    let items = quote! {
+        #[automatically_derived]
+        #[allow(unused_variables, clippy::all)]
+        impl #ig #ident #tg #wc {
+            #methods
+        }
+    };
+    let method = quote! {
+        fn frame_pose(&self, body: usize, q: &#qvec, t: #s) -> ::core::option::Option<#ty> {
+            #dispatch
+        }
+    };
+    (method, items)
 }
 
 /// An index as an unsuffixed literal.

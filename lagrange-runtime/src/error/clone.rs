@@ -42,7 +42,9 @@ impl Clone for Error {
             MissingDerivatives { method, needed_for },
             NonPhysicalParameter { body, entry, value, reason },
             NonUnitQuaternion { orientation, norm, tolerance },
-            JointLimit { joint, coordinate, value, lower, upper, t };
+            JointLimit { joint, coordinate, value, lower, upper, t },
+            UnknownBody { body, count, bodies },
+            InverseKinematics { body, iterations, residual, tolerance };
             Settings, Linear, Plan
         )
     }

@@ -373,6 +373,40 @@ pub enum Error {
         name: String,
     },
 
+    /// A body asked for by name or index that the system does not have
+    /// ([`Posed::BODIES`](crate::Posed::BODIES)).
+    #[error("the system has no body `{body}` (it has {count} bodies: {bodies:?})")]
+    UnknownBody {
+        /// The name asked for, or the index written out.
+        body: String,
+        /// How many bodies the system has.
+        count: usize,
+        /// Their names, in order.
+        bodies: Vec<&'static str>,
+    },
+
+    /// Inverse kinematics stopped at its iteration limit with the frame
+    /// still further from its target than the tolerance: an unreachable
+    /// target (beyond the arm's reach, or outside the joint limits), or a
+    /// start that leads into a singularity. The best iterate is in the
+    /// [`Failure`]'s `partial`.
+    #[error(
+        "inverse kinematics of `{body}` did not converge in {iterations} iterations: \
+         residual {residual:e} > tolerance {tolerance:e} (unreachable target, or a start \
+         that leads into a singularity)"
+    )]
+    InverseKinematics {
+        /// The frame's body.
+        body: &'static str,
+        /// The iterations made.
+        iterations: usize,
+        /// The smallest residual reached (the norm of the task error:
+        /// metres and radians).
+        residual: f64,
+        /// The tolerance asked for.
+        tolerance: f64,
+    },
+
     /// A setting, the time span, the initial state or data given to a
     /// builder cannot be used (a negative tolerance, an empty span, a NaN
     /// initial state, an input table whose times go back, ...); see

@@ -156,6 +156,12 @@ impl<S: Lagrangian<T, N, Q> + Posed<T, N, Q>, T: Real, const N: usize, const Q: 
         (bodies, points)
     }
 
+    /// The pose of body `body` ([`Posed::frame_pose`]), indexing
+    /// [`Posed::BODIES`]; `None` past the bodies.
+    pub fn frame_pose(&self, body: usize) -> Option<BodyPose<T>> {
+        self.sys.frame_pose(body, &self.q, self.t)
+    }
+
     /// Each body's mass and inertia ([`Posed::inertias`]).
     pub fn inertias(&self) -> Vec<BodyInertia<T>> {
         let mut out = vec![BodyInertia::default(); S::BODIES.len()];

@@ -17,17 +17,17 @@ use crate::mechanics::Model;
 
 /// The per-body methods' signature: the stem of their names, their
 /// parameters, the arguments the dispatch passes, their return type.
-struct Signature<'a> {
-    name: &'a str,
-    params: &'a TokenStream,
-    args: TokenStream,
-    ty: &'a TokenStream,
+pub(in crate::emit) struct Signature<'a> {
+    pub name: &'a str,
+    pub params: &'a TokenStream,
+    pub args: TokenStream,
+    pub ty: &'a TokenStream,
 }
 
 /// A `match` on `body` with one arm per body, each calling that body's
 /// method `__lagrange_<name>_<b>(&self, <args>)`, and those methods, each
 /// evaluating `program(b)` into `build(outs)` of type `ty`.
-fn per_body(
+pub(in crate::emit) fn per_body(
     e: &Emitter,
     signature: Signature,
     programs: &[Vec<Sym>],

@@ -11,6 +11,8 @@ mod jacobians;
 mod kinematics;
 mod reactions;
 
+pub(super) use kinematics::{Signature, per_body};
+
 use proc_macro2::TokenStream;
 
 use super::Frame;
