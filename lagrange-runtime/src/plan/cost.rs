@@ -6,7 +6,7 @@
 //! and a Hessian, Gauss–Newton's JᵀWJ for a squared residual (what DDP
 //! needs: positive semidefinite, exact at a zero residual).
 
-use crate::pose::{BodyPose, Kinematics};
+use crate::pose::Kinematics;
 use nalgebra::{DMatrix, DVector, SVector, Vector3};
 
 /// A cost term's value and quadratic model at (x, u), x = (q, v) with 2N
@@ -103,12 +103,7 @@ impl<'s, S> FramePosition<'s, S> {
     where
         S: Kinematics<f64, N>,
     {
-        let mut bodies = vec![BodyPose::default(); S::BODIES.len()];
-        let mut points = vec![Vector3::zeros(); S::POINTS.len()];
-        self.system.poses(q, t, &mut bodies, &mut points);
-        bodies
-            .get(self.body)
-            .map_or(Vector3::repeat(f64::NAN), |b| b.origin)
+        (self.system.frame_pose(self.body, q, t)).map_or(Vector3::repeat(f64::NAN), |b| b.origin)
     }
 }
 
