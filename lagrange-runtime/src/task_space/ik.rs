@@ -50,7 +50,7 @@ impl<const N: usize> Progress for Solution<N> {
 
 /// Damped least-squares inverse kinematics for a frame of a robot with any
 /// number of joints N: from a start q₀ the steps
-/// q ← q + J⁺ e, J⁺ = Jᵀ (J Jᵀ + λ² I)⁻¹ ([`damped_inverse`]),
+/// q ← q + J⁺ e, J⁺ = Jᵀ (J Jᵀ + λ² I)⁻¹ ([`damped_inverse`](super::damped_inverse)),
 /// with e = (p_d − p, log(R_d Rᵀ)) for a [`Target::Pose`] (J the frame's
 /// world-aligned Jacobian) or e = p_d − p for a [`Target::Position`] (J's
 /// rows 0–2), until |e| is within the tolerance. λ is zero while J's
