@@ -255,6 +255,11 @@ fn an_unreachable_target_fails_with_the_best_iterate() {
         .max_iterations(200)
         .solve(&arm, hand, &target, &Vector2::new(0.3, 0.5))
         .expect_err("out of reach");
+    let message = failure.to_string();
+    assert!(
+        message.contains("the closest configuration, reached in"),
+        "{message}"
+    );
     let Error::InverseKinematics {
         body,
         iterations,

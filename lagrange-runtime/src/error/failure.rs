@@ -46,6 +46,18 @@ pub trait Progress {
     /// The number of points computed (stored) and the last time among them
     /// (as `f64`), if there is one.
     fn progress(&self) -> (usize, Option<f64>);
+
+    /// What the partial result is and how far it got, for the failure's
+    /// message. By default a run's: "the run stopped early: 12 points
+    /// computed, the last at t = 0.5; the partial run is in
+    /// `Failure::partial`". Results that are not runs (a plan, an inverse
+    /// kinematics solution) say what they are instead.
+    fn describe(&self) -> String {
+        format!(
+            "the run stopped early: {}; the partial run is in `Failure::partial`",
+            Summary(self.progress())
+        )
+    }
 }
 
 impl<P> Failure<P> {
@@ -82,12 +94,7 @@ impl fmt::Display for Summary {
 
 impl<P: Progress> fmt::Display for Failure<P> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{}\n(the run stopped early: {}; the partial run is in `Failure::partial`)",
-            self.error,
-            Summary(self.partial.progress())
-        )
+        write!(f, "{}\n({})", self.error, self.partial.describe())
     }
 }
 

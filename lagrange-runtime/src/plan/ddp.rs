@@ -69,6 +69,15 @@ impl<const N: usize, const P: usize> Progress for Plan<N, P> {
             self.t.get(self.q.len().wrapping_sub(1)).copied(),
         )
     }
+
+    fn describe(&self) -> String {
+        format!(
+            "the plan stopped short after {} iteration(s) at cost {}; the best plan is in \
+             `Failure::partial`",
+            self.log.len(),
+            self.cost
+        )
+    }
 }
 
 impl Default for Ddp {

@@ -153,10 +153,14 @@ fn a_budget_hit_keeps_the_best_plan() {
         (201, 200)
     );
     assert_eq!(failure.partial.log.len(), 2);
+    let message = failure.to_string();
     assert!(
-        failure
-            .to_string()
-            .contains("did not converge in 2 iteration(s)")
+        message.contains("did not converge in 2 iteration(s)"),
+        "{message}"
+    );
+    assert!(
+        message.contains("the plan stopped short after 2 iteration(s)"),
+        "{message}"
     );
 }
 

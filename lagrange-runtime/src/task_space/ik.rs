@@ -41,10 +41,18 @@ pub struct Solution<const N: usize> {
     pub iterations: usize,
 }
 
-/// A failure's summary: the iterations made.
+/// A failure's summary: the iterations made and the residual reached.
 impl<const N: usize> Progress for Solution<N> {
     fn progress(&self) -> (usize, Option<f64>) {
         (self.iterations, None)
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "the closest configuration, reached in {} iteration(s) with |e| = {:e}, is in \
+             `Failure::partial`",
+            self.iterations, self.residual
+        )
     }
 }
 
