@@ -291,10 +291,11 @@ impl Trim {
         let svd = jacobian.svd(true, true);
         let cutoff = 1e-12 * svd.singular_values.max();
         let rhs = -DVector::from_column_slice(a.as_slice());
-        let x = svd.solve(&rhs, cutoff).map_err(|e| LinearError::Riccati {
-            reason: format!("the trim's least-squares step failed: {e}"),
-            residual: f64::NAN,
-        })?;
+        // U and Vᵀ were asked for, so the solve cannot fail; a non-finite
+        // Jacobian gives a non-finite step, which the line search rejects.
+        let x = svd
+            .solve(&rhs, cutoff)
+            .unwrap_or_else(|_| DVector::from_element(nt + ni, f64::NAN));
         let mut delta = SVector::zeros();
         let mut du = SVector::zeros();
         unknowns

@@ -36,9 +36,7 @@ pub(super) fn solve(
     let mut x = clamp(start);
     for _ in 0..100 {
         let grad = g + h * &x;
-        let free: Vec<usize> = (0..n)
-            .filter(|&i| !(x[i] <= lower[i] && grad[i] > 0.0 || x[i] >= upper[i] && grad[i] < 0.0))
-            .collect();
+        let free = free_at(&grad, lower, upper, &x);
         let factor = factor_free(h, &free)?;
         let Some(chol) = &factor else {
             return Some(BoxSolution { x, free, factor });
@@ -70,26 +68,24 @@ pub(super) fn solve(
         let improvement = f0 - value(&next);
         x = next;
         if improvement <= 1e-14 * (1.0 + f0.abs()) {
-            let free = free_at(h, g, lower, upper, &x);
+            let free = free_at(&(g + h * &x), lower, upper, &x);
             let factor = factor_free(h, &free)?;
             return Some(BoxSolution { x, free, factor });
         }
     }
-    let free = free_at(h, g, lower, upper, &x);
+    let free = free_at(&(g + h * &x), lower, upper, &x);
     let factor = factor_free(h, &free)?;
     Some(BoxSolution { x, free, factor })
 }
 
-/// The inputs not held at a bound by the gradient at x.
+/// The inputs not held at a bound by the gradient `grad` at x.
 fn free_at(
-    h: &DMatrix<f64>,
-    g: &DVector<f64>,
+    grad: &DVector<f64>,
     lower: &DVector<f64>,
     upper: &DVector<f64>,
     x: &DVector<f64>,
 ) -> Vec<usize> {
-    let grad = g + h * x;
-    (0..g.len())
+    (0..grad.len())
         .filter(|&i| !(x[i] <= lower[i] && grad[i] > 0.0 || x[i] >= upper[i] && grad[i] < 0.0))
         .collect()
 }
