@@ -60,8 +60,63 @@ pub(super) fn rhs_jacobians(
     }
 }
 
-/// −∂τ/∂q, −∂τ/∂q̇ with τ = RNEA(q, q̇, q̈; gravity) − rest.
+/// −∂τ/∂q, −∂τ/∂q̇ with τ = RNEA(q, q̇, q̈; gravity) − rest: by the closed-form
+/// derivatives of the recursion in world axes or by differentiating its
+/// link-axes form, whichever program is cheaper (the closed form wins on
+/// arms with general axes; the link-axes form can win on small trees whose
+/// axes are aligned, where its products by 0 and 1 vanish).
 fn of_the_tree(ctx: &mut Context, tree: &Tree, rest: &[Sym]) -> RhsJacobians {
+    let (tq, tv) = crate::tree::inverse_dynamics_derivatives(ctx, tree);
+    let closed = with_rest(ctx, tq, tv, rest);
+    let differentiated = of_the_link_axes_form(ctx, tree, rest);
+    let cost = |ctx: &Context, j: &RhsJacobians| {
+        let mut out = Vec::new();
+        j.expressions(&mut out);
+        super::generic::cost(ctx, &out)
+    };
+    #[cfg(test)]
+    if let Some(closed_form) = tests::FORCED.get() {
+        return if closed_form { closed } else { differentiated };
+    }
+    if cost(ctx, &differentiated) < cost(ctx, &closed) {
+        differentiated
+    } else {
+        closed
+    }
+}
+
+/// −∂τ/∂x + ∂rest/∂x from the recursion's ∂τ/∂q and ∂τ/∂q̇.
+fn with_rest(
+    ctx: &mut Context,
+    tq: Vec<Vec<Sym>>,
+    tv: Vec<Vec<Sym>>,
+    rest: &[Sym],
+) -> RhsJacobians {
+    let q = ctx.coordinates();
+    let qd = ctx.velocities();
+    let minus = |ctx: &mut Context, m: Vec<Vec<Sym>>, x: &[Sym]| -> Vec<Vec<Sym>> {
+        m.into_iter()
+            .zip(rest)
+            .map(|(row, &f)| {
+                row.into_iter()
+                    .zip(x)
+                    .map(|(e, &xk)| {
+                        let d = ctx.diff(f, xk);
+                        ctx.sub(d, e)
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let position = minus(ctx, tq, &q);
+    let velocity = minus(ctx, tv, &qd);
+    RhsJacobians { position, velocity }
+}
+
+/// −∂τ/∂q, −∂τ/∂q̇ by differentiating the link-axes recursion coordinate by
+/// coordinate; a description with free orientations takes them from a copy
+/// of the tree whose spherical joints are turned by R(θ).
+fn of_the_link_axes_form(ctx: &mut Context, tree: &Tree, rest: &[Sym]) -> RhsJacobians {
     let turned = tree.perturbed(ctx);
     let inertial = crate::tree::inverse_dynamics_at_accelerations(ctx, &turned, true);
     let tau: Vec<Sym> = inertial
@@ -123,3 +178,6 @@ fn of_the_generic_form(ctx: &mut Context, mass: &[Vec<Sym>], rhs: &[Sym]) -> Rhs
         .collect();
     RhsJacobians { position, velocity }
 }
+
+#[cfg(test)]
+mod tests;

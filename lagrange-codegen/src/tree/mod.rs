@@ -30,6 +30,7 @@
 
 mod aba;
 mod crba;
+mod derivatives;
 mod detect;
 mod frame;
 mod link;
@@ -40,6 +41,7 @@ mod written;
 
 pub use aba::{ForwardDynamics, forward_dynamics};
 pub use crba::mass_matrix;
+pub use derivatives::inverse_dynamics_derivatives;
 pub use detect::detect;
 pub use not_a_tree::{BodyFault, NotATree};
 pub use rnea::{inverse_dynamics, inverse_dynamics_at_accelerations};
