@@ -592,9 +592,9 @@ pub mod __private {
         Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid,
     };
     pub use lagrange_runtime::{
-        Atlas, Constrained, Driven, DrivenAtlas, EulerRotation, FormVisitor, FreeVisitor,
-        JointLimit, Lagrangian, Orientation, Real, Reduced, Route,
+        AccelerationDerivatives, Atlas, Constrained, Differentiable, Driven, DrivenAtlas, Error,
+        EulerRotation, FormVisitor, FreeVisitor, JointLimit, Lagrangian, Orientation, Real,
+        Reduced, Route, func, physical,
     };
-    pub use lagrange_runtime::{Error, func, physical};
     pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 }

@@ -34,6 +34,7 @@ mod constrained_tangent;
 mod control;
 mod derivatives;
 mod emitted;
+mod emitted_derivatives;
 mod events;
 mod extremes;
 mod failures;

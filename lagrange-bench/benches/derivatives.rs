@@ -9,7 +9,7 @@
 //!     cargo bench -p lagrange-bench --bench derivatives
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use lagrange::Lagrangian;
+use lagrange::{Differentiable, Lagrangian};
 use nalgebra::SVector;
 use std::hint::black_box;
 
@@ -29,16 +29,25 @@ arm!(Xarm7, "../robots/xarm7.urdf");
 
 /// One group per arm, `derivatives_<name>`, at q_k = 0.3 − 0.17 k,
 /// q̇_k = 0.5 − 0.21 k.
-fn time<S: Lagrangian<f64, N> + Default, const N: usize>(c: &mut Criterion, name: &str) {
+fn time<S: Differentiable<f64, N, N> + Default, const N: usize>(c: &mut Criterion, name: &str) {
     let sys = S::default();
     let q = SVector::<f64, N>::from_fn(|k, _| 0.3 - 0.17 * k as f64);
     let v = SVector::<f64, N>::from_fn(|k, _| 0.5 - 0.21 * k as f64);
+    let tau = SVector::<f64, N>::zeros();
     let mut group = c.benchmark_group(format!("derivatives_{name}"));
     group.bench_function("accelerations", |b| {
         b.iter(|| lagrange::accelerations(&sys, black_box(&q), black_box(&v), 0.0))
     });
     group.bench_function("acceleration derivatives", |b| {
-        b.iter(|| lagrange::acceleration_derivatives(&sys, black_box(&q), black_box(&v), 0.0))
+        b.iter(|| {
+            lagrange::acceleration_derivatives(
+                &sys,
+                black_box(&q),
+                black_box(&v),
+                black_box(&tau),
+                0.0,
+            )
+        })
     });
     group.finish();
 }

@@ -32,11 +32,12 @@ fn reference(model: &str, key: &str) -> Vec<f64> {
 /// in every joint, as the peer) and the tangent-space A of a floating base.
 fn floating_base<S, const N: usize, const Q: usize>(c: &mut Criterion, name: &str, sys: &S)
 where
-    S: lagrange::Lagrangian<f64, N, Q>,
+    S: lagrange::Differentiable<f64, N, Q>,
 {
     let q = SVector::<f64, Q>::from_column_slice(&reference(name, "q"));
     let v = SVector::<f64, N>::from_column_slice(&reference(name, "v"));
     let a = SVector::<f64, N>::repeat(0.1);
+    let tau = SVector::<f64, N>::zeros();
     let mut group = c.benchmark_group(format!("free_{name}"));
     group.bench_function("M + (Q - h)", |b| {
         b.iter(|| sys.mass_matrix_and_rhs(black_box(&q), black_box(&v), 0.0))
@@ -52,7 +53,15 @@ where
         b.iter(|| sys.rhs_jacobians(black_box(&q), black_box(&v), black_box(&accel), 0.0))
     });
     group.bench_function("acceleration derivatives", |b| {
-        b.iter(|| lagrange::acceleration_derivatives(sys, black_box(&q), black_box(&v), 0.0))
+        b.iter(|| {
+            lagrange::acceleration_derivatives(
+                sys,
+                black_box(&q),
+                black_box(&v),
+                black_box(&tau),
+                0.0,
+            )
+        })
     });
     let linearizer = lagrange::prelude::Linearizer::new();
     group.bench_function("tangent A (emitted derivatives)", |b| {

@@ -246,8 +246,8 @@ pub use mechanics::constraint::{
     ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent,
 };
 pub use mechanics::{
-    AccelerationDerivatives, DEFAULT_SINGULAR_TOLERANCE, Dynamics, Forcing, NoForcing, Rattle,
-    ReducedDynamics, ReducedForm, acceleration_derivatives, accelerations,
+    AccelerationDerivatives, DEFAULT_SINGULAR_TOLERANCE, Differentiable, Dynamics, Forcing,
+    NoForcing, Rattle, ReducedDynamics, ReducedForm, acceleration_derivatives, accelerations,
 };
 pub use numeric::orientation::Orientation;
 pub use numeric::{Real, func};

@@ -360,6 +360,49 @@ impl Program {
             outputs: outs,
         }
         .without_dead_code()
+        .with_shared_reciprocals()
+    }
+
+    /// Every divisor that divides more than once divided into 1 once, and
+    /// the divisions by it made multiplications by that reciprocal: a
+    /// division costs several multiplications, and a factorisation's pivot
+    /// divides every entry of its column and every solve (one a/d costs what
+    /// it did, within an ulp of a · (1/d)).
+    fn with_shared_reciprocals(self) -> Program {
+        let mut uses = vec![0usize; self.ops.len()];
+        for op in &self.ops {
+            if let Op::Div(_, d) = op {
+                uses[*d as usize] += 1;
+            }
+        }
+        if uses.iter().all(|&n| n < 2) {
+            return self;
+        }
+        let mut ops: Vec<Op> = Vec::with_capacity(self.ops.len());
+        let mut renumber = vec![0 as Value; self.ops.len()];
+        let mut reciprocal: HashMap<Value, Value> = HashMap::new();
+        let mut one = None;
+        for (i, &original) in self.ops.iter().enumerate() {
+            let shared = matches!(original, Op::Div(_, d) if uses[d as usize] >= 2);
+            let op = match map_operands(original, |v| renumber[v as usize]) {
+                Op::Div(a, d) if shared => {
+                    let r = *reciprocal.entry(d).or_insert_with(|| {
+                        let c = *one.get_or_insert_with(|| {
+                            ops.push(Op::Const(1f64.to_bits()));
+                            (ops.len() - 1) as Value
+                        });
+                        ops.push(Op::Div(c, d));
+                        (ops.len() - 1) as Value
+                    });
+                    Op::Mul(a, r)
+                }
+                other => other,
+            };
+            renumber[i] = ops.len() as Value;
+            ops.push(op);
+        }
+        let outputs = self.outputs.iter().map(|&o| renumber[o as usize]).collect();
+        Program { ops, outputs }
     }
 
     /// Drop operations no output depends on and renumber (order preserved).

@@ -61,6 +61,9 @@ impl<'a> Emitter<'a> {
         if let Some(a) = &model.outputs.articulated {
             add(&a.extra, "tau");
         }
+        if let Some(d) = &model.outputs.solved {
+            add(&d.extra, "tau");
+        }
         add(&model.hoisted.symbols, "p");
         let multipliers = model.constraints.multipliers.as_ref();
         if let Some(d) = multipliers.and_then(|c| c.derivatives.as_ref()) {

@@ -23,6 +23,7 @@ mod derivatives;
 mod energy;
 mod expressions;
 mod extra;
+mod factor;
 mod force;
 mod forms;
 mod frames;
@@ -32,6 +33,7 @@ mod kinematics;
 mod model;
 mod motion;
 mod recursive;
+mod solved;
 
 pub use derivatives::RhsJacobians;
 pub use expressions::Expressions;
@@ -42,6 +44,7 @@ pub use model::{
     Articulation, BiasRoute, ConstraintForms, Derivation, Energies, EquationsOfMotion, InputModel,
     Masses, Model, Outputs, Variables,
 };
+pub use solved::SolvedDerivatives;
 
 use std::mem::take;
 
@@ -480,6 +483,10 @@ fn finish(
         None => reduced_if_asked(&mut ctx, &c, &d.variables.coordinates, &[], jacobians)?,
         r => r,
     };
+    let unconstrained = c.holonomic.is_empty() && c.nonholonomic.is_empty();
+    let solved = (d.jacobians.as_ref())
+        .filter(|_| unconstrained)
+        .map(|j| solved::solved(&mut ctx, &d.motion.mass, &d.motion.rhs, j));
     let articulated = d.forces.articulated;
     let hoisted = hoist(
         &mut ctx,
@@ -502,6 +509,7 @@ fn finish(
             hamilton,
             coriolis,
             jacobians: d.jacobians,
+            solved,
             articulated,
             inverse: d.inverse,
             frames: early.frames,

@@ -13,6 +13,7 @@ pub use super::force::InputModel;
 pub use super::generic::BiasRoute;
 pub use super::motion::{Derivation, EquationsOfMotion};
 pub use super::recursive::Articulation;
+use super::solved::SolvedDerivatives;
 
 /// The equations of motion M q̈ + h = Q, the energies, the constrained forms
 /// and the optional outputs, as expressions in one [`Context`].
@@ -209,6 +210,9 @@ pub struct Outputs {
     /// The right-hand side's Jacobians at the accelerations q̈
     /// (`emit(jacobians)`).
     pub jacobians: Option<RhsJacobians>,
+    /// q̈ and its derivatives in (q, q̇, τ) as one program, M factorised in
+    /// it (`emit(jacobians)` on a system without constraints).
+    pub solved: Option<SolvedDerivatives>,
     /// The articulated-body forward dynamics (`emit(articulated)`).
     pub articulated: Option<Articulation>,
     /// τ = M q̈ + h − Q and the gravity torques (`emit(inverse_dynamics)`).

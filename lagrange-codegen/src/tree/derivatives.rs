@@ -68,7 +68,10 @@ struct Kinematic {
 
 /// ∂τ/∂q and ∂τ/∂q̇ for τ = RNEA(q, q̇, q̈; gravity as a base acceleration),
 /// N × N row-major, in coordinate order.
-pub fn inverse_dynamics_derivatives(ctx: &mut Context, tree: &Tree) -> (Vec<Vec<Sym>>, Vec<Vec<Sym>>) {
+pub fn inverse_dynamics_derivatives(
+    ctx: &mut Context,
+    tree: &Tree,
+) -> (Vec<Vec<Sym>>, Vec<Vec<Sym>>) {
     let joints = joints(ctx, tree);
     let kinematics = forward(ctx, tree, &joints);
     backward(ctx, &joints, &kinematics)
@@ -114,12 +117,7 @@ fn joints(ctx: &mut Context, tree: &Tree) -> Vec<Joint> {
 }
 
 /// A link's world pose (rotation, origin) and its joint's world column S.
-fn world_link(
-    ctx: &mut Context,
-    link: &Link,
-    rp: Mat3,
-    pp: [Sym; 3],
-) -> ((Mat3, [Sym; 3]), Pair) {
+fn world_link(ctx: &mut Context, link: &Link, rp: Mat3, pp: [Sym; 3]) -> ((Mat3, [Sym; 3]), Pair) {
     let zero = ctx.zero();
     let at = mat_vec(ctx, &rp, link.offset);
     let origin = add3(ctx, pp, at);
@@ -273,7 +271,6 @@ fn flat(a: Pair) -> [Sym; 6] {
     [a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2]]
 }
 
-
 /// Forward pass: world velocities and accelerations (the ground accelerating
 /// at −g), each joint's force, B and its columns' motion derivatives.
 fn forward(ctx: &mut Context, tree: &Tree, joints: &[Joint]) -> Vec<Kinematic> {
@@ -404,33 +401,9 @@ fn backward(
         let descendants = std::mem::take(&mut below[j]);
         let mut own = Vec::with_capacity(joints[j].columns.len());
         for (i, &(coordinate, s)) in joints[j].columns.iter().enumerate() {
-            let ys = apply(ctx, &c.inertia, s);
-            let bts = coriolis_transpose_apply(ctx, &c.coriolis, s);
-            let bq = coriolis_apply(ctx, &c.coriolis, k.dv_dq[i]);
-            let yq = apply(ctx, &c.inertia, k.da_dq[i]);
-            let bs = coriolis_apply(ctx, &c.coriolis, s);
-            let yv = apply(ctx, &c.inertia, k.da_dv[i]);
-            let df_dq = add_pair(ctx, bq, yq);
-            let df_dv = add_pair(ctx, bs, yv);
-            // Rows of the descendants' columns against this column.
-            for d in &descendants {
-                let a = dot6(ctx, d.ys, k.da_dq[i]);
-                let b = dot6(ctx, d.bts, k.dv_dq[i]);
-                let e = ctx.add(a, b);
-                accumulate(ctx, &mut dq, d.coordinate, coordinate, e);
-                let a = dot6(ctx, d.ys, k.da_dv[i]);
-                let b = dot6(ctx, d.bts, s);
-                let e = ctx.add(a, b);
-                accumulate(ctx, &mut dv, d.coordinate, coordinate, e);
-            }
-            own.push(Column {
-                coordinate,
-                s,
-                ys,
-                bts,
-                df_dq,
-                df_dv,
-            });
+            let matrices = (&mut dq[..], &mut dv[..]);
+            descendant_rows(ctx, matrices, &descendants, (k, i), (coordinate, s));
+            own.push(column(ctx, &c, (k, i), (coordinate, s)));
         }
         // This joint's rows against its own columns and its subtree's.
         for r in &own {
@@ -450,21 +423,70 @@ fn backward(
             col.df_dq = add_pair(ctx, col.df_dq, turn);
         }
         if let Some(p) = joints[j].parent {
-            let up = &mut composite[p];
-            let merged = Composite {
-                inertia: add_inertia(ctx, &up.inertia, &c.inertia),
-                coriolis: Coriolis {
-                    rate: add_inertia(ctx, &up.coriolis.rate, &c.coriolis.rate),
-                    momentum: add_pair(ctx, up.coriolis.momentum, c.coriolis.momentum),
-                },
-                force: add_pair(ctx, up.force, c.force),
-            };
-            composite[p] = merged;
+            composite[p] = merge(ctx, &composite[p], &c);
             below[p].extend(own);
             below[p].extend(descendants);
         }
     }
     (dq, dv)
+}
+
+/// Column `i` of joint `k` (`coordinate`, S) with the composites of its
+/// subtree: Y^c S, B^cᵀ S, ∂F/∂q = B^c (v_parent × S) + Y^c ∂a/∂q and
+/// ∂F/∂q̇ = B^c S + Y^c ∂a/∂q̇.
+fn column(
+    ctx: &mut Context,
+    c: &Composite,
+    (k, i): (&Kinematic, usize),
+    (coordinate, s): (usize, Pair),
+) -> Column {
+    let ys = apply(ctx, &c.inertia, s);
+    let bts = coriolis_transpose_apply(ctx, &c.coriolis, s);
+    let bq = coriolis_apply(ctx, &c.coriolis, k.dv_dq[i]);
+    let yq = apply(ctx, &c.inertia, k.da_dq[i]);
+    let bs = coriolis_apply(ctx, &c.coriolis, s);
+    let yv = apply(ctx, &c.inertia, k.da_dv[i]);
+    Column {
+        coordinate,
+        s,
+        ys,
+        bts,
+        df_dq: add_pair(ctx, bq, yq),
+        df_dv: add_pair(ctx, bs, yv),
+    }
+}
+
+/// The rows of the descendants' columns against column `i` of joint `k`:
+/// (Y^c S)_d · ∂a/∂q + (B^cᵀ S)_d · (v_parent × S), and likewise in q̇.
+fn descendant_rows(
+    ctx: &mut Context,
+    (dq, dv): (&mut [Vec<Sym>], &mut [Vec<Sym>]),
+    descendants: &[Column],
+    (k, i): (&Kinematic, usize),
+    (coordinate, s): (usize, Pair),
+) {
+    for d in descendants {
+        let a = dot6(ctx, d.ys, k.da_dq[i]);
+        let b = dot6(ctx, d.bts, k.dv_dq[i]);
+        let e = ctx.add(a, b);
+        accumulate(ctx, dq, d.coordinate, coordinate, e);
+        let a = dot6(ctx, d.ys, k.da_dv[i]);
+        let b = dot6(ctx, d.bts, s);
+        let e = ctx.add(a, b);
+        accumulate(ctx, dv, d.coordinate, coordinate, e);
+    }
+}
+
+/// The composites of a parent and one of its subtrees together.
+fn merge(ctx: &mut Context, up: &Composite, c: &Composite) -> Composite {
+    Composite {
+        inertia: add_inertia(ctx, &up.inertia, &c.inertia),
+        coriolis: Coriolis {
+            rate: add_inertia(ctx, &up.coriolis.rate, &c.coriolis.rate),
+            momentum: add_pair(ctx, up.coriolis.momentum, c.coriolis.momentum),
+        },
+        force: add_pair(ctx, up.force, c.force),
+    }
 }
 
 fn accumulate(ctx: &mut Context, m: &mut [Vec<Sym>], r: usize, c: usize, x: Sym) {

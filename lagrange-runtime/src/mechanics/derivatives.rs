@@ -10,14 +10,16 @@ use nalgebra::{SMatrix, SVector};
 
 use super::dynamics::{Dynamics, all_finite};
 use super::forcing::{Forcing, NoForcing};
-use crate::error::Error;
+use crate::error::{Error, check_finite_inputs};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::system::Lagrangian;
 
-/// The derivatives of q̈ = M⁻¹(Q − h + τ) at a state, N × N each.
+/// q̈ = M⁻¹(Q − h + τ) at a state and its derivatives, N × N each.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AccelerationDerivatives<T, const N: usize> {
+    /// q̈ itself, at the τ the derivatives were taken at.
+    pub acceleration: SVector<T, N>,
     /// ∂q̈/∂δ: along q ⊕ δ (∂q̈/∂q without orientations), at fixed q̇.
     pub dq: SMatrix<T, N, N>,
     /// ∂q̈/∂q̇.
@@ -52,14 +54,19 @@ where
         S: Lagrangian<T, N, Q>,
         F: Forcing<T, N, Q>,
     {
-        let Some((chol, dq, dv)) = self.derivatives(t, q, v, forced)? else {
+        let Some((chol, acceleration, dq, dv)) = self.derivatives(t, q, v, forced)? else {
             return Ok(None);
         };
         let dtau = chol.solve_columns(SMatrix::identity());
         if !all_finite(dtau.as_slice()) {
             return Err(Error::non_finite(t, q, v));
         }
-        Ok(Some(AccelerationDerivatives { dq, dv, dtau }))
+        Ok(Some(AccelerationDerivatives {
+            acceleration,
+            dq,
+            dv,
+            dtau,
+        }))
     }
 
     /// ∂q̈/∂δ and ∂q̈/∂q̇ alone: what a linearisation without inputs reads,
@@ -79,10 +86,10 @@ where
         F: Forcing<T, N, Q>,
     {
         let found = self.derivatives(t, q, v, forced)?;
-        Ok(found.map(|(_, dq, dv)| (dq, dv)))
+        Ok(found.map(|(_, _, dq, dv)| (dq, dv)))
     }
 
-    /// M's factorisation (the one q̈ takes), M⁻¹ J_q and M⁻¹ J_v.
+    /// M's factorisation (the one q̈ takes), q̈, M⁻¹ J_q and M⁻¹ J_v.
     #[allow(clippy::type_complexity)]
     fn derivatives<const N: usize, const Q: usize>(
         &self,
@@ -90,7 +97,15 @@ where
         q: &SVector<T, Q>,
         v: &SVector<T, N>,
         forced: Option<ForceJacobians<T, N>>,
-    ) -> Result<Option<(Cholesky<T, N>, SMatrix<T, N, N>, SMatrix<T, N, N>)>, Error>
+    ) -> Result<
+        Option<(
+            Cholesky<T, N>,
+            SVector<T, N>,
+            SMatrix<T, N, N>,
+            SMatrix<T, N, N>,
+        )>,
+        Error,
+    >
     where
         S: Lagrangian<T, N, Q>,
         F: Forcing<T, N, Q>,
@@ -109,25 +124,86 @@ where
         if !(all_finite(dq.as_slice()) && all_finite(dv.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
-        Ok(Some((chol, dq, dv)))
+        Ok(Some((chol, accel, dq, dv)))
     }
 }
 
-/// ∂q̈/∂δ, ∂q̈/∂q̇ and ∂q̈/∂τ = M⁻¹ of `sys` at (q, v, t) with the default
-/// singular tolerance, or `None` when it does not emit its Jacobians. See
-/// [`Dynamics::acceleration_derivatives`].
+/// A system whose derive emitted q̈ and its derivatives as one program
+/// (`emit(jacobians)` on a system without constraints): M, Q − h, M's
+/// factorisation M = Lᵀ D L (in the tree's sparsity where M comes from a
+/// kinematic tree), q̈ = M⁻¹(Q − h + τ), the right-hand side's Jacobians at
+/// that q̈ and their solves, sharing their subexpressions. Read it through
+/// [`acceleration_derivatives`], which checks the state and the result.
+pub trait Differentiable<T: Real, const N: usize, const Q: usize = N>: Lagrangian<T, N, Q> {
+    /// q̈ and its derivatives at (q, v, τ, t), unchecked, with the ratio of
+    /// M's smallest pivot to its largest (not positive, or NaN, where M is
+    /// not positive definite).
+    fn acceleration_derivatives_unchecked(
+        &self,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        tau: &SVector<T, N>,
+        t: T,
+    ) -> (AccelerationDerivatives<T, N>, T);
+}
+
+impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
+    /// q̈ = M⁻¹(Q − h + τ), ∂q̈/∂δ, ∂q̈/∂q̇ and ∂q̈/∂τ = M⁻¹ at (q, v, τ, t)
+    /// from the system's emitted program, checked.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteState`] for a non-finite state or result,
+    /// [`Error::NonFiniteInput`] for a non-finite τ (named by its velocity),
+    /// [`Error::SingularMassMatrix`] when M's pivot ratio is below the
+    /// singular tolerance.
+    pub fn emitted_derivatives<const N: usize, const Q: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        tau: &SVector<T, N>,
+    ) -> Result<AccelerationDerivatives<T, N>, Error>
+    where
+        S: Differentiable<T, N, Q>,
+    {
+        let (unit, _) = self.checked(t, q, v)?;
+        check_finite_inputs(&S::VELOCITIES, t, q, v, tau)?;
+        let (d, ratio) = self
+            .system()
+            .acceleration_derivatives_unchecked(&unit, v, tau, t);
+        // A NaN ratio (a NaN pivot) is refused too; the ratio is at most 1.
+        if !ratio.is_finite() || ratio < self.singular_tolerance() {
+            let m = self.system().mass_matrix(&unit, t);
+            let names = (&S::VELOCITIES[..], S::ATLAS);
+            return Err(Error::singular_mass(t, q, ratio, &m, names));
+        }
+        let parts = [d.acceleration.as_slice(), d.dq.as_slice(), d.dv.as_slice()];
+        if !(parts.iter().all(|p| all_finite(p)) && all_finite(d.dtau.as_slice())) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        Ok(d)
+    }
+}
+
+/// q̈ = M⁻¹(Q − h + τ) of `sys` at (q, v, τ, t) and its derivatives ∂q̈/∂δ,
+/// ∂q̈/∂q̇ and ∂q̈/∂τ = M⁻¹ (Pinocchio's `computeABADerivatives`: `ddq_dq`,
+/// `ddq_dv`, `Minv`), from the program `emit(jacobians)` emits, with the
+/// default singular tolerance. With orientations ∂q̈/∂δ is along q ⊕ δ, an
+/// orientation's δ its rotation vector in body axes, at fixed ω.
 ///
 /// # Errors
-/// [`Error::NonFiniteState`] or [`Error::SingularMassMatrix`].
+/// [`Error::NonFiniteState`], [`Error::NonFiniteInput`] (τ) or
+/// [`Error::SingularMassMatrix`]; see [`Dynamics::emitted_derivatives`].
 pub fn acceleration_derivatives<S, T, const N: usize, const Q: usize>(
     sys: &S,
     q: &SVector<T, Q>,
     v: &SVector<T, N>,
+    tau: &SVector<T, N>,
     t: T,
-) -> Result<Option<AccelerationDerivatives<T, N>>, Error>
+) -> Result<AccelerationDerivatives<T, N>, Error>
 where
-    S: Lagrangian<T, N, Q>,
+    S: Differentiable<T, N, Q>,
     T: Real,
 {
-    Dynamics::<S, T, NoForcing>::new(sys).acceleration_derivatives(t, q, v, None)
+    Dynamics::<S, T, NoForcing>::new(sys).emitted_derivatives(t, q, v, tau)
 }

@@ -21,7 +21,9 @@ mod rattle;
 pub(crate) mod reduced;
 mod tolerances;
 
-pub use derivatives::{AccelerationDerivatives, ForceJacobians, acceleration_derivatives};
+pub use derivatives::{
+    AccelerationDerivatives, Differentiable, ForceJacobians, acceleration_derivatives,
+};
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use forcing::{Forcing, NoForcing};
 pub use rattle::Rattle;

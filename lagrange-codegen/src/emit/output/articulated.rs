@@ -47,7 +47,10 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
                 if d < lo { lo = d; }
                 if d > hi { hi = d; }
             }
-            (<#vec_t>::from([#(#acc),*]), lo / hi)
+            // Pivots all negative would give a positive ratio: M is then
+            // not positive definite, and the ratio says so.
+            let ratio = if hi > <#s as ::lagrange::__private::Real>::lit(0.0) { lo / hi } else { <#s as ::lagrange::__private::Real>::lit(-1.0) };
+            (<#vec_t>::from([#(#acc),*]), ratio)
         }
     };
     Pieces {

@@ -10,6 +10,7 @@ mod inverse;
 mod jacobians;
 mod kinematics;
 mod reactions;
+mod solved;
 
 pub(super) use kinematics::{Signature, per_body};
 
@@ -47,9 +48,10 @@ impl Pieces {
 type Output = fn(&Emitter, &Frame, &Model, &System) -> Pieces;
 
 /// Every optional output, in the order their pieces are emitted.
-const OUTPUTS: [Output; 7] = [
+const OUTPUTS: [Output; 8] = [
     hamilton::pieces,
     jacobians::pieces,
+    solved::pieces,
     inverse::pieces,
     articulated::pieces,
     reactions::pieces,

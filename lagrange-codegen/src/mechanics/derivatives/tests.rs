@@ -44,7 +44,11 @@ fn value(m: &Model, s: Symbol, state: u64) -> f64 {
 
 fn quaternion(m: &Model, s: Symbol, state: u64) -> f64 {
     for o in &m.variables.orientations {
-        if let Some(c) = o.quaternion.iter().position(|&e| m.ctx.as_symbol(e) == Some(s)) {
+        if let Some(c) = o
+            .quaternion
+            .iter()
+            .position(|&e| m.ctx.as_symbol(e) == Some(s))
+        {
             let raw = [0.8, -0.3 + 0.1 * state as f64, 0.45, -0.2];
             let norm = raw.iter().map(|x| x * x).sum::<f64>().sqrt();
             return raw[c] / norm;
@@ -57,8 +61,16 @@ fn agree(src: &str) {
     let closed = model(src, true);
     let differentiated = model(src, false);
     let (a, b) = (
-        closed.outputs.jacobians.as_ref().expect("jacobians emitted"),
-        differentiated.outputs.jacobians.as_ref().expect("jacobians emitted"),
+        closed
+            .outputs
+            .jacobians
+            .as_ref()
+            .expect("jacobians emitted"),
+        differentiated
+            .outputs
+            .jacobians
+            .as_ref()
+            .expect("jacobians emitted"),
     );
     let eval = |m: &Model, e: Sym, k: u64| m.ctx.eval(e, &|s| value(m, s, k));
     let mut worst = 0.0f64;

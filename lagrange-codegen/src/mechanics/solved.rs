@@ -1,0 +1,88 @@
+//! `emit(jacobians)` on an unconstrained system: q̈ = M⁻¹(Q − h + τ) and
+//! its derivatives ∂q̈/∂δ = M⁻¹ J_q, ∂q̈/∂q̇ = M⁻¹ J_v and ∂q̈/∂τ = M⁻¹ as one
+//! straight-line program over (q, q̇, τ): M factorised in it (`factor`), J_q
+//! and J_v taken at that q̈, so the dynamics, the factorisation and the
+//! derivatives share their subexpressions and nothing is left to the run.
+
+use lagrange_symbolic::{Context, Expr as Sym};
+
+use super::derivatives::RhsJacobians;
+use super::expressions::{Expressions, entries};
+use super::factor::factorise;
+
+/// q̈ and its derivatives in (q, q̇, τ), N × N row-major each.
+pub struct SolvedDerivatives {
+    /// q̈ = M⁻¹(Q − h + τ).
+    pub acceleration: Vec<Sym>,
+    /// ∂q̈/∂δ (∂q̈/∂q without orientations).
+    pub position: Vec<Vec<Sym>>,
+    /// ∂q̈/∂q̇.
+    pub velocity: Vec<Vec<Sym>>,
+    /// ∂q̈/∂τ = M⁻¹.
+    pub inverse_mass: Vec<Vec<Sym>>,
+    /// The pivots D of M = Lᵀ D L, for the singularity check.
+    pub pivots: Vec<Sym>,
+    /// The free symbols of τ (emitted as `tau[i]`).
+    pub extra: Vec<Sym>,
+}
+
+impl Expressions for SolvedDerivatives {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        out.extend(&self.acceleration);
+        entries(out, [&self.position, &self.velocity, &self.inverse_mass]);
+        out.extend(&self.pivots);
+    }
+}
+
+/// The program from M, Q − h (at zero input) and the right-hand side's
+/// Jacobians at the accelerations' symbols.
+pub(super) fn solved(
+    ctx: &mut Context,
+    mass: &[Vec<Sym>],
+    rhs: &[Sym],
+    jacobians: &RhsJacobians,
+) -> SolvedDerivatives {
+    let n = rhs.len();
+    let extra: Vec<Sym> = (0..n)
+        .map(|i| ctx.free_symbol(&format!("tau{i}")))
+        .collect();
+    let factor = factorise(ctx, mass);
+    let forced: Vec<Sym> = rhs
+        .iter()
+        .zip(&extra)
+        .map(|(&r, &x)| ctx.add(r, x))
+        .collect();
+    let acceleration = factor.solve(ctx, &forced);
+    let at: Vec<(Sym, Sym)> = ctx
+        .accelerations()
+        .into_iter()
+        .zip(acceleration.iter().copied())
+        .collect();
+    let columns = |ctx: &mut Context, m: &[Vec<Sym>]| -> Vec<Vec<Sym>> {
+        let solved: Vec<Vec<Sym>> = (0..n)
+            .map(|k| {
+                let column: Vec<Sym> = (0..n).map(|i| ctx.substitute(m[i][k], &at)).collect();
+                factor.solve(ctx, &column)
+            })
+            .collect();
+        (0..n)
+            .map(|i| (0..n).map(|k| solved[k][i]).collect())
+            .collect()
+    };
+    let position = columns(ctx, &jacobians.position);
+    let velocity = columns(ctx, &jacobians.velocity);
+    let zero = ctx.zero();
+    let one = ctx.one();
+    let identity: Vec<Vec<Sym>> = (0..n)
+        .map(|i| (0..n).map(|k| if i == k { one } else { zero }).collect())
+        .collect();
+    let inverse_mass = columns(ctx, &identity);
+    SolvedDerivatives {
+        acceleration,
+        position,
+        velocity,
+        inverse_mass,
+        pivots: factor.pivots,
+        extra,
+    }
+}

@@ -1,0 +1,140 @@
+//! The program `emit(jacobians)` emits for a system without constraints
+//! (`lagrange::acceleration_derivatives`: M factorised as Lᵀ D L in it, q̈ at
+//! a given τ, its derivatives solved in it) against the run-time path (M's
+//! Cholesky factorisation at run time, `Dynamics::acceleration_derivatives`)
+//! and against central differences of its own q̈, at τ ≠ 0; and its errors.
+
+use lagrange::prelude::*;
+use lagrange::{Differentiable, Dynamics};
+use nalgebra::{SMatrix, SVector};
+
+use crate::floating_bases::Solo12;
+use crate::urdf_derivatives::{Ur5, Xarm7};
+
+fn state<const N: usize>(shift: f64) -> (SVector<f64, N>, SVector<f64, N>, SVector<f64, N>) {
+    let q = SVector::from_fn(|k, _| 0.3 - 0.17 * k as f64 + shift);
+    let v = SVector::from_fn(|k, _| 0.5 - 0.21 * k as f64);
+    let tau = SVector::from_fn(|k, _| 2.0 * (0.1 * k as f64 - 0.2));
+    (q, v, tau)
+}
+
+fn worst<const R: usize, const C: usize>(a: &SMatrix<f64, R, C>, b: &SMatrix<f64, R, C>) -> f64 {
+    a.iter()
+        .zip(b.iter())
+        .map(|(x, y)| (x - y).abs() / x.abs().max(y.abs()).max(1.0))
+        .fold(0.0, f64::max)
+}
+
+/// q̈ against M⁻¹(Q − h + τ), ∂q̈/∂τ against M⁻¹, ∂q̈/∂q and ∂q̈/∂q̇ against
+/// central differences of the emitted q̈ itself.
+fn an_arm_at_a_torque<S: Differentiable<f64, N, N>, const N: usize>(name: &str, sys: &S) {
+    let (q, v, tau) = state::<N>(0.0);
+    let d = lagrange::acceleration_derivatives(sys, &q, &v, &tau, 0.0).expect("a regular state");
+    let (m, rhs) = sys.mass_matrix_and_rhs(&q, &v, 0.0);
+    let inverse = m.try_inverse().expect("M is invertible");
+    let acc = inverse * (rhs + tau);
+    assert!(worst(&d.acceleration, &acc) < 1e-12, "{name}: q''");
+    assert!(worst(&d.dtau, &inverse) < 1e-11, "{name}: dq''/dtau");
+    // Central differences: truncation ~h², round-off ~1e-16 |q̈| / h.
+    let h = 1e-5;
+    let at = |q: SVector<f64, N>, v: SVector<f64, N>| {
+        lagrange::acceleration_derivatives(sys, &q, &v, &tau, 0.0)
+            .expect("a regular state")
+            .acceleration
+    };
+    let mut dq = SMatrix::<f64, N, N>::zeros();
+    let mut dv = SMatrix::<f64, N, N>::zeros();
+    for k in 0..N {
+        let e = SVector::<f64, N>::from_fn(|i, _| if i == k { h } else { 0.0 });
+        dq.set_column(k, &((at(q + e, v) - at(q - e, v)) / (2.0 * h)));
+        dv.set_column(k, &((at(q, v + e) - at(q, v - e)) / (2.0 * h)));
+    }
+    assert!(
+        worst(&d.dq, &dq) < 1e-6,
+        "{name}: dq''/dq off by {}",
+        worst(&d.dq, &dq)
+    );
+    assert!(
+        worst(&d.dv, &dv) < 1e-6,
+        "{name}: dq''/dv off by {}",
+        worst(&d.dv, &dv)
+    );
+}
+
+#[test]
+fn arms_at_a_torque_match_their_own_differences() {
+    an_arm_at_a_torque("xArm7", &Xarm7 {});
+    an_arm_at_a_torque("UR5", &Ur5 {});
+}
+
+/// The emitted program against the run-time path on a floating base, whose
+/// ∂q̈/∂δ is along q ⊕ δ, at τ = 0 (the run-time path's).
+#[test]
+fn a_floating_base_matches_the_run_time_path() {
+    let sys = Solo12 {};
+    let mut q = SVector::<f64, 19>::from_fn(|k, _| 0.2 - 0.07 * k as f64);
+    let quaternion = [0.9, 0.1, -0.3, 0.2];
+    let norm = quaternion.iter().map(|x: &f64| x * x).sum::<f64>().sqrt();
+    for (c, x) in quaternion.iter().enumerate() {
+        q[15 + c] = x / norm;
+    }
+    let v = SVector::<f64, 18>::from_fn(|k, _| 0.4 - 0.05 * k as f64);
+    let emitted = lagrange::acceleration_derivatives(&sys, &q, &v, &SVector::zeros(), 0.0)
+        .expect("a regular state");
+    let run = Dynamics::new(&sys)
+        .acceleration_derivatives(0.0, &q, &v, None)
+        .expect("a regular state")
+        .expect("emit(jacobians)");
+    assert!(worst(&emitted.acceleration, &run.acceleration) < 1e-12);
+    for (what, a, b) in [
+        ("dq", emitted.dq, run.dq),
+        ("dv", emitted.dv, run.dv),
+        ("dtau", emitted.dtau, run.dtau),
+    ] {
+        assert!(worst(&a, &b) < 1e-10, "{what}: off by {}", worst(&a, &b));
+    }
+}
+
+/// A double pendulum whose masses are parameters: a massless one has a
+/// singular M.
+#[derive(Lagrangian)]
+#[lagrange(
+    coordinates(a, b),
+    point(p, at = [l * sin(a), -l * cos(a)], mass = m1),
+    point(r, at = [p.x + l * sin(b), p.y - l * cos(b)], mass = m2),
+    gravity = [0, -g],
+    emit(jacobians)
+)]
+struct Double {
+    m1: f64,
+    m2: f64,
+    l: f64,
+    g: f64,
+}
+
+#[test]
+fn bad_input_is_a_typed_error() {
+    let sys = Double {
+        m1: 1.0,
+        m2: 0.5,
+        l: 1.0,
+        g: 9.81,
+    };
+    let q = SVector::<f64, 2>::new(0.3, -0.2);
+    let v = SVector::<f64, 2>::new(0.1, 0.4);
+    let tau = SVector::<f64, 2>::new(0.0, f64::NAN);
+    let e = lagrange::acceleration_derivatives(&sys, &q, &v, &tau, 0.0).unwrap_err();
+    assert!(matches!(e, Error::NonFiniteInput { input: "b", .. }), "{e}");
+    let nan = SVector::<f64, 2>::new(f64::NAN, 0.0);
+    let e = lagrange::acceleration_derivatives(&sys, &nan, &v, &SVector::zeros(), 0.0).unwrap_err();
+    assert!(matches!(e, Error::NonFiniteState { .. }), "{e}");
+    let massless = Double {
+        m1: 0.0,
+        m2: 0.0,
+        l: 1.0,
+        g: 9.81,
+    };
+    let e =
+        lagrange::acceleration_derivatives(&massless, &q, &v, &SVector::zeros(), 0.0).unwrap_err();
+    assert!(matches!(e, Error::SingularMassMatrix { .. }), "{e}");
+}
