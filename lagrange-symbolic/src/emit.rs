@@ -31,6 +31,11 @@ pub struct EmitConfig<'a> {
     pub function: &'a TokenStream,
     /// Prefix of temporaries: `_t` gives `_t0`, `_t1`, ...
     pub temp_prefix: &'a str,
+    /// Whether a product read once, by a sum, is spelled with that sum as
+    /// `function::mul_add(x, y, c)` (x y + c): the module's `mul_add` may
+    /// fuse it where the target has fused multiply–add, and is `x * y + c`
+    /// otherwise, which is what the two operations compute apart.
+    pub fused_multiply_add: bool,
 }
 
 impl Program {
@@ -115,7 +120,8 @@ impl Program {
         slot: &[Option<usize>],
         state: &TokenStream,
     ) -> (Vec<TokenStream>, Vec<TokenStream>) {
-        let last_use = self.last_uses(piece, slot);
+        let fused = self.fused(cfg, piece, slot);
+        let last_use = self.last_uses(piece, slot, &fused);
         let mut operand: Vec<TokenStream> = Vec::with_capacity(self.ops.len());
         let mut register_of: Vec<Option<usize>> = vec![None; self.ops.len()];
         let mut bodies = Vec::new();
@@ -133,7 +139,12 @@ impl Program {
                     _ => operand[v].clone(),
                 }
             };
-            let expr = match self.expression(op, &spell, cfg) {
+            if fused[i] {
+                // Spelled by the sum that reads it.
+                operand.push(TokenStream::new());
+                continue;
+            }
+            let expr = match self.expression(op, &spell, cfg, &fused) {
                 Ok(expr) => expr,
                 Err(inline) => {
                     operand.push(inline);
@@ -170,14 +181,59 @@ impl Program {
         (bodies, outputs)
     }
 
+    /// Which products are spelled inside the one sum that reads them (see
+    /// [`EmitConfig::fused_multiply_add`]): read once, by an addition or
+    /// subtraction of the same piece, neither an output nor in a slot.
+    fn fused(&self, cfg: &EmitConfig, piece: &[usize], slot: &[Option<usize>]) -> Vec<bool> {
+        let mut fused = vec![false; self.ops.len()];
+        if !cfg.fused_multiply_add {
+            return fused;
+        }
+        let mut reads = vec![0usize; self.ops.len()];
+        let mut reader = vec![0usize; self.ops.len()];
+        for (i, op) in self.ops.iter().enumerate() {
+            for v in op.operands() {
+                reads[v as usize] += 1;
+                reader[v as usize] = i;
+            }
+        }
+        for &o in &self.outputs {
+            reads[o as usize] += 1;
+        }
+        for (v, op) in self.ops.iter().enumerate() {
+            let sum = matches!(self.ops[reader[v]], Op::Add(..) | Op::Sub(..));
+            let mut claimed = false;
+            if let (Op::Mul(..), true, 1, None) = (op, sum, reads[v], slot[v]) {
+                claimed = piece[reader[v]] == piece[v];
+            }
+            fused[v] = claimed;
+        }
+        // A sum of two products fuses one of them: the first.
+        for op in &self.ops {
+            if let Op::Add(a, b) | Op::Sub(a, b) = *op
+                && fused[a as usize]
+            {
+                fused[b as usize] = false;
+            }
+        }
+        fused
+    }
+
     /// The index of the last operation of the same piece reading each value
-    /// (`usize::MAX` for an output without a slot, read after the program).
-    fn last_uses(&self, piece: &[usize], slot: &[Option<usize>]) -> Vec<usize> {
+    /// (`usize::MAX` for an output without a slot, read after the program);
+    /// a fused product's operands are read where its sum is.
+    fn last_uses(&self, piece: &[usize], slot: &[Option<usize>], fused: &[bool]) -> Vec<usize> {
         let mut last = vec![0usize; self.ops.len()];
         for (i, op) in self.ops.iter().enumerate() {
             for v in op.operands() {
-                if piece[v as usize] == piece[i] {
-                    last[v as usize] = i;
+                if piece[v as usize] != piece[i] {
+                    continue;
+                }
+                last[v as usize] = i;
+                if fused[v as usize] {
+                    for w in self.ops[v as usize].operands() {
+                        last[w as usize] = i;
+                    }
                 }
             }
         }
@@ -196,12 +252,29 @@ impl Program {
         op: &Op,
         operand: &dyn Fn(Value) -> TokenStream,
         cfg: &EmitConfig,
+        fused: &[bool],
     ) -> Result<TokenStream, TokenStream> {
         let o = |v: Value| operand(v);
         let f = cfg.function;
+        // x y + c, with x y a fused product and `negate` on x.
+        let fma = |m: Value, negate: bool, c: TokenStream| -> TokenStream {
+            let Op::Mul(x, y) = self.ops[m as usize] else {
+                return c;
+            };
+            let (x, y) = (o(x), o(y));
+            let x = if negate { quote!(-#x) } else { x };
+            quote!(#f::mul_add(#x, #y, #c))
+        };
         Ok(match *op {
             Op::Sym(s) => return Err((cfg.symbol)(s)),
             Op::Const(b) => return Err((cfg.constant)(f64::from_bits(b))),
+            Op::Add(a, b) if fused[a as usize] => fma(a, false, o(b)),
+            Op::Add(a, b) if fused[b as usize] => fma(b, false, o(a)),
+            Op::Sub(a, b) if fused[a as usize] => {
+                let b = o(b);
+                fma(a, false, quote!(-#b))
+            }
+            Op::Sub(a, b) if fused[b as usize] => fma(b, true, o(a)),
             Op::Add(a, b) => binary(&o(a), quote!(+), &o(b)),
             Op::Sub(a, b) => binary(&o(a), quote!(-), &o(b)),
             Op::Mul(a, b) => binary(&o(a), quote!(*), &o(b)),

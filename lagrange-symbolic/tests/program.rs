@@ -195,6 +195,7 @@ fn emission_is_deterministic_and_reads_well() {
             constant: &constant,
             function: &function,
             temp_prefix: "_t",
+            fused_multiply_add: false,
         };
         let (body, outs) = prog.emit(&cx, &cfg);
         let outs: Vec<String> = outs.iter().map(|o| o.to_string()).collect();

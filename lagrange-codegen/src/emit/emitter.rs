@@ -137,6 +137,7 @@ impl<'a> Emitter<'a> {
             constant: &constant,
             function: &function,
             temp_prefix: "_t",
+            fused_multiply_add: true,
         };
         f(&program, ctx, &cfg)
     }

@@ -79,6 +79,18 @@ pub fn powf<T: Real>(x: T, y: T) -> T {
     ComplexField::powf(x, y)
 }
 
+/// x y + c: one fused multiply–add where the build targets a CPU with one
+/// (`-C target-cpu=native` on most machines, or `-C target-feature=+fma`),
+/// rounding once; otherwise the product and the sum apart, as written.
+#[inline(always)]
+pub fn mul_add<T: Real>(x: T, y: T, c: T) -> T {
+    if cfg!(target_feature = "fma") {
+        ComplexField::mul_add(x, y, c)
+    } else {
+        x * y + c
+    }
+}
+
 /// A literal constant in the scalar type.
 #[inline(always)]
 pub fn lit<T: Real>(x: f64) -> T {
