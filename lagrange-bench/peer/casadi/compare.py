@@ -3,7 +3,9 @@ DIR/lagrange_<i>.txt from examples/casadi_peer.rs), checks both sides' values
 against plain numeric Pinocchio to 1e-10, and prints the markdown table: per
 arm and quantity, the CasADi C and lagrange times (ns per call, the median
 over rounds) and their ratio (the median over rounds of each round's
-CasADi / lagrange: above 1, lagrange is faster).
+CasADi / lagrange: above 1, lagrange is faster). "terms kept": our side with its parameter-only terms
+computed once (`parameter_terms`, the `_with` methods), as a loop of its own
+calls it; CasADi's C has them folded in as constants.
 
     python3 compare.py DIR
 """
@@ -18,11 +20,15 @@ from casadi_codegen import ARMS, check, parse
 # (CasADi function, our quantity, what is compared)
 ROWS = [
     ("crba_nle", "crba_nle", "M (CRBA) + h (NLE) / M + (Q − h)"),
+    ("crba_nle", "crba_nle_terms", "M (CRBA) + h (NLE) / M + (Q − h), terms kept"),
     ("rnea", "rnea", "τ: RNEA / inverse_dynamics"),
     ("aba", "aba", "q̈: ABA / articulated q̈"),
+    ("aba", "aba_terms", "q̈: ABA / articulated q̈, terms kept"),
     ("chol", "chol", "q̈: CRBA + NLE + LLᵀ in SX / M + Cholesky q̈"),
+    ("chol", "chol_terms", "q̈: CRBA + NLE + LLᵀ in SX / M + Cholesky q̈, terms kept"),
     ("chol_qr", "chol", "q̈: CRBA + NLE + SX QR solve / M + Cholesky q̈"),
     ("aba_derivatives", "aba_derivatives", "computeABADerivatives / acceleration_derivatives"),
+    ("aba_derivatives", "aba_derivatives_terms", "computeABADerivatives / acceleration_derivatives, terms kept"),
     ("rnea_derivatives", "rnea_derivatives", "computeRNEADerivatives / rhs_jacobians"),
 ]
 
