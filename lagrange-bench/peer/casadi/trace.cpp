@@ -10,8 +10,9 @@
 //   <arm>_aba(q, v, tau)             -> ddq
 //   <arm>_chol(q, v, tau)            -> ddq = M^-1 (tau - h), M by CRBA, h by
 //                                       NLE, M = L L^T traced in SX
-//   <arm>_chol_qr(q, v, tau)         -> the same by casadi's
-//                                       solve(M, b, "symbolicqr")
+//   <arm>_chol_qr(q, v, tau)         -> the same by SX::solve(M, b), CasADi's
+//                                       QR solve on SX (the "symbolicqr"
+//                                       plugin is not defined for SX)
 //   <arm>_aba_derivatives(q, v, tau) -> ddq_dq, ddq_dv, Minv
 //   <arm>_rnea_derivatives(q, v, a)  -> dtau_dq, dtau_dv
 // in OUT/casadi_gen.c (with its header), and OUT/casadi_registry.h: the
