@@ -1,8 +1,9 @@
 """Pinocchio traced into CasADi's C: generates, compiles and checks the C peer.
 
 Set-up (PyPI only; versions that worked, 2026-05):
-    pip install pin==4.1.0 casadi==3.8.2 cmeel-eigen==3.4.1
-(`pin` pulls `libpinocchio`, whose headers include pinocchio/autodiff/casadi.hpp;
+    pip install pin==4.0.0 casadi==3.8.2 cmeel-eigen==3.4.1
+(pin 4.0.0 suits Crocoddyl too; pin 4.1.0 works as well and gives
+byte-identical C. `pin` pulls `libpinocchio`, whose headers include pinocchio/autodiff/casadi.hpp;
 `cmeel-eigen` gives Eigen's headers; CasADi's wheel ships its C++ headers and
 libcasadi.so.) No PyPI wheel of `pin` (4.1.0, 4.0.0, 3.9.0, 3.7.0, 3.4.0
 looked at) ships the Python module `pinocchio.casadi`, so the tracing is done

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Pinocchio traced into CasADi's C against lagrange, on the arms of robots/.
 # Installs nothing; needs, from PyPI (the versions that worked):
-#   pip install pin==4.1.0 casadi==3.8.2 cmeel-eigen==3.4.1
+#   pip install pin==4.0.0 casadi==3.8.2 cmeel-eigen==3.4.1
 # and gcc/g++ and cargo. Generates, compiles and checks the C peer
 # (casadi_codegen.py), builds examples/casadi_peer.rs, then runs the C harness
 # and the Rust timing alternately, ROUNDS times (default 3), and prints the
@@ -14,7 +14,7 @@ rounds="${1:-3}"
 out="${TMPDIR:-/tmp}/casadi_peer"
 
 missing=()
-python3 -c 'import pinocchio' 2>/dev/null || missing+=("pin==4.1.0")
+python3 -c 'import pinocchio' 2>/dev/null || missing+=("pin==4.0.0")
 python3 -c 'import casadi' 2>/dev/null || missing+=("casadi==3.8.2")
 prefix="$(python3 -c 'import pinocchio, os; print(os.path.abspath(os.path.join(os.path.dirname(pinocchio.__file__), "../../../..")))' 2>/dev/null || true)"
 [ -n "$prefix" ] && [ -d "$prefix/include/eigen3" ] || missing+=("cmeel-eigen==3.4.1")
