@@ -1,0 +1,202 @@
+//! Our side of the CasADi peer (`peer/casadi/`): the quantities that
+//! `casadi_codegen.py` traces from Pinocchio into C, computed by the code
+//! `#[derive(Lagrangian)]` emits for the same URDF files, at the same state,
+//! timed with the same loop as the C harness (`peer/casadi/harness.c`): the
+//! median over batches of the mean time of one call in a batch.
+//!
+//! It prints, per arm and quantity, one `value` line (the outputs, each
+//! matrix row-major) and one `time` line (ns per call), which
+//! `peer/casadi/compare.py` reads:
+//!
+//!     cargo run --release -p lagrange-bench --example casadi_peer
+//!
+//! The quantities, each beside its CasADi function:
+//! - `crba_nle`: M and Q − h in one call (`mass_matrix_and_rhs`), beside
+//!   CRBA's M and NLE's h (Q − h = −nle, gravity being in nle);
+//! - `rnea`: τ(q, q̇, q̈) (`inverse_dynamics`, `emit(inverse_dynamics)`);
+//! - `aba`: q̈(q, q̇, τ) by the articulated-body algorithm (`emit(articulated)`),
+//!   through [`Dynamics`] with τ as its forcing, as `lagrange::accelerations`;
+//! - `chol`: q̈(q, q̇, τ) from M and its Cholesky factorisation, the same way;
+//! - `aba_derivatives`: ∂q̈/∂q, ∂q̈/∂q̇ and M⁻¹ (`acceleration_derivatives`,
+//!   `emit(jacobians)`), beside `computeABADerivatives`;
+//! - `rnea_derivatives`: ∂τ/∂q and ∂τ/∂q̇ at q̈, which are −J_q and −J_v of
+//!   `rhs_jacobians` at a = q̈, beside `computeRNEADerivatives`.
+//!
+//! `crba_nle`, `aba`, `chol` and `aba_derivatives` are timed twice: as
+//! called (the parameter-only terms computed in each call) and with the
+//! terms computed once (`parameter_terms`, `_with`; suffix `_terms`), as a
+//! loop of its own would call them. The values are the same.
+//!
+//! The state: q_k = 0.3 − 0.17 k, q̇_k = 0.5 − 0.21 k, q̈_k = τ_k = 0.1 k − 0.2.
+
+use lagrange::nalgebra::{SMatrix, SVector};
+use lagrange::{Dynamics, Error, Forcing, Lagrangian};
+use std::hint::black_box;
+use std::time::Instant;
+
+/// An arm with M + Cholesky q̈, the inverse dynamics and the Jacobians, and
+/// its twin with `emit(articulated)`, whose q̈ is the articulated one.
+macro_rules! arm {
+    ($name:ident, $articulated:ident, $file:tt) => {
+        #[derive(Lagrangian, Default)]
+        #[lagrange(urdf = $file, gravity = [0, 0, -9.81], emit(jacobians, inverse_dynamics))]
+        struct $name {}
+
+        #[derive(Lagrangian, Default)]
+        #[lagrange(urdf = $file, gravity = [0, 0, -9.81], emit(articulated))]
+        struct $articulated {}
+    };
+}
+
+arm!(Ur5, Ur5Articulated, "../robots/ur5.urdf");
+arm!(Ur10, Ur10Articulated, "../robots/ur10.urdf");
+arm!(Kinova, KinovaArticulated, "../robots/kinova.urdf");
+arm!(Z1, Z1Articulated, "../robots/z1.urdf");
+arm!(Xarm7, Xarm7Articulated, "../robots/xarm7.urdf");
+
+/// Constant joint torques τ, added to Q as a forcing.
+struct Torques<const N: usize>(SVector<f64, N>);
+
+impl<const N: usize> Forcing<f64, N> for Torques<N> {
+    fn force(
+        &self,
+        _: f64,
+        _: &SVector<f64, N>,
+        _: &SVector<f64, N>,
+    ) -> Result<SVector<f64, N>, Error> {
+        Ok(self.0)
+    }
+}
+
+/// Batches per measurement (the median is reported).
+const BATCHES: usize = 31;
+
+/// The median over [`BATCHES`] batches of the mean ns of one call of `f`,
+/// after one batch to warm up; a batch is sized to last about 2 ms.
+fn ns_per_call<R>(mut f: impl FnMut() -> R) -> f64 {
+    let mut calls = 1usize;
+    loop {
+        let start = Instant::now();
+        for _ in 0..calls {
+            black_box(f());
+        }
+        if start.elapsed().as_secs_f64() > 2e-3 {
+            break;
+        }
+        calls *= 2;
+    }
+    let mut times: Vec<f64> = (0..BATCHES)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..calls {
+                black_box(f());
+            }
+            start.elapsed().as_secs_f64() * 1e9 / calls as f64
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[BATCHES / 2]
+}
+
+/// Prints one `value` line: the outputs, comma-separated, matrices row-major.
+fn value(robot: &str, quantity: &str, outputs: &[(&str, &[f64], usize)]) {
+    for (name, data, rows) in outputs {
+        // nalgebra stores columns; print rows.
+        let cols = data.len() / rows;
+        let text: Vec<String> = (0..*rows)
+            .flat_map(|i| (0..cols).map(move |j| format!("{:e}", data[j * rows + i])))
+            .collect();
+        println!("value {robot} {quantity} {name} {}", text.join(","));
+    }
+}
+
+/// Values and times of one arm.
+fn arm<S, A, const N: usize>(robot: &str)
+where
+    S: Lagrangian<f64, N> + Default,
+    A: Lagrangian<f64, N> + Default,
+{
+    let (sys, articulated) = (S::default(), A::default());
+    let q = SVector::<f64, N>::from_fn(|k, _| 0.3 - 0.17 * k as f64);
+    let v = SVector::<f64, N>::from_fn(|k, _| 0.5 - 0.21 * k as f64);
+    let a = SVector::<f64, N>::from_fn(|k, _| 0.1 * k as f64 - 0.2);
+    let tau = a;
+    let forced = Dynamics::new(&sys).with_forcing(Torques(tau));
+    let forced_articulated = Dynamics::new(&articulated).with_forcing(Torques(tau));
+    // The parameter-only terms computed once, as a loop of its own would.
+    let (terms, articulated_terms) = (sys.parameter_terms(), articulated.parameter_terms());
+    let kept = Dynamics::new(&sys)
+        .with_parameter_terms(&terms)
+        .with_forcing(Torques(tau));
+    let kept_articulated = Dynamics::new(&articulated)
+        .with_parameter_terms(&articulated_terms)
+        .with_forcing(Torques(tau));
+
+    let (m, rhs) = sys.mass_matrix_and_rhs(&q, &v, 0.0);
+    value(
+        robot,
+        "crba_nle",
+        &[("M", m.as_slice(), N), ("rhs", rhs.as_slice(), N)],
+    );
+    let t = ns_per_call(|| sys.mass_matrix_and_rhs(black_box(&q), black_box(&v), 0.0));
+    println!("time {robot} crba_nle {t:.1}");
+    let t = ns_per_call(|| sys.mass_matrix_and_rhs_with(&terms, black_box(&q), black_box(&v), 0.0));
+    println!("time {robot} crba_nle_terms {t:.1}");
+
+    let id = sys.inverse_dynamics(&q, &v, &a, 0.0);
+    value(robot, "rnea", &[("tau", id.as_slice(), N)]);
+    let t = ns_per_call(|| sys.inverse_dynamics(black_box(&q), black_box(&v), black_box(&a), 0.0));
+    println!("time {robot} rnea {t:.1}");
+
+    let ddq = forced_articulated.acceleration(0.0, &q, &v).expect("q̈");
+    value(robot, "aba", &[("ddq", ddq.as_slice(), N)]);
+    let t = ns_per_call(|| forced_articulated.acceleration(0.0, black_box(&q), black_box(&v)));
+    println!("time {robot} aba {t:.1}");
+    let t = ns_per_call(|| kept_articulated.acceleration(0.0, black_box(&q), black_box(&v)));
+    println!("time {robot} aba_terms {t:.1}");
+
+    let ddq = forced.acceleration(0.0, &q, &v).expect("q̈");
+    value(robot, "chol", &[("ddq", ddq.as_slice(), N)]);
+    let t = ns_per_call(|| forced.acceleration(0.0, black_box(&q), black_box(&v)));
+    println!("time {robot} chol {t:.1}");
+    let t = ns_per_call(|| kept.acceleration(0.0, black_box(&q), black_box(&v)));
+    println!("time {robot} chol_terms {t:.1}");
+
+    let d = forced
+        .acceleration_derivatives(0.0, &q, &v, None)
+        .expect("derivatives")
+        .expect("emit(jacobians)");
+    value(
+        robot,
+        "aba_derivatives",
+        &[
+            ("ddq_dq", d.dq.as_slice(), N),
+            ("ddq_dv", d.dv.as_slice(), N),
+            ("Minv", d.dtau.as_slice(), N),
+        ],
+    );
+    let t =
+        ns_per_call(|| forced.acceleration_derivatives(0.0, black_box(&q), black_box(&v), None));
+    println!("time {robot} aba_derivatives {t:.1}");
+    let t = ns_per_call(|| kept.acceleration_derivatives(0.0, black_box(&q), black_box(&v), None));
+    println!("time {robot} aba_derivatives_terms {t:.1}");
+
+    let (jq, jv): (SMatrix<f64, N, N>, SMatrix<f64, N, N>) =
+        sys.rhs_jacobians(&q, &v, &a, 0.0).expect("emit(jacobians)");
+    let (dq, dv) = (-jq, -jv);
+    value(
+        robot,
+        "rnea_derivatives",
+        &[("dtau_dq", dq.as_slice(), N), ("dtau_dv", dv.as_slice(), N)],
+    );
+    let t = ns_per_call(|| sys.rhs_jacobians(black_box(&q), black_box(&v), black_box(&a), 0.0));
+    println!("time {robot} rnea_derivatives {t:.1}");
+}
+
+fn main() {
+    arm::<Ur5, Ur5Articulated, 6>("ur5");
+    arm::<Ur10, Ur10Articulated, 6>("ur10");
+    arm::<Kinova, KinovaArticulated, 6>("kinova");
+    arm::<Z1, Z1Articulated, 7>("z1");
+    arm::<Xarm7, Xarm7Articulated, 7>("xarm7");
+}

@@ -1,0 +1,160 @@
+"""Pinocchio traced into CasADi's C: generates, compiles and checks the C peer.
+
+Set-up (PyPI only; versions that worked, 2026-05):
+    pip install pin==4.0.0 casadi==3.8.2 cmeel-eigen==3.4.1
+(pin 4.0.0 suits Crocoddyl too; pin 4.1.0 works as well and gives
+byte-identical C. `pin` pulls `libpinocchio`, whose headers include pinocchio/autodiff/casadi.hpp;
+`cmeel-eigen` gives Eigen's headers; CasADi's wheel ships its C++ headers and
+libcasadi.so.) No PyPI wheel of `pin` (4.1.0, 4.0.0, 3.9.0, 3.7.0, 3.4.0
+looked at) ships the Python module `pinocchio.casadi`, so the tracing is done
+in C++ (trace.cpp), with the same templates that module wraps: Pinocchio's
+algorithms on the scalar casadi::SX, emitted by casadi::CodeGenerator.
+
+Steps, into OUT (default $TMPDIR/casadi_peer):
+ 1. ../pinocchio/urdf_model.py writes the arms of robots/ as C++ Pinocchio
+    models (the wheel has no urdfdom headers for Pinocchio's parser);
+ 2. trace.cpp is compiled (g++ -O1: it only traces; minutes, so only when
+    it or a model changed) and run: casadi_gen.c/.h
+    and casadi_registry.h;
+ 3. harness.c + casadi_gen.c are compiled with gcc -O3 -march=native;
+ 4. the harness's values (through the compiled C) are checked against plain
+    numeric Pinocchio at the same state, to 1e-10 relative to each output's
+    largest entry (or 1); the max difference per output is printed, and the
+    exit status is 1 if any exceeds it.
+
+    python3 casadi_codegen.py [OUT]
+"""
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pinocchio as pin
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROBOTS_DIR = os.path.normpath(os.path.join(HERE, "../../../robots"))
+ARMS = ["ur5", "ur10", "kinova", "z1", "xarm7"]
+TOLERANCE = 1e-10
+
+
+def site_prefix():
+    """Where the cmeel wheels (pin, libpinocchio, cmeel-eigen) put their files."""
+    return os.path.abspath(os.path.join(os.path.dirname(pin.__file__), "../../../.."))
+
+
+def casadi_dir():
+    import casadi
+
+    return os.path.dirname(casadi.__file__)
+
+
+def run(cmd, **kw):
+    print("+", " ".join(cmd), file=sys.stderr)
+    subprocess.run(cmd, check=True, **kw)
+
+
+def build(out):
+    os.makedirs(out, exist_ok=True)
+    prefix, cas = site_prefix(), casadi_dir()
+    models = os.path.join(out, "models.hpp")
+    run([sys.executable, os.path.join(HERE, "../pinocchio/urdf_model.py"), ROBOTS_DIR, models])
+    tracer = os.path.join(out, "trace")
+    sources = [os.path.join(HERE, "trace.cpp"), os.path.join(HERE, "../pinocchio/urdf_model.py")]
+    sources += [os.path.join(ROBOTS_DIR, f"{robot}.urdf") for robot in ARMS]
+    stale = not os.path.exists(tracer) or os.path.getmtime(tracer) < max(map(os.path.getmtime, sources))
+    if stale:  # minutes: Pinocchio's templates on casadi::SX
+        run(["g++", "-O1", "-std=c++17", "-DNDEBUG", "-w",
+             "-DBOOST_MPL_LIMIT_LIST_SIZE=30", "-DBOOST_MPL_LIMIT_VECTOR_SIZE=30",
+             "-DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS", "-DBOOST_FUSION_INVOKE_MAX_ARITY=12",
+             f'-DURDF_MODELS="{models}"', os.path.join(HERE, "trace.cpp"), "-o", tracer,
+             f"-I{prefix}/include", f"-I{prefix}/include/eigen3", f"-I{cas}/include",
+             f"-L{prefix}/lib", f"-Wl,-rpath,{prefix}/lib", "-lpinocchio_default",
+             f"-L{cas}", f"-Wl,-rpath,{cas}", "-lcasadi"])
+    run([tracer, out])
+    harness = os.path.join(out, "harness")
+    run(["gcc", "-O3", "-march=native", "-w", f"-I{out}", os.path.join(HERE, "harness.c"),
+         os.path.join(out, "casadi_gen.c"), "-o", harness, "-lm"])
+    return harness
+
+
+def parse(text):
+    """`value robot quantity output numbers` lines -> {(robot, quantity, output): array}."""
+    values = {}
+    for line in text.splitlines():
+        parts = line.split()
+        if len(parts) == 5 and parts[0] == "value":
+            values[tuple(parts[1:4])] = np.array([float(x) for x in parts[4].split(",")])
+    return values
+
+
+def state(model):
+    """q (cos and sin of a continuous joint's angle), v, a = tau, as the peers' state."""
+    q = np.zeros(model.nq)
+    for j in range(1, model.njoints):
+        joint = model.joints[j]
+        angle = 0.3 - 0.17 * joint.idx_v
+        if joint.nq == 2:
+            q[joint.idx_q], q[joint.idx_q + 1] = np.cos(angle), np.sin(angle)
+        else:
+            q[joint.idx_q] = angle
+    k = np.arange(model.nv)
+    return q, 0.5 - 0.21 * k, 0.1 * k - 0.2
+
+
+def reference(robot):
+    """Plain numeric Pinocchio at the state: {(quantity, output): array}, matrices row-major."""
+    model = pin.buildModelFromUrdf(os.path.join(ROBOTS_DIR, f"{robot}.urdf"))
+    data = model.createData()
+    q, v, a = state(model)
+    ref = {}
+    M = pin.crba(model, data, q).copy()
+    M = np.triu(M) + np.triu(M, 1).T
+    h = pin.nonLinearEffects(model, data, q, v).copy()
+    ref["crba_nle", "M"], ref["crba_nle", "h"] = M, h
+    ref["crba_nle", "rhs"] = -h
+    ref["rnea", "tau"] = pin.rnea(model, data, q, v, a).copy()
+    ddq = pin.aba(model, data, q, v, a).copy()
+    for quantity in ("aba", "chol", "chol_qr"):
+        ref[quantity, "ddq"] = ddq
+    ddq_dq, ddq_dv, minv = pin.computeABADerivatives(model, data, q, v, a)
+    ref["aba_derivatives", "ddq_dq"] = ddq_dq.copy()
+    ref["aba_derivatives", "ddq_dv"] = ddq_dv.copy()
+    minv = np.triu(minv) + np.triu(minv, 1).T
+    ref["aba_derivatives", "Minv"] = minv
+    dtau_dq, dtau_dv, _ = pin.computeRNEADerivatives(model, data, q, v, a)
+    ref["rnea_derivatives", "dtau_dq"] = dtau_dq.copy()
+    ref["rnea_derivatives", "dtau_dv"] = dtau_dv.copy()
+    return {key: np.asarray(x).reshape(-1) for key, x in ref.items()}
+
+
+def check(values, label):
+    """Prints each output's max difference from numeric Pinocchio, absolute and
+    relative to the output's largest entry (or 1); True if every relative one
+    is within 1e-10 (M⁻¹ of an arm with a light wrist has entries in the
+    thousands, where 1e-10 absolute is below the rounding of either side)."""
+    ok = True
+    print(f"| {label}: robot | quantity | output | max abs difference from pin | / max(1, max |pin|) |")
+    print("|---|---|---|---|---|")
+    refs = {robot: reference(robot) for robot in ARMS}
+    for (robot, quantity, output), x in sorted(values.items()):
+        ref = refs[robot].get((quantity, output))
+        if ref is None:
+            continue
+        diff = float(np.max(np.abs(x - ref))) if x.shape == ref.shape else float("inf")
+        scaled = diff / max(1.0, float(np.max(np.abs(ref))))
+        flag = "" if scaled <= TOLERANCE else " **over 1e-10**"
+        ok &= scaled <= TOLERANCE
+        print(f"| {robot} | {quantity} | {output} | {diff:.1e} | {scaled:.1e}{flag} |")
+    return ok
+
+
+def main():
+    out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.environ.get("TMPDIR", "/tmp"), "casadi_peer")
+    harness = build(out)
+    text = subprocess.run([harness, "values"], check=True, capture_output=True, text=True).stdout
+    ok = check(parse(text), "CasADi C")
+    sys.exit(0 if ok else 1)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,77 @@
+"""Reads the rounds run.sh wrote (DIR/casadi_<i>.txt from the C harness,
+DIR/lagrange_<i>.txt from examples/casadi_peer.rs), checks both sides' values
+against plain numeric Pinocchio to 1e-10, and prints the markdown table: per
+arm and quantity, the CasADi C and lagrange times (ns per call, the median
+over rounds) and their ratio (the median over rounds of each round's
+CasADi / lagrange: above 1, lagrange is faster). "terms kept": our side with its parameter-only terms
+computed once (`parameter_terms`, the `_with` methods), as a loop of its own
+calls it; CasADi's C has them folded in as constants.
+
+    python3 compare.py DIR
+"""
+import glob
+import os
+import re
+import statistics
+import sys
+
+from casadi_codegen import ARMS, check, parse
+
+# (CasADi function, our quantity, what is compared)
+ROWS = [
+    ("crba_nle", "crba_nle", "M (CRBA) + h (NLE) / M + (Q − h)"),
+    ("crba_nle", "crba_nle_terms", "M (CRBA) + h (NLE) / M + (Q − h), terms kept"),
+    ("rnea", "rnea", "τ: RNEA / inverse_dynamics"),
+    ("aba", "aba", "q̈: ABA / articulated q̈"),
+    ("aba", "aba_terms", "q̈: ABA / articulated q̈, terms kept"),
+    ("chol", "chol", "q̈: CRBA + NLE + LLᵀ in SX / M + Cholesky q̈"),
+    ("chol", "chol_terms", "q̈: CRBA + NLE + LLᵀ in SX / M + Cholesky q̈, terms kept"),
+    ("chol_qr", "chol", "q̈: CRBA + NLE + SX QR solve / M + Cholesky q̈"),
+    ("aba_derivatives", "aba_derivatives", "computeABADerivatives / acceleration_derivatives"),
+    ("aba_derivatives", "aba_derivatives_terms", "computeABADerivatives / acceleration_derivatives, terms kept"),
+    ("rnea_derivatives", "rnea_derivatives", "computeRNEADerivatives / rhs_jacobians"),
+]
+
+
+def times(text):
+    out = {}
+    for line in text.splitlines():
+        parts = line.split()
+        if len(parts) == 4 and parts[0] == "time":
+            out[parts[1], parts[2]] = float(parts[3])
+    return out
+
+
+def rounds(folder, side):
+    files = sorted(glob.glob(os.path.join(folder, f"{side}_*.txt")),
+                   key=lambda f: int(re.findall(r"_(\d+)\.txt$", f)[0]))
+    return [open(f).read() for f in files]
+
+
+def main():
+    folder = sys.argv[1]
+    c_runs, r_runs = rounds(folder, "casadi"), rounds(folder, "lagrange")
+    ok = check(parse(c_runs[0]), "CasADi C")
+    print()
+    ok &= check(parse(r_runs[0]), "lagrange")
+    print()
+    c_times, r_times = [times(t) for t in c_runs], [times(t) for t in r_runs]
+    pairs = list(zip(c_times, r_times))
+    print(f"{len(pairs)} rounds; ns per call (median over rounds); ratio = CasADi C / lagrange "
+          "(median of the rounds' ratios; > 1: lagrange faster)\n")
+    print("| arm | quantity (CasADi C / lagrange) | CasADi C (ns) | lagrange (ns) | ratio |")
+    print("|---|---|---:|---:|---:|")
+    for robot in ARMS:
+        for cq, rq, label in ROWS:
+            cs = [c[robot, cq] for c, _ in pairs if (robot, cq) in c]
+            rs = [r[robot, rq] for _, r in pairs if (robot, rq) in r]
+            ratios = [c[robot, cq] / r[robot, rq] for c, r in pairs if (robot, cq) in c and (robot, rq) in r]
+            if not ratios:
+                continue
+            print(f"| {robot} | {label} | {statistics.median(cs):.0f} | {statistics.median(rs):.0f} "
+                  f"| {statistics.median(ratios):.2f} |")
+    sys.exit(0 if ok else 1)
+
+
+if __name__ == "__main__":
+    main()

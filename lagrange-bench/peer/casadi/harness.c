@@ -1,0 +1,104 @@
+/* Calls each function trace.cpp generated (casadi_gen.c) at its arm's state
+ * and prints, per function, one `value` line per output (row-major) and one
+ * `time` line: the median over batches of the mean ns of one call in a batch
+ * (batches of about 2 ms, after one to warm up), the loop of
+ * examples/casadi_peer.rs on our side. `harness values` prints the values
+ * alone. Built by casadi_codegen.py with gcc -O3 -march=native. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "casadi_gen.h"
+
+typedef int (*Eval)(const casadi_real**, casadi_real**, casadi_int*, casadi_real*, int);
+typedef int (*Work)(casadi_int*, casadi_int*, casadi_int*, casadi_int*);
+
+typedef struct {
+  const char* name;
+  int rows, cols;
+} Output;
+
+typedef struct {
+  const char* robot;
+  const char* quantity;
+  Eval eval;
+  Work work;
+  const double *q, *v, *a;
+  int n_in, n_out;
+  Output out[3];
+} Entry;
+
+#include "casadi_registry.h"
+
+#define BATCHES 31
+
+static double now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static int compare(const void* x, const void* y) {
+  const double a = *(const double*)x, b = *(const double*)y;
+  return (a > b) - (a < b);
+}
+
+/* Keeps the compiler from dropping a call whose results are never read. */
+static void clobber(void) { __asm__ volatile("" ::: "memory"); }
+
+int main(int argc, char** argv) {
+  const int time_them = !(argc > 1 && strcmp(argv[1], "values") == 0);
+  for (size_t e = 0; e < sizeof ENTRIES / sizeof ENTRIES[0]; ++e) {
+    const Entry* f = &ENTRIES[e];
+    casadi_int sz_arg, sz_res, sz_iw, sz_w;
+    f->work(&sz_arg, &sz_res, &sz_iw, &sz_w);
+    const casadi_real** arg = calloc(sz_arg > 3 ? sz_arg : 3, sizeof *arg);
+    casadi_real** res = calloc(sz_res > 3 ? sz_res : 3, sizeof *res);
+    casadi_int* iw = calloc(sz_iw + 1, sizeof *iw);
+    casadi_real* w = calloc(sz_w + 1, sizeof *w);
+    arg[0] = f->q;
+    arg[1] = f->v;
+    if (f->n_in > 2) arg[2] = f->a;
+    double* outs[3];
+    for (int o = 0; o < f->n_out; ++o) res[o] = outs[o] = calloc(f->out[o].rows * f->out[o].cols, sizeof(double));
+    f->eval(arg, res, iw, w, 0);
+    for (int o = 0; o < f->n_out; ++o) {
+      printf("value %s %s %s ", f->robot, f->quantity, f->out[o].name);
+      const int r = f->out[o].rows, c = f->out[o].cols;
+      for (int i = 0; i < r; ++i)
+        for (int j = 0; j < c; ++j) printf("%s%.17e", i + j ? "," : "", outs[o][j * r + i]);
+      printf("\n");
+    }
+    if (time_them) {
+      long calls = 1;
+      for (;;) {
+        const double start = now();
+        for (long i = 0; i < calls; ++i) {
+          f->eval(arg, res, iw, w, 0);
+          clobber();
+        }
+        if (now() - start > 2e-3) break;
+        calls *= 2;
+      }
+      double times[BATCHES];
+      for (int b = 0; b < BATCHES; ++b) {
+        const double start = now();
+        for (long i = 0; i < calls; ++i) {
+          f->eval(arg, res, iw, w, 0);
+          clobber();
+        }
+        times[b] = (now() - start) * 1e9 / calls;
+      }
+      qsort(times, BATCHES, sizeof times[0], compare);
+      printf("time %s %s %.1f\n", f->robot, f->quantity, times[BATCHES / 2]);
+    }
+    fflush(stdout);
+    for (int o = 0; o < f->n_out; ++o) free(outs[o]);
+    free(arg);
+    free(res);
+    free(iw);
+    free(w);
+  }
+  return 0;
+}

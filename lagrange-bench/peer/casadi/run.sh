@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Pinocchio traced into CasADi's C against lagrange, on the arms of robots/.
+# Installs nothing; needs, from PyPI (the versions that worked):
+#   pip install pin==4.0.0 casadi==3.8.2 cmeel-eigen==3.4.1
+# and gcc/g++ and cargo. Generates, compiles and checks the C peer
+# (casadi_codegen.py), builds examples/casadi_peer.rs, then runs the C harness
+# and the Rust timing alternately, ROUNDS times (default 3), and prints the
+# values' check against numeric Pinocchio and the table (compare.py).
+#   lagrange-bench/peer/casadi/run.sh [ROUNDS]
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(cd "$here/../../.." && pwd)"
+rounds="${1:-3}"
+out="${TMPDIR:-/tmp}/casadi_peer"
+
+missing=()
+python3 -c 'import pinocchio' 2>/dev/null || missing+=("pin==4.0.0")
+python3 -c 'import casadi' 2>/dev/null || missing+=("casadi==3.8.2")
+prefix="$(python3 -c 'import pinocchio, os; print(os.path.abspath(os.path.join(os.path.dirname(pinocchio.__file__), "../../../..")))' 2>/dev/null || true)"
+[ -n "$prefix" ] && [ -d "$prefix/include/eigen3" ] || missing+=("cmeel-eigen==3.4.1")
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "missing Python packages; install them with: pip install ${missing[*]}" >&2
+  exit 1
+fi
+
+python3 "$here/casadi_codegen.py" "$out"
+(cd "$root" && cargo build --release -p lagrange-bench --example casadi_peer)
+bin="${CARGO_TARGET_DIR:-$root/target}/release/examples/casadi_peer"
+rm -f "$out"/casadi_*.txt "$out"/lagrange_*.txt
+for i in $(seq 1 "$rounds"); do
+  echo "round $i of $rounds" >&2
+  "$out/harness" > "$out/casadi_$i.txt"
+  "$bin" > "$out/lagrange_$i.txt"
+done
+cd "$here" && python3 compare.py "$out"
