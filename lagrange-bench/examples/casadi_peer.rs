@@ -17,12 +17,15 @@
 //! - `aba`: q̈(q, q̇, τ) by the articulated-body algorithm (`emit(articulated)`),
 //!   through [`Dynamics`] with τ as its forcing, as `lagrange::accelerations`;
 //! - `chol`: q̈(q, q̇, τ) from M and its Cholesky factorisation, the same way;
-//! - `aba_derivatives`: ∂q̈/∂q, ∂q̈/∂q̇ and M⁻¹ (`acceleration_derivatives`,
-//!   `emit(jacobians)`), beside `computeABADerivatives`;
+//! - `aba_derivatives`: ∂q̈/∂q, ∂q̈/∂q̇ and M⁻¹ from the program
+//!   `emit(jacobians)` emits (`lagrange::acceleration_derivatives`), beside
+//!   `computeABADerivatives`; `aba_derivatives_runtime` the same from M's
+//!   Cholesky factorisation at run time (`Dynamics::acceleration_derivatives`
+//!   with τ as a forcing);
 //! - `rnea_derivatives`: ∂τ/∂q and ∂τ/∂q̇ at q̈, which are −J_q and −J_v of
 //!   `rhs_jacobians` at a = q̈, beside `computeRNEADerivatives`.
 //!
-//! `crba_nle`, `aba`, `chol` and `aba_derivatives` are timed twice: as
+//! `crba_nle`, `aba` and `chol` are timed twice: as
 //! called (the parameter-only terms computed in each call) and with the
 //! terms computed once (`parameter_terms`, `_with`; suffix `_terms`), as a
 //! loop of its own would call them. The values are the same.
@@ -30,7 +33,7 @@
 //! The state: q_k = 0.3 − 0.17 k, q̇_k = 0.5 − 0.21 k, q̈_k = τ_k = 0.1 k − 0.2.
 
 use lagrange::nalgebra::{SMatrix, SVector};
-use lagrange::{Dynamics, Error, Forcing, Lagrangian};
+use lagrange::{Differentiable, Dynamics, Error, Forcing, Lagrangian};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -113,7 +116,7 @@ fn value(robot: &str, quantity: &str, outputs: &[(&str, &[f64], usize)]) {
 /// Values and times of one arm.
 fn arm<S, A, const N: usize>(robot: &str)
 where
-    S: Lagrangian<f64, N> + Default,
+    S: Differentiable<f64, N> + Default,
     A: Lagrangian<f64, N> + Default,
 {
     let (sys, articulated) = (S::default(), A::default());
@@ -162,10 +165,7 @@ where
     let t = ns_per_call(|| kept.acceleration(0.0, black_box(&q), black_box(&v)));
     println!("time {robot} chol_terms {t:.1}");
 
-    let d = forced
-        .acceleration_derivatives(0.0, &q, &v, None)
-        .expect("derivatives")
-        .expect("emit(jacobians)");
+    let d = lagrange::acceleration_derivatives(&sys, &q, &v, &tau, 0.0).expect("derivatives");
     value(
         robot,
         "aba_derivatives",
@@ -175,11 +175,13 @@ where
             ("Minv", d.dtau.as_slice(), N),
         ],
     );
+    let t = ns_per_call(|| {
+        lagrange::acceleration_derivatives(&sys, black_box(&q), black_box(&v), black_box(&tau), 0.0)
+    });
+    println!("time {robot} aba_derivatives {t:.1}");
     let t =
         ns_per_call(|| forced.acceleration_derivatives(0.0, black_box(&q), black_box(&v), None));
-    println!("time {robot} aba_derivatives {t:.1}");
-    let t = ns_per_call(|| kept.acceleration_derivatives(0.0, black_box(&q), black_box(&v), None));
-    println!("time {robot} aba_derivatives_terms {t:.1}");
+    println!("time {robot} aba_derivatives_runtime {t:.1}");
 
     let (jq, jv): (SMatrix<f64, N, N>, SMatrix<f64, N, N>) =
         sys.rhs_jacobians(&q, &v, &a, 0.0).expect("emit(jacobians)");

@@ -27,8 +27,8 @@ ROWS = [
     ("chol", "chol", "q̈: CRBA + NLE + LLᵀ in SX / M + Cholesky q̈"),
     ("chol", "chol_terms", "q̈: CRBA + NLE + LLᵀ in SX / M + Cholesky q̈, terms kept"),
     ("chol_qr", "chol", "q̈: CRBA + NLE + SX QR solve / M + Cholesky q̈"),
-    ("aba_derivatives", "aba_derivatives", "computeABADerivatives / acceleration_derivatives"),
-    ("aba_derivatives", "aba_derivatives_terms", "computeABADerivatives / acceleration_derivatives, terms kept"),
+    ("aba_derivatives", "aba_derivatives", "computeABADerivatives / acceleration_derivatives (the emitted program)"),
+    ("aba_derivatives", "aba_derivatives_runtime", "computeABADerivatives / Dynamics::acceleration_derivatives (M factorised at run time)"),
     ("rnea_derivatives", "rnea_derivatives", "computeRNEADerivatives / rhs_jacobians"),
 ]
 
