@@ -231,6 +231,24 @@ impl Context {
         self.substitute_in(e, &table, &keys, &mut memo)
     }
 
+    /// [`substitute`](Self::substitute) on many expressions with one memo,
+    /// so the subtrees they share are rebuilt once.
+    pub fn substitute_all(&mut self, es: &[Expr], map: &[(Expr, Expr)]) -> Vec<Expr> {
+        let table: HashMap<Expr, Expr> = map
+            .iter()
+            .filter(|(k, _)| self.as_symbol(*k).is_some())
+            .copied()
+            .collect();
+        if table.is_empty() {
+            return es.to_vec();
+        }
+        let keys: Vec<_> = table.keys().filter_map(|&k| self.as_symbol(k)).collect();
+        let mut memo = HashMap::new();
+        es.iter()
+            .map(|&e| self.substitute_in(e, &table, &keys, &mut memo))
+            .collect()
+    }
+
     fn substitute_in(
         &mut self,
         e: Expr,

@@ -59,15 +59,15 @@ pub(super) fn solved(
         .zip(acceleration.iter().copied())
         .collect();
     let columns = |ctx: &mut Context, m: &[Vec<Sym>]| -> Vec<Vec<Sym>> {
+        let flat: Vec<Sym> = m.iter().flatten().copied().collect();
+        let at_q = ctx.substitute_all(&flat, &at);
         let solved: Vec<Vec<Sym>> = (0..n)
             .map(|k| {
-                let column: Vec<Sym> = (0..n).map(|i| ctx.substitute(m[i][k], &at)).collect();
+                let column: Vec<Sym> = (0..n).map(|i| at_q[i * n + k]).collect();
                 factor.solve(ctx, &column)
             })
             .collect();
-        (0..n)
-            .map(|i| (0..n).map(|k| solved[k][i]).collect())
-            .collect()
+        (0..n).map(|i| (0..n).map(|k| solved[k][i]).collect()).collect()
     };
     let position = columns(ctx, &jacobians.position);
     let velocity = columns(ctx, &jacobians.velocity);
