@@ -53,12 +53,29 @@ fn main() {
         // The floors are for chains of revolute joints: not a floating base.
         let chain = options.is_empty();
         let floor = |f: (i64, i64)| chain.then_some(f);
-        let rnea = count(&model, &model.outputs.inverse.as_ref().expect("emitted").torques);
+        let rnea = count(
+            &model,
+            &model.outputs.inverse.as_ref().expect("emitted").torques,
+        );
         let mass: Vec<Expr> = model.motion.mass.iter().flatten().copied().collect();
         let crba = count(&model, &mass);
-        let aba = count(&model, &model.outputs.articulated.as_ref().expect("emitted").accelerations);
+        let aba = count(
+            &model,
+            &model
+                .outputs
+                .articulated
+                .as_ref()
+                .expect("emitted")
+                .accelerations,
+        );
         let j = model.outputs.jacobians.as_ref().expect("emitted");
-        let jac: Vec<Expr> = j.position.iter().chain(&j.velocity).flatten().copied().collect();
+        let jac: Vec<Expr> = j
+            .position
+            .iter()
+            .chain(&j.velocity)
+            .flatten()
+            .copied()
+            .collect();
         let s = model.outputs.solved.as_ref().expect("emitted");
         let mut solved: Vec<Expr> = s.acceleration.clone();
         for m in [&s.position, &s.velocity, &s.inverse_mass] {
@@ -67,7 +84,10 @@ fn main() {
         println!(
             "| {file}{options} | {n} | {ms:.0} | {} | {} | {} | {} | {} |",
             beside(rnea, floor((93 * n - 108, 81 * n - 100))),
-            beside(crba, floor((10 * n * n + 22 * n - 32, 6 * n * n + 37 * n - 43))),
+            beside(
+                crba,
+                floor((10 * n * n + 22 * n - 32, 6 * n * n + 37 * n - 43))
+            ),
             beside(aba, floor((224 * n - 174, 205 * n - 181))),
             beside(count(&model, &jac), None),
             beside(count(&model, &solved), None),

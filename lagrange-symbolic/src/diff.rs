@@ -218,17 +218,7 @@ impl Context {
     /// Non-symbol keys are ignored. Subtrees without any mapped symbol are
     /// returned as they are.
     pub fn substitute(&mut self, e: Expr, map: &[(Expr, Expr)]) -> Expr {
-        let table: HashMap<Expr, Expr> = map
-            .iter()
-            .filter(|(k, _)| self.as_symbol(*k).is_some())
-            .copied()
-            .collect();
-        if table.is_empty() {
-            return e;
-        }
-        let keys: Vec<_> = table.keys().filter_map(|&k| self.as_symbol(k)).collect();
-        let mut memo = HashMap::new();
-        self.substitute_in(e, &table, &keys, &mut memo)
+        self.substitute_all(&[e], map)[0]
     }
 
     /// [`substitute`](Self::substitute) on many expressions with one memo,

@@ -37,7 +37,9 @@ pub(super) fn factorise(ctx: &mut Context, mass: &[Vec<Sym>]) -> Factor {
     let mut pivots = vec![zero; n];
     let mut reciprocal = vec![zero; n];
     for p in (0..n).rev() {
-        let below: Vec<usize> = ((p + 1)..n).filter(|&k| !ctx.is_zero(lower[k][p])).collect();
+        let below: Vec<usize> = ((p + 1)..n)
+            .filter(|&k| !ctx.is_zero(lower[k][p]))
+            .collect();
         let mut terms = vec![m(p, p)];
         for &k in &below {
             let t = ctx.mul(weighted[k][p], lower[k][p]);
@@ -191,7 +193,10 @@ mod tests {
         let filled = (0..n).flat_map(|k| (0..k).map(move |i| (k, i)));
         let fill = filled
             .filter(|&(k, i)| !ctx.is_zero(factor.lower[k][i]))
-            .filter(|&(k, i)| !(ancestor(factor.order[k], factor.order[i]) || ancestor(factor.order[i], factor.order[k])))
+            .filter(|&(k, i)| {
+                !(ancestor(factor.order[k], factor.order[i])
+                    || ancestor(factor.order[i], factor.order[k]))
+            })
             .count();
         assert_eq!(fill, 0, "fill-in between the branches");
         let b_values = [1.0, -2.0, 0.5, 3.0, -1.5];

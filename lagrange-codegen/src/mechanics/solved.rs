@@ -67,7 +67,9 @@ pub(super) fn solved(
                 factor.solve(ctx, &column)
             })
             .collect();
-        (0..n).map(|i| (0..n).map(|k| solved[k][i]).collect()).collect()
+        (0..n)
+            .map(|i| (0..n).map(|k| solved[k][i]).collect())
+            .collect()
     };
     let position = columns(ctx, &jacobians.position);
     let velocity = columns(ctx, &jacobians.velocity);

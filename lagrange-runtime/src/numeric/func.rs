@@ -91,6 +91,34 @@ pub fn mul_add<T: Real>(x: T, y: T, c: T) -> T {
     }
 }
 
+/// The ratio of the smallest pivot to the largest, what the emitted
+/// factorisations hand the singularity check; −1 where no pivot is positive
+/// (two negative pivots would give a positive ratio, and M is then not
+/// positive definite) or where one is not finite.
+#[inline]
+pub fn pivot_ratio<T: Real>(pivots: &[T]) -> T {
+    let Some((&first, rest)) = pivots.split_first() else {
+        return T::lit(-1.0);
+    };
+    if !pivots.iter().all(|d| d.is_finite()) {
+        return T::lit(-1.0);
+    }
+    let (mut lo, mut hi) = (first, first);
+    for &d in rest {
+        if d < lo {
+            lo = d;
+        }
+        if d > hi {
+            hi = d;
+        }
+    }
+    if hi > T::lit(0.0) {
+        lo / hi
+    } else {
+        T::lit(-1.0)
+    }
+}
+
 /// A literal constant in the scalar type.
 #[inline(always)]
 pub fn lit<T: Real>(x: f64) -> T {
@@ -100,6 +128,15 @@ pub fn lit<T: Real>(x: f64) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_pivot_ratio_refuses_what_is_not_positive_definite() {
+        assert_eq!(pivot_ratio(&[2.0, 0.5, 4.0]), 0.125);
+        assert_eq!(pivot_ratio(&[-2.0, -1.0]), -1.0);
+        assert!(pivot_ratio(&[1.0, -1.0]) < 0.0);
+        assert_eq!(pivot_ratio(&[1.0, f64::NAN, 2.0]), -1.0);
+        assert_eq!(pivot_ratio::<f64>(&[]), -1.0);
+    }
 
     #[test]
     fn agree_with_std_for_f64_and_f32() {

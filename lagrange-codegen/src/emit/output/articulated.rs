@@ -40,16 +40,7 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
         #[doc(hidden)]
         pub fn __lagrange_forward_dynamics(&self, p: &[#s; #h_len], q: &#qvec, v: &#vec_t, tau: &#vec_t, t: #s) -> (#vec_t, #s) {
             #lets
-            let pivots: [#s; #n] = [#(#pivots),*];
-            let mut lo = pivots[0];
-            let mut hi = pivots[0];
-            for &d in &pivots[1..] {
-                if d < lo { lo = d; }
-                if d > hi { hi = d; }
-            }
-            // Pivots all negative would give a positive ratio: M is then
-            // not positive definite, and the ratio says so.
-            let ratio = if hi > <#s as ::lagrange::__private::Real>::lit(0.0) { lo / hi } else { <#s as ::lagrange::__private::Real>::lit(-1.0) };
+            let ratio = ::lagrange::__private::func::pivot_ratio(&[#(#pivots),*]);
             (<#vec_t>::from([#(#acc),*]), ratio)
         }
     };

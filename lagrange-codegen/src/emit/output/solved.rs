@@ -52,16 +52,7 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, system: &System) -> 
                 #fv
                 let mut dtau = <#mat>::zeros();
                 #fm
-                let pivots: [#s; #n] = [#(#pivots),*];
-                let mut lo = pivots[0];
-                let mut hi = pivots[0];
-                for &d in &pivots[1..] {
-                    if d < lo { lo = d; }
-                    if d > hi { hi = d; }
-                }
-                // Pivots all negative would give a positive ratio: M is then
-                // not positive definite, and the ratio says so.
-                let ratio = if hi > <#s as #p::Real>::lit(0.0) { lo / hi } else { <#s as #p::Real>::lit(-1.0) };
+                let ratio = #p::func::pivot_ratio(&[#(#pivots),*]);
                 let acceleration = <#vec_n>::from([#(#acc),*]);
                 (#p::AccelerationDerivatives { acceleration, dq, dv, dtau }, ratio)
             }
