@@ -6,6 +6,9 @@
 //! articulated-body q̈.
 //!
 //!     cargo run --release -p lagrange-codegen --example buildtime [-- path/to/a1.urdf]
+//!
+//! With `DUMP=dir` set, each expansion is written to `dir/<robot>.rs` (to
+//! check that a change leaves the emitted code as it was).
 
 use std::time::Instant;
 
