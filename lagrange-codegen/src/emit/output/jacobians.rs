@@ -53,7 +53,8 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
     };
     Pieces {
         lagrangian,
-        inherent: pieces,
+        // Beside M's pieces, in the impl that allows generated code's lints.
+        hoisted: pieces,
         ..Pieces::default()
     }
 }
