@@ -17,7 +17,7 @@ use crate::mechanics::Model;
 /// function outgrew the instruction cache (the planar 30-link chain 1.59 →
 /// 1.13 µs; the spatial 30-link arm 4 % slower). Smaller pieces (1,000) built
 /// little faster and ran 12 % slower on the arm.
-const CHUNK_OPS: usize = 4000;
+pub(super) const CHUNK_OPS: usize = 4000;
 
 pub(super) struct Emitter<'a> {
     model: &'a Model,
@@ -81,12 +81,53 @@ impl<'a> Emitter<'a> {
         self.with_config(outputs, |program, ctx, cfg| program.emit(ctx, cfg))
     }
 
-    /// The program for `outputs` in pieces of at most [`CHUNK_OPS`] operations
+    /// The program for `outputs` in pieces of at most `max_ops` operations
     /// sharing the array `s`, or `None` when it is small enough for one function.
-    pub(super) fn program_chunked(&self, outputs: &[Sym]) -> Option<lagrange_symbolic::Chunked> {
+    pub(super) fn program_chunked(
+        &self,
+        outputs: &[Sym],
+        max_ops: usize,
+    ) -> Option<lagrange_symbolic::Chunked> {
         self.with_config(outputs, |program, ctx, cfg| {
-            program.emit_chunked(ctx, cfg, CHUNK_OPS, &quote!(s))
+            program.emit_chunked(ctx, cfg, max_ops, &quote!(s))
         })
+    }
+
+    /// A program as `let`s and outputs, the `let`s of one of more than
+    /// `max_ops` operations (see [`CHUNK_OPS`]) calls to its pieces: hidden `#[inline(never)]` methods
+    /// `<name>_<k>(&self, <params>, s)`, called with `args`, passing values
+    /// through the array `s`, returned last.
+    pub(super) fn program_in_pieces(
+        &self,
+        outputs: &[Sym],
+        (name, max_ops): (&str, usize),
+        (params, args): (&TokenStream, &TokenStream),
+    ) -> (TokenStream, Vec<TokenStream>, TokenStream) {
+        let Some(chunked) = self.program_chunked(outputs, max_ops) else {
+            let (lets, outs) = self.program(outputs);
+            return (lets, outs, TokenStream::new());
+        };
+        let slots = Literal::usize_unsuffixed(chunked.slots);
+        let zero = constant(self.scalar, 0.0);
+        let names: Vec<syn::Ident> = (0..chunked.chunks.len())
+            .map(|k| format_ident!("{name}_{k}"))
+            .collect();
+        let bodies = &chunked.chunks;
+        let s = super::scalar_tokens(self.scalar);
+        let lets = quote! {
+            let mut s = [#zero; #slots];
+            #(self.#names(#args, &mut s);)*
+        };
+        let pieces = quote! {
+            #(
+                #[doc(hidden)]
+                #[inline(never)]
+                pub fn #names(&self, #params, s: &mut [#s; #slots]) {
+                    #bodies
+                }
+            )*
+        };
+        (lets, chunked.outputs, pieces)
     }
 
     pub(super) fn with_config<R>(

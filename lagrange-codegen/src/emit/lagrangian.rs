@@ -4,14 +4,14 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
+use super::Frame;
 use super::constrained::impl_constrained;
 use super::driven::impl_driven;
-use super::emitter::Emitter;
+use super::emitter::{CHUNK_OPS, Emitter};
 use super::method::{check_parameters, visit_form};
 use super::output::{Pieces, outputs};
 use super::posed::impl_posed;
 use super::reduced::impl_reduced;
-use super::{Frame, constant};
 use crate::ast::System;
 use crate::doc;
 use crate::mechanics::Model;
@@ -39,7 +39,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
             const _: &[u8] = include_bytes!(#path);
         )
     });
-    let hoisted = hoisted_impl(&e, &f, system, model, output_hoisted);
+    let hoisted = hoisted_impl(&e, &f, model, output_hoisted);
     let constrained = impl_constrained(&e, &f, model);
     let reduced = impl_reduced(&e, &f, model);
     let driven = impl_driven(&e, &f, model);
@@ -429,7 +429,7 @@ struct Joint {
     pieces: TokenStream,
 }
 
-fn joint_program(e: &Emitter, f: &Frame, system: &System, model: &Model) -> Joint {
+fn joint_program(e: &Emitter, f: &Frame, model: &Model) -> Joint {
     let s = &f.s;
     let nl = &f.n;
     let n = model.dof();
@@ -437,37 +437,15 @@ fn joint_program(e: &Emitter, f: &Frame, system: &System, model: &Model) -> Join
     let upper_len = joint.len() - n;
     // A large program runs as pieces, each its own function, passing values
     // through the array `s`.
-    let (lets, outs, pieces) = match e.program_chunked(&joint) {
-        None => {
-            let (lets, outs) = e.program(&joint);
-            (lets, outs, TokenStream::new())
-        }
-        Some(chunked) => {
-            let slots = Literal::usize_unsuffixed(chunked.slots);
-            let zero = constant(&system.scalar, 0.0);
-            let names: Vec<syn::Ident> = (0..chunked.chunks.len())
-                .map(|k| format_ident!("__lagrange_mass_matrix_and_rhs_{k}"))
-                .collect();
-            let bodies = &chunked.chunks;
-            let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
-            let vec_t = f.vec(nl);
-            let qvec_t = f.qvec();
-            let lets = quote! {
-                let mut s = [#zero; #slots];
-                #(self.#names(p, q, v, t, &mut s);)*
-            };
-            let pieces = quote! {
-                #(
-                    #[doc(hidden)]
-                    #[inline(never)]
-                    pub fn #names(&self, p: &[#s; #h_len], q: &#qvec_t, v: &#vec_t, t: #s, s: &mut [#s; #slots]) {
-                        #bodies
-                    }
-                )*
-            };
-            (lets, chunked.outputs, pieces)
-        }
-    };
+    let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
+    let vec_t = f.vec(nl);
+    let qvec_t = f.qvec();
+    let params = quote!(p: &[#s; #h_len], q: &#qvec_t, v: &#vec_t, t: #s);
+    let (lets, outs, pieces) = e.program_in_pieces(
+        &joint,
+        ("__lagrange_mass_matrix_and_rhs", CHUNK_OPS),
+        (&params, &quote!(p, q, v, t)),
+    );
     Joint {
         lets,
         fill: e.symmetric_matrix(&outs[..upper_len], n),
@@ -477,13 +455,7 @@ fn joint_program(e: &Emitter, f: &Frame, system: &System, model: &Model) -> Join
 }
 
 /// The inherent impl of the parameter-only terms and the programs over them.
-fn hoisted_impl(
-    e: &Emitter,
-    f: &Frame,
-    system: &System,
-    model: &Model,
-    outputs: TokenStream,
-) -> TokenStream {
+fn hoisted_impl(e: &Emitter, f: &Frame, model: &Model, outputs: TokenStream) -> TokenStream {
     let s = &f.s;
     let nl = &f.n;
     let vec_t = f.vec(nl);
@@ -496,7 +468,7 @@ fn hoisted_impl(
         fill: j_fill,
         rhs: j_rhs,
         pieces: j_pieces,
-    } = joint_program(e, f, system, model);
+    } = joint_program(e, f, model);
     let ident = f.ident;
     let ig = &f.impl_generics;
     let tg = &f.ty_generics;

@@ -54,9 +54,14 @@ pub(super) fn at_centre(
         c.all(v);
     }
     c.all(&mut d.forces.generalized);
+    // The articulated-body recursions are built at the centre already and
+    // are not reduced by the unit norm: the quaternion reaches q̈ only
+    // through gravity in the root's axes (linear in R₀), so there is
+    // nothing to reduce, and the reduction's full expansion of q̈ through
+    // the nested 1/D of every link costs seconds (9 of Solo 12's 10 s).
     if let Some(a) = &mut d.forces.articulated {
-        c.all(&mut a.accelerations);
-        c.all(&mut a.pivots);
+        c.unreduced(&mut a.accelerations);
+        c.unreduced(&mut a.pivots);
     }
     // Derivatives are substituted only: R(θ) → 1 makes most of their terms
     // vanish at construction, and collecting a few hundred of them costs
@@ -258,6 +263,21 @@ impl AtCentre<'_> {
     pub fn substituted(&mut self, v: &mut [Sym]) {
         for e in v {
             *e = self.ctx.substitute(*e, self.at);
+        }
+    }
+
+    /// At the centre (substituted and collected where θ appears), not
+    /// tried reduced by the unit norm.
+    pub fn unreduced(&mut self, v: &mut [Sym]) {
+        for e in v {
+            if self
+                .at
+                .iter()
+                .any(|&(theta, _)| self.ctx.depends_on(*e, theta))
+            {
+                let s = self.ctx.substitute(*e, self.at);
+                *e = self.ctx.collect(s);
+            }
         }
     }
 

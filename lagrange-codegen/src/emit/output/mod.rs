@@ -29,7 +29,8 @@ pub(super) struct Pieces {
     pub lagrangian: TokenStream,
     /// Inherent methods and constants beside `EQUATIONS`.
     pub inherent: TokenStream,
-    /// Hidden inherent methods over the hoisted parameter terms `p`.
+    /// Hidden inherent methods over the hoisted parameter terms `p`, and
+    /// the pieces of a large program (this impl allows generated code's lints).
     pub hoisted: TokenStream,
     /// Items of their own: impls of further traits.
     pub items: TokenStream,
