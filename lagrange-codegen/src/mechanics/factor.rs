@@ -77,9 +77,9 @@ impl Factor {
         let mut z: Vec<Sym> = self.order.iter().map(|&c| b[c]).collect();
         for i in (0..n).rev() {
             let mut terms = vec![z[i]];
-            for k in (i + 1)..n {
-                if !ctx.is_zero(self.lower[k][i]) {
-                    let t = ctx.mul(self.lower[k][i], z[k]);
+            for (row, &zk) in self.lower[i + 1..].iter().zip(&z[i + 1..]) {
+                if !ctx.is_zero(row[i]) {
+                    let t = ctx.mul(row[i], zk);
                     terms.push(ctx.neg(t));
                 }
             }
@@ -93,9 +93,9 @@ impl Factor {
             .collect();
         for k in 0..n {
             let mut terms = vec![x[k]];
-            for j in 0..k {
-                if !ctx.is_zero(self.lower[k][j]) {
-                    let t = ctx.mul(self.lower[k][j], x[j]);
+            for (&l, &xj) in self.lower[k][..k].iter().zip(&x[..k]) {
+                if !ctx.is_zero(l) {
+                    let t = ctx.mul(l, xj);
                     terms.push(ctx.neg(t));
                 }
             }

@@ -15,7 +15,7 @@ use crate::mechanics::Model;
 /// (as M's) built the Panda's 10,633 in 3.7 s of CPU instead of 8.0 s, but
 /// ran the floating bases' 10–20 % slower (values crossing between pieces go
 /// through memory).
-const JACOBIAN_CHUNK_OPS: usize = 6000;
+pub(super) const JACOBIAN_CHUNK_OPS: usize = 6000;
 
 pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Pieces {
     let Some(j) = &model.outputs.jacobians else {
