@@ -134,10 +134,17 @@ where
 /// kinematic tree), q̈ = M⁻¹(Q − h + τ), the right-hand side's Jacobians at
 /// that q̈ and their solves, sharing their subexpressions. Read it through
 /// [`acceleration_derivatives`], which checks the state and the result.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` does not emit q̈ and its derivatives as one program",
+    label = "needs `Differentiable`",
+    note = "add `jacobians` to the description's `emit(...)`; it gives this trait to a system without constraints (with constraints, linearise through `Linearizer::constrained_tangent` or `Linearizer::reduced_tangent`, which read `emit(jacobians)`'s constraint derivatives)"
+)]
 pub trait Differentiable<T: Real, const N: usize, const Q: usize = N>: Lagrangian<T, N, Q> {
     /// q̈ and its derivatives at (q, v, τ, t), unchecked, with the ratio of
-    /// M's smallest pivot to its largest (not positive, or NaN, where M is
-    /// not positive definite).
+    /// M's smallest pivot to its largest ([`func::pivot_ratio`]: −1 where a
+    /// pivot is not finite or none is positive).
+    ///
+    /// [`func::pivot_ratio`]: crate::func::pivot_ratio
     fn acceleration_derivatives_unchecked(
         &self,
         q: &SVector<T, Q>,
@@ -171,7 +178,7 @@ impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
         let (d, ratio) = self
             .system()
             .acceleration_derivatives_unchecked(&unit, v, tau, t);
-        // A NaN ratio (a NaN pivot) is refused too; the ratio is at most 1.
+        // The ratio is at most 1, and −1 for a pivot that is not finite.
         if !ratio.is_finite() || ratio < self.singular_tolerance() {
             let m = self.system().mass_matrix(&unit, t);
             let names = (&S::VELOCITIES[..], S::ATLAS);
