@@ -168,22 +168,14 @@ fn world_inertia(ctx: &mut Context, i: &Inertia, (r, p): (Mat3, [Sym; 3])) -> Wo
     let two = ctx.int(2);
     let twice = ctx.mul(two, p_h);
     let diagonal = ctx.add(p_mp, twice);
-    let mut rot = [[diagonal; 3]; 3];
-    for a in 0..3 {
-        for b in a..3 {
-            let turned = dot(ctx, &ri[a], &r[b]);
-            let outer = ctx.mul(mp[a], p[b]);
-            let hp = ctx.mul(h[a], p[b]);
-            let ph = ctx.mul(p[a], h[b]);
-            let mut e = ctx.sum(&[outer, hp, ph]);
-            e = ctx.sub(turned, e);
-            if a == b {
-                e = ctx.add(e, diagonal);
-            }
-            rot[a][b] = e;
-            rot[b][a] = e;
-        }
-    }
+    let rot = symmetric(ctx, diagonal, |ctx, a, b| {
+        let turned = dot(ctx, &ri[a], &r[b]);
+        let outer = ctx.mul(mp[a], p[b]);
+        let hp = ctx.mul(h[a], p[b]);
+        let ph = ctx.mul(p[a], h[b]);
+        let e = ctx.sum(&[outer, hp, ph]);
+        ctx.sub(turned, e)
+    });
     WorldInertia {
         mass: i.mass,
         first,
@@ -204,26 +196,37 @@ fn rate(ctx: &mut Context, y: &WorldInertia, [w, v]: Pair) -> WorldInertia {
     let vh = dot(ctx, &v, &y.first);
     let two = ctx.int(2);
     let diagonal = ctx.mul(two, vh);
-    let mut rot = [[diagonal; 3]; 3];
-    for a in 0..3 {
-        for b in a..3 {
-            let hv = ctx.mul(y.first[a], v[b]);
-            let vh = ctx.mul(v[a], y.first[b]);
-            let outer = ctx.add(hv, vh);
-            let mut e = ctx.add(c[a][b], c[b][a]);
-            e = ctx.sub(e, outer);
-            if a == b {
-                e = ctx.add(e, diagonal);
-            }
-            rot[a][b] = e;
-            rot[b][a] = e;
-        }
-    }
+    let rot = symmetric(ctx, diagonal, |ctx, a, b| {
+        let hv = ctx.mul(y.first[a], v[b]);
+        let vh = ctx.mul(v[a], y.first[b]);
+        let outer = ctx.add(hv, vh);
+        let e = ctx.add(c[a][b], c[b][a]);
+        ctx.sub(e, outer)
+    });
     WorldInertia {
         mass: ctx.zero(),
         first,
         rot,
     }
+}
+
+/// The symmetric matrix with entries `entry(a, b)` for a ≤ b, `diagonal`
+/// added on the diagonal.
+fn symmetric(
+    ctx: &mut Context,
+    diagonal: Sym,
+    mut entry: impl FnMut(&mut Context, usize, usize) -> Sym,
+) -> Mat3 {
+    let mut m = [[diagonal; 3]; 3];
+    for (a, b) in [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)] {
+        let mut e = entry(ctx, a, b);
+        if a == b {
+            e = ctx.add(e, diagonal);
+        }
+        m[a][b] = e;
+        m[b][a] = e;
+    }
+    m
 }
 
 fn add_inertia(ctx: &mut Context, a: &WorldInertia, b: &WorldInertia) -> WorldInertia {
