@@ -152,9 +152,15 @@ impl Program {
                 }
             };
             // Operands read here for the last time give their registers back
-            // before the result takes one: `_t3 = _t3 * _t5` is fine.
-            for v in op.operands() {
+            // before the result takes one: `_t3 = _t3 * _t5` is fine. A fused
+            // product's operands are read here too.
+            let fused_operands = op
+                .operands()
+                .filter(|&v| fused[v as usize])
+                .flat_map(|m| self.ops[m as usize].operands());
+            for v in op.operands().chain(fused_operands) {
                 if last_use[v as usize] == i
+                    && piece[v as usize] == piece[i]
                     && let Some(r) = register_of[v as usize]
                 {
                     registers.release(r);
@@ -232,7 +238,9 @@ impl Program {
                 last[v as usize] = i;
                 if fused[v as usize] {
                     for w in self.ops[v as usize].operands() {
-                        last[w as usize] = i;
+                        if piece[w as usize] == piece[i] {
+                            last[w as usize] = i;
+                        }
                     }
                 }
             }

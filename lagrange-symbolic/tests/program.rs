@@ -214,3 +214,95 @@ fn emission_is_deterministic_and_reads_well() {
     );
     assert_eq!(outs, vec!["_t0", "_t1", "_t2", "self . p4"]);
 }
+
+/// A fused product's operands give their registers back at the sum that
+/// reads them, so a running sum of products needs no more variables fused
+/// than apart.
+#[test]
+fn fused_products_release_their_operands() {
+    let registers = |fused_multiply_add: bool| {
+        let mut cx = Context::new();
+        let x = cx.coordinate("x");
+        // x ← sin x · cos x + x, eight times: each product is read by the
+        // sum right after it.
+        let mut sum = x;
+        for _ in 0..8 {
+            let s = cx.sin(sum);
+            let c = cx.cos(sum);
+            let term = cx.mul(s, c);
+            sum = cx.add(sum, term);
+        }
+        let prog = Program::new(&cx, &[sum]);
+        let symbol = |_: Symbol| quote!(q[0]);
+        let constant = |v: f64| {
+            let lit = proc_macro2::Literal::f64_suffixed(v);
+            quote!(#lit)
+        };
+        let function: TokenStream = quote!(func);
+        let cfg = EmitConfig {
+            symbol: &symbol,
+            constant: &constant,
+            function: &function,
+            temp_prefix: "_t",
+            fused_multiply_add,
+        };
+        let (body, _) = prog.emit(&cx, &cfg);
+        let body = body.to_string();
+        assert_eq!(body.contains("mul_add"), fused_multiply_add);
+        body.matches("let mut").count()
+    };
+    assert!(registers(true) <= registers(false), "{} > {}", registers(true), registers(false));
+}
+
+/// In pieces, a value from an earlier piece is read from the state array,
+/// even as a fused product's factor, and every variable a piece writes or
+/// reads is declared in it.
+#[test]
+fn pieces_declare_every_variable_they_use() {
+    let mut cx = Context::new();
+    let x = cx.coordinate("x");
+    let mut terms = Vec::new();
+    let mut sum = cx.sqrt(x);
+    for k in 1..=12 {
+        let k = cx.rational(k, 1);
+        let kx = cx.mul(k, x);
+        let s = cx.sin(kx);
+        let c = cx.cos(kx);
+        terms.push((s, c));
+    }
+    // The factors, read by a first output, are computed in early pieces; the
+    // second output's products read them across pieces.
+    let mut first = cx.sqrt(x);
+    for &(s, c) in &terms {
+        first = cx.add(first, s);
+        first = cx.add(first, c);
+    }
+    for &(s, c) in terms.iter().rev() {
+        let term = cx.mul(s, c);
+        sum = cx.add(sum, term);
+    }
+    let prog = Program::new(&cx, &[first, sum]);
+    let symbol = |_: Symbol| quote!(q[0]);
+    let constant = |v: f64| {
+        let lit = proc_macro2::Literal::f64_suffixed(v);
+        quote!(#lit)
+    };
+    let function: TokenStream = quote!(func);
+    let cfg = EmitConfig {
+        symbol: &symbol,
+        constant: &constant,
+        function: &function,
+        temp_prefix: "_t",
+        fused_multiply_add: true,
+    };
+    let chunked = prog.emit_chunked(&cx, &cfg, 5, &quote!(s)).expect("several pieces");
+    assert!(chunked.chunks.len() > 2);
+    for chunk in &chunked.chunks {
+        let text = chunk.to_string();
+        for word in text.split(|c: char| !(c.is_alphanumeric() || c == '_')) {
+            if word.starts_with("_t") {
+                assert!(text.contains(&format!("let mut {word} ;")), "{word} undeclared in {text}");
+            }
+        }
+    }
+}
