@@ -594,7 +594,7 @@ pub mod __private {
     pub use lagrange_runtime::{
         AccelerationDerivatives, Atlas, Constrained, Differentiable, Driven, DrivenAtlas, Error,
         EulerRotation, FormVisitor, FreeVisitor, JointLimit, Lagrangian, Orientation, Real,
-        Reduced, Route, func, physical,
+        ForwardRoute, Reduced, Route, func, physical,
     };
     pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 }

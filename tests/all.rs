@@ -39,6 +39,7 @@ mod events;
 mod extremes;
 mod failures;
 mod floating_bases;
+mod forward_route;
 mod free_bodies;
 mod inputs;
 mod operational_space;

@@ -9,7 +9,7 @@ use std::fmt::Write;
 
 use lagrange_symbolic::{Expr as Sym, ListingStyle, Program};
 
-use crate::mechanics::{BiasRoute, Model};
+use crate::mechanics::{BiasRoute, ForwardRoute, Model};
 
 /// The equations as plain text (header and entries) and as LaTeX, from one
 /// pass over the outputs: a large system's straight-line program is built once
@@ -123,6 +123,17 @@ fn header(model: &Model) -> String {
         }
     );
     let _ = writeln!(s, "{}; T kinetic, V potential energy.", route_line(model));
+    if let Some(c) = &model.outputs.forward_route {
+        let (a, f) = (c.articulated_body, c.factored_mass);
+        let taken = match c.route {
+            ForwardRoute::ArticulatedBody => "the articulated-body algorithm",
+            ForwardRoute::FactoredMass => "M factorised as L^T D L in the program",
+        };
+        let _ = writeln!(
+            s,
+            "q'' (emitted) by {taken}: weighted operations {a} articulated-body, {f} factored M"
+        );
+    }
     if let Some(c) = &model.constraints.multipliers {
         let _ = writeln!(
             s,

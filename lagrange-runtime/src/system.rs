@@ -20,7 +20,7 @@ pub use atlas::{Atlas, DrivenAtlas, EulerRotation, FreeVisitor};
 pub use configuration::Configuration;
 pub use constrained::{Constrained, Reduced};
 pub use form::FormVisitor;
-pub use route::Route;
+pub use route::{ForwardRoute, Route};
 
 /// A coordinate's position limits, watched by the runs (see
 /// [`Lagrangian::position_limits`]).
@@ -97,6 +97,10 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// recursive route was not taken: which body, and what about it).
     /// `#[derive(Lagrangian)]` sets it; the default is [`Route::HandWritten`].
     const ROUTE: Route = Route::HandWritten;
+    /// How [`forward_dynamics`](Self::forward_dynamics) computes q̈, and the
+    /// operation counts `emit(articulated)` chose it by. `#[derive(Lagrangian)]`
+    /// sets it; the default is [`ForwardRoute::MassMatrix`].
+    const FORWARD_ROUTE: ForwardRoute = ForwardRoute::MassMatrix;
     /// Whether the description has `emit(atlas)` (an [`Atlas`]): a run that
     /// meets a singular M then says to call
     /// [`run_atlas`](crate::Simulation::run_atlas), which runs through its

@@ -14,7 +14,7 @@ use super::posed::impl_posed;
 use super::reduced::impl_reduced;
 use crate::ast::System;
 use crate::doc;
-use crate::mechanics::Model;
+use crate::mechanics::{ForwardRoute, Model};
 
 /// Every impl of a derived description: `Lagrangian`, the inherent `EQUATIONS`
 /// and optional outputs, the hoisted programs, and the constrained and driven
@@ -123,6 +123,7 @@ fn lagrangian_trait(
     let has_constraints = !(system.holonomic.is_empty() && system.nonholonomic.is_empty());
     let cyclic = cyclic_const(model, nl);
     let route = route_const(model);
+    let forward = forward_route_const(model);
     let atlas = atlas_const(system);
     let check_parameters = check_parameters(e, model);
     let visit_form = visit_form(f, model);
@@ -149,7 +150,7 @@ fn lagrangian_trait(
             const RHEONOMIC: bool = #rheonomic;
             const CONSTRAINED: bool = #has_constraints;
             #cyclic
-            #route #atlas
+            #route #forward #atlas
 
             #[inline]
             fn mass_matrix(&self, q: &#qvec_t, t: #s) -> #mat_t {
@@ -300,6 +301,22 @@ fn route_const(model: &Model) -> TokenStream {
             const ROUTE: ::lagrange::__private::Route =
                 ::lagrange::__private::Route::Generic { reason: #reason };
         },
+    }
+}
+
+/// `FORWARD_ROUTE`, where `emit(articulated)` chose a route for q̈.
+fn forward_route_const(model: &Model) -> TokenStream {
+    let Some(c) = &model.outputs.forward_route else {
+        return TokenStream::new();
+    };
+    let (a, f) = (c.articulated_body, c.factored_mass);
+    let route = match c.route {
+        ForwardRoute::ArticulatedBody => quote!(ArticulatedBody),
+        ForwardRoute::FactoredMass => quote!(FactoredMass),
+    };
+    quote! {
+        const FORWARD_ROUTE: ::lagrange::__private::ForwardRoute =
+            ::lagrange::__private::ForwardRoute::#route { articulated_body: #a, factored_mass: #f };
     }
 }
 

@@ -26,6 +26,7 @@ mod extra;
 mod factor;
 mod force;
 mod forms;
+mod forward;
 mod frames;
 mod generic;
 mod inverse;
@@ -44,6 +45,7 @@ pub use model::{
     Articulation, BiasRoute, ConstraintForms, Derivation, Energies, EquationsOfMotion, InputModel,
     Masses, Model, Outputs, Variables,
 };
+pub use forward::{ForwardChoice, ForwardRoute};
 pub use solved::SolvedDerivatives;
 
 use std::mem::take;
@@ -487,7 +489,13 @@ fn finish(
     let solved = (d.jacobians.as_ref())
         .filter(|_| unconstrained)
         .map(|j| solved::solved(&mut ctx, &d.motion.mass, &d.motion.rhs, j));
-    let articulated = d.forces.articulated;
+    let (articulated, forward_route) = match d.forces.articulated.take() {
+        Some(a) => {
+            let (a, choice) = forward::fastest(&mut ctx, a, &d.motion);
+            (Some(a), Some(choice))
+        }
+        None => (None, None),
+    };
     let hoisted = hoist(
         &mut ctx,
         &d.motion,
@@ -511,6 +519,7 @@ fn finish(
             jacobians: d.jacobians,
             solved,
             articulated,
+            forward_route,
             inverse: d.inverse,
             frames: early.frames,
         },

@@ -13,6 +13,7 @@ pub use super::force::InputModel;
 pub use super::generic::BiasRoute;
 pub use super::motion::{Derivation, EquationsOfMotion};
 pub use super::recursive::Articulation;
+use super::forward::ForwardChoice;
 use super::solved::SolvedDerivatives;
 
 /// The equations of motion M q̈ + h = Q, the energies, the constrained forms
@@ -213,8 +214,11 @@ pub struct Outputs {
     /// q̈ and its derivatives in (q, q̇, τ) as one program, M factorised in
     /// it (`emit(jacobians)` on a system without constraints).
     pub solved: Option<SolvedDerivatives>,
-    /// The articulated-body forward dynamics (`emit(articulated)`).
+    /// The emitted q̈ (`emit(articulated)`): the articulated-body algorithm
+    /// or M factorised, whichever [`forward_route`](Self::forward_route) chose.
     pub articulated: Option<Articulation>,
+    /// Which route `articulated` takes and both routes' operation counts.
+    pub forward_route: Option<ForwardChoice>,
     /// τ = M q̈ + h − Q and the gravity torques (`emit(inverse_dynamics)`).
     pub inverse: Option<InverseDynamics>,
     /// The frames' Jacobians and the centre of mass (`emit(kinematics)`).

@@ -134,6 +134,29 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
         self.factorised(t, &unit, v, tau).map(|(_, a)| a)
     }
 
+    /// q̈ at (t, q, v) through M and Q − h, M factorised at run time
+    /// (Cholesky), even where the system emits q̈ as one program
+    /// (`emit(articulated)`, which [`acceleration`](Self::acceleration)
+    /// takes; [`Lagrangian::FORWARD_ROUTE`] says by which route). The two
+    /// agree to round-off; this one is there to compare them, and to check
+    /// one against the other.
+    ///
+    /// # Errors
+    /// As [`acceleration`](Self::acceleration).
+    pub fn acceleration_from_mass_matrix<const N: usize, const Q: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+    ) -> Result<SVector<T, N>, Error>
+    where
+        S: Lagrangian<T, N, Q>,
+        F: Forcing<T, N, Q>,
+    {
+        let (unit, tau) = self.checked(t, q, v)?;
+        self.factorised(t, &unit, v, tau).map(|(_, a)| a)
+    }
+
     /// The state's checks (finite, the tolerance), q on the unit sphere (a
     /// Runge–Kutta stage leaves it by its local error: the equations see the
     /// rotation it is closest to) and the forcing's generalized forces.

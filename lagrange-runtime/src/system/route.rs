@@ -19,3 +19,40 @@ pub enum Route {
     /// Not derived: the system's impl was written by hand.
     HandWritten,
 }
+
+/// How a system's unconstrained q̈ is computed
+/// ([`Lagrangian::FORWARD_ROUTE`](crate::Lagrangian::FORWARD_ROUTE); also a
+/// line of a derived system's `EQUATIONS`).
+///
+/// With `emit(articulated)` the derive builds q̈ both ways and emits the one
+/// with fewer operations (weighted as [`Program`'s cost model] counts them:
+/// a division four, a call twenty); the two counts are kept here, so the
+/// distance between the routes is visible. Either way the runtime's
+/// [`Dynamics::acceleration`](crate::Dynamics::acceleration) calls the
+/// emitted program, and
+/// [`Dynamics::acceleration_from_mass_matrix`](crate::Dynamics::acceleration_from_mass_matrix)
+/// the route through M and the runtime's Cholesky factorisation.
+///
+/// [`Program`'s cost model]: https://docs.rs/lagrange-symbolic
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ForwardRoute {
+    /// M and Q − h from the system, M factorised at run time (Cholesky): no
+    /// `emit(articulated)`, or a hand-written system.
+    MassMatrix,
+    /// Featherstone's articulated-body algorithm, emitted.
+    ArticulatedBody {
+        /// The articulated-body program's weighted operations.
+        articulated_body: usize,
+        /// The factored program's, not emitted.
+        factored_mass: usize,
+    },
+    /// M and Q − h with M = Lᵀ D L factorised in the emitted program
+    /// (Featherstone's LTDL, which fills in nothing on a kinematic tree) and
+    /// two triangular solves.
+    FactoredMass {
+        /// The articulated-body program's, not emitted.
+        articulated_body: usize,
+        /// The factored program's weighted operations.
+        factored_mass: usize,
+    },
+}
