@@ -593,8 +593,8 @@ pub mod __private {
     };
     pub use lagrange_runtime::{
         AccelerationDerivatives, Atlas, Constrained, Differentiable, Driven, DrivenAtlas, Error,
-        EulerRotation, FormVisitor, FreeVisitor, JointLimit, Lagrangian, Orientation, Real,
-        ForwardRoute, Reduced, Route, func, physical,
+        EulerRotation, FormVisitor, ForwardRoute, FreeVisitor, JointLimit, Lagrangian, Orientation,
+        Real, Reduced, Route, func, physical,
     };
     pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 }

@@ -52,16 +52,24 @@ fn agrees<S: Lagrangian<f64, N, Q>, const N: usize, const Q: usize>(
     let tau = SVector::<f64, N>::from_fn(|k, _| 2.0 * (0.1 * k as f64 - 0.2));
     let (emitted, ratio) = sys.forward_dynamics(&q, &v, &tau, 0.0).expect("emitted");
     let (m, rhs) = sys.mass_matrix_and_rhs(&q, &v, 0.0);
-    let solved = m.cholesky().expect("M positive definite").solve(&(rhs + tau));
+    let solved = m
+        .cholesky()
+        .expect("M positive definite")
+        .solve(&(rhs + tau));
     let worst = (emitted - solved).amax() / solved.amax().max(1.0);
     assert!(worst < 1e-12, "{name}: q'' off by {worst:.1e}");
     assert!(ratio > 0.0 && ratio <= 1.0, "{name}: pivot ratio {ratio}");
     // The runtime's two routes, unforced.
     let dynamics = Dynamics::new(sys);
     let a = dynamics.acceleration(0.0, &q, &v).expect("regular");
-    let b = dynamics.acceleration_from_mass_matrix(0.0, &q, &v).expect("regular");
+    let b = dynamics
+        .acceleration_from_mass_matrix(0.0, &q, &v)
+        .expect("regular");
     let worst = (a - b).amax() / b.amax().max(1.0);
-    assert!(worst < 1e-12, "{name}: the runtime's routes differ by {worst:.1e}");
+    assert!(
+        worst < 1e-12,
+        "{name}: the runtime's routes differ by {worst:.1e}"
+    );
 }
 
 fn arm_state<const N: usize>(shift: f64) -> SVector<f64, N> {
@@ -91,7 +99,13 @@ fn the_cheaper_route_is_emitted_and_agrees_with_the_mass_matrix() {
         agrees("Solo 12", &Solo12 {}, q);
     }
     let articulated = |r: &ForwardRoute| matches!(r, ForwardRoute::ArticulatedBody { .. });
-    assert!(routes.iter().any(articulated), "no robot takes the articulated-body route");
-    assert!(!routes.iter().all(articulated), "no robot takes the factored route");
+    assert!(
+        routes.iter().any(articulated),
+        "no robot takes the articulated-body route"
+    );
+    assert!(
+        !routes.iter().all(articulated),
+        "no robot takes the factored route"
+    );
     eprintln!("{routes:#?}");
 }

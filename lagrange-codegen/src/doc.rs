@@ -123,16 +123,8 @@ fn header(model: &Model) -> String {
         }
     );
     let _ = writeln!(s, "{}; T kinetic, V potential energy.", route_line(model));
-    if let Some(c) = &model.outputs.forward_route {
-        let (a, f) = (c.articulated_body, c.factored_mass);
-        let taken = match c.route {
-            ForwardRoute::ArticulatedBody => "the articulated-body algorithm",
-            ForwardRoute::FactoredMass => "M factorised as L^T D L in the program",
-        };
-        let _ = writeln!(
-            s,
-            "q'' (emitted) by {taken}: weighted operations {a} articulated-body, {f} factored M"
-        );
+    if let Some(line) = forward_line(model) {
+        let _ = writeln!(s, "{line}");
     }
     if let Some(c) = &model.constraints.multipliers {
         let _ = writeln!(
@@ -292,6 +284,20 @@ fn outputs(model: &Model) -> Vec<(String, Sym)> {
         }
     }
     out
+}
+
+/// The emitted q̈'s route and both routes' weighted operation counts, where
+/// `emit(articulated)` chose one.
+fn forward_line(model: &Model) -> Option<String> {
+    let c = model.outputs.forward_route.as_ref()?;
+    let (a, f) = (c.articulated_body, c.factored_mass);
+    let taken = match c.route {
+        ForwardRoute::ArticulatedBody => "the articulated-body algorithm",
+        ForwardRoute::FactoredMass => "M factorised as L^T D L in the program",
+    };
+    Some(format!(
+        "q'' (emitted) by {taken}: weighted operations {a} articulated-body, {f} factored M"
+    ))
 }
 
 /// The `route:` line: how M and h are computed and, off the recursive route,

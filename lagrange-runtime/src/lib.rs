@@ -265,5 +265,7 @@ pub use simulation::{ControlledSimulation, EventSimulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::physical;
 pub use system::{Atlas, Configuration, DrivenAtlas, EulerRotation, FreeVisitor};
-pub use system::{Constrained, Driven, FormVisitor, JointLimit, Lagrangian, Reduced, Route, ForwardRoute};
+pub use system::{
+    Constrained, Driven, FormVisitor, ForwardRoute, JointLimit, Lagrangian, Reduced, Route,
+};
 pub use table::Table;

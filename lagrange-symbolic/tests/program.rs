@@ -251,7 +251,12 @@ fn fused_products_release_their_operands() {
         assert_eq!(body.contains("mul_add"), fused_multiply_add);
         body.matches("let mut").count()
     };
-    assert!(registers(true) <= registers(false), "{} > {}", registers(true), registers(false));
+    assert!(
+        registers(true) <= registers(false),
+        "{} > {}",
+        registers(true),
+        registers(false)
+    );
 }
 
 /// In pieces, a value from an earlier piece is read from the state array,
@@ -295,13 +300,18 @@ fn pieces_declare_every_variable_they_use() {
         temp_prefix: "_t",
         fused_multiply_add: true,
     };
-    let chunked = prog.emit_chunked(&cx, &cfg, 5, &quote!(s)).expect("several pieces");
+    let chunked = prog
+        .emit_chunked(&cx, &cfg, 5, &quote!(s))
+        .expect("several pieces");
     assert!(chunked.chunks.len() > 2);
     for chunk in &chunked.chunks {
         let text = chunk.to_string();
         for word in text.split(|c: char| !(c.is_alphanumeric() || c == '_')) {
             if word.starts_with("_t") {
-                assert!(text.contains(&format!("let mut {word} ;")), "{word} undeclared in {text}");
+                assert!(
+                    text.contains(&format!("let mut {word} ;")),
+                    "{word} undeclared in {text}"
+                );
             }
         }
     }

@@ -39,13 +39,13 @@ mod solved;
 pub use derivatives::RhsJacobians;
 pub use expressions::Expressions;
 pub use extra::{Coriolis, Hamilton};
+pub use forward::{ForwardChoice, ForwardRoute};
 pub use frames::Frames;
 pub use inverse::InverseDynamics;
 pub use model::{
     Articulation, BiasRoute, ConstraintForms, Derivation, Energies, EquationsOfMotion, InputModel,
     Masses, Model, Outputs, Variables,
 };
-pub use forward::{ForwardChoice, ForwardRoute};
 pub use solved::SolvedDerivatives;
 
 use std::mem::take;

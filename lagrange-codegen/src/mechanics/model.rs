@@ -10,10 +10,10 @@ use crate::constraint::{ConstraintDerivatives, ConstraintSet, Reduction};
 use crate::lowered::{OrientationModel, PhysicalCheck, Poses};
 
 pub use super::force::InputModel;
+use super::forward::ForwardChoice;
 pub use super::generic::BiasRoute;
 pub use super::motion::{Derivation, EquationsOfMotion};
 pub use super::recursive::Articulation;
-use super::forward::ForwardChoice;
 use super::solved::SolvedDerivatives;
 
 /// The equations of motion M q̈ + h = Q, the energies, the constrained forms
