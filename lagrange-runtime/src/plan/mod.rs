@@ -19,6 +19,7 @@ mod box_qp;
 mod cost;
 mod ddp;
 mod mpc;
+mod passes;
 mod problem;
 
 pub use cost::{Cost, CostFn, CostModel, FramePosition};
@@ -26,5 +27,7 @@ pub use ddp::{Ddp, Iteration, Plan};
 pub use mpc::{Mpc, Sample};
 pub use problem::OptimalControl;
 
+#[cfg(test)]
+mod feasibility_tests;
 #[cfg(test)]
 mod tests;
