@@ -4,7 +4,8 @@
 //! (`Dynamics::input_derivatives`: q̈ and its emitted Jacobians from one
 //! factorisation) and, in the same run, through the stages' linearisations
 //! (`Linearizer::tangent_driven`, the path before it). Each solve runs
-//! three iterations from gravity compensation; the time is per solve.
+//! three iterations from gravity compensation; the time is per solve. The
+//! group `transition_ur5` times one step's derivatives alone both ways.
 //!
 //!     cargo bench -p lagrange-bench --bench plan
 
@@ -82,6 +83,18 @@ fn plan(c: &mut Criterion) {
         );
         group.bench_function(name, |b| {
             b.iter(|| solver.solve(black_box(&problem), &[hold.u; 30]).is_err())
+        });
+    }
+    group.finish();
+    let q = home;
+    let v = SVector::<f64, 6>::from([0.5, -0.3, 0.8, 1.1, -0.6, 0.9]);
+    let mut group = c.benchmark_group("transition_ur5");
+    for (name, through_linearizer) in [("stack", false), ("linearizer", true)] {
+        let transition = Transition::new(&ur5, 0.02)
+            .unwrap()
+            .through_linearizer(through_linearizer);
+        group.bench_function(name, |b| {
+            b.iter(|| transition.derivatives(black_box(&q), black_box(&v), &hold.u, 0.0))
         });
     }
     group.finish();

@@ -19,6 +19,7 @@ use super::passes::{
     rollout,
 };
 use super::problem::{OptimalControl, split, state};
+use super::progress::Ticker;
 use crate::error::{Error, Failure, PlanError, Progress, SettingsError};
 use crate::system::Driven;
 use nalgebra::{DMatrix, DVector, SVector};
@@ -33,6 +34,7 @@ pub struct Ddp {
     regularization: f64,
     gap_tolerance: f64,
     verbose: bool,
+    progress: bool,
 }
 
 /// One iteration's record: the log a solve keeps.
@@ -117,6 +119,7 @@ impl Ddp {
             regularization: 1e-6,
             gap_tolerance: 1e-9,
             verbose: false,
+            progress: false,
         }
     }
 
@@ -144,6 +147,15 @@ impl Ddp {
     /// finite). A full step closes the gaps exactly.
     pub fn gap_tolerance(mut self, tolerance: f64) -> Self {
         self.gap_tolerance = tolerance;
+        self
+    }
+
+    /// Draws a progress bar on standard error while solving (the
+    /// iterations against the budget, the cost and the gap), cleared when
+    /// the solve returns. Off by default; feature `progress`.
+    #[cfg(feature = "progress")]
+    pub fn progress(mut self, show: bool) -> Self {
+        self.progress = show;
         self
     }
 
@@ -261,6 +273,7 @@ impl Ddp {
     where
         S: Driven<f64, N, P>,
     {
+        let ticker = Ticker::new(self.progress, self.max_iterations);
         let mut mu = self.regularization;
         let mut log = Vec::new();
         let mut last: Option<Backward> = None;
@@ -284,7 +297,7 @@ impl Ddp {
             };
             let stationarity = largest(&backward.feedforward);
             if stationarity <= self.tolerance && nominal.gap() <= self.gap_tolerance {
-                log.push(self.record(&nominal, stationarity, 0.0, mu, 0.0));
+                log.push(self.record(&ticker, &nominal, stationarity, 0.0, mu, 0.0));
                 // The gains without the regularisation's bias where Q_uu allows.
                 let exact = (mu > 0.0)
                     .then(|| backward_pass(problem, &nominal, &derivatives, 0.0, Some(&backward)))
@@ -296,7 +309,7 @@ impl Ddp {
             match line_search(problem, &nominal, &backward) {
                 Some((next, alpha, expected)) => {
                     nominal = next;
-                    log.push(self.record(&nominal, stationarity, alpha, mu, expected));
+                    log.push(self.record(&ticker, &nominal, stationarity, alpha, mu, expected));
                     mu = if mu / 10.0 < MU_MIN { 0.0 } else { mu / 10.0 };
                 }
                 None if mu * 10.0 > MU_MAX => {
@@ -305,7 +318,7 @@ impl Ddp {
                     return Err(fail(e, &None, &log, &nominal));
                 }
                 None => {
-                    log.push(self.record(&nominal, stationarity, 0.0, mu, 0.0));
+                    log.push(self.record(&ticker, &nominal, stationarity, 0.0, mu, 0.0));
                     mu = (mu * 10.0).max(1e-6);
                 }
             }
@@ -361,6 +374,7 @@ impl Ddp {
 
     fn record(
         &self,
+        ticker: &Ticker,
         nominal: &Nominal,
         stationarity: f64,
         step: f64,
@@ -376,6 +390,7 @@ impl Ddp {
             expected,
             gap,
         };
+        ticker.tick(&it);
         if self.verbose {
             eprintln!(
                 "ddp: cost {cost:.9e}  stationarity {stationarity:.2e}  step {step:.3}  \

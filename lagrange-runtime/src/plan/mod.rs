@@ -8,7 +8,10 @@
 //! box bounds on the inputs. [`Ddp`] solves it by box-constrained
 //! differential dynamic programming and returns a [`Plan`]: states, inputs,
 //! feedback gains, and the log of every iteration (cost, stationarity,
-//! step, regularisation). [`Mpc`] re-solves it at every sample of a
+//! step, regularisation, gap). From a guess of the states that need not
+//! satisfy the dynamics ([`Ddp::solve_from`]) the same solver is
+//! feasibility-driven DDP (FDDP): it carries the guess's gaps and closes
+//! them. [`Mpc`] re-solves it at every sample of a
 //! [`Simulation::sampled`](crate::Simulation::sampled) run, warm-started,
 //! within an iteration budget.
 //!
@@ -20,6 +23,7 @@ mod cost;
 mod ddp;
 mod mpc;
 mod passes;
+mod progress;
 mod problem;
 
 pub use cost::{Cost, CostFn, CostModel, FramePosition};
