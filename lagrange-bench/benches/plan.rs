@@ -68,6 +68,7 @@ fn plan(c: &mut Criterion) {
         .input_bounds(SVector::repeat(-40.0), SVector::repeat(40.0))
     };
     let solver = Ddp::new().max_iterations(ITERATIONS).tolerance(1e-12);
+    interleaved(&solver, &problem(false), &problem(true), &[hold.u; 30]);
     let mut group = c.benchmark_group(format!("ddp_ur5_{ITERATIONS}_iterations"));
     group.sample_size(20);
     for (name, through_linearizer) in [("stack", false), ("linearizer", true)] {
@@ -98,6 +99,37 @@ fn plan(c: &mut Criterion) {
         });
     }
     group.finish();
+}
+
+/// Seconds per iteration of each problem's solve, timed in alternation
+/// (15 rounds of 20 solves each way), so that a machine shared with other
+/// work slows both alike; printed with the ratio's median and range.
+fn interleaved<S: lagrange::Driven<f64, 6, 6>>(
+    solver: &Ddp,
+    stack: &OptimalControl<S, 6, 6>,
+    linearizer: &OptimalControl<S, 6, 6>,
+    guess: &[SVector<f64, 6>],
+) {
+    let per_iteration = |problem: &OptimalControl<S, 6, 6>| {
+        let start = std::time::Instant::now();
+        for _ in 0..20 {
+            black_box(solver.solve(black_box(problem), guess).is_err());
+        }
+        start.elapsed().as_secs_f64() / (20 * ITERATIONS) as f64
+    };
+    let mut rounds: Vec<(f64, f64)> = (0..15)
+        .map(|_| (per_iteration(stack), per_iteration(linearizer)))
+        .collect();
+    rounds.sort_by(|a, b| (a.1 / a.0).total_cmp(&(b.1 / b.0)));
+    let (fast, slow) = rounds[rounds.len() / 2];
+    let (low, high) = (rounds[0].1 / rounds[0].0, rounds[14].1 / rounds[14].0);
+    eprintln!(
+        "per DDP iteration (UR5, 30 steps): stack {:.3} ms, linearizer {:.3} ms, \
+         ratio {:.2} (median of 15 rounds; {low:.2}–{high:.2})",
+        fast * 1e3,
+        slow * 1e3,
+        slow / fast
+    );
 }
 
 criterion_group!(benches, plan);

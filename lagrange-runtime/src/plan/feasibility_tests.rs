@@ -179,3 +179,40 @@ fn a_budget_hit_reports_the_gaps() {
         .error;
     assert!(e.to_string().contains("3 configurations"), "{e}");
 }
+
+/// The oscillator brought to rest from (2, −1) with its speed held to 80 %
+/// of the peak the free plan reaches, as a penalty of weight 10⁴: the bound
+/// is active (the plan rides it) and overshot by less than 1 %.
+#[test]
+fn a_speed_bound_is_active_as_a_penalty() {
+    let osc = Oscillator { k: 4.0, c: 0.3 };
+    let problem = || {
+        let tr = Transition::new(&osc, 0.05).unwrap();
+        let start = (Vector1::new(2.0), Vector1::new(-1.0));
+        OptimalControl::new(tr, 60, start, diagonal(&[1.0, 0.1]), diagonal(&[0.1]))
+    };
+    let solver = Ddp::new().tolerance(1e-8);
+    let free = solver.solve(&problem(), &[]).unwrap();
+    let peak = |p: &Plan<1, 1>| p.v.iter().map(|v| v[0].abs()).fold(0.0, f64::max);
+    let limit = 0.8 * peak(&free);
+    let inf = Vector1::new(f64::INFINITY);
+    let bounds = super::StateBounds::new(
+        (-inf, Vector1::new(-limit)),
+        (inf, Vector1::new(limit)),
+        1e4,
+    );
+    let bounded = solver.solve(&problem().running_cost(bounds), &[]).unwrap();
+    let reached = peak(&bounded);
+    assert!(reached <= 1.01 * limit, "peak {reached} against {limit}");
+    assert!(
+        reached >= 0.99 * limit,
+        "not active: peak {reached}, bound {limit}"
+    );
+    let riding = bounded
+        .v
+        .iter()
+        .filter(|v| v[0].abs() > 0.99 * limit)
+        .count();
+    assert!(riding >= 3, "{riding} steps at the bound");
+    assert!(bounded.cost > free.cost);
+}

@@ -18,14 +18,16 @@
 //! The state is x = (q, v); systems with free orientations and constrained
 //! systems are not planned for yet.
 
+mod bounds;
 mod box_qp;
 mod cost;
 mod ddp;
 mod mpc;
 mod passes;
-mod progress;
 mod problem;
+mod progress;
 
+pub use bounds::StateBounds;
 pub use cost::{Cost, CostFn, CostModel, FramePosition};
 pub use ddp::{Ddp, Iteration, Plan};
 pub use mpc::{Mpc, Sample};
