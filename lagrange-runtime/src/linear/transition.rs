@@ -3,9 +3,11 @@
 //! trajectory optimisation (DDP, multiple shooting) and MPC work with.
 //!
 //! The derivatives are exact for the step as computed: the chain rule
-//! through the stages, each stage's ∂f/∂x and ∂f/∂u (f = (v, q̈)) from
-//! [`Linearizer::tangent_driven`] — the system's emitted Jacobians where it
-//! has them (`emit(jacobians)`), else central differences. For RK4 with
+//! through the stages, each stage's ∂f/∂x and ∂f/∂u (f = (v, q̈)) with its
+//! q̈ in one evaluation on the stack ([`Dynamics::input_derivatives`]: the
+//! system's emitted Jacobians where it has them, `emit(jacobians)`, else
+//! central differences of q̈), the chain rule in N × N blocks
+//! (`transition_chain`). For RK4 with
 //! stages k₁ … k₄ at x + c h k,
 //!
 //! ```text
