@@ -247,7 +247,8 @@ pub use mechanics::constraint::{
 };
 pub use mechanics::{
     AccelerationDerivatives, DEFAULT_SINGULAR_TOLERANCE, Differentiable, Dynamics, Forcing,
-    NoForcing, Rattle, ReducedDynamics, ReducedForm, acceleration_derivatives, accelerations,
+    InputDerivatives, NoForcing, Rattle, ReducedDynamics, ReducedForm, acceleration_derivatives,
+    accelerations,
 };
 pub use numeric::orientation::Orientation;
 pub use numeric::{Real, func};

@@ -8,8 +8,8 @@ pub enum PlanError {
     /// The iteration budget ran out before the plan was stationary.
     #[error(
         "the plan did not converge in {iterations} iteration(s): stationarity {stationarity:e} \
-         is above the tolerance {tolerance:e} (cost {cost}); raise `max_iterations`, or \
-         accept the best plan, kept in the failure"
+         against the tolerance {tolerance:e}, largest gap {gap:e} (cost {cost}); raise \
+         `max_iterations`, or accept the best plan, kept in the failure"
     )]
     NotConverged {
         /// Iterations done.
@@ -20,6 +20,10 @@ pub enum PlanError {
         tolerance: f64,
         /// The best plan's cost.
         cost: f64,
+        /// The best plan's largest gap F(x_k, u_k) − x_{k+1}: nonzero only
+        /// for a solve from a guess of the states that never took a full
+        /// step.
+        gap: f64,
     },
 
     /// No iteration could improve the plan: the regularisation reached its

@@ -3,9 +3,11 @@
 //! trajectory optimisation (DDP, multiple shooting) and MPC work with.
 //!
 //! The derivatives are exact for the step as computed: the chain rule
-//! through the stages, each stage's ∂f/∂x and ∂f/∂u (f = (v, q̈)) from
-//! [`Linearizer::tangent_driven`] — the system's emitted Jacobians where it
-//! has them (`emit(jacobians)`), else central differences. For RK4 with
+//! through the stages, each stage's ∂f/∂x and ∂f/∂u (f = (v, q̈)) with its
+//! q̈ in one evaluation on the stack ([`Dynamics::input_derivatives`]: the
+//! system's emitted Jacobians where it has them, `emit(jacobians)`, else
+//! central differences of q̈), the chain rule in N × N blocks
+//! (`transition_chain`). For RK4 with
 //! stages k₁ … k₄ at x + c h k,
 //!
 //! ```text
@@ -21,12 +23,17 @@
 //! on the rotation group, and its derivatives in the tangent space need the
 //! group's chain rule through the stages.
 
+use super::difference::{column, unit};
 use super::settings::Linearizer;
 use super::tangent::Held;
 use crate::error::{Error, SettingsError, check_finite_inputs};
-use crate::mechanics::Dynamics;
+use crate::mechanics::{Dynamics, InputDerivatives};
+use crate::numeric::cholesky::Cholesky;
 use crate::system::Driven;
-use nalgebra::{DMatrix, SVector};
+use nalgebra::{DMatrix, SMatrix, SVector};
+
+#[path = "transition_chain.rs"]
+mod chain;
 
 /// The one-step method of a [`Transition`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,6 +54,7 @@ pub struct Transition<'a, S> {
     h: f64,
     method: StepMethod,
     linearizer: Linearizer,
+    through_linearizer: bool,
 }
 
 // By hand: the system need be neither `Clone` nor `Debug`.
@@ -57,6 +65,7 @@ impl<S> Clone for Transition<'_, S> {
             h: self.h,
             method: self.method,
             linearizer: self.linearizer.clone(),
+            through_linearizer: self.through_linearizer,
         }
     }
 }
@@ -103,6 +112,7 @@ impl<'a, S> Transition<'a, S> {
             h,
             method: StepMethod::Rk4,
             linearizer: Linearizer::new(),
+            through_linearizer: false,
         })
     }
 
@@ -116,6 +126,22 @@ impl<'a, S> Transition<'a, S> {
     pub fn linearizer(mut self, linearizer: Linearizer) -> Self {
         self.linearizer = linearizer;
         self
+    }
+
+    /// Takes each stage's derivatives through
+    /// [`Linearizer::tangent_driven`] (which checks the parameters, builds
+    /// and names a [`Linear`](super::Linear) at every stage) instead of
+    /// [`Dynamics::input_derivatives`]: the same numbers at about twice the
+    /// work, kept only to measure and test the fast path against.
+    #[doc(hidden)]
+    pub fn through_linearizer(mut self, yes: bool) -> Self {
+        self.through_linearizer = yes;
+        self
+    }
+
+    /// The system stepped.
+    pub fn system(&self) -> &'a S {
+        self.system
     }
 
     /// The step h.
@@ -143,11 +169,109 @@ impl<'a, S> Transition<'a, S> {
     }
 
     /// The step and its derivatives by the chain rule through the stages
-    /// (see the module notes).
+    /// (see the module notes). Each stage's q̈ and its derivatives come
+    /// from one evaluation on the stack
+    /// ([`Dynamics::input_derivatives`]: M factorised once, the emitted
+    /// Jacobians solved), or, for a system without `emit(jacobians)`, from
+    /// central differences of q̈ at that stage.
     ///
     /// # Errors
     /// As [`step`](Self::step); a stage's linearisation errors.
     pub fn derivatives<const N: usize, const P: usize>(
+        &self,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        u: &SVector<f64, P>,
+        t: f64,
+    ) -> Result<StepDerivatives<N>, Error>
+    where
+        S: Driven<f64, N, P>,
+    {
+        if self.through_linearizer {
+            return self.derivatives_through_linearizer(q, v, u, t);
+        }
+        let first = self.stage_derivatives(q, v, u, t)?;
+        let h = self.h;
+        if self.method == StepMethod::SemiImplicitEuler {
+            let v1 = v + first.acceleration * h;
+            let (dx, du) = chain::semi_implicit(&first, h);
+            return Ok(StepDerivatives {
+                q: q + v1 * h,
+                v: v1,
+                dx,
+                du,
+            });
+        }
+        let mut stages = [first.clone(), first.clone(), first.clone(), first];
+        let mut states = [(*q, *v); 4];
+        for i in 1..4 {
+            let c = RK4_NODES[i] * h;
+            let (k_q, k_v) = (states[i - 1].1, stages[i - 1].acceleration);
+            states[i] = (q + k_q * c, v + k_v * c);
+            let (sq, sv) = &states[i];
+            stages[i] = self.stage_derivatives(sq, sv, u, t + c)?;
+        }
+        let (mut dq, mut dv) = (SVector::zeros(), SVector::zeros());
+        for ((s, d), w) in states.iter().zip(&stages).zip(RK4_WEIGHTS) {
+            dq += s.1 * w;
+            dv += d.acceleration * w;
+        }
+        let (dx, du) = chain::rk4(&stages, RK4_NODES, RK4_WEIGHTS, h);
+        Ok(StepDerivatives {
+            q: q + dq * (h / 6.0),
+            v: v + dv * (h / 6.0),
+            dx,
+            du,
+        })
+    }
+
+    /// One stage's q̈ and ∂q̈/∂(q, q̇, u): the system's emitted Jacobians
+    /// where it has them, else central differences of q̈ (the step rule of
+    /// every numerical linearisation) and ∂q̈/∂u = M⁻¹ ∂Q/∂u.
+    fn stage_derivatives<const N: usize, const P: usize>(
+        &self,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        u: &SVector<f64, P>,
+        t: f64,
+    ) -> Result<InputDerivatives<f64, N, P>, Error>
+    where
+        S: Driven<f64, N, P>,
+    {
+        let tolerance = self.linearizer.tolerances.singular;
+        let dynamics = Dynamics::new(self.system).with_singular_tolerance(tolerance);
+        if let Some(d) = dynamics.input_derivatives(t, q, v, u)? {
+            return Ok(d);
+        }
+        let held = dynamics.with_forcing(Held {
+            system: self.system,
+            u: *u,
+        });
+        let accel = |q: &SVector<f64, N>, v: &SVector<f64, N>| held.acceleration(t, q, v);
+        let (mut dq, mut dv) = (SMatrix::<f64, N, N>::zeros(), SMatrix::<f64, N, N>::zeros());
+        for j in 0..N {
+            let (step, e) = unit::<f64, N>(j, v[j]);
+            let column_q = column(accel(&(q + e), v)?, accel(&(q - e), v)?, step);
+            let column_v = column(accel(q, &(v + e))?, accel(q, &(v - e))?, step);
+            dq.set_column(j, &SVector::<f64, N>::from_column_slice(&column_q));
+            dv.set_column(j, &SVector::<f64, N>::from_column_slice(&column_v));
+        }
+        let (bu, _, _) = self.system.input_jacobians(q, v, u, t);
+        let m = self.system.mass_matrix(q, t);
+        let chol = Cholesky::new(m, tolerance)
+            .map_err(|ratio| Error::singular_mass(t, q, ratio, &m, (&S::VELOCITIES, S::ATLAS)))?;
+        Ok(InputDerivatives {
+            acceleration: accel(q, v)?,
+            dq,
+            dv,
+            du: chol.solve_columns(bu),
+        })
+    }
+
+    /// The derivatives through [`Linearizer::tangent_driven`] at every
+    /// stage, the path before [`Dynamics::input_derivatives`]: kept to
+    /// compare against (`through_linearizer`).
+    fn derivatives_through_linearizer<const N: usize, const P: usize>(
         &self,
         q: &SVector<f64, N>,
         v: &SVector<f64, N>,

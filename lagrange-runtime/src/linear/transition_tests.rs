@@ -177,3 +177,41 @@ fn bad_steps_and_inputs() {
     assert!(matches!(e, Error::NonFiniteInput { .. }), "{e}");
     assert_eq!(tr.h(), 0.01);
 }
+
+/// The stages' derivatives on the stack give the numbers the stages'
+/// linearisations gave: the same Jacobians of the emitted path (the
+/// oscillator) and the same central differences (the others).
+#[test]
+fn the_fast_stages_are_the_linearizer_s() {
+    let (q, v, u) = (
+        Vector2::new(0.7, 0.2),
+        Vector2::new(0.3, 2.0),
+        Vector2::new(0.5, -0.2),
+    );
+    let sys = Spherical { l: 0.9 };
+    for method in METHODS {
+        let fast = Transition::new(&sys, 0.05).unwrap().method(method);
+        let slow = fast.clone().through_linearizer(true);
+        let (a, b) = (
+            fast.derivatives(&q, &v, &u, 0.3).unwrap(),
+            slow.derivatives(&q, &v, &u, 0.3).unwrap(),
+        );
+        assert!(
+            (&a.dx - &b.dx).amax() < 1e-12 && (&a.du - &b.du).amax() < 1e-12,
+            "{method:?}"
+        );
+        assert!((a.q - b.q).amax() < 1e-15 && (a.v - b.v).amax() < 1e-15);
+        let osc = Oscillator { k: 4.0, c: 0.3 };
+        let fast = Transition::new(&osc, 0.05).unwrap().method(method);
+        let slow = fast.clone().through_linearizer(true);
+        let (q, v, u) = (Vector1::new(0.4), Vector1::new(-1.0), Vector1::new(0.7));
+        let (a, b) = (
+            fast.derivatives(&q, &v, &u, 0.0).unwrap(),
+            slow.derivatives(&q, &v, &u, 0.0).unwrap(),
+        );
+        assert!(
+            (&a.dx - &b.dx).amax() < 1e-15 && (&a.du - &b.du).amax() < 1e-15,
+            "{method:?}"
+        );
+    }
+}

@@ -13,7 +13,7 @@ use super::forcing::{Forcing, NoForcing};
 use crate::error::{Error, check_finite_inputs};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
-use crate::system::Lagrangian;
+use crate::system::{Driven, Lagrangian};
 
 /// q̈ = M⁻¹(Q − h + τ) at a state and its derivatives, N × N each.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,6 +27,20 @@ pub struct AccelerationDerivatives<T, const N: usize> {
     /// ∂q̈/∂τ = M⁻¹, for generalized forces τ added to Q (joint torques of
     /// a robot; for an orientation, a torque in its body axes).
     pub dtau: SMatrix<T, N, N>,
+}
+
+/// q̈ of a driven system at (q, q̇, u, t) and its derivatives: what one
+/// stage of a discrete step needs, on the stack.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InputDerivatives<T, const N: usize, const P: usize> {
+    /// q̈ at the inputs u.
+    pub acceleration: SVector<T, N>,
+    /// ∂q̈/∂q, the inputs' own dependence on q included.
+    pub dq: SMatrix<T, N, N>,
+    /// ∂q̈/∂q̇, the inputs' own dependence on q̇ included.
+    pub dv: SMatrix<T, N, N>,
+    /// ∂q̈/∂u = M⁻¹ ∂Q/∂u.
+    pub du: SMatrix<T, N, P>,
 }
 
 /// A forcing's own Jacobians (∂ΔQ/∂δ, ∂ΔQ/∂q̇), N × N each.
@@ -125,6 +139,52 @@ where
             return Err(Error::non_finite(t, q, v));
         }
         Ok(Some((chol, accel, dq, dv)))
+    }
+}
+
+impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
+    /// q̈ = M⁻¹(Q − h + ΔQ(u)) of a driven system without orientations at
+    /// (q, q̇, u, t) and ∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂u, from one factorisation of M
+    /// and the system's emitted Jacobians ([`Lagrangian::rhs_jacobians`] and
+    /// [`Driven::input_jacobians`]), on the stack: nothing is allocated,
+    /// named or checked beyond the state and the result (the parameters are
+    /// not: check them once, before a loop). `Ok(None)` when the system
+    /// does not emit its Jacobians (`emit(jacobians)`).
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteState`] for a non-finite state or result,
+    /// [`Error::NonFiniteInput`] for a non-finite u,
+    /// [`Error::SingularMassMatrix`] below the singular tolerance.
+    pub fn input_derivatives<const N: usize, const P: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        u: &SVector<T, P>,
+    ) -> Result<Option<InputDerivatives<T, N, P>>, Error>
+    where
+        S: Driven<T, N, P>,
+    {
+        check_finite_inputs(&S::INPUTS, t, q, v, u)?;
+        let (unit, _) = self.checked(t, q, v)?;
+        let system = self.system();
+        let tau = system.input_forces(&unit, v, u, t);
+        let (chol, acceleration) = self.factorised(t, &unit, v, tau)?;
+        let Some((jq, jv)) = system.rhs_jacobians(&unit, v, &acceleration, t) else {
+            return Ok(None);
+        };
+        let (bu, fq, fv) = system.input_jacobians(&unit, v, u, t);
+        let d = InputDerivatives {
+            acceleration,
+            dq: chol.solve_columns(jq + fq),
+            dv: chol.solve_columns(jv + fv),
+            du: chol.solve_columns(bu),
+        };
+        let parts = [d.dq.as_slice(), d.dv.as_slice(), d.du.as_slice()];
+        if !parts.iter().all(|p| all_finite(p)) {
+            return Err(Error::non_finite(t, q, v));
+        }
+        Ok(Some(d))
     }
 }
 

@@ -22,7 +22,8 @@ pub(crate) mod reduced;
 mod tolerances;
 
 pub use derivatives::{
-    AccelerationDerivatives, Differentiable, ForceJacobians, acceleration_derivatives,
+    AccelerationDerivatives, Differentiable, ForceJacobians, InputDerivatives,
+    acceleration_derivatives,
 };
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use forcing::{Forcing, NoForcing};

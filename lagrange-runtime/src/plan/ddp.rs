@@ -7,11 +7,20 @@
 //! Levenberg–Marquardt regularisation μ on the value function's Hessian
 //! (V_xx + μI in Q_uu and Q_ux) grows when a step's Q_uu is not positive
 //! definite or no step lowers the cost, and shrinks after a success.
+//!
+//! From a guess of the states as well as the inputs
+//! ([`Ddp::solve_from`]) the same iteration is feasibility-driven DDP
+//! (FDDP, Mastalli et al. 2020, Crocoddyl's `SolverBoxFDDP`): the guess
+//! need not satisfy the dynamics, and the passes carry its gaps until a
+//! full step closes them (see `passes`).
 
-use super::box_qp;
+use super::passes::{
+    Backward, Nominal, backward_pass, forward, guessed, largest, linearise, predicted_decrease,
+    rollout,
+};
 use super::problem::{OptimalControl, split, state};
+use super::progress::Ticker;
 use crate::error::{Error, Failure, PlanError, Progress, SettingsError};
-use crate::linear::StepDerivatives;
 use crate::system::Driven;
 use nalgebra::{DMatrix, DVector, SVector};
 
@@ -23,7 +32,9 @@ pub struct Ddp {
     max_iterations: usize,
     tolerance: f64,
     regularization: f64,
+    gap_tolerance: f64,
     verbose: bool,
+    progress: bool,
 }
 
 /// One iteration's record: the log a solve keeps.
@@ -39,6 +50,11 @@ pub struct Iteration {
     pub regularization: f64,
     /// The decrease of the cost the quadratic model predicted for the step.
     pub expected: f64,
+    /// Feasibility after the iteration: the largest |entry| of the gaps
+    /// F(x_k, u_k) − x_{k+1} (and x₀ less the plan's first state). Zero
+    /// throughout a solve from inputs; from a guess of the states, it
+    /// shrinks by 1 − α with each step α and is zero after a full step.
+    pub gap: f64,
 }
 
 /// A plan: the states and inputs along the horizon, the feedback gains that
@@ -58,6 +74,11 @@ pub struct Plan<const N: usize, const P: usize> {
     pub gains: Vec<DMatrix<f64>>,
     /// The plan's cost.
     pub cost: f64,
+    /// The largest |entry| of the plan's gaps F(x_k, u_k) − x_{k+1}: zero
+    /// for a plan that satisfies the dynamics (every converged plan, and
+    /// every plan of a solve from inputs), else the infeasibility of the
+    /// best iterate a failure kept.
+    pub gap: f64,
     /// One record per iteration.
     pub log: Vec<Iteration>,
 }
@@ -86,21 +107,6 @@ impl Default for Ddp {
     }
 }
 
-/// The plan being improved: states, inputs, cost.
-struct Nominal {
-    xs: Vec<DVector<f64>>,
-    us: Vec<DVector<f64>>,
-    cost: f64,
-}
-
-/// What a backward pass gives: per step the feed-forward change and the
-/// gain, and the model's predicted decrease terms (Σ kᵀQ_u, Σ ½ kᵀQ_uu k).
-struct Backward {
-    feedforward: Vec<DVector<f64>>,
-    gains: Vec<DMatrix<f64>>,
-    expected: (f64, f64),
-}
-
 const MU_MIN: f64 = 1e-9;
 const MU_MAX: f64 = 1e10;
 
@@ -111,7 +117,9 @@ impl Ddp {
             max_iterations: 200,
             tolerance: 1e-6,
             regularization: 1e-6,
+            gap_tolerance: 1e-9,
             verbose: false,
+            progress: false,
         }
     }
 
@@ -134,8 +142,25 @@ impl Ddp {
         self
     }
 
+    /// A plan from a guess of the states counts as feasible once no gap
+    /// exceeds this (in the state's units; 1e-9 by default; positive and
+    /// finite). A full step closes the gaps exactly.
+    pub fn gap_tolerance(mut self, tolerance: f64) -> Self {
+        self.gap_tolerance = tolerance;
+        self
+    }
+
+    /// Draws a progress bar on standard error while solving (the
+    /// iterations against the budget, the cost and the gap), cleared when
+    /// the solve returns. Off by default; feature `progress`.
+    #[cfg(feature = "progress")]
+    pub fn progress(mut self, show: bool) -> Self {
+        self.progress = show;
+        self
+    }
+
     /// Prints one line per iteration (cost, stationarity, step,
-    /// regularisation) to standard error.
+    /// regularisation, gap) to standard error.
     pub fn verbose(mut self, verbose: bool) -> Self {
         self.verbose = verbose;
         self
@@ -163,33 +188,116 @@ impl Ddp {
         problem.check().map_err(unstarted)?;
         let us: Vec<DVector<f64>> = (0..problem.steps)
             .map(|k| match guess.get(k) {
-                Some(u) => problem.clamp(&DVector::from_column_slice(u.as_slice())),
-                None => problem.clamp(&problem.input_target),
+                Some(u) => DVector::from_column_slice(u.as_slice()),
+                None => problem.input_target.clone(),
             })
             .collect();
-        let mut nominal = rollout(problem, &us, None).map_err(unstarted)?;
+        let nominal = rollout(problem, &us).map_err(unstarted)?;
+        self.iterate(problem, nominal)
+    }
+
+    /// The plan for `problem` from a guess of the whole trajectory: the
+    /// states (q₀ … q_K, v₀ … v_K) need not satisfy the dynamics nor start
+    /// at the problem's start (a straight line to the goal, a previous
+    /// plan shifted, a demonstration), the inputs u₀ … u_{K−1} are clamped
+    /// into the bounds. The solver is then feasibility-driven (FDDP): it
+    /// keeps the gaps F(x_k, u_k) − x_{k+1} in its passes, closes them by
+    /// the step α it takes (all of them at α = 1), and converges only to a
+    /// plan without gaps. From a guess that is a rollout it is the iteration
+    /// of [`solve`](Self::solve).
+    ///
+    /// # Errors
+    /// As [`solve`](Self::solve); [`Error::Settings`] for a guess of the
+    /// wrong length or not finite. A failure keeps the best iterate, whose
+    /// [`Plan::gap`] says how far it is from satisfying the dynamics.
+    pub fn solve_from<S, const N: usize, const P: usize>(
+        &self,
+        problem: &OptimalControl<S, N, P>,
+        q: &[SVector<f64, N>],
+        v: &[SVector<f64, N>],
+        u: &[SVector<f64, P>],
+    ) -> Result<Plan<N, P>, Failure<Plan<N, P>>>
+    where
+        S: Driven<f64, N, P>,
+    {
+        let unstarted = |e: Error| Failure::new(e, empty_plan(problem));
+        self.check(u.len(), problem.steps).map_err(unstarted)?;
+        problem.check().map_err(unstarted)?;
+        let k = problem.steps;
+        if q.len() != k + 1 || v.len() != k + 1 || u.len() != k {
+            let problem = format!(
+                "a guess of {} configurations, {} velocities and {} inputs for {k} steps \
+                 (give K + 1, K + 1 and K)",
+                q.len(),
+                v.len(),
+                u.len()
+            );
+            return Err(unstarted(
+                SettingsError::Data {
+                    owner: "Ddp",
+                    problem,
+                }
+                .into(),
+            ));
+        }
+        let finite = |x: &[f64]| x.iter().all(|e| e.is_finite());
+        let states = q
+            .iter()
+            .zip(v)
+            .all(|(q, v)| finite(q.as_slice()) && finite(v.as_slice()));
+        if !states || !u.iter().all(|u| finite(u.as_slice())) {
+            let problem = "the guessed states and inputs must be finite".into();
+            return Err(unstarted(
+                SettingsError::Data {
+                    owner: "Ddp",
+                    problem,
+                }
+                .into(),
+            ));
+        }
+        let xs = q.iter().zip(v).map(|(q, v)| state(q, v)).collect();
+        let us: Vec<DVector<f64>> = u
+            .iter()
+            .map(|u| DVector::from_column_slice(u.as_slice()))
+            .collect();
+        let nominal = guessed(problem, xs, &us).map_err(unstarted)?;
+        self.iterate(problem, nominal)
+    }
+
+    /// The iterations from a nominal plan (with or without gaps).
+    fn iterate<S, const N: usize, const P: usize>(
+        &self,
+        problem: &OptimalControl<S, N, P>,
+        mut nominal: Nominal,
+    ) -> Result<Plan<N, P>, Failure<Plan<N, P>>>
+    where
+        S: Driven<f64, N, P>,
+    {
+        let ticker = Ticker::new(self.progress, self.max_iterations);
         let mut mu = self.regularization;
         let mut log = Vec::new();
         let mut last: Option<Backward> = None;
         for iteration in 1..=self.max_iterations {
-            let derivatives = linearise(problem, &nominal);
+            let fail = |e, last: &Option<Backward>, log: &[Iteration], nominal: &Nominal| {
+                self.fail(problem, nominal, last, log, e)
+            };
             let derivatives =
-                derivatives.map_err(|e| self.fail(problem, &nominal, &last, &log, e))?;
+                linearise(problem, &nominal).map_err(|e| fail(e, &last, &log, &nominal))?;
             let backward = loop {
                 let pass = backward_pass(problem, &nominal, &derivatives, mu, last.as_ref());
-                match pass.map_err(|e| self.fail(problem, &nominal, &last, &log, e))? {
+                match pass.map_err(|e| fail(e, &last, &log, &nominal))? {
                     Some(b) => break b,
                     None if mu * 10.0 > MU_MAX => {
                         let why = "Q_uu is not positive definite at the largest regularisation";
                         let e = self.stalled(iteration, why, &nominal, &last, mu);
-                        return Err(self.fail(problem, &nominal, &last, &log, e));
+                        return Err(fail(e, &last, &log, &nominal));
                     }
                     None => mu = (mu * 10.0).max(1e-6),
                 }
             };
             let stationarity = largest(&backward.feedforward);
-            if stationarity <= self.tolerance {
-                log.push(self.record(nominal.cost, stationarity, 0.0, mu, 0.0));
+            if stationarity <= self.tolerance && nominal.gap() <= self.gap_tolerance {
+                log.push(self.record(&ticker, &nominal, stationarity, 0.0, mu, 0.0));
                 // The gains without the regularisation's bias where Q_uu allows.
                 let exact = (mu > 0.0)
                     .then(|| backward_pass(problem, &nominal, &derivatives, 0.0, Some(&backward)))
@@ -201,16 +309,16 @@ impl Ddp {
             match line_search(problem, &nominal, &backward) {
                 Some((next, alpha, expected)) => {
                     nominal = next;
-                    log.push(self.record(nominal.cost, stationarity, alpha, mu, expected));
+                    log.push(self.record(&ticker, &nominal, stationarity, alpha, mu, expected));
                     mu = if mu / 10.0 < MU_MIN { 0.0 } else { mu / 10.0 };
                 }
                 None if mu * 10.0 > MU_MAX => {
                     let why = "no step of the line search lowers the cost";
                     let e = self.stalled(iteration, why, &nominal, &Some(backward), mu);
-                    return Err(self.fail(problem, &nominal, &None, &log, e));
+                    return Err(fail(e, &None, &log, &nominal));
                 }
                 None => {
-                    log.push(self.record(nominal.cost, stationarity, 0.0, mu, 0.0));
+                    log.push(self.record(&ticker, &nominal, stationarity, 0.0, mu, 0.0));
                     mu = (mu * 10.0).max(1e-6);
                 }
             }
@@ -221,6 +329,7 @@ impl Ddp {
             stationarity: last.as_ref().map_or(f64::NAN, |b| largest(&b.feedforward)),
             tolerance: self.tolerance,
             cost: nominal.cost,
+            gap: nominal.gap(),
         };
         Err(self.fail(problem, &nominal, &last, &log, e.into()))
     }
@@ -236,6 +345,7 @@ impl Ddp {
             }),
         };
         positive("tolerance", self.tolerance)?;
+        positive("gap_tolerance", self.gap_tolerance)?;
         if !(self.regularization.is_finite() && self.regularization >= 0.0) {
             return Err(SettingsError::Value {
                 owner: "Ddp",
@@ -262,17 +372,29 @@ impl Ddp {
         Ok(())
     }
 
-    fn record(&self, cost: f64, stationarity: f64, step: f64, mu: f64, expected: f64) -> Iteration {
+    fn record(
+        &self,
+        ticker: &Ticker,
+        nominal: &Nominal,
+        stationarity: f64,
+        step: f64,
+        mu: f64,
+        expected: f64,
+    ) -> Iteration {
+        let (cost, gap) = (nominal.cost, nominal.gap());
         let it = Iteration {
             cost,
             stationarity,
             step,
             regularization: mu,
             expected,
+            gap,
         };
+        ticker.tick(&it);
         if self.verbose {
             eprintln!(
-                "ddp: cost {cost:.9e}  stationarity {stationarity:.2e}  step {step:.3}  μ {mu:.1e}"
+                "ddp: cost {cost:.9e}  stationarity {stationarity:.2e}  step {step:.3}  \
+                 μ {mu:.1e}  gap {gap:.2e}"
             );
         }
         it
@@ -311,136 +433,18 @@ impl Ddp {
         let nominal = Nominal {
             xs: nominal.xs.clone(),
             us: nominal.us.clone(),
+            gaps: nominal.gaps.clone(),
             cost: nominal.cost,
         };
         Failure::new(error, plan(problem, nominal, gains, log.to_vec()))
     }
 }
 
-/// The largest |entry| over a sequence of vectors.
-fn largest(xs: &[DVector<f64>]) -> f64 {
-    xs.iter().map(|x| x.amax()).fold(0.0, f64::max)
-}
-
-/// The states under `us` from the start, each input clamped and, with
-/// `track = (nominal, feedforward, gains, α)`, shifted by α k + K (x − x̄).
-fn rollout<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
-    us: &[DVector<f64>],
-    track: Option<(&Nominal, &Backward, f64)>,
-) -> Result<Nominal, Error>
-where
-    S: Driven<f64, N, P>,
-{
-    let mut xs = vec![problem.start.clone()];
-    let mut applied = Vec::with_capacity(us.len());
-    for (k, u) in us.iter().enumerate() {
-        let x = &xs[k];
-        let u = match track {
-            None => u.clone(),
-            Some((nominal, b, alpha)) => {
-                problem.clamp(&(u + &b.feedforward[k] * alpha + &b.gains[k] * (x - &nominal.xs[k])))
-            }
-        };
-        let (q, v) = split::<N>(x);
-        let (q1, v1) = problem.transition.step(
-            &q,
-            &v,
-            &SVector::from_column_slice(u.as_slice()),
-            problem.time(k),
-        )?;
-        xs.push(state(&q1, &v1));
-        applied.push(u);
-    }
-    let cost = problem.cost(&xs, &applied);
-    Ok(Nominal {
-        xs,
-        us: applied,
-        cost,
-    })
-}
-
-/// ∂F/∂x and ∂F/∂u at every step of the plan.
-fn linearise<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
-    nominal: &Nominal,
-) -> Result<Vec<StepDerivatives<N>>, Error>
-where
-    S: Driven<f64, N, P>,
-{
-    (0..problem.steps)
-        .map(|k| {
-            let (q, v) = split::<N>(&nominal.xs[k]);
-            let u = SVector::from_column_slice(nominal.us[k].as_slice());
-            problem.transition.derivatives(&q, &v, &u, problem.time(k))
-        })
-        .collect()
-}
-
-/// The backward pass with regularisation μ, warm-starting each box QP from
-/// the last pass's feed-forward; `Ok(None)` if some Q_uu is not positive
-/// definite on its free inputs.
-fn backward_pass<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
-    nominal: &Nominal,
-    derivatives: &[StepDerivatives<N>],
-    mu: f64,
-    last: Option<&Backward>,
-) -> Result<Option<Backward>, Error>
-where
-    S: Driven<f64, N, P>,
-{
-    let steps = problem.steps;
-    let n2 = 2 * N;
-    let terminal = problem.final_model(&nominal.xs[steps])?;
-    let (mut vx, mut vxx) = (terminal.lx, terminal.lxx);
-    let mut feedforward = vec![DVector::zeros(P); steps];
-    let mut gains = vec![DMatrix::zeros(P, n2); steps];
-    let mut expected = (0.0, 0.0);
-    for k in (0..steps).rev() {
-        let (fx, fu) = (&derivatives[k].dx, &derivatives[k].du);
-        let l = problem.running_model(k, &nominal.xs[k], &nominal.us[k])?;
-        let qx = &l.lx + fx.transpose() * &vx;
-        let qu = &l.lu + fu.transpose() * &vx;
-        let v_reg = &vxx + DMatrix::identity(n2, n2) * mu;
-        let qxx = &l.lxx + fx.transpose() * &vxx * fx;
-        let quu = &l.luu + fu.transpose() * &v_reg * fu;
-        let qux = &l.lux + fu.transpose() * &v_reg * fx;
-        let start = last.map_or_else(|| DVector::zeros(P), |b| b.feedforward[k].clone());
-        let lower = &problem.lower - &nominal.us[k];
-        let upper = &problem.upper - &nominal.us[k];
-        let Some(qp) = box_qp::solve(&quu, &qu, &lower, &upper, &start) else {
-            return Ok(None);
-        };
-        let mut gain = DMatrix::zeros(P, n2);
-        if let Some(chol) = &qp.factor {
-            let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| qux[(qp.free[i], j)]);
-            let free_gain = -chol.solve(&rows);
-            qp.free
-                .iter()
-                .enumerate()
-                .for_each(|(i, &r)| gain.set_row(r, &free_gain.row(i)));
-        }
-        let kff = qp.x;
-        expected.0 += kff.dot(&qu);
-        expected.1 += 0.5 * kff.dot(&(&quu * &kff));
-        vx = &qx + gain.transpose() * (&quu * &kff + &qu) + qux.transpose() * &kff;
-        let cross = gain.transpose() * &qux;
-        vxx = &qxx + gain.transpose() * &quu * &gain + &cross + cross.transpose();
-        vxx = (&vxx + vxx.transpose()) * 0.5;
-        feedforward[k] = kff;
-        gains[k] = gain;
-    }
-    Ok(Some(Backward {
-        feedforward,
-        gains,
-        expected,
-    }))
-}
-
-/// The first step α of 1, ½, … 2⁻¹⁰ whose rollout lowers the cost by at
-/// least 10⁻⁴ of the decrease the model predicts, −(α ΔV₁ + α² ΔV₂), with
-/// that α and the predicted decrease.
+/// The first step α of 1, ½, … 2⁻¹⁰ whose forward pass the model accepts,
+/// with that α and the predicted decrease: where the model predicts a
+/// decrease, the cost must fall by at least 10⁻⁴ of it; where closing the
+/// gaps is predicted to raise the cost, it may rise by at most twice the
+/// prediction (Crocoddyl's rule).
 fn line_search<S, const N: usize, const P: usize>(
     problem: &OptimalControl<S, N, P>,
     nominal: &Nominal,
@@ -449,15 +453,18 @@ fn line_search<S, const N: usize, const P: usize>(
 where
     S: Driven<f64, N, P>,
 {
-    let (d1, d2) = backward.expected;
     let mut alpha = 1.0;
     for _ in 0..=10 {
-        let expected = -(alpha * d1 + alpha * alpha * d2);
-        if let Ok(next) = rollout(problem, &nominal.us, Some((nominal, backward, alpha)))
-            && next.cost < nominal.cost
-            && (nominal.cost - next.cost) >= 1e-4 * expected
-        {
-            return Some((next, alpha, expected));
+        if let Ok(next) = forward(problem, nominal, backward, alpha) {
+            let expected = predicted_decrease(nominal, backward, &next, alpha);
+            let decrease = nominal.cost - next.cost;
+            let accepted = match expected >= 0.0 {
+                true => decrease > 0.0 && decrease >= 1e-4 * expected,
+                false => decrease >= 2.0 * expected,
+            };
+            if accepted && next.cost.is_finite() {
+                return Some((next, alpha, expected));
+            }
         }
         alpha *= 0.5;
     }
@@ -486,6 +493,7 @@ where
             .collect(),
         gains,
         cost: nominal.cost,
+        gap: nominal.gap(),
         log,
     }
 }
@@ -498,6 +506,7 @@ where
     let start = Nominal {
         xs: vec![problem.start.clone()],
         us: Vec::new(),
+        gaps: Vec::new(),
         cost: f64::NAN,
     };
     let mut p = plan(problem, start, Vec::new(), Vec::new());

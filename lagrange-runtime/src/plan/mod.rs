@@ -8,23 +8,32 @@
 //! box bounds on the inputs. [`Ddp`] solves it by box-constrained
 //! differential dynamic programming and returns a [`Plan`]: states, inputs,
 //! feedback gains, and the log of every iteration (cost, stationarity,
-//! step, regularisation). [`Mpc`] re-solves it at every sample of a
+//! step, regularisation, gap). From a guess of the states that need not
+//! satisfy the dynamics ([`Ddp::solve_from`]) the same solver is
+//! feasibility-driven DDP (FDDP): it carries the guess's gaps and closes
+//! them. [`Mpc`] re-solves it at every sample of a
 //! [`Simulation::sampled`](crate::Simulation::sampled) run, warm-started,
 //! within an iteration budget.
 //!
 //! The state is x = (q, v); systems with free orientations and constrained
 //! systems are not planned for yet.
 
+mod bounds;
 mod box_qp;
 mod cost;
 mod ddp;
 mod mpc;
+mod passes;
 mod problem;
+mod progress;
 
+pub use bounds::StateBounds;
 pub use cost::{Cost, CostFn, CostModel, FramePosition};
 pub use ddp::{Ddp, Iteration, Plan};
 pub use mpc::{Mpc, Sample};
 pub use problem::OptimalControl;
 
+#[cfg(test)]
+mod feasibility_tests;
 #[cfg(test)]
 mod tests;

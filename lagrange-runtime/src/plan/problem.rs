@@ -239,6 +239,8 @@ where
             }
             .into());
         }
+        // Once here: the steps' derivatives do not check them.
+        self.transition.system().check_parameters()?;
         let n2 = 2 * N;
         check_weight("W_x", &self.weight_x, n2)?;
         check_weight("W_u", &self.weight_u, P)?;

@@ -2,7 +2,7 @@
 //! as terminal weight is solved exactly, and its gains are the LQR gain),
 //! against its own optimality conditions under input bounds, on a
 //! pendulum's swing-up with a torque below its weight, and in closed loop as
-//! MPC.
+//! MPC; state bounds as a penalty, active.
 
 use super::ddp::Ddp;
 use super::problem::OptimalControl;
@@ -278,4 +278,41 @@ fn a_closure_term_is_a_goal_written_by_hand() {
         e.to_string().contains("lx of shape (3, 1), not (2, 1)"),
         "{e}"
     );
+}
+
+/// The oscillator brought to rest from (2, −1) with its speed held to 80 %
+/// of the peak the free plan reaches, as a penalty of weight 10⁴: the bound
+/// is active (the plan rides it) and overshot by less than 1 %.
+#[test]
+fn a_speed_bound_is_active_as_a_penalty() {
+    let osc = Oscillator { k: 4.0, c: 0.3 };
+    let problem = || {
+        let tr = Transition::new(&osc, 0.05).unwrap();
+        let start = (Vector1::new(2.0), Vector1::new(-1.0));
+        OptimalControl::new(tr, 60, start, diagonal(&[1.0, 0.1]), diagonal(&[0.1]))
+    };
+    let solver = Ddp::new().tolerance(1e-8);
+    let free = solver.solve(&problem(), &[]).unwrap();
+    let peak = |p: &super::Plan<1, 1>| p.v.iter().map(|v| v[0].abs()).fold(0.0, f64::max);
+    let limit = 0.8 * peak(&free);
+    let inf = Vector1::new(f64::INFINITY);
+    let bounds = StateBounds::new(
+        (-inf, Vector1::new(-limit)),
+        (inf, Vector1::new(limit)),
+        1e4,
+    );
+    let bounded = solver.solve(&problem().running_cost(bounds), &[]).unwrap();
+    let reached = peak(&bounded);
+    assert!(reached <= 1.01 * limit, "peak {reached} against {limit}");
+    assert!(
+        reached >= 0.99 * limit,
+        "not active: peak {reached}, bound {limit}"
+    );
+    let riding = bounded
+        .v
+        .iter()
+        .filter(|v| v[0].abs() > 0.99 * limit)
+        .count();
+    assert!(riding >= 3, "{riding} steps at the bound");
+    assert!(bounded.cost > free.cost);
 }

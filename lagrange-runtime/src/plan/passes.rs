@@ -1,0 +1,257 @@
+//! The passes of DDP over a nominal plan that need not satisfy the
+//! dynamics (feasibility-driven DDP, Mastalli et al. 2020, Crocoddyl's
+//! `SolverBoxFDDP`). The nominal carries its gaps, f₀ = x₀ − x̄₀ and
+//! f_{k+1} = F(x̄_k, ū_k) − x̄_{k+1}, all zero for a rollout, where every
+//! formula below is plain DDP's:
+//!
+//! - the backward pass reads the value function at the state the dynamics
+//!   lead to, V_x + V_xx f, not at the nominal's next state;
+//! - the forward pass from x̄₀ + α f₀ steps x_{k+1} = F(x_k, u_k) − (1 − α)
+//!   f_{k+1}: each gap shrinks by 1 − α, and a full step (α = 1) closes
+//!   them all;
+//! - the model's predicted change of the cost along the step α adds to
+//!   α Σ k·Q_u + α² Σ ½ kᵀQ_uu k the gaps' terms
+//!   α (Σ ṽ·f − Σ fᵀV_xx δx) − α² (½ Σ fᵀV_xx f − Σ fᵀV_xx δx), with
+//!   ṽ = V_x + V_xx f and δx the trial's states less the nominal's
+//!   (Crocoddyl's model; at α = 1 it is the quadratic model's change,
+//!   Σ (ṽ·f − ½ fᵀV_xx f) + Σ (k·Q_u + ½ kᵀQ_uu k)).
+
+use super::box_qp;
+use super::problem::{OptimalControl, split, state};
+use crate::error::Error;
+use crate::linear::StepDerivatives;
+use crate::system::Driven;
+use nalgebra::{DMatrix, DVector, SVector};
+
+/// The plan being improved: states, inputs, gaps, cost.
+pub(super) struct Nominal {
+    pub xs: Vec<DVector<f64>>,
+    pub us: Vec<DVector<f64>>,
+    /// f₀ … f_K (see the module notes).
+    pub gaps: Vec<DVector<f64>>,
+    pub cost: f64,
+}
+
+impl Nominal {
+    /// The largest |entry| of any gap: zero for a rollout.
+    pub fn gap(&self) -> f64 {
+        largest(&self.gaps)
+    }
+}
+
+/// What a backward pass gives: per step the feed-forward change and the
+/// gain, the value function's Hessians V₀ … V_K, and the model's terms of
+/// the predicted change (Σ kᵀQ_u, Σ ½ kᵀQ_uu k) and the gaps' (Σ ṽ·f,
+/// Σ fᵀV_xx f).
+pub(super) struct Backward {
+    pub feedforward: Vec<DVector<f64>>,
+    pub gains: Vec<DMatrix<f64>>,
+    pub hessians: Vec<DMatrix<f64>>,
+    pub expected: (f64, f64),
+    pub gap_terms: (f64, f64),
+}
+
+/// The largest |entry| over a sequence of vectors.
+pub(super) fn largest(xs: &[DVector<f64>]) -> f64 {
+    xs.iter().map(|x| x.amax()).fold(0.0, f64::max)
+}
+
+/// One step of the problem's transition on a state vector.
+fn step<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+    k: usize,
+    x: &DVector<f64>,
+    u: &DVector<f64>,
+) -> Result<DVector<f64>, Error>
+where
+    S: Driven<f64, N, P>,
+{
+    let (q, v) = split::<N>(x);
+    let u = SVector::<f64, P>::from_column_slice(u.as_slice());
+    let (q1, v1) = problem.transition.step(&q, &v, &u, problem.time(k))?;
+    Ok(state(&q1, &v1))
+}
+
+/// The rollout of `us` (clamped) from the start: no gaps.
+pub(super) fn rollout<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+    us: &[DVector<f64>],
+) -> Result<Nominal, Error>
+where
+    S: Driven<f64, N, P>,
+{
+    let mut xs = vec![problem.start.clone()];
+    let us: Vec<DVector<f64>> = us.iter().map(|u| problem.clamp(u)).collect();
+    for (k, u) in us.iter().enumerate() {
+        let next = step(problem, k, &xs[k], u)?;
+        xs.push(next);
+    }
+    let cost = problem.cost(&xs, &us);
+    let gaps = vec![DVector::zeros(2 * N); xs.len()];
+    Ok(Nominal { xs, us, gaps, cost })
+}
+
+/// A nominal of given states and inputs (clamped), with its gaps.
+pub(super) fn guessed<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+    xs: Vec<DVector<f64>>,
+    us: &[DVector<f64>],
+) -> Result<Nominal, Error>
+where
+    S: Driven<f64, N, P>,
+{
+    let us: Vec<DVector<f64>> = us.iter().map(|u| problem.clamp(u)).collect();
+    let mut gaps = vec![&problem.start - &xs[0]];
+    for (k, u) in us.iter().enumerate() {
+        gaps.push(step(problem, k, &xs[k], u)? - &xs[k + 1]);
+    }
+    let cost = problem.cost(&xs, &us);
+    Ok(Nominal { xs, us, gaps, cost })
+}
+
+/// The forward pass with step α: from x̄₀ + α f₀, each input clamped at
+/// ū + α k + K (x − x̄), each state the step's less (1 − α) of its gap.
+pub(super) fn forward<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+    nominal: &Nominal,
+    backward: &Backward,
+    alpha: f64,
+) -> Result<Nominal, Error>
+where
+    S: Driven<f64, N, P>,
+{
+    let x0 = &nominal.xs[0] + &nominal.gaps[0] * alpha;
+    let mut gaps = vec![&problem.start - &x0];
+    let mut xs = vec![x0];
+    let mut us = Vec::with_capacity(problem.steps);
+    for k in 0..problem.steps {
+        let x = &xs[k];
+        let shift = &backward.feedforward[k] * alpha + &backward.gains[k] * (x - &nominal.xs[k]);
+        let u = problem.clamp(&(&nominal.us[k] + shift));
+        let next = step(problem, k, x, &u)?;
+        let x1 = &next - &nominal.gaps[k + 1] * (1.0 - alpha);
+        gaps.push(next - &x1);
+        xs.push(x1);
+        us.push(u);
+    }
+    let cost = problem.cost(&xs, &us);
+    Ok(Nominal { xs, us, gaps, cost })
+}
+
+/// The decrease of the cost the model predicts for the step α that gave
+/// `trial` (see the module notes; −(α Σ k·Q_u + α² Σ ½ kᵀQ_uu k) without
+/// gaps).
+pub(super) fn predicted_decrease(
+    nominal: &Nominal,
+    backward: &Backward,
+    trial: &Nominal,
+    alpha: f64,
+) -> f64 {
+    let (d1, d2) = backward.expected;
+    let (dg, dq) = backward.gap_terms;
+    let dv: f64 = (nominal.gaps.iter().zip(&backward.hessians))
+        .zip(trial.xs.iter().zip(&nominal.xs))
+        .filter(|((f, _), _)| f.amax() > 0.0)
+        .map(|((f, v), (x, x0))| f.dot(&(v * (x - x0))))
+        .sum();
+    let change = alpha * (d1 + dg - dv) + alpha * alpha * (d2 - 0.5 * dq + dv);
+    -change
+}
+
+/// ∂F/∂x and ∂F/∂u at every step of the plan.
+pub(super) fn linearise<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+    nominal: &Nominal,
+) -> Result<Vec<StepDerivatives<N>>, Error>
+where
+    S: Driven<f64, N, P>,
+{
+    (0..problem.steps)
+        .map(|k| {
+            let (q, v) = split::<N>(&nominal.xs[k]);
+            let u = SVector::from_column_slice(nominal.us[k].as_slice());
+            problem.transition.derivatives(&q, &v, &u, problem.time(k))
+        })
+        .collect()
+}
+
+/// The backward pass with regularisation μ, warm-starting each box QP from
+/// the last pass's feed-forward; `Ok(None)` if some Q_uu is not positive
+/// definite on its free inputs.
+pub(super) fn backward_pass<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+    nominal: &Nominal,
+    derivatives: &[StepDerivatives<N>],
+    mu: f64,
+    last: Option<&Backward>,
+) -> Result<Option<Backward>, Error>
+where
+    S: Driven<f64, N, P>,
+{
+    let steps = problem.steps;
+    let n2 = 2 * N;
+    let terminal = problem.final_model(&nominal.xs[steps])?;
+    let (mut vx, mut vxx) = (terminal.lx, terminal.lxx);
+    let mut gap_terms = (0.0, 0.0);
+    shift(&mut vx, &vxx, &nominal.gaps[steps], &mut gap_terms);
+    let mut hessians = vec![DMatrix::zeros(n2, n2); steps + 1];
+    hessians[steps] = vxx.clone();
+    let mut feedforward = vec![DVector::zeros(P); steps];
+    let mut gains = vec![DMatrix::zeros(P, n2); steps];
+    let mut expected = (0.0, 0.0);
+    for k in (0..steps).rev() {
+        let (fx, fu) = (&derivatives[k].dx, &derivatives[k].du);
+        let l = problem.running_model(k, &nominal.xs[k], &nominal.us[k])?;
+        let qx = &l.lx + fx.transpose() * &vx;
+        let qu = &l.lu + fu.transpose() * &vx;
+        let v_reg = &vxx + DMatrix::identity(n2, n2) * mu;
+        let qxx = &l.lxx + fx.transpose() * &vxx * fx;
+        let quu = &l.luu + fu.transpose() * &v_reg * fu;
+        let qux = &l.lux + fu.transpose() * &v_reg * fx;
+        let start = last.map_or_else(|| DVector::zeros(P), |b| b.feedforward[k].clone());
+        let lower = &problem.lower - &nominal.us[k];
+        let upper = &problem.upper - &nominal.us[k];
+        let Some(qp) = box_qp::solve(&quu, &qu, &lower, &upper, &start) else {
+            return Ok(None);
+        };
+        let mut gain = DMatrix::zeros(P, n2);
+        if let Some(chol) = &qp.factor {
+            let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| qux[(qp.free[i], j)]);
+            let free_gain = -chol.solve(&rows);
+            qp.free
+                .iter()
+                .enumerate()
+                .for_each(|(i, &r)| gain.set_row(r, &free_gain.row(i)));
+        }
+        let kff = qp.x;
+        expected.0 += kff.dot(&qu);
+        expected.1 += 0.5 * kff.dot(&(&quu * &kff));
+        vx = &qx + gain.transpose() * (&quu * &kff + &qu) + qux.transpose() * &kff;
+        let cross = gain.transpose() * &qux;
+        vxx = &qxx + gain.transpose() * &quu * &gain + &cross + cross.transpose();
+        vxx = (&vxx + vxx.transpose()) * 0.5;
+        shift(&mut vx, &vxx, &nominal.gaps[k], &mut gap_terms);
+        hessians[k] = vxx.clone();
+        feedforward[k] = kff;
+        gains[k] = gain;
+    }
+    Ok(Some(Backward {
+        feedforward,
+        gains,
+        hessians,
+        expected,
+        gap_terms,
+    }))
+}
+
+/// V_x at the state the dynamics lead to, V_x + V_xx f, and the gap's
+/// terms of the predicted change, ṽ·f and fᵀV_xx f (nothing for f = 0).
+fn shift(vx: &mut DVector<f64>, vxx: &DMatrix<f64>, gap: &DVector<f64>, terms: &mut (f64, f64)) {
+    if gap.amax() == 0.0 {
+        return;
+    }
+    let vf = vxx * gap;
+    *vx += &vf;
+    terms.0 += vx.dot(gap);
+    terms.1 += gap.dot(&vf);
+}
