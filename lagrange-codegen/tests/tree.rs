@@ -7,7 +7,7 @@ mod common;
 #[path = "common/written.rs"]
 mod written;
 use common::{Lcg, close, eval, random_point};
-use lagrange_codegen::mechanics::{BiasRoute, Model, Route};
+use lagrange_codegen::mechanics::{Articulation, BiasRoute, Model, Route};
 
 fn model_by(src: &str, route: Route) -> Model {
     let input: syn::DeriveInput = syn::parse_str(src).expect("test input parses");
@@ -285,13 +285,18 @@ fn solve(mut m: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
 
 /// The articulated-body q̈ (with extra generalized forces τ) equals
 /// M⁻¹(Q − h + τ) from the same description at random states.
+/// Both routes of `emit(articulated)`, the one emitted and the other, give
+/// M⁻¹(Q − h + τ) and positive pivots.
 fn articulated_agrees(src: &str) {
     let model = model_by(src, Route::Auto);
-    let fd = model
-        .outputs
-        .articulated
-        .as_ref()
-        .expect("emit(articulated) was asked for");
+    let chosen = (model.outputs.articulated.as_ref()).expect("emit(articulated) was asked for");
+    let choice = (model.outputs.forward_route.as_ref()).expect("a route was chosen");
+    for fd in [chosen, &choice.other] {
+        route_agrees(&model, fd, src);
+    }
+}
+
+fn route_agrees(model: &Model, fd: &Articulation, src: &str) {
     let n = model.dof();
     let mut rng = Lcg(77);
     for _ in 0..20 {

@@ -27,7 +27,6 @@ pub enum ForwardRoute {
 /// The route taken and both routes' weighted operation counts
 /// ([`lagrange_symbolic::OpCount::weighted`]), for `FORWARD_ROUTE` and the
 /// `EQUATIONS` text.
-#[derive(Clone, Copy, Debug)]
 pub struct ForwardChoice {
     /// The route the emitted q̈ takes.
     pub route: ForwardRoute,
@@ -35,6 +34,9 @@ pub struct ForwardChoice {
     pub articulated_body: usize,
     /// The factored mass matrix program's weighted operations.
     pub factored_mass: usize,
+    /// The route not taken, kept for tests (not emitted, and not among the
+    /// model's expressions).
+    pub other: Articulation,
 }
 
 /// The cheaper of the articulated-body program `a` and q̈ = M⁻¹(Q − h + τ)
@@ -52,15 +54,16 @@ pub(super) fn fastest(
     };
     let articulated_body = cost(ctx, &a);
     let factored_mass = cost(ctx, &factored);
-    let (kept, route) = if factored_mass < articulated_body {
-        (factored, ForwardRoute::FactoredMass)
+    let (kept, other, route) = if factored_mass < articulated_body {
+        (factored, a, ForwardRoute::FactoredMass)
     } else {
-        (a, ForwardRoute::ArticulatedBody)
+        (a, factored, ForwardRoute::ArticulatedBody)
     };
     let choice = ForwardChoice {
         route,
         articulated_body,
         factored_mass,
+        other,
     };
     (kept, choice)
 }
