@@ -233,20 +233,7 @@ fn fused_products_release_their_operands() {
             sum = cx.add(sum, term);
         }
         let prog = Program::new(&cx, &[sum]);
-        let symbol = |_: Symbol| quote!(q[0]);
-        let constant = |v: f64| {
-            let lit = proc_macro2::Literal::f64_suffixed(v);
-            quote!(#lit)
-        };
-        let function: TokenStream = quote!(func);
-        let cfg = EmitConfig {
-            symbol: &symbol,
-            constant: &constant,
-            function: &function,
-            temp_prefix: "_t",
-            fused_multiply_add,
-        };
-        let (body, _) = prog.emit(&cx, &cfg);
+        let body = with_one_symbol(fused_multiply_add, |cfg| prog.emit(&cx, cfg).0);
         let body = body.to_string();
         assert_eq!(body.contains("mul_add"), fused_multiply_add);
         body.matches("let mut").count()
@@ -287,21 +274,7 @@ fn pieces_declare_every_variable_they_use() {
         sum = cx.add(sum, term);
     }
     let prog = Program::new(&cx, &[first, sum]);
-    let symbol = |_: Symbol| quote!(q[0]);
-    let constant = |v: f64| {
-        let lit = proc_macro2::Literal::f64_suffixed(v);
-        quote!(#lit)
-    };
-    let function: TokenStream = quote!(func);
-    let cfg = EmitConfig {
-        symbol: &symbol,
-        constant: &constant,
-        function: &function,
-        temp_prefix: "_t",
-        fused_multiply_add: true,
-    };
-    let chunked = prog
-        .emit_chunked(&cx, &cfg, 5, &quote!(s))
+    let chunked = with_one_symbol(true, |cfg| prog.emit_chunked(&cx, cfg, 5, &quote!(s)))
         .expect("several pieces");
     assert!(chunked.chunks.len() > 2);
     for chunk in &chunked.chunks {
@@ -315,4 +288,22 @@ fn pieces_declare_every_variable_they_use() {
             }
         }
     }
+}
+
+/// `f` given an emission whose every symbol reads `q[0]`, with literals
+/// suffixed `f64` and functions from the module `func`.
+fn with_one_symbol<R>(fused_multiply_add: bool, f: impl FnOnce(&EmitConfig) -> R) -> R {
+    let symbol = |_: Symbol| quote!(q[0]);
+    let constant = |v: f64| {
+        let lit = proc_macro2::Literal::f64_suffixed(v);
+        quote!(#lit)
+    };
+    let function: TokenStream = quote!(func);
+    f(&EmitConfig {
+        symbol: &symbol,
+        constant: &constant,
+        function: &function,
+        temp_prefix: "_t",
+        fused_multiply_add,
+    })
 }
