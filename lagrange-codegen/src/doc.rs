@@ -290,13 +290,17 @@ fn outputs(model: &Model) -> Vec<(String, Sym)> {
 /// `emit(articulated)` chose one.
 fn forward_line(model: &Model) -> Option<String> {
     let c = model.outputs.forward_route.as_ref()?;
-    let (a, f) = (c.articulated_body, c.factored_mass);
+    let f = c.factored_mass;
     let taken = match c.route {
         ForwardRoute::ArticulatedBody => "the articulated-body algorithm",
         ForwardRoute::FactoredMass => "M factorised as L^T D L in the program",
     };
+    let a = match c.articulated_body {
+        Some(a) => format!("{a} articulated-body"),
+        None => "articulated-body not applicable (a coordinate drives two joints)".into(),
+    };
     Some(format!(
-        "q'' (emitted) by {taken}: weighted operations {a} articulated-body, {f} factored M"
+        "q'' (emitted) by {taken}: weighted operations {f} factored M, {a}"
     ))
 }
 

@@ -309,14 +309,23 @@ fn forward_route_const(model: &Model) -> TokenStream {
     let Some(c) = &model.outputs.forward_route else {
         return TokenStream::new();
     };
-    let (a, f) = (c.articulated_body, c.factored_mass);
-    let route = match c.route {
-        ForwardRoute::ArticulatedBody => quote!(ArticulatedBody),
-        ForwardRoute::FactoredMass => quote!(FactoredMass),
+    let f = c.factored_mass;
+    let route = match (c.route, c.articulated_body) {
+        (ForwardRoute::ArticulatedBody, Some(a)) => {
+            quote!(ArticulatedBody { articulated_body: #a, factored_mass: #f })
+        }
+        (_, Some(a)) => quote!(FactoredMass {
+            articulated_body: ::core::option::Option::Some(#a),
+            factored_mass: #f
+        }),
+        (_, None) => quote!(FactoredMass {
+            articulated_body: ::core::option::Option::None,
+            factored_mass: #f
+        }),
     };
     quote! {
         const FORWARD_ROUTE: ::lagrange::__private::ForwardRoute =
-            ::lagrange::__private::ForwardRoute::#route { articulated_body: #a, factored_mass: #f };
+            ::lagrange::__private::ForwardRoute::#route;
     }
 }
 

@@ -30,13 +30,14 @@ pub enum ForwardRoute {
 pub struct ForwardChoice {
     /// The route the emitted q̈ takes.
     pub route: ForwardRoute,
-    /// The articulated-body program's weighted operations.
-    pub articulated_body: usize,
+    /// The articulated-body program's weighted operations; `None` where the
+    /// algorithm does not apply (a coordinate driving two joints).
+    pub articulated_body: Option<usize>,
     /// The factored mass matrix program's weighted operations.
     pub factored_mass: usize,
     /// The route not taken, kept for tests (not emitted, and not among the
     /// model's expressions).
-    pub other: Articulation,
+    pub other: Option<Articulation>,
 }
 
 /// The cheaper of the articulated-body program `a` and q̈ = M⁻¹(Q − h + τ)
@@ -48,10 +49,6 @@ pub(super) fn fastest(
     motion: &EquationsOfMotion,
 ) -> (Articulation, ForwardChoice) {
     let factored = factored(ctx, &a.extra, motion);
-    let cost = |ctx: &Context, a: &Articulation| {
-        let outputs: Vec<Sym> = a.accelerations.iter().chain(&a.pivots).copied().collect();
-        Program::new(ctx, &outputs).op_count().weighted()
-    };
     let articulated_body = cost(ctx, &a);
     let factored_mass = cost(ctx, &factored);
     let (kept, other, route) = if factored_mass < articulated_body {
@@ -61,11 +58,37 @@ pub(super) fn fastest(
     };
     let choice = ForwardChoice {
         route,
-        articulated_body,
+        articulated_body: Some(articulated_body),
         factored_mass,
-        other,
+        other: Some(other),
     };
     (kept, choice)
+}
+
+/// The factored route alone, where the articulated-body algorithm does not
+/// apply: a coordinate driving two joints (a URDF's `<mimic>`), whose
+/// shares M and h sum but the algorithm's one pivot per joint cannot.
+pub(super) fn factored_only(
+    ctx: &mut Context,
+    motion: &EquationsOfMotion,
+) -> (Articulation, ForwardChoice) {
+    let extra: Vec<Sym> = (0..motion.rhs.len())
+        .map(|i| ctx.free_symbol(&format!("tau{i}")))
+        .collect();
+    let factored = factored(ctx, &extra, motion);
+    let choice = ForwardChoice {
+        route: ForwardRoute::FactoredMass,
+        articulated_body: None,
+        factored_mass: cost(ctx, &factored),
+        other: None,
+    };
+    (factored, choice)
+}
+
+/// The weighted operations of q̈ and the pivots as one program.
+fn cost(ctx: &Context, a: &Articulation) -> usize {
+    let outputs: Vec<Sym> = a.accelerations.iter().chain(&a.pivots).copied().collect();
+    Program::new(ctx, &outputs).op_count().weighted()
 }
 
 /// q̈ = M⁻¹(Q − h + τ) by M = Lᵀ D L, with the pivots D.

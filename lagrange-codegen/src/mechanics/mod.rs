@@ -313,6 +313,9 @@ struct Forces {
     gravity_potential: Sym,
     inputs: Option<InputModel>,
     articulated: Option<Articulation>,
+    /// `emit(articulated)` on a tree with a coordinate driving two joints
+    /// (a mimic joint): only the factored route applies.
+    factored_only: bool,
 }
 
 /// Q (with or without gravity's share, by the route), the inputs' share of
@@ -337,18 +340,12 @@ fn applied_forces(
         (true, Some(rest)) => rest.clone(),
         _ => s.applied.generalized_forces(ctx, potential_total),
     };
+    // A coordinate driving two joints (a mimic joint) is beyond the
+    // articulated-body algorithm, not beyond M's factorisation.
+    let factored_only = s.articulated && s.tree.is_some_and(|t| t.shared_coordinate().is_some());
     let articulated = match (s.articulated, s.tree, &without_gravity) {
         (false, _, _) => None,
-        (true, Some(tree), _) if tree.shared_coordinate().is_some() => {
-            let q = tree.shared_coordinate().map_or(0, |q| q);
-            let name = ctx.coordinates()[q];
-            let name = ctx
-                .as_symbol(name)
-                .map_or_else(String::new, |s| ctx.symbol_name(s).to_string());
-            return Err(DeriveError::ArticulatedNeedsTree(format!(
-                "coordinate `{name}` drives two joints (a mimic joint), and the articulated-body algorithm needs one coordinate per joint"
-            )));
-        }
+        (true, Some(_), _) if factored_only => None,
         (true, Some(tree), Some(rest)) => Some(recursive::articulation(ctx, tree, rest)),
         (true, _, _) => {
             let why = s.route_reason.clone().unwrap_or_default();
@@ -363,6 +360,7 @@ fn applied_forces(
         gravity_potential,
         inputs,
         articulated,
+        factored_only,
     };
     Ok((forces, potential))
 }
@@ -492,6 +490,10 @@ fn finish(
     let (articulated, forward_route) = match d.forces.articulated.take() {
         Some(a) => {
             let (a, choice) = forward::fastest(&mut ctx, a, &d.motion);
+            (Some(a), Some(choice))
+        }
+        None if d.forces.factored_only => {
+            let (a, choice) = forward::factored_only(&mut ctx, &d.motion);
             (Some(a), Some(choice))
         }
         None => (None, None),

@@ -50,8 +50,10 @@ pub enum ForwardRoute {
     /// (Featherstone's LTDL, which fills in nothing on a kinematic tree) and
     /// two triangular solves.
     FactoredMass {
-        /// The articulated-body program's, not emitted.
-        articulated_body: usize,
+        /// The articulated-body program's, not emitted; `None` where the
+        /// algorithm does not apply (a coordinate driving two joints, as a
+        /// URDF's `<mimic>` finger).
+        articulated_body: Option<usize>,
         /// The factored program's weighted operations.
         factored_mass: usize,
     },
