@@ -299,9 +299,9 @@ fn route_agrees(model: &Model, fd: &Articulation, src: &str) {
     let n = model.dof();
     let mut rng = Lcg(77);
     for _ in 0..20 {
-        let p = random_point(&model, &mut rng);
+        let p = random_point(model, &mut rng);
         let tau: Vec<f64> = (0..n).map(|_| 3.0 * rng.next()).collect();
-        let base = common::env(&model, &p);
+        let base = common::env(model, &p);
         let env = |s: lagrange_symbolic::Symbol| match fd
             .extra
             .iter()
@@ -313,12 +313,12 @@ fn route_agrees(model: &Model, fd: &Articulation, src: &str) {
         let m: Vec<Vec<f64>> = (0..n)
             .map(|i| {
                 (0..n)
-                    .map(|j| eval(&model, model.motion.mass[i][j], &p))
+                    .map(|j| eval(model, model.motion.mass[i][j], &p))
                     .collect()
             })
             .collect();
         let rhs: Vec<f64> = (0..n)
-            .map(|i| eval(&model, model.motion.rhs[i], &p) + tau[i])
+            .map(|i| eval(model, model.motion.rhs[i], &p) + tau[i])
             .collect();
         let expected = solve(m, rhs);
         for (i, &want) in expected.iter().enumerate() {
