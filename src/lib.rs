@@ -592,9 +592,12 @@ pub mod __private {
         Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid,
     };
     pub use lagrange_runtime::{
-        AccelerationDerivatives, Atlas, Constrained, Differentiable, Driven, DrivenAtlas, Error,
-        EulerRotation, FormVisitor, FreeVisitor, JointLimit, Lagrangian, Orientation, Real,
-        Reduced, Route, func, physical,
+        AccelerationDerivatives, Atlas, Batched, BatchedDifferentiable, Constrained,
+        Differentiable, Driven, DrivenAtlas, Error, EulerRotation, F64x4, FormVisitor, FreeVisitor,
+        JointLimit, LaneDerivatives, Lagrangian, Orientation, Real, Reduced, Route, func,
+        physical,
     };
+    /// The functions the batched programs call (`emit(batched)`).
+    pub use lagrange_runtime::numeric::lanes::func as lane_func;
     pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 }

@@ -18,6 +18,7 @@ mod layout;
 mod rolling;
 
 mod architecture;
+mod batched;
 mod atlas;
 mod atlas_constraints;
 mod atlas_events;
