@@ -588,16 +588,13 @@ pub struct ReadmeDoctests;
 /// Paths the generated code uses; not a public API.
 #[doc(hidden)]
 pub mod __private {
-    pub use lagrange_runtime::pose::{
-        Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid,
-    };
     pub use lagrange_runtime::{
         AccelerationDerivatives, Atlas, Batched, BatchedDifferentiable, Constrained,
-        Differentiable, Driven, DrivenAtlas, Error, EulerRotation, F64x4, FormVisitor, FreeVisitor,
-        JointLimit, LaneDerivatives, Lagrangian, Orientation, Real, Reduced, Route, func,
+        Differentiable, Driven, DrivenAtlas, Error, EulerRotation, FormVisitor, FreeVisitor,
+        JointLimit, Lagrangian, LaneDerivatives, Orientation, Real, Reduced, Route, func,
+        numeric::lanes,
         physical,
+        pose::{Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid},
     };
-    /// The functions the batched programs call (`emit(batched)`).
-    pub use lagrange_runtime::numeric::lanes::func as lane_func;
     pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 }

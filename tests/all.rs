@@ -18,12 +18,12 @@ mod layout;
 mod rolling;
 
 mod architecture;
-mod batched;
 mod atlas;
 mod atlas_constraints;
 mod atlas_events;
 mod atlas_inputs;
 mod atlas_rolling;
+mod batched;
 mod bicycle;
 mod bodies;
 mod cavity;

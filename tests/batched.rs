@@ -74,7 +74,11 @@ fn states<const N: usize, const Q: usize>() -> (
 fn same_bits(what: &str, a: &[f64], b: &[f64]) {
     assert_eq!(a.len(), b.len());
     for (i, (x, y)) in a.iter().zip(b).enumerate() {
-        assert_eq!(x.to_bits(), y.to_bits(), "{what}[{i}]: {x} in lanes, {y} scalar");
+        assert_eq!(
+            x.to_bits(),
+            y.to_bits(),
+            "{what}[{i}]: {x} in lanes, {y} scalar"
+        );
     }
 }
 
@@ -96,7 +100,11 @@ where
             .expect("a regular state");
         let lanes = batched[s].as_ref().expect("a regular state");
         let what = |m: &str| format!("{name} state {s} {m}");
-        same_bits(&what("q''"), lanes.acceleration.as_slice(), scalar.acceleration.as_slice());
+        same_bits(
+            &what("q''"),
+            lanes.acceleration.as_slice(),
+            scalar.acceleration.as_slice(),
+        );
         same_bits(&what("dq"), lanes.dq.as_slice(), scalar.dq.as_slice());
         same_bits(&what("dv"), lanes.dv.as_slice(), scalar.dv.as_slice());
         same_bits(&what("dtau"), lanes.dtau.as_slice(), scalar.dtau.as_slice());
@@ -117,7 +125,11 @@ where
     for s in 0..STATES {
         let (scalar, _) = (sys.forward_dynamics(&q[s], &v[s], &tau[s], 0.0)).expect("articulated");
         let lanes = batched[s].as_ref().expect("a regular state");
-        same_bits(&format!("{name} state {s} q''"), lanes.as_slice(), scalar.as_slice());
+        same_bits(
+            &format!("{name} state {s} q''"),
+            lanes.as_slice(),
+            scalar.as_slice(),
+        );
     }
 }
 
@@ -140,7 +152,11 @@ fn a_floating_base_s_lanes_are_its_scalar_programs_bit_for_bit() {
             .expect("a regular state");
         let lanes = batched[s].as_ref().expect("a regular state");
         same_bits("Solo 12 dq", lanes.dq.as_slice(), scalar.dq.as_slice());
-        same_bits("Solo 12 dtau", lanes.dtau.as_slice(), scalar.dtau.as_slice());
+        same_bits(
+            "Solo 12 dtau",
+            lanes.dtau.as_slice(),
+            scalar.dtau.as_slice(),
+        );
     }
 }
 

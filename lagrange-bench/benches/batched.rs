@@ -19,10 +19,10 @@ macro_rules! arm {
     ($name:ident, $file:tt) => {
         #[derive(Lagrangian, Default)]
         #[lagrange(
-            urdf = $file,
-            gravity = [0, 0, -9.81],
-            emit(articulated, jacobians, batched)
-        )]
+                                                    urdf = $file,
+                                                    gravity = [0, 0, -9.81],
+                                                    emit(articulated, jacobians, batched)
+                                                )]
         struct $name {}
     };
 }
@@ -34,12 +34,20 @@ const STATES: usize = 64;
 
 /// 64 states about q_k = 0.3 − 0.17 k, q̇_k = 0.5 − 0.21 k, τ_k = 0.1 k.
 #[allow(clippy::type_complexity)]
-fn states<const N: usize>() -> (Vec<SVector<f64, N>>, Vec<SVector<f64, N>>, Vec<SVector<f64, N>>) {
+fn states<const N: usize>() -> (
+    Vec<SVector<f64, N>>,
+    Vec<SVector<f64, N>>,
+    Vec<SVector<f64, N>>,
+) {
     let at = |s: usize, f: fn(usize) -> f64| {
         SVector::from_fn(|k, _| f(k) + 0.01 * s as f64 * (k as f64 - 2.0))
     };
-    let q = (0..STATES).map(|s| at(s, |k| 0.3 - 0.17 * k as f64)).collect();
-    let v = (0..STATES).map(|s| at(s, |k| 0.5 - 0.21 * k as f64)).collect();
+    let q = (0..STATES)
+        .map(|s| at(s, |k| 0.3 - 0.17 * k as f64))
+        .collect();
+    let v = (0..STATES)
+        .map(|s| at(s, |k| 0.5 - 0.21 * k as f64))
+        .collect();
     let tau = (0..STATES).map(|s| at(s, |k| 0.1 * k as f64)).collect();
     (q, v, tau)
 }
@@ -76,7 +84,13 @@ where
     });
     group.bench_function("derivatives batched", |b| {
         b.iter(|| {
-            lagrange::batched_acceleration_derivatives(&sys, black_box(&q), black_box(&v), &tau, 0.0)
+            lagrange::batched_acceleration_derivatives(
+                &sys,
+                black_box(&q),
+                black_box(&v),
+                &tau,
+                0.0,
+            )
         })
     });
     group.finish();
@@ -117,7 +131,12 @@ where
     });
     group.bench_function("derivatives lanes", |b| {
         b.iter(|| {
-            sys.acceleration_derivatives_lanes_unchecked(black_box(&ql), &vl, &taul, F64x4::splat(0.0))
+            sys.acceleration_derivatives_lanes_unchecked(
+                black_box(&ql),
+                &vl,
+                &taul,
+                F64x4::splat(0.0),
+            )
         })
     });
     group.finish();

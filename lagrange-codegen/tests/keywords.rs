@@ -61,10 +61,19 @@ fn batched_alone_says_which_program_it_batches() {
 fn batched_refuses_constraints_and_other_scalars() {
     let src = "#[lagrange(coordinates(x, y), point(p, mass = m, at = [x, y]), holonomic(c = x - y), emit(jacobians, batched))] struct S { m: f64 }";
     let input: syn::DeriveInput = syn::parse_str(src).expect("a struct");
-    let e = lagrange_codegen::model(&input).err().expect("refused").to_string();
+    let e = lagrange_codegen::model(&input)
+        .err()
+        .expect("refused")
+        .to_string();
     assert!(e.contains("`batched` batches the unconstrained q̈"), "{e}");
     let src = "#[lagrange(coordinates(x), point(p, mass = m, at = [x, 0]), emit(jacobians, batched))] struct S { m: f32 }";
     let input: syn::DeriveInput = syn::parse_str(src).expect("a struct");
-    let e = lagrange_codegen::model(&input).err().expect("refused").to_string();
-    assert!(e.contains("`batched` runs four `f64` states per call"), "{e}");
+    let e = lagrange_codegen::model(&input)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(
+        e.contains("`batched` runs four `f64` states per call"),
+        "{e}"
+    );
 }

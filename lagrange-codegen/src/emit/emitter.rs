@@ -31,7 +31,7 @@ pub(super) struct Emitter<'a> {
     /// Whether programs are emitted over four states at once
     /// (`emit(batched)`): the scalar spelled `F64x4`, the states' symbols read
     /// as lanes, parameters and constants splatted, the functions those of
-    /// `lane_func`.
+    /// `lanes::func`.
     lanes: bool,
 }
 
@@ -99,7 +99,7 @@ impl<'a> Emitter<'a> {
     /// The scalar of the emitted programs: the system's, or `F64x4`.
     pub(super) fn scalar_type(&self) -> TokenStream {
         if self.lanes {
-            quote!(::lagrange::__private::F64x4)
+            quote!(::lagrange::__private::lanes::F64x4)
         } else {
             super::scalar_tokens(self.scalar)
         }
@@ -109,7 +109,7 @@ impl<'a> Emitter<'a> {
     pub(super) fn constant(&self, v: f64) -> TokenStream {
         let c = constant(self.scalar, v);
         if self.lanes {
-            quote!(::lagrange::__private::lane_func::splat(#c))
+            quote!(::lagrange::__private::lanes::func::splat(#c))
         } else {
             c
         }
@@ -118,7 +118,7 @@ impl<'a> Emitter<'a> {
     /// `value`, one for every state, as the programs' scalar.
     fn shared(&self, value: TokenStream) -> TokenStream {
         if self.lanes {
-            quote!(::lagrange::__private::lane_func::splat(#value))
+            quote!(::lagrange::__private::lanes::func::splat(#value))
         } else {
             value
         }
@@ -221,7 +221,7 @@ impl<'a> Emitter<'a> {
         };
         let constant = |v: f64| self.constant(v);
         let function = if self.lanes {
-            quote!(::lagrange::__private::lane_func)
+            quote!(::lagrange::__private::lanes::func)
         } else {
             quote!(::lagrange::__private::func)
         };

@@ -93,6 +93,13 @@ pub trait BatchedDifferentiable<const N: usize, const Q: usize = N>:
 /// or the error the scalar reading reports for it.
 type Checked<const N: usize, const Q: usize> = Result<SVector<f64, Q>, Error>;
 
+/// The states of a batch: q, v and τ, one of each per state.
+type States<'a, const N: usize, const Q: usize> = (
+    &'a [SVector<f64, Q>],
+    &'a [SVector<f64, N>],
+    &'a [SVector<f64, N>],
+);
+
 impl<S> Dynamics<'_, S, f64, NoForcing> {
     /// q̈ = M⁻¹(Q − h + τ) at each state (`q[i]`, `v[i]`, `tau[i]`) at time
     /// `t`, four states per call of the system's batched program; each
@@ -111,7 +118,8 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
     where
         S: Batched<N, Q>,
     {
-        let program = |q: &_, v: &_, tau: &_, t| self.system().acceleration_lanes_unchecked(q, v, tau, t);
+        let program =
+            |q: &_, v: &_, tau: &_, t| self.system().acceleration_lanes_unchecked(q, v, tau, t);
         self.in_lanes(t, (q, v, tau), program, |(a, ratio), k, (q, v)| {
             self.pivot_check(t, q, ratio.lane(k))?;
             let a = unpack(a, k);
@@ -155,7 +163,7 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
     fn in_lanes<const N: usize, const Q: usize, P, R>(
         &self,
         t: f64,
-        (q, v, tau): (&[SVector<f64, Q>], &[SVector<f64, N>], &[SVector<f64, N>]),
+        (q, v, tau): States<'_, N, Q>,
         program: impl Fn(&[F64x4; Q], &[F64x4; N], &[F64x4; N], F64x4) -> P,
         read: impl Fn(&P, usize, (&SVector<f64, Q>, &SVector<f64, N>)) -> Result<R, Error>,
     ) -> Vec<Result<R, Error>>
@@ -172,15 +180,16 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
         let mut out = Vec::with_capacity(q.len());
         for start in (0..q.len()).step_by(F64x4::LANES) {
             let end = (start + F64x4::LANES).min(q.len());
-            let checked: Vec<Checked<N, Q>> = (start..end)
-                .map(|i| self.check_state(t, &q[i], &v[i], &tau[i]))
-                .collect();
             // Spare lanes repeat the last state; a failed state's lane runs
             // on what it was given, and lanes do not mix.
             let at = |k: usize| (start + k).min(end - 1);
+            let checked: [Option<Checked<N, Q>>; 4] = core::array::from_fn(|k| {
+                let i = start + k;
+                (i < end).then(|| self.check_state(t, &q[i], &v[i], &tau[i]))
+            });
             let unit = |k: usize| match &checked[at(k) - start] {
-                Ok(unit) => *unit,
-                Err(_) => q[at(k)],
+                Some(Ok(unit)) => *unit,
+                _ => q[at(k)],
             };
             let units: [SVector<f64, Q>; 4] = core::array::from_fn(unit);
             let results = program(
@@ -189,7 +198,7 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
                 &pack(|k| &tau[at(k)]),
                 F64x4::splat(t),
             );
-            for (k, state) in checked.into_iter().enumerate() {
+            for (k, state) in checked.into_iter().flatten().enumerate() {
                 let i = start + k;
                 out.push(state.and_then(|_| read(&results, k, (&q[i], &v[i]))));
             }

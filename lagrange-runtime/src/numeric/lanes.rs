@@ -6,7 +6,7 @@
 //! AVX (`-C target-cpu=native` on most machines), two 128-bit SSE2 or NEON
 //! registers otherwise, and plain `f64`s on any other target: it builds on
 //! stable Rust everywhere. [`func`] holds the functions the emitted code
-//! calls, each giving in every lane what [`crate::func`]'s does for `f64`,
+//! calls, each giving in every lane what [`crate::numeric::func`]'s does for `f64`,
 //! bit for bit (see there for why).
 
 use core::ops::{Add, Div, Mul, Neg, Sub};
@@ -94,9 +94,9 @@ impl Neg for F64x4 {
 }
 
 /// The functions the batched programs call, lane by lane: the counterparts
-/// of [`crate::func`] over [`F64x4`].
+/// of [`crate::numeric::func`] over [`F64x4`].
 ///
-/// Each gives in every lane exactly what [`crate::func`] gives for that
+/// Each gives in every lane exactly what [`crate::numeric::func`] gives for that
 /// lane's `f64`, so a batched program's lane equals the scalar program's
 /// result bit for bit: +, −, ×, ÷, √ and |x| are correctly rounded in both
 /// (one SIMD instruction each); `mul_add` fuses exactly where the scalar one
@@ -156,7 +156,7 @@ pub mod func {
     }
 
     /// In each lane, `positive` where `test > 0`, else `otherwise` (a NaN
-    /// test gives `otherwise`, as [`crate::func::select`] does).
+    /// test gives `otherwise`, as [`crate::numeric::func::select`] does).
     #[inline(always)]
     pub fn select(test: F64x4, positive: F64x4, otherwise: F64x4) -> F64x4 {
         let mask = test.0.simd_gt(wide::f64x4::ZERO);
@@ -181,7 +181,7 @@ pub mod func {
         x.zip_map(y, scalar::powf::<f64>)
     }
 
-    /// x y + c, fused exactly where [`crate::func::mul_add`] is (a build
+    /// x y + c, fused exactly where [`crate::numeric::func::mul_add`] is (a build
     /// targeting FMA), else the product and the sum apart.
     #[inline(always)]
     pub fn mul_add(x: F64x4, y: F64x4, c: F64x4) -> F64x4 {
@@ -199,7 +199,7 @@ pub mod func {
     }
 
     /// Each lane's ratio of the smallest pivot to the largest, as
-    /// [`crate::func::pivot_ratio`] gives it.
+    /// [`crate::numeric::func::pivot_ratio`] gives it.
     #[inline]
     pub fn pivot_ratio<const K: usize>(pivots: &[F64x4; K]) -> F64x4 {
         let lane = |k: usize| scalar::pivot_ratio(&pivots.map(|p| p.lane(k)));
@@ -231,9 +231,11 @@ mod tests {
         check(func::atan2(x, y), &|k| XS[k].atan2(y.lane(k)));
         check(func::powi(x, 3), &|k| XS[k].powi(3));
         check(func::mul_add(x, y, x), &|k| {
-            crate::func::mul_add(XS[k], y.lane(k), XS[k])
+            crate::numeric::func::mul_add(XS[k], y.lane(k), XS[k])
         });
-        check(func::select(y, x, y), &|k| crate::func::select(y.lane(k), XS[k], y.lane(k)));
+        check(func::select(y, x, y), &|k| {
+            crate::numeric::func::select(y.lane(k), XS[k], y.lane(k))
+        });
     }
 
     #[test]
@@ -245,6 +247,9 @@ mod tests {
             F64x4::from_array([2.0, 1.0, f64::NAN, -1.0]),
             F64x4::from_array([0.5, 1.0, 1.0, -2.0]),
         ];
-        assert_eq!(func::pivot_ratio(&pivots).to_array(), [0.25, 1.0, -1.0, -1.0]);
+        assert_eq!(
+            func::pivot_ratio(&pivots).to_array(),
+            [0.25, 1.0, -1.0, -1.0]
+        );
     }
 }

@@ -27,7 +27,7 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, system: &System) -> 
 /// The arguments every batched program takes: the states in lanes.
 fn parameters(f: &Frame) -> TokenStream {
     let (n, nq) = (&f.n, &f.nq);
-    let l = quote!(::lagrange::__private::F64x4);
+    let l = quote!(::lagrange::__private::lanes::F64x4);
     quote!(q: &[#l; #nq], v: &[#l; #n], tau: &[#l; #n], t: #l)
 }
 
@@ -36,10 +36,10 @@ fn parameters(f: &Frame) -> TokenStream {
 /// not emitted).
 fn acceleration(e: &Emitter, f: &Frame, model: &Model) -> Pieces {
     let p = quote!(::lagrange::__private);
-    let l = quote!(#p::F64x4);
+    let l = quote!(#p::lanes::F64x4);
     let n = &f.n;
     let params = parameters(f);
-    let ratio = |pivots: &[TokenStream]| quote!(#p::lane_func::pivot_ratio(&[#(#pivots),*]));
+    let ratio = |pivots: &[TokenStream]| quote!(#p::lanes::func::pivot_ratio(&[#(#pivots),*]));
     let (body, hoisted) = if let Some(a) = &model.outputs.articulated {
         let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
         let (lets, outs) = e.program(model.hoisted_articulated().unwrap_or_default());
@@ -53,7 +53,11 @@ fn acceleration(e: &Emitter, f: &Frame, model: &Model) -> Pieces {
             }
         };
         let body = quote!(self.__lagrange_forward_dynamics_lanes(
-            &self.__lagrange_parameter_terms(), q, v, tau, t
+            &self.__lagrange_parameter_terms(),
+            q,
+            v,
+            tau,
+            t
         ));
         (body, hoisted)
     } else if let Some(d) = &model.outputs.solved {
@@ -90,7 +94,7 @@ fn derivatives(e: &Emitter, f: &Frame, model: &Model) -> Pieces {
         return Pieces::default();
     };
     let p = quote!(::lagrange::__private);
-    let l = quote!(#p::F64x4);
+    let l = quote!(#p::lanes::F64x4);
     let dof = model.dof();
     let params = parameters(f);
     let mut all: Vec<Sym> = d.acceleration.clone();
@@ -100,7 +104,10 @@ fn derivatives(e: &Emitter, f: &Frame, model: &Model) -> Pieces {
     all.extend(&d.pivots);
     let (lets, outs, chunks) = e.program_in_pieces(
         &all,
-        ("__lagrange_acceleration_derivatives_lanes", JACOBIAN_CHUNK_OPS),
+        (
+            "__lagrange_acceleration_derivatives_lanes",
+            JACOBIAN_CHUNK_OPS,
+        ),
         (&params, &quote!(q, v, tau, t)),
     );
     let (acc, rest) = outs.split_at(dof);
@@ -120,7 +127,7 @@ fn derivatives(e: &Emitter, f: &Frame, model: &Model) -> Pieces {
                 #fq
                 #fv
                 #fm
-                let ratio = #p::lane_func::pivot_ratio(&[#(#pivots),*]);
+                let ratio = #p::lanes::func::pivot_ratio(&[#(#pivots),*]);
                 (#p::LaneDerivatives { acceleration: [#(#acc),*], dq, dv, dtau }, ratio)
             }
         }
