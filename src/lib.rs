@@ -51,7 +51,7 @@
 //! | `nonholonomic(name = e, ...)` | constraints e = a(q, t)·q̇ + b(q, t) = 0; must be linear in the velocities |
 //! | `speeds(u = expr, ...)` | independent speeds / quasi-velocities u = U(q, t) q̇ + u₀ for the reduced form |
 //! | `formulation(multipliers, reduced)` | which constrained equations to emit (default: multipliers, or reduced when `speeds` are given; `reduced` alone picks independent velocities itself) |
-//! | `emit(reactions, coriolis, jacobians, hamiltonian, articulated, inverse_dynamics, kinematics)` | optional outputs: `reactions(q, v, t, ν)` per point and `generalized_reactions(q, t, ν)` (G_αᵀ ν_α) per constraint, on points or coordinates; `coriolis_matrix(q, v, t)`; [`Lagrangian::rhs_jacobians`] (used by [`Radau5`] instead of finite differences), for a system without constraints [`Differentiable`] (q̈ and ∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = M⁻¹ as one program, M factorised in it: [`acceleration_derivatives`], Pinocchio's `computeABADerivatives`) and, for the constrained forms, [`Constrained::constraint_derivatives`] and [`Reduced::row_derivatives`] (linearisation); [`Lagrangian::momentum`] and [`Lagrangian::kinetic_gradient`] (Hamilton's form, needed by the symplectic [`Gauss`] method); [`Lagrangian::forward_dynamics`] (q̈ by the articulated-body algorithm, for a kinematic tree of revolute and sliding joints; the unconstrained dynamics then use it instead of M and Cholesky); `inverse_dynamics` overrides `Lagrangian::inverse_dynamics` (τ = M q̈ + h − Q, by recursive Newton–Euler on a kinematic tree, O(n); the default computes M) and `Lagrangian::gravity_torques` (∂V_gravity/∂q); `kinematics` implements `Kinematics`: each body frame's geometric Jacobian at its origin in world-aligned or its own axes and J̇ q̇ (`frame_jacobian`, `frame_jacobian_local`, `frame_bias`, by `body_index("tool0")`), the moving masses' centre of mass and its Jacobian |
+//! | `emit(reactions, coriolis, jacobians, hamiltonian, articulated, inverse_dynamics, kinematics, batched)` | optional outputs: `reactions(q, v, t, ν)` per point and `generalized_reactions(q, t, ν)` (G_αᵀ ν_α) per constraint, on points or coordinates; `coriolis_matrix(q, v, t)`; [`Lagrangian::rhs_jacobians`] (used by [`Radau5`] instead of finite differences), for a system without constraints [`Differentiable`] (q̈ and ∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = M⁻¹ as one program, M factorised in it: [`acceleration_derivatives`], Pinocchio's `computeABADerivatives`) and, for the constrained forms, [`Constrained::constraint_derivatives`] and [`Reduced::row_derivatives`] (linearisation); [`Lagrangian::momentum`] and [`Lagrangian::kinetic_gradient`] (Hamilton's form, needed by the symplectic [`Gauss`] method); [`Lagrangian::forward_dynamics`] (q̈ by the articulated-body algorithm, for a kinematic tree of revolute and sliding joints; the unconstrained dynamics then use it instead of M and Cholesky); `inverse_dynamics` overrides `Lagrangian::inverse_dynamics` (τ = M q̈ + h − Q, by recursive Newton–Euler on a kinematic tree, O(n); the default computes M) and `Lagrangian::gravity_torques` (∂V_gravity/∂q); `kinematics` implements `Kinematics`: each body frame's geometric Jacobian at its origin in world-aligned or its own axes and J̇ q̇ (`frame_jacobian`, `frame_jacobian_local`, `frame_bias`, by `body_index("tool0")`), the moving masses' centre of mass and its Jacobian; `batched` (beside `articulated` or `jacobians`, on an `f64` system without constraints) implements [`Batched`] and, with `jacobians`, [`BatchedDifferentiable`]: the same q̈ and derivative programs over four states per call in [`F64x4`] lanes, read checked through [`batched_accelerations`] and [`batched_acceleration_derivatives`] |
 //!
 //! Rotations are products of `rot_x(a)`, `rot_y(a)`, `rot_z(a)`,
 //! `euler_zxz(ψ, θ, φ)` (= rot_z(ψ)·rot_x(θ)·rot_z(φ), Suslov's precession, nutation,
@@ -588,13 +588,14 @@ pub struct ReadmeDoctests;
 /// Paths the generated code uses; not a public API.
 #[doc(hidden)]
 pub mod __private {
-    pub use lagrange_runtime::pose::{
-        Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid,
-    };
     pub use lagrange_runtime::{
-        AccelerationDerivatives, Atlas, Constrained, Differentiable, Driven, DrivenAtlas, Error,
-        EulerRotation, FormVisitor, ForwardRoute, FreeVisitor, JointLimit, Lagrangian, Orientation,
-        Real, Reduced, Route, func, physical,
+        AccelerationDerivatives, Atlas, Batched, BatchedDifferentiable, Constrained,
+        Differentiable, Driven, DrivenAtlas, Error, EulerRotation, FormVisitor, ForwardRoute,
+        FreeVisitor, JointLimit, Lagrangian, LaneDerivatives, Orientation, Real, Reduced, Route,
+        func,
+        numeric::lanes,
+        physical,
+        pose::{Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid},
     };
     pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 }

@@ -23,6 +23,7 @@ mod atlas_constraints;
 mod atlas_events;
 mod atlas_inputs;
 mod atlas_rolling;
+mod batched;
 mod bicycle;
 mod bodies;
 mod cavity;

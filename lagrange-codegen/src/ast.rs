@@ -110,6 +110,10 @@ pub enum Extra {
     /// A second chart for each rotation written in Euler angles, through the
     /// free twin (`crate::atlas`).
     Atlas,
+    /// The q̈ program (with `articulated` or `jacobians`) and the derivatives
+    /// program (with `jacobians`) over four states at once, for an `f64`
+    /// system without constraints.
+    Batched,
 }
 
 /// `force(point, [fx, fy, fz])`: a Cartesian force applied at a point.

@@ -27,6 +27,7 @@ pub fn check(cx: &Ctxt, system: &System) -> bool {
     check_dimensions(cx, system);
     check_load_targets(cx, system);
     check_formulation(cx, system);
+    check_batched(cx, system);
     unique
 }
 
@@ -79,6 +80,33 @@ fn check_formulation(cx: &Ctxt, system: &System) {
                 "`articulated` replaces M and its factorisation in the unconstrained dynamics; a constrained system's runs need M: remove `articulated`",
             );
         }
+    }
+}
+
+/// `batched` emits the unconstrained q̈ of `articulated` or `jacobians` over
+/// four `f64` states per call.
+fn check_batched(cx: &Ctxt, system: &System) {
+    let Some((name, _)) = system.extras.iter().find(|(_, e)| *e == Extra::Batched) else {
+        return;
+    };
+    let asked = |x: Extra| system.extras.iter().any(|(_, e)| *e == x);
+    if !(asked(Extra::Articulated) || asked(Extra::Jacobians)) {
+        cx.error_at(
+            name.span(),
+            "`batched` batches the q̈ program of `articulated` or `jacobians`: add one of them to `emit(...)`",
+        );
+    }
+    if !formulations(system).is_empty() {
+        cx.error_at(
+            name.span(),
+            "`batched` batches the unconstrained q̈; a constrained system's runs solve with its constraints: remove `batched`",
+        );
+    }
+    if !matches!(system.scalar, crate::ast::Scalar::F64) {
+        cx.error_at(
+            name.span(),
+            "`batched` runs four `f64` states per call: give the parameters the type `f64`",
+        );
     }
 }
 

@@ -13,6 +13,20 @@ fn pendulum_expansion() {
     insta::assert_snapshot!(prettyplease::unparse(&file));
 }
 
+/// `emit(jacobians, batched)`: the batched q̈ and derivative programs beside
+/// the scalar ones, parameters and constants splatted, states read as lanes.
+#[test]
+fn batched_pendulum_expansion() {
+    let input: syn::DeriveInput = syn::parse_str(
+        "#[lagrange(coordinates(theta), point(bob, mass = m, at = [l*sin(theta), -l*cos(theta)]), gravity = [0, -g], emit(jacobians, batched))]
+         pub struct Pendulum { pub m: f64, pub l: f64, pub g: f64 }",
+    )
+    .unwrap();
+    let tokens = lagrange_codegen::expand(&input);
+    let file: syn::File = syn::parse2(tokens).expect("expansion parses as a file");
+    insta::assert_snapshot!(prettyplease::unparse(&file));
+}
+
 /// Same input, same bytes: the emission must not depend on hash-map iteration order.
 #[test]
 fn expansion_is_deterministic() {

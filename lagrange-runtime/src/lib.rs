@@ -246,10 +246,12 @@ pub use mechanics::constraint::{
     ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent,
 };
 pub use mechanics::{
-    AccelerationDerivatives, DEFAULT_SINGULAR_TOLERANCE, Differentiable, Dynamics, Forcing,
-    InputDerivatives, NoForcing, Rattle, ReducedDynamics, ReducedForm, acceleration_derivatives,
-    accelerations,
+    AccelerationDerivatives, Batched, BatchedDifferentiable, DEFAULT_SINGULAR_TOLERANCE,
+    Differentiable, Dynamics, Forcing, InputDerivatives, LaneDerivatives, NoForcing, Rattle,
+    ReducedDynamics, ReducedForm, acceleration_derivatives, accelerations,
+    batched_acceleration_derivatives, batched_accelerations,
 };
+pub use numeric::lanes::F64x4;
 pub use numeric::orientation::Orientation;
 pub use numeric::{Real, func};
 pub use ode::{

@@ -182,6 +182,11 @@ pub(super) const OUTPUTS: Words<Extra> = Words(&[
         Extra::Atlas,
         "a second chart for each rotation in Euler angles, through the free twin",
     ),
+    word(
+        "batched",
+        Extra::Batched,
+        "q̈ (and, with `jacobians`, its derivatives) over four states per call, in SIMD lanes",
+    ),
 ]);
 
 /// The forms `formulation(...)` chooses.

@@ -24,8 +24,15 @@ pub(super) struct Emitter<'a> {
     scalar: &'a Scalar,
     /// The free symbols that reach emission and what they are in the generated
     /// method: the weights the linearisation methods hold fixed, `nu[k]` (the
-    /// multipliers' and the reduced rows' symbols are distinct).
-    free: Vec<(Symbol, TokenStream)>,
+    /// multipliers' and the reduced rows' symbols are distinct); and whether
+    /// each is one value for every state (the parameter terms `p`), which a
+    /// batched program splats.
+    free: Vec<(Symbol, TokenStream, bool)>,
+    /// Whether programs are emitted over four states at once
+    /// (`emit(batched)`): the scalar spelled `F64x4`, the states' symbols read
+    /// as lanes, parameters and constants splatted, the functions those of
+    /// `lanes::func`.
+    lanes: bool,
 }
 
 impl<'a> Emitter<'a> {
@@ -37,16 +44,17 @@ impl<'a> Emitter<'a> {
             for (c, &e) in o.quaternion.iter().enumerate() {
                 if let Some(s) = model.ctx.as_symbol(e) {
                     let i = Literal::usize_unsuffixed(first + 4 * k + c);
-                    free.push((s, quote!(q[#i])));
+                    free.push((s, quote!(q[#i]), false));
                 }
             }
         }
         let mut add = |symbols: &[Sym], array: &str| {
+            let shared = array == "p";
             let array = format_ident!("{array}");
             for (i, &e) in symbols.iter().enumerate() {
                 if let Some(s) = model.ctx.as_symbol(e) {
                     let i = Literal::usize_unsuffixed(i);
-                    free.push((s, quote!(#array[#i])));
+                    free.push((s, quote!(#array[#i]), shared));
                 }
             }
         };
@@ -73,6 +81,46 @@ impl<'a> Emitter<'a> {
             model,
             scalar,
             free,
+            lanes: false,
+        }
+    }
+
+    /// The same emitter writing programs over four states at once (see
+    /// [`Emitter::lanes`]); only for an `f64` system.
+    pub(super) fn batched(&self) -> Emitter<'a> {
+        Emitter {
+            model: self.model,
+            scalar: self.scalar,
+            free: self.free.clone(),
+            lanes: true,
+        }
+    }
+
+    /// The scalar of the emitted programs: the system's, or `F64x4`.
+    pub(super) fn scalar_type(&self) -> TokenStream {
+        if self.lanes {
+            quote!(::lagrange::__private::lanes::F64x4)
+        } else {
+            super::scalar_tokens(self.scalar)
+        }
+    }
+
+    /// A literal in the emitted programs' scalar.
+    pub(super) fn constant(&self, v: f64) -> TokenStream {
+        let c = constant(self.scalar, v);
+        if self.lanes {
+            quote!(::lagrange::__private::lanes::func::splat(#c))
+        } else {
+            c
+        }
+    }
+
+    /// `value`, one for every state, as the programs' scalar.
+    fn shared(&self, value: TokenStream) -> TokenStream {
+        if self.lanes {
+            quote!(::lagrange::__private::lanes::func::splat(#value))
+        } else {
+            value
         }
     }
 
@@ -108,12 +156,12 @@ impl<'a> Emitter<'a> {
             return (lets, outs, TokenStream::new());
         };
         let slots = Literal::usize_unsuffixed(chunked.slots);
-        let zero = constant(self.scalar, 0.0);
+        let zero = self.constant(0.0);
         let names: Vec<syn::Ident> = (0..chunked.chunks.len())
             .map(|k| format_ident!("{name}_{k}"))
             .collect();
         let bodies = &chunked.chunks;
-        let s = super::scalar_tokens(self.scalar);
+        let s = self.scalar_type();
         let lets = quote! {
             let mut s = [#zero; #slots];
             #(self.#names(#args, &mut s);)*
@@ -150,15 +198,16 @@ impl<'a> Emitter<'a> {
             SymbolKind::Time => quote!(t),
             SymbolKind::Parameter(i) => {
                 let f = format_ident!("{}", params[i]);
-                quote!(self.#f)
+                self.shared(quote!(self.#f))
             }
             // Inputs reach only the `Driven` methods, which take them as `u`.
             SymbolKind::Input(i) => {
                 let i = Literal::usize_unsuffixed(i);
                 quote!(u[#i])
             }
-            SymbolKind::Free => match self.free.iter().find(|(f, _)| *f == s) {
-                Some((_, tokens)) => tokens.clone(),
+            SymbolKind::Free => match self.free.iter().find(|(f, ..)| *f == s) {
+                Some((_, tokens, true)) => self.shared(tokens.clone()),
+                Some((_, tokens, false)) => tokens.clone(),
                 None => quote!(::core::compile_error!(
                     "internal: unexpected symbol in generated code"
                 )),
@@ -170,9 +219,12 @@ impl<'a> Emitter<'a> {
                 quote!(a[#i])
             }
         };
-        let scalar = self.scalar;
-        let constant = |v: f64| constant(scalar, v);
-        let function = quote!(::lagrange::__private::func);
+        let constant = |v: f64| self.constant(v);
+        let function = if self.lanes {
+            quote!(::lagrange::__private::lanes::func)
+        } else {
+            quote!(::lagrange::__private::func)
+        };
         let cfg = EmitConfig {
             symbol: &symbol,
             constant: &constant,
@@ -188,7 +240,7 @@ impl<'a> Emitter<'a> {
     /// Whether an output is the literal zero: the matrices start as zeros, so
     /// those entries are not written again.
     pub(super) fn is_zero(&self, o: &TokenStream) -> bool {
-        o.to_string() == constant(self.scalar, 0.0).to_string()
+        o.to_string() == self.constant(0.0).to_string()
     }
 
     pub(super) fn fill_dense(

@@ -3,7 +3,8 @@
 //! problem the integrators step.
 //!
 //! - [`Dynamics`]: unconstrained, q̈ = M⁻¹(Q − h) (or the articulated-body q̈),
-//!   and its derivatives from the emitted Jacobians (`derivatives`);
+//!   and its derivatives from the emitted Jacobians (`derivatives`), and both
+//!   over four states per call (`batched`, `emit(batched)`);
 //! - [`constraint`]: constraints kept with multipliers (the saddle-point system),
 //!   drift control and consistent initial conditions; [`Rattle`] integrates the
 //!   holonomic case symplectically;
@@ -12,6 +13,7 @@
 //! Each form adds a [`Forcing`] (controllers' input forces, by default none) to
 //! Q − h; it imports nothing above the system contract.
 
+mod batched;
 pub mod constraint;
 pub(crate) mod derivatives;
 pub(crate) mod dynamics;
@@ -21,6 +23,10 @@ mod rattle;
 pub(crate) mod reduced;
 mod tolerances;
 
+pub use batched::{
+    Batched, BatchedDifferentiable, LaneDerivatives, batched_acceleration_derivatives,
+    batched_accelerations,
+};
 pub use derivatives::{
     AccelerationDerivatives, Differentiable, ForceJacobians, InputDerivatives,
     acceleration_derivatives,

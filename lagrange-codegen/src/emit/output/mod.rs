@@ -4,6 +4,7 @@
 //! in [`OUTPUTS`].
 
 mod articulated;
+mod batched;
 mod coriolis;
 mod hamilton;
 mod inverse;
@@ -49,7 +50,7 @@ impl Pieces {
 type Output = fn(&Emitter, &Frame, &Model, &System) -> Pieces;
 
 /// Every optional output, in the order their pieces are emitted.
-const OUTPUTS: [Output; 8] = [
+const OUTPUTS: [Output; 9] = [
     hamilton::pieces,
     jacobians::pieces,
     solved::pieces,
@@ -58,6 +59,7 @@ const OUTPUTS: [Output; 8] = [
     reactions::pieces,
     coriolis::pieces,
     kinematics::pieces,
+    batched::pieces,
 ];
 
 /// The pieces of every output the model has.
