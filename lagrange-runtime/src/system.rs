@@ -194,13 +194,14 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
         None
     }
 
-    /// q̈ by the articulated-body algorithm, with the extra generalized forces
-    /// `tau` added to Q, and the ratio of the smallest to the largest
-    /// articulated pivot (the pivots of M's LᵀDL factorisation). `None` unless
-    /// the description asks for it with `emit(articulated)` (a kinematic tree of
-    /// revolute joints); then the unconstrained dynamics use it in place of M and
-    /// its Cholesky factorisation: O(n) operations instead of O(n³) for the
-    /// factorisation, the better choice for long chains.
+    /// q̈ as one emitted program, with the extra generalized forces `tau`
+    /// added to Q, and the ratio of the smallest to the largest pivot of M's
+    /// LᵀDL factorisation. `None` unless the description asks for it with
+    /// `emit(articulated)` (a kinematic tree); then the unconstrained
+    /// dynamics use it in place of M and the runtime's Cholesky
+    /// factorisation. The derive builds it by the articulated-body algorithm
+    /// and by M factorised in the program (no fill-in on a tree) and keeps
+    /// the one with fewer operations ([`FORWARD_ROUTE`](Self::FORWARD_ROUTE)).
     fn forward_dynamics(
         &self,
         q: &SVector<T, Q>,

@@ -165,7 +165,7 @@ pub(super) const OUTPUTS: Words<Extra> = Words(&[
     word(
         "articulated",
         Extra::Articulated,
-        "q̈ by the articulated-body algorithm, for a kinematic tree",
+        "q̈ as one program on a kinematic tree: the articulated-body algorithm or M factorised, the one with fewer operations",
     ),
     word(
         "inverse_dynamics",

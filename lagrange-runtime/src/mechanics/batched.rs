@@ -15,9 +15,9 @@ use crate::system::Lagrangian;
 
 /// A system whose derive emitted q̈ over four states at once
 /// (`emit(batched)` beside `articulated` or `jacobians`, for a system
-/// without constraints): the program the scalar q̈ runs (the articulated-body
-/// algorithm with `articulated`, else the factorisation of `jacobians`'
-/// program), with [`F64x4`] for `f64`. Read it through
+/// without constraints): the program the scalar q̈ runs (the route
+/// `articulated` chose, [`Lagrangian::FORWARD_ROUTE`], else the
+/// factorisation of `jacobians`' program), with [`F64x4`] for `f64`. Read it through
 /// [`batched_accelerations`], which checks each state and its result.
 #[diagnostic::on_unimplemented(
     message = "`{Self}` does not emit its q̈ over many states at once",

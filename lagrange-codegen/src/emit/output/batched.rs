@@ -31,7 +31,8 @@ fn parameters(f: &Frame) -> TokenStream {
     quote!(q: &[#l; #nq], v: &[#l; #n], tau: &[#l; #n], t: #l)
 }
 
-/// `impl Batched`: the articulated-body program over the hoisted terms, or
+/// `impl Batched`: `articulated`'s q̈ program (the route it chose) over the
+/// hoisted terms, or
 /// the q̈ and pivots of the derivatives' program (the rest of it unread, so
 /// not emitted).
 fn acceleration(e: &Emitter, f: &Frame, model: &Model) -> Pieces {
