@@ -587,15 +587,5 @@ pub struct ReadmeDoctests;
 
 /// Paths the generated code uses; not a public API.
 #[doc(hidden)]
-pub mod __private {
-    pub use lagrange_runtime::{
-        AccelerationDerivatives, Atlas, Batched, BatchedDifferentiable, Constrained,
-        Differentiable, Driven, DrivenAtlas, Error, EulerRotation, FormVisitor, ForwardRoute,
-        FreeVisitor, JointLimit, Lagrangian, LaneDerivatives, Orientation, Real, Reduced, Route,
-        func,
-        numeric::lanes,
-        physical,
-        pose::{Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid},
-    };
-    pub use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
-}
+#[path = "generated_paths.rs"]
+pub mod __private;
