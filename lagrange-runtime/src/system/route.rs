@@ -25,15 +25,14 @@ pub enum Route {
 /// line of a derived system's `EQUATIONS`).
 ///
 /// With `emit(articulated)` the derive builds q̈ both ways and emits the one
-/// with fewer operations (weighted as [`Program`'s cost model] counts them:
-/// a division four, a call twenty); the two counts are kept here, so the
+/// with fewer operations (weighted as the expression engine's cost model
+/// counts them: an addition or a multiplication one, a division four, a
+/// call twenty); the two counts are kept here, so the
 /// distance between the routes is visible. Either way the runtime's
 /// [`Dynamics::acceleration`](crate::Dynamics::acceleration) calls the
 /// emitted program, and
 /// [`Dynamics::acceleration_from_mass_matrix`](crate::Dynamics::acceleration_from_mass_matrix)
 /// the route through M and the runtime's Cholesky factorisation.
-///
-/// [`Program`'s cost model]: https://docs.rs/lagrange-symbolic
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ForwardRoute {
     /// M and Q − h from the system, M factorised at run time (Cholesky): no
