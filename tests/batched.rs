@@ -92,8 +92,10 @@ where
     S: BatchedDifferentiable<N, Q> + Batched<N, Q>,
 {
     let (q, v, tau) = states::<N, Q>();
-    let batched = lagrange::batched_acceleration_derivatives(sys, &q, &v, &tau, 0.0);
-    let accelerations = lagrange::batched_accelerations(sys, &q, &v, &tau, 0.0);
+    let batched = lagrange::batched_acceleration_derivatives(sys, &q, &v, &tau, 0.0)
+        .expect("one of each per state");
+    let accelerations =
+        lagrange::batched_accelerations(sys, &q, &v, &tau, 0.0).expect("one of each per state");
     assert_eq!((batched.len(), accelerations.len()), (STATES, STATES));
     for s in 0..STATES {
         let scalar = lagrange::acceleration_derivatives(sys, &q[s], &v[s], &tau[s], 0.0)
@@ -120,7 +122,8 @@ where
     S: Batched<N, Q>,
 {
     let (q, v, tau) = states::<N, Q>();
-    let batched = lagrange::batched_accelerations(sys, &q, &v, &tau, 0.0);
+    let batched =
+        lagrange::batched_accelerations(sys, &q, &v, &tau, 0.0).expect("one of each per state");
     assert_eq!(batched.len(), STATES);
     for s in 0..STATES {
         let (scalar, _) = (sys.forward_dynamics(&q[s], &v[s], &tau[s], 0.0)).expect("articulated");
@@ -146,7 +149,8 @@ fn a_floating_base_s_lanes_are_its_scalar_programs_bit_for_bit() {
     // the derivatives' q̈ another program: compare the derivatives alone.
     let sys = Solo12 {};
     let (q, v, tau) = states::<18, 19>();
-    let batched = lagrange::batched_acceleration_derivatives(&sys, &q, &v, &tau, 0.0);
+    let batched = lagrange::batched_acceleration_derivatives(&sys, &q, &v, &tau, 0.0)
+        .expect("one of each per state");
     for s in 0..STATES {
         let scalar = lagrange::acceleration_derivatives(&sys, &q[s], &v[s], &tau[s], 0.0)
             .expect("a regular state");
@@ -179,8 +183,10 @@ fn a_bad_state_is_its_own_error() {
     let (mut q, v, mut tau) = states::<6, 6>();
     q[1][2] = f64::NAN;
     tau[4][3] = f64::INFINITY;
-    let batched = lagrange::batched_acceleration_derivatives(&sys, &q, &v, &tau, 0.0);
-    let accelerations = lagrange::batched_accelerations(&sys, &q, &v, &tau, 0.0);
+    let batched = lagrange::batched_acceleration_derivatives(&sys, &q, &v, &tau, 0.0)
+        .expect("one of each per state");
+    let accelerations =
+        lagrange::batched_accelerations(&sys, &q, &v, &tau, 0.0).expect("one of each per state");
     for s in 0..STATES {
         let scalar = lagrange::acceleration_derivatives(&sys, &q[s], &v[s], &tau[s], 0.0);
         match (&scalar, &batched[s], &accelerations[s]) {
@@ -205,11 +211,18 @@ fn a_singular_mass_matrix_is_reported_in_every_lane() {
         g: 9.81,
     };
     let (q, v, tau) = states::<2, 2>();
-    for r in lagrange::batched_accelerations(&massless, &q, &v, &tau, 0.0) {
+    let all = lagrange::batched_accelerations(&massless, &q, &v, &tau, 0.0).expect("one of each");
+    for r in all {
         assert!(matches!(r, Err(Error::SingularMassMatrix { .. })), "{r:?}");
     }
     let none = lagrange::batched_accelerations::<Double, 2, 2>(&massless, &[], &[], &[], 0.0);
-    assert!(none.is_empty());
+    assert!(none.expect("no states").is_empty());
+    // One τ short: the batch's error, not a panic.
+    let short = lagrange::batched_accelerations(&massless, &q, &v, &tau[1..], 0.0);
+    let Err(Error::Settings(SettingsError::Lengths { what, .. })) = short else {
+        panic!("{short:?}");
+    };
+    assert!(what.contains(&format!("{} τ", tau.len() - 1)), "{what}");
 }
 
 /// The trait methods, unchecked: lane k of the arguments is state k.

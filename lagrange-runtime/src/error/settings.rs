@@ -24,6 +24,16 @@ pub enum SettingsError {
         requirement: String,
     },
 
+    /// Slices that must hold one entry per item and do not (a batch's q,
+    /// v and τ, one of each per state).
+    #[error("{owner}: {what}")]
+    Lengths {
+        /// What was given the slices.
+        owner: &'static str,
+        /// Each slice's length.
+        what: String,
+    },
+
     /// A count that must be at least 1 (`max_steps`, `max_events`,
     /// `repeats`, an iteration limit).
     #[error("{owner}: {setting} must be at least 1")]

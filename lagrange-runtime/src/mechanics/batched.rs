@@ -9,7 +9,7 @@ use nalgebra::{SMatrix, SVector};
 use super::derivatives::{AccelerationDerivatives, Differentiable};
 use super::dynamics::{Dynamics, all_finite, on_sphere};
 use super::forcing::NoForcing;
-use crate::error::{Error, check_finite_inputs};
+use crate::error::{Error, SettingsError, check_finite_inputs};
 use crate::numeric::lanes::F64x4;
 use crate::system::Lagrangian;
 
@@ -106,15 +106,16 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
     /// result checked as [`Dynamics::acceleration`] checks it, so a state's
     /// error leaves the others' results alone.
     ///
-    /// # Panics
-    /// If `q`, `v` and `tau` differ in length.
+    /// # Errors
+    /// [`SettingsError::Lengths`] (in [`Error::Settings`]) if `q`, `v` and
+    /// `tau` differ in length; then per state, in the inner `Result`s.
     pub fn batched_accelerations<const N: usize, const Q: usize>(
         &self,
         t: f64,
         q: &[SVector<f64, Q>],
         v: &[SVector<f64, N>],
         tau: &[SVector<f64, N>],
-    ) -> Vec<Result<SVector<f64, N>, Error>>
+    ) -> Result<Vec<Result<SVector<f64, N>, Error>>, Error>
     where
         S: Batched<N, Q>,
     {
@@ -131,15 +132,16 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
     /// batched program; each checked as [`Dynamics::emitted_derivatives`]
     /// checks it.
     ///
-    /// # Panics
-    /// If `q`, `v` and `tau` differ in length.
+    /// # Errors
+    /// [`SettingsError::Lengths`] (in [`Error::Settings`]) if `q`, `v` and
+    /// `tau` differ in length; then per state, in the inner `Result`s.
     pub fn batched_derivatives<const N: usize, const Q: usize>(
         &self,
         t: f64,
         q: &[SVector<f64, Q>],
         v: &[SVector<f64, N>],
         tau: &[SVector<f64, N>],
-    ) -> Vec<Result<AccelerationDerivatives<f64, N>, Error>>
+    ) -> Result<Vec<Result<AccelerationDerivatives<f64, N>, Error>>, Error>
     where
         S: BatchedDifferentiable<N, Q>,
     {
@@ -166,17 +168,20 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
         (q, v, tau): States<'_, N, Q>,
         program: impl Fn(&[F64x4; Q], &[F64x4; N], &[F64x4; N], F64x4) -> P,
         read: impl Fn(&P, usize, (&SVector<f64, Q>, &SVector<f64, N>)) -> Result<R, Error>,
-    ) -> Vec<Result<R, Error>>
+    ) -> Result<Vec<Result<R, Error>>, Error>
     where
         S: Lagrangian<f64, N, Q>,
     {
-        assert!(
-            q.len() == v.len() && q.len() == tau.len(),
-            "batched q̈: {} q, {} v and {} τ: one of each per state",
-            q.len(),
-            v.len(),
-            tau.len()
-        );
+        if !(q.len() == v.len() && q.len() == tau.len()) {
+            let what = format!(
+                "{} q, {} v and {} τ given; one of each per state",
+                q.len(),
+                v.len(),
+                tau.len()
+            );
+            let owner = "batched q̈";
+            return Err(SettingsError::Lengths { owner, what }.into());
+        }
         let mut out = Vec::with_capacity(q.len());
         for start in (0..q.len()).step_by(F64x4::LANES) {
             let end = (start + F64x4::LANES).min(q.len());
@@ -203,7 +208,7 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
                 out.push(state.and_then(|_| read(&results, k, (&q[i], &v[i]))));
             }
         }
-        out
+        Ok(out)
     }
 
     /// The scalar reading's checks of one state, in its order: t, q and v
@@ -279,15 +284,15 @@ fn unpack<const K: usize>(lanes: &[F64x4; K], k: usize) -> SVector<f64, K> {
 /// Per state: [`Error::NonFiniteState`], [`Error::NonFiniteInput`] (τ) or
 /// [`Error::SingularMassMatrix`].
 ///
-/// # Panics
-/// If `q`, `v` and `tau` differ in length.
+/// [`SettingsError::Lengths`] (in [`Error::Settings`]), for the whole
+/// batch, if `q`, `v` and `tau` differ in length.
 pub fn batched_accelerations<S, const N: usize, const Q: usize>(
     sys: &S,
     q: &[SVector<f64, Q>],
     v: &[SVector<f64, N>],
     tau: &[SVector<f64, N>],
     t: f64,
-) -> Vec<Result<SVector<f64, N>, Error>>
+) -> Result<Vec<Result<SVector<f64, N>, Error>>, Error>
 where
     S: Batched<N, Q>,
 {
@@ -302,15 +307,15 @@ where
 /// # Errors
 /// Per state, as [`batched_accelerations`].
 ///
-/// # Panics
-/// If `q`, `v` and `tau` differ in length.
+/// [`SettingsError::Lengths`] (in [`Error::Settings`]), for the whole
+/// batch, if `q`, `v` and `tau` differ in length.
 pub fn batched_acceleration_derivatives<S, const N: usize, const Q: usize>(
     sys: &S,
     q: &[SVector<f64, Q>],
     v: &[SVector<f64, N>],
     tau: &[SVector<f64, N>],
     t: f64,
-) -> Vec<Result<AccelerationDerivatives<f64, N>, Error>>
+) -> Result<Vec<Result<AccelerationDerivatives<f64, N>, Error>>, Error>
 where
     S: BatchedDifferentiable<N, Q>,
 {
