@@ -204,19 +204,25 @@ where
         let l = problem.running_model(k, &nominal.xs[k], &nominal.us[k])?;
         let qx = &l.lx + fx.transpose() * &vx;
         let qu = &l.lu + fu.transpose() * &vx;
-        let v_reg = &vxx + DMatrix::identity(n2, n2) * mu;
         let qxx = &l.lxx + fx.transpose() * &vxx * fx;
-        let quu = &l.luu + fu.transpose() * &v_reg * fu;
-        let qux = &l.lux + fu.transpose() * &v_reg * fx;
+        let quu = &l.luu + fu.transpose() * &vxx * fu;
+        let qux = &l.lux + fu.transpose() * &vxx * fx;
+        // The step and the gains from the regularised Q̃ (Tassa, Erez and
+        // Todorov 2012: V_xx + μI, which keeps the new states near the
+        // nominal's); the value function from the true Q, so that it stays
+        // bounded as μ grows (with Q̃ in it, V_xx would lose μ f_xᵀ P f_x a
+        // step, P a projection, and raising μ would make matters worse).
+        let reg_uu = &quu + fu.transpose() * fu * mu;
+        let reg_ux = &qux + fu.transpose() * fx * mu;
         let start = last.map_or_else(|| DVector::zeros(P), |b| b.feedforward[k].clone());
         let lower = &problem.lower - &nominal.us[k];
         let upper = &problem.upper - &nominal.us[k];
-        let Some(qp) = box_qp::solve(&quu, &qu, &lower, &upper, &start) else {
+        let Some(qp) = box_qp::solve(&reg_uu, &qu, &lower, &upper, &start) else {
             return Ok(None);
         };
         let mut gain = DMatrix::zeros(P, n2);
         if let Some(chol) = &qp.factor {
-            let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| qux[(qp.free[i], j)]);
+            let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| reg_ux[(qp.free[i], j)]);
             let free_gain = -chol.solve(&rows);
             qp.free
                 .iter()

@@ -316,3 +316,25 @@ fn a_speed_bound_is_active_as_a_penalty() {
     assert!(riding >= 3, "{riding} steps at the bound");
     assert!(bounded.cost > free.cost);
 }
+
+/// Raising the regularisation must make the backward pass more cautious,
+/// never undefined: the value function's Hessian V_xx is built from the true
+/// Q, so at μ = 10⁹ it is as large as at μ = 10³, not 10⁶ times larger, and
+/// every Q̃_uu stays positive definite. (Built from the regularised Q, it
+/// lost μ f_xᵀ P f_x per step, and a planar quadrotor's flip stalled with
+/// "Q_uu is not positive definite at the largest regularisation".)
+#[test]
+fn the_value_function_stays_bounded_as_the_regularisation_grows() {
+    use super::passes::{backward_pass, linearise, rollout};
+    let problem = swing_up();
+    let us = vec![nalgebra::DVector::from_element(1, 1.0); problem.steps()];
+    let nominal = rollout(&problem, &us).unwrap();
+    let derivatives = linearise(&problem, &nominal).unwrap();
+    let size = |mu: f64| {
+        let pass = backward_pass(&problem, &nominal, &derivatives, mu, None).unwrap();
+        let pass = pass.unwrap_or_else(|| panic!("Q̃_uu indefinite at μ = {mu:e}"));
+        pass.hessians.iter().map(|h| h.amax()).fold(0.0, f64::max)
+    };
+    let (small, large) = (size(1e3), size(1e9));
+    assert!(large.is_finite() && large < 10.0 * small, "{small:e} → {large:e}");
+}
