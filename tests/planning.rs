@@ -2,19 +2,21 @@
 //! (`linear::Trim`) against closed forms — an arm holding a pose against
 //! gravity, a satellite kept spinning about a non-principal axis (an
 //! orientation, in its tangent space), the trimmed point linearised and
-//! stabilised — and a plan (`plan::Ddp`) moving the UR5's tool to a target
-//! within its torque limits through its emitted kinematics.
+//! stabilised — a plan (`plan::Ddp`) moving the UR5's tool to a target
+//! within its torque limits through its emitted kinematics, and MPC
+//! swinging up a cart-pole heavier than its model.
 
 use crate::catalog;
 use crate::operational::Ur5;
 
-use catalog::control::TwoLinkArm;
+use catalog::control::{CartPole, TwoLinkArm};
 use catalog::free::Satellite;
 use lagrange::linear::{OperatingPoint, StepMethod, Transition, Trim, linearize};
-use lagrange::nalgebra::{DMatrix, DVector, SVector, Vector2, Vector3};
-use lagrange::plan::{Ddp, FramePosition, OptimalControl};
+use lagrange::nalgebra::{DMatrix, DVector, SVector, Vector1, Vector2, Vector3};
+use lagrange::plan::{Ddp, FramePosition, Mpc, OptimalControl};
 use lagrange::pose::Kinematics;
 use lagrange::prelude::*;
+use std::f64::consts::PI;
 
 /// The torques that hold the arm still at (q1, q2) are its gravity torques:
 /// τ1 = g (m1 l1 cos q1 + m2 (l1 cos q1 + l2 cos(q1 + q2))),
@@ -84,7 +86,8 @@ fn a_trimmed_pose_is_an_operating_point() {
 
 /// The UR5's tool drawn to a point 20 cm away in 0.6 s, its torques held
 /// within ±40 N·m (the file allows 150): the plan ends within a millimetre
-/// of the target, at rest, inside the bounds.
+/// of the target, at rest, inside the bounds and within the joint limits
+/// of position and speed.
 #[test]
 fn the_ur5_reaches_a_point_within_its_torque_limits() {
     let ur5 = Ur5 {};
@@ -102,16 +105,18 @@ fn the_ur5_reaches_a_point_within_its_torque_limits() {
         .unwrap();
     let weight = |d: [f64; 12]| DMatrix::from_diagonal(&DVector::from_column_slice(&d));
     let still = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1];
+    // Speed costs a little all the way: without it the tool's target leaves
+    // the last wrist free, and the plan spins it through its ±2π limits.
     let problem = OptimalControl::new(
         Transition::new(&ur5, 0.02).unwrap(),
         30,
         (home, zero),
-        weight([0.0; 12]),
+        weight(still) * 0.1,
         DMatrix::identity(6, 6) * 1e-4,
     )
     .input_target(hold.u)
-    .final_weight(weight(still) * 100.0)
-    .final_cost(FramePosition::new(&ur5, tool, target, 1e4))
+    .final_weight(weight(still) * 1000.0)
+    .final_cost(FramePosition::new(&ur5, tool, target, 1e5))
     .input_bounds(SVector::repeat(-40.0), SVector::repeat(40.0));
     let plan = Ddp::new()
         .tolerance(1e-4)
@@ -127,6 +132,18 @@ fn the_ur5_reaches_a_point_within_its_torque_limits() {
         plan.v[30]
     );
     assert!(plan.u.iter().all(|u| u.amax() <= 40.0));
+    // Within the file's joint limits all the way (a plan may not leave
+    // what a run would stop at).
+    let inside = |q: &SVector<f64, 6>| {
+        (q.iter().zip(Ur5::JOINT_LIMITS)).all(|(x, (lower, upper))| (lower..=upper).contains(x))
+    };
+    assert!(
+        plan.q.iter().all(inside),
+        "the plan leaves the joint limits"
+    );
+    // And below the file's speed limits, 3.15 rad/s.
+    let fastest = plan.v.iter().map(|v| v.amax()).fold(0.0, f64::max);
+    assert!(fastest < 3.15, "a joint turns at {fastest} rad/s");
 }
 
 /// The UR5 with a torque input at each joint and its Jacobians emitted.
@@ -191,4 +208,42 @@ fn a_step_s_derivatives_from_the_ur5_s_emitted_jacobians() {
             "{method:?}: {worst:e} from central differences"
         );
     }
+}
+
+/// MPC designed on the catalog's cart-pole flies one whose pole is 50 %
+/// heavier: re-planned at 20 Hz over 2.5 s with at most ten iterations a
+/// sample, each warm-started from the last plan's states and inputs
+/// shifted, it swings the pole up from hanging and holds it.
+#[test]
+fn mpc_swings_up_a_cart_pole_heavier_than_its_model() {
+    let model = CartPole::standard();
+    let real = CartPole {
+        m_p: 1.5 * model.m_p,
+        ..model
+    };
+    let weight = |d: [f64; 4]| DMatrix::from_diagonal(&DVector::from_column_slice(&d));
+    let problem = OptimalControl::new(
+        Transition::new(&model, 0.05).unwrap(),
+        50,
+        (Vector2::new(0.0, PI), Vector2::zeros()),
+        weight([1.0, 0.0, 0.1, 0.1]),
+        DMatrix::from_element(1, 1, 0.01),
+    )
+    .goal(Vector2::zeros(), Vector2::zeros())
+    .final_weight(weight([100.0, 1000.0, 10.0, 100.0]))
+    .input_bounds(Vector1::new(-5.0), Vector1::new(5.0));
+    let mut mpc = Mpc::new(problem, Ddp::new().max_iterations(10));
+    let run = Simulation::new(&real)
+        .sampled(0.05, |t, q, v| mpc.control(t, q, v))
+        .run([0.0, PI], [0.0; 2], 0.0..8.0)
+        .unwrap();
+    let (q, v) = run.trajectory().final_state();
+    assert!(
+        q[1].abs() < 1e-2 && v[1].abs() < 1e-2,
+        "θ = {}, θ̇ = {}",
+        q[1],
+        v[1]
+    );
+    assert_eq!(mpc.samples().len(), 161);
+    assert!(mpc.samples().iter().all(|s| s.iterations <= 10));
 }

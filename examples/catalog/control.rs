@@ -125,3 +125,84 @@ impl TwoLinkArm {
         m * (ad + (vd - v) * kd + (qd - q) * kp) - unforced
     }
 }
+
+/// Spong's acrobot: a double pendulum in a vertical plane driven only at
+/// the elbow. Point masses at the elbow and the hand; q1 the upper link's
+/// angle from the downward vertical, q2 the elbow's relative to it, so it
+/// hangs at rest at q = 0 and stands upright at (π, 0).
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(q1, q2),
+    inputs(tau),
+    point(elbow, mass = m1, at = [l1 * sin(q1), -l1 * cos(q1)]),
+    point(hand, mass = m2, at = [l1 * sin(q1) + l2 * sin(q1 + q2), -l1 * cos(q1) - l2 * cos(q1 + q2)]),
+    point(shoulder, mass = 0, at = [0, 0]),
+    shape(elbow, sphere(radius = 0.06)),
+    shape(hand, sphere(radius = 0.06)),
+    shape(line(shoulder, elbow, hand)),
+    gravity = [0, -g],
+    generalized_force(q2 = tau),
+    emit(jacobians),
+)]
+pub struct Acrobot {
+    pub m1: f64,
+    pub m2: f64,
+    pub l1: f64,
+    pub l2: f64,
+    pub g: f64,
+}
+
+impl Acrobot {
+    /// Two 1 kg masses on 1 m links.
+    pub fn standard() -> Self {
+        Acrobot {
+            m1: 1.0,
+            m2: 1.0,
+            l1: 1.0,
+            l2: 1.0,
+            g: 9.81,
+        }
+    }
+}
+
+/// A quadrotor in a vertical plane: two rotors of mass m/2 at ±d from the
+/// centre along the body's axis, each pushing along the body's normal
+/// (−sin θ, cos θ) with its thrust. x and z place the centre, θ turns the
+/// body (counter-clockwise), so a hover is θ = 0 with each thrust m g / 2
+/// and a flip takes θ from 0 to 2π.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, z, theta),
+    inputs(right, left),
+    point(rotor_right, mass = m / 2, at = [x + d * cos(theta), z + d * sin(theta)]),
+    point(rotor_left, mass = m / 2, at = [x - d * cos(theta), z - d * sin(theta)]),
+    point(centre, mass = 0, at = [x, z]),
+    shape(rotor_right, sphere(radius = 0.05)),
+    shape(rotor_left, sphere(radius = 0.05)),
+    shape(line(rotor_left, centre, rotor_right)),
+    force(rotor_right, [-right * sin(theta), right * cos(theta)]),
+    force(rotor_left, [-left * sin(theta), left * cos(theta)]),
+    gravity = [0, -g],
+    emit(jacobians),
+)]
+pub struct PlanarQuadrotor {
+    pub m: f64,
+    pub d: f64,
+    pub g: f64,
+}
+
+impl PlanarQuadrotor {
+    /// 1 kg, rotors 0.2 m from the centre.
+    pub fn standard() -> Self {
+        PlanarQuadrotor {
+            m: 1.0,
+            d: 0.2,
+            g: 9.81,
+        }
+    }
+
+    /// Each rotor's thrust in a hover.
+    pub fn hover_thrust(&self) -> f64 {
+        self.m * self.g / 2.0
+    }
+}

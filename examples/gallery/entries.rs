@@ -2,7 +2,7 @@
 //! demonstrates, and the function that runs it.
 
 use crate::row::Entry;
-use crate::{cavity, constrained, control, free, minimal, nonholonomic};
+use crate::{cavity, constrained, control, free, minimal, nonholonomic, planning};
 
 /// The cavity row's name (its animation is looked up by it).
 pub(crate) const CAVITY: &str = "C10 point in a spherical cavity, e = 0.7";
@@ -174,5 +174,32 @@ pub(crate) const ENTRIES: &[Entry] = &[
         "Whipple bicycle at 5 m/s, roll-rate kick",
         "weave and capsize speeds against the published benchmark; self-stability",
         control::bicycle,
+    ),
+    // Plans: DDP on the model's one-step map and its derivatives, flown
+    // on the continuous model with the plan's feedback.
+    entry(
+        "cart-pole swing-up, planned by DDP",
+        "plan::Ddp with the input bounded at 5 N; the plan flown with its own gains at 50 Hz, then caught by LQR",
+        planning::cart_pole_swing_up,
+    ),
+    entry(
+        "acrobot swing-up, planned by DDP",
+        "driven only at the elbow: DDP from a pumping guess, flown with the plan's gains, held upright by LQR",
+        planning::acrobot_swing_up,
+    ),
+    entry(
+        "planar quadrotor flip, planned by DDP",
+        "one turn from hover to hover in 2 s, each thrust between zero and the weight",
+        planning::quadrotor_flip,
+    ),
+    entry(
+        "UR5 reaching a point within ±40 N·m, planned by DDP",
+        "a cost on the tool frame's position through the emitted kinematics; torque bounds a quarter of the file's",
+        planning::ur5_reach,
+    ),
+    entry(
+        "cart-pole swung up by MPC, pole 50 % heavier than the model",
+        "plan::Mpc re-planning at 20 Hz within 10 iterations a sample, on a model that is wrong",
+        planning::cart_pole_mpc,
     ),
 ];

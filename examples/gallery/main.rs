@@ -6,7 +6,7 @@
 //!
 //! The systems and what each shows are listed in `entries`; their runs live in
 //! one module per family (`minimal`, `constrained`, `nonholonomic`, `cavity`,
-//! `control`); `row` is what a run reports, `figure` what it keeps to draw,
+//! `control`, `planning`); `row` is what a run reports, `figure` what it keeps to draw,
 //! `layout` which coordinates go on which panel, `plot` the pictures, `output`
 //! the files and index.html, `table` the printed summary.
 
@@ -24,6 +24,7 @@ mod nonholonomic;
 #[path = "../catalog/operational.rs"]
 mod operational;
 mod output;
+mod planning;
 mod plot;
 mod row;
 mod still;
