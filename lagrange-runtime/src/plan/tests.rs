@@ -336,5 +336,8 @@ fn the_value_function_stays_bounded_as_the_regularisation_grows() {
         pass.hessians.iter().map(|h| h.amax()).fold(0.0, f64::max)
     };
     let (small, large) = (size(1e3), size(1e9));
-    assert!(large.is_finite() && large < 10.0 * small, "{small:e} → {large:e}");
+    assert!(
+        large.is_finite() && large < 10.0 * small,
+        "{small:e} → {large:e}"
+    );
 }
