@@ -186,6 +186,7 @@ impl Ddp {
         let unstarted = |e: Error| Failure::new(e, empty_plan(problem));
         self.check(guess.len(), problem.steps).map_err(unstarted)?;
         problem.check().map_err(unstarted)?;
+        unconstrained(problem).map_err(unstarted)?;
         let us: Vec<DVector<f64>> = (0..problem.steps)
             .map(|k| match guess.get(k) {
                 Some(u) => DVector::from_column_slice(u.as_slice()),
@@ -223,6 +224,7 @@ impl Ddp {
         let unstarted = |e: Error| Failure::new(e, empty_plan(problem));
         self.check(u.len(), problem.steps).map_err(unstarted)?;
         problem.check().map_err(unstarted)?;
+        unconstrained(problem).map_err(unstarted)?;
         let k = problem.steps;
         if q.len() != k + 1 || v.len() != k + 1 || u.len() != k {
             let problem = format!(
@@ -472,7 +474,7 @@ where
 }
 
 /// The plan of a nominal trajectory.
-fn plan<S, const N: usize, const P: usize>(
+pub(super) fn plan<S, const N: usize, const P: usize>(
     problem: &OptimalControl<S, N, P>,
     nominal: Nominal,
     gains: Vec<DMatrix<f64>>,
@@ -499,7 +501,9 @@ where
 }
 
 /// The plan of a problem that did not start: its start alone.
-fn empty_plan<S, const N: usize, const P: usize>(problem: &OptimalControl<S, N, P>) -> Plan<N, P>
+pub(super) fn empty_plan<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+) -> Plan<N, P>
 where
     S: Driven<f64, N, P>,
 {
@@ -512,4 +516,26 @@ where
     let mut p = plan(problem, start, Vec::new(), Vec::new());
     p.t.truncate(1);
     p
+}
+
+/// DDP keeps the states on the dynamics and the inputs in their box, and
+/// nothing else: a problem that constrains states is refused with what to
+/// use instead.
+fn unconstrained<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+) -> Result<(), Error>
+where
+    S: Driven<f64, N, P>,
+{
+    if !problem.constrains_states() {
+        return Ok(());
+    }
+    Err(SettingsError::Data {
+        owner: "Ddp",
+        problem: "the problem constrains states (`final_equality` or `state_limits`), which \
+                  DDP cannot hold: solve it with `plan::Direct` (feature `direct`), or give \
+                  DDP the same wishes as costs (a large `final_weight`, `StateBounds`)"
+            .into(),
+    }
+    .into())
 }

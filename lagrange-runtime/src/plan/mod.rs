@@ -15,6 +15,12 @@
 //! [`Simulation::sampled`](crate::Simulation::sampled) run, warm-started,
 //! within an iteration budget.
 //!
+//! With the feature `direct`, `Direct` solves the same problem by
+//! multiple shooting and sequential quadratic programming (each program
+//! sparse, solved by Clarabel), and also holds constraints on states that
+//! DDP cannot: hard [`state_limits`](OptimalControl::state_limits) and a
+//! [`final_equality`](OptimalControl::final_equality).
+//!
 //! The state is x = (q, v); systems with free orientations and constrained
 //! systems are not planned for yet.
 
@@ -22,6 +28,10 @@ mod bounds;
 mod box_qp;
 mod cost;
 mod ddp;
+#[cfg(feature = "direct")]
+mod direct;
+#[cfg(feature = "direct")]
+mod direct_qp;
 mod mpc;
 mod passes;
 mod problem;
@@ -30,9 +40,13 @@ mod progress;
 pub use bounds::StateBounds;
 pub use cost::{Cost, CostFn, CostModel, FramePosition};
 pub use ddp::{Ddp, Iteration, Plan};
+#[cfg(feature = "direct")]
+pub use direct::Direct;
 pub use mpc::{Mpc, Sample};
 pub use problem::OptimalControl;
 
+#[cfg(all(test, feature = "direct"))]
+mod direct_tests;
 #[cfg(test)]
 mod feasibility_tests;
 #[cfg(test)]

@@ -24,6 +24,7 @@ use crate::system::Driven;
 use nalgebra::{DMatrix, DVector, SVector};
 
 /// The plan being improved: states, inputs, gaps, cost.
+#[derive(Clone)]
 pub(super) struct Nominal {
     pub xs: Vec<DVector<f64>>,
     pub us: Vec<DVector<f64>>,

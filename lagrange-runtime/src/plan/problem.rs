@@ -34,6 +34,10 @@ pub struct OptimalControl<'a, S, const N: usize, const P: usize> {
     pub(super) upper: DVector<f64>,
     pub(super) running_terms: Vec<Box<dyn Cost<N, P> + 'a>>,
     pub(super) final_terms: Vec<Box<dyn Cost<N, P> + 'a>>,
+    /// x_K = x* held exactly (the direct method only).
+    pub(super) final_equality: bool,
+    /// Hard bounds on x₁ … x_K (the direct method only).
+    pub(super) state_limits: Option<(DVector<f64>, DVector<f64>)>,
 }
 
 /// (q, v) as one state vector of 2N numbers.
@@ -76,7 +80,39 @@ where
             upper: DVector::from_element(P, f64::INFINITY),
             running_terms: Vec::new(),
             final_terms: Vec::new(),
+            final_equality: false,
+            state_limits: None,
         }
+    }
+
+    /// Holds the last state at the goal exactly, x_K = x*, as a constraint
+    /// rather than a cost. Only the direct method
+    /// (`plan::Direct`, feature `direct`) takes constraints on
+    /// states; [`Ddp`](super::Ddp) refuses the problem (give it a large
+    /// [`final_weight`](Self::final_weight) instead).
+    pub fn final_equality(mut self) -> Self {
+        self.final_equality = true;
+        self
+    }
+
+    /// Hard box bounds on every state after the start, x₁ … x_K, as
+    /// (q, v) pairs (±∞ for none): constraints the plan never leaves. Only
+    /// the direct method takes them; for [`Ddp`](super::Ddp), which refuses
+    /// them, the same bounds as a penalty are
+    /// [`StateBounds`](super::StateBounds).
+    pub fn state_limits(
+        mut self,
+        lower: (SVector<f64, N>, SVector<f64, N>),
+        upper: (SVector<f64, N>, SVector<f64, N>),
+    ) -> Self {
+        self.state_limits = Some((state(&lower.0, &lower.1), state(&upper.0, &upper.1)));
+        self
+    }
+
+    /// Whether the problem constrains states beyond the dynamics and the
+    /// start (a final equality, state limits).
+    pub(super) fn constrains_states(&self) -> bool {
+        self.final_equality || self.state_limits.is_some()
     }
 
     /// Adds a term to the running cost (at every step).
@@ -258,6 +294,14 @@ where
             return Err(data(
                 "each input's lower bound must be at most its upper bound",
             ));
+        }
+        if let Some((lower, upper)) = &self.state_limits {
+            let ordered = (0..2 * N).all(|i| lower[i] <= upper[i] && !lower[i].is_nan());
+            if !ordered {
+                return Err(data(
+                    "each state limit's lower bound must be at most its upper bound",
+                ));
+            }
         }
         Ok(())
     }

@@ -341,3 +341,22 @@ fn the_value_function_stays_bounded_as_the_regularisation_grows() {
         "{small:e} → {large:e}"
     );
 }
+
+/// Constraints on states are the direct method's: DDP refuses a final
+/// equality and hard state limits, naming what to use instead.
+#[test]
+fn ddp_refuses_constraints_on_states() {
+    let inf = f64::INFINITY;
+    let limited = oscillator_problem(10).state_limits(
+        (Vector1::new(-1.0), Vector1::new(-inf)),
+        (Vector1::new(1.0), Vector1::new(inf)),
+    );
+    for problem in [oscillator_problem(10).final_equality(), limited] {
+        let failure = Ddp::new().solve(&problem, &[]).unwrap_err();
+        let Error::Settings(SettingsError::Data { owner, problem }) = &failure.error else {
+            panic!("{}", failure.error)
+        };
+        assert_eq!(*owner, "Ddp");
+        assert!(problem.contains("plan::Direct") && problem.contains("StateBounds"));
+    }
+}

@@ -1,0 +1,494 @@
+//! The direct method: multiple shooting solved by sequential quadratic
+//! programming. Every state and input of the horizon is an unknown, the
+//! dynamics x_{k+1} = F(x_k, u_k) are equality constraints, and each
+//! iteration solves the quadratic program of the cost's Gauss–Newton model
+//! and the constraints linearised at the current plan (`direct_qp`, by
+//! Clarabel), then takes a step along it chosen by a line search on the ℓ₁
+//! merit function φ = cost + ν Σ |constraint violations|, ν above the
+//! largest multiplier (Nocedal and Wright, §18.3).
+//!
+//! What it adds to DDP is constraints on states: hard state limits and a
+//! final equality, which the program keeps exactly at every iterate (limits)
+//! or at convergence (equalities). A plan is converged when the step it asks
+//! for is below the tolerance and every constraint holds within the gap
+//! tolerance.
+
+use super::ddp::{Iteration, Plan};
+use super::direct_qp::{self, Linearised, Unsolved, offsets};
+use super::passes::{Nominal, backward_pass, guessed, largest, linearise, rollout};
+use super::problem::{OptimalControl, state};
+use crate::error::{Error, Failure, PlanError, SettingsError};
+use crate::system::Driven;
+use nalgebra::{DVector, SVector};
+
+/// The direct method's settings: at most 100 iterations, tolerance 1e-6 on
+/// the step (the largest change of a state or input it asks for), 1e-9 on
+/// the constraints, quiet.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Direct {
+    max_iterations: usize,
+    tolerance: f64,
+    gap_tolerance: f64,
+    verbose: bool,
+}
+
+impl Default for Direct {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The elastic constraints' price per unit of violation to begin with.
+const ELASTIC_PRICE: f64 = 1e3;
+
+/// A trial point of the line search, with what the merit function reads.
+struct Point {
+    nominal: Nominal,
+    /// Σ |violations| of the constraints on states (the gaps, x_K − x* if
+    /// held, the state limits).
+    violation: f64,
+    /// The largest |violation|.
+    largest: f64,
+}
+
+impl Direct {
+    /// The default settings.
+    pub fn new() -> Self {
+        Self {
+            max_iterations: 100,
+            tolerance: 1e-6,
+            gap_tolerance: 1e-9,
+            verbose: false,
+        }
+    }
+
+    /// At most this many iterations (at least one).
+    pub fn max_iterations(mut self, n: usize) -> Self {
+        self.max_iterations = n;
+        self
+    }
+
+    /// The tolerance on the step: converged when no state or input changes
+    /// by more.
+    pub fn tolerance(mut self, tolerance: f64) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// The tolerance on the constraints (the gaps F(x_k, u_k) − x_{k+1},
+    /// the final equality).
+    pub fn gap_tolerance(mut self, tolerance: f64) -> Self {
+        self.gap_tolerance = tolerance;
+        self
+    }
+
+    /// Prints each iteration's record to standard error.
+    pub fn verbose(mut self, verbose: bool) -> Self {
+        self.verbose = verbose;
+        self
+    }
+
+    /// The plan from a rollout of `u` (all K inputs, or none for zeros).
+    ///
+    /// # Errors
+    /// As [`solve_from`](Self::solve_from).
+    pub fn solve<S, const N: usize, const P: usize>(
+        &self,
+        problem: &OptimalControl<S, N, P>,
+        u: &[SVector<f64, P>],
+    ) -> Result<Plan<N, P>, Failure<Plan<N, P>>>
+    where
+        S: Driven<f64, N, P>,
+    {
+        let unstarted = |e: Error| Failure::new(e, super::ddp::empty_plan(problem));
+        self.check(problem).map_err(unstarted)?;
+        if !u.is_empty() && u.len() != problem.steps {
+            let problem = format!("{} guessed inputs for {} steps", u.len(), problem.steps);
+            return Err(unstarted(data(problem)));
+        }
+        let us: Vec<DVector<f64>> = match u.is_empty() {
+            true => vec![DVector::zeros(P); problem.steps],
+            false => u
+                .iter()
+                .map(|u| DVector::from_column_slice(u.as_slice()))
+                .collect(),
+        };
+        let nominal = rollout(problem, &us).map_err(unstarted)?;
+        self.iterate(problem, nominal)
+    }
+
+    /// The plan from a guess of every state and input (K + 1 configurations
+    /// and velocities, K inputs), which need not satisfy the dynamics, start
+    /// at the start, nor keep the state limits.
+    ///
+    /// # Errors
+    /// [`Error::Settings`] for bad settings, a bad problem or guess;
+    /// [`PlanError::NotConverged`] when the iterations run out,
+    /// [`PlanError::Stalled`] when no step lowers the merit function or a
+    /// quadratic program has no solution (the constraints cannot be met
+    /// together, a final equality out of reach within the input bounds: the
+    /// iteration converges to the plan that misses them least, and says by
+    /// how much), each with the best plan reached in the failure.
+    pub fn solve_from<S, const N: usize, const P: usize>(
+        &self,
+        problem: &OptimalControl<S, N, P>,
+        q: &[SVector<f64, N>],
+        v: &[SVector<f64, N>],
+        u: &[SVector<f64, P>],
+    ) -> Result<Plan<N, P>, Failure<Plan<N, P>>>
+    where
+        S: Driven<f64, N, P>,
+    {
+        let unstarted = |e: Error| Failure::new(e, super::ddp::empty_plan(problem));
+        self.check(problem).map_err(unstarted)?;
+        let k = problem.steps;
+        if q.len() != k + 1 || v.len() != k + 1 || u.len() != k {
+            let problem = format!(
+                "a guess of {} configurations, {} velocities and {} inputs for {k} steps",
+                q.len(),
+                v.len(),
+                u.len()
+            );
+            return Err(unstarted(data(problem)));
+        }
+        let xs = q.iter().zip(v).map(|(q, v)| state(q, v)).collect();
+        let us: Vec<_> = u
+            .iter()
+            .map(|u| DVector::from_column_slice(u.as_slice()))
+            .collect();
+        let nominal = guessed(problem, xs, &us).map_err(unstarted)?;
+        self.iterate(problem, nominal)
+    }
+
+    fn check<S, const N: usize, const P: usize>(
+        &self,
+        problem: &OptimalControl<S, N, P>,
+    ) -> Result<(), Error>
+    where
+        S: Driven<f64, N, P>,
+    {
+        for (setting, value) in [
+            ("tolerance", self.tolerance),
+            ("gap_tolerance", self.gap_tolerance),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(SettingsError::Value {
+                    owner: "Direct",
+                    setting,
+                    value,
+                    requirement: "positive and finite".into(),
+                }
+                .into());
+            }
+        }
+        if self.max_iterations == 0 {
+            return Err(SettingsError::ZeroCount {
+                owner: "Direct",
+                setting: "max_iterations",
+            }
+            .into());
+        }
+        problem.check()
+    }
+
+    /// The SQP iterations from a nominal.
+    fn iterate<S, const N: usize, const P: usize>(
+        &self,
+        problem: &OptimalControl<S, N, P>,
+        nominal: Nominal,
+    ) -> Result<Plan<N, P>, Failure<Plan<N, P>>>
+    where
+        S: Driven<f64, N, P>,
+    {
+        let mut point = measured(problem, nominal);
+        // The merit function's penalty ν, also the elastic constraints'
+        // price: it only grows, to twice the largest multiplier seen.
+        let (mut penalty, mut damping) = (ELASTIC_PRICE, 1e-8);
+        let mut log = Vec::new();
+        let mut last_step = f64::NAN;
+        for iteration in 1..=self.max_iterations {
+            let fail = |e: Error, point: &Point, log: &[Iteration]| {
+                Failure::new(e, finish(problem, &point.nominal, log.to_vec(), false))
+            };
+            let step = match self.program(problem, &point, (damping, penalty), iteration) {
+                Ok(step) => step,
+                Err(e) => return Err(fail(e, &point, &log)),
+            };
+            let size = step.delta.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+            last_step = size;
+            if size <= self.tolerance {
+                log.push(self.record(&point, size, 0.0, damping));
+                return self.stationary(problem, point, log, iteration, size);
+            }
+            penalty = penalty.max(2.0 * step.largest_multiplier + 1e-6);
+            let slope = cost_slope(problem, &point.nominal, &step.delta)
+                + penalty * (step.slack - point.violation);
+            let merit = point.nominal.cost + penalty * point.violation;
+            if slope >= -1e-10 * merit.max(1.0) {
+                // Stationary for the merit function: nothing along the step
+                // can lower it, feasible or not.
+                log.push(self.record(&point, size, 0.0, damping));
+                return self.stationary(problem, point, log, iteration, size);
+            }
+            match search(problem, &point, &step.delta, penalty, slope) {
+                Ok(Some((next, alpha))) => {
+                    point = next;
+                    damping = (damping / 10.0).max(1e-8);
+                    log.push(self.record(&point, size, alpha, damping));
+                }
+                Ok(None) if damping < 1e6 => {
+                    damping *= 100.0;
+                    log.push(self.record(&point, size, 0.0, damping));
+                }
+                Ok(None) => {
+                    let e = stalled(iteration, "no step lowers the merit function", &point, size);
+                    return Err(fail(e, &point, &log));
+                }
+                Err(e) => return Err(fail(e, &point, &log)),
+            }
+        }
+        let e = PlanError::NotConverged {
+            iterations: self.max_iterations,
+            stationarity: last_step,
+            tolerance: self.tolerance,
+            cost: point.nominal.cost,
+            gap: point.largest,
+        };
+        Err(Failure::new(
+            e.into(),
+            finish(problem, &point.nominal, log, false),
+        ))
+    }
+
+    /// At a stationary point: the plan if it meets the constraints, else
+    /// the error that says by how much the nearest plan misses them.
+    fn stationary<S, const N: usize, const P: usize>(
+        &self,
+        problem: &OptimalControl<S, N, P>,
+        point: Point,
+        log: Vec<Iteration>,
+        iteration: usize,
+        size: f64,
+    ) -> Result<Plan<N, P>, Failure<Plan<N, P>>>
+    where
+        S: Driven<f64, N, P>,
+    {
+        if point.largest <= self.gap_tolerance {
+            return Ok(finish(problem, &point.nominal, log, true));
+        }
+        let why = format!(
+            "the constraints cannot all be met: the nearest plan misses them by {:e}",
+            point.largest
+        );
+        let e = stalled(iteration, &why, &point, size);
+        Err(Failure::new(e, finish(problem, &point.nominal, log, false)))
+    }
+
+    /// The quadratic program at `point` and its step.
+    fn program<S, const N: usize, const P: usize>(
+        &self,
+        problem: &OptimalControl<S, N, P>,
+        point: &Point,
+        (damping, elastic): (f64, f64),
+        iteration: usize,
+    ) -> Result<direct_qp::Step, Error>
+    where
+        S: Driven<f64, N, P>,
+    {
+        let nominal = &point.nominal;
+        let derivatives = linearise(problem, nominal)?;
+        let mut models = Vec::with_capacity(problem.steps + 1);
+        for k in 0..problem.steps {
+            models.push(problem.running_model(k, &nominal.xs[k], &nominal.us[k])?);
+        }
+        models.push(problem.final_model(&nominal.xs[problem.steps])?);
+        let room = |x: &DVector<f64>, (lower, upper): (&DVector<f64>, &DVector<f64>)| {
+            (lower - x, upper - x)
+        };
+        let limits = problem.state_limits.as_ref();
+        let lin = Linearised {
+            models: &models,
+            derivatives: &derivatives,
+            gaps: &nominal.gaps,
+            final_equality: problem
+                .final_equality
+                .then(|| &problem.goal - &nominal.xs[problem.steps]),
+            input_room: (nominal.us.iter())
+                .map(|u| room(u, (&problem.lower, &problem.upper)))
+                .collect(),
+            state_room: limits.map_or_else(Vec::new, |(lower, upper)| {
+                (nominal.xs[1..].iter())
+                    .map(|x| room(x, (lower, upper)))
+                    .collect()
+            }),
+            damping,
+            elastic,
+        };
+        direct_qp::solve(&lin, P, problem.steps).map_err(|Unsolved(status)| {
+            stalled(
+                iteration,
+                &format!("the quadratic program has no solution ({status:?})"),
+                point,
+                f64::NAN,
+            )
+        })
+    }
+
+    fn record(&self, point: &Point, size: f64, alpha: f64, damping: f64) -> Iteration {
+        let (cost, gap) = (point.nominal.cost, point.largest);
+        if self.verbose {
+            eprintln!(
+                "direct: cost {cost:.9e}  step {size:.2e}  α {alpha:.3}  damping {damping:.1e}  \
+                 violation {gap:.2e}"
+            );
+        }
+        Iteration {
+            cost,
+            stationarity: size,
+            step: alpha,
+            regularization: damping,
+            expected: f64::NAN,
+            gap,
+        }
+    }
+}
+
+/// A nominal with the violations the merit function reads.
+fn measured<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+    nominal: Nominal,
+) -> Point
+where
+    S: Driven<f64, N, P>,
+{
+    let mut violation: f64 = nominal.gaps.iter().map(|g| g.lp_norm(1)).sum();
+    let mut worst = largest(&nominal.gaps);
+    if problem.final_equality {
+        let off = &nominal.xs[problem.steps] - &problem.goal;
+        violation += off.lp_norm(1);
+        worst = worst.max(off.amax());
+    }
+    if let Some((lower, upper)) = &problem.state_limits {
+        for x in &nominal.xs[1..] {
+            let outside = (x - upper).sup(&(lower - x)).map(|e| e.max(0.0));
+            violation += outside.sum();
+            worst = worst.max(outside.amax());
+        }
+    }
+    Point {
+        nominal,
+        violation,
+        largest: worst,
+    }
+}
+
+/// The first step α of 1, ½, … 2⁻¹² along δ that lowers the ℓ₁ merit
+/// function by at least 10⁻⁴ of the decrease its model predicts, `slope`
+/// per unit of α (the cost's derivative along δ, and the penalty on what
+/// the program's slacks leave of the violation less the violation now).
+fn search<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+    point: &Point,
+    delta: &[f64],
+    penalty: f64,
+    slope: f64,
+) -> Result<Option<(Point, f64)>, Error>
+where
+    S: Driven<f64, N, P>,
+{
+    let (n2, steps) = (2 * N, problem.steps);
+    let nominal = &point.nominal;
+    let merit = |p: &Point| p.nominal.cost + penalty * p.violation;
+    let here = merit(point);
+    let mut alpha = 1.0;
+    for _ in 0..=12 {
+        let xs = (0..=steps)
+            .map(|k| {
+                let (x, _) = offsets(n2, P, k);
+                &nominal.xs[k] + DVector::from_column_slice(&delta[x..x + n2]) * alpha
+            })
+            .collect();
+        let us: Vec<_> = (0..steps)
+            .map(|k| {
+                let (_, u) = offsets(n2, P, k);
+                &nominal.us[k] + DVector::from_column_slice(&delta[u..u + P]) * alpha
+            })
+            .collect();
+        let trial = measured(problem, guessed(problem, xs, &us)?);
+        if merit(&trial) <= here + 1e-4 * alpha * slope {
+            return Ok(Some((trial, alpha)));
+        }
+        alpha *= 0.5;
+    }
+    Ok(None)
+}
+
+/// The cost's derivative along δ, Σ l_x·δx + l_u·δu.
+fn cost_slope<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+    nominal: &Nominal,
+    delta: &[f64],
+) -> f64
+where
+    S: Driven<f64, N, P>,
+{
+    let (n2, steps) = (2 * N, problem.steps);
+    let mut slope = 0.0;
+    for k in 0..=steps {
+        let (x, u) = offsets(n2, P, k);
+        let model = match k < steps {
+            true => problem.running_model(k, &nominal.xs[k], &nominal.us[k]),
+            false => problem.final_model(&nominal.xs[k]),
+        };
+        let Ok(m) = model else { return f64::NAN };
+        slope += m.lx.dot(&DVector::from_column_slice(&delta[x..x + n2]));
+        if k < steps {
+            slope += m.lu.dot(&DVector::from_column_slice(&delta[u..u + P]));
+        }
+    }
+    slope
+}
+
+/// The plan of a nominal, with the feedback gains of the cost's quadratic
+/// model about it when it is converged and no constraint on states is
+/// active in them (they would not know the limits nor the final equality):
+/// otherwise none.
+fn finish<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+    nominal: &Nominal,
+    log: Vec<Iteration>,
+    converged: bool,
+) -> Plan<N, P>
+where
+    S: Driven<f64, N, P>,
+{
+    let gains = (converged && !problem.constrains_states())
+        .then(|| linearise(problem, nominal).ok())
+        .flatten()
+        .and_then(|d| {
+            backward_pass(problem, nominal, &d, 0.0, None)
+                .ok()
+                .flatten()
+        })
+        .map_or_else(Vec::new, |b| b.gains);
+    super::ddp::plan(problem, nominal.clone(), gains, log)
+}
+
+fn stalled(iteration: usize, reason: &str, point: &Point, size: f64) -> Error {
+    PlanError::Stalled {
+        iteration,
+        reason: reason.into(),
+        cost: point.nominal.cost,
+        stationarity: size,
+        regularization: f64::NAN,
+    }
+    .into()
+}
+
+fn data(problem: String) -> Error {
+    SettingsError::Data {
+        owner: "Direct",
+        problem,
+    }
+    .into()
+}

@@ -1,0 +1,159 @@
+//! The direct method against DDP and the discrete LQR where both apply (a
+//! linear-quadratic problem, a swing-up from DDP's optimum), and on what
+//! only it can hold: a final equality kept exactly, hard state limits that
+//! the plan rides without crossing, and a final equality out of reach,
+//! refused with the best plan.
+
+use super::ddp::Ddp;
+use super::direct::Direct;
+use super::problem::OptimalControl;
+use crate::error::{Error, PlanError};
+use crate::linear::test_systems::{Oscillator, Pendulum};
+use crate::linear::{Transition, dlqr};
+use nalgebra::{DMatrix, DVector, Vector1};
+use std::f64::consts::PI;
+
+fn diagonal(d: &[f64]) -> DMatrix<f64> {
+    DMatrix::from_diagonal(&DVector::from_column_slice(d))
+}
+
+const OSCILLATOR: Oscillator = Oscillator { k: 4.0, c: 0.3 };
+
+fn oscillator(steps: usize) -> OptimalControl<'static, Oscillator, 1, 1> {
+    let tr = Transition::new(&OSCILLATOR, 0.05).unwrap();
+    let start = (Vector1::new(2.0), Vector1::new(-1.0));
+    OptimalControl::new(tr, steps, start, diagonal(&[1.0, 0.5]), diagonal(&[0.1]))
+}
+
+fn swing_up() -> OptimalControl<'static, Pendulum, 1, 1> {
+    let tr = Transition::new(&Pendulum, 0.02).unwrap();
+    let start = (Vector1::new(0.0), Vector1::new(0.0));
+    OptimalControl::new(tr, 200, start, diagonal(&[0.0, 0.0]), diagonal(&[0.01]))
+        .goal(Vector1::new(PI), Vector1::new(0.0))
+        .final_weight(diagonal(&[1000.0, 100.0]))
+        .input_bounds(Vector1::new(-3.0), Vector1::new(3.0))
+}
+
+/// A linear system with quadratic costs is one quadratic program: the
+/// first step lands on the optimum, the second confirms it, and the plan is
+/// the discrete LQR's (and DDP's), gains included.
+#[test]
+fn a_linear_problem_is_the_discrete_lqr_in_one_step() {
+    let tr = Transition::new(&OSCILLATOR, 0.05).unwrap();
+    let d = tr
+        .derivatives(&Vector1::zeros(), &Vector1::zeros(), &Vector1::zeros(), 0.0)
+        .unwrap();
+    let lqr = dlqr(&d.dx, &d.du, &diagonal(&[1.0, 0.5]), &diagonal(&[0.1])).unwrap();
+    let problem = oscillator(40).final_weight(lqr.riccati.clone());
+    let plan = Direct::new().tolerance(1e-8).solve(&problem, &[]).unwrap();
+    // One full step; the next ones are below Clarabel's tolerances.
+    assert!(plan.log.len() <= 3, "{} iterations", plan.log.len());
+    assert_eq!(plan.log[0].step, 1.0);
+    assert!((plan.log[0].cost - plan.cost).abs() < 1e-9 * plan.cost);
+    for k in [0, 17, 39] {
+        let x = DVector::from_column_slice(&[plan.q[k][0], plan.v[k][0]]);
+        let lqr_u = -(&lqr.gain * &x)[0];
+        // To the interior-point solver's accuracy.
+        assert!(
+            (plan.u[k][0] - lqr_u).abs() < 1e-6,
+            "step {k}: {} vs {lqr_u}",
+            plan.u[k][0]
+        );
+        assert!((&plan.gains[k] + &lqr.gain).amax() < 1e-9);
+    }
+    let ddp = Ddp::new().tolerance(1e-10).solve(&problem, &[]).unwrap();
+    assert!((plan.cost - ddp.cost).abs() < 1e-9 * ddp.cost);
+}
+
+/// From DDP's swing-up, states and inputs, the direct method finds nothing
+/// to change: both solve the same problem.
+#[test]
+fn from_ddps_optimum_it_stays() {
+    let problem = swing_up();
+    let ddp = Ddp::new().tolerance(1e-8).solve(&problem, &[]).unwrap();
+    let plan = Direct::new()
+        .tolerance(1e-5)
+        .solve_from(&problem, &ddp.q, &ddp.v, &ddp.u)
+        .unwrap();
+    assert!(plan.log.len() <= 3, "{} iterations", plan.log.len());
+    assert!(
+        (plan.cost - ddp.cost).abs() < 1e-8 * ddp.cost,
+        "{} vs {}",
+        plan.cost,
+        ddp.cost
+    );
+}
+
+/// The swing-up with the last state held at the top: q_K = π and v_K = 0
+/// to round-off, from hanging at rest, the torque within its bounds.
+#[test]
+fn a_final_equality_is_kept_exactly() {
+    let problem = swing_up()
+        .final_weight(diagonal(&[0.0, 0.0]))
+        .final_equality();
+    let plan = Direct::new().solve(&problem, &[]).unwrap();
+    assert!(
+        (plan.q[200][0] - PI).abs() < 1e-9,
+        "q_K = {}",
+        plan.q[200][0]
+    );
+    assert!(plan.v[200][0].abs() < 1e-9, "v_K = {}", plan.v[200][0]);
+    assert!(plan.gap < 1e-9);
+    assert!(plan.u.iter().all(|u| u[0].abs() <= 3.0 + 1e-9));
+    // No feedback gains that would not know the constraint.
+    assert!(plan.gains.is_empty());
+    // DDP refuses the problem, naming the direct method.
+    let refused = Ddp::new().solve(&problem, &[]).unwrap_err();
+    assert!(
+        refused.error.to_string().contains("plan::Direct"),
+        "{}",
+        refused.error
+    );
+}
+
+/// The oscillator's speed held to 80 % of the peak its free plan reaches:
+/// as a hard limit the plan rides it and never crosses it, where DDP's
+/// penalty (`StateBounds`) crosses it slightly.
+#[test]
+fn state_limits_are_never_crossed() {
+    let free = Direct::new().solve(&oscillator(60), &[]).unwrap();
+    let peak = |v: &[Vector1<f64>]| v.iter().map(|v| v[0].abs()).fold(0.0, f64::max);
+    let limit = 0.8 * peak(&free.v);
+    let inf = f64::INFINITY;
+    let problem = oscillator(60).state_limits(
+        (Vector1::new(-inf), Vector1::new(-limit)),
+        (Vector1::new(inf), Vector1::new(limit)),
+    );
+    let plan = Direct::new().solve(&problem, &[]).unwrap();
+    let reached = peak(&plan.v[1..]);
+    assert!(reached <= limit + 1e-9, "peak {reached} against {limit}");
+    let riding = plan.v.iter().filter(|v| v[0].abs() > limit - 1e-6).count();
+    assert!(riding >= 3, "{riding} states on the limit");
+    assert!(plan.cost > free.cost);
+}
+
+/// Half a second with a torque of 0.1 cannot bring the pendulum to the top:
+/// the program has no solution, and the error says so with the plan reached.
+#[test]
+fn an_unreachable_final_equality_is_an_error() {
+    let tr = Transition::new(&Pendulum, 0.02).unwrap();
+    let problem = OptimalControl::new(
+        tr,
+        25,
+        (Vector1::new(0.0), Vector1::new(0.0)),
+        diagonal(&[0.0, 0.0]),
+        diagonal(&[0.01]),
+    )
+    .goal(Vector1::new(PI), Vector1::new(0.0))
+    .input_bounds(Vector1::new(-0.1), Vector1::new(0.1))
+    .final_equality();
+    let failure = Direct::new().solve(&problem, &[]).unwrap_err();
+    match &failure.error {
+        Error::Plan(PlanError::Stalled { reason, .. }) => {
+            assert!(reason.contains("cannot all be met"), "{reason}")
+        }
+        // The torque's best is full effort one way: the top stays ~3 rad away.
+        e => panic!("{e}"),
+    }
+    assert_eq!(failure.partial.q.len(), 26);
+}
