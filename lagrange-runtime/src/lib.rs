@@ -215,6 +215,7 @@ pub mod mechanics;
 
 // 5 services
 pub mod atlas;
+pub mod contact;
 pub mod control;
 #[cfg(feature = "parallel")]
 pub mod ensemble;
@@ -236,7 +237,8 @@ pub use control::{
     Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,
     StateFeedback,
 };
-pub use error::{Error, Failure, LinearError, SettingsError};
+pub use contact::{ChangeKind, ContactChange, ContactForce, ContactRun, ContactSettings, ContactState};
+pub use error::{ContactError, ContactFault, Error, Failure, LinearError, SettingsError};
 pub use event::{Direction, Event, EventRun, Events, LimitPolicy, Occurrence};
 pub use linear::{
     Linear, Linearizer, OperatingPoint, complete_state, linearize, linearize_constrained,
@@ -268,6 +270,7 @@ pub use simulation::{ControlledSimulation, EventSimulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::physical;
 pub use system::{Atlas, Configuration, DrivenAtlas, EulerRotation, FreeVisitor};
+pub use system::{ContactLaw, ContactRows, Contacts};
 pub use system::{
     Constrained, Driven, FormVisitor, ForwardRoute, JointLimit, Lagrangian, Reduced, Route,
 };
