@@ -194,7 +194,8 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
         v: SVector<T, N>,
     ) -> Result<(Watched, Option<(T, SVector<T, N>, SVector<T, N>)>), Error> {
         let form = self.form(modes.to_vec());
-        let (watched, events) = watch(&form, t, &q, &v)?;
+        let tolerance = T::lit(self.settings.gap_tolerance);
+        let (watched, events) = watch(&form, (t, &q, &v), tolerance)?;
         let from = self
             .trajectory
             .as_ref()
@@ -238,9 +239,8 @@ impl Watched {
 #[allow(clippy::type_complexity)]
 fn watch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
     form: &'f ContactForm<'_, S, T>,
-    t: T,
-    q: &SVector<T, N>,
-    v: &SVector<T, N>,
+    (t, q, v): (T, &SVector<T, N>, &SVector<T, N>),
+    tolerance: T,
 ) -> Result<(Vec<Watched>, Events<'f, T, N>), Error> {
     let nan = T::lit(f64::NAN);
     let mut watched = Vec::new();
@@ -251,8 +251,7 @@ fn watch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
         let (what, event) = match *mode {
             Mode::Open => (
                 Watched::Touches(i),
-                Event::new(move |t, q, v| form.rows(i, t, q, v).map_or(nan, |r| r.gap))
-                    .named(format!("{name} touches")),
+                touch(form, i, (t, q, v), tolerance).named(format!("{name} touches")),
             ),
             Mode::Sliding { hint } if mu > T::zero() && slips(&form.rows(i, t, q, v)?) => {
                 let r = form.rows(i, t, q, v)?;
@@ -284,6 +283,31 @@ fn watch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
         events = events.with(event.falling().terminal());
     }
     Ok((watched, events))
+}
+
+/// The event of an open contact's gap falling to zero. A contact that
+/// leaves the surface at the start (a bounce) is watched through its gap
+/// divided by the time since, φ(t)/(t − t₀), which starts at the normal
+/// speed and falls through zero when the gap does: the gap itself starts at
+/// zero, without a sign, and a bounce shorter than the integrator's step
+/// would be missed.
+fn touch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
+    form: &'f ContactForm<'_, S, T>,
+    i: usize,
+    (t0, q0, v0): (T, &SVector<T, N>, &SVector<T, N>),
+    tolerance: T,
+) -> Event<'f, T, N> {
+    let nan = T::lit(f64::NAN);
+    let leaving = form
+        .rows(i, t0, q0, v0)
+        .is_ok_and(|r| r.gap <= tolerance && r.normal.dot(v0) > T::zero());
+    Event::new(move |t, q, v| {
+        form.rows(i, t, q, v).map_or(nan, |r| match leaving {
+            true if t > t0 => r.gap / (t - t0),
+            true => r.normal.dot(v),
+            false => r.gap,
+        })
+    })
 }
 
 /// Whether a contact can slip at all (it has a tangent row).
