@@ -3,7 +3,7 @@
 
 pub use lagrange_runtime::{
     AccelerationDerivatives, Atlas, Batched, BatchedDifferentiable, Constrained, Differentiable,
-    Driven, DrivenAtlas, Error, EulerRotation, FormVisitor, ForwardRoute, FreeVisitor, JointLimit,
+    ContactLaw, ContactRows, Contacts, Driven, DrivenAtlas, Error, EulerRotation, FormVisitor, ForwardRoute, FreeVisitor, JointLimit,
     Lagrangian, LaneDerivatives, Orientation, Real, Reduced, Route, func,
     numeric::lanes,
     physical,
