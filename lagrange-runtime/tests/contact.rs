@@ -319,3 +319,102 @@ fn bad_laws_and_a_penetrating_start_are_typed_errors() {
     assert_eq!(error.contact, "ground");
     assert_eq!(failure.partial.trajectory.len(), 1);
 }
+
+/// A uniform rod (half-length l, I = m l²/3) whose lower end slides on the
+/// floor: (x, y) its centre, θ its angle to the floor, the end at
+/// (x − l cos θ, y − l sin θ).
+struct Rod {
+    m: f64,
+    l: f64,
+    mu: f64,
+}
+
+impl Lagrangian<f64, 3> for Rod {
+    const COORDINATES: [&'static str; 3] = ["x", "y", "theta"];
+    const RHEONOMIC: bool = false;
+    fn mass_matrix(&self, _: &SVector<f64, 3>, _: f64) -> SMatrix<f64, 3, 3> {
+        let i = self.m * self.l * self.l / 3.0;
+        SMatrix::<f64, 3, 3>::from_diagonal(&SVector::<f64, 3>::new(self.m, self.m, i))
+    }
+    fn bias(&self, _: &SVector<f64, 3>, _: &SVector<f64, 3>, _: f64) -> SVector<f64, 3> {
+        SVector::zeros()
+    }
+    fn generalized_forces(&self, _: &SVector<f64, 3>, _: &SVector<f64, 3>, _: f64) -> SVector<f64, 3> {
+        SVector::<f64, 3>::new(0.0, -self.m * G, 0.0)
+    }
+    fn mass_matrix_and_rhs(
+        &self,
+        q: &SVector<f64, 3>,
+        v: &SVector<f64, 3>,
+        t: f64,
+    ) -> (SMatrix<f64, 3, 3>, SVector<f64, 3>) {
+        (self.mass_matrix(q, t), self.generalized_forces(q, v, t))
+    }
+    fn kinetic_energy(&self, q: &SVector<f64, 3>, v: &SVector<f64, 3>, t: f64) -> f64 {
+        0.5 * v.dot(&(self.mass_matrix(q, t) * v))
+    }
+    fn potential_energy(&self, q: &SVector<f64, 3>, _: f64) -> f64 {
+        self.m * G * q[1]
+    }
+    fn integral(&self, q: &SVector<f64, 3>, v: &SVector<f64, 3>, t: f64) -> f64 {
+        self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+    }
+}
+
+impl Contacts<f64, 3> for Rod {
+    fn contact_laws(&self) -> Vec<ContactLaw> {
+        vec![ContactLaw {
+            name: "end",
+            restitution: 0.0,
+            friction: self.mu,
+        }]
+    }
+    fn contact_rows(
+        &self,
+        index: usize,
+        q: &SVector<f64, 3>,
+        v: &SVector<f64, 3>,
+        _: f64,
+    ) -> Option<ContactRows<f64, 3>> {
+        let (s, c) = q[2].sin_cos();
+        let w = v[2];
+        (index == 0).then(|| ContactRows {
+            gap: q[1] - self.l * s,
+            normal: SVector::<f64, 3>::new(0.0, 1.0, -self.l * c),
+            // d/dt(−l cos θ) θ̇ = l sin θ θ̇².
+            normal_bias: self.l * s * w * w,
+            tangents: [SVector::<f64, 3>::new(1.0, 0.0, self.l * s), SVector::zeros()],
+            tangent_bias: [self.l * c * w * w, 0.0],
+        })
+    }
+}
+
+/// Painlevé: the rod at 60° sliding towards its leaning side with μ = 2 has
+/// the effective normal compliance (1 + 3 cos²θ − 3 μ sin θ cos θ)/m < 0,
+/// so rigid contact has no answer or two: a typed error, not a pick. With
+/// μ = 0.5 the same start slides.
+#[test]
+fn painleve_s_rod_is_a_typed_error() {
+    let theta = 60f64.to_radians();
+    let start = |rod: &Rod| {
+        Simulation::new(rod)
+            .integrator(Dop853::tol(1e-12))
+            .run_contacts([0.0, rod.l * theta.sin(), theta], [-1.0, 0.0, 0.0], 0.0..0.05)
+    };
+    let rod = Rod { m: 1.0, l: 0.5, mu: 2.0 };
+    let failure = start(&rod).unwrap_err();
+    let Error::Contact(error) = &failure.error else {
+        panic!("{}", failure.error)
+    };
+    let (s, c) = theta.sin_cos();
+    let expected = 1.0 + 3.0 * c * c - 3.0 * rod.mu * s * c;
+    match error.fault {
+        ContactFault::Painleve { compliance } => {
+            assert!((compliance - expected).abs() < 1e-12, "{compliance} vs {expected}")
+        }
+        ref other => panic!("{other}"),
+    }
+    assert!(error.to_string().contains("Painlevé"), "{error}");
+    let run = start(&Rod { mu: 0.5, ..rod }).unwrap();
+    assert_eq!(run.states(0.0), [ContactState::Sliding]);
+}

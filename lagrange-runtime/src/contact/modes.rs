@@ -154,6 +154,16 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         for _ in 0..4 * rows.len() + 4 {
             let form = self.form(modes.clone());
             let s = form.solve(t, q, v)?;
+            // Before any contact is opened for pulling: a sliding contact
+            // that friction presses the harder the more it is pushed makes
+            // both answers possible, or neither.
+            for (i, mode) in modes.iter().enumerate() {
+                let rubs = self.laws[i].friction > 0.0;
+                if matches!(mode, Mode::Sliding { .. }) && rubs && s.compliance[i] <= T::zero() {
+                    let compliance = s.compliance[i].to_f64();
+                    return Err(form.fault(i, t, q, ContactFault::Painleve { compliance }));
+                }
+            }
             let pulling = (0..rows.len())
                 .filter(|&i| modes[i] != Mode::Open && s.normal[i] < T::zero())
                 .min_by(|&a, &b| s.normal[a].partial_cmp(&s.normal[b]).unwrap_or(core::cmp::Ordering::Equal));
@@ -171,12 +181,15 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
                 modes[i] = Mode::Sliding { hint: opposite(s.tangential[i]) };
                 continue;
             }
-            for (i, mode) in modes.iter().enumerate() {
-                let rubs = self.laws[i].friction > 0.0;
-                if matches!(mode, Mode::Sliding { .. }) && rubs && s.compliance[i] <= T::zero() {
-                    let compliance = s.compliance[i].to_f64();
-                    return Err(form.fault(i, t, q, ContactFault::Painleve { compliance }));
-                }
+            // An opened contact must not be driven into the surface.
+            let sinking = closing.iter().find(|&&i| {
+                let r = &rows[i];
+                modes[i] == Mode::Open
+                    && forced != Forced::Open(i)
+                    && r.normal.dot(&s.accel) + r.normal_bias < -T::lit(1e-9) * (T::one() + s.accel.amax())
+            });
+            if let Some(&i) = sinking {
+                return Err(form.fault(i, t, q, ContactFault::NoConsistentMode));
             }
             return Ok(modes);
         }
