@@ -60,14 +60,25 @@ fn settings() -> ContactSettings {
 }
 
 fn kinds<const N: usize>(run: &ContactRun<f64, N>, kind: fn(&ChangeKind<f64>) -> bool) -> Vec<f64> {
-    run.changes.iter().filter(|c| kind(&c.kind)).map(|c| c.t).collect()
+    run.changes
+        .iter()
+        .filter(|c| kind(&c.kind))
+        .map(|c| c.t)
+        .collect()
 }
 
 #[test]
 fn the_derived_rows_are_the_sphere_s_gap_and_slip() {
-    let s = Sphere { m: 0.3, r: 0.1, g: G };
+    let s = Sphere {
+        m: 0.3,
+        r: 0.1,
+        g: G,
+    };
     let laws = s.contact_laws();
-    assert_eq!((laws[0].name, laws[0].restitution, laws[0].friction), ("ground", 0.5, 0.3));
+    assert_eq!(
+        (laws[0].name, laws[0].restitution, laws[0].friction),
+        ("ground", 0.5, 0.3)
+    );
     let q = Vector3::new(0.2, 0.35, 0.7);
     let v = Vector3::new(1.5, -0.4, 2.0);
     let rows = s.contact_rows(0, &q, &v, 0.0).unwrap();
@@ -84,7 +95,11 @@ fn the_derived_rows_are_the_sphere_s_gap_and_slip() {
 /// 5/7 v₀.
 #[test]
 fn a_derived_sphere_rolls_at_five_sevenths() {
-    let s = Sphere { m: 0.3, r: 0.1, g: G };
+    let s = Sphere {
+        m: 0.3,
+        r: 0.1,
+        g: G,
+    };
     let (v0, mu) = (2.0, 0.3);
     let run = Simulation::new(&s)
         .integrator(Dop853::tol(1e-13))
@@ -108,7 +123,11 @@ fn a_derived_sphere_rolls_at_five_sevenths() {
 /// at rest at t₁ (1 + e)/(1 − e).
 #[test]
 fn a_derived_ball_bounces_to_rest() {
-    let s = Sphere { m: 0.3, r: 0.1, g: G };
+    let s = Sphere {
+        m: 0.3,
+        r: 0.1,
+        g: G,
+    };
     let (e, h0) = (0.5f64, 0.5);
     let run = Simulation::new(&s)
         .integrator(Dop853::tol(1e-13))
@@ -127,7 +146,11 @@ fn a_derived_ball_bounces_to_rest() {
         _ => None,
     });
     let t_rest = t1 * (1.0 + e) / (1.0 - e);
-    eprintln!("derived ball: {} impacts, rest {:.1e} from t1(1+e)/(1−e)", impacts.len(), (rest.unwrap() - t_rest).abs());
+    eprintln!(
+        "derived ball: {} impacts, rest {:.1e} from t1(1+e)/(1−e)",
+        impacts.len(),
+        (rest.unwrap() - t_rest).abs()
+    );
     assert!((rest.unwrap() - t_rest).abs() < 1e-9);
 }
 
@@ -160,7 +183,11 @@ fn a_derived_block_slides_straight_to_a_stop() {
 /// amplitude θ₁ later, 1 − cos θ₁ = e² (1 − cos θ₀).
 #[test]
 fn a_pendulum_hits_its_stop_when_the_elliptic_period_says() {
-    let p = Stopped { m: 0.7, l: 1.3, g: G };
+    let p = Stopped {
+        m: 0.7,
+        l: 1.3,
+        g: G,
+    };
     let (th0, e) = (1.2f64, 0.6);
     let period = |amplitude: f64| 4.0 * (p.l / p.g).sqrt() * elliptic_k((amplitude / 2.0).sin());
     let run = Simulation::new(&p)
@@ -177,8 +204,21 @@ fn a_pendulum_hits_its_stop_when_the_elliptic_period_says() {
         (impacts[0] - first).abs(),
         (impacts[1] - second).abs()
     );
-    assert!((impacts[0] - first).abs() < 1e-9, "{} vs {first}", impacts[0]);
-    assert!((impacts[1] - second).abs() < 1e-9, "{} vs {second}", impacts[1]);
-    let worst = run.trajectory.positions().iter().map(|q| -q[0]).fold(f64::MIN, f64::max);
+    assert!(
+        (impacts[0] - first).abs() < 1e-9,
+        "{} vs {first}",
+        impacts[0]
+    );
+    assert!(
+        (impacts[1] - second).abs() < 1e-9,
+        "{} vs {second}",
+        impacts[1]
+    );
+    let worst = run
+        .trajectory
+        .positions()
+        .iter()
+        .map(|q| -q[0])
+        .fold(f64::MIN, f64::max);
     assert!(worst < 1e-12, "past the stop by {worst:e}");
 }

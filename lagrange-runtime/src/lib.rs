@@ -233,11 +233,13 @@ pub mod task_space;
 mod simulation;
 
 pub use atlas::{AtlasRun, ChartSwitch, ChartedTrajectory};
+pub use contact::{
+    ChangeKind, ContactChange, ContactForce, ContactRun, ContactSettings, ContactState,
+};
 pub use control::{
     Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,
     StateFeedback,
 };
-pub use contact::{ChangeKind, ContactChange, ContactForce, ContactRun, ContactSettings, ContactState};
 pub use error::{ContactError, ContactFault, Error, Failure, LinearError, SettingsError};
 pub use event::{Direction, Event, EventRun, Events, LimitPolicy, Occurrence};
 pub use linear::{
@@ -270,8 +272,8 @@ pub use simulation::{ControlledSimulation, EventSimulation};
 pub use study::{Study, Sweep, WorkPrecision};
 pub use system::physical;
 pub use system::{Atlas, Configuration, DrivenAtlas, EulerRotation, FreeVisitor};
-pub use system::{ContactLaw, ContactRows, Contacts};
 pub use system::{
     Constrained, Driven, FormVisitor, ForwardRoute, JointLimit, Lagrangian, Reduced, Route,
 };
+pub use system::{ContactLaw, ContactRows, Contacts};
 pub use table::Table;

@@ -45,7 +45,12 @@ impl Lagrangian<f64, 3> for Planar {
     fn bias(&self, _: &SVector<f64, 3>, _: &SVector<f64, 3>, _: f64) -> SVector<f64, 3> {
         SVector::zeros()
     }
-    fn generalized_forces(&self, _: &SVector<f64, 3>, _: &SVector<f64, 3>, _: f64) -> SVector<f64, 3> {
+    fn generalized_forces(
+        &self,
+        _: &SVector<f64, 3>,
+        _: &SVector<f64, 3>,
+        _: f64,
+    ) -> SVector<f64, 3> {
         SVector::<f64, 3>::new(0.0, -self.m * G, 0.0)
     }
     fn mass_matrix_and_rhs(
@@ -87,7 +92,10 @@ impl Contacts<f64, 3> for Planar {
                 gap: n[0] * q[0] + n[1] * q[1] - self.r,
                 normal: SVector::<f64, 3>::new(n[0], n[1], 0.0),
                 normal_bias: 0.0,
-                tangents: [SVector::<f64, 3>::new(t[0], t[1], if self.rolls { -self.r } else { 0.0 }), SVector::zeros()],
+                tangents: [
+                    SVector::<f64, 3>::new(t[0], t[1], if self.rolls { -self.r } else { 0.0 }),
+                    SVector::zeros(),
+                ],
                 tangent_bias: [0.0, 0.0],
             }
         })
@@ -126,7 +134,11 @@ fn block(alpha: f64, mu: f64) -> Planar {
 
 /// The times of the changes of one kind.
 fn times(run: &ContactRun<f64, 3>, kind: fn(&ChangeKind<f64>) -> bool) -> Vec<f64> {
-    run.changes.iter().filter(|c| kind(&c.kind)).map(|c| c.t).collect()
+    run.changes
+        .iter()
+        .filter(|c| kind(&c.kind))
+        .map(|c| c.t)
+        .collect()
 }
 
 fn run(sys: &Planar, q0: [f64; 3], v0: [f64; 3], end: f64) -> ContactRun<f64, 3> {
@@ -144,13 +156,21 @@ fn run(sys: &Planar, q0: [f64; 3], v0: [f64; 3], end: f64) -> ContactRun<f64, 3>
 /// force compressive, friction inside the cone (to round-off).
 fn invariants(sys: &Planar, run: &ContactRun<f64, 3>) {
     let traj = &run.trajectory;
-    for ((&t, q), v) in traj.times().iter().zip(traj.positions()).zip(traj.velocities()) {
+    for ((&t, q), v) in traj
+        .times()
+        .iter()
+        .zip(traj.positions())
+        .zip(traj.velocities())
+    {
         let gap = sys.contact_rows(0, q, v, t).unwrap().gap;
         assert!(gap > -1e-12, "t = {t}: gap {gap:e}");
         let f = run.forces(sys, t, q, v).unwrap()[0];
         assert!(f.normal >= -1e-9, "t = {t}: λ_n = {}", f.normal);
         let size = f.tangential[0].hypot(f.tangential[1]);
-        assert!(size <= sys.law.friction * f.normal + 1e-9, "t = {t}: outside the cone");
+        assert!(
+            size <= sys.law.friction * f.normal + 1e-9,
+            "t = {t}: outside the cone"
+        );
     }
 }
 
@@ -177,13 +197,21 @@ fn a_bouncing_ball_rests_at_the_accumulation_time() {
     for (k, &(t, before, after)) in impacts.iter().enumerate() {
         let speed = e.powi(k as i32) * v1;
         worst_t = worst_t.max((t - t_exact).abs());
-        assert!((before + speed).abs() < 1e-9, "impact {k}: {before} vs {}", -speed);
+        assert!(
+            (before + speed).abs() < 1e-9,
+            "impact {k}: {before} vs {}",
+            -speed
+        );
         assert!((after + e * before).abs() < 1e-12, "impact {k}");
         let apex = after * after / (2.0 * G);
         worst_h = worst_h.max((apex - e.powi(2 * (k as i32 + 1)) * h0).abs());
         // The apex on the trajectory itself, half a flight later.
         let (q, _) = run.trajectory.state_at(t + after / G).unwrap();
-        assert!((q[1] - sys.r - apex).abs() < 1e-9, "impact {k}: apex {}", q[1] - sys.r);
+        assert!(
+            (q[1] - sys.r - apex).abs() < 1e-9,
+            "impact {k}: apex {}",
+            q[1] - sys.r
+        );
         t_exact += 2.0 * e * speed / G;
     }
     let rest = run
@@ -237,7 +265,11 @@ fn a_sliding_block_stops_at_v0_over_mu_g_and_sticks() {
         (sticks[0] - t_stop).abs(),
         (q[0] - distance).abs()
     );
-    assert!((sticks[0] - t_stop).abs() < 1e-9, "{} vs {t_stop}", sticks[0]);
+    assert!(
+        (sticks[0] - t_stop).abs() < 1e-9,
+        "{} vs {t_stop}",
+        sticks[0]
+    );
     assert!((q[0] - distance).abs() < 1e-9, "{} vs {distance}", q[0]);
     assert!(v.norm() < 1e-12 && (q[1] - sys.r).abs() < 1e-12);
     // Halfway through the slide: v = v₀ − μ g t.
@@ -267,8 +299,14 @@ fn a_block_on_an_incline_sticks_or_slides_by_tan_alpha() {
         } else {
             assert_eq!(run.states(end), [ContactState::Sliding], "α = {alpha}");
             let exact = -0.5 * accel * end * end;
-            eprintln!("incline α = {alpha}: {:.1e} from −g(sin α − μ cos α)t²/2", (along - exact).abs());
-            assert!((along - exact).abs() < 1e-9, "α = {alpha}: {along} vs {exact}");
+            eprintln!(
+                "incline α = {alpha}: {:.1e} from −g(sin α − μ cos α)t²/2",
+                (along - exact).abs()
+            );
+            assert!(
+                (along - exact).abs() < 1e-9,
+                "α = {alpha}: {along} vs {exact}"
+            );
         }
         invariants(&sys, &run);
     }
@@ -289,9 +327,16 @@ fn a_sphere_thrown_sliding_rolls_at_five_sevenths() {
         (sticks[0] - t_roll).abs(),
         (v[0] - 5.0 / 7.0 * v0).abs()
     );
-    assert!((sticks[0] - t_roll).abs() < 1e-9, "{} vs {t_roll}", sticks[0]);
+    assert!(
+        (sticks[0] - t_roll).abs() < 1e-9,
+        "{} vs {t_roll}",
+        sticks[0]
+    );
     assert!((v[0] - 5.0 / 7.0 * v0).abs() < 1e-9, "{}", v[0]);
-    assert!((v[0] - sys.r * v[2]).abs() < 1e-12, "rolls without slipping");
+    assert!(
+        (v[0] - sys.r * v[2]).abs() < 1e-12,
+        "rolls without slipping"
+    );
     invariants(&sys, &run);
 }
 
@@ -315,7 +360,10 @@ fn bad_laws_and_a_penetrating_start_are_typed_errors() {
     let Error::Contact(error) = &failure.error else {
         panic!("{}", failure.error)
     };
-    assert!(matches!(error.fault, ContactFault::Penetrates { .. }), "{error}");
+    assert!(
+        matches!(error.fault, ContactFault::Penetrates { .. }),
+        "{error}"
+    );
     assert_eq!(error.contact, "ground");
     assert_eq!(failure.partial.trajectory.len(), 1);
 }
@@ -339,7 +387,12 @@ impl Lagrangian<f64, 3> for Rod {
     fn bias(&self, _: &SVector<f64, 3>, _: &SVector<f64, 3>, _: f64) -> SVector<f64, 3> {
         SVector::zeros()
     }
-    fn generalized_forces(&self, _: &SVector<f64, 3>, _: &SVector<f64, 3>, _: f64) -> SVector<f64, 3> {
+    fn generalized_forces(
+        &self,
+        _: &SVector<f64, 3>,
+        _: &SVector<f64, 3>,
+        _: f64,
+    ) -> SVector<f64, 3> {
         SVector::<f64, 3>::new(0.0, -self.m * G, 0.0)
     }
     fn mass_matrix_and_rhs(
@@ -383,7 +436,10 @@ impl Contacts<f64, 3> for Rod {
             normal: SVector::<f64, 3>::new(0.0, 1.0, -self.l * c),
             // d/dt(−l cos θ) θ̇ = l sin θ θ̇².
             normal_bias: self.l * s * w * w,
-            tangents: [SVector::<f64, 3>::new(1.0, 0.0, self.l * s), SVector::zeros()],
+            tangents: [
+                SVector::<f64, 3>::new(1.0, 0.0, self.l * s),
+                SVector::zeros(),
+            ],
             tangent_bias: [self.l * c * w * w, 0.0],
         })
     }
@@ -399,9 +455,17 @@ fn painleve_s_rod_is_a_typed_error() {
     let start = |rod: &Rod| {
         Simulation::new(rod)
             .integrator(Dop853::tol(1e-12))
-            .run_contacts([0.0, rod.l * theta.sin(), theta], [-1.0, 0.0, 0.0], 0.0..0.05)
+            .run_contacts(
+                [0.0, rod.l * theta.sin(), theta],
+                [-1.0, 0.0, 0.0],
+                0.0..0.05,
+            )
     };
-    let rod = Rod { m: 1.0, l: 0.5, mu: 2.0 };
+    let rod = Rod {
+        m: 1.0,
+        l: 0.5,
+        mu: 2.0,
+    };
     let failure = start(&rod).unwrap_err();
     let Error::Contact(error) = &failure.error else {
         panic!("{}", failure.error)
@@ -410,7 +474,10 @@ fn painleve_s_rod_is_a_typed_error() {
     let expected = 1.0 + 3.0 * c * c - 3.0 * rod.mu * s * c;
     match error.fault {
         ContactFault::Painleve { compliance } => {
-            assert!((compliance - expected).abs() < 1e-12, "{compliance} vs {expected}")
+            assert!(
+                (compliance - expected).abs() < 1e-12,
+                "{compliance} vs {expected}"
+            )
         }
         ref other => panic!("{other}"),
     }

@@ -31,8 +31,12 @@ pub(super) fn parse_contact(input: ParseStream) -> syn::Result<Contact> {
         )
     };
     let on = options.on.ok_or_else(|| missing("on = point"))?;
-    let normal = options.normal.ok_or_else(|| missing("normal = [nx, ny, nz]"))?;
-    let restitution = options.restitution.ok_or_else(|| missing("restitution = e"))?;
+    let normal = options
+        .normal
+        .ok_or_else(|| missing("normal = [nx, ny, nz]"))?;
+    let restitution = options
+        .restitution
+        .ok_or_else(|| missing("restitution = e"))?;
     Ok(Contact {
         name,
         geometry: ContactGeometry::Plane {
@@ -86,7 +90,10 @@ pub(super) fn parse_stop(input: ParseStream) -> syn::Result<Contact> {
         ));
     }
     let restitution = options.restitution.ok_or_else(|| {
-        syn::Error::new(name.span(), format!("stop `{name}` needs `restitution = e`: write `{form}`"))
+        syn::Error::new(
+            name.span(),
+            format!("stop `{name}` needs `restitution = e`: write `{form}`"),
+        )
     })?;
     Ok(Contact {
         name,
@@ -148,7 +155,9 @@ impl Options {
                 if !(0.0..=1.0).contains(&e) {
                     return Err(syn::Error::new(
                         value.span(),
-                        format!("restitution = {e}: Newton's coefficient lies in [0, 1] (0 plastic, 1 elastic)"),
+                        format!(
+                            "restitution = {e}: Newton's coefficient lies in [0, 1] (0 plastic, 1 elastic)"
+                        ),
                     ));
                 }
                 self.restitution = Some(e);
@@ -159,7 +168,9 @@ impl Options {
                 if mu < 0.0 {
                     return Err(syn::Error::new(
                         value.span(),
-                        format!("friction = {mu}: Coulomb's coefficient is ≥ 0 (0 for no friction)"),
+                        format!(
+                            "friction = {mu}: Coulomb's coefficient is ≥ 0 (0 for no friction)"
+                        ),
                     ));
                 }
                 self.friction = Some(mu);
@@ -183,7 +194,9 @@ fn number(e: &Expr, what: &str) -> syn::Result<f64> {
     value.filter(|x| x.is_finite()).ok_or_else(|| {
         syn::Error::new(
             e.span(),
-            format!("`{what}` takes a number written out (e.g. `0.5`), read when the code is derived"),
+            format!(
+                "`{what}` takes a number written out (e.g. `0.5`), read when the code is derived"
+            ),
         )
     })
 }

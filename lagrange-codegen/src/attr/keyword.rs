@@ -145,11 +145,7 @@ pub(super) const KEYS: Words<Key> = Words(&[
         Key::Contact,
         "contact(name, on = point, normal = [0, 0, 1], restitution = e, friction = mu)",
     ),
-    word(
-        "stop",
-        Key::Stop,
-        "stop(name, q >= lower, restitution = e)",
-    ),
+    word("stop", Key::Stop, "stop(name, q >= lower, restitution = e)"),
 ]);
 
 /// An option of `contact(...)` or `stop(...)`.
@@ -165,12 +161,36 @@ pub(super) enum ContactOption {
 
 /// The options of `contact(...)` (a `stop(...)` takes `restitution` alone).
 pub(super) const CONTACT_OPTIONS: Words<ContactOption> = Words(&[
-    word("on", ContactOption::On, "on = point: the point, or the body whose centre carries the sphere"),
-    word("radius", ContactOption::Radius, "radius = r: a sphere of radius r around it (0 if not written)"),
-    word("normal", ContactOption::Normal, "normal = [nx, ny, nz]: the plane's normal, as numbers, towards the free side"),
-    word("offset", ContactOption::Offset, "offset = d: the plane n·x = d (0 if not written)"),
-    word("restitution", ContactOption::Restitution, "restitution = e: Newton's coefficient, a number in [0, 1]"),
-    word("friction", ContactOption::Friction, "friction = mu: Coulomb's coefficient, a number ≥ 0 (0 if not written)"),
+    word(
+        "on",
+        ContactOption::On,
+        "on = point: the point, or the body whose centre carries the sphere",
+    ),
+    word(
+        "radius",
+        ContactOption::Radius,
+        "radius = r: a sphere of radius r around it (0 if not written)",
+    ),
+    word(
+        "normal",
+        ContactOption::Normal,
+        "normal = [nx, ny, nz]: the plane's normal, as numbers, towards the free side",
+    ),
+    word(
+        "offset",
+        ContactOption::Offset,
+        "offset = d: the plane n·x = d (0 if not written)",
+    ),
+    word(
+        "restitution",
+        ContactOption::Restitution,
+        "restitution = e: Newton's coefficient, a number in [0, 1]",
+    ),
+    word(
+        "friction",
+        ContactOption::Friction,
+        "friction = mu: Coulomb's coefficient, a number ≥ 0 (0 if not written)",
+    ),
 ]);
 
 /// The outputs `emit(...)` asks for.

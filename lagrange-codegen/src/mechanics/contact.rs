@@ -45,14 +45,19 @@ pub fn rows(ctx: &mut Context, contacts: &[ContactModel]) -> Vec<ContactRowsMode
     contacts
         .iter()
         .map(|c| {
-            let set = crate::constraint::multiplier_form(ctx, std::slice::from_ref(&c.gap), &c.slips);
+            let set =
+                crate::constraint::multiplier_form(ctx, std::slice::from_ref(&c.gap), &c.slips);
             let bias: Vec<Sym> = (set.gamma.iter())
                 .map(|&g| {
                     let b = ctx.neg(g);
                     ctx.collect(b)
                 })
                 .collect();
-            let tangents = set.jacobian[1..].iter().cloned().zip(bias[1..].iter().copied()).collect();
+            let tangents = set.jacobian[1..]
+                .iter()
+                .cloned()
+                .zip(bias[1..].iter().copied())
+                .collect();
             let normal_bias = bias[0];
             ContactRowsModel {
                 name: c.name.clone(),

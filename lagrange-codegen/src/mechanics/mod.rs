@@ -37,6 +37,7 @@ mod motion;
 mod recursive;
 mod solved;
 
+pub use contact::ContactRowsModel;
 pub use derivatives::RhsJacobians;
 pub use expressions::Expressions;
 pub use extra::{Coriolis, Hamilton};
@@ -47,7 +48,6 @@ pub use model::{
     Articulation, BiasRoute, ConstraintForms, Derivation, Energies, EquationsOfMotion, InputModel,
     Masses, Model, Outputs, Variables,
 };
-pub use contact::ContactRowsModel;
 pub use solved::SolvedDerivatives;
 
 use std::mem::take;

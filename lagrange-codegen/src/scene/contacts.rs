@@ -177,9 +177,10 @@ fn combination(c: [f64; 3], e: &[Expr; 3], span: Span) -> Expr {
         .collect();
     match terms.split_first() {
         None => parse_quote_spanned!(span=> 0.0),
-        Some((first, rest)) => rest
-            .iter()
-            .fold(first.clone(), |acc, t| parse_quote_spanned!(span=> #acc + #t)),
+        Some((first, rest)) => rest.iter().fold(
+            first.clone(),
+            |acc, t| parse_quote_spanned!(span=> #acc + #t),
+        ),
     }
 }
 
@@ -200,7 +201,11 @@ pub(crate) fn tangents(n: [f64; 3]) -> [[f64; 3]; 2] {
     let mut t = [0.0; 3];
     t[axis] = 1.0;
     let along = n[axis];
-    let t = [t[0] - along * n[0], t[1] - along * n[1], t[2] - along * n[2]];
+    let t = [
+        t[0] - along * n[0],
+        t[1] - along * n[1],
+        t[2] - along * n[2],
+    ];
     let size = t.iter().map(|x| x * x).sum::<f64>().sqrt();
     let t1 = t.map(|x| x / size);
     [t1, cross(n, t1)]
@@ -212,7 +217,10 @@ mod tests {
 
     #[test]
     fn the_tangents_of_the_floor_are_x_and_y() {
-        assert_eq!(tangents([0.0, 0.0, 1.0]), [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        assert_eq!(
+            tangents([0.0, 0.0, 1.0]),
+            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+        );
     }
 
     #[test]
@@ -221,7 +229,13 @@ mod tests {
         for n in [[s, 0.0, s], [0.0, -1.0, 0.0], [0.6, 0.0, 0.8]] {
             let [a, b] = tangents(n);
             let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-            for (u, v, want) in [(a, a, 1.0), (b, b, 1.0), (a, b, 0.0), (a, n, 0.0), (b, n, 0.0)] {
+            for (u, v, want) in [
+                (a, a, 1.0),
+                (b, b, 1.0),
+                (a, b, 0.0),
+                (a, n, 0.0),
+                (b, n, 0.0),
+            ] {
                 assert!((dot(u, v) - want).abs() < 1e-15, "{n:?}");
             }
         }

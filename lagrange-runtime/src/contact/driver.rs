@@ -139,7 +139,13 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
         self.settings.check()?;
         check_laws(&self.laws)?;
         let (mut t, mut q, mut v) = (t0, q0, v0);
-        let mut modes = self.settle(t, &q, &mut v, &vec![Mode::Open; self.laws.len()], Forced::Nothing)?;
+        let mut modes = self.settle(
+            t,
+            &q,
+            &mut v,
+            &vec![Mode::Open; self.laws.len()],
+            Forced::Nothing,
+        )?;
         let stalled_within = T::lit(64.0) * T::default_epsilon() * (abs(t0) + abs(t1));
         let (mut count, mut stalled) = (0usize, 0usize);
         loop {
@@ -149,7 +155,11 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
                 return Ok(());
             };
             count += 1;
-            stalled = if ts - t <= stalled_within { stalled + 1 } else { 0 };
+            stalled = if ts - t <= stalled_within {
+                stalled + 1
+            } else {
+                0
+            };
             let name = self.laws[watched.contact()].name;
             if count > self.settings.max_changes {
                 return Err(Error::TooManyEvents {
@@ -264,7 +274,10 @@ fn watch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
                         u[0] * s[0] + u[1] * s[1]
                     })
                 });
-                (Watched::Stops(i), stop.named(format!("{name} stops slipping")))
+                (
+                    Watched::Stops(i),
+                    stop.named(format!("{name} stops slipping")),
+                )
             }
             Mode::Sliding { .. } => (Watched::LiftsOff(i), lift_off(form, i, name)),
             Mode::Sticking => {

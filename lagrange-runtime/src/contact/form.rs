@@ -244,7 +244,12 @@ impl<S, T: Real> ContactForm<'_, S, T> {
 }
 
 impl<S: Contacts<T, N>, T: Real, const N: usize> SecondOrder<T, N> for ContactForm<'_, S, T> {
-    fn acceleration(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+    fn acceleration(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<SVector<T, N>, Error> {
         let accel = self.solve(t, q, v)?.accel;
         if accel.iter().all(|a| a.is_finite()) {
             Ok(accel)

@@ -52,9 +52,15 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             let speed = rows[m.contact].normal.dot(&after);
             let kind = if let Some(accumulation) = m.zeno {
                 let speed = -T::lit(self.laws[m.contact].restitution) * m.before;
-                ChangeKind::Rests { speed, accumulation }
+                ChangeKind::Rests {
+                    speed,
+                    accumulation,
+                }
             } else if m.before < -T::lit(self.settings.rest_speed) {
-                ChangeKind::Impact { before: m.before, after: speed }
+                ChangeKind::Impact {
+                    before: m.before,
+                    after: speed,
+                }
             } else if modes[m.contact] == Mode::Open {
                 ChangeKind::Closes
             } else {
@@ -73,7 +79,9 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             let kind = match (old, new) {
                 (Mode::Sliding { .. }, Mode::Sticking) => ChangeKind::Sticks,
                 (Mode::Sticking, Mode::Sliding { .. }) => ChangeKind::Slips,
-                (Mode::Sliding { .. } | Mode::Sticking, Mode::Open) if forced != Forced::Open(i) => {
+                (Mode::Sliding { .. } | Mode::Sticking, Mode::Open)
+                    if forced != Forced::Open(i) =>
+                {
                     ChangeKind::LiftsOff
                 }
                 _ => continue,
@@ -100,7 +108,10 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         let tolerance = T::lit(self.settings.gap_tolerance);
         // The motion with every contact at the surface open: whether it
         // presses a contact back (the bounces then accumulate).
-        let free = self.form(vec![Mode::Open; rows.len()]).solve(t, q, v)?.accel;
+        let free = self
+            .form(vec![Mode::Open; rows.len()])
+            .solve(t, q, v)?
+            .accel;
         let mut meetings = Vec::new();
         for (i, r) in rows.iter().enumerate() {
             if forced == Forced::Open(i) || r.gap > tolerance {
@@ -114,16 +125,20 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
                 (bounce, None)
             } else if before < -rest {
                 let pressed = r.normal.dot(&free) + r.normal_bias;
-                let accumulation = (bounce > T::zero() && pressed < T::zero()).then(|| {
-                    t + T::lit(2.0) * bounce / (-pressed * (T::one() - e))
-                });
+                let accumulation = (bounce > T::zero() && pressed < T::zero())
+                    .then(|| t + T::lit(2.0) * bounce / (-pressed * (T::one() - e)));
                 (T::zero(), accumulation)
             } else if before <= rest || closed {
                 (T::zero(), None)
             } else {
                 continue;
             };
-            meetings.push(Meeting { contact: i, target, before, zeno });
+            meetings.push(Meeting {
+                contact: i,
+                target,
+                before,
+                zeno,
+            });
         }
         Ok(meetings)
     }
@@ -149,7 +164,9 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         }
         if let Forced::Slide(i) = forced {
             let held = self.form(before.to_vec()).solve(t, q, v)?.tangential[i];
-            modes[i] = Mode::Sliding { hint: opposite(held) };
+            modes[i] = Mode::Sliding {
+                hint: opposite(held),
+            };
         }
         for _ in 0..4 * rows.len() + 4 {
             let form = self.form(modes.clone());
@@ -166,7 +183,11 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             }
             let pulling = (0..rows.len())
                 .filter(|&i| modes[i] != Mode::Open && s.normal[i] < T::zero())
-                .min_by(|&a, &b| s.normal[a].partial_cmp(&s.normal[b]).unwrap_or(core::cmp::Ordering::Equal));
+                .min_by(|&a, &b| {
+                    s.normal[a]
+                        .partial_cmp(&s.normal[b])
+                        .unwrap_or(core::cmp::Ordering::Equal)
+                });
             if let Some(i) = pulling {
                 modes[i] = Mode::Open;
                 continue;
@@ -178,7 +199,9 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
                     && (f[0] * f[0] + f[1] * f[1]).sqrt() > mu * s.normal[i] * T::lit(1.0 + 1e-9)
             });
             if let Some(i) = outside {
-                modes[i] = Mode::Sliding { hint: opposite(s.tangential[i]) };
+                modes[i] = Mode::Sliding {
+                    hint: opposite(s.tangential[i]),
+                };
                 continue;
             }
             // An opened contact must not be driven into the surface.
@@ -186,7 +209,8 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
                 let r = &rows[i];
                 modes[i] == Mode::Open
                     && forced != Forced::Open(i)
-                    && r.normal.dot(&s.accel) + r.normal_bias < -T::lit(1e-9) * (T::one() + s.accel.amax())
+                    && r.normal.dot(&s.accel) + r.normal_bias
+                        < -T::lit(1e-9) * (T::one() + s.accel.amax())
             });
             if let Some(&i) = sinking {
                 return Err(form.fault(i, t, q, ContactFault::NoConsistentMode));
@@ -194,7 +218,9 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             return Ok(modes);
         }
         let first = closing.first().copied().unwrap_or(0);
-        Err(self.form(modes).fault(first, t, q, ContactFault::NoConsistentMode))
+        Err(self
+            .form(modes)
+            .fault(first, t, q, ContactFault::NoConsistentMode))
     }
 
     /// A closing contact's first mode: sliding without friction or without
@@ -202,14 +228,18 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
     fn first_mode(&self, i: usize, rows: &ContactRows<T, N>, v: &SVector<T, N>) -> Mode<T> {
         let rubs = self.laws[i].friction > 0.0 && rows.tangents.iter().any(has_tangent);
         if !rubs {
-            return Mode::Sliding { hint: [T::zero(); 2] };
+            return Mode::Sliding {
+                hint: [T::zero(); 2],
+            };
         }
         let slip = [rows.tangents[0].dot(v), rows.tangents[1].dot(v)];
         let speed = (slip[0] * slip[0] + slip[1] * slip[1]).sqrt();
         if speed <= T::lit(self.settings.stick_speed) {
             Mode::Sticking
         } else {
-            Mode::Sliding { hint: [slip[0] / speed, slip[1] / speed] }
+            Mode::Sliding {
+                hint: [slip[0] / speed, slip[1] / speed],
+            }
         }
     }
 }

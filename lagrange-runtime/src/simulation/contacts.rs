@@ -42,6 +42,12 @@ impl<S, I: Integrator> Simulation<'_, S, I, Unforced, NoEvents> {
     {
         let singular = T::lit(self.settings.tolerances.singular);
         let state = (q0.into(), v0.into(), span);
-        run_contacts(self.system, &self.integrator, self.settings.contacts, singular, state)
+        run_contacts(
+            self.system,
+            &self.integrator,
+            self.settings.contacts,
+            singular,
+            state,
+        )
     }
 }
