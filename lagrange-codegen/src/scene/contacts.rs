@@ -9,7 +9,7 @@ use proc_macro2::{Literal, Span};
 use syn::{Expr, Ident, parse_quote_spanned};
 
 use super::constraint;
-use crate::ast::{ContactGeometry, System};
+use crate::ast::{Contact, ContactGeometry, System};
 use crate::lower::{Lowerer, Mode, NoInputs};
 use crate::lowered::ContactModel;
 
@@ -29,39 +29,8 @@ pub(super) fn contacts(lw: &mut Lowerer, system: &System) -> Vec<ContactModel> {
             );
             continue;
         }
-        let (gap, slips) = match &c.geometry {
-            ContactGeometry::Plane {
-                on,
-                radius,
-                normal,
-                offset,
-            } => {
-                let turns = radius.is_some() && system.bodies.iter().any(|b| b.name == *on);
-                plane(on, radius.as_ref(), *normal, offset.as_ref(), turns)
-            }
-            ContactGeometry::Stop {
-                coordinate,
-                lower,
-                bound,
-            } => {
-                if !system.coordinates.contains(coordinate) {
-                    lw.cx.error_at(
-                        coordinate.span(),
-                        format!(
-                            "stop `{}`: `{coordinate}` is not a coordinate; a stop bounds one of \
-                             `coordinates(...)`",
-                            c.name
-                        ),
-                    );
-                    continue;
-                }
-                let gap: Expr = if *lower {
-                    parse_quote_spanned!(coordinate.span()=> #coordinate - (#bound))
-                } else {
-                    parse_quote_spanned!(coordinate.span()=> (#bound) - #coordinate)
-                };
-                (gap, Vec::new())
-            }
+        let Some((gap, slips)) = written(lw, system, c) else {
+            continue;
         };
         let place = format!("contact `{}`", c.name);
         let gap = lw.lowering_as(place.clone(), |lw| {
@@ -69,8 +38,7 @@ pub(super) fn contacts(lw: &mut Lowerer, system: &System) -> Vec<ContactModel> {
                 constraint(lw, &c.name, &gap, Mode::Configuration)
             })
         });
-        let slips: Option<Vec<_>> = slips
-            .iter()
+        let slips: Option<Vec<_>> = (slips.iter())
             .map(|s| {
                 lw.lowering_as(place.clone(), |lw| {
                     lw.without_inputs(NoInputs::NONHOLONOMIC, |lw| {
@@ -79,29 +47,69 @@ pub(super) fn contacts(lw: &mut Lowerer, system: &System) -> Vec<ContactModel> {
                 })
             })
             .collect();
-        if let (Some(gap), Some(slips)) = (gap, slips) {
-            if moves(lw, gap.value, &slips) {
+        let (Some(gap), Some(slips)) = (gap, slips) else {
+            continue;
+        };
+        if moves(lw, gap.value, &slips) {
+            lw.cx.error_at(
+                c.name.span(),
+                format!(
+                    "contact `{}`: its gap or slip depends on the time itself (a point \
+                     moved by a prescribed motion); contacts on a rheonomic description \
+                     are not supported yet",
+                    c.name
+                ),
+            );
+            continue;
+        }
+        out.push(ContactModel {
+            name: c.name.to_string(),
+            restitution: c.restitution,
+            friction: c.friction,
+            gap,
+            slips,
+        });
+    }
+    out
+}
+
+/// A contact's gap and slips written in the description's language, or
+/// `None` (the error recorded) for a stop on something not a coordinate.
+fn written(lw: &Lowerer, system: &System, c: &Contact) -> Option<(Expr, Vec<Expr>)> {
+    match &c.geometry {
+        ContactGeometry::Plane {
+            on,
+            radius,
+            normal,
+            offset,
+        } => {
+            let turns = radius.is_some() && system.bodies.iter().any(|b| b.name == *on);
+            Some(plane(on, radius.as_ref(), *normal, offset.as_ref(), turns))
+        }
+        ContactGeometry::Stop {
+            coordinate,
+            lower,
+            bound,
+        } => {
+            if !system.coordinates.contains(coordinate) {
                 lw.cx.error_at(
-                    c.name.span(),
+                    coordinate.span(),
                     format!(
-                        "contact `{}`: its gap or slip depends on the time itself (a point \
-                         moved by a prescribed motion); contacts on a rheonomic description \
-                         are not supported yet",
+                        "stop `{}`: `{coordinate}` is not a coordinate; a stop bounds one of \
+                         `coordinates(...)`",
                         c.name
                     ),
                 );
-                continue;
+                return None;
             }
-            out.push(ContactModel {
-                name: c.name.to_string(),
-                restitution: c.restitution,
-                friction: c.friction,
-                gap,
-                slips,
-            });
+            let gap: Expr = if *lower {
+                parse_quote_spanned!(coordinate.span()=> #coordinate - (#bound))
+            } else {
+                parse_quote_spanned!(coordinate.span()=> (#bound) - #coordinate)
+            };
+            Some((gap, Vec::new()))
         }
     }
-    out
 }
 
 /// Whether the gap reads the time, or a slip has a part without velocities
