@@ -150,8 +150,8 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
         let (mut count, mut stalled) = (0usize, 0usize);
         loop {
             self.phases.push((t, modes.clone()));
-            let (watched, stop) = self.stretch(integrator, &modes, (t0, t, t1), q, v)?;
-            let Some((ts, qs, vs)) = stop else {
+            let stop = self.stretch(integrator, &modes, (t0, t, t1), q, v)?;
+            let Some((watched, (ts, qs, vs))) = stop else {
                 return Ok(());
             };
             count += 1;
@@ -193,7 +193,8 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
     }
 
     /// One stretch with `modes`, from (q, v) at t to t1 or to the first
-    /// event; joins its motion and returns the event and the state there.
+    /// event; joins its motion and returns the event and the state there
+    /// (`None` at the end of the span).
     #[allow(clippy::type_complexity)]
     fn stretch<I: Integrator>(
         &mut self,
@@ -202,7 +203,7 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
         (t0, t, t1): (T, T, T),
         q: SVector<T, N>,
         v: SVector<T, N>,
-    ) -> Result<(Watched, Option<(T, SVector<T, N>, SVector<T, N>)>), Error> {
+    ) -> Result<Option<(Watched, (T, SVector<T, N>, SVector<T, N>))>, Error> {
         let form = self.form(modes.to_vec());
         let tolerance = T::lit(self.settings.gap_tolerance);
         let (watched, events) = watch(&form, (t, &q, &v), tolerance)?;
@@ -220,14 +221,10 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
             }
         };
         self.join(piece.trajectory);
-        let stop = piece
+        Ok(piece
             .terminated_by
             .zip(piece.occurrences.last())
-            .map(|(k, o)| (watched[k], (o.t, o.q, o.v)));
-        Ok(match stop {
-            Some((w, state)) => (w, Some(state)),
-            None => (Watched::Touches(0), None),
-        })
+            .map(|(k, o)| (watched[k], (o.t, o.q, o.v))))
     }
 
     pub(super) fn record(&mut self, t: T, contact: usize, kind: ChangeKind<T>) {
