@@ -34,7 +34,7 @@
 //! impact would leave a contact slower than the rest speed
 //! ([`ContactSettings::rest_speed`]) while the free motion presses it back,
 //! the contact closes plastically instead, and the run records
-//! ([`ContactChange::Rests`]) where the bounces would have accumulated,
+//! ([`ChangeKind::Rests`]) where the bounces would have accumulated,
 //! t + 2u / (|a_n| (1 − e)) for an impact leaving at u under the normal
 //! acceleration a_n (exact while a_n is constant over the remaining
 //! bounces). The energy dropped is ½ m u² at most.
