@@ -2,9 +2,10 @@
 //! so that it compiles whatever the user's crate imports; not a public API.
 
 pub use lagrange_runtime::{
-    AccelerationDerivatives, Atlas, Batched, BatchedDifferentiable, Constrained, Differentiable,
-    Driven, DrivenAtlas, Error, EulerRotation, FormVisitor, ForwardRoute, FreeVisitor, JointLimit,
-    Lagrangian, LaneDerivatives, Orientation, Real, Reduced, Route, func,
+    AccelerationDerivatives, Atlas, Batched, BatchedDifferentiable, Constrained, ContactLaw,
+    ContactRows, Contacts, Differentiable, Driven, DrivenAtlas, Error, EulerRotation, FormVisitor,
+    ForwardRoute, FreeVisitor, JointLimit, Lagrangian, LaneDerivatives, Orientation, Real, Reduced,
+    Route, func,
     numeric::lanes,
     physical,
     pose::{Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid},

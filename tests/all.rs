@@ -32,6 +32,7 @@ mod complete_state;
 mod constrained;
 mod constrained_control;
 mod constrained_tangent;
+mod contact;
 mod control;
 mod derivatives;
 mod emitted;

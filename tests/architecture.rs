@@ -20,6 +20,7 @@ const RUNTIME_LAYERS: &[&[&str]] = &[
     &["mechanics"],
     &[
         "atlas",
+        "contact",
         "control",
         "event",
         "linear",

@@ -259,6 +259,8 @@ pub struct System {
     pub generalized_forces: Vec<GeneralizedForce>,
     /// `shape(...)`: visual shapes for the scene, in order.
     pub shapes: Vec<Shape>,
+    /// `contact(...)` and `stop(...)`: unilateral contacts, in order.
+    pub contacts: Vec<Contact>,
     /// Where to point errors that concern the whole description (e.g. "no coordinates").
     pub span: Span,
     /// `urdf = "path"`: the robot file the description was read from.
@@ -281,4 +283,45 @@ pub struct UrdfSource {
     pub snapped: Vec<(String, f64, f64)>,
     /// `inertia = repair`: the links' inertias changed (link, written, used).
     pub repaired: Vec<(String, [f64; 6], [f64; 6])>,
+}
+
+/// A unilateral contact: `contact(name, on = p, normal = [..], ..)` (a point,
+/// or a sphere on a body, against a fixed plane) or `stop(name, q >= lower,
+/// ..)` (a one-sided stop on a coordinate).
+#[derive(Clone, Debug)]
+pub struct Contact {
+    /// The contact's name.
+    pub name: Ident,
+    /// What touches what.
+    pub geometry: ContactGeometry,
+    /// Newton's coefficient of restitution, in [0, 1].
+    pub restitution: f64,
+    /// Coulomb's friction coefficient, ≥ 0 (0 for a stop).
+    pub friction: f64,
+}
+
+/// What touches what in a [`Contact`].
+#[derive(Clone, Debug)]
+pub enum ContactGeometry {
+    /// A point (or a body's centre, with a sphere of `radius` around it)
+    /// against the plane n·x = offset, n a unit normal written as numbers.
+    Plane {
+        /// The point or body.
+        on: Ident,
+        /// The sphere's radius; `None` for a point.
+        radius: Option<Expr>,
+        /// The plane's unit normal, pointing to the side the point stays on.
+        normal: [f64; 3],
+        /// The plane's offset along the normal (0 if not written).
+        offset: Option<Expr>,
+    },
+    /// `q >= bound` (`lower`) or `q <= bound`.
+    Stop {
+        /// The coordinate.
+        coordinate: Ident,
+        /// Whether the bound is a lower one.
+        lower: bool,
+        /// The bound.
+        bound: Expr,
+    },
 }

@@ -17,6 +17,7 @@ use crate::ctxt::Ctxt;
 use crate::loads;
 use keyword::{FORMULATIONS, KEYS, Key, OUTPUTS, Words};
 
+mod contact;
 mod keyword;
 
 /// One top-level item of the attribute.
@@ -41,6 +42,7 @@ enum Item {
     /// The path, and the tolerance within which angles snap to multiples of π/2.
     Urdf(syn::LitStr, crate::urdf::Options),
     Shape(Shape),
+    Contact(crate::ast::Contact),
 }
 
 impl Parse for Item {
@@ -92,6 +94,8 @@ impl Parse for Item {
                 loads::parse_generalized_forces(input).map(Item::GeneralizedForce)
             }
             Key::Shape => crate::shape::parse(input).map(Item::Shape),
+            Key::Contact => contact::parse_contact(input).map(Item::Contact),
+            Key::Stop => contact::parse_stop(input).map(Item::Contact),
         }
     }
 }
@@ -324,6 +328,7 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
         torques: Vec::new(),
         generalized_forces: Vec::new(),
         shapes: Vec::new(),
+        contacts: Vec::new(),
         span: input.ident.span(),
         urdf: None,
     };
@@ -419,6 +424,7 @@ fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
         Item::Torque(t) => system.torques.push(t),
         Item::GeneralizedForce(g) => system.generalized_forces.extend(g),
         Item::Shape(s) => system.shapes.push(s),
+        Item::Contact(c) => system.contacts.push(c),
         Item::Gravity(k, v) => set_once(cx, &mut system.gravity, k, v),
         Item::Potential(k, v) => set_once(cx, &mut system.potential, k, v),
         Item::Dissipation(k, v) => set_once(cx, &mut system.dissipation, k, v),

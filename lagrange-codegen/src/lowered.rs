@@ -60,6 +60,8 @@ pub struct Lowered {
     pub holonomic: Vec<ConstraintModel>,
     /// The nonholonomic constraints, in declaration order.
     pub nonholonomic: Vec<ConstraintModel>,
+    /// The unilateral contacts.
+    pub contacts: Vec<ContactModel>,
     /// The reduced form's speeds, if that form is asked for.
     pub speeds: Option<ReducedSpeeds>,
     /// Whether to build the multiplier form.
@@ -138,6 +140,22 @@ pub struct ConstraintModel {
     /// (nonholonomic) per Cartesian component, composed with ξ(q,t). The reaction of
     /// this constraint on that point is its multiplier times this vector.
     pub cartesian: Vec<(String, Vec<Sym>)>,
+}
+
+/// One unilateral contact after lowering: its gap as a holonomic
+/// expression, its slips (two for a contact on a plane, none for a stop) as
+/// expressions linear in the velocities, and its laws.
+pub struct ContactModel {
+    /// The contact's name.
+    pub name: String,
+    /// Newton's coefficient of restitution.
+    pub restitution: f64,
+    /// Coulomb's coefficient of friction.
+    pub friction: f64,
+    /// φ(q, t).
+    pub gap: ConstraintModel,
+    /// The contact point's slip along each tangent.
+    pub slips: Vec<ConstraintModel>,
 }
 
 /// What the scene draws, lowered: every body's pose and inertia, every

@@ -215,6 +215,7 @@ pub mod mechanics;
 
 // 5 services
 pub mod atlas;
+pub mod contact;
 pub mod control;
 #[cfg(feature = "parallel")]
 pub mod ensemble;
@@ -232,11 +233,14 @@ pub mod task_space;
 mod simulation;
 
 pub use atlas::{AtlasRun, ChartSwitch, ChartedTrajectory};
+pub use contact::{
+    ChangeKind, ContactChange, ContactForce, ContactRun, ContactSettings, ContactState,
+};
 pub use control::{
     Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,
     StateFeedback,
 };
-pub use error::{Error, Failure, LinearError, SettingsError};
+pub use error::{ContactError, ContactFault, Error, Failure, LinearError, SettingsError};
 pub use event::{Direction, Event, EventRun, Events, LimitPolicy, Occurrence};
 pub use linear::{
     Linear, Linearizer, OperatingPoint, complete_state, linearize, linearize_constrained,
@@ -271,4 +275,5 @@ pub use system::{Atlas, Configuration, DrivenAtlas, EulerRotation, FreeVisitor};
 pub use system::{
     Constrained, Driven, FormVisitor, ForwardRoute, JointLimit, Lagrangian, Reduced, Route,
 };
+pub use system::{ContactLaw, ContactRows, Contacts};
 pub use table::Table;

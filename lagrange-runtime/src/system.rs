@@ -12,6 +12,7 @@ use nalgebra::{SMatrix, SVector};
 mod atlas;
 mod configuration;
 mod constrained;
+mod contact;
 mod form;
 pub mod physical;
 mod route;
@@ -19,6 +20,7 @@ mod route;
 pub use atlas::{Atlas, DrivenAtlas, EulerRotation, FreeVisitor};
 pub use configuration::Configuration;
 pub use constrained::{Constrained, Reduced};
+pub use contact::{ContactLaw, ContactRows, Contacts};
 pub use form::FormVisitor;
 pub use route::{ForwardRoute, Route};
 

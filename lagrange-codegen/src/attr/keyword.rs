@@ -87,6 +87,8 @@ pub(super) enum Key {
     Formulation,
     Emit,
     Shape,
+    Contact,
+    Stop,
 }
 
 const fn word<T>(spelling: &'static str, value: T, about: &'static str) -> Word<T> {
@@ -137,6 +139,57 @@ pub(super) const KEYS: Words<Key> = Words(&[
         "shape",
         Key::Shape,
         "shape(body, cylinder(radius = r, length = l, axis = y))",
+    ),
+    word(
+        "contact",
+        Key::Contact,
+        "contact(name, on = point, normal = [0, 0, 1], restitution = e, friction = mu)",
+    ),
+    word("stop", Key::Stop, "stop(name, q >= lower, restitution = e)"),
+]);
+
+/// An option of `contact(...)` or `stop(...)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum ContactOption {
+    On,
+    Radius,
+    Normal,
+    Offset,
+    Restitution,
+    Friction,
+}
+
+/// The options of `contact(...)` (a `stop(...)` takes `restitution` alone).
+pub(super) const CONTACT_OPTIONS: Words<ContactOption> = Words(&[
+    word(
+        "on",
+        ContactOption::On,
+        "on = point: the point, or the body whose centre carries the sphere",
+    ),
+    word(
+        "radius",
+        ContactOption::Radius,
+        "radius = r: a sphere of radius r around it (0 if not written)",
+    ),
+    word(
+        "normal",
+        ContactOption::Normal,
+        "normal = [nx, ny, nz]: the plane's normal, as numbers, towards the free side",
+    ),
+    word(
+        "offset",
+        ContactOption::Offset,
+        "offset = d: the plane n·x = d (0 if not written)",
+    ),
+    word(
+        "restitution",
+        ContactOption::Restitution,
+        "restitution = e: Newton's coefficient, a number in [0, 1]",
+    ),
+    word(
+        "friction",
+        ContactOption::Friction,
+        "friction = mu: Coulomb's coefficient, a number ≥ 0 (0 if not written)",
     ),
 ]);
 
@@ -239,6 +292,7 @@ mod tests {
         once(&KEYS);
         once(&OUTPUTS);
         once(&FORMULATIONS);
+        once(&CONTACT_OPTIONS);
     }
 
     #[test]

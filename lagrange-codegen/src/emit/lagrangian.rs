@@ -44,6 +44,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
     let reduced = impl_reduced(&e, &f, model);
     let driven = impl_driven(&e, &f, model);
     let posed = impl_posed(&e, &f, model, &system.scalar);
+    let contacts = super::contacts::impl_contacts(&e, &f, model);
     let docs_macro = &docs.name;
     let docs_text = &docs.equations;
     quote! {
@@ -61,6 +62,7 @@ pub fn impl_lagrangian(system: &System, model: &Model) -> TokenStream {
         #reduced
         #driven
         #posed
+        #contacts
         #output_items
     }
 }

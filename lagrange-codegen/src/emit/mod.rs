@@ -7,6 +7,7 @@
 
 mod atlas;
 mod constrained;
+mod contacts;
 mod driven;
 mod emitter;
 mod lagrangian;

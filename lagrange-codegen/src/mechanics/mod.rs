@@ -18,6 +18,7 @@
 //! single function did, so the emitted code is unchanged byte for byte.
 
 mod chart;
+mod contact;
 mod cyclic;
 mod derivatives;
 mod energy;
@@ -36,6 +37,7 @@ mod motion;
 mod recursive;
 mod solved;
 
+pub use contact::ContactRowsModel;
 pub use derivatives::RhsJacobians;
 pub use expressions::Expressions;
 pub use extra::{Coriolis, Hamilton};
@@ -134,13 +136,16 @@ pub fn derive_with(mut lowered: Lowered, route: Route) -> Result<Model, DeriveEr
     let Lowered {
         holonomic,
         nonholonomic,
+        contacts,
         speeds,
         multipliers,
         extras,
         ..
     } = lowered;
     let constrained = Constrained::new(&holonomic, &nonholonomic, multipliers, speeds);
-    finish(ctx, derived, constrained, &extras)
+    let mut model = finish(ctx, derived, constrained, &extras)?;
+    model.contacts = contact::rows(&mut model.ctx, &contacts);
+    Ok(model)
 }
 
 /// The unconstrained system: M and h by the route chosen, Q with the inputs'
@@ -527,6 +532,7 @@ fn finish(
         },
         hoisted,
         poses: d.poses,
+        contacts: Vec::new(),
     };
     model.variables.cyclic = cyclic::cyclic(&model);
     Ok(model)

@@ -45,6 +45,9 @@ pub struct Model {
     pub hoisted: Hoisted,
     /// The bodies' poses, the points' positions and the shapes, for the scene.
     pub poses: Poses,
+    /// The unilateral contacts' rows (derived last, so that a description
+    /// without contacts has the same nodes as before).
+    pub contacts: Vec<super::contact::ContactRowsModel>,
 }
 
 impl Model {

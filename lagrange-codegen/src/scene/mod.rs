@@ -2,6 +2,7 @@
 //! bodies and points in dependency order (see `order`), then forces, constraints
 //! and speeds. Produces [`Lowered`] for `mechanics`.
 
+mod contacts;
 mod items;
 use lagrange_symbolic::Expr as Sym;
 use syn::{BinOp, Expr, Ident};
@@ -49,6 +50,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     crate::physical::free_bodies(&lw, &system.bodies, &items.skeleton, &items.spins);
     let applied = applied(&mut lw, system);
     let (holonomic, nonholonomic) = constraints(&mut lw, system);
+    let contacts = contacts::contacts(&mut lw, system);
     let formulations = check::formulations(system);
     let speeds = formulations
         .contains(&Formulation::Reduced)
@@ -88,6 +90,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         generalized_forces: applied.generalized_forces,
         holonomic,
         nonholonomic,
+        contacts,
         speeds,
         multipliers: formulations.contains(&Formulation::Multipliers),
         extras: system.extras.iter().map(|(_, e)| *e).collect(),

@@ -438,6 +438,11 @@ pub enum Error {
     #[error(transparent)]
     Plan(#[from] PlanError),
 
+    /// A contact run met a rigid-contact problem without an answer (or with
+    /// many), or contacts it cannot use.
+    #[error(transparent)]
+    Contact(#[from] ContactError),
+
     /// Writing output (CSV) failed.
     #[error("i/o error: {0}")]
     Io(#[from] std::io::Error),
@@ -445,6 +450,7 @@ pub enum Error {
 
 mod checks;
 mod clone;
+mod contact;
 mod failure;
 mod linear;
 mod plan;
@@ -452,6 +458,7 @@ mod settings;
 mod singular;
 
 pub(crate) use checks::{check_finite_inputs, check_tolerance, unit_quaternions};
+pub use contact::{ContactError, ContactFault};
 pub use failure::{Failure, Progress};
 pub use linear::{LinearError, StatePoint};
 pub use plan::PlanError;

@@ -11,6 +11,7 @@
 
 mod atlas;
 mod atlas_control;
+mod contacts;
 mod control_run;
 mod drive;
 mod form;
@@ -24,6 +25,7 @@ pub use kind::Runs;
 #[allow(deprecated)]
 pub use options::{Control, ControlledSimulation, EventSimulation, NoEvents, Unforced};
 
+use crate::contact::ContactSettings;
 use crate::error::{Error, Failure, Progress};
 use crate::event::LimitPolicy;
 use crate::mechanics::Tolerances;
@@ -116,6 +118,7 @@ pub(crate) struct Settings {
     pub least_squares: bool,
     pub project_initial: bool,
     pub limits: LimitPolicy,
+    pub contacts: ContactSettings,
 }
 
 impl Default for Settings {
@@ -126,6 +129,7 @@ impl Default for Settings {
             least_squares: false,
             project_initial: false,
             limits: LimitPolicy::Stop,
+            contacts: ContactSettings::default(),
         }
     }
 }
@@ -218,6 +222,14 @@ impl<'a, S, I, C, E> Simulation<'a, S, I, C, E> {
     /// crossing; the error's `t` is the crossing.
     pub fn joint_limits(mut self, policy: LimitPolicy) -> Self {
         self.settings.limits = policy;
+        self
+    }
+
+    /// Sets the thresholds of [`run_contacts`](Self::run_contacts): the rest
+    /// speed below which bounces end, the stick speed, the gap tolerance and
+    /// the budget of changes ([`ContactSettings`]).
+    pub fn contact_settings(mut self, settings: ContactSettings) -> Self {
+        self.settings.contacts = settings;
         self
     }
 

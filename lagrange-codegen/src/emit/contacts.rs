@@ -1,0 +1,80 @@
+//! `impl Contacts`: the contacts' laws, and each contact's rows as one
+//! program in (q, q̇, t). Emitted only for a description with contacts.
+
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+use super::Frame;
+use super::emitter::Emitter;
+use crate::mechanics::Model;
+
+pub(super) fn impl_contacts(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    if model.contacts.is_empty() {
+        return quote!();
+    }
+    let n = model.dof();
+    let s = &f.s;
+    let nl = &f.n;
+    let vec_n = f.vec(nl);
+    let p = quote!(::lagrange::__private);
+    let zero_row = quote!(<#vec_n>::zeros());
+    let zero = e.constant(0.0);
+    let laws = model.contacts.iter().map(|c| {
+        let name = &c.name;
+        let e = c.restitution;
+        let mu = c.friction;
+        quote!(#p::ContactLaw { name: #name, restitution: #e, friction: #mu })
+    });
+    let arms = model.contacts.iter().enumerate().map(|(i, c)| {
+        let (lets, outs) = e.program(&c.outputs());
+        let row = |k: usize| {
+            let entries = &outs[k..k + n];
+            quote!(<#vec_n>::from([#(#entries),*]))
+        };
+        let gap = &outs[0];
+        let normal = row(1);
+        let normal_bias = &outs[n + 1];
+        let (tangents, biases) = match c.tangents.len() {
+            2 => {
+                let (a, b) = (row(n + 2), row(2 * n + 3));
+                let (ba, bb) = (&outs[2 * n + 2], &outs[3 * n + 3]);
+                (quote!([#a, #b]), quote!([#ba, #bb]))
+            }
+            _ => (quote!([#zero_row, #zero_row]), quote!([#zero, #zero])),
+        };
+        let il = Literal::usize_unsuffixed(i);
+        quote! {
+            #il => {
+                #lets
+                ::core::option::Option::Some(#p::ContactRows {
+                    gap: #gap,
+                    normal: #normal,
+                    normal_bias: #normal_bias,
+                    tangents: #tangents,
+                    tangent_bias: #biases,
+                })
+            }
+        }
+    });
+    let ident = f.ident;
+    let ig = &f.impl_generics;
+    let tg = &f.ty_generics;
+    let wc = &f.where_clause;
+    quote! {
+        #[automatically_derived]
+        #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
+        impl #ig #p::Contacts<#s, #nl> for #ident #tg #wc {
+            fn contact_laws(&self) -> ::std::vec::Vec<#p::ContactLaw> {
+                ::std::vec![#(#laws),*]
+            }
+
+            #[inline]
+            fn contact_rows(&self, index: usize, q: &#vec_n, v: &#vec_n, t: #s) -> ::core::option::Option<#p::ContactRows<#s, #nl>> {
+                match index {
+                    #(#arms)*
+                    _ => ::core::option::Option::None,
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,251 @@
+//! The contacts lowered: each one's gap φ(q, t) as a holonomic expression
+//! and, for a contact on a plane, its contact point's slip along the plane's
+//! two tangents as expressions linear in the velocities. They are written in
+//! the description's own language (`p.x`, `dot(p.x)`, `B.omega_x`) at the
+//! contact's tokens and lowered like the user's constraints, so a name that
+//! does not resolve is reported there.
+
+use proc_macro2::{Literal, Span};
+use syn::{Expr, Ident, parse_quote_spanned};
+
+use super::constraint;
+use crate::ast::{Contact, ContactGeometry, System};
+use crate::lower::{Lowerer, Mode, NoInputs};
+use crate::lowered::ContactModel;
+
+/// Every contact of the description, lowered (those with errors left out;
+/// the errors are in the context).
+pub(super) fn contacts(lw: &mut Lowerer, system: &System) -> Vec<ContactModel> {
+    let mut out = Vec::new();
+    for c in &system.contacts {
+        if let Some(o) = system.orientations.first() {
+            lw.cx.error_at(
+                c.name.span(),
+                format!(
+                    "contact `{}`: contacts on a description with a free orientation (`{o}`) \
+                     are not supported yet; write the rotation in Euler angles",
+                    c.name
+                ),
+            );
+            continue;
+        }
+        let Some((gap, slips)) = written(lw, system, c) else {
+            continue;
+        };
+        let place = format!("contact `{}`", c.name);
+        let gap = lw.lowering_as(place.clone(), |lw| {
+            lw.without_inputs(NoInputs::HOLONOMIC, |lw| {
+                constraint(lw, &c.name, &gap, Mode::Configuration)
+            })
+        });
+        let slips: Option<Vec<_>> = (slips.iter())
+            .map(|s| {
+                lw.lowering_as(place.clone(), |lw| {
+                    lw.without_inputs(NoInputs::NONHOLONOMIC, |lw| {
+                        constraint(lw, &c.name, s, Mode::State)
+                    })
+                })
+            })
+            .collect();
+        let (Some(gap), Some(slips)) = (gap, slips) else {
+            continue;
+        };
+        if moves(lw, gap.value, &slips) {
+            lw.cx.error_at(
+                c.name.span(),
+                format!(
+                    "contact `{}`: its gap or slip depends on the time itself (a point \
+                     moved by a prescribed motion); contacts on a rheonomic description \
+                     are not supported yet",
+                    c.name
+                ),
+            );
+            continue;
+        }
+        out.push(ContactModel {
+            name: c.name.to_string(),
+            restitution: c.restitution,
+            friction: c.friction,
+            gap,
+            slips,
+        });
+    }
+    out
+}
+
+/// A contact's gap and slips written in the description's language, or
+/// `None` (the error recorded) for a stop on something not a coordinate.
+fn written(lw: &Lowerer, system: &System, c: &Contact) -> Option<(Expr, Vec<Expr>)> {
+    match &c.geometry {
+        ContactGeometry::Plane {
+            on,
+            radius,
+            normal,
+            offset,
+        } => {
+            let turns = radius.is_some() && system.bodies.iter().any(|b| b.name == *on);
+            Some(plane(on, radius.as_ref(), *normal, offset.as_ref(), turns))
+        }
+        ContactGeometry::Stop {
+            coordinate,
+            lower,
+            bound,
+        } => {
+            if !system.coordinates.contains(coordinate) {
+                lw.cx.error_at(
+                    coordinate.span(),
+                    format!(
+                        "stop `{}`: `{coordinate}` is not a coordinate; a stop bounds one of \
+                         `coordinates(...)`",
+                        c.name
+                    ),
+                );
+                return None;
+            }
+            let gap: Expr = if *lower {
+                parse_quote_spanned!(coordinate.span()=> #coordinate - (#bound))
+            } else {
+                parse_quote_spanned!(coordinate.span()=> (#bound) - #coordinate)
+            };
+            Some((gap, Vec::new()))
+        }
+    }
+}
+
+/// Whether the gap reads the time, or a slip has a part without velocities
+/// (the runtime's contact rows are those of a scleronomic contact).
+fn moves(
+    lw: &mut Lowerer,
+    gap: lagrange_symbolic::Expr,
+    slips: &[crate::lowered::ConstraintModel],
+) -> bool {
+    let ctx = &mut lw.ctx;
+    let t = ctx.time();
+    let zero = ctx.zero();
+    let rate = ctx.diff(gap, t);
+    let rate = ctx.collect(rate);
+    let at_rest: Vec<_> = ctx.velocities().into_iter().map(|v| (v, zero)).collect();
+    rate != zero
+        || slips.iter().any(|s| {
+            let b = ctx.substitute(s.value, &at_rest);
+            ctx.collect(b) != zero
+        })
+}
+
+/// The gap n·x − offset − radius of a point (or sphere centre) `on` and its
+/// slips t_k·ẋ − r (n × t_k)·ω, the ω term for a sphere on a body.
+fn plane(
+    on: &Ident,
+    radius: Option<&Expr>,
+    n: [f64; 3],
+    offset: Option<&Expr>,
+    turns: bool,
+) -> (Expr, Vec<Expr>) {
+    let span = on.span();
+    let zero: Expr = parse_quote_spanned!(span=> 0.0);
+    let offset = offset.unwrap_or(&zero);
+    let radius = radius.unwrap_or(&zero);
+    let position = ["x", "y", "z"].map(|c| field(on, c, span));
+    let gap = combination(n, &position, span);
+    let gap: Expr = parse_quote_spanned!(span=> #gap - (#offset) - (#radius));
+    let rates: [Expr; 3] = position.map(|p| parse_quote_spanned!(span=> dot(#p)));
+    let omega = ["omega_x", "omega_y", "omega_z"].map(|c| field(on, c, span));
+    let slips = tangents(n)
+        .into_iter()
+        .map(|t| {
+            let along = combination(t, &rates, span);
+            if turns {
+                let lever = combination(cross(n, t), &omega, span);
+                parse_quote_spanned!(span=> #along - (#radius) * (#lever))
+            } else {
+                along
+            }
+        })
+        .collect();
+    (gap, slips)
+}
+
+/// `base.member`.
+fn field(base: &Ident, member: &str, span: Span) -> Expr {
+    let member = Ident::new(member, span);
+    parse_quote_spanned!(span=> #base.#member)
+}
+
+/// Σ c_i e_i, leaving out the zero coefficients (so that a planar
+/// description's out-of-plane rows come out as exact zeros).
+fn combination(c: [f64; 3], e: &[Expr; 3], span: Span) -> Expr {
+    let terms: Vec<Expr> = c
+        .iter()
+        .zip(e)
+        .filter(|(ci, _)| **ci != 0.0)
+        .map(|(ci, ei)| {
+            let l = Literal::f64_unsuffixed(*ci);
+            parse_quote_spanned!(span=> #l * #ei)
+        })
+        .collect();
+    match terms.split_first() {
+        None => parse_quote_spanned!(span=> 0.0),
+        Some((first, rest)) => rest.iter().fold(
+            first.clone(),
+            |acc, t| parse_quote_spanned!(span=> #acc + #t),
+        ),
+    }
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Two unit tangents of the plane with unit normal n, (t₁, t₂ = n × t₁):
+/// t₁ from the world axis least along n, so n = z gives x and y.
+pub(crate) fn tangents(n: [f64; 3]) -> [[f64; 3]; 2] {
+    let axis = (0..3)
+        .min_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+        .unwrap_or(0);
+    let mut t = [0.0; 3];
+    t[axis] = 1.0;
+    let along = n[axis];
+    let t = [
+        t[0] - along * n[0],
+        t[1] - along * n[1],
+        t[2] - along * n[2],
+    ];
+    let size = t.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let t1 = t.map(|x| x / size);
+    [t1, cross(n, t1)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tangents;
+
+    #[test]
+    fn the_tangents_of_the_floor_are_x_and_y() {
+        assert_eq!(
+            tangents([0.0, 0.0, 1.0]),
+            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+        );
+    }
+
+    #[test]
+    fn tangents_are_orthonormal_and_normal_to_n() {
+        let s = 0.5f64.sqrt();
+        for n in [[s, 0.0, s], [0.0, -1.0, 0.0], [0.6, 0.0, 0.8]] {
+            let [a, b] = tangents(n);
+            let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+            for (u, v, want) in [
+                (a, a, 1.0),
+                (b, b, 1.0),
+                (a, b, 0.0),
+                (a, n, 0.0),
+                (b, n, 0.0),
+            ] {
+                assert!((dot(u, v) - want).abs() < 1e-15, "{n:?}");
+            }
+        }
+    }
+}

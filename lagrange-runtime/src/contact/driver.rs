@@ -1,0 +1,339 @@
+//! The run from event to event: each stretch integrated with its contacts'
+//! modes fixed and the events that end it watched on the dense output; at
+//! each event the impacts and the new modes.
+
+use super::form::{ContactForm, Mode, has_tangent};
+use super::run::{ChangeKind, ContactChange, ContactRun, ContactSettings};
+use crate::error::{Error, Failure, SettingsError};
+use crate::event::{Event, Events};
+use crate::numeric::Real;
+use crate::numeric::func::abs;
+use crate::ode::{Continuation, Integrator, Sample, Trajectory, check_problem};
+use crate::system::{ContactLaw, ContactRows, Contacts};
+use nalgebra::SVector;
+use std::ops::Range;
+
+/// What the zero of a stretch's event means.
+#[derive(Clone, Copy, Debug)]
+enum Watched {
+    Touches(usize),
+    LiftsOff(usize),
+    Stops(usize),
+    Slips(usize),
+}
+
+/// What an event imposes on the next choice of modes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Forced {
+    Nothing,
+    Open(usize),
+    Slide(usize),
+}
+
+/// A contact run in progress: the system, its laws and what has been
+/// computed so far.
+pub(super) struct Driver<'s, S, T: Real, const N: usize> {
+    pub(super) system: &'s S,
+    pub(super) laws: Vec<ContactLaw>,
+    pub(super) settings: ContactSettings,
+    pub(super) singular: T,
+    trajectory: Option<Trajectory<T, N>>,
+    changes: Vec<ContactChange<T>>,
+    phases: Vec<(T, Vec<Mode<T>>)>,
+}
+
+/// Runs `system` with its contacts from (q0, v0) over `span`.
+pub(crate) fn run_contacts<S: Contacts<T, N>, I: Integrator, T: Real, const N: usize>(
+    system: &S,
+    integrator: &I,
+    settings: ContactSettings,
+    singular: T,
+    (q0, v0, span): (SVector<T, N>, SVector<T, N>, Range<T>),
+) -> Result<ContactRun<T, N>, Failure<ContactRun<T, N>>> {
+    let mut driver = Driver {
+        system,
+        laws: system.contact_laws(),
+        settings,
+        singular,
+        trajectory: None,
+        changes: Vec::new(),
+        phases: Vec::new(),
+    };
+    let outcome = driver.drive(integrator, q0, v0, span.clone());
+    let trajectory = match driver.trajectory.take() {
+        Some(t) => t,
+        None => {
+            let form = driver.form(vec![Mode::Open; driver.laws.len()]);
+            Trajectory::start(span.start, q0, v0, Sample::of(&form, span.start, &q0, &v0))
+        }
+    };
+    let run = ContactRun {
+        trajectory,
+        changes: driver.changes,
+        phases: driver.phases,
+        singular,
+        stick_speed: T::lit(settings.stick_speed),
+    };
+    match outcome {
+        Ok(()) => Ok(run),
+        Err(error) => Err(Failure::new(error, run)),
+    }
+}
+
+/// e ∈ [0, 1] and μ ≥ 0, finite.
+fn check_laws(laws: &[ContactLaw]) -> Result<(), Error> {
+    for law in laws {
+        let name = law.name;
+        if !(0.0..=1.0).contains(&law.restitution) {
+            return Err(SettingsError::Value {
+                owner: "contact law",
+                setting: "restitution",
+                value: law.restitution,
+                requirement: format!("in [0, 1] (contact `{name}`)"),
+            }
+            .into());
+        }
+        if !(law.friction.is_finite() && law.friction >= 0.0) {
+            return Err(SettingsError::Value {
+                owner: "contact law",
+                setting: "friction",
+                value: law.friction,
+                requirement: format!("non-negative and finite (contact `{name}`)"),
+            }
+            .into());
+        }
+    }
+    Ok(())
+}
+
+impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
+    pub(super) fn form(&self, modes: Vec<Mode<T>>) -> ContactForm<'_, S, T> {
+        ContactForm {
+            system: self.system,
+            laws: &self.laws,
+            modes,
+            singular: self.singular,
+            stick_speed: T::lit(self.settings.stick_speed),
+        }
+    }
+
+    fn join(&mut self, piece: Trajectory<T, N>) {
+        match &mut self.trajectory {
+            Some(whole) => {
+                whole.append(piece);
+            }
+            None => self.trajectory = Some(piece),
+        }
+    }
+
+    /// The stretches from event to event, to the end of the span.
+    fn drive<I: Integrator>(
+        &mut self,
+        integrator: &I,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+        span: Range<T>,
+    ) -> Result<(), Error> {
+        let (t0, t1) = (span.start, span.end);
+        check_problem(t0, t1, &q0, &v0)?;
+        self.settings.check()?;
+        check_laws(&self.laws)?;
+        let (mut t, mut q, mut v) = (t0, q0, v0);
+        let mut modes = self.settle(
+            t,
+            &q,
+            &mut v,
+            &vec![Mode::Open; self.laws.len()],
+            Forced::Nothing,
+        )?;
+        let stalled_within = T::lit(64.0) * T::default_epsilon() * (abs(t0) + abs(t1));
+        let (mut count, mut stalled) = (0usize, 0usize);
+        loop {
+            self.phases.push((t, modes.clone()));
+            let stop = self.stretch(integrator, &modes, (t0, t, t1), q, v)?;
+            let Some((watched, (ts, qs, vs))) = stop else {
+                return Ok(());
+            };
+            count += 1;
+            stalled = if ts - t <= stalled_within {
+                stalled + 1
+            } else {
+                0
+            };
+            let name = self.laws[watched.contact()].name;
+            if count > self.settings.max_changes {
+                return Err(Error::TooManyEvents {
+                    t: ts.to_f64(),
+                    event: name.to_string(),
+                    max_events: self.settings.max_changes,
+                });
+            }
+            if stalled >= 8 {
+                return Err(Error::EventsAccumulate {
+                    t: ts.to_f64(),
+                    event: name.to_string(),
+                    count: stalled,
+                });
+            }
+            crate::event::within_budget(self.trajectory.as_ref(), integrator.max_steps(), ts)?;
+            (t, q, v) = (ts, qs, vs);
+            if t1 - t <= stalled_within {
+                return Ok(());
+            }
+            let forced = match watched {
+                Watched::Touches(_) | Watched::Stops(_) => Forced::Nothing,
+                Watched::LiftsOff(i) => Forced::Open(i),
+                Watched::Slips(i) => Forced::Slide(i),
+            };
+            if let Watched::LiftsOff(i) = watched {
+                self.record(t, i, ChangeKind::LiftsOff);
+            }
+            modes = self.settle(t, &q, &mut v, &modes, forced)?;
+        }
+    }
+
+    /// One stretch with `modes`, from (q, v) at t to t1 or to the first
+    /// event; joins its motion and returns the event and the state there
+    /// (`None` at the end of the span).
+    #[allow(clippy::type_complexity)]
+    fn stretch<I: Integrator>(
+        &mut self,
+        integrator: &I,
+        modes: &[Mode<T>],
+        (t0, t, t1): (T, T, T),
+        q: SVector<T, N>,
+        v: SVector<T, N>,
+    ) -> Result<Option<(Watched, (T, SVector<T, N>, SVector<T, N>))>, Error> {
+        let form = self.form(modes.to_vec());
+        let tolerance = T::lit(self.settings.gap_tolerance);
+        let (watched, events) = watch(&form, (t, &q, &v), tolerance)?;
+        let from = self
+            .trajectory
+            .as_ref()
+            .map_or(Continuation::start(t0), Trajectory::continuation);
+        let piece = events.continue_run(integrator, (&form, &[]), from, t, t1, q, v);
+        drop(events);
+        let piece = match piece {
+            Ok(piece) => piece,
+            Err(failure) => {
+                self.join(failure.partial.trajectory);
+                return Err(failure.error);
+            }
+        };
+        self.join(piece.trajectory);
+        Ok(piece
+            .terminated_by
+            .zip(piece.occurrences.last())
+            .map(|(k, o)| (watched[k], (o.t, o.q, o.v))))
+    }
+
+    pub(super) fn record(&mut self, t: T, contact: usize, kind: ChangeKind<T>) {
+        self.changes.push(ContactChange { t, contact, kind });
+    }
+}
+
+impl Watched {
+    fn contact(self) -> usize {
+        match self {
+            Watched::Touches(i) | Watched::LiftsOff(i) | Watched::Stops(i) | Watched::Slips(i) => i,
+        }
+    }
+}
+
+/// The events that end a stretch in the form's modes, all terminal: an open
+/// contact's gap, a closed one's normal force, a sliding one's slip along
+/// the direction it has at the start, a sticking one's margin to the cone.
+#[allow(clippy::type_complexity)]
+fn watch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
+    form: &'f ContactForm<'_, S, T>,
+    (t, q, v): (T, &SVector<T, N>, &SVector<T, N>),
+    tolerance: T,
+) -> Result<(Vec<Watched>, Events<'f, T, N>), Error> {
+    let nan = T::lit(f64::NAN);
+    let mut watched = Vec::new();
+    let mut events = Events::new();
+    for (i, mode) in form.modes.iter().enumerate() {
+        let name = form.laws[i].name;
+        let mu = T::lit(form.laws[i].friction);
+        let (what, event) = match *mode {
+            Mode::Open => (
+                Watched::Touches(i),
+                touch(form, i, (t, q, v), tolerance).named(format!("{name} touches")),
+            ),
+            Mode::Sliding { hint } if mu > T::zero() && slips(&form.rows(i, t, q, v)?) => {
+                let r = form.rows(i, t, q, v)?;
+                let u = form.slip_direction(ContactForm::<S, T>::slip(&r, v), hint);
+                watched.push(Watched::LiftsOff(i));
+                events = events.with(lift_off(form, i, name));
+                let stop = Event::new(move |t, q, v| {
+                    form.rows(i, t, q, v).map_or(nan, |r| {
+                        let s = ContactForm::<S, T>::slip(&r, v);
+                        u[0] * s[0] + u[1] * s[1]
+                    })
+                });
+                (
+                    Watched::Stops(i),
+                    stop.named(format!("{name} stops slipping")),
+                )
+            }
+            Mode::Sliding { .. } => (Watched::LiftsOff(i), lift_off(form, i, name)),
+            Mode::Sticking => {
+                watched.push(Watched::LiftsOff(i));
+                events = events.with(lift_off(form, i, name));
+                let margin = Event::new(move |t, q, v| {
+                    form.solve(t, q, v).map_or(nan, |s| {
+                        let f = s.tangential[i];
+                        mu * s.normal[i] - (f[0] * f[0] + f[1] * f[1]).sqrt()
+                    })
+                });
+                (Watched::Slips(i), margin.named(format!("{name} slips")))
+            }
+        };
+        watched.push(what);
+        events = events.with(event.falling().terminal());
+    }
+    Ok((watched, events))
+}
+
+/// The event of an open contact's gap falling to zero. A contact that
+/// leaves the surface at the start (a bounce) is watched through its gap
+/// divided by the time since, φ(t)/(t − t₀), which starts at the normal
+/// speed and falls through zero when the gap does: the gap itself starts at
+/// zero, without a sign, and a bounce shorter than the integrator's step
+/// would be missed.
+fn touch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
+    form: &'f ContactForm<'_, S, T>,
+    i: usize,
+    (t0, q0, v0): (T, &SVector<T, N>, &SVector<T, N>),
+    tolerance: T,
+) -> Event<'f, T, N> {
+    let nan = T::lit(f64::NAN);
+    let leaving = form
+        .rows(i, t0, q0, v0)
+        .is_ok_and(|r| r.gap <= tolerance && r.normal.dot(v0) > T::zero());
+    Event::new(move |t, q, v| {
+        form.rows(i, t, q, v).map_or(nan, |r| match leaving {
+            true if t > t0 => r.gap / (t - t0),
+            true => r.normal.dot(v),
+            false => r.gap,
+        })
+    })
+}
+
+/// Whether a contact can slip at all (it has a tangent row).
+fn slips<T: Real, const N: usize>(rows: &ContactRows<T, N>) -> bool {
+    rows.tangents.iter().any(has_tangent)
+}
+
+/// The event of a closed contact's normal force falling to zero.
+fn lift_off<'f, S: Contacts<T, N>, T: Real, const N: usize>(
+    form: &'f ContactForm<'_, S, T>,
+    i: usize,
+    name: &str,
+) -> Event<'f, T, N> {
+    let nan = T::lit(f64::NAN);
+    Event::new(move |t, q, v| form.solve(t, q, v).map_or(nan, |s| s.normal[i]))
+        .named(format!("{name} lifts off"))
+        .falling()
+        .terminal()
+}

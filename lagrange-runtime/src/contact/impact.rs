@@ -1,0 +1,102 @@
+//! Impacts: Newton's restitution law on the contacts that meet at one
+//! instant, solved as one impulse problem.
+//!
+//! The normal impulses Λ ≥ 0 change the velocities by M⁻¹ Nᵀ Λ; each
+//! contact's normal speed afterwards must reach at least its target (−e times
+//! the speed before for an impact, zero for a contact that closes or stays
+//! closed), and a contact that pushes (Λ_i > 0) reaches exactly its target:
+//! a linear complementarity problem in the few contacts involved, solved
+//! exactly by trying their subsets (the contacts are few; with independent
+//! normals N M⁻¹ Nᵀ is positive definite and the answer unique).
+
+use super::form::ContactForm;
+use crate::error::{ContactFault, Error};
+use crate::numeric::Real;
+use crate::numeric::cholesky::Cholesky;
+use crate::system::Contacts;
+use nalgebra::{DMatrix, DVector, SVector};
+
+/// More contacts meeting at one instant than the subsets can be tried for.
+const MOST_SIMULTANEOUS: usize = 12;
+
+/// The velocities after the impulses on the contacts `set`, each with its
+/// target normal speed, at (t, q, v).
+///
+/// # Errors
+/// [`ContactFault::NoImpulse`] when no subset solves the problem;
+/// [`ContactFault::ImpactGainsEnergy`] when the answer would raise the
+/// kinetic energy.
+pub(crate) fn impulse<S: Contacts<T, N>, T: Real, const N: usize>(
+    form: &ContactForm<'_, S, T>,
+    set: &[(usize, T)],
+    t: T,
+    q: &SVector<T, N>,
+    v: &SVector<T, N>,
+) -> Result<SVector<T, N>, Error> {
+    let k = set.len();
+    if k == 0 {
+        return Ok(*v);
+    }
+    let fail = |fault| form.fault(set[0].0, t, q, fault);
+    if k > MOST_SIMULTANEOUS {
+        return Err(fail(ContactFault::NoImpulse));
+    }
+    let m = form.system.mass_matrix(q, t);
+    let chol = Cholesky::new(m, form.singular).map_err(|_| fail(ContactFault::NoImpulse))?;
+    let mut normals = Vec::with_capacity(k);
+    for &(i, _) in set {
+        normals.push(form.rows(i, t, q, v)?.normal);
+    }
+    let responses: Vec<SVector<T, N>> = normals.iter().map(|n| chol.solve(*n)).collect();
+    let a = DMatrix::from_fn(k, k, |r, c| normals[r].dot(&responses[c]));
+    // What each contact's speed lacks: target − speed before.
+    let lack = DVector::from_fn(k, |r, _| set[r].1 - normals[r].dot(v));
+    let scale = lack.amax().max(T::lit(f64::MIN_POSITIVE));
+    let slack = T::lit(1e-12) * scale;
+    let impulses = (0..1usize << k)
+        .find_map(|subset| pushing(&a, &lack, subset, slack))
+        .ok_or_else(|| fail(ContactFault::NoImpulse))?;
+    let mut after = *v;
+    for (c, response) in responses.iter().enumerate() {
+        after += response * impulses[c];
+    }
+    let before_energy = form.system.kinetic_energy(q, v, t);
+    let after_energy = form.system.kinetic_energy(q, &after, t);
+    let allowance = T::lit(1e-12) * before_energy.abs() + T::lit(f64::MIN_POSITIVE);
+    if after_energy > before_energy + allowance {
+        return Err(fail(ContactFault::ImpactGainsEnergy {
+            before: before_energy.to_f64(),
+            after: after_energy.to_f64(),
+        }));
+    }
+    Ok(after)
+}
+
+/// The impulses if the contacts in `subset` (a bit mask) push and reach their
+/// targets while the others, not pushing, reach theirs or more; `None`
+/// otherwise.
+fn pushing<T: Real>(
+    a: &DMatrix<T>,
+    lack: &DVector<T>,
+    subset: usize,
+    slack: T,
+) -> Option<DVector<T>> {
+    let k = lack.len();
+    let inside: Vec<usize> = (0..k).filter(|r| subset >> r & 1 == 1).collect();
+    let mut impulses = DVector::zeros(k);
+    if !inside.is_empty() {
+        let sub = DMatrix::from_fn(inside.len(), inside.len(), |r, c| a[(inside[r], inside[c])]);
+        let rhs = DVector::from_fn(inside.len(), |r, _| lack[inside[r]]);
+        let solved = sub.lu().solve(&rhs)?;
+        for (r, &i) in inside.iter().enumerate() {
+            if !solved[r].is_finite() || solved[r] < T::zero() {
+                return None;
+            }
+            impulses[i] = solved[r];
+        }
+    }
+    let reached = a * &impulses - lack;
+    (0..k)
+        .all(|r| subset >> r & 1 == 1 || reached[r] >= -slack)
+        .then_some(impulses)
+}

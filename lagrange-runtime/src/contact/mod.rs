@@ -1,0 +1,58 @@
+//! Unilateral contacts with Coulomb friction, run event by event
+//! ([`Simulation::run_contacts`](crate::Simulation::run_contacts)).
+//!
+//! The scheme is the active-set, event-driven one of Pfeiffer and Glocker.
+//! Between events each contact is in one mode ([`ContactState`]): apart,
+//! sliding or sticking. A closed contact is a constraint on the
+//! accelerations, M q̈ + h = Q + Jᵀλ with J q̈ = −J̇ q̇, whose normal force
+//! must stay compressive; a sliding one adds Coulomb's force −μ λ_n û along
+//! its slip; a sticking one holds its tangent rows too, while the friction
+//! force stays inside the isotropic cone |λ_t| ≤ μ λ_n. The modes change at
+//! events located on the integrator's dense output like any other event
+//! ([`Event`](crate::Event)), each the zero of a function of the state:
+//!
+//! - **touching**: an open contact's gap falls to zero; the contacts at the
+//!   surface then take one impulse problem together (`impact`): Newton's law
+//!   per contact, a plastic one for a contact that closes;
+//! - **lifting off**: a closed contact's normal force falls to zero;
+//! - **stopping**: a sliding contact's slip speed falls to zero (its slip
+//!   along the direction it started with crosses zero), after which it
+//!   sticks if the cone can hold it, or slides on in the new direction;
+//! - **slipping**: a sticking contact's friction reaches the cone's edge
+//!   (μ λ_n − |λ_t| falls to zero).
+//!
+//! At each event the modes are chosen again: contacts whose force would
+//! pull are opened, sticking ones whose friction would leave the cone slide
+//! (opposite to the force that would have held them), until every closed
+//! contact pushes and every sticking one is inside its cone. When no choice
+//! does, or a sliding contact presses the harder the more it is pushed
+//! (Painlevé's paradox), the run stops with a [`ContactError`]
+//! saying so; rigid contact then has no answer, or several, and none is
+//! picked silently.
+//!
+//! **Zeno.** A bouncing ball's impacts accumulate at a finite time. When an
+//! impact would leave a contact slower than the rest speed
+//! ([`ContactSettings::rest_speed`]) while the free motion presses it back,
+//! the contact closes plastically instead, and the run records
+//! ([`ChangeKind::Rests`]) where the bounces would have accumulated,
+//! t + 2u / (|a_n| (1 − e)) for an impact leaving at u under the normal
+//! acceleration a_n (exact while a_n is constant over the remaining
+//! bounces). The energy dropped is ½ m u² at most.
+//!
+//! **Scope.** Impacts are frictionless (the tangential velocity is kept
+//! through an impact); contacts are points or spheres against planes and
+//! stops on coordinates; systems without free orientations. Many frequent
+//! contacts (a box settling on its corners) call for a time-stepping scheme,
+//! which this module is not.
+//!
+//! [`ContactError`]: crate::error::ContactError
+
+mod driver;
+mod form;
+mod impact;
+mod modes;
+mod run;
+
+pub use run::{ChangeKind, ContactChange, ContactForce, ContactRun, ContactSettings, ContactState};
+
+pub(crate) use driver::run_contacts;

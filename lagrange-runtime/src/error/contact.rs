@@ -1,0 +1,96 @@
+//! What a contact run cannot do: a rigid-contact problem without an answer,
+//! or with many, and a start the contacts forbid.
+
+use std::fmt;
+
+/// A contact run stopped where rigid contact has no answer, or many, or
+/// where the description's contacts are not usable (wrapped in
+/// [`Error::Contact`](super::Error::Contact)). The run so far is kept in the
+/// [`Failure`](super::Failure).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("contact `{contact}` at t = {t}, q = {q:?}: {fault}")]
+pub struct ContactError {
+    /// The contact's name.
+    pub contact: String,
+    /// When.
+    pub t: f64,
+    /// The configuration there.
+    pub q: Vec<f64>,
+    /// What is wrong.
+    pub fault: ContactFault,
+}
+
+/// Why a contact run stopped.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ContactFault {
+    /// The state penetrates the surface: the gap is below −tolerance (at the
+    /// start, or after an event).
+    Penetrates {
+        /// The gap.
+        gap: f64,
+        /// The tolerance it missed.
+        tolerance: f64,
+    },
+    /// Painlevé's paradox: while the contact slides, pressing it harder
+    /// opens it faster (the normal row's effective compliance under the
+    /// friction force, `n M⁻¹ (n − μ û·t)ᵀ`, is not positive), so the rigid
+    /// problem has no solution or several.
+    Painleve {
+        /// The effective compliance.
+        compliance: f64,
+    },
+    /// No set of contacts in force gives compressive normal forces, friction
+    /// inside the cone and no penetrating acceleration.
+    NoConsistentMode,
+    /// The impulse problem of an impact has no solution (dependent contact
+    /// normals, e.g. a body wedged between surfaces).
+    NoImpulse,
+    /// Newton's restitution law applied to simultaneous impacts would raise
+    /// the kinetic energy, which no e ≤ 1 may do.
+    ImpactGainsEnergy {
+        /// Kinetic energy before.
+        before: f64,
+        /// Kinetic energy after.
+        after: f64,
+    },
+    /// The system lists more contact laws than it gives rows for.
+    MissingRows {
+        /// The number of laws.
+        laws: usize,
+    },
+}
+
+impl fmt::Display for ContactFault {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ContactFault::Penetrates { gap, tolerance } => write!(
+                f,
+                "the state penetrates the surface (gap {gap:e}, tolerance {tolerance:e}); \
+                 start on or above it"
+            ),
+            ContactFault::Painleve { compliance } => write!(
+                f,
+                "Painlevé's paradox: the sliding contact's effective normal compliance is \
+                 {compliance:e} (not positive), so rigid contact with Coulomb friction has no \
+                 answer or several here; lower the friction coefficient"
+            ),
+            ContactFault::NoConsistentMode => f.write_str(
+                "no set of contacts in force gives compressive normal forces with friction \
+                 inside the cone (rigid contact has no answer here)",
+            ),
+            ContactFault::NoImpulse => f.write_str(
+                "the impact's impulse problem has no solution (dependent contact normals)",
+            ),
+            ContactFault::ImpactGainsEnergy { before, after } => write!(
+                f,
+                "Newton's law on these simultaneous impacts would raise the kinetic energy \
+                 from {before} to {after}"
+            ),
+            ContactFault::MissingRows { laws } => write!(
+                f,
+                "the system lists {laws} contact laws but gives no rows for this one"
+            ),
+        }
+    }
+}

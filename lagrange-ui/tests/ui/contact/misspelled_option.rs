@@ -1,0 +1,16 @@
+use lagrange::Lagrangian;
+
+// A misspelled option is suggested its spelling.
+#[derive(Lagrangian)]
+#[lagrange(
+    coordinates(x, y, z),
+    point(p, mass = m, at = [x, y, z]),
+    gravity = [0, 0, -g],
+    contact(floor, on = p, normal = [0, 0, 1], restitution = 0.5, frction = 0.2),
+)]
+struct Block {
+    m: f64,
+    g: f64,
+}
+
+fn main() {}
