@@ -42,7 +42,11 @@ pub struct Ddp {
 pub struct Iteration {
     /// The cost after the iteration.
     pub cost: f64,
-    /// The largest feed-forward input change the backward pass asked for.
+    /// How far from stationary the plan is. For [`Ddp`], the largest
+    /// feed-forward input change the backward pass asked for; for the
+    /// direct method (`plan::Direct`), the largest entry of the
+    /// Lagrangian's gradient at the plan with the quadratic program's
+    /// multipliers (the KKT conditions' stationarity), before the step.
     pub stationarity: f64,
     /// The line search's step α taken (0 if none was).
     pub step: f64,

@@ -216,8 +216,9 @@ impl Direct {
             };
             let size = step.delta.iter().fold(0.0f64, |m, d| m.max(d.abs()));
             last_step = size;
+            let kkt = step.kkt;
             if size <= self.tolerance {
-                log.push(self.record(&point, size, 0.0, damping));
+                log.push(self.record(&point, kkt, 0.0, damping));
                 return self.stationary(problem, point, log, iteration, size);
             }
             penalty = penalty.max(2.0 * step.largest_multiplier + 1e-6);
@@ -227,18 +228,18 @@ impl Direct {
             if slope >= -1e-10 * merit.max(1.0) {
                 // Stationary for the merit function: nothing along the step
                 // can lower it, feasible or not.
-                log.push(self.record(&point, size, 0.0, damping));
+                log.push(self.record(&point, kkt, 0.0, damping));
                 return self.stationary(problem, point, log, iteration, size);
             }
             match search(problem, &point, &step.delta, penalty, slope) {
                 Ok(Some((next, alpha))) => {
                     point = next;
                     damping = (damping / 10.0).max(1e-8);
-                    log.push(self.record(&point, size, alpha, damping));
+                    log.push(self.record(&point, kkt, alpha, damping));
                 }
                 Ok(None) if damping < 1e6 => {
                     damping *= 100.0;
-                    log.push(self.record(&point, size, 0.0, damping));
+                    log.push(self.record(&point, kkt, 0.0, damping));
                 }
                 Ok(None) => {
                     let e = stalled(iteration, "no step lowers the merit function", &point, size);
@@ -334,17 +335,19 @@ impl Direct {
         })
     }
 
-    fn record(&self, point: &Point, size: f64, alpha: f64, damping: f64) -> Iteration {
+    /// The record of an iteration: `kkt` is the Lagrangian's gradient at
+    /// the plan before the step, with the program's multipliers.
+    fn record(&self, point: &Point, kkt: f64, alpha: f64, damping: f64) -> Iteration {
         let (cost, gap) = (point.nominal.cost, point.largest);
         if self.verbose {
             eprintln!(
-                "direct: cost {cost:.9e}  step {size:.2e}  α {alpha:.3}  damping {damping:.1e}  \
+                "direct: cost {cost:.9e}  KKT {kkt:.2e}  α {alpha:.3}  damping {damping:.1e}  \
                  violation {gap:.2e}"
             );
         }
         Iteration {
             cost,
-            stationarity: size,
+            stationarity: kkt,
             step: alpha,
             regularization: damping,
             expected: f64::NAN,

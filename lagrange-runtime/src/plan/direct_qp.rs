@@ -65,6 +65,10 @@ pub(super) struct Step {
     /// Σ slacks: what the step leaves of the elastic constraints' violation,
     /// to first order.
     pub slack: f64,
+    /// The largest entry of the Lagrangian's gradient at the current plan
+    /// with the program's multipliers, ∇J + Aᵀz over the states and inputs:
+    /// the KKT conditions' stationarity, zero at an optimum.
+    pub kkt: f64,
 }
 
 /// Why the program has no step.
@@ -158,12 +162,14 @@ pub(super) fn solve<const N: usize>(
         .tol_feas(1e-10)
         .build()
         .expect("the settings are valid");
-    let mut solver = DefaultSolver::new(&hessian, &gradient, &a.csc(), &b, cones, settings)
+    let a = a.csc();
+    let mut solver = DefaultSolver::new(&hessian, &gradient, &a, &b, cones, settings)
         .map_err(|_| Unsolved(SolverStatus::Unsolved))?;
     solver.solve();
     let solution = &solver.solution;
     match solution.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(Step {
+            kkt: stationarity(&a, &gradient, &solution.z, unknowns),
             delta: solution.x[..unknowns].to_vec(),
             slack: solution.x[unknowns..].iter().map(|s| s.max(0.0)).sum(),
             largest_multiplier: solution.z[..equal]
@@ -172,6 +178,18 @@ pub(super) fn solve<const N: usize>(
         }),
         status => Err(Unsolved(status)),
     }
+}
+
+/// max_j |g_j + (Aᵀz)_j| over the first `unknowns` columns (the states and
+/// inputs; the slacks' columns are the elastic constraints' own).
+fn stationarity(a: &CscMatrix<f64>, g: &[f64], z: &[f64], unknowns: usize) -> f64 {
+    (0..unknowns)
+        .map(|j| {
+            let column = a.colptr[j]..a.colptr[j + 1];
+            let atz: f64 = column.map(|i| a.nzval[i] * z[a.rowval[i]]).sum();
+            (g[j] + atz).abs()
+        })
+        .fold(0.0, f64::max)
 }
 
 /// The Hessian's upper triangle (block diagonal, damped) and the gradient.

@@ -99,6 +99,10 @@ fn a_final_equality_is_kept_exactly() {
     );
     assert!(plan.v[200][0].abs() < 1e-9, "v_K = {}", plan.v[200][0]);
     assert!(plan.gap < 1e-9);
+    // The KKT conditions at the plan: the Lagrangian's gradient.
+    let kkt = plan.log.last().unwrap().stationarity;
+    eprintln!("KKT residual {kkt:e} after {} iterations", plan.log.len());
+    assert!(kkt < 1e-6, "KKT residual {kkt:e}");
     assert!(plan.u.iter().all(|u| u[0].abs() <= 3.0 + 1e-9));
     // No feedback gains that would not know the constraint.
     assert!(plan.gains.is_empty());
@@ -127,6 +131,8 @@ fn state_limits_are_never_crossed() {
     let plan = Direct::new().solve(&problem, &[]).unwrap();
     let reached = peak(&plan.v[1..]);
     assert!(reached <= limit + 1e-9, "peak {reached} against {limit}");
+    let kkt = plan.log.last().unwrap().stationarity;
+    assert!(kkt < 1e-6, "KKT residual {kkt:e}");
     let riding = plan.v.iter().filter(|v| v[0].abs() > limit - 1e-6).count();
     assert!(riding >= 3, "{riding} states on the limit");
     assert!(plan.cost > free.cost);
