@@ -360,3 +360,40 @@ fn ddp_refuses_constraints_on_states() {
         assert!(problem.contains("plan::Direct") && problem.contains("StateBounds"));
     }
 }
+
+/// The oscillator brought to rest over 3 s with |u| ≤ 0.3, its running cost
+/// written as the integral it approximates (weights times h): as the step
+/// is refined from 60 to 480 steps the optimal cost converges, each
+/// difference about half the last (the running cost's sum is a first-order
+/// quadrature), towards the continuous problem's optimum.
+#[test]
+fn refining_the_step_converges_to_the_continuous_optimum() {
+    let optimum = |steps: usize| {
+        let h = 3.0 / steps as f64;
+        let tr = Transition::new(&OSCILLATOR, h).unwrap();
+        let start = (Vector1::new(2.0), Vector1::new(-1.0));
+        let problem = OptimalControl::new(
+            tr,
+            steps,
+            start,
+            diagonal(&[1.0, 0.5]) * h,
+            diagonal(&[0.1]) * h,
+        )
+        .final_weight(diagonal(&[10.0, 10.0]))
+        .input_bounds(Vector1::new(-0.3), Vector1::new(0.3));
+        Ddp::new()
+            .tolerance(1e-9)
+            .solve(&problem, &[])
+            .unwrap()
+            .cost
+    };
+    let costs: Vec<f64> = [60, 120, 240, 480].into_iter().map(optimum).collect();
+    let differences: Vec<f64> = costs.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
+    for pair in differences.windows(2) {
+        let ratio = pair[0] / pair[1];
+        assert!((1.7..2.3).contains(&ratio), "{costs:?}: ratio {ratio}");
+    }
+    // From one side: each refinement moves the cost the same way.
+    let signs: Vec<bool> = costs.windows(2).map(|w| w[1] > w[0]).collect();
+    assert!(signs.iter().all(|&s| s == signs[0]), "{costs:?}");
+}
