@@ -7,6 +7,11 @@
 //! merit function φ = cost + ν Σ |constraint violations|, ν above the
 //! largest multiplier (Nocedal and Wright, §18.3).
 //!
+//! The programs' Hessian is the cost's Gauss–Newton model, without the
+//! dynamics' curvature −Σ λ ∇²F: where that curvature shapes the solution
+//! the iteration converges slowly (see `BENCHMARKS.md`, "The direct method
+//! against IPOPT"), and reports `NotConverged` when its budget runs out.
+//!
 //! What it adds to DDP is constraints on states: hard state limits and a
 //! final equality, which the program keeps exactly at every iterate (limits)
 //! or at convergence (equalities). A plan is converged when the step it asks
@@ -210,8 +215,27 @@ impl Direct {
             let fail = |e: Error, point: &Point, log: &[Iteration]| {
                 Failure::new(e, finish(problem, &point.nominal, log.to_vec(), false))
             };
-            let step = match self.program(problem, &point, (damping, penalty), iteration) {
-                Ok(step) => step,
+            let step = match self.program(problem, &point, (damping, penalty)) {
+                Ok(Ok(step)) => step,
+                // Clarabel found no solution, which a Gauss–Newton Hessian
+                // singular along the states can make it report: damp the
+                // step and build the program again.
+                Ok(Err(Unsolved(status))) if damping < 1e6 => {
+                    if self.verbose {
+                        eprintln!("direct: the program has no solution ({status:?})");
+                    }
+                    damping *= 100.0;
+                    log.push(self.record(&point, f64::NAN, 0.0, damping));
+                    continue;
+                }
+                Ok(Err(Unsolved(status))) => {
+                    let why = format!("the quadratic program has no solution ({status:?})");
+                    return Err(fail(
+                        stalled(iteration, &why, &point, f64::NAN),
+                        &point,
+                        &log,
+                    ));
+                }
                 Err(e) => return Err(fail(e, &point, &log)),
             };
             let size = step.delta.iter().fold(0.0f64, |m, d| m.max(d.abs()));
@@ -285,14 +309,14 @@ impl Direct {
         Err(Failure::new(e, finish(problem, &point.nominal, log, false)))
     }
 
-    /// The quadratic program at `point` and its step.
+    /// The quadratic program at `point` and its step, or why Clarabel has
+    /// none.
     fn program<S, const N: usize, const P: usize>(
         &self,
         problem: &OptimalControl<S, N, P>,
         point: &Point,
         (damping, elastic): (f64, f64),
-        iteration: usize,
-    ) -> Result<direct_qp::Step, Error>
+    ) -> Result<Result<direct_qp::Step, Unsolved>, Error>
     where
         S: Driven<f64, N, P>,
     {
@@ -325,14 +349,7 @@ impl Direct {
             damping,
             elastic,
         };
-        direct_qp::solve(&lin, P, problem.steps).map_err(|Unsolved(status)| {
-            stalled(
-                iteration,
-                &format!("the quadratic program has no solution ({status:?})"),
-                point,
-                f64::NAN,
-            )
-        })
+        Ok(direct_qp::solve(&lin, P, problem.steps))
     }
 
     /// The record of an iteration: `kkt` is the Lagrangian's gradient at
