@@ -88,6 +88,12 @@ pub(super) fn at_centre(
         c.all(&mut i.torques);
         c.all(&mut i.gravity);
     }
+    // Y's columns are derivatives: substituted only, as the Jacobians are.
+    if let Some(r) = &mut d.regressor {
+        for row in &mut r.rows {
+            c.substituted(row);
+        }
+    }
     let energies = &mut d.energies;
     for e in [
         &mut energies.kinetic,
