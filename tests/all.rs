@@ -53,6 +53,7 @@ mod reactions;
 mod recording;
 mod reduced_breakdown;
 mod reduced_orientation;
+mod regressor;
 mod rolling_quaternion;
 mod scene;
 mod scene_browser;

@@ -22,6 +22,7 @@ const RUNTIME_LAYERS: &[&[&str]] = &[
         "atlas",
         "control",
         "event",
+        "identify",
         "linear",
         "plan",
         "study",

@@ -438,6 +438,10 @@ pub enum Error {
     #[error(transparent)]
     Plan(#[from] PlanError),
 
+    /// Parameter identification failed; see [`IdentifyError`].
+    #[error(transparent)]
+    Identify(#[from] IdentifyError),
+
     /// Writing output (CSV) failed.
     #[error("i/o error: {0}")]
     Io(#[from] std::io::Error),
@@ -446,6 +450,7 @@ pub enum Error {
 mod checks;
 mod clone;
 mod failure;
+mod identify;
 mod linear;
 mod plan;
 mod settings;
@@ -453,6 +458,7 @@ mod singular;
 
 pub(crate) use checks::{check_finite_inputs, check_tolerance, unit_quaternions};
 pub use failure::{Failure, Progress};
+pub use identify::IdentifyError;
 pub use linear::{LinearError, StatePoint};
 pub use plan::PlanError;
 pub use settings::SettingsError;
