@@ -12,7 +12,7 @@ use nalgebra::{DVector, SVector};
 
 #[derive(Lagrangian)]
 #[lagrange(urdf = "robots/ur5.urdf", gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
-struct Ur5 {}
+pub(crate) struct Ur5 {}
 
 #[derive(Lagrangian)]
 #[lagrange(urdf = "robots/panda.urdf", gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
@@ -20,15 +20,15 @@ struct Panda {}
 
 #[derive(Lagrangian)]
 #[lagrange(urdf = "robots/kinova.urdf", gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
-struct Kinova {}
+pub(crate) struct Kinova {}
 
 #[derive(Lagrangian)]
 #[lagrange(urdf = "robots/z1.urdf", gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
-struct Z1 {}
+pub(crate) struct Z1 {}
 
 #[derive(Lagrangian)]
 #[lagrange(urdf = "robots/xarm7.urdf", gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
-struct Xarm7 {}
+pub(crate) struct Xarm7 {}
 
 #[derive(Lagrangian)]
 #[lagrange(
