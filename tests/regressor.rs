@@ -178,7 +178,14 @@ fn a_planar_2r_arm_has_the_textbook_base_parameters() {
     let base = BaseParameters::of(&ARM).expect("a regressor");
     assert_eq!(
         base.names(),
-        ["link1.mx", "link1.my", "link1.Izz", "link2.mx", "link2.my", "link2.Izz"]
+        [
+            "link1.mx",
+            "link1.my",
+            "link1.Izz",
+            "link2.mx",
+            "link2.my",
+            "link2.Izz"
+        ]
     );
     let k = base.map();
     let column = |name: &str| {
@@ -280,7 +287,12 @@ fn bad_data_are_typed_errors() {
     broken[4].a[1] = f64::NAN;
     assert!(matches!(
         identify(&ARM, &base, &broken, &sigma),
-        Err(IdentifyError::NotFinite { sample: 4, field: "a", index: 1, .. })
+        Err(IdentifyError::NotFinite {
+            sample: 4,
+            field: "a",
+            index: 1,
+            ..
+        })
     ));
     // Held still: gravity alone shows, no inertia about z.
     let mut still = samples(&ARM, 10, 0.0, &mut rng);
@@ -290,7 +302,11 @@ fn bad_data_are_typed_errors() {
         s.tau = ARM.inverse_dynamics(&s.q, &s.v, &s.a, 0.0);
     }
     match identify(&ARM, &base, &still, &sigma) {
-        Err(IdentifyError::RankDeficient { rank, unidentifiable, .. }) => {
+        Err(IdentifyError::RankDeficient {
+            rank,
+            unidentifiable,
+            ..
+        }) => {
             assert_eq!(rank, 4);
             assert_eq!(unidentifiable, ["link1.Izz", "link2.Izz"]);
         }
@@ -302,6 +318,10 @@ fn bad_data_are_typed_errors() {
     ));
     assert!(matches!(
         base.of_parameters(&DVector::zeros(3)),
-        Err(IdentifyError::Lengths { got: 3, expected: 20, .. })
+        Err(IdentifyError::Lengths {
+            got: 3,
+            expected: 20,
+            ..
+        })
     ));
 }

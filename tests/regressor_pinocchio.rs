@@ -34,7 +34,9 @@ fn against_pinocchio<S: Lagrangian<f64, N>, const N: usize>(robot: &str, sys: &S
     let links: Vec<&str> = line(robot, "links").collect();
     let mut worst = 0.0f64;
     for k in 0..2 {
-        let state = |key: &str| SVector::<f64, N>::from_column_slice(&numbers(robot, &format!("{k} {key}")));
+        let state = |key: &str| {
+            SVector::<f64, N>::from_column_slice(&numbers(robot, &format!("{k} {key}")))
+        };
         let y = sys
             .regressor(&state("q"), &state("v"), &state("a"), 0.0)
             .expect("Y is emitted");
@@ -67,5 +69,29 @@ fn columns_agree_with_pinocchio() {
     ] {
         eprintln!("{robot}: max |Y − Y_Pinocchio| / (1 + |Y_Pinocchio|) = {err:.1e}");
         assert!(err < 1e-12, "{robot}: {err:e}");
+    }
+}
+
+/// The number of base parameters [`BaseParameters::of`] finds against the
+/// numerical rank of Pinocchio's regressor stacked at random states
+/// (singular values below 1e-9 of the largest counted as zero; the genuine
+/// ones end above 1, round-off lies below 1e-11): the emitted Y has ten
+/// more columns per link fixed to another, which add no base parameter.
+#[test]
+fn base_parameter_counts_agree_with_pinocchios_rank() {
+    use lagrange::identify::BaseParameters;
+    let rank = |robot: &str| -> usize {
+        let mut it = line(robot, "rank");
+        it.next().expect("a rank").parse().expect("a count")
+    };
+    let counts = [
+        ("ur5", BaseParameters::of(&Ur5 {}).expect("Y").len()),
+        ("kinova", BaseParameters::of(&Kinova {}).expect("Y").len()),
+        ("z1", BaseParameters::of(&Z1 {}).expect("Y").len()),
+        ("xarm7", BaseParameters::of(&Xarm7 {}).expect("Y").len()),
+    ];
+    for (robot, count) in counts {
+        eprintln!("{robot}: {count} base parameters");
+        assert_eq!(count, rank(robot), "{robot}");
     }
 }

@@ -14,12 +14,20 @@ use lagrange_symbolic::SymbolKind;
 
 /// The description with `emit(regressor, inverse_dynamics)` added.
 fn with_regressor(src: &str) -> String {
-    src.replacen("#[lagrange(", "#[lagrange(emit(regressor, inverse_dynamics), ", 1)
+    src.replacen(
+        "#[lagrange(",
+        "#[lagrange(emit(regressor, inverse_dynamics), ",
+        1,
+    )
 }
 
 /// Max |Y π − τ| over 10 random states, each relative to 1 + |τ|.
 fn y_pi_minus_tau(m: &Model) -> f64 {
-    let r = m.outputs.regressor.as_ref().expect("the regressor is derived");
+    let r = m
+        .outputs
+        .regressor
+        .as_ref()
+        .expect("the regressor is derived");
     let tau = &m.outputs.inverse.as_ref().expect("τ is derived").torques;
     let mut rng = Lcg(34);
     let mut worst = 0.0f64;
@@ -33,9 +41,16 @@ fn y_pi_minus_tau(m: &Model) -> f64 {
         };
         let pi: Vec<f64> = r.parameters.iter().map(|&e| m.ctx.eval(e, &env)).collect();
         for (i, row) in r.rows.iter().enumerate() {
-            let y_pi: f64 = row.iter().zip(&pi).map(|(&y, p)| m.ctx.eval(y, &env) * p).sum();
+            let y_pi: f64 = row
+                .iter()
+                .zip(&pi)
+                .map(|(&y, p)| m.ctx.eval(y, &env) * p)
+                .sum();
             let want = m.ctx.eval(tau[i], &env);
-            assert!(y_pi.is_finite() && want.is_finite(), "row {i}: {y_pi} vs {want}");
+            assert!(
+                y_pi.is_finite() && want.is_finite(),
+                "row {i}: {y_pi} vs {want}"
+            );
             worst = worst.max((y_pi - want).abs() / (1.0 + want.abs()));
         }
     }
@@ -143,7 +158,9 @@ fn parameters_are_named_in_pinocchios_order() {
     let l1: Vec<&str> = names.iter().filter_map(|n| n.strip_prefix("l1.")).collect();
     assert_eq!(
         l1,
-        ["m", "mx", "my", "mz", "Ixx", "Ixy", "Iyy", "Ixz", "Iyz", "Izz"]
+        [
+            "m", "mx", "my", "mz", "Ixx", "Ixy", "Iyy", "Ixz", "Iyz", "Izz"
+        ]
     );
     // Five bodies of ten and one point mass of one, in declaration order.
     assert_eq!(names.len(), 51);
@@ -163,5 +180,44 @@ fn a_description_that_is_no_tree_is_refused_with_the_reason() {
     let input: syn::DeriveInput = syn::parse_str(&src).expect("parses");
     let err = lagrange_codegen::model(&input).err().expect("refused");
     let text = err.to_string();
-    assert!(text.contains("`regressor` needs a kinematic tree"), "{text}");
+    assert!(
+        text.contains("`regressor` needs a kinematic tree"),
+        "{text}"
+    );
+}
+
+/// The robots shipped in `robots/`, read from their URDF: Y π = τ, and the
+/// operation counts of Y's program and of τ's (printed, for the record: a
+/// test asserts no speed).
+#[test]
+fn robots_from_urdf() {
+    for file in [
+        "ur5.urdf",
+        "panda.urdf",
+        "kinova.urdf",
+        "z1.urdf",
+        "xarm7.urdf",
+        "solo12.urdf",
+    ] {
+        let src = format!(
+            "#[lagrange(urdf = \"{}/../robots/{file}\", gravity = [0, 0, -9.81])] struct Robot {{}}",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let m = model(&with_regressor(&src));
+        let worst = y_pi_minus_tau(&m);
+        let r = m.outputs.regressor.as_ref().expect("derived");
+        let entries: Vec<_> = r.rows.iter().flatten().copied().collect();
+        let y = lagrange_symbolic::Program::new(&m.ctx, &entries).op_count();
+        let tau = &m.outputs.inverse.as_ref().expect("derived").torques;
+        let t = lagrange_symbolic::Program::new(&m.ctx, tau).op_count();
+        eprintln!(
+            "{file}: {} parameters, max |Y π − τ| / (1 + |τ|) = {worst:.1e}; Y: {} mul {} add, τ: {} mul {} add",
+            r.names.len(),
+            y.mul,
+            y.add,
+            t.mul,
+            t.add
+        );
+        assert!(worst < 1e-12, "{file}: |Y π − τ| = {worst:e}");
+    }
 }

@@ -2,6 +2,7 @@
 `robots/` (the UR5, Kinova, Z1 and xArm7), at two states (q, q̇, q̈) each:
 Y (row-major, 10 columns per joint in Pinocchio's order
 [m, m cx, m cy, m cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz], about the joint frame)
+the number of base parameters (the stacked regressor's numerical rank, 1e-9 relative tolerance)
 and, per joint, the URDF link it moves (the body frame at the joint's
 origin), written to `tests/data/urdf_regressor.txt` for
 `tests/regressor_pinocchio.rs`, which compares each moving link's ten
@@ -42,12 +43,31 @@ def moved_links(model):
     return names
 
 
+def base_count(model, data):
+    """The number of base parameters: the numerical rank of the regressor
+    stacked at random states (twice as many equations as parameters and four
+    states more), singular values below 1e-9 of the largest counted as zero.
+    numpy's default tolerance (largest × max(rows, columns) × ε, 3e-12 here)
+    is too tight: on the Kinova two columns that are round-off of zeros (a
+    placement's cos(π/2) = 6e-17) leave singular values of 8.7e-12 and
+    6.4e-12, where the genuine ones end at 3.6."""
+    rng = np.random.default_rng(34)
+    n = model.nv
+    count = 2 * 10 * (model.njoints - 1) // n + 4
+    w = np.vstack([pin.computeJointTorqueRegressor(model, data, configuration(model, rng.uniform(-np.pi, np.pi, n)),
+                                                   rng.uniform(-2, 2, n), rng.uniform(-2, 2, n))
+                   for _ in range(count)])
+    singular = np.linalg.svd(w, compute_uv=False)
+    return int((singular > 1e-9 * singular[0]).sum())
+
+
 def main():
     lines = ["# Pinocchio " + pin.__version__ + ", written by lagrange-bench/peer/pinocchio/urdf_regressor.py"]
     for robot in ["ur5", "kinova", "z1", "xarm7"]:
         model = pin.buildModelFromUrdf(os.path.join(ROOT, "robots", robot + ".urdf"))
         data = model.createData()
         lines.append(f"{robot} links " + " ".join(moved_links(model)))
+        lines.append(f"{robot} rank {base_count(model, data)}")
         for k, (q, v, a) in enumerate(states(model.nv)):
             y = pin.computeJointTorqueRegressor(model, data, configuration(model, q), v, a)
             tau = pin.rnea(model, data, configuration(model, q), v, a)

@@ -46,7 +46,9 @@ impl Expressions for Regressor {
 }
 
 /// The suffixes of a body's ten parameters, in π's order.
-const BODY: [&str; 10] = ["m", "mx", "my", "mz", "Ixx", "Ixy", "Iyy", "Ixz", "Iyz", "Izz"];
+const BODY: [&str; 10] = [
+    "m", "mx", "my", "mz", "Ixx", "Ixy", "Iyy", "Ixz", "Iyz", "Izz",
+];
 
 /// What the description's masses are, as the tree detection reads them.
 pub(super) struct MassModel<'a> {
@@ -80,7 +82,12 @@ pub(super) fn regressor(ctx: &mut Context, m: MassModel) -> Result<Regressor, No
         let pi: [Sym; 10] = BODY.map(|s| ctx.free_symbol(&format!("__pi_{}_{s}", point.name)));
         symbols.extend(pi);
         names.extend(BODY.map(|s| format!("{}.{s}", point.name)));
-        parameters.extend(body_parameters(ctx, point.mass, offset, &m.spins[b].inertia));
+        parameters.extend(body_parameters(
+            ctx,
+            point.mass,
+            offset,
+            &m.spins[b].inertia,
+        ));
         let [mass, hx, hy, hz, ixx, ixy, iyy, ixz, iyz, izz] = pi;
         let h = [hx, hy, hz];
         let all = ctx.sum(&h);

@@ -67,7 +67,9 @@ pub enum IdentifyError {
     },
 
     /// A joint's noise level that cannot weight its equations.
-    #[error("joint {joint}: the noise's standard deviation must be positive and finite, got {value}")]
+    #[error(
+        "joint {joint}: the noise's standard deviation must be positive and finite, got {value}"
+    )]
     Noise {
         /// The joint's index.
         joint: usize,

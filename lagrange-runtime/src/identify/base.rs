@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 
 use nalgebra::{DMatrix, DVector, SVector};
 
-use super::columns::independent;
+use super::columns::{RANK_TOLERANCE, independent};
 use super::{State, random_states, stacked};
 use crate::error::IdentifyError;
 use crate::system::Lagrangian;
@@ -54,10 +54,20 @@ impl BaseParameters {
         S: Lagrangian<f64, N, Q>,
     {
         for (k, (q, v, a)) in states.iter().enumerate() {
-            super::estimate::finite(k, &[("q", q.as_slice()), ("v", v.as_slice()), ("a", a.as_slice())])?;
+            super::estimate::finite(
+                k,
+                &[
+                    ("q", q.as_slice()),
+                    ("v", v.as_slice()),
+                    ("a", a.as_slice()),
+                ],
+            )?;
         }
         let w = stacked(sys, states)?;
-        let standard: Vec<String> = S::REGRESSOR_PARAMETERS.iter().map(|s| s.to_string()).collect();
+        let standard: Vec<String> = S::REGRESSOR_PARAMETERS
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
         Ok(Self::from_stacked(&w, standard))
     }
 
@@ -90,8 +100,9 @@ impl BaseParameters {
                 }
             }
         }
+        let largest = w.column_iter().map(|c| c.norm()).fold(0.0, f64::max);
         let without_effect = (dropped.iter())
-            .filter(|&&d| w.column(d).norm() == 0.0)
+            .filter(|&&d| w.column(d).norm() <= RANK_TOLERANCE * largest)
             .map(|&d| standard[d].clone())
             .collect();
         let expressions = (0..kept.len())
@@ -118,7 +129,10 @@ impl BaseParameters {
 
     /// Each base parameter's name: the standard parameter it keeps.
     pub fn names(&self) -> Vec<&str> {
-        self.kept.iter().map(|&k| self.standard[k].as_str()).collect()
+        self.kept
+            .iter()
+            .map(|&k| self.standard[k].as_str())
+            .collect()
     }
 
     /// Each base parameter as a combination of the standard ones, e.g.

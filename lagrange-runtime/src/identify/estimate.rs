@@ -66,7 +66,9 @@ pub fn identify<S, const N: usize, const Q: usize>(
 where
     S: Lagrangian<f64, N, Q>,
 {
-    if let Some((joint, &value)) = (noise.iter().enumerate()).find(|(_, s)| !(s.is_finite() && **s > 0.0)) {
+    if let Some((joint, &value)) =
+        (noise.iter().enumerate()).find(|(_, s)| !(s.is_finite() && **s > 0.0))
+    {
         return Err(IdentifyError::Noise { joint, value });
     }
     for (k, s) in samples.iter().enumerate() {
@@ -151,7 +153,10 @@ fn solve(w: &DMatrix<f64>, y: &DVector<f64>) -> Estimate {
 }
 
 /// The first entry that is not a finite number, as the error naming it.
-pub(super) fn finite(sample: usize, fields: &[(&'static str, &[f64])]) -> Result<(), IdentifyError> {
+pub(super) fn finite(
+    sample: usize,
+    fields: &[(&'static str, &[f64])],
+) -> Result<(), IdentifyError> {
     for &(field, values) in fields {
         if let Some((index, &value)) = values.iter().enumerate().find(|(_, x)| !x.is_finite()) {
             return Err(IdentifyError::NotFinite {

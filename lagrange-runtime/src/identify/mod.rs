@@ -35,7 +35,9 @@ where
     S: Lagrangian<f64, N, Q>,
 {
     sys.regressor(q, v, a, 0.0)
-        .ok_or(IdentifyError::NoRegressor { method: "regressor" })
+        .ok_or(IdentifyError::NoRegressor {
+            method: "regressor",
+        })
 }
 
 /// Regressors at `states` stacked, one block of N rows per state.

@@ -33,7 +33,10 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
         }
     }
     let (lets, outs) = e.program(&entries);
-    let sets = at.iter().zip(&outs).map(|((i, k), out)| quote!(y[(#i, #k)] = #out;));
+    let sets = at
+        .iter()
+        .zip(&outs)
+        .map(|((i, k), out)| quote!(y[(#i, #k)] = #out;));
     let (p_lets, p_outs) = e.program(&regressor.parameters);
     let n = &f.n;
     let lagrangian = quote! {
