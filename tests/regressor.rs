@@ -1,7 +1,7 @@
 //! The dynamics regressor (`emit(regressor)`) as emitted: Y π equals the
 //! emitted inverse dynamics at random states on the robots shipped in
 //! `robots/` (Solo 12 on its floating base) and on trees of the catalog's
-//! kinds; the base parameters of a planar 2R arm against their textbook
+//! kinds, and the energy regressor's Y_E π equals T + V; the base parameters of a planar 2R arm against their textbook
 //! closed form; identification from noise-free samples (π_b to 1e-9), from
 //! noisy ones (the errors within the reported covariance over an ensemble),
 //! and its typed errors.
@@ -122,7 +122,8 @@ fn state<S: Lagrangian<f64, N, Q>, const N: usize, const Q: usize>(
     (q, v, a)
 }
 
-/// Max |Y π − τ| / (1 + |τ|) over 20 random states.
+/// Max |Y π − τ| / (1 + |τ|) and |Y_E π − (T + V)| / (1 + |T + V|) over
+/// 20 random states.
 fn y_pi_minus_tau<S: Lagrangian<f64, N, Q>, const N: usize, const Q: usize>(sys: &S) -> f64 {
     let pi = sys.inertial_parameters().expect("π is emitted");
     assert_eq!(pi.len(), S::REGRESSOR_PARAMETERS.len());
@@ -137,6 +138,10 @@ fn y_pi_minus_tau<S: Lagrangian<f64, N, Q>, const N: usize, const Q: usize>(sys:
             assert!(y_pi[i].is_finite());
             worst = worst.max((y_pi[i] - tau[i]).abs() / (1.0 + tau[i].abs()));
         }
+        // The energy regressor: T + V (gravity's alone here) = Y_E π.
+        let y_e = sys.energy_regressor(&q, &v, 0.0).expect("Y_E is emitted");
+        let energy = sys.kinetic_energy(&q, &v, 0.0) + sys.potential_energy(&q, 0.0);
+        worst = worst.max((y_e.dot(&pi) - energy).abs() / (1.0 + energy.abs()));
     }
     worst
 }

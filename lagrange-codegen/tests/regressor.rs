@@ -2,13 +2,14 @@
 //! dynamics τ at random states (parameters, q, q̇, q̈) on trees of every kind
 //! the recursive route reads (chains, placements and tilted axes, fixed
 //! bodies, point masses, sliding joints, poses written out, free
-//! orientations); π's names in Pinocchio's order; a description that is not
-//! a tree refused with the reason.
+//! orientations), and the energy regressor Y_E π equals T + V; π's names in
+//! Pinocchio's order; a description that is not a tree refused with the
+//! reason.
 
 mod common;
 #[path = "common/written.rs"]
 mod written;
-use common::{Lcg, model, random_point};
+use common::{Lcg, eval, model, random_point};
 use lagrange_codegen::mechanics::Model;
 use lagrange_symbolic::SymbolKind;
 
@@ -57,10 +58,38 @@ fn y_pi_minus_tau(m: &Model) -> f64 {
     worst
 }
 
+/// Max |Y_E π − (T + V)| over 10 random states, relative to 1 + |T + V|
+/// (the descriptions have no potential but gravity's).
+fn energy_misfit(m: &Model) -> f64 {
+    let r = m
+        .outputs
+        .regressor
+        .as_ref()
+        .expect("the regressor is derived");
+    let mut rng = Lcg(43);
+    let mut worst = 0.0f64;
+    for _ in 0..10 {
+        let p = random_point(m, &mut rng);
+        let pi: Vec<f64> = r.parameters.iter().map(|&e| eval(m, e, &p)).collect();
+        let y_pi: f64 = r
+            .energy
+            .iter()
+            .zip(&pi)
+            .map(|(&y, p_k)| eval(m, y, &p) * p_k)
+            .sum();
+        let want = eval(m, m.energies.kinetic, &p) + eval(m, m.energies.potential, &p);
+        assert!(y_pi.is_finite() && want.is_finite(), "{y_pi} vs {want}");
+        worst = worst.max((y_pi - want).abs() / (1.0 + want.abs()));
+    }
+    worst
+}
+
 fn agrees(src: &str) {
     let m = model(&with_regressor(src));
     let worst = y_pi_minus_tau(&m);
     assert!(worst < 1e-12, "|Y π − τ| = {worst:e}\n{src}");
+    let energy = energy_misfit(&m);
+    assert!(energy < 1e-12, "|Y_E π − (T + V)| = {energy:e}\n{src}");
 }
 
 #[test]
@@ -205,6 +234,8 @@ fn robots_from_urdf() {
         );
         let m = model(&with_regressor(&src));
         let worst = y_pi_minus_tau(&m);
+        let energy = energy_misfit(&m);
+        assert!(energy < 1e-12, "{file}: |Y_E π − (T + V)| = {energy:e}");
         let r = m.outputs.regressor.as_ref().expect("derived");
         let entries: Vec<_> = r.rows.iter().flatten().copied().collect();
         let y = lagrange_symbolic::Program::new(&m.ctx, &entries).op_count();

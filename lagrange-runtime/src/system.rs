@@ -223,6 +223,15 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
         None
     }
 
+    /// The energy regressor Y_E(q, q̇, t), one entry per parameter of π:
+    /// T + V_gravity = Y_E · π, the kinetic energy and gravity's potential
+    /// (the user's potential is not in it). `None` unless the description
+    /// asks for `emit(regressor)`. Allocates its vector.
+    fn energy_regressor(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> Option<DVector<T>> {
+        let _ = (q, v, t);
+        None
+    }
+
     /// π from the system's parameters (its fields): each body's mass, first
     /// moments and inertia about its reference point, each point mass's
     /// mass, in [`REGRESSOR_PARAMETERS`](Self::REGRESSOR_PARAMETERS)' order,

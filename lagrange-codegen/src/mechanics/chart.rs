@@ -93,6 +93,7 @@ pub(super) fn at_centre(
         for row in &mut r.rows {
             c.substituted(row);
         }
+        c.substituted(&mut r.energy);
     }
     let energies = &mut d.energies;
     for e in [

@@ -23,7 +23,7 @@ use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::expressions::Expressions;
 use crate::lowered::{PointModel, Skeleton, SpinModel};
-use crate::mat3::{Mat3, parallel_axis};
+use crate::mat3::{Mat3, cross, dot, mat_vec, parallel_axis, transpose};
 use crate::tree::NotATree;
 
 /// Y and what π is.
@@ -36,12 +36,16 @@ pub struct Regressor {
     pub names: Vec<String>,
     /// π in the struct's parameters.
     pub parameters: Vec<Sym>,
+    /// The energy regressor Y_E(q, q̇, t), one entry per parameter:
+    /// T + V_gravity = Y_E π.
+    pub energy: Vec<Sym>,
 }
 
 impl Expressions for Regressor {
     fn expressions(&self, out: &mut Vec<Sym>) {
         out.extend(self.rows.iter().flatten());
         out.extend(&self.parameters);
+        out.extend(&self.energy);
     }
 }
 
@@ -61,46 +65,110 @@ pub(super) struct MassModel<'a> {
 /// Y on the tree the description spans, built on π's symbols, or why there
 /// is no tree.
 pub(super) fn regressor(ctx: &mut Context, m: MassModel) -> Result<Regressor, NotATree> {
-    let mut symbols = Vec::new();
-    let mut names = Vec::new();
-    let mut parameters = Vec::new();
-    let mut points = Vec::new();
-    let mut placed = Vec::new();
-    let mut inertias: Vec<Mat3> = m.spins.iter().map(|s| s.inertia).collect();
+    let mut p = Parametrised {
+        inertias: m.spins.iter().map(|s| s.inertia).collect(),
+        ..Parametrised::default()
+    };
     for (i, point) in m.points.iter().enumerate() {
         let at = m.skeleton.masses[i].clone();
         let body = m.spins.iter().position(|s| s.name == point.name);
-        let (Some(b), Some((_, offset))) = (body, &at) else {
-            let mass = ctx.free_symbol(&format!("__pi_{}_m", point.name));
-            symbols.push(mass);
-            names.push(format!("{}.m", point.name));
-            parameters.push(point.mass);
-            points.push(moved(point, mass));
-            placed.push(at);
-            continue;
-        };
+        match (body, &at) {
+            (Some(b), Some((_, offset))) => p.body(ctx, &m, (point, b, offset)),
+            _ => p.point(ctx, point, at, m.gravity),
+        }
+    }
+    let spins: Vec<SpinModel> = (m.spins.iter().zip(&p.inertias))
+        .map(|(s, &inertia)| SpinModel {
+            name: s.name.clone(),
+            inertia,
+            omega: s.omega,
+        })
+        .collect();
+    // The detection reads where the masses sit off the skeleton: handed the
+    // parametrised ones for this reading alone.
+    let kept = std::mem::replace(&mut m.skeleton.masses, p.placed);
+    let masses = (&p.points[..], &spins[..], &*m.skeleton);
+    let tree = super::recursive::detect(ctx, super::Route::Recursive, masses, m.gravity);
+    m.skeleton.masses = kept;
+    let tree = tree?;
+    let torques = crate::tree::inverse_dynamics_at_accelerations(ctx, &tree, true);
+    let rows = torques
+        .iter()
+        .map(|&tau| p.symbols.iter().map(|&s| ctx.diff(tau, s)).collect())
+        .collect();
+    Ok(Regressor {
+        rows,
+        names: p.names,
+        parameters: p.parameters,
+        energy: p.energy,
+    })
+}
+
+/// The description's masses with π's symbols in place of their values, and
+/// what is read off them on the way.
+#[derive(Default)]
+struct Parametrised {
+    /// π's symbols, names and values in the struct's parameters.
+    symbols: Vec<Sym>,
+    names: Vec<String>,
+    parameters: Vec<Sym>,
+    /// Y_E's entries.
+    energy: Vec<Sym>,
+    /// The point masses the tree's attachment takes, and where they sit.
+    points: Vec<PointModel>,
+    placed: Vec<PlacedMass>,
+    /// The bodies' rotational inertias, parallel to the spins.
+    inertias: Vec<Mat3>,
+}
+
+/// Where a point mass sits: its body and its offset in the body's axes.
+type PlacedMass = Option<(usize, Vec<Sym>)>;
+
+impl Parametrised {
+    /// A point mass: its one parameter m.
+    fn point(&mut self, ctx: &mut Context, point: &PointModel, at: PlacedMass, g: Option<&[Sym]>) {
+        let mass = ctx.free_symbol(&format!("__pi_{}_m", point.name));
+        self.symbols.push(mass);
+        self.names.push(format!("{}.m", point.name));
+        self.parameters.push(point.mass);
+        self.energy.push(point_energy(ctx, &point.position, g));
+        self.points.push(moved(point, mass));
+        self.placed.push(at);
+    }
+
+    /// Body `b`, whose centre is `point` at `offset` in its axes: its ten
+    /// parameters, handed to the attachment as four point masses and a
+    /// tensor.
+    fn body(
+        &mut self,
+        ctx: &mut Context,
+        m: &MassModel,
+        (point, b, offset): (&PointModel, usize, &[Sym]),
+    ) {
         let pi: [Sym; 10] = BODY.map(|s| ctx.free_symbol(&format!("__pi_{}_{s}", point.name)));
-        symbols.extend(pi);
-        names.extend(BODY.map(|s| format!("{}.{s}", point.name)));
-        parameters.extend(body_parameters(
-            ctx,
-            point.mass,
-            offset,
-            &m.spins[b].inertia,
-        ));
+        self.symbols.extend(pi);
+        self.names
+            .extend(BODY.map(|s| format!("{}.{s}", point.name)));
+        let inertia = &m.spins[b].inertia;
+        self.parameters
+            .extend(body_parameters(ctx, point.mass, offset, inertia));
+        let frame = &m.skeleton.bodies[b];
+        let placed_at = (&frame.reference[..], &frame.matrix);
+        let energy = body_energy(ctx, placed_at, m.spins[b].omega, m.gravity);
+        self.energy.extend(energy);
         let [mass, hx, hy, hz, ixx, ixy, iyy, ixz, iyz, izz] = pi;
         let h = [hx, hy, hz];
         let all = ctx.sum(&h);
         let at_origin = ctx.sub(mass, all);
         let zero = ctx.zero();
         let one = ctx.one();
-        points.push(moved(point, at_origin));
-        placed.push(Some((b, vec![zero; 3])));
+        self.points.push(moved(point, at_origin));
+        self.placed.push(Some((b, vec![zero; 3])));
         for (k, &hk) in h.iter().enumerate() {
             let mut unit = vec![zero; 3];
             unit[k] = one;
-            points.push(moved(point, hk));
-            placed.push(Some((b, unit)));
+            self.points.push(moved(point, hk));
+            self.placed.push(Some((b, unit)));
         }
         // I − Σ h_k (1 − e_k e_kᵀ): each diagonal entry less the other two
         // axes' first moments.
@@ -111,32 +179,8 @@ pub(super) fn regressor(ctx: &mut Context, m: MassModel) -> Result<Regressor, No
         let xx = less(ctx, ixx, hy, hz);
         let yy = less(ctx, iyy, hx, hz);
         let zz = less(ctx, izz, hx, hy);
-        inertias[b] = [[xx, ixy, ixz], [ixy, yy, iyz], [ixz, iyz, zz]];
+        self.inertias[b] = [[xx, ixy, ixz], [ixy, yy, iyz], [ixz, iyz, zz]];
     }
-    let spins: Vec<SpinModel> = (m.spins.iter().zip(&inertias))
-        .map(|(s, &inertia)| SpinModel {
-            name: s.name.clone(),
-            inertia,
-            omega: s.omega,
-        })
-        .collect();
-    // The detection reads where the masses sit off the skeleton: handed the
-    // parametrised ones for this reading alone.
-    let kept = std::mem::replace(&mut m.skeleton.masses, placed);
-    let masses = (&points[..], &spins[..], &*m.skeleton);
-    let tree = super::recursive::detect(ctx, super::Route::Recursive, masses, m.gravity);
-    m.skeleton.masses = kept;
-    let tree = tree?;
-    let torques = crate::tree::inverse_dynamics_at_accelerations(ctx, &tree, true);
-    let rows = torques
-        .iter()
-        .map(|&tau| symbols.iter().map(|&s| ctx.diff(tau, s)).collect())
-        .collect();
-    Ok(Regressor {
-        rows,
-        names,
-        parameters,
-    })
 }
 
 /// A point mass with its mass replaced.
@@ -158,4 +202,47 @@ fn body_parameters(ctx: &mut Context, mass: Sym, c: &[Sym], about_centre: &Mat3)
     [
         mass, first[0], first[1], first[2], i[0][0], i[0][1], i[1][1], i[0][2], i[1][2], i[2][2],
     ]
+}
+
+/// A point mass's column of Y_E: ½ |ṗ|² − g·p.
+fn point_energy(ctx: &mut Context, p: &[Sym], gravity: Option<&[Sym]>) -> Sym {
+    let rate: Vec<Sym> = p.iter().map(|&x| ctx.time_derivative(x)).collect();
+    let squared = dot(ctx, &rate, &rate);
+    let half = ctx.rational(1, 2);
+    let kinetic = ctx.mul(half, squared);
+    match gravity {
+        Some(g) => {
+            let height = dot(ctx, g, p);
+            ctx.sub(kinetic, height)
+        }
+        None => kinetic,
+    }
+}
+
+/// A body's ten columns of Y_E, from its reference point o (world), its
+/// rotation R and ω in its axes: T = ½ m |v_o|² + (m c)·(v × ω) + ½ ωᵀ I ω
+/// with v = Rᵀ v_o, and V = −m g·o − (m c)·(Rᵀ g).
+fn body_energy(
+    ctx: &mut Context,
+    (origin, rotation): (&[Sym], &Mat3),
+    w: [Sym; 3],
+    gravity: Option<&[Sym]>,
+) -> [Sym; 10] {
+    let mass = point_energy(ctx, origin, gravity);
+    let rate: Vec<Sym> = origin.iter().map(|&x| ctx.time_derivative(x)).collect();
+    let body_axes = transpose(rotation);
+    let v = mat_vec(ctx, &body_axes, [rate[0], rate[1], rate[2]]);
+    let mut first = cross(ctx, v, w);
+    if let Some(g) = gravity {
+        let down = mat_vec(ctx, &body_axes, [g[0], g[1], g[2]]);
+        first = [0, 1, 2].map(|k| ctx.sub(first[k], down[k]));
+    }
+    let half = ctx.rational(1, 2);
+    let mut product = |a: usize, b: usize| {
+        let p = ctx.mul(w[a], w[b]);
+        if a == b { ctx.mul(half, p) } else { p }
+    };
+    let [xx, xy, yy, xz, yz, zz] =
+        [(0, 0), (0, 1), (1, 1), (0, 2), (1, 2), (2, 2)].map(|(a, b)| product(a, b));
+    [mass, first[0], first[1], first[2], xx, xy, yy, xz, yz, zz]
 }

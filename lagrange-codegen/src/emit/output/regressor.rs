@@ -1,5 +1,5 @@
 //! The dynamics regressor (`emit(regressor)`): `Lagrangian::regressor`,
-//! `inertial_parameters` and `REGRESSOR_PARAMETERS`.
+//! `energy_regressor`, `inertial_parameters` and `REGRESSOR_PARAMETERS`.
 
 use proc_macro2::Literal;
 use quote::quote;
@@ -38,6 +38,7 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
         .zip(&outs)
         .map(|((i, k), out)| quote!(y[(#i, #k)] = #out;));
     let (p_lets, p_outs) = e.program(&regressor.parameters);
+    let (e_lets, e_outs) = e.program(&regressor.energy);
     let n = &f.n;
     let lagrangian = quote! {
         const REGRESSOR_PARAMETERS: &'static [&'static str] = &[#(#names),*];
@@ -48,6 +49,12 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
             let mut y = <#p::DMatrix<#s>>::zeros(#n, #columns);
             #(#sets)*
             ::core::option::Option::Some(y)
+        }
+
+        #[inline]
+        fn energy_regressor(&self, q: &#qvec, v: &#vec_n, t: #s) -> ::core::option::Option<#p::DVector<#s>> {
+            #e_lets
+            ::core::option::Option::Some(<#p::DVector<#s>>::from_column_slice(&[#(#e_outs),*]))
         }
 
         #[inline]
