@@ -321,6 +321,23 @@ fn bad_data_are_typed_errors() {
         identify(&ARM, &base, &still, &SVector::from([0.1, 0.0])),
         Err(IdentifyError::Noise { joint: 1, .. })
     ));
+    // Base parameters found for another system.
+    let top = HeavyTop {
+        m: 1.3,
+        a: 0.04,
+        c: 0.02,
+        l: 0.3,
+        g: 9.81,
+    };
+    let other = BaseParameters::of(&top).expect("a regressor");
+    assert!(matches!(
+        identify(&ARM, &other, &broken[..4], &sigma),
+        Err(IdentifyError::Lengths {
+            got: 20,
+            expected: 10,
+            ..
+        })
+    ));
     assert!(matches!(
         base.of_parameters(&DVector::zeros(3)),
         Err(IdentifyError::Lengths {

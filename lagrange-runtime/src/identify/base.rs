@@ -178,7 +178,9 @@ impl BaseParameters {
     ///
     /// # Errors
     /// [`IdentifyError::NoRegressor`] unless the system was derived with
-    /// `emit(regressor)`.
+    /// `emit(regressor)`; [`IdentifyError::Lengths`] when its regressor has
+    /// not the columns these base parameters were found for (another
+    /// system's).
     pub fn regressor<S, const N: usize, const Q: usize>(
         &self,
         sys: &S,
@@ -189,7 +191,17 @@ impl BaseParameters {
     where
         S: Lagrangian<f64, N, Q>,
     {
-        Ok(super::regressor_at(sys, q, v, a)?.select_columns(&self.kept))
+        let y = super::regressor_at(sys, q, v, a)?;
+        // Base parameters found for another system would pick the wrong
+        // columns, or ones Y does not have.
+        if y.ncols() != self.standard.len() {
+            return Err(IdentifyError::Lengths {
+                what: "the system's regressor",
+                got: y.ncols(),
+                expected: self.standard.len(),
+            });
+        }
+        Ok(y.select_columns(&self.kept))
     }
 }
 
@@ -213,4 +225,34 @@ fn expression(names: &[String], row: impl Iterator<Item = f64>) -> String {
         }
     }
     text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Four columns: c0, c1 = 3 c0, c2 independent, c3 = c0 − 0.5 c2.
+    #[test]
+    fn dropped_columns_are_written_in_the_kept_ones() {
+        let c0 = DVector::from_vec(vec![1.0, -2.0, 0.5, 4.0, 1.5]);
+        let c2 = DVector::from_vec(vec![0.3, 1.0, -1.0, 0.0, 2.0]);
+        let c1 = &c0 * 3.0;
+        let c3 = &c0 - &c2 * 0.5;
+        let w = DMatrix::from_columns(&[c0, c1, c2, c3]);
+        let names = ["a.m", "a.mx", "b.m", "b.mx"].map(String::from).to_vec();
+        let base = BaseParameters::from_stacked(&w, names);
+        assert_eq!(base.names(), ["a.m", "b.m"]);
+        let want = DMatrix::from_row_slice(2, 4, &[1.0, 3.0, 0.0, 1.0, 0.0, 0.0, 1.0, -0.5]);
+        assert!((base.map() - want).abs().max() < 1e-14, "{}", base.map());
+        // τ = W π = W_b π_b for any π.
+        let pi = DVector::from_vec(vec![0.7, -1.1, 2.0, 0.4]);
+        let pb = base.of_parameters(&pi).expect("π's length");
+        let w_b = w.select_columns(base.columns());
+        assert!((&w * &pi - w_b * pb).abs().max() < 1e-13);
+        let text = &base.expressions()[1];
+        assert!(
+            text.starts_with("b.m - 0.") && text.ends_with("*b.mx"),
+            "{text}"
+        );
+    }
 }

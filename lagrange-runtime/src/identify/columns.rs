@@ -48,3 +48,20 @@ pub(super) fn independent(w: &DMatrix<f64>) -> Vec<bool> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn combinations_zeros_and_round_off_are_dropped() {
+        let a = DVector::from_vec(vec![1.0, 2.0, -1.0, 0.5]);
+        let b = DVector::from_vec(vec![0.0, 1.0, 3.0, -2.0]);
+        let combination = &a * 2.0 - &b * 0.25;
+        // A zero written as round-off: 1e-17 against columns of order 1.
+        let noise = DVector::from_vec(vec![1e-17, -2e-17, 0.0, 3e-17]);
+        let weak = &a + DVector::from_vec(vec![0.0, 0.0, 1e-6, 0.0]);
+        let w = DMatrix::from_columns(&[a, b, combination, DVector::zeros(4), noise, weak]);
+        assert_eq!(independent(&w), [true, true, false, false, false, true]);
+    }
+}

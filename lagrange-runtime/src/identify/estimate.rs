@@ -56,7 +56,8 @@ impl Estimate {
 /// parameters; [`IdentifyError::RankDeficient`], naming them, when the
 /// samples do not excite every base parameter;
 /// [`IdentifyError::NoRegressor`] unless the system was derived with
-/// `emit(regressor)`.
+/// `emit(regressor)`; [`IdentifyError::Lengths`] for base parameters found
+/// for another system.
 pub fn identify<S, const N: usize, const Q: usize>(
     sys: &S,
     base: &BaseParameters,
@@ -91,6 +92,14 @@ where
         });
     }
     let (w, y) = weighted(sys, base, samples, noise)?;
+    if parameters == 0 {
+        // Nothing to estimate (no mass moves): the data are all residual.
+        return Ok(Estimate {
+            values: DVector::zeros(0),
+            covariance: DMatrix::zeros(0, 0),
+            residual: y.norm() / (y.len().max(1) as f64).sqrt(),
+        });
+    }
     let flags = independent(&w);
     if flags.iter().any(|&kept| !kept) {
         let names = base.names();
