@@ -330,14 +330,19 @@ fn bad_data_are_typed_errors() {
         g: 9.81,
     };
     let other = BaseParameters::of(&top).expect("a regressor");
-    assert!(matches!(
-        identify(&ARM, &other, &broken[..4], &sigma),
-        Err(IdentifyError::Lengths {
-            got: 20,
-            expected: 10,
-            ..
-        })
-    ));
+    let fine = samples(&ARM, 10, 0.0, &mut rng);
+    let wrong = identify(&ARM, &other, &fine, &sigma);
+    assert!(
+        matches!(
+            wrong,
+            Err(IdentifyError::Lengths {
+                got: 20,
+                expected: 10,
+                ..
+            })
+        ),
+        "{wrong:?}"
+    );
     assert!(matches!(
         base.of_parameters(&DVector::zeros(3)),
         Err(IdentifyError::Lengths {
