@@ -54,6 +54,8 @@ mod reactions;
 mod recording;
 mod reduced_breakdown;
 mod reduced_orientation;
+mod regressor;
+mod regressor_pinocchio;
 mod rolling_quaternion;
 mod scene;
 mod scene_browser;

@@ -23,6 +23,7 @@ const RUNTIME_LAYERS: &[&[&str]] = &[
         "contact",
         "control",
         "event",
+        "identify",
         "linear",
         "plan",
         "study",

@@ -114,6 +114,9 @@ pub enum Extra {
     /// program (with `jacobians`) over four states at once, for an `f64`
     /// system without constraints.
     Batched,
+    /// The dynamics regressor Y(q, q̇, q̈) with M q̈ + h − Q_gravity = Y π, π
+    /// the bodies' inertial parameters, on a kinematic tree.
+    Regressor,
 }
 
 /// `force(point, [fx, fy, fz])`: a Cartesian force applied at a point.

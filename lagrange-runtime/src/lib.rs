@@ -220,6 +220,7 @@ pub mod control;
 #[cfg(feature = "parallel")]
 pub mod ensemble;
 pub mod event;
+pub mod identify;
 pub mod linear;
 #[cfg(feature = "plot")]
 pub mod picture;
@@ -240,7 +241,9 @@ pub use control::{
     Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,
     StateFeedback,
 };
-pub use error::{ContactError, ContactFault, Error, Failure, LinearError, SettingsError};
+pub use error::{
+    ContactError, ContactFault, Error, Failure, IdentifyError, LinearError, SettingsError,
+};
 pub use event::{Direction, Event, EventRun, Events, LimitPolicy, Occurrence};
 pub use linear::{
     Linear, Linearizer, OperatingPoint, complete_state, linearize, linearize_constrained,

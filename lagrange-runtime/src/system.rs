@@ -7,7 +7,7 @@
 
 use crate::numeric::Real;
 use crate::numeric::orientation::Orientation;
-use nalgebra::{SMatrix, SVector};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 mod atlas;
 mod configuration;
@@ -193,6 +193,53 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// description asks for it with `emit(inverse_dynamics)`.
     fn gravity_torques(&self, q: &SVector<T, Q>, t: T) -> Option<SVector<T, N>> {
         let _ = (q, t);
+        None
+    }
+
+    /// The inertial parameters π's names, in the order of
+    /// [`regressor`](Self::regressor)'s columns: per body `body.m`,
+    /// `body.mx`, `body.my`, `body.mz` (the first moments m c),
+    /// `body.Ixx`, `body.Ixy`, `body.Iyy`, `body.Ixz`, `body.Iyz`,
+    /// `body.Izz` (the inertia about the body's reference point), c and I in
+    /// the body's axes (Pinocchio's `Inertia::toDynamicParameters`), and per
+    /// point mass `point.m`, in declaration order. Empty unless the
+    /// description asks for `emit(regressor)`.
+    const REGRESSOR_PARAMETERS: &'static [&'static str] = &[];
+
+    /// The dynamics regressor Y(q, q̇, q̈, t), N × π's length: M q̈ + h −
+    /// Q_gravity = Y π, the generalized forces the masses need for the
+    /// accelerations `a` (with no other force, the
+    /// [`inverse_dynamics`](Self::inverse_dynamics)); π as
+    /// [`REGRESSOR_PARAMETERS`](Self::REGRESSOR_PARAMETERS) names it. `None`
+    /// unless the description asks for it with `emit(regressor)` (a
+    /// kinematic tree; Y is built on recursive Newton–Euler). Allocates its
+    /// matrix.
+    fn regressor(
+        &self,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        a: &SVector<T, N>,
+        t: T,
+    ) -> Option<DMatrix<T>> {
+        let _ = (q, v, a, t);
+        None
+    }
+
+    /// The energy regressor Y_E(q, q̇, t), one entry per parameter of π:
+    /// T + V_gravity = Y_E · π, the kinetic energy and gravity's potential
+    /// (the user's potential is not in it). `None` unless the description
+    /// asks for `emit(regressor)`. Allocates its vector.
+    fn energy_regressor(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> Option<DVector<T>> {
+        let _ = (q, v, t);
+        None
+    }
+
+    /// π from the system's parameters (its fields): each body's mass, first
+    /// moments and inertia about its reference point, each point mass's
+    /// mass, in [`REGRESSOR_PARAMETERS`](Self::REGRESSOR_PARAMETERS)' order,
+    /// so that [`regressor`](Self::regressor) times it is the masses' share of
+    /// τ. `None` unless the description asks for `emit(regressor)`.
+    fn inertial_parameters(&self) -> Option<DVector<T>> {
         None
     }
 

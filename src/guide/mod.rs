@@ -17,6 +17,8 @@
 //! 9. [When things go wrong](errors): the errors and what each means.
 //! 10. [Planning](planning): equilibria, discrete time, optimal control and
 //!     MPC.
+//! 11. [Identification](identification): the regressor, base parameters and
+//!     the estimation of a robot's masses and inertias from its motion.
 //! 12. [Contact](contact): bodies that land, bounce, slide, stick and roll;
 //!     joint stops.
 
@@ -50,5 +52,7 @@ pub mod errors {}
 #[doc = include_str!("10-planning.md")]
 pub mod planning {}
 
+#[doc = include_str!("11-identification.md")]
+pub mod identification {}
 #[doc = include_str!("12-contact.md")]
 pub mod contact {}

@@ -240,6 +240,11 @@ pub(super) const OUTPUTS: Words<Extra> = Words(&[
         Extra::Batched,
         "q̈ (and, with `jacobians`, its derivatives) over four states per call, in SIMD lanes",
     ),
+    word(
+        "regressor",
+        Extra::Regressor,
+        "the dynamics regressor Y(q, q̇, q̈) with τ = Y π, π the bodies' inertial parameters",
+    ),
 ]);
 
 /// The forms `formulation(...)` chooses.

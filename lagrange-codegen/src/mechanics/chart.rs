@@ -63,21 +63,7 @@ pub(super) fn at_centre(
         c.unreduced(&mut a.accelerations);
         c.unreduced(&mut a.pivots);
     }
-    // Derivatives are substituted only: R(θ) → 1 makes most of their terms
-    // vanish at construction, and collecting a few hundred of them costs
-    // seconds of build time for no fewer operations.
-    if let Some(j) = &mut d.jacobians {
-        for row in j.position.iter_mut().chain(j.velocity.iter_mut()) {
-            c.substituted(row);
-        }
-    }
-    if let Some(f) = frames {
-        for row in f.jacobians.iter_mut().chain(f.biases.iter_mut()) {
-            c.substituted(row);
-        }
-        c.substituted(&mut f.com);
-        c.substituted(&mut f.com_jacobian);
-    }
+    substituted_only(&mut c, d, frames);
     if let Some(cm) = coriolis {
         c.rows(cm);
     }
@@ -107,6 +93,31 @@ pub(super) fn at_centre(
         c.inputs(inputs, v.coordinates.len(), v.orientations.len());
     }
     c.forms(forms);
+}
+
+/// The derivatives (the right-hand side's Jacobians, the frames', Y's
+/// columns and Y_E) are substituted only: R(θ) → 1 makes most of their
+/// terms vanish at construction, and collecting a few hundred of them costs
+/// seconds of build time for no fewer operations.
+fn substituted_only(c: &mut AtCentre, d: &mut Derived, frames: Option<&mut Frames>) {
+    if let Some(j) = &mut d.jacobians {
+        for row in j.position.iter_mut().chain(j.velocity.iter_mut()) {
+            c.substituted(row);
+        }
+    }
+    if let Some(f) = frames {
+        for row in f.jacobians.iter_mut().chain(f.biases.iter_mut()) {
+            c.substituted(row);
+        }
+        c.substituted(&mut f.com);
+        c.substituted(&mut f.com_jacobian);
+    }
+    if let Some(r) = &mut d.regressor {
+        for row in &mut r.rows {
+            c.substituted(row);
+        }
+        c.substituted(&mut r.energy);
+    }
 }
 
 /// The kinetic-energy gradient at fixed ω from its value at fixed θ̇ (both

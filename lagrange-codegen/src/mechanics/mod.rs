@@ -35,6 +35,7 @@ mod kinematics;
 mod model;
 mod motion;
 mod recursive;
+mod regressor;
 mod solved;
 
 pub use contact::ContactRowsModel;
@@ -48,6 +49,7 @@ pub use model::{
     Articulation, BiasRoute, ConstraintForms, Derivation, Energies, EquationsOfMotion, InputModel,
     Masses, Model, Outputs, Variables,
 };
+pub use regressor::Regressor;
 pub use solved::SolvedDerivatives;
 
 use std::mem::take;
@@ -96,6 +98,9 @@ pub enum DeriveError {
     /// `emit(jacobians)` with a free orientation on a description that is not
     /// a kinematic tree, and why it is not.
     JacobiansNeedTree(String),
+    /// `emit(regressor)` on a description that is not a kinematic tree, and
+    /// why it is not.
+    RegressorNeedsTree(String),
 }
 
 impl std::fmt::Display for DeriveError {
@@ -112,6 +117,10 @@ impl std::fmt::Display for DeriveError {
             DeriveError::JacobiansNeedTree(why) => write!(
                 f,
                 "`jacobians` with a free orientation needs {TREE} (its derivatives are those of recursive Newton–Euler, in the tangent space); here {why}; without one, remove `jacobians` (`Linearizer::tangent` then takes central differences)"
+            ),
+            DeriveError::RegressorNeedsTree(why) => write!(
+                f,
+                "`regressor` needs {TREE} (Y is built on recursive Newton–Euler); here {why}"
             ),
         }
     }
@@ -173,6 +182,7 @@ fn unconstrained(
     let route_reason = route_reason(recursive_terms.is_some(), tree.as_ref(), not_a_tree);
     let input_names = take(&mut lowered.inputs);
     let recursive = recursive_terms.is_some();
+    let regressor = regressor_if_asked(ctx, lowered)?;
     let sources = sources(lowered, tree.as_ref(), recursive, route_reason.clone());
     let extras = &lowered.extras;
     let (forces, potential) = applied_forces(ctx, &kin, &sources, input_names)?;
@@ -218,6 +228,7 @@ fn unconstrained(
         forces,
         motion,
         inverse,
+        regressor,
         jacobians: jacobians.transpose()?,
         poses: take(&mut lowered.poses),
     })
@@ -272,6 +283,25 @@ fn inverse_if_asked(
     let rest = (motion.derivation.route == BiasRoute::Recursive).then_some(&forces.generalized[..]);
     let potential = forces.gravity_potential;
     asked.then(|| inverse::inverse_dynamics(ctx, tree, motion, potential, rest))
+}
+
+/// `emit(regressor)`: Y on the tree, or why there is none.
+fn regressor_if_asked(
+    ctx: &mut Context,
+    lowered: &mut Lowered,
+) -> Result<Option<Regressor>, DeriveError> {
+    if !lowered.extras.contains(&Extra::Regressor) {
+        return Ok(None);
+    }
+    let masses = regressor::MassModel {
+        points: &lowered.points,
+        spins: &lowered.spins,
+        skeleton: &mut lowered.skeleton,
+        gravity: lowered.gravity.as_deref(),
+    };
+    regressor::regressor(ctx, masses)
+        .map(Some)
+        .map_err(|why| DeriveError::RegressorNeedsTree(why.to_string()))
 }
 
 /// Why M and h are not by the recursive route (`None` when they are): the
@@ -384,6 +414,8 @@ pub(super) struct Derived {
     forces: Forces,
     /// `emit(inverse_dynamics)`.
     inverse: Option<InverseDynamics>,
+    /// `emit(regressor)`.
+    regressor: Option<Regressor>,
     /// `emit(jacobians)`, before the chart's centre.
     jacobians: Option<RhsJacobians>,
     poses: Poses,
@@ -528,6 +560,7 @@ fn finish(
             articulated,
             forward_route,
             inverse: d.inverse,
+            regressor: d.regressor,
             frames: early.frames,
         },
         hoisted,

@@ -5,7 +5,7 @@ use lagrange_symbolic::{Context, Expr as Sym, Hoisted};
 
 use super::expressions::{Expressions, entries};
 use super::extra::{Coriolis, Hamilton};
-use super::{Frames, InverseDynamics, RhsJacobians};
+use super::{Frames, InverseDynamics, Regressor, RhsJacobians};
 use crate::constraint::{ConstraintDerivatives, ConstraintSet, Reduction};
 use crate::lowered::{OrientationModel, PhysicalCheck, Poses};
 
@@ -226,6 +226,9 @@ pub struct Outputs {
     pub inverse: Option<InverseDynamics>,
     /// The frames' Jacobians and the centre of mass (`emit(kinematics)`).
     pub frames: Option<Frames>,
+    /// The dynamics regressor Y and the inertial parameters π
+    /// (`emit(regressor)`).
+    pub regressor: Option<Regressor>,
 }
 
 impl Expressions for Outputs {

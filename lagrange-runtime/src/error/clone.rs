@@ -45,7 +45,7 @@ impl Clone for Error {
             JointLimit { joint, coordinate, value, lower, upper, t },
             UnknownBody { body, count, bodies },
             InverseKinematics { body, iterations, residual, tolerance };
-            Settings, Linear, Plan, Contact
+            Settings, Linear, Plan, Contact, Identify
         )
     }
 }

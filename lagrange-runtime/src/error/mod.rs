@@ -442,6 +442,9 @@ pub enum Error {
     /// many), or contacts it cannot use.
     #[error(transparent)]
     Contact(#[from] ContactError),
+    /// Parameter identification failed; see [`IdentifyError`].
+    #[error(transparent)]
+    Identify(#[from] IdentifyError),
 
     /// Writing output (CSV) failed.
     #[error("i/o error: {0}")]
@@ -452,6 +455,7 @@ mod checks;
 mod clone;
 mod contact;
 mod failure;
+mod identify;
 mod linear;
 mod plan;
 mod settings;
@@ -460,6 +464,7 @@ mod singular;
 pub(crate) use checks::{check_finite_inputs, check_tolerance, unit_quaternions};
 pub use contact::{ContactError, ContactFault};
 pub use failure::{Failure, Progress};
+pub use identify::IdentifyError;
 pub use linear::{LinearError, StatePoint};
 pub use plan::PlanError;
 pub use settings::SettingsError;

@@ -11,6 +11,7 @@ mod inverse;
 mod jacobians;
 mod kinematics;
 mod reactions;
+mod regressor;
 mod solved;
 
 pub(super) use kinematics::{Signature, per_body};
@@ -50,7 +51,7 @@ impl Pieces {
 type Output = fn(&Emitter, &Frame, &Model, &System) -> Pieces;
 
 /// Every optional output, in the order their pieces are emitted.
-const OUTPUTS: [Output; 9] = [
+const OUTPUTS: [Output; 10] = [
     hamilton::pieces,
     jacobians::pieces,
     solved::pieces,
@@ -60,6 +61,7 @@ const OUTPUTS: [Output; 9] = [
     coriolis::pieces,
     kinematics::pieces,
     batched::pieces,
+    regressor::pieces,
 ];
 
 /// The pieces of every output the model has.

@@ -1,0 +1,248 @@
+//! The dynamics regressor (`emit(regressor)`): Y(q, q̇, q̈, t) with
+//! M q̈ + h − Q_gravity = Y π, π the inertial parameters.
+//!
+//! The equations of motion are linear in each body's ten inertial
+//! parameters, in Pinocchio's order (`Inertia::toDynamicParameters`)
+//! [m, m cx, m cy, m cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz], c the centre of mass
+//! and I the inertia about the body's reference point, both in the body's
+//! axes; a point mass has the one parameter m (its place is part of the
+//! description, not of π). The parameters are made fresh symbols of the
+//! engine, recursive Newton–Euler is built on them over the tree the
+//! description spans, and each column is the derivative of τ by one of them:
+//! exact, since τ is linear in π, and the columns share what the engine
+//! shares.
+//!
+//! The tree's mass attachment takes point masses at fixed places and
+//! rotational inertias; a body's parameters are handed to it as such, which
+//! is linear in π: a mass m − Σ h_k at the reference point, a mass h_k at
+//! the unit point e_k of each axis (giving the first moment h = m c, and
+//! h_k (1 − e_k e_kᵀ) of rotational inertia that the tensor handed over
+//! takes back), and the tensor I − Σ h_k (1 − e_k e_kᵀ).
+
+use lagrange_symbolic::{Context, Expr as Sym};
+
+use super::expressions::Expressions;
+use crate::lowered::{PointModel, Skeleton, SpinModel};
+use crate::mat3::{Mat3, cross, dot, mat_vec, parallel_axis, transpose};
+use crate::tree::NotATree;
+
+/// Y and what π is.
+pub struct Regressor {
+    /// Y row by row: `rows[i][k]` = ∂τ_i/∂π_k, free of π.
+    pub rows: Vec<Vec<Sym>>,
+    /// π's names in its order: `body.m`, `body.mx`, `body.my`, `body.mz`,
+    /// `body.Ixx`, `body.Ixy`, `body.Iyy`, `body.Ixz`, `body.Iyz`,
+    /// `body.Izz` per body, `point.m` per point mass, in declaration order.
+    pub names: Vec<String>,
+    /// π in the struct's parameters.
+    pub parameters: Vec<Sym>,
+    /// The energy regressor Y_E(q, q̇, t), one entry per parameter:
+    /// T + V_gravity = Y_E π.
+    pub energy: Vec<Sym>,
+}
+
+impl Expressions for Regressor {
+    fn expressions(&self, out: &mut Vec<Sym>) {
+        out.extend(self.rows.iter().flatten());
+        out.extend(&self.parameters);
+        out.extend(&self.energy);
+    }
+}
+
+/// The suffixes of a body's ten parameters, in π's order.
+const BODY: [&str; 10] = [
+    "m", "mx", "my", "mz", "Ixx", "Ixy", "Iyy", "Ixz", "Iyz", "Izz",
+];
+
+/// What the description's masses are, as the tree detection reads them.
+pub(super) struct MassModel<'a> {
+    pub points: &'a [PointModel],
+    pub spins: &'a [SpinModel],
+    pub skeleton: &'a mut Skeleton,
+    pub gravity: Option<&'a [Sym]>,
+}
+
+/// Y on the tree the description spans, built on π's symbols, or why there
+/// is no tree.
+pub(super) fn regressor(ctx: &mut Context, m: MassModel) -> Result<Regressor, NotATree> {
+    let mut p = Parametrised {
+        inertias: m.spins.iter().map(|s| s.inertia).collect(),
+        ..Parametrised::default()
+    };
+    for (i, point) in m.points.iter().enumerate() {
+        let at = m.skeleton.masses[i].clone();
+        let body = m.spins.iter().position(|s| s.name == point.name);
+        match (body, &at) {
+            (Some(b), Some((_, offset))) => p.body(ctx, &m, (point, b, offset)),
+            _ => p.point(ctx, point, at, m.gravity),
+        }
+    }
+    let spins: Vec<SpinModel> = (m.spins.iter().zip(&p.inertias))
+        .map(|(s, &inertia)| SpinModel {
+            name: s.name.clone(),
+            inertia,
+            omega: s.omega,
+        })
+        .collect();
+    // The detection reads where the masses sit off the skeleton: handed the
+    // parametrised ones for this reading alone.
+    let kept = std::mem::replace(&mut m.skeleton.masses, p.placed);
+    let masses = (&p.points[..], &spins[..], &*m.skeleton);
+    let tree = super::recursive::detect(ctx, super::Route::Recursive, masses, m.gravity);
+    m.skeleton.masses = kept;
+    let tree = tree?;
+    let torques = crate::tree::inverse_dynamics_at_accelerations(ctx, &tree, true);
+    let rows = torques
+        .iter()
+        .map(|&tau| p.symbols.iter().map(|&s| ctx.diff(tau, s)).collect())
+        .collect();
+    Ok(Regressor {
+        rows,
+        names: p.names,
+        parameters: p.parameters,
+        energy: p.energy,
+    })
+}
+
+/// The description's masses with π's symbols in place of their values, and
+/// what is read off them on the way.
+#[derive(Default)]
+struct Parametrised {
+    /// π's symbols, names and values in the struct's parameters.
+    symbols: Vec<Sym>,
+    names: Vec<String>,
+    parameters: Vec<Sym>,
+    /// Y_E's entries.
+    energy: Vec<Sym>,
+    /// The point masses the tree's attachment takes, and where they sit.
+    points: Vec<PointModel>,
+    placed: Vec<PlacedMass>,
+    /// The bodies' rotational inertias, parallel to the spins.
+    inertias: Vec<Mat3>,
+}
+
+/// Where a point mass sits: its body and its offset in the body's axes.
+type PlacedMass = Option<(usize, Vec<Sym>)>;
+
+impl Parametrised {
+    /// A point mass: its one parameter m.
+    fn point(&mut self, ctx: &mut Context, point: &PointModel, at: PlacedMass, g: Option<&[Sym]>) {
+        let mass = ctx.free_symbol(&format!("__pi_{}_m", point.name));
+        self.symbols.push(mass);
+        self.names.push(format!("{}.m", point.name));
+        self.parameters.push(point.mass);
+        self.energy.push(point_energy(ctx, &point.position, g));
+        self.points.push(moved(point, mass));
+        self.placed.push(at);
+    }
+
+    /// Body `b`, whose centre is `point` at `offset` in its axes: its ten
+    /// parameters, handed to the attachment as four point masses and a
+    /// tensor.
+    fn body(
+        &mut self,
+        ctx: &mut Context,
+        m: &MassModel,
+        (point, b, offset): (&PointModel, usize, &[Sym]),
+    ) {
+        let pi: [Sym; 10] = BODY.map(|s| ctx.free_symbol(&format!("__pi_{}_{s}", point.name)));
+        self.symbols.extend(pi);
+        self.names
+            .extend(BODY.map(|s| format!("{}.{s}", point.name)));
+        let inertia = &m.spins[b].inertia;
+        self.parameters
+            .extend(body_parameters(ctx, point.mass, offset, inertia));
+        let frame = &m.skeleton.bodies[b];
+        let placed_at = (&frame.reference[..], &frame.matrix);
+        let energy = body_energy(ctx, placed_at, m.spins[b].omega, m.gravity);
+        self.energy.extend(energy);
+        let [mass, hx, hy, hz, ixx, ixy, iyy, ixz, iyz, izz] = pi;
+        let h = [hx, hy, hz];
+        let all = ctx.sum(&h);
+        let at_origin = ctx.sub(mass, all);
+        let zero = ctx.zero();
+        let one = ctx.one();
+        self.points.push(moved(point, at_origin));
+        self.placed.push(Some((b, vec![zero; 3])));
+        for (k, &hk) in h.iter().enumerate() {
+            let mut unit = vec![zero; 3];
+            unit[k] = one;
+            self.points.push(moved(point, hk));
+            self.placed.push(Some((b, unit)));
+        }
+        // I − Σ h_k (1 − e_k e_kᵀ): each diagonal entry less the other two
+        // axes' first moments.
+        let less = |ctx: &mut Context, d: Sym, a: Sym, b: Sym| {
+            let both = ctx.add(a, b);
+            ctx.sub(d, both)
+        };
+        let xx = less(ctx, ixx, hy, hz);
+        let yy = less(ctx, iyy, hx, hz);
+        let zz = less(ctx, izz, hx, hy);
+        self.inertias[b] = [[xx, ixy, ixz], [ixy, yy, iyz], [ixz, iyz, zz]];
+    }
+}
+
+/// A point mass with its mass replaced.
+fn moved(point: &PointModel, mass: Sym) -> PointModel {
+    PointModel {
+        name: point.name.clone(),
+        mass,
+        position: point.position.clone(),
+    }
+}
+
+/// A body's π from its mass, centre `c` in body axes and inertia about the
+/// centre: [m, m c, I + m(|c|² 1 − c cᵀ)] in π's order.
+fn body_parameters(ctx: &mut Context, mass: Sym, c: &[Sym], about_centre: &Mat3) -> [Sym; 10] {
+    let c = [c[0], c[1], c[2]];
+    let first = c.map(|x| ctx.mul(mass, x));
+    let shift = parallel_axis(ctx, mass, c);
+    let i = [0, 1, 2].map(|r| [0, 1, 2].map(|k| ctx.add(about_centre[r][k], shift[r][k])));
+    [
+        mass, first[0], first[1], first[2], i[0][0], i[0][1], i[1][1], i[0][2], i[1][2], i[2][2],
+    ]
+}
+
+/// A point mass's column of Y_E: ½ |ṗ|² − g·p.
+fn point_energy(ctx: &mut Context, p: &[Sym], gravity: Option<&[Sym]>) -> Sym {
+    let rate: Vec<Sym> = p.iter().map(|&x| ctx.time_derivative(x)).collect();
+    let squared = dot(ctx, &rate, &rate);
+    let half = ctx.rational(1, 2);
+    let kinetic = ctx.mul(half, squared);
+    match gravity {
+        Some(g) => {
+            let height = dot(ctx, g, p);
+            ctx.sub(kinetic, height)
+        }
+        None => kinetic,
+    }
+}
+
+/// A body's ten columns of Y_E, from its reference point o (world), its
+/// rotation R and ω in its axes: T = ½ m |v_o|² + (m c)·(v × ω) + ½ ωᵀ I ω
+/// with v = Rᵀ v_o, and V = −m g·o − (m c)·(Rᵀ g).
+fn body_energy(
+    ctx: &mut Context,
+    (origin, rotation): (&[Sym], &Mat3),
+    w: [Sym; 3],
+    gravity: Option<&[Sym]>,
+) -> [Sym; 10] {
+    let mass = point_energy(ctx, origin, gravity);
+    let rate: Vec<Sym> = origin.iter().map(|&x| ctx.time_derivative(x)).collect();
+    let body_axes = transpose(rotation);
+    let v = mat_vec(ctx, &body_axes, [rate[0], rate[1], rate[2]]);
+    let mut first = cross(ctx, v, w);
+    if let Some(g) = gravity {
+        let down = mat_vec(ctx, &body_axes, [g[0], g[1], g[2]]);
+        first = [0, 1, 2].map(|k| ctx.sub(first[k], down[k]));
+    }
+    let half = ctx.rational(1, 2);
+    let mut product = |a: usize, b: usize| {
+        let p = ctx.mul(w[a], w[b]);
+        if a == b { ctx.mul(half, p) } else { p }
+    };
+    let [xx, xy, yy, xz, yz, zz] =
+        [(0, 0), (0, 1), (1, 1), (0, 2), (1, 2), (2, 2)].map(|(a, b)| product(a, b));
+    [mass, first[0], first[1], first[2], xx, xy, yy, xz, yz, zz]
+}

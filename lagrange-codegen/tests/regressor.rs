@@ -1,0 +1,254 @@
+//! The dynamics regressor (`emit(regressor)`): Y π equals the inverse
+//! dynamics τ at random states (parameters, q, q̇, q̈) on trees of every kind
+//! the recursive route reads (chains, placements and tilted axes, fixed
+//! bodies, point masses, sliding joints, poses written out, free
+//! orientations), and the energy regressor Y_E π equals T + V; π's names in
+//! Pinocchio's order; a description that is not a tree refused with the
+//! reason.
+
+mod common;
+#[path = "common/written.rs"]
+mod written;
+use common::{Lcg, eval, model, random_point};
+use lagrange_codegen::mechanics::Model;
+use lagrange_symbolic::SymbolKind;
+
+/// The description with `emit(regressor, inverse_dynamics)` added.
+fn with_regressor(src: &str) -> String {
+    src.replacen(
+        "#[lagrange(",
+        "#[lagrange(emit(regressor, inverse_dynamics), ",
+        1,
+    )
+}
+
+/// Max |Y π − τ| over 10 random states, each relative to 1 + |τ|.
+fn y_pi_minus_tau(m: &Model) -> f64 {
+    let r = m
+        .outputs
+        .regressor
+        .as_ref()
+        .expect("the regressor is derived");
+    let tau = &m.outputs.inverse.as_ref().expect("τ is derived").torques;
+    let mut rng = Lcg(34);
+    let mut worst = 0.0f64;
+    for _ in 0..10 {
+        let p = random_point(m, &mut rng);
+        let a: Vec<f64> = (0..m.dof()).map(|_| 3.0 * rng.next()).collect();
+        let env = common::env(m, &p);
+        let env = |s| match m.ctx.symbol_kind(s) {
+            SymbolKind::Acceleration(i) => a[i],
+            _ => env(s),
+        };
+        let pi: Vec<f64> = r.parameters.iter().map(|&e| m.ctx.eval(e, &env)).collect();
+        for (i, row) in r.rows.iter().enumerate() {
+            let y_pi: f64 = row
+                .iter()
+                .zip(&pi)
+                .map(|(&y, p)| m.ctx.eval(y, &env) * p)
+                .sum();
+            let want = m.ctx.eval(tau[i], &env);
+            assert!(
+                y_pi.is_finite() && want.is_finite(),
+                "row {i}: {y_pi} vs {want}"
+            );
+            worst = worst.max((y_pi - want).abs() / (1.0 + want.abs()));
+        }
+    }
+    worst
+}
+
+/// Max |Y_E π − (T + V)| over 10 random states, relative to 1 + |T + V|
+/// (the descriptions have no potential but gravity's).
+fn energy_misfit(m: &Model) -> f64 {
+    let r = m
+        .outputs
+        .regressor
+        .as_ref()
+        .expect("the regressor is derived");
+    let mut rng = Lcg(43);
+    let mut worst = 0.0f64;
+    for _ in 0..10 {
+        let p = random_point(m, &mut rng);
+        let pi: Vec<f64> = r.parameters.iter().map(|&e| eval(m, e, &p)).collect();
+        let y_pi: f64 = r
+            .energy
+            .iter()
+            .zip(&pi)
+            .map(|(&y, p_k)| eval(m, y, &p) * p_k)
+            .sum();
+        let want = eval(m, m.energies.kinetic, &p) + eval(m, m.energies.potential, &p);
+        assert!(y_pi.is_finite() && want.is_finite(), "{y_pi} vs {want}");
+        worst = worst.max((y_pi - want).abs() / (1.0 + want.abs()));
+    }
+    worst
+}
+
+fn agrees(src: &str) {
+    let m = model(&with_regressor(src));
+    let worst = y_pi_minus_tau(&m);
+    assert!(worst < 1e-12, "|Y π − τ| = {worst:e}\n{src}");
+    let energy = energy_misfit(&m);
+    assert!(energy < 1e-12, "|Y_E π − (T + V)| = {energy:e}\n{src}");
+}
+
+#[test]
+fn spatial_chains() {
+    for n in [1, 2, 3, 5] {
+        agrees(&lagrange_codegen::chain::spatial_chain_source(n));
+    }
+}
+
+#[test]
+fn euler_top_on_massless_links() {
+    agrees(
+        "#[lagrange(coordinates(psi, theta, phi),
+            body(top, mass = m, inertia = [a, a, c], about = [0, 0, 0], com = [0, 0, l],
+                 at = [0, 0, 0], rotation = euler_zxz(psi, theta, phi)),
+            gravity = [0, 0, -g])]
+         struct Top { m: f64, a: f64, c: f64, l: f64, g: f64 }",
+    );
+}
+
+/// Placements, a tilted axis, a body turned after its joint, a fixed tool
+/// with a point mass on it, a massive base fixed in space, full tensors.
+const ROBOT: &str = "#[lagrange(coordinates(a, b, c),
+    body(base, mass = m0, inertia = [i1, i2, i3], at = [0, 0, 0], rotation = rot_z(w)),
+    point(mount, on = base, at = [0.1, 0, h]),
+    body(l1, mass = m1, inertia = [i1, i2, i3, p, 0, 0], com = [0.1, 0, 0.2],
+         at = [mount.x, mount.y, mount.z], rotation = rot_z(w) * rot_z(a) * rot_x(0.4)),
+    point(t1, on = l1, at = [0, 0.1, l]),
+    body(l2, mass = m1, inertia = [i2, i3, i1, p, p / 2, p / 3], com = [l / 2, 0.1, 0],
+         at = [t1.x, t1.y, t1.z],
+         rotation = rot_z(w) * rot_z(a) * rot_x(0.4) * rot_x(1.5707963) * rot_z(b)),
+    point(t2, on = l2, at = [l, 0, 0.05]),
+    body(l3, mass = m0, inertia = [i1, i1, i3], com = [0, 0, l / 3],
+         at = [t2.x, t2.y, t2.z],
+         rotation = rot_z(w) * rot_z(a) * rot_x(0.4) * rot_x(1.5707963) * rot_z(b)
+             * rot_y(w) * rot_z(c) * rot_y(-w)),
+    point(flange, on = l3, at = [0, 0.02, l]),
+    body(tool, mass = m1, inertia = [i3, i2, i1], com = [0, 0, 0.1],
+         at = [flange.x, flange.y, flange.z],
+         rotation = rot_z(w) * rot_z(a) * rot_x(0.4) * rot_x(1.5707963) * rot_z(b)
+             * rot_y(w) * rot_z(c) * rot_y(-w) * rot_x(0.3)),
+    point(tip, on = tool, at = [0, 0.05, 0.2], mass = m0),
+    gravity = [0, 0, -g])]
+ struct Robot { m0: f64, m1: f64, i1: f64, i2: f64, i3: f64, p: f64, h: f64, l: f64,
+                w: f64, g: f64 }";
+
+#[test]
+fn placements_tilted_axes_fixed_bodies_and_point_masses() {
+    agrees(ROBOT);
+}
+
+#[test]
+fn sliding_joints() {
+    agrees(
+        "#[lagrange(coordinates(x, a, s),
+            body(cart, mass = m0, inertia = [i1, i2, i3], at = [x, 0, 0], rotation = rot_z(0)),
+            point(pivot, on = cart, at = [0, 0.1, 0.2]),
+            body(arm, mass = m1, inertia = [i1, i2, i3], com = [0, 0.1, -l / 2],
+                 at = [pivot.x, pivot.y, pivot.z], rotation = rot_z(0) * rot_x(a) * rot_y(w)),
+            point(rail, on = arm, at = [s * 0.6, 0, -s * 0.8]),
+            body(slider, mass = m0, inertia = [i2, i2, i3], com = [0.1, 0, 0],
+                 at = [rail.x, rail.y, rail.z], rotation = rot_z(0) * rot_x(a) * rot_y(w)),
+            gravity = [0, 0, -g])]
+         struct Slides { m0: f64, m1: f64, i1: f64, i2: f64, i3: f64, l: f64, w: f64, g: f64 }",
+    );
+}
+
+#[test]
+fn poses_written_out() {
+    agrees(&written::robot());
+}
+
+#[test]
+fn free_orientations() {
+    agrees(
+        "#[lagrange(coordinates(x, y, z, j1, j2), orientation(base),
+            body(hub, mass = 5.0, inertia = [0.4, 0.5, 0.6], com = [0.01, 0.02, 0.03],
+                 at = [x, y, z], rotation = base),
+            point(shoulder, on = hub, at = [0.3, 0.1, 0.2]),
+            body(upper, mass = 1.5, inertia = [0.01, 0.05, 0.05], com = [0.2, 0, 0],
+                 at = [shoulder.x, shoulder.y, shoulder.z], rotation = base * rot_z(j1)),
+            point(elbow, on = upper, at = [0.4, 0, 0]),
+            body(fore, mass = 1.0, inertia = [0.005, 0.02, 0.02], com = [0.15, 0, 0],
+                 at = [elbow.x, elbow.y, elbow.z], rotation = base * rot_z(j1) * rot_y(j2)),
+            point(load, mass = 0.3, on = fore, at = [0.3, 0.05, 0]),
+            gravity = [0, 0, -g])]
+         struct FloatingArm { g: f64 }",
+    );
+}
+
+#[test]
+fn parameters_are_named_in_pinocchios_order() {
+    let m = model(&with_regressor(ROBOT));
+    let names = &m.outputs.regressor.as_ref().expect("derived").names;
+    let l1: Vec<&str> = names.iter().filter_map(|n| n.strip_prefix("l1.")).collect();
+    assert_eq!(
+        l1,
+        [
+            "m", "mx", "my", "mz", "Ixx", "Ixy", "Iyy", "Ixz", "Iyz", "Izz"
+        ]
+    );
+    // Five bodies of ten and one point mass of one, in declaration order.
+    assert_eq!(names.len(), 51);
+    assert_eq!(names[0], "base.m");
+    assert_eq!(names[50], "tip.m");
+}
+
+#[test]
+fn a_description_that_is_no_tree_is_refused_with_the_reason() {
+    let src = with_regressor(
+        "#[lagrange(coordinates(x),
+            body(slab, mass = m, inertia = [a, a, a], at = [x, x * x, 0],
+                 rotation = rot_z(0)),
+            gravity = [0, 0, -g])]
+         struct Curve { m: f64, a: f64, g: f64 }",
+    );
+    let input: syn::DeriveInput = syn::parse_str(&src).expect("parses");
+    let err = lagrange_codegen::model(&input).err().expect("refused");
+    let text = err.to_string();
+    assert!(
+        text.contains("`regressor` needs a kinematic tree"),
+        "{text}"
+    );
+}
+
+/// The robots shipped in `robots/`, read from their URDF: Y π = τ, and the
+/// operation counts of Y's program and of τ's (printed, for the record: a
+/// test asserts no speed).
+#[test]
+fn robots_from_urdf() {
+    for file in [
+        "ur5.urdf",
+        "panda.urdf",
+        "kinova.urdf",
+        "z1.urdf",
+        "xarm7.urdf",
+        "solo12.urdf",
+    ] {
+        let src = format!(
+            "#[lagrange(urdf = \"{}/../robots/{file}\", gravity = [0, 0, -9.81])] struct Robot {{}}",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let m = model(&with_regressor(&src));
+        let worst = y_pi_minus_tau(&m);
+        let energy = energy_misfit(&m);
+        assert!(energy < 1e-12, "{file}: |Y_E π − (T + V)| = {energy:e}");
+        let r = m.outputs.regressor.as_ref().expect("derived");
+        let entries: Vec<_> = r.rows.iter().flatten().copied().collect();
+        let y = lagrange_symbolic::Program::new(&m.ctx, &entries).op_count();
+        let tau = &m.outputs.inverse.as_ref().expect("derived").torques;
+        let t = lagrange_symbolic::Program::new(&m.ctx, tau).op_count();
+        eprintln!(
+            "{file}: {} parameters, max |Y π − τ| / (1 + |τ|) = {worst:.1e}; Y: {} mul {} add, τ: {} mul {} add",
+            r.names.len(),
+            y.mul,
+            y.add,
+            t.mul,
+            t.add
+        );
+        assert!(worst < 1e-12, "{file}: |Y π − τ| = {worst:e}");
+    }
+}
