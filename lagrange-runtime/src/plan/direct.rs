@@ -220,38 +220,28 @@ impl Direct {
                 // Clarabel found no solution, which a Gauss–Newton Hessian
                 // singular along the states can make it report: damp the
                 // step and build the program again.
-                Ok(Err(Unsolved(status))) if damping < 1e6 => {
-                    if self.verbose {
-                        eprintln!("direct: the program has no solution ({status:?})");
-                    }
+                Ok(Err(unsolved)) if damping < 1e6 => {
                     damping *= 100.0;
-                    log.push(self.record(&point, f64::NAN, 0.0, damping));
+                    log.push(self.unsolved(&point, &unsolved, damping));
                     continue;
                 }
                 Ok(Err(Unsolved(status))) => {
                     let why = format!("the quadratic program has no solution ({status:?})");
-                    return Err(fail(
-                        stalled(iteration, &why, &point, f64::NAN),
-                        &point,
-                        &log,
-                    ));
+                    let e = stalled(iteration, &why, &point, f64::NAN);
+                    return Err(fail(e, &point, &log));
                 }
                 Err(e) => return Err(fail(e, &point, &log)),
             };
             let size = step.delta.iter().fold(0.0f64, |m, d| m.max(d.abs()));
             last_step = size;
             let kkt = step.kkt;
-            if size <= self.tolerance {
-                log.push(self.record(&point, kkt, 0.0, damping));
-                return self.stationary(problem, point, log, iteration, size);
-            }
             penalty = penalty.max(2.0 * step.largest_multiplier + 1e-6);
             let slope = cost_slope(problem, &point.nominal, &step.delta)
                 + penalty * (step.slack - point.violation);
             let merit = point.nominal.cost + penalty * point.violation;
-            if slope >= -1e-10 * merit.max(1.0) {
-                // Stationary for the merit function: nothing along the step
-                // can lower it, feasible or not.
+            // Stationary: no step asked for, or nothing along it can lower
+            // the merit function, feasible or not.
+            if size <= self.tolerance || slope >= -1e-10 * merit.max(1.0) {
                 log.push(self.record(&point, kkt, 0.0, damping));
                 return self.stationary(problem, point, log, iteration, size);
             }
@@ -283,6 +273,14 @@ impl Direct {
             e.into(),
             finish(problem, &point.nominal, log, false),
         ))
+    }
+
+    /// The record of an iteration whose program had no solution.
+    fn unsolved(&self, point: &Point, Unsolved(status): &Unsolved, damping: f64) -> Iteration {
+        if self.verbose {
+            eprintln!("direct: the program has no solution ({status:?})");
+        }
+        self.record(point, f64::NAN, 0.0, damping)
     }
 
     /// At a stationary point: the plan if it meets the constraints, else
