@@ -14,6 +14,7 @@
 mod catalog;
 mod cavity;
 mod constrained;
+mod contact;
 mod control;
 mod entries;
 mod figure;
