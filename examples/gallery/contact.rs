@@ -15,7 +15,11 @@ use lagrange::prelude::*;
 use lagrange::{ChangeKind, ContactRun, ContactSettings, Dop853, Posed};
 
 const G: f64 = 9.81;
-const BALL: Ball = Ball { m: 0.3, r: 0.1, g: G };
+const BALL: Ball = Ball {
+    m: 0.3,
+    r: 0.1,
+    g: G,
+};
 
 /// The integrator of the contact rows: tight, since the notes compare
 /// event times with closed forms.
@@ -192,7 +196,8 @@ pub(crate) fn stopped_pendulum(system: &'static str) -> Result<Row, Error> {
                 .run_contacts([th0], [0.0], span.clone())
         },
         |run| {
-            let period = |amplitude: f64| 4.0 * (p.l / p.g).sqrt() * elliptic_k((amplitude / 2.0).sin());
+            let period =
+                |amplitude: f64| 4.0 * (p.l / p.g).sqrt() * elliptic_k((amplitude / 2.0).sin());
             let th1 = (1.0 - e * e * (1.0 - th0.cos())).acos();
             let first = period(th0) / 4.0;
             let exact = [first, first + period(th1) / 2.0];
