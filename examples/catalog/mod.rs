@@ -184,6 +184,7 @@ pub struct DrivenPendulum {
 pub mod bicycle;
 pub mod cavity;
 pub mod constrained;
+pub mod contact;
 pub mod control;
 pub mod extremes;
 pub mod free;

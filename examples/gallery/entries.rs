@@ -2,7 +2,7 @@
 //! demonstrates, and the function that runs it.
 
 use crate::row::Entry;
-use crate::{cavity, constrained, control, free, minimal, nonholonomic, planning};
+use crate::{cavity, constrained, contact, control, free, minimal, nonholonomic, planning};
 
 /// The cavity row's name (its animation is looked up by it).
 pub(crate) const CAVITY: &str = "C10 point in a spherical cavity, e = 0.7";
@@ -138,6 +138,27 @@ pub(crate) const ENTRIES: &[Entry] = &[
         "Chaplygin sleigh",
         "a knife edge in reduced form",
         nonholonomic::sleigh,
+    ),
+    // Unilateral contacts: run_contacts, event by event.
+    entry(
+        "ball bouncing to rest, e = 0.5",
+        "contact(floor, radius, restitution): Newton's impacts, then the Zeno rest at the accumulation time t₁(1+e)/(1−e)",
+        contact::bouncing_ball,
+    ),
+    entry(
+        "ball thrown with backspin, μ = 0.3",
+        "Coulomb friction slipping, then sticking: it rolls back at (5v₀ − 2rω₀)/7 from t = 2(v₀ + rω₀)/(7μg)",
+        contact::backspin_ball,
+    ),
+    entry(
+        "block sliding to a stop, μ = 0.4",
+        "pushed obliquely: the isotropic cone keeps the slip's direction; stops at |v₀|/(μg)",
+        contact::sliding_block,
+    ),
+    entry(
+        "pendulum against a stop, e = 0.6",
+        "stop(wall, theta >= 0): impacts when the elliptic-integral periods say",
+        contact::stopped_pendulum,
     ),
     // Control and linearisation.
     entry(

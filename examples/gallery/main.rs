@@ -5,7 +5,7 @@
 //!     cargo run --release --example gallery
 //!
 //! The systems and what each shows are listed in `entries`; their runs live in
-//! one module per family (`minimal`, `constrained`, `nonholonomic`, `cavity`,
+//! one module per family (`minimal`, `constrained`, `nonholonomic`, `cavity`, `contact`,
 //! `control`, `planning`); `row` is what a run reports, `figure` what it keeps to draw,
 //! `layout` which coordinates go on which panel, `plot` the pictures, `output`
 //! the files and index.html, `table` the printed summary.
@@ -14,6 +14,7 @@
 mod catalog;
 mod cavity;
 mod constrained;
+mod contact;
 mod control;
 mod entries;
 mod figure;

@@ -108,6 +108,14 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// [`run_atlas`](crate::Simulation::run_atlas), which runs through its
     /// Euler charts' singular sets. `#[derive(Lagrangian)]` sets it.
     const ATLAS: bool = false;
+    /// The names of the description's unilateral contacts and stops, in the
+    /// order of their rows ([`Contacts`](crate::Contacts)): none by default.
+    /// Only [`run_contacts`](crate::Simulation::run_contacts) honours them,
+    /// so every other run of a [`Simulation`](crate::Simulation) refuses a
+    /// system that lists some ([`ContactFault::NeedsContactRun`](crate::ContactFault::NeedsContactRun)).
+    /// `#[derive(Lagrangian)]` sets it; a hand-written system with contacts
+    /// should set it too.
+    const CONTACTS: &'static [&'static str] = &[];
 
     /// Mass matrix M(q,t): symmetric, positive definite where the chart is regular.
     fn mass_matrix(&self, q: &SVector<T, Q>, t: T) -> SMatrix<T, N, N>;

@@ -127,6 +127,7 @@ fn lagrangian_trait(
     let route = route_const(model);
     let forward = forward_route_const(model);
     let atlas = atlas_const(system);
+    let contacts = contacts_const(system);
     let check_parameters = check_parameters(e, model);
     let visit_form = visit_form(f, model);
     let h_len = Literal::usize_unsuffixed(model.hoisted.terms.len());
@@ -152,7 +153,7 @@ fn lagrangian_trait(
             const RHEONOMIC: bool = #rheonomic;
             const CONSTRAINED: bool = #has_constraints;
             #cyclic
-            #route #forward #atlas
+            #route #forward #atlas #contacts
 
             #[inline]
             fn mass_matrix(&self, q: &#qvec_t, t: #s) -> #mat_t {
@@ -291,6 +292,19 @@ fn atlas_const(system: &System) -> Option<TokenStream> {
                 const ATLAS: bool = true;
             )
         })
+}
+
+/// `CONTACTS`, the names of the `contact` and `stop` items (else the
+/// default, none): every run but `run_contacts` refuses a system that has
+/// some, as it would ignore them.
+fn contacts_const(system: &System) -> Option<TokenStream> {
+    if system.contacts.is_empty() {
+        return None;
+    }
+    let names = system.contacts.iter().map(|c| c.name.to_string());
+    Some(quote!(
+        const CONTACTS: &'static [&'static str] = &[#(#names),*];
+    ))
 }
 
 /// `ROUTE`: recursive, or generic with the reason.

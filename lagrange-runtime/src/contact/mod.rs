@@ -45,6 +45,18 @@
 //! contacts (a box settling on its corners) call for a time-stepping scheme,
 //! which this module is not.
 //!
+//! **Allocation.** Unlike the other runs, which allocate only their growing
+//! [`Trajectory`](crate::Trajectory), a contact run allocates at every
+//! evaluation of the accelerations (every stage of its integrator): the
+//! per-contact vectors of the forces, and while a contact is closed the
+//! rows of the contacts in force, their responses
+//! M⁻¹ Jᵀ, and the k × k matrix J M⁻¹ Jᵀ with its right-hand side as
+//! `Vec`s and a `DMatrix` (k the unknown forces: one normal and up to two
+//! tangential per closed contact; k is known only when the modes are
+//! chosen), and each impact's impulse problem likewise. For the few
+//! contacts these runs are for, that is a few small heap blocks a stage;
+//! moving them to the stack, sized by the system's contacts, is not done.
+//!
 //! [`ContactError`]: crate::error::ContactError
 
 mod driver;

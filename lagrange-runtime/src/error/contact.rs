@@ -59,6 +59,14 @@ pub enum ContactFault {
         /// The number of laws.
         laws: usize,
     },
+    /// A run other than [`Simulation::run_contacts`] was asked of a system
+    /// with contacts or stops ([`Lagrangian::CONTACTS`]): it would integrate
+    /// the motion as if they were not there (a ball through its floor), so it
+    /// is refused at its start.
+    ///
+    /// [`Simulation::run_contacts`]: crate::Simulation::run_contacts
+    /// [`Lagrangian::CONTACTS`]: crate::Lagrangian::CONTACTS
+    NeedsContactRun,
 }
 
 impl fmt::Display for ContactFault {
@@ -90,6 +98,10 @@ impl fmt::Display for ContactFault {
             ContactFault::MissingRows { laws } => write!(
                 f,
                 "the system lists {laws} contact laws but gives no rows for this one"
+            ),
+            ContactFault::NeedsContactRun => f.write_str(
+                "this run would ignore the system's contacts and stops (it would move through \
+                 them); run it with `Simulation::run_contacts`",
             ),
         }
     }

@@ -5,7 +5,7 @@
 //! [`Formulation::start`], so the checks live here and nowhere else.
 
 use super::Settings;
-use crate::error::{Error, Failure, SettingsError, unit_quaternions};
+use crate::error::{ContactError, ContactFault, Error, Failure, SettingsError, unit_quaternions};
 use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::mechanics::dynamics::Dynamics;
 use crate::mechanics::reduced::ReducedDynamics;
@@ -75,7 +75,31 @@ where
     system.check_parameters()?;
     settings.check()?;
     check_problem(span.start, span.end, &q0, v0)?;
+    refuse_contacts::<S, T, N, Q>(span.start, &q0)?;
     unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q0)
+}
+
+/// A system with contacts or stops is run by `run_contacts` alone: any
+/// other run would let it pass through them without a word, which is worse
+/// than no run.
+fn refuse_contacts<S, T, const N: usize, const Q: usize>(
+    t0: T,
+    q0: &SVector<T, Q>,
+) -> Result<(), Error>
+where
+    S: Lagrangian<T, N, Q>,
+    T: Real,
+{
+    match S::CONTACTS.first() {
+        None => Ok(()),
+        Some(first) => Err(ContactError {
+            contact: (*first).to_owned(),
+            t: t0.to_f64(),
+            q: q0.iter().map(|x| x.to_f64()).collect(),
+            fault: ContactFault::NeedsContactRun,
+        }
+        .into()),
+    }
 }
 
 /// The unconstrained dynamics, q̈ = M⁻¹ (Q − h).
