@@ -15,10 +15,10 @@
 //! full step closes them (see `passes`).
 
 use super::passes::{
-    Backward, Nominal, backward_pass, forward, guessed, largest, linearise, predicted_decrease,
+    Backward, Nominal, backward_pass, forward, from_guess, largest, linearise, predicted_decrease,
     rollout,
 };
-use super::problem::{OptimalControl, split, state};
+use super::problem::{OptimalControl, split};
 use super::progress::Ticker;
 use crate::error::{Error, Failure, PlanError, Progress, SettingsError};
 use crate::system::Driven;
@@ -229,44 +229,7 @@ impl Ddp {
         self.check(u.len(), problem.steps).map_err(unstarted)?;
         problem.check().map_err(unstarted)?;
         unconstrained(problem).map_err(unstarted)?;
-        let k = problem.steps;
-        if q.len() != k + 1 || v.len() != k + 1 || u.len() != k {
-            let problem = format!(
-                "a guess of {} configurations, {} velocities and {} inputs for {k} steps \
-                 (give K + 1, K + 1 and K)",
-                q.len(),
-                v.len(),
-                u.len()
-            );
-            return Err(unstarted(
-                SettingsError::Data {
-                    owner: "Ddp",
-                    problem,
-                }
-                .into(),
-            ));
-        }
-        let finite = |x: &[f64]| x.iter().all(|e| e.is_finite());
-        let states = q
-            .iter()
-            .zip(v)
-            .all(|(q, v)| finite(q.as_slice()) && finite(v.as_slice()));
-        if !states || !u.iter().all(|u| finite(u.as_slice())) {
-            let problem = "the guessed states and inputs must be finite".into();
-            return Err(unstarted(
-                SettingsError::Data {
-                    owner: "Ddp",
-                    problem,
-                }
-                .into(),
-            ));
-        }
-        let xs = q.iter().zip(v).map(|(q, v)| state(q, v)).collect();
-        let us: Vec<DVector<f64>> = u
-            .iter()
-            .map(|u| DVector::from_column_slice(u.as_slice()))
-            .collect();
-        let nominal = guessed(problem, xs, &us).map_err(unstarted)?;
+        let nominal = from_guess(problem, (q, v, u), "Ddp").map_err(unstarted)?;
         self.iterate(problem, nominal)
     }
 

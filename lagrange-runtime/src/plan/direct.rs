@@ -20,8 +20,8 @@
 
 use super::ddp::{Iteration, Plan};
 use super::direct_qp::{self, Linearised, Unsolved, offsets};
-use super::passes::{Nominal, backward_pass, guessed, largest, linearise, rollout};
-use super::problem::{OptimalControl, state};
+use super::passes::{Nominal, backward_pass, from_guess, guessed, largest, linearise, rollout};
+use super::problem::OptimalControl;
 use crate::error::{Error, Failure, PlanError, SettingsError};
 use crate::system::Driven;
 use nalgebra::{DVector, SVector};
@@ -146,22 +146,7 @@ impl Direct {
     {
         let unstarted = |e: Error| Failure::new(e, super::ddp::empty_plan(problem));
         self.check(problem).map_err(unstarted)?;
-        let k = problem.steps;
-        if q.len() != k + 1 || v.len() != k + 1 || u.len() != k {
-            let problem = format!(
-                "a guess of {} configurations, {} velocities and {} inputs for {k} steps",
-                q.len(),
-                v.len(),
-                u.len()
-            );
-            return Err(unstarted(data(problem)));
-        }
-        let xs = q.iter().zip(v).map(|(q, v)| state(q, v)).collect();
-        let us: Vec<_> = u
-            .iter()
-            .map(|u| DVector::from_column_slice(u.as_slice()))
-            .collect();
-        let nominal = guessed(problem, xs, &us).map_err(unstarted)?;
+        let nominal = from_guess(problem, (q, v, u), "Direct").map_err(unstarted)?;
         self.iterate(problem, nominal)
     }
 

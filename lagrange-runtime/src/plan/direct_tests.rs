@@ -163,3 +163,24 @@ fn an_unreachable_final_equality_is_an_error() {
     }
     assert_eq!(failure.partial.q.len(), 26);
 }
+
+/// A guess with NaN in it, or of the wrong length, is refused before any
+/// program is built.
+#[test]
+fn bad_guesses_are_refused() {
+    let problem = oscillator(10);
+    let q = vec![Vector1::new(0.0); 11];
+    let mut v = vec![Vector1::new(0.0); 11];
+    let u = vec![Vector1::new(0.0); 10];
+    v[4][0] = f64::NAN;
+    let nan = Direct::new().solve_from(&problem, &q, &v, &u).unwrap_err();
+    assert!(nan.error.to_string().contains("finite"), "{}", nan.error);
+    let short = Direct::new()
+        .solve_from(&problem, &q[..5], &v, &u)
+        .unwrap_err();
+    assert!(
+        short.error.to_string().contains("5 configurations"),
+        "{}",
+        short.error
+    );
+}

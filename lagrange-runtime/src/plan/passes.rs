@@ -18,7 +18,7 @@
 
 use super::box_qp;
 use super::problem::{OptimalControl, split, state};
-use crate::error::Error;
+use crate::error::{Error, SettingsError};
 use crate::linear::StepDerivatives;
 use crate::system::Driven;
 use nalgebra::{DMatrix, DVector, SVector};
@@ -90,6 +90,47 @@ where
     let cost = problem.cost(&xs, &us);
     let gaps = vec![DVector::zeros(2 * N); xs.len()];
     Ok(Nominal { xs, us, gaps, cost })
+}
+
+/// A guess of every configuration, velocity and input.
+pub(super) type Guess<'g, const N: usize, const P: usize> = (
+    &'g [SVector<f64, N>],
+    &'g [SVector<f64, N>],
+    &'g [SVector<f64, P>],
+);
+
+/// The nominal of a guess of every state and input, checked: K + 1
+/// configurations and velocities and K inputs, all finite (else a
+/// `SettingsError::Data` of `owner`, the solver).
+pub(super) fn from_guess<S, const N: usize, const P: usize>(
+    problem: &OptimalControl<S, N, P>,
+    (q, v, u): Guess<N, P>,
+    owner: &'static str,
+) -> Result<Nominal, Error>
+where
+    S: Driven<f64, N, P>,
+{
+    let bad = |problem: String| -> Error { SettingsError::Data { owner, problem }.into() };
+    let k = problem.steps;
+    if q.len() != k + 1 || v.len() != k + 1 || u.len() != k {
+        return Err(bad(format!(
+            "a guess of {} configurations, {} velocities and {} inputs for {k} steps \
+             (give K + 1, K + 1 and K)",
+            q.len(),
+            v.len(),
+            u.len()
+        )));
+    }
+    let finite = |x: &[f64]| x.iter().all(|e| e.is_finite());
+    let states = (q.iter().zip(v)).all(|(q, v)| finite(q.as_slice()) && finite(v.as_slice()));
+    if !states || !u.iter().all(|u| finite(u.as_slice())) {
+        return Err(bad("the guessed states and inputs must be finite".into()));
+    }
+    let xs = q.iter().zip(v).map(|(q, v)| state(q, v)).collect();
+    let us: Vec<DVector<f64>> = (u.iter())
+        .map(|u| DVector::from_column_slice(u.as_slice()))
+        .collect();
+    guessed(problem, xs, &us)
 }
 
 /// A nominal of given states and inputs (clamped), with its gaps.
