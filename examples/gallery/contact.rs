@@ -24,7 +24,10 @@ const BALL: Ball = Ball {
 /// The integrator of the contact rows: tight, since the notes compare
 /// event times with closed forms.
 fn integrator() -> Dop853 {
-    Dop853::tol(1e-12)
+    // Recorded every 5 ms from the dense output: a free flight is a few
+    // steps long, and its recorded steps alone would draw a bounce's
+    // parabola as a few straight chords.
+    Dop853::tol(1e-12).record(Record::Interval(0.005))
 }
 
 /// Rest when an impact would leave below 1e-7 m/s: far below the bounce
