@@ -52,7 +52,9 @@ pub struct Iteration {
     pub step: f64,
     /// The regularisation μ the backward pass used.
     pub regularization: f64,
-    /// The decrease of the cost the quadratic model predicted for the step.
+    /// The decrease of the cost the quadratic model predicted for the step
+    /// (DDP; NaN for the direct method, whose line search reads the merit
+    /// function's model instead).
     pub expected: f64,
     /// Feasibility after the iteration: the largest |entry| of the gaps
     /// F(x_k, u_k) − x_{k+1} (and x₀ less the plan's first state). Zero
