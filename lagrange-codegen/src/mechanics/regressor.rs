@@ -7,10 +7,10 @@
 //! and I the inertia about the body's reference point, both in the body's
 //! axes; a point mass has the one parameter m (its place is part of the
 //! description, not of π). The parameters are made fresh symbols of the
-//! engine, recursive Newton–Euler is built on them over the tree the
-//! description spans, and each column is the derivative of τ by one of them:
-//! exact, since τ is linear in π, and the columns share what the engine
-//! shares.
+//! engine and handed to the tree the description spans as its masses; Y is
+//! then built on the tree by joint axes carried outward to meet each body's
+//! regressor (`tree::regressor`), each column the derivative of τ by one
+//! parameter.
 //!
 //! The tree's mass attachment takes point masses at fixed places and
 //! rotational inertias; a body's parameters are handed to it as such, which
@@ -91,11 +91,7 @@ pub(super) fn regressor(ctx: &mut Context, m: MassModel) -> Result<Regressor, No
     let tree = super::recursive::detect(ctx, super::Route::Recursive, masses, m.gravity);
     m.skeleton.masses = kept;
     let tree = tree?;
-    let torques = crate::tree::inverse_dynamics_at_accelerations(ctx, &tree, true);
-    let rows = torques
-        .iter()
-        .map(|&tau| p.symbols.iter().map(|&s| ctx.diff(tau, s)).collect())
-        .collect();
+    let rows = crate::tree::regressor(ctx, &tree, &p.symbols);
     Ok(Regressor {
         rows,
         names: p.names,

@@ -35,6 +35,7 @@ mod detect;
 mod frame;
 mod link;
 mod not_a_tree;
+mod regressor;
 mod rnea;
 mod spatial;
 mod written;
@@ -44,6 +45,7 @@ pub use crba::mass_matrix;
 pub use derivatives::inverse_dynamics_derivatives;
 pub use detect::detect;
 pub use not_a_tree::{BodyFault, NotATree};
+pub use regressor::regressor;
 pub use rnea::{inverse_dynamics, inverse_dynamics_at_accelerations};
 
 use lagrange_symbolic::{Context, Expr as Sym};

@@ -67,7 +67,7 @@ fn recursive_newton_euler(
 /// S q̈ added `accelerated`. The classical form needs no linear velocity:
 /// a' = a + α × d + ω × (ω × d) at the child's origin d, and Newton–Euler at
 /// the origin reads ω, α and a alone.
-fn accelerations(
+pub(super) fn accelerations(
     ctx: &mut Context,
     tree: &Tree,
     with_gravity: bool,

@@ -21,22 +21,25 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
     let names = &regressor.names;
     let columns = Literal::usize_unsuffixed(names.len());
     // Most of Y is structurally zero (a joint feels no body above it): only
-    // the other entries are computed and set.
-    let mut at = Vec::new();
+    // the other entries are computed, and Y is built from them in one pass,
+    // column-major, with no zeroing before and no indexing after.
     let mut entries = Vec::new();
-    for (i, row) in regressor.rows.iter().enumerate() {
-        for (k, &y) in row.iter().enumerate() {
-            if !model.ctx.is_zero(y) {
-                at.push((Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(k)));
+    let mut at = Vec::new();
+    for k in 0..names.len() {
+        for row in &regressor.rows {
+            let y = row[k];
+            at.push((!model.ctx.is_zero(y)).then_some(entries.len()));
+            if at.last().is_some_and(Option::is_some) {
                 entries.push(y);
             }
         }
     }
     let (lets, outs) = e.program(&entries);
-    let sets = at
-        .iter()
-        .zip(&outs)
-        .map(|((i, k), out)| quote!(y[(#i, #k)] = #out;));
+    let zero = e.constant(0.0);
+    let column_major = at.iter().map(|slot| match slot {
+        Some(j) => outs[*j].clone(),
+        None => zero.clone(),
+    });
     let (p_lets, p_outs) = e.program(&regressor.parameters);
     let (e_lets, e_outs) = e.program(&regressor.energy);
     let n = &f.n;
@@ -46,9 +49,7 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
         #[inline]
         fn regressor(&self, q: &#qvec, v: &#vec_n, a: &#vec_n, t: #s) -> ::core::option::Option<#p::DMatrix<#s>> {
             #lets
-            let mut y = <#p::DMatrix<#s>>::zeros(#n, #columns);
-            #(#sets)*
-            ::core::option::Option::Some(y)
+            ::core::option::Option::Some(<#p::DMatrix<#s>>::from_vec(#n, #columns, ::std::vec![#(#column_major),*]))
         }
 
         #[inline]
