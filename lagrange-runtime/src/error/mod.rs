@@ -457,6 +457,7 @@ mod contact;
 mod failure;
 mod identify;
 mod linear;
+mod messages;
 mod plan;
 mod settings;
 mod singular;
@@ -469,6 +470,8 @@ pub use linear::{LinearError, StatePoint};
 pub use plan::PlanError;
 pub use settings::SettingsError;
 
+use messages::{named, no_inertia, too_many_steps};
+
 use crate::numeric::Real;
 
 use nalgebra::SVector;
@@ -476,33 +479,6 @@ use nalgebra::SVector;
 /// Converts a state vector to `f64`s for an error report.
 pub(crate) fn to_vec<T: Real, const N: usize>(x: &SVector<T, N>) -> Vec<f64> {
     x.iter().map(|&c| c.to_f64()).collect()
-}
-
-/// What a singular M has no inertia along, for its message.
-fn no_inertia(direction: &str) -> String {
-    if direction.is_empty() {
-        "; no inertia along some direction (a chart singularity of angle coordinates, \
-         a massless body, an orientation no body turns)"
-            .to_string()
-    } else {
-        format!(
-            "; no inertia along {direction}: if those are angles, their chart is singular \
-             here; otherwise give that direction a mass or an inertia"
-        )
-    }
-}
-
-/// "(x = 1, y = -2)" when the names fit, else the bare numbers.
-fn named(names: &[&str], q: &[f64]) -> String {
-    if names.len() != q.len() {
-        return format!("{q:?}");
-    }
-    let parts: Vec<String> = names
-        .iter()
-        .zip(q)
-        .map(|(n, x)| format!("{n} = {x:?}"))
-        .collect();
-    format!("({})", parts.join(", "))
 }
 
 impl Error {
@@ -533,23 +509,6 @@ impl Error {
             q: to_vec(q),
             v: to_vec(v),
         }
-    }
-}
-
-/// The message of [`Error::TooManySteps`]: what ran out, what the run needs
-/// when that is known, and the setting that raises it.
-fn too_many_steps(t: f64, max_steps: usize, needed: Option<usize>) -> String {
-    match needed {
-        Some(n) => format!(
-            "the run needs {n} steps but the step budget is {max_steps}: refused at the start \
-             time t = {t}; raise it with `.max_steps({n})` on the integrator, or take a \
-             larger step"
-        ),
-        None => format!(
-            "the step budget `.max_steps({max_steps})` ran out at t = {t}, before the end of \
-             the span; raise it with `.max_steps(n)` on the integrator (the adaptive step \
-             control decides how many it needs), or loosen the tolerance"
-        ),
     }
 }
 
