@@ -31,21 +31,53 @@ use crate::mat3::cross;
 /// τ = M q̈ + h − Q_gravity at the accelerations' symbols.
 pub fn regressor(ctx: &mut Context, tree: &Tree, parameters: &[Sym]) -> Vec<Vec<Sym>> {
     let zero = ctx.zero();
-    let motion = accelerations(ctx, tree, true, true);
-    let shares: Vec<Option<(Share, [[Sym; 10]; 6])>> = (tree.links.iter().zip(&motion))
-        .map(|(link, &m)| {
-            let i = link.inertia?;
-            Some((Share::of(ctx, &i, parameters), body_regressor(ctx, m)))
-        })
+    let massive: Vec<bool> = tree.links.iter().map(|l| l.inertia.is_some()).collect();
+    let by_link = link_regressor(ctx, tree, &massive);
+    let shares: Vec<Option<Share>> = (tree.links.iter())
+        .map(|link| Some(Share::of(ctx, &link.inertia?, parameters)))
         .collect();
-    let mut terms = vec![vec![Vec::new(); parameters.len()]; ctx.coordinates().len()];
+    let mut rows = Vec::with_capacity(by_link.len());
+    for links in &by_link {
+        let mut terms = vec![Vec::new(); parameters.len()];
+        for (r, share) in links.iter().zip(&shares) {
+            let (Some(r), Some(share)) = (r, share) else {
+                continue;
+            };
+            for (k, d) in &share.columns {
+                let products: Vec<Sym> = (0..10).map(|c| ctx.mul(r[c], d[c])).collect();
+                terms[*k].push(ctx.sum(&products));
+            }
+        }
+        rows.push(
+            (terms.iter())
+                .map(|t| if t.is_empty() { zero } else { ctx.sum(t) })
+                .collect(),
+        );
+    }
+    rows
+}
+
+/// The regressor by link: `rows[coordinate][j]`, where asked for by
+/// `wanted[j]`, holds the coefficients of link j's ten numbers (m, h, I_o in
+/// its axes, π's order) in τ at that coordinate, None where no joint of the
+/// coordinate is above j.
+pub(super) fn link_regressor(
+    ctx: &mut Context,
+    tree: &Tree,
+    wanted: &[bool],
+) -> Vec<Vec<Option<[Sym; 10]>>> {
+    let n = tree.links.len();
+    let motion = accelerations(ctx, tree, true, true);
+    let bodies: Vec<Option<[[Sym; 10]; 6]>> = (motion.iter().zip(wanted))
+        .map(|(&m, &w)| w.then(|| body_regressor(ctx, m)))
+        .collect();
+    let mut rows: Vec<Vec<Option<[Sym; 10]>>> = vec![vec![None; n]; ctx.coordinates().len()];
     for (i, joint) in tree.links.iter().enumerate() {
-        let row = &mut terms[joint.coordinate];
-        let mut seen: Vec<Option<[[Sym; 3]; 2]>> = vec![None; tree.links.len()];
+        let mut seen: Vec<Option<[[Sym; 3]; 2]>> = vec![None; n];
         seen[i] = Some(axis(ctx, joint));
         // Links are ordered parents first: i's subtree is among those after
         // it, each reached from its parent's u.
-        for j in i..tree.links.len() {
+        for j in i..n {
             let link = &tree.links[j];
             if j > i {
                 let Some(up) = link.parent.and_then(|p| seen[p]) else {
@@ -53,23 +85,20 @@ pub fn regressor(ctx: &mut Context, tree: &Tree, parameters: &[Sym]) -> Vec<Vec<
                 };
                 seen[j] = Some(motion_to_link(ctx, link, up));
             }
-            let (Some(u), Some((share, b))) = (seen[j], &shares[j]) else {
+            let (Some(u), Some(b)) = (seen[j], &bodies[j]) else {
                 continue;
             };
             let r = body_row(ctx, u, b);
-            for (k, d) in &share.columns {
-                let products: Vec<Sym> = (0..10).map(|c| ctx.mul(r[c], d[c])).collect();
-                row[*k].push(ctx.sum(&products));
-            }
+            // A coordinate that drives several joints (a mimic joint) takes
+            // the sum of their shares, as in `rnea`.
+            let sum = match rows[joint.coordinate][j] {
+                None => r,
+                Some(before) => [0, 1, 2, 3, 4, 5, 6, 7, 8, 9].map(|c| ctx.add(before[c], r[c])),
+            };
+            rows[joint.coordinate][j] = Some(sum);
         }
     }
-    (terms.iter())
-        .map(|row| {
-            (row.iter())
-                .map(|t| if t.is_empty() { zero } else { ctx.sum(t) })
-                .collect()
-        })
-        .collect()
+    rows
 }
 
 /// How a link's ten inertial numbers depend on π: for each parameter that
