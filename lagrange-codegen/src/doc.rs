@@ -58,7 +58,45 @@ pub fn texts(model: &Model) -> Texts {
         latex.push_str(&program.listing_in(ctx, &labels, ListingStyle::Latex));
     }
     latex.push_str("\\end{aligned}\n");
+    if let Some(base) = model
+        .outputs
+        .regressor
+        .as_ref()
+        .and_then(|r| r.base.as_ref())
+    {
+        base_parameters(base, &mut equations, &mut latex);
+    }
     Texts { equations, latex }
+}
+
+/// `emit(regressor)`'s base parameters in closed form, after the entries.
+fn base_parameters(base: &crate::mechanics::BaseForm, equations: &mut String, latex: &mut String) {
+    let _ = writeln!(
+        equations,
+        "\nBase parameters ({} of them; Y_b pi_b = Y pi: each link's part symmetric about its joint \
+         regrouped into its parent, then what random motions do not show dropped):",
+        base.parameters.len()
+    );
+    latex.push_str("\\begin{aligned}\n");
+    for p in &base.parameters {
+        let _ = writeln!(equations, "{}", p.text);
+        let _ = writeln!(latex, "{} \\\\", p.latex);
+    }
+    latex.push_str("\\end{aligned}\n");
+    if !base.without_effect.is_empty() {
+        let _ = writeln!(
+            equations,
+            "Without effect: {}",
+            base.without_effect.join(", ")
+        );
+    }
+    if !base.dependent.is_empty() {
+        let _ = writeln!(
+            equations,
+            "Also depending on those above at this geometry (folded in by identify::BaseParameters): {}",
+            base.dependent.join(", ")
+        );
+    }
 }
 
 /// M's lower triangle is the mirror of its upper one and is not listed, so the

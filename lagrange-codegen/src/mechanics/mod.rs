@@ -17,6 +17,7 @@
 //! (`model`), each its own type. Every step builds nodes in the order the
 //! single function did, so the emitted code is unchanged byte for byte.
 
+mod base_parameters;
 mod chart;
 mod contact;
 mod cyclic;
@@ -38,6 +39,7 @@ mod recursive;
 mod regressor;
 mod solved;
 
+pub use base_parameters::{BaseForm, Named};
 pub use contact::ContactRowsModel;
 pub use derivatives::RhsJacobians;
 pub use expressions::Expressions;

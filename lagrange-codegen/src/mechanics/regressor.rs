@@ -21,6 +21,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
+use super::base_parameters::BaseForm;
 use super::expressions::Expressions;
 use crate::lowered::{PointModel, Skeleton, SpinModel};
 use crate::mat3::{Mat3, cross, dot, mat_vec, parallel_axis, transpose};
@@ -39,6 +40,9 @@ pub struct Regressor {
     /// The energy regressor Y_E(q, q̇, t), one entry per parameter:
     /// T + V_gravity = Y_E π.
     pub energy: Vec<Sym>,
+    /// The base parameters in closed form, for the texts (None on a tree
+    /// with a free orientation).
+    pub base: Option<BaseForm>,
 }
 
 impl Expressions for Regressor {
@@ -92,11 +96,13 @@ pub(super) fn regressor(ctx: &mut Context, m: MassModel) -> Result<Regressor, No
     m.skeleton.masses = kept;
     let tree = tree?;
     let rows = crate::tree::regressor(ctx, &tree, &p.symbols);
+    let base = super::base_parameters::closed_form(ctx, &tree, &p.symbols, &p.names);
     Ok(Regressor {
         rows,
         names: p.names,
         parameters: p.parameters,
         energy: p.energy,
+        base,
     })
 }
 

@@ -36,6 +36,7 @@ mod frame;
 mod link;
 mod not_a_tree;
 mod regressor;
+mod regrouping;
 mod rnea;
 mod spatial;
 mod written;
@@ -45,7 +46,8 @@ pub use crba::mass_matrix;
 pub use derivatives::inverse_dynamics_derivatives;
 pub use detect::detect;
 pub use not_a_tree::{BodyFault, NotATree};
-pub use regressor::regressor;
+pub use regressor::{link_regressor, regressor};
+pub use regrouping::regrouped;
 pub use rnea::{inverse_dynamics, inverse_dynamics_at_accelerations};
 
 use lagrange_symbolic::{Context, Expr as Sym};
@@ -149,6 +151,11 @@ impl Tree {
             gravity: self.gravity,
             spheres: Vec::new(),
         }
+    }
+
+    /// Whether the tree has a spherical joint (a free orientation).
+    pub fn turns_freely(&self) -> bool {
+        !self.spheres.is_empty()
     }
 
     /// Whether the tree has no joints (never returned by [`detect`]).

@@ -61,7 +61,7 @@ pub fn regressor(ctx: &mut Context, tree: &Tree, parameters: &[Sym]) -> Vec<Vec<
 /// `wanted[j]`, holds the coefficients of link j's ten numbers (m, h, I_o in
 /// its axes, π's order) in τ at that coordinate, None where no joint of the
 /// coordinate is above j.
-pub(super) fn link_regressor(
+pub fn link_regressor(
     ctx: &mut Context,
     tree: &Tree,
     wanted: &[bool],
@@ -123,7 +123,7 @@ impl Share {
 
 /// (m, h, I_o) in π's order for a body: m, hx, hy, hz, Ixx, Ixy, Iyy, Ixz,
 /// Iyz, Izz.
-fn ten(i: &Inertia) -> [Sym; 10] {
+pub(super) fn ten(i: &Inertia) -> [Sym; 10] {
     let [h0, h1, h2] = i.first;
     let r = &i.rot;
     [
