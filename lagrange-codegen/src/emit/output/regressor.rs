@@ -1,7 +1,9 @@
 //! The dynamics regressor (`emit(regressor)`): `Lagrangian::regressor`,
-//! `energy_regressor`, `inertial_parameters` and `REGRESSOR_PARAMETERS`.
+//! `energy_regressor`, `momentum_regressor`, `inertial_parameters` and
+//! `REGRESSOR_PARAMETERS`.
 
-use proc_macro2::Literal;
+use lagrange_symbolic::Expr as Sym;
+use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 use super::Pieces;
@@ -20,23 +22,8 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
     let p = quote!(::lagrange::__private);
     let names = &regressor.names;
     let columns = Literal::usize_unsuffixed(names.len());
-    // Most of Y is structurally zero (a joint feels no body above it): only
-    // the other entries are computed and set.
-    let mut at = Vec::new();
-    let mut entries = Vec::new();
-    for (i, row) in regressor.rows.iter().enumerate() {
-        for (k, &y) in row.iter().enumerate() {
-            if !model.ctx.is_zero(y) {
-                at.push((Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(k)));
-                entries.push(y);
-            }
-        }
-    }
-    let (lets, outs) = e.program(&entries);
-    let sets = at
-        .iter()
-        .zip(&outs)
-        .map(|((i, k), out)| quote!(y[(#i, #k)] = #out;));
+    let (lets, sets) = nonzero_entries(e, model, &regressor.rows);
+    let (m_lets, m_sets) = nonzero_entries(e, model, &regressor.momentum);
     let (p_lets, p_outs) = e.program(&regressor.parameters);
     let (e_lets, e_outs) = e.program(&regressor.energy);
     let n = &f.n;
@@ -58,6 +45,14 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
         }
 
         #[inline]
+        fn momentum_regressor(&self, q: &#qvec, v: &#vec_n, t: #s) -> ::core::option::Option<#p::DMatrix<#s>> {
+            #m_lets
+            let mut y = <#p::DMatrix<#s>>::zeros(#n, #columns);
+            #(#m_sets)*
+            ::core::option::Option::Some(y)
+        }
+
+        #[inline]
         fn inertial_parameters(&self) -> ::core::option::Option<#p::DVector<#s>> {
             #p_lets
             ::core::option::Option::Some(<#p::DVector<#s>>::from_column_slice(&[#(#p_outs),*]))
@@ -67,4 +62,31 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
         lagrangian,
         ..Pieces::default()
     }
+}
+
+/// The program of a matrix's entries that are not structurally zero, and
+/// the statements setting them in `y`: most of Y and Y_p is zero (a joint
+/// feels no body above it), so only the other entries are computed.
+fn nonzero_entries(
+    e: &Emitter,
+    model: &Model,
+    rows: &[Vec<Sym>],
+) -> (TokenStream, Vec<TokenStream>) {
+    let mut at = Vec::new();
+    let mut entries = Vec::new();
+    for (i, row) in rows.iter().enumerate() {
+        for (k, &y) in row.iter().enumerate() {
+            if !model.ctx.is_zero(y) {
+                at.push((Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(k)));
+                entries.push(y);
+            }
+        }
+    }
+    let (lets, outs) = e.program(&entries);
+    let sets = at
+        .iter()
+        .zip(&outs)
+        .map(|((i, k), out)| quote!(y[(#i, #k)] = #out;))
+        .collect();
+    (lets, sets)
 }
