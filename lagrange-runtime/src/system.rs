@@ -256,11 +256,13 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// its three rows are the angular momentum of everything whose motion
     /// the orientation carries, about the point its body turns about (the
     /// body's reference point), in the body's axes. So for a floating base
-    /// (`urdf(.., base = floating)`: q̇ = (ẋ, ẏ, ż) of the base's reference
-    /// point in world axes, then ω of the base in its axes, then the
-    /// joints) rows 0–2 are the robot's total linear momentum Σ m v_com in
-    /// world axes and rows 3–5 its total angular momentum about the base's
-    /// reference point, in the base's axes. `None` unless the description
+    /// (`urdf(.., base = floating)`, whose velocities are (ẋ, ẏ, ż) of the
+    /// base's reference point in world axes, the joints' rates, then ω of
+    /// the base in its axes, at [`ORIENTATIONS`](Self::ORIENTATIONS)`[0].v`)
+    /// rows 0–2 are the robot's total linear momentum Σ m v_com in world
+    /// axes and the base's ω rows its total angular momentum about the
+    /// base's reference point (moving with it), Σ (c − o) × m v_c + R I ω
+    /// over the bodies, in the base's axes. `None` unless the description
     /// asks for `emit(regressor)`. Allocates its matrix.
     fn momentum_regressor(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> Option<DMatrix<T>> {
         let _ = (q, v, t);
