@@ -165,10 +165,8 @@ fn poses_written_out() {
     agrees(&written::robot());
 }
 
-#[test]
-fn free_orientations() {
-    agrees(
-        "#[lagrange(coordinates(x, y, z, j1, j2), orientation(base),
+/// A floating base carrying a two-joint arm.
+const FLOATING_ARM: &str = "#[lagrange(coordinates(x, y, z, j1, j2), orientation(base),
             body(hub, mass = 5.0, inertia = [0.4, 0.5, 0.6], com = [0.01, 0.02, 0.03],
                  at = [x, y, z], rotation = base),
             point(shoulder, on = hub, at = [0.3, 0.1, 0.2]),
@@ -179,8 +177,11 @@ fn free_orientations() {
                  at = [elbow.x, elbow.y, elbow.z], rotation = base * rot_z(j1) * rot_y(j2)),
             point(load, mass = 0.3, on = fore, at = [0.3, 0.05, 0]),
             gravity = [0, 0, -g])]
-         struct FloatingArm { g: f64 }",
-    );
+         struct FloatingArm { g: f64 }";
+
+#[test]
+fn free_orientations() {
+    agrees(FLOATING_ARM);
 }
 
 #[test]
@@ -266,8 +267,10 @@ fn y_ops(m: &Model) -> lagrange_symbolic::OpCount {
 /// products of inertia); a slider-crank in its crank angle alone (a closed
 /// chain in minimal coordinates, its rod a body); a pendulum on a support
 /// moving with time; a spherical pendulum in Cartesian coordinates with its
-/// thread as a holonomic constraint (Y is the unconstrained equations').
-const NOT_TREES: [&str; 6] = [
+/// thread as a holonomic constraint (Y is the unconstrained equations'); a
+/// free body on a curve (a free orientation, Y taken at its chart's
+/// centre).
+const NOT_TREES: [&str; 7] = [
     "#[lagrange(coordinates(theta),
         point(bob, mass = m, at = [l * sin(theta), -l * cos(theta), 0]),
         gravity = [0, -g, 0])]
@@ -300,6 +303,11 @@ const NOT_TREES: [&str; 6] = [
         gravity = [0, 0, -g],
         holonomic(thread = (bob.x^2) + (bob.y^2) + (bob.z^2) - (l^2)))]
      struct CartesianSpherical { m: f64, l: f64, g: f64 }",
+    "#[lagrange(coordinates(x, y), orientation(turn),
+        body(puck, mass = m, inertia = [a, b, c], com = [u, w, h],
+             at = [x, x * x, y], rotation = turn),
+        gravity = [0, 0, -g])]
+     struct FreeOnCurve { m: f64, a: f64, b: f64, c: f64, u: f64, w: f64, h: f64, g: f64 }",
 ];
 
 #[test]
@@ -373,6 +381,14 @@ fn a_tree_by_both_routes_agrees_column_by_column() {
             lagrange_codegen::chain::spatial_chain_source(4),
         ),
         ("placements and point masses", ROBOT.to_string()),
+        ("floating arm", FLOATING_ARM.to_string()),
+        (
+            "UR5",
+            format!(
+                "#[lagrange(urdf = \"{}/../robots/ur5.urdf\", gravity = [0, 0, -9.81])] struct Ur5 {{}}",
+                env!("CARGO_MANIFEST_DIR")
+            ),
+        ),
     ];
     for (name, src) in sources {
         let src = with_regressor(&src);
