@@ -232,9 +232,9 @@ fn generic_misfits(m: &mut Model) -> (f64, f64) {
                 .map(|(&y, p)| m.ctx.eval(y, &env) * p)
                 .sum()
         };
-        for i in 0..m.dof() {
-            let mass_times_a: f64 = (0..m.dof())
-                .map(|j| m.ctx.eval(m.motion.mass[i][j], &env) * a[j])
+        for (i, &p_i) in momenta.iter().enumerate() {
+            let mass_times_a: f64 = (m.motion.mass[i].iter().zip(&a))
+                .map(|(&m_ij, a_j)| m.ctx.eval(m_ij, &env) * a_j)
                 .sum();
             let want = mass_times_a - m.ctx.eval(m.motion.rhs[i], &env);
             let y_pi = times_pi(&r.rows[i]);
@@ -243,7 +243,7 @@ fn generic_misfits(m: &mut Model) -> (f64, f64) {
                 "row {i}: {y_pi} vs {want}"
             );
             forces = forces.max((y_pi - want).abs() / (1.0 + want.abs()));
-            let want = m.ctx.eval(momenta[i], &env);
+            let want = m.ctx.eval(p_i, &env);
             let y_pi = times_pi(&r.momentum[i]);
             assert!(
                 y_pi.is_finite() && want.is_finite(),
