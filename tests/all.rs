@@ -56,6 +56,7 @@ mod recording;
 mod reduced_breakdown;
 mod reduced_orientation;
 mod regressor;
+mod regressor_momentum;
 mod regressor_pinocchio;
 mod rolling_quaternion;
 mod scene;

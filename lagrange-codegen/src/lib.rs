@@ -187,12 +187,10 @@ fn build(cx: &Ctxt, system: &ast::System, route: mechanics::Route) -> Option<Mod
         }
         Err(
             e @ (mechanics::DeriveError::ArticulatedNeedsTree(_)
-            | mechanics::DeriveError::JacobiansNeedTree(_)
-            | mechanics::DeriveError::RegressorNeedsTree(_)),
+            | mechanics::DeriveError::JacobiansNeedTree(_)),
         ) => {
             let wanted = match e {
                 mechanics::DeriveError::ArticulatedNeedsTree(_) => ast::Extra::Articulated,
-                mechanics::DeriveError::RegressorNeedsTree(_) => ast::Extra::Regressor,
                 _ => ast::Extra::Jacobians,
             };
             let at = system.extras.iter().find(|(_, e)| *e == wanted);

@@ -219,9 +219,12 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// accelerations `a` (with no other force, the
     /// [`inverse_dynamics`](Self::inverse_dynamics)); π as
     /// [`REGRESSOR_PARAMETERS`](Self::REGRESSOR_PARAMETERS) names it. `None`
-    /// unless the description asks for it with `emit(regressor)` (a
-    /// kinematic tree; Y is built on recursive Newton–Euler). Allocates its
-    /// matrix.
+    /// unless the description asks for it with `emit(regressor)`. On a
+    /// kinematic tree Y is built by recursive Newton–Euler; on any other
+    /// description by the Euler–Lagrange operator on each parameter's share
+    /// of the Lagrangian (the same π). The constraints' reactions and Q's
+    /// other forces (the user's potential, springs, dampers, forces, inputs)
+    /// are not in Y π. Allocates its matrix.
     fn regressor(
         &self,
         q: &SVector<T, Q>,
@@ -238,6 +241,30 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// (the user's potential is not in it). `None` unless the description
     /// asks for `emit(regressor)`. Allocates its vector.
     fn energy_regressor(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> Option<DVector<T>> {
+        let _ = (q, v, t);
+        None
+    }
+
+    /// The momentum regressor Y_p(q, q̇, t), N × π's length: the generalized
+    /// momentum p = ∂T/∂q̇ = M q̇ (+ the share of T linear in q̇, where the
+    /// description moves with time) = Y_p π, column k being ∂T_k/∂q̇ for
+    /// parameter k's share T_k of T; π as
+    /// [`REGRESSOR_PARAMETERS`](Self::REGRESSOR_PARAMETERS) names it.
+    ///
+    /// Row i is the momentum conjugate to velocity i. For a free
+    /// orientation, whose velocities are its body's ω in the body's axes,
+    /// its three rows are the angular momentum of everything whose motion
+    /// the orientation carries, about the point its body turns about (the
+    /// body's reference point), in the body's axes. So for a floating base
+    /// (`urdf(.., base = floating)`, whose velocities are (ẋ, ẏ, ż) of the
+    /// base's reference point in world axes, the joints' rates, then ω of
+    /// the base in its axes, at [`ORIENTATIONS`](Self::ORIENTATIONS)`[0].v`)
+    /// rows 0–2 are the robot's total linear momentum Σ m v_com in world
+    /// axes and the base's ω rows its total angular momentum about the
+    /// base's reference point (moving with it), Σ (c − o) × m v_c + R I ω
+    /// over the bodies, in the base's axes. `None` unless the description
+    /// asks for `emit(regressor)`. Allocates its matrix.
+    fn momentum_regressor(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> Option<DMatrix<T>> {
         let _ = (q, v, t);
         None
     }

@@ -96,7 +96,7 @@ pub(super) fn at_centre(
 }
 
 /// The derivatives (the right-hand side's Jacobians, the frames', Y's
-/// columns and Y_E) are substituted only: R(θ) → 1 makes most of their
+/// columns, Y_E and Y_p) are substituted only: R(θ) → 1 makes most of their
 /// terms vanish at construction, and collecting a few hundred of them costs
 /// seconds of build time for no fewer operations.
 fn substituted_only(c: &mut AtCentre, d: &mut Derived, frames: Option<&mut Frames>) {
@@ -117,6 +117,9 @@ fn substituted_only(c: &mut AtCentre, d: &mut Derived, frames: Option<&mut Frame
             c.substituted(row);
         }
         c.substituted(&mut r.energy);
+        for row in &mut r.momentum {
+            c.substituted(row);
+        }
     }
 }
 

@@ -194,12 +194,23 @@ fn christoffel_bias(
     qd: &[Sym],
     zero_acc: &[(Sym, Sym)],
 ) -> Vec<Sym> {
+    euler_lagrange(ctx, kinetic, (q, qd), Some(zero_acc))
+}
+
+/// d/dt ∂L/∂q̇_i − ∂L/∂q_i for every i, with q̈'s symbols where the rates of
+/// q̇ appear, or zero for them given `zero_acc`.
+pub(super) fn euler_lagrange(
+    ctx: &mut Context,
+    lagrangian: Sym,
+    (q, qd): (&[Sym], &[Sym]),
+    zero_acc: Option<&[(Sym, Sym)]>,
+) -> Vec<Sym> {
     (0..q.len())
         .map(|i| {
-            let p = ctx.diff(kinetic, qd[i]);
+            let p = ctx.diff(lagrangian, qd[i]);
             let dp = ctx.time_derivative(p);
-            let dp = ctx.substitute(dp, zero_acc);
-            let dq = ctx.diff(kinetic, q[i]);
+            let dp = zero_acc.map_or(dp, |zero| ctx.substitute(dp, zero));
+            let dq = ctx.diff(lagrangian, q[i]);
             let h = ctx.sub(dp, dq);
             ctx.collect(h)
         })

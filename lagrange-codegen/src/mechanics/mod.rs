@@ -51,7 +51,7 @@ pub use model::{
     Articulation, BiasRoute, ConstraintForms, Derivation, Energies, EquationsOfMotion, InputModel,
     Masses, Model, Outputs, Variables,
 };
-pub use regressor::Regressor;
+pub use regressor::{Regressor, RegressorRoute};
 pub use solved::SolvedDerivatives;
 
 use std::mem::take;
@@ -100,9 +100,6 @@ pub enum DeriveError {
     /// `emit(jacobians)` with a free orientation on a description that is not
     /// a kinematic tree, and why it is not.
     JacobiansNeedTree(String),
-    /// `emit(regressor)` on a description that is not a kinematic tree, and
-    /// why it is not.
-    RegressorNeedsTree(String),
 }
 
 impl std::fmt::Display for DeriveError {
@@ -119,10 +116,6 @@ impl std::fmt::Display for DeriveError {
             DeriveError::JacobiansNeedTree(why) => write!(
                 f,
                 "`jacobians` with a free orientation needs {TREE} (its derivatives are those of recursive Newton–Euler, in the tangent space); here {why}; without one, remove `jacobians` (`Linearizer::tangent` then takes central differences)"
-            ),
-            DeriveError::RegressorNeedsTree(why) => write!(
-                f,
-                "`regressor` needs {TREE} (Y is built on recursive Newton–Euler); here {why}"
             ),
         }
     }
@@ -184,7 +177,7 @@ fn unconstrained(
     let route_reason = route_reason(recursive_terms.is_some(), tree.as_ref(), not_a_tree);
     let input_names = take(&mut lowered.inputs);
     let recursive = recursive_terms.is_some();
-    let regressor = regressor_if_asked(ctx, lowered)?;
+    let regressor = regressor_if_asked(ctx, lowered, route);
     let sources = sources(lowered, tree.as_ref(), recursive, route_reason.clone());
     let extras = &lowered.extras;
     let (forces, potential) = applied_forces(ctx, &kin, &sources, input_names)?;
@@ -287,13 +280,11 @@ fn inverse_if_asked(
     asked.then(|| inverse::inverse_dynamics(ctx, tree, motion, potential, rest))
 }
 
-/// `emit(regressor)`: Y on the tree, or why there is none.
-fn regressor_if_asked(
-    ctx: &mut Context,
-    lowered: &mut Lowered,
-) -> Result<Option<Regressor>, DeriveError> {
+/// `emit(regressor)`: Y on the tree, or by the generic route where there is
+/// none (or where `route` asks for it).
+fn regressor_if_asked(ctx: &mut Context, lowered: &mut Lowered, route: Route) -> Option<Regressor> {
     if !lowered.extras.contains(&Extra::Regressor) {
-        return Ok(None);
+        return None;
     }
     let masses = regressor::MassModel {
         points: &lowered.points,
@@ -301,9 +292,7 @@ fn regressor_if_asked(
         skeleton: &mut lowered.skeleton,
         gravity: lowered.gravity.as_deref(),
     };
-    regressor::regressor(ctx, masses)
-        .map(Some)
-        .map_err(|why| DeriveError::RegressorNeedsTree(why.to_string()))
+    Some(regressor::regressor(ctx, masses, route))
 }
 
 /// Why M and h are not by the recursive route (`None` when they are): the

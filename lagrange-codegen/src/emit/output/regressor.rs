@@ -1,7 +1,9 @@
 //! The dynamics regressor (`emit(regressor)`): `Lagrangian::regressor`,
-//! `energy_regressor`, `inertial_parameters` and `REGRESSOR_PARAMETERS`.
+//! `energy_regressor`, `momentum_regressor`, `inertial_parameters` and
+//! `REGRESSOR_PARAMETERS`.
 
-use proc_macro2::Literal;
+use lagrange_symbolic::Expr as Sym;
+use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 use super::Pieces;
@@ -20,26 +22,8 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
     let p = quote!(::lagrange::__private);
     let names = &regressor.names;
     let columns = Literal::usize_unsuffixed(names.len());
-    // Most of Y is structurally zero (a joint feels no body above it): only
-    // the other entries are computed, and Y is built from them in one pass,
-    // column-major, with no zeroing before and no indexing after.
-    let mut entries = Vec::new();
-    let mut at = Vec::new();
-    for k in 0..names.len() {
-        for row in &regressor.rows {
-            let y = row[k];
-            at.push((!model.ctx.is_zero(y)).then_some(entries.len()));
-            if at.last().is_some_and(Option::is_some) {
-                entries.push(y);
-            }
-        }
-    }
-    let (lets, outs) = e.program(&entries);
-    let zero = e.constant(0.0);
-    let column_major = at.iter().map(|slot| match slot {
-        Some(j) => outs[*j].clone(),
-        None => zero.clone(),
-    });
+    let (lets, y) = column_major(e, model, &regressor.rows);
+    let (m_lets, y_p) = column_major(e, model, &regressor.momentum);
     let (p_lets, p_outs) = e.program(&regressor.parameters);
     let (e_lets, e_outs) = e.program(&regressor.energy);
     let n = &f.n;
@@ -49,13 +33,19 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
         #[inline]
         fn regressor(&self, q: &#qvec, v: &#vec_n, a: &#vec_n, t: #s) -> ::core::option::Option<#p::DMatrix<#s>> {
             #lets
-            ::core::option::Option::Some(<#p::DMatrix<#s>>::from_vec(#n, #columns, ::std::vec![#(#column_major),*]))
+            ::core::option::Option::Some(<#p::DMatrix<#s>>::from_vec(#n, #columns, ::std::vec![#(#y),*]))
         }
 
         #[inline]
         fn energy_regressor(&self, q: &#qvec, v: &#vec_n, t: #s) -> ::core::option::Option<#p::DVector<#s>> {
             #e_lets
             ::core::option::Option::Some(<#p::DVector<#s>>::from_column_slice(&[#(#e_outs),*]))
+        }
+
+        #[inline]
+        fn momentum_regressor(&self, q: &#qvec, v: &#vec_n, t: #s) -> ::core::option::Option<#p::DMatrix<#s>> {
+            #m_lets
+            ::core::option::Option::Some(<#p::DMatrix<#s>>::from_vec(#n, #columns, ::std::vec![#(#y_p),*]))
         }
 
         #[inline]
@@ -68,4 +58,32 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
         lagrangian,
         ..Pieces::default()
     }
+}
+
+/// The program of a matrix's entries that are not structurally zero, and
+/// every entry column-major, a literal zero where it is structurally zero:
+/// most of Y and Y_p is zero (a joint feels no body above it), so only the
+/// other entries are computed, and the matrix is built from the list in one
+/// pass, with no zeroing before and no indexing after.
+fn column_major(e: &Emitter, model: &Model, rows: &[Vec<Sym>]) -> (TokenStream, Vec<TokenStream>) {
+    let columns = rows.first().map_or(0, Vec::len);
+    let mut at = Vec::new();
+    let mut entries = Vec::new();
+    for k in 0..columns {
+        for row in rows {
+            let y = row[k];
+            if model.ctx.is_zero(y) {
+                at.push(None);
+            } else {
+                at.push(Some(entries.len()));
+                entries.push(y);
+            }
+        }
+    }
+    let (lets, outs) = e.program(&entries);
+    let zero = e.constant(0.0);
+    let all = (at.iter())
+        .map(|slot| slot.map_or_else(|| zero.clone(), |j| outs[j].clone()))
+        .collect();
+    (lets, all)
 }

@@ -1,16 +1,28 @@
 //! The dynamics regressor (`emit(regressor)`): Y(q, q̇, q̈, t) with
-//! M q̈ + h − Q_gravity = Y π, π the inertial parameters.
+//! M q̈ + h − Q_gravity = Y π, π the inertial parameters; the energy
+//! regressor Y_E with T + V_gravity = Y_E π, and the momentum regressor
+//! Y_p with p = ∂T/∂q̇ = Y_p π.
 //!
 //! The equations of motion are linear in each body's ten inertial
 //! parameters, in Pinocchio's order (`Inertia::toDynamicParameters`)
 //! [m, m cx, m cy, m cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz], c the centre of mass
 //! and I the inertia about the body's reference point, both in the body's
 //! axes; a point mass has the one parameter m (its place is part of the
-//! description, not of π). The parameters are made fresh symbols of the
-//! engine and handed to the tree the description spans as its masses; Y is
-//! then built on the tree by joint axes carried outward to meet each body's
-//! regressor (`tree::regressor`), each column the derivative of τ by one
-//! parameter.
+//! description, not of π). Q's other forces (the user's potential, springs,
+//! dampers, forces, inputs) and the constraints' reactions are not linear
+//! in π and stay outside Y, on both routes: Y is the unconstrained
+//! equations' M q̈ + h less gravity's share of Q.
+//!
+//! Y is built by one of two routes. On a kinematic tree (the recursive
+//! route) the parameters are made fresh symbols of the engine and handed to
+//! the tree the description spans as its masses; Y is then built on the
+//! tree by joint axes carried outward to meet each body's regressor
+//! (`tree::regressor`), each column the derivative of τ by one parameter,
+//! and the base parameters are found in closed form (`base_parameters`).
+//! Elsewhere
+//! (`generic`) column k is the Euler–Lagrange operator applied to the
+//! parameter's share of the Lagrangian, T_k − V_k (`energy`), with the same
+//! π and names, so that identification reads both alike.
 //!
 //! The tree's mass attachment takes point masses at fixed places and
 //! rotational inertias; a body's parameters are handed to it as such, which
@@ -19,13 +31,17 @@
 //! h_k (1 − e_k e_kᵀ) of rotational inertia that the tensor handed over
 //! takes back), and the tensor I − Σ h_k (1 − e_k e_kᵀ).
 
+mod energy;
+mod generic;
+
 use lagrange_symbolic::{Context, Expr as Sym};
 
+use super::Route;
 use super::base_parameters::BaseForm;
 use super::expressions::Expressions;
 use crate::lowered::{PointModel, Skeleton, SpinModel};
-use crate::mat3::{Mat3, cross, dot, mat_vec, parallel_axis, transpose};
-use crate::tree::NotATree;
+use crate::mat3::{Mat3, parallel_axis};
+use energy::Column;
 
 /// Y and what π is.
 pub struct Regressor {
@@ -40,9 +56,25 @@ pub struct Regressor {
     /// The energy regressor Y_E(q, q̇, t), one entry per parameter:
     /// T + V_gravity = Y_E π.
     pub energy: Vec<Sym>,
-    /// The base parameters in closed form, for the texts (None on a tree
-    /// with a free orientation).
+    /// The momentum regressor Y_p(q, q̇, t) row by row: `momentum[i][k]` =
+    /// ∂T_k/∂q̇_i, so that p = ∂T/∂q̇ = Y_p π.
+    pub momentum: Vec<Vec<Sym>>,
+    /// How Y was built.
+    pub route: RegressorRoute,
+    /// The base parameters in closed form, for the texts (None off the
+    /// tree route and on a tree with a free orientation).
     pub base: Option<BaseForm>,
+}
+
+/// How Y was built.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum RegressorRoute {
+    /// By recursive Newton–Euler on the kinematic tree.
+    Recursive,
+    /// By the Euler–Lagrange operator on each parameter's share of L, and
+    /// why: the reason there is no tree, or that the generic route was asked
+    /// for.
+    Lagrange(String),
 }
 
 impl Expressions for Regressor {
@@ -50,6 +82,7 @@ impl Expressions for Regressor {
         out.extend(self.rows.iter().flatten());
         out.extend(&self.parameters);
         out.extend(&self.energy);
+        out.extend(self.momentum.iter().flatten());
     }
 }
 
@@ -66,9 +99,10 @@ pub(super) struct MassModel<'a> {
     pub gravity: Option<&'a [Sym]>,
 }
 
-/// Y on the tree the description spans, built on π's symbols, or why there
-/// is no tree.
-pub(super) fn regressor(ctx: &mut Context, m: MassModel) -> Result<Regressor, NotATree> {
+/// Y by recursive Newton–Euler on the tree the description spans, or by the
+/// Euler–Lagrange operator where there is no tree or `route` asks for the
+/// generic route.
+pub(super) fn regressor(ctx: &mut Context, m: MassModel, route: Route) -> Regressor {
     let mut p = Parametrised {
         inertias: m.spins.iter().map(|s| s.inertia).collect(),
         ..Parametrised::default()
@@ -81,6 +115,37 @@ pub(super) fn regressor(ctx: &mut Context, m: MassModel) -> Result<Regressor, No
             _ => p.point(ctx, point, at, m.gravity),
         }
     }
+    let tree_rows = match route {
+        Route::Generic => Err("the generic route was asked for".to_string()),
+        Route::Auto | Route::Recursive => on_tree(ctx, m, &p).map_err(|why| why.to_string()),
+    };
+    let (rows, route, base) = match tree_rows {
+        Ok((rows, base)) => (rows, RegressorRoute::Recursive, base),
+        Err(why) => (
+            generic::rows(ctx, &p.columns),
+            RegressorRoute::Lagrange(why),
+            None,
+        ),
+    };
+    let momentum = energy::momentum(ctx, &p.columns);
+    Regressor {
+        rows,
+        names: p.names,
+        parameters: p.parameters,
+        energy: p.columns.iter().map(|c| c.energy).collect(),
+        momentum,
+        route,
+        base,
+    }
+}
+
+/// Y's rows on the tree and the base parameters in closed form, or why
+/// there is no tree.
+fn on_tree(
+    ctx: &mut Context,
+    m: MassModel,
+    p: &Parametrised,
+) -> Result<(Vec<Vec<Sym>>, Option<BaseForm>), crate::tree::NotATree> {
     let spins: Vec<SpinModel> = (m.spins.iter().zip(&p.inertias))
         .map(|(s, &inertia)| SpinModel {
             name: s.name.clone(),
@@ -90,20 +155,14 @@ pub(super) fn regressor(ctx: &mut Context, m: MassModel) -> Result<Regressor, No
         .collect();
     // The detection reads where the masses sit off the skeleton: handed the
     // parametrised ones for this reading alone.
-    let kept = std::mem::replace(&mut m.skeleton.masses, p.placed);
+    let kept = std::mem::replace(&mut m.skeleton.masses, p.placed.clone());
     let masses = (&p.points[..], &spins[..], &*m.skeleton);
-    let tree = super::recursive::detect(ctx, super::Route::Recursive, masses, m.gravity);
+    let tree = super::recursive::detect(ctx, Route::Recursive, masses, m.gravity);
     m.skeleton.masses = kept;
     let tree = tree?;
     let rows = crate::tree::regressor(ctx, &tree, &p.symbols);
     let base = super::base_parameters::closed_form(ctx, &tree, &p.symbols, &p.names);
-    Ok(Regressor {
-        rows,
-        names: p.names,
-        parameters: p.parameters,
-        energy: p.energy,
-        base,
-    })
+    Ok((rows, base))
 }
 
 /// The description's masses with π's symbols in place of their values, and
@@ -114,8 +173,8 @@ struct Parametrised {
     symbols: Vec<Sym>,
     names: Vec<String>,
     parameters: Vec<Sym>,
-    /// Y_E's entries.
-    energy: Vec<Sym>,
+    /// Each parameter's share of the energies.
+    columns: Vec<Column>,
     /// The point masses the tree's attachment takes, and where they sit.
     points: Vec<PointModel>,
     placed: Vec<PlacedMass>,
@@ -133,7 +192,7 @@ impl Parametrised {
         self.symbols.push(mass);
         self.names.push(format!("{}.m", point.name));
         self.parameters.push(point.mass);
-        self.energy.push(point_energy(ctx, &point.position, g));
+        self.columns.push(energy::point(ctx, &point.position, g));
         self.points.push(moved(point, mass));
         self.placed.push(at);
     }
@@ -156,8 +215,8 @@ impl Parametrised {
             .extend(body_parameters(ctx, point.mass, offset, inertia));
         let frame = &m.skeleton.bodies[b];
         let placed_at = (&frame.reference[..], &frame.matrix);
-        let energy = body_energy(ctx, placed_at, m.spins[b].omega, m.gravity);
-        self.energy.extend(energy);
+        let columns = energy::body(ctx, placed_at, m.spins[b].omega, m.gravity);
+        self.columns.extend(columns);
         let [mass, hx, hy, hz, ixx, ixy, iyy, ixz, iyz, izz] = pi;
         let h = [hx, hy, hz];
         let all = ctx.sum(&h);
@@ -204,47 +263,4 @@ fn body_parameters(ctx: &mut Context, mass: Sym, c: &[Sym], about_centre: &Mat3)
     [
         mass, first[0], first[1], first[2], i[0][0], i[0][1], i[1][1], i[0][2], i[1][2], i[2][2],
     ]
-}
-
-/// A point mass's column of Y_E: ½ |ṗ|² − g·p.
-fn point_energy(ctx: &mut Context, p: &[Sym], gravity: Option<&[Sym]>) -> Sym {
-    let rate: Vec<Sym> = p.iter().map(|&x| ctx.time_derivative(x)).collect();
-    let squared = dot(ctx, &rate, &rate);
-    let half = ctx.rational(1, 2);
-    let kinetic = ctx.mul(half, squared);
-    match gravity {
-        Some(g) => {
-            let height = dot(ctx, g, p);
-            ctx.sub(kinetic, height)
-        }
-        None => kinetic,
-    }
-}
-
-/// A body's ten columns of Y_E, from its reference point o (world), its
-/// rotation R and ω in its axes: T = ½ m |v_o|² + (m c)·(v × ω) + ½ ωᵀ I ω
-/// with v = Rᵀ v_o, and V = −m g·o − (m c)·(Rᵀ g).
-fn body_energy(
-    ctx: &mut Context,
-    (origin, rotation): (&[Sym], &Mat3),
-    w: [Sym; 3],
-    gravity: Option<&[Sym]>,
-) -> [Sym; 10] {
-    let mass = point_energy(ctx, origin, gravity);
-    let rate: Vec<Sym> = origin.iter().map(|&x| ctx.time_derivative(x)).collect();
-    let body_axes = transpose(rotation);
-    let v = mat_vec(ctx, &body_axes, [rate[0], rate[1], rate[2]]);
-    let mut first = cross(ctx, v, w);
-    if let Some(g) = gravity {
-        let down = mat_vec(ctx, &body_axes, [g[0], g[1], g[2]]);
-        first = [0, 1, 2].map(|k| ctx.sub(first[k], down[k]));
-    }
-    let half = ctx.rational(1, 2);
-    let mut product = |a: usize, b: usize| {
-        let p = ctx.mul(w[a], w[b]);
-        if a == b { ctx.mul(half, p) } else { p }
-    };
-    let [xx, xy, yy, xz, yz, zz] =
-        [(0, 0), (0, 1), (1, 1), (0, 2), (1, 2), (2, 2)].map(|(a, b)| product(a, b));
-    [mass, first[0], first[1], first[2], xx, xy, yy, xz, yz, zz]
 }
