@@ -10,4 +10,6 @@ pub use lagrange_runtime::{
     physical,
     pose::{Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid},
 };
-pub use nalgebra::{DMatrix, DVector, Matrix3, SMatrix, SVector, Vector3};
+pub use nalgebra::{
+    DMatrix, DMatrixView, DMatrixViewMut, DVector, Matrix3, SMatrix, SVector, Vector3,
+};

@@ -447,3 +447,28 @@ fn bad_data_are_typed_errors() {
         })
     ));
 }
+
+/// `regressor_into` writes Y into a block of a larger matrix, every entry
+/// (what was there before is overwritten), and refuses a block of the wrong
+/// shape with a typed error, leaving it as it was.
+#[test]
+fn regressor_into_writes_a_block_and_refuses_a_wrong_shape() {
+    let ur5 = Ur5 {};
+    let q = SVector::<f64, 6>::from_fn(|k, _| 0.3 - 0.17 * k as f64);
+    let v = SVector::<f64, 6>::from_fn(|k, _| 0.5 - 0.21 * k as f64);
+    let a = SVector::<f64, 6>::from_fn(|k, _| 0.1 + 0.05 * k as f64);
+    let y = ur5.regressor(&q, &v, &a, 0.0).expect("emit(regressor)");
+    let p = Ur5::REGRESSOR_PARAMETERS.len();
+    let mut w = nalgebra::DMatrix::from_element(18, p, 7.0);
+    ur5.regressor_into(&q, &v, &a, 0.0, w.view_mut((6, 0), (6, p)))
+        .expect("the block has Y's shape");
+    assert_eq!(w.view((6, 0), (6, p)), y);
+    assert!(w.rows(0, 6).iter().chain(w.rows(12, 6).iter()).all(|&x| x == 7.0));
+    let before = w.clone();
+    let wrong = ur5.regressor_into(&q, &v, &a, 0.0, w.view_mut((0, 0), (6, p - 1)));
+    assert!(
+        matches!(wrong, Err(IdentifyError::Lengths { got, expected, .. }) if got == p - 1 && expected == p),
+        "{wrong:?}"
+    );
+    assert_eq!(w, before);
+}

@@ -3,8 +3,10 @@
 //! (`robots/`): the figures to set beside Pinocchio's
 //! `computeJointTorqueRegressor` and `rnea` on the same files from
 //! `peer/pinocchio/regressor.sh`, run on the same machine in one session.
-//! The bar is a ratio of ratios: Y against Pinocchio's regressor at
-//! least as fast as τ against `rnea`.
+//! The bar is a ratio of ratios: Y against Pinocchio's regressor at least as
+//! fast as τ against `rnea`. Pinocchio writes Y into its `Data`, allocated
+//! once; `regressor_into` writes into a matrix the caller holds, the fair
+//! comparison, and `regressor` allocates its matrix on every call.
 //!
 //! Before timing, each arm prints τ[0] at the bench's state, as the peer
 //! does, so that a reader sees both sides run the same model at the same
@@ -54,6 +56,18 @@ fn time<S: Lagrangian<f64, N> + Default, const N: usize>(c: &mut Criterion, name
     });
     group.bench_function("inverse dynamics", |b| {
         b.iter(|| sys.inverse_dynamics(black_box(&q), black_box(&v), black_box(&a), 0.0))
+    });
+    let mut y = nalgebra::DMatrix::<f64>::zeros(N, S::REGRESSOR_PARAMETERS.len());
+    group.bench_function("regressor into a held matrix", |b| {
+        b.iter(|| {
+            sys.regressor_into(
+                black_box(&q),
+                black_box(&v),
+                black_box(&a),
+                0.0,
+                y.as_view_mut(),
+            )
+        })
     });
     group.finish();
 }

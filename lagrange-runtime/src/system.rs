@@ -5,9 +5,10 @@
 //! this trait only, so a hand-written implementation is a first-class citizen too
 //! (the benchmarks compare exactly that).
 
+use crate::error::IdentifyError;
 use crate::numeric::Real;
 use crate::numeric::orientation::Orientation;
-use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+use nalgebra::{DMatrix, DMatrixViewMut, DVector, SMatrix, SVector};
 
 mod atlas;
 mod configuration;
@@ -220,11 +221,13 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// [`inverse_dynamics`](Self::inverse_dynamics)); π as
     /// [`REGRESSOR_PARAMETERS`](Self::REGRESSOR_PARAMETERS) names it. `None`
     /// unless the description asks for it with `emit(regressor)`. On a
-    /// kinematic tree Y is built by recursive Newton–Euler; on any other
+    /// kinematic tree Y is built from each joint's axis carried outward to
+    /// the bodies below it, where it meets their body regressors; on any other
     /// description by the Euler–Lagrange operator on each parameter's share
     /// of the Lagrangian (the same π). The constraints' reactions and Q's
     /// other forces (the user's potential, springs, dampers, forces, inputs)
-    /// are not in Y π. Allocates its matrix.
+    /// are not in Y π. Allocates its matrix; [`regressor_into`](Self::regressor_into)
+    /// writes into one the caller holds.
     fn regressor(
         &self,
         q: &SVector<T, Q>,
@@ -234,6 +237,28 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     ) -> Option<DMatrix<T>> {
         let _ = (q, v, a, t);
         None
+    }
+
+    /// [`regressor`](Self::regressor)'s Y written into `y`, every entry set,
+    /// allocating nothing: `y` may be a block of a larger matrix (a
+    /// regressor stacked over samples, `w.view_mut((k * N, 0), (N, p))`).
+    ///
+    /// # Errors
+    /// [`IdentifyError::NoRegressor`] unless the description asks for
+    /// `emit(regressor)`; [`IdentifyError::Lengths`] when `y` is not N ×
+    /// π's length (`y` is then left as it was).
+    fn regressor_into(
+        &self,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        a: &SVector<T, N>,
+        t: T,
+        y: DMatrixViewMut<'_, T>,
+    ) -> Result<(), IdentifyError> {
+        let _ = (q, v, a, t, y);
+        Err(IdentifyError::NoRegressor {
+            method: "regressor_into",
+        })
     }
 
     /// The energy regressor Y_E(q, q̇, t), one entry per parameter of π:

@@ -23,6 +23,7 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
     let names = &regressor.names;
     let columns = Literal::usize_unsuffixed(names.len());
     let (lets, y) = column_major(e, model, &regressor.rows);
+    let entries = Literal::usize_unsuffixed(regressor.rows.len() * names.len());
     let (m_lets, y_p) = column_major(e, model, &regressor.momentum);
     let (p_lets, p_outs) = e.program(&regressor.parameters);
     let (e_lets, e_outs) = e.program(&regressor.energy);
@@ -32,8 +33,21 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
 
         #[inline]
         fn regressor(&self, q: &#qvec, v: &#vec_n, a: &#vec_n, t: #s) -> ::core::option::Option<#p::DMatrix<#s>> {
-            #lets
-            ::core::option::Option::Some(<#p::DMatrix<#s>>::from_vec(#n, #columns, ::std::vec![#(#y),*]))
+            let y = self.__lagrange_regressor(q, v, a, t);
+            ::core::option::Option::Some(<#p::DMatrix<#s>>::from_column_slice(#n, #columns, &y))
+        }
+
+        #[inline]
+        fn regressor_into(&self, q: &#qvec, v: &#vec_n, a: &#vec_n, t: #s, mut y: #p::DMatrixViewMut<'_, #s>) -> ::core::result::Result<(), ::lagrange::IdentifyError> {
+            if y.nrows() != #n {
+                return ::core::result::Result::Err(::lagrange::IdentifyError::Lengths { what: "rows of the matrix regressor_into writes", got: y.nrows(), expected: #n });
+            }
+            if y.ncols() != #columns {
+                return ::core::result::Result::Err(::lagrange::IdentifyError::Lengths { what: "columns of the matrix regressor_into writes", got: y.ncols(), expected: #columns });
+            }
+            let values = self.__lagrange_regressor(q, v, a, t);
+            y.copy_from(&<#p::DMatrixView<'_, #s>>::from_slice(&values, #n, #columns));
+            ::core::result::Result::Ok(())
         }
 
         #[inline]
@@ -54,8 +68,18 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
             ::core::option::Option::Some(<#p::DVector<#s>>::from_column_slice(&[#(#p_outs),*]))
         }
     };
+    // Y's entries column-major, once, for both methods.
+    let hoisted = quote! {
+        #[doc(hidden)]
+        #[inline]
+        fn __lagrange_regressor(&self, q: &#qvec, v: &#vec_n, a: &#vec_n, t: #s) -> [#s; #entries] {
+            #lets
+            [#(#y),*]
+        }
+    };
     Pieces {
         lagrangian,
+        hoisted,
         ..Pieces::default()
     }
 }
