@@ -463,7 +463,12 @@ fn regressor_into_writes_a_block_and_refuses_a_wrong_shape() {
     ur5.regressor_into(&q, &v, &a, 0.0, w.view_mut((6, 0), (6, p)))
         .expect("the block has Y's shape");
     assert_eq!(w.view((6, 0), (6, p)), y);
-    assert!(w.rows(0, 6).iter().chain(w.rows(12, 6).iter()).all(|&x| x == 7.0));
+    assert!(
+        w.rows(0, 6)
+            .iter()
+            .chain(w.rows(12, 6).iter())
+            .all(|&x| x == 7.0)
+    );
     let before = w.clone();
     let wrong = ur5.regressor_into(&q, &v, &a, 0.0, w.view_mut((0, 0), (6, p - 1)));
     assert!(

@@ -38,6 +38,7 @@ impl Planar {
 impl Lagrangian<f64, 3> for Planar {
     const COORDINATES: [&'static str; 3] = ["x", "z", "theta"];
     const RHEONOMIC: bool = false;
+    const CONTACTS: &'static [&'static str] = &["ground"];
     fn mass_matrix(&self, _: &SVector<f64, 3>, _: f64) -> SMatrix<f64, 3, 3> {
         let i = self.k * self.m * self.r * self.r;
         SMatrix::<f64, 3, 3>::from_diagonal(&SVector::<f64, 3>::new(self.m, self.m, i))
@@ -365,6 +366,25 @@ fn bad_laws_and_a_penetrating_start_are_typed_errors() {
         "{error}"
     );
     assert_eq!(error.contact, "ground");
+    // A law `CONTACTS` does not list: the other runs would not refuse the
+    // system, so this one does, naming both lists.
+    let mut unlisted = ball(0.5, 0.3);
+    unlisted.law.name = "floor";
+    let failure = Simulation::new(&unlisted)
+        .run_contacts([0.0, 1.0, 0.0], [0.0; 3], 0.0..1.0)
+        .unwrap_err();
+    let Error::Contact(error) = &failure.error else {
+        panic!("{}", failure.error)
+    };
+    assert_eq!(
+        error.fault,
+        ContactFault::NotListed {
+            listed: vec!["ground"],
+            laws: vec!["floor"]
+        },
+        "{error}"
+    );
+    assert!(error.to_string().contains("CONTACTS"), "{error}");
     assert_eq!(failure.partial.trajectory.len(), 1);
 }
 
@@ -380,6 +400,7 @@ struct Rod {
 impl Lagrangian<f64, 3> for Rod {
     const COORDINATES: [&'static str; 3] = ["x", "y", "theta"];
     const RHEONOMIC: bool = false;
+    const CONTACTS: &'static [&'static str] = &["end"];
     fn mass_matrix(&self, _: &SVector<f64, 3>, _: f64) -> SMatrix<f64, 3, 3> {
         let i = self.m * self.l * self.l / 3.0;
         SMatrix::<f64, 3, 3>::from_diagonal(&SVector::<f64, 3>::new(self.m, self.m, i))

@@ -4,7 +4,7 @@
 
 use super::form::{ContactForm, Mode, has_tangent};
 use super::run::{ChangeKind, ContactChange, ContactRun, ContactSettings};
-use crate::error::{Error, Failure, SettingsError};
+use crate::error::{ContactError, ContactFault, Error, Failure, SettingsError};
 use crate::event::{Event, Events};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
@@ -117,6 +117,27 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
         }
     }
 
+    /// The laws' names are `CONTACTS`, in order.
+    fn check_listed(&self, t0: T, q0: &SVector<T, N>) -> Result<(), Error> {
+        let laws: Vec<&'static str> = self.laws.iter().map(|l| l.name).collect();
+        if laws == S::CONTACTS {
+            return Ok(());
+        }
+        let first = laws.iter().find(|n| !S::CONTACTS.contains(n));
+        Err(ContactError {
+            contact: first
+                .or(laws.first())
+                .map_or_else(String::new, |n| (*n).to_owned()),
+            t: t0.to_f64(),
+            q: q0.iter().map(|x| x.to_f64()).collect(),
+            fault: ContactFault::NotListed {
+                listed: S::CONTACTS.to_vec(),
+                laws,
+            },
+        }
+        .into())
+    }
+
     fn join(&mut self, piece: Trajectory<T, N>) {
         match &mut self.trajectory {
             Some(whole) => {
@@ -138,6 +159,7 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
         check_problem(t0, t1, &q0, &v0)?;
         self.settings.check()?;
         check_laws(&self.laws)?;
+        self.check_listed(t0, &q0)?;
         let (mut t, mut q, mut v) = (t0, q0, v0);
         let mut modes = self.settle(
             t,

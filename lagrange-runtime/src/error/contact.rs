@@ -67,6 +67,20 @@ pub enum ContactFault {
     /// [`Simulation::run_contacts`]: crate::Simulation::run_contacts
     /// [`Lagrangian::CONTACTS`]: crate::Lagrangian::CONTACTS
     NeedsContactRun,
+    /// The system's contact laws ([`Contacts::contact_laws`]) and its
+    /// [`Lagrangian::CONTACTS`] disagree: the runs other than
+    /// `run_contacts` read the latter to refuse a system with contacts, so a
+    /// hand-written system that leaves a contact out of it would run through
+    /// that contact elsewhere without a word.
+    ///
+    /// [`Contacts::contact_laws`]: crate::Contacts::contact_laws
+    /// [`Lagrangian::CONTACTS`]: crate::Lagrangian::CONTACTS
+    NotListed {
+        /// The names in `CONTACTS`.
+        listed: Vec<&'static str>,
+        /// The names of the contact laws.
+        laws: Vec<&'static str>,
+    },
 }
 
 impl fmt::Display for ContactFault {
@@ -98,6 +112,12 @@ impl fmt::Display for ContactFault {
             ContactFault::MissingRows { laws } => write!(
                 f,
                 "the system lists {laws} contact laws but gives no rows for this one"
+            ),
+            ContactFault::NotListed { listed, laws } => write!(
+                f,
+                "the system's contact laws are {laws:?} but `Lagrangian::CONTACTS` lists \
+                 {listed:?}; list the same names, in the same order, in `CONTACTS` (the \
+                 derive does), so that runs other than `run_contacts` refuse the system"
             ),
             ContactFault::NeedsContactRun => f.write_str(
                 "this run would ignore the system's contacts and stops (it would move through \
