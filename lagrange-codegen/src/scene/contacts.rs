@@ -19,14 +19,8 @@ pub(super) fn contacts(lw: &mut Lowerer, system: &System) -> Vec<ContactModel> {
     let mut out = Vec::new();
     for c in &system.contacts {
         if let Some(o) = system.orientations.first() {
-            lw.cx.error_at(
-                c.name.span(),
-                format!(
-                    "contact `{}`: contacts on a description with a free orientation (`{o}`) \
-                     are not supported yet; write the rotation in Euler angles",
-                    c.name
-                ),
-            );
+            lw.cx
+                .error_at(c.name.span(), oriented(&c.name, &o.to_string()));
             continue;
         }
         let Some((gap, slips)) = written(lw, system, c) else {
@@ -247,5 +241,25 @@ mod tests {
                 assert!((dot(u, v) - want).abs() < 1e-15, "{n:?}");
             }
         }
+    }
+}
+
+/// Why a contact on a free orientation is refused. `emit(atlas)` turns the
+/// description's Euler angles into a free orientation (`__euler_<k>`) before
+/// the contacts are read, so telling its author to write Euler angles would
+/// send them in a circle.
+fn oriented(contact: &Ident, orientation: &str) -> String {
+    if orientation.starts_with("__euler_") {
+        format!(
+            "contact `{contact}`: contacts do not run through the atlas yet (`emit(atlas)` \
+             runs these Euler angles as a free orientation, and contacts on free orientations \
+             are not supported yet); drop `atlas` from `emit(...)`, and the contacts run in \
+             the Euler angles as written"
+        )
+    } else {
+        format!(
+            "contact `{contact}`: contacts on a description with a free orientation \
+             (`{orientation}`) are not supported yet; write the rotation in Euler angles"
+        )
     }
 }
