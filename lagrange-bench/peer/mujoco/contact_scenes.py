@@ -263,7 +263,7 @@ def errors(scene, t, q, v):
                 "rest time",
                 abs(settled - t_rest),
                 f"settled within {SETTLED:.0e} m; {len(impacts)} impacts in the span; "
-                f"|vz| over the last 0.3 s up to {np.abs(v[tail, 1]).max():.1e} m/s; sinks {-gap[-1]:.1e} m",
+                f"vz over the last 0.3 s up to {np.abs(v[tail, 1]).max():.1e} m/s; sinks {-gap[-1]:.1e} m",
             )
         )
         out.append(("penetration", max(0.0, -gap.min()), ""))
@@ -274,7 +274,7 @@ def errors(scene, t, q, v):
         v_roll = (5.0 * v0 - 2.0 * R * spin) / 7.0
         below = np.nonzero(np.abs(slip) <= SLIP_TOL)[0]
         tr = t[below[0]] if len(below) else math.nan
-        out.append(("roll time", abs(tr - t_roll), f"|slip| <= {SLIP_TOL:.0e} m/s; slip at end {slip[-1]:.1e} m/s"))
+        out.append(("roll time", abs(tr - t_roll), f"slip <= {SLIP_TOL:.0e} m/s in size; slip at end {slip[-1]:.1e} m/s"))
         out.append(("roll speed", abs(v[-1, 0] - v_roll), ""))
         out.append(("penetration", max(0.0, -(q[:, 1] - R).min()), ""))
     elif scene == "block":
