@@ -94,9 +94,9 @@ const ARM: Arm2R = Arm2R {
 };
 
 /// A deterministic sequence in [−1, 1).
-struct Lcg(u64);
+pub(crate) struct Lcg(pub(crate) u64);
 impl Lcg {
-    fn next(&mut self) -> f64 {
+    pub(crate) fn next(&mut self) -> f64 {
         self.0 = (self.0)
             .wrapping_mul(6364136223846793005)
             .wrapping_add(1442695040888963407);
@@ -104,7 +104,7 @@ impl Lcg {
     }
 
     /// A standard normal deviate (Box–Muller).
-    fn normal(&mut self) -> f64 {
+    pub(crate) fn normal(&mut self) -> f64 {
         let u = 0.5 * (self.next() + 1.0) + 1e-300;
         let v = 0.5 * (self.next() + 1.0);
         (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
@@ -112,7 +112,7 @@ impl Lcg {
 }
 
 /// A random state, each free orientation's quaternion on the unit sphere.
-fn state<S: Lagrangian<f64, N, Q>, const N: usize, const Q: usize>(
+pub(crate) fn state<S: Lagrangian<f64, N, Q>, const N: usize, const Q: usize>(
     rng: &mut Lcg,
 ) -> (SVector<f64, Q>, SVector<f64, N>, SVector<f64, N>) {
     let mut q = SVector::<f64, Q>::from_fn(|_, _| 2.0 * rng.next());

@@ -15,19 +15,30 @@ use crate::system::Lagrangian;
 pub struct Consistency {
     /// The weight of the pull toward the prior, relative to the data's
     /// mean curvature (the mean of the diagonal of the Gauss–Newton matrix
-    /// at the prior): small, since it only has to choose among the π that
-    /// fit equally well (the directions the data cannot see), and it biases
-    /// the ones they can see by about this fraction of their spread.
+    /// at the prior). It has to choose among the π that fit equally well
+    /// (the directions the data cannot see), and it biases the ones they
+    /// can see: measured on the UR5 from noise-free data, π_b off by 1e-5
+    /// (relative) at the default 1e-6, by 4e-9 at 1e-10. Smaller is less
+    /// bias but, where the data push a body toward the boundary of
+    /// consistency, slower convergence: the optimum recedes toward a flat
+    /// body at infinite θ.
     pub regularisation: f64,
     /// Levenberg–Marquardt iterations at most.
     pub iterations: usize,
+    /// Converged when a step lowers the cost by less than this fraction of
+    /// it. Where the data pull a body toward the boundary of consistency
+    /// (an inertia they would have negative), the cost keeps falling ever
+    /// more slowly as the body flattens: this says when the rest is not
+    /// worth having.
+    pub tolerance: f64,
 }
 
 impl Default for Consistency {
     fn default() -> Self {
         Consistency {
-            regularisation: 1e-10,
-            iterations: 500,
+            regularisation: 1e-6,
+            iterations: 2000,
+            tolerance: 1e-8,
         }
     }
 }
@@ -66,7 +77,8 @@ pub struct ConsistentEstimate {
 ///
 /// The model passed supplies only the regressor; `prior` is the π to stay
 /// near (a CAD model's, or `sys.inertial_parameters()`), and must be
-/// physically consistent.
+/// physically consistent, but for bodies whose ten parameters are all zero
+/// (a URDF frame without `<inertial>`, a tool frame): those stay massless.
 ///
 /// # Errors
 /// [`IdentifyError::Inconsistent`] for a prior that is not physically
@@ -92,7 +104,15 @@ where
         return Err(IdentifyError::Setting {
             setting: "regularisation",
             value: lambda,
-            reason: "the pull toward the prior must be positive and finite (1e-10 by default)",
+            reason: "the pull toward the prior must be positive and finite (1e-6 by default)",
+        });
+    }
+    if !(settings.tolerance.is_finite() && settings.tolerance >= 0.0) {
+        return Err(IdentifyError::Setting {
+            setting: "tolerance",
+            value: settings.tolerance,
+            reason: "the relative decrease of the cost that ends the iteration must be finite \
+                     and not negative (1e-8 by default)",
         });
     }
     let names = S::REGRESSOR_PARAMETERS;
@@ -110,11 +130,10 @@ where
             value,
         });
     }
-    let parametrisation = Parametrisation::new(names)?;
-    let start = parametrisation.theta(prior, "the prior π")?;
+    let (parametrisation, start) = Parametrisation::at(names, prior, "the prior π")?;
     let (w, y) = weighted_full(sys, samples, noise)?;
     let problem = Problem::compressed(&w, &y, parametrisation, start);
-    let fit = problem.levenberg_marquardt(lambda, settings.iterations);
+    let fit = problem.levenberg_marquardt(lambda, settings);
     let (pi, _) = problem.parametrisation.pi_and_jacobian(&fit.theta);
     let residual = (problem.data_cost(&pi) / (y.len().max(1) as f64)).sqrt();
     if !fit.converged {
@@ -196,9 +215,9 @@ impl Problem {
 
     /// Levenberg–Marquardt with Nielsen's update of the damping μ, the
     /// pull λ relative to the data's mean curvature at the prior. Converged
-    /// when a step no longer lowers the cost by more than 1e-14 of it, or
-    /// the gradient vanishes to round-off.
-    fn levenberg_marquardt(&self, relative: f64, iterations: usize) -> Fit {
+    /// when a step no longer lowers the cost by more than the settings'
+    /// tolerance of it, or the gradient vanishes to round-off.
+    fn levenberg_marquardt(&self, relative: f64, settings: &Consistency) -> Fit {
         let mut theta = self.prior.clone();
         let (_, j0) = self.linearised(&theta, 0.0);
         let n = theta.len();
@@ -209,7 +228,7 @@ impl Problem {
         let mut cost = r.norm_squared();
         let mut mu = 1e-3 * curvature;
         let mut nu = 2.0;
-        for iteration in 1..=iterations {
+        for iteration in 1..=settings.iterations {
             let gradient = jac.transpose() * &r;
             if gradient.amax() <= 1e-15 * curvature * (1.0 + theta.amax()) {
                 return Fit {
@@ -234,7 +253,7 @@ impl Problem {
                 nu = 2.0;
                 let decrease = cost - trial_cost;
                 (theta, r, jac, cost) = (trial, r_trial, jac_trial, trial_cost);
-                if decrease <= 1e-14 * cost {
+                if decrease <= settings.tolerance * cost {
                     return Fit {
                         theta,
                         iterations: iteration,
@@ -254,7 +273,7 @@ impl Problem {
         }
         Fit {
             theta,
-            iterations,
+            iterations: settings.iterations,
             converged: false,
         }
     }

@@ -111,7 +111,8 @@ pub fn is_physically_consistent(block: &[f64; 10]) -> bool {
 /// The bodies (and point masses) of π, named by `names` (a system's
 /// `Lagrangian::REGRESSOR_PARAMETERS`), whose parameters are not physically
 /// consistent: a body by [`is_physically_consistent`], a point mass whose
-/// mass is not positive.
+/// mass is not positive. A body whose ten parameters are all zero (a URDF
+/// frame without `<inertial>`) is no mass at all and is not listed.
 ///
 /// # Errors
 /// [`IdentifyError::Lengths`] when π and `names` differ in length;
@@ -138,7 +139,10 @@ pub fn inconsistent_bodies(
 
 fn block_consistent(block: &Block, pi: &DVector<f64>) -> bool {
     match *block {
-        Block::Body { first, .. } => is_physically_consistent(&ten(pi, first)),
+        Block::Body { first, .. } => {
+            let block = ten(pi, first);
+            block.iter().all(|&x| x == 0.0) || is_physically_consistent(&block)
+        }
         Block::Point { index, .. } => pi[index].is_finite() && pi[index] > 0.0,
     }
 }
@@ -191,34 +195,41 @@ fn theta_of_pseudo_inertia(j: &Matrix4<f64>) -> Option<[f64; 10]> {
 }
 
 /// The parametrisation θ ↦ π over a whole π: each body's log-Cholesky
-/// block, each point mass m = e^θ.
+/// block, each point mass m = e^θ. A body whose ten parameters are all zero
+/// in the π it starts from (a URDF frame without `<inertial>`, such as a
+/// tool frame) is no body to estimate: it stays massless, its θ unused.
 pub(super) struct Parametrisation {
     blocks: Vec<Block>,
+    massless: Vec<bool>,
     len: usize,
 }
 
 impl Parametrisation {
-    pub(super) fn new(names: &[&str]) -> Result<Self, IdentifyError> {
-        Ok(Parametrisation {
-            blocks: layout(names)?,
-            len: names.len(),
-        })
-    }
-
-    /// θ of a physically consistent π, or the error naming the first body
-    /// that is not.
-    pub(super) fn theta(
-        &self,
+    /// The parametrisation of π's layout, and θ of `pi`, physically
+    /// consistent but for massless bodies.
+    ///
+    /// # Errors
+    /// [`IdentifyError::Inconsistent`] naming the first body of `pi` that
+    /// is not physically consistent (`what` names `pi`);
+    /// [`IdentifyError::UnknownParameter`] for a name that is not a body's
+    /// or a point's parameter.
+    pub(super) fn at(
+        names: &[&str],
         pi: &DVector<f64>,
         what: &'static str,
-    ) -> Result<DVector<f64>, IdentifyError> {
-        let mut theta = DVector::zeros(self.len);
-        for block in &self.blocks {
+    ) -> Result<(Self, DVector<f64>), IdentifyError> {
+        let blocks = layout(names)?;
+        let mut theta = DVector::zeros(names.len());
+        let mut massless = vec![false; blocks.len()];
+        for (b, block) in blocks.iter().enumerate() {
             let inconsistent = || IdentifyError::Inconsistent {
                 what,
                 body: block.name().to_string(),
             };
             match *block {
+                Block::Body { first, .. } if (0..10).all(|k| pi[first + k] == 0.0) => {
+                    massless[b] = true;
+                }
                 Block::Body { first, .. } => {
                     let t = theta_of_pseudo_inertia(&pseudo_inertia(&ten(pi, first)))
                         .filter(|t| t.iter().all(|x| x.is_finite()))
@@ -231,7 +242,12 @@ impl Parametrisation {
                 Block::Point { .. } => return Err(inconsistent()),
             }
         }
-        Ok(theta)
+        let parametrisation = Parametrisation {
+            blocks,
+            massless,
+            len: names.len(),
+        };
+        Ok((parametrisation, theta))
     }
 
     /// π(θ) and ∂π/∂θ (block diagonal), by the chain rule through
@@ -239,8 +255,9 @@ impl Parametrisation {
     pub(super) fn pi_and_jacobian(&self, theta: &DVector<f64>) -> (DVector<f64>, DMatrix<f64>) {
         let mut pi = DVector::zeros(self.len);
         let mut jac = DMatrix::zeros(self.len, self.len);
-        for block in &self.blocks {
+        for (block, &massless) in self.blocks.iter().zip(&self.massless) {
             match *block {
+                Block::Body { .. } if massless => {}
                 Block::Body { first, .. } => {
                     let t = &theta.as_slice()[first..first + 10];
                     let u = factor(t);
@@ -309,9 +326,8 @@ mod tests {
     fn a_box_is_consistent_and_its_theta_round_trips() {
         let block = box_block();
         assert!(is_physically_consistent(&block));
-        let p = Parametrisation::new(&BOX_NAMES).expect("a body");
         let pi = DVector::from_row_slice(&block);
-        let theta = p.theta(&pi, "π").expect("consistent");
+        let (p, theta) = Parametrisation::at(&BOX_NAMES, &pi, "π").expect("consistent");
         let (back, _) = p.pi_and_jacobian(&theta);
         assert!((back - &pi).abs().max() < 1e-14);
     }
@@ -322,7 +338,8 @@ mod tests {
 
     #[test]
     fn the_jacobian_is_the_derivative_of_pi() {
-        let p = Parametrisation::new(&BOX_NAMES).expect("a body");
+        let pi = DVector::from_row_slice(&box_block());
+        let (p, _) = Parametrisation::at(&BOX_NAMES, &pi, "π").expect("consistent");
         let theta = DVector::from_vec(vec![0.3, -0.2, 0.5, 0.1, 0.4, -0.7, 0.2, 0.05, -0.3, 0.6]);
         let (_, jac) = p.pi_and_jacobian(&theta);
         let h = 1e-6;
