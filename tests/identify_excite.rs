@@ -187,7 +187,7 @@ fn a_trajectory_outside_its_limits_is_reported_where() {
 }
 
 #[test]
-fn bad_limits_and_settings_are_typed_errors() {
+fn bad_limits_are_typed_errors() {
     let v = |x: f64, y: f64| Vector2::new(x, y);
     let ok = v(1.0, 1.0);
     let range = JointLimits::new(v(-1.0, 0.5), v(1.0, 0.5), ok, ok);
@@ -215,7 +215,10 @@ fn bad_limits_and_settings_are_typed_errors() {
         message.contains("acceleration limit must be positive"),
         "{message}"
     );
+}
 
+#[test]
+fn bad_settings_and_coefficients_are_typed_errors() {
     let base = BaseParameters::of(&PLANAR).expect("a regressor");
     let run = |settings: Excitation| exciting_trajectory(&PLANAR, &base, &limits(), &settings);
     let no_harmonics = run(Excitation {
