@@ -172,7 +172,7 @@ impl Lcg {
     }
 
     /// A standard normal deviate (Box–Muller).
-    fn normal(&mut self) -> f64 {
+    pub(crate) fn normal(&mut self) -> f64 {
         let u = 0.5 * (self.next() + 1.0) + 1e-300;
         let v = 0.5 * (self.next() + 1.0);
         (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()

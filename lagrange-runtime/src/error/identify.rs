@@ -87,4 +87,140 @@ pub enum IdentifyError {
         /// The length it must have.
         expected: usize,
     },
+
+    /// A parameter vector or a coefficient that is not a finite number.
+    #[error("{what}[{index}] is {value}, not a finite number")]
+    NotFiniteValue {
+        /// What was given (`the prior π`, `the known π`, a coefficient).
+        what: &'static str,
+        /// The entry's index in it.
+        index: usize,
+        /// The value found.
+        value: f64,
+    },
+
+    // Exciting trajectories (`identify::Fourier`, `identify::exciting_trajectory`).
+    /// A joint's position limits that leave no room to move.
+    #[error(
+        "joint {joint}: the position limits [{lower}, {upper}] leave no room: give finite \
+         limits with lower < upper"
+    )]
+    LimitRange {
+        /// The joint's index.
+        joint: usize,
+        /// The lower limit given.
+        lower: f64,
+        /// The upper limit given.
+        upper: f64,
+    },
+
+    /// A joint's speed or acceleration limit that is not positive and
+    /// finite.
+    #[error(
+        "joint {joint}: the {quantity} limit must be positive and finite (a bound on its \
+         magnitude), got {value}"
+    )]
+    LimitRate {
+        /// The joint's index.
+        joint: usize,
+        /// `speed` or `acceleration`.
+        quantity: &'static str,
+        /// The value given.
+        value: f64,
+    },
+
+    /// A trajectory that leaves its limits.
+    #[error(
+        "joint {joint}: the trajectory's {quantity} is {value} at t = {time}, beyond the limit \
+         {limit}; scale its coefficients down or move its offset inside the range"
+    )]
+    OutsideLimits {
+        /// The joint's index.
+        joint: usize,
+        /// `position`, `speed` or `acceleration`.
+        quantity: &'static str,
+        /// The time of the sample found outside.
+        time: f64,
+        /// The value there.
+        value: f64,
+        /// The limit it passes.
+        limit: f64,
+    },
+
+    /// A setting that cannot be used.
+    #[error("the setting `{setting}` is {value}: {reason}")]
+    Setting {
+        /// The setting's name.
+        setting: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must be.
+        reason: &'static str,
+    },
+
+    /// No trajectory tried excites every base parameter.
+    #[error(
+        "no trajectory tried excites every base parameter (the best stacked regressor's \
+         condition number is {condition}): widen the limits, add harmonics or samples, or \
+         lengthen the period"
+    )]
+    NotExcited {
+        /// The best condition number reached.
+        condition: f64,
+    },
+
+    // Physically consistent estimates (`identify::identify_consistent`).
+    /// A body's parameters that no mass distribution has (its 4 × 4
+    /// pseudo-inertia is not positive definite), or a point mass that is not
+    /// positive.
+    #[error(
+        "{what}: the parameters of `{body}` are not physically consistent (a mass that is not \
+         positive, or an inertia that breaks the triangle inequalities or does not fit the \
+         first moment); start from a π that a real body has, such as the model's own"
+    )]
+    Inconsistent {
+        /// Which vector (`the prior π`).
+        what: &'static str,
+        /// The body or point mass.
+        body: String,
+    },
+
+    /// Levenberg–Marquardt stopped before converging; `best` is the best
+    /// iterate, physically consistent.
+    #[error(
+        "the consistent estimate did not converge in {iterations} iterations (weighted residual \
+         {residual}); the best iterate is in the error: allow more iterations or record a \
+         motion that excites every base parameter"
+    )]
+    NotConverged {
+        /// Iterations made.
+        iterations: usize,
+        /// The best iterate's weighted residual (root mean square).
+        residual: f64,
+        /// The best iterate's full π.
+        best: nalgebra::DVector<f64>,
+    },
+
+    // Estimates of a subset of π (`identify::identify_subset`).
+    /// A name that is neither a parameter nor a body of the system.
+    #[error(
+        "`{name}` is neither one of the system's inertial parameters nor one of its bodies \
+         (see Lagrangian::REGRESSOR_PARAMETERS: `body.m`, `body.mx`, ..., `point.m`)"
+    )]
+    UnknownParameter {
+        /// The name given.
+        name: String,
+    },
+
+    /// Parameters chosen for estimation that the data cannot tell apart.
+    #[error(
+        "the data cannot separate these parameters from the other chosen ones: {}; estimate \
+         fewer (each of them acts only together with others) or record a motion that moves \
+         every joint",
+        parameters.join(", ")
+    )]
+    Inseparable {
+        /// The parameters whose columns are combinations of the others'.
+        parameters: Vec<String>,
+    },
 }

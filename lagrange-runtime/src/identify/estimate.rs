@@ -67,20 +67,7 @@ pub fn identify<S, const N: usize, const Q: usize>(
 where
     S: Lagrangian<f64, N, Q>,
 {
-    if let Some((joint, &value)) =
-        (noise.iter().enumerate()).find(|(_, s)| !(s.is_finite() && **s > 0.0))
-    {
-        return Err(IdentifyError::Noise { joint, value });
-    }
-    for (k, s) in samples.iter().enumerate() {
-        let fields = [
-            ("q", s.q.as_slice()),
-            ("v", s.v.as_slice()),
-            ("a", s.a.as_slice()),
-            ("tau", s.tau.as_slice()),
-        ];
-        finite(k, &fields)?;
-    }
+    check_data(samples, noise)?;
     let parameters = base.len();
     if samples.len() * N < parameters {
         return Err(IdentifyError::TooFewSamples {
@@ -117,8 +104,30 @@ where
     Ok(solve(&w, &y))
 }
 
+/// The noise levels positive and finite, every sample's entries finite.
+pub(super) fn check_data<const N: usize, const Q: usize>(
+    samples: &[Sample<N, Q>],
+    noise: &SVector<f64, N>,
+) -> Result<(), IdentifyError> {
+    if let Some((joint, &value)) =
+        (noise.iter().enumerate()).find(|(_, s)| !(s.is_finite() && **s > 0.0))
+    {
+        return Err(IdentifyError::Noise { joint, value });
+    }
+    for (k, s) in samples.iter().enumerate() {
+        let fields = [
+            ("q", s.q.as_slice()),
+            ("v", s.v.as_slice()),
+            ("a", s.a.as_slice()),
+            ("tau", s.tau.as_slice()),
+        ];
+        finite(k, &fields)?;
+    }
+    Ok(())
+}
+
 /// W and τ/σ stacked, one block of N rows per sample.
-fn weighted<S, const N: usize, const Q: usize>(
+pub(super) fn weighted<S, const N: usize, const Q: usize>(
     sys: &S,
     base: &BaseParameters,
     samples: &[Sample<N, Q>],
@@ -127,14 +136,51 @@ fn weighted<S, const N: usize, const Q: usize>(
 where
     S: Lagrangian<f64, N, Q>,
 {
+    stack(samples, noise, base.len(), |s| {
+        base.regressor(sys, &s.q, &s.v, &s.a)
+    })
+}
+
+/// The full regressor Y (every column of π) and τ, weighted and stacked as
+/// [`weighted`] stacks Y_b.
+pub(super) fn weighted_full<S, const N: usize, const Q: usize>(
+    sys: &S,
+    samples: &[Sample<N, Q>],
+    noise: &SVector<f64, N>,
+) -> Result<(DMatrix<f64>, DVector<f64>), IdentifyError>
+where
+    S: Lagrangian<f64, N, Q>,
+{
+    let columns = S::REGRESSOR_PARAMETERS.len();
+    stack(samples, noise, columns, |s| {
+        let y = super::regressor_at(sys, &s.q, &s.v, &s.a)?;
+        if y.ncols() != columns {
+            return Err(IdentifyError::Lengths {
+                what: "Lagrangian::regressor's matrix",
+                got: y.ncols(),
+                expected: columns,
+            });
+        }
+        Ok(y)
+    })
+}
+
+/// Each sample's N × `columns` block from `regressor`, its row j divided by
+/// σ_j, and τ_j/σ_j beside it.
+fn stack<const N: usize, const Q: usize>(
+    samples: &[Sample<N, Q>],
+    noise: &SVector<f64, N>,
+    columns: usize,
+    regressor: impl Fn(&Sample<N, Q>) -> Result<DMatrix<f64>, IdentifyError>,
+) -> Result<(DMatrix<f64>, DVector<f64>), IdentifyError> {
     let rows = samples.len() * N;
-    let mut w = DMatrix::zeros(rows, base.len());
+    let mut w = DMatrix::zeros(rows, columns);
     let mut y = DVector::zeros(rows);
     for (k, s) in samples.iter().enumerate() {
-        let yb = base.regressor(sys, &s.q, &s.v, &s.a)?;
+        let block = regressor(s)?;
         for j in 0..N {
             let r = k * N + j;
-            w.row_mut(r).copy_from(&(yb.row(j) / noise[j]));
+            w.row_mut(r).copy_from(&(block.row(j) / noise[j]));
             y[r] = s.tau[j] / noise[j];
         }
     }
@@ -143,7 +189,7 @@ where
 
 /// The least-squares solution by QR (W = Q R: π_b = R⁻¹ Qᵀ y, covariance
 /// R⁻¹ R⁻ᵀ), W of full column rank.
-fn solve(w: &DMatrix<f64>, y: &DVector<f64>) -> Estimate {
+pub(super) fn solve(w: &DMatrix<f64>, y: &DVector<f64>) -> Estimate {
     let qr = w.clone().qr();
     let r = qr.r();
     let n = r.nrows();

@@ -11,13 +11,31 @@
 //! estimates them by weighted least squares from recorded samples, with
 //! their covariance (Atkeson, An and Hollerbach 1986; Gautier and Khalil
 //! 1990).
+//!
+//! Around them: [`exciting_trajectory`] chooses a periodic motion
+//! ([`Fourier`]) within [`JointLimits`] that conditions the stacked
+//! regressor well (Swevers et al. 1997); [`identify_consistent`] estimates
+//! a full π that a real body has (each pseudo-inertia positive definite,
+//! [`is_physically_consistent`]); [`identify_subset`] estimates a few
+//! parameters with the rest known (a payload on an identified robot).
 
 mod base;
 mod columns;
+mod consistent;
 mod estimate;
+mod excite;
+mod fourier;
+mod nelder_mead;
+mod pseudo_inertia;
+mod subset;
 
 pub use base::BaseParameters;
+pub use consistent::{Consistency, ConsistentEstimate, identify_consistent};
 pub use estimate::{Estimate, Sample, identify};
+pub use excite::{Excitation, Excited, condition_number, exciting_trajectory};
+pub use fourier::{Fourier, JointLimits};
+pub use pseudo_inertia::{inconsistent_bodies, is_physically_consistent, pseudo_inertia};
+pub use subset::{SubsetEstimate, identify_subset};
 
 use nalgebra::{DMatrix, SVector};
 
