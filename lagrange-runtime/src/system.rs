@@ -243,22 +243,48 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// allocating nothing: `y` may be a block of a larger matrix (a
     /// regressor stacked over samples, `w.view_mut((k * N, 0), (N, p))`).
     ///
+    /// The derive writes it without allocating; the default copies what a
+    /// hand-written [`regressor`](Self::regressor) returns, so a system that
+    /// implements that one method has both.
+    ///
     /// # Errors
     /// [`IdentifyError::NoRegressor`] unless the description asks for
-    /// `emit(regressor)`; [`IdentifyError::Lengths`] when `y` is not N ×
-    /// π's length (`y` is then left as it was).
+    /// `emit(regressor)` (or `regressor` is implemented);
+    /// [`IdentifyError::Lengths`] when `y` is not N × π's length (`y` is
+    /// then left as it was).
     fn regressor_into(
         &self,
         q: &SVector<T, Q>,
         v: &SVector<T, N>,
         a: &SVector<T, N>,
         t: T,
-        y: DMatrixViewMut<'_, T>,
+        mut y: DMatrixViewMut<'_, T>,
     ) -> Result<(), IdentifyError> {
-        let _ = (q, v, a, t, y);
-        Err(IdentifyError::NoRegressor {
-            method: "regressor_into",
-        })
+        let values = (self.regressor(q, v, a, t)).ok_or(IdentifyError::NoRegressor {
+            method: "regressor",
+        })?;
+        for (what, got, expected) in [
+            (
+                "rows of the matrix regressor_into writes",
+                y.nrows(),
+                values.nrows(),
+            ),
+            (
+                "columns of the matrix regressor_into writes",
+                y.ncols(),
+                values.ncols(),
+            ),
+        ] {
+            if got != expected {
+                return Err(IdentifyError::Lengths {
+                    what,
+                    got,
+                    expected,
+                });
+            }
+        }
+        y.copy_from(&values);
+        Ok(())
     }
 
     /// The energy regressor Y_E(q, q̇, t), one entry per parameter of π:

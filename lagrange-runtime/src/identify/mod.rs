@@ -68,16 +68,9 @@ where
 {
     let columns = S::REGRESSOR_PARAMETERS.len();
     let mut w = DMatrix::zeros(states.len() * N, columns);
+    // Each block written in place: no matrix per state.
     for (k, (q, v, a)) in states.iter().enumerate() {
-        let y = regressor_at(sys, q, v, a)?;
-        if y.ncols() != columns {
-            return Err(IdentifyError::Lengths {
-                what: "Lagrangian::regressor's matrix",
-                got: y.ncols(),
-                expected: columns,
-            });
-        }
-        w.view_mut((k * N, 0), (N, columns)).copy_from(&y);
+        sys.regressor_into(q, v, a, 0.0, w.view_mut((k * N, 0), (N, columns)))?;
     }
     Ok(w)
 }
