@@ -36,7 +36,7 @@ use lagrange::task_space::{Goal, InverseKinematics, OperationalSpace, Target};
         wrist_3_joint = u6
     ),
     gravity = [0, 0, -9.81],
-    emit(inverse_dynamics, kinematics),
+    emit(inverse_dynamics, kinematics, regressor),
     // The scene (visual only): the links as a line through the joints, the
     // joints as cylinders and balls. The file's wrist inertias are far larger
     // than the wrists, so their default inertia boxes would hide the arm.

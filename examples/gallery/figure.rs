@@ -21,6 +21,16 @@ pub(crate) struct Figure {
     pub residuals: Option<Vec<[f64; 2]>>,
     /// The trajectory as CSV (t, q, q̇, integral, residuals).
     pub csv: String,
+    /// Panels a row adds below the motion (an estimate against the truth),
+    /// each over times of its own.
+    pub extra: Vec<Extra>,
+}
+
+/// A panel of series over their own times, below a row's motion.
+pub(crate) struct Extra {
+    pub y_label: &'static str,
+    pub t: Vec<f64>,
+    pub series: Vec<(String, Vec<f64>)>,
 }
 
 impl Figure {
@@ -60,6 +70,7 @@ impl Figure {
             drift,
             residuals,
             csv: String::from_utf8_lossy(&csv).into_owned(),
+            extra: Vec::new(),
         })
     }
 
@@ -92,6 +103,7 @@ impl Figure {
             drift: None,
             residuals: None,
             csv,
+            extra: Vec::new(),
         }
     }
 

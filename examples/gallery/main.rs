@@ -6,7 +6,7 @@
 //!
 //! The systems and what each shows are listed in `entries`; their runs live in
 //! one module per family (`minimal`, `constrained`, `nonholonomic`, `cavity`, `contact`,
-//! `control`, `planning`); `row` is what a run reports, `figure` what it keeps to draw,
+//! `control`, `planning`, `identification`); `row` is what a run reports, `figure` what it keeps to draw,
 //! `layout` which coordinates go on which panel, `plot` the pictures, `output`
 //! the files and index.html, `table` the printed summary.
 
@@ -19,6 +19,7 @@ mod control;
 mod entries;
 mod figure;
 mod free;
+mod identification;
 mod layout;
 mod minimal;
 mod nonholonomic;

@@ -18,14 +18,17 @@ fn err(e: impl std::fmt::Display) -> Error {
 }
 
 /// The system's PNG: the coordinates that carry the behaviour against t, the
-/// rates of the cyclic ones on a panel of their own (see `layout`); below, the
+/// rates of the cyclic ones on a panel of their own (see `layout`), a row's
+/// own panels (`Figure::extra`, an estimate against the truth); below, the
 /// conserved quantity's relative drift and the constraint residuals on log
 /// axes, where present.
 pub(crate) fn system_png(path: &Path, title: &str, fig: &Figure) -> Result<(), Error> {
     let names: Vec<&str> = fig.names.iter().map(String::as_str).collect();
     let motion = layout::motion_panels(&names, &fig.cyclic);
-    let panels =
-        motion.len() + usize::from(fig.drift.is_some()) + usize::from(fig.residuals.is_some());
+    let panels = motion.len()
+        + fig.extra.len()
+        + usize::from(fig.drift.is_some())
+        + usize::from(fig.residuals.is_some());
     let root = BitMapBackend::new(path, (900, 260 * panels as u32 + 40)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let body = root.titled(title, ("sans-serif", 22)).map_err(err)?;
@@ -43,7 +46,18 @@ pub(crate) fn system_png(path: &Path, title: &str, fig: &Figure) -> Result<(), E
                 (label.clone(), values.as_slice())
             })
             .collect();
-        linear_panel(next.next().unwrap_or(&body), fig, panel.y_label, &series)?;
+        linear_panel(next.next().unwrap_or(&body), &fig.t, panel.y_label, &series)?;
+    }
+    for extra in &fig.extra {
+        let series: Vec<(String, &[f64])> = (extra.series.iter())
+            .map(|(name, s)| (name.clone(), s.as_slice()))
+            .collect();
+        linear_panel(
+            next.next().unwrap_or(&body),
+            &extra.t,
+            extra.y_label,
+            &series,
+        )?;
     }
     if let Some(d) = &fig.drift {
         log_panel(
@@ -83,11 +97,14 @@ fn range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
 
 fn linear_panel(
     area: &DrawingArea<BitMapBackend, Shift>,
-    fig: &Figure,
+    t: &[f64],
     y_label: &str,
     series: &[(String, &[f64])],
 ) -> Result<(), Error> {
-    let (t0, t1) = fig.span();
+    let (t0, t1) = (
+        t.first().copied().unwrap_or(0.0),
+        t.last().copied().unwrap_or(1.0),
+    );
     let y = range(series.iter().flat_map(|(_, s)| s.iter().copied()));
     let mut chart = ChartBuilder::on(area)
         .margin(12)
@@ -106,7 +123,7 @@ fn linear_panel(
         let color = COLORS[k % COLORS.len()];
         chart
             .draw_series(LineSeries::new(
-                fig.t.iter().copied().zip(s.iter().copied()),
+                t.iter().copied().zip(s.iter().copied()),
                 color.stroke_width(2),
             ))
             .map_err(err)?
