@@ -54,7 +54,9 @@ pub(crate) fn ur5_payload(system: &'static str) -> Result<Row, Error> {
     let running = running_payload(&ur5, &samples, &known, excited.trajectory.period())?;
     let (m, sigma, c) = running
         .last()
-        .map_or((f64::NAN, f64::NAN, [f64::NAN; 3]), |r| (r.1, r.2, r.3));
+        .map_or((f64::NAN, f64::NAN, [f64::NAN; 3]), |r| {
+            (r.mass, r.sigma, r.centre)
+        });
     let centre_miss = (Vector3::from(c) - Vector3::from(CENTRE)).amax();
     let note = format!(
         "cond(W_b) {:.0} (from {:.0}); {} base parameters, worst error {worst_sigma:.1}σ; \
@@ -146,10 +148,18 @@ fn add_noise(samples: &mut [Sample<6>]) {
     }
 }
 
-/// (t, mass, its σ, centre) estimated from the samples up to t, every tenth
-/// sample, the arm's own parameters known; times whose samples cannot yet
-/// separate the payload's ten parameters are skipped.
-type Running = Vec<(f64, f64, f64, [f64; 3])>;
+/// The payload as estimated from the samples up to `t`.
+struct Payload {
+    t: f64,
+    mass: f64,
+    sigma: f64,
+    centre: [f64; 3],
+}
+
+/// The payload estimated every tenth sample, the arm's own parameters
+/// known; times whose samples cannot yet separate the payload's ten
+/// parameters are skipped.
+type Running = Vec<Payload>;
 
 fn running_payload(
     ur5: &Ur5,
@@ -166,12 +176,12 @@ fn running_payload(
         let payload = fit.change_from(known)?;
         let sigma = fit.standard_deviations()[0];
         let c = [1, 2, 3].map(|j| payload[j] / payload[0]);
-        out.push((
-            period * k as f64 / samples.len() as f64,
-            payload[0],
+        out.push(Payload {
+            t: period * k as f64 / samples.len() as f64,
+            mass: payload[0],
             sigma,
-            c,
-        ));
+            centre: c,
+        });
     }
     Ok(out)
 }
@@ -179,8 +189,8 @@ fn running_payload(
 /// The estimates against the truth, as the figure's panels below the
 /// motion.
 fn panels(running: &Running) -> Vec<Extra> {
-    let t: Vec<f64> = running.iter().map(|r| r.0).collect();
-    let series = |f: &dyn Fn(&(f64, f64, f64, [f64; 3])) -> f64| running.iter().map(f).collect();
+    let t: Vec<f64> = running.iter().map(|r| r.t).collect();
+    let series = |f: &dyn Fn(&Payload) -> f64| running.iter().map(f).collect();
     let count = t.len();
     let flat = |x: f64| vec![x; count];
     vec![
@@ -188,9 +198,9 @@ fn panels(running: &Running) -> Vec<Extra> {
             y_label: "payload mass (kg)",
             t: t.clone(),
             series: vec![
-                ("estimate".into(), series(&|r| r.1)),
-                ("estimate + 3σ".into(), series(&|r| r.1 + 3.0 * r.2)),
-                ("estimate − 3σ".into(), series(&|r| r.1 - 3.0 * r.2)),
+                ("estimate".into(), series(&|r| r.mass)),
+                ("estimate + 3σ".into(), series(&|r| r.mass + 3.0 * r.sigma)),
+                ("estimate − 3σ".into(), series(&|r| r.mass - 3.0 * r.sigma)),
                 ("truth".into(), flat(MASS)),
             ],
         },
@@ -198,9 +208,9 @@ fn panels(running: &Running) -> Vec<Extra> {
             y_label: "centre estimate − truth (mm)",
             t,
             series: vec![
-                ("x".into(), series(&|r| 1e3 * (r.3[0] - CENTRE[0]))),
-                ("y".into(), series(&|r| 1e3 * (r.3[1] - CENTRE[1]))),
-                ("z".into(), series(&|r| 1e3 * (r.3[2] - CENTRE[2]))),
+                ("x".into(), series(&|r| 1e3 * (r.centre[0] - CENTRE[0]))),
+                ("y".into(), series(&|r| 1e3 * (r.centre[1] - CENTRE[1]))),
+                ("z".into(), series(&|r| 1e3 * (r.centre[2] - CENTRE[2]))),
                 ("zero".into(), flat(0.0)),
             ],
         },

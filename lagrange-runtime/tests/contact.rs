@@ -379,11 +379,11 @@ fn bad_laws_and_a_penetrating_start_are_typed_errors() {
     assert_eq!(
         error.fault,
         ContactFault::NotListed {
-            listed: vec!["ground"],
-            laws: vec!["floor"]
+            listed: &["ground"]
         },
         "{error}"
     );
+    assert_eq!(error.contact, "floor");
     assert!(error.to_string().contains("CONTACTS"), "{error}");
     assert_eq!(failure.partial.trajectory.len(), 1);
 }

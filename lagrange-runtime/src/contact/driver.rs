@@ -123,16 +123,16 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
         if laws == S::CONTACTS {
             return Ok(());
         }
-        let first = laws.iter().find(|n| !S::CONTACTS.contains(n));
+        let differs = (0..laws.len().max(S::CONTACTS.len()))
+            .find(|&k| laws.get(k) != S::CONTACTS.get(k))
+            .unwrap_or(0);
+        let named = laws.get(differs).or(S::CONTACTS.get(differs));
         Err(ContactError {
-            contact: first
-                .or(laws.first())
-                .map_or_else(String::new, |n| (*n).to_owned()),
+            contact: named.map_or_else(String::new, |n| (*n).to_owned()),
             t: t0.to_f64(),
             q: q0.iter().map(|x| x.to_f64()).collect(),
             fault: ContactFault::NotListed {
-                listed: S::CONTACTS.to_vec(),
-                laws,
+                listed: S::CONTACTS,
             },
         }
         .into())

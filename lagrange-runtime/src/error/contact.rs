@@ -75,11 +75,12 @@ pub enum ContactFault {
     ///
     /// [`Contacts::contact_laws`]: crate::Contacts::contact_laws
     /// [`Lagrangian::CONTACTS`]: crate::Lagrangian::CONTACTS
+    /// The error's `contact` is the first law whose name is not in its
+    /// place in `CONTACTS` (or, where the laws run out first, the first
+    /// name listed beyond them).
     NotListed {
         /// The names in `CONTACTS`.
-        listed: Vec<&'static str>,
-        /// The names of the contact laws.
-        laws: Vec<&'static str>,
+        listed: &'static [&'static str],
     },
 }
 
@@ -113,11 +114,12 @@ impl fmt::Display for ContactFault {
                 f,
                 "the system lists {laws} contact laws but gives no rows for this one"
             ),
-            ContactFault::NotListed { listed, laws } => write!(
+            ContactFault::NotListed { listed } => write!(
                 f,
-                "the system's contact laws are {laws:?} but `Lagrangian::CONTACTS` lists \
-                 {listed:?}; list the same names, in the same order, in `CONTACTS` (the \
-                 derive does), so that runs other than `run_contacts` refuse the system"
+                "the system's contact laws and `Lagrangian::CONTACTS` = {listed:?} do not name \
+                 the same contacts in the same order; list every law's name, in order, in \
+                 `CONTACTS` (the derive does), so that runs other than `run_contacts` refuse \
+                 the system"
             ),
             ContactFault::NeedsContactRun => f.write_str(
                 "this run would ignore the system's contacts and stops (it would move through \
