@@ -9,7 +9,8 @@ use crate::figure::Extra;
 use crate::operational::Ur5;
 use crate::row::{Row, TOL, row};
 use lagrange::identify::{
-    BaseParameters, Excitation, JointLimits, Sample, exciting_trajectory, identify, identify_subset,
+    BaseParameters, Excitation, JointLimits, Sample, add_to_body, body_from_parameters,
+    body_parameters, exciting_trajectory, identify, identify_subset,
 };
 use lagrange::nalgebra::{DVector, Matrix3, SVector, Vector3};
 use lagrange::prelude::*;
@@ -98,33 +99,18 @@ pub(crate) fn ur5_payload(system: &'static str) -> Result<Row, Error> {
     Ok(flown)
 }
 
-/// The arm's π with the payload added to its last link's ten parameters
-/// (mass, first moments, inertia about the link's origin).
+/// The arm's π with the payload added to its last link's ten parameters.
 fn with_payload(known: &DVector<f64>) -> Result<DVector<f64>, Error> {
-    let first = Ur5::REGRESSOR_PARAMETERS
-        .iter()
-        .position(|n| *n == "wrist_3_link.m")
-        .ok_or_else(|| crate::gallery_error("the UR5 has no wrist_3_link"))?;
-    let c = Vector3::from(CENTRE);
-    // A solid cube of side 0.1 m about its centre, moved to the link's origin.
-    let own = Matrix3::identity() * (MASS * 0.01 / 6.0);
-    let i = own + (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * MASS;
-    let added = [
-        MASS,
-        MASS * c.x,
-        MASS * c.y,
-        MASS * c.z,
-        i[(0, 0)],
-        i[(0, 1)],
-        i[(1, 1)],
-        i[(0, 2)],
-        i[(1, 2)],
-        i[(2, 2)],
-    ];
+    // A solid cube of side 0.1 m: I = m s²/6 about its centre.
+    let cube = Matrix3::identity() * (MASS * 0.01 / 6.0);
+    let payload = body_parameters(MASS, Vector3::from(CENTRE), cube);
     let mut actual = known.clone();
-    for (k, x) in added.iter().enumerate() {
-        actual[first + k] += x;
-    }
+    add_to_body(
+        &mut actual,
+        Ur5::REGRESSOR_PARAMETERS,
+        "wrist_3_link",
+        &payload,
+    )?;
     Ok(actual)
 }
 
@@ -173,14 +159,17 @@ fn running_payload(
         let Ok(fit) = identify_subset(ur5, &samples[..k], &noise, &["wrist_3_link"], known) else {
             continue;
         };
-        let payload = fit.change_from(known)?;
+        let change = fit.change_from(known)?;
+        let block: [f64; 10] = std::array::from_fn(|j| change[j]);
+        let Some((mass, centre, _)) = body_from_parameters(&block) else {
+            continue;
+        };
         let sigma = fit.standard_deviations()[0];
-        let c = [1, 2, 3].map(|j| payload[j] / payload[0]);
         out.push(Payload {
             t: period * k as f64 / samples.len() as f64,
-            mass: payload[0],
+            mass,
             sigma,
-            centre: c,
+            centre: centre.into(),
         });
     }
     Ok(out)

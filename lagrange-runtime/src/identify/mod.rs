@@ -17,7 +17,10 @@
 //! regressor well (Swevers et al. 1997); [`identify_consistent`] estimates
 //! a full π that a real body has (each pseudo-inertia positive definite,
 //! [`is_physically_consistent`]); [`identify_subset`] estimates a few
-//! parameters with the rest known (a payload on an identified robot).
+//! parameters with the rest known (a payload on an identified robot);
+//! [`body_parameters`] and [`add_to_body`] write a tool's or a payload's ten
+//! parameters into a known π, and [`body_from_parameters`] reads a mass,
+//! centre and inertia back.
 
 mod base;
 mod columns;
@@ -27,6 +30,7 @@ mod excite;
 mod fourier;
 mod nelder_mead;
 mod pseudo_inertia;
+mod rigid;
 mod subset;
 
 pub use base::BaseParameters;
@@ -35,6 +39,7 @@ pub use estimate::{Estimate, Sample, identify};
 pub use excite::{Excitation, Excited, condition_number, exciting_trajectory};
 pub use fourier::{Fourier, JointLimits};
 pub use pseudo_inertia::{inconsistent_bodies, is_physically_consistent, pseudo_inertia};
+pub use rigid::{add_to_body, body_from_parameters, body_parameters};
 pub use subset::{SubsetEstimate, identify_subset};
 
 use nalgebra::{DMatrix, SVector};
