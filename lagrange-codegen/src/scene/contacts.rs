@@ -213,6 +213,26 @@ pub(crate) fn tangents(n: [f64; 3]) -> [[f64; 3]; 2] {
     [t1, cross(n, t1)]
 }
 
+/// Why a contact on a free orientation is refused. `emit(atlas)` turns the
+/// description's Euler angles into a free orientation (`__euler_<k>`) before
+/// the contacts are read, so telling its author to write Euler angles would
+/// send them in a circle.
+fn oriented(contact: &Ident, orientation: &str) -> String {
+    if orientation.starts_with("__euler_") {
+        format!(
+            "contact `{contact}`: contacts do not run through the atlas yet (`emit(atlas)` \
+             runs these Euler angles as a free orientation, and contacts on free orientations \
+             are not supported yet); drop `atlas` from `emit(...)`, and the contacts run in \
+             the Euler angles as written"
+        )
+    } else {
+        format!(
+            "contact `{contact}`: contacts on a description with a free orientation \
+             (`{orientation}`) are not supported yet; write the rotation in Euler angles"
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::tangents;
@@ -241,25 +261,5 @@ mod tests {
                 assert!((dot(u, v) - want).abs() < 1e-15, "{n:?}");
             }
         }
-    }
-}
-
-/// Why a contact on a free orientation is refused. `emit(atlas)` turns the
-/// description's Euler angles into a free orientation (`__euler_<k>`) before
-/// the contacts are read, so telling its author to write Euler angles would
-/// send them in a circle.
-fn oriented(contact: &Ident, orientation: &str) -> String {
-    if orientation.starts_with("__euler_") {
-        format!(
-            "contact `{contact}`: contacts do not run through the atlas yet (`emit(atlas)` \
-             runs these Euler angles as a free orientation, and contacts on free orientations \
-             are not supported yet); drop `atlas` from `emit(...)`, and the contacts run in \
-             the Euler angles as written"
-        )
-    } else {
-        format!(
-            "contact `{contact}`: contacts on a description with a free orientation \
-             (`{orientation}`) are not supported yet; write the rotation in Euler angles"
-        )
     }
 }
