@@ -211,7 +211,9 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// `body.Ixx`, `body.Ixy`, `body.Iyy`, `body.Ixz`, `body.Iyz`,
     /// `body.Izz` (the inertia about the body's reference point), c and I in
     /// the body's axes (Pinocchio's `Inertia::toDynamicParameters`), and per
-    /// point mass `point.m`, in declaration order. Empty unless the
+    /// point mass `point.m`, in the description's order once its items are
+    /// put in dependency order (a mass placed at another comes after it).
+    /// Empty unless the
     /// description asks for `emit(regressor)`.
     const REGRESSOR_PARAMETERS: &'static [&'static str] = &[];
 

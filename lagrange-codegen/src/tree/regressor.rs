@@ -17,8 +17,8 @@
 //! a spatial force (as Pinocchio's `computeJointTorqueRegressor` carries the
 //! 6×10 body regressor); here one motion vector per (joint, descendant) pair
 //! goes outward and meets B_j in ten short dot products, most of whose
-//! factors are the zeros and ones of a unit joint axis. On the UR5 this
-//! halves Y's multiplications.
+//! factors are the zeros and ones of a unit joint axis. On the UR5 it takes
+//! Y's multiplications from 1884 to 713.
 
 use lagrange_symbolic::{Context, Expr as Sym};
 

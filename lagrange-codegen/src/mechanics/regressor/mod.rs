@@ -49,7 +49,8 @@ pub struct Regressor {
     pub rows: Vec<Vec<Sym>>,
     /// π's names in its order: `body.m`, `body.mx`, `body.my`, `body.mz`,
     /// `body.Ixx`, `body.Ixy`, `body.Iyy`, `body.Ixz`, `body.Iyz`,
-    /// `body.Izz` per body, `point.m` per point mass, in declaration order.
+    /// `body.Izz` per body, `point.m` per point mass, in the description's
+    /// order once its items are put in dependency order.
     pub names: Vec<String>,
     /// π in the struct's parameters.
     pub parameters: Vec<Sym>,
@@ -69,7 +70,8 @@ pub struct Regressor {
 /// How Y was built.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum RegressorRoute {
-    /// By recursive Newton–Euler on the kinematic tree.
+    /// On the kinematic tree (`tree::regressor`: joint axes carried outward
+    /// to each link's body regressor).
     Recursive,
     /// By the Euler–Lagrange operator on each parameter's share of L, and
     /// why: the reason there is no tree, or that the generic route was asked
@@ -99,7 +101,7 @@ pub(super) struct MassModel<'a> {
     pub gravity: Option<&'a [Sym]>,
 }
 
-/// Y by recursive Newton–Euler on the tree the description spans, or by the
+/// Y on the tree the description spans (`tree::regressor`), or by the
 /// Euler–Lagrange operator where there is no tree or `route` asks for the
 /// generic route.
 pub(super) fn regressor(ctx: &mut Context, m: MassModel, route: Route) -> Regressor {
