@@ -103,7 +103,7 @@ pub(crate) fn ur5_payload(system: &'static str) -> Result<Row, Error> {
 fn with_payload(known: &DVector<f64>) -> Result<DVector<f64>, Error> {
     // A solid cube of side 0.1 m: I = m s²/6 about its centre.
     let cube = Matrix3::identity() * (MASS * 0.01 / 6.0);
-    let payload = body_parameters(MASS, Vector3::from(CENTRE), cube);
+    let payload = body_parameters(MASS, Vector3::from(CENTRE), cube)?;
     let mut actual = known.clone();
     add_to_body(
         &mut actual,

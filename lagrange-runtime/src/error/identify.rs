@@ -99,6 +99,21 @@ pub enum IdentifyError {
         value: f64,
     },
 
+    /// A mass, centre or inertia no rigid body has
+    /// (`identify::body_parameters`).
+    #[error(
+        "body_parameters: {what} is {value}, which no rigid body has ({rule}); give the body's \
+         mass, its centre and its inertia about that centre, in the frame's axes"
+    )]
+    NotABody {
+        /// What was refused.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+        /// The rule it breaks.
+        rule: &'static str,
+    },
+
     // Exciting trajectories (`identify::Fourier`, `identify::exciting_trajectory`).
     /// A joint's position limits that leave no room to move.
     #[error(
