@@ -34,6 +34,7 @@ mod constrained_control;
 mod constrained_tangent;
 mod contact;
 mod contact_refused;
+mod contact_spheres;
 mod control;
 mod derivatives;
 mod emitted;

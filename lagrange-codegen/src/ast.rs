@@ -318,6 +318,19 @@ pub enum ContactGeometry {
         /// The plane's offset along the normal (0 if not written).
         offset: Option<Expr>,
     },
+    /// Two spheres, around the points or bodies `on` and `against`, apart
+    /// while their centres are further than the sum of the radii; the
+    /// normal is the line of centres, so it turns with them.
+    Spheres {
+        /// The first point or body.
+        on: Ident,
+        /// Its sphere's radius (0 for a point).
+        radius: Option<Expr>,
+        /// The other point or body.
+        against: Ident,
+        /// Its sphere's radius (0 for a point).
+        against_radius: Option<Expr>,
+    },
     /// `q >= bound` (`lower`) or `q <= bound`.
     Stop {
         /// The coordinate.

@@ -156,6 +156,10 @@ pub struct ContactModel {
     pub gap: ConstraintModel,
     /// The contact point's slip along each tangent.
     pub slips: Vec<ConstraintModel>,
+    /// For two spheres, the touch event's function (`Contacts::
+    /// contact_approach`): the gap, or below zero while their straight
+    /// paths pass within the sum of the radii; `None` elsewhere (the gap).
+    pub approach: Option<lagrange_symbolic::Expr>,
 }
 
 /// What the scene draws, lowered: every body's pose and inertia, every

@@ -1,5 +1,7 @@
 //! `contact(name, on = p, normal = [..], offset = d, radius = r,
-//! restitution = e, friction = mu)` and `stop(name, q >= lower,
+//! restitution = e, friction = mu)` (a sphere against a plane),
+//! `contact(name, on = a, radius = r, against = b, against_radius = s,
+//! restitution = e)` (two spheres) and `stop(name, q >= lower,
 //! restitution = e)`: the grammar of unilateral contacts. The options are
 //! spelled in `keyword::CONTACT_OPTIONS`; the numbers a law takes are
 //! checked here, at their tokens.
@@ -30,23 +32,68 @@ pub(super) fn parse_contact(input: ParseStream) -> syn::Result<Contact> {
             format!("contact `{name}` needs `{what}`: write `{form}`"),
         )
     };
-    let on = options.on.ok_or_else(|| missing("on = point"))?;
-    let normal = options
-        .normal
-        .ok_or_else(|| missing("normal = [nx, ny, nz]"))?;
+    let on = options.on.take().ok_or_else(|| missing("on = point"))?;
     let restitution = options
         .restitution
         .ok_or_else(|| missing("restitution = e"))?;
-    Ok(Contact {
-        name,
-        geometry: ContactGeometry::Plane {
+    let friction = options.friction.unwrap_or(0.0);
+    let geometry = match options.against.take() {
+        Some(against) => spheres(&name, on, against, options)?,
+        None => ContactGeometry::Plane {
             on,
             radius: options.radius,
-            normal,
+            normal: options
+                .normal
+                .ok_or_else(|| missing("normal = [nx, ny, nz]"))?,
             offset: options.offset,
         },
+    };
+    Ok(Contact {
+        name,
+        geometry,
         restitution,
-        friction: options.friction.unwrap_or(0.0),
+        friction,
+    })
+}
+
+/// Two spheres: no plane's `normal` or `offset` (the line of centres is the
+/// normal), and no friction yet.
+fn spheres(
+    name: &Ident,
+    on: Ident,
+    against: Ident,
+    options: Options,
+) -> syn::Result<ContactGeometry> {
+    let plane_only = [
+        ("normal", options.normal_key),
+        ("offset", options.offset_key),
+    ];
+    if let Some((word, Some(key))) = plane_only.into_iter().find(|(_, k)| k.is_some()) {
+        return Err(syn::Error::new(
+            key.span(),
+            format!(
+                "contact `{name}` is between two spheres (`against = {against}`), whose normal is \
+                 the line of their centres: drop `{word}`, or drop `against` for a sphere on a plane"
+            ),
+        ));
+    }
+    if let Some(key) = options
+        .friction_key
+        .filter(|_| options.friction != Some(0.0))
+    {
+        return Err(syn::Error::new(
+            key.span(),
+            format!(
+                "contact `{name}`: friction between two spheres is not supported yet; drop \
+                 `friction` (the spheres then meet without friction)"
+            ),
+        ));
+    }
+    Ok(ContactGeometry::Spheres {
+        on,
+        radius: options.radius,
+        against,
+        against_radius: options.against_radius,
     })
 }
 
@@ -116,6 +163,13 @@ struct Options {
     offset: Option<Expr>,
     restitution: Option<f64>,
     friction: Option<f64>,
+    against: Option<Ident>,
+    against_radius: Option<Expr>,
+    /// Where `normal`, `offset` and `friction` were written, for the errors
+    /// of a contact between two spheres.
+    normal_key: Option<Ident>,
+    offset_key: Option<Ident>,
+    friction_key: Option<Ident>,
     /// The first option written that a stop does not take.
     only_contact: Option<Ident>,
 }
@@ -147,8 +201,16 @@ impl Options {
         match option {
             ContactOption::On => self.on = Some(input.parse()?),
             ContactOption::Radius => self.radius = Some(input.parse()?),
-            ContactOption::Offset => self.offset = Some(input.parse()?),
-            ContactOption::Normal => self.normal = Some(normal(&input.parse()?)?),
+            ContactOption::Against => self.against = Some(input.parse()?),
+            ContactOption::AgainstRadius => self.against_radius = Some(input.parse()?),
+            ContactOption::Offset => {
+                self.offset_key = Some(key);
+                self.offset = Some(input.parse()?);
+            }
+            ContactOption::Normal => {
+                self.normal_key = Some(key);
+                self.normal = Some(normal(&input.parse()?)?);
+            }
             ContactOption::Restitution => {
                 let value: Expr = input.parse()?;
                 let e = number(&value, "restitution")?;
@@ -174,6 +236,7 @@ impl Options {
                     ));
                 }
                 self.friction = Some(mu);
+                self.friction_key = Some(key);
             }
         }
         Ok(())

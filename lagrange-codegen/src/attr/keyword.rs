@@ -155,6 +155,8 @@ pub(super) enum ContactOption {
     Radius,
     Normal,
     Offset,
+    Against,
+    AgainstRadius,
     Restitution,
     Friction,
 }
@@ -180,6 +182,16 @@ pub(super) const CONTACT_OPTIONS: Words<ContactOption> = Words(&[
         "offset",
         ContactOption::Offset,
         "offset = d: the plane n·x = d (0 if not written)",
+    ),
+    word(
+        "against",
+        ContactOption::Against,
+        "against = other: a second point or body, whose sphere the first one's meets (no `normal`)",
+    ),
+    word(
+        "against_radius",
+        ContactOption::AgainstRadius,
+        "against_radius = r: the second sphere's radius (0 if not written)",
     ),
     word(
         "restitution",

@@ -56,6 +56,7 @@ pub(super) fn impl_contacts(e: &Emitter, f: &Frame, model: &Model) -> TokenStrea
             }
         }
     });
+    let approach = approach_method(e, f, model);
     let ident = f.ident;
     let ig = &f.impl_generics;
     let tg = &f.ty_generics;
@@ -74,6 +75,34 @@ pub(super) fn impl_contacts(e: &Emitter, f: &Frame, model: &Model) -> TokenStrea
                     #(#arms)*
                     _ => ::core::option::Option::None,
                 }
+            }
+
+            #approach
+        }
+    }
+}
+
+/// `contact_approach`, for the contacts whose touch event is not their gap
+/// (two spheres); nothing when every contact's is.
+fn approach_method(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
+    let arms: Vec<TokenStream> = (model.contacts.iter().enumerate())
+        .filter_map(|(i, c)| {
+            let (lets, outs) = e.program(&[c.approach?]);
+            let value = &outs[0];
+            let il = Literal::usize_unsuffixed(i);
+            Some(quote!(#il => { #lets ::core::option::Option::Some(#value) }))
+        })
+        .collect();
+    if arms.is_empty() {
+        return quote!();
+    }
+    let (s, vec_n) = (&f.s, f.vec(&f.n));
+    quote! {
+        #[inline]
+        fn contact_approach(&self, index: usize, q: &#vec_n, v: &#vec_n, t: #s) -> ::core::option::Option<#s> {
+            match index {
+                #(#arms)*
+                _ => ::core::option::Option::None,
             }
         }
     }

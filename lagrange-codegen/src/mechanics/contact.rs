@@ -23,6 +23,8 @@ pub struct ContactRowsModel {
     pub normal_bias: Sym,
     /// Each tangent's row and its bias; none for a stop.
     pub tangents: Vec<(Vec<Sym>, Sym)>,
+    /// The touch event's function where it is not the gap (two spheres).
+    pub approach: Option<Sym>,
 }
 
 impl ContactRowsModel {
@@ -67,6 +69,7 @@ pub fn rows(ctx: &mut Context, contacts: &[ContactModel]) -> Vec<ContactRowsMode
                 normal: set.jacobian[0].clone(),
                 normal_bias,
                 tangents,
+                approach: c.approach,
             }
         })
         .collect()

@@ -26,6 +26,26 @@ pub(super) fn contacts(lw: &mut Lowerer, system: &System) -> Vec<ContactModel> {
         let Some((gap, slips)) = written(lw, system, c) else {
             continue;
         };
+        let approach = match &c.geometry {
+            ContactGeometry::Spheres {
+                on,
+                radius,
+                against,
+                against_radius,
+            } => {
+                let written =
+                    spheres_approach(on, radius.as_ref(), against, against_radius.as_ref());
+                let place = format!("contact `{}`", c.name);
+                let lowered = lw.lowering_as(place, |lw| {
+                    lw.without_inputs(NoInputs::NONHOLONOMIC, |lw| {
+                        constraint(lw, &c.name, &written, Mode::State)
+                    })
+                });
+                let Some(lowered) = lowered else { continue };
+                Some(lowered.value)
+            }
+            _ => None,
+        };
         let place = format!("contact `{}`", c.name);
         let gap = lw.lowering_as(place.clone(), |lw| {
             lw.without_inputs(NoInputs::HOLONOMIC, |lw| {
@@ -62,6 +82,7 @@ pub(super) fn contacts(lw: &mut Lowerer, system: &System) -> Vec<ContactModel> {
             friction: c.friction,
             gap,
             slips,
+            approach,
         });
     }
     out
@@ -80,6 +101,15 @@ fn written(lw: &Lowerer, system: &System, c: &Contact) -> Option<(Expr, Vec<Expr
             let turns = radius.is_some() && system.bodies.iter().any(|b| b.name == *on);
             Some(plane(on, radius.as_ref(), *normal, offset.as_ref(), turns))
         }
+        ContactGeometry::Spheres {
+            on,
+            radius,
+            against,
+            against_radius,
+        } => Some((
+            spheres_gap(on, radius.as_ref(), against, against_radius.as_ref()),
+            Vec::new(),
+        )),
         ContactGeometry::Stop {
             coordinate,
             lower,
@@ -157,6 +187,61 @@ fn plane(
         })
         .collect();
     (gap, slips)
+}
+
+/// The gap |a − b| − r_a − r_b of two spheres around `on` and `against`;
+/// without friction, no slips (the tangential motion is free).
+fn spheres_gap(on: &Ident, radius: Option<&Expr>, against: &Ident, other: Option<&Expr>) -> Expr {
+    let span = on.span();
+    let zero: Expr = parse_quote_spanned!(span=> 0.0);
+    let (radius, other) = (radius.unwrap_or(&zero), other.unwrap_or(&zero));
+    let squares: [Expr; 3] = ["x", "y", "z"].map(|c| {
+        let (a, b) = (field(on, c, span), field(against, c, span));
+        parse_quote_spanned!(span=> (#a - #b) * (#a - #b))
+    });
+    let [x, y, z] = &squares;
+    parse_quote_spanned!(span=> sqrt(#x + #y + #z) - (#radius) - (#other))
+}
+
+/// The touch event's function for two spheres: while they approach (or
+/// pass their closest point without meeting), the gap; once past the
+/// closest point of straight paths that came within the sum of the radii
+/// R, the miss distance b = √(|Δx|² − (Δx·Δv)²/|Δv|²) less R, below zero.
+/// It is continuous (at the closest point b = |Δx|), falls through zero at
+/// the touch as the gap does, and stays below zero while a pass-through
+/// lasts, so a touch shorter than an integrator's step still shows as a
+/// sign change at the step's end, where the gap alone would be positive
+/// again.
+fn spheres_approach(
+    on: &Ident,
+    radius: Option<&Expr>,
+    against: &Ident,
+    other: Option<&Expr>,
+) -> Expr {
+    let span = on.span();
+    let zero: Expr = parse_quote_spanned!(span=> 0.0);
+    let (radius, other) = (radius.unwrap_or(&zero), other.unwrap_or(&zero));
+    let [dx, dy, dz]: [Expr; 3] = ["x", "y", "z"].map(|c| {
+        let (a, b) = (field(on, c, span), field(against, c, span));
+        parse_quote_spanned!(span=> (#a - #b))
+    });
+    let [ux, uy, uz]: [Expr; 3] = ["x", "y", "z"].map(|c| {
+        let (a, b) = (field(on, c, span), field(against, c, span));
+        parse_quote_spanned!(span=> (dot(#a) - dot(#b)))
+    });
+    let distance2: Expr = parse_quote_spanned!(span=> #dx * #dx + #dy * #dy + #dz * #dz);
+    let along: Expr = parse_quote_spanned!(span=> #dx * #ux + #dy * #uy + #dz * #uz);
+    let speed2: Expr = parse_quote_spanned!(span=> #ux * #ux + #uy * #uy + #uz * #uz);
+    let reach: Expr = parse_quote_spanned!(span=> ((#radius) + (#other)));
+    let gap: Expr = parse_quote_spanned!(span=> sqrt(#distance2) - #reach);
+    let miss2: Expr = parse_quote_spanned!(span=> #distance2 - (#along) * (#along) / (#speed2));
+    parse_quote_spanned!(span=>
+        if #along > 0 && #miss2 < #reach * #reach {
+            sqrt(max(#miss2, 0)) - #reach
+        } else {
+            #gap
+        }
+    )
 }
 
 /// `base.member`.

@@ -337,7 +337,7 @@ fn touch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
         form.rows(i, t, q, v).map_or(nan, |r| match leaving {
             true if t > t0 => r.gap / (t - t0),
             true => r.normal.dot(v),
-            false => r.gap,
+            false => form.approach(i, t, q, v).unwrap_or(r.gap),
         })
     })
 }

@@ -90,6 +90,21 @@ impl<S, T: Real> ContactForm<'_, S, T> {
         })
     }
 
+    /// Contact `i`'s touch function where it is not the gap
+    /// ([`Contacts::contact_approach`]).
+    pub fn approach<const N: usize>(
+        &self,
+        i: usize,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Option<T>
+    where
+        S: Contacts<T, N>,
+    {
+        self.system.contact_approach(i, q, v, t)
+    }
+
     /// A [`ContactError`] on contact `i`.
     pub fn fault<const N: usize>(
         &self,

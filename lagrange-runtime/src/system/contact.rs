@@ -65,4 +65,22 @@ pub trait Contacts<T: Real, const N: usize>: Lagrangian<T, N> {
         let _ = (index, q, v, t);
         None
     }
+
+    /// The function whose fall through zero is contact `index`'s touch,
+    /// where it is not the gap; `None` (the default) where it is. Two
+    /// spheres' gap can dip below zero and rise again within one step of an
+    /// integrator (a glancing blow between its samples); their function
+    /// stays below zero once the straight paths have passed within the sum
+    /// of the radii, so the touch shows as a sign change whatever the step.
+    /// The derive writes it for `contact(.., against = ..)`.
+    fn contact_approach(
+        &self,
+        index: usize,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        t: T,
+    ) -> Option<T> {
+        let _ = (index, q, v, t);
+        None
+    }
 }
