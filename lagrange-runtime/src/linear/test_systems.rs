@@ -260,16 +260,15 @@ impl Driven<f64, 1, 1> for Oscillator {
 }
 
 /// A heavy body on a fixed pivot (unit mass, principal moments a, b, c
-/// about the pivot, its centre of mass `L` up its z axis) beside a sprung
+/// about the pivot, its centre of mass `lever` up its z axis) beside a sprung
 /// cart x (unit mass, stiffness `K`) that its tilt pushes with `KAPPA`
 /// times the world x of the body's z axis (a coupling no potential gives:
 /// the cart's q̈ depends on the orientation too). Four inputs: the cart's
 /// push and three torques in body axes.
 pub struct PivotedBody {
     pub inertia: [f64; 3],
+    pub lever: f64,
 }
-
-const L: f64 = 0.4;
 const K: f64 = 3.0;
 const KAPPA: f64 = 2.0;
 
@@ -302,7 +301,7 @@ impl Lagrangian<f64, 4, 5> for PivotedBody {
         let r = Self::rotation(q);
         // Gravity's torque in body axes: (0, 0, l) × Rᵀ (0, 0, −g).
         let down = Vector3::new(r[2][0], r[2][1], r[2][2]) * -G;
-        let torque = Vector3::new(0.0, 0.0, L).cross(&down);
+        let torque = Vector3::new(0.0, 0.0, self.lever).cross(&down);
         V4::from([-K * q[0] + KAPPA * r[0][2], torque[0], torque[1], torque[2]])
     }
     fn mass_matrix_and_rhs(&self, q: &Q5, v: &V4, t: f64) -> (SMatrix<f64, 4, 4>, V4) {
@@ -313,7 +312,7 @@ impl Lagrangian<f64, 4, 5> for PivotedBody {
         0.5 * v.dot(&(self.mass_matrix(q, t) * v))
     }
     fn potential_energy(&self, q: &Q5, _: f64) -> f64 {
-        0.5 * K * q[0] * q[0] + G * L * Self::rotation(q)[2][2]
+        0.5 * K * q[0] * q[0] + G * self.lever * Self::rotation(q)[2][2]
     }
     fn integral(&self, q: &Q5, v: &V4, t: f64) -> f64 {
         self.kinetic_energy(q, v, t) + self.potential_energy(q, t)

@@ -298,6 +298,7 @@ fn a_steady_spin_is_stepped_exactly_on_the_group() {
 fn group_derivatives_match_differences_through_the_retraction() {
     let body = PivotedBody {
         inertia: [0.3, 0.5, 0.7],
+        lever: 0.4,
     };
     let mut seed = 0x9e37_79b9_7f4a_7c15;
     for method in METHODS {
@@ -329,6 +330,7 @@ fn group_derivatives_match_differences_through_the_retraction() {
 fn rk4_on_the_group_is_of_fourth_order() {
     let body = PivotedBody {
         inertia: [0.3, 0.5, 0.7],
+        lever: 0.4,
     };
     let turn = orientation::exp([0.4, 0.9, -0.2]);
     let q0 = SVector::<f64, 5>::from([0.1, turn[0], turn[1], turn[2], turn[3]]);

@@ -10,7 +10,8 @@ use crate::pose::Kinematics;
 use nalgebra::{DMatrix, DVector, SVector, Vector3};
 
 /// A cost term's value and quadratic model at (x, u), x = (q, v) with 2N
-/// numbers; at the final state the u parts are empty.
+/// numbers (with orientations, its derivatives along x ⊕ (δ, δv), the
+/// tangent space); at the final state the u parts are empty.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CostModel {
     /// The value.
@@ -53,13 +54,14 @@ impl CostModel {
 
 /// A cost term of an [`OptimalControl`](super::OptimalControl) problem: at
 /// each step (time t, state (q, v), input u) or, with `u = None`, at the
-/// final state.
-pub trait Cost<const N: usize, const P: usize> {
+/// final state. With orientations q has Q numbers and the model's
+/// derivatives are along q ⊕ δ.
+pub trait Cost<const N: usize, const P: usize, const Q: usize = N> {
     /// The term's value.
     fn value(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: Option<&SVector<f64, P>>,
     ) -> f64;
@@ -68,7 +70,7 @@ pub trait Cost<const N: usize, const P: usize> {
     fn model(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: Option<&SVector<f64, P>>,
     ) -> CostModel;
@@ -99,38 +101,38 @@ impl<'s, S> FramePosition<'s, S> {
 
     /// The frame's origin at q (NaN for a body index past the bodies, which
     /// a plan then refuses as a non-finite cost).
-    fn origin<const N: usize>(&self, q: &SVector<f64, N>, t: f64) -> Vector3<f64>
+    fn origin<const N: usize, const Q: usize>(&self, q: &SVector<f64, Q>, t: f64) -> Vector3<f64>
     where
-        S: Kinematics<f64, N>,
+        S: Kinematics<f64, N, Q>,
     {
         (self.system.frame_pose(self.body, q, t)).map_or(Vector3::repeat(f64::NAN), |b| b.origin)
     }
 }
 
-impl<S, const N: usize, const P: usize> Cost<N, P> for FramePosition<'_, S>
+impl<S, const N: usize, const P: usize, const Q: usize> Cost<N, P, Q> for FramePosition<'_, S>
 where
-    S: Kinematics<f64, N>,
+    S: Kinematics<f64, N, Q>,
 {
     fn value(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         _: &SVector<f64, N>,
         _: Option<&SVector<f64, P>>,
     ) -> f64 {
-        0.5 * self.weight * (self.origin(q, t) - self.target).norm_squared()
+        0.5 * self.weight * (self.origin::<N, Q>(q, t) - self.target).norm_squared()
     }
 
     fn model(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: Option<&SVector<f64, P>>,
     ) -> CostModel {
         let p = if u.is_some() { P } else { 0 };
         let mut model = CostModel::zero(2 * N, p);
-        let residual = self.origin(q, t) - self.target;
+        let residual = self.origin::<N, Q>(q, t) - self.target;
         model.value = self.value(t, q, v, u);
         let Some(jacobian) = self.system.frame_jacobian(self.body, q, t) else {
             model.value = f64::NAN;
@@ -159,15 +161,15 @@ impl<V, M> CostFn<V, M> {
     }
 }
 
-impl<V, M, const N: usize, const P: usize> Cost<N, P> for CostFn<V, M>
+impl<V, M, const N: usize, const P: usize, const Q: usize> Cost<N, P, Q> for CostFn<V, M>
 where
-    V: Fn(f64, &SVector<f64, N>, &SVector<f64, N>, Option<&SVector<f64, P>>) -> f64,
-    M: Fn(f64, &SVector<f64, N>, &SVector<f64, N>, Option<&SVector<f64, P>>) -> CostModel,
+    V: Fn(f64, &SVector<f64, Q>, &SVector<f64, N>, Option<&SVector<f64, P>>) -> f64,
+    M: Fn(f64, &SVector<f64, Q>, &SVector<f64, N>, Option<&SVector<f64, P>>) -> CostModel,
 {
     fn value(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: Option<&SVector<f64, P>>,
     ) -> f64 {
@@ -177,7 +179,7 @@ where
     fn model(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: Option<&SVector<f64, P>>,
     ) -> CostModel {
