@@ -206,3 +206,58 @@ impl PlanarQuadrotor {
         self.m * self.g / 2.0
     }
 }
+
+/// A quadrotor in space: a rigid body (mass m, principal moments a, a, c
+/// about its centre) with a free orientation, its four rotors on the
+/// body's x and y axes at d from the centre ("+" layout: 1 at +x, 2 at +y,
+/// 3 at −x, 4 at −y). Each pushes along the body's z axis with its thrust
+/// and, spinning, drags the body about z with k times it: rotors 1 and 3
+/// one way, 2 and 4 the other. A hover is level with each thrust m g / 4.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, z),
+    orientation(att),
+    inputs(f1, f2, f3, f4),
+    body(frame, mass = m, inertia = [a, a, c], at = [x, y, z], rotation = att),
+    point(rotor1, on = frame, at = [d, 0, 0]),
+    point(rotor2, on = frame, at = [0, d, 0]),
+    point(rotor3, on = frame, at = [-d, 0, 0]),
+    point(rotor4, on = frame, at = [0, -d, 0]),
+    force(rotor1, [f1 * frame.axis_z.x, f1 * frame.axis_z.y, f1 * frame.axis_z.z]),
+    force(rotor2, [f2 * frame.axis_z.x, f2 * frame.axis_z.y, f2 * frame.axis_z.z]),
+    force(rotor3, [f3 * frame.axis_z.x, f3 * frame.axis_z.y, f3 * frame.axis_z.z]),
+    force(rotor4, [f4 * frame.axis_z.x, f4 * frame.axis_z.y, f4 * frame.axis_z.z]),
+    torque(frame, [0, 0, k * (f2 + f4 - f1 - f3)], axes = body),
+    gravity = [0, 0, -g],
+    shape(frame, box(size = [2 * d, 0.03, 0.02])),
+    shape(frame, box(size = [0.03, 2 * d, 0.02])),
+    emit(jacobians),
+)]
+pub struct Quadrotor {
+    pub m: f64,
+    pub a: f64,
+    pub c: f64,
+    pub d: f64,
+    pub k: f64,
+    pub g: f64,
+}
+
+impl Quadrotor {
+    /// 1 kg, rotors 0.2 m from the centre, moments 0.01 and 0.018 kg m²,
+    /// drag 0.02 N·m per N of thrust.
+    pub fn standard() -> Self {
+        Quadrotor {
+            m: 1.0,
+            a: 0.01,
+            c: 0.018,
+            d: 0.2,
+            k: 0.02,
+            g: 9.81,
+        }
+    }
+
+    /// Each rotor's thrust in a hover.
+    pub fn hover_thrust(&self) -> f64 {
+        self.m * self.g / 4.0
+    }
+}
