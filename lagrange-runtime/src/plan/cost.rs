@@ -1,12 +1,17 @@
 //! Cost terms beyond the problem's quadratic one: a frame's position
-//! against a target (through the system's emitted kinematics) and any
-//! user's term given with its derivatives.
+//! against a target (through the system's emitted kinematics), a state to
+//! pass through at one time, and any user's term given with its
+//! derivatives.
 //!
 //! Each term gives its value and a quadratic model at (x, u): the gradient
 //! and a Hessian, Gauss–Newton's JᵀWJ for a squared residual (what DDP
 //! needs: positive semidefinite, exact at a zero residual).
 
+use super::problem::{difference, state, weighted};
+use crate::error::{Error, SettingsError};
+use crate::numeric::orientation::Orientation;
 use crate::pose::Kinematics;
+use crate::system::Lagrangian;
 use nalgebra::{DMatrix, DVector, SVector, Vector3};
 
 /// A cost term's value and quadratic model at (x, u), x = (q, v) with 2N
@@ -184,5 +189,102 @@ where
         u: Option<&SVector<f64, P>>,
     ) -> CostModel {
         (self.model)(t, q, v, u)
+    }
+}
+
+/// ½ (x ⊖ x*)ᵀ W (x ⊖ x*) at one time of the horizon: a state to pass
+/// through on the way (a running cost, zero at every other step). With
+/// orientations x ⊖ x* is the tangent vector from x* and the model
+/// Gauss–Newton's, as the problem's own quadratic cost: what a flip needs,
+/// since its goal alone cannot ask for a whole turn (a turn by 2π ends
+/// where it started, and the shortest way there is to stay).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Waypoint {
+    layout: &'static [Orientation],
+    time: f64,
+    target: DVector<f64>,
+    weight: DMatrix<f64>,
+}
+
+impl Waypoint {
+    /// The state (q*, v*) of `system` to pass at time `time` (the step whose
+    /// time t₀ + k h is within 1e-9 s of it), weighted by W (2N × 2N, on
+    /// (q, v), or (δ, δv) with orientations).
+    ///
+    /// # Errors
+    /// [`Error::Settings`] for a weight that is not 2N × 2N and finite, or
+    /// a time or target that is not finite.
+    pub fn new<S, const N: usize, const Q: usize>(
+        system: &S,
+        time: f64,
+        (q, v): (SVector<f64, Q>, SVector<f64, N>),
+        weight: DMatrix<f64>,
+    ) -> Result<Self, Error>
+    where
+        S: Lagrangian<f64, N, Q>,
+    {
+        let _ = system;
+        let finite = weight.iter().all(|w| w.is_finite());
+        if weight.shape() != (2 * N, 2 * N) || !finite {
+            return Err(SettingsError::Shape {
+                owner: "Waypoint",
+                name: "W",
+                expected: (2 * N, 2 * N),
+                got: weight.shape(),
+                finite,
+                meaning: "",
+            }
+            .into());
+        }
+        let target = state(&q, &v);
+        if !time.is_finite() || !target.iter().all(|x| x.is_finite()) {
+            return Err(SettingsError::Data {
+                owner: "Waypoint",
+                problem: "the time and the target state must be finite".into(),
+            }
+            .into());
+        }
+        Ok(Self {
+            layout: S::ORIENTATIONS,
+            time,
+            target,
+            weight,
+        })
+    }
+
+    fn active(&self, t: f64) -> bool {
+        (t - self.time).abs() <= 1e-9
+    }
+}
+
+impl<const N: usize, const P: usize, const Q: usize> Cost<N, P, Q> for Waypoint {
+    fn value(
+        &self,
+        t: f64,
+        q: &SVector<f64, Q>,
+        v: &SVector<f64, N>,
+        _: Option<&SVector<f64, P>>,
+    ) -> f64 {
+        if !self.active(t) {
+            return 0.0;
+        }
+        let e = difference::<N, Q>(self.layout, &self.target, &state(q, v));
+        0.5 * e.dot(&(&self.weight * &e))
+    }
+
+    fn model(
+        &self,
+        t: f64,
+        q: &SVector<f64, Q>,
+        v: &SVector<f64, N>,
+        u: Option<&SVector<f64, P>>,
+    ) -> CostModel {
+        let mut model = CostModel::zero(2 * N, if u.is_some() { P } else { 0 });
+        if self.active(t) {
+            let e = difference::<N, Q>(self.layout, &self.target, &state(q, v));
+            (model.lx, model.lxx) = weighted::<N>(self.layout, &self.weight, &e);
+            model.value = 0.5 * e.dot(&(&self.weight * &e));
+        }
+        model
     }
 }

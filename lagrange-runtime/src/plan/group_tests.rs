@@ -130,3 +130,30 @@ fn fddp_turns_a_body_to_a_target_attitude_from_a_guess_with_gaps() {
         plan.cost
     );
 }
+
+/// A waypoint counts at its time alone, measures the attitude by its angle
+/// there, and its model's gradient is the derivative along x ⊕ δ; a weight
+/// of the wrong size is refused.
+#[test]
+fn a_waypoint_measures_its_state_at_its_time_alone() {
+    use super::cost::{Cost, Waypoint};
+    let w = DMatrix::from_diagonal(&DVector::from_column_slice(&[0.0, 5.0, 5.0, 5.0, 0.0, 0.0, 0.0, 0.0]));
+    let through = (configuration(0.0, target()), SVector::<f64, 4>::zeros());
+    let point = Waypoint::new(&BODY, 0.7, through, w.clone()).unwrap();
+    let off = orientation::multiply(target(), orientation::exp([0.0, 0.0, 0.4]));
+    let (q, v) = (configuration(1.0, off), SVector::<f64, 4>::from([1.0, 2.0, 0.0, 0.0]));
+    let value = |t: f64, q: &SVector<f64, 5>| Cost::<4, 4, 5>::value(&point, t, q, &v, None);
+    assert_eq!(value(0.6, &q), 0.0);
+    assert!((value(0.7, &q) - 0.5 * 5.0 * 0.16).abs() < 1e-14);
+    let model = Cost::<4, 4, 5>::model(&point, 0.7, &q, &v, None);
+    let x = state(&q, &v);
+    let problem = turn();
+    let eps = 1e-6;
+    for j in 0..8 {
+        let e = DVector::from_fn(8, |i, _| if i == j { eps } else { 0.0 });
+        let at = |x: DVector<f64>| value(0.7, &SVector::from_fn(|i, _| x[i]));
+        let slope = (at(problem.plus(&x, &e)) - at(problem.plus(&x, &-e))) / (2.0 * eps);
+        assert!((slope - model.lx[j]).abs() < 1e-8, "{j}: {slope} vs {}", model.lx[j]);
+    }
+    assert!(Waypoint::new(&BODY, 0.7, through, DMatrix::identity(4, 4)).is_err());
+}

@@ -46,7 +46,7 @@ mod problem;
 mod progress;
 
 pub use bounds::StateBounds;
-pub use cost::{Cost, CostFn, CostModel, FramePosition};
+pub use cost::{Cost, CostFn, CostModel, FramePosition, Waypoint};
 pub use ddp::{Ddp, Iteration, Plan};
 #[cfg(feature = "direct")]
 pub use direct::Direct;

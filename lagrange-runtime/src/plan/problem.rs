@@ -107,6 +107,20 @@ pub(super) fn retract<const N: usize, const Q: usize>(
     out
 }
 
+/// The gradient and Gauss–Newton Hessian of ½ eᵀ W e on the tangent at x,
+/// for e = x ⊖ x*: (Jᵀ W e, Jᵀ W J), J = ∂e/∂δ (W e and W without
+/// orientations).
+pub(super) fn weighted<const N: usize>(
+    layout: &[Orientation],
+    w: &DMatrix<f64>,
+    e: &DVector<f64>,
+) -> (DVector<f64>, DMatrix<f64>) {
+    match error_jacobian::<N>(layout, e) {
+        None => (w * e, w.clone()),
+        Some(j) => (j.transpose() * (w * e), j.transpose() * w * &j),
+    }
+}
+
 /// ∂(x ⊖ x*)/∂δ at the error e = x ⊖ x* (x moved to x ⊕ δ): J_r(e)⁻¹ on
 /// an orientation's block (x* exp(e) exp(δ) = x* exp(e + J_r(e)⁻¹ δ) to
 /// first order), the identity elsewhere; `None` without orientations.
@@ -259,13 +273,9 @@ where
         retract::<N, Q>(S::ORIENTATIONS, x, d)
     }
 
-    /// The weighted error's gradient and Gauss–Newton Hessian on the
-    /// tangent at x, for e = x ⊖ x*: (Jᵀ W e, Jᵀ W J), J = ∂e/∂δ.
+    /// The weighted error's gradient and Gauss–Newton Hessian (`weighted`).
     fn quadratic(&self, w: &DMatrix<f64>, e: &DVector<f64>) -> (DVector<f64>, DMatrix<f64>) {
-        match error_jacobian::<N>(S::ORIENTATIONS, e) {
-            None => (w * e, w.clone()),
-            Some(j) => (j.transpose() * (w * e), j.transpose() * w * &j),
-        }
+        weighted::<N>(S::ORIENTATIONS, w, e)
     }
 
     /// The running cost of (x, u) at step k.
