@@ -8,6 +8,7 @@ use crate::catalog::control::Quadrotor;
 use lagrange::linear::{OperatingPoint, StepMethod, Transition, Trim};
 use lagrange::nalgebra::{DMatrix, DVector, SVector, Vector3};
 use lagrange::orientation::{self, configuration_minus, configuration_plus};
+use lagrange::plan::Ddp;
 
 type Q7 = SVector<f64, 7>;
 type V6 = SVector<f64, 6>;
@@ -26,14 +27,19 @@ fn differences(tr: &Transition<Quadrotor>, q: Q7, v: V6, u: U4) -> (DMatrix<f64>
     let at = |d: &DVector<f64>, du: &U4| {
         let delta = V6::from_fn(|i, _| d[i]);
         let q1 = configuration_plus(quad, &q, &delta).unwrap();
-        let (q2, v2) = tr.step(&q1, &(v + V6::from_fn(|i, _| d[6 + i])), &(u + du), 0.0).unwrap();
+        let (q2, v2) = tr
+            .step(&q1, &(v + V6::from_fn(|i, _| d[6 + i])), &(u + du), 0.0)
+            .unwrap();
         let dq = configuration_minus(quad, &q2, &q0).unwrap();
         DVector::from_iterator(12, dq.iter().copied().chain((v2 - v0).iter().copied()))
     };
     let mut dx = DMatrix::zeros(12, 12);
     for j in 0..12 {
         let e = DVector::from_fn(12, |i, _| if i == j { eps } else { 0.0 });
-        dx.set_column(j, &((at(&e, &U4::zeros()) - at(&-&e, &U4::zeros())) / (2.0 * eps)));
+        dx.set_column(
+            j,
+            &((at(&e, &U4::zeros()) - at(&-&e, &U4::zeros())) / (2.0 * eps)),
+        );
     }
     let mut du = DMatrix::zeros(12, 4);
     for k in 0..4 {
@@ -51,8 +57,18 @@ fn differences(tr: &Transition<Quadrotor>, q: Q7, v: V6, u: U4) -> (DMatrix<f64>
 fn the_quadrotor_s_step_derivatives_match_differences_through_the_retraction() {
     let quad = Quadrotor::standard();
     let states = [
-        ([0.3, -1.0, 2.0], [0.2, 0.9, -0.4, 0.1], [1.0, -0.5, 0.2, 3.0, -2.0, 1.5], [1.0, 3.0, 2.0, 4.0]),
-        ([0.0, 0.0, 1.0], [-0.6, 0.1, 0.7, -0.3], [0.0, 2.0, -1.0, -6.0, 4.0, 8.0], [5.0, 0.0, 2.5, 1.0]),
+        (
+            [0.3, -1.0, 2.0],
+            [0.2, 0.9, -0.4, 0.1],
+            [1.0, -0.5, 0.2, 3.0, -2.0, 1.5],
+            [1.0, 3.0, 2.0, 4.0],
+        ),
+        (
+            [0.0, 0.0, 1.0],
+            [-0.6, 0.1, 0.7, -0.3],
+            [0.0, 2.0, -1.0, -6.0, 4.0, 8.0],
+            [5.0, 0.0, 2.5, 1.0],
+        ),
     ];
     for method in [StepMethod::Rk4, StepMethod::SemiImplicitEuler] {
         let tr = Transition::new(&quad, 0.02).unwrap().method(method);
@@ -99,11 +115,63 @@ fn the_quadrotor_s_hover_levels_a_tilted_guess_and_keeps_its_yaw() {
     let yaw = orientation::from_axis_angle(&Vector3::z(), 0.5).unwrap();
     let tilted = orientation::plus(&yaw, &Vector3::new(0.2, -0.1, 0.0)).unwrap();
     let at = OperatingPoint::on_group(configuration([0.0, 0.0, 1.0], &tilted), V6::zeros());
-    let hover = Trim::new().hold(&["x", "y", "z"]).solve(&quad, &at).unwrap();
+    let hover = Trim::new()
+        .hold(&["x", "y", "z"])
+        .solve(&quad, &at)
+        .unwrap();
     let turn = hover.q.fixed_rows::<4>(3).into_owned();
     let r = orientation::rotation_matrix(&turn).unwrap();
-    assert!((r[(2, 2)] - 1.0).abs() < 1e-12, "the body's z axis: {}", r.column(2));
-    assert!((hover.u - U4::repeat(quad.hover_thrust())).amax() < 1e-9, "u = {}", hover.u);
+    assert!(
+        (r[(2, 2)] - 1.0).abs() < 1e-12,
+        "the body's z axis: {}",
+        r.column(2)
+    );
+    assert!(
+        (hover.u - U4::repeat(quad.hover_thrust())).amax() < 1e-9,
+        "u = {}",
+        hover.u
+    );
     let heading = r[(1, 0)].atan2(r[(0, 0)]);
     assert!((heading - 0.5).abs() < 0.05, "yaw {heading}");
+}
+
+/// The catalog's flip, planned by FDDP on the group over 1.5 s in 30 steps
+/// (the gallery's is 2 s in 100) from a guess rolling at a constant rate
+/// on the spot: the plan rolls once round about the body's x axis (2π
+/// accumulated, which the end's attitude, level again, cannot tell), ends
+/// level, keeps its thrusts in their box and its quaternions unit, and has
+/// closed the guess's gaps. (About 270 iterations, most of them closing the
+/// gaps of the falling guess with short steps: 37 s in the dev profile,
+/// hence ignored by default; the gallery's row flies the same flip.)
+#[test]
+#[ignore = "about 37 s in the dev profile: run with --ignored"]
+fn the_quadrotor_flips_once_round_by_ddp_on_the_group() {
+    let quad = Quadrotor::standard();
+    let (steps, h, hover) = (30, 0.05, quad.hover_thrust());
+    let problem = quad.flip(h, steps).unwrap();
+    let (q, v, u) = quad.flip_guess(h, steps).unwrap();
+    let plan = Ddp::new()
+        .tolerance(1e-3)
+        .max_iterations(300)
+        .solve_from(&problem, &q, &v, &u)
+        .unwrap();
+    let turn = quad.accumulated_turn(&plan.q).unwrap();
+    assert!(
+        (turn.x - 2.0 * std::f64::consts::PI).abs() < 0.05 && turn.fixed_rows::<2>(1).amax() < 0.5,
+        "turned {turn}"
+    );
+    let level = Quadrotor::rolled([0.0; 3], 0.0).unwrap();
+    let end = configuration_minus(&quad, &plan.q[steps], &level).unwrap();
+    assert!(end.fixed_rows::<3>(3).norm() < 0.05, "ends {end}");
+    assert!(
+        plan.u
+            .iter()
+            .all(|u| u.min() >= 0.0 && u.max() <= 2.0 * hover)
+    );
+    assert!(
+        plan.q
+            .iter()
+            .all(|q| (q.fixed_rows::<4>(3).norm() - 1.0).abs() < 1e-12)
+    );
+    assert_eq!(plan.gap, 0.0);
 }

@@ -3,7 +3,9 @@
 use lagrange::Lagrangian;
 use lagrange::control::StateFeedback;
 use lagrange::linear::{Linear, OperatingPoint, linearize};
-use lagrange::nalgebra::{DMatrix, DVector, Vector1, Vector2};
+use lagrange::nalgebra::{DMatrix, DVector, SVector, Vector1, Vector2, Vector3};
+use lagrange::orientation;
+use lagrange::plan::{OptimalControl, Waypoint};
 
 /// A cart on a horizontal rail carrying an inverted pendulum (a point mass at
 /// the end of a massless rod); θ is measured from the upward vertical, so the
@@ -259,5 +261,96 @@ impl Quadrotor {
     /// Each rotor's thrust in a hover.
     pub fn hover_thrust(&self) -> f64 {
         self.m * self.g / 4.0
+    }
+
+    /// At (x, y, z), rolled by `angle` about the body's x axis.
+    pub fn rolled(position: [f64; 3], angle: f64) -> Result<SVector<f64, 7>, lagrange::Error> {
+        let turn = orientation::from_axis_angle(&Vector3::x(), angle)?;
+        let [x, y, z] = position;
+        Ok(SVector::from([x, y, z, turn[0], turn[1], turn[2], turn[3]]))
+    }
+
+    /// A flip: from a hover at the origin back to it in `steps` steps of
+    /// `h` seconds (RK4 on the group), rolled once round about the body's x
+    /// axis on the way, each thrust between zero and twice the hover's. The
+    /// goal alone cannot ask for the turn (rolled by 2π the body is where it
+    /// started), so the attitude passes two waypoints, rolled 2π/3 at a
+    /// third of the way and 4π/3 at two thirds: each leg shorter than half
+    /// a turn, the shortest way from one to the next is forwards.
+    pub fn flip(
+        &self,
+        h: f64,
+        steps: usize,
+    ) -> Result<OptimalControl<'_, Self, 6, 4, 7>, lagrange::Error> {
+        let diagonal = |d: &[f64]| DMatrix::from_diagonal(&DVector::from_column_slice(d));
+        let hover = self.hover_thrust();
+        let level = Self::rolled([0.0; 3], 0.0)?;
+        let still = SVector::<f64, 6>::zeros();
+        let mut problem = OptimalControl::new(
+            lagrange::linear::Transition::new(self, h)?,
+            steps,
+            (level, still),
+            diagonal(&[0.0; 12]),
+            diagonal(&[0.01; 4]),
+        )
+        .goal(level, still)
+        .input_target(SVector::repeat(hover))
+        .final_weight(diagonal(&[
+            1e3, 1e3, 1e3, 1e3, 1e3, 1e3, 100.0, 100.0, 100.0, 10.0, 10.0, 10.0,
+        ]))
+        .input_bounds(SVector::zeros(), SVector::repeat(2.0 * hover));
+        let attitude = diagonal(&[
+            0.0, 0.0, 0.0, 100.0, 100.0, 100.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+        ]);
+        for third in [1, 2] {
+            let k = steps * third / 3;
+            let turned = Self::rolled([0.0; 3], 2.0 * std::f64::consts::PI * third as f64 / 3.0)?;
+            let at = Waypoint::new(self, k as f64 * h, (turned, still), attitude.clone())?;
+            problem = problem.running_cost(at);
+        }
+        Ok(problem)
+    }
+
+    /// A guess for the flip's plan that rolls at a constant rate, on the
+    /// spot, at the hover's thrusts: not a motion of the quadrotor (upside
+    /// down those thrusts push it down), but one that passes the waypoints
+    /// in the right order. From the hover alone (no roll at all) the second
+    /// waypoint, 4π/3 round, is nearer the other way, −2π/3, and DDP
+    /// settles on rolling there and back.
+    #[allow(clippy::type_complexity)]
+    pub fn flip_guess(
+        &self,
+        h: f64,
+        steps: usize,
+    ) -> Result<
+        (
+            Vec<SVector<f64, 7>>,
+            Vec<SVector<f64, 6>>,
+            Vec<SVector<f64, 4>>,
+        ),
+        lagrange::Error,
+    > {
+        let rate = 2.0 * std::f64::consts::PI / (steps as f64 * h);
+        let q = (0..=steps)
+            .map(|k| Self::rolled([0.0; 3], rate * k as f64 * h))
+            .collect::<Result<Vec<_>, _>>()?;
+        let v = vec![SVector::from([0.0, 0.0, 0.0, rate, 0.0, 0.0]); steps + 1];
+        Ok((q, v, vec![SVector::repeat(self.hover_thrust()); steps]))
+    }
+
+    /// The turn accumulated along a sequence of configurations: the sum of
+    /// each step's rotation vector, in the body's axes of the moment (a
+    /// roll once round about x reads (2π, 0, 0), which the end's attitude
+    /// alone, back at level, cannot tell).
+    pub fn accumulated_turn(
+        &self,
+        qs: &[SVector<f64, 7>],
+    ) -> Result<Vector3<f64>, lagrange::Error> {
+        let mut sum = Vector3::zeros();
+        for pair in qs.windows(2) {
+            let d = orientation::configuration_minus(self, &pair[1], &pair[0])?;
+            sum += d.fixed_rows::<3>(3);
+        }
+        Ok(sum)
     }
 }

@@ -238,7 +238,13 @@ impl<'a, S> Transition<'a, S> {
                 let (xi, sv) = &states[i];
                 (stages[i].clone(), Chart::at(layout, xi, sv))
             });
-            group::rk4(&paired, &Chart::at(layout, &xi, v), RK4_NODES, RK4_WEIGHTS, h)
+            group::rk4(
+                &paired,
+                &Chart::at(layout, &xi, v),
+                RK4_NODES,
+                RK4_WEIGHTS,
+                h,
+            )
         };
         Ok(StepDerivatives {
             q: orientation::plus(layout, q, &xi),

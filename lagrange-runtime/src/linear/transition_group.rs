@@ -76,16 +76,29 @@ impl<const N: usize> Chart<N> {
         for o in layout {
             let (x, w) = (block(xi, o), block(v, o));
             let (r, jr) = (rotation_matrix(exp(x.into())), right_jacobian(x.into()));
-            let (r, jr) = (Matrix3::from_fn(|i, j| r[j][i]), Matrix3::from_fn(|i, j| jr[i][j]));
+            let (r, jr) = (
+                Matrix3::from_fn(|i, j| r[j][i]),
+                Matrix3::from_fn(|i, j| jr[i][j]),
+            );
             let by_v = Matrix3::identity() + hat(&x) * 0.5 + hat(&x) * hat(&x) / 12.0;
             // ∂(½ ξ × ω + 1/12 ξ × (ξ × ω))/∂ξ, with ξ × (ξ × ω) = ξ (ξ·ω) − ω |ξ|².
-            let second = Matrix3::identity() * x.dot(&w) + x * w.transpose() - w * x.transpose() * 2.0;
+            let second =
+                Matrix3::identity() * x.dot(&w) + x * w.transpose() - w * x.transpose() * 2.0;
             let by_xi = -hat(&w) * 0.5 + second / 12.0;
             let at = (o.v, o.v);
             chart.turn.fixed_view_mut::<3, 3>(at.0, at.1).copy_from(&r);
-            chart.jacobian.fixed_view_mut::<3, 3>(at.0, at.1).copy_from(&jr);
-            chart.by_v.fixed_view_mut::<3, 3>(at.0, at.1).copy_from(&by_v);
-            chart.by_xi.fixed_view_mut::<3, 3>(at.0, at.1).copy_from(&by_xi);
+            chart
+                .jacobian
+                .fixed_view_mut::<3, 3>(at.0, at.1)
+                .copy_from(&jr);
+            chart
+                .by_v
+                .fixed_view_mut::<3, 3>(at.0, at.1)
+                .copy_from(&by_v);
+            chart
+                .by_xi
+                .fixed_view_mut::<3, 3>(at.0, at.1)
+                .copy_from(&by_xi);
         }
         chart
     }

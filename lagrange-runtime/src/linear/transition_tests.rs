@@ -243,7 +243,12 @@ where
     let (q0, v0) = tr.step(&q, &v, &u, 0.3).unwrap();
     let from_centre = |(q1, v1): (SVector<f64, Q>, SVector<f64, N>)| {
         let mut d = DVector::zeros(2 * N);
-        orientation::difference(layout, q0.as_slice(), q1.as_slice(), &mut d.as_mut_slice()[..N]);
+        orientation::difference(
+            layout,
+            q0.as_slice(),
+            q1.as_slice(),
+            &mut d.as_mut_slice()[..N],
+        );
         d.rows_mut(N, N).copy_from(&(v1 - v0));
         d
     };
@@ -285,7 +290,9 @@ fn a_steady_spin_is_stepped_exactly_on_the_group() {
         for k in 0..4 {
             assert!((q1[1 + k] - spun[k]).abs() < 1e-15, "{method:?}: {q1}");
         }
-        let d = tr.derivatives(&q, &v, &SVector::<f64, 0>::zeros(), 0.0).unwrap();
+        let d = tr
+            .derivatives(&q, &v, &SVector::<f64, 0>::zeros(), 0.0)
+            .unwrap();
         assert_eq!((d.q, d.v), (q1, v1));
     }
 }
@@ -348,10 +355,18 @@ fn rk4_on_the_group_is_of_fourth_order() {
     let error = |steps| {
         let (q, v) = run(steps);
         let mut d = [0.0; 4];
-        orientation::difference(PivotedBody::ORIENTATIONS, q_ref.as_slice(), q.as_slice(), &mut d);
+        orientation::difference(
+            PivotedBody::ORIENTATIONS,
+            q_ref.as_slice(),
+            q.as_slice(),
+            &mut d,
+        );
         d.iter().fold((v - v_ref).amax(), |m, x| m.max(x.abs()))
     };
     let (coarse, fine) = (error(50), error(100));
     let ratio = coarse / fine;
-    assert!((12.0..20.0).contains(&ratio), "{coarse:e} / {fine:e} = {ratio}");
+    assert!(
+        (12.0..20.0).contains(&ratio),
+        "{coarse:e} / {fine:e} = {ratio}"
+    );
 }

@@ -40,7 +40,12 @@ fn target() -> [f64; 4] {
 fn angle(q: &SVector<f64, 5>, turn: [f64; 4]) -> f64 {
     let mut d = [0.0; 3];
     let at = [q[1], q[2], q[3], q[4]];
-    orientation::difference(&[orientation::Orientation { q: 0, v: 0 }], &turn, &at, &mut d);
+    orientation::difference(
+        &[orientation::Orientation { q: 0, v: 0 }],
+        &turn,
+        &at,
+        &mut d,
+    );
     (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
 }
 
@@ -50,10 +55,16 @@ fn turn() -> OptimalControl<'static, PivotedBody, 4, 4, 5> {
     let tr = Transition::new(&BODY, 0.1).unwrap();
     let start = (configuration(0.0, hanging()), SVector::zeros());
     let weight = |d: [f64; 8]| DMatrix::from_diagonal(&DVector::from_column_slice(&d));
-    OptimalControl::new(tr, STEPS, start, weight([0.0; 8]), DMatrix::identity(4, 4) * 0.01)
-        .goal(configuration(0.0, target()), SVector::zeros())
-        .final_weight(weight([100.0, 1e3, 1e3, 1e3, 10.0, 10.0, 10.0, 10.0]))
-        .input_bounds(SVector::repeat(-0.4), SVector::repeat(0.4))
+    OptimalControl::new(
+        tr,
+        STEPS,
+        start,
+        weight([0.0; 8]),
+        DMatrix::identity(4, 4) * 0.01,
+    )
+    .goal(configuration(0.0, target()), SVector::zeros())
+    .final_weight(weight([100.0, 1e3, 1e3, 1e3, 10.0, 10.0, 10.0, 10.0]))
+    .input_bounds(SVector::repeat(-0.4), SVector::repeat(0.4))
 }
 
 /// The cost of an attitude off the goal by φ about any axis is ½ w φ², and
@@ -120,7 +131,10 @@ fn fddp_turns_a_body_to_a_target_attitude_from_a_guess_with_gaps() {
         assert!((norm - 1.0).abs() < 1e-12);
     }
     assert!(plan.u.iter().all(|u| u.amax() <= 0.4));
-    assert!(plan.u.iter().any(|u| u.amax() == 0.4), "no torque at its bound");
+    assert!(
+        plan.u.iter().any(|u| u.amax() == 0.4),
+        "no torque at its bound"
+    );
     let again = Ddp::new().tolerance(1e-6).solve(&problem, &plan.u).unwrap();
     assert!(again.log.len() <= 2, "{} iterations", again.log.len());
     assert!(
@@ -137,11 +151,16 @@ fn fddp_turns_a_body_to_a_target_attitude_from_a_guess_with_gaps() {
 #[test]
 fn a_waypoint_measures_its_state_at_its_time_alone() {
     use super::cost::{Cost, Waypoint};
-    let w = DMatrix::from_diagonal(&DVector::from_column_slice(&[0.0, 5.0, 5.0, 5.0, 0.0, 0.0, 0.0, 0.0]));
+    let w = DMatrix::from_diagonal(&DVector::from_column_slice(&[
+        0.0, 5.0, 5.0, 5.0, 0.0, 0.0, 0.0, 0.0,
+    ]));
     let through = (configuration(0.0, target()), SVector::<f64, 4>::zeros());
     let point = Waypoint::new(&BODY, 0.7, through, w.clone()).unwrap();
     let off = orientation::multiply(target(), orientation::exp([0.0, 0.0, 0.4]));
-    let (q, v) = (configuration(1.0, off), SVector::<f64, 4>::from([1.0, 2.0, 0.0, 0.0]));
+    let (q, v) = (
+        configuration(1.0, off),
+        SVector::<f64, 4>::from([1.0, 2.0, 0.0, 0.0]),
+    );
     let value = |t: f64, q: &SVector<f64, 5>| Cost::<4, 4, 5>::value(&point, t, q, &v, None);
     assert_eq!(value(0.6, &q), 0.0);
     assert!((value(0.7, &q) - 0.5 * 5.0 * 0.16).abs() < 1e-14);
@@ -153,7 +172,11 @@ fn a_waypoint_measures_its_state_at_its_time_alone() {
         let e = DVector::from_fn(8, |i, _| if i == j { eps } else { 0.0 });
         let at = |x: DVector<f64>| value(0.7, &SVector::from_fn(|i, _| x[i]));
         let slope = (at(problem.plus(&x, &e)) - at(problem.plus(&x, &-e))) / (2.0 * eps);
-        assert!((slope - model.lx[j]).abs() < 1e-8, "{j}: {slope} vs {}", model.lx[j]);
+        assert!(
+            (slope - model.lx[j]).abs() < 1e-8,
+            "{j}: {slope} vs {}",
+            model.lx[j]
+        );
     }
     assert!(Waypoint::new(&BODY, 0.7, through, DMatrix::identity(4, 4)).is_err());
 }

@@ -109,7 +109,9 @@ where
 
 /// The plan one step on, its last state and input repeated: the next
 /// sample's warm start.
-fn shifted<const N: usize, const P: usize, const Q: usize>(mut plan: Plan<N, P, Q>) -> Plan<N, P, Q> {
+fn shifted<const N: usize, const P: usize, const Q: usize>(
+    mut plan: Plan<N, P, Q>,
+) -> Plan<N, P, Q> {
     fn shift<T: Copy>(xs: &mut Vec<T>) {
         if let Some(&last) = xs.last() {
             xs.remove(0);

@@ -83,9 +83,7 @@ pub(super) fn difference<const N: usize, const Q: usize>(
     let mut d = DVector::zeros(2 * N);
     let (q0, q1) = (&x0.as_slice()[..Q], &x1.as_slice()[..Q]);
     orientation::difference(layout, q0, q1, &mut d.as_mut_slice()[..N]);
-    for i in 0..N {
-        d[N + i] = x1[Q + i] - x0[Q + i];
-    }
+    d.rows_mut(N, N).copy_from(&(x1.rows(Q, N) - x0.rows(Q, N)));
     d
 }
 
@@ -101,9 +99,7 @@ pub(super) fn retract<const N: usize, const Q: usize>(
     let mut out = DVector::zeros(Q + N);
     let q = &x.as_slice()[..Q];
     orientation::integrate(layout, q, &d.as_slice()[..N], &mut out.as_mut_slice()[..Q]);
-    for i in 0..N {
-        out[Q + i] = x[Q + i] + d[N + i];
-    }
+    out.rows_mut(Q, N).copy_from(&(x.rows(Q, N) + d.rows(N, N)));
     out
 }
 
@@ -124,7 +120,10 @@ pub(super) fn weighted<const N: usize>(
 /// ∂(x ⊖ x*)/∂δ at the error e = x ⊖ x* (x moved to x ⊕ δ): J_r(e)⁻¹ on
 /// an orientation's block (x* exp(e) exp(δ) = x* exp(e + J_r(e)⁻¹ δ) to
 /// first order), the identity elsewhere; `None` without orientations.
-fn error_jacobian<const N: usize>(layout: &[Orientation], e: &DVector<f64>) -> Option<DMatrix<f64>> {
+fn error_jacobian<const N: usize>(
+    layout: &[Orientation],
+    e: &DVector<f64>,
+) -> Option<DMatrix<f64>> {
     if layout.is_empty() {
         return None;
     }
