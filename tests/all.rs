@@ -54,6 +54,7 @@ mod order;
 mod physical;
 mod piecewise;
 mod planning;
+mod planning_group;
 mod rattle;
 mod reactions;
 mod recording;

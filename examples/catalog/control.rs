@@ -3,7 +3,9 @@
 use lagrange::Lagrangian;
 use lagrange::control::StateFeedback;
 use lagrange::linear::{Linear, OperatingPoint, linearize};
-use lagrange::nalgebra::{DMatrix, DVector, Vector1, Vector2};
+use lagrange::nalgebra::{DMatrix, DVector, SVector, Vector1, Vector2, Vector3};
+use lagrange::orientation;
+use lagrange::plan::{OptimalControl, Waypoint};
 
 /// A cart on a horizontal rail carrying an inverted pendulum (a point mass at
 /// the end of a massless rod); θ is measured from the upward vertical, so the
@@ -204,5 +206,151 @@ impl PlanarQuadrotor {
     /// Each rotor's thrust in a hover.
     pub fn hover_thrust(&self) -> f64 {
         self.m * self.g / 2.0
+    }
+}
+
+/// A quadrotor in space: a rigid body (mass m, principal moments a, a, c
+/// about its centre) with a free orientation, its four rotors on the
+/// body's x and y axes at d from the centre ("+" layout: 1 at +x, 2 at +y,
+/// 3 at −x, 4 at −y). Each pushes along the body's z axis with its thrust
+/// and, spinning, drags the body about z with k times it: rotors 1 and 3
+/// one way, 2 and 4 the other. A hover is level with each thrust m g / 4.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, y, z),
+    orientation(att),
+    inputs(f1, f2, f3, f4),
+    body(frame, mass = m, inertia = [a, a, c], at = [x, y, z], rotation = att),
+    point(rotor1, on = frame, at = [d, 0, 0]),
+    point(rotor2, on = frame, at = [0, d, 0]),
+    point(rotor3, on = frame, at = [-d, 0, 0]),
+    point(rotor4, on = frame, at = [0, -d, 0]),
+    force(rotor1, [f1 * frame.axis_z.x, f1 * frame.axis_z.y, f1 * frame.axis_z.z]),
+    force(rotor2, [f2 * frame.axis_z.x, f2 * frame.axis_z.y, f2 * frame.axis_z.z]),
+    force(rotor3, [f3 * frame.axis_z.x, f3 * frame.axis_z.y, f3 * frame.axis_z.z]),
+    force(rotor4, [f4 * frame.axis_z.x, f4 * frame.axis_z.y, f4 * frame.axis_z.z]),
+    torque(frame, [0, 0, k * (f2 + f4 - f1 - f3)], axes = body),
+    gravity = [0, 0, -g],
+    shape(frame, box(size = [2 * d, 0.03, 0.02])),
+    shape(frame, box(size = [0.03, 2 * d, 0.02])),
+    emit(jacobians),
+)]
+pub struct Quadrotor {
+    pub m: f64,
+    pub a: f64,
+    pub c: f64,
+    pub d: f64,
+    pub k: f64,
+    pub g: f64,
+}
+
+impl Quadrotor {
+    /// 1 kg, rotors 0.2 m from the centre, moments 0.01 and 0.018 kg m²,
+    /// drag 0.02 N·m per N of thrust.
+    pub fn standard() -> Self {
+        Quadrotor {
+            m: 1.0,
+            a: 0.01,
+            c: 0.018,
+            d: 0.2,
+            k: 0.02,
+            g: 9.81,
+        }
+    }
+
+    /// Each rotor's thrust in a hover.
+    pub fn hover_thrust(&self) -> f64 {
+        self.m * self.g / 4.0
+    }
+
+    /// At (x, y, z), rolled by `angle` about the body's x axis.
+    pub fn rolled(position: [f64; 3], angle: f64) -> Result<SVector<f64, 7>, lagrange::Error> {
+        let turn = orientation::from_axis_angle(&Vector3::x(), angle)?;
+        let [x, y, z] = position;
+        Ok(SVector::from([x, y, z, turn[0], turn[1], turn[2], turn[3]]))
+    }
+
+    /// A flip: from a hover at the origin back to it in `steps` steps of
+    /// `h` seconds (RK4 on the group), rolled once round about the body's x
+    /// axis on the way, each thrust between zero and twice the hover's. The
+    /// goal alone cannot ask for the turn (rolled by 2π the body is where it
+    /// started), so the attitude passes two waypoints, rolled 2π/3 at a
+    /// third of the way and 4π/3 at two thirds: each leg shorter than half
+    /// a turn, the shortest way from one to the next is forwards.
+    pub fn flip(
+        &self,
+        h: f64,
+        steps: usize,
+    ) -> Result<OptimalControl<'_, Self, 6, 4, 7>, lagrange::Error> {
+        let diagonal = |d: &[f64]| DMatrix::from_diagonal(&DVector::from_column_slice(d));
+        let hover = self.hover_thrust();
+        let level = Self::rolled([0.0; 3], 0.0)?;
+        let still = SVector::<f64, 6>::zeros();
+        let mut problem = OptimalControl::new(
+            lagrange::linear::Transition::new(self, h)?,
+            steps,
+            (level, still),
+            diagonal(&[0.0; 12]),
+            diagonal(&[0.01; 4]),
+        )
+        .goal(level, still)
+        .input_target(SVector::repeat(hover))
+        .final_weight(diagonal(&[
+            1e3, 1e3, 1e3, 1e3, 1e3, 1e3, 100.0, 100.0, 100.0, 10.0, 10.0, 10.0,
+        ]))
+        .input_bounds(SVector::zeros(), SVector::repeat(2.0 * hover));
+        let attitude = diagonal(&[
+            0.0, 0.0, 0.0, 100.0, 100.0, 100.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+        ]);
+        for third in [1, 2] {
+            let k = steps * third / 3;
+            let turned = Self::rolled([0.0; 3], 2.0 * std::f64::consts::PI * third as f64 / 3.0)?;
+            let at = Waypoint::new(self, k as f64 * h, (turned, still), attitude.clone())?;
+            problem = problem.running_cost(at);
+        }
+        Ok(problem)
+    }
+
+    /// A guess for the flip's plan that rolls at a constant rate, on the
+    /// spot, at the hover's thrusts: not a motion of the quadrotor (upside
+    /// down those thrusts push it down), but one that passes the waypoints
+    /// in the right order. From the hover alone (no roll at all) the second
+    /// waypoint, 4π/3 round, is nearer the other way, −2π/3, and DDP
+    /// settles on rolling there and back.
+    #[allow(clippy::type_complexity)]
+    pub fn flip_guess(
+        &self,
+        h: f64,
+        steps: usize,
+    ) -> Result<
+        (
+            Vec<SVector<f64, 7>>,
+            Vec<SVector<f64, 6>>,
+            Vec<SVector<f64, 4>>,
+        ),
+        lagrange::Error,
+    > {
+        let rate = 2.0 * std::f64::consts::PI / (steps as f64 * h);
+        let q = (0..=steps)
+            .map(|k| Self::rolled([0.0; 3], rate * k as f64 * h))
+            .collect::<Result<Vec<_>, _>>()?;
+        let v = vec![SVector::from([0.0, 0.0, 0.0, rate, 0.0, 0.0]); steps + 1];
+        Ok((q, v, vec![SVector::repeat(self.hover_thrust()); steps]))
+    }
+
+    /// The turn accumulated along a sequence of configurations: the sum of
+    /// each step's rotation vector, in the body's axes of the moment (a
+    /// roll once round about x reads (2π, 0, 0), which the end's attitude
+    /// alone, back at level, cannot tell).
+    pub fn accumulated_turn(
+        &self,
+        qs: &[SVector<f64, 7>],
+    ) -> Result<Vector3<f64>, lagrange::Error> {
+        let mut sum = Vector3::zeros();
+        for pair in qs.windows(2) {
+            let d = orientation::configuration_minus(self, &pair[1], &pair[0])?;
+            sum += d.fixed_rows::<3>(3);
+        }
+        Ok(sum)
     }
 }

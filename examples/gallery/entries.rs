@@ -216,6 +216,11 @@ pub(crate) const ENTRIES: &[Entry] = &[
         planning::quadrotor_flip,
     ),
     entry(
+        "quadrotor flip in 3-D, planned by DDP on the group",
+        "a free orientation: one roll from hover to hover in 2 s through two attitude waypoints, thrusts between zero and twice the hover's; flown with the plan's tangent gains, held by LQR",
+        planning::quadrotor_flip_3d,
+    ),
+    entry(
         "UR5 reaching a point within ±40 N·m, planned by DDP",
         "a cost on the tool frame's position through the emitted kinematics; torque bounds a quarter of the file's",
         planning::ur5_reach,

@@ -172,7 +172,7 @@ pub(crate) fn atlas_top(system: &'static str) -> Result<Row, Error> {
 
 /// A row of a run with orientations: its angular velocity plotted, its
 /// scene, its still and an animation of the scene.
-fn free_row<S, const N: usize, const Q: usize>(
+pub(crate) fn free_row<S, const N: usize, const Q: usize>(
     system: &'static str,
     sys: &S,
     traj: &Trajectory<f64, N, Q>,
@@ -213,7 +213,7 @@ where
 
 /// The figure of a run with an orientation: its angular velocity in body
 /// axes (from index `at` of v) and the drift; the CSV has every column.
-fn angular_velocity<const N: usize, const Q: usize>(
+pub(crate) fn angular_velocity<const N: usize, const Q: usize>(
     traj: &Trajectory<f64, N, Q>,
     names: [&str; N],
     at: usize,
@@ -239,7 +239,7 @@ fn angular_velocity<const N: usize, const Q: usize>(
 }
 
 /// The run's CSV, every column named by the system.
-fn csv<S: Lagrangian<f64, N, Q>, const N: usize, const Q: usize>(
+pub(crate) fn csv<S: Lagrangian<f64, N, Q>, const N: usize, const Q: usize>(
     sys: &S,
     traj: &Trajectory<f64, N, Q>,
 ) -> Result<String, Error> {

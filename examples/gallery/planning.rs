@@ -1,18 +1,22 @@
 //! Gallery rows that plan: a motion optimised by DDP over a horizon
 //! (`plan::Ddp`, on the model's one-step map and its derivatives), then flown
-//! on the continuous model with the plan's own feedback, u = u_k + K_k (x −
-//! x_k) sampled at the plan's step, and caught at the end by LQR; and one
-//! closed by MPC against a model that is wrong.
+//! on the continuous model with the plan's own feedback, u = u_k + K_k (x ⊖
+//! x_k) sampled at the plan's step (x − x_k without orientations), and
+//! caught at the end by LQR; and one closed by MPC against a model that is
+//! wrong.
 
-use crate::catalog::control::{Acrobot, CartPole, PlanarQuadrotor};
+use crate::catalog::control::{Acrobot, CartPole, PlanarQuadrotor, Quadrotor};
+use crate::free::{angular_velocity, csv, free_row};
 use crate::operational::Ur5;
 use crate::row::{Row, TOL, row};
 use lagrange::linear::{OperatingPoint, Transition, Trim, linearize};
 use lagrange::nalgebra::{DMatrix, DVector, SVector, Vector3};
+use lagrange::orientation::{configuration_minus, state_minus};
 use lagrange::plan::{Ddp, FramePosition, Mpc, OptimalControl, Plan};
 use lagrange::pose::Kinematics;
 use lagrange::prelude::*;
 use std::f64::consts::PI;
+use std::time::Instant;
 
 /// The step every plan here takes (50 Hz), which is also the rate its
 /// feedback is sampled at on the continuous model.
@@ -23,24 +27,22 @@ fn diagonal(d: &[f64]) -> DMatrix<f64> {
 }
 
 /// The plan's input at sample t with its feedback on the state's distance
-/// from the plan, u_k + K_k (x − x_k), clamped into the bounds; `None` past
-/// the horizon.
-fn follow<const N: usize, const P: usize>(
-    plan: &Plan<N, P>,
+/// from the plan, u_k + K_k (x ⊖ x_k), clamped into the bounds; `None` past
+/// the horizon (or at a state that is not finite).
+fn follow<S, const N: usize, const P: usize, const Q: usize>(
+    (system, plan): (&S, &Plan<N, P, Q>),
     bounds: (f64, f64),
     t: f64,
-    q: &SVector<f64, N>,
+    q: &SVector<f64, Q>,
     v: &SVector<f64, N>,
-) -> Option<SVector<f64, P>> {
+) -> Option<SVector<f64, P>>
+where
+    S: Lagrangian<f64, N, Q>,
+{
     let k = (t / STEP).round() as usize;
     let u = plan.u.get(k)?;
-    let dx = DVector::from_iterator(
-        2 * N,
-        (q - plan.q[k])
-            .iter()
-            .chain((v - plan.v[k]).iter())
-            .copied(),
-    );
+    let (dq, dv) = state_minus(system, (q, v), (&plan.q[k], &plan.v[k])).ok()?;
+    let dx = DVector::from_iterator(2 * N, dq.iter().chain(dv.iter()).copied());
     let du = &plan.gains[k] * dx;
     Some(u.zip_map(
         &SVector::<f64, P>::from_column_slice(du.as_slice()),
@@ -69,7 +71,7 @@ where
 }
 
 /// How a plan went, for a row's note.
-fn solved<const N: usize, const P: usize>(plan: &Plan<N, P>) -> String {
+fn solved<const N: usize, const P: usize, const Q: usize>(plan: &Plan<N, P, Q>) -> String {
     let last = plan.log.last().map_or(f64::NAN, |i| i.stationarity);
     format!(
         "DDP: {} iterations, cost {:.4}, stationarity {last:.0e}",
@@ -105,7 +107,8 @@ pub(crate) fn cart_pole_swing_up(system: &'static str) -> Result<Row, Error> {
             Simulation::new(&cp)
                 .integrator(Dopri5::tol(TOL))
                 .sampled(STEP, |t, q, v| {
-                    follow(&plan, (-limit, limit), t, q, v).unwrap_or_else(|| catch.input(q, v))
+                    follow((&cp, &plan), (-limit, limit), t, q, v)
+                        .unwrap_or_else(|| catch.input(q, v))
                 })
                 .run([0.0, PI], [0.0; 2], span.clone())
                 .map(|run| run.into_trajectory())
@@ -179,7 +182,8 @@ pub(crate) fn acrobot_swing_up(system: &'static str) -> Result<Row, Error> {
             Simulation::new(&acrobot)
                 .integrator(Dopri5::tol(TOL))
                 .sampled(STEP, |t, q, v| {
-                    follow(&plan, (-limit, limit), t, q, v).unwrap_or_else(|| catch.input(q, v))
+                    follow((&acrobot, &plan), (-limit, limit), t, q, v)
+                        .unwrap_or_else(|| catch.input(q, v))
                 })
                 .run([0.0; 2], [0.0; 2], span.clone())
                 .map(|run| run.into_trajectory())
@@ -235,7 +239,7 @@ pub(crate) fn quadrotor_flip(system: &'static str) -> Result<Row, Error> {
             Simulation::new(&quad)
                 .integrator(Dopri5::tol(TOL))
                 .sampled(STEP, |t, q, v| {
-                    follow(&plan, bounds, t, q, v).unwrap_or_else(|| catch.input(q, v))
+                    follow((&quad, &plan), bounds, t, q, v).unwrap_or_else(|| catch.input(q, v))
                 })
                 .run([0.0; 3], [0.0; 3], span.clone())
                 .map(|run| run.into_trajectory())
@@ -254,6 +258,65 @@ pub(crate) fn quadrotor_flip(system: &'static str) -> Result<Row, Error> {
             )
         },
     )
+}
+
+/// A quadrotor's flip in space, on the rotation group: from a hover back
+/// to it rolled once round its x axis in 2 s (the catalog's
+/// `Quadrotor::flip`: two attitude waypoints on the way; FDDP from a guess
+/// rolling at a constant rate), each thrust between zero and twice the
+/// hover's; flown on the continuous model with
+/// the plan's gains on the tangent error x ⊖ x_k, then held by LQR on the
+/// hover's tangent linearisation.
+pub(crate) fn quadrotor_flip_3d(system: &'static str) -> Result<Row, Error> {
+    let quad = Quadrotor::standard();
+    let (steps, hover) = (100, quad.hover_thrust());
+    let bounds = (0.0, 2.0 * hover);
+    // From a guess that rolls the right way (see `Quadrotor::flip_guess`).
+    let (q, v, u) = quad.flip_guess(STEP, steps)?;
+    let plan = Ddp::new().tolerance(1e-6).max_iterations(500).solve_from(
+        &quad.flip(STEP, steps)?,
+        &q,
+        &v,
+        &u,
+    )?;
+    let level = Quadrotor::rolled([0.0; 3], 0.0)?;
+    let still = SVector::<f64, 6>::zeros();
+    let op = OperatingPoint::on_group(level, still).input(SVector::<f64, 4>::repeat(hover));
+    let lin = linearize(&quad, &op)?;
+    let gain = lin
+        .lqr(&diagonal(&[10.0; 12]), &DMatrix::identity(4, 4))?
+        .gain;
+    let catch = StateFeedback::from_tangent_gain::<Quadrotor>(&gain, &lin, (op.q, op.v, op.u))?;
+    // How far a configuration is from the start: (metres, radians).
+    let off = |q: &SVector<f64, 7>| -> Result<(f64, f64), Error> {
+        let d = configuration_minus(&quad, q, &level)?;
+        Ok((d.fixed_rows::<3>(0).norm(), d.fixed_rows::<3>(3).norm()))
+    };
+    let planned_turn = quad.accumulated_turn(&plan.q)?;
+    let (_, planned_miss) = off(&plan.q[steps])?;
+    let span = 0.0..4.0;
+    let clock = Instant::now();
+    let traj = Simulation::new(&quad)
+        .integrator(Dopri5::tol(TOL))
+        .sampled(STEP, |t, q, v| {
+            follow((&quad, &plan), bounds, t, q, v).unwrap_or_else(|| catch.input(q, v))
+        })
+        .run(level, still, span.clone())?
+        .into_trajectory();
+    let wall_ms = clock.elapsed().as_secs_f64() * 1e3;
+    let flown_turn = quad.accumulated_turn(traj.positions())?;
+    let (metres, radians) = off(&traj.final_state().0)?;
+    let note = format!(
+        "{}; the plan rolls {:.4} rad about x (2π = {:.4}) and ends {planned_miss:.1e} rad \
+         from level; flown with its gains it rolls {:.4} rad, and hovers at the end {metres:.1e} m \
+         and {radians:.1e} rad from the start",
+        solved(&plan),
+        planned_turn.x,
+        2.0 * PI,
+        flown_turn.x
+    );
+    let figure = angular_velocity(&traj, Quadrotor::VELOCITIES, 3, csv(&quad, &traj)?);
+    free_row(system, &quad, &traj, span, (note, wall_ms), figure)
 }
 
 /// The UR5's tool drawn 20 cm to a point in 0.6 s with its torques held
@@ -309,7 +372,7 @@ pub(crate) fn ur5_reach(system: &'static str) -> Result<Row, Error> {
             Simulation::new(&ur5)
                 .integrator(Dopri5::tol(TOL))
                 .sampled(STEP, |t, q, v| {
-                    follow(&plan, (-limit, limit), t, q, v).unwrap_or_else(|| stay(q, v))
+                    follow((&ur5, &plan), (-limit, limit), t, q, v).unwrap_or_else(|| stay(q, v))
                 })
                 .run(home, zero, span.clone())
                 .map(|run| run.into_trajectory())

@@ -1,8 +1,9 @@
 //! Hand-written driven systems with closed forms, for the tests of the
-//! equilibria and the step derivatives.
+//! equilibria and the step derivatives (one with a free orientation).
 
+use crate::numeric::orientation::{self, Orientation};
 use crate::system::{Driven, Lagrangian};
-use nalgebra::{Matrix2, SMatrix, Vector1, Vector2};
+use nalgebra::{Matrix2, SMatrix, Vector1, Vector2, Vector3};
 
 pub const G: f64 = 9.81;
 
@@ -254,6 +255,83 @@ impl Driven<f64, 1, 1> for Oscillator {
         _: &Vector1<f64>,
         _: f64,
     ) -> (SMatrix<f64, 1, 1>, SMatrix<f64, 1, 1>, SMatrix<f64, 1, 1>) {
+        (SMatrix::identity(), SMatrix::zeros(), SMatrix::zeros())
+    }
+}
+
+/// A heavy body on a fixed pivot (unit mass, principal moments a, b, c
+/// about the pivot, its centre of mass `lever` up its z axis) beside a sprung
+/// cart x (unit mass, stiffness `K`) that its tilt pushes with `KAPPA`
+/// times the world x of the body's z axis (a coupling no potential gives:
+/// the cart's q̈ depends on the orientation too). Four inputs: the cart's
+/// push and three torques in body axes.
+pub struct PivotedBody {
+    pub inertia: [f64; 3],
+    pub lever: f64,
+}
+const K: f64 = 3.0;
+const KAPPA: f64 = 2.0;
+
+type V4 = SMatrix<f64, 4, 1>;
+type Q5 = SMatrix<f64, 5, 1>;
+
+impl PivotedBody {
+    /// R(q) of the body.
+    fn rotation(q: &Q5) -> [[f64; 3]; 3] {
+        orientation::rotation_matrix([q[1], q[2], q[3], q[4]])
+    }
+}
+
+impl Lagrangian<f64, 4, 5> for PivotedBody {
+    const COORDINATES: [&'static str; 5] = ["x", "body.w", "body.x", "body.y", "body.z"];
+    const VELOCITIES: [&'static str; 4] = ["x", "body.wx", "body.wy", "body.wz"];
+    const ORIENTATIONS: &'static [Orientation] = &[Orientation { q: 1, v: 1 }];
+    const RHEONOMIC: bool = false;
+    fn mass_matrix(&self, _: &Q5, _: f64) -> SMatrix<f64, 4, 4> {
+        let [a, b, c] = self.inertia;
+        SMatrix::from_diagonal(&V4::from([1.0, a, b, c]))
+    }
+    fn bias(&self, _: &Q5, v: &V4, _: f64) -> V4 {
+        let [a, b, c] = self.inertia;
+        let w = Vector3::new(v[1], v[2], v[3]);
+        let gyro = w.cross(&Vector3::new(a * v[1], b * v[2], c * v[3]));
+        V4::from([0.0, gyro[0], gyro[1], gyro[2]])
+    }
+    fn generalized_forces(&self, q: &Q5, _: &V4, _: f64) -> V4 {
+        let r = Self::rotation(q);
+        // Gravity's torque in body axes: (0, 0, l) × Rᵀ (0, 0, −g).
+        let down = Vector3::new(r[2][0], r[2][1], r[2][2]) * -G;
+        let torque = Vector3::new(0.0, 0.0, self.lever).cross(&down);
+        V4::from([-K * q[0] + KAPPA * r[0][2], torque[0], torque[1], torque[2]])
+    }
+    fn mass_matrix_and_rhs(&self, q: &Q5, v: &V4, t: f64) -> (SMatrix<f64, 4, 4>, V4) {
+        let rhs = self.generalized_forces(q, v, t) - self.bias(q, v, t);
+        (self.mass_matrix(q, t), rhs)
+    }
+    fn kinetic_energy(&self, q: &Q5, v: &V4, t: f64) -> f64 {
+        0.5 * v.dot(&(self.mass_matrix(q, t) * v))
+    }
+    fn potential_energy(&self, q: &Q5, _: f64) -> f64 {
+        0.5 * K * q[0] * q[0] + G * self.lever * Self::rotation(q)[2][2]
+    }
+    fn integral(&self, q: &Q5, v: &V4, t: f64) -> f64 {
+        self.kinetic_energy(q, v, t) + self.potential_energy(q, t)
+    }
+}
+
+impl Driven<f64, 4, 4, 5> for PivotedBody {
+    const INPUTS: [&'static str; 4] = ["push", "tx", "ty", "tz"];
+    fn input_forces(&self, _: &Q5, _: &V4, u: &V4, _: f64) -> V4 {
+        *u
+    }
+    #[allow(clippy::type_complexity)]
+    fn input_jacobians(
+        &self,
+        _: &Q5,
+        _: &V4,
+        _: &V4,
+        _: f64,
+    ) -> (SMatrix<f64, 4, 4>, SMatrix<f64, 4, 4>, SMatrix<f64, 4, 4>) {
         (SMatrix::identity(), SMatrix::zeros(), SMatrix::zeros())
     }
 }

@@ -19,21 +19,27 @@
 //! q⁺ = q + h v⁺ (symplectic for a constant mass matrix, as in MuJoCo's
 //! default), dv⁺ = dv + h (A_q dq + A_v dv + B du), dq⁺ = dq + h dv⁺.
 //!
-//! Systems with free orientations are not stepped here yet: their step lives
-//! on the rotation group, and its derivatives in the tangent space need the
-//! group's chain rule through the stages.
+//! A system with free orientations is stepped on the rotation group
+//! (`transition_group`: the same methods in the chart at the step's start,
+//! q = q₀ ⊕ ξ, the end q₀ ⊕ ξ⁺ with unit quaternions), and its derivatives
+//! are in the tangent space the linearisations use: x ⊕ (δ, δv) =
+//! (q ⊕ δ, v + δv), so ∂F/∂x is 2N × 2N with δ⁺ = F(x ⊕ dx) ⊖ F(x).
 
 use super::difference::{column, unit};
 use super::settings::Linearizer;
 use super::tangent::Held;
-use crate::error::{Error, SettingsError, check_finite_inputs};
+use crate::error::{Error, SettingsError, check_finite_inputs, unit_quaternions};
 use crate::mechanics::{Dynamics, InputDerivatives};
 use crate::numeric::cholesky::Cholesky;
+use crate::numeric::orientation;
 use crate::system::Driven;
+use group::{Chart, chart_rates};
 use nalgebra::{DMatrix, SMatrix, SVector};
 
 #[path = "transition_chain.rs"]
 mod chain;
+#[path = "transition_group.rs"]
+mod group;
 
 /// The one-step method of a [`Transition`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,7 +54,8 @@ pub enum StepMethod {
 /// The discrete dynamics of a driven system over steps of `h` seconds with
 /// its inputs held (zero-order hold): [`step`](Self::step) gives
 /// x⁺ = F(x, u), [`derivatives`](Self::derivatives) also ∂F/∂x (2N × 2N)
-/// and ∂F/∂u (2N × P), the state ordered (q, v).
+/// and ∂F/∂u (2N × P), the state ordered (q, v): with orientations, in the
+/// tangent space (δ, δv) at x and at x⁺ (see the module notes).
 pub struct Transition<'a, S> {
     system: &'a S,
     h: f64,
@@ -81,12 +88,13 @@ impl<S> std::fmt::Debug for Transition<'_, S> {
 
 /// One step and its derivatives: x⁺ = (q⁺, v⁺), ∂x⁺/∂x and ∂x⁺/∂u.
 #[derive(Clone, Debug, PartialEq)]
-pub struct StepDerivatives<const N: usize> {
-    /// q⁺.
-    pub q: SVector<f64, N>,
+pub struct StepDerivatives<const N: usize, const Q: usize = N> {
+    /// q⁺ (Q numbers: four per orientation).
+    pub q: SVector<f64, Q>,
     /// v⁺.
     pub v: SVector<f64, N>,
-    /// ∂x⁺/∂x, 2N × 2N, rows and columns (q, v).
+    /// ∂x⁺/∂x, 2N × 2N, rows and columns (q, v), or with orientations
+    /// (δ, δv) in the tangent spaces at x and x⁺.
     pub dx: DMatrix<f64>,
     /// ∂x⁺/∂u, 2N × P.
     pub du: DMatrix<f64>,
@@ -153,19 +161,20 @@ impl<'a, S> Transition<'a, S> {
     ///
     /// # Errors
     /// [`Error::NonFiniteInput`] for a non-finite u; the dynamics' errors at
-    /// a stage ([`Error::NonFiniteState`], [`Error::SingularMassMatrix`]).
-    pub fn step<const N: usize, const P: usize>(
+    /// a stage ([`Error::NonFiniteState`], [`Error::SingularMassMatrix`],
+    /// [`Error::NonUnitQuaternion`] for a start off the unit sphere).
+    pub fn step<const N: usize, const P: usize, const Q: usize>(
         &self,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: &SVector<f64, P>,
         t: f64,
-    ) -> Result<(SVector<f64, N>, SVector<f64, N>), Error>
+    ) -> Result<(SVector<f64, Q>, SVector<f64, N>), Error>
     where
-        S: Driven<f64, N, P>,
+        S: Driven<f64, N, P, Q>,
     {
         let stages = self.stages(q, v, u, t)?;
-        Ok(self.combine(q, v, &stages))
+        Ok(self.combine::<N, Q>(S::ORIENTATIONS, q, v, &stages))
     }
 
     /// The step and its derivatives by the chain rule through the stages
@@ -176,49 +185,69 @@ impl<'a, S> Transition<'a, S> {
     /// central differences of q̈ at that stage.
     ///
     /// # Errors
-    /// As [`step`](Self::step); a stage's linearisation errors.
-    pub fn derivatives<const N: usize, const P: usize>(
+    /// As [`step`](Self::step); a stage's linearisation errors;
+    /// [`Error::Settings`] for `through_linearizer` with orientations.
+    pub fn derivatives<const N: usize, const P: usize, const Q: usize>(
         &self,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: &SVector<f64, P>,
         t: f64,
-    ) -> Result<StepDerivatives<N>, Error>
+    ) -> Result<StepDerivatives<N, Q>, Error>
     where
-        S: Driven<f64, N, P>,
+        S: Driven<f64, N, P, Q>,
     {
+        let layout = S::ORIENTATIONS;
         if self.through_linearizer {
             return self.derivatives_through_linearizer(q, v, u, t);
         }
+        let q = &unit_quaternions(layout, &S::COORDINATES, *q)?;
         let first = self.stage_derivatives(q, v, u, t)?;
         let h = self.h;
         if self.method == StepMethod::SemiImplicitEuler {
             let v1 = v + first.acceleration * h;
-            let (dx, du) = chain::semi_implicit(&first, h);
-            return Ok(StepDerivatives {
-                q: q + v1 * h,
-                v: v1,
-                dx,
-                du,
-            });
+            let xi = v1 * h;
+            let (dx, du) = match layout.is_empty() {
+                true => chain::semi_implicit(&first, h),
+                false => group::semi_implicit(&first, &Chart::at(layout, &xi, &v1), h),
+            };
+            let q = orientation::plus(layout, q, &xi);
+            return Ok(StepDerivatives { q, v: v1, dx, du });
         }
         let mut stages = [first.clone(), first.clone(), first.clone(), first];
-        let mut states = [(*q, *v); 4];
+        // Each stage's chart coordinates ξ and velocity.
+        let mut states = [(SVector::zeros(), *v); 4];
         for i in 1..4 {
             let c = RK4_NODES[i] * h;
-            let (k_q, k_v) = (states[i - 1].1, stages[i - 1].acceleration);
-            states[i] = (q + k_q * c, v + k_v * c);
-            let (sq, sv) = &states[i];
-            stages[i] = self.stage_derivatives(sq, sv, u, t + c)?;
+            let (xi, sv) = &states[i - 1];
+            let k = (chart_rates(layout, xi, sv), stages[i - 1].acceleration);
+            states[i] = (k.0 * c, v + k.1 * c);
+            let at = orientation::plus(layout, q, &states[i].0);
+            stages[i] = self.stage_derivatives(&at, &states[i].1, u, t + c)?;
         }
-        let (mut dq, mut dv) = (SVector::zeros(), SVector::zeros());
+        let (mut d_xi, mut dv) = (SVector::zeros(), SVector::zeros());
         for ((s, d), w) in states.iter().zip(&stages).zip(RK4_WEIGHTS) {
-            dq += s.1 * w;
+            d_xi += chart_rates(layout, &s.0, &s.1) * w;
             dv += d.acceleration * w;
         }
-        let (dx, du) = chain::rk4(&stages, RK4_NODES, RK4_WEIGHTS, h);
+        let xi = d_xi * (h / 6.0);
+        let (dx, du) = if layout.is_empty() {
+            chain::rk4(&stages, RK4_NODES, RK4_WEIGHTS, h)
+        } else {
+            let paired = std::array::from_fn(|i| {
+                let (xi, sv) = &states[i];
+                (stages[i].clone(), Chart::at(layout, xi, sv))
+            });
+            group::rk4(
+                &paired,
+                &Chart::at(layout, &xi, v),
+                RK4_NODES,
+                RK4_WEIGHTS,
+                h,
+            )
+        };
         Ok(StepDerivatives {
-            q: q + dq * (h / 6.0),
+            q: orientation::plus(layout, q, &xi),
             v: v + dv * (h / 6.0),
             dx,
             du,
@@ -227,16 +256,17 @@ impl<'a, S> Transition<'a, S> {
 
     /// One stage's q̈ and ∂q̈/∂(q, q̇, u): the system's emitted Jacobians
     /// where it has them, else central differences of q̈ (the step rule of
-    /// every numerical linearisation) and ∂q̈/∂u = M⁻¹ ∂Q/∂u.
-    fn stage_derivatives<const N: usize, const P: usize>(
+    /// every numerical linearisation; along q ⊕ δ with orientations) and
+    /// ∂q̈/∂u = M⁻¹ ∂Q/∂u.
+    fn stage_derivatives<const N: usize, const P: usize, const Q: usize>(
         &self,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: &SVector<f64, P>,
         t: f64,
     ) -> Result<InputDerivatives<f64, N, P>, Error>
     where
-        S: Driven<f64, N, P>,
+        S: Driven<f64, N, P, Q>,
     {
         let tolerance = self.linearizer.tolerances.singular;
         let dynamics = Dynamics::new(self.system).with_singular_tolerance(tolerance);
@@ -247,11 +277,12 @@ impl<'a, S> Transition<'a, S> {
             system: self.system,
             u: *u,
         });
-        let accel = |q: &SVector<f64, N>, v: &SVector<f64, N>| held.acceleration(t, q, v);
+        let accel = |q: &SVector<f64, Q>, v: &SVector<f64, N>| held.acceleration(t, q, v);
+        let along = |d: SVector<f64, N>| accel(&orientation::plus(S::ORIENTATIONS, q, &d), v);
         let (mut dq, mut dv) = (SMatrix::<f64, N, N>::zeros(), SMatrix::<f64, N, N>::zeros());
         for j in 0..N {
             let (step, e) = unit::<f64, N>(j, v[j]);
-            let column_q = column(accel(&(q + e), v)?, accel(&(q - e), v)?, step);
+            let column_q = column(along(e)?, along(-e)?, step);
             let column_v = column(accel(q, &(v + e))?, accel(q, &(v - e))?, step);
             dq.set_column(j, &SVector::<f64, N>::from_column_slice(&column_q));
             dv.set_column(j, &SVector::<f64, N>::from_column_slice(&column_v));
@@ -270,19 +301,29 @@ impl<'a, S> Transition<'a, S> {
 
     /// The derivatives through [`Linearizer::tangent_driven`] at every
     /// stage, the path before [`Dynamics::input_derivatives`]: kept to
-    /// compare against (`through_linearizer`).
-    fn derivatives_through_linearizer<const N: usize, const P: usize>(
+    /// compare against (`through_linearizer`), for systems without
+    /// orientations (its chain rule is the flat one).
+    fn derivatives_through_linearizer<const N: usize, const P: usize, const Q: usize>(
         &self,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: &SVector<f64, P>,
         t: f64,
-    ) -> Result<StepDerivatives<N>, Error>
+    ) -> Result<StepDerivatives<N, Q>, Error>
     where
-        S: Driven<f64, N, P>,
+        S: Driven<f64, N, P, Q>,
     {
+        if !S::ORIENTATIONS.is_empty() {
+            return Err(SettingsError::Data {
+                owner: "Transition",
+                problem: "`through_linearizer` takes the flat chain rule: not for a system \
+                          with orientations"
+                    .into(),
+            }
+            .into());
+        }
         let stages = self.stages(q, v, u, t)?;
-        let (q_next, v_next) = self.combine(q, v, &stages);
+        let (q_next, v_next) = self.combine::<N, Q>(S::ORIENTATIONS, q, v, &stages);
         let mut jacobians = Vec::with_capacity(stages.len());
         for s in &stages {
             let lin = self
@@ -303,28 +344,32 @@ impl<'a, S> Transition<'a, S> {
     }
 
     /// The stages' states and accelerations: one for semi-implicit Euler,
-    /// four for RK4 (each at x + c h k of the one before).
-    fn stages<const N: usize, const P: usize>(
+    /// four for RK4 (each at ξ = c h k^ξ, v + c h k^v of the one before, in
+    /// the chart at q).
+    fn stages<const N: usize, const P: usize, const Q: usize>(
         &self,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: &SVector<f64, P>,
         t: f64,
-    ) -> Result<Vec<Stage<N>>, Error>
+    ) -> Result<Vec<Stage<N, Q>>, Error>
     where
-        S: Driven<f64, N, P>,
+        S: Driven<f64, N, P, Q>,
     {
         check_finite_inputs(&S::INPUTS, t, q, v, u)?;
+        let layout = S::ORIENTATIONS;
+        let q = &unit_quaternions(layout, &S::COORDINATES, *q)?;
         let held = Held {
             system: self.system,
             u: *u,
         };
         let dynamics = Dynamics::new(self.system).with_forcing(held);
-        let at = |q: SVector<f64, N>, v: SVector<f64, N>, t: f64| {
+        let at = |xi: SVector<f64, N>, v: SVector<f64, N>, t: f64| {
+            let q = orientation::plus(layout, q, &xi);
             let a = dynamics.acceleration(t, &q, &v)?;
-            Ok::<_, Error>(Stage { q, v, t, a })
+            Ok::<_, Error>(Stage { q, xi, v, t, a })
         };
-        let first = at(*q, *v, t)?;
+        let first = at(SVector::zeros(), *v, t)?;
         if self.method == StepMethod::SemiImplicitEuler {
             return Ok(vec![first]);
         }
@@ -332,32 +377,35 @@ impl<'a, S> Transition<'a, S> {
         let mut stages = vec![first];
         for c in RK4_NODES[1..].iter().copied() {
             let k = stages.last().expect("the first stage is in");
-            let next = at(q + k.v * (c * h), v + k.a * (c * h), t + c * h)?;
+            let xi = chart_rates(layout, &k.xi, &k.v) * (c * h);
+            let next = at(xi, v + k.a * (c * h), t + c * h)?;
             stages.push(next);
         }
         Ok(stages)
     }
 
-    /// x⁺ from the stages.
-    fn combine<const N: usize>(
+    /// x⁺ from the stages: q ⊕ ξ⁺ and v⁺.
+    fn combine<const N: usize, const Q: usize>(
         &self,
-        q: &SVector<f64, N>,
+        layout: &[orientation::Orientation],
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
-        stages: &[Stage<N>],
-    ) -> (SVector<f64, N>, SVector<f64, N>) {
+        stages: &[Stage<N, Q>],
+    ) -> (SVector<f64, Q>, SVector<f64, N>) {
         let h = self.h;
         match self.method {
             StepMethod::SemiImplicitEuler => {
                 let v1 = v + stages[0].a * h;
-                (q + v1 * h, v1)
+                (orientation::plus(layout, q, &(v1 * h)), v1)
             }
             StepMethod::Rk4 => {
-                let (mut dq, mut dv) = (SVector::zeros(), SVector::zeros());
+                let (mut d_xi, mut dv) = (SVector::zeros(), SVector::zeros());
                 for (s, w) in stages.iter().zip(RK4_WEIGHTS) {
-                    dq += s.v * w;
+                    d_xi += chart_rates(layout, &s.xi, &s.v) * w;
                     dv += s.a * w;
                 }
-                (q + dq * (h / 6.0), v + dv * (h / 6.0))
+                let xi = d_xi * (h / 6.0);
+                (orientation::plus(layout, q, &xi), v + dv * (h / 6.0))
             }
         }
     }
@@ -367,9 +415,11 @@ impl<'a, S> Transition<'a, S> {
 const RK4_NODES: [f64; 4] = [0.0, 0.5, 0.5, 1.0];
 const RK4_WEIGHTS: [f64; 4] = [1.0, 2.0, 2.0, 1.0];
 
-/// A stage: its state, time and acceleration.
-struct Stage<const N: usize> {
-    q: SVector<f64, N>,
+/// A stage: its configuration (q ⊕ ξ) and chart coordinates ξ, velocity,
+/// time and acceleration.
+struct Stage<const N: usize, const Q: usize> {
+    q: SVector<f64, Q>,
+    xi: SVector<f64, N>,
     v: SVector<f64, N>,
     t: f64,
     a: SVector<f64, N>,

@@ -9,15 +9,15 @@ use nalgebra::{DMatrix, SMatrix};
 
 /// N rows of a derivative over (dq, dv, du).
 #[derive(Clone, Copy)]
-struct Rows<const N: usize, const P: usize> {
-    q: SMatrix<f64, N, N>,
-    v: SMatrix<f64, N, N>,
-    u: SMatrix<f64, N, P>,
+pub(super) struct Rows<const N: usize, const P: usize> {
+    pub(super) q: SMatrix<f64, N, N>,
+    pub(super) v: SMatrix<f64, N, N>,
+    pub(super) u: SMatrix<f64, N, P>,
 }
 
 impl<const N: usize, const P: usize> Rows<N, P> {
     /// The rows of dq (`position`) or of dv in dx itself.
-    fn identity(position: bool) -> Self {
+    pub(super) fn identity(position: bool) -> Self {
         let (i, z) = (SMatrix::identity(), SMatrix::zeros());
         let (q, v) = if position { (i, z) } else { (z, i) };
         Self {
@@ -27,8 +27,17 @@ impl<const N: usize, const P: usize> Rows<N, P> {
         }
     }
 
+    /// No dependence at all.
+    pub(super) fn zero() -> Self {
+        Self {
+            q: SMatrix::zeros(),
+            v: SMatrix::zeros(),
+            u: SMatrix::zeros(),
+        }
+    }
+
     /// self + c · other.
-    fn plus(&self, c: f64, other: &Self) -> Self {
+    pub(super) fn plus(&self, c: f64, other: &Self) -> Self {
         Self {
             q: self.q + other.q * c,
             v: self.v + other.v * c,
@@ -39,7 +48,7 @@ impl<const N: usize, const P: usize> Rows<N, P> {
 
 /// d(q̈) = A_q dq_s + A_v dv_s + A_u du at a stage whose state has the
 /// derivative (dq_s, dv_s).
-fn acceleration_rows<const N: usize, const P: usize>(
+pub(super) fn acceleration_rows<const N: usize, const P: usize>(
     d: &InputDerivatives<f64, N, P>,
     dq: &Rows<N, P>,
     dv: &Rows<N, P>,
@@ -52,7 +61,7 @@ fn acceleration_rows<const N: usize, const P: usize>(
 }
 
 /// (∂x⁺/∂x, ∂x⁺/∂u) from the rows of dq⁺ and dv⁺.
-fn assemble<const N: usize, const P: usize>(
+pub(super) fn assemble<const N: usize, const P: usize>(
     dq: &Rows<N, P>,
     dv: &Rows<N, P>,
 ) -> (DMatrix<f64>, DMatrix<f64>) {

@@ -3,8 +3,10 @@
 //! derivatives against central differences of the step itself.
 
 use super::*;
-use crate::linear::test_systems::{G, Oscillator, Pendulum, Spherical, Thrusters};
-use nalgebra::{Matrix2, Vector1, Vector2};
+use crate::linear::test_systems::{G, Oscillator, Pendulum, PivotedBody, Spherical, Thrusters};
+use crate::orientation::tests::CartAndBall;
+use crate::system::Lagrangian;
+use nalgebra::{DVector, Matrix2, Vector1, Vector2};
 
 const METHODS: [StepMethod; 2] = [StepMethod::Rk4, StepMethod::SemiImplicitEuler];
 
@@ -214,4 +216,157 @@ fn the_fast_stages_are_the_linearizer_s() {
             "{method:?}"
         );
     }
+}
+
+/// A unit quaternion and a vector of numbers in [−1, 1) from a seed (a
+/// small xorshift: the states are arbitrary, not chosen).
+fn arbitrary<const M: usize>(seed: &mut u64) -> SVector<f64, M> {
+    SVector::from_fn(|_, _| {
+        *seed ^= *seed << 13;
+        *seed ^= *seed >> 7;
+        *seed ^= *seed << 17;
+        (*seed >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    })
+}
+
+/// ∂x⁺/∂(x, u) of a system with orientations by central differences taken
+/// through the retraction: (F(x ⊕ ε e_j) ⊖ F(x ⊕ −ε e_j)) / 2ε, the ⊖ of
+/// the ends measured from F(x) (ε = 1e-6).
+fn group_differences<S, const N: usize, const P: usize, const Q: usize>(
+    tr: &Transition<S>,
+    (q, v, u): (SVector<f64, Q>, SVector<f64, N>, SVector<f64, P>),
+) -> (DMatrix<f64>, DMatrix<f64>)
+where
+    S: Driven<f64, N, P, Q>,
+{
+    let (eps, layout) = (1e-6, S::ORIENTATIONS);
+    let (q0, v0) = tr.step(&q, &v, &u, 0.3).unwrap();
+    let from_centre = |(q1, v1): (SVector<f64, Q>, SVector<f64, N>)| {
+        let mut d = DVector::zeros(2 * N);
+        orientation::difference(
+            layout,
+            q0.as_slice(),
+            q1.as_slice(),
+            &mut d.as_mut_slice()[..N],
+        );
+        d.rows_mut(N, N).copy_from(&(v1 - v0));
+        d
+    };
+    let at = |dx: &DVector<f64>, du: &SVector<f64, P>| {
+        let delta = SVector::<f64, N>::from_fn(|i, _| dx[i]);
+        let dv = SVector::<f64, N>::from_fn(|i, _| dx[N + i]);
+        let q1 = orientation::plus(layout, &q, &delta);
+        from_centre(tr.step(&q1, &(v + dv), &(u + du), 0.3).unwrap())
+    };
+    let mut dx = DMatrix::zeros(2 * N, 2 * N);
+    for j in 0..2 * N {
+        let e = DVector::from_fn(2 * N, |i, _| if i == j { eps } else { 0.0 });
+        let column = (at(&e, &SVector::zeros()) - at(&-e, &SVector::zeros())) / (2.0 * eps);
+        dx.set_column(j, &column);
+    }
+    let mut du = DMatrix::zeros(2 * N, P);
+    let none = DVector::zeros(2 * N);
+    for k in 0..P {
+        let e = SVector::<f64, P>::from_fn(|i, _| if i == k { eps } else { 0.0 });
+        du.set_column(k, &((at(&none, &e) - at(&none, &-e)) / (2.0 * eps)));
+    }
+    (dx, du)
+}
+
+/// A free body spinning steadily (unit inertia, no forces) beside a cart
+/// moving steadily: the step on the group is exact, q⁺ = q ⊗ exp(h ω), for
+/// both methods, and its quaternion is unit.
+#[test]
+fn a_steady_spin_is_stepped_exactly_on_the_group() {
+    let turn = orientation::exp([0.3, -0.8, 0.5]);
+    let q = SVector::<f64, 5>::from([0.2, turn[0], turn[1], turn[2], turn[3]]);
+    let v = SVector::<f64, 4>::from([0.7, 1.1, -2.0, 0.6]);
+    let h = 0.1;
+    let spun = orientation::multiply(turn, orientation::exp([1.1 * h, -2.0 * h, 0.6 * h]));
+    for method in METHODS {
+        let tr = Transition::new(&CartAndBall, h).unwrap().method(method);
+        let (q1, v1) = tr.step(&q, &v, &SVector::<f64, 0>::zeros(), 0.0).unwrap();
+        assert!((q1[0] - (0.2 + 0.7 * h)).abs() < 1e-15 && v1 == v);
+        for k in 0..4 {
+            assert!((q1[1 + k] - spun[k]).abs() < 1e-15, "{method:?}: {q1}");
+        }
+        let d = tr
+            .derivatives(&q, &v, &SVector::<f64, 0>::zeros(), 0.0)
+            .unwrap();
+        assert_eq!((d.q, d.v), (q1, v1));
+    }
+}
+
+/// The chain rule on the group against central differences through the
+/// retraction, at arbitrary states (quaternions anywhere on the sphere,
+/// fast spins, the body's dynamics and the cart's depending on the
+/// orientation): to 1e-6 of the largest entry.
+#[test]
+fn group_derivatives_match_differences_through_the_retraction() {
+    let body = PivotedBody {
+        inertia: [0.3, 0.5, 0.7],
+        lever: 0.4,
+    };
+    let mut seed = 0x9e37_79b9_7f4a_7c15;
+    for method in METHODS {
+        let tr = Transition::new(&body, 0.05).unwrap().method(method);
+        for _ in 0..4 {
+            let turn = arbitrary::<4>(&mut seed).normalize();
+            let x = arbitrary::<1>(&mut seed)[0];
+            let q = SVector::<f64, 5>::from([x, turn[0], turn[1], turn[2], turn[3]]);
+            let v = arbitrary::<4>(&mut seed) * 3.0;
+            let u = arbitrary::<4>(&mut seed);
+            let d = tr.derivatives(&q, &v, &u, 0.3).unwrap();
+            let (dx, du) = group_differences(&tr, (q, v, u));
+            let (ex, eu) = ((&d.dx - &dx).amax(), (&d.du - &du).amax());
+            assert!(
+                ex < 1e-6 * dx.amax() && eu < 1e-6 * du.amax(),
+                "{method:?} at {q}: ∂x {ex:e} of {:e}, ∂u {eu:e} of {:e}",
+                dx.amax(),
+                du.amax()
+            );
+            assert!((d.dx.clone() - DMatrix::identity(8, 8)).amax() > 1e-3);
+        }
+    }
+}
+
+/// RK4 on the group is of fourth order: halving the step divides the
+/// error of a second of the heavy body's motion by about 2⁴ (against a
+/// run of 1/1600 s steps).
+#[test]
+fn rk4_on_the_group_is_of_fourth_order() {
+    let body = PivotedBody {
+        inertia: [0.3, 0.5, 0.7],
+        lever: 0.4,
+    };
+    let turn = orientation::exp([0.4, 0.9, -0.2]);
+    let q0 = SVector::<f64, 5>::from([0.1, turn[0], turn[1], turn[2], turn[3]]);
+    let v0 = SVector::<f64, 4>::from([0.0, 1.0, -2.0, 3.0]);
+    let u = SVector::<f64, 4>::from([0.5, 0.1, 0.0, -0.2]);
+    let run = |steps: usize| {
+        let tr = Transition::new(&body, 1.0 / steps as f64).unwrap();
+        let (mut q, mut v) = (q0, v0);
+        for _ in 0..steps {
+            (q, v) = tr.step(&q, &v, &u, 0.0).unwrap();
+        }
+        (q, v)
+    };
+    let (q_ref, v_ref) = run(1600);
+    let error = |steps| {
+        let (q, v) = run(steps);
+        let mut d = [0.0; 4];
+        orientation::difference(
+            PivotedBody::ORIENTATIONS,
+            q_ref.as_slice(),
+            q.as_slice(),
+            &mut d,
+        );
+        d.iter().fold((v - v_ref).amax(), |m, x| m.max(x.abs()))
+    };
+    let (coarse, fine) = (error(50), error(100));
+    let ratio = coarse / fine;
+    assert!(
+        (12.0..20.0).contains(&ratio),
+        "{coarse:e} / {fine:e} = {ratio}"
+    );
 }

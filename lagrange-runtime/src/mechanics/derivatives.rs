@@ -143,8 +143,9 @@ where
 }
 
 impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
-    /// q̈ = M⁻¹(Q − h + ΔQ(u)) of a driven system without orientations at
-    /// (q, q̇, u, t) and ∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂u, from one factorisation of M
+    /// q̈ = M⁻¹(Q − h + ΔQ(u)) of a driven system at (q, q̇, u, t) and
+    /// ∂q̈/∂q (with orientations ∂q̈/∂δ, along q ⊕ δ, the inputs' own
+    /// Jacobians taken so by the derive), ∂q̈/∂q̇, ∂q̈/∂u, from one factorisation of M
     /// and the system's emitted Jacobians ([`Lagrangian::rhs_jacobians`] and
     /// [`Driven::input_jacobians`]), on the stack: nothing is allocated,
     /// named or checked beyond the state and the result (the parameters are
@@ -155,15 +156,15 @@ impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
     /// [`Error::NonFiniteState`] for a non-finite state or result,
     /// [`Error::NonFiniteInput`] for a non-finite u,
     /// [`Error::SingularMassMatrix`] below the singular tolerance.
-    pub fn input_derivatives<const N: usize, const P: usize>(
+    pub fn input_derivatives<const N: usize, const P: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         u: &SVector<T, P>,
     ) -> Result<Option<InputDerivatives<T, N, P>>, Error>
     where
-        S: Driven<T, N, P>,
+        S: Driven<T, N, P, Q>,
     {
         check_finite_inputs(&S::INPUTS, t, q, v, u)?;
         let (unit, _) = self.checked(t, q, v)?;

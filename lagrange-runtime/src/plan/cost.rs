@@ -1,16 +1,22 @@
 //! Cost terms beyond the problem's quadratic one: a frame's position
-//! against a target (through the system's emitted kinematics) and any
-//! user's term given with its derivatives.
+//! against a target (through the system's emitted kinematics), a state to
+//! pass through at one time, and any user's term given with its
+//! derivatives.
 //!
 //! Each term gives its value and a quadratic model at (x, u): the gradient
 //! and a Hessian, Gauss–Newton's JᵀWJ for a squared residual (what DDP
 //! needs: positive semidefinite, exact at a zero residual).
 
+use super::problem::{difference, state, weighted};
+use crate::error::{Error, SettingsError};
+use crate::numeric::orientation::Orientation;
 use crate::pose::Kinematics;
+use crate::system::Lagrangian;
 use nalgebra::{DMatrix, DVector, SVector, Vector3};
 
 /// A cost term's value and quadratic model at (x, u), x = (q, v) with 2N
-/// numbers; at the final state the u parts are empty.
+/// numbers (with orientations, its derivatives along x ⊕ (δ, δv), the
+/// tangent space); at the final state the u parts are empty.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CostModel {
     /// The value.
@@ -53,13 +59,14 @@ impl CostModel {
 
 /// A cost term of an [`OptimalControl`](super::OptimalControl) problem: at
 /// each step (time t, state (q, v), input u) or, with `u = None`, at the
-/// final state.
-pub trait Cost<const N: usize, const P: usize> {
+/// final state. With orientations q has Q numbers and the model's
+/// derivatives are along q ⊕ δ.
+pub trait Cost<const N: usize, const P: usize, const Q: usize = N> {
     /// The term's value.
     fn value(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: Option<&SVector<f64, P>>,
     ) -> f64;
@@ -68,7 +75,7 @@ pub trait Cost<const N: usize, const P: usize> {
     fn model(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: Option<&SVector<f64, P>>,
     ) -> CostModel;
@@ -99,38 +106,38 @@ impl<'s, S> FramePosition<'s, S> {
 
     /// The frame's origin at q (NaN for a body index past the bodies, which
     /// a plan then refuses as a non-finite cost).
-    fn origin<const N: usize>(&self, q: &SVector<f64, N>, t: f64) -> Vector3<f64>
+    fn origin<const N: usize, const Q: usize>(&self, q: &SVector<f64, Q>, t: f64) -> Vector3<f64>
     where
-        S: Kinematics<f64, N>,
+        S: Kinematics<f64, N, Q>,
     {
         (self.system.frame_pose(self.body, q, t)).map_or(Vector3::repeat(f64::NAN), |b| b.origin)
     }
 }
 
-impl<S, const N: usize, const P: usize> Cost<N, P> for FramePosition<'_, S>
+impl<S, const N: usize, const P: usize, const Q: usize> Cost<N, P, Q> for FramePosition<'_, S>
 where
-    S: Kinematics<f64, N>,
+    S: Kinematics<f64, N, Q>,
 {
     fn value(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         _: &SVector<f64, N>,
         _: Option<&SVector<f64, P>>,
     ) -> f64 {
-        0.5 * self.weight * (self.origin(q, t) - self.target).norm_squared()
+        0.5 * self.weight * (self.origin::<N, Q>(q, t) - self.target).norm_squared()
     }
 
     fn model(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: Option<&SVector<f64, P>>,
     ) -> CostModel {
         let p = if u.is_some() { P } else { 0 };
         let mut model = CostModel::zero(2 * N, p);
-        let residual = self.origin(q, t) - self.target;
+        let residual = self.origin::<N, Q>(q, t) - self.target;
         model.value = self.value(t, q, v, u);
         let Some(jacobian) = self.system.frame_jacobian(self.body, q, t) else {
             model.value = f64::NAN;
@@ -159,15 +166,15 @@ impl<V, M> CostFn<V, M> {
     }
 }
 
-impl<V, M, const N: usize, const P: usize> Cost<N, P> for CostFn<V, M>
+impl<V, M, const N: usize, const P: usize, const Q: usize> Cost<N, P, Q> for CostFn<V, M>
 where
-    V: Fn(f64, &SVector<f64, N>, &SVector<f64, N>, Option<&SVector<f64, P>>) -> f64,
-    M: Fn(f64, &SVector<f64, N>, &SVector<f64, N>, Option<&SVector<f64, P>>) -> CostModel,
+    V: Fn(f64, &SVector<f64, Q>, &SVector<f64, N>, Option<&SVector<f64, P>>) -> f64,
+    M: Fn(f64, &SVector<f64, Q>, &SVector<f64, N>, Option<&SVector<f64, P>>) -> CostModel,
 {
     fn value(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: Option<&SVector<f64, P>>,
     ) -> f64 {
@@ -177,10 +184,107 @@ where
     fn model(
         &self,
         t: f64,
-        q: &SVector<f64, N>,
+        q: &SVector<f64, Q>,
         v: &SVector<f64, N>,
         u: Option<&SVector<f64, P>>,
     ) -> CostModel {
         (self.model)(t, q, v, u)
+    }
+}
+
+/// ½ (x ⊖ x*)ᵀ W (x ⊖ x*) at one time of the horizon: a state to pass
+/// through on the way (a running cost, zero at every other step). With
+/// orientations x ⊖ x* is the tangent vector from x* and the model
+/// Gauss–Newton's, as the problem's own quadratic cost: what a flip needs,
+/// since its goal alone cannot ask for a whole turn (a turn by 2π ends
+/// where it started, and the shortest way there is to stay).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Waypoint {
+    layout: &'static [Orientation],
+    time: f64,
+    target: DVector<f64>,
+    weight: DMatrix<f64>,
+}
+
+impl Waypoint {
+    /// The state (q*, v*) of `system` to pass at time `time` (the step whose
+    /// time t₀ + k h is within 1e-9 s of it), weighted by W (2N × 2N, on
+    /// (q, v), or (δ, δv) with orientations).
+    ///
+    /// # Errors
+    /// [`Error::Settings`] for a weight that is not 2N × 2N and finite, or
+    /// a time or target that is not finite.
+    pub fn new<S, const N: usize, const Q: usize>(
+        system: &S,
+        time: f64,
+        (q, v): (SVector<f64, Q>, SVector<f64, N>),
+        weight: DMatrix<f64>,
+    ) -> Result<Self, Error>
+    where
+        S: Lagrangian<f64, N, Q>,
+    {
+        let _ = system;
+        let finite = weight.iter().all(|w| w.is_finite());
+        if weight.shape() != (2 * N, 2 * N) || !finite {
+            return Err(SettingsError::Shape {
+                owner: "Waypoint",
+                name: "W",
+                expected: (2 * N, 2 * N),
+                got: weight.shape(),
+                finite,
+                meaning: "",
+            }
+            .into());
+        }
+        let target = state(&q, &v);
+        if !time.is_finite() || !target.iter().all(|x| x.is_finite()) {
+            return Err(SettingsError::Data {
+                owner: "Waypoint",
+                problem: "the time and the target state must be finite".into(),
+            }
+            .into());
+        }
+        Ok(Self {
+            layout: S::ORIENTATIONS,
+            time,
+            target,
+            weight,
+        })
+    }
+
+    fn active(&self, t: f64) -> bool {
+        (t - self.time).abs() <= 1e-9
+    }
+}
+
+impl<const N: usize, const P: usize, const Q: usize> Cost<N, P, Q> for Waypoint {
+    fn value(
+        &self,
+        t: f64,
+        q: &SVector<f64, Q>,
+        v: &SVector<f64, N>,
+        _: Option<&SVector<f64, P>>,
+    ) -> f64 {
+        if !self.active(t) {
+            return 0.0;
+        }
+        let e = difference::<N, Q>(self.layout, &self.target, &state(q, v));
+        0.5 * e.dot(&(&self.weight * &e))
+    }
+
+    fn model(
+        &self,
+        t: f64,
+        q: &SVector<f64, Q>,
+        v: &SVector<f64, N>,
+        u: Option<&SVector<f64, P>>,
+    ) -> CostModel {
+        let mut model = CostModel::zero(2 * N, if u.is_some() { P } else { 0 });
+        if self.active(t) {
+            let e = difference::<N, Q>(self.layout, &self.target, &state(q, v));
+            (model.lx, model.lxx) = weighted::<N>(self.layout, &self.weight, &e);
+            model.value = 0.5 * e.dot(&(&self.weight * &e));
+        }
+        model
     }
 }

@@ -66,17 +66,19 @@ pub struct Iteration {
 /// A plan: the states and inputs along the horizon, the feedback gains that
 /// track it (u = u_k + K_k (x − x_k) near it) and the solve's log.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Plan<const N: usize, const P: usize> {
+pub struct Plan<const N: usize, const P: usize, const Q: usize = N> {
     /// The times t₀ … t_K.
     pub t: Vec<f64>,
     /// The configurations q₀ … q_K.
-    pub q: Vec<SVector<f64, N>>,
+    pub q: Vec<SVector<f64, Q>>,
     /// The velocities v₀ … v_K.
     pub v: Vec<SVector<f64, N>>,
     /// The inputs u₀ … u_{K−1}, each held over its step.
     pub u: Vec<SVector<f64, P>>,
-    /// The feedback gains K₀ … K_{K−1} (P × 2N, on x = (q, v); zero rows for
-    /// inputs at a bound), from the last backward pass.
+    /// The feedback gains K₀ … K_{K−1} (P × 2N, on x − x_k = (q − q_k,
+    /// v − v_k), with orientations on x ⊖ x_k, the tangent vector from the
+    /// plan's state; zero rows for inputs at a bound), from the last
+    /// backward pass.
     pub gains: Vec<DMatrix<f64>>,
     /// The plan's cost.
     pub cost: f64,
@@ -89,7 +91,7 @@ pub struct Plan<const N: usize, const P: usize> {
     pub log: Vec<Iteration>,
 }
 
-impl<const N: usize, const P: usize> Progress for Plan<N, P> {
+impl<const N: usize, const P: usize, const Q: usize> Progress for Plan<N, P, Q> {
     fn progress(&self) -> (usize, Option<f64>) {
         (
             self.q.len(),
@@ -181,13 +183,13 @@ impl Ddp {
     /// settings, weights or guess; the dynamics' errors on the first
     /// rollout; [`PlanError::NotConverged`] when the budget runs out,
     /// [`PlanError::Stalled`] when no iteration can improve the plan.
-    pub fn solve<S, const N: usize, const P: usize>(
+    pub fn solve<S, const N: usize, const P: usize, const Q: usize>(
         &self,
-        problem: &OptimalControl<S, N, P>,
+        problem: &OptimalControl<S, N, P, Q>,
         guess: &[SVector<f64, P>],
-    ) -> Result<Plan<N, P>, Failure<Plan<N, P>>>
+    ) -> Result<Plan<N, P, Q>, Failure<Plan<N, P, Q>>>
     where
-        S: Driven<f64, N, P>,
+        S: Driven<f64, N, P, Q>,
     {
         let unstarted = |e: Error| Failure::new(e, empty_plan(problem));
         self.check(guess.len(), problem.steps).map_err(unstarted)?;
@@ -217,15 +219,15 @@ impl Ddp {
     /// As [`solve`](Self::solve); [`Error::Settings`] for a guess of the
     /// wrong length or not finite. A failure keeps the best iterate, whose
     /// [`Plan::gap`] says how far it is from satisfying the dynamics.
-    pub fn solve_from<S, const N: usize, const P: usize>(
+    pub fn solve_from<S, const N: usize, const P: usize, const Q: usize>(
         &self,
-        problem: &OptimalControl<S, N, P>,
-        q: &[SVector<f64, N>],
+        problem: &OptimalControl<S, N, P, Q>,
+        q: &[SVector<f64, Q>],
         v: &[SVector<f64, N>],
         u: &[SVector<f64, P>],
-    ) -> Result<Plan<N, P>, Failure<Plan<N, P>>>
+    ) -> Result<Plan<N, P, Q>, Failure<Plan<N, P, Q>>>
     where
-        S: Driven<f64, N, P>,
+        S: Driven<f64, N, P, Q>,
     {
         let unstarted = |e: Error| Failure::new(e, empty_plan(problem));
         self.check(u.len(), problem.steps).map_err(unstarted)?;
@@ -236,13 +238,13 @@ impl Ddp {
     }
 
     /// The iterations from a nominal plan (with or without gaps).
-    fn iterate<S, const N: usize, const P: usize>(
+    fn iterate<S, const N: usize, const P: usize, const Q: usize>(
         &self,
-        problem: &OptimalControl<S, N, P>,
+        problem: &OptimalControl<S, N, P, Q>,
         mut nominal: Nominal,
-    ) -> Result<Plan<N, P>, Failure<Plan<N, P>>>
+    ) -> Result<Plan<N, P, Q>, Failure<Plan<N, P, Q>>>
     where
-        S: Driven<f64, N, P>,
+        S: Driven<f64, N, P, Q>,
     {
         let ticker = Ticker::new(self.progress, self.max_iterations);
         let mut mu = self.regularization;
@@ -389,16 +391,16 @@ impl Ddp {
         .into()
     }
 
-    fn fail<S, const N: usize, const P: usize>(
+    fn fail<S, const N: usize, const P: usize, const Q: usize>(
         &self,
-        problem: &OptimalControl<S, N, P>,
+        problem: &OptimalControl<S, N, P, Q>,
         nominal: &Nominal,
         last: &Option<Backward>,
         log: &[Iteration],
         error: Error,
-    ) -> Failure<Plan<N, P>>
+    ) -> Failure<Plan<N, P, Q>>
     where
-        S: Driven<f64, N, P>,
+        S: Driven<f64, N, P, Q>,
     {
         let gains = last.as_ref().map_or_else(Vec::new, |b| b.gains.clone());
         let nominal = Nominal {
@@ -416,18 +418,18 @@ impl Ddp {
 /// decrease, the cost must fall by at least 10⁻⁴ of it; where closing the
 /// gaps is predicted to raise the cost, it may rise by at most twice the
 /// prediction (Crocoddyl's rule).
-fn line_search<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
+fn line_search<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
     nominal: &Nominal,
     backward: &Backward,
 ) -> Option<(Nominal, f64, f64)>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
     let mut alpha = 1.0;
     for _ in 0..=10 {
         if let Ok(next) = forward(problem, nominal, backward, alpha) {
-            let expected = predicted_decrease(nominal, backward, &next, alpha);
+            let expected = predicted_decrease(problem, nominal, backward, &next, alpha);
             let decrease = nominal.cost - next.cost;
             let accepted = match expected >= 0.0 {
                 true => decrease > 0.0 && decrease >= 1e-4 * expected,
@@ -443,16 +445,16 @@ where
 }
 
 /// The plan of a nominal trajectory.
-pub(super) fn plan<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
+pub(super) fn plan<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
     nominal: Nominal,
     gains: Vec<DMatrix<f64>>,
     log: Vec<Iteration>,
-) -> Plan<N, P>
+) -> Plan<N, P, Q>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
-    let (q, v) = nominal.xs.iter().map(split::<N>).unzip();
+    let (q, v) = nominal.xs.iter().map(split::<N, Q>).unzip();
     Plan {
         t: (0..=problem.steps).map(|k| problem.time(k)).collect(),
         q,
@@ -470,11 +472,11 @@ where
 }
 
 /// The plan of a problem that did not start: its start alone.
-pub(super) fn empty_plan<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
-) -> Plan<N, P>
+pub(super) fn empty_plan<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
+) -> Plan<N, P, Q>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
     let start = Nominal {
         xs: vec![problem.start.clone()],
@@ -490,11 +492,11 @@ where
 /// DDP keeps the states on the dynamics and the inputs in their box, and
 /// nothing else: a problem that constrains states is refused with what to
 /// use instead.
-fn unconstrained<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
+fn unconstrained<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
 ) -> Result<(), Error>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
     if !problem.constrains_states() {
         return Ok(());

@@ -21,8 +21,16 @@
 //! DDP cannot: hard [`state_limits`](OptimalControl::state_limits) and a
 //! [`final_equality`](OptimalControl::final_equality).
 //!
-//! The state is x = (q, v); systems with free orientations and constrained
-//! systems are not planned for yet.
+//! The state is x = (q, v). A system with free orientations (unit
+//! quaternions in q, `OptimalControl<S, N, P, Q>` with Q = N + 1 per
+//! orientation) is planned on the group: the transition steps on it, every
+//! derivative and gain is in the tangent space (δ, δv) of
+//! [`Linearizer::tangent`](crate::linear::Linearizer::tangent), the cost
+//! measures x ⊖ x* (an attitude's error by its rotation angle), FDDP's
+//! gaps are tangent vectors and its forward pass retracts (x ⊕ d). The
+//! direct method and [`StateBounds`] take systems without orientations
+//! (their `OptimalControl<S, N, P>`); constrained systems are not planned
+//! for yet.
 
 mod bounds;
 mod box_qp;
@@ -38,7 +46,7 @@ mod problem;
 mod progress;
 
 pub use bounds::StateBounds;
-pub use cost::{Cost, CostFn, CostModel, FramePosition};
+pub use cost::{Cost, CostFn, CostModel, FramePosition, Waypoint};
 pub use ddp::{Ddp, Iteration, Plan};
 #[cfg(feature = "direct")]
 pub use direct::Direct;
@@ -49,5 +57,7 @@ pub use problem::OptimalControl;
 mod direct_tests;
 #[cfg(test)]
 mod feasibility_tests;
+#[cfg(test)]
+mod group_tests;
 #[cfg(test)]
 mod tests;

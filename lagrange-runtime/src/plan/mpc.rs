@@ -24,10 +24,10 @@ use nalgebra::SVector;
 /// problem's horizon recedes with the samples (its start becomes each
 /// measured state and time); the solver's `max_iterations` is the budget of
 /// each sample.
-pub struct Mpc<'a, S, const N: usize, const P: usize> {
-    problem: OptimalControl<'a, S, N, P>,
+pub struct Mpc<'a, S, const N: usize, const P: usize, const Q: usize = N> {
+    problem: OptimalControl<'a, S, N, P, Q>,
     solver: Ddp,
-    warm: Option<Plan<N, P>>,
+    warm: Option<Plan<N, P, Q>>,
     samples: Vec<Sample>,
 }
 
@@ -47,12 +47,12 @@ pub struct Sample {
     pub stopped: Option<String>,
 }
 
-impl<'a, S, const N: usize, const P: usize> Mpc<'a, S, N, P>
+impl<'a, S, const N: usize, const P: usize, const Q: usize> Mpc<'a, S, N, P, Q>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
     /// The controller re-solving `problem` with `solver` at each sample.
-    pub fn new(problem: OptimalControl<'a, S, N, P>, solver: Ddp) -> Self {
+    pub fn new(problem: OptimalControl<'a, S, N, P, Q>, solver: Ddp) -> Self {
         Self {
             problem,
             solver,
@@ -67,7 +67,7 @@ where
     /// [`samples`](Self::samples); one that produced no input at all gives
     /// NaN, so that the run stops with `Error::NonFiniteInput` at that
     /// sample rather than apply a made-up input.
-    pub fn control(&mut self, t: f64, q: &SVector<f64, N>, v: &SVector<f64, N>) -> SVector<f64, P> {
+    pub fn control(&mut self, t: f64, q: &SVector<f64, Q>, v: &SVector<f64, N>) -> SVector<f64, P> {
         self.problem.start = state(q, v);
         self.problem.t0 = t;
         let solved = match &self.warm {
@@ -109,7 +109,9 @@ where
 
 /// The plan one step on, its last state and input repeated: the next
 /// sample's warm start.
-fn shifted<const N: usize, const P: usize>(mut plan: Plan<N, P>) -> Plan<N, P> {
+fn shifted<const N: usize, const P: usize, const Q: usize>(
+    mut plan: Plan<N, P, Q>,
+) -> Plan<N, P, Q> {
     fn shift<T: Copy>(xs: &mut Vec<T>) {
         if let Some(&last) = xs.last() {
             xs.remove(0);

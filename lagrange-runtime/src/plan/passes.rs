@@ -15,6 +15,16 @@
 //!   ṽ = V_x + V_xx f and δx the trial's states less the nominal's
 //!   (Crocoddyl's model; at α = 1 it is the quadratic model's change,
 //!   Σ (ṽ·f − ½ fᵀV_xx f) + Σ (k·Q_u + ½ kᵀQ_uu k)).
+//!
+//! With orientations every difference of states is x ⊖ x̄ and every sum
+//! x ⊕ d (`OptimalControl::minus` and `plus`): a gap is the tangent vector
+//! f_{k+1} = F(x̄_k, ū_k) ⊖ x̄_{k+1}, at x̄_{k+1}, and the forward pass's
+//! state F(x_k, u_k) ⊕ (−(1 − α) f_{k+1}) (at α = 0 and x_k = x̄_k exactly
+//! x̄_{k+1}, since x̄ exp(f) = F is F exp(−f) = x̄). The backward pass reads
+//! V at x̄_{k+1} through ∂F/∂x, whose rows are in the tangent space at
+//! F(x̄_k): the two differ by the gap, and the map between them, which
+//! Crocoddyl's FDDP leaves out too, is left out (it is the identity once
+//! the gaps are closed, where the plan converges).
 
 use super::box_qp;
 use super::problem::{OptimalControl, split, state};
@@ -58,28 +68,28 @@ pub(super) fn largest(xs: &[DVector<f64>]) -> f64 {
 }
 
 /// One step of the problem's transition on a state vector.
-fn step<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
+fn step<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
     k: usize,
     x: &DVector<f64>,
     u: &DVector<f64>,
 ) -> Result<DVector<f64>, Error>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
-    let (q, v) = split::<N>(x);
+    let (q, v) = split::<N, Q>(x);
     let u = SVector::<f64, P>::from_column_slice(u.as_slice());
     let (q1, v1) = problem.transition.step(&q, &v, &u, problem.time(k))?;
     Ok(state(&q1, &v1))
 }
 
 /// The rollout of `us` (clamped) from the start: no gaps.
-pub(super) fn rollout<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
+pub(super) fn rollout<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
     us: &[DVector<f64>],
 ) -> Result<Nominal, Error>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
     let mut xs = vec![problem.start.clone()];
     let us: Vec<DVector<f64>> = us.iter().map(|u| problem.clamp(u)).collect();
@@ -93,8 +103,8 @@ where
 }
 
 /// A guess of every configuration, velocity and input.
-pub(super) type Guess<'g, const N: usize, const P: usize> = (
-    &'g [SVector<f64, N>],
+pub(super) type Guess<'g, const N: usize, const P: usize, const Q: usize = N> = (
+    &'g [SVector<f64, Q>],
     &'g [SVector<f64, N>],
     &'g [SVector<f64, P>],
 );
@@ -102,13 +112,13 @@ pub(super) type Guess<'g, const N: usize, const P: usize> = (
 /// The nominal of a guess of every state and input, checked: K + 1
 /// configurations and velocities and K inputs, all finite (else a
 /// `SettingsError::Data` of `owner`, the solver).
-pub(super) fn from_guess<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
-    (q, v, u): Guess<N, P>,
+pub(super) fn from_guess<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
+    (q, v, u): Guess<N, P, Q>,
     owner: &'static str,
 ) -> Result<Nominal, Error>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
     let bad = |problem: String| -> Error { SettingsError::Data { owner, problem }.into() };
     let k = problem.steps;
@@ -134,46 +144,51 @@ where
 }
 
 /// A nominal of given states and inputs (clamped), with its gaps.
-pub(super) fn guessed<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
+pub(super) fn guessed<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
     xs: Vec<DVector<f64>>,
     us: &[DVector<f64>],
 ) -> Result<Nominal, Error>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
     let us: Vec<DVector<f64>> = us.iter().map(|u| problem.clamp(u)).collect();
-    let mut gaps = vec![&problem.start - &xs[0]];
+    let mut gaps = vec![problem.minus(&problem.start, &xs[0])];
     for (k, u) in us.iter().enumerate() {
-        gaps.push(step(problem, k, &xs[k], u)? - &xs[k + 1]);
+        gaps.push(problem.minus(&step(problem, k, &xs[k], u)?, &xs[k + 1]));
     }
     let cost = problem.cost(&xs, &us);
     Ok(Nominal { xs, us, gaps, cost })
 }
 
 /// The forward pass with step α: from x̄₀ + α f₀, each input clamped at
-/// ū + α k + K (x − x̄), each state the step's less (1 − α) of its gap.
-pub(super) fn forward<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
+/// ū + α k + K (x − x̄), each state the step's less (1 − α) of its gap
+/// (x̄₀ ⊕ α f₀, x ⊖ x̄ and F ⊕ (−(1 − α) f) on the group).
+pub(super) fn forward<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
     nominal: &Nominal,
     backward: &Backward,
     alpha: f64,
 ) -> Result<Nominal, Error>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
-    let x0 = &nominal.xs[0] + &nominal.gaps[0] * alpha;
-    let mut gaps = vec![&problem.start - &x0];
+    // Each gap left is (1 − α) of the nominal's, exactly: x̄ ⊕ α f and
+    // (x̄ ⊕ f) ⊖ (x̄ ⊕ α f) = (1 − α) f on the group as in the plane, and
+    // taken so, not measured, a full step leaves no round-off behind.
+    let x0 = problem.plus(&nominal.xs[0], &(&nominal.gaps[0] * alpha));
+    let mut gaps = vec![&nominal.gaps[0] * (1.0 - alpha)];
     let mut xs = vec![x0];
     let mut us = Vec::with_capacity(problem.steps);
     for k in 0..problem.steps {
         let x = &xs[k];
-        let shift = &backward.feedforward[k] * alpha + &backward.gains[k] * (x - &nominal.xs[k]);
+        let deviation = problem.minus(x, &nominal.xs[k]);
+        let shift = &backward.feedforward[k] * alpha + &backward.gains[k] * deviation;
         let u = problem.clamp(&(&nominal.us[k] + shift));
         let next = step(problem, k, x, &u)?;
-        let x1 = &next - &nominal.gaps[k + 1] * (1.0 - alpha);
-        gaps.push(next - &x1);
-        xs.push(x1);
+        let left = &nominal.gaps[k + 1] * (1.0 - alpha);
+        xs.push(problem.plus(&next, &-&left));
+        gaps.push(left);
         us.push(u);
     }
     let cost = problem.cost(&xs, &us);
@@ -183,34 +198,38 @@ where
 /// The decrease of the cost the model predicts for the step α that gave
 /// `trial` (see the module notes; −(α Σ k·Q_u + α² Σ ½ kᵀQ_uu k) without
 /// gaps).
-pub(super) fn predicted_decrease(
+pub(super) fn predicted_decrease<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
     nominal: &Nominal,
     backward: &Backward,
     trial: &Nominal,
     alpha: f64,
-) -> f64 {
+) -> f64
+where
+    S: Driven<f64, N, P, Q>,
+{
     let (d1, d2) = backward.expected;
     let (dg, dq) = backward.gap_terms;
     let dv: f64 = (nominal.gaps.iter().zip(&backward.hessians))
         .zip(trial.xs.iter().zip(&nominal.xs))
         .filter(|((f, _), _)| f.amax() > 0.0)
-        .map(|((f, v), (x, x0))| f.dot(&(v * (x - x0))))
+        .map(|((f, v), (x, x0))| f.dot(&(v * problem.minus(x, x0))))
         .sum();
     let change = alpha * (d1 + dg - dv) + alpha * alpha * (d2 - 0.5 * dq + dv);
     -change
 }
 
 /// ∂F/∂x and ∂F/∂u at every step of the plan.
-pub(super) fn linearise<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
+pub(super) fn linearise<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
     nominal: &Nominal,
-) -> Result<Vec<StepDerivatives<N>>, Error>
+) -> Result<Vec<StepDerivatives<N, Q>>, Error>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
     (0..problem.steps)
         .map(|k| {
-            let (q, v) = split::<N>(&nominal.xs[k]);
+            let (q, v) = split::<N, Q>(&nominal.xs[k]);
             let u = SVector::from_column_slice(nominal.us[k].as_slice());
             problem.transition.derivatives(&q, &v, &u, problem.time(k))
         })
@@ -220,15 +239,15 @@ where
 /// The backward pass with regularisation μ, warm-starting each box QP from
 /// the last pass's feed-forward; `Ok(None)` if some Q_uu is not positive
 /// definite on its free inputs.
-pub(super) fn backward_pass<S, const N: usize, const P: usize>(
-    problem: &OptimalControl<S, N, P>,
+pub(super) fn backward_pass<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
     nominal: &Nominal,
-    derivatives: &[StepDerivatives<N>],
+    derivatives: &[StepDerivatives<N, Q>],
     mu: f64,
     last: Option<&Backward>,
 ) -> Result<Option<Backward>, Error>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
     let steps = problem.steps;
     let n2 = 2 * N;

@@ -1,10 +1,11 @@
 //! An optimal control problem over a fixed horizon of fixed steps.
 
 use super::cost::{Cost, CostModel};
-use crate::error::{Error, SettingsError};
+use crate::error::{Error, SettingsError, unit_quaternions};
 use crate::linear::Transition;
+use crate::numeric::orientation::{self, Orientation};
 use crate::system::Driven;
-use nalgebra::{DMatrix, DVector, SVector};
+use nalgebra::{DMatrix, DVector, Matrix3, SVector};
 
 /// Minimise, over the inputs u₀ … u_{K−1} held on each step,
 ///
@@ -15,12 +16,23 @@ use nalgebra::{DMatrix, DVector, SVector};
 /// subject to x_{k+1} = F(x_k, u_k) (a [`Transition`]: RK4 or semi-implicit
 /// Euler of the system's dynamics), x₀ given and lower ≤ u_k ≤ upper. The
 /// state is x = (q, v) (2N numbers); the goal x* defaults to zero, the input
-/// target u* to zero, W_f to W_x and the bounds to none. More terms join
+/// target u* to zero, W_f to W_x and the bounds to none.
+///
+/// With free orientations (q of Q = N + 1 per orientation numbers) the
+/// problem lives on the group: x − x* is x ⊖ x*, the tangent vector from
+/// the goal (an orientation's rotation vector, whose length is the angle
+/// between the two attitudes), so the weights are 2N × 2N on (δ, δv) as in
+/// [`Linearizer::tangent`](crate::linear::Linearizer::tangent), and the
+/// goal's default is the identity turn. The cost's model is Gauss–Newton's,
+/// Jᵀ W J with J = ∂(x ⊖ x*)/∂δ (J_r⁻¹ of the error on an orientation's
+/// block), exact at the goal.
+///
+/// Without orientations Q is N and may be left out. More terms join
 /// either sum with [`running_cost`](Self::running_cost) and
 /// [`final_cost`](Self::final_cost): a frame's position
 /// ([`FramePosition`](super::FramePosition)), or your own
 /// ([`CostFn`](super::CostFn)).
-pub struct OptimalControl<'a, S, const N: usize, const P: usize> {
+pub struct OptimalControl<'a, S, const N: usize, const P: usize, const Q: usize = N> {
     pub(super) transition: Transition<'a, S>,
     pub(super) steps: usize,
     pub(super) start: DVector<f64>,
@@ -32,40 +44,117 @@ pub struct OptimalControl<'a, S, const N: usize, const P: usize> {
     pub(super) input_target: DVector<f64>,
     pub(super) lower: DVector<f64>,
     pub(super) upper: DVector<f64>,
-    pub(super) running_terms: Vec<Box<dyn Cost<N, P> + 'a>>,
-    pub(super) final_terms: Vec<Box<dyn Cost<N, P> + 'a>>,
+    pub(super) running_terms: Vec<Box<dyn Cost<N, P, Q> + 'a>>,
+    pub(super) final_terms: Vec<Box<dyn Cost<N, P, Q> + 'a>>,
     /// x_K = x* held exactly (the direct method only).
     pub(super) final_equality: bool,
     /// Hard bounds on x₁ … x_K (the direct method only).
     pub(super) state_limits: Option<(DVector<f64>, DVector<f64>)>,
 }
 
-/// (q, v) as one state vector of 2N numbers.
-pub(super) fn state<const N: usize>(q: &SVector<f64, N>, v: &SVector<f64, N>) -> DVector<f64> {
-    DVector::from_iterator(2 * N, q.iter().chain(v.iter()).copied())
+/// (q, v) as one state vector of Q + N numbers.
+pub(super) fn state<const N: usize, const Q: usize>(
+    q: &SVector<f64, Q>,
+    v: &SVector<f64, N>,
+) -> DVector<f64> {
+    DVector::from_iterator(Q + N, q.iter().chain(v.iter()).copied())
 }
 
 /// A state vector split into (q, v).
-pub(super) fn split<const N: usize>(x: &DVector<f64>) -> (SVector<f64, N>, SVector<f64, N>) {
+pub(super) fn split<const N: usize, const Q: usize>(
+    x: &DVector<f64>,
+) -> (SVector<f64, Q>, SVector<f64, N>) {
     (
         SVector::from_fn(|i, _| x[i]),
-        SVector::from_fn(|i, _| x[N + i]),
+        SVector::from_fn(|i, _| x[Q + i]),
     )
 }
 
-impl<'a, S, const N: usize, const P: usize> OptimalControl<'a, S, N, P>
+/// x₁ ⊖ x₀ (2N numbers): q₁ ⊖ q₀ (an orientation's rotation vector of
+/// q₀⁻¹ q₁, in q₀'s body axes) and v₁ − v₀; x₁ − x₀ without orientations.
+pub(super) fn difference<const N: usize, const Q: usize>(
+    layout: &[Orientation],
+    x0: &DVector<f64>,
+    x1: &DVector<f64>,
+) -> DVector<f64> {
+    if layout.is_empty() {
+        return x1 - x0;
+    }
+    let mut d = DVector::zeros(2 * N);
+    let (q0, q1) = (&x0.as_slice()[..Q], &x1.as_slice()[..Q]);
+    orientation::difference(layout, q0, q1, &mut d.as_mut_slice()[..N]);
+    d.rows_mut(N, N).copy_from(&(x1.rows(Q, N) - x0.rows(Q, N)));
+    d
+}
+
+/// x ⊕ d: q ⊕ d_q and v + d_v; x + d without orientations.
+pub(super) fn retract<const N: usize, const Q: usize>(
+    layout: &[Orientation],
+    x: &DVector<f64>,
+    d: &DVector<f64>,
+) -> DVector<f64> {
+    if layout.is_empty() {
+        return x + d;
+    }
+    let mut out = DVector::zeros(Q + N);
+    let q = &x.as_slice()[..Q];
+    orientation::integrate(layout, q, &d.as_slice()[..N], &mut out.as_mut_slice()[..Q]);
+    out.rows_mut(Q, N).copy_from(&(x.rows(Q, N) + d.rows(N, N)));
+    out
+}
+
+/// The gradient and Gauss–Newton Hessian of ½ eᵀ W e on the tangent at x,
+/// for e = x ⊖ x*: (Jᵀ W e, Jᵀ W J), J = ∂e/∂δ (W e and W without
+/// orientations).
+pub(super) fn weighted<const N: usize>(
+    layout: &[Orientation],
+    w: &DMatrix<f64>,
+    e: &DVector<f64>,
+) -> (DVector<f64>, DMatrix<f64>) {
+    match error_jacobian::<N>(layout, e) {
+        None => (w * e, w.clone()),
+        Some(j) => (j.transpose() * (w * e), j.transpose() * w * &j),
+    }
+}
+
+/// ∂(x ⊖ x*)/∂δ at the error e = x ⊖ x* (x moved to x ⊕ δ): J_r(e)⁻¹ on
+/// an orientation's block (x* exp(e) exp(δ) = x* exp(e + J_r(e)⁻¹ δ) to
+/// first order), the identity elsewhere; `None` without orientations.
+fn error_jacobian<const N: usize>(
+    layout: &[Orientation],
+    e: &DVector<f64>,
+) -> Option<DMatrix<f64>> {
+    if layout.is_empty() {
+        return None;
+    }
+    let mut j = DMatrix::identity(2 * N, 2 * N);
+    for o in layout {
+        let jr = orientation::right_jacobian([e[o.v], e[o.v + 1], e[o.v + 2]]);
+        // J_r is invertible for angles below 2π, and a log's is at most π.
+        let inverse = Matrix3::from_fn(|i, k| jr[i][k])
+            .try_inverse()
+            .unwrap_or_else(|| Matrix3::from_element(f64::NAN));
+        j.fixed_view_mut::<3, 3>(o.v, o.v).copy_from(&inverse);
+    }
+    Some(j)
+}
+
+impl<'a, S, const N: usize, const P: usize, const Q: usize> OptimalControl<'a, S, N, P, Q>
 where
-    S: Driven<f64, N, P>,
+    S: Driven<f64, N, P, Q>,
 {
     /// `steps` steps of `transition` from (q₀, v₀) at t = 0, with the
-    /// running weights W_x (2N × 2N, on (q, v)) and W_u (P × P).
+    /// running weights W_x (2N × 2N, on (q, v), or (δ, δv) with
+    /// orientations) and W_u (P × P).
     pub fn new(
         transition: Transition<'a, S>,
         steps: usize,
-        start: (SVector<f64, N>, SVector<f64, N>),
+        start: (SVector<f64, Q>, SVector<f64, N>),
         weight_x: DMatrix<f64>,
         weight_u: DMatrix<f64>,
     ) -> Self {
+        let mut rest = SVector::<f64, Q>::zeros();
+        S::ORIENTATIONS.iter().for_each(|o| rest[o.q] = 1.0);
         Self {
             transition,
             steps,
@@ -74,7 +163,7 @@ where
             weight_x,
             weight_u,
             weight_final: None,
-            goal: DVector::zeros(2 * N),
+            goal: state(&rest, &SVector::<f64, N>::zeros()),
             input_target: DVector::zeros(P),
             lower: DVector::from_element(P, f64::NEG_INFINITY),
             upper: DVector::from_element(P, f64::INFINITY),
@@ -102,8 +191,8 @@ where
     /// [`StateBounds`](super::StateBounds).
     pub fn state_limits(
         mut self,
-        lower: (SVector<f64, N>, SVector<f64, N>),
-        upper: (SVector<f64, N>, SVector<f64, N>),
+        lower: (SVector<f64, Q>, SVector<f64, N>),
+        upper: (SVector<f64, Q>, SVector<f64, N>),
     ) -> Self {
         self.state_limits = Some((state(&lower.0, &lower.1), state(&upper.0, &upper.1)));
         self
@@ -116,19 +205,19 @@ where
     }
 
     /// Adds a term to the running cost (at every step).
-    pub fn running_cost(mut self, term: impl Cost<N, P> + 'a) -> Self {
+    pub fn running_cost(mut self, term: impl Cost<N, P, Q> + 'a) -> Self {
         self.running_terms.push(Box::new(term));
         self
     }
 
     /// Adds a term to the final cost (at the last state).
-    pub fn final_cost(mut self, term: impl Cost<N, P> + 'a) -> Self {
+    pub fn final_cost(mut self, term: impl Cost<N, P, Q> + 'a) -> Self {
         self.final_terms.push(Box::new(term));
         self
     }
 
     /// The goal state x* = (q*, v*) both costs measure from.
-    pub fn goal(mut self, q: SVector<f64, N>, v: SVector<f64, N>) -> Self {
+    pub fn goal(mut self, q: SVector<f64, Q>, v: SVector<f64, N>) -> Self {
         self.goal = state(&q, &v);
         self
     }
@@ -173,11 +262,26 @@ where
         self.weight_final.as_ref().unwrap_or(&self.weight_x)
     }
 
+    /// x₁ ⊖ x₀ of two of the problem's states (2N numbers).
+    pub(super) fn minus(&self, x1: &DVector<f64>, x0: &DVector<f64>) -> DVector<f64> {
+        difference::<N, Q>(S::ORIENTATIONS, x0, x1)
+    }
+
+    /// x ⊕ d of a state and a tangent vector.
+    pub(super) fn plus(&self, x: &DVector<f64>, d: &DVector<f64>) -> DVector<f64> {
+        retract::<N, Q>(S::ORIENTATIONS, x, d)
+    }
+
+    /// The weighted error's gradient and Gauss–Newton Hessian (`weighted`).
+    fn quadratic(&self, w: &DMatrix<f64>, e: &DVector<f64>) -> (DVector<f64>, DMatrix<f64>) {
+        weighted::<N>(S::ORIENTATIONS, w, e)
+    }
+
     /// The running cost of (x, u) at step k.
     pub(super) fn running(&self, k: usize, x: &DVector<f64>, u: &DVector<f64>) -> f64 {
-        let (dx, du) = (x - &self.goal, u - &self.input_target);
+        let (dx, du) = (self.minus(x, &self.goal), u - &self.input_target);
         let quadratic = 0.5 * (dx.dot(&(&self.weight_x * &dx)) + du.dot(&(&self.weight_u * &du)));
-        let (q, v) = split::<N>(x);
+        let (q, v) = split::<N, Q>(x);
         let u = SVector::<f64, P>::from_column_slice(u.as_slice());
         let t = self.time(k);
         let terms: f64 = self
@@ -190,8 +294,8 @@ where
 
     /// The terminal cost of x.
     pub(super) fn terminal(&self, x: &DVector<f64>) -> f64 {
-        let dx = x - &self.goal;
-        let (q, v) = split::<N>(x);
+        let dx = self.minus(x, &self.goal);
+        let (q, v) = split::<N, Q>(x);
         let t = self.time(self.steps);
         let terms: f64 = self
             .final_terms
@@ -212,15 +316,16 @@ where
         x: &DVector<f64>,
         u: &DVector<f64>,
     ) -> Result<CostModel, Error> {
+        let (lx, lxx) = self.quadratic(&self.weight_x, &self.minus(x, &self.goal));
         let mut model = CostModel {
             value: 0.0,
-            lx: &self.weight_x * (x - &self.goal),
+            lx,
             lu: &self.weight_u * (u - &self.input_target),
-            lxx: self.weight_x.clone(),
+            lxx,
             luu: self.weight_u.clone(),
             lux: DMatrix::zeros(P, 2 * N),
         };
-        let (q, v) = split::<N>(x);
+        let (q, v) = split::<N, Q>(x);
         let u = SVector::<f64, P>::from_column_slice(u.as_slice());
         for term in &self.running_terms {
             let m = term.model(self.time(k), &q, &v, Some(&u));
@@ -236,15 +341,16 @@ where
     /// As [`running_model`](Self::running_model).
     pub(super) fn final_model(&self, x: &DVector<f64>) -> Result<CostModel, Error> {
         let w = self.final_weight_or_running();
+        let (lx, lxx) = self.quadratic(w, &self.minus(x, &self.goal));
         let mut model = CostModel {
             value: 0.0,
-            lx: w * (x - &self.goal),
+            lx,
             lu: DVector::zeros(0),
-            lxx: w.clone(),
+            lxx,
             luu: DMatrix::zeros(0, 0),
             lux: DMatrix::zeros(0, 2 * N),
         };
-        let (q, v) = split::<N>(x);
+        let (q, v) = split::<N, Q>(x);
         for term in &self.final_terms {
             let m = term.model(self.time(self.steps), &q, &v, None);
             check_model(&m, 2 * N, 0)?;
@@ -289,6 +395,10 @@ where
                 "the start, the goal and the input target must be finite",
             ));
         }
+        for x in [&self.start, &self.goal] {
+            let q = SVector::<f64, Q>::from_fn(|i, _| x[i]);
+            unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, q)?;
+        }
         let ordered = (0..P).all(|i| self.lower[i] <= self.upper[i] && !self.lower[i].is_nan());
         if !ordered {
             return Err(data(
@@ -296,7 +406,7 @@ where
             ));
         }
         if let Some((lower, upper)) = &self.state_limits {
-            let ordered = (0..2 * N).all(|i| lower[i] <= upper[i] && !lower[i].is_nan());
+            let ordered = (0..Q + N).all(|i| lower[i] <= upper[i] && !lower[i].is_nan());
             if !ordered {
                 return Err(data(
                     "each state limit's lower bound must be at most its upper bound",
