@@ -168,3 +168,33 @@ fn negative_damping_from_the_parameters_is_refused() {
         other => panic!("expected NonPhysicalParameter, got {other:?}"),
     }
 }
+
+/// The Panda's file states damping alone (0.003 at each arm joint, 0.3 at
+/// each finger, the second mimicking the first).
+#[derive(Lagrangian)]
+#[lagrange(urdf("robots/panda.urdf", dynamics = read), gravity = [0, 0, -9.81])]
+struct PandaRead {}
+
+#[derive(Lagrangian)]
+#[lagrange(urdf("robots/panda.urdf", dynamics = ignore), gravity = [0, 0, -9.81])]
+struct PandaIgnored {}
+
+/// `dynamics = read` adds −b q̇ to Q, and nothing to M or h: the finger's
+/// coordinate takes both fingers' 0.3 (the second slides at q̇).
+#[test]
+fn urdf_dynamics_read_adds_the_files_damping() {
+    let (read, ignored) = (PandaRead {}, PandaIgnored {});
+    let q = SVector::<f64, 8>::from_fn(|i, _| 0.1 * i as f64 - 0.3);
+    let v = SVector::<f64, 8>::from_fn(|i, _| 0.7 - 0.2 * i as f64);
+    let b = [0.003, 0.003, 0.003, 0.003, 0.003, 0.003, 0.003, 0.6];
+    let gained = read.generalized_forces(&q, &v, 0.0) - ignored.generalized_forces(&q, &v, 0.0);
+    for i in 0..8 {
+        assert!(
+            (gained[i] + b[i] * v[i]).abs() < 1e-15,
+            "Q[{i}] gained {}",
+            gained[i]
+        );
+    }
+    assert_eq!(read.mass_matrix(&q, 0.0), ignored.mass_matrix(&q, 0.0));
+    assert_eq!(read.bias(&q, &v, 0.0), ignored.bias(&q, &v, 0.0));
+}
