@@ -82,13 +82,13 @@ fn option(key: &Ident, coordinate: &Ident) -> syn::Result<JointOption> {
 /// A value that must not be negative: a literal is checked now; an
 /// expression of the parameters is kept for lowering.
 fn non_negative(value: Expr, what: &str) -> syn::Result<Expr> {
-    if let Ok(x) = number(&value, what) {
-        if x < 0.0 {
-            return Err(syn::Error::new(
-                value.span(),
-                format!("{what} = {x}: a joint's {what} is ≥ 0 (a negative one feeds energy in)"),
-            ));
-        }
+    if let Ok(x) = number(&value, what)
+        && x < 0.0
+    {
+        return Err(syn::Error::new(
+            value.span(),
+            format!("{what} = {x}: a joint's {what} is ≥ 0 (a negative one feeds energy in)"),
+        ));
     }
     Ok(value)
 }
