@@ -66,8 +66,13 @@ fn main() {
         let path = format!("../robots/{file}");
         println!("cargo::rerun-if-changed={path}");
         let text = std::fs::read_to_string(&path).expect("the arms' URDFs are in robots/");
-        let urdf = lagrange_codegen::urdf::from_text(&text, file, &[], Default::default())
-            .expect("the arm reads");
+        // The rigid-body dynamics, as Pinocchio's `rnea` and `aba` compute.
+        let ignored = lagrange_codegen::urdf::Options {
+            dynamics: lagrange_codegen::urdf::DynamicsRule::Ignore,
+            ..Default::default()
+        };
+        let urdf =
+            lagrange_codegen::urdf::from_text(&text, file, &[], ignored).expect("the arm reads");
         let items = lagrange_codegen::chain::written_out(&urdf.items);
         let _ = write!(
             out,

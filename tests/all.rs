@@ -49,6 +49,7 @@ mod identify_consistent;
 mod identify_excite;
 mod identify_payload;
 mod inputs;
+mod joints;
 mod operational_space;
 mod order;
 mod physical;

@@ -17,7 +17,7 @@ use nalgebra::SVector;
 struct Ur5 {}
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/xarm7.urdf", gravity = [0, 0, -9.81], emit(articulated, batched))]
+#[lagrange(urdf("robots/xarm7.urdf", dynamics = ignore), gravity = [0, 0, -9.81], emit(articulated, batched))]
 struct Xarm7 {}
 
 #[derive(Lagrangian)]

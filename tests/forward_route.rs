@@ -15,7 +15,7 @@ use crate::floating_bases::Solo12;
 macro_rules! arm {
     ($name:ident, $file:literal) => {
         #[derive(Lagrangian)]
-        #[lagrange(urdf = $file, gravity = [0, 0, -9.81], emit(articulated))]
+        #[lagrange(urdf($file, dynamics = ignore), gravity = [0, 0, -9.81], emit(articulated))]
         struct $name {}
     };
 }

@@ -17,7 +17,7 @@ use nalgebra::{DVector, SVector};
 pub(crate) struct Ur5 {}
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/panda.urdf", gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
+#[lagrange(urdf("robots/panda.urdf", dynamics = ignore), gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
 struct Panda {}
 
 #[derive(Lagrangian)]
@@ -25,11 +25,11 @@ struct Panda {}
 pub(crate) struct Kinova {}
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/z1.urdf", gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
+#[lagrange(urdf("robots/z1.urdf", dynamics = ignore), gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
 pub(crate) struct Z1 {}
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/xarm7.urdf", gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
+#[lagrange(urdf("robots/xarm7.urdf", dynamics = ignore), gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
 pub(crate) struct Xarm7 {}
 
 #[derive(Lagrangian)]

@@ -376,7 +376,7 @@ fn a_posture_leaves_the_task_alone() {
 /// operational-space control.
 #[derive(Lagrangian)]
 #[lagrange(
-    urdf = "robots/xarm7.urdf",
+    urdf("robots/xarm7.urdf", dynamics = ignore),
     inputs(u1, u2, u3, u4, u5, u6, u7),
     generalized_force(
         joint1 = u1, joint2 = u2, joint3 = u3, joint4 = u4, joint5 = u5, joint6 = u6, joint7 = u7

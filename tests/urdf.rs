@@ -19,7 +19,7 @@ struct Ur5 {}
 
 #[derive(Lagrangian)]
 #[lagrange(
-    urdf = "robots/panda.urdf",
+    urdf("robots/panda.urdf", dynamics = ignore),
     gravity = [0, 0, -9.81],
     emit(inverse_dynamics, kinematics)
 )]

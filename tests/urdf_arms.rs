@@ -32,7 +32,7 @@ struct Kinova {}
 
 #[derive(Lagrangian)]
 #[lagrange(
-    urdf = "robots/z1.urdf",
+    urdf("robots/z1.urdf", dynamics = ignore),
     gravity = [0, 0, -9.81],
     emit(inverse_dynamics, kinematics)
 )]
@@ -40,7 +40,7 @@ struct Z1 {}
 
 #[derive(Lagrangian)]
 #[lagrange(
-    urdf = "robots/xarm7.urdf",
+    urdf("robots/xarm7.urdf", dynamics = ignore),
     gravity = [0, 0, -9.81],
     emit(inverse_dynamics, kinematics)
 )]

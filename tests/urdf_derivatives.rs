@@ -23,11 +23,11 @@ struct Ur10 {}
 struct Kinova {}
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/z1.urdf", gravity = [0, 0, -9.81], emit(jacobians))]
+#[lagrange(urdf("robots/z1.urdf", dynamics = ignore), gravity = [0, 0, -9.81], emit(jacobians))]
 struct Z1 {}
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/xarm7.urdf", gravity = [0, 0, -9.81], emit(jacobians))]
+#[lagrange(urdf("robots/xarm7.urdf", dynamics = ignore), gravity = [0, 0, -9.81], emit(jacobians))]
 pub(crate) struct Xarm7 {}
 
 const REFERENCE: &str = include_str!("data/urdf_derivatives.txt");

@@ -18,7 +18,7 @@ use std::hint::black_box;
 macro_rules! arm {
     ($name:ident, $file:tt) => {
         #[derive(Lagrangian, Default)]
-        #[lagrange(urdf = $file, gravity = [0, 0, -9.81], emit(articulated, jacobians, batched))]
+        #[lagrange(urdf($file, dynamics = ignore), gravity = [0, 0, -9.81], emit(articulated, jacobians, batched))]
         struct $name {}
     };
 }

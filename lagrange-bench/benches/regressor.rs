@@ -23,7 +23,7 @@ use std::hint::black_box;
 macro_rules! arm {
     ($name:ident, $file:tt $(, $option:ident = $value:tt)?) => {
         #[derive(Lagrangian, Default)]
-        #[lagrange(urdf($file $(, $option = $value)?), gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
+        #[lagrange(urdf($file, dynamics = ignore $(, $option = $value)?), gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
         struct $name {}
     };
 }

@@ -21,14 +21,14 @@ use std::hint::black_box;
 macro_rules! arm {
     ($name:ident, $file:tt) => {
         #[derive(Lagrangian, Default)]
-        #[lagrange(urdf = $file, gravity = [0, 0, -9.81], emit(inverse_dynamics, kinematics))]
+        #[lagrange(urdf($file, dynamics = ignore), gravity = [0, 0, -9.81], emit(inverse_dynamics, kinematics))]
         struct $name {}
     };
     ($name:ident, $articulated:ident, $file:tt) => {
         arm!($name, $file);
 
         #[derive(Lagrangian, Default)]
-        #[lagrange(urdf = $file, gravity = [0, 0, -9.81], emit(articulated))]
+        #[lagrange(urdf($file, dynamics = ignore), gravity = [0, 0, -9.81], emit(articulated))]
         struct $articulated {}
     };
 }

@@ -42,11 +42,11 @@ use std::time::Instant;
 macro_rules! arm {
     ($name:ident, $articulated:ident, $file:tt) => {
         #[derive(Lagrangian, Default)]
-        #[lagrange(urdf = $file, gravity = [0, 0, -9.81], emit(jacobians, inverse_dynamics))]
+        #[lagrange(urdf($file, dynamics = ignore), gravity = [0, 0, -9.81], emit(jacobians, inverse_dynamics))]
         struct $name {}
 
         #[derive(Lagrangian, Default)]
-        #[lagrange(urdf = $file, gravity = [0, 0, -9.81], emit(articulated))]
+        #[lagrange(urdf($file, dynamics = ignore), gravity = [0, 0, -9.81], emit(articulated))]
         struct $articulated {}
     };
 }

@@ -53,7 +53,7 @@ fn main() {
         row("A1", &a1, "");
         row("A1 articulated", &a1, ", emit(articulated)");
     }
-    let panda = format!("\"{dir}/panda.urdf\"");
+    let panda = format!("\"{dir}/panda.urdf\", dynamics = ignore");
     row(
         "Panda all",
         &panda,

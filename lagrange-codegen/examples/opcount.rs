@@ -139,12 +139,12 @@ fn robots() {
     for (file, snap) in [
         ("ur5.urdf", ""),
         ("ur5.urdf", ", snap = 1e-6"),
-        ("panda.urdf", ""),
+        ("panda.urdf", ", dynamics = ignore"),
         ("ur10.urdf", ""),
         ("kinova.urdf", ""),
         ("kinova.urdf", ", snap = 1e-6"),
-        ("z1.urdf", ""),
-        ("xarm7.urdf", ""),
+        ("z1.urdf", ", dynamics = ignore"),
+        ("xarm7.urdf", ", dynamics = ignore"),
     ] {
         let src = format!(
             "#[lagrange(urdf(\"{}/../robots/{file}\"{snap}), gravity = [0, 0, -9.81])] struct Robot {{}}",

@@ -149,6 +149,21 @@ pub struct GeneralizedForce {
     pub value: Expr,
 }
 
+/// `joint(q, damping = b, armature = Ia)`: what a joint's drive adds on
+/// its coordinate, each an expression of the parameters (≥ 0): viscous
+/// damping, −b q̇ in Q, and the rotor's reflected inertia, Ia on M's
+/// diagonal entry (q, q). (Coulomb friction, `friction = fc`, is parsed
+/// and refused at its token until it runs exactly.)
+#[derive(Clone, Debug)]
+pub struct Joint {
+    /// The coordinate.
+    pub coordinate: Ident,
+    /// The viscous damping coefficient b.
+    pub damping: Option<Expr>,
+    /// The armature Ia.
+    pub armature: Option<Expr>,
+}
+
 /// `define(name = expr)`: an intermediate quantity usable in later expressions.
 #[derive(Clone, Debug)]
 pub struct Definition {
@@ -264,6 +279,8 @@ pub struct System {
     pub shapes: Vec<Shape>,
     /// `contact(...)` and `stop(...)`: unilateral contacts, in order.
     pub contacts: Vec<Contact>,
+    /// `joint(...)`: each coordinate's viscous damping and rotor inertia.
+    pub joints: Vec<Joint>,
     /// Where to point errors that concern the whole description (e.g. "no coordinates").
     pub span: Span,
     /// `urdf = "path"`: the robot file the description was read from.

@@ -354,6 +354,9 @@ fn used_elsewhere(system: &System, angles: &[String]) -> Option<(Ident, &'static
         ));
         rest.push((g.value.to_token_stream(), "a generalized force"));
     }
+    for j in &system.joints {
+        rest.push((j.coordinate.to_token_stream(), "a joint's coordinate"));
+    }
     places.extend(rest);
     places
         .into_iter()

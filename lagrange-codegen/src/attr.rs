@@ -18,6 +18,7 @@ use crate::loads;
 use keyword::{FORMULATIONS, KEYS, Key, OUTPUTS, Words};
 
 mod contact;
+mod joint;
 mod keyword;
 
 /// One top-level item of the attribute.
@@ -43,6 +44,7 @@ enum Item {
     Urdf(syn::LitStr, crate::urdf::Options),
     Shape(Shape),
     Contact(crate::ast::Contact),
+    Joint(crate::ast::Joint),
 }
 
 impl Parse for Item {
@@ -96,6 +98,7 @@ impl Parse for Item {
             Key::Shape => crate::shape::parse(input).map(Item::Shape),
             Key::Contact => contact::parse_contact(input).map(Item::Contact),
             Key::Stop => contact::parse_stop(input).map(Item::Contact),
+            Key::Joint => joint::parse_joint(input).map(Item::Joint),
         }
     }
 }
@@ -329,6 +332,7 @@ pub fn parse(cx: &Ctxt, input: &DeriveInput) -> Option<System> {
         generalized_forces: Vec::new(),
         shapes: Vec::new(),
         contacts: Vec::new(),
+        joints: Vec::new(),
         span: input.ident.span(),
         urdf: None,
     };
@@ -425,6 +429,7 @@ fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
         Item::GeneralizedForce(g) => system.generalized_forces.extend(g),
         Item::Shape(s) => system.shapes.push(s),
         Item::Contact(c) => system.contacts.push(c),
+        Item::Joint(j) => system.joints.push(j),
         Item::Gravity(k, v) => set_once(cx, &mut system.gravity, k, v),
         Item::Potential(k, v) => set_once(cx, &mut system.potential, k, v),
         Item::Dissipation(k, v) => set_once(cx, &mut system.dissipation, k, v),

@@ -26,6 +26,7 @@ pub fn check(cx: &Ctxt, system: &System) -> bool {
     let unique = check_unique_names(cx, system);
     check_dimensions(cx, system);
     check_load_targets(cx, system);
+    check_joints(cx, system);
     check_formulation(cx, system);
     check_batched(cx, system);
     unique
@@ -544,6 +545,46 @@ fn check_load_targets(cx: &Ctxt, system: &System) {
                     "generalized force for {}; it names one of `coordinates(...)`",
                     what_is(system, &g.coordinate, "coordinate")
                 ),
+            );
+        }
+    }
+}
+
+/// Each `joint` names a coordinate, at most one joint per coordinate; an
+/// armature is not a column of `emit(regressor)`'s Y (which would then
+/// leave Ia q̈ out of τ = Y π), so the two are refused together.
+fn check_joints(cx: &Ctxt, system: &System) {
+    for (k, j) in system.joints.iter().enumerate() {
+        if !system.coordinates.contains(&j.coordinate) {
+            let hint = if system.orientations.contains(&j.coordinate) {
+                " (a free orientation's three rates are not one joint's)"
+            } else {
+                ""
+            };
+            cx.error_at(
+                j.coordinate.span(),
+                format!(
+                    "joint on {}; it names one of `coordinates(...)`{hint}",
+                    what_is(system, &j.coordinate, "coordinate")
+                ),
+            );
+        } else if system.joints[..k]
+            .iter()
+            .any(|o| o.coordinate == j.coordinate)
+        {
+            cx.error_at(
+                j.coordinate.span(),
+                format!(
+                    "a second `joint({})`: write its options in one item",
+                    j.coordinate
+                ),
+            );
+        }
+        let regressor = system.extras.iter().any(|(_, e)| *e == Extra::Regressor);
+        if let (true, Some(a)) = (regressor, &j.armature) {
+            cx.error_spanned_by(
+                a,
+                "`emit(regressor)` with an armature is not supported yet: Y π covers the bodies' inertial parameters, not Ia q̈; remove the armature or the regressor",
             );
         }
     }

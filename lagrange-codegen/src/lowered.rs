@@ -54,8 +54,12 @@ pub struct Lowered {
     pub dissipation: Option<Sym>,
     /// (position of the point of application, Cartesian force)
     pub forces: Vec<(Vec<Sym>, Vec<Sym>)>,
-    /// (coordinate index, generalized force)
+    /// (coordinate index, generalized force); a `joint`'s damping −b q̇
+    /// among them, after the user's.
     pub generalized_forces: Vec<(usize, Sym)>,
+    /// (coordinate index, armature): added to M's diagonal entry, and
+    /// ½ Ia q̇² to T, by both routes.
+    pub armature: Vec<(usize, Sym)>,
     /// The holonomic constraints, in declaration order.
     pub holonomic: Vec<ConstraintModel>,
     /// The nonholonomic constraints, in declaration order.
@@ -89,6 +93,9 @@ pub enum PhysicalCheck {
     /// about fewer axes, whose other moments the equations never read: only
     /// their signs are checked.
     Moments(String, [&'static str; 3], [Sym; 3]),
+    /// A joint's damping or armature (named by its coordinate and the
+    /// option), which must be ≥ 0.
+    Joint(String, &'static str, Sym),
 }
 
 /// Where bodies and points sit, recorded while lowering.

@@ -48,6 +48,30 @@ pub fn mass(lw: &Lowerer, name: &str, what: &str, syntax: &Expr, m: Sym) -> Opti
     None
 }
 
+/// A joint's damping or armature (`what`) on `coordinate`, which must be
+/// ≥ 0: checked now if it is a constant (the error at `syntax`), else
+/// recorded for `check_parameters`.
+pub fn joint(
+    lw: &Lowerer,
+    coordinate: &str,
+    what: &'static str,
+    syntax: &Expr,
+    v: Sym,
+) -> Option<PhysicalCheck> {
+    let Some(x) = value(lw, v) else {
+        return Some(PhysicalCheck::Joint(coordinate.to_string(), what, v));
+    };
+    if x < 0.0 {
+        lw.cx.error_spanned_by(
+            syntax,
+            format!(
+                "joint `{coordinate}`: {what} = {x}: a joint's {what} is ≥ 0 (a negative one feeds energy in)"
+            ),
+        );
+    }
+    None
+}
+
 /// How a body's inertia is given and used.
 #[derive(Copy, Clone)]
 pub struct Shape {

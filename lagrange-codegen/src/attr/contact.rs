@@ -244,7 +244,7 @@ impl Options {
 }
 
 /// A number written as a literal, possibly negated.
-fn number(e: &Expr, what: &str) -> syn::Result<f64> {
+pub(super) fn number(e: &Expr, what: &str) -> syn::Result<f64> {
     let value = match e {
         Expr::Lit(l) => match &l.lit {
             syn::Lit::Int(i) => i.base10_parse::<f64>().ok(),

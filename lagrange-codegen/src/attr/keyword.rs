@@ -89,6 +89,7 @@ pub(super) enum Key {
     Shape,
     Contact,
     Stop,
+    Joint,
 }
 
 const fn word<T>(spelling: &'static str, value: T, about: &'static str) -> Word<T> {
@@ -146,6 +147,34 @@ pub(super) const KEYS: Words<Key> = Words(&[
         "contact(name, on = point, normal = [0, 0, 1], restitution = e, friction = mu)",
     ),
     word("stop", Key::Stop, "stop(name, q >= lower, restitution = e)"),
+    word("joint", Key::Joint, "joint(q, damping = b, armature = Ia)"),
+]);
+
+/// An option of `joint(...)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum JointOption {
+    Damping,
+    Friction,
+    Armature,
+}
+
+/// The options of `joint(...)`.
+pub(super) const JOINT_OPTIONS: Words<JointOption> = Words(&[
+    word(
+        "damping",
+        JointOption::Damping,
+        "damping = b: viscous damping, −b q̇ in the coordinate's generalized force (b ≥ 0)",
+    ),
+    word(
+        "friction",
+        JointOption::Friction,
+        "friction = fc: Coulomb friction at the joint (not supported yet: 0 alone)",
+    ),
+    word(
+        "armature",
+        JointOption::Armature,
+        "armature = Ia: a rotor's reflected inertia, added to M's diagonal entry (q, q) (Ia ≥ 0)",
+    ),
 ]);
 
 /// An option of `contact(...)` or `stop(...)`.
@@ -310,6 +339,7 @@ mod tests {
         once(&OUTPUTS);
         once(&FORMULATIONS);
         once(&CONTACT_OPTIONS);
+        once(&JOINT_OPTIONS);
     }
 
     #[test]

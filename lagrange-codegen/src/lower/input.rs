@@ -50,6 +50,11 @@ impl NoInputs {
         place: "a nonholonomic constraint",
         why: "the constraint is differentiated in time, which would need the input's time derivative, not supplied at run time",
     };
+    /// A joint's damping or armature.
+    pub const JOINT: NoInputs = NoInputs {
+        place: "a joint's damping or armature",
+        why: "a joint's coefficients are constants of the system, read from the parameters alone",
+    };
     /// A shape's sizes.
     pub const SHAPE: NoInputs = NoInputs {
         place: "a shape's size",

@@ -17,6 +17,7 @@
 //! (`model`), each its own type. Every step builds nodes in the order the
 //! single function did, so the emitted code is unchanged byte for byte.
 
+mod armature;
 mod base_parameters;
 mod chart;
 mod contact;
@@ -164,15 +165,22 @@ fn unconstrained(
     let zero_acc = at_zero(ctx, &qdd);
     let masses = (&lowered.points[..], &lowered.spins[..], &lowered.skeleton);
     let gravity = lowered.gravity.as_deref();
-    let tree = recursive::detect(ctx, route, masses, gravity);
+    let mut tree = recursive::detect(ctx, route, masses, gravity);
     let generic = wants_generic(route, &tree)?;
+    if let Ok(t) = &mut tree {
+        t.set_armature(&lowered.armature);
+    }
     let (tree, not_a_tree) = tree.map_or_else(|why| (None, Some(why)), |t| (Some(t), None));
     let points = &lowered.points;
     let spins = &lowered.spins;
     let (kin, spin, rheonomic, kinetic) =
         kinematics::derive(ctx, points, spins, generic, &zero_acc);
-    let generic_terms =
-        generic.then(|| generic::derive(ctx, &kin, &spin, kinetic, rheonomic, &zero_acc));
+    let kinetic = armature::kinetic(ctx, kinetic, &lowered.armature);
+    let generic_terms = generic.then(|| {
+        let mut g = generic::derive(ctx, &kin, &spin, kinetic, rheonomic, &zero_acc);
+        armature::add_to_mass(ctx, &mut g.mass, &lowered.armature);
+        g
+    });
     let recursive_terms = recursive::cheaper(ctx, tree.as_ref(), generic_terms.as_ref());
     let route_reason = route_reason(recursive_terms.is_some(), tree.as_ref(), not_a_tree);
     let input_names = take(&mut lowered.inputs);

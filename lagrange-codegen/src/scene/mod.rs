@@ -4,6 +4,7 @@
 
 mod contacts;
 mod items;
+mod joints;
 use lagrange_symbolic::Expr as Sym;
 use syn::{BinOp, Expr, Ident};
 
@@ -48,7 +49,9 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         }
     }
     crate::physical::free_bodies(&lw, &system.bodies, &items.skeleton, &items.spins);
-    let applied = applied(&mut lw, system);
+    let mut applied = applied(&mut lw, system);
+    let joints = joints::joints(&mut lw, system, &mut items.checks);
+    applied.generalized_forces.extend(joints.damping);
     let (holonomic, nonholonomic) = constraints(&mut lw, system);
     let contacts = contacts::contacts(&mut lw, system);
     let formulations = check::formulations(system);
@@ -88,6 +91,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         dissipation: applied.dissipation,
         forces: applied.forces,
         generalized_forces: applied.generalized_forces,
+        armature: joints.armature,
         holonomic,
         nonholonomic,
         contacts,

@@ -14,7 +14,7 @@ use crate::mat3::{Mat3, cross, mat_vec};
 pub struct ForwardDynamics {
     /// q̈_i, in coordinate order.
     pub accelerations: Vec<Sym>,
-    /// D_i = Sᵢᵀ I_iᴬ Sᵢ, the pivots of M's LᵀDL factorisation in tree order: a
+    /// D_i = Sᵢᵀ I_iᴬ Sᵢ (+ the joint's armature), the pivots of M's LᵀDL factorisation in tree order: a
     /// tiny ratio of the smallest to the largest says M is nearly singular.
     pub pivots: Vec<Sym>,
 }
@@ -125,6 +125,10 @@ fn articulated_inertias(ctx: &mut Context, tree: &Tree, tau: &[Sym], links: &mut
         let s = inertia[i];
         let [u_n, u_f] = column(ctx, link, &s);
         let d = project(ctx, link, &[u_n, u_f]);
+        // D = Sᵀ Iᴬ S + Ia: the rotor's inertia is the joint's own.
+        let d = (tree.armature.iter())
+            .filter(|(q, _)| *q == link.coordinate)
+            .fold(d, |d, &(_, ia)| ctx.add(d, ia));
         let p_joint = project(ctx, link, &bias[i]);
         let u = ctx.sub(tau[link.coordinate], p_joint);
         columns[i] = [u_n, u_f];

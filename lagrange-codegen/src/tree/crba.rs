@@ -56,6 +56,9 @@ pub fn mass_matrix(ctx: &mut Context, tree: &Tree) -> Vec<Vec<Sym>> {
             }
         }
     }
+    for &(qi, ia) in &tree.armature {
+        m[qi][qi] = ctx.add(m[qi][qi], ia);
+    }
     m
 }
 

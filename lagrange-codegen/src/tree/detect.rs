@@ -72,6 +72,7 @@ pub fn detect(ctx: &mut Context, skeleton: &Skeleton, masses: &Masses) -> Result
         links,
         gravity,
         spheres,
+        armature: Vec::new(),
     })
 }
 

@@ -95,6 +95,9 @@ pub struct Tree {
     gravity: Option<[Sym; 3]>,
     /// Each spherical joint's first link and its chart's θ.
     spheres: Spheres,
+    /// (coordinate, Ia): rotor inertias, which M's diagonal, τ's Ia q̈ and
+    /// the articulated pivots take (none for a tree as detected).
+    armature: Vec<(usize, Sym)>,
 }
 
 /// Spherical joints: each one's first link and its chart's θ.
@@ -150,7 +153,15 @@ impl Tree {
             links,
             gravity: self.gravity,
             spheres: Vec::new(),
+            armature: self.armature.clone(),
         }
+    }
+
+    /// The same tree with each coordinate's rotor inertia (`joint(q,
+    /// armature = Ia)`): Ia on M's diagonal, Ia q̈ in τ, Ia in the
+    /// articulated pivot of the joint it drives.
+    pub fn set_armature(&mut self, armature: &[(usize, Sym)]) {
+        self.armature = armature.to_vec();
     }
 
     /// Whether the tree has a spherical joint (a free orientation).

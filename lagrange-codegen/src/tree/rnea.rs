@@ -47,6 +47,13 @@ fn recursive_newton_euler(
         })
         .collect();
     let mut tau = vec![zero; ctx.coordinates().len()];
+    if accelerated {
+        // A rotor's reflected inertia turns with its coordinate alone.
+        let qdd = ctx.accelerations();
+        for &(qi, ia) in &tree.armature {
+            tau[qi] = ctx.mul(ia, qdd[qi]);
+        }
+    }
     for k in (0..n).rev() {
         let link = &tree.links[k];
         let [nk, fk] = forces[k];

@@ -13,7 +13,7 @@ use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
 use super::model::{Inertial, Joint, JointType, Number, ReadError, Robot};
-use super::options::Base;
+use super::options::{Base, DynamicsRule};
 use super::tokens::{identifier, product};
 
 /// The description's items, with what the derive publishes beside the
@@ -332,7 +332,11 @@ fn coordinates<'r>(
 /// (coordinates `<root>_x`, `_y`, `_z` for its origin in world axes, first as
 /// in Pinocchio's free flyer, and an orientation `<root>_turn` for its
 /// rotation, which every other link's rotation begins with) or fixed.
-pub fn describe(robot: &Robot, fields: &[String], base: Base) -> Result<Description, ReadError> {
+pub fn describe(
+    robot: &Robot,
+    fields: &[String],
+    (base, dynamics): (Base, DynamicsRule),
+) -> Result<Description, ReadError> {
     let (robot, floating) = based(robot, base)?;
     let order = tree_order(&robot)?;
     // The struct's fields are parameters, in the description's one name space.
@@ -392,6 +396,12 @@ pub fn describe(robot: &Robot, fields: &[String], base: Base) -> Result<Descript
         items.extend(item);
         factors.insert(link, mine);
     }
+    items.extend(super::dynamics::joint_items(
+        &robot,
+        dynamics,
+        &c.names,
+        &c.angle_of,
+    )?);
     Ok(Description {
         items,
         coordinates: c.names.iter().map(Ident::to_string).collect(),

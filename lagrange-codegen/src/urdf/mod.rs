@@ -9,12 +9,13 @@
 //! line).
 
 mod describe;
+mod dynamics;
 mod inertia;
 mod model;
 mod options;
 mod tokens;
 
-pub use options::{Base, InertiaRule, Options, SNAP_BOUND, parse_attribute};
+pub use options::{Base, DynamicsRule, InertiaRule, Options, SNAP_BOUND, parse_attribute};
 
 use proc_macro2::{Group, Span, TokenStream, TokenTree};
 
@@ -132,7 +133,8 @@ pub fn from_text(
     let snapped = options
         .snap
         .map_or_else(Vec::new, |tol| snap(&mut robot, tol));
-    let d = describe::describe(&robot, fields, options.base).map_err(at)?;
+    let rules = (options.base, options.dynamics);
+    let d = describe::describe(&robot, fields, rules).map_err(at)?;
     Ok(Urdf {
         path: path.to_string(),
         items: d.items,

@@ -1,7 +1,7 @@
 //! A URDF file read into links and joints, numbers kept as written, each
 //! element with its line for the errors. Only what the dynamics need is read:
-//! inertials, joint origins, axes, types, limits and mimics (visuals and
-//! collisions are skipped).
+//! inertials, joint origins, axes, types, limits, mimics and `<dynamics>`
+//! (visuals and collisions are skipped).
 
 use roxmltree::{Document, Node};
 
@@ -82,6 +82,17 @@ pub struct Joint {
     /// Lower and upper position limits, if the file gives them.
     pub limits: Option<(f64, f64)>,
     pub mimic: Option<Mimic>,
+    /// `<dynamics damping=".." friction="..">`, if the file gives it.
+    pub dynamics: Option<Dynamics>,
+}
+
+/// `<dynamics damping=".." friction="..">` (each 0 when absent), with the
+/// element's line.
+#[derive(Clone, Debug)]
+pub struct Dynamics {
+    pub damping: Number,
+    pub friction: Number,
+    pub line: u32,
 }
 
 #[derive(Clone)]
@@ -315,6 +326,14 @@ fn joint(doc: &Document, node: Node) -> Result<Joint, ReadError> {
             offset: number(doc, m, m.attribute("offset").unwrap_or("0"))?,
         }),
     };
+    let dynamics = match child(node, "dynamics") {
+        None => None,
+        Some(d) => Some(Dynamics {
+            damping: number(doc, d, d.attribute("damping").unwrap_or("0"))?,
+            friction: number(doc, d, d.attribute("friction").unwrap_or("0"))?,
+            line: line_of(doc, d),
+        }),
+    };
     Ok(Joint {
         parent: end("parent")?,
         child: end("child")?,
@@ -325,5 +344,6 @@ fn joint(doc: &Document, node: Node) -> Result<Joint, ReadError> {
         axis,
         limits,
         mimic,
+        dynamics,
     })
 }

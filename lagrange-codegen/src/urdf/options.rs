@@ -40,6 +40,24 @@ pub enum InertiaRule {
     AsWritten,
 }
 
+/// What becomes of the joints' `<dynamics damping friction>` (`dynamics = ..`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DynamicsRule {
+    /// Not written: a file whose `<dynamics>` are all zero reads as the
+    /// rigid-body dynamics; one with a non-zero value is refused, naming the
+    /// first such joint and its line, so that no loss the file states is
+    /// dropped without a word.
+    #[default]
+    Unset,
+    /// `dynamics = read`: each joint's damping becomes `joint(q, damping =
+    /// b)` (a mimic joint's b times its multiplier squared on the joint it
+    /// follows); a non-zero friction is refused (not derived yet).
+    Read,
+    /// `dynamics = ignore`: the rigid-body dynamics, what Pinocchio's
+    /// `rnea` and `aba` compute.
+    Ignore,
+}
+
 /// The options of `urdf("path", ..)`.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Options {
@@ -50,12 +68,15 @@ pub struct Options {
     pub base: Base,
     /// `inertia = repair | as_written`.
     pub inertia: InertiaRule,
+    /// `dynamics = read | ignore`.
+    pub dynamics: DynamicsRule,
 }
 
 const OPTIONS: &str = "the options are `snap = tolerance` (angles within it, at most 1e-6 rad, \
-     of a multiple of π/2 become it), `base = fixed | floating` and `inertia = repair | \
+     of a multiple of π/2 become it), `base = fixed | floating`, `inertia = repair | \
      as_written` (an inertia that is no rigid body's made the nearest physical one, or used \
-     unchecked)";
+     unchecked) and `dynamics = read | ignore` (the joints' `<dynamics>` damping read as \
+     `joint(..)` items, or left out)";
 
 /// The attribute's `urdf = "path"`, or `urdf("path", snap = 1e-6, base =
 /// floating, inertia = repair)`: the path and the options.
@@ -87,6 +108,7 @@ pub fn parse_attribute(input: ParseStream) -> syn::Result<(syn::LitStr, Options)
             "snap" => options.snap = Some(snap_tolerance(&content)?),
             "base" => options.base = base(&content)?,
             "inertia" => options.inertia = inertia(&content)?,
+            "dynamics" => options.dynamics = dynamics(&content)?,
             _ => {
                 return Err(syn::Error::new(
                     key.span(),
@@ -150,6 +172,23 @@ fn inertia(content: ParseStream) -> syn::Result<InertiaRule> {
                 "unknown inertia rule `{kind}`: write `inertia = repair` (the nearest physical \
                  inertia, listed in `URDF_REPAIRED`) or `inertia = as_written` (unchecked); \
                  without it an inertia that is no rigid body's is refused"
+            ),
+        )),
+    }
+}
+
+/// `dynamics = read` or `dynamics = ignore`.
+fn dynamics(content: ParseStream) -> syn::Result<DynamicsRule> {
+    let kind: Ident = content.parse()?;
+    match kind.to_string().as_str() {
+        "read" => Ok(DynamicsRule::Read),
+        "ignore" => Ok(DynamicsRule::Ignore),
+        _ => Err(syn::Error::new(
+            kind.span(),
+            format!(
+                "unknown dynamics rule `{kind}`: write `dynamics = read` (the joints' damping as \
+                 `joint(q, damping = b)` items) or `dynamics = ignore` (the rigid-body dynamics, \
+                 what Pinocchio's rnea and aba compute)"
             ),
         )),
     }

@@ -348,7 +348,8 @@ pub enum Error {
     /// before every run.
     #[error("non-physical parameters: `{body}`: {entry} = {value}: {reason}")]
     NonPhysicalParameter {
-        /// The body (or point mass) whose mass or inertia is wrong.
+        /// The body (or point mass) whose mass or inertia is wrong, or the
+        /// coordinate whose joint's `damping` or `armature` is.
         body: &'static str,
         /// Which entry: `mass`, a principal moment `A`, `B`, `C`, a tensor
         /// entry `Ixx`, `Iyy`, `Izz`, or `inertia tensor` for the tensor as a whole.

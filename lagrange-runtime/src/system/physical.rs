@@ -13,6 +13,8 @@
 //!   matrix S = tr(I)/2·E − I (= ∫ r rᵀ dm) is positive semidefinite; that
 //!   implies both rules above for its principal moments.
 //!
+//! - A joint's damping and armature are non-negative.
+//!
 //! Equalities are allowed up to a relative round-off of 1e-12.
 
 use crate::error::Error;
@@ -36,6 +38,31 @@ pub fn mass<T: Real>(body: &'static str, m: T) -> Result<(), Error> {
         entry: "mass",
         value: m,
         reason: "a mass must be finite and non-negative".to_string(),
+    })
+}
+
+/// A joint's damping or armature (`entry`) on the coordinate `coordinate`
+/// must be finite and non-negative: a negative one feeds energy in.
+///
+/// # Errors
+/// [`Error::NonPhysicalParameter`] naming the coordinate (as `body`) and the
+/// entry.
+pub fn joint<T: Real>(
+    coordinate: &'static str,
+    entry: &'static str,
+    value: T,
+) -> Result<(), Error> {
+    let x = value.to_f64();
+    if x.is_finite() && x >= 0.0 {
+        return Ok(());
+    }
+    Err(Error::NonPhysicalParameter {
+        body: coordinate,
+        entry,
+        value: x,
+        reason: format!(
+            "a joint's {entry} must be finite and non-negative (a negative one feeds energy in)"
+        ),
     })
 }
 

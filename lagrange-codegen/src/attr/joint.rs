@@ -1,0 +1,111 @@
+//! `joint(q, damping = b, friction = fc, armature = Ia)`: what a joint's
+//! drive adds on its coordinate. The options are spelled in
+//! `keyword::JOINT_OPTIONS`; a negative literal is refused here, at its
+//! token (a value computed from the parameters is checked when lowered, in
+//! `physical::joint`, or at run time by `check_parameters`).
+
+use syn::parse::ParseStream;
+use syn::spanned::Spanned;
+use syn::{Expr, Ident, Token};
+
+use super::contact::number;
+use super::keyword::{JOINT_OPTIONS, JointOption};
+use crate::ast::Joint;
+
+/// The form the messages show.
+const FORM: &str = "joint(q, damping = b, armature = Ia)";
+
+/// `joint(q, option = value, ..)`.
+pub(super) fn parse_joint(input: ParseStream) -> syn::Result<Joint> {
+    let content;
+    syn::parenthesized!(content in input);
+    let coordinate: Ident = content.parse()?;
+    let mut joint = Joint {
+        coordinate,
+        damping: None,
+        armature: None,
+    };
+    let mut written: Vec<JointOption> = Vec::new();
+    while content.parse::<Option<Token![,]>>()?.is_some() && !content.is_empty() {
+        let key: Ident = content.parse()?;
+        let option = option(&key, &joint.coordinate)?;
+        if written.contains(&option) {
+            return Err(syn::Error::new(
+                key.span(),
+                format!("`{key}` is written twice for joint `{}`", joint.coordinate),
+            ));
+        }
+        written.push(option);
+        content.parse::<Token![=]>()?;
+        let value: Expr = content.parse()?;
+        match option {
+            JointOption::Damping => joint.damping = Some(non_negative(value, "damping")?),
+            JointOption::Armature => joint.armature = Some(non_negative(value, "armature")?),
+            JointOption::Friction => refuse_friction(&value, &joint.coordinate)?,
+        }
+    }
+    if !content.is_empty() {
+        return Err(content.error(format!(
+            "expected `, option = value` after the joint's coordinate: `{FORM}`"
+        )));
+    }
+    if written.is_empty() {
+        return Err(syn::Error::new(
+            joint.coordinate.span(),
+            format!(
+                "joint `{}` says nothing: write `{FORM}` (either option may be left out, not both)",
+                joint.coordinate
+            ),
+        ));
+    }
+    Ok(joint)
+}
+
+/// The option `key` spells, or the error that suggests the one meant.
+fn option(key: &Ident, coordinate: &Ident) -> syn::Result<JointOption> {
+    let word = key.to_string();
+    JOINT_OPTIONS.find(&word).ok_or_else(|| {
+        let expected = JOINT_OPTIONS.alternatives();
+        let message = match JOINT_OPTIONS.closest(&word) {
+            Some(w) => format!(
+                "unknown option `{word}` of joint `{coordinate}`; did you mean `{w}`? (expected {expected})"
+            ),
+            None => format!(
+                "unknown option `{word}` of joint `{coordinate}`; expected {expected}:\n{}",
+                JOINT_OPTIONS.described()
+            ),
+        };
+        syn::Error::new(key.span(), message)
+    })
+}
+
+/// A value that must not be negative: a literal is checked now; an
+/// expression of the parameters is kept for lowering.
+fn non_negative(value: Expr, what: &str) -> syn::Result<Expr> {
+    if let Ok(x) = number(&value, what)
+        && x < 0.0
+    {
+        return Err(syn::Error::new(
+            value.span(),
+            format!("{what} = {x}: a joint's {what} is ≥ 0 (a negative one feeds energy in)"),
+        ));
+    }
+    Ok(value)
+}
+
+/// Coulomb friction at a joint is not derived yet: anything but a literal 0
+/// is refused at its value, with what to write instead, rather than dropped.
+fn refuse_friction(value: &Expr, coordinate: &Ident) -> syn::Result<()> {
+    if number(value, "friction").is_ok_and(|x| x == 0.0) {
+        return Ok(());
+    }
+    Err(syn::Error::new(
+        value.span(),
+        format!(
+            "joint `{coordinate}`: Coulomb friction at a joint is not supported yet (it would be \
+             dropped); remove `friction`, or write it regularised as a generalized force, \
+             `generalized_force({coordinate} = -fc * tanh(dot({coordinate}) / v_s))` with a \
+             small speed v_s"
+        ),
+    ))
+}
