@@ -139,27 +139,6 @@ fn armature_adds_to_m_and_damping_to_q_on_both_routes() {
     }
 }
 
-/// Solves a small dense system by Gaussian elimination.
-fn solve(mut m: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
-    let n = b.len();
-    for k in 0..n {
-        for i in k + 1..n {
-            let f = m[i][k] / m[k][k];
-            let pivot = m[k].clone();
-            for (x, p) in m[i][k..].iter_mut().zip(&pivot[k..]) {
-                *x -= f * p;
-            }
-            b[i] -= f * b[k];
-        }
-    }
-    let mut x = vec![0.0; n];
-    for k in (0..n).rev() {
-        let s: f64 = (k + 1..n).map(|j| m[k][j] * x[j]).sum();
-        x[k] = (b[k] - s) / m[k][k];
-    }
-    x
-}
-
 #[test]
 fn articulated_accelerations_take_the_armature() {
     let model = model_by(&chain(true, "articulated"), Route::Auto);
@@ -180,11 +159,9 @@ fn articulated_accelerations_take_the_armature() {
         let p = random_point(&model, &mut rng);
         let tau: Vec<f64> = (0..3).map(|_| 3.0 * rng.next()).collect();
         let ev = |e: Expr| at(&model, e, (&model, &p), &[], (&[], &[]));
-        let m = (0..3)
-            .map(|i| (0..3).map(|j| ev(model.motion.mass[i][j])).collect())
-            .collect();
-        let rhs = (0..3).map(|i| ev(model.motion.rhs[i]) + tau[i]).collect();
-        let want = solve(m, rhs);
+        let m = nalgebra::Matrix3::from_fn(|i, j| ev(model.motion.mass[i][j]));
+        let rhs = nalgebra::Vector3::from_fn(|i, _| ev(model.motion.rhs[i]) + tau[i]);
+        let want = m.lu().solve(&rhs).expect("M is positive definite");
         for fd in &programs {
             for (i, &w) in want.iter().enumerate() {
                 let got = at(

@@ -77,6 +77,15 @@ fn spheres(
             ),
         ));
     }
+    if against == on {
+        return Err(syn::Error::new(
+            against.span(),
+            format!(
+                "contact `{name}`: `against = {against}` names the sphere's own point; two \
+                 spheres are two points or bodies: name the other one"
+            ),
+        ));
+    }
     if let Some(key) = options
         .friction_key
         .filter(|_| options.friction != Some(0.0))

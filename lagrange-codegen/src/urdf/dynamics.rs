@@ -71,19 +71,24 @@ fn read<'r>(
                 j.name, d.damping.text
             )));
         }
-        if !d.friction.is_zero() {
-            return Err(at(format!(
-                "joint `{}`: friction = {}: Coulomb friction at a joint is not supported yet \
-                 (it would be dropped); write `dynamics = ignore` and the damping as \
-                 `joint({}, damping = {})`, with friction, if wanted, regularised as \
-                 `generalized_force(q = -fc * tanh(dot(q) / v_s))`",
-                j.name, d.friction.text, j.name, d.damping.text
-            )));
-        }
         let (leader, ratio) = match &j.mimic {
             None => (j.name.as_str(), 1.0),
             Some(m) => (m.joint.as_str(), m.multiplier.value),
         };
+        if !d.friction.is_zero() {
+            // The coordinate's name, which the description's items read
+            // (the joint's, made a Rust name), not the file's joint name.
+            let q = angle_of
+                .get(leader)
+                .map_or_else(|| leader.to_string(), |q| q.to_string());
+            return Err(at(format!(
+                "joint `{}`: friction = {}: Coulomb friction at a joint is not supported yet \
+                 (it would be dropped); write `dynamics = ignore` and the damping as \
+                 `joint({q}, damping = {})`, with friction, if wanted, regularised as \
+                 `generalized_force({q} = -fc * tanh(dot({q}) / v_s))`",
+                j.name, d.friction.text, d.damping.text
+            )));
+        }
         if let Some(q) = angle_of.get(leader) {
             *damping.entry(q.to_string()).or_insert(0.0) += d.damping.value * ratio * ratio;
         }
