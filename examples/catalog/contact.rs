@@ -82,3 +82,44 @@ pub struct StoppedPendulum {
 
 /// The stop's restitution.
 pub const STOP_RESTITUTION: f64 = 0.6;
+
+/// A box of width a and height b in the vertical plane (x, z), turning
+/// about y, tossed onto the floor z = 0: its four corners are points
+/// without mass, each a contact with restitution 0.2 and friction 0.5. Its
+/// landings hit two corners at once and rock between corners, with contacts
+/// closing and opening every few milliseconds, which is what the
+/// time-stepping scheme (`MoreauJean`) is for.
+#[derive(Lagrangian, Clone, Copy, Debug)]
+#[lagrange(
+    coordinates(x, z, theta),
+    body(block, mass = m, inertia = [m * b * b / 12, m * (a * a + b * b) / 12, m * a * a / 12],
+         at = [x, 0, z], rotation = rot_y(theta)),
+    gravity = [0, 0, -g],
+    point(c1, mass = 0, at = [x + a / 2 * cos(theta) + b / 2 * sin(theta), 0,
+                             z - a / 2 * sin(theta) + b / 2 * cos(theta)]),
+    point(c2, mass = 0, at = [x - a / 2 * cos(theta) + b / 2 * sin(theta), 0,
+                             z + a / 2 * sin(theta) + b / 2 * cos(theta)]),
+    point(c3, mass = 0, at = [x - a / 2 * cos(theta) - b / 2 * sin(theta), 0,
+                             z + a / 2 * sin(theta) - b / 2 * cos(theta)]),
+    point(c4, mass = 0, at = [x + a / 2 * cos(theta) - b / 2 * sin(theta), 0,
+                             z - a / 2 * sin(theta) - b / 2 * cos(theta)]),
+    contact(corner1, on = c1, normal = [0, 0, 1], restitution = 0.2, friction = 0.5),
+    contact(corner2, on = c2, normal = [0, 0, 1], restitution = 0.2, friction = 0.5),
+    contact(corner3, on = c3, normal = [0, 0, 1], restitution = 0.2, friction = 0.5),
+    contact(corner4, on = c4, normal = [0, 0, 1], restitution = 0.2, friction = 0.5),
+    point(floor_start, mass = 0, at = [-1, 0, 0]),
+    point(floor_end, mass = 0, at = [3, 0, 0]),
+    shape(block, box(size = [a, 0.4 * a, b])),
+    shape(line(floor_start, floor_end)),
+)]
+pub struct TossedBox {
+    pub m: f64,
+    pub a: f64,
+    pub b: f64,
+    pub g: f64,
+}
+
+/// The box's friction coefficient and restitution.
+pub const BOX_FRICTION: f64 = 0.5;
+/// See [`BOX_FRICTION`].
+pub const BOX_RESTITUTION: f64 = 0.2;

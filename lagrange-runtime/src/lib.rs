@@ -262,8 +262,8 @@ pub use numeric::lanes::F64x4;
 pub use numeric::orientation::Orientation;
 pub use numeric::{Real, func};
 pub use ode::{
-    Continuation, DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, Radau5, Record, Rk4,
-    Sample, SecondOrder, Stats, StormerVerlet, Trajectory,
+    Continuation, DenseSegment, Dop853, Dopri5, Gauss, Integrator, Mechanical, MoreauJean, Radau5,
+    Record, Rk4, Sample, SecondOrder, Stats, StormerVerlet, Trajectory,
 };
 pub use pose::{Kinematics, Posed};
 pub use scene::Scene;

@@ -8,7 +8,7 @@ use crate::error::{ContactError, ContactFault, Error, Failure, SettingsError};
 use crate::event::{Event, Events};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
-use crate::ode::{Continuation, Integrator, Sample, Trajectory, check_problem};
+use crate::ode::{Continuation, Integrator, MoreauJean, Sample, Trajectory, check_problem};
 use crate::system::{ContactLaw, ContactRows, Contacts};
 use nalgebra::SVector;
 use std::ops::Range;
@@ -37,9 +37,9 @@ pub(super) struct Driver<'s, S, T: Real, const N: usize> {
     pub(super) laws: Vec<ContactLaw>,
     pub(super) settings: ContactSettings,
     pub(super) singular: T,
-    trajectory: Option<Trajectory<T, N>>,
-    changes: Vec<ContactChange<T>>,
-    phases: Vec<(T, Vec<Mode<T>>)>,
+    pub(super) trajectory: Option<Trajectory<T, N>>,
+    pub(super) changes: Vec<ContactChange<T>>,
+    pub(super) phases: Vec<(T, Vec<Mode<T>>)>,
 }
 
 /// Runs `system` with its contacts from (q0, v0) over `span`.
@@ -59,7 +59,13 @@ pub(crate) fn run_contacts<S: Contacts<T, N>, I: Integrator, T: Real, const N: u
         changes: Vec::new(),
         phases: Vec::new(),
     };
-    let outcome = driver.drive(integrator, q0, v0, span.clone());
+    let stepping = integrator
+        .as_any()
+        .and_then(|a| a.downcast_ref::<MoreauJean>());
+    let outcome = match stepping {
+        Some(scheme) => driver.step_through(scheme, q0, v0, span.clone()),
+        None => driver.drive(integrator, q0, v0, span.clone()),
+    };
     let trajectory = match driver.trajectory.take() {
         Some(t) => t,
         None => {
@@ -81,7 +87,7 @@ pub(crate) fn run_contacts<S: Contacts<T, N>, I: Integrator, T: Real, const N: u
 }
 
 /// e ∈ [0, 1] and μ ≥ 0, finite.
-fn check_laws(laws: &[ContactLaw]) -> Result<(), Error> {
+pub(super) fn check_laws(laws: &[ContactLaw]) -> Result<(), Error> {
     for law in laws {
         let name = law.name;
         if !(0.0..=1.0).contains(&law.restitution) {
@@ -118,7 +124,7 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
     }
 
     /// The laws' names are `CONTACTS`, in order.
-    fn check_listed(&self, t0: T, q0: &SVector<T, N>) -> Result<(), Error> {
+    pub(super) fn check_listed(&self, t0: T, q0: &SVector<T, N>) -> Result<(), Error> {
         let laws: Vec<&'static str> = self.laws.iter().map(|l| l.name).collect();
         if laws == S::CONTACTS {
             return Ok(());

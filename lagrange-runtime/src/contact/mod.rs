@@ -59,11 +59,13 @@
 //!
 //! [`ContactError`]: crate::error::ContactError
 
+mod coulomb;
 mod driver;
 mod form;
 mod impact;
 mod modes;
 mod run;
+mod stepping;
 
 pub use run::{ChangeKind, ContactChange, ContactForce, ContactRun, ContactSettings, ContactState};
 

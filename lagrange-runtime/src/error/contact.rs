@@ -54,6 +54,18 @@ pub enum ContactFault {
         /// Kinetic energy after.
         after: f64,
     },
+    /// The time-stepping scheme's impulse problem of one step did not settle
+    /// within its Gauss–Seidel sweeps ([`MoreauJean::sweeps`]): the last
+    /// sweep still moved a contact's velocities by `change`. Raise the
+    /// sweeps, loosen the tolerance, or shorten the step.
+    ///
+    /// [`MoreauJean::sweeps`]: crate::MoreauJean::sweeps
+    ImpulsesUnsettled {
+        /// The sweeps taken.
+        sweeps: usize,
+        /// How far the last sweep moved a contact's velocities.
+        change: f64,
+    },
     /// The system lists more contact laws than it gives rows for.
     MissingRows {
         /// The number of laws.
@@ -109,6 +121,12 @@ impl fmt::Display for ContactFault {
                 f,
                 "Newton's law on these simultaneous impacts would raise the kinetic energy \
                  from {before} to {after}"
+            ),
+            ContactFault::ImpulsesUnsettled { sweeps, change } => write!(
+                f,
+                "the step's impulse problem did not settle in {sweeps} Gauss–Seidel sweeps (the \
+                 last moved a contact's velocities by {change:e}); raise `MoreauJean::sweeps`, \
+                 loosen its tolerance or shorten the step"
             ),
             ContactFault::MissingRows { laws } => write!(
                 f,

@@ -1,0 +1,261 @@
+//! The time-stepping run ([`MoreauJean`]): fixed steps, each with one
+//! impulse problem over the contacts closed at its midpoint, and the
+//! changes of the contacts' modes read off the impulses step by step.
+
+use super::coulomb::{Branch, Local, gauss_seidel};
+use super::driver::{Driver, check_laws};
+use super::form::{Mode, has_tangent};
+use super::run::{ChangeKind, ContactState};
+use crate::error::{ContactFault, Error};
+use crate::numeric::Real;
+use crate::numeric::cholesky::Cholesky;
+use crate::numeric::clock::Stopwatch;
+use crate::ode::{Continuation, MoreauJean, Sample, Trajectory, check_problem, fixed_steps};
+use crate::ode::{Stats, midpoint_segment};
+use crate::system::Contacts;
+use nalgebra::SVector;
+use std::ops::Range;
+
+/// One step's outcome per contact: its mode after the step and the normal
+/// speed it had at the midpoint, before the impulse.
+struct Outcome<T> {
+    modes: Vec<Mode<T>>,
+    approach: Vec<T>,
+}
+
+impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
+    /// The fixed steps of `scheme` over `span`, recording the motion, the
+    /// modes and their changes.
+    pub(super) fn step_through(
+        &mut self,
+        scheme: &MoreauJean,
+        q0: SVector<T, N>,
+        v0: SVector<T, N>,
+        span: Range<T>,
+    ) -> Result<(), Error> {
+        let (t0, t1) = (span.start, span.end);
+        check_problem(t0, t1, &q0, &v0)?;
+        self.settings.check()?;
+        check_laws(&self.laws)?;
+        self.check_listed(t0, &q0)?;
+        scheme.recording().check_span(t0, t1, 2 * N)?;
+        let n = scheme.steps(t0, t1)?;
+        self.refuse_penetration(t0, &q0, &v0)?;
+        let open = vec![Mode::Open; self.laws.len()];
+        let sample = Sample::of(&self.form(open.clone()), t0, &q0, &v0);
+        let mut traj = Trajectory::start_recording(
+            scheme.recording(),
+            Continuation::start(t0),
+            t0,
+            q0,
+            v0,
+            sample,
+        );
+        traj.reserve(n);
+        self.phases.push((t0, open.clone()));
+        let started = Stopwatch::start();
+        let mut stats = Stats::default();
+        let (mut q, mut v, mut modes) = (q0, v0, open);
+        let mut impulses: Vec<Option<[T; 3]>> = vec![None; self.laws.len()];
+        let mut outcome = Ok(());
+        for (t, t_next) in fixed_steps(t0, t1, T::lit(scheme.step_size()), n) {
+            stats.evaluations += 1;
+            match self.step(scheme, (t, t_next), (&q, &v), &mut impulses) {
+                Ok((q_next, v_next, after)) => {
+                    stats.accepted += 1;
+                    let tm = T::lit(0.5) * (t + t_next);
+                    let after = self.note_changes(tm, &modes, &after, &v_next, &q_next);
+                    let form = self.form(after.clone());
+                    let segment =
+                        midpoint_segment(&form, (t, t_next), (&q, &v), (&q_next, &v_next));
+                    traj.push_sampled(segment, q_next, v_next, |t, q, v| {
+                        Sample::of(&form, t, q, v)
+                    });
+                    (q, v, modes) = (q_next, v_next, after);
+                }
+                Err(error) => {
+                    outcome = Err(error);
+                    break;
+                }
+            }
+        }
+        stats.wall_time = started.elapsed();
+        traj.set_stats(stats);
+        self.trajectory = Some(traj);
+        outcome
+    }
+
+    /// A start below a surface beyond the gap tolerance is refused, as the
+    /// event-driven run refuses it.
+    fn refuse_penetration(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<(), Error> {
+        let form = self.form(vec![Mode::Open; self.laws.len()]);
+        let tolerance = T::lit(self.settings.gap_tolerance);
+        for i in 0..self.laws.len() {
+            let gap = form.rows(i, t, q, v)?.gap;
+            if gap < -tolerance {
+                let fault = ContactFault::Penetrates {
+                    gap: gap.to_f64(),
+                    tolerance: self.settings.gap_tolerance,
+                };
+                return Err(form.fault(i, t, q, fault));
+            }
+        }
+        Ok(())
+    }
+
+    /// One step from (q, v) at t to t_next: the state after it and what
+    /// the contacts did. `impulses` holds each contact's impulse of the
+    /// step before (the warm start), and is updated.
+    #[allow(clippy::type_complexity)]
+    fn step(
+        &self,
+        scheme: &MoreauJean,
+        (t, t_next): (T, T),
+        (q, v): (&SVector<T, N>, &SVector<T, N>),
+        impulses: &mut [Option<[T; 3]>],
+    ) -> Result<(SVector<T, N>, SVector<T, N>, Outcome<T>), Error> {
+        let h = t_next - t;
+        let half = T::lit(0.5) * h;
+        let tm = t + half;
+        let mid = q + v * half;
+        let form = self.form(vec![Mode::Open; self.laws.len()]);
+        let (m, rhs) = self.system.mass_matrix_and_rhs(&mid, v, tm);
+        let chol = Cholesky::new(m, self.singular).map_err(|ratio| Error::SingularMassMatrix {
+            t: tm.to_f64(),
+            q: crate::error::to_vec(&mid),
+            ratio: ratio.to_f64(),
+            direction: String::new(),
+            atlas: false,
+        })?;
+        let mut next_v = v + chol.solve(rhs) * h;
+        let mut locals = Vec::new();
+        let mut approach = vec![T::zero(); self.laws.len()];
+        for (i, law) in self.laws.iter().enumerate() {
+            let r = form.rows(i, tm, &mid, v)?;
+            approach[i] = r.normal.dot(v);
+            if r.gap > T::lit(self.settings.gap_tolerance) {
+                impulses[i] = None;
+                continue;
+            }
+            let mu = T::lit(law.friction);
+            let mut rows = vec![r.normal];
+            let mut tangents = Vec::new();
+            for (k, row) in r.tangents.iter().enumerate() {
+                if mu > T::zero() && has_tangent(row) {
+                    rows.push(*row);
+                    tangents.push(k);
+                }
+            }
+            let responses = rows.iter().map(|row| chol.solve(*row)).collect();
+            let bias = T::lit(law.restitution) * approach[i];
+            let mut local = Local::new(i, (rows, tangents), responses, bias, mu);
+            if let Some(p) = impulses[i] {
+                local.impulse = p;
+                let p = local.impulse;
+                let mut moved = next_v;
+                for (response, d) in local.responses.iter().zip(&p) {
+                    moved += response * *d;
+                }
+                next_v = moved;
+            }
+            locals.push(local);
+        }
+        let tolerance = T::lit(scheme.velocity_tolerance());
+        if let Err(residual) =
+            gauss_seidel(&mut locals, &mut next_v, scheme.max_sweeps(), tolerance)
+        {
+            let contact = locals.first().map_or(0, |c| c.contact);
+            let fault = if !residual.is_finite() {
+                ContactFault::NoImpulse
+            } else {
+                ContactFault::ImpulsesUnsettled {
+                    sweeps: scheme.max_sweeps(),
+                    change: residual.to_f64(),
+                }
+            };
+            return Err(form.fault(contact, tm, &mid, fault));
+        }
+        let next_q = mid + next_v * half;
+        if !(next_q.iter().chain(next_v.iter()).all(|x| x.is_finite())) {
+            return Err(Error::non_finite(t_next, &next_q, &next_v));
+        }
+        let mut modes = vec![Mode::Open; self.laws.len()];
+        for c in &locals {
+            impulses[c.contact] = Some(c.impulse);
+            modes[c.contact] = match c.branch {
+                Branch::Apart => Mode::Open,
+                Branch::Sticking if c.tangents.is_empty() => Mode::Sliding {
+                    hint: [T::zero(); 2],
+                },
+                Branch::Sticking => Mode::Sticking,
+                Branch::Sliding { s } => Mode::Sliding {
+                    hint: in_axes(&c.tangents, s),
+                },
+            };
+        }
+        Ok((next_q, next_v, Outcome { modes, approach }))
+    }
+
+    /// Records the changes of mode of one step at its midpoint `tm`: an
+    /// impact (or a closing without speed) for a contact that takes an
+    /// impulse after being apart; a contact that bounces off is apart again
+    /// after it. A contact in force that takes none lifts off; one that
+    /// stops slipping sticks, and the other way. Returns the modes after the
+    /// step.
+    fn note_changes(
+        &mut self,
+        tm: T,
+        before: &[Mode<T>],
+        after: &Outcome<T>,
+        v: &SVector<T, N>,
+        q: &SVector<T, N>,
+    ) -> Vec<Mode<T>> {
+        let rest = T::lit(self.settings.rest_speed);
+        let mut modes = after.modes.clone();
+        for (i, (old, new)) in before.iter().zip(&after.modes).enumerate() {
+            let kind = match (old, new) {
+                (Mode::Open, Mode::Open) => continue,
+                (Mode::Open, _) => {
+                    let speed = self.normal_speed(i, tm, q, v);
+                    if speed > rest {
+                        modes[i] = Mode::Open;
+                    }
+                    match after.approach[i] < -rest {
+                        true => ChangeKind::Impact {
+                            before: after.approach[i],
+                            after: speed,
+                        },
+                        false => ChangeKind::Closes,
+                    }
+                }
+                (_, Mode::Open) => ChangeKind::LiftsOff,
+                (Mode::Sliding { .. }, Mode::Sticking) => ChangeKind::Sticks,
+                (Mode::Sticking, Mode::Sliding { .. }) => ChangeKind::Slips,
+                _ => continue,
+            };
+            self.record(tm, i, kind);
+        }
+        let states = |m: &[Mode<T>]| m.iter().map(|&x| ContactState::from(x)).collect::<Vec<_>>();
+        if self.phases.last().map(|(_, m)| states(m)) != Some(states(&modes)) {
+            self.phases.push((tm, modes.clone()));
+        }
+        modes
+    }
+
+    /// A contact's normal speed n·v at (q, v); zero where it has no rows.
+    fn normal_speed(&self, i: usize, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
+        self.system
+            .contact_rows(i, q, v, t)
+            .map_or(T::zero(), |r| r.normal.dot(v))
+    }
+}
+
+/// A slip direction over the rows a contact rubs along, in its two tangent
+/// axes.
+fn in_axes<T: Real>(tangents: &[usize], s: [T; 2]) -> [T; 2] {
+    let mut hint = [T::zero(); 2];
+    for (k, &axis) in tangents.iter().enumerate() {
+        hint[axis] = s[k];
+    }
+    hint
+}
