@@ -3,8 +3,10 @@
 //! (`peer/mujoco/contact_scenes.py`, BENCHMARKS.md "Contact beside MuJoCo"):
 //! a ball bouncing to rest, a sphere thrown sliding (no spin, and with
 //! backspin) that rolls, a block sliding obliquely to a stop, a pendulum
-//! against a stop. Each scene runs at the tolerance the tests use (Dop853
-//! 1e-13) and at looser ones; before timing, a table of each run's errors
+//! against a stop; and a box tossed onto the floor on its four corners.
+//! Each scene runs event by event at the tolerance the tests use (Dop853
+//! 1e-13) and at looser ones, and by Moreau–Jean's time stepping at steps
+//! of 1e-2 to 1e-4 s; before timing, a table of each run's errors
 //! against the closed forms and its own time per simulated second goes to
 //! stderr, so that "error vs time per simulated second" has both sides.
 //!
@@ -20,11 +22,12 @@ mod contact;
 
 use contact::{
     BALL_FRICTION, BALL_RESTITUTION, BLOCK_FRICTION, Ball, STOP_RESTITUTION, SlidingBlock,
-    StoppedPendulum,
+    StoppedPendulum, TossedBox,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
+use lagrange::error::Failure;
 use lagrange::prelude::*;
-use lagrange::{ChangeKind, ContactRun, ContactSettings, Dop853};
+use lagrange::{ChangeKind, ContactRun, ContactSettings, Contacts, Dop853, MoreauJean};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -45,8 +48,59 @@ const PENDULUM: StoppedPendulum = StoppedPendulum {
     g: G,
 };
 
-/// The tolerances: the tests' (1e-13), then looser.
-const TOLERANCES: [f64; 3] = [1e-13, 1e-9, 1e-6];
+const BOX: TossedBox = TossedBox {
+    m: 1.0,
+    a: 0.4,
+    b: 0.2,
+    g: G,
+};
+
+/// How a scene is run: event by event with Dop853 at a tolerance, or by
+/// Moreau–Jean's time stepping with a step.
+#[derive(Clone, Copy, Debug)]
+enum Scheme {
+    Events(f64),
+    Stepping(f64),
+}
+
+impl Scheme {
+    fn label(self) -> String {
+        match self {
+            Scheme::Events(tol) => format!("dop853 tol {tol:.0e}"),
+            Scheme::Stepping(h) => format!("moreau-jean h {h:.0e}"),
+        }
+    }
+}
+
+/// The schemes: the event-driven run at the tests' tolerance (1e-13) and
+/// looser; Moreau–Jean at steps from 1e-2 to 1e-4 s.
+const SCHEMES: [Scheme; 6] = [
+    Scheme::Events(1e-13),
+    Scheme::Events(1e-9),
+    Scheme::Events(1e-6),
+    Scheme::Stepping(1e-2),
+    Scheme::Stepping(1e-3),
+    Scheme::Stepping(1e-4),
+];
+
+/// Runs `system` from (q0, v0) over [0, end] by `scheme`, recording `record`.
+fn run<S: Contacts<f64, N>, const N: usize>(
+    system: &S,
+    (scheme, record): (Scheme, Record),
+    (q0, v0): ([f64; N], [f64; N]),
+    end: f64,
+) -> Result<ContactRun<f64, N>, Failure<ContactRun<f64, N>>> {
+    match scheme {
+        Scheme::Events(tol) => Simulation::new(system)
+            .integrator(Dop853::tol(tol).record(record))
+            .contact_settings(settings())
+            .run_contacts(q0, v0, 0.0..end),
+        Scheme::Stepping(h) => Simulation::new(system)
+            .integrator(MoreauJean::step(h).record(record))
+            .contact_settings(settings())
+            .run_contacts(q0, v0, 0.0..end),
+    }
+}
 
 /// Complete elliptic integral of the first kind by the AGM (as the catalog's
 /// `elliptic_k`, which lives in the catalog's `mod.rs`).
@@ -71,10 +125,6 @@ fn settings() -> ContactSettings {
     }
 }
 
-fn integrator(tol: f64, record: Record) -> Dop853 {
-    Dop853::tol(tol).record(record)
-}
-
 fn times<const N: usize>(run: &ContactRun<f64, N>, kind: fn(&ChangeKind<f64>) -> bool) -> Vec<f64> {
     (run.changes.iter())
         .filter(|c| kind(&c.kind))
@@ -91,19 +141,21 @@ type Runner = Box<dyn Fn() -> Vec<(&'static str, f64)>>;
 struct Scene {
     name: &'static str,
     span: f64,
-    run: fn(f64, Record) -> Runner,
+    run: fn(Scheme, Record) -> Runner,
 }
 
 /// Dropped from h₀ = 0.5 with e = 0.5: impacts at t₁(1 + 2e + … + 2e^(k−1)),
 /// the k-th rebound to e^(2k) h₀, at rest at t₁(1 + e)/(1 − e).
-fn ball(tol: f64, record: Record) -> Runner {
+fn ball(scheme: Scheme, record: Record) -> Runner {
     Box::new(move || {
         let (h0, e) = (0.5f64, BALL_RESTITUTION);
-        let run = Simulation::new(&BALL)
-            .integrator(integrator(tol, record))
-            .contact_settings(settings())
-            .run_contacts([0.0, h0 + BALL.r, 0.0], [0.0; 3], 0.0..1.5)
-            .unwrap();
+        let run = run(
+            &BALL,
+            (scheme, record),
+            ([0.0, h0 + BALL.r, 0.0], [0.0; 3]),
+            1.5,
+        )
+        .unwrap();
         let t1 = (2.0 * h0 / G).sqrt();
         let impacts = times(&run, |k| matches!(k, ChangeKind::Impact { .. }));
         let (mut exact, mut time_error) = (t1, 0.0f64);
@@ -115,10 +167,16 @@ fn ball(tol: f64, record: Record) -> Runner {
         let height_error = (impacts.windows(2).take(3).enumerate())
             .map(|(k, w)| (G / 8.0 * (w[1] - w[0]).powi(2) - e.powi(2 * k as i32 + 2) * h0).abs())
             .fold(0.0, f64::max);
-        let rest = run.changes.iter().find_map(|c| match c.kind {
-            ChangeKind::Rests { accumulation, .. } => Some(accumulation),
-            _ => None,
-        });
+        // The event-driven run says where the bounces accumulate; the time
+        // stepper's ball rests at its last impact or closing.
+        let rest = run
+            .changes
+            .iter()
+            .find_map(|c| match c.kind {
+                ChangeKind::Rests { accumulation, .. } => Some(accumulation),
+                _ => None,
+            })
+            .or(run.changes.last().map(|c| c.t));
         let depth = (run.trajectory.positions().iter())
             .map(|q| BALL.r - q[1])
             .fold(0.0, f64::max);
@@ -136,15 +194,12 @@ fn ball(tol: f64, record: Record) -> Runner {
 
 /// Thrown at v₀ = 2 m/s with spin ω₀ (backspin for ω₀ > 0): slips until
 /// t = 2(v₀ + rω₀)/(7μg), then rolls at (5v₀ − 2rω₀)/7.
-fn sphere(spin: f64) -> impl Fn(f64, Record) -> Runner {
-    move |tol, record| {
+fn sphere(spin: f64) -> impl Fn(Scheme, Record) -> Runner {
+    move |scheme, record| {
         Box::new(move || {
             let (v0, r, mu) = (2.0, BALL.r, BALL_FRICTION);
-            let run = Simulation::new(&BALL)
-                .integrator(integrator(tol, record))
-                .contact_settings(settings())
-                .run_contacts([0.0, r, 0.0], [v0, 0.0, -spin], 0.0..1.5)
-                .unwrap();
+            let state = ([0.0, r, 0.0], [v0, 0.0, -spin]);
+            let run = run(&BALL, (scheme, record), state, 1.5).unwrap();
             let sticks = times(&run, |k| matches!(k, ChangeKind::Sticks));
             let (_, v) = run.trajectory.final_state();
             let depth = (run.trajectory.positions().iter())
@@ -168,13 +223,10 @@ fn sphere(spin: f64) -> impl Fn(f64, Record) -> Runner {
 }
 
 /// Pushed at (3, 4) m/s: stops at |v₀|/(μg) after |v₀|²/(2μg), straight.
-fn block(tol: f64, record: Record) -> Runner {
+fn block(scheme: Scheme, record: Record) -> Runner {
     Box::new(move || {
         let mu = BLOCK_FRICTION;
-        let run = Simulation::new(&BLOCK)
-            .integrator(integrator(tol, record))
-            .run_contacts([0.0; 3], [3.0, 4.0, 0.0], 0.0..1.6)
-            .unwrap();
+        let run = run(&BLOCK, (scheme, record), ([0.0; 3], [3.0, 4.0, 0.0]), 1.6).unwrap();
         let sticks = times(&run, |k| matches!(k, ChangeKind::Sticks));
         let (q, _) = run.trajectory.final_state();
         let depth = (run.trajectory.positions().iter())
@@ -197,15 +249,11 @@ fn block(tol: f64, record: Record) -> Runner {
 
 /// Released at θ₀ = 1.2 against θ ≥ 0 with e = 0.6: impacts at T(θ₀)/4 and
 /// T(θ₀)/4 + T(θ₁)/2, 1 − cos θ₁ = e²(1 − cos θ₀).
-fn pendulum(tol: f64, record: Record) -> Runner {
+fn pendulum(scheme: Scheme, record: Record) -> Runner {
     Box::new(move || {
         let p = PENDULUM;
         let (th0, e) = (1.2f64, STOP_RESTITUTION);
-        let run = Simulation::new(&p)
-            .integrator(integrator(tol, record))
-            .contact_settings(settings())
-            .run_contacts([th0], [0.0], 0.0..3.0)
-            .unwrap();
+        let run = run(&p, (scheme, record), ([th0], [0.0]), 3.0).unwrap();
         let period = |a: f64| 4.0 * (p.l / p.g).sqrt() * elliptic_k((a / 2.0).sin());
         let th1 = (1.0 - e * e * (1.0 - th0.cos())).acos();
         let first = period(th0) / 4.0;
@@ -221,6 +269,44 @@ fn pendulum(tol: f64, record: Record) -> Runner {
     })
 }
 
+/// Tossed at (1.5, −6) m/s from 0.5 m, turning at 1 rad/s: it lands on a
+/// corner, rocks and settles flat. No closed form: the errors are how far
+/// from flat and at rest it ends (θ off a quarter turn, the centre off its
+/// resting height, the final speed) and how deep a corner sank; an
+/// event-driven run that cannot finish reports the time it reached as NaN
+/// errors and that time.
+fn tossed_box(scheme: Scheme, record: Record) -> Runner {
+    Box::new(move || {
+        let state = ([0.0, 0.5, 0.7], [1.5, 1.0, -6.0]);
+        let (run, reached) = match run(&BOX, (scheme, record), state, 3.0) {
+            Ok(run) => (run, 3.0),
+            Err(failure) => {
+                let reached = *failure.partial.trajectory.times().last().unwrap();
+                (*failure.partial, reached)
+            }
+        };
+        let (q, v) = run.trajectory.final_state();
+        let quarter = std::f64::consts::FRAC_PI_2;
+        let turns = (q[2] / quarter).round();
+        let height = if turns as i64 % 2 == 0 { BOX.b } else { BOX.a } / 2.0;
+        let (a, b) = (BOX.a / 2.0, BOX.b / 2.0);
+        let depth = (run.trajectory.positions().iter())
+            .flat_map(|q| {
+                let (s, c) = q[2].sin_cos();
+                [(a, b), (-a, b), (-a, -b), (a, -b)].map(|(x, z)| x * s - z * c - q[1])
+            })
+            .fold(0.0, f64::max);
+        let finished = |x: f64| if reached < 3.0 { f64::NAN } else { x };
+        vec![
+            ("off flat (rad)", finished((q[2] - turns * quarter).abs())),
+            ("off its height", finished((q[1] - height).abs())),
+            ("speed left", finished(v.norm())),
+            ("penetration", depth),
+            ("time reached", reached),
+        ]
+    })
+}
+
 fn scenes() -> Vec<Scene> {
     vec![
         Scene {
@@ -231,12 +317,12 @@ fn scenes() -> Vec<Scene> {
         Scene {
             name: "sphere_slide",
             span: 1.5,
-            run: |tol, record| sphere(0.0)(tol, record),
+            run: |scheme, record| sphere(0.0)(scheme, record),
         },
         Scene {
             name: "sphere_backspin",
             span: 1.5,
-            run: |tol, record| sphere(80.0)(tol, record),
+            run: |scheme, record| sphere(80.0)(scheme, record),
         },
         Scene {
             name: "block",
@@ -248,6 +334,11 @@ fn scenes() -> Vec<Scene> {
             span: 3.0,
             run: pendulum,
         },
+        Scene {
+            name: "box",
+            span: 3.0,
+            run: tossed_box,
+        },
     ]
 }
 
@@ -255,12 +346,12 @@ fn scenes() -> Vec<Scene> {
 /// time per simulated second (median of 7 batches of ≥ 50 ms, final state
 /// recorded only), as a markdown table on stderr.
 fn report() {
-    eprintln!("\n| scene | Dop853 tol | quantity | error | µs per run | µs per simulated s |");
+    eprintln!("\n| scene | scheme | quantity | error | µs per run | µs per simulated s |");
     eprintln!("|---|---|---|---|---|---|");
     for scene in scenes() {
-        for tol in TOLERANCES {
-            let errors = (scene.run)(tol, Record::Steps)();
-            let timed = (scene.run)(tol, Record::Final);
+        for scheme in SCHEMES {
+            let errors = (scene.run)(scheme, Record::Steps)();
+            let timed = (scene.run)(scheme, Record::Final);
             let mut batches = Vec::new();
             for _ in 0..7 {
                 let (start, mut n) = (Instant::now(), 0u32);
@@ -274,8 +365,9 @@ fn report() {
             let per_run = batches[3] * 1e6;
             for (quantity, error) in errors {
                 eprintln!(
-                    "| {} | {tol:.0e} | {quantity} | {error:.1e} | {per_run:.1} | {:.1} |",
+                    "| {} | {} | {quantity} | {error:.1e} | {per_run:.1} | {:.1} |",
                     scene.name,
+                    scheme.label(),
                     per_run / scene.span
                 );
             }
@@ -288,11 +380,9 @@ fn bench(c: &mut Criterion) {
     report();
     for scene in scenes() {
         let mut group = c.benchmark_group(format!("contact_{}_{}s", scene.name, scene.span));
-        for tol in TOLERANCES {
-            let run = (scene.run)(tol, Record::Final);
-            group.bench_function(format!("dop853 tol {tol:.0e}"), |b| {
-                b.iter(|| black_box(run()))
-            });
+        for scheme in SCHEMES {
+            let run = (scene.run)(scheme, Record::Final);
+            group.bench_function(scheme.label(), |b| b.iter(|| black_box(run())));
         }
         group.finish();
     }
