@@ -162,6 +162,11 @@ pub(crate) const ENTRIES: &[Entry] = &[
         "stop(wall, theta >= 0): impacts when the elliptic-integral periods say",
         contact::stopped_pendulum,
     ),
+    entry(
+        "box tossed onto the floor, μ = 0.5",
+        "four corners by Moreau–Jean time stepping (h = 1 ms): frictional impacts, rocking, at rest flat",
+        contact::tossed_box,
+    ),
     // Control and linearisation.
     entry(
         "two-link arm, computed-torque tracking",

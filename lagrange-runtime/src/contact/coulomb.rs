@@ -110,9 +110,9 @@ pub(super) fn gauss_seidel<T: Real, const N: usize>(
         for c in locals.iter_mut() {
             let d = c.size();
             let mut free = [T::zero(); 3];
-            for a in 0..d {
+            for (a, (f, row)) in free.iter_mut().zip(&c.rows).enumerate() {
                 let held: T = (0..d).fold(T::zero(), |s, b| s + c.block[a][b] * c.impulse[b]);
-                free[a] = c.rows[a].dot(v) - held;
+                *f = row.dot(v) - held;
             }
             free[0] += c.bias;
             let (p, branch) = coulomb(&c.block, d, free, c.friction).ok_or(T::lit(f64::NAN))?;

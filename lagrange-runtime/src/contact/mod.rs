@@ -1,5 +1,7 @@
 //! Unilateral contacts with Coulomb friction, run event by event
-//! ([`Simulation::run_contacts`](crate::Simulation::run_contacts)).
+//! ([`Simulation::run_contacts`](crate::Simulation::run_contacts)), or
+//! time-stepped when the run's integrator is
+//! [`MoreauJean`](crate::MoreauJean) (below, **Time stepping**).
 //!
 //! The scheme is the active-set, event-driven one of Pfeiffer and Glocker.
 //! Between events each contact is in one mode ([`ContactState`]): apart,
@@ -39,11 +41,21 @@
 //! acceleration a_n (exact while a_n is constant over the remaining
 //! bounces). The energy dropped is ½ m u² at most.
 //!
-//! **Scope.** Impacts are frictionless (the tangential velocity is kept
-//! through an impact); contacts are points or spheres against planes and
-//! stops on coordinates; systems without free orientations. Many frequent
-//! contacts (a box settling on its corners) call for a time-stepping scheme,
-//! which this module is not.
+//! **Scope.** The event-driven impacts are frictionless (the tangential
+//! velocity is kept through an impact); contacts are points or spheres against planes and
+//! stops on coordinates; systems without free orientations.
+//!
+//! **Time stepping.** With [`MoreauJean`](crate::MoreauJean) as the
+//! integrator, the run takes fixed steps instead (`stepping`): at each
+//! step's midpoint the contacts whose gap is closed (below the gap
+//! tolerance) take one impulse problem (`coulomb`): Newton's law at the
+//! velocity level and Coulomb's cone on the impulses, solved by nonsmooth
+//! Gauss–Seidel. The changes are read off the impulses at the midpoint of
+//! the step they happen in: an impulse on a contact that was apart is an
+//! impact (or a closing, without speed), a contact whose impulse vanishes
+//! lifts off, and the local solution's branch says sticking or sliding.
+//! No event is located, nothing stalls, and the answers are of order one
+//! in the step; impacts there have friction.
 //!
 //! **Allocation.** Unlike the other runs, which allocate only their growing
 //! [`Trajectory`](crate::Trajectory), a contact run allocates at every

@@ -25,7 +25,10 @@ pub struct ContactSettings {
     /// contact whose slip has stopped counts as stopped. Default 1e-9.
     pub stick_speed: f64,
     /// How far below the surface a state may be (after round-off) before it
-    /// counts as penetrating. Default 1e-9.
+    /// counts as penetrating. Default 1e-9. The time stepper
+    /// ([`MoreauJean`](crate::MoreauJean)) counts a contact closed once its
+    /// gap is below this, and checks it only at the start (its steps sink by
+    /// up to a step's travel at impact).
     pub gap_tolerance: f64,
     /// How many changes of mode a run may have. Default 10 000.
     pub max_changes: usize,

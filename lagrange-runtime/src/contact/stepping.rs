@@ -149,14 +149,12 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             let responses = rows.iter().map(|row| chol.solve(*row)).collect();
             let bias = T::lit(law.restitution) * approach[i];
             let mut local = Local::new(i, (rows, tangents), responses, bias, mu);
+            // Warm start: the impulse of the step before, already applied.
             if let Some(p) = impulses[i] {
                 local.impulse = p;
-                let p = local.impulse;
-                let mut moved = next_v;
                 for (response, d) in local.responses.iter().zip(&p) {
-                    moved += response * *d;
+                    next_v += response * *d;
                 }
-                next_v = moved;
             }
             locals.push(local);
         }

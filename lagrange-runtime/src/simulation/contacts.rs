@@ -18,6 +18,13 @@ impl<S, I: Integrator> Simulation<'_, S, I, Unforced, NoEvents> {
     /// [`contact_settings`](Self::contact_settings)'; the integrator is this
     /// simulation's, restarted at every change.
     ///
+    /// With [`MoreauJean`](crate::MoreauJean) as the integrator the run is
+    /// time-stepped instead: one impulse problem per fixed step over the
+    /// contacts closed at its midpoint, friction at impacts, the changes on
+    /// the step's grid (guide chapter 12, "Many contacts: time stepping").
+    /// `max_changes` does not bound it (its steps are counted beforehand,
+    /// against `MoreauJean::max_steps`).
+    ///
     /// # Errors
     /// A [`Failure`] with the run so far: [`Error::Settings`] for a bad
     /// setting, span, state or law (e outside [0, 1], μ < 0);
@@ -25,7 +32,9 @@ impl<S, I: Integrator> Simulation<'_, S, I, Unforced, NoEvents> {
     /// an impact or a choice of modes without answer;
     /// [`Error::TooManyEvents`] past the budget of changes,
     /// [`Error::EventsAccumulate`] for changes that pile up at one instant;
-    /// whatever the dynamics and the integrator report.
+    /// with `MoreauJean`, `ContactFault::ImpulsesUnsettled` for a step whose
+    /// impulses did not settle; whatever the dynamics and the integrator
+    /// report.
     ///
     /// [`Error::Settings`]: crate::Error::Settings
     /// [`Error::Contact`]: crate::Error::Contact
