@@ -33,6 +33,7 @@ mod constrained;
 mod constrained_control;
 mod constrained_tangent;
 mod contact;
+mod contact_compliant;
 mod contact_refused;
 mod contact_spheres;
 mod contact_stepping;

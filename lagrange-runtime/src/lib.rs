@@ -235,7 +235,7 @@ mod simulation;
 
 pub use atlas::{AtlasRun, ChartSwitch, ChartedTrajectory};
 pub use contact::{
-    ChangeKind, ContactChange, ContactForce, ContactRun, ContactSettings, ContactState,
+    ChangeKind, Compliant, ContactChange, ContactForce, ContactRun, ContactSettings, ContactState,
 };
 pub use control::{
     Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,

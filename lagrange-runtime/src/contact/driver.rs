@@ -2,6 +2,7 @@
 //! modes fixed and the events that end it watched on the dense output; at
 //! each event the impacts and the new modes.
 
+use super::compliant::Compliant;
 use super::form::{ContactForm, Mode, has_tangent};
 use super::run::{ChangeKind, ContactChange, ContactRun, ContactSettings};
 use crate::error::{ContactError, ContactFault, Error, Failure, SettingsError};
@@ -46,7 +47,7 @@ pub(super) struct Driver<'s, S, T: Real, const N: usize> {
 pub(crate) fn run_contacts<S: Contacts<T, N>, I: Integrator, T: Real, const N: usize>(
     system: &S,
     integrator: &I,
-    settings: ContactSettings,
+    (settings, compliant): (ContactSettings, Option<Compliant>),
     singular: T,
     (q0, v0, span): (SVector<T, N>, SVector<T, N>, Range<T>),
 ) -> Result<ContactRun<T, N>, Failure<ContactRun<T, N>>> {
@@ -62,9 +63,10 @@ pub(crate) fn run_contacts<S: Contacts<T, N>, I: Integrator, T: Real, const N: u
     let stepping = integrator
         .as_any()
         .and_then(|a| a.downcast_ref::<MoreauJean>());
-    let outcome = match stepping {
-        Some(scheme) => driver.step_through(scheme, q0, v0, span.clone()),
-        None => driver.drive(integrator, q0, v0, span.clone()),
+    let outcome = match (compliant, stepping) {
+        (Some(model), _) => driver.comply(&model, integrator, (q0, v0), span.clone()),
+        (None, Some(scheme)) => driver.step_through(scheme, q0, v0, span.clone()),
+        (None, None) => driver.drive(integrator, q0, v0, span.clone()),
     };
     let trajectory = match driver.trajectory.take() {
         Some(t) => t,
@@ -79,6 +81,7 @@ pub(crate) fn run_contacts<S: Contacts<T, N>, I: Integrator, T: Real, const N: u
         phases: driver.phases,
         singular,
         stick_speed: T::lit(settings.stick_speed),
+        compliant,
     };
     match outcome {
         Ok(()) => Ok(run),

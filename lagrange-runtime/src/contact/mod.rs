@@ -71,6 +71,7 @@
 //!
 //! [`ContactError`]: crate::error::ContactError
 
+mod compliant;
 mod coulomb;
 mod driver;
 mod form;
@@ -79,6 +80,7 @@ mod modes;
 mod run;
 mod stepping;
 
+pub use compliant::Compliant;
 pub use run::{ChangeKind, ContactChange, ContactForce, ContactRun, ContactSettings, ContactState};
 
 pub(crate) use driver::run_contacts;

@@ -1,6 +1,7 @@
 //! What a contact run takes (its settings) and gives (the motion, the
 //! changes of the contacts' modes, the forces on request).
 
+use super::compliant::Compliant;
 use super::form::{ContactForm, Mode};
 use crate::error::{Error, Progress, SettingsError};
 use crate::numeric::Real;
@@ -160,6 +161,8 @@ pub struct ContactRun<T: Real, const N: usize> {
     pub(crate) phases: Vec<(T, Vec<Mode<T>>)>,
     pub(crate) singular: T,
     pub(crate) stick_speed: T,
+    /// The compliant model the run had, if any: its forces are the model's.
+    pub(crate) compliant: Option<Compliant>,
 }
 
 impl<T: Real, const N: usize> ContactRun<T, N> {
@@ -178,7 +181,9 @@ impl<T: Real, const N: usize> ContactRun<T, N> {
         self.changes.iter().filter(move |c| c.contact == contact)
     }
 
-    /// The contact forces at the state (q, v) at t, in the modes of t.
+    /// The contact forces at the state (q, v) at t, in the modes of t (for
+    /// a run with compliant contacts, the model's spring, damper and
+    /// regularised friction at that state).
     ///
     /// # Errors
     /// Whatever the contacts' equations report there (a singular M, rows
@@ -198,6 +203,9 @@ impl<T: Real, const N: usize> ContactRun<T, N> {
             singular: self.singular,
             stick_speed: self.stick_speed,
         };
+        if let Some(model) = self.compliant {
+            return model.forces(&form, t, q, v);
+        }
         let solution = form.solve(t, q, v)?;
         Ok(solution
             .normal

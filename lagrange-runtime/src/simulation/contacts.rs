@@ -54,7 +54,7 @@ impl<S, I: Integrator> Simulation<'_, S, I, Unforced, NoEvents> {
         run_contacts(
             self.system,
             &self.integrator,
-            self.settings.contacts,
+            (self.settings.contacts, self.settings.compliant),
             singular,
             state,
         )

@@ -25,7 +25,7 @@ pub use kind::Runs;
 #[allow(deprecated)]
 pub use options::{Control, ControlledSimulation, EventSimulation, NoEvents, Unforced};
 
-use crate::contact::ContactSettings;
+use crate::contact::{Compliant, ContactSettings};
 use crate::error::{Error, Failure, Progress};
 use crate::event::LimitPolicy;
 use crate::mechanics::Tolerances;
@@ -119,6 +119,7 @@ pub(crate) struct Settings {
     pub project_initial: bool,
     pub limits: LimitPolicy,
     pub contacts: ContactSettings,
+    pub compliant: Option<Compliant>,
 }
 
 impl Default for Settings {
@@ -130,6 +131,7 @@ impl Default for Settings {
             project_initial: false,
             limits: LimitPolicy::Stop,
             contacts: ContactSettings::default(),
+            compliant: None,
         }
     }
 }
@@ -230,6 +232,16 @@ impl<'a, S, I, C, E> Simulation<'a, S, I, C, E> {
     /// the budget of changes ([`ContactSettings`]).
     pub fn contact_settings(mut self, settings: ContactSettings) -> Self {
         self.settings.contacts = settings;
+        self
+    }
+
+    /// Makes [`run_contacts`](Self::run_contacts) treat every contact as
+    /// compliant ([`Compliant`]): a spring and damper along its normal while
+    /// it is sunk, with friction regularised at low slip, integrated by
+    /// this simulation's integrator as one smooth motion, without events.
+    /// The damping matches each contact's restitution on an isolated impact.
+    pub fn compliant_contacts(mut self, model: Compliant) -> Self {
+        self.settings.compliant = Some(model);
         self
     }
 
