@@ -181,3 +181,37 @@ fn controlled_runs_stop_there_too() {
         .unwrap_err();
     check(&sampled.error);
 }
+
+#[derive(Lagrangian)]
+#[lagrange(urdf("tests/data/slider.urdf", limits = stops), gravity = [0, 0, -9.81])]
+struct EndStops {}
+
+/// With `limits = stops` the limits are plastic stops that `run_contacts`
+/// enforces: the carriage falls, meets its lower stop when s = g t²/2
+/// says, at g t, and stays there; every other run refuses the description.
+#[test]
+fn with_limits_as_stops_the_carriage_lands_on_its_end_stop() {
+    assert_eq!(EndStops::CONTACTS, ["drop_lower", "drop_upper"]);
+    let run = Simulation::new(&EndStops {})
+        .integrator(lagrange::Dop853::tol(1e-12))
+        .run_contacts([0.0], [0.0], 0.0..1.0)
+        .unwrap();
+    let landing = run.changes.first().expect("the landing");
+    let lagrange::ChangeKind::Impact { before, after } = landing.kind else {
+        panic!("{:?}", landing.kind)
+    };
+    assert_eq!(landing.contact, 0);
+    assert!((landing.t - closed_form()).abs() < 1e-9, "{}", landing.t);
+    assert!((before + 9.81 * closed_form()).abs() < 1e-9, "{before}");
+    assert!(after.abs() < 1e-12);
+    let (q, v) = run.trajectory.final_state();
+    assert!((q[0] + 0.5).abs() < 1e-12 && v[0].abs() < 1e-12, "{q} {v}");
+    let refused = Simulation::new(&EndStops {})
+        .run([0.0], [0.0], 0.0..1.0)
+        .unwrap_err();
+    assert!(
+        refused.error.to_string().contains("run_contacts"),
+        "{}",
+        refused.error
+    );
+}

@@ -27,7 +27,9 @@ use contact::{
 use criterion::{Criterion, criterion_group, criterion_main};
 use lagrange::error::Failure;
 use lagrange::prelude::*;
-use lagrange::{ChangeKind, ContactRun, ContactSettings, Contacts, Dop853, MoreauJean};
+use lagrange::{
+    ChangeKind, Compliant, ContactRun, ContactSettings, Contacts, Dop853, MoreauJean, Radau5,
+};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -61,6 +63,12 @@ const BOX: TossedBox = TossedBox {
 enum Scheme {
     Events(f64),
     Stepping(f64),
+    /// Compliant contacts of stiffness k, integrated by Dop853 (tol 1e-9)
+    /// or, when `stiff`, Radau5 (tol 1e-8).
+    Compliant {
+        k: f64,
+        stiff: bool,
+    },
 }
 
 impl Scheme {
@@ -68,29 +76,91 @@ impl Scheme {
         match self {
             Scheme::Events(tol) => format!("dop853 tol {tol:.0e}"),
             Scheme::Stepping(h) => format!("moreau-jean h {h:.0e}"),
+            Scheme::Compliant { k, stiff: false } => format!("compliant k {k:.0e} dop853"),
+            Scheme::Compliant { k, stiff: true } => format!("compliant k {k:.0e} radau5"),
         }
     }
 }
 
 /// The schemes: the event-driven run at the tests' tolerance (1e-13) and
-/// looser; Moreau–Jean at steps from 1e-2 to 1e-4 s.
-const SCHEMES: [Scheme; 6] = [
+/// looser; Moreau–Jean at steps from 1e-2 to 1e-4 s; compliant contacts
+/// from 1e3 to 1e7 N/m, explicit and implicit.
+const SCHEMES: [Scheme; 14] = [
     Scheme::Events(1e-13),
     Scheme::Events(1e-9),
     Scheme::Events(1e-6),
     Scheme::Stepping(1e-2),
     Scheme::Stepping(1e-3),
     Scheme::Stepping(1e-4),
+    Scheme::Compliant {
+        k: 1e3,
+        stiff: false,
+    },
+    Scheme::Compliant {
+        k: 1e5,
+        stiff: false,
+    },
+    Scheme::Compliant {
+        k: 1e7,
+        stiff: false,
+    },
+    Scheme::Compliant {
+        k: 1e3,
+        stiff: true,
+    },
+    Scheme::Compliant {
+        k: 1e4,
+        stiff: true,
+    },
+    Scheme::Compliant {
+        k: 1e5,
+        stiff: true,
+    },
+    Scheme::Compliant {
+        k: 1e6,
+        stiff: true,
+    },
+    Scheme::Compliant {
+        k: 1e7,
+        stiff: true,
+    },
 ];
 
-/// Runs `system` from (q0, v0) over [0, end] by `scheme`, recording `record`.
+/// Runs `system` from (q0, v0) over [0, end] by `scheme`, recording
+/// `record`; a run that fails hands back what it computed, its error on
+/// stderr (the compliant friction is stiff once it holds, which an explicit
+/// method reports).
 fn run<S: Contacts<f64, N>, const N: usize>(
     system: &S,
     (scheme, record): (Scheme, Record),
     (q0, v0): ([f64; N], [f64; N]),
     end: f64,
+) -> ContactRun<f64, N> {
+    let outcome = attempt(system, (scheme, record), (q0, v0), end);
+    outcome.unwrap_or_else(|failure| {
+        if record == Record::Steps {
+            eprintln!("  ({}: {})", scheme.label(), failure.error);
+        }
+        *failure.partial
+    })
+}
+
+fn attempt<S: Contacts<f64, N>, const N: usize>(
+    system: &S,
+    (scheme, record): (Scheme, Record),
+    (q0, v0): ([f64; N], [f64; N]),
+    end: f64,
 ) -> Result<ContactRun<f64, N>, Failure<ContactRun<f64, N>>> {
+    let compliant = |k| Compliant::stiffness(k);
     match scheme {
+        Scheme::Compliant { k, stiff: false } => Simulation::new(system)
+            .integrator(Dop853::tol(1e-9).record(record))
+            .compliant_contacts(compliant(k))
+            .run_contacts(q0, v0, 0.0..end),
+        Scheme::Compliant { k, stiff: true } => Simulation::new(system)
+            .integrator(Radau5::tol(1e-8).record(record))
+            .compliant_contacts(compliant(k))
+            .run_contacts(q0, v0, 0.0..end),
         Scheme::Events(tol) => Simulation::new(system)
             .integrator(Dop853::tol(tol).record(record))
             .contact_settings(settings())
@@ -154,10 +224,12 @@ fn ball(scheme: Scheme, record: Record) -> Runner {
             (scheme, record),
             ([0.0, h0 + BALL.r, 0.0], [0.0; 3]),
             1.5,
-        )
-        .unwrap();
+        );
         let t1 = (2.0 * h0 / G).sqrt();
-        let impacts = times(&run, |k| matches!(k, ChangeKind::Impact { .. }));
+        // A compliant contact's touch is a closing, not an impact.
+        let impacts = times(&run, |k| {
+            matches!(k, ChangeKind::Impact { .. } | ChangeKind::Closes)
+        });
         let (mut exact, mut time_error) = (t1, 0.0f64);
         for (k, t) in impacts.iter().take(5).enumerate() {
             time_error = time_error.max((t - exact).abs());
@@ -199,7 +271,7 @@ fn sphere(spin: f64) -> impl Fn(Scheme, Record) -> Runner {
         Box::new(move || {
             let (v0, r, mu) = (2.0, BALL.r, BALL_FRICTION);
             let state = ([0.0, r, 0.0], [v0, 0.0, -spin]);
-            let run = run(&BALL, (scheme, record), state, 1.5).unwrap();
+            let run = run(&BALL, (scheme, record), state, 1.5);
             let sticks = times(&run, |k| matches!(k, ChangeKind::Sticks));
             let (_, v) = run.trajectory.final_state();
             let depth = (run.trajectory.positions().iter())
@@ -226,7 +298,7 @@ fn sphere(spin: f64) -> impl Fn(Scheme, Record) -> Runner {
 fn block(scheme: Scheme, record: Record) -> Runner {
     Box::new(move || {
         let mu = BLOCK_FRICTION;
-        let run = run(&BLOCK, (scheme, record), ([0.0; 3], [3.0, 4.0, 0.0]), 1.6).unwrap();
+        let run = run(&BLOCK, (scheme, record), ([0.0; 3], [3.0, 4.0, 0.0]), 1.6);
         let sticks = times(&run, |k| matches!(k, ChangeKind::Sticks));
         let (q, _) = run.trajectory.final_state();
         let depth = (run.trajectory.positions().iter())
@@ -253,12 +325,14 @@ fn pendulum(scheme: Scheme, record: Record) -> Runner {
     Box::new(move || {
         let p = PENDULUM;
         let (th0, e) = (1.2f64, STOP_RESTITUTION);
-        let run = run(&p, (scheme, record), ([th0], [0.0]), 3.0).unwrap();
+        let run = run(&p, (scheme, record), ([th0], [0.0]), 3.0);
         let period = |a: f64| 4.0 * (p.l / p.g).sqrt() * elliptic_k((a / 2.0).sin());
         let th1 = (1.0 - e * e * (1.0 - th0.cos())).acos();
         let first = period(th0) / 4.0;
         let exact = [first, first + period(th1) / 2.0];
-        let impacts = times(&run, |k| matches!(k, ChangeKind::Impact { .. }));
+        let impacts = times(&run, |k| {
+            matches!(k, ChangeKind::Impact { .. } | ChangeKind::Closes)
+        });
         let error = (0..2)
             .map(|k| (impacts.get(k).copied().unwrap_or(f64::NAN) - exact[k]).abs())
             .fold(0.0, f64::max);
@@ -278,13 +352,8 @@ fn pendulum(scheme: Scheme, record: Record) -> Runner {
 fn tossed_box(scheme: Scheme, record: Record) -> Runner {
     Box::new(move || {
         let state = ([0.0, 0.5, 0.7], [1.5, 1.0, -6.0]);
-        let (run, reached) = match run(&BOX, (scheme, record), state, 3.0) {
-            Ok(run) => (run, 3.0),
-            Err(failure) => {
-                let reached = *failure.partial.trajectory.times().last().unwrap();
-                (*failure.partial, reached)
-            }
-        };
+        let run = run(&BOX, (scheme, record), state, 3.0);
+        let reached = *run.trajectory.times().last().unwrap();
         let (q, v) = run.trajectory.final_state();
         let quarter = std::f64::consts::FRAC_PI_2;
         let turns = (q[2] / quarter).round();

@@ -13,7 +13,7 @@ use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
 use super::model::{Inertial, Joint, JointType, Number, ReadError, Robot};
-use super::options::{Base, DynamicsRule};
+use super::options::{Base, DynamicsRule, LimitRule};
 use super::tokens::{identifier, product};
 
 /// The description's items, with what the derive publishes beside the
@@ -335,7 +335,7 @@ fn coordinates<'r>(
 pub fn describe(
     robot: &Robot,
     fields: &[String],
-    (base, dynamics): (Base, DynamicsRule),
+    (base, dynamics, limits): (Base, DynamicsRule, LimitRule),
 ) -> Result<Description, ReadError> {
     let (robot, floating) = based(robot, base)?;
     let order = tree_order(&robot)?;
@@ -402,11 +402,31 @@ pub fn describe(
         &c.names,
         &c.angle_of,
     )?);
+    if limits == LimitRule::Stops {
+        items.extend(stop_items(&c, &mut names)?);
+    }
     Ok(Description {
         items,
         coordinates: c.names.iter().map(Ident::to_string).collect(),
         limits: c.limits,
     })
+}
+
+/// `limits = stops`: a plastic `stop(..)` per finite bound of each
+/// coordinate, named `<q>_lower` and `<q>_upper`.
+fn stop_items(c: &Coordinates, names: &mut Names) -> Result<Vec<TokenStream>, ReadError> {
+    let mut items = Vec::new();
+    for (q, &(lower, upper)) in c.names.iter().zip(&c.limits) {
+        if let Some(bound) = super::tokens::number(lower) {
+            let name = names.unique(&format!("{q}_lower"), 0)?;
+            items.push(quote!(stop(#name, #q >= #bound, restitution = 0)));
+        }
+        if let Some(bound) = super::tokens::number(upper) {
+            let name = names.unique(&format!("{q}_upper"), 0)?;
+            items.push(quote!(stop(#name, #q <= #bound, restitution = 0)));
+        }
+    }
+    Ok(items)
 }
 
 /// Each joint's point `<joint>_origin`, then each link's body (named after

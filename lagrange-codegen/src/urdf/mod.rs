@@ -133,7 +133,7 @@ pub fn from_text(
     let snapped = options
         .snap
         .map_or_else(Vec::new, |tol| snap(&mut robot, tol));
-    let rules = (options.base, options.dynamics);
+    let rules = (options.base, options.dynamics, options.limits);
     let d = describe::describe(&robot, fields, rules).map_err(at)?;
     Ok(Urdf {
         path: path.to_string(),

@@ -58,6 +58,19 @@ pub enum DynamicsRule {
     Ignore,
 }
 
+/// What becomes of the joints' `<limit lower upper>` (`limits = ..`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LimitRule {
+    /// Watched: a run that leaves them stops with `Error::JointLimit` (or
+    /// goes on, as the run's `LimitPolicy` says).
+    #[default]
+    Watch,
+    /// `limits = stops`: each finite bound becomes a plastic
+    /// `stop(<q>_lower, q >= lower, restitution = 0)` (and `_upper`), which
+    /// `run_contacts` enforces: the joint meets its end stop and stays.
+    Stops,
+}
+
 /// The options of `urdf("path", ..)`.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Options {
@@ -70,13 +83,16 @@ pub struct Options {
     pub inertia: InertiaRule,
     /// `dynamics = read | ignore`.
     pub dynamics: DynamicsRule,
+    /// `limits = stops`.
+    pub limits: LimitRule,
 }
 
 const OPTIONS: &str = "the options are `snap = tolerance` (angles within it, at most 1e-6 rad, \
      of a multiple of π/2 become it), `base = fixed | floating`, `inertia = repair | \
      as_written` (an inertia that is no rigid body's made the nearest physical one, or used \
-     unchecked) and `dynamics = read | ignore` (the joints' `<dynamics>` damping read as \
-     `joint(..)` items, or left out)";
+     unchecked), `dynamics = read | ignore` (the joints' `<dynamics>` damping read as \
+     `joint(..)` items, or left out) and `limits = stops` (the joints' `<limit>`s as plastic \
+     `stop(..)` items, which `run_contacts` enforces)";
 
 /// The attribute's `urdf = "path"`, or `urdf("path", snap = 1e-6, base =
 /// floating, inertia = repair)`: the path and the options.
@@ -109,6 +125,7 @@ pub fn parse_attribute(input: ParseStream) -> syn::Result<(syn::LitStr, Options)
             "base" => options.base = base(&content)?,
             "inertia" => options.inertia = inertia(&content)?,
             "dynamics" => options.dynamics = dynamics(&content)?,
+            "limits" => options.limits = limits(&content)?,
             _ => {
                 return Err(syn::Error::new(
                     key.span(),
@@ -189,6 +206,22 @@ fn dynamics(content: ParseStream) -> syn::Result<DynamicsRule> {
                 "unknown dynamics rule `{kind}`: write `dynamics = read` (the joints' damping as \
                  `joint(q, damping = b)` items) or `dynamics = ignore` (the rigid-body dynamics, \
                  what Pinocchio's rnea and aba compute)"
+            ),
+        )),
+    }
+}
+
+/// `limits = stops`.
+fn limits(content: ParseStream) -> syn::Result<LimitRule> {
+    let kind: Ident = content.parse()?;
+    match kind.to_string().as_str() {
+        "stops" => Ok(LimitRule::Stops),
+        _ => Err(syn::Error::new(
+            kind.span(),
+            format!(
+                "unknown limit rule `{kind}`: write `limits = stops` (each joint's `<limit>` a \
+                 plastic `stop(..)` that `run_contacts` enforces); without it the limits are \
+                 watched, and a run that leaves them stops with `Error::JointLimit`"
             ),
         )),
     }

@@ -21,7 +21,7 @@ use crate::event::{Event, Events};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::ode::{Continuation, Integrator, SecondOrder, check_problem};
-use crate::system::Contacts;
+use crate::system::{ContactLaw, Contacts};
 use nalgebra::SVector;
 use std::ops::Range;
 
@@ -354,45 +354,7 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
                 .map(|l| T::lit(Compliant::damping_ratio(l.restitution)))
                 .collect(),
         };
-        let nan = T::lit(f64::NAN);
-        let pressing = &compliant;
-        // Per contact, in this order: the touch (the gap falling through
-        // zero), the letting go (the force falling through zero while sunk)
-        // and the pressing again; each a switch in the force, so the
-        // integrator restarts there rather than step across it.
-        let mut events = Events::new();
-        for i in 0..count {
-            let name = self.laws[i].name;
-            let gap = move |t, q: &SVector<T, N>, v: &SVector<T, N>| {
-                form.rows(i, t, q, v).map_or(nan, |r| r.gap)
-            };
-            let (one, minus) = (T::one(), -T::one());
-            let lets_go = move |t, q: &SVector<T, N>, v: &SVector<T, N>| {
-                pressing.unclipped(i, (t, q, v), one)
-            };
-            let presses = move |t, q: &SVector<T, N>, v: &SVector<T, N>| {
-                pressing.unclipped(i, (t, q, v), minus)
-            };
-            events = events
-                .with(
-                    Event::new(gap)
-                        .named(format!("{name} touches"))
-                        .falling()
-                        .restart(),
-                )
-                .with(
-                    Event::new(lets_go)
-                        .named(format!("{name} lets go"))
-                        .falling()
-                        .restart(),
-                )
-                .with(
-                    Event::new(presses)
-                        .named(format!("{name} presses"))
-                        .rising()
-                        .restart(),
-                );
-        }
+        let events = switches(&compliant, &self.laws);
         let mut modes = Vec::with_capacity(count);
         for i in 0..count {
             let pressed = compliant.unclipped(i, (t0, &q0, &v0), T::one()) > T::zero();
@@ -411,8 +373,21 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             Ok(run) => (run, Ok(())),
             Err(failure) => (*failure.partial, Err(failure.error)),
         };
+        self.record_switches(t0, modes, &run.occurrences);
+        self.trajectory = Some(run.trajectory);
+        outcome
+    }
+
+    /// The changes and modes of a compliant run from its switches' events
+    /// (see [`switches`]), starting from `modes` at t0.
+    fn record_switches(
+        &mut self,
+        t0: T,
+        mut modes: Vec<Mode<T>>,
+        occurrences: &[crate::event::Occurrence<T, N>],
+    ) {
         self.phases.push((t0, modes.clone()));
-        for o in &run.occurrences {
+        for o in occurrences {
             let (contact, closes) = (o.event / 3, o.event % 3 != 1);
             // A touch is also a rise of its force from `apart`: one change.
             if closes == (modes[contact] != Mode::Open) {
@@ -427,9 +402,39 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             self.record(o.t, contact, kind);
             self.phases.push((o.t, modes.clone()));
         }
-        self.trajectory = Some(run.trajectory);
-        outcome
     }
+}
+
+/// The switches of the compliant forces, per contact in this order: the
+/// touch (the gap falling through zero), the letting go (the force falling
+/// through zero while sunk) and the pressing again; each restarts the
+/// integrator, which then never steps across a switch.
+fn switches<'f, S: Contacts<T, N>, T: Real, const N: usize>(
+    compliant: &'f CompliantForm<'_, 'f, S, T>,
+    laws: &[ContactLaw],
+) -> Events<'f, T, N> {
+    let nan = T::lit(f64::NAN);
+    let form = compliant.form;
+    let (one, minus) = (T::one(), -T::one());
+    let mut events = Events::new();
+    for (i, law) in laws.iter().enumerate() {
+        let name = law.name;
+        let gap = move |t, q: &SVector<T, N>, v: &SVector<T, N>| {
+            form.rows(i, t, q, v).map_or(nan, |r| r.gap)
+        };
+        let lets_go =
+            move |t, q: &SVector<T, N>, v: &SVector<T, N>| compliant.unclipped(i, (t, q, v), one);
+        let presses =
+            move |t, q: &SVector<T, N>, v: &SVector<T, N>| compliant.unclipped(i, (t, q, v), minus);
+        let touches = Event::new(gap).named(format!("{name} touches"));
+        let lets_go = Event::new(lets_go).named(format!("{name} lets go"));
+        let presses = Event::new(presses).named(format!("{name} presses"));
+        events = events
+            .with(touches.falling().restart())
+            .with(lets_go.falling().restart())
+            .with(presses.rising().restart());
+    }
+    events
 }
 
 /// The error of a mass matrix that the factorisation refuses.

@@ -57,6 +57,13 @@
 //! No event is located, nothing stalls, and the answers are of order one
 //! in the step; impacts there have friction.
 //!
+//! **Compliant contacts.** With
+//! [`Simulation::compliant_contacts`](crate::Simulation::compliant_contacts)
+//! the contacts are springs and dampers instead (`compliant`,
+//! [`Compliant`]), and the run is one smooth integration by the
+//! simulation's integrator, its touches and releases located as events
+//! that restart it.
+//!
 //! **Allocation.** Unlike the other runs, which allocate only their growing
 //! [`Trajectory`](crate::Trajectory), a contact run allocates at every
 //! evaluation of the accelerations (every stage of its integrator): the

@@ -4,7 +4,7 @@
 
 use super::coulomb::{Branch, Local, gauss_seidel};
 use super::driver::{Driver, check_laws};
-use super::form::{Mode, has_tangent};
+use super::form::{ContactForm, Mode, has_tangent};
 use super::run::{ChangeKind, ContactState};
 use crate::error::{ContactFault, Error};
 use crate::numeric::Real;
@@ -128,36 +128,8 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             atlas: false,
         })?;
         let mut next_v = v + chol.solve(rhs) * h;
-        let mut locals = Vec::new();
-        let mut approach = vec![T::zero(); self.laws.len()];
-        for (i, law) in self.laws.iter().enumerate() {
-            let r = form.rows(i, tm, &mid, v)?;
-            approach[i] = r.normal.dot(v);
-            if r.gap > T::lit(self.settings.gap_tolerance) {
-                impulses[i] = None;
-                continue;
-            }
-            let mu = T::lit(law.friction);
-            let mut rows = vec![r.normal];
-            let mut tangents = Vec::new();
-            for (k, row) in r.tangents.iter().enumerate() {
-                if mu > T::zero() && has_tangent(row) {
-                    rows.push(*row);
-                    tangents.push(k);
-                }
-            }
-            let responses = rows.iter().map(|row| chol.solve(*row)).collect();
-            let bias = T::lit(law.restitution) * approach[i];
-            let mut local = Local::new(i, (rows, tangents), responses, bias, mu);
-            // Warm start: the impulse of the step before, already applied.
-            if let Some(p) = impulses[i] {
-                local.impulse = p;
-                for (response, d) in local.responses.iter().zip(&p) {
-                    next_v += response * *d;
-                }
-            }
-            locals.push(local);
-        }
+        let (mut locals, approach) =
+            self.closed(&form, (tm, &mid, v), &chol, impulses, &mut next_v)?;
         let tolerance = T::lit(scheme.velocity_tolerance());
         if let Err(residual) =
             gauss_seidel(&mut locals, &mut next_v, scheme.max_sweeps(), tolerance)
@@ -180,18 +152,55 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         let mut modes = vec![Mode::Open; self.laws.len()];
         for c in &locals {
             impulses[c.contact] = Some(c.impulse);
-            modes[c.contact] = match c.branch {
-                Branch::Apart => Mode::Open,
-                Branch::Sticking if c.tangents.is_empty() => Mode::Sliding {
-                    hint: [T::zero(); 2],
-                },
-                Branch::Sticking => Mode::Sticking,
-                Branch::Sliding { s } => Mode::Sliding {
-                    hint: in_axes(&c.tangents, s),
-                },
-            };
+            modes[c.contact] = mode_of(c);
         }
         Ok((next_q, next_v, Outcome { modes, approach }))
+    }
+
+    /// The contacts closed at the midpoint (t, q, v), each with its rows,
+    /// responses M⁻¹ rowᵀ and Newton's bias e·uₙ, warm-started from the
+    /// step before's impulse (added to `next_v`); and every contact's
+    /// normal speed there. An open contact forgets its impulse.
+    #[allow(clippy::type_complexity)]
+    fn closed(
+        &self,
+        form: &ContactForm<'_, S, T>,
+        (t, q, v): (T, &SVector<T, N>, &SVector<T, N>),
+        chol: &Cholesky<T, N>,
+        impulses: &mut [Option<[T; 3]>],
+        next_v: &mut SVector<T, N>,
+    ) -> Result<(Vec<Local<T, N>>, Vec<T>), Error> {
+        let mut locals = Vec::new();
+        let mut approach = vec![T::zero(); self.laws.len()];
+        for (i, law) in self.laws.iter().enumerate() {
+            let r = form.rows(i, t, q, v)?;
+            approach[i] = r.normal.dot(v);
+            if r.gap > T::lit(self.settings.gap_tolerance) {
+                impulses[i] = None;
+                continue;
+            }
+            let mu = T::lit(law.friction);
+            let mut rows = vec![r.normal];
+            let mut tangents = Vec::new();
+            for (k, row) in r.tangents.iter().enumerate() {
+                if mu > T::zero() && has_tangent(row) {
+                    rows.push(*row);
+                    tangents.push(k);
+                }
+            }
+            let responses = rows.iter().map(|row| chol.solve(*row)).collect();
+            let bias = T::lit(law.restitution) * approach[i];
+            let mut local = Local::new(i, (rows, tangents), responses, bias, mu);
+            // Warm start: the impulse of the step before, already applied.
+            if let Some(p) = impulses[i] {
+                local.impulse = p;
+                for (response, d) in local.responses.iter().zip(&p) {
+                    *next_v += response * *d;
+                }
+            }
+            locals.push(local);
+        }
+        Ok((locals, approach))
     }
 
     /// Records the changes of mode of one step at its midpoint `tm`: an
@@ -245,6 +254,22 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         self.system
             .contact_rows(i, q, v, t)
             .map_or(T::zero(), |r| r.normal.dot(v))
+    }
+}
+
+/// A contact's mode after the step, from how its impulse met Coulomb's
+/// law (a contact without friction in force is sliding, as the
+/// event-driven run has it).
+fn mode_of<T: Real, const N: usize>(c: &Local<T, N>) -> Mode<T> {
+    match c.branch {
+        Branch::Apart => Mode::Open,
+        Branch::Sticking if c.tangents.is_empty() => Mode::Sliding {
+            hint: [T::zero(); 2],
+        },
+        Branch::Sticking => Mode::Sticking,
+        Branch::Sliding { s } => Mode::Sliding {
+            hint: in_axes(&c.tangents, s),
+        },
     }
 }
 

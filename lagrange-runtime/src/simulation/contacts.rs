@@ -23,7 +23,9 @@ impl<S, I: Integrator> Simulation<'_, S, I, Unforced, NoEvents> {
     /// contacts closed at its midpoint, friction at impacts, the changes on
     /// the step's grid (guide chapter 12, "Many contacts: time stepping").
     /// `max_changes` does not bound it (its steps are counted beforehand,
-    /// against `MoreauJean::max_steps`).
+    /// against `MoreauJean::max_steps`). With
+    /// [`compliant_contacts`](Self::compliant_contacts) the contacts are
+    /// springs and dampers, and any integrator runs the motion in one piece.
     ///
     /// # Errors
     /// A [`Failure`] with the run so far: [`Error::Settings`] for a bad
