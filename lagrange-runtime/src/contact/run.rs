@@ -108,7 +108,8 @@ pub enum ChangeKind<T> {
         /// The normal speed after.
         after: T,
     },
-    /// The contact closed, pressed, with no normal speed left to lose.
+    /// The contact closed, pressed, with no normal speed left to lose (for
+    /// compliant contacts: the touch, or pressing again, at any speed).
     Closes,
     /// Zeno: an impact that would have left at `speed`, below the rest
     /// speed, closed the contact plastically; the bounces it cut short would
@@ -119,7 +120,8 @@ pub enum ChangeKind<T> {
         /// Where the bounces would have accumulated.
         accumulation: T,
     },
-    /// The normal force fell to zero: the contact opened.
+    /// The normal force fell to zero: the contact opened (for compliant
+    /// contacts, while still sunk: the spring and damper let go).
     LiftsOff,
     /// The slip stopped and friction holds the contact.
     Sticks,
