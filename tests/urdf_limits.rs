@@ -215,3 +215,60 @@ fn with_limits_as_stops_the_carriage_lands_on_its_end_stop() {
         refused.error
     );
 }
+
+/// The file's `<limit effort="100">` bounds the push: asked for 300 N up,
+/// the carriage gets 100 N and rises at (100 − 2 g)/2 m/s², and the run
+/// says when the push was held at its limit. A sampled controller's
+/// stretch runs exactly from sample to sample.
+#[test]
+fn input_limits_hold_the_push_at_the_joints_effort() {
+    assert_eq!(Pushed::JOINT_EFFORTS, [100.0]);
+    let effort = Pushed::JOINT_EFFORTS[0];
+    let run = Simulation::new(&Pushed {})
+        .integrator(Dopri5::tol(1e-12))
+        .feedback(|_, _, _| [300.0])
+        .input_limits([-effort], [effort])
+        .run([0.0], [0.0], 0.0..0.1)
+        .unwrap();
+    let rise = (effort - 2.0 * 9.81) / 2.0;
+    let (q, _) = run.trajectory().final_state();
+    assert!((q[0] - 0.5 * rise * 0.01).abs() < 1e-12, "{}", q[0]);
+    assert!(run.inputs().iter().all(|u| u[0] == effort));
+    let held = run.saturations();
+    assert_eq!(held.len(), 1);
+    assert_eq!((held[0].input, held[0].upper), (0, true));
+    assert_eq!((held[0].from, held[0].to), (0.0, 0.1));
+
+    // Asked for 300 − 6000 t N, sampled every 10 ms: held at 100 N for the
+    // samples at 0, 10, 20 and 30 ms, free from the one at 40 ms (60 N),
+    // and held at −100 N from the one at 70 ms (−120 N) to the end.
+    let sampled = Simulation::new(&Pushed {})
+        .integrator(Dopri5::tol(1e-12))
+        .sampled(0.01, |t, _, _| [300.0 - 6000.0 * t])
+        .input_limits([-effort], [effort])
+        .run([0.0], [0.0], 0.0..0.1)
+        .unwrap();
+    let held = sampled.saturations();
+    assert_eq!(held.len(), 2, "{held:?}");
+    assert_eq!((held[0].from, held[0].upper), (0.0, true));
+    assert!((held[0].to - 0.04).abs() < 1e-15, "{}", held[0].to);
+    assert!(
+        !held[1].upper && (held[1].from - 0.07).abs() < 1e-15,
+        "{held:?}"
+    );
+    assert_eq!(held[1].to, 0.1);
+}
+
+#[test]
+fn input_limits_out_of_order_are_refused() {
+    let failure = Simulation::new(&Pushed {})
+        .feedback(|_, _, _| [0.0])
+        .input_limits([1.0], [-1.0])
+        .run([0.0], [0.0], 0.0..0.1)
+        .unwrap_err();
+    assert!(
+        failure.error.to_string().contains("input limits"),
+        "{}",
+        failure.error
+    );
+}

@@ -477,6 +477,7 @@ fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr, options: crate::
         robot: urdf.name,
         coordinates: urdf.coordinates,
         limits: urdf.limits,
+        efforts: urdf.efforts,
         snapped: urdf.snapped,
         repaired: urdf.repaired,
     });

@@ -239,7 +239,7 @@ pub use contact::{
 };
 pub use control::{
     Feedback, InputForces, InputSource, InputTable, Interpolation, IntoInput, OpenLoop, Sampled,
-    StateFeedback,
+    Saturated, Saturation, StateFeedback,
 };
 pub use error::{
     ContactError, ContactFault, Error, Failure, IdentifyError, LinearError, SettingsError,

@@ -397,6 +397,7 @@ fn urdf_consts(system: &System) -> TokenStream {
         let hi = bound(hi);
         quote!((#lo, #hi))
     });
+    let efforts = u.efforts.iter().map(|&e| bound(e));
     let robot = &u.robot;
     let n = Literal::usize_unsuffixed(u.limits.len());
     let snapped = u.snapped.iter().map(|(at, written, exact)| {
@@ -423,6 +424,11 @@ fn urdf_consts(system: &System) -> TokenStream {
         /// bounce at a limit.
         #[allow(clippy::approx_constant)] // as the file writes them: 3.14159 is not π
         pub const JOINT_LIMITS: [(f64, f64); #n] = [#(#limits),*];
+        /// Each coordinate's effort limit from the URDF file (`<limit
+        /// effort>`, N or N·m), in coordinate order; ∞ where the file gives
+        /// none (a free base's coordinates). Map them to the inputs that
+        /// drive the joints and pass them to `Simulation::input_limits`.
+        pub const JOINT_EFFORTS: [f64; #n] = [#(#efforts),*];
         /// The angles `urdf(.., snap = tol)` made exact multiples of π/2:
         /// (where, as the file writes it, as used). Empty without `snap`.
         #[allow(clippy::approx_constant)]

@@ -25,6 +25,8 @@ pub struct Description {
     pub coordinates: Vec<String>,
     /// Each coordinate's position limits (±∞ where the file gives none).
     pub limits: Vec<(f64, f64)>,
+    /// Each coordinate's effort limit (∞ where the file gives none).
+    pub efforts: Vec<f64>,
 }
 
 fn error(line: u32, message: String) -> ReadError {
@@ -293,6 +295,7 @@ impl Names {
 struct Coordinates<'r> {
     names: Vec<Ident>,
     limits: Vec<(f64, f64)>,
+    efforts: Vec<f64>,
     angle_of: BTreeMap<&'r str, Ident>,
 }
 
@@ -304,6 +307,7 @@ fn coordinates<'r>(
     let mut out = Coordinates {
         names: Vec::new(),
         limits: Vec::new(),
+        efforts: Vec::new(),
         angle_of: BTreeMap::new(),
     };
     if let (Some(line), Some((root, _))) = (free_root, order.first()) {
@@ -312,6 +316,7 @@ fn coordinates<'r>(
             out.names
                 .push(names.unique(&format!("{root}_{axis}"), line)?);
             out.limits.push((f64::NEG_INFINITY, f64::INFINITY));
+            out.efforts.push(f64::INFINITY);
         }
     }
     for (_, joint) in order {
@@ -324,6 +329,7 @@ fn coordinates<'r>(
         out.names.push(q);
         out.limits
             .push(j.limits.unwrap_or((f64::NEG_INFINITY, f64::INFINITY)));
+        out.efforts.push(j.effort.unwrap_or(f64::INFINITY));
     }
     Ok(out)
 }
@@ -409,6 +415,7 @@ pub fn describe(
         items,
         coordinates: c.names.iter().map(Ident::to_string).collect(),
         limits: c.limits,
+        efforts: c.efforts,
     })
 }
 

@@ -32,6 +32,8 @@ pub struct Urdf {
     pub coordinates: Vec<String>,
     /// Their position limits (±∞ where the file gives none).
     pub limits: Vec<(f64, f64)>,
+    /// Their effort limits (∞ where the file gives none).
+    pub efforts: Vec<f64>,
     /// The angles snapped to multiples of π/2: where, as written, as snapped.
     pub snapped: Vec<(String, f64, f64)>,
     /// The inertias `inertia = repair` changed: the link, the entries (ixx,
@@ -141,6 +143,7 @@ pub fn from_text(
         name: robot.name,
         coordinates: d.coordinates,
         limits: d.limits,
+        efforts: d.efforts,
         snapped,
         repaired,
     })

@@ -81,6 +81,9 @@ pub struct Joint {
     pub axis: [Number; 3],
     /// Lower and upper position limits, if the file gives them.
     pub limits: Option<(f64, f64)>,
+    /// The `<limit effort>`: the most force or torque the joint's actuator
+    /// gives, if the file states it.
+    pub effort: Option<f64>,
     pub mimic: Option<Mimic>,
     /// `<dynamics damping=".." friction="..">`, if the file gives it.
     pub dynamics: Option<Dynamics>,
@@ -315,6 +318,10 @@ fn joint(doc: &Document, node: Node) -> Result<Joint, ReadError> {
         )),
         _ => None,
     };
+    let effort = match child(node, "limit").and_then(|l| l.attribute("effort").map(|e| (l, e))) {
+        Some((l, e)) => Some(number(doc, l, e)?.value),
+        None => None,
+    };
     // A fixed (or floating) joint's <mimic> has no coordinate to follow: a
     // gripper locked by hand keeps its followers' tags, and they stay fixed.
     let mimic = match child(node, "mimic") {
@@ -343,6 +350,7 @@ fn joint(doc: &Document, node: Node) -> Result<Joint, ReadError> {
         origin: origin(doc, node)?,
         axis,
         limits,
+        effort,
         mimic,
         dynamics,
     })

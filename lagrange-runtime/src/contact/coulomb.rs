@@ -173,15 +173,18 @@ pub(super) fn coulomb<T: Real>(
     slide_in_plane(&slide)
 }
 
-/// The impulse that stops the contact: W P = −r.
+/// The impulse that stops the contact: W P = −r (on the stack: this is
+/// Gauss–Seidel's inner loop).
 fn stick<T: Real>(w: &[[T; 3]; 3], d: usize, r: [T; 3]) -> Option<[T; 3]> {
-    let m = nalgebra::DMatrix::from_fn(d, d, |a, b| w[a][b]);
-    let rhs = nalgebra::DVector::from_fn(d, |a, _| -r[a]);
-    let x = m.lu().solve(&rhs)?;
-    let mut p = [T::zero(); 3];
-    for a in 0..d {
-        p[a] = x[a];
-    }
+    let p = if d == 2 {
+        let m = nalgebra::Matrix2::from_fn(|a, b| w[a][b]);
+        let x = m.lu().solve(&nalgebra::Vector2::new(-r[0], -r[1]))?;
+        [x[0], x[1], T::zero()]
+    } else {
+        let m = nalgebra::Matrix3::from_fn(|a, b| w[a][b]);
+        let x = m.lu().solve(&nalgebra::Vector3::new(-r[0], -r[1], -r[2]))?;
+        [x[0], x[1], x[2]]
+    };
     p.iter().all(|x| x.is_finite()).then_some(p)
 }
 

@@ -103,9 +103,12 @@
 //! sample taken there: u_k at t_k, including t₀ and the end time when the end
 //! time is a sample instant.
 
+mod saturation;
 mod state_feedback;
 mod table;
 
+pub(crate) use saturation::stretches;
+pub use saturation::{Saturated, Saturation};
 pub use state_feedback::StateFeedback;
 pub use table::{InputTable, Interpolation};
 
@@ -193,6 +196,12 @@ pub trait InputSource<T: Real, const N: usize, const P: usize, const Q: usize = 
     fn check(&self) -> Result<(), Error> {
         Ok(())
     }
+
+    /// The bounds (lower, upper) its inputs are clamped into, for a source
+    /// that saturates ([`Saturated`]); `None` (the default) otherwise.
+    fn bounds(&self) -> Option<([f64; P], [f64; P])> {
+        None
+    }
 }
 
 impl<T: Real, const N: usize, const P: usize, const Q: usize, C: InputSource<T, N, P, Q> + ?Sized>
@@ -212,6 +221,9 @@ impl<T: Real, const N: usize, const P: usize, const Q: usize, C: InputSource<T, 
     }
     fn check(&self) -> Result<(), Error> {
         (**self).check()
+    }
+    fn bounds(&self) -> Option<([f64; P], [f64; P])> {
+        (**self).bounds()
     }
 }
 

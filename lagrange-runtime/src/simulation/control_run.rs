@@ -30,6 +30,9 @@ pub struct ControlRun<T: Real, const N: usize, const P: usize, const Q: usize = 
     pub(super) velocities: [&'static str; N],
     #[cfg_attr(feature = "serde", serde(serialize_with = "names"))]
     pub(crate) input_names: [&'static str; P],
+    /// The bounds the inputs were clamped into, if the run had limits.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pub(crate) bounds: Option<([f64; P], [f64; P])>,
 }
 
 /// Names as a sequence (serde has no impl for arrays of a generic length).
@@ -65,6 +68,19 @@ impl<T: Real, const N: usize, const P: usize, const Q: usize> ControlRun<T, N, P
     /// The inputs' names ([`Driven::INPUTS`](crate::Driven::INPUTS)).
     pub fn input_names(&self) -> &[&'static str; P] {
         &self.input_names
+    }
+
+    /// Where the run held an input at one of its limits
+    /// ([`Simulation::input_limits`](crate::Simulation::input_limits)), in
+    /// time order: each stretch from the first recorded point at the limit
+    /// to the first after it that is not. For a sampled controller both are
+    /// sample instants, so the stretches are exact; for continuous feedback
+    /// they are as fine as the recording (the limit is reached or left
+    /// inside the step that ends there). Empty without limits.
+    pub fn saturations(&self) -> Vec<crate::control::Saturation<T>> {
+        self.bounds.map_or_else(Vec::new, |bounds| {
+            crate::control::stretches(self.trajectory.times(), &self.inputs, bounds)
+        })
     }
 
     /// The coordinates' names ([`Lagrangian::COORDINATES`]).

@@ -78,6 +78,7 @@ where
             coordinates: S::COORDINATES,
             velocities: S::VELOCITIES,
             input_names: S::INPUTS,
+            bounds: self.source.bounds(),
         };
         match outcome {
             Ok(()) => Ok(run),

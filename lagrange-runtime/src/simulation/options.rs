@@ -4,7 +4,7 @@
 //! [`Runs`](super::Runs)), so the slots are types, not fields to check.
 
 use super::Simulation;
-use crate::control::{Feedback, InputSource, IntoInput, OpenLoop, Sampled};
+use crate::control::{Feedback, InputSource, IntoInput, OpenLoop, Sampled, Saturated};
 use crate::event::{Event, Events};
 use crate::numeric::Real;
 use crate::system::{Driven, Lagrangian};
@@ -328,12 +328,36 @@ impl<'a, S, I, E> Simulation<'a, S, I, Unforced, E> {
     }
 }
 
-impl<S, I, C, T, E, const N: usize, const P: usize, const Q: usize>
-    Simulation<'_, S, I, Control<C, T, N, P, Q>, E>
+impl<'a, S, I, C, T, E, const N: usize, const P: usize, const Q: usize>
+    Simulation<'a, S, I, Control<C, T, N, P, Q>, E>
 {
     /// The input source.
     pub fn source(&self) -> &C {
         &self.control.source
+    }
+
+    /// Keeps each input within [lower, upper] whatever the source asks (an
+    /// actuator's effort limits: a URDF robot's `JOINT_EFFORTS`, mapped to
+    /// its inputs): the run integrates the clamped inputs, records them,
+    /// and [`ControlRun::saturations`](crate::ControlRun::saturations) says
+    /// where an input was held at a limit. An infinite bound is none; a
+    /// NaN bound or lower > upper fails the run with
+    /// [`Error::Settings`](crate::Error::Settings).
+    pub fn input_limits(
+        self,
+        lower: [f64; P],
+        upper: [f64; P],
+    ) -> Simulation<'a, S, I, Control<Saturated<C, P>, T, N, P, Q>, E> {
+        Simulation {
+            system: self.system,
+            integrator: self.integrator,
+            settings: self.settings,
+            control: Control {
+                source: Saturated::new(self.control.source, lower, upper),
+                types: PhantomData,
+            },
+            events: self.events,
+        }
     }
 }
 
