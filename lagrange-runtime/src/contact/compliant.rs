@@ -285,47 +285,6 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> SecondOrder<T, N> for Compliant
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::Compliant;
-
-    #[test]
-    fn restitution_matches_the_known_values() {
-        assert_eq!(Compliant::restitution(0.0), 1.0);
-        // Critical damping: e = e⁻², continuous on both sides.
-        let critical = (-2.0f64).exp();
-        assert!((Compliant::restitution(1.0) - critical).abs() < 1e-15);
-        assert!((Compliant::restitution(1.0 - 1e-6) - critical).abs() < 1e-5);
-        assert!((Compliant::restitution(1.0 + 1e-6) - critical).abs() < 1e-5);
-        // ζ = 1/2: the force vanishes at ω t_c = 2π/3, and e = exp(−ζ t_c).
-        let w = 0.75f64.sqrt();
-        let expected = (-0.5 * (2.0 * std::f64::consts::PI / 3.0) / w).exp();
-        assert!((Compliant::restitution(0.5) - expected).abs() < 1e-15);
-    }
-
-    #[test]
-    fn damping_ratio_inverts_restitution() {
-        for e in [0.9, 0.6, 0.5, 0.2, 0.1, 0.02] {
-            let zeta = Compliant::damping_ratio(e);
-            assert!((Compliant::restitution(zeta) - e).abs() < 1e-12, "e = {e}");
-        }
-        assert_eq!(Compliant::damping_ratio(1.0), 0.0);
-        assert_eq!(Compliant::damping_ratio(0.0), 5.0);
-    }
-
-    #[test]
-    fn refuses_bad_settings() {
-        assert!(Compliant::stiffness(0.0).check().is_err());
-        assert!(
-            Compliant::stiffness(1e5)
-                .slip_speed(f64::NAN)
-                .check()
-                .is_err()
-        );
-        assert!(Compliant::stiffness(1e5).check().is_ok());
-    }
-}
-
 /// The run of a system with compliant contacts: one integration with the
 /// contacts' forces in the equations, each contact's closing and opening
 /// located as events (not stopping the run) for the changes and the modes.
@@ -453,5 +412,46 @@ fn singular<T: Real, const N: usize>(t: T, q: &SVector<T, N>, ratio: T) -> Error
 fn in_force<T: Real>() -> Mode<T> {
     Mode::Sliding {
         hint: [T::zero(); 2],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Compliant;
+
+    #[test]
+    fn restitution_matches_the_known_values() {
+        assert_eq!(Compliant::restitution(0.0), 1.0);
+        // Critical damping: e = e⁻², continuous on both sides.
+        let critical = (-2.0f64).exp();
+        assert!((Compliant::restitution(1.0) - critical).abs() < 1e-15);
+        assert!((Compliant::restitution(1.0 - 1e-6) - critical).abs() < 1e-5);
+        assert!((Compliant::restitution(1.0 + 1e-6) - critical).abs() < 1e-5);
+        // ζ = 1/2: the force vanishes at ω t_c = 2π/3, and e = exp(−ζ t_c).
+        let w = 0.75f64.sqrt();
+        let expected = (-0.5 * (2.0 * std::f64::consts::PI / 3.0) / w).exp();
+        assert!((Compliant::restitution(0.5) - expected).abs() < 1e-15);
+    }
+
+    #[test]
+    fn damping_ratio_inverts_restitution() {
+        for e in [0.9, 0.6, 0.5, 0.2, 0.1, 0.02] {
+            let zeta = Compliant::damping_ratio(e);
+            assert!((Compliant::restitution(zeta) - e).abs() < 1e-12, "e = {e}");
+        }
+        assert_eq!(Compliant::damping_ratio(1.0), 0.0);
+        assert_eq!(Compliant::damping_ratio(0.0), 5.0);
+    }
+
+    #[test]
+    fn refuses_bad_settings() {
+        assert!(Compliant::stiffness(0.0).check().is_err());
+        assert!(
+            Compliant::stiffness(1e5)
+                .slip_speed(f64::NAN)
+                .check()
+                .is_err()
+        );
+        assert!(Compliant::stiffness(1e5).check().is_ok());
     }
 }
