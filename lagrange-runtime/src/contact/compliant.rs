@@ -13,14 +13,14 @@
 //! u, Coulomb's force once the slip is well above ε, and a viscous one
 //! below: a compliant contact creeps where a rigid one sticks.
 
-use super::driver::{Driver, check_laws};
+use super::driver::Driver;
 use super::form::{ContactForm, Mode};
 use super::run::{ChangeKind, ContactForce};
-use crate::error::{Error, SettingsError, to_vec};
+use crate::error::{Error, SettingsError};
 use crate::event::{Event, Events};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
-use crate::ode::{Continuation, Integrator, SecondOrder, check_problem};
+use crate::ode::{Continuation, Integrator, SecondOrder};
 use crate::system::{ContactLaw, Contacts};
 use nalgebra::SVector;
 use std::ops::Range;
@@ -127,7 +127,7 @@ impl Compliant {
                 .collect(),
         };
         let m = form.system.mass_matrix(q, t);
-        let chol = Cholesky::new(m, form.singular).map_err(|ratio| singular(t, q, ratio))?;
+        let chol = form.factor(t, q, m)?;
         Ok(compliant
             .pushes(t, q, v, &chol)?
             .into_iter()
@@ -253,7 +253,7 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> SecondOrder<T, N> for Compliant
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error> {
         let (m, mut rhs) = self.form.system.mass_matrix_and_rhs(q, v, t);
-        let chol = Cholesky::new(m, self.form.singular).map_err(|ratio| singular(t, q, ratio))?;
+        let chol = self.form.factor(t, q, m)?;
         for (i, push) in self.pushes(t, q, v, &chol)?.iter().enumerate() {
             if push.normal == T::zero() {
                 continue;
@@ -297,10 +297,7 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         span: Range<T>,
     ) -> Result<(), Error> {
         let (t0, t1) = (span.start, span.end);
-        check_problem(t0, t1, &q0, &v0)?;
-        self.settings.check()?;
-        check_laws(&self.laws)?;
-        self.check_listed(t0, &q0)?;
+        self.check_start((t0, t1), &q0, &v0)?;
         model.check()?;
         let count = self.laws.len();
         let owned = self.form(vec![Mode::Open; count]);
@@ -394,17 +391,6 @@ fn switches<'f, S: Contacts<T, N>, T: Real, const N: usize>(
             .with(presses.rising().restart());
     }
     events
-}
-
-/// The error of a mass matrix that the factorisation refuses.
-fn singular<T: Real, const N: usize>(t: T, q: &SVector<T, N>, ratio: T) -> Error {
-    Error::SingularMassMatrix {
-        t: t.to_f64(),
-        q: to_vec(q),
-        ratio: ratio.to_f64(),
-        direction: String::new(),
-        atlas: false,
-    }
 }
 
 /// A compliant contact in force: its friction is regularised, so it is

@@ -90,7 +90,7 @@ pub(crate) fn run_contacts<S: Contacts<T, N>, I: Integrator, T: Real, const N: u
 }
 
 /// e ∈ [0, 1] and μ ≥ 0, finite.
-pub(super) fn check_laws(laws: &[ContactLaw]) -> Result<(), Error> {
+fn check_laws(laws: &[ContactLaw]) -> Result<(), Error> {
     for law in laws {
         let name = law.name;
         if !(0.0..=1.0).contains(&law.restitution) {
@@ -126,8 +126,22 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
         }
     }
 
+    /// What every contact run checks before its first step: the span and
+    /// the state, the settings, the laws and their listing.
+    pub(super) fn check_start(
+        &self,
+        (t0, t1): (T, T),
+        q0: &SVector<T, N>,
+        v0: &SVector<T, N>,
+    ) -> Result<(), Error> {
+        check_problem(t0, t1, q0, v0)?;
+        self.settings.check()?;
+        check_laws(&self.laws)?;
+        self.check_listed(t0, q0)
+    }
+
     /// The laws' names are `CONTACTS`, in order.
-    pub(super) fn check_listed(&self, t0: T, q0: &SVector<T, N>) -> Result<(), Error> {
+    fn check_listed(&self, t0: T, q0: &SVector<T, N>) -> Result<(), Error> {
         let laws: Vec<&'static str> = self.laws.iter().map(|l| l.name).collect();
         if laws == S::CONTACTS {
             return Ok(());
@@ -165,10 +179,7 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
         span: Range<T>,
     ) -> Result<(), Error> {
         let (t0, t1) = (span.start, span.end);
-        check_problem(t0, t1, &q0, &v0)?;
-        self.settings.check()?;
-        check_laws(&self.laws)?;
-        self.check_listed(t0, &q0)?;
+        self.check_start((t0, t1), &q0, &v0)?;
         let (mut t, mut q, mut v) = (t0, q0, v0);
         let mut modes = self.settle(
             t,

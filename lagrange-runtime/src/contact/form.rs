@@ -138,7 +138,7 @@ impl<S, T: Real> ContactForm<'_, S, T> {
     }
 
     /// M⁻¹ by the stack Cholesky, or the singular mass matrix's error.
-    fn factor<const N: usize>(
+    pub fn factor<const N: usize>(
         &self,
         t: T,
         q: &SVector<T, N>,

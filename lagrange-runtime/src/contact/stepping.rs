@@ -3,14 +3,14 @@
 //! changes of the contacts' modes read off the impulses step by step.
 
 use super::coulomb::{Branch, Local, gauss_seidel};
-use super::driver::{Driver, check_laws};
+use super::driver::Driver;
 use super::form::{ContactForm, Mode, has_tangent};
 use super::run::{ChangeKind, ContactState};
 use crate::error::{ContactFault, Error};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::numeric::clock::Stopwatch;
-use crate::ode::{Continuation, MoreauJean, Sample, Trajectory, check_problem, fixed_steps};
+use crate::ode::{Continuation, MoreauJean, Sample, Trajectory, fixed_steps};
 use crate::ode::{Stats, midpoint_segment};
 use crate::system::Contacts;
 use nalgebra::SVector;
@@ -34,10 +34,7 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         span: Range<T>,
     ) -> Result<(), Error> {
         let (t0, t1) = (span.start, span.end);
-        check_problem(t0, t1, &q0, &v0)?;
-        self.settings.check()?;
-        check_laws(&self.laws)?;
-        self.check_listed(t0, &q0)?;
+        self.check_start((t0, t1), &q0, &v0)?;
         scheme.recording().check_span(t0, t1, 2 * N)?;
         let n = scheme.steps(t0, t1)?;
         self.refuse_penetration(t0, &q0, &v0)?;
@@ -120,13 +117,7 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         let mid = q + v * half;
         let form = self.form(vec![Mode::Open; self.laws.len()]);
         let (m, rhs) = self.system.mass_matrix_and_rhs(&mid, v, tm);
-        let chol = Cholesky::new(m, self.singular).map_err(|ratio| Error::SingularMassMatrix {
-            t: tm.to_f64(),
-            q: crate::error::to_vec(&mid),
-            ratio: ratio.to_f64(),
-            direction: String::new(),
-            atlas: false,
-        })?;
+        let chol = form.factor(tm, &mid, m)?;
         let mut next_v = v + chol.solve(rhs) * h;
         let (mut locals, approach) =
             self.closed(&form, (tm, &mid, v), &chol, impulses, &mut next_v)?;
