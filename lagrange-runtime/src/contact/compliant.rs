@@ -167,11 +167,13 @@ pub(crate) struct CompliantForm<'s, 'f, S, T: Real> {
     pub damping: Vec<T>,
 }
 
-/// What one contact does at a state: its normal force and its friction
-/// along its tangent rows.
-pub(crate) struct Push<T> {
+/// What one contact does at a state: its normal force, its friction
+/// along its tangent rows, and the generalized force they exert (the rows'
+/// transposes times them).
+pub(crate) struct Push<T: Real, const N: usize> {
     pub normal: T,
     pub friction: [T; 2],
+    pub generalized: SVector<T, N>,
 }
 
 impl<S, T: Real> CompliantForm<'_, '_, S, T> {
@@ -201,9 +203,14 @@ impl<S, T: Real> CompliantForm<'_, '_, S, T> {
         let Ok(chol) = Cholesky::new(m, self.form.singular) else {
             return nan;
         };
-        let mass = T::one() / r.normal.dot(&chol.solve(r.normal));
-        let c = T::lit(2.0) * self.damping[i] * (self.stiffness * mass).sqrt();
-        -self.stiffness * r.gap - c * r.normal.dot(v)
+        -self.stiffness * r.gap - self.damper(i, &r.normal, &chol) * r.normal.dot(v)
+    }
+
+    /// Contact `i`'s damper c = 2ζ√(k m), m = 1/(n M⁻¹ nᵀ) its effective
+    /// mass along its normal row n.
+    fn damper<const N: usize>(&self, i: usize, normal: &SVector<T, N>, chol: &Cholesky<T, N>) -> T {
+        let mass = T::one() / normal.dot(&chol.solve(*normal));
+        T::lit(2.0) * self.damping[i] * (self.stiffness * mass).sqrt()
     }
 
     /// The forces of every contact at (t, q, v), given M's factor.
@@ -213,32 +220,35 @@ impl<S, T: Real> CompliantForm<'_, '_, S, T> {
         q: &SVector<T, N>,
         v: &SVector<T, N>,
         chol: &Cholesky<T, N>,
-    ) -> Result<Vec<Push<T>>, Error>
+    ) -> Result<Vec<Push<T, N>>, Error>
     where
         S: Contacts<T, N>,
     {
         let mut out = Vec::with_capacity(self.damping.len());
-        for (i, zeta) in self.damping.iter().enumerate() {
+        for i in 0..self.damping.len() {
             let r = self.form.rows(i, t, q, v)?;
             let depth = -r.gap;
-            let none = Push {
-                normal: T::zero(),
-                friction: [T::zero(); 2],
-            };
             if depth <= T::zero() {
-                out.push(none);
+                out.push(Push {
+                    normal: T::zero(),
+                    friction: [T::zero(); 2],
+                    generalized: SVector::zeros(),
+                });
                 continue;
             }
-            let mass = T::one() / r.normal.dot(&chol.solve(r.normal));
-            let c = T::lit(2.0) * *zeta * (self.stiffness * mass).sqrt();
+            let c = self.damper(i, &r.normal, chol);
             let normal = (self.stiffness * depth - c * r.normal.dot(v)).max(T::zero());
             let slip = ContactForm::<S, T>::slip(&r, v);
             let speed =
                 (slip[0] * slip[0] + slip[1] * slip[1] + self.slip_speed * self.slip_speed).sqrt();
             let scale = -T::lit(self.form.laws[i].friction) * normal / speed;
+            let friction = [scale * slip[0], scale * slip[1]];
+            let generalized =
+                r.normal * normal + r.tangents[0] * friction[0] + r.tangents[1] * friction[1];
             out.push(Push {
                 normal,
-                friction: [scale * slip[0], scale * slip[1]],
+                friction,
+                generalized,
             });
         }
         Ok(out)
@@ -254,14 +264,8 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> SecondOrder<T, N> for Compliant
     ) -> Result<SVector<T, N>, Error> {
         let (m, mut rhs) = self.form.system.mass_matrix_and_rhs(q, v, t);
         let chol = self.form.factor(t, q, m)?;
-        for (i, push) in self.pushes(t, q, v, &chol)?.iter().enumerate() {
-            if push.normal == T::zero() {
-                continue;
-            }
-            let r = self.form.rows(i, t, q, v)?;
-            rhs += r.normal * push.normal
-                + r.tangents[0] * push.friction[0]
-                + r.tangents[1] * push.friction[1];
+        for push in self.pushes(t, q, v, &chol)? {
+            rhs += push.generalized;
         }
         let accel = chol.solve(rhs);
         if accel.iter().all(|a| a.is_finite()) {
