@@ -233,8 +233,14 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             };
             self.record(tm, i, kind);
         }
-        let states = |m: &[Mode<T>]| m.iter().map(|&x| ContactState::from(x)).collect::<Vec<_>>();
-        if self.phases.last().map(|(_, m)| states(m)) != Some(states(&modes)) {
+        // A new phase only where a contact's state changed (a sliding
+        // contact's direction turns every step).
+        let same = |m: &[Mode<T>]| {
+            m.iter()
+                .zip(&modes)
+                .all(|(&a, &b)| ContactState::from(a) == ContactState::from(b))
+        };
+        if !self.phases.last().is_some_and(|(_, m)| same(m)) {
             self.phases.push((tm, modes.clone()));
         }
         modes
