@@ -51,6 +51,7 @@ mod identify_consistent;
 mod identify_excite;
 mod identify_payload;
 mod inputs;
+mod joint_friction;
 mod joints;
 mod operational_space;
 mod order;

@@ -149,11 +149,11 @@ pub struct GeneralizedForce {
     pub value: Expr,
 }
 
-/// `joint(q, damping = b, armature = Ia)`: what a joint's drive adds on
-/// its coordinate, each an expression of the parameters (≥ 0): viscous
-/// damping, −b q̇ in Q, and the rotor's reflected inertia, Ia on M's
-/// diagonal entry (q, q). (Coulomb friction, `friction = fc`, is parsed
-/// and refused at its token until it runs exactly.)
+/// `joint(q, damping = b, friction = fc, armature = Ia)`: what a joint's
+/// drive adds on its coordinate: viscous damping, −b q̇ in Q, and the
+/// rotor's reflected inertia, Ia on M's diagonal entry (q, q), each an
+/// expression of the parameters (≥ 0); and Coulomb friction bounded by fc
+/// (a number), a dry-friction contact named `<q>_friction`.
 #[derive(Clone, Debug)]
 pub struct Joint {
     /// The coordinate.
@@ -162,6 +162,27 @@ pub struct Joint {
     pub damping: Option<Expr>,
     /// The armature Ia.
     pub armature: Option<Expr>,
+    /// Coulomb friction's bound fc > 0 (`None` for none, or 0 written).
+    pub friction: Option<f64>,
+}
+
+impl Joint {
+    /// The name of the dry-friction contact a joint's `friction` makes.
+    pub fn friction_name(&self) -> String {
+        format!("{}_friction", self.coordinate)
+    }
+}
+
+impl System {
+    /// The contacts' names in the order of their laws: the `contact` and
+    /// `stop` items, then each joint's dry friction.
+    pub fn contact_names(&self) -> Vec<String> {
+        let items = self.contacts.iter().map(|c| c.name.to_string());
+        let frictions = (self.joints.iter())
+            .filter(|j| j.friction.is_some())
+            .map(Joint::friction_name);
+        items.chain(frictions).collect()
+    }
 }
 
 /// `define(name = expr)`: an intermediate quantity usable in later expressions.

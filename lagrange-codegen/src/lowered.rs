@@ -167,6 +167,8 @@ pub struct ContactModel {
     /// contact_approach`): the gap, or below zero while their straight
     /// paths pass within the sum of the radii; `None` elsewhere (the gap).
     pub approach: Option<lagrange_symbolic::Expr>,
+    /// A joint's dry friction (no gap; `friction` is its bound).
+    pub dry: bool,
 }
 
 /// What the scene draws, lowered: every body's pose and inertia, every

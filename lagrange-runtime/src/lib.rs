@@ -278,5 +278,5 @@ pub use system::{Atlas, Configuration, DrivenAtlas, EulerRotation, FreeVisitor};
 pub use system::{
     Constrained, Driven, FormVisitor, ForwardRoute, JointLimit, Lagrangian, Reduced, Route,
 };
-pub use system::{ContactLaw, ContactRows, Contacts};
+pub use system::{ContactKind, ContactLaw, ContactRows, Contacts};
 pub use table::Table;

@@ -21,7 +21,7 @@ mod route;
 pub use atlas::{Atlas, DrivenAtlas, EulerRotation, FreeVisitor};
 pub use configuration::Configuration;
 pub use constrained::{Constrained, Reduced};
-pub use contact::{ContactLaw, ContactRows, Contacts};
+pub use contact::{ContactKind, ContactLaw, ContactRows, Contacts};
 pub use form::FormVisitor;
 pub use route::{ForwardRoute, Route};
 

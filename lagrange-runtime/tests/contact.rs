@@ -104,11 +104,7 @@ impl Contacts<f64, 3> for Planar {
 }
 
 fn law(restitution: f64, friction: f64) -> ContactLaw {
-    ContactLaw {
-        name: "ground",
-        restitution,
-        friction,
-    }
+    ContactLaw::unilateral("ground", restitution, friction)
 }
 
 fn ball(e: f64, mu: f64) -> Planar {
@@ -437,11 +433,7 @@ impl Lagrangian<f64, 3> for Rod {
 
 impl Contacts<f64, 3> for Rod {
     fn contact_laws(&self) -> Vec<ContactLaw> {
-        vec![ContactLaw {
-            name: "end",
-            restitution: 0.0,
-            friction: self.mu,
-        }]
+        vec![ContactLaw::unilateral("end", 0.0, self.mu)]
     }
     fn contact_rows(
         &self,

@@ -261,6 +261,7 @@ pub(super) fn number(e: &Expr, what: &str) -> syn::Result<f64> {
             _ => None,
         },
         Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => number(&u.expr, what).ok().map(|x| -x),
+        Expr::Paren(p) => number(&p.expr, what).ok(),
         _ => None,
     };
     value.filter(|x| x.is_finite()).ok_or_else(|| {

@@ -2,7 +2,8 @@
 //! drive adds on its coordinate. The options are spelled in
 //! `keyword::JOINT_OPTIONS`; a negative literal is refused here, at its
 //! token (a value computed from the parameters is checked when lowered, in
-//! `physical::joint`, or at run time by `check_parameters`).
+//! `physical::joint`, or at run time by `check_parameters`). Friction's
+//! bound is a number written out, as a contact's μ is.
 
 use syn::parse::ParseStream;
 use syn::spanned::Spanned;
@@ -13,7 +14,7 @@ use super::keyword::{JOINT_OPTIONS, JointOption};
 use crate::ast::Joint;
 
 /// The form the messages show.
-const FORM: &str = "joint(q, damping = b, armature = Ia)";
+const FORM: &str = "joint(q, damping = b, friction = fc, armature = Ia)";
 
 /// `joint(q, option = value, ..)`.
 pub(super) fn parse_joint(input: ParseStream) -> syn::Result<Joint> {
@@ -24,6 +25,7 @@ pub(super) fn parse_joint(input: ParseStream) -> syn::Result<Joint> {
         coordinate,
         damping: None,
         armature: None,
+        friction: None,
     };
     let mut written: Vec<JointOption> = Vec::new();
     while content.parse::<Option<Token![,]>>()?.is_some() && !content.is_empty() {
@@ -41,7 +43,7 @@ pub(super) fn parse_joint(input: ParseStream) -> syn::Result<Joint> {
         match option {
             JointOption::Damping => joint.damping = Some(non_negative(value, "damping")?),
             JointOption::Armature => joint.armature = Some(non_negative(value, "armature")?),
-            JointOption::Friction => refuse_friction(&value, &joint.coordinate)?,
+            JointOption::Friction => joint.friction = friction(&value)?,
         }
     }
     if !content.is_empty() {
@@ -53,7 +55,7 @@ pub(super) fn parse_joint(input: ParseStream) -> syn::Result<Joint> {
         return Err(syn::Error::new(
             joint.coordinate.span(),
             format!(
-                "joint `{}` says nothing: write `{FORM}` (either option may be left out, not both)",
+                "joint `{}` says nothing: write `{FORM}` (any option may be left out, not all)",
                 joint.coordinate
             ),
         ));
@@ -93,19 +95,14 @@ fn non_negative(value: Expr, what: &str) -> syn::Result<Expr> {
     Ok(value)
 }
 
-/// Coulomb friction at a joint is not derived yet: anything but a literal 0
-/// is refused at its value, with what to write instead, rather than dropped.
-fn refuse_friction(value: &Expr, coordinate: &Ident) -> syn::Result<()> {
-    if number(value, "friction").is_ok_and(|x| x == 0.0) {
-        return Ok(());
+/// Coulomb friction's bound: a number written out, ≥ 0 (0 is none).
+fn friction(value: &Expr) -> syn::Result<Option<f64>> {
+    let fc = number(value, "friction")?;
+    if fc < 0.0 {
+        return Err(syn::Error::new(
+            value.span(),
+            format!("friction = {fc}: a joint's Coulomb friction bound is ≥ 0"),
+        ));
     }
-    Err(syn::Error::new(
-        value.span(),
-        format!(
-            "joint `{coordinate}`: Coulomb friction at a joint is not supported yet (it would be \
-             dropped); remove `friction`, or write it regularised as a generalized force, \
-             `generalized_force({coordinate} = -fc * tanh(dot({coordinate}) / v_s))` with a \
-             small speed v_s"
-        ),
-    ))
+    Ok((fc > 0.0).then_some(fc))
 }

@@ -147,7 +147,11 @@ pub(super) const KEYS: Words<Key> = Words(&[
         "contact(name, on = point, normal = [0, 0, 1], restitution = e, friction = mu)",
     ),
     word("stop", Key::Stop, "stop(name, q >= lower, restitution = e)"),
-    word("joint", Key::Joint, "joint(q, damping = b, armature = Ia)"),
+    word(
+        "joint",
+        Key::Joint,
+        "joint(q, damping = b, friction = fc, armature = Ia)",
+    ),
 ]);
 
 /// An option of `joint(...)`.
@@ -168,7 +172,7 @@ pub(super) const JOINT_OPTIONS: Words<JointOption> = Words(&[
     word(
         "friction",
         JointOption::Friction,
-        "friction = fc: Coulomb friction at the joint (not supported yet: 0 alone)",
+        "friction = fc: Coulomb friction at the joint, |τ_f| ≤ fc (a number ≥ 0), run by `run_contacts`",
     ),
     word(
         "armature",

@@ -23,7 +23,10 @@ pub(super) fn impl_contacts(e: &Emitter, f: &Frame, model: &Model) -> TokenStrea
         let name = &c.name;
         let e = c.restitution;
         let mu = c.friction;
-        quote!(#p::ContactLaw { name: #name, restitution: #e, friction: #mu })
+        match c.dry {
+            true => quote!(#p::ContactLaw::dry_friction(#name, #mu)),
+            false => quote!(#p::ContactLaw::unilateral(#name, #e, #mu)),
+        }
     });
     let arms = model.contacts.iter().enumerate().map(|(i, c)| {
         let (lets, outs) = e.program(&c.outputs());
@@ -39,6 +42,10 @@ pub(super) fn impl_contacts(e: &Emitter, f: &Frame, model: &Model) -> TokenStrea
                 let (a, b) = (row(n + 2), row(2 * n + 3));
                 let (ba, bb) = (&outs[2 * n + 2], &outs[3 * n + 3]);
                 (quote!([#a, #b]), quote!([#ba, #bb]))
+            }
+            1 => {
+                let (a, ba) = (row(n + 2), &outs[2 * n + 2]);
+                (quote!([#a, #zero_row]), quote!([#ba, #zero]))
             }
             _ => (quote!([#zero_row, #zero_row]), quote!([#zero, #zero])),
         };

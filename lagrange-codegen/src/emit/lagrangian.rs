@@ -294,14 +294,14 @@ fn atlas_const(system: &System) -> Option<TokenStream> {
         })
 }
 
-/// `CONTACTS`, the names of the `contact` and `stop` items (else the
-/// default, none): every run but `run_contacts` refuses a system that has
+/// `CONTACTS`, the names of the `contact` and `stop` items and of the
+/// joints' dry friction (else the default, none): every run but `run_contacts` refuses a system that has
 /// some, as it would ignore them.
 fn contacts_const(system: &System) -> Option<TokenStream> {
-    if system.contacts.is_empty() {
+    let names = system.contact_names();
+    if names.is_empty() {
         return None;
     }
-    let names = system.contacts.iter().map(|c| c.name.to_string());
     Some(quote!(
         const CONTACTS: &'static [&'static str] = &[#(#names),*];
     ))

@@ -21,10 +21,14 @@ pub struct ContactRowsModel {
     pub normal: Vec<Sym>,
     /// J̇ q̇ of the normal row (−γ of the constraint φ = 0).
     pub normal_bias: Sym,
-    /// Each tangent's row and its bias; none for a stop.
+    /// Each tangent's row and its bias: two on a plane, none for a stop,
+    /// one for a joint's dry friction.
     pub tangents: Vec<(Vec<Sym>, Sym)>,
     /// The touch event's function where it is not the gap (two spheres).
     pub approach: Option<Sym>,
+    /// A joint's dry friction: `friction` is its bound, and its one
+    /// tangent the coordinate's row.
+    pub dry: bool,
 }
 
 impl ContactRowsModel {
@@ -70,6 +74,7 @@ pub fn rows(ctx: &mut Context, contacts: &[ContactModel]) -> Vec<ContactRowsMode
                 normal_bias,
                 tangents,
                 approach: c.approach,
+                dry: c.dry,
             }
         })
         .collect()

@@ -11,7 +11,8 @@ use syn::{Expr, Ident, parse_quote_spanned};
 use super::constraint;
 use crate::ast::{Contact, ContactGeometry, System};
 use crate::lower::{Lowerer, Mode, NoInputs};
-use crate::lowered::ContactModel;
+use crate::lowered::{ConstraintModel, ContactModel};
+use quote::format_ident;
 
 /// Every contact of the description, lowered (those with errors left out;
 /// the errors are in the context).
@@ -83,6 +84,72 @@ pub(super) fn contacts(lw: &mut Lowerer, system: &System) -> Vec<ContactModel> {
             gap,
             slips,
             approach,
+            dry: false,
+        });
+    }
+    out.extend(joint_frictions(lw, system));
+    unique_names(lw, system);
+    out
+}
+
+/// The contacts' names, each a law's name in reports, must differ: a
+/// second use is refused at its token (a joint's friction at the joint's
+/// coordinate).
+fn unique_names(lw: &Lowerer, system: &System) {
+    let items = system
+        .contacts
+        .iter()
+        .map(|c| (c.name.to_string(), &c.name, None));
+    let frictions = (system.joints.iter())
+        .filter(|j| j.friction.is_some())
+        .map(|j| (j.friction_name(), &j.coordinate, Some(&j.coordinate)));
+    let mut seen = std::collections::BTreeSet::new();
+    for (name, token, joint) in items.chain(frictions) {
+        if seen.insert(name.clone()) {
+            continue;
+        }
+        let message = match joint {
+            Some(q) => format!(
+                "joint `{q}`'s friction is the contact `{name}`, a name a contact already has; \
+                 rename that contact"
+            ),
+            None => format!("a second contact named `{name}`: give each contact its own name"),
+        };
+        lw.cx.error_at(token.span(), message);
+    }
+}
+
+/// Each joint's dry friction as a contact: no gap (a zero one, so that its
+/// normal row is zero) and one slip, the coordinate's velocity.
+fn joint_frictions(lw: &mut Lowerer, system: &System) -> Vec<ContactModel> {
+    let mut out = Vec::new();
+    for j in &system.joints {
+        let Some(fc) = j.friction else { continue };
+        // An unknown coordinate is `check`'s error.
+        let Some(i) = system.coordinates.iter().position(|c| *c == j.coordinate) else {
+            continue;
+        };
+        if let Some(o) = system.orientations.first() {
+            let message = oriented(&format_ident!("{}", j.friction_name()), &o.to_string());
+            lw.cx.error_at(j.coordinate.span(), message);
+            continue;
+        }
+        let name = j.friction_name();
+        let zero = lw.ctx.zero();
+        let rate = lw.ctx.velocities()[i];
+        let row = |value| ConstraintModel {
+            name: name.clone(),
+            value,
+            cartesian: Vec::new(),
+        };
+        out.push(ContactModel {
+            name: name.clone(),
+            restitution: 0.0,
+            friction: fc,
+            gap: row(zero),
+            slips: vec![row(rate)],
+            approach: None,
+            dry: true,
         });
     }
     out

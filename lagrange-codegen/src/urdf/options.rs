@@ -203,8 +203,8 @@ fn dynamics(content: ParseStream) -> syn::Result<DynamicsRule> {
         _ => Err(syn::Error::new(
             kind.span(),
             format!(
-                "unknown dynamics rule `{kind}`: write `dynamics = read` (the joints' damping as \
-                 `joint(q, damping = b)` items) or `dynamics = ignore` (the rigid-body dynamics, \
+                "unknown dynamics rule `{kind}`: write `dynamics = read` (the joints' damping and \
+                 friction as `joint(q, damping = b, friction = fc)` items) or `dynamics = ignore` (the rigid-body dynamics, \
                  what Pinocchio's rnea and aba compute)"
             ),
         )),

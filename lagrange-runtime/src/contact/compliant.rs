@@ -21,7 +21,7 @@ use crate::event::{Event, Events};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::ode::{Continuation, Integrator, SecondOrder};
-use crate::system::{ContactLaw, Contacts};
+use crate::system::{ContactLaw, ContactRows, Contacts};
 use nalgebra::SVector;
 use std::ops::Range;
 
@@ -227,6 +227,10 @@ impl<S, T: Real> CompliantForm<'_, '_, S, T> {
         let mut out = Vec::with_capacity(self.damping.len());
         for i in 0..self.damping.len() {
             let r = self.form.rows(i, t, q, v)?;
+            if self.form.laws[i].is_dry_friction() {
+                out.push(self.dry(i, &r, v));
+                continue;
+            }
             let depth = -r.gap;
             if depth <= T::zero() {
                 out.push(Push {
@@ -252,6 +256,27 @@ impl<S, T: Real> CompliantForm<'_, '_, S, T> {
             });
         }
         Ok(out)
+    }
+}
+
+impl<S, T: Real> CompliantForm<'_, '_, S, T> {
+    /// Dry friction regularised like a contact's: −fc u / √(|u|² + ε²).
+    fn dry<const N: usize>(
+        &self,
+        i: usize,
+        r: &ContactRows<T, N>,
+        v: &SVector<T, N>,
+    ) -> Push<T, N> {
+        let slip = ContactForm::<S, T>::slip(r, v);
+        let speed =
+            (slip[0] * slip[0] + slip[1] * slip[1] + self.slip_speed * self.slip_speed).sqrt();
+        let scale = -T::lit(self.form.laws[i].friction) / speed;
+        let friction = [scale * slip[0], scale * slip[1]];
+        Push {
+            normal: T::zero(),
+            friction,
+            generalized: r.tangents[0] * friction[0] + r.tangents[1] * friction[1],
+        }
     }
 }
 
@@ -379,8 +404,12 @@ fn switches<'f, S: Contacts<T, N>, T: Real, const N: usize>(
     let mut events = Events::new();
     for (i, law) in laws.iter().enumerate() {
         let name = law.name;
-        let gap = move |t, q: &SVector<T, N>, v: &SVector<T, N>| {
-            form.rows(i, t, q, v).map_or(nan, |r| r.gap)
+        // Dry friction has no gap: never touches (nor lets go, its
+        // unclipped force being `apart`).
+        let dry = law.is_dry_friction();
+        let gap = move |t, q: &SVector<T, N>, v: &SVector<T, N>| match dry {
+            true => one,
+            false => form.rows(i, t, q, v).map_or(nan, |r| r.gap),
         };
         let lets_go =
             move |t, q: &SVector<T, N>, v: &SVector<T, N>| compliant.unclipped(i, (t, q, v), one);

@@ -42,6 +42,10 @@ pub(super) struct Local<T: Real, const N: usize> {
     /// e·uₙ, added to the normal velocity (Newton's law).
     pub bias: T,
     pub friction: T,
+    /// Dry friction's fixed bound on the impulse (its force bound times the
+    /// step), where the rows are its tangents only, with no normal; `None`
+    /// for a unilateral contact.
+    pub bound: Option<T>,
     /// The impulse so far (normal, tangents), and how it stands.
     pub impulse: [T; 3],
     pub branch: Branch<T>,
@@ -70,6 +74,7 @@ impl<T: Real, const N: usize> Local<T, N> {
             block,
             bias,
             friction,
+            bound: None,
             impulse: [T::zero(); 3],
             branch: Branch::Apart,
         }
@@ -115,7 +120,11 @@ pub(super) fn gauss_seidel<T: Real, const N: usize>(
                 *f = row.dot(v) - held;
             }
             free[0] += c.bias;
-            let (p, branch) = coulomb(&c.block, d, free, c.friction).ok_or(T::lit(f64::NAN))?;
+            let solved = match c.bound {
+                Some(bound) => bounded(&c.block, d, free, bound),
+                None => coulomb(&c.block, d, free, c.friction),
+            };
+            let (p, branch) = solved.ok_or(T::lit(f64::NAN))?;
             let dp = [
                 p[0] - c.impulse[0],
                 p[1] - c.impulse[1],
@@ -169,6 +178,41 @@ pub(super) fn coulomb<T: Real>(
             let (p, _, _, speed) = slide([s, zero])?;
             (speed >= zero).then_some((p, Branch::Sliding { s: [s, zero] }))
         });
+    }
+    slide_in_plane(&slide)
+}
+
+/// Dry friction's problem: the impulse P on its `d` tangent rows (no
+/// normal) with U = W P + r, sticking (U = 0) while |P| ≤ `bound`, sliding
+/// otherwise (P = −bound s, U = α s with α ≥ 0). `None` when W is not
+/// positive along the slip.
+pub(super) fn bounded<T: Real>(
+    w: &[[T; 3]; 3],
+    d: usize,
+    r: [T; 3],
+    bound: T,
+) -> Option<([T; 3], Branch<T>)> {
+    let zero = T::zero();
+    let p = match d {
+        1 => (w[0][0] > zero).then(|| [-r[0] / w[0][0], zero, zero])?,
+        _ => stick(w, d, r)?,
+    };
+    if (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() <= bound {
+        return Some((p, Branch::Sticking));
+    }
+    let slide = |s: [T; 2]| {
+        let p = [-bound * s[0], -bound * s[1], zero];
+        let mut u = [zero; 2];
+        for (a, x) in u.iter_mut().enumerate().take(d) {
+            *x = (0..d).fold(r[a], |acc, b| acc + w[a][b] * p[b]);
+        }
+        let cross = u[0] * s[1] - u[1] * s[0];
+        let speed = u[0] * s[0] + u[1] * s[1];
+        Some((p, u, cross, speed))
+    };
+    if d == 1 {
+        let s = [r[0].signum(), zero];
+        return Some((slide(s)?.0, Branch::Sliding { s }));
     }
     slide_in_plane(&slide)
 }
@@ -319,6 +363,31 @@ mod tests {
         let (p, b) = check(W, 1, [-1.0, 0.0, 0.0], 0.0);
         assert_eq!(b, Branch::Sticking);
         assert!((p[0] - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn dry_friction_holds_within_its_bound_and_slides_on_it() {
+        // One row: held while |r/w| ≤ bound, else the bound against r.
+        let w: [[f64; 3]; 3] = [[2.0, 0.0, 0.0], [0.0; 3], [0.0; 3]];
+        let (p, b) = bounded(&w, 1, [0.6, 0.0, 0.0], 0.5).unwrap();
+        assert_eq!((p[0], b), (-0.3, Branch::Sticking));
+        let (p, b) = bounded(&w, 1, [-1.4, 0.0, 0.0], 0.5).unwrap();
+        assert_eq!((p[0], b), (0.5, Branch::Sliding { s: [-1.0, 0.0] }));
+        // Two rows: on the disc's edge, the slip along the direction s
+        // opposite to the impulse.
+        let w2: [[f64; 3]; 3] = [[1.5, 0.1, 0.0], [0.1, 1.2, 0.0], [0.0; 3]];
+        let r: [f64; 3] = [3.0, -2.0, 0.0];
+        let (p, b) = bounded(&w2, 2, r, 0.4).unwrap();
+        let Branch::Sliding { s } = b else {
+            panic!("{b:?}")
+        };
+        assert!(((p[0] * p[0] + p[1] * p[1]).sqrt() - 0.4).abs() < 1e-12);
+        let u = [
+            r[0] + w2[0][0] * p[0] + w2[0][1] * p[1],
+            r[1] + w2[1][0] * p[0] + w2[1][1] * p[1],
+        ];
+        let speed = (u[0] * u[0] + u[1] * u[1]).sqrt();
+        assert!((u[0] - speed * s[0]).abs() < 1e-9 && (u[1] - speed * s[1]).abs() < 1e-9);
     }
 
     #[test]

@@ -102,12 +102,17 @@ fn check_laws(laws: &[ContactLaw]) -> Result<(), Error> {
             }
             .into());
         }
-        if !(law.friction.is_finite() && law.friction >= 0.0) {
+        let dry = law.is_dry_friction();
+        if !(law.friction.is_finite() && (law.friction > 0.0 || !dry && law.friction == 0.0)) {
+            let requirement = match dry {
+                true => format!("positive and finite: dry friction's bound (contact `{name}`)"),
+                false => format!("non-negative and finite (contact `{name}`)"),
+            };
             return Err(SettingsError::Value {
                 owner: "contact law",
                 setting: "friction",
                 value: law.friction,
-                requirement: format!("non-negative and finite (contact `{name}`)"),
+                requirement,
             }
             .into());
         }
@@ -181,13 +186,8 @@ impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
         let (t0, t1) = (span.start, span.end);
         self.check_start((t0, t1), &q0, &v0)?;
         let (mut t, mut q, mut v) = (t0, q0, v0);
-        let mut modes = self.settle(
-            t,
-            &q,
-            &mut v,
-            &vec![Mode::Open; self.laws.len()],
-            Forced::Nothing,
-        )?;
+        let start = self.starting_modes(t, &q, &v)?;
+        let mut modes = self.settle(t, &q, &mut v, &start, Forced::Nothing)?;
         let stalled_within = T::lit(64.0) * T::default_epsilon() * (abs(t0) + abs(t1));
         let (mut count, mut stalled) = (0usize, 0usize);
         loop {
@@ -295,8 +295,11 @@ fn watch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
     let mut watched = Vec::new();
     let mut events = Events::new();
     for (i, mode) in form.modes.iter().enumerate() {
-        let name = form.laws[i].name;
-        let mu = T::lit(form.laws[i].friction);
+        let law = form.laws[i];
+        let name = law.name;
+        let mu = T::lit(law.friction);
+        // Dry friction never lifts off: only its slip and margin are watched.
+        let lifts = !law.is_dry_friction();
         let (what, event) = match *mode {
             Mode::Open => (
                 Watched::Touches(i),
@@ -305,8 +308,10 @@ fn watch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
             Mode::Sliding { hint } if mu > T::zero() && slips(&form.rows(i, t, q, v)?) => {
                 let r = form.rows(i, t, q, v)?;
                 let u = form.slip_direction(ContactForm::<S, T>::slip(&r, v), hint);
-                watched.push(Watched::LiftsOff(i));
-                events = events.with(lift_off(form, i, name));
+                if lifts {
+                    watched.push(Watched::LiftsOff(i));
+                    events = events.with(lift_off(form, i, name));
+                }
                 let stop = Event::new(move |t, q, v| {
                     form.rows(i, t, q, v).map_or(nan, |r| {
                         let s = ContactForm::<S, T>::slip(&r, v);
@@ -320,12 +325,14 @@ fn watch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
             }
             Mode::Sliding { .. } => (Watched::LiftsOff(i), lift_off(form, i, name)),
             Mode::Sticking => {
-                watched.push(Watched::LiftsOff(i));
-                events = events.with(lift_off(form, i, name));
+                if lifts {
+                    watched.push(Watched::LiftsOff(i));
+                    events = events.with(lift_off(form, i, name));
+                }
                 let margin = Event::new(move |t, q, v| {
                     form.solve(t, q, v).map_or(nan, |s| {
                         let f = s.tangential[i];
-                        mu * s.normal[i] - (f[0] * f[0] + f[1] * f[1]).sqrt()
+                        law.friction_bound(s.normal[i]) - (f[0] * f[0] + f[1] * f[1]).sqrt()
                     })
                 });
                 (Watched::Slips(i), margin.named(format!("{name} slips")))

@@ -9,6 +9,8 @@
 //! M q̈ = Q − h + W λ and J q̈ = −J̇ q̇. Eliminating q̈ leaves
 //! (J M⁻¹ W) λ = −J̇ q̇ − J M⁻¹ (Q − h), a system of a few unknowns, square
 //! but not symmetric when a contact slides, solved by LU with pivoting.
+//! Dry friction has no normal unknown: sliding, its force −fc û·t is
+//! known and joins Q; sticking, its tangent rows are constraints.
 
 use crate::error::{ContactError, ContactFault, Error, to_vec};
 use crate::numeric::Real;
@@ -49,6 +51,15 @@ pub(crate) struct Solution<T: Real, const N: usize> {
 enum Unknown {
     Normal(usize),
     Tangent(usize, usize),
+}
+
+/// The unknown forces of the contacts in force, each with the row it
+/// constrains, that row's bias and the force's column.
+struct Unknowns<T: Real, const N: usize> {
+    unknowns: Vec<Unknown>,
+    rows: Vec<SVector<T, N>>,
+    bias: Vec<T>,
+    columns: Vec<SVector<T, N>>,
 }
 
 /// A system's dynamics with its contacts in the modes given.
@@ -163,40 +174,16 @@ impl<S, T: Real> ContactForm<'_, S, T> {
     where
         S: Contacts<T, N>,
     {
-        let (m, rhs) = self.system.mass_matrix_and_rhs(q, v, t);
+        let (m, mut rhs) = self.system.mass_matrix_and_rhs(q, v, t);
         let chol = self.factor(t, q, m)?;
-        let free = chol.solve(rhs);
         let count = self.laws.len();
-        let mut unknowns = Vec::new();
-        let mut rows = Vec::new();
-        let mut bias = Vec::new();
-        let mut columns = Vec::new();
-        for (i, mode) in self.modes.iter().enumerate() {
-            if *mode == Mode::Open {
-                continue;
-            }
-            let r = self.rows(i, t, q, v)?;
-            let mut column = r.normal;
-            if let Mode::Sliding { hint } = *mode {
-                let u = self.slip_direction(Self::slip(&r, v), hint);
-                let mu = T::lit(self.laws[i].friction);
-                column -= (r.tangents[0] * u[0] + r.tangents[1] * u[1]) * mu;
-            }
-            unknowns.push(Unknown::Normal(i));
-            rows.push(r.normal);
-            bias.push(r.normal_bias);
-            columns.push(column);
-            if *mode == Mode::Sticking {
-                for k in 0..2 {
-                    if has_tangent(&r.tangents[k]) {
-                        unknowns.push(Unknown::Tangent(i, k));
-                        rows.push(r.tangents[k]);
-                        bias.push(r.tangent_bias[k]);
-                        columns.push(r.tangents[k]);
-                    }
-                }
-            }
-        }
+        let Unknowns {
+            unknowns,
+            rows,
+            bias,
+            columns,
+        } = self.unknowns(t, q, v, &mut rhs)?;
+        let free = chol.solve(rhs);
         let mut solution = Solution {
             accel: free,
             normal: vec![T::zero(); count],
@@ -233,6 +220,58 @@ impl<S, T: Real> ContactForm<'_, S, T> {
         Ok(solution)
     }
 
+    /// The unknown forces in the present modes; dry friction's sliding
+    /// force, known, is added to `rhs` (Q − h) instead.
+    fn unknowns<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+        rhs: &mut SVector<T, N>,
+    ) -> Result<Unknowns<T, N>, Error>
+    where
+        S: Contacts<T, N>,
+    {
+        let mut out = Unknowns {
+            unknowns: Vec::new(),
+            rows: Vec::new(),
+            bias: Vec::new(),
+            columns: Vec::new(),
+        };
+        for (i, mode) in self.modes.iter().enumerate() {
+            if *mode == Mode::Open {
+                continue;
+            }
+            let r = self.rows(i, t, q, v)?;
+            let slide = |hint| {
+                let u = self.slip_direction(Self::slip(&r, v), hint);
+                (r.tangents[0] * u[0] + r.tangents[1] * u[1]) * T::lit(self.laws[i].friction)
+            };
+            let dry = self.laws[i].is_dry_friction();
+            match *mode {
+                // A fixed bound: a known force against the slip, no unknown.
+                Mode::Sliding { hint } if dry => *rhs -= slide(hint),
+                Mode::Sliding { hint } => out.columns.push(r.normal - slide(hint)),
+                _ if dry => {}
+                _ => out.columns.push(r.normal),
+            }
+            if !dry {
+                out.unknowns.push(Unknown::Normal(i));
+                out.rows.push(r.normal);
+                out.bias.push(r.normal_bias);
+            }
+            if *mode == Mode::Sticking {
+                for k in (0..2).filter(|&k| has_tangent(&r.tangents[k])) {
+                    out.unknowns.push(Unknown::Tangent(i, k));
+                    out.rows.push(r.tangents[k]);
+                    out.bias.push(r.tangent_bias[k]);
+                    out.columns.push(r.tangents[k]);
+                }
+            }
+        }
+        Ok(out)
+    }
+
     /// Coulomb's force −μ λ_n û of each sliding contact, in its tangent axes.
     fn sliding_forces<const N: usize>(
         &self,
@@ -248,7 +287,7 @@ impl<S, T: Real> ContactForm<'_, S, T> {
             if let Mode::Sliding { hint } = *mode {
                 let r = self.rows(i, t, q, v)?;
                 let u = self.slip_direction(Self::slip(&r, v), hint);
-                let f = -T::lit(self.laws[i].friction) * solution.normal[i];
+                let f = -self.laws[i].friction_bound(solution.normal[i]);
                 solution.tangential[i] = [f * u[0], f * u[1]];
             } else {
                 solution.compliance[i] = T::zero();

@@ -41,6 +41,11 @@
 //! acceleration a_n (exact while a_n is constant over the remaining
 //! bounces). The energy dropped is ½ m u² at most.
 //!
+//! **Dry friction at a joint** ([`ContactKind::DryFriction`]) runs through
+//! the same modes: a contact with no gap and no normal force, always in
+//! force, its friction bounded by a fixed fc instead of μ λ_n; it sticks
+//! and slips at the same events, and takes no impulse at an impact.
+//!
 //! **Scope.** The event-driven impacts are frictionless (the tangential
 //! velocity is kept through an impact); contacts are points or spheres against planes and
 //! stops on coordinates; systems without free orientations.
@@ -77,6 +82,7 @@
 //! moving them to the stack, sized by the system's contacts, is not done.
 //!
 //! [`ContactError`]: crate::error::ContactError
+//! [`ContactKind::DryFriction`]: crate::ContactKind::DryFriction
 
 mod compliant;
 mod coulomb;

@@ -7,7 +7,7 @@ use super::impact::impulse;
 use super::run::ChangeKind;
 use crate::error::{ContactFault, Error};
 use crate::numeric::Real;
-use crate::system::{ContactRows, Contacts};
+use crate::system::{ContactLaw, ContactRows, Contacts};
 use nalgebra::SVector;
 
 /// A contact meeting the impulse problem: its target normal speed and what
@@ -114,7 +114,8 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             .accel;
         let mut meetings = Vec::new();
         for (i, r) in rows.iter().enumerate() {
-            if forced == Forced::Open(i) || r.gap > tolerance {
+            // Dry friction's bounded force takes no impulse.
+            if forced == Forced::Open(i) || r.gap > tolerance || self.laws[i].is_dry_friction() {
                 continue;
             }
             let before = r.normal.dot(v);
@@ -159,7 +160,8 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         forced: Forced,
     ) -> Result<Vec<Mode<T>>, Error> {
         let mut modes = vec![Mode::Open; rows.len()];
-        for &i in closing {
+        let dry = (0..rows.len()).filter(|&i| self.laws[i].is_dry_friction());
+        for i in closing.iter().copied().chain(dry) {
             modes[i] = self.first_mode(i, &rows[i], v);
         }
         if let Forced::Slide(i) = forced {
@@ -175,7 +177,7 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             // that friction presses the harder the more it is pushed makes
             // both answers possible, or neither.
             for (i, mode) in modes.iter().enumerate() {
-                let rubs = self.laws[i].friction > 0.0;
+                let rubs = self.laws[i].friction > 0.0 && !self.laws[i].is_dry_friction();
                 if matches!(mode, Mode::Sliding { .. }) && rubs && s.compliance[i] <= T::zero() {
                     let compliance = s.compliance[i].to_f64();
                     return Err(form.fault(i, t, q, ContactFault::Painleve { compliance }));
@@ -194,9 +196,9 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             }
             let outside = (0..rows.len()).find(|&i| {
                 let f = s.tangential[i];
-                let mu = T::lit(self.laws[i].friction);
+                let bound = self.laws[i].friction_bound(s.normal[i]);
                 modes[i] == Mode::Sticking
-                    && (f[0] * f[0] + f[1] * f[1]).sqrt() > mu * s.normal[i] * T::lit(1.0 + 1e-9)
+                    && (f[0] * f[0] + f[1] * f[1]).sqrt() > bound * T::lit(1.0 + 1e-9)
             });
             if let Some(i) = outside {
                 modes[i] = Mode::Sliding {
@@ -221,6 +223,27 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         Err(self
             .form(modes)
             .fault(first, t, q, ContactFault::NoConsistentMode))
+    }
+
+    /// The modes before a run's first step: dry friction in force, sticking
+    /// where its bound holds it, every other contact apart until the start
+    /// is settled.
+    pub(super) fn starting_modes(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<Vec<Mode<T>>, Error> {
+        let open = vec![Mode::Open; self.laws.len()];
+        if !self.laws.iter().any(ContactLaw::is_dry_friction) {
+            return Ok(open);
+        }
+        let form = self.form(Vec::new());
+        let mut rows = Vec::with_capacity(self.laws.len());
+        for i in 0..self.laws.len() {
+            rows.push(form.rows(i, t, q, v)?);
+        }
+        self.choose(t, q, v, &rows, &[], &open, Forced::Nothing)
     }
 
     /// A closing contact's first mode: sliding without friction or without

@@ -38,8 +38,8 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         scheme.recording().check_span(t0, t1, 2 * N)?;
         let n = scheme.steps(t0, t1)?;
         self.refuse_penetration(t0, &q0, &v0)?;
-        let open = vec![Mode::Open; self.laws.len()];
-        let sample = Sample::of(&self.form(open.clone()), t0, &q0, &v0);
+        let start = self.starting_modes(t0, &q0, &v0)?;
+        let sample = Sample::of(&self.form(start.clone()), t0, &q0, &v0);
         let mut traj = Trajectory::start_recording(
             scheme.recording(),
             Continuation::start(t0),
@@ -49,10 +49,10 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
             sample,
         );
         traj.reserve(n);
-        self.phases.push((t0, open.clone()));
+        self.phases.push((t0, start.clone()));
         let started = Stopwatch::start();
         let mut stats = Stats::default();
-        let (mut q, mut v, mut modes) = (q0, v0, open);
+        let (mut q, mut v, mut modes) = (q0, v0, start);
         let mut impulses: Vec<Option<[T; 3]>> = vec![None; self.laws.len()];
         let mut outcome = Ok(());
         for (t, t_next) in fixed_steps(t0, t1, T::lit(scheme.step_size()), n) {
@@ -120,7 +120,7 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         let chol = form.factor(tm, &mid, m)?;
         let mut next_v = v + chol.solve(rhs) * h;
         let (mut locals, approach) =
-            self.closed(&form, (tm, &mid, v), &chol, impulses, &mut next_v)?;
+            self.closed(&form, (tm, &mid, v), (&chol, h), impulses, &mut next_v)?;
         let tolerance = T::lit(scheme.velocity_tolerance());
         if let Err(residual) =
             gauss_seidel(&mut locals, &mut next_v, scheme.max_sweeps(), tolerance)
@@ -148,8 +148,8 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         Ok((next_q, next_v, Outcome { modes, approach }))
     }
 
-    /// The contacts closed at the midpoint (t, q, v), each with its rows,
-    /// responses M⁻¹ rowᵀ and Newton's bias e·uₙ, warm-started from the
+    /// The contacts closed at the midpoint (t, q, v) of a step h, each with
+    /// its rows, responses M⁻¹ rowᵀ and Newton's bias e·uₙ, warm-started from the
     /// step before's impulse (added to `next_v`); and every contact's
     /// normal speed there. An open contact forgets its impulse.
     #[allow(clippy::type_complexity)]
@@ -157,7 +157,7 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         &self,
         form: &ContactForm<'_, S, T>,
         (t, q, v): (T, &SVector<T, N>, &SVector<T, N>),
-        chol: &Cholesky<T, N>,
+        (chol, h): (&Cholesky<T, N>, T),
         impulses: &mut [Option<[T; 3]>],
         next_v: &mut SVector<T, N>,
     ) -> Result<(Vec<Local<T, N>>, Vec<T>), Error> {
@@ -171,7 +171,10 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
                 continue;
             }
             let mu = T::lit(law.friction);
-            let mut rows = vec![r.normal];
+            let dry = law.is_dry_friction();
+            // Dry friction has its tangents only, its impulse bounded by
+            // the force bound times the step.
+            let mut rows = if dry { Vec::new() } else { vec![r.normal] };
             let mut tangents = Vec::new();
             for (k, row) in r.tangents.iter().enumerate() {
                 if mu > T::zero() && has_tangent(row) {
@@ -179,9 +182,13 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
                     tangents.push(k);
                 }
             }
+            if rows.is_empty() {
+                continue;
+            }
             let responses = rows.iter().map(|row| chol.solve(*row)).collect();
             let bias = T::lit(law.restitution) * approach[i];
             let mut local = Local::new(i, (rows, tangents), responses, bias, mu);
+            local.bound = dry.then(|| mu * h);
             // Warm start: the impulse of the step before, already applied.
             if let Some(p) = impulses[i] {
                 local.impulse = p;

@@ -15,9 +15,66 @@ pub struct ContactLaw {
     /// Newton's coefficient of restitution e ∈ [0, 1]: the normal speed after
     /// an impact is −e times the one before (0: plastic, 1: elastic).
     pub restitution: f64,
-    /// Coulomb's friction coefficient μ ≥ 0 (isotropic cone); 0 for a
-    /// frictionless contact or a stop on a coordinate.
+    /// Coulomb's friction coefficient μ ≥ 0 (isotropic cone) of a
+    /// unilateral contact, 0 for a frictionless contact or a stop on a
+    /// coordinate; for [`ContactKind::DryFriction`], the bound itself.
     pub friction: f64,
+    /// What bounds the friction: the normal force, or a fixed bound.
+    pub kind: ContactKind,
+}
+
+/// What kind of contact a [`ContactLaw`] governs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ContactKind {
+    /// A gap that opens and closes, a normal force that can only push, and
+    /// friction inside the cone |λ_t| ≤ μ λₙ.
+    Unilateral,
+    /// Dry (Coulomb) friction with a fixed bound |λ_t| ≤ `friction`: a
+    /// joint's friction torque or force, whatever the load on it. Always in
+    /// force: it has no gap (its rows' gap and normal are not read), no
+    /// normal force and takes no impulse at an impact (a bounded force
+    /// transmits none in an instant); it sticks while the torque that
+    /// holds it is within the bound, and slides against its slip
+    /// otherwise. Its one tangent row is the coordinate's.
+    DryFriction,
+}
+
+impl ContactLaw {
+    /// A unilateral contact named `name` with restitution e and friction
+    /// coefficient μ.
+    pub fn unilateral(name: &'static str, restitution: f64, friction: f64) -> Self {
+        Self {
+            name,
+            restitution,
+            friction,
+            kind: ContactKind::Unilateral,
+        }
+    }
+
+    /// Dry friction named `name`, bounded by `bound` (N·m on an angle, N on
+    /// a length): see [`ContactKind::DryFriction`].
+    pub fn dry_friction(name: &'static str, bound: f64) -> Self {
+        Self {
+            name,
+            restitution: 0.0,
+            friction: bound,
+            kind: ContactKind::DryFriction,
+        }
+    }
+
+    /// Whether this is [`ContactKind::DryFriction`].
+    pub fn is_dry_friction(&self) -> bool {
+        self.kind == ContactKind::DryFriction
+    }
+
+    /// The largest friction force the contact can take under the normal
+    /// force λₙ: μ λₙ, or the fixed bound.
+    pub fn friction_bound<T: Real>(&self, normal: T) -> T {
+        match self.kind {
+            ContactKind::Unilateral => T::lit(self.friction) * normal,
+            ContactKind::DryFriction => T::lit(self.friction),
+        }
+    }
 }
 
 /// One contact's kinematics at (q, q̇, t), each a row of the Jacobian of a

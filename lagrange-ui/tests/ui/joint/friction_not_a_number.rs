@@ -1,7 +1,7 @@
 use lagrange::Lagrangian;
 
-// Coulomb friction at a joint is not derived yet: refused at its value, with
-// what to write instead, rather than dropped.
+// A joint's friction bound is a number written out, as a contact's μ is
+// (it is read when the code is derived, into the contact's law).
 #[derive(Lagrangian)]
 #[lagrange(
     coordinates(theta),
