@@ -34,6 +34,7 @@ mod constrained_control;
 mod constrained_tangent;
 mod contact;
 mod contact_compliant;
+mod contact_inputs;
 mod contact_refused;
 mod contact_spheres;
 mod contact_stepping;

@@ -49,9 +49,10 @@ pub enum DynamicsRule {
     /// dropped without a word.
     #[default]
     Unset,
-    /// `dynamics = read`: each joint's damping becomes `joint(q, damping =
-    /// b)` (a mimic joint's b times its multiplier squared on the joint it
-    /// follows); a non-zero friction is refused (not derived yet).
+    /// `dynamics = read`: each joint's damping and friction become
+    /// `joint(q, damping = b, friction = fc)` (a mimic joint's b times its
+    /// multiplier squared, and fc times its absolute value, on the joint it
+    /// follows).
     Read,
     /// `dynamics = ignore`: the rigid-body dynamics, what Pinocchio's
     /// `rnea` and `aba` compute.

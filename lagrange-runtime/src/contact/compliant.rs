@@ -18,6 +18,7 @@ use super::form::{ContactForm, Mode};
 use super::run::{ChangeKind, ContactForce};
 use crate::error::{Error, SettingsError};
 use crate::event::{Event, Events};
+use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::ode::{Continuation, Integrator, SecondOrder};
@@ -111,9 +112,9 @@ impl Compliant {
 
     /// The forces of the model at (t, q, v), per contact in its normal and
     /// tangent axes.
-    pub(crate) fn forces<S: Contacts<T, N>, T: Real, const N: usize>(
+    pub(crate) fn forces<S: Contacts<T, N>, T: Real, F, const N: usize>(
         &self,
-        form: &ContactForm<'_, S, T>,
+        form: &ContactForm<'_, S, T, F>,
         t: T,
         q: &SVector<T, N>,
         v: &SVector<T, N>,
@@ -159,8 +160,8 @@ impl Compliant {
 }
 
 /// The equations of motion with compliant contacts.
-pub(crate) struct CompliantForm<'s, 'f, S, T: Real> {
-    pub form: &'f ContactForm<'s, S, T>,
+pub(crate) struct CompliantForm<'s, 'f, S, T: Real, F = NoForcing> {
+    pub form: &'f ContactForm<'s, S, T, F>,
     pub stiffness: T,
     pub slip_speed: T,
     /// ζ per contact, from its restitution.
@@ -176,7 +177,7 @@ pub(crate) struct Push<T: Real, const N: usize> {
     pub generalized: SVector<T, N>,
 }
 
-impl<S, T: Real> CompliantForm<'_, '_, S, T> {
+impl<S, T: Real, F> CompliantForm<'_, '_, S, T, F> {
     /// Contact `i`'s spring and damper force before it is kept from
     /// pulling, k δ + c δ̇, while it is sunk; `apart` while it is not. Its
     /// fall through zero is the contact letting go (with `apart` positive,
@@ -242,7 +243,7 @@ impl<S, T: Real> CompliantForm<'_, '_, S, T> {
             }
             let c = self.damper(i, &r.normal, chol);
             let normal = (self.stiffness * depth - c * r.normal.dot(v)).max(T::zero());
-            let slip = ContactForm::<S, T>::slip(&r, v);
+            let slip = ContactForm::<S, T, F>::slip(&r, v);
             let speed =
                 (slip[0] * slip[0] + slip[1] * slip[1] + self.slip_speed * self.slip_speed).sqrt();
             let scale = -T::lit(self.form.laws[i].friction) * normal / speed;
@@ -259,7 +260,7 @@ impl<S, T: Real> CompliantForm<'_, '_, S, T> {
     }
 }
 
-impl<S, T: Real> CompliantForm<'_, '_, S, T> {
+impl<S, T: Real, F> CompliantForm<'_, '_, S, T, F> {
     /// Dry friction regularised like a contact's: −fc u / √(|u|² + ε²).
     fn dry<const N: usize>(
         &self,
@@ -267,7 +268,7 @@ impl<S, T: Real> CompliantForm<'_, '_, S, T> {
         r: &ContactRows<T, N>,
         v: &SVector<T, N>,
     ) -> Push<T, N> {
-        let slip = ContactForm::<S, T>::slip(r, v);
+        let slip = ContactForm::<S, T, F>::slip(r, v);
         let speed =
             (slip[0] * slip[0] + slip[1] * slip[1] + self.slip_speed * self.slip_speed).sqrt();
         let scale = -T::lit(self.form.laws[i].friction) / speed;
@@ -280,14 +281,16 @@ impl<S, T: Real> CompliantForm<'_, '_, S, T> {
     }
 }
 
-impl<S: Contacts<T, N>, T: Real, const N: usize> SecondOrder<T, N> for CompliantForm<'_, '_, S, T> {
+impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> SecondOrder<T, N>
+    for CompliantForm<'_, '_, S, T, F>
+{
     fn acceleration(
         &self,
         t: T,
         q: &SVector<T, N>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error> {
-        let (m, mut rhs) = self.form.system.mass_matrix_and_rhs(q, v, t);
+        let (m, mut rhs) = self.form.dynamics(t, q, v)?;
         let chol = self.form.factor(t, q, m)?;
         for push in self.pushes(t, q, v, &chol)? {
             rhs += push.generalized;
@@ -317,7 +320,7 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> SecondOrder<T, N> for Compliant
 /// The run of a system with compliant contacts: one integration with the
 /// contacts' forces in the equations, each contact's closing and opening
 /// located as events (not stopping the run) for the changes and the modes.
-impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
+impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S, T, N, F> {
     pub(super) fn comply<I: Integrator>(
         &mut self,
         model: &Compliant,
@@ -394,8 +397,8 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
 /// touch (the gap falling through zero), the letting go (the force falling
 /// through zero while sunk) and the pressing again; each restarts the
 /// integrator, which then never steps across a switch.
-fn switches<'f, S: Contacts<T, N>, T: Real, const N: usize>(
-    compliant: &'f CompliantForm<'_, 'f, S, T>,
+fn switches<'f, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize>(
+    compliant: &'f CompliantForm<'_, 'f, S, T, F>,
     laws: &[ContactLaw],
 ) -> Events<'f, T, N> {
     let nan = T::lit(f64::NAN);

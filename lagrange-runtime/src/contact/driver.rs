@@ -7,6 +7,7 @@ use super::form::{ContactForm, Mode, has_tangent};
 use super::run::{ChangeKind, ContactChange, ContactRun, ContactSettings};
 use crate::error::{ContactError, ContactFault, Error, Failure, SettingsError};
 use crate::event::{Event, Events};
+use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
 use crate::ode::{Continuation, Integrator, MoreauJean, Sample, Trajectory, check_problem};
@@ -33,8 +34,10 @@ pub(super) enum Forced {
 
 /// A contact run in progress: the system, its laws and what has been
 /// computed so far.
-pub(super) struct Driver<'s, S, T: Real, const N: usize> {
+pub(super) struct Driver<'s, S, T: Real, const N: usize, F = NoForcing> {
     pub(super) system: &'s S,
+    /// The inputs' forces, where a source drives the run.
+    pub(super) forcing: &'s F,
     pub(super) laws: Vec<ContactLaw>,
     pub(super) settings: ContactSettings,
     pub(super) singular: T,
@@ -43,16 +46,26 @@ pub(super) struct Driver<'s, S, T: Real, const N: usize> {
     pub(super) phases: Vec<(T, Vec<Mode<T>>)>,
 }
 
-/// Runs `system` with its contacts from (q0, v0) over `span`.
-pub(crate) fn run_contacts<S: Contacts<T, N>, I: Integrator, T: Real, const N: usize>(
-    system: &S,
+/// Runs `system` with its contacts from (q0, v0) over `span`, driven by
+/// `forcing`'s forces ([`NoForcing`] for none).
+/// `refused` is an error found before the run (an input source it cannot
+/// take), returned with the initial state alone.
+pub(crate) fn run_contacts<S, I, T, F, const N: usize>(
+    (system, forcing, refused): (&S, &F, Result<(), Error>),
     integrator: &I,
     (settings, compliant): (ContactSettings, Option<Compliant>),
     singular: T,
     (q0, v0, span): (SVector<T, N>, SVector<T, N>, Range<T>),
-) -> Result<ContactRun<T, N>, Failure<ContactRun<T, N>>> {
+) -> Result<ContactRun<T, N>, Failure<ContactRun<T, N>>>
+where
+    S: Contacts<T, N>,
+    I: Integrator,
+    T: Real,
+    F: Forcing<T, N>,
+{
     let mut driver = Driver {
         system,
+        forcing,
         laws: system.contact_laws(),
         settings,
         singular,
@@ -63,11 +76,11 @@ pub(crate) fn run_contacts<S: Contacts<T, N>, I: Integrator, T: Real, const N: u
     let stepping = integrator
         .as_any()
         .and_then(|a| a.downcast_ref::<MoreauJean>());
-    let outcome = match (compliant, stepping) {
+    let outcome = refused.and_then(|()| match (compliant, stepping) {
         (Some(model), _) => driver.comply(&model, integrator, (q0, v0), span.clone()),
         (None, Some(scheme)) => driver.step_through(scheme, q0, v0, span.clone()),
         (None, None) => driver.drive(integrator, q0, v0, span.clone()),
-    };
+    });
     let trajectory = match driver.trajectory.take() {
         Some(t) => t,
         None => {
@@ -120,10 +133,11 @@ fn check_laws(laws: &[ContactLaw]) -> Result<(), Error> {
     Ok(())
 }
 
-impl<'s, S: Contacts<T, N>, T: Real, const N: usize> Driver<'s, S, T, N> {
-    pub(super) fn form(&self, modes: Vec<Mode<T>>) -> ContactForm<'_, S, T> {
+impl<'s, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'s, S, T, N, F> {
+    pub(super) fn form(&self, modes: Vec<Mode<T>>) -> ContactForm<'_, S, T, F> {
         ContactForm {
             system: self.system,
+            forcing: self.forcing,
             laws: &self.laws,
             modes,
             singular: self.singular,
@@ -286,8 +300,8 @@ impl Watched {
 /// contact's gap, a closed one's normal force, a sliding one's slip along
 /// the direction it has at the start, a sticking one's margin to the cone.
 #[allow(clippy::type_complexity)]
-fn watch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
-    form: &'f ContactForm<'_, S, T>,
+fn watch<'f, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize>(
+    form: &'f ContactForm<'_, S, T, F>,
     (t, q, v): (T, &SVector<T, N>, &SVector<T, N>),
     tolerance: T,
 ) -> Result<(Vec<Watched>, Events<'f, T, N>), Error> {
@@ -307,14 +321,14 @@ fn watch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
             ),
             Mode::Sliding { hint } if mu > T::zero() && slips(&form.rows(i, t, q, v)?) => {
                 let r = form.rows(i, t, q, v)?;
-                let u = form.slip_direction(ContactForm::<S, T>::slip(&r, v), hint);
+                let u = form.slip_direction(ContactForm::<S, T, F>::slip(&r, v), hint);
                 if lifts {
                     watched.push(Watched::LiftsOff(i));
                     events = events.with(lift_off(form, i, name));
                 }
                 let stop = Event::new(move |t, q, v| {
                     form.rows(i, t, q, v).map_or(nan, |r| {
-                        let s = ContactForm::<S, T>::slip(&r, v);
+                        let s = ContactForm::<S, T, F>::slip(&r, v);
                         u[0] * s[0] + u[1] * s[1]
                     })
                 });
@@ -350,8 +364,8 @@ fn watch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
 /// speed and falls through zero when the gap does: the gap itself starts at
 /// zero, without a sign, and a bounce shorter than the integrator's step
 /// would be missed.
-fn touch<'f, S: Contacts<T, N>, T: Real, const N: usize>(
-    form: &'f ContactForm<'_, S, T>,
+fn touch<'f, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize>(
+    form: &'f ContactForm<'_, S, T, F>,
     i: usize,
     (t0, q0, v0): (T, &SVector<T, N>, &SVector<T, N>),
     tolerance: T,
@@ -375,8 +389,8 @@ fn slips<T: Real, const N: usize>(rows: &ContactRows<T, N>) -> bool {
 }
 
 /// The event of a closed contact's normal force falling to zero.
-fn lift_off<'f, S: Contacts<T, N>, T: Real, const N: usize>(
-    form: &'f ContactForm<'_, S, T>,
+fn lift_off<'f, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize>(
+    form: &'f ContactForm<'_, S, T, F>,
     i: usize,
     name: &str,
 ) -> Event<'f, T, N> {

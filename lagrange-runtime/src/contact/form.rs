@@ -13,11 +13,12 @@
 //! known and joins Q; sticking, its tangent rows are constraints.
 
 use crate::error::{ContactError, ContactFault, Error, to_vec};
+use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::ode::SecondOrder;
 use crate::system::{ContactLaw, ContactRows, Contacts};
-use nalgebra::{DMatrix, DVector, SVector};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 /// What one contact does in the present stretch of motion.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,9 +63,11 @@ struct Unknowns<T: Real, const N: usize> {
     columns: Vec<SVector<T, N>>,
 }
 
-/// A system's dynamics with its contacts in the modes given.
-pub(crate) struct ContactForm<'s, S, T: Real> {
+/// A system's dynamics with its contacts in the modes given, and the forces
+/// of its inputs, if a source drives it (`F`, [`NoForcing`] otherwise).
+pub(crate) struct ContactForm<'s, S, T: Real, F = NoForcing> {
     pub system: &'s S,
+    pub forcing: &'s F,
     pub laws: &'s [ContactLaw],
     pub modes: Vec<Mode<T>>,
     pub singular: T,
@@ -77,7 +80,7 @@ pub(crate) fn has_tangent<T: Real, const N: usize>(row: &SVector<T, N>) -> bool 
     row.iter().any(|x| *x != T::zero())
 }
 
-impl<S, T: Real> ContactForm<'_, S, T> {
+impl<S, T: Real, F> ContactForm<'_, S, T, F> {
     /// The rows of contact `i`, or the error that the system gives none.
     pub fn rows<const N: usize>(
         &self,
@@ -153,7 +156,7 @@ impl<S, T: Real> ContactForm<'_, S, T> {
         &self,
         t: T,
         q: &SVector<T, N>,
-        m: nalgebra::SMatrix<T, N, N>,
+        m: SMatrix<T, N, N>,
     ) -> Result<Cholesky<T, N>, Error> {
         Cholesky::new(m, self.singular).map_err(|ratio| Error::SingularMassMatrix {
             t: t.to_f64(),
@@ -162,6 +165,24 @@ impl<S, T: Real> ContactForm<'_, S, T> {
             direction: String::new(),
             atlas: false,
         })
+    }
+
+    /// M and Q − h at (t, q, v), with the inputs' forces.
+    pub fn dynamics<const N: usize>(
+        &self,
+        t: T,
+        q: &SVector<T, N>,
+        v: &SVector<T, N>,
+    ) -> Result<(SMatrix<T, N, N>, SVector<T, N>), Error>
+    where
+        S: Contacts<T, N>,
+        F: Forcing<T, N>,
+    {
+        let (m, mut rhs) = self.system.mass_matrix_and_rhs(q, v, t);
+        if F::ACTIVE {
+            rhs += self.forcing.force(t, q, v)?;
+        }
+        Ok((m, rhs))
     }
 
     /// The accelerations and the contact forces at (t, q, v).
@@ -173,8 +194,9 @@ impl<S, T: Real> ContactForm<'_, S, T> {
     ) -> Result<Solution<T, N>, Error>
     where
         S: Contacts<T, N>,
+        F: Forcing<T, N>,
     {
-        let (m, mut rhs) = self.system.mass_matrix_and_rhs(q, v, t);
+        let (m, mut rhs) = self.dynamics(t, q, v)?;
         let chol = self.factor(t, q, m)?;
         let count = self.laws.len();
         let Unknowns {
@@ -297,7 +319,9 @@ impl<S, T: Real> ContactForm<'_, S, T> {
     }
 }
 
-impl<S: Contacts<T, N>, T: Real, const N: usize> SecondOrder<T, N> for ContactForm<'_, S, T> {
+impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> SecondOrder<T, N>
+    for ContactForm<'_, S, T, F>
+{
     fn acceleration(
         &self,
         t: T,

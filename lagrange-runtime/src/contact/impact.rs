@@ -26,8 +26,8 @@ const MOST_SIMULTANEOUS: usize = 12;
 /// [`ContactFault::NoImpulse`] when no subset solves the problem;
 /// [`ContactFault::ImpactGainsEnergy`] when the answer would raise the
 /// kinetic energy.
-pub(crate) fn impulse<S: Contacts<T, N>, T: Real, const N: usize>(
-    form: &ContactForm<'_, S, T>,
+pub(crate) fn impulse<S: Contacts<T, N>, T: Real, F, const N: usize>(
+    form: &ContactForm<'_, S, T, F>,
     set: &[(usize, T)],
     t: T,
     q: &SVector<T, N>,

@@ -6,6 +6,7 @@ use super::form::{Mode, has_tangent};
 use super::impact::impulse;
 use super::run::ChangeKind;
 use crate::error::{ContactFault, Error};
+use crate::mechanics::Forcing;
 use crate::numeric::Real;
 use crate::system::{ContactLaw, ContactRows, Contacts};
 use nalgebra::SVector;
@@ -19,7 +20,7 @@ struct Meeting<T> {
     zeno: Option<T>,
 }
 
-impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
+impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S, T, N, F> {
     /// At (q, v) at t, with the contacts in `modes` before: refuses a
     /// penetrating state, applies the impacts (changing v), and chooses the
     /// modes that follow.

@@ -4,9 +4,10 @@
 use super::compliant::Compliant;
 use super::form::{ContactForm, Mode};
 use crate::error::{Error, Progress, SettingsError};
+use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::ode::Trajectory;
-use crate::system::Contacts;
+use crate::system::{Contacts, Driven};
 use nalgebra::SVector;
 
 /// The thresholds of a contact run
@@ -185,7 +186,8 @@ impl<T: Real, const N: usize> ContactRun<T, N> {
 
     /// The contact forces at the state (q, v) at t, in the modes of t (for
     /// a run with compliant contacts, the model's spring, damper and
-    /// regularised friction at that state).
+    /// regularised friction at that state). For a run driven by inputs,
+    /// [`forces_with`](Self::forces_with).
     ///
     /// # Errors
     /// Whatever the contacts' equations report there (a singular M, rows
@@ -197,9 +199,35 @@ impl<T: Real, const N: usize> ContactRun<T, N> {
         q: &SVector<T, N>,
         v: &SVector<T, N>,
     ) -> Result<Vec<ContactForce<T>>, Error> {
+        self.forces_under(system, &NoForcing, (t, q, v))
+    }
+
+    /// The contact forces at (q, v) at t of a run driven by inputs, given
+    /// the inputs u there (the source's value at that state).
+    ///
+    /// # Errors
+    /// As [`forces`](Self::forces).
+    pub fn forces_with<S: Contacts<T, N> + Driven<T, N, P>, const P: usize>(
+        &self,
+        system: &S,
+        t: T,
+        (q, v): (&SVector<T, N>, &SVector<T, N>),
+        u: &SVector<T, P>,
+    ) -> Result<Vec<ContactForce<T>>, Error> {
+        let given = Given(system.input_forces(q, v, u, t));
+        self.forces_under(system, &given, (t, q, v))
+    }
+
+    fn forces_under<S: Contacts<T, N>, F: Forcing<T, N>>(
+        &self,
+        system: &S,
+        forcing: &F,
+        (t, q, v): (T, &SVector<T, N>, &SVector<T, N>),
+    ) -> Result<Vec<ContactForce<T>>, Error> {
         let laws = system.contact_laws();
         let form = ContactForm {
             system,
+            forcing,
             laws: &laws,
             modes: self.modes(t).to_vec(),
             singular: self.singular,
@@ -215,6 +243,15 @@ impl<T: Real, const N: usize> ContactRun<T, N> {
             .zip(&solution.tangential)
             .map(|(&normal, &tangential)| ContactForce { normal, tangential })
             .collect())
+    }
+}
+
+/// Generalized forces given at one state, whatever the state.
+struct Given<T: Real, const N: usize>(SVector<T, N>);
+
+impl<T: Real, const N: usize> Forcing<T, N> for Given<T, N> {
+    fn force(&self, _: T, _: &SVector<T, N>, _: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+        Ok(self.0)
     }
 }
 

@@ -7,6 +7,7 @@ use super::driver::Driver;
 use super::form::{ContactForm, Mode, has_tangent};
 use super::run::{ChangeKind, ContactState};
 use crate::error::{ContactFault, Error};
+use crate::mechanics::Forcing;
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::numeric::clock::Stopwatch;
@@ -23,7 +24,7 @@ struct Outcome<T> {
     approach: Vec<T>,
 }
 
-impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
+impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S, T, N, F> {
     /// The fixed steps of `scheme` over `span`, recording the motion, the
     /// modes and their changes.
     pub(super) fn step_through(
@@ -116,7 +117,7 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
         let tm = t + half;
         let mid = q + v * half;
         let form = self.form(vec![Mode::Open; self.laws.len()]);
-        let (m, rhs) = self.system.mass_matrix_and_rhs(&mid, v, tm);
+        let (m, rhs) = form.dynamics(tm, &mid, v)?;
         let chol = form.factor(tm, &mid, m)?;
         let mut next_v = v + chol.solve(rhs) * h;
         let (mut locals, approach) =
@@ -155,7 +156,7 @@ impl<S: Contacts<T, N>, T: Real, const N: usize> Driver<'_, S, T, N> {
     #[allow(clippy::type_complexity)]
     fn closed(
         &self,
-        form: &ContactForm<'_, S, T>,
+        form: &ContactForm<'_, S, T, F>,
         (t, q, v): (T, &SVector<T, N>, &SVector<T, N>),
         (chol, h): (&Cholesky<T, N>, T),
         impulses: &mut [Option<[T; 3]>],

@@ -1,11 +1,15 @@
 //! The contact runs of the builder.
 
-use super::{NoEvents, Simulation, Unforced};
+use super::{Control, NoEvents, Simulation, Unforced};
 use crate::contact::{ContactRun, run_contacts};
+use crate::control::{InputForces, InputSource};
 use crate::error::Failure;
+use crate::error::{Error, SettingsError};
+use crate::mechanics::NoForcing;
 use crate::numeric::Real;
 use crate::ode::Integrator;
 use crate::system::Contacts;
+use crate::system::Driven;
 use nalgebra::SVector;
 use std::ops::Range;
 
@@ -54,11 +58,68 @@ impl<S, I: Integrator> Simulation<'_, S, I, Unforced, NoEvents> {
         let singular = T::lit(self.settings.tolerances.singular);
         let state = (q0.into(), v0.into(), span);
         run_contacts(
-            self.system,
+            (self.system, &NoForcing, Ok(())),
             &self.integrator,
             (self.settings.contacts, self.settings.compliant),
             singular,
             state,
+        )
+    }
+}
+
+impl<S, I: Integrator, C, T: Real, const N: usize, const P: usize>
+    Simulation<'_, S, I, Control<C, T, N, P, N>, NoEvents>
+{
+    /// [`run_contacts`](Simulation::run_contacts) driven by this
+    /// simulation's input source: a motor's torque at a joint with
+    /// friction, a legged robot's PD control with its feet on the ground.
+    /// The inputs' forces join Q − h at every evaluation, through any of
+    /// the three schemes; [`input_limits`](Self::input_limits) clamp them.
+    /// The source must be continuous ([`feedback`](Self::feedback),
+    /// [`open_loop`](Self::open_loop), an interpolated
+    /// [`InputTable`](crate::InputTable)): a held one (sampled, zero-order
+    /// hold) is refused. The run records the motion and the contacts'
+    /// changes, not the inputs; [`ContactRun::forces_with`] gives the
+    /// contact forces at a state given the input there.
+    ///
+    /// # Errors
+    /// Those of [`run_contacts`](Simulation::run_contacts); also
+    /// [`Error::Settings`] ([`SettingsError::Unsupported`]) for a held
+    /// source, or for the source's own settings, and
+    /// [`Error::NonFiniteInput`] for an input that is NaN or infinite.
+    ///
+    /// [`ContactRun::forces_with`]: crate::ContactRun::forces_with
+    pub fn run_contacts(
+        &self,
+        q0: impl Into<SVector<T, N>>,
+        v0: impl Into<SVector<T, N>>,
+        span: Range<T>,
+    ) -> Result<ContactRun<T, N>, Failure<ContactRun<T, N>>>
+    where
+        S: Contacts<T, N> + Driven<T, N, P>,
+        C: InputSource<T, N, P>,
+    {
+        let source = &self.control.source;
+        let refused = source.check().and_then(|()| match source.held() {
+            false => Ok(()),
+            true => Err(Error::from(SettingsError::Unsupported {
+                owner: "run_contacts",
+                needs: "an input source evaluated at every stage, not a held one \
+                        (sampled, zero-order hold)"
+                    .into(),
+                remedy: "drive the contacts with `feedback`, `open_loop` or an \
+                         interpolated table"
+                    .into(),
+            })),
+        });
+        let forcing = InputForces::new(self.system, source);
+        let singular = T::lit(self.settings.tolerances.singular);
+        run_contacts(
+            (self.system, &forcing, refused),
+            &self.integrator,
+            (self.settings.contacts, self.settings.compliant),
+            singular,
+            (q0.into(), v0.into(), span),
         )
     }
 }
