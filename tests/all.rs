@@ -35,6 +35,7 @@ mod constrained_tangent;
 mod contact;
 mod contact_compliant;
 mod contact_inputs;
+mod contact_oriented;
 mod contact_refused;
 mod contact_spheres;
 mod contact_stepping;

@@ -6,7 +6,7 @@ use quote::quote;
 
 use super::Frame;
 use super::emitter::Emitter;
-use crate::mechanics::Model;
+use crate::mechanics::{ContactRowsModel, Model};
 
 pub(super) fn impl_contacts(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     if model.contacts.is_empty() {
@@ -19,15 +19,7 @@ pub(super) fn impl_contacts(e: &Emitter, f: &Frame, model: &Model) -> TokenStrea
     let p = quote!(::lagrange::__private);
     let zero_row = quote!(<#vec_n>::zeros());
     let zero = e.constant(0.0);
-    let laws = model.contacts.iter().map(|c| {
-        let name = &c.name;
-        let e = c.restitution;
-        let mu = c.friction;
-        match c.dry {
-            true => quote!(#p::ContactLaw::dry_friction(#name, #mu)),
-            false => quote!(#p::ContactLaw::unilateral(#name, #e, #mu)),
-        }
-    });
+    let laws = model.contacts.iter().map(|c| law(&p, c));
     let arms = model.contacts.iter().enumerate().map(|(i, c)| {
         let (lets, outs) = e.program(&c.outputs());
         let row = |k: usize| {
@@ -65,19 +57,20 @@ pub(super) fn impl_contacts(e: &Emitter, f: &Frame, model: &Model) -> TokenStrea
     });
     let approach = approach_method(e, f, model);
     let ident = f.ident;
+    let (sizes, vec_q) = (f.sizes(), f.qvec());
     let ig = &f.impl_generics;
     let tg = &f.ty_generics;
     let wc = &f.where_clause;
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
-        impl #ig #p::Contacts<#s, #nl> for #ident #tg #wc {
+        impl #ig #p::Contacts<#s, #sizes> for #ident #tg #wc {
             fn contact_laws(&self) -> ::std::vec::Vec<#p::ContactLaw> {
                 ::std::vec![#(#laws),*]
             }
 
             #[inline]
-            fn contact_rows(&self, index: usize, q: &#vec_n, v: &#vec_n, t: #s) -> ::core::option::Option<#p::ContactRows<#s, #nl>> {
+            fn contact_rows(&self, index: usize, q: &#vec_q, v: &#vec_n, t: #s) -> ::core::option::Option<#p::ContactRows<#s, #nl>> {
                 match index {
                     #(#arms)*
                     _ => ::core::option::Option::None,
@@ -86,6 +79,15 @@ pub(super) fn impl_contacts(e: &Emitter, f: &Frame, model: &Model) -> TokenStrea
 
             #approach
         }
+    }
+}
+
+/// One contact's `ContactLaw`.
+fn law(p: &TokenStream, c: &ContactRowsModel) -> TokenStream {
+    let (name, e, mu) = (&c.name, c.restitution, c.friction);
+    match c.dry {
+        true => quote!(#p::ContactLaw::dry_friction(#name, #mu)),
+        false => quote!(#p::ContactLaw::unilateral(#name, #e, #mu)),
     }
 }
 
@@ -103,10 +105,10 @@ fn approach_method(e: &Emitter, f: &Frame, model: &Model) -> TokenStream {
     if arms.is_empty() {
         return quote!();
     }
-    let (s, vec_n) = (&f.s, f.vec(&f.n));
+    let (s, vec_n, vec_q) = (&f.s, f.vec(&f.n), f.qvec());
     quote! {
         #[inline]
-        fn contact_approach(&self, index: usize, q: &#vec_n, v: &#vec_n, t: #s) -> ::core::option::Option<#s> {
+        fn contact_approach(&self, index: usize, q: &#vec_q, v: &#vec_n, t: #s) -> ::core::option::Option<#s> {
             match index {
                 #(#arms)*
                 _ => ::core::option::Option::None,

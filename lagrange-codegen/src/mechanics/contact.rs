@@ -5,7 +5,7 @@
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
-use crate::lowered::ContactModel;
+use crate::lowered::{ContactModel, OrientationModel};
 
 /// One contact's laws and rows.
 pub struct ContactRowsModel {
@@ -46,8 +46,42 @@ impl ContactRowsModel {
     }
 }
 
-/// The rows of every contact.
-pub fn rows(ctx: &mut Context, contacts: &[ContactModel]) -> Vec<ContactRowsModel> {
+/// The rows of every contact, derived in each free orientation's chart θ
+/// (the rates need the rows' θ-derivatives) and taken at its centre θ = 0,
+/// where θ̇ is the angular velocity in body axes, as the equations are.
+pub fn rows(
+    ctx: &mut Context,
+    contacts: &[ContactModel],
+    orientations: &[OrientationModel],
+) -> Vec<ContactRowsModel> {
+    let mut rows = derived(ctx, contacts);
+    if orientations.is_empty() {
+        return rows;
+    }
+    let at = super::chart::centre(ctx, orientations);
+    let norms = super::chart::unit_norms(ctx, orientations);
+    let mut c = super::chart::AtCentre {
+        ctx,
+        at: &at,
+        norms: &norms,
+    };
+    for r in &mut rows {
+        r.gap = c.one(r.gap);
+        c.all(&mut r.normal);
+        r.normal_bias = c.one(r.normal_bias);
+        for (row, bias) in &mut r.tangents {
+            c.all(row);
+            *bias = c.one(*bias);
+        }
+        if let Some(a) = &mut r.approach {
+            *a = c.one(*a);
+        }
+    }
+    rows
+}
+
+/// The rows in the coordinates as lowered (θ included).
+fn derived(ctx: &mut Context, contacts: &[ContactModel]) -> Vec<ContactRowsModel> {
     contacts
         .iter()
         .map(|c| {

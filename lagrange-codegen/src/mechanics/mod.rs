@@ -149,7 +149,8 @@ pub fn derive_with(mut lowered: Lowered, route: Route) -> Result<Model, DeriveEr
     } = lowered;
     let constrained = Constrained::new(&holonomic, &nonholonomic, multipliers, speeds);
     let mut model = finish(ctx, derived, constrained, &extras)?;
-    model.contacts = contact::rows(&mut model.ctx, &contacts);
+    let orientations = &model.variables.orientations;
+    model.contacts = contact::rows(&mut model.ctx, &contacts, orientations);
     Ok(model)
 }
 

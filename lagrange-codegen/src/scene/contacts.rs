@@ -19,9 +19,8 @@ use quote::format_ident;
 pub(super) fn contacts(lw: &mut Lowerer, system: &System) -> Vec<ContactModel> {
     let mut out = Vec::new();
     for c in &system.contacts {
-        if let Some(o) = system.orientations.first() {
-            lw.cx
-                .error_at(c.name.span(), oriented(&c.name, &o.to_string()));
+        if atlas_twin(system).is_some() {
+            lw.cx.error_at(c.name.span(), through_atlas(&c.name));
             continue;
         }
         let Some((gap, slips)) = written(lw, system, c) else {
@@ -129,8 +128,8 @@ fn joint_frictions(lw: &mut Lowerer, system: &System) -> Vec<ContactModel> {
         let Some(i) = system.coordinates.iter().position(|c| *c == j.coordinate) else {
             continue;
         };
-        if let Some(o) = system.orientations.first() {
-            let message = oriented(&format_ident!("{}", j.friction_name()), &o.to_string());
+        if atlas_twin(system).is_some() {
+            let message = through_atlas(&format_ident!("{}", j.friction_name()));
             lw.cx.error_at(j.coordinate.span(), message);
             continue;
         }
@@ -365,24 +364,20 @@ pub(crate) fn tangents(n: [f64; 3]) -> [[f64; 3]; 2] {
     [t1, cross(n, t1)]
 }
 
-/// Why a contact on a free orientation is refused. `emit(atlas)` turns the
-/// description's Euler angles into a free orientation (`__euler_<k>`) before
-/// the contacts are read, so telling its author to write Euler angles would
-/// send them in a circle.
-fn oriented(contact: &Ident, orientation: &str) -> String {
-    if orientation.starts_with("__euler_") {
-        format!(
-            "contact `{contact}`: contacts do not run through the atlas yet (`emit(atlas)` \
-             runs these Euler angles as a free orientation, and contacts on free orientations \
-             are not supported yet); drop `atlas` from `emit(...)`, and the contacts run in \
-             the Euler angles as written"
-        )
-    } else {
-        format!(
-            "contact `{contact}`: contacts on a description with a free orientation \
-             (`{orientation}`) are not supported yet; write the rotation in Euler angles"
-        )
-    }
+/// The first of the atlas's twin orientations (`__euler_<k>`): `emit(atlas)`
+/// turns the description's Euler angles into free orientations before the
+/// contacts are read, and its charts do not carry contacts yet.
+fn atlas_twin(system: &System) -> Option<&Ident> {
+    (system.orientations.iter()).find(|o| o.to_string().starts_with("__euler_"))
+}
+
+/// Why a contact is refused with `emit(atlas)`.
+fn through_atlas(contact: &Ident) -> String {
+    format!(
+        "contact `{contact}`: contacts do not run through the atlas yet (its charts switch \
+         between Euler angles at events of their own); drop `atlas` from `emit(...)`, and \
+         the contacts run in the Euler angles as written"
+    )
 }
 
 #[cfg(test)]

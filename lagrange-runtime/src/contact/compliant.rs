@@ -21,6 +21,7 @@ use crate::event::{Event, Events};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
+use crate::numeric::orientation::Orientation;
 use crate::ode::{Continuation, Integrator, SecondOrder};
 use crate::system::{ContactLaw, ContactRows, Contacts};
 use nalgebra::SVector;
@@ -112,11 +113,11 @@ impl Compliant {
 
     /// The forces of the model at (t, q, v), per contact in its normal and
     /// tangent axes.
-    pub(crate) fn forces<S: Contacts<T, N>, T: Real, F, const N: usize>(
+    pub(crate) fn forces<S: Contacts<T, N, Q>, T: Real, F, const N: usize, const Q: usize>(
         &self,
         form: &ContactForm<'_, S, T, F>,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<Vec<ContactForce<T>>, Error> {
         let compliant = CompliantForm {
@@ -184,14 +185,14 @@ impl<S, T: Real, F> CompliantForm<'_, '_, S, T, F> {
     /// so that leaving the surface is no fall), its rise the contact
     /// pressing again without having opened (with `apart` negative, where
     /// the touch is a rise too, which the run's record skips).
-    pub fn unclipped<const N: usize>(
+    pub fn unclipped<const N: usize, const Q: usize>(
         &self,
         i: usize,
-        (t, q, v): (T, &SVector<T, N>, &SVector<T, N>),
+        (t, q, v): (T, &SVector<T, Q>, &SVector<T, N>),
         apart: T,
     ) -> T
     where
-        S: Contacts<T, N>,
+        S: Contacts<T, N, Q>,
     {
         let nan = T::lit(f64::NAN);
         let Ok(r) = self.form.rows(i, t, q, v) else {
@@ -215,15 +216,15 @@ impl<S, T: Real, F> CompliantForm<'_, '_, S, T, F> {
     }
 
     /// The forces of every contact at (t, q, v), given M's factor.
-    pub fn pushes<const N: usize>(
+    pub fn pushes<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         chol: &Cholesky<T, N>,
     ) -> Result<Vec<Push<T, N>>, Error>
     where
-        S: Contacts<T, N>,
+        S: Contacts<T, N, Q>,
     {
         let mut out = Vec::with_capacity(self.damping.len());
         for i in 0..self.damping.len() {
@@ -281,13 +282,15 @@ impl<S, T: Real, F> CompliantForm<'_, '_, S, T, F> {
     }
 }
 
-impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> SecondOrder<T, N>
-    for CompliantForm<'_, '_, S, T, F>
+impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q: usize>
+    SecondOrder<T, N, Q> for CompliantForm<'_, '_, S, T, F>
 {
+    const ORIENTATIONS: &'static [Orientation] = S::ORIENTATIONS;
+
     fn acceleration(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error> {
         let (m, mut rhs) = self.form.dynamics(t, q, v)?;
@@ -305,7 +308,7 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> SecondOrder<T
 
     /// The system's integral plus the springs' energy ½ k δ² of the sunk
     /// contacts: conserved by an elastic contact without friction.
-    fn integral(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
+    fn integral(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> T {
         let springs = (0..self.damping.len())
             .filter_map(|i| self.form.system.contact_rows(i, q, v, t))
             .map(|r| {
@@ -320,12 +323,14 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> SecondOrder<T
 /// The run of a system with compliant contacts: one integration with the
 /// contacts' forces in the equations, each contact's closing and opening
 /// located as events (not stopping the run) for the changes and the modes.
-impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S, T, N, F> {
+impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q: usize>
+    Driver<'_, S, T, N, Q, F>
+{
     pub(super) fn comply<I: Integrator>(
         &mut self,
         model: &Compliant,
         integrator: &I,
-        (q0, v0): (SVector<T, N>, SVector<T, N>),
+        (q0, v0): (SVector<T, Q>, SVector<T, N>),
         span: Range<T>,
     ) -> Result<(), Error> {
         let (t0, t1) = (span.start, span.end);
@@ -372,7 +377,7 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S,
         &mut self,
         t0: T,
         mut modes: Vec<Mode<T>>,
-        occurrences: &[crate::event::Occurrence<T, N>],
+        occurrences: &[crate::event::Occurrence<T, N, Q>],
     ) {
         self.phases.push((t0, modes.clone()));
         for o in occurrences {
@@ -397,10 +402,17 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S,
 /// touch (the gap falling through zero), the letting go (the force falling
 /// through zero while sunk) and the pressing again; each restarts the
 /// integrator, which then never steps across a switch.
-fn switches<'f, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize>(
+fn switches<
+    'f,
+    S: Contacts<T, N, Q>,
+    T: Real,
+    F: Forcing<T, N, Q>,
+    const N: usize,
+    const Q: usize,
+>(
     compliant: &'f CompliantForm<'_, 'f, S, T, F>,
     laws: &[ContactLaw],
-) -> Events<'f, T, N> {
+) -> Events<'f, T, N, Q> {
     let nan = T::lit(f64::NAN);
     let form = compliant.form;
     let (one, minus) = (T::one(), -T::one());
@@ -410,14 +422,14 @@ fn switches<'f, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize>(
         // Dry friction has no gap: never touches (nor lets go, its
         // unclipped force being `apart`).
         let dry = law.is_dry_friction();
-        let gap = move |t, q: &SVector<T, N>, v: &SVector<T, N>| match dry {
+        let gap = move |t, q: &SVector<T, Q>, v: &SVector<T, N>| match dry {
             true => one,
             false => form.rows(i, t, q, v).map_or(nan, |r| r.gap),
         };
         let lets_go =
-            move |t, q: &SVector<T, N>, v: &SVector<T, N>| compliant.unclipped(i, (t, q, v), one);
+            move |t, q: &SVector<T, Q>, v: &SVector<T, N>| compliant.unclipped(i, (t, q, v), one);
         let presses =
-            move |t, q: &SVector<T, N>, v: &SVector<T, N>| compliant.unclipped(i, (t, q, v), minus);
+            move |t, q: &SVector<T, Q>, v: &SVector<T, N>| compliant.unclipped(i, (t, q, v), minus);
         let touches = Event::new(gap).named(format!("{name} touches"));
         let lets_go = Event::new(lets_go).named(format!("{name} lets go"));
         let presses = Event::new(presses).named(format!("{name} presses"));

@@ -10,7 +10,8 @@ use crate::event::{Event, Events};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::func::abs;
-use crate::ode::{Continuation, Integrator, MoreauJean, Sample, Trajectory, check_problem};
+use crate::ode::{Continuation, Integrator, MoreauJean, Sample, Trajectory};
+use crate::ode::{check_orientations, check_problem};
 use crate::system::{ContactLaw, ContactRows, Contacts};
 use nalgebra::SVector;
 use std::ops::Range;
@@ -34,14 +35,14 @@ pub(super) enum Forced {
 
 /// A contact run in progress: the system, its laws and what has been
 /// computed so far.
-pub(super) struct Driver<'s, S, T: Real, const N: usize, F = NoForcing> {
+pub(super) struct Driver<'s, S, T: Real, const N: usize, const Q: usize = N, F = NoForcing> {
     pub(super) system: &'s S,
     /// The inputs' forces, where a source drives the run.
     pub(super) forcing: &'s F,
     pub(super) laws: Vec<ContactLaw>,
     pub(super) settings: ContactSettings,
     pub(super) singular: T,
-    pub(super) trajectory: Option<Trajectory<T, N>>,
+    pub(super) trajectory: Option<Trajectory<T, N, Q>>,
     pub(super) changes: Vec<ContactChange<T>>,
     pub(super) phases: Vec<(T, Vec<Mode<T>>)>,
 }
@@ -50,18 +51,18 @@ pub(super) struct Driver<'s, S, T: Real, const N: usize, F = NoForcing> {
 /// `forcing`'s forces ([`NoForcing`] for none).
 /// `refused` is an error found before the run (an input source it cannot
 /// take), returned with the initial state alone.
-pub(crate) fn run_contacts<S, I, T, F, const N: usize>(
+pub(crate) fn run_contacts<S, I, T, F, const N: usize, const Q: usize>(
     (system, forcing, refused): (&S, &F, Result<(), Error>),
     integrator: &I,
     (settings, compliant): (ContactSettings, Option<Compliant>),
     singular: T,
-    (q0, v0, span): (SVector<T, N>, SVector<T, N>, Range<T>),
-) -> Result<ContactRun<T, N>, Failure<ContactRun<T, N>>>
+    (q0, v0, span): (SVector<T, Q>, SVector<T, N>, Range<T>),
+) -> Result<ContactRun<T, N, Q>, Failure<ContactRun<T, N, Q>>>
 where
-    S: Contacts<T, N>,
+    S: Contacts<T, N, Q>,
     I: Integrator,
     T: Real,
-    F: Forcing<T, N>,
+    F: Forcing<T, N, Q>,
 {
     let mut driver = Driver {
         system,
@@ -133,7 +134,9 @@ fn check_laws(laws: &[ContactLaw]) -> Result<(), Error> {
     Ok(())
 }
 
-impl<'s, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'s, S, T, N, F> {
+impl<'s, S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q: usize>
+    Driver<'s, S, T, N, Q, F>
+{
     pub(super) fn form(&self, modes: Vec<Mode<T>>) -> ContactForm<'_, S, T, F> {
         ContactForm {
             system: self.system,
@@ -146,21 +149,23 @@ impl<'s, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'s
     }
 
     /// What every contact run checks before its first step: the span and
-    /// the state, the settings, the laws and their listing.
+    /// the state (its quaternions unit), the settings, the laws and their
+    /// listing.
     pub(super) fn check_start(
         &self,
         (t0, t1): (T, T),
-        q0: &SVector<T, N>,
+        q0: &SVector<T, Q>,
         v0: &SVector<T, N>,
     ) -> Result<(), Error> {
         check_problem(t0, t1, q0, v0)?;
+        check_orientations(&self.form(Vec::new()), q0)?;
         self.settings.check()?;
         check_laws(&self.laws)?;
         self.check_listed(t0, q0)
     }
 
     /// The laws' names are `CONTACTS`, in order.
-    fn check_listed(&self, t0: T, q0: &SVector<T, N>) -> Result<(), Error> {
+    fn check_listed(&self, t0: T, q0: &SVector<T, Q>) -> Result<(), Error> {
         let laws: Vec<&'static str> = self.laws.iter().map(|l| l.name).collect();
         if laws == S::CONTACTS {
             return Ok(());
@@ -180,7 +185,7 @@ impl<'s, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'s
         .into())
     }
 
-    fn join(&mut self, piece: Trajectory<T, N>) {
+    fn join(&mut self, piece: Trajectory<T, N, Q>) {
         match &mut self.trajectory {
             Some(whole) => {
                 whole.append(piece);
@@ -193,7 +198,7 @@ impl<'s, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'s
     fn drive<I: Integrator>(
         &mut self,
         integrator: &I,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
         span: Range<T>,
     ) -> Result<(), Error> {
@@ -257,9 +262,9 @@ impl<'s, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'s
         integrator: &I,
         modes: &[Mode<T>],
         (t0, t, t1): (T, T, T),
-        q: SVector<T, N>,
+        q: SVector<T, Q>,
         v: SVector<T, N>,
-    ) -> Result<Option<(Watched, (T, SVector<T, N>, SVector<T, N>))>, Error> {
+    ) -> Result<Option<(Watched, (T, SVector<T, Q>, SVector<T, N>))>, Error> {
         let form = self.form(modes.to_vec());
         let tolerance = T::lit(self.settings.gap_tolerance);
         let (watched, events) = watch(&form, (t, &q, &v), tolerance)?;
@@ -300,11 +305,11 @@ impl Watched {
 /// contact's gap, a closed one's normal force, a sliding one's slip along
 /// the direction it has at the start, a sticking one's margin to the cone.
 #[allow(clippy::type_complexity)]
-fn watch<'f, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize>(
+fn watch<'f, S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q: usize>(
     form: &'f ContactForm<'_, S, T, F>,
-    (t, q, v): (T, &SVector<T, N>, &SVector<T, N>),
+    (t, q, v): (T, &SVector<T, Q>, &SVector<T, N>),
     tolerance: T,
-) -> Result<(Vec<Watched>, Events<'f, T, N>), Error> {
+) -> Result<(Vec<Watched>, Events<'f, T, N, Q>), Error> {
     let nan = T::lit(f64::NAN);
     let mut watched = Vec::new();
     let mut events = Events::new();
@@ -364,12 +369,12 @@ fn watch<'f, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize>(
 /// speed and falls through zero when the gap does: the gap itself starts at
 /// zero, without a sign, and a bounce shorter than the integrator's step
 /// would be missed.
-fn touch<'f, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize>(
+fn touch<'f, S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q: usize>(
     form: &'f ContactForm<'_, S, T, F>,
     i: usize,
-    (t0, q0, v0): (T, &SVector<T, N>, &SVector<T, N>),
+    (t0, q0, v0): (T, &SVector<T, Q>, &SVector<T, N>),
     tolerance: T,
-) -> Event<'f, T, N> {
+) -> Event<'f, T, N, Q> {
     let nan = T::lit(f64::NAN);
     let leaving = form
         .rows(i, t0, q0, v0)
@@ -389,11 +394,18 @@ fn slips<T: Real, const N: usize>(rows: &ContactRows<T, N>) -> bool {
 }
 
 /// The event of a closed contact's normal force falling to zero.
-fn lift_off<'f, S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize>(
+fn lift_off<
+    'f,
+    S: Contacts<T, N, Q>,
+    T: Real,
+    F: Forcing<T, N, Q>,
+    const N: usize,
+    const Q: usize,
+>(
     form: &'f ContactForm<'_, S, T, F>,
     i: usize,
     name: &str,
-) -> Event<'f, T, N> {
+) -> Event<'f, T, N, Q> {
     let nan = T::lit(f64::NAN);
     Event::new(move |t, q, v| form.solve(t, q, v).map_or(nan, |s| s.normal[i]))
         .named(format!("{name} lifts off"))

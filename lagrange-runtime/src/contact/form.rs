@@ -16,6 +16,7 @@ use crate::error::{ContactError, ContactFault, Error, to_vec};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
+use crate::numeric::orientation::Orientation;
 use crate::ode::SecondOrder;
 use crate::system::{ContactLaw, ContactRows, Contacts};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
@@ -82,15 +83,15 @@ pub(crate) fn has_tangent<T: Real, const N: usize>(row: &SVector<T, N>) -> bool 
 
 impl<S, T: Real, F> ContactForm<'_, S, T, F> {
     /// The rows of contact `i`, or the error that the system gives none.
-    pub fn rows<const N: usize>(
+    pub fn rows<const N: usize, const Q: usize>(
         &self,
         i: usize,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<ContactRows<T, N>, Error>
     where
-        S: Contacts<T, N>,
+        S: Contacts<T, N, Q>,
     {
         self.system.contact_rows(i, q, v, t).ok_or_else(|| {
             self.fault(
@@ -106,25 +107,25 @@ impl<S, T: Real, F> ContactForm<'_, S, T, F> {
 
     /// Contact `i`'s touch function where it is not the gap
     /// ([`Contacts::contact_approach`]).
-    pub fn approach<const N: usize>(
+    pub fn approach<const N: usize, const Q: usize>(
         &self,
         i: usize,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Option<T>
     where
-        S: Contacts<T, N>,
+        S: Contacts<T, N, Q>,
     {
         self.system.contact_approach(i, q, v, t)
     }
 
     /// A [`ContactError`] on contact `i`.
-    pub fn fault<const N: usize>(
+    pub fn fault<const Q: usize>(
         &self,
         i: usize,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         fault: ContactFault,
     ) -> Error {
         Error::Contact(ContactError {
@@ -152,10 +153,10 @@ impl<S, T: Real, F> ContactForm<'_, S, T, F> {
     }
 
     /// M⁻¹ by the stack Cholesky, or the singular mass matrix's error.
-    pub fn factor<const N: usize>(
+    pub fn factor<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         m: SMatrix<T, N, N>,
     ) -> Result<Cholesky<T, N>, Error> {
         Cholesky::new(m, self.singular).map_err(|ratio| Error::SingularMassMatrix {
@@ -168,15 +169,15 @@ impl<S, T: Real, F> ContactForm<'_, S, T, F> {
     }
 
     /// M and Q − h at (t, q, v), with the inputs' forces.
-    pub fn dynamics<const N: usize>(
+    pub fn dynamics<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<(SMatrix<T, N, N>, SVector<T, N>), Error>
     where
-        S: Contacts<T, N>,
-        F: Forcing<T, N>,
+        S: Contacts<T, N, Q>,
+        F: Forcing<T, N, Q>,
     {
         let (m, mut rhs) = self.system.mass_matrix_and_rhs(q, v, t);
         if F::ACTIVE {
@@ -186,15 +187,15 @@ impl<S, T: Real, F> ContactForm<'_, S, T, F> {
     }
 
     /// The accelerations and the contact forces at (t, q, v).
-    pub fn solve<const N: usize>(
+    pub fn solve<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<Solution<T, N>, Error>
     where
-        S: Contacts<T, N>,
-        F: Forcing<T, N>,
+        S: Contacts<T, N, Q>,
+        F: Forcing<T, N, Q>,
     {
         let (m, mut rhs) = self.dynamics(t, q, v)?;
         let chol = self.factor(t, q, m)?;
@@ -244,15 +245,15 @@ impl<S, T: Real, F> ContactForm<'_, S, T, F> {
 
     /// The unknown forces in the present modes; dry friction's sliding
     /// force, known, is added to `rhs` (Q − h) instead.
-    fn unknowns<const N: usize>(
+    fn unknowns<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         rhs: &mut SVector<T, N>,
     ) -> Result<Unknowns<T, N>, Error>
     where
-        S: Contacts<T, N>,
+        S: Contacts<T, N, Q>,
     {
         let mut out = Unknowns {
             unknowns: Vec::new(),
@@ -295,15 +296,15 @@ impl<S, T: Real, F> ContactForm<'_, S, T, F> {
     }
 
     /// Coulomb's force −μ λ_n û of each sliding contact, in its tangent axes.
-    fn sliding_forces<const N: usize>(
+    fn sliding_forces<const N: usize, const Q: usize>(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         solution: &mut Solution<T, N>,
     ) -> Result<(), Error>
     where
-        S: Contacts<T, N>,
+        S: Contacts<T, N, Q>,
     {
         for (i, mode) in self.modes.iter().enumerate() {
             if let Mode::Sliding { hint } = *mode {
@@ -319,13 +320,15 @@ impl<S, T: Real, F> ContactForm<'_, S, T, F> {
     }
 }
 
-impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> SecondOrder<T, N>
-    for ContactForm<'_, S, T, F>
+impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q: usize>
+    SecondOrder<T, N, Q> for ContactForm<'_, S, T, F>
 {
+    const ORIENTATIONS: &'static [Orientation] = S::ORIENTATIONS;
+
     fn acceleration(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<SVector<T, N>, Error> {
         let accel = self.solve(t, q, v)?.accel;
@@ -336,7 +339,7 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> SecondOrder<T
         }
     }
 
-    fn integral(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
+    fn integral(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> T {
         self.system.integral(q, v, t)
     }
 }

@@ -26,11 +26,11 @@ const MOST_SIMULTANEOUS: usize = 12;
 /// [`ContactFault::NoImpulse`] when no subset solves the problem;
 /// [`ContactFault::ImpactGainsEnergy`] when the answer would raise the
 /// kinetic energy.
-pub(crate) fn impulse<S: Contacts<T, N>, T: Real, F, const N: usize>(
+pub(crate) fn impulse<S: Contacts<T, N, Q>, T: Real, F, const N: usize, const Q: usize>(
     form: &ContactForm<'_, S, T, F>,
     set: &[(usize, T)],
     t: T,
-    q: &SVector<T, N>,
+    q: &SVector<T, Q>,
     v: &SVector<T, N>,
 ) -> Result<SVector<T, N>, Error> {
     let k = set.len();

@@ -48,7 +48,9 @@
 //!
 //! **Scope.** The event-driven impacts are frictionless (the tangential
 //! velocity is kept through an impact); contacts are points or spheres against planes and
-//! stops on coordinates; systems without free orientations.
+//! stops on coordinates. On a system with free orientations the rows are
+//! in the velocities v (ω in body axes), the state moves on the group, and
+//! the time stepper's midpoint is q ⊕ h/2 v.
 //!
 //! **Time stepping.** With [`MoreauJean`](crate::MoreauJean) as the
 //! integrator, the run takes fixed steps instead (`stepping`): at each

@@ -20,14 +20,16 @@ struct Meeting<T> {
     zeno: Option<T>,
 }
 
-impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S, T, N, F> {
+impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q: usize>
+    Driver<'_, S, T, N, Q, F>
+{
     /// At (q, v) at t, with the contacts in `modes` before: refuses a
     /// penetrating state, applies the impacts (changing v), and chooses the
     /// modes that follow.
     pub(super) fn settle(
         &mut self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &mut SVector<T, N>,
         modes: &[Mode<T>],
         forced: Forced,
@@ -99,7 +101,7 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S,
     fn meetings(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         rows: &[ContactRows<T, N>],
         modes: &[Mode<T>],
@@ -153,7 +155,7 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S,
     fn choose(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         rows: &[ContactRows<T, N>],
         closing: &[usize],
@@ -232,7 +234,7 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S,
     pub(super) fn starting_modes(
         &self,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<Vec<Mode<T>>, Error> {
         let open = vec![Mode::Open; self.laws.len()];

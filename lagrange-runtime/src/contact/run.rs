@@ -154,10 +154,10 @@ pub struct ContactForce<T> {
 /// A run with contacts: the motion, joined across the events, and every
 /// change of a contact's mode.
 #[derive(Clone, Debug)]
-pub struct ContactRun<T: Real, const N: usize> {
+pub struct ContactRun<T: Real, const N: usize, const Q: usize = N> {
     /// The motion. At a change the point recorded is the state after it (an
     /// impact's velocities after the impulse).
-    pub trajectory: Trajectory<T, N>,
+    pub trajectory: Trajectory<T, N, Q>,
     /// The changes, in time order.
     pub changes: Vec<ContactChange<T>>,
     /// Each stretch's start and its contacts' modes.
@@ -168,7 +168,7 @@ pub struct ContactRun<T: Real, const N: usize> {
     pub(crate) compliant: Option<Compliant>,
 }
 
-impl<T: Real, const N: usize> ContactRun<T, N> {
+impl<T: Real, const N: usize, const Q: usize> ContactRun<T, N, Q> {
     /// The contacts' modes at t (after the changes at t).
     pub fn states(&self, t: T) -> Vec<ContactState> {
         self.modes(t).iter().map(|&m| m.into()).collect()
@@ -192,11 +192,11 @@ impl<T: Real, const N: usize> ContactRun<T, N> {
     /// # Errors
     /// Whatever the contacts' equations report there (a singular M, rows
     /// missing, dependent rows).
-    pub fn forces<S: Contacts<T, N>>(
+    pub fn forces<S: Contacts<T, N, Q>>(
         &self,
         system: &S,
         t: T,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
     ) -> Result<Vec<ContactForce<T>>, Error> {
         self.forces_under(system, &NoForcing, (t, q, v))
@@ -207,22 +207,22 @@ impl<T: Real, const N: usize> ContactRun<T, N> {
     ///
     /// # Errors
     /// As [`forces`](Self::forces).
-    pub fn forces_with<S: Contacts<T, N> + Driven<T, N, P>, const P: usize>(
+    pub fn forces_with<S: Contacts<T, N, Q> + Driven<T, N, P, Q>, const P: usize>(
         &self,
         system: &S,
         t: T,
-        (q, v): (&SVector<T, N>, &SVector<T, N>),
+        (q, v): (&SVector<T, Q>, &SVector<T, N>),
         u: &SVector<T, P>,
     ) -> Result<Vec<ContactForce<T>>, Error> {
         let given = Given(system.input_forces(q, v, u, t));
         self.forces_under(system, &given, (t, q, v))
     }
 
-    fn forces_under<S: Contacts<T, N>, F: Forcing<T, N>>(
+    fn forces_under<S: Contacts<T, N, Q>, F: Forcing<T, N, Q>>(
         &self,
         system: &S,
         forcing: &F,
-        (t, q, v): (T, &SVector<T, N>, &SVector<T, N>),
+        (t, q, v): (T, &SVector<T, Q>, &SVector<T, N>),
     ) -> Result<Vec<ContactForce<T>>, Error> {
         let laws = system.contact_laws();
         let form = ContactForm {
@@ -249,13 +249,13 @@ impl<T: Real, const N: usize> ContactRun<T, N> {
 /// Generalized forces given at one state, whatever the state.
 struct Given<T: Real, const N: usize>(SVector<T, N>);
 
-impl<T: Real, const N: usize> Forcing<T, N> for Given<T, N> {
-    fn force(&self, _: T, _: &SVector<T, N>, _: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
+impl<T: Real, const N: usize, const Q: usize> Forcing<T, N, Q> for Given<T, N> {
+    fn force(&self, _: T, _: &SVector<T, Q>, _: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
         Ok(self.0)
     }
 }
 
-impl<T: Real, const N: usize> Progress for ContactRun<T, N> {
+impl<T: Real, const N: usize, const Q: usize> Progress for ContactRun<T, N, Q> {
     fn progress(&self) -> (usize, Option<f64>) {
         self.trajectory.progress()
     }

@@ -12,7 +12,7 @@ use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::numeric::clock::Stopwatch;
 use crate::ode::{Continuation, MoreauJean, Sample, Trajectory, fixed_steps};
-use crate::ode::{Stats, midpoint_segment};
+use crate::ode::{SecondOrder, Stats, midpoint_segment};
 use crate::system::Contacts;
 use nalgebra::SVector;
 use std::ops::Range;
@@ -24,13 +24,15 @@ struct Outcome<T> {
     approach: Vec<T>,
 }
 
-impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S, T, N, F> {
+impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q: usize>
+    Driver<'_, S, T, N, Q, F>
+{
     /// The fixed steps of `scheme` over `span`, recording the motion, the
     /// modes and their changes.
     pub(super) fn step_through(
         &mut self,
         scheme: &MoreauJean,
-        q0: SVector<T, N>,
+        q0: SVector<T, Q>,
         v0: SVector<T, N>,
         span: Range<T>,
     ) -> Result<(), Error> {
@@ -85,7 +87,7 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S,
 
     /// A start below a surface beyond the gap tolerance is refused, as the
     /// event-driven run refuses it.
-    fn refuse_penetration(&self, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> Result<(), Error> {
+    fn refuse_penetration(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<(), Error> {
         let form = self.form(vec![Mode::Open; self.laws.len()]);
         let tolerance = T::lit(self.settings.gap_tolerance);
         for i in 0..self.laws.len() {
@@ -109,14 +111,14 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S,
         &self,
         scheme: &MoreauJean,
         (t, t_next): (T, T),
-        (q, v): (&SVector<T, N>, &SVector<T, N>),
+        (q, v): (&SVector<T, Q>, &SVector<T, N>),
         impulses: &mut [Option<[T; 3]>],
-    ) -> Result<(SVector<T, N>, SVector<T, N>, Outcome<T>), Error> {
+    ) -> Result<(SVector<T, Q>, SVector<T, N>, Outcome<T>), Error> {
         let h = t_next - t;
         let half = T::lit(0.5) * h;
         let tm = t + half;
-        let mid = q + v * half;
         let form = self.form(vec![Mode::Open; self.laws.len()]);
+        let mid = form.advance(q, &(v * half));
         let (m, rhs) = form.dynamics(tm, &mid, v)?;
         let chol = form.factor(tm, &mid, m)?;
         let mut next_v = v + chol.solve(rhs) * h;
@@ -137,7 +139,7 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S,
             };
             return Err(form.fault(contact, tm, &mid, fault));
         }
-        let next_q = mid + next_v * half;
+        let next_q = form.advance(&mid, &(next_v * half));
         if !(next_q.iter().chain(next_v.iter()).all(|x| x.is_finite())) {
             return Err(Error::non_finite(t_next, &next_q, &next_v));
         }
@@ -157,7 +159,7 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S,
     fn closed(
         &self,
         form: &ContactForm<'_, S, T, F>,
-        (t, q, v): (T, &SVector<T, N>, &SVector<T, N>),
+        (t, q, v): (T, &SVector<T, Q>, &SVector<T, N>),
         (chol, h): (&Cholesky<T, N>, T),
         impulses: &mut [Option<[T; 3]>],
         next_v: &mut SVector<T, N>,
@@ -214,7 +216,7 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S,
         before: &[Mode<T>],
         after: &Outcome<T>,
         v: &SVector<T, N>,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
     ) -> Vec<Mode<T>> {
         let rest = T::lit(self.settings.rest_speed);
         let mut modes = after.modes.clone();
@@ -255,7 +257,7 @@ impl<S: Contacts<T, N>, T: Real, F: Forcing<T, N>, const N: usize> Driver<'_, S,
     }
 
     /// A contact's normal speed n·v at (q, v); zero where it has no rows.
-    fn normal_speed(&self, i: usize, t: T, q: &SVector<T, N>, v: &SVector<T, N>) -> T {
+    fn normal_speed(&self, i: usize, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> T {
         self.system
             .contact_rows(i, q, v, t)
             .map_or(T::zero(), |r| r.normal.dot(v))

@@ -46,14 +46,14 @@ impl<S, I: Integrator> Simulation<'_, S, I, Unforced, NoEvents> {
     /// [`Error::Contact`]: crate::Error::Contact
     /// [`Error::TooManyEvents`]: crate::Error::TooManyEvents
     /// [`Error::EventsAccumulate`]: crate::Error::EventsAccumulate
-    pub fn run_contacts<T: Real, const N: usize>(
+    pub fn run_contacts<T: Real, const N: usize, const Q: usize>(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<ContactRun<T, N>, Failure<ContactRun<T, N>>>
+    ) -> Result<ContactRun<T, N, Q>, Failure<ContactRun<T, N, Q>>>
     where
-        S: Contacts<T, N>,
+        S: Contacts<T, N, Q>,
     {
         let singular = T::lit(self.settings.tolerances.singular);
         let state = (q0.into(), v0.into(), span);
@@ -67,8 +67,8 @@ impl<S, I: Integrator> Simulation<'_, S, I, Unforced, NoEvents> {
     }
 }
 
-impl<S, I: Integrator, C, T: Real, const N: usize, const P: usize>
-    Simulation<'_, S, I, Control<C, T, N, P, N>, NoEvents>
+impl<S, I: Integrator, C, T: Real, const N: usize, const P: usize, const Q: usize>
+    Simulation<'_, S, I, Control<C, T, N, P, Q>, NoEvents>
 {
     /// [`run_contacts`](Simulation::run_contacts) driven by this
     /// simulation's input source: a motor's torque at a joint with
@@ -91,13 +91,13 @@ impl<S, I: Integrator, C, T: Real, const N: usize, const P: usize>
     /// [`ContactRun::forces_with`]: crate::ContactRun::forces_with
     pub fn run_contacts(
         &self,
-        q0: impl Into<SVector<T, N>>,
+        q0: impl Into<SVector<T, Q>>,
         v0: impl Into<SVector<T, N>>,
         span: Range<T>,
-    ) -> Result<ContactRun<T, N>, Failure<ContactRun<T, N>>>
+    ) -> Result<ContactRun<T, N, Q>, Failure<ContactRun<T, N, Q>>>
     where
-        S: Contacts<T, N> + Driven<T, N, P>,
-        C: InputSource<T, N, P>,
+        S: Contacts<T, N, Q> + Driven<T, N, P, Q>,
+        C: InputSource<T, N, P, Q>,
     {
         let source = &self.control.source;
         let refused = source.check().and_then(|()| match source.held() {

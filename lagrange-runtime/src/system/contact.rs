@@ -103,19 +103,21 @@ pub struct ContactRows<T: Real, const N: usize> {
 /// `#[derive(Lagrangian)]` implements it for a description with `contact(...)`
 /// or `stop(...)` items; the default says "no contacts", so a hand-written
 /// system opts in with `impl Contacts<f64, N> for MySystem {}` and runs as
-/// without contacts, or overrides both methods.
-pub trait Contacts<T: Real, const N: usize>: Lagrangian<T, N> {
+/// without contacts, or overrides both methods. With free orientations q
+/// has Q entries (the quaternions) and the rows are in the N velocities
+/// (ω in body axes): `Contacts<T, N, Q>`.
+pub trait Contacts<T: Real, const N: usize, const Q: usize = N>: Lagrangian<T, N, Q> {
     /// The contacts' laws, one per contact, in the order of their rows.
     fn contact_laws(&self) -> Vec<ContactLaw> {
         Vec::new()
     }
 
-    /// The rows of contact `index` at (q, q̇, t); `None` for an index past the
-    /// last contact.
+    /// The rows of contact `index` at (q, v, t), each a row acting on v;
+    /// `None` for an index past the last contact.
     fn contact_rows(
         &self,
         index: usize,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         t: T,
     ) -> Option<ContactRows<T, N>> {
@@ -133,7 +135,7 @@ pub trait Contacts<T: Real, const N: usize>: Lagrangian<T, N> {
     fn contact_approach(
         &self,
         index: usize,
-        q: &SVector<T, N>,
+        q: &SVector<T, Q>,
         v: &SVector<T, N>,
         t: T,
     ) -> Option<T> {
