@@ -8,6 +8,8 @@
 mod catalog;
 #[path = "../examples/catalog/floating.rs"]
 mod floating;
+#[path = "../examples/catalog/legged.rs"]
+mod legged;
 #[path = "../examples/catalog/operational.rs"]
 mod operational;
 // The gallery's choice of motion panels, pure, with its tests inside.
@@ -35,6 +37,7 @@ mod constrained_tangent;
 mod contact;
 mod contact_compliant;
 mod contact_inputs;
+mod contact_legged;
 mod contact_oriented;
 mod contact_refused;
 mod contact_spheres;

@@ -3,7 +3,8 @@
 
 use crate::row::Entry;
 use crate::{
-    cavity, constrained, contact, control, free, identification, minimal, nonholonomic, planning,
+    cavity, constrained, contact, control, free, identification, legged, minimal, nonholonomic,
+    planning,
 };
 
 /// The cavity row's name (its animation is looked up by it).
@@ -166,6 +167,11 @@ pub(crate) const ENTRIES: &[Entry] = &[
         "box tossed onto the floor, μ = 0.5",
         "four corners by Moreau–Jean time stepping (h = 1 ms): frictional impacts, rocking, at rest flat",
         contact::tossed_box,
+    ),
+    entry(
+        "Solo 12 dropped, standing under PD",
+        "its URDF on a free root, four point feet (μ = 1), twelve PD-held joints; Moreau–Jean (h = 0.5 ms) beside the event-driven run",
+        legged::solo_12,
     ),
     // Control and linearisation.
     entry(

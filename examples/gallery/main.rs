@@ -21,6 +21,9 @@ mod figure;
 mod free;
 mod identification;
 mod layout;
+mod legged;
+#[path = "../catalog/legged.rs"]
+mod legged_robot;
 mod minimal;
 mod nonholonomic;
 #[path = "../catalog/operational.rs"]
