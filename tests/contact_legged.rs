@@ -6,7 +6,7 @@
 
 use crate::legged::{Solo12Standing, dropped, pd};
 use lagrange::prelude::*;
-use lagrange::{ContactRun, ContactState, Dop853, MoreauJean};
+use lagrange::{ChangeKind, ContactRun, ContactState, Dop853, MoreauJean};
 
 fn standing(run: &ContactRun<f64, 18, 19>, what: &str, end: f64) -> (f64, f64) {
     let (q, v) = run.trajectory.final_state();
@@ -48,6 +48,13 @@ fn solo_12_dropped_stands_on_its_four_feet_under_pd() {
         .run_contacts(dropped(0.30), SVector::zeros(), 0.0..1.5)
         .unwrap();
     let (height, unit) = standing(&stepped, "time-stepped", 1.5);
+    // One plastic impact per foot, all four in one step, and nothing after:
+    // each leaves along the midpoint's normal at round-off.
+    assert_eq!(stepped.changes.len(), 4, "{:?}", stepped.changes);
+    assert!(stepped.changes.iter().all(|c| match c.kind {
+        ChangeKind::Impact { after, .. } => after.abs() < 1e-12,
+        _ => false,
+    }));
     assert!(height > 0.2 && height < 0.24, "{height}");
     assert!(unit < 1e-12);
     let exact = Simulation::new(&robot)

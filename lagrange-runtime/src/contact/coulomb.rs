@@ -5,7 +5,8 @@
 //!
 //! For contact i with rows H_i (its normal, then the tangents it rubs
 //! along), the local velocities after the step are U_i = H_i v₁ (plus
-//! e·uₙ on the normal, Newton's law: Uₙ ≥ 0 means uₙ⁺ ≥ −e uₙ) and
+//! e·min(uₙ, 0) on the normal, Newton's law: Uₙ ≥ 0 means uₙ⁺ ≥ −e uₙ
+//! for an approaching contact) and
 //! v₁ = v_free + Σ_j M⁻¹ H_jᵀ P_j. Each contact's impulse P_i = (Pₙ, P_t)
 //! must satisfy Coulomb's law in its velocity form: apart (P = 0, Uₙ ≥ 0),
 //! sticking (U = 0, |P_t| ≤ μ Pₙ) or sliding (Uₙ = 0, P_t = −μ Pₙ s with the
@@ -39,7 +40,7 @@ pub(super) struct Local<T: Real, const N: usize> {
     pub responses: Vec<SVector<T, N>>,
     /// The block H_i M⁻¹ H_iᵀ.
     pub block: [[T; 3]; 3],
-    /// e·uₙ, added to the normal velocity (Newton's law).
+    /// e·min(uₙ, 0), added to the normal velocity (Newton's law).
     pub bias: T,
     pub friction: T,
     /// Dry friction's fixed bound on the impulse (its force bound times the

@@ -22,6 +22,9 @@ use std::ops::Range;
 struct Outcome<T> {
     modes: Vec<Mode<T>>,
     approach: Vec<T>,
+    /// The normal speed after the impulse along the midpoint's normal (the
+    /// speed Newton's law sets), per contact.
+    leaving: Vec<T>,
 }
 
 impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q: usize>
@@ -64,7 +67,7 @@ impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q
                 Ok((q_next, v_next, after)) => {
                     stats.accepted += 1;
                     let tm = T::lit(0.5) * (t + t_next);
-                    let after = self.note_changes(tm, &modes, &after, &v_next, &q_next);
+                    let after = self.note_changes(tm, &modes, &after);
                     let form = self.form(after.clone());
                     let segment =
                         midpoint_segment(&form, (t, t_next), (&q, &v), (&q_next, &v_next));
@@ -144,15 +147,24 @@ impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q
             return Err(Error::non_finite(t_next, &next_q, &next_v));
         }
         let mut modes = vec![Mode::Open; self.laws.len()];
+        let mut leaving = vec![T::zero(); self.laws.len()];
         for c in &locals {
             impulses[c.contact] = Some(c.impulse);
             modes[c.contact] = mode_of(c);
+            if c.bound.is_none() {
+                leaving[c.contact] = c.rows[0].dot(&next_v);
+            }
         }
-        Ok((next_q, next_v, Outcome { modes, approach }))
+        let outcome = Outcome {
+            modes,
+            approach,
+            leaving,
+        };
+        Ok((next_q, next_v, outcome))
     }
 
     /// The contacts closed at the midpoint (t, q, v) of a step h, each with
-    /// its rows, responses M⁻¹ rowᵀ and Newton's bias e·uₙ, warm-started from the
+    /// its rows, responses M⁻¹ rowᵀ and Newton's bias e·min(uₙ, 0), warm-started from the
     /// step before's impulse (added to `next_v`); and every contact's
     /// normal speed there. An open contact forgets its impulse.
     #[allow(clippy::type_complexity)]
@@ -189,7 +201,10 @@ impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q
                 continue;
             }
             let responses = rows.iter().map(|row| chol.solve(*row)).collect();
-            let bias = T::lit(law.restitution) * approach[i];
+            // Newton's law for a contact that approaches; one that recedes
+            // (or whose normal turned with the step, h J̇q̇) takes no
+            // restitution, which would lift a pivoting corner by (1 + e) h J̇q̇.
+            let bias = T::lit(law.restitution) * approach[i].min(T::zero());
             let mut local = Local::new(i, (rows, tangents), responses, bias, mu);
             local.bound = dry.then(|| mu * h);
             // Warm start: the impulse of the step before, already applied.
@@ -210,21 +225,14 @@ impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q
     /// after it. A contact in force that takes none lifts off; one that
     /// stops slipping sticks, and the other way. Returns the modes after the
     /// step.
-    fn note_changes(
-        &mut self,
-        tm: T,
-        before: &[Mode<T>],
-        after: &Outcome<T>,
-        v: &SVector<T, N>,
-        q: &SVector<T, Q>,
-    ) -> Vec<Mode<T>> {
+    fn note_changes(&mut self, tm: T, before: &[Mode<T>], after: &Outcome<T>) -> Vec<Mode<T>> {
         let rest = T::lit(self.settings.rest_speed);
         let mut modes = after.modes.clone();
         for (i, (old, new)) in before.iter().zip(&after.modes).enumerate() {
             let kind = match (old, new) {
                 (Mode::Open, Mode::Open) => continue,
                 (Mode::Open, _) => {
-                    let speed = self.normal_speed(i, tm, q, v);
+                    let speed = after.leaving[i];
                     if speed > rest {
                         modes[i] = Mode::Open;
                     }
@@ -254,13 +262,6 @@ impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q
             self.phases.push((tm, modes.clone()));
         }
         modes
-    }
-
-    /// A contact's normal speed n·v at (q, v); zero where it has no rows.
-    fn normal_speed(&self, i: usize, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> T {
-        self.system
-            .contact_rows(i, q, v, t)
-            .map_or(T::zero(), |r| r.normal.dot(v))
     }
 }
 
