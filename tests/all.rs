@@ -36,6 +36,7 @@ mod constrained_control;
 mod constrained_tangent;
 mod contact;
 mod contact_compliant;
+mod contact_impact_friction;
 mod contact_inputs;
 mod contact_legged;
 mod contact_oriented;

@@ -222,7 +222,8 @@ pub(crate) fn stopped_pendulum(system: &'static str) -> Result<Row, Error> {
 /// Tossed at (1.5, −6) m/s from 0.5 m, turning at 1 rad/s, onto its four
 /// corners by Moreau–Jean at h = 1 ms: friction grips the landing corners,
 /// it rocks, and it rests flat. The note says where, how deep a corner
-/// sank, and where the event-driven run (frictionless impacts) leaves it.
+/// sank, and where the event-driven run (located events, impacts with the
+/// same friction) leaves it.
 pub(crate) fn tossed_box(system: &'static str) -> Result<Row, Error> {
     let b = TossedBox {
         m: 1.0,
@@ -261,7 +262,7 @@ pub(crate) fn tossed_box(system: &'static str) -> Result<Row, Error> {
                 .fold(f64::INFINITY, f64::min);
             format!(
                 "{} impacts; at rest from t = {settled:.3} s at x = {:.3} m, turned {:.4} quarter turns; \
-                 deepest corner {:.2} mm; event-driven, frictionless impacts: {elsewhere}",
+                 deepest corner {:.2} mm; event-driven: {elsewhere}",
                 impacts.len(),
                 q[0],
                 q[2] / std::f64::consts::FRAC_PI_2,

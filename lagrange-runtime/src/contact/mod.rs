@@ -15,7 +15,10 @@
 //!
 //! - **touching**: an open contact's gap falls to zero; the contacts at the
 //!   surface then take one impulse problem together (`impact`): Newton's law
-//!   per contact, a plastic one for a contact that closes;
+//!   per contact, a plastic one for a contact that closes, and Coulomb's
+//!   cone on the impulses where a contact rubs (a stick impulse stops its
+//!   slip while the cone holds it, a sliding one is μ times the normal
+//!   impulse against the slip after);
 //! - **lifting off**: a closed contact's normal force falls to zero;
 //! - **stopping**: a sliding contact's slip speed falls to zero (its slip
 //!   along the direction it started with crosses zero), after which it
@@ -46,9 +49,8 @@
 //! force, its friction bounded by a fixed fc instead of μ λ_n; it sticks
 //! and slips at the same events, and takes no impulse at an impact.
 //!
-//! **Scope.** The event-driven impacts are frictionless (the tangential
-//! velocity is kept through an impact); contacts are points or spheres against planes and
-//! stops on coordinates. On a system with free orientations the rows are
+//! **Scope.** Contacts are points or spheres against planes, two spheres
+//! (without friction between them) and stops on coordinates. On a system with free orientations the rows are
 //! in the velocities v (ω in body axes), the state moves on the group, and
 //! the time stepper's midpoint is q ⊕ h/2 v.
 //!
