@@ -294,6 +294,8 @@ impl Names {
 /// in tree order; their limits; and each joint's coordinate.
 struct Coordinates<'r> {
     names: Vec<Ident>,
+    /// The file's line each comes from (its joint's, or the free root's).
+    lines: Vec<u32>,
     limits: Vec<(f64, f64)>,
     efforts: Vec<f64>,
     angle_of: BTreeMap<&'r str, Ident>,
@@ -306,6 +308,7 @@ fn coordinates<'r>(
 ) -> Result<Coordinates<'r>, ReadError> {
     let mut out = Coordinates {
         names: Vec::new(),
+        lines: Vec::new(),
         limits: Vec::new(),
         efforts: Vec::new(),
         angle_of: BTreeMap::new(),
@@ -315,6 +318,7 @@ fn coordinates<'r>(
         for axis in ["x", "y", "z"] {
             out.names
                 .push(names.unique(&format!("{root}_{axis}"), line)?);
+            out.lines.push(line);
             out.limits.push((f64::NEG_INFINITY, f64::INFINITY));
             out.efforts.push(f64::INFINITY);
         }
@@ -327,6 +331,7 @@ fn coordinates<'r>(
         let q = names.unique(&j.name, j.line)?;
         out.angle_of.insert(j.name.as_str(), q.clone());
         out.names.push(q);
+        out.lines.push(j.line);
         out.limits
             .push(j.limits.unwrap_or((f64::NEG_INFINITY, f64::INFINITY)));
         out.efforts.push(j.effort.unwrap_or(f64::INFINITY));
@@ -423,13 +428,13 @@ pub fn describe(
 /// coordinate, named `<q>_lower` and `<q>_upper`.
 fn stop_items(c: &Coordinates, names: &mut Names) -> Result<Vec<TokenStream>, ReadError> {
     let mut items = Vec::new();
-    for (q, &(lower, upper)) in c.names.iter().zip(&c.limits) {
+    for ((q, &line), &(lower, upper)) in c.names.iter().zip(&c.lines).zip(&c.limits) {
         if let Some(bound) = super::tokens::number(lower) {
-            let name = names.unique(&format!("{q}_lower"), 0)?;
+            let name = names.unique(&format!("{q}_lower"), line)?;
             items.push(quote!(stop(#name, #q >= #bound, restitution = 0)));
         }
         if let Some(bound) = super::tokens::number(upper) {
-            let name = names.unique(&format!("{q}_upper"), 0)?;
+            let name = names.unique(&format!("{q}_upper"), line)?;
             items.push(quote!(stop(#name, #q <= #bound, restitution = 0)));
         }
     }
