@@ -272,3 +272,69 @@ fn input_limits_out_of_order_are_refused() {
         failure.error
     );
 }
+
+/// `<limit velocity="10">` as the motor's no-load speed: asked for 300 N
+/// up, the carriage gets 100 (1 − ẋ/10) N, so 2 ẍ = 100 − 2 g − 10 ẋ and
+/// ẋ = v∞ (1 − e^(−5t)) with v∞ = (100 − 2 g)/10 — under continuous
+/// feedback and between a sampled controller's samples alike; the push is
+/// held at its narrowed limit throughout.
+#[test]
+fn speed_limits_narrow_the_push_along_the_motors_torque_speed_line() {
+    assert_eq!(Pushed::JOINT_VELOCITIES, [10.0]);
+    let (effort, no_load) = (Pushed::JOINT_EFFORTS[0], Pushed::JOINT_VELOCITIES[0]);
+    let v_inf = (effort - 2.0 * 9.81) * no_load / effort;
+    let exact = |t: f64| v_inf * (1.0 - (-5.0 * t).exp());
+    let live = Simulation::new(&Pushed {})
+        .integrator(Dopri5::tol(1e-12))
+        .feedback(|_, _, _| [300.0])
+        .input_limits([-effort], [effort])
+        .speed_limits([0], [no_load])
+        .run([0.0], [0.0], 0.0..0.15)
+        .unwrap();
+    let sampled = Simulation::new(&Pushed {})
+        .integrator(Dopri5::tol(1e-12))
+        .sampled(0.01, |_, _, _| [300.0])
+        .input_limits([-effort], [effort])
+        .speed_limits([0], [no_load])
+        .run([0.0], [0.0], 0.0..0.15)
+        .unwrap();
+    for run in [&live, &sampled] {
+        let (_, v) = run.trajectory().final_state();
+        assert!(
+            (v[0] - exact(0.15)).abs() < 1e-9,
+            "{} vs {}",
+            v[0],
+            exact(0.15)
+        );
+        let held = run.saturations();
+        assert_eq!(held.len(), 1, "{held:?}");
+        assert!(
+            held[0].upper && held[0].from == 0.0 && held[0].to == 0.15,
+            "{held:?}"
+        );
+    }
+    // The recorded push is the narrowed one: 100 (1 − ẋ/10).
+    let (_, v) = live.trajectory().final_state();
+    let last = live.inputs().last().unwrap()[0];
+    assert!((last - effort * (1.0 - v[0] / no_load)).abs() < 1e-12);
+}
+
+/// Pushing down while the carriage rises brakes it with the whole effort:
+/// a bound against the motion is not narrowed.
+#[test]
+fn braking_against_the_motion_takes_the_whole_effort() {
+    let run = Simulation::new(&Pushed {})
+        .integrator(Dopri5::tol(1e-12))
+        .feedback(|_, _, _| [-300.0])
+        .input_limits([-100.0], [100.0])
+        .speed_limits([0], [10.0])
+        .run([0.0], [5.0], 0.0..0.01)
+        .unwrap();
+    assert_eq!(run.inputs()[0][0], -100.0);
+    let bad = Simulation::new(&Pushed {})
+        .feedback(|_, _, _| [0.0])
+        .input_limits([-100.0], [100.0])
+        .speed_limits([0], [0.0])
+        .run([0.0], [0.0], 0.0..0.01);
+    assert!(bad.is_err());
+}

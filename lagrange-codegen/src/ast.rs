@@ -322,6 +322,8 @@ pub struct UrdfSource {
     pub limits: Vec<(f64, f64)>,
     /// Each coordinate's effort limit (∞ where none), in coordinate order.
     pub efforts: Vec<f64>,
+    /// Each coordinate's velocity limit (∞ where none), in coordinate order.
+    pub velocities: Vec<f64>,
     /// `snap`: the angles made exact multiples of π/2 (where, written, snapped).
     pub snapped: Vec<(String, f64, f64)>,
     /// `inertia = repair`: the links' inertias changed (link, written, used).

@@ -478,6 +478,7 @@ fn add_urdf(cx: &Ctxt, system: &mut System, path: &syn::LitStr, options: crate::
         coordinates: urdf.coordinates,
         limits: urdf.limits,
         efforts: urdf.efforts,
+        velocities: urdf.velocities,
         snapped: urdf.snapped,
         repaired: urdf.repaired,
     });

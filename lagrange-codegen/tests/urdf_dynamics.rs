@@ -75,18 +75,28 @@ fn read_gives_each_coordinate_its_damping_and_its_followers() {
     assert_eq!(items.len(), base.len() + 1);
 }
 
+/// Friction is read as the joint's dry friction bound; a follower turning
+/// at 2 q̇ adds twice its own (they slip and stick together).
 #[test]
-fn read_refuses_friction_and_negative_damping_at_their_lines() {
-    let rough = arm("<dynamics damping='0.5' friction='0.2'/>", "", "1");
+fn read_gives_each_coordinate_its_friction_and_its_followers() {
+    let rough = arm(
+        "<dynamics damping='0.5' friction='0.2'/>",
+        "<dynamics friction='0.1'/>",
+        "2",
+    );
+    let items = read(&rough, DynamicsRule::Read).unwrap();
+    let want = quote::quote!(joint(shoulder, damping = (0.5), friction = (0.4))).to_string();
+    assert_eq!(joints(&items), [&want]);
+}
+
+#[test]
+fn read_refuses_negative_losses_at_their_lines() {
+    let rough = arm("<dynamics friction='-0.2'/>", "", "1");
     let e = read(&rough, DynamicsRule::Read).unwrap_err();
     assert!(
-        e.starts_with(
-            "r.urdf:6: joint `shoulder`: friction = 0.2: Coulomb friction at a joint is not \
-             supported yet"
-        ),
+        e.starts_with("r.urdf:6: joint `shoulder`: friction = -0.2 is negative"),
         "{e}"
     );
-    assert!(e.contains("`dynamics = ignore`"), "{e}");
     let negative = arm("", "<dynamics damping='-0.1'/>", "1");
     let e = read(&negative, DynamicsRule::Read).unwrap_err();
     assert!(
@@ -96,8 +106,7 @@ fn read_refuses_friction_and_negative_damping_at_their_lines() {
 }
 
 /// The shipped arms that state losses: the xArm7 and the Z1 state
-/// friction, so `read` refuses them (not derived yet); the Panda states
-/// damping alone.
+/// damping and friction at every joint, the Panda damping alone.
 #[test]
 fn the_shipped_arms_under_each_rule() {
     let file = |name: &str| {
@@ -112,11 +121,13 @@ fn the_shipped_arms_under_each_rule() {
         );
         read(&file(name), DynamicsRule::Ignore).unwrap();
     }
-    for name in ["xarm7.urdf", "z1.urdf"] {
-        let e = read(&file(name), DynamicsRule::Read).unwrap_err();
+    for (name, count) in [("xarm7.urdf", 7), ("z1.urdf", 7)] {
+        let items = read(&file(name), DynamicsRule::Read).unwrap();
+        let joints = joints(&items);
+        assert_eq!(joints.len(), count, "{name}: {joints:?}");
         assert!(
-            e.contains("Coulomb friction at a joint is not supported yet"),
-            "{name}: {e}"
+            joints.iter().all(|j| j.contains("friction")),
+            "{name}: {joints:?}"
         );
     }
     let panda = read(&file("panda.urdf"), DynamicsRule::Read).unwrap();
@@ -148,8 +159,9 @@ fn the_xarm7_without_the_option_is_refused_naming_joint1_and_its_line() {
     let want = format!(
         "{path}:179: joint `joint1` states <dynamics damping=\"10\" friction=\"1\">, which the \
          rigid-body equations leave out; write `dynamics = read` in `urdf(\"..\", ..)` to add \
-         its damping as `joint(q, damping = b)` items, or `dynamics = ignore` for the \
-         rigid-body dynamics (what Pinocchio's rnea and aba compute)"
+         its damping and friction as `joint(q, damping = b, friction = fc)` items (run by \
+         `run_contacts` where there is friction), or `dynamics = ignore` for the rigid-body \
+         dynamics (what Pinocchio's rnea and aba compute)"
     );
     assert_eq!(e.as_deref(), Some(want.as_str()));
 }

@@ -247,3 +247,28 @@ fn an_inertia_that_overflows_in_the_links_axes_is_refused_at_its_line() {
         "{e}"
     );
 }
+
+/// A stop that `limits = stops` makes, named as a field of the struct, is
+/// refused at its joint's line.
+#[test]
+fn a_stop_named_as_a_field_quotes_its_joints_line() {
+    let path = std::env::temp_dir().join("lagrange-urdf-options-stop.urdf");
+    let limited = ARM.replace(
+        "<axis xyz='0 1 0'/>",
+        "<axis xyz='0 1 0'/><limit lower='-1' upper='1'/>",
+    );
+    std::fs::write(&path, format!("<robot name='r'>{limited}</robot>")).unwrap();
+    let src = format!(
+        "#[lagrange(urdf(\"{}\", limits = stops))] struct R {{ shoulder_lower: f64 }}",
+        path.display()
+    );
+    let input: syn::DeriveInput = syn::parse_str(&src).unwrap();
+    let e = lagrange_codegen::model_by(&input, Route::Auto)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("lagrange-urdf-options-stop.urdf:3: `shoulder_lower` is named"),
+        "{e}"
+    );
+}

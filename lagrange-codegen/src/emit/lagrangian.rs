@@ -398,6 +398,7 @@ fn urdf_consts(system: &System) -> TokenStream {
         quote!((#lo, #hi))
     });
     let efforts = u.efforts.iter().map(|&e| bound(e));
+    let velocities = u.velocities.iter().map(|&e| bound(e));
     let robot = &u.robot;
     let n = Literal::usize_unsuffixed(u.limits.len());
     let snapped = u.snapped.iter().map(|(at, written, exact)| {
@@ -429,6 +430,12 @@ fn urdf_consts(system: &System) -> TokenStream {
         /// none (a free base's coordinates). Map them to the inputs that
         /// drive the joints and pass them to `Simulation::input_limits`.
         pub const JOINT_EFFORTS: [f64; #n] = [#(#efforts),*];
+        /// Each coordinate's velocity limit from the URDF file (`<limit
+        /// velocity>`, m/s or rad/s), in coordinate order; ∞ where the file
+        /// gives none. Map them to the inputs that drive the joints and pass
+        /// them to `Simulation::speed_limits` as the motors' no-load speeds.
+        #[allow(clippy::approx_constant)] // as the file writes them: 3.1415 is not π
+        pub const JOINT_VELOCITIES: [f64; #n] = [#(#velocities),*];
         /// The angles `urdf(.., snap = tol)` made exact multiples of π/2:
         /// (where, as the file writes it, as used). Empty without `snap`.
         #[allow(clippy::approx_constant)]

@@ -27,6 +27,8 @@ pub struct Description {
     pub limits: Vec<(f64, f64)>,
     /// Each coordinate's effort limit (∞ where the file gives none).
     pub efforts: Vec<f64>,
+    /// Each coordinate's velocity limit (∞ where the file gives none).
+    pub velocities: Vec<f64>,
 }
 
 fn error(line: u32, message: String) -> ReadError {
@@ -298,6 +300,7 @@ struct Coordinates<'r> {
     lines: Vec<u32>,
     limits: Vec<(f64, f64)>,
     efforts: Vec<f64>,
+    velocities: Vec<f64>,
     angle_of: BTreeMap<&'r str, Ident>,
 }
 
@@ -311,6 +314,7 @@ fn coordinates<'r>(
         lines: Vec::new(),
         limits: Vec::new(),
         efforts: Vec::new(),
+        velocities: Vec::new(),
         angle_of: BTreeMap::new(),
     };
     if let (Some(line), Some((root, _))) = (free_root, order.first()) {
@@ -321,6 +325,7 @@ fn coordinates<'r>(
             out.lines.push(line);
             out.limits.push((f64::NEG_INFINITY, f64::INFINITY));
             out.efforts.push(f64::INFINITY);
+            out.velocities.push(f64::INFINITY);
         }
     }
     for (_, joint) in order {
@@ -335,6 +340,7 @@ fn coordinates<'r>(
         out.limits
             .push(j.limits.unwrap_or((f64::NEG_INFINITY, f64::INFINITY)));
         out.efforts.push(j.effort.unwrap_or(f64::INFINITY));
+        out.velocities.push(j.velocity.unwrap_or(f64::INFINITY));
     }
     Ok(out)
 }
@@ -363,15 +369,7 @@ pub fn describe(
     };
     let c = coordinates(&order, &mut names, turn.as_ref().map(|_| root_line))?;
     if c.names.is_empty() {
-        return Err(error(
-            0,
-            format!(
-                "the robot `{}` has no moving joint (every joint is fixed): nothing in it can \
-                 move; give a joint a moving type in the file, or put the base on a free root \
-                 with `urdf(\"..\", base = floating)`",
-                robot.name
-            ),
-        ));
+        return Err(motionless(&robot.name));
     }
     let (points, bodies) = points_and_bodies(&robot, &order, &mut names)?;
     let coordinate_names = &c.names;
@@ -421,7 +419,20 @@ pub fn describe(
         coordinates: c.names.iter().map(Ident::to_string).collect(),
         limits: c.limits,
         efforts: c.efforts,
+        velocities: c.velocities,
     })
+}
+
+/// The error for a robot whose joints are all fixed.
+fn motionless(robot: &str) -> ReadError {
+    error(
+        0,
+        format!(
+            "the robot `{robot}` has no moving joint (every joint is fixed): nothing in it can \
+             move; give a joint a moving type in the file, or put the base on a free root with \
+             `urdf(\"..\", base = floating)`"
+        ),
+    )
 }
 
 /// `limits = stops`: a plastic `stop(..)` per finite bound of each

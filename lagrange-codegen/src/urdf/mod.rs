@@ -34,6 +34,8 @@ pub struct Urdf {
     pub limits: Vec<(f64, f64)>,
     /// Their effort limits (∞ where the file gives none).
     pub efforts: Vec<f64>,
+    /// Their velocity limits (∞ where the file gives none).
+    pub velocities: Vec<f64>,
     /// The angles snapped to multiples of π/2: where, as written, as snapped.
     pub snapped: Vec<(String, f64, f64)>,
     /// The inertias `inertia = repair` changed: the link, the entries (ixx,
@@ -144,6 +146,7 @@ pub fn from_text(
         coordinates: d.coordinates,
         limits: d.limits,
         efforts: d.efforts,
+        velocities: d.velocities,
         snapped,
         repaired,
     })

@@ -84,6 +84,8 @@ pub struct Joint {
     /// The `<limit effort>`: the most force or torque the joint's actuator
     /// gives, if the file states it.
     pub effort: Option<f64>,
+    /// The `<limit velocity>`: the joint's top speed, if the file states it.
+    pub velocity: Option<f64>,
     pub mimic: Option<Mimic>,
     /// `<dynamics damping=".." friction="..">`, if the file gives it.
     pub dynamics: Option<Dynamics>,
@@ -318,10 +320,13 @@ fn joint(doc: &Document, node: Node) -> Result<Joint, ReadError> {
         )),
         _ => None,
     };
-    let effort = match child(node, "limit").and_then(|l| l.attribute("effort").map(|e| (l, e))) {
-        Some((l, e)) => Some(number(doc, l, e)?.value),
-        None => None,
+    let limit = |key: &str| -> Result<Option<f64>, ReadError> {
+        match child(node, "limit").and_then(|l| l.attribute(key).map(|e| (l, e))) {
+            Some((l, e)) => Ok(Some(number(doc, l, e)?.value)),
+            None => Ok(None),
+        }
     };
+    let (effort, velocity) = (limit("effort")?, limit("velocity")?);
     // A fixed (or floating) joint's <mimic> has no coordinate to follow: a
     // gripper locked by hand keeps its followers' tags, and they stay fixed.
     let mimic = match child(node, "mimic") {
@@ -351,6 +356,7 @@ fn joint(doc: &Document, node: Node) -> Result<Joint, ReadError> {
         axis,
         limits,
         effort,
+        velocity,
         mimic,
         dynamics,
     })

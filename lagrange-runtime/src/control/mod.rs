@@ -202,6 +202,21 @@ pub trait InputSource<T: Real, const N: usize, const P: usize, const Q: usize = 
     fn bounds(&self) -> Option<([f64; P], [f64; P])> {
         None
     }
+
+    /// Each input's joint (its index in v) and no-load speed, for a source
+    /// whose bounds narrow with speed ([`Saturated::with_speeds`]); `None`
+    /// (the default) otherwise.
+    fn speed_limits(&self) -> Option<([usize; P], [f64; P])> {
+        None
+    }
+
+    /// `u` kept within what the actuators can give at (t, q, v): applied to
+    /// a held value at every evaluation, since a motor's torque–speed line
+    /// holds between samples too. The default keeps `u`.
+    fn limit(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>, u: SVector<T, P>) -> SVector<T, P> {
+        let _ = (t, q, v);
+        u
+    }
 }
 
 impl<T: Real, const N: usize, const P: usize, const Q: usize, C: InputSource<T, N, P, Q> + ?Sized>
@@ -224,6 +239,12 @@ impl<T: Real, const N: usize, const P: usize, const Q: usize, C: InputSource<T, 
     }
     fn bounds(&self) -> Option<([f64; P], [f64; P])> {
         (**self).bounds()
+    }
+    fn speed_limits(&self) -> Option<([usize; P], [f64; P])> {
+        (**self).speed_limits()
+    }
+    fn limit(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>, u: SVector<T, P>) -> SVector<T, P> {
+        (**self).limit(t, q, v, u)
     }
 }
 

@@ -19,6 +19,9 @@ pub struct Saturated<C, const P: usize> {
     source: C,
     lower: [f64; P],
     upper: [f64; P],
+    /// Each input's joint (its index in v) and no-load speed, where the
+    /// torque–speed line narrows the bounds.
+    speeds: Option<([usize; P], [f64; P])>,
 }
 
 impl<C, const P: usize> Saturated<C, P> {
@@ -28,8 +31,45 @@ impl<C, const P: usize> Saturated<C, P> {
             source,
             lower,
             upper,
+            speeds: None,
         }
     }
+
+    /// The same, each input k's bounds also narrowed by its motor's
+    /// torque–speed line: driving the joint at `joints[k]` (its index in
+    /// v) at speed w in the bound's own direction leaves that bound times
+    /// max(0, 1 − |w|/`no_load[k]`), the full bound against the motion.
+    pub fn with_speeds(mut self, joints: [usize; P], no_load: [f64; P]) -> Self {
+        self.speeds = Some((joints, no_load));
+        self
+    }
+}
+
+/// Input k's bounds (lower, upper) at the velocities v: the effort limits,
+/// each narrowed by the torque–speed line where `speeds` gives one (see
+/// [`Saturated::with_speeds`]). One function for the clamp and for the
+/// report of where it held, so that the two agree to the bit.
+pub(crate) fn bounds_at<T: Real, const N: usize, const P: usize>(
+    (lower, upper): ([f64; P], [f64; P]),
+    speeds: Option<([usize; P], [f64; P])>,
+    k: usize,
+    v: &SVector<T, N>,
+) -> (T, T) {
+    let (lo, hi) = (T::lit(lower[k]), T::lit(upper[k]));
+    let Some((joints, no_load)) = speeds else {
+        return (lo, hi);
+    };
+    let Some(&w) = v.as_slice().get(joints[k]) else {
+        return (lo, hi);
+    };
+    let left = T::one() - w.abs() / T::lit(no_load[k]);
+    let share = left.max(T::zero()).min(T::one());
+    // A bound pushing along the motion is narrowed; one against it is not.
+    let narrowed = |bound: T| match (bound * w) > T::zero() {
+        true => bound * share,
+        false => bound,
+    };
+    (narrowed(lo), narrowed(hi))
 }
 
 impl<T, C, const N: usize, const P: usize, const Q: usize> InputSource<T, N, P, Q>
@@ -39,10 +79,20 @@ where
     C: InputSource<T, N, P, Q>,
 {
     fn input(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> SVector<T, P> {
-        let mut u = self.source.input(t, q, v);
+        self.limit(t, q, v, self.source.input(t, q, v))
+    }
+
+    fn limit(
+        &self,
+        _: T,
+        _: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        mut u: SVector<T, P>,
+    ) -> SVector<T, P> {
         for (k, x) in u.iter_mut().enumerate() {
+            let (lo, hi) = bounds_at((self.lower, self.upper), self.speeds, k, v);
             // A NaN stays NaN: the run refuses it, naming the input.
-            *x = x.max(T::lit(self.lower[k])).min(T::lit(self.upper[k]));
+            *x = x.max(lo).min(hi);
         }
         u
     }
@@ -74,11 +124,28 @@ where
                 .into());
             }
         }
+        if let Some((_, no_load)) = self.speeds {
+            for (k, &w) in no_load.iter().enumerate() {
+                if w.is_nan() || w <= 0.0 {
+                    return Err(SettingsError::Value {
+                        owner: "speed limits",
+                        setting: "no_load",
+                        value: w,
+                        requirement: format!("positive (input {k}; ∞ for none)"),
+                    }
+                    .into());
+                }
+            }
+        }
         self.source.check()
     }
 
     fn bounds(&self) -> Option<([f64; P], [f64; P])> {
         Some((self.lower, self.upper))
+    }
+
+    fn speed_limits(&self) -> Option<([usize; P], [f64; P])> {
+        self.speeds
     }
 }
 
@@ -97,19 +164,22 @@ pub struct Saturation<T> {
     pub upper: bool,
 }
 
-/// The stretches of `inputs` (at `times`) held at a bound of `bounds`.
-pub(crate) fn stretches<T: Real, const P: usize>(
-    times: &[T],
+/// The stretches of `inputs` (at `times`, with the velocities `v`) held
+/// at a bound of `bounds`, narrowed by `speeds` as the clamp narrowed them.
+pub(crate) fn stretches<T: Real, const N: usize, const P: usize>(
+    (times, v): (&[T], &[SVector<T, N>]),
     inputs: &[SVector<T, P>],
-    (lower, upper): ([f64; P], [f64; P]),
+    bounds: ([f64; P], [f64; P]),
+    speeds: Option<([usize; P], [f64; P])>,
 ) -> Vec<Saturation<T>> {
     let mut out: Vec<Saturation<T>> = Vec::new();
     for k in 0..P {
         let mut open: Option<Saturation<T>> = None;
-        for (&t, u) in times.iter().zip(inputs) {
-            let side = if u[k] == T::lit(upper[k]) {
+        for ((&t, u), v) in times.iter().zip(inputs).zip(v) {
+            let (lower, upper) = bounds_at(bounds, speeds, k, v);
+            let side = if u[k] == upper {
                 Some(true)
-            } else if u[k] == T::lit(lower[k]) {
+            } else if u[k] == lower {
                 Some(false)
             } else {
                 None

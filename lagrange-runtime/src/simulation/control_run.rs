@@ -33,6 +33,10 @@ pub struct ControlRun<T: Real, const N: usize, const P: usize, const Q: usize = 
     /// The bounds the inputs were clamped into, if the run had limits.
     #[cfg_attr(feature = "serde", serde(skip))]
     pub(crate) bounds: Option<([f64; P], [f64; P])>,
+    /// The inputs' joints and no-load speeds, if the bounds narrowed with
+    /// speed.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pub(crate) speed_limits: Option<([usize; P], [f64; P])>,
 }
 
 /// Names as a sequence (serde has no impl for arrays of a generic length).
@@ -79,7 +83,8 @@ impl<T: Real, const N: usize, const P: usize, const Q: usize> ControlRun<T, N, P
     /// inside the step that ends there). Empty without limits.
     pub fn saturations(&self) -> Vec<crate::control::Saturation<T>> {
         self.bounds.map_or_else(Vec::new, |bounds| {
-            crate::control::stretches(self.trajectory.times(), &self.inputs, bounds)
+            let points = (self.trajectory.times(), self.trajectory.velocities());
+            crate::control::stretches(points, &self.inputs, bounds, self.speed_limits)
         })
     }
 

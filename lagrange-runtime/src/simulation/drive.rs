@@ -79,6 +79,7 @@ where
             velocities: S::VELOCITIES,
             input_names: S::INPUTS,
             bounds: self.source.bounds(),
+            speed_limits: self.source.speed_limits(),
         };
         match outcome {
             Ok(()) => Ok(run),
@@ -114,7 +115,7 @@ where
             let source = if held {
                 let u = self.source.input(t, &q, &v);
                 check_input::<S, T, N, P, Q>(t, &q, &v, &u)?;
-                Piece::Held(u)
+                Piece::Held(u, self.source)
             } else {
                 Piece::Live(self.source)
             };
@@ -267,7 +268,7 @@ where
         for ((&tk, qk), vk) in points.zip(whole.velocities()).skip(from) {
             // A held sample was checked when it was taken.
             let (u, live) = match source {
-                Piece::Held(u) => (u, false),
+                Piece::Held(u, c) => (c.limit(tk, qk, vk, u), false),
                 Piece::Live(_) => (self.source.input(tk, qk, vk), true),
             };
             if check && live && refused.is_ok() {
@@ -293,7 +294,9 @@ struct Record<T: Real, const N: usize, const P: usize, const Q: usize> {
 /// itself.
 #[derive(Debug)]
 pub(crate) enum Piece<'c, C, T: Real, const P: usize> {
-    Held(SVector<T, P>),
+    /// A held sample, kept within what the source's actuators give at each
+    /// state ([`InputSource::limit`]).
+    Held(SVector<T, P>, &'c C),
     Live(&'c C),
 }
 
@@ -313,7 +316,7 @@ where
     #[inline]
     fn input(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> SVector<T, P> {
         match self {
-            Piece::Held(u) => *u,
+            Piece::Held(u, c) => c.limit(t, q, v, *u),
             Piece::Live(c) => c.input(t, q, v),
         }
     }

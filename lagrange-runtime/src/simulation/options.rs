@@ -361,6 +361,37 @@ impl<'a, S, I, C, T, E, const N: usize, const P: usize, const Q: usize>
     }
 }
 
+impl<'a, S, I, C, T, E, const N: usize, const P: usize, const Q: usize>
+    Simulation<'a, S, I, Control<Saturated<C, P>, T, N, P, Q>, E>
+{
+    /// Narrows each input's effort limits with its motor's speed (after
+    /// [`input_limits`](Self::input_limits)): input k drives the joint
+    /// whose velocity is `v[joints[k]]`, and at speed w a bound that
+    /// pushes along the motion shrinks to bound · max(0, 1 − |w|/`no_load[k]`),
+    /// the linear torque–speed line of a DC motor (full torque at stall,
+    /// none at the no-load speed), while a bound against the motion stays
+    /// whole. The line holds at every evaluation, between a sampled
+    /// controller's samples too; [`ControlRun::saturations`] reads the
+    /// narrowed bounds. A URDF robot's `<limit velocity>` is
+    /// `JOINT_VELOCITIES`, a no-load speed to map as the efforts are. A
+    /// no-load speed that is not positive fails the run with
+    /// [`Error::Settings`](crate::Error::Settings); ∞ is none.
+    ///
+    /// [`ControlRun::saturations`]: crate::ControlRun::saturations
+    pub fn speed_limits(self, joints: [usize; P], no_load: [f64; P]) -> Self {
+        Simulation {
+            system: self.system,
+            integrator: self.integrator,
+            settings: self.settings,
+            control: Control {
+                source: self.control.source.with_speeds(joints, no_load),
+                types: PhantomData,
+            },
+            events: self.events,
+        }
+    }
+}
+
 /// The deprecated names are the builder's types (a program naming them keeps
 /// compiling): these functions compile only if each alias is that type.
 #[cfg(test)]
