@@ -337,4 +337,12 @@ fn braking_against_the_motion_takes_the_whole_effort() {
         .speed_limits([0], [0.0])
         .run([0.0], [0.0], 0.0..0.01);
     assert!(bad.is_err());
+    // A joint index past the velocities is refused, not ignored.
+    let past = Simulation::new(&Pushed {})
+        .feedback(|_, _, _| [0.0])
+        .input_limits([-100.0], [100.0])
+        .speed_limits([1], [10.0])
+        .run([0.0], [0.0], 0.0..0.01)
+        .unwrap_err();
+    assert!(past.error.to_string().contains("joints"), "{}", past.error);
 }

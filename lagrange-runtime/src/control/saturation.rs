@@ -59,6 +59,7 @@ pub(crate) fn bounds_at<T: Real, const N: usize, const P: usize>(
     let Some((joints, no_load)) = speeds else {
         return (lo, hi);
     };
+    // An index past v is refused before the run (`check_speeds`).
     let Some(&w) = v.as_slice().get(joints[k]) else {
         return (lo, hi);
     };
@@ -124,18 +125,8 @@ where
                 .into());
             }
         }
-        if let Some((_, no_load)) = self.speeds {
-            for (k, &w) in no_load.iter().enumerate() {
-                if w.is_nan() || w <= 0.0 {
-                    return Err(SettingsError::Value {
-                        owner: "speed limits",
-                        setting: "no_load",
-                        value: w,
-                        requirement: format!("positive (input {k}; ∞ for none)"),
-                    }
-                    .into());
-                }
-            }
+        if let Some((joints, no_load)) = self.speeds {
+            check_speeds::<N, P>(joints, no_load)?;
         }
         self.source.check()
     }
@@ -147,6 +138,36 @@ where
     fn speed_limits(&self) -> Option<([usize; P], [f64; P])> {
         self.speeds
     }
+}
+
+/// Each no-load speed positive (∞ for none) and each joint an index into
+/// the N velocities.
+fn check_speeds<const N: usize, const P: usize>(
+    joints: [usize; P],
+    no_load: [f64; P],
+) -> Result<(), Error> {
+    for k in 0..P {
+        let w = no_load[k];
+        if w.is_nan() || w <= 0.0 {
+            return Err(SettingsError::Value {
+                owner: "speed limits",
+                setting: "no_load",
+                value: w,
+                requirement: format!("positive (input {k}; ∞ for none)"),
+            }
+            .into());
+        }
+        if joints[k] >= N {
+            return Err(SettingsError::Value {
+                owner: "speed limits",
+                setting: "joints",
+                value: joints[k] as f64,
+                requirement: format!("an index into the {N} velocities (input {k})"),
+            }
+            .into());
+        }
+    }
+    Ok(())
 }
 
 /// A stretch of a controlled run during which an input was held at one of
