@@ -5,7 +5,7 @@ use crate::contact::{ContactRun, run_contacts};
 use crate::control::{InputForces, InputSource};
 use crate::error::Failure;
 use crate::error::{Error, SettingsError};
-use crate::mechanics::NoForcing;
+use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::ode::Integrator;
 use crate::system::Contacts;
@@ -55,10 +55,25 @@ impl<S, I: Integrator> Simulation<'_, S, I, Unforced, NoEvents> {
     where
         S: Contacts<T, N, Q>,
     {
+        self.contact_run(&NoForcing, Ok(()), (q0.into(), v0.into(), span))
+    }
+}
+
+impl<S, I: Integrator, C, E> Simulation<'_, S, I, C, E> {
+    /// The contact run of this simulation's system, integrator and contact
+    /// settings, driven by `forcing`; `refused` is an error found before it.
+    fn contact_run<T: Real, F: Forcing<T, N, Q>, const N: usize, const Q: usize>(
+        &self,
+        forcing: &F,
+        refused: Result<(), Error>,
+        state: (SVector<T, Q>, SVector<T, N>, Range<T>),
+    ) -> Result<ContactRun<T, N, Q>, Failure<ContactRun<T, N, Q>>>
+    where
+        S: Contacts<T, N, Q>,
+    {
         let singular = T::lit(self.settings.tolerances.singular);
-        let state = (q0.into(), v0.into(), span);
         run_contacts(
-            (self.system, &NoForcing, Ok(())),
+            (self.system, forcing, refused),
             &self.integrator,
             (self.settings.contacts, self.settings.compliant),
             singular,
@@ -113,13 +128,6 @@ impl<S, I: Integrator, C, T: Real, const N: usize, const P: usize, const Q: usiz
             })),
         });
         let forcing = InputForces::new(self.system, source);
-        let singular = T::lit(self.settings.tolerances.singular);
-        run_contacts(
-            (self.system, &forcing, refused),
-            &self.integrator,
-            (self.settings.contacts, self.settings.compliant),
-            singular,
-            (q0.into(), v0.into(), span),
-        )
+        self.contact_run(&forcing, refused, (q0.into(), v0.into(), span))
     }
 }
