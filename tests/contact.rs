@@ -19,10 +19,10 @@ const G: f64 = 9.81;
     gravity = [0, 0, -g],
     contact(ground, on = ball, radius = r, normal = [0, 0, 1], restitution = 0.5, friction = 0.3),
 )]
-struct Sphere {
-    m: f64,
-    r: f64,
-    g: f64,
+pub(crate) struct Sphere {
+    pub(crate) m: f64,
+    pub(crate) r: f64,
+    pub(crate) g: f64,
 }
 
 /// A point mass on the floor.

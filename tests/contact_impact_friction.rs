@@ -9,21 +9,8 @@
 use lagrange::prelude::*;
 use lagrange::{ChangeKind, ContactRun, Dop853};
 
-/// A solid sphere in the vertical plane (x, z), turning about y, with
-/// friction μ at the floor.
-#[derive(Lagrangian, Clone, Copy)]
-#[lagrange(
-    coordinates(x, z, theta),
-    body(ball, mass = m, inertia = [0.4 * m * r * r, 0.4 * m * r * r, 0.4 * m * r * r],
-         at = [x, 0, z], rotation = rot_y(theta)),
-    gravity = [0, 0, -g],
-    contact(ground, on = ball, radius = r, normal = [0, 0, 1], restitution = 0.5, friction = 0.3),
-)]
-struct Struck {
-    m: f64,
-    r: f64,
-    g: f64,
-}
+// The sphere of `tests/contact.rs`: e = 0.5, μ = 0.3 at the floor.
+use crate::contact::Sphere as Struck;
 
 const BALL: Struck = Struck {
     m: 0.3,
