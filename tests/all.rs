@@ -58,6 +58,7 @@ mod identify_excite;
 mod identify_payload;
 mod inputs;
 mod joint_friction;
+mod joint_motor;
 mod joints;
 mod operational_space;
 mod order;

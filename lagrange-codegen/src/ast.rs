@@ -149,11 +149,14 @@ pub struct GeneralizedForce {
     pub value: Expr,
 }
 
-/// `joint(q, damping = b, friction = fc, armature = Ia)`: what a joint's
-/// drive adds on its coordinate: viscous damping, −b q̇ in Q, and the
-/// rotor's reflected inertia, Ia on M's diagonal entry (q, q), each an
-/// expression of the parameters (≥ 0); and Coulomb friction bounded by fc
-/// (a number), a dry-friction contact named `<q>_friction`.
+/// `joint(q, damping = b, friction = fc, armature = Ia, motor = u, gear = n,
+/// rotor = Ir)`: what a joint's drive adds on its coordinate: viscous
+/// damping, −b q̇ in Q, and the rotor's reflected inertia, Ia on M's
+/// diagonal entry (q, q), each an expression of the parameters (≥ 0);
+/// Coulomb friction bounded by fc (a number), a dry-friction contact named
+/// `<q>_friction`; and a motor behind a gearbox of ratio n: its torque u
+/// (an input) gives n u in Q, its rotor's inertia Ir adds n² Ir to the
+/// armature.
 #[derive(Clone, Debug)]
 pub struct Joint {
     /// The coordinate.
@@ -164,6 +167,13 @@ pub struct Joint {
     pub armature: Option<Expr>,
     /// Coulomb friction's bound fc > 0 (`None` for none, or 0 written).
     pub friction: Option<f64>,
+    /// The input that is the motor's torque, on the motor's side of the gear.
+    pub motor: Option<Ident>,
+    /// The gear ratio n: the motor turns n times per turn of the joint
+    /// (1 when left out).
+    pub gear: Option<Expr>,
+    /// The rotor's own inertia Ir, on the motor's side of the gear.
+    pub rotor: Option<Expr>,
 }
 
 impl Joint {

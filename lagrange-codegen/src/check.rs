@@ -432,7 +432,20 @@ fn what_is(system: &System, name: &Ident, wanted: &str) -> String {
         ("speed", system.speeds.iter().any(|u| u.name == *name)),
     ];
     match declared.iter().find(|(_, is)| *is) {
-        Some((kind, _)) => format!("`{name}`, which is a {kind}, not a {wanted}"),
+        Some((kind, _)) => {
+            let a = |w: &str| {
+                if w.starts_with(['a', 'e', 'i', 'o', 'u']) {
+                    "an"
+                } else {
+                    "a"
+                }
+            };
+            format!(
+                "`{name}`, which is {} {kind}, not {} {wanted}",
+                a(kind),
+                a(wanted)
+            )
+        }
         None => format!("unknown {wanted} `{name}`"),
     }
 }
@@ -550,9 +563,10 @@ fn check_load_targets(cx: &Ctxt, system: &System) {
     }
 }
 
-/// Each `joint` names a coordinate, at most one joint per coordinate; an
-/// armature is not a column of `emit(regressor)`'s Y (which would then
-/// leave Ia q̈ out of τ = Y π), so the two are refused together.
+/// Each `joint` names a coordinate, at most one joint per coordinate, and
+/// its motor one of the inputs; an armature (or a rotor, which is one) is
+/// not a column of `emit(regressor)`'s Y (which would then leave Ia q̈ out
+/// of τ = Y π), so the two are refused together.
 fn check_joints(cx: &Ctxt, system: &System) {
     for (k, j) in system.joints.iter().enumerate() {
         if !system.coordinates.contains(&j.coordinate) {
@@ -580,8 +594,20 @@ fn check_joints(cx: &Ctxt, system: &System) {
                 ),
             );
         }
+        if let Some(u) = &j.motor
+            && !system.inputs.contains(u)
+        {
+            cx.error_at(
+                u.span(),
+                format!(
+                    "the motor of joint `{}` is {}; `motor = u` names one of `inputs(...)`, the motor's torque",
+                    j.coordinate,
+                    what_is(system, u, "input")
+                ),
+            );
+        }
         let regressor = system.extras.iter().any(|(_, e)| *e == Extra::Regressor);
-        if let (true, Some(a)) = (regressor, &j.armature) {
+        if let (true, Some(a)) = (regressor, j.armature.as_ref().or(j.rotor.as_ref())) {
             cx.error_spanned_by(
                 a,
                 "`emit(regressor)` with an armature is not supported yet: Y π covers the bodies' inertial parameters, not Ia q̈; remove the armature or the regressor",

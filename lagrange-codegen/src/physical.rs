@@ -48,8 +48,8 @@ pub fn mass(lw: &Lowerer, name: &str, what: &str, syntax: &Expr, m: Sym) -> Opti
     None
 }
 
-/// A joint's damping or armature (`what`) on `coordinate`, which must be
-/// ≥ 0: checked now if it is a constant (the error at `syntax`), else
+/// A joint's coefficient (`what`: damping, armature, rotor, which must be
+/// ≥ 0, or gear, > 0) on `coordinate`: checked now if it is a constant (the error at `syntax`), else
 /// recorded for `check_parameters`.
 pub fn joint(
     lw: &Lowerer,
@@ -61,7 +61,14 @@ pub fn joint(
     let Some(x) = value(lw, v) else {
         return Some(PhysicalCheck::Joint(coordinate.to_string(), what, v));
     };
-    if x < 0.0 {
+    if what == "gear" && x <= 0.0 {
+        lw.cx.error_spanned_by(
+            syntax,
+            format!(
+                "joint `{coordinate}`: gear = {x}: a gear ratio is > 0 (motor turns per joint turn)"
+            ),
+        );
+    } else if x < 0.0 {
         lw.cx.error_spanned_by(
             syntax,
             format!(

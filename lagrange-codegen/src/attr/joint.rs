@@ -1,5 +1,5 @@
-//! `joint(q, damping = b, friction = fc, armature = Ia)`: what a joint's
-//! drive adds on its coordinate. The options are spelled in
+//! `joint(q, damping = b, friction = fc, armature = Ia, motor = u, gear = n,
+//! rotor = Ir)`: what a joint's drive adds on its coordinate. The options are spelled in
 //! `keyword::JOINT_OPTIONS`; a negative literal is refused here, at its
 //! token (a value computed from the parameters is checked when lowered, in
 //! `physical::joint`, or at run time by `check_parameters`). Friction's
@@ -14,7 +14,8 @@ use super::keyword::{JOINT_OPTIONS, JointOption};
 use crate::ast::Joint;
 
 /// The form the messages show.
-const FORM: &str = "joint(q, damping = b, friction = fc, armature = Ia)";
+const FORM: &str =
+    "joint(q, damping = b, friction = fc, armature = Ia, motor = u, gear = n, rotor = Ir)";
 
 /// `joint(q, option = value, ..)`.
 pub(super) fn parse_joint(input: ParseStream) -> syn::Result<Joint> {
@@ -26,6 +27,9 @@ pub(super) fn parse_joint(input: ParseStream) -> syn::Result<Joint> {
         damping: None,
         armature: None,
         friction: None,
+        motor: None,
+        gear: None,
+        rotor: None,
     };
     let mut written: Vec<JointOption> = Vec::new();
     while content.parse::<Option<Token![,]>>()?.is_some() && !content.is_empty() {
@@ -39,12 +43,27 @@ pub(super) fn parse_joint(input: ParseStream) -> syn::Result<Joint> {
         }
         written.push(option);
         content.parse::<Token![=]>()?;
-        let value: Expr = content.parse()?;
         match option {
-            JointOption::Damping => joint.damping = Some(non_negative(value, "damping")?),
-            JointOption::Armature => joint.armature = Some(non_negative(value, "armature")?),
-            JointOption::Friction => joint.friction = friction(&value)?,
+            JointOption::Motor => joint.motor = Some(motor(&content)?),
+            JointOption::Damping => {
+                joint.damping = Some(non_negative(content.parse()?, "damping")?);
+            }
+            JointOption::Armature => {
+                joint.armature = Some(non_negative(content.parse()?, "armature")?);
+            }
+            JointOption::Friction => joint.friction = friction(&content.parse()?)?,
+            JointOption::Gear => joint.gear = Some(gear(content.parse()?)?),
+            JointOption::Rotor => joint.rotor = Some(non_negative(content.parse()?, "rotor")?),
         }
+    }
+    if let (Some(n), None, None) = (&joint.gear, &joint.motor, &joint.rotor) {
+        return Err(syn::Error::new(
+            n.span(),
+            format!(
+                "a gear on joint `{}` scales a motor's torque and its rotor's inertia: add `motor = u` (an input) or `rotor = Ir`",
+                joint.coordinate
+            ),
+        ));
     }
     if !content.is_empty() {
         return Err(content.error(format!(
@@ -90,6 +109,27 @@ fn non_negative(value: Expr, what: &str) -> syn::Result<Expr> {
         return Err(syn::Error::new(
             value.span(),
             format!("{what} = {x}: a joint's {what} is ≥ 0 (a negative one feeds energy in)"),
+        ));
+    }
+    Ok(value)
+}
+
+/// The input a motor's torque is: a name (`check` finds it among the inputs).
+fn motor(content: ParseStream) -> syn::Result<Ident> {
+    content
+        .parse()
+        .map_err(|e| syn::Error::new(e.span(), "`motor = u` names one of `inputs(...)`"))
+}
+
+/// A gear ratio: a literal must be > 0 (the motor turns n times per turn of
+/// the joint; a reversed motor is a negative torque, not a negative ratio).
+fn gear(value: Expr) -> syn::Result<Expr> {
+    if let Ok(n) = number(&value, "gear")
+        && n <= 0.0
+    {
+        return Err(syn::Error::new(
+            value.span(),
+            format!("gear = {n}: a gear ratio is > 0 (motor turns per joint turn)"),
         ));
     }
     Ok(value)

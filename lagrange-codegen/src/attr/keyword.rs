@@ -150,7 +150,7 @@ pub(super) const KEYS: Words<Key> = Words(&[
     word(
         "joint",
         Key::Joint,
-        "joint(q, damping = b, friction = fc, armature = Ia)",
+        "joint(q, damping = b, friction = fc, armature = Ia, motor = u, gear = n, rotor = Ir)",
     ),
 ]);
 
@@ -160,6 +160,9 @@ pub(super) enum JointOption {
     Damping,
     Friction,
     Armature,
+    Motor,
+    Gear,
+    Rotor,
 }
 
 /// The options of `joint(...)`.
@@ -178,6 +181,21 @@ pub(super) const JOINT_OPTIONS: Words<JointOption> = Words(&[
         "armature",
         JointOption::Armature,
         "armature = Ia: a rotor's reflected inertia, added to M's diagonal entry (q, q) (Ia ≥ 0)",
+    ),
+    word(
+        "motor",
+        JointOption::Motor,
+        "motor = u: the input u is a motor's torque, n u on the coordinate through the gear",
+    ),
+    word(
+        "gear",
+        JointOption::Gear,
+        "gear = n: the gear ratio, motor turns per joint turn (n > 0; 1 when left out)",
+    ),
+    word(
+        "rotor",
+        JointOption::Rotor,
+        "rotor = Ir: the motor's rotor inertia, n² Ir added to M's diagonal entry (q, q) (Ir ≥ 0)",
     ),
 ]);
 

@@ -50,9 +50,9 @@ impl NoInputs {
         place: "a nonholonomic constraint",
         why: "the constraint is differentiated in time, which would need the input's time derivative, not supplied at run time",
     };
-    /// A joint's damping or armature.
+    /// A joint's damping, armature, gear ratio or rotor inertia.
     pub const JOINT: NoInputs = NoInputs {
-        place: "a joint's damping or armature",
+        place: "a joint's coefficients",
         why: "a joint's coefficients are constants of the system, read from the parameters alone",
     };
     /// A shape's sizes.

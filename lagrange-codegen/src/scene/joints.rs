@@ -1,10 +1,11 @@
-//! `joint(q, damping = b, armature = Ia)` lowered: the damping as the
-//! generalized force −b q̇ on its coordinate (so that every output reading Q
-//! has it: both routes, the articulated q̈, the inverse dynamics and the
-//! derivatives), the armature kept for `mechanics` to add to M's diagonal.
+//! `joint(q, damping = b, armature = Ia, motor = u, gear = n, rotor = Ir)`
+//! lowered: the damping and the motor as the generalized forces −b q̇ and
+//! n u on its coordinate (so that every output reading Q has them: both
+//! routes, the articulated q̈, the inverse dynamics and the derivatives), the
+//! armature Ia + n² Ir kept for `mechanics` to add to M's diagonal.
 
 use lagrange_symbolic::Expr as Sym;
-use syn::Expr;
+use syn::{Expr, Ident};
 
 use crate::ast::System;
 use crate::lower::{Lowerer, Mode, NoInputs};
@@ -13,9 +14,9 @@ use crate::physical;
 
 /// What the `joint` items give, per coordinate index.
 pub(super) struct Joints {
-    /// −b q̇, a generalized force.
-    pub damping: Vec<(usize, Sym)>,
-    /// Ia.
+    /// −b q̇ and n u, generalized forces.
+    pub forces: Vec<(usize, Sym)>,
+    /// Ia + n² Ir.
     pub armature: Vec<(usize, Sym)>,
 }
 
@@ -24,7 +25,7 @@ pub(super) struct Joints {
 /// `check_parameters`.
 pub(super) fn joints(lw: &mut Lowerer, system: &System, checks: &mut Vec<PhysicalCheck>) -> Joints {
     let mut out = Joints {
-        damping: Vec::new(),
+        forces: Vec::new(),
         armature: Vec::new(),
     };
     let velocities = lw.ctx.velocities();
@@ -48,15 +49,37 @@ pub(super) fn joints(lw: &mut Lowerer, system: &System, checks: &mut Vec<Physica
             .and_then(|e| coefficient(lw, e, "damping"))
         {
             let loss = lw.ctx.mul(b, velocities[i]);
-            out.damping.push((i, lw.ctx.neg(loss)));
+            out.forces.push((i, lw.ctx.neg(loss)));
         }
-        if let Some(a) = j
+        let gear = match &j.gear {
+            Some(e) => coefficient(lw, e, "gear"),
+            None => Some(lw.ctx.one()),
+        };
+        let Some(n) = gear else { continue };
+        let input = j.motor.as_ref().filter(|u| system.inputs.contains(u));
+        if let Some(u) = input.and_then(|u| motor(lw, u)) {
+            out.forces.push((i, lw.ctx.mul(n, u)));
+        }
+        let own = j
             .armature
             .as_ref()
-            .and_then(|e| coefficient(lw, e, "armature"))
-        {
-            out.armature.push((i, a));
-        }
+            .and_then(|e| coefficient(lw, e, "armature"));
+        let rotor = j.rotor.as_ref().and_then(|e| coefficient(lw, e, "rotor"));
+        let reflected = rotor.map(|r| {
+            let n2 = lw.ctx.mul(n, n);
+            lw.ctx.mul(n2, r)
+        });
+        let armature = match (own, reflected) {
+            (Some(a), Some(r)) => Some(lw.ctx.add(a, r)),
+            (a, r) => a.or(r),
+        };
+        out.armature.extend(armature.map(|a| (i, a)));
     }
     out
+}
+
+/// The input a motor's torque is (`check` has reported a name that is not one).
+fn motor(lw: &mut Lowerer, u: &Ident) -> Option<Sym> {
+    let path: Expr = syn::parse_quote!(#u);
+    lw.expr(&path, Mode::State)
 }

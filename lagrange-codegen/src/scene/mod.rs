@@ -51,7 +51,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
     crate::physical::free_bodies(&lw, &system.bodies, &items.skeleton, &items.spins);
     let mut applied = applied(&mut lw, system);
     let joints = joints::joints(&mut lw, system, &mut items.checks);
-    applied.generalized_forces.extend(joints.damping);
+    applied.generalized_forces.extend(joints.forces);
     let (holonomic, nonholonomic) = constraints(&mut lw, system);
     let contacts = contacts::contacts(&mut lw, system);
     let formulations = check::formulations(system);

@@ -374,6 +374,8 @@ impl<'a, S, I, C, T, E, const N: usize, const P: usize, const Q: usize>
     /// controller's samples too; [`ControlRun::saturations`] reads the
     /// narrowed bounds. A URDF robot's `<limit velocity>` is
     /// `JOINT_VELOCITIES`, a no-load speed to map as the efforts are. A
+    /// motor behind a gear (`joint(q, motor = u, gear = n)`) turns n times
+    /// faster than its joint: give its no-load speed divided by n. A
     /// no-load speed that is not positive fails the run with
     /// [`Error::Settings`](crate::Error::Settings); ∞ is none.
     ///

@@ -53,16 +53,23 @@ pub fn joint<T: Real>(
     value: T,
 ) -> Result<(), Error> {
     let x = value.to_f64();
-    if x.is_finite() && x >= 0.0 {
+    // A gear ratio of 0 would cut the motor off; any other coefficient may be 0.
+    let gear = entry == "gear";
+    if x.is_finite() && (x > 0.0 || (x == 0.0 && !gear)) {
         return Ok(());
     }
+    let reason = if gear {
+        "a joint's gear ratio must be finite and positive (motor turns per joint turn)".to_string()
+    } else {
+        format!(
+            "a joint's {entry} must be finite and non-negative (a negative one feeds energy in)"
+        )
+    };
     Err(Error::NonPhysicalParameter {
         body: coordinate,
         entry,
         value: x,
-        reason: format!(
-            "a joint's {entry} must be finite and non-negative (a negative one feeds energy in)"
-        ),
+        reason,
     })
 }
 
