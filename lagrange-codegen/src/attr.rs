@@ -44,7 +44,7 @@ enum Item {
     Urdf(syn::LitStr, crate::urdf::Options),
     Shape(Shape),
     Contact(crate::ast::Contact),
-    Joint(crate::ast::Joint),
+    Joint(Box<crate::ast::Joint>),
 }
 
 impl Parse for Item {
@@ -98,7 +98,7 @@ impl Parse for Item {
             Key::Shape => crate::shape::parse(input).map(Item::Shape),
             Key::Contact => contact::parse_contact(input).map(Item::Contact),
             Key::Stop => contact::parse_stop(input).map(Item::Contact),
-            Key::Joint => joint::parse_joint(input).map(Item::Joint),
+            Key::Joint => joint::parse_joint(input).map(|j| Item::Joint(Box::new(j))),
         }
     }
 }
@@ -429,7 +429,7 @@ fn add_item(cx: &Ctxt, system: &mut System, item: Item) {
         Item::GeneralizedForce(g) => system.generalized_forces.extend(g),
         Item::Shape(s) => system.shapes.push(s),
         Item::Contact(c) => system.contacts.push(c),
-        Item::Joint(j) => system.joints.push(j),
+        Item::Joint(j) => system.joints.push(*j),
         Item::Gravity(k, v) => set_once(cx, &mut system.gravity, k, v),
         Item::Potential(k, v) => set_once(cx, &mut system.potential, k, v),
         Item::Dissipation(k, v) => set_once(cx, &mut system.dissipation, k, v),
