@@ -41,6 +41,7 @@ mod contact_inputs;
 mod contact_legged;
 mod contact_oriented;
 mod contact_refused;
+mod contact_sphere_friction;
 mod contact_spheres;
 mod contact_stepping;
 mod control;

@@ -57,7 +57,7 @@ pub(super) fn parse_contact(input: ParseStream) -> syn::Result<Contact> {
 }
 
 /// Two spheres: no plane's `normal` or `offset` (the line of centres is the
-/// normal), and no friction yet.
+/// normal).
 fn spheres(
     name: &Ident,
     on: Ident,
@@ -83,18 +83,6 @@ fn spheres(
             format!(
                 "contact `{name}`: `against = {against}` names the sphere's own point; two \
                  spheres are two points or bodies: name the other one"
-            ),
-        ));
-    }
-    if let Some(key) = options
-        .friction_key
-        .filter(|_| options.friction != Some(0.0))
-    {
-        return Err(syn::Error::new(
-            key.span(),
-            format!(
-                "contact `{name}`: friction between two spheres is not supported yet; drop \
-                 `friction` (the spheres then meet without friction)"
             ),
         ));
     }

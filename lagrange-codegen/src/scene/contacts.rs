@@ -172,10 +172,19 @@ fn written(lw: &Lowerer, system: &System, c: &Contact) -> Option<(Expr, Vec<Expr
             radius,
             against,
             against_radius,
-        } => Some((
-            spheres_gap(on, radius.as_ref(), against, against_radius.as_ref()),
-            Vec::new(),
-        )),
+        } => {
+            let gap = spheres_gap(on, radius.as_ref(), against, against_radius.as_ref());
+            if c.friction == 0.0 {
+                return Some((gap, Vec::new()));
+            }
+            let body = |b: &Ident| system.bodies.iter().any(|x| x.name == *b);
+            let radii = [
+                radius.as_ref().filter(|_| body(on)),
+                against_radius.as_ref().filter(|_| body(against)),
+            ];
+            let slips = spheres_slips([on, against], radii);
+            Some((gap, slips.into()))
+        }
         ContactGeometry::Stop {
             coordinate,
             lower,
@@ -255,8 +264,8 @@ fn plane(
     (gap, slips)
 }
 
-/// The gap |a − b| − r_a − r_b of two spheres around `on` and `against`;
-/// without friction, no slips (the tangential motion is free).
+/// The gap |a − b| − r_a − r_b of two spheres around `on` and `against`
+/// (without friction they have no slips: the tangential motion is free).
 fn spheres_gap(on: &Ident, radius: Option<&Expr>, against: &Ident, other: Option<&Expr>) -> Expr {
     let span = on.span();
     let zero: Expr = parse_quote_spanned!(span=> 0.0);
@@ -267,6 +276,89 @@ fn spheres_gap(on: &Ident, radius: Option<&Expr>, against: &Ident, other: Option
     });
     let [x, y, z] = &squares;
     parse_quote_spanned!(span=> sqrt(#x + #y + #z) - (#radius) - (#other))
+}
+
+/// The slips of two spheres along two unit tangents of their contact: with
+/// Δ = a − b and n = Δ/|Δ|, the contact points' relative velocity
+/// Δ̇ − r_a ω_a × n − r_b ω_b × n along t₁ and t₂ = n × t₁, that is
+/// t₁·Δ̇ − (r_a ω_a + r_b ω_b)·t₂ and t₂·Δ̇ + (r_a ω_a + r_b ω_b)·t₁ (the ω
+/// terms for a sphere on a body: `radii` gives its radius, `None` for a
+/// point). No tangent field covers the sphere of directions without a
+/// zero, so t₁ comes from one of two charts, ẑ × n while n is within 45° of
+/// the xy-plane (Δx² + Δy² > Δz²), else x̂ × n, each normalised far from
+/// its singular direction; the cone is isotropic, so the switch between
+/// them changes no force.
+fn spheres_slips(spheres: [&Ident; 2], radii: [Option<&Expr>; 2]) -> [Expr; 2] {
+    let span = spheres[0].span();
+    let d: [Expr; 3] = ["x", "y", "z"].map(|c| {
+        let (a, b) = (field(spheres[0], c, span), field(spheres[1], c, span));
+        parse_quote_spanned!(span=> (#a - #b))
+    });
+    let rate: [Expr; 3] = ["x", "y", "z"].map(|c| {
+        let (a, b) = (field(spheres[0], c, span), field(spheres[1], c, span));
+        parse_quote_spanned!(span=> (dot(#a) - dot(#b)))
+    });
+    // r_a ω_a + r_b ω_b, component by component (0 for two points).
+    let spin: [Expr; 3] = ["omega_x", "omega_y", "omega_z"].map(|c| {
+        let terms: Vec<Expr> = (spheres.iter().zip(radii))
+            .filter_map(|(s, r)| r.map(|r| (field(s, c, span), r)))
+            .map(|(w, r)| parse_quote_spanned!(span=> (#r) * #w))
+            .collect();
+        (terms.into_iter())
+            .reduce(|a, b| parse_quote_spanned!(span=> (#a + #b)))
+            .unwrap_or_else(|| parse_quote_spanned!(span=> 0.0))
+    });
+    let [dx, dy, dz] = &d;
+    let dist: Expr = parse_quote_spanned!(span=> sqrt(#dx * #dx + #dy * #dy + #dz * #dz));
+    // ẑ × n chart: t₁ = (−Δy, Δx, 0)/ρ, t₂ = (−Δz Δx, −Δz Δy, ρ²)/(|Δ| ρ).
+    let rho: Expr = parse_quote_spanned!(span=> sqrt(#dx * #dx + #dy * #dy));
+    let zeta: [[Expr; 3]; 2] = [
+        [
+            parse_quote_spanned!(span=> -#dy / #rho),
+            parse_quote_spanned!(span=> #dx / #rho),
+            parse_quote_spanned!(span=> 0.0),
+        ],
+        [
+            parse_quote_spanned!(span=> -#dz * #dx / (#dist * #rho)),
+            parse_quote_spanned!(span=> -#dz * #dy / (#dist * #rho)),
+            parse_quote_spanned!(span=> #rho / #dist),
+        ],
+    ];
+    // x̂ × n chart: t₁ = (0, −Δz, Δy)/σ, t₂ = (σ², −Δx Δy, −Δx Δz)/(|Δ| σ).
+    let sigma: Expr = parse_quote_spanned!(span=> sqrt(#dy * #dy + #dz * #dz));
+    let xi: [[Expr; 3]; 2] = [
+        [
+            parse_quote_spanned!(span=> 0.0),
+            parse_quote_spanned!(span=> -#dz / #sigma),
+            parse_quote_spanned!(span=> #dy / #sigma),
+        ],
+        [
+            parse_quote_spanned!(span=> #sigma / #dist),
+            parse_quote_spanned!(span=> -#dx * #dy / (#dist * #sigma)),
+            parse_quote_spanned!(span=> -#dx * #dz / (#dist * #sigma)),
+        ],
+    ];
+    let slips = |[t1, t2]: &[[Expr; 3]; 2]| -> [Expr; 2] {
+        let dot3 = |a: &[Expr; 3], b: &[Expr; 3]| -> Expr {
+            let [a0, a1, a2] = a;
+            let [b0, b1, b2] = b;
+            // Parenthesised: an interpolated `Expr` keeps no parentheses of
+            // its own, and a sum times a factor would re-parse as a sum.
+            parse_quote_spanned!(span=> ((#a0) * (#b0) + (#a1) * (#b1) + (#a2) * (#b2)))
+        };
+        let (along1, along2) = (dot3(t1, &rate), dot3(t2, &rate));
+        let (turn1, turn2) = (dot3(&spin, t2), dot3(&spin, t1));
+        [
+            parse_quote_spanned!(span=> #along1 - #turn1),
+            parse_quote_spanned!(span=> #along2 + #turn2),
+        ]
+    };
+    let (near_xy, near_z) = (slips(&zeta), slips(&xi));
+    let test: Expr = parse_quote_spanned!(span=> #dx * #dx + #dy * #dy > #dz * #dz);
+    [0, 1].map(|k| {
+        let (a, b) = (&near_xy[k], &near_z[k]);
+        parse_quote_spanned!(span=> if #test { #a } else { #b })
+    })
 }
 
 /// The touch event's function for two spheres: while they approach (or

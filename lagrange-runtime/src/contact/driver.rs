@@ -303,7 +303,8 @@ impl Watched {
 
 /// The events that end a stretch in the form's modes, all terminal: an open
 /// contact's gap, a closed one's normal force, a sliding one's slip along
-/// the direction it has at the start, a sticking one's margin to the cone.
+/// the slip the start's direction makes there, a sticking one's margin to
+/// the cone.
 #[allow(clippy::type_complexity)]
 fn watch<'f, S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q: usize>(
     form: &'f ContactForm<'_, S, T, F>,
@@ -331,10 +332,17 @@ fn watch<'f, S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize,
                     watched.push(Watched::LiftsOff(i));
                     events = events.with(lift_off(form, i, name));
                 }
+                // The start's slip direction as a generalized velocity w,
+                // whose slip T(q) w is compared with the slip along the way:
+                // a contact's two tangents may come from a chart that
+                // changes (two spheres'), and w, unlike u's components,
+                // does not change with it.
+                let w = r.tangents[0] * u[0] + r.tangents[1] * u[1];
                 let stop = Event::new(move |t, q, v| {
                     form.rows(i, t, q, v).map_or(nan, |r| {
                         let s = ContactForm::<S, T, F>::slip(&r, v);
-                        u[0] * s[0] + u[1] * s[1]
+                        let along = ContactForm::<S, T, F>::slip(&r, &w);
+                        along[0] * s[0] + along[1] * s[1]
                     })
                 });
                 (

@@ -50,7 +50,7 @@
 //! and slips at the same events, and takes no impulse at an impact.
 //!
 //! **Scope.** Contacts are points or spheres against planes, two spheres
-//! (without friction between them) and stops on coordinates. On a system with free orientations the rows are
+//! (with or without friction) and stops on coordinates. On a system with free orientations the rows are
 //! in the velocities v (ω in body axes), the state moves on the group, and
 //! the time stepper's midpoint is q ⊕ h/2 v.
 //!
