@@ -3,10 +3,11 @@
 //! at a t = fc, the same motion as the force written in the description; a
 //! PD loop against dry friction ending inside its dead band |e| ≤ fc/kp;
 //! a ball pressed onto the floor by an input, its normal force m g + u; a
-//! held (sampled) source refused.
+//! sampled ramp breaking it loose at the first sample past fc, in all
+//! three schemes.
 
 use lagrange::prelude::*;
-use lagrange::{ChangeKind, ContactState, Dop853, Error, MoreauJean, SettingsError};
+use lagrange::{ChangeKind, Compliant, ContactState, Dop853, MoreauJean, Radau5};
 
 /// A cart on a rail with dry friction, pushed by a motor's force.
 #[derive(Lagrangian, Clone, Copy)]
@@ -115,25 +116,58 @@ fn a_pressed_ball_s_normal_force_is_its_weight_and_the_press() {
     assert_eq!(q[0], 0.0);
 }
 
+/// A sampled ramp, u = a t_k held on [t_k, t_k + h): the cart holds while
+/// u_k ≤ fc and breaks loose at the first sample past it, t = 0.3; then
+/// m ẍ = u_k − fc, constant on each sample period, summed exactly. The
+/// time stepper samples at its steps (h divides the period), exact for a
+/// force constant over each step; the compliant model regularises the
+/// friction, and comes within its creep.
 #[test]
-fn a_held_source_is_refused_before_the_run() {
-    let motor = Motor { m: 1.0 };
-    let refused = Simulation::new(&motor)
-        .sampled(0.01, |_: f64, q: &SVector<f64, 1>, _: &SVector<f64, 1>| {
-            [-q[0]]
-        })
-        .run_contacts([0.0], [0.0], 0.0..1.0)
-        .unwrap_err();
-    assert!(
-        matches!(
-            refused.error,
-            Error::Settings(SettingsError::Unsupported {
-                owner: "run_contacts",
-                ..
-            })
-        ),
-        "{}",
-        refused.error
+fn a_sampled_ramp_breaks_friction_loose_at_the_first_sample_past_fc() {
+    let motor = Motor { m: 1.5 };
+    let (a, period, end) = (2.0, 0.1, 1.0);
+    let ramp = move |t: f64, _: &SVector<f64, 1>, _: &SVector<f64, 1>| [a * t];
+    let exact = Simulation::new(&motor)
+        .integrator(Dop853::tol(1e-13))
+        .sampled(period, ramp)
+        .run_contacts([0.0], [0.0], 0.0..end)
+        .unwrap();
+    // Piecewise-constant acceleration from the sample at 0.3 on.
+    let (mut x, mut v) = (0.0, 0.0);
+    for k in 3..10 {
+        let accel = (a * period * k as f64 - 0.5) / motor.m;
+        x += v * period + 0.5 * accel * period * period;
+        v += accel * period;
+    }
+    let slips: Vec<f64> = (exact.changes.iter())
+        .filter(|c| matches!(c.kind, ChangeKind::Slips))
+        .map(|c| c.t)
+        .collect();
+    let (q, w) = exact.trajectory.final_state();
+    let stepped = Simulation::new(&motor)
+        .integrator(MoreauJean::step(1e-4))
+        .sampled(period, ramp)
+        .run_contacts([0.0], [0.0], 0.0..end)
+        .unwrap();
+    let compliant = Simulation::new(&motor)
+        .integrator(Radau5::tol(1e-10))
+        .compliant_contacts(Compliant::stiffness(1e6).slip_speed(1e-6))
+        .sampled(period, ramp)
+        .run_contacts([0.0], [0.0], 0.0..end)
+        .unwrap();
+    let off = |r: &lagrange::ContactRun<f64, 1>| (r.trajectory.final_state().0[0] - x).abs();
+    eprintln!(
+        "sampled ramp: slips at {:?}; x(1) off by {:.1e} (exact), {:.1e} (Moreau–Jean 1e-4), {:.1e} (compliant)",
+        slips,
+        (q[0] - x).abs(),
+        off(&stepped),
+        off(&compliant)
     );
-    assert_eq!(refused.partial.trajectory.len(), 1);
+    assert_eq!(slips.len(), 1);
+    assert!((slips[0] - 0.3).abs() < 1e-12, "{slips:?}");
+    assert!(
+        (q[0] - x).abs() < 1e-9 && (w[0] - v).abs() < 1e-9,
+        "{q:?} vs {x}"
+    );
+    assert!(off(&stepped) < 1e-9 && off(&compliant) < 1e-5);
 }

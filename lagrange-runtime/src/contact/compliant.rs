@@ -22,7 +22,7 @@ use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
 use crate::numeric::orientation::Orientation;
-use crate::ode::{Continuation, Integrator, SecondOrder};
+use crate::ode::{Continuation, Integrator, SecondOrder, Trajectory};
 use crate::system::{ContactLaw, ContactRows, Contacts};
 use nalgebra::SVector;
 use std::ops::Range;
@@ -358,28 +358,53 @@ impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q
                 Mode::Open
             });
         }
-        let from = Continuation::start(t0);
-        let run = events.continue_run(integrator, (&compliant, &[]), from, t0, t1, q0, v0);
+        // One piece, or one per held input's sample, each sample taken at
+        // the state its piece ends in.
+        let mut pieces: Option<Trajectory<T, N, Q>> = None;
+        let mut occurrences = Vec::new();
+        let (mut t, mut q, mut v) = (t0, q0, v0);
+        let outcome = loop {
+            let sample = self.forcing.next_sample(t0, t).filter(|&b| b < t1);
+            let from = pieces
+                .as_ref()
+                .map_or(Continuation::start(t0), Trajectory::continuation);
+            let end = sample.unwrap_or(t1);
+            let run = events.continue_run(integrator, (&compliant, &[]), from, t, end, q, v);
+            let (run, outcome) = match run {
+                Ok(run) => (run, Ok(())),
+                Err(failure) => (*failure.partial, Err(failure.error)),
+            };
+            occurrences.extend(run.occurrences);
+            (q, v) = run.trajectory.final_state();
+            match &mut pieces {
+                Some(whole) => {
+                    whole.append(run.trajectory);
+                }
+                None => pieces = Some(run.trajectory),
+            }
+            let Some(b) = sample.filter(|_| outcome.is_ok()) else {
+                break outcome;
+            };
+            if let Err(error) = self.forcing.take_sample(b, &q, &v) {
+                break Err(error);
+            }
+            t = b;
+        };
         drop(events);
         drop(owned);
-        let (run, outcome) = match run {
-            Ok(run) => (run, Ok(())),
-            Err(failure) => (*failure.partial, Err(failure.error)),
-        };
-        self.record_switches(t0, modes, &run.occurrences);
-        self.trajectory = Some(run.trajectory);
+        self.phases.push((t0, modes.clone()));
+        self.record_switches(&mut modes, &occurrences);
+        self.trajectory = pieces;
         outcome
     }
 
     /// The changes and modes of a compliant run from its switches' events
-    /// (see [`switches`]), starting from `modes` at t0.
+    /// (see [`switches`]), `modes` those before them.
     fn record_switches(
         &mut self,
-        t0: T,
-        mut modes: Vec<Mode<T>>,
+        modes: &mut [Mode<T>],
         occurrences: &[crate::event::Occurrence<T, N, Q>],
     ) {
-        self.phases.push((t0, modes.clone()));
         for o in occurrences {
             let (contact, closes) = (o.event / 3, o.event % 3 != 1);
             // A touch is also a rise of its force from `apart`: one change.
@@ -393,7 +418,7 @@ impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q
                 ChangeKind::LiftsOff
             };
             self.record(o.t, contact, kind);
-            self.phases.push((o.t, modes.clone()));
+            self.phases.push((o.t, modes.to_vec()));
         }
     }
 }

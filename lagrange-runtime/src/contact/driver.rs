@@ -77,11 +77,13 @@ where
     let stepping = integrator
         .as_any()
         .and_then(|a| a.downcast_ref::<MoreauJean>());
-    let outcome = refused.and_then(|()| match (compliant, stepping) {
-        (Some(model), _) => driver.comply(&model, integrator, (q0, v0), span.clone()),
-        (None, Some(scheme)) => driver.step_through(scheme, q0, v0, span.clone()),
-        (None, None) => driver.drive(integrator, q0, v0, span.clone()),
-    });
+    let outcome = refused
+        .and_then(|()| forcing.take_sample(span.start, &q0, &v0))
+        .and_then(|()| match (compliant, stepping) {
+            (Some(model), _) => driver.comply(&model, integrator, (q0, v0), span.clone()),
+            (None, Some(scheme)) => driver.step_through(scheme, q0, v0, span.clone()),
+            (None, None) => driver.drive(integrator, q0, v0, span.clone()),
+        });
     let trajectory = match driver.trajectory.take() {
         Some(t) => t,
         None => {
@@ -211,9 +213,14 @@ impl<'s, S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, con
         let (mut count, mut stalled) = (0usize, 0usize);
         loop {
             self.phases.push((t, modes.clone()));
-            let stop = self.stretch(integrator, &modes, (t0, t, t1), q, v)?;
+            // A held input's next sample ends the stretch too.
+            let sample = self.forcing.next_sample(t0, t).filter(|&b| b < t1);
+            let stop = self.stretch(integrator, &modes, (t0, t, sample.unwrap_or(t1)), q, v)?;
             let Some((watched, (ts, qs, vs))) = stop else {
-                return Ok(());
+                let Some(b) = sample else { return Ok(()) };
+                (t, q, v) = self.resample(b, (q, v))?;
+                modes = self.settle(t, &q, &mut v, &modes, Forced::Nothing)?;
+                continue;
             };
             count += 1;
             stalled = if ts - t <= stalled_within {
@@ -251,6 +258,22 @@ impl<'s, S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, con
             }
             modes = self.settle(t, &q, &mut v, &modes, forced)?;
         }
+    }
+
+    /// The state at the end of the motion so far (`start` if none was
+    /// made), at the sample instant `b`, with the held input's sample taken
+    /// there.
+    fn resample(
+        &mut self,
+        b: T,
+        start: (SVector<T, Q>, SVector<T, N>),
+    ) -> Result<(T, SVector<T, Q>, SVector<T, N>), Error> {
+        let (q, v) = self
+            .trajectory
+            .as_ref()
+            .map_or(start, Trajectory::final_state);
+        self.forcing.take_sample(b, &q, &v)?;
+        Ok((b, q, v))
     }
 
     /// One stretch with `modes`, from (q, v) at t to t1 or to the first

@@ -61,7 +61,17 @@ impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q
         let (mut q, mut v, mut modes) = (q0, v0, start);
         let mut impulses: Vec<Option<[T; 3]>> = vec![None; self.laws.len()];
         let mut outcome = Ok(());
-        for (t, t_next) in fixed_steps(t0, t1, T::lit(scheme.step_size()), n) {
+        let h = T::lit(scheme.step_size());
+        let mut sample = self.forcing.next_sample(t0, t0);
+        for (t, t_next) in fixed_steps(t0, t1, h, n) {
+            // A held input is sampled at the step start nearest its instant.
+            if let Some(b) = sample.filter(|&b| b <= t + T::lit(0.5) * h) {
+                if let Err(error) = self.forcing.take_sample(t, &q, &v) {
+                    outcome = Err(error);
+                    break;
+                }
+                sample = self.forcing.next_sample(t0, b);
+            }
             stats.evaluations += 1;
             match self.step(scheme, (t, t_next), (&q, &v), &mut impulses) {
                 Ok((q_next, v_next, after)) => {

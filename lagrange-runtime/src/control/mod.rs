@@ -103,10 +103,12 @@
 //! sample taken there: u_k at t_k, including t₀ and the end time when the end
 //! time is a sample instant.
 
+mod held;
 mod saturation;
 mod state_feedback;
 mod table;
 
+pub(crate) use held::HeldForces;
 pub(crate) use saturation::stretches;
 pub use saturation::{Saturated, Saturation};
 pub use state_feedback::StateFeedback;

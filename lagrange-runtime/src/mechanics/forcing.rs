@@ -23,6 +23,26 @@ pub trait Forcing<T: Real, const N: usize, const Q: usize = N> {
     /// # Errors
     /// Whatever prevents its evaluation, such as [`Error::NonFiniteInput`].
     fn force(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error>;
+
+    /// For a forcing held between samples (a sampled controller's): the
+    /// first sample instant strictly after `after`, the run starting at
+    /// `start`. A run that honours samples stops there and calls
+    /// [`take_sample`](Self::take_sample). The default has none.
+    fn next_sample(&self, start: T, after: T) -> Option<T> {
+        let _ = (start, after);
+        None
+    }
+
+    /// Takes the sample at (t, q, q̇), held until the next one: called at
+    /// the run's start and at each [`next_sample`](Self::next_sample). The
+    /// default does nothing.
+    ///
+    /// # Errors
+    /// Whatever prevents the sample, such as [`Error::NonFiniteInput`].
+    fn take_sample(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<(), Error> {
+        let _ = (t, q, v);
+        Ok(())
+    }
 }
 
 /// No forcing: the default forcing parameter of [`Dynamics`](crate::Dynamics),
@@ -47,5 +67,13 @@ impl<T: Real, const N: usize, const Q: usize, F: Forcing<T, N, Q>> Forcing<T, N,
     #[inline(always)]
     fn force(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<SVector<T, N>, Error> {
         (**self).force(t, q, v)
+    }
+
+    fn next_sample(&self, start: T, after: T) -> Option<T> {
+        (**self).next_sample(start, after)
+    }
+
+    fn take_sample(&self, t: T, q: &SVector<T, Q>, v: &SVector<T, N>) -> Result<(), Error> {
+        (**self).take_sample(t, q, v)
     }
 }

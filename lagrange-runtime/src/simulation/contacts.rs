@@ -2,9 +2,9 @@
 
 use super::{Control, NoEvents, Simulation, Unforced};
 use crate::contact::{ContactRun, run_contacts};
-use crate::control::{InputForces, InputSource};
+use crate::control::{HeldForces, InputForces, InputSource};
+use crate::error::Error;
 use crate::error::Failure;
-use crate::error::{Error, SettingsError};
 use crate::mechanics::{Forcing, NoForcing};
 use crate::numeric::Real;
 use crate::ode::Integrator;
@@ -89,18 +89,21 @@ impl<S, I: Integrator, C, T: Real, const N: usize, const P: usize, const Q: usiz
     /// simulation's input source: a motor's torque at a joint with
     /// friction, a legged robot's PD control with its feet on the ground.
     /// The inputs' forces join Q − h at every evaluation, through any of
-    /// the three schemes; [`input_limits`](Self::input_limits) clamp them.
-    /// The source must be continuous ([`feedback`](Self::feedback),
-    /// [`open_loop`](Self::open_loop), an interpolated
-    /// [`InputTable`](crate::InputTable)): a held one (sampled, zero-order
-    /// hold) is refused. The run records the motion and the contacts'
-    /// changes, not the inputs; [`ContactRun::forces_with`] gives the
-    /// contact forces at a state given the input there.
+    /// the three schemes; [`input_limits`](Self::input_limits) and
+    /// [`speed_limits`](Self::speed_limits) clamp them. A continuous source
+    /// ([`feedback`](Self::feedback), [`open_loop`](Self::open_loop), an
+    /// interpolated [`InputTable`](crate::InputTable)) is evaluated at every
+    /// stage; a held one ([`sampled`](Self::sampled), a hold table) is
+    /// sampled at its instants and held between them: the event-driven and
+    /// compliant runs stop there, the time stepper takes the sample at the
+    /// first step that starts at or after each instant (choose a step that
+    /// divides the sample period). The run records the motion and the
+    /// contacts' changes, not the inputs; [`ContactRun::forces_with`] gives
+    /// the contact forces at a state given the input there.
     ///
     /// # Errors
     /// Those of [`run_contacts`](Simulation::run_contacts); also
-    /// [`Error::Settings`] ([`SettingsError::Unsupported`]) for a held
-    /// source, or for the source's own settings, and
+    /// [`Error::Settings`] for the source's own settings, and
     /// [`Error::NonFiniteInput`] for an input that is NaN or infinite.
     ///
     /// [`ContactRun::forces_with`]: crate::ContactRun::forces_with
@@ -115,19 +118,13 @@ impl<S, I: Integrator, C, T: Real, const N: usize, const P: usize, const Q: usiz
         C: InputSource<T, N, P, Q>,
     {
         let source = &self.control.source;
-        let refused = source.check().and_then(|()| match source.held() {
-            false => Ok(()),
-            true => Err(Error::from(SettingsError::Unsupported {
-                owner: "run_contacts",
-                needs: "an input source evaluated at every stage, not a held one \
-                        (sampled, zero-order hold)"
-                    .into(),
-                remedy: "drive the contacts with `feedback`, `open_loop` or an \
-                         interpolated table"
-                    .into(),
-            })),
-        });
-        let forcing = InputForces::new(self.system, source);
-        self.contact_run(&forcing, refused, (q0.into(), v0.into(), span))
+        let state = (q0.into(), v0.into(), span);
+        if source.held() {
+            let forcing = HeldForces::new(self.system, source);
+            self.contact_run(&forcing, source.check(), state)
+        } else {
+            let forcing = InputForces::new(self.system, source);
+            self.contact_run(&forcing, source.check(), state)
+        }
     }
 }
