@@ -35,11 +35,11 @@ impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q
         forced: Forced,
     ) -> Result<Vec<Mode<T>>, Error> {
         let form = self.form(modes.to_vec());
+        let tolerance = T::lit(self.settings.gap_tolerance);
         let mut rows = Vec::with_capacity(self.laws.len());
         for i in 0..self.laws.len() {
             rows.push(form.rows(i, t, q, v)?);
         }
-        let tolerance = T::lit(self.settings.gap_tolerance);
         if let Some(i) = (0..rows.len()).find(|&i| rows[i].gap < -tolerance) {
             let fault = ContactFault::Penetrates {
                 gap: rows[i].gap.to_f64(),
@@ -72,9 +72,12 @@ impl<S: Contacts<T, N, Q>, T: Real, F: Forcing<T, N, Q>, const N: usize, const Q
             self.record(t, m.contact, kind);
         }
         *v = after;
+        // A contact the impulse left leaving (its impulse zero, a frictional
+        // impact's other contacts moving it away) is open, not closing.
+        let rest = T::lit(self.settings.rest_speed);
         let closing: Vec<usize> = meetings
             .iter()
-            .filter(|m| m.target == T::zero())
+            .filter(|m| m.target == T::zero() && rows[m.contact].normal.dot(v) <= rest)
             .map(|m| m.contact)
             .collect();
         let chosen = self.choose(t, q, v, &rows, &closing, modes, forced)?;
