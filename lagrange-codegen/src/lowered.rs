@@ -93,9 +93,11 @@ pub enum PhysicalCheck {
     /// about fewer axes, whose other moments the equations never read: only
     /// their signs are checked.
     Moments(String, [&'static str; 3], [Sym; 3]),
-    /// A joint's damping or armature (named by its coordinate and the
-    /// option), which must be ≥ 0.
+    /// A joint's damping, armature or rotor inertia (named by its
+    /// coordinate and the option), which must be ≥ 0.
     Joint(String, &'static str, Sym),
+    /// A joint's gear ratio (named by its coordinate), which must be > 0.
+    Gear(String, Sym),
 }
 
 /// Where bodies and points sit, recorded while lowering.

@@ -48,9 +48,9 @@ pub fn mass(lw: &Lowerer, name: &str, what: &str, syntax: &Expr, m: Sym) -> Opti
     None
 }
 
-/// A joint's coefficient (`what`: damping, armature, rotor, which must be
-/// ≥ 0, or gear, > 0) on `coordinate`: checked now if it is a constant (the error at `syntax`), else
-/// recorded for `check_parameters`.
+/// A joint's damping, armature or rotor inertia (`what`) on `coordinate`,
+/// which must be ≥ 0: checked now if it is a constant (the error at
+/// `syntax`), else recorded for `check_parameters`.
 pub fn joint(
     lw: &Lowerer,
     coordinate: &str,
@@ -61,18 +61,29 @@ pub fn joint(
     let Some(x) = value(lw, v) else {
         return Some(PhysicalCheck::Joint(coordinate.to_string(), what, v));
     };
-    if what == "gear" && x <= 0.0 {
-        lw.cx.error_spanned_by(
-            syntax,
-            format!(
-                "joint `{coordinate}`: gear = {x}: a gear ratio is > 0 (motor turns per joint turn)"
-            ),
-        );
-    } else if x < 0.0 {
+    if x < 0.0 {
         lw.cx.error_spanned_by(
             syntax,
             format!(
                 "joint `{coordinate}`: {what} = {x}: a joint's {what} is ≥ 0 (a negative one feeds energy in)"
+            ),
+        );
+    }
+    None
+}
+
+/// A joint's gear ratio on `coordinate`, which must be > 0 (0 would cut
+/// the motor off): checked now if it is a constant (the error at
+/// `syntax`), else recorded for `check_parameters`.
+pub fn gear(lw: &Lowerer, coordinate: &str, syntax: &Expr, v: Sym) -> Option<PhysicalCheck> {
+    let Some(x) = value(lw, v) else {
+        return Some(PhysicalCheck::Gear(coordinate.to_string(), v));
+    };
+    if x <= 0.0 {
+        lw.cx.error_spanned_by(
+            syntax,
+            format!(
+                "joint `{coordinate}`: gear = {x}: a gear ratio is > 0 (motor turns per joint turn)"
             ),
         );
     }

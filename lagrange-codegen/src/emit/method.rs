@@ -24,7 +24,7 @@ pub(super) fn check_parameters(e: &Emitter, model: &Model) -> TokenStream {
             PhysicalCheck::Principal(_, m) => values.extend(m),
             PhysicalCheck::Tensor(_, m) => values.extend(m),
             PhysicalCheck::Moments(_, _, m) => values.extend(m),
-            PhysicalCheck::Joint(_, _, m) => values.push(*m),
+            PhysicalCheck::Joint(_, _, m) | PhysicalCheck::Gear(_, m) => values.push(*m),
         }
     }
     let (lets, outs) = e.program(&values);
@@ -37,10 +37,11 @@ pub(super) fn check_parameters(e: &Emitter, model: &Model) -> TokenStream {
             PhysicalCheck::Tensor(n, _) => (quote!(tensor), n, 6),
             PhysicalCheck::Moments(n, _, _) => (quote!(moments), n, 3),
             PhysicalCheck::Joint(n, _, _) => (quote!(joint), n, 1),
+            PhysicalCheck::Gear(n, _) => (quote!(gear_ratio), n, 1),
         };
         let args: Vec<TokenStream> = outs.by_ref().take(k).collect();
         let arg = match c {
-            PhysicalCheck::Mass(..) => quote!(#(#args)*),
+            PhysicalCheck::Mass(..) | PhysicalCheck::Gear(..) => quote!(#(#args)*),
             PhysicalCheck::Joint(_, what, _) => quote!(#what, #(#args)*),
             PhysicalCheck::Moments(_, names, _) => quote!([#(#names),*], [#(#args),*]),
             _ => quote!([#(#args),*]),

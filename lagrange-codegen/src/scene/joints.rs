@@ -36,11 +36,11 @@ pub(super) fn joints(lw: &mut Lowerer, system: &System, checks: &mut Vec<Physica
         };
         let name = j.coordinate.to_string();
         let mut coefficient = |lw: &mut Lowerer, e: &Expr, what: &'static str| {
-            let place = format!("the {what} of joint `{name}`");
-            let value = lw.lowering_as(place, |lw| {
-                lw.without_inputs(NoInputs::JOINT, |lw| lw.expr(e, Mode::Constant))
-            })?;
-            checks.extend(physical::joint(lw, &name, what, e, value));
+            let value = constant(lw, &name, e, what)?;
+            checks.extend(match what {
+                "gear" => physical::gear(lw, &name, e, value),
+                _ => physical::joint(lw, &name, what, e, value),
+            });
             Some(value)
         };
         if let Some(b) = j
@@ -76,6 +76,14 @@ pub(super) fn joints(lw: &mut Lowerer, system: &System, checks: &mut Vec<Physica
         out.armature.extend(armature.map(|a| (i, a)));
     }
     out
+}
+
+/// A joint's coefficient `what`, lowered from the parameters and literals.
+fn constant(lw: &mut Lowerer, name: &str, e: &Expr, what: &str) -> Option<Sym> {
+    let place = format!("the {what} of joint `{name}`");
+    lw.lowering_as(place, |lw| {
+        lw.without_inputs(NoInputs::JOINT, |lw| lw.expr(e, Mode::Constant))
+    })
 }
 
 /// The input a motor's torque is (`check` has reported a name that is not one).

@@ -41,7 +41,7 @@ pub fn mass<T: Real>(body: &'static str, m: T) -> Result<(), Error> {
     })
 }
 
-/// A joint's damping or armature (`entry`) on the coordinate `coordinate`
+/// A joint's damping, armature or rotor inertia (`entry`) on the coordinate `coordinate`
 /// must be finite and non-negative: a negative one feeds energy in.
 ///
 /// # Errors
@@ -53,23 +53,35 @@ pub fn joint<T: Real>(
     value: T,
 ) -> Result<(), Error> {
     let x = value.to_f64();
-    // A gear ratio of 0 would cut the motor off; any other coefficient may be 0.
-    let gear = entry == "gear";
-    if x.is_finite() && (x > 0.0 || (x == 0.0 && !gear)) {
+    if x.is_finite() && x >= 0.0 {
         return Ok(());
     }
-    let reason = if gear {
-        "a joint's gear ratio must be finite and positive (motor turns per joint turn)".to_string()
-    } else {
-        format!(
-            "a joint's {entry} must be finite and non-negative (a negative one feeds energy in)"
-        )
-    };
     Err(Error::NonPhysicalParameter {
         body: coordinate,
         entry,
         value: x,
-        reason,
+        reason: format!(
+            "a joint's {entry} must be finite and non-negative (a negative one feeds energy in)"
+        ),
+    })
+}
+
+/// A joint's gear ratio (`joint(q, gear = n)`), named by its coordinate.
+///
+/// # Errors
+/// [`Error::NonPhysicalParameter`] (entry `"gear"`) unless it is finite and
+/// positive: a ratio of 0 would cut the motor off.
+pub fn gear_ratio<T: Real>(coordinate: &'static str, value: T) -> Result<(), Error> {
+    let x = value.to_f64();
+    if x.is_finite() && x > 0.0 {
+        return Ok(());
+    }
+    Err(Error::NonPhysicalParameter {
+        body: coordinate,
+        entry: "gear",
+        value: x,
+        reason: "a joint's gear ratio must be finite and positive (motor turns per joint turn)"
+            .to_string(),
     })
 }
 
