@@ -51,16 +51,14 @@ pub(crate) fn impulse<S: Contacts<T, N, Q>, T: Real, F, const N: usize, const Q:
     }
     let m = form.system.mass_matrix(q, t);
     let chol = Cholesky::new(m, form.singular).map_err(|_| fail(ContactFault::NoImpulse))?;
-    let rubbing = frictional(form, set, (t, q, v), &chol)?;
-    if rubbing.iter().any(|c| c.rows.len() > 1) {
-        let after = with_friction(rubbing, v).ok_or_else(|| fail(ContactFault::NoImpulse))?;
+    let locals = frictional(form, set, (t, q, v), &chol)?;
+    if locals.iter().any(|c| c.rows.len() > 1) {
+        let after = with_friction(locals, v).ok_or_else(|| fail(ContactFault::NoImpulse))?;
         return kept_energy(form, (t, q, v), after, set[0].0);
     }
-    let mut normals = Vec::with_capacity(k);
-    for &(i, _) in set {
-        normals.push(form.rows(i, t, q, v)?.normal);
-    }
-    let responses: Vec<SVector<T, N>> = normals.iter().map(|n| chol.solve(*n)).collect();
+    // Frictionless: each contact's one row is its normal, with its response.
+    let normals: Vec<SVector<T, N>> = locals.iter().map(|c| c.rows[0]).collect();
+    let responses: Vec<SVector<T, N>> = locals.iter().map(|c| c.responses[0]).collect();
     let a = DMatrix::from_fn(k, k, |r, c| normals[r].dot(&responses[c]));
     // What each contact's speed lacks: target − speed before.
     let lack = DVector::from_fn(k, |r, _| set[r].1 - normals[r].dot(v));

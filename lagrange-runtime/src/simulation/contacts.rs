@@ -96,8 +96,8 @@ impl<S, I: Integrator, C, T: Real, const N: usize, const P: usize, const Q: usiz
     /// stage; a held one ([`sampled`](Self::sampled), a hold table) is
     /// sampled at its instants and held between them: the event-driven and
     /// compliant runs stop there, the time stepper takes the sample at the
-    /// first step that starts at or after each instant (choose a step that
-    /// divides the sample period). The run records the motion and the
+    /// step start nearest each instant (choose a step that divides the
+    /// sample period). The run records the motion and the
     /// contacts' changes, not the inputs; [`ContactRun::forces_with`] gives
     /// the contact forces at a state given the input there.
     ///
