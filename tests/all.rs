@@ -73,6 +73,7 @@ mod recording;
 mod reduced_breakdown;
 mod reduced_orientation;
 mod regressor;
+mod regressor_joints;
 mod regressor_momentum;
 mod regressor_pinocchio;
 mod rolling_quaternion;

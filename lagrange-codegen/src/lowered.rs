@@ -60,6 +60,9 @@ pub struct Lowered {
     /// (coordinate index, armature): added to M's diagonal entry, and
     /// ½ Ia q̇² to T, by both routes.
     pub armature: Vec<(usize, Sym)>,
+    /// The joints' damping, armature and friction, each a parameter of the
+    /// regressor beside the bodies' (`emit(regressor)`).
+    pub joint_coefficients: Vec<JointCoefficient>,
     /// The holonomic constraints, in declaration order.
     pub holonomic: Vec<ConstraintModel>,
     /// The nonholonomic constraints, in declaration order.
@@ -76,6 +79,39 @@ pub struct Lowered {
     pub checks: Vec<PhysicalCheck>,
     /// The poses and shapes the scene draws.
     pub poses: Poses,
+}
+
+/// A joint's coefficient that the equations are linear in: a column of the
+/// regressor Y, `<q>.damping`, `<q>.armature` or `<q>.friction`.
+pub struct JointCoefficient {
+    /// The coordinate's index and name.
+    pub coordinate: (usize, String),
+    /// What it multiplies.
+    pub kind: JointTerm,
+    /// Its value in the struct's parameters.
+    pub value: Sym,
+}
+
+/// What a joint's coefficient multiplies on its coordinate's row of Y.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointTerm {
+    /// b, times q̇ (the torque −b q̇ takes to overcome).
+    Damping,
+    /// Ia + n² Ir, times q̈.
+    Armature,
+    /// fc, times sign(q̇) (the torque a slipping joint's friction takes).
+    Friction,
+}
+
+impl JointTerm {
+    /// The parameter's suffix after the coordinate's name.
+    pub fn suffix(self) -> &'static str {
+        match self {
+            JointTerm::Damping => "damping",
+            JointTerm::Armature => "armature",
+            JointTerm::Friction => "friction",
+        }
+    }
 }
 
 /// A mass or an inertia computed from the parameters, checked at run time by

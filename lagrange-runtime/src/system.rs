@@ -212,7 +212,9 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// `body.Izz` (the inertia about the body's reference point), c and I in
     /// the body's axes (Pinocchio's `Inertia::toDynamicParameters`), and per
     /// point mass `point.m`, in the description's order once its items are
-    /// put in dependency order (a mass placed at another comes after it).
+    /// put in dependency order (a mass placed at another comes after it);
+    /// then per `joint(q, ..)` item its coefficients, `q.damping` (b),
+    /// `q.friction` (fc) and `q.armature` (Ia + n² Ir), those it has.
     /// Empty unless the
     /// description asks for `emit(regressor)`.
     const REGRESSOR_PARAMETERS: &'static [&'static str] = &[];
@@ -226,9 +228,14 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// kinematic tree Y is built from each joint's axis carried outward to
     /// the bodies below it, where it meets their body regressors; on any other
     /// description by the Euler–Lagrange operator on each parameter's share
-    /// of the Lagrangian (the same π). The constraints' reactions and Q's
-    /// other forces (the user's potential, springs, dampers, forces, inputs)
-    /// are not in Y π. Allocates its matrix; [`regressor_into`](Self::regressor_into)
+    /// of the Lagrangian (the same π). A joint's coefficients are columns
+    /// with one entry on its row: q̇ for its damping, q̈ for its armature
+    /// (both in the inverse dynamics too) and sign(q̇) for its Coulomb
+    /// friction (the torque a slipping joint's friction takes, which the
+    /// inverse dynamics leaves out: Y π is then τ + fc sign q̇). The
+    /// constraints' reactions and Q's other forces (the user's potential,
+    /// springs, dissipation function, forces, inputs) are not in Y π.
+    /// Allocates its matrix; [`regressor_into`](Self::regressor_into)
     /// writes into one the caller holds.
     fn regressor(
         &self,
@@ -290,8 +297,9 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     }
 
     /// The energy regressor Y_E(q, q̇, t), one entry per parameter of π:
-    /// T + V_gravity = Y_E · π, the kinetic energy and gravity's potential
-    /// (the user's potential is not in it). `None` unless the description
+    /// T + V_gravity = Y_E · π, the kinetic energy (an armature's ½ Ia q̇²
+    /// included) and gravity's potential (the user's potential is not in
+    /// it; a joint's damping and friction have zero entries). `None` unless the description
     /// asks for `emit(regressor)`. Allocates its vector.
     fn energy_regressor(&self, q: &SVector<T, Q>, v: &SVector<T, N>, t: T) -> Option<DVector<T>> {
         let _ = (q, v, t);

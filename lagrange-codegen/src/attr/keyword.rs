@@ -306,7 +306,7 @@ pub(super) const OUTPUTS: Words<Extra> = Words(&[
     word(
         "regressor",
         Extra::Regressor,
-        "the dynamics regressor Y(q, q̇, q̈) with τ = Y π, π the bodies' inertial parameters, the energy and momentum regressors",
+        "the dynamics regressor Y(q, q̇, q̈) with τ = Y π, π the bodies' inertial parameters (and the joints' damping, friction and armature), the energy and momentum regressors",
     ),
 ]);
 

@@ -1,14 +1,12 @@
-//! The `joint` items' rules: one per coordinate, on a coordinate, a motor
-//! that is an input, and no armature beside the regressor.
+//! The `joint` items' rules: one per coordinate, on a coordinate, and a
+//! motor that is an input.
 
 use super::what_is;
-use crate::ast::{Extra, System};
+use crate::ast::System;
 use crate::ctxt::Ctxt;
 
 /// Each `joint` names a coordinate, at most one joint per coordinate, and
-/// its motor one of the inputs; an armature (or a rotor, which is one) is
-/// not a column of `emit(regressor)`'s Y (which would then leave Ia q̈ out
-/// of τ = Y π), so the two are refused together.
+/// its motor one of the inputs.
 pub(super) fn check_joints(cx: &Ctxt, system: &System) {
     for (k, j) in system.joints.iter().enumerate() {
         if !system.coordinates.contains(&j.coordinate) {
@@ -46,13 +44,6 @@ pub(super) fn check_joints(cx: &Ctxt, system: &System) {
                     j.coordinate,
                     what_is(system, u, "input")
                 ),
-            );
-        }
-        let regressor = system.extras.iter().any(|(_, e)| *e == Extra::Regressor);
-        if let (true, Some(a)) = (regressor, j.armature.as_ref().or(j.rotor.as_ref())) {
-            cx.error_spanned_by(
-                a,
-                "`emit(regressor)` with an armature is not supported yet: Y π covers the bodies' inertial parameters, not Ia q̈; remove the armature or the regressor",
             );
         }
     }

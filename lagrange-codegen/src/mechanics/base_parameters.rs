@@ -6,10 +6,26 @@
 //! before them. The runtime's `identify::BaseParameters` finds the same set
 //! numerically (and is the one identification uses); this is its closed
 //! form, with the description's symbols in it.
+//!
+//! The joints' coefficients follow the links' numbers, each a column of its
+//! own (`OwnColumn`); a rotor on a joint whose axis is fixed in space is
+//! regrouped into its link's axial inertia, as the textbooks do.
 
 use lagrange_symbolic::{Context, Expr as Sym, Program, SymbolKind};
 
-use crate::tree::{Tree, link_regressor, regrouped};
+use crate::tree::{Tree, link_regressor, regrouped, root_axial_inertia};
+
+/// A parameter of Y outside the links (a joint's damping, armature or
+/// friction): its symbol and name, and its one entry, on `row`.
+pub struct OwnColumn {
+    pub symbol: Sym,
+    pub name: String,
+    pub row: usize,
+    pub entry: Sym,
+    /// Whether it is an armature (q̈ on its row), which a root joint's
+    /// axial inertia takes in.
+    pub armature: bool,
+}
 
 /// The base parameters as the texts print them.
 pub struct BaseForm {
@@ -42,18 +58,20 @@ const SUFFIX: [&str; 10] = [
 ];
 
 /// The base parameters of `tree`, whose masses are written in π's `symbols`
-/// (named `names`); None where the tree turns a free orientation, whose
-/// quaternion the random states would have to keep on the unit sphere.
+/// (named `names`, the joints' `own` columns' last); None where the tree
+/// turns a free orientation, whose quaternion the random states would have
+/// to keep on the unit sphere.
 pub fn closed_form(
     ctx: &mut Context,
     tree: &Tree,
-    symbols: &[Sym],
-    names: &[String],
+    (symbols, names): (&[Sym], &[String]),
+    own: &[OwnColumn],
 ) -> Option<BaseForm> {
     if tree.turns_freely() {
         return None;
     }
-    let numbers = regrouped(ctx, tree);
+    let mut numbers = regrouped(ctx, tree);
+    let folded = fold_rotors(ctx, tree, &mut numbers, own);
     let wanted: Vec<bool> = numbers.iter().map(Option::is_some).collect();
     let by_link = link_regressor(ctx, tree, &wanted);
     let zero = ctx.zero();
@@ -66,9 +84,20 @@ pub fn closed_form(
                     .iter()
                     .map(|row| row[j].map_or(zero, |r| r[c]))
                     .collect();
-                candidates.push((e, c, column));
+                candidates.push((e, Some(c), column));
             }
         }
+    }
+    for o in own
+        .iter()
+        .zip(&folded)
+        .filter(|(_, f)| !**f)
+        .map(|(o, _)| o)
+    {
+        let column = (0..by_link.len())
+            .map(|i| if i == o.row { o.entry } else { zero })
+            .collect();
+        candidates.push((o.symbol, None, column));
     }
     let columns: Vec<&[Sym]> = candidates.iter().map(|(_, _, col)| &col[..]).collect();
     let verdicts = independence(ctx, &columns);
@@ -78,7 +107,10 @@ pub fn closed_form(
         dependent: Vec::new(),
     };
     for ((e, c, _), verdict) in candidates.iter().zip(verdicts) {
-        let name = name_of(ctx, *e, *c, symbols, names);
+        let name = match c {
+            Some(c) => name_of(ctx, *e, *c, symbols, names),
+            None => own_name(*e, symbols, names),
+        };
         match verdict {
             Verdict::Kept => form.parameters.push(written(ctx, name, *e, symbols, names)),
             Verdict::NoEffect => form.without_effect.push(name),
@@ -86,6 +118,42 @@ pub fn closed_form(
         }
     }
     Some(form)
+}
+
+/// Adds each armature on a joint whose axis is fixed in space to its link's
+/// axial inertia, where that link holds one (its column is then the same
+/// q̈ on the joint's row); which of `own` were so folded.
+fn fold_rotors(
+    ctx: &mut Context,
+    tree: &Tree,
+    numbers: &mut [Option<[Sym; 10]>],
+    own: &[OwnColumn],
+) -> Vec<bool> {
+    own.iter()
+        .map(|o| {
+            let Some((j, c)) = o
+                .armature
+                .then(|| root_axial_inertia(tree, o.row))
+                .flatten()
+            else {
+                return false;
+            };
+            match &mut numbers[j] {
+                Some(n) if !ctx.is_zero(n[c]) => {
+                    n[c] = ctx.add(n[c], o.symbol);
+                    true
+                }
+                _ => false,
+            }
+        })
+        .collect()
+}
+
+/// A joint's parameter's name, read off π's names by its symbol.
+fn own_name(e: Sym, symbols: &[Sym], names: &[String]) -> String {
+    (symbols.iter().zip(names))
+        .find(|(s, _)| **s == e)
+        .map_or_else(String::new, |(_, name)| name.clone())
 }
 
 /// The standard parameter a regrouped number extends (the one of its own

@@ -301,7 +301,8 @@ fn regressor_if_asked(ctx: &mut Context, lowered: &mut Lowered, route: Route) ->
         skeleton: &mut lowered.skeleton,
         gravity: lowered.gravity.as_deref(),
     };
-    Some(regressor::regressor(ctx, masses, route))
+    let joints = &lowered.joint_coefficients;
+    Some(regressor::regressor(ctx, masses, joints, route))
 }
 
 /// Why M and h are not by the recursive route (`None` when they are): the

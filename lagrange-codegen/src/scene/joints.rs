@@ -2,14 +2,16 @@
 //! lowered: the damping and the motor as the generalized forces −b q̇ and
 //! n u on its coordinate (so that every output reading Q has them: both
 //! routes, the articulated q̈, the inverse dynamics and the derivatives), the
-//! armature Ia + n² Ir kept for `mechanics` to add to M's diagonal.
+//! armature Ia + n² Ir kept for `mechanics` to add to M's diagonal; each
+//! coefficient (and the friction's bound) also recorded as a parameter of
+//! the regressor.
 
 use lagrange_symbolic::Expr as Sym;
 use syn::{Expr, Ident};
 
 use crate::ast::System;
 use crate::lower::{Lowerer, Mode, NoInputs};
-use crate::lowered::PhysicalCheck;
+use crate::lowered::{JointCoefficient, JointTerm, PhysicalCheck};
 use crate::physical;
 
 /// What the `joint` items give, per coordinate index.
@@ -18,6 +20,8 @@ pub(super) struct Joints {
     pub forces: Vec<(usize, Sym)>,
     /// Ia + n² Ir.
     pub armature: Vec<(usize, Sym)>,
+    /// b, Ia + n² Ir and fc, for the regressor.
+    pub coefficients: Vec<JointCoefficient>,
 }
 
 /// Lowers each joint's coefficients (parameters and literals only), checks
@@ -27,6 +31,7 @@ pub(super) fn joints(lw: &mut Lowerer, system: &System, checks: &mut Vec<Physica
     let mut out = Joints {
         forces: Vec::new(),
         armature: Vec::new(),
+        coefficients: Vec::new(),
     };
     let velocities = lw.ctx.velocities();
     for j in &system.joints {
@@ -35,6 +40,11 @@ pub(super) fn joints(lw: &mut Lowerer, system: &System, checks: &mut Vec<Physica
             continue;
         };
         let name = j.coordinate.to_string();
+        let record = |kind, value| JointCoefficient {
+            coordinate: (i, name.clone()),
+            kind,
+            value,
+        };
         let mut coefficient = |lw: &mut Lowerer, e: &Expr, what: &'static str| {
             let value = constant(lw, &name, e, what)?;
             checks.extend(match what {
@@ -50,6 +60,11 @@ pub(super) fn joints(lw: &mut Lowerer, system: &System, checks: &mut Vec<Physica
         {
             let loss = lw.ctx.mul(b, velocities[i]);
             out.forces.push((i, lw.ctx.neg(loss)));
+            out.coefficients.push(record(JointTerm::Damping, b));
+        }
+        if let Some(fc) = j.friction {
+            out.coefficients
+                .push(record(JointTerm::Friction, lw.ctx.float(fc)));
         }
         let gear = match &j.gear {
             Some(e) => coefficient(lw, e, "gear"),
@@ -74,6 +89,7 @@ pub(super) fn joints(lw: &mut Lowerer, system: &System, checks: &mut Vec<Physica
             (a, r) => a.or(r),
         };
         out.armature.extend(armature.map(|a| (i, a)));
+        (out.coefficients).extend(armature.map(|a| record(JointTerm::Armature, a)));
     }
     out
 }

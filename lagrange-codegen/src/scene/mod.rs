@@ -92,6 +92,7 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         forces: applied.forces,
         generalized_forces: applied.generalized_forces,
         armature: joints.armature,
+        joint_coefficients: joints.coefficients,
         holonomic,
         nonholonomic,
         contacts,

@@ -47,7 +47,7 @@ pub use derivatives::inverse_dynamics_derivatives;
 pub use detect::detect;
 pub use not_a_tree::{BodyFault, NotATree};
 pub use regressor::{link_regressor, regressor};
-pub use regrouping::regrouped;
+pub use regrouping::{regrouped, root_axial_inertia};
 pub use rnea::{inverse_dynamics, inverse_dynamics_at_accelerations};
 
 use lagrange_symbolic::{Context, Expr as Sym};

@@ -17,6 +17,11 @@
 //! leaves to the root carries each link's symmetric part as far as it goes;
 //! what reaches the ground is lost (no motion shows it).
 //!
+//! A rotor on a joint whose axis is fixed in space (a revolute joint at
+//! the root) shows only as q̈ on its own row, as its link's axial inertia
+//! does: the caller adds its armature to that inertia
+//! (`root_axial_inertia`), ZZ1R = ZZ1 + … + Ia1.
+//!
 //! The rules leave parameters that a particular geometry still cannot show
 //! (a first link's inertia about axes it never turns about, a planar chain's
 //! products of inertia): those are found numerically by the caller, from
@@ -55,6 +60,17 @@ pub fn regrouped(ctx: &mut Context, tree: &Tree) -> Vec<Option<[Sym; 10]>> {
         });
     }
     numbers
+}
+
+/// Where a rotor's inertia on `coordinate` regroups, when its joint turns a
+/// link about an axis fixed in space (a revolute joint at the root): the
+/// link and the index of its axial inertia I_aa among its ten numbers. That
+/// inertia's column is then q̈ on the joint's row alone, an armature's.
+pub fn root_axial_inertia(tree: &Tree, coordinate: usize) -> Option<(usize, usize)> {
+    let j = tree.links.iter().position(|l| l.coordinate == coordinate)?;
+    let link = &tree.links[j];
+    let revolute = link.slide.is_none() && link.chart.is_none();
+    (link.parent.is_none() && revolute).then(|| (j, diagonal(link.axis)))
 }
 
 /// What of the link acts as a body fixed in its parent, in the link's

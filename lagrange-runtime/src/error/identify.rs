@@ -186,17 +186,18 @@ pub enum IdentifyError {
 
     // Physically consistent estimates (`identify::identify_consistent`).
     /// A body's parameters that no mass distribution has (its 4 × 4
-    /// pseudo-inertia is not positive definite), or a point mass that is not
-    /// positive.
+    /// pseudo-inertia is not positive definite), or a point mass or a
+    /// joint's damping, armature or friction that is not positive.
     #[error(
-        "{what}: the parameters of `{body}` are not physically consistent (a mass that is not \
-         positive, or an inertia that breaks the triangle inequalities or does not fit the \
-         first moment); start from a π that a real body has, such as the model's own"
+        "{what}: the parameters of `{body}` are not physically consistent (a mass or a joint's \
+         coefficient that is not positive, or an inertia that breaks the triangle inequalities \
+         or does not fit the first moment); start from a π that a real body has, such as the \
+         model's own, with a positive guess for each joint's coefficient"
     )]
     Inconsistent {
         /// Which vector (`the prior π`).
         what: &'static str,
-        /// The body or point mass.
+        /// The body, point mass or joint coefficient (`elbow.damping`).
         body: String,
     },
 
@@ -220,7 +221,8 @@ pub enum IdentifyError {
     /// A name that is neither a parameter nor a body of the system.
     #[error(
         "`{name}` is neither one of the system's inertial parameters nor one of its bodies \
-         (see Lagrangian::REGRESSOR_PARAMETERS: `body.m`, `body.mx`, ..., `point.m`)"
+         (see Lagrangian::REGRESSOR_PARAMETERS: `body.m`, `body.mx`, ..., `point.m`, \
+         `q.damping`, `q.armature`, `q.friction`)"
     )]
     UnknownParameter {
         /// The name given.

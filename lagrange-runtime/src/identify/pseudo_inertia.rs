@@ -4,42 +4,58 @@
 //! (Wensing, Kim and Slotine 2017): m > 0, and I satisfies the triangle
 //! inequalities with room for the first moment h = m c. The log-Cholesky
 //! parametrisation J = U Uᵀ (Rucker and Wensing 2022) maps every θ ∈ ℝ¹⁰
-//! onto such a J, smoothly and one to one.
+//! onto such a J, smoothly and one to one. A joint's damping, armature and
+//! friction are physical when positive, and are written e^θ.
 
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix4};
 
 use crate::error::IdentifyError;
 
-/// One entry of π's layout: a body's ten parameters from `first`, or a point
-/// mass's one.
+/// One entry of π's layout: a body's ten parameters from `first`, a point
+/// mass's one, or a joint's coefficient (named in full, `elbow.damping`).
 #[derive(Clone, Debug, PartialEq)]
 pub(super) enum Block {
     Body { name: String, first: usize },
     Point { name: String, index: usize },
+    Joint { name: String, index: usize },
 }
 
 impl Block {
     pub(super) fn name(&self) -> &str {
         match self {
-            Block::Body { name, .. } | Block::Point { name, .. } => name,
+            Block::Body { name, .. } | Block::Point { name, .. } | Block::Joint { name, .. } => {
+                name
+            }
         }
     }
 }
+
+/// The suffixes of a joint's coefficients.
+const JOINT: [&str; 3] = ["damping", "armature", "friction"];
 
 /// The body suffixes, in π's order (Pinocchio's).
 const BODY: [&str; 10] = [
     "m", "mx", "my", "mz", "Ixx", "Ixy", "Iyy", "Ixz", "Iyz", "Izz",
 ];
 
-/// π's blocks from its names: ten consecutive `body.m` … `body.Izz`, or a
-/// point's `point.m`.
+/// π's blocks from its names: ten consecutive `body.m` … `body.Izz`, a
+/// point's `point.m`, or a joint's `q.damping`, `q.armature`, `q.friction`.
 ///
 /// # Errors
-/// [`IdentifyError::UnknownParameter`] for a name that fits neither.
+/// [`IdentifyError::UnknownParameter`] for a name that fits none.
 pub(super) fn layout(names: &[&str]) -> Result<Vec<Block>, IdentifyError> {
     let mut blocks = Vec::new();
     let mut k = 0;
     while k < names.len() {
+        let joint = names[k].rsplit_once('.').map(|(_, s)| s);
+        if joint.is_some_and(|s| JOINT.contains(&s)) {
+            blocks.push(Block::Joint {
+                name: names[k].to_string(),
+                index: k,
+            });
+            k += 1;
+            continue;
+        }
         let Some(prefix) = names[k].strip_suffix(".m") else {
             return Err(IdentifyError::UnknownParameter {
                 name: names[k].to_string(),
@@ -108,10 +124,12 @@ pub fn is_physically_consistent(block: &[f64; 10]) -> bool {
     block.iter().all(|x| x.is_finite()) && pseudo_inertia(block).cholesky().is_some()
 }
 
-/// The bodies (and point masses) of π, named by `names` (a system's
-/// `Lagrangian::REGRESSOR_PARAMETERS`), whose parameters are not physically
-/// consistent: a body by [`is_physically_consistent`], a point mass whose
-/// mass is not positive. A body whose ten parameters are all zero (a URDF
+/// The bodies (and point masses and joints' coefficients) of π, named by
+/// `names` (a system's `Lagrangian::REGRESSOR_PARAMETERS`), whose
+/// parameters are not physically consistent: a body by
+/// [`is_physically_consistent`], a point mass whose mass is not positive, a
+/// joint's damping, armature or friction that is negative (zero is a joint
+/// without it). A body whose ten parameters are all zero (a URDF
 /// frame without `<inertial>`) is no mass at all and is not listed.
 ///
 /// # Errors
@@ -144,6 +162,7 @@ fn block_consistent(block: &Block, pi: &DVector<f64>) -> bool {
             block.iter().all(|&x| x == 0.0) || is_physically_consistent(&block)
         }
         Block::Point { index, .. } => pi[index].is_finite() && pi[index] > 0.0,
+        Block::Joint { index, .. } => pi[index].is_finite() && pi[index] >= 0.0,
     }
 }
 
@@ -195,7 +214,9 @@ fn theta_of_pseudo_inertia(j: &Matrix4<f64>) -> Option<[f64; 10]> {
 }
 
 /// The parametrisation θ ↦ π over a whole π: each body's log-Cholesky
-/// block, each point mass m = e^θ. A body whose ten parameters are all zero
+/// block, each point mass m = e^θ and each joint's coefficient e^θ (so its
+/// start must be positive: a joint whose coefficient is truly zero should
+/// not have it in the model). A body whose ten parameters are all zero
 /// in the π it starts from (a URDF frame without `<inertial>`, such as a
 /// tool frame) is no body to estimate: it stays massless, its θ unused.
 pub(super) struct Parametrisation {
@@ -236,10 +257,12 @@ impl Parametrisation {
                         .ok_or_else(inconsistent)?;
                     theta.rows_mut(first, 10).copy_from_slice(&t);
                 }
-                Block::Point { index, .. } if pi[index] > 0.0 && pi[index].is_finite() => {
+                Block::Point { index, .. } | Block::Joint { index, .. }
+                    if pi[index] > 0.0 && pi[index].is_finite() =>
+                {
                     theta[index] = pi[index].ln();
                 }
-                Block::Point { .. } => return Err(inconsistent()),
+                Block::Point { .. } | Block::Joint { .. } => return Err(inconsistent()),
             }
         }
         let parametrisation = Parametrisation {
@@ -279,7 +302,7 @@ impl Parametrisation {
                             .copy_from_slice(&column);
                     }
                 }
-                Block::Point { index, .. } => {
+                Block::Point { index, .. } | Block::Joint { index, .. } => {
                     pi[index] = theta[index].exp();
                     jac[(index, index)] = pi[index];
                 }

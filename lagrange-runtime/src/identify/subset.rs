@@ -156,7 +156,7 @@ fn resolve(names: &[&str], chosen: &[&str]) -> Result<Vec<usize>, IdentifyError>
         }
         match blocks.iter().find(|b| b.name() == name) {
             Some(Block::Body { first, .. }) => indices.extend(*first..*first + 10),
-            Some(Block::Point { index, .. }) => indices.push(*index),
+            Some(Block::Point { index, .. } | Block::Joint { index, .. }) => indices.push(*index),
             None => {
                 return Err(IdentifyError::UnknownParameter {
                     name: name.to_string(),

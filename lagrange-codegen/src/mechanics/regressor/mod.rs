@@ -30,16 +30,20 @@
 //! the unit point e_k of each axis (giving the first moment h = m c, and
 //! h_k (1 − e_k e_kᵀ) of rotational inertia that the tensor handed over
 //! takes back), and the tensor I − Σ h_k (1 − e_k e_kᵀ).
+//!
+//! After the bodies' parameters come the joints' (`joints`): each joint's
+//! damping, armature and friction, one column with one entry on its row.
 
 mod energy;
 mod generic;
+mod joints;
 
 use lagrange_symbolic::{Context, Expr as Sym};
 
 use super::Route;
-use super::base_parameters::BaseForm;
+use super::base_parameters::{BaseForm, OwnColumn};
 use super::expressions::Expressions;
-use crate::lowered::{PointModel, Skeleton, SpinModel};
+use crate::lowered::{JointCoefficient, PointModel, Skeleton, SpinModel};
 use crate::mat3::{Mat3, parallel_axis};
 use energy::Column;
 
@@ -50,7 +54,8 @@ pub struct Regressor {
     /// π's names in its order: `body.m`, `body.mx`, `body.my`, `body.mz`,
     /// `body.Ixx`, `body.Ixy`, `body.Iyy`, `body.Ixz`, `body.Iyz`,
     /// `body.Izz` per body, `point.m` per point mass, in the description's
-    /// order once its items are put in dependency order.
+    /// order once its items are put in dependency order; then `q.damping`,
+    /// `q.friction`, `q.armature` per joint that has them.
     pub names: Vec<String>,
     /// π in the struct's parameters.
     pub parameters: Vec<Sym>,
@@ -103,8 +108,13 @@ pub(super) struct MassModel<'a> {
 
 /// Y on the tree the description spans (`tree::regressor`), or by the
 /// Euler–Lagrange operator where there is no tree or `route` asks for the
-/// generic route.
-pub(super) fn regressor(ctx: &mut Context, m: MassModel, route: Route) -> Regressor {
+/// generic route; the joints' coefficients' columns after the bodies'.
+pub(super) fn regressor(
+    ctx: &mut Context,
+    m: MassModel,
+    joints: &[JointCoefficient],
+    route: Route,
+) -> Regressor {
     let mut p = Parametrised {
         inertias: m.spins.iter().map(|s| s.inertia).collect(),
         ..Parametrised::default()
@@ -117,9 +127,11 @@ pub(super) fn regressor(ctx: &mut Context, m: MassModel, route: Route) -> Regres
             _ => p.point(ctx, point, at, m.gravity),
         }
     }
+    let joints = joints::columns(ctx, joints);
+    let own: Vec<OwnColumn> = joints.iter().map(joints::JointColumn::own).collect();
     let tree_rows = match route {
         Route::Generic => Err("the generic route was asked for".to_string()),
-        Route::Auto | Route::Recursive => on_tree(ctx, m, &p).map_err(|why| why.to_string()),
+        Route::Auto | Route::Recursive => on_tree(ctx, m, &p, &own).map_err(|why| why.to_string()),
     };
     let (rows, route, base) = match tree_rows {
         Ok((rows, base)) => (rows, RegressorRoute::Recursive, base),
@@ -130,7 +142,7 @@ pub(super) fn regressor(ctx: &mut Context, m: MassModel, route: Route) -> Regres
         ),
     };
     let momentum = energy::momentum(ctx, &p.columns);
-    Regressor {
+    let mut regressor = Regressor {
         rows,
         names: p.names,
         parameters: p.parameters,
@@ -138,6 +150,27 @@ pub(super) fn regressor(ctx: &mut Context, m: MassModel, route: Route) -> Regres
         momentum,
         route,
         base,
+    };
+    regressor.append(ctx, &joints);
+    regressor
+}
+
+impl Regressor {
+    /// The joints' columns after the bodies': one entry on the joint's row
+    /// of Y (and of Y_p), zeros on the others.
+    fn append(&mut self, ctx: &mut Context, joints: &[joints::JointColumn]) {
+        let zero = ctx.zero();
+        for j in joints {
+            for (i, row) in self.rows.iter_mut().enumerate() {
+                row.push(if i == j.row { j.entry } else { zero });
+            }
+            for (i, row) in self.momentum.iter_mut().enumerate() {
+                row.push(if i == j.row { j.momentum } else { zero });
+            }
+            self.names.push(j.name.clone());
+            self.parameters.push(j.value);
+            self.energy.push(j.energy);
+        }
     }
 }
 
@@ -147,6 +180,7 @@ fn on_tree(
     ctx: &mut Context,
     m: MassModel,
     p: &Parametrised,
+    joints: &[OwnColumn],
 ) -> Result<(Vec<Vec<Sym>>, Option<BaseForm>), crate::tree::NotATree> {
     let spins: Vec<SpinModel> = (m.spins.iter().zip(&p.inertias))
         .map(|(s, &inertia)| SpinModel {
@@ -163,7 +197,14 @@ fn on_tree(
     m.skeleton.masses = kept;
     let tree = tree?;
     let rows = crate::tree::regressor(ctx, &tree, &p.symbols);
-    let base = super::base_parameters::closed_form(ctx, &tree, &p.symbols, &p.names);
+    let symbols: Vec<Sym> = (p.symbols.iter().copied())
+        .chain(joints.iter().map(|j| j.symbol))
+        .collect();
+    let names: Vec<String> = (p.names.iter().cloned())
+        .chain(joints.iter().map(|j| j.name.clone()))
+        .collect();
+    let all = (&symbols[..], &names[..]);
+    let base = super::base_parameters::closed_form(ctx, &tree, all, joints);
     Ok((rows, base))
 }
 
