@@ -85,6 +85,7 @@ mod symplectic_orientation;
 mod task_space;
 mod torqued_body;
 mod torques;
+mod trim_constrained;
 mod urdf;
 mod urdf_arms;
 mod urdf_derivatives;

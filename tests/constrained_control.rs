@@ -41,15 +41,15 @@ use nalgebra::{DMatrix, DVector, SVector, Vector3};
     gravity = [0, 0, -g],
     holonomic(pin_x = tip.x, pin_y = tip.y, pin_z = tip.z),
 )]
-struct Balanced {
-    m: f64,
-    a: f64,
-    c: f64,
-    l: f64,
-    g: f64,
+pub(crate) struct Balanced {
+    pub(crate) m: f64,
+    pub(crate) a: f64,
+    pub(crate) c: f64,
+    pub(crate) l: f64,
+    pub(crate) g: f64,
 }
 
-const ROD: Balanced = Balanced {
+pub(crate) const ROD: Balanced = Balanced {
     m: 1.0,
     a: 0.1,
     c: 0.02,

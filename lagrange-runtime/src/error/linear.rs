@@ -114,17 +114,22 @@ pub enum LinearError {
 
     /// No equilibrium was found: the Gauss–Newton iteration of
     /// [`Trim`](crate::linear::Trim) stopped (out of iterations, or no step
-    /// lowered the accelerations) with q̈ still above the tolerance. The best
-    /// iterate is kept: there q̈ is smallest.
+    /// lowered the residual) with q̈ (and, for a constrained system, the
+    /// constraints' residuals) still above the tolerance. The best iterate
+    /// is kept: there the residual is smallest.
     #[error(
-        "no equilibrium found: after {iterations} iteration(s) the largest acceleration is \
+        "no equilibrium found: after {iterations} iteration(s) the largest residual is \
          {residual:e} ({worst}), above the tolerance {tolerance:e}; {why}. The best point \
          reached is in the error (`best`)"
     )]
     NoEquilibrium {
-        /// max |q̈| at the best iterate.
+        /// max |q̈| (and the constraints' |residuals|) at the best iterate.
         residual: f64,
-        /// The acceleration that is largest there, by the velocity's name.
+        /// Which is largest there: an acceleration by its velocity's name
+        /// (`theta`); for a constrained system `q̈ along the constraints`,
+        /// a constraint (`constraint \`loop_x\``), its velocity row
+        /// (`velocity of constraint \`roll\``) or its γ (`acceleration of
+        /// constraint \`roll\``).
         worst: String,
         /// The tolerance asked for.
         tolerance: f64,

@@ -11,9 +11,13 @@
 //! is Gauss–Newton with the minimum-norm step through the SVD of
 //! J = [∂q̈/∂δ | ∂q̈/∂u] (from [`Linearizer::tangent_driven`]), and a
 //! backtracking line search on |q̈|: where more unknowns than needed are
-//! free, the step is the smallest change from the guess, so a guess with
-//! zero inputs and the configuration held gives the least-norm inputs
-//! (exactly, when q̈ is affine in u).
+//! free, the step is the smallest change from the guess. At the end the
+//! inputs' change from the guess is made the smallest that holds the
+//! configuration found (q̈ is affine in u: the part of the change that
+//! ∂q̈/∂u does not see, which steps taken while q moved can leave behind,
+//! is projected out), so a guess with zero inputs gives the least-norm
+//! inputs that hold the equilibrium. A constrained system's equilibria
+//! are [`Trim::solve_constrained`]'s (`equilibrium_constrained`).
 
 use super::settings::{Linearizer, OperatingPoint};
 use super::tangent::Held;
@@ -23,6 +27,7 @@ use crate::error::{
 };
 use crate::mechanics::Dynamics;
 use crate::numeric::orientation;
+use crate::numeric::orientation::Orientation;
 use crate::system::Driven;
 use nalgebra::{DMatrix, DVector, SVector};
 
@@ -75,7 +80,7 @@ pub struct Trim {
     held_inputs: Vec<String>,
     tolerance: f64,
     max_iterations: usize,
-    linearizer: Linearizer,
+    pub(super) linearizer: Linearizer,
 }
 
 /// An equilibrium or steady motion found by [`Trim::solve`]: the state, the
@@ -115,7 +120,7 @@ impl Default for Trim {
 }
 
 /// Which tangent directions and inputs vary.
-struct Unknowns {
+pub(super) struct Unknowns {
     tangent: Vec<usize>,
     inputs: Vec<usize>,
 }
@@ -187,6 +192,36 @@ impl Trim {
     where
         S: Driven<f64, N, P, Q>,
     {
+        self.check_settings()?;
+        let unknowns = self.unknowns::<S, N, P, Q>()?;
+        let (v, t) = (guess.v, guess.t);
+        let u = guess.inputs::<P>();
+        check_finite_inputs(&S::INPUTS, t, &guess.q, &v, &u)?;
+        let q = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, guess.q)?;
+        let residual = |q: &SVector<f64, Q>, u: &SVector<f64, P>| {
+            let a = accelerations(sys, q, &v, u, t)?;
+            Ok(DVector::from_column_slice(a.as_slice()))
+        };
+        let jacobian = |at: &Equilibrium<N, P, Q>, _: &DVector<f64>| {
+            let lin = (self.linearizer).tangent_driven(sys, &at.q, &at.v, &at.u, at.t)?;
+            Ok(DMatrix::from_fn(N, N + P, |i, c| match c < N {
+                true => lin.a()[(N + i, c)],
+                false => lin.b()[(N + i, c - N)],
+            }))
+        };
+        let worst = |i: usize| S::VELOCITIES[i].to_string();
+        let problem = Problem {
+            residual: &residual,
+            jacobian: &jacobian,
+            worst: &worst,
+            orientations: S::ORIENTATIONS,
+            rebase: None,
+        };
+        self.search(&problem, Equilibrium::start(q, v, u, t), &unknowns)
+    }
+
+    /// A bad tolerance or budget.
+    pub(super) fn check_settings(&self) -> Result<(), Error> {
         check_tolerance("Trim", "tolerance", self.tolerance)?;
         if self.max_iterations == 0 {
             return Err(SettingsError::ZeroCount {
@@ -195,44 +230,103 @@ impl Trim {
             }
             .into());
         }
-        let unknowns = self.unknowns::<S, N, P, Q>()?;
-        let (v, t) = (guess.v, guess.t);
-        let u = guess.inputs::<P>();
-        check_finite_inputs(&S::INPUTS, t, &guess.q, &v, &u)?;
-        let q = unit_quaternions(S::ORIENTATIONS, &S::COORDINATES, guess.q)?;
-        let a = accelerations(sys, &q, &v, &u, t)?;
-        let mut best = Equilibrium {
-            q,
-            v,
-            u,
-            t,
-            residual: a.amax(),
-            iterations: 0,
-        };
-        let mut a = a;
+        Ok(())
+    }
+
+    /// Gauss–Newton from `best` (its residual not yet measured) until the
+    /// residual's largest entry is within the tolerance.
+    pub(super) fn search<const N: usize, const P: usize, const Q: usize>(
+        &self,
+        problem: &Problem<'_, N, P, Q>,
+        mut best: Equilibrium<N, P, Q>,
+        unknowns: &Unknowns,
+    ) -> Result<Equilibrium<N, P, Q>, Error> {
+        let guessed = best.u;
+        let mut r = (problem.residual)(&best.q, &best.u)?;
+        best.residual = r.amax();
         while best.residual > self.tolerance {
             if best.iterations == self.max_iterations {
-                return Err(self.failed(&best, &a, &S::VELOCITIES, "out of iterations"));
+                return Err(self.failed(&best, &r, problem, "out of iterations"));
             }
             if unknowns.tangent.is_empty() && unknowns.inputs.is_empty() {
-                return Err(self.failed(&best, &a, &S::VELOCITIES, "everything is held"));
+                return Err(self.failed(&best, &r, problem, "everything is held"));
             }
             best.iterations += 1;
-            let step = self.step(sys, &best, &a, &unknowns)?;
-            let Some((next, a_next)) = line_search(sys, &best, &a, &step) else {
-                let why = "no step along the Gauss–Newton direction lowers the accelerations \
-                           (a minimum of |q̈| that is not zero: hold fewer coordinates or inputs, \
+            if let Some(rebase) = problem.rebase {
+                rebase(&best.q);
+                r = (problem.residual)(&best.q, &best.u)?;
+            }
+            let jacobian = (problem.jacobian)(&best, &r)?;
+            let step = min_norm_step::<N, P>(&jacobian, &r, unknowns);
+            let Some((next, r_next)) = line_search(problem, &best, &r, &step) else {
+                let why = "no step along the Gauss–Newton direction lowers the residual \
+                           (a minimum that is not zero: hold fewer coordinates or inputs, \
                            or start elsewhere)";
-                return Err(self.failed(&best, &a, &S::VELOCITIES, why));
+                return Err(self.failed(&best, &r, problem, why));
             };
             best = next;
-            a = a_next;
+            r = r_next;
         }
-        Ok(best)
+        match best.iterations {
+            0 => Ok(best),
+            _ => self.least_norm_inputs(problem, best, &guessed, unknowns),
+        }
+    }
+
+    /// The equilibrium found with its free inputs' change from the guess
+    /// made the smallest that holds it: q̈ is affine in u, so at the
+    /// configuration found the inputs that hold it are the guess's plus a
+    /// particular change plus anything in the null space of ∂r/∂u; that
+    /// part, which steps taken while q moved can leave behind, is projected
+    /// out. Kept only where the residual stays within the tolerance.
+    fn least_norm_inputs<const N: usize, const P: usize, const Q: usize>(
+        &self,
+        problem: &Problem<'_, N, P, Q>,
+        best: Equilibrium<N, P, Q>,
+        guessed: &SVector<f64, P>,
+        unknowns: &Unknowns,
+    ) -> Result<Equilibrium<N, P, Q>, Error> {
+        if unknowns.inputs.is_empty() {
+            return Ok(best);
+        }
+        if let Some(rebase) = problem.rebase {
+            rebase(&best.q);
+        }
+        let r = (problem.residual)(&best.q, &best.u)?;
+        let full = (problem.jacobian)(&best, &r)?;
+        let inputs = &unknowns.inputs;
+        let by_input = DMatrix::from_fn(r.len(), inputs.len(), |i, c| full[(i, N + inputs[c])]);
+        let change =
+            DVector::from_iterator(inputs.len(), inputs.iter().map(|&k| best.u[k] - guessed[k]));
+        let svd = by_input.svd(false, true);
+        let Some(rows) = svd.v_t else {
+            return Ok(best);
+        };
+        let cutoff = 1e-12 * svd.singular_values.max();
+        let mut kept = DVector::zeros(inputs.len());
+        for (k, sigma) in svd.singular_values.iter().enumerate() {
+            if *sigma > cutoff {
+                let direction = rows.row(k).transpose();
+                kept += &direction * direction.dot(&change);
+            }
+        }
+        let mut u = *guessed;
+        (inputs.iter().enumerate()).for_each(|(c, &k)| u[k] = guessed[k] + kept[c]);
+        let residual = (problem.residual)(&best.q, &u)?.amax();
+        Ok(match residual <= self.tolerance.max(best.residual) {
+            true => Equilibrium {
+                u,
+                residual,
+                ..best
+            },
+            false => best,
+        })
     }
 
     /// The tangent directions and inputs not held, or the first unknown name.
-    fn unknowns<S, const N: usize, const P: usize, const Q: usize>(&self) -> Result<Unknowns, Error>
+    pub(super) fn unknowns<S, const N: usize, const P: usize, const Q: usize>(
+        &self,
+    ) -> Result<Unknowns, Error>
     where
         S: Driven<f64, N, P, Q>,
     {
@@ -268,61 +362,18 @@ impl Trim {
         })
     }
 
-    /// The minimum-norm Gauss–Newton step −J⁺ q̈ over the unknowns, as a
-    /// tangent vector (N) and an input change (P).
-    fn step<S, const N: usize, const P: usize, const Q: usize>(
-        &self,
-        sys: &S,
-        at: &Equilibrium<N, P, Q>,
-        a: &SVector<f64, N>,
-        unknowns: &Unknowns,
-    ) -> Result<(SVector<f64, N>, SVector<f64, P>), Error>
-    where
-        S: Driven<f64, N, P, Q>,
-    {
-        let lin = self
-            .linearizer
-            .tangent_driven(sys, &at.q, &at.v, &at.u, at.t)?;
-        let (nt, ni) = (unknowns.tangent.len(), unknowns.inputs.len());
-        let jacobian = DMatrix::from_fn(N, nt + ni, |i, c| match c < nt {
-            true => lin.a()[(N + i, unknowns.tangent[c])],
-            false => lin.b()[(N + i, unknowns.inputs[c - nt])],
-        });
-        let svd = jacobian.svd(true, true);
-        let cutoff = 1e-12 * svd.singular_values.max();
-        let rhs = -DVector::from_column_slice(a.as_slice());
-        // U and Vᵀ were asked for, so the solve cannot fail; a non-finite
-        // Jacobian gives a non-finite step, which the line search rejects.
-        let x = svd
-            .solve(&rhs, cutoff)
-            .unwrap_or_else(|_| DVector::from_element(nt + ni, f64::NAN));
-        let mut delta = SVector::zeros();
-        let mut du = SVector::zeros();
-        unknowns
-            .tangent
-            .iter()
-            .enumerate()
-            .for_each(|(c, &j)| delta[j] = x[c]);
-        unknowns
-            .inputs
-            .iter()
-            .enumerate()
-            .for_each(|(c, &k)| du[k] = x[nt + c]);
-        Ok((delta, du))
-    }
-
-    /// The error for a search that stopped at `best` (where q̈ = `a`), with
-    /// the largest acceleration named from `velocities`.
+    /// The error for a search that stopped at `best` (where the residual is
+    /// `r`), naming its largest entry.
     fn failed<const N: usize, const P: usize, const Q: usize>(
         &self,
         best: &Equilibrium<N, P, Q>,
-        a: &SVector<f64, N>,
-        velocities: &[&str; N],
+        r: &DVector<f64>,
+        problem: &Problem<'_, N, P, Q>,
         why: &str,
     ) -> Error {
         LinearError::NoEquilibrium {
             residual: best.residual,
-            worst: velocities[a.iamax()].to_string(),
+            worst: (problem.worst)(r.iamax()),
             tolerance: self.tolerance,
             iterations: best.iterations,
             why: why.into(),
@@ -334,6 +385,66 @@ impl Trim {
         }
         .into()
     }
+}
+
+impl<const N: usize, const P: usize, const Q: usize> Equilibrium<N, P, Q> {
+    /// The search's start, its residual not yet measured.
+    pub(super) fn start(
+        q: SVector<f64, Q>,
+        v: SVector<f64, N>,
+        u: SVector<f64, P>,
+        t: f64,
+    ) -> Self {
+        Equilibrium {
+            q,
+            v,
+            u,
+            t,
+            residual: f64::INFINITY,
+            iterations: 0,
+        }
+    }
+}
+
+/// What a search drives to zero at (q, u), the velocities and time fixed:
+/// its residual, the residual's Jacobian over every tangent direction (N
+/// columns) and input (P columns) at a point where the residual is the
+/// second argument, the name of the residual's entry i, where q's
+/// orientations are, and what to do at each iterate before the step (the
+/// constrained residual's rows are read in axes taken there).
+pub(super) struct Problem<'a, const N: usize, const P: usize, const Q: usize> {
+    pub residual: &'a dyn Fn(&SVector<f64, Q>, &SVector<f64, P>) -> Result<DVector<f64>, Error>,
+    pub jacobian: &'a dyn Fn(&Equilibrium<N, P, Q>, &DVector<f64>) -> Result<DMatrix<f64>, Error>,
+    pub worst: &'a dyn Fn(usize) -> String,
+    pub orientations: &'a [Orientation],
+    pub rebase: Option<&'a dyn Fn(&SVector<f64, Q>)>,
+}
+
+/// The minimum-norm Gauss–Newton step −J⁺ r over the unknowns (J's columns
+/// of the unknowns alone, through the SVD), as a tangent vector (N) and an
+/// input change (P).
+fn min_norm_step<const N: usize, const P: usize>(
+    full: &DMatrix<f64>,
+    r: &DVector<f64>,
+    unknowns: &Unknowns,
+) -> (SVector<f64, N>, SVector<f64, P>) {
+    let (nt, ni) = (unknowns.tangent.len(), unknowns.inputs.len());
+    let jacobian = DMatrix::from_fn(r.len(), nt + ni, |i, c| match c < nt {
+        true => full[(i, unknowns.tangent[c])],
+        false => full[(i, N + unknowns.inputs[c - nt])],
+    });
+    let svd = jacobian.svd(true, true);
+    let cutoff = 1e-12 * svd.singular_values.max();
+    // U and Vᵀ were asked for, so the solve cannot fail; a non-finite
+    // Jacobian gives a non-finite step, which the line search rejects.
+    let x = svd
+        .solve(&-r, cutoff)
+        .unwrap_or_else(|_| DVector::from_element(nt + ni, f64::NAN));
+    let mut delta = SVector::zeros();
+    let mut du = SVector::zeros();
+    (unknowns.tangent.iter().enumerate()).for_each(|(c, &j)| delta[j] = x[c]);
+    (unknowns.inputs.iter().enumerate()).for_each(|(c, &k)| du[k] = x[nt + c]);
+    (delta, du)
 }
 
 /// q̈ of `sys` at (q, v) under the inputs u held.
@@ -351,25 +462,22 @@ where
     Dynamics::new(sys).with_forcing(held).acceleration(t, q, v)
 }
 
-/// The first of 1, ½, ¼, … (down to 2⁻³⁰) of `step` that lowers |q̈|
-/// (Armijo's sufficient decrease on the Euclidean norm), with q̈ there;
+/// The first of 1, ½, ¼, … (down to 2⁻³⁰) of `step` that lowers |r|
+/// (Armijo's sufficient decrease on the Euclidean norm), with r there;
 /// `None` if none does. A trial where the dynamics fail (a singular mass
 /// matrix) counts as no decrease.
-fn line_search<S, const N: usize, const P: usize, const Q: usize>(
-    sys: &S,
+fn line_search<const N: usize, const P: usize, const Q: usize>(
+    problem: &Problem<'_, N, P, Q>,
     at: &Equilibrium<N, P, Q>,
-    a: &SVector<f64, N>,
+    r: &DVector<f64>,
     (delta, du): &(SVector<f64, N>, SVector<f64, P>),
-) -> Option<(Equilibrium<N, P, Q>, SVector<f64, N>)>
-where
-    S: Driven<f64, N, P, Q>,
-{
-    let norm = a.norm();
+) -> Option<(Equilibrium<N, P, Q>, DVector<f64>)> {
+    let norm = r.norm();
     let mut alpha = 1.0;
     for _ in 0..=30 {
-        let q = orientation::plus(S::ORIENTATIONS, &at.q, &(delta * alpha));
+        let q = orientation::plus(problem.orientations, &at.q, &(delta * alpha));
         let u = at.u + du * alpha;
-        if let Ok(trial) = accelerations(sys, &q, &at.v, &u, at.t)
+        if let Ok(trial) = (problem.residual)(&q, &u)
             && trial.norm() < (1.0 - 1e-4 * alpha) * norm
         {
             let next = Equilibrium {

@@ -145,6 +145,7 @@ mod difference;
 mod discrete;
 mod eigen;
 mod equilibrium;
+mod equilibrium_constrained;
 mod errors;
 mod jordan;
 mod lqr;

@@ -352,7 +352,7 @@ pub(crate) fn refuse_constrained<
     const {
         assert!(
             !<S as Lagrangian<T, N, Q>>::CONSTRAINED,
-            "this system has constraints, which the unconstrained dynamics would ignore: run it with `run_constrained` (multipliers) or `run_reduced` (independent speeds)"
+            "this system has constraints, which the unconstrained dynamics would ignore: run it with `run_constrained` (multipliers) or `run_reduced` (independent speeds), and find its equilibria with `Trim::solve_constrained`"
         )
     };
 }
