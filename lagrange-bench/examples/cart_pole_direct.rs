@@ -8,7 +8,7 @@
 //! script's format (the median of `--repeats` solves) and writes the forces
 //! to `--out`.
 //!
-//!     cargo run --release -p lagrange-bench --features direct --example cart_pole_direct -- [--state-weight w] [--repeats R] [--out u.csv]
+//!     cargo run --release -p lagrange-bench --features direct --example cart_pole_direct -- [--state-weight w] [--repeats R] [--out u.csv] [--iterations n] [--guess u.csv]
 
 // The catalog's file holds other systems this example does not use.
 #[allow(dead_code)]
@@ -51,13 +51,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let solver = Direct::new()
         .tolerance(1e-8)
+        .max_iterations(option("--iterations", "100").parse()?)
         .verbose(option("--verbose", "no") == "yes");
+    // `--guess u.csv`: the rollout of these forces instead of F = 0.
+    let guess: Vec<Vector1<f64>> = match option("--guess", "").as_str() {
+        "" => Vec::new(),
+        file => std::fs::read_to_string(file)?
+            .lines()
+            .map(|l| l.trim().parse().map(Vector1::new))
+            .collect::<Result<_, _>>()?,
+    };
     let mut times = Vec::with_capacity(repeats);
     let mut plan = None;
     let mut status = "converged".to_string();
     for _ in 0..repeats.max(1) {
         let clock = Instant::now();
-        let solved = solver.solve(&problem, &[]);
+        let solved = solver.solve(&problem, &guess);
         times.push(clock.elapsed().as_secs_f64());
         plan = Some(solved.unwrap_or_else(|failure| {
             // Reported, not hidden: the failure's best plan is timed and

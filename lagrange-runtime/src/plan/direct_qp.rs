@@ -59,8 +59,9 @@ pub(super) struct Linearised<'d, const N: usize> {
 pub(super) struct Step {
     /// (δx₀, δu₀, …, δx_K) in the layout above.
     pub delta: Vec<f64>,
-    /// The largest |multiplier| of the equality constraints: the merit
-    /// function's penalty must exceed it.
+    /// The largest |multiplier| of the start's and the dynamics' rows: the
+    /// merit function's penalty must exceed it (an elastic row's is at most
+    /// its price, the penalty itself).
     pub largest_multiplier: f64,
     /// Σ slacks: what the step leaves of the elastic constraints' violation,
     /// to first order.
@@ -172,7 +173,10 @@ pub(super) fn solve<const N: usize>(
             kkt: stationarity(&a, &gradient, &solution.z, unknowns),
             delta: solution.x[..unknowns].to_vec(),
             slack: solution.x[unknowns..].iter().map(|s| s.max(0.0)).sum(),
-            largest_multiplier: solution.z[..equal]
+            // The hard rows' alone (the start's and the dynamics'): an
+            // elastic row's multiplier is its slack's price ν whenever its
+            // slack is in use.
+            largest_multiplier: solution.z[..2 * N * (steps + 1)]
                 .iter()
                 .fold(0.0, |m: f64, z| m.max(z.abs())),
         }),
