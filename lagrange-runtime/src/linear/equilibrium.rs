@@ -413,12 +413,23 @@ impl<const N: usize, const P: usize, const Q: usize> Equilibrium<N, P, Q> {
 /// orientations are, and what to do at each iterate before the step (the
 /// constrained residual's rows are read in axes taken there).
 pub(super) struct Problem<'a, const N: usize, const P: usize, const Q: usize> {
-    pub residual: &'a dyn Fn(&SVector<f64, Q>, &SVector<f64, P>) -> Result<DVector<f64>, Error>,
-    pub jacobian: &'a dyn Fn(&Equilibrium<N, P, Q>, &DVector<f64>) -> Result<DMatrix<f64>, Error>,
+    pub residual: &'a Residual<'a, P, Q>,
+    pub jacobian: &'a Jacobian<'a, N, P, Q>,
     pub worst: &'a dyn Fn(usize) -> String,
     pub orientations: &'a [Orientation],
-    pub rebase: Option<&'a dyn Fn(&SVector<f64, Q>)>,
+    pub rebase: Option<&'a Rebase<'a, Q>>,
 }
+
+/// A search's residual at (q, u).
+pub(super) type Residual<'a, const P: usize, const Q: usize> =
+    dyn Fn(&SVector<f64, Q>, &SVector<f64, P>) -> Result<DVector<f64>, Error> + 'a;
+
+/// Its Jacobian at an iterate whose residual is the second argument.
+pub(super) type Jacobian<'a, const N: usize, const P: usize, const Q: usize> =
+    dyn Fn(&Equilibrium<N, P, Q>, &DVector<f64>) -> Result<DMatrix<f64>, Error> + 'a;
+
+/// What to do at each iterate before its step.
+pub(super) type Rebase<'a, const Q: usize> = dyn Fn(&SVector<f64, Q>) + 'a;
 
 /// The minimum-norm Gauss–Newton step −J⁺ r over the unknowns (J's columns
 /// of the unknowns alone, through the SVD), as a tangent vector (N) and an

@@ -27,7 +27,7 @@
 //! tool is held by the constraint), the least-norm inputs: what the
 //! constraints can hold, they hold.
 
-use super::equilibrium::{Equilibrium, Problem, Trim};
+use super::equilibrium::{Equilibrium, Problem, Residual, Trim};
 use super::partition::holonomic;
 use super::settings::OperatingPoint;
 use super::tangent::Held;
@@ -154,7 +154,7 @@ fn free_directions<const N: usize, const K: usize>(g: &SMatrix<f64, K, N>) -> DM
 /// The residual's Jacobian over every tangent direction and input by
 /// central differences on the group.
 fn differences<const N: usize, const P: usize, const Q: usize>(
-    residual: &dyn Fn(&SVector<f64, Q>, &SVector<f64, P>) -> Result<DVector<f64>, Error>,
+    residual: &Residual<'_, P, Q>,
     at: &Equilibrium<N, P, Q>,
     orientations: &[orientation::Orientation],
 ) -> Result<DMatrix<f64>, Error> {
