@@ -4,8 +4,10 @@
 //! force puts it; a two-link arm whose tool a wall holds, its torques the
 //! least-norm ones (gravity's torques less what the wall can take, by the
 //! projection onto G's null space); a rod with a free orientation pinned at
-//! its tip and held tilted by a body torque (m g l sin α); and a pose the
-//! constraint cannot reach, a typed error naming it.
+//! its tip and held tilted by a body torque (m g l sin α); Chaplygin's ball
+//! rolling straight, a steady motion of its nonholonomic rows, and the
+//! same ball slipping, which has none; and a pose the constraint cannot
+//! reach, a typed error.
 
 use lagrange::LinearError;
 use lagrange::linear::{OperatingPoint, Trim};
@@ -172,7 +174,9 @@ fn a_pinned_rod_with_a_free_orientation_held_tilted() {
 
 /// A pose the rod cannot take: held at x = 2 > l, the rod's residual
 /// x² + y² − l² is at least 4 − l² = 1.75 wherever y goes, and the search
-/// says so with the best point it reached.
+/// says so with the best point it reached (naming whichever residual is
+/// largest there: the acceleration the reaction cannot balance off the
+/// rod, here).
 #[test]
 fn a_pose_off_the_constraint_is_a_typed_error() {
     let guess = OperatingPoint::new(Vector2::new(2.0, -1.0), Vector2::zeros());
@@ -185,6 +189,40 @@ fn a_pose_off_the_constraint_is_a_typed_error() {
         lagrange::Error::Linear(LinearError::NoEquilibrium { residual, best, .. }) => {
             assert!(residual >= 1.75 - 1e-12, "{residual}");
             assert_eq!(best.q[0], 2.0);
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+/// Chaplygin's ball (unequal moments) rolling straight along x about its
+/// principal y axis: ω along a principal axis stays there (ω × Jω = 0), so
+/// every rate is steady, q̈ = 0. From a guess sunk into the plane the search
+/// finds the height a and keeps the speeds; a guess that slips (ω ≠ v/a) has
+/// no steady motion on the constraints, and the rolling row is named.
+#[test]
+fn a_ball_rolling_straight_is_a_steady_motion_of_its_rows() {
+    use crate::rolling::BALL;
+    let speed = 1.2;
+    let v = SVector::<f64, 6>::from([speed, 0.0, 0.0, 0.0, speed / BALL.a, 0.0]);
+    let q = SVector::<f64, 7>::from([0.3, -0.2, 0.5 * BALL.a, 1.0, 0.0, 0.0, 0.0]);
+    let steady = Trim::new()
+        .solve_constrained(&BALL, &OperatingPoint::on_group(q, v))
+        .expect("a steady motion");
+    // To the search's tolerance, 1e-10.
+    assert!((steady.q[2] - BALL.a).abs() < 1e-10, "z = {}", steady.q[2]);
+    assert_eq!(steady.v, v);
+    // Only the height moved: the minimum-norm step.
+    assert!((steady.q[0] - 0.3).abs() < 1e-10 && (steady.q[1] + 0.2).abs() < 1e-10);
+    let slipping = SVector::<f64, 6>::from([speed, 0.0, 0.0, 0.0, 0.5 * speed / BALL.a, 0.0]);
+    let err = Trim::new()
+        .solve_constrained(&BALL, &OperatingPoint::on_group(q, slipping))
+        .expect_err("no steady motion");
+    match err {
+        lagrange::Error::Linear(LinearError::NoEquilibrium {
+            worst, residual, ..
+        }) => {
+            assert_eq!(worst, "velocity of constraint `slip_x`");
+            assert!((residual - 0.5 * speed).abs() < 1e-12, "{residual}");
         }
         other => panic!("{other:?}"),
     }
