@@ -47,6 +47,10 @@ impl Default for Direct {
 /// The elastic constraints' price per unit of violation to begin with.
 const ELASTIC_PRICE: f64 = 1e3;
 
+/// The largest damping under which a program's small step is taken as
+/// stationarity (it starts at 1e-8).
+const STATIONARY_DAMPING: f64 = 1e-6;
+
 /// A trial point of the line search, with what the merit function reads.
 struct Point {
     nominal: Nominal,
@@ -193,7 +197,7 @@ impl Direct {
     {
         let mut point = measured(problem, nominal);
         // The merit function's penalty ν, also the elastic constraints'
-        // price: it only grows, to twice the largest multiplier seen.
+        // price: it only grows (`raised`).
         let (mut penalty, mut damping) = (ELASTIC_PRICE, 1e-8);
         let mut log = Vec::new();
         let mut last_step = f64::NAN;
@@ -221,22 +225,22 @@ impl Direct {
             let size = step.delta.iter().fold(0.0f64, |m, d| m.max(d.abs()));
             last_step = size;
             let kkt = step.kkt;
-            // Raised to exceed the multipliers only by a program that meets
-            // its constraints: while elastic slacks are in use, the
-            // multipliers are the slacks' price ν carried back through the
-            // dynamics, and raising ν with them doubled it at every such
-            // program (to 7e10 within 26 iterations on the cart-pole's
-            // swing-up, where Clarabel then reported every program dual
-            // infeasible).
-            if step.slack <= self.gap_tolerance {
-                penalty = penalty.max(2.0 * step.largest_multiplier + 1e-6);
-            }
+            penalty = self.raised(penalty, &step);
             let slope = cost_slope(problem, &point.nominal, &step.delta)
                 + penalty * (step.slack - point.violation);
             let merit = point.nominal.cost + penalty * point.violation;
             // Stationary: no step asked for, or nothing along it can lower
-            // the merit function, feasible or not.
-            if size <= self.tolerance || slope >= -1e-10 * merit.max(1.0) {
+            // the merit function, feasible or not. A step the damping held
+            // back says neither (a program damped by 1e2 asks for nothing
+            // wherever it is): the damping is lowered and the program built
+            // again.
+            let small = size <= self.tolerance || slope >= -1e-10 * merit.max(1.0);
+            if small && damping > STATIONARY_DAMPING {
+                damping = (damping / 100.0).max(1e-8);
+                log.push(self.record(&point, kkt, 0.0, damping));
+                continue;
+            }
+            if small {
                 log.push(self.record(&point, kkt, 0.0, damping));
                 return self.stationary(problem, point, log, iteration, size);
             }
@@ -257,6 +261,20 @@ impl Direct {
                 Err(e) => return Err(fail(e, &point, &log)),
             }
         }
+        Err(self.out_of_iterations(problem, &point, log, last_step))
+    }
+
+    /// `NotConverged`, with the plan reached.
+    fn out_of_iterations<S, const N: usize, const P: usize>(
+        &self,
+        problem: &OptimalControl<S, N, P>,
+        point: &Point,
+        log: Vec<Iteration>,
+        last_step: f64,
+    ) -> Failure<Plan<N, P>>
+    where
+        S: Driven<f64, N, P>,
+    {
         let e = PlanError::NotConverged {
             iterations: self.max_iterations,
             stationarity: last_step,
@@ -264,10 +282,21 @@ impl Direct {
             cost: point.nominal.cost,
             gap: point.largest,
         };
-        Err(Failure::new(
-            e.into(),
-            finish(problem, &point.nominal, log, false),
-        ))
+        Failure::new(e.into(), finish(problem, &point.nominal, log, false))
+    }
+
+    /// The merit function's penalty after `step`'s program: raised to twice
+    /// its hard rows' largest multiplier, but only by a program that meets
+    /// its constraints. While elastic slacks are in use the multipliers are
+    /// the slacks' price ν carried back through the dynamics, and raising ν
+    /// with them doubled it at every such program (to 7e10 within 26
+    /// iterations on the cart-pole's swing-up, where Clarabel then reported
+    /// every program dual infeasible).
+    fn raised(&self, penalty: f64, step: &direct_qp::Step) -> f64 {
+        match step.slack <= self.gap_tolerance {
+            true => penalty.max(2.0 * step.largest_multiplier + 1e-6),
+            false => penalty,
+        }
     }
 
     /// The record of an iteration whose program had no solution.
