@@ -57,11 +57,9 @@ pub struct Lowered {
     /// (coordinate index, generalized force); a `joint`'s damping −b q̇
     /// among them, after the user's.
     pub generalized_forces: Vec<(usize, Sym)>,
-    /// (coordinate index, armature): added to M's diagonal entry, and
-    /// ½ Ia q̇² to T, by both routes.
-    pub armature: Vec<(usize, Sym)>,
-    /// The joints' damping, armature and friction, each a parameter of the
-    /// regressor beside the bodies' (`emit(regressor)`).
+    /// The joints' damping, armature and friction: the armatures added to
+    /// M's diagonal (`armature`), and each a parameter of the regressor
+    /// beside the bodies' (`emit(regressor)`).
     pub joint_coefficients: Vec<JointCoefficient>,
     /// The holonomic constraints, in declaration order.
     pub holonomic: Vec<ConstraintModel>,
@@ -79,6 +77,17 @@ pub struct Lowered {
     pub checks: Vec<PhysicalCheck>,
     /// The poses and shapes the scene draws.
     pub poses: Poses,
+}
+
+impl Lowered {
+    /// (coordinate index, Ia + n² Ir) of each joint with an armature: added
+    /// to M's diagonal entry, and ½ Ia q̇² to T, by both routes.
+    pub fn armature(&self) -> Vec<(usize, Sym)> {
+        (self.joint_coefficients.iter())
+            .filter(|c| c.kind == JointTerm::Armature)
+            .map(|c| (c.coordinate.0, c.value))
+            .collect()
+    }
 }
 
 /// A joint's coefficient that the equations are linear in: a column of the

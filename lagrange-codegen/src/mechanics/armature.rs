@@ -1,7 +1,7 @@
 //! A rotor's reflected inertia (`joint(q, armature = Ia)`, MuJoCo's
 //! `armature`): ½ Ia q̇² in T and Ia on M's diagonal entry (q, q). It turns
 //! with its coordinate alone, so h, Q and every derivative in q and q̇ are
-//! unchanged; the tree's recursions take it through `Tree::set_armature`.
+//! unchanged; the tree's recursions take it through `Tree::with_armature`.
 
 use lagrange_symbolic::{Context, Expr as Sym};
 

@@ -16,10 +16,12 @@ use lagrange_symbolic::{Context, Expr as Sym, Program, SymbolKind};
 use crate::tree::{Tree, link_regressor, regrouped, root_axial_inertia};
 
 /// A parameter of Y outside the links (a joint's damping, armature or
-/// friction): its symbol and name, and its one entry, on `row`.
+/// friction), a column of its own.
 pub struct OwnColumn {
+    /// π's symbol for it and its name (`elbow.damping`).
     pub symbol: Sym,
     pub name: String,
+    /// The one row it enters, and its entry there.
     pub row: usize,
     pub entry: Sym,
     /// Whether it is an armature (q̈ on its row), which a root joint's
@@ -65,7 +67,7 @@ pub fn closed_form(
     ctx: &mut Context,
     tree: &Tree,
     (symbols, names): (&[Sym], &[String]),
-    own: &[OwnColumn],
+    own: &[&OwnColumn],
 ) -> Option<BaseForm> {
     if tree.turns_freely() {
         return None;
@@ -127,7 +129,7 @@ fn fold_rotors(
     ctx: &mut Context,
     tree: &Tree,
     numbers: &mut [Option<[Sym; 10]>],
-    own: &[OwnColumn],
+    own: &[&OwnColumn],
 ) -> Vec<bool> {
     own.iter()
         .map(|o| {

@@ -166,20 +166,18 @@ fn unconstrained(
     let zero_acc = at_zero(ctx, &qdd);
     let masses = (&lowered.points[..], &lowered.spins[..], &lowered.skeleton);
     let gravity = lowered.gravity.as_deref();
-    let mut tree = recursive::detect(ctx, route, masses, gravity);
+    let armature = lowered.armature();
+    let tree = recursive::detect(ctx, route, masses, gravity).map(|t| t.with_armature(&armature));
     let generic = wants_generic(route, &tree)?;
-    if let Ok(t) = &mut tree {
-        t.set_armature(&lowered.armature);
-    }
     let (tree, not_a_tree) = tree.map_or_else(|why| (None, Some(why)), |t| (Some(t), None));
     let points = &lowered.points;
     let spins = &lowered.spins;
     let (kin, spin, rheonomic, kinetic) =
         kinematics::derive(ctx, points, spins, generic, &zero_acc);
-    let kinetic = armature::kinetic(ctx, kinetic, &lowered.armature);
+    let kinetic = armature::kinetic(ctx, kinetic, &armature);
     let generic_terms = generic.then(|| {
         let mut g = generic::derive(ctx, &kin, &spin, kinetic, rheonomic, &zero_acc);
-        armature::add_to_mass(ctx, &mut g.mass, &lowered.armature);
+        armature::add_to_mass(ctx, &mut g.mass, &armature);
         g
     });
     let recursive_terms = recursive::cheaper(ctx, tree.as_ref(), generic_terms.as_ref());

@@ -1,10 +1,9 @@
 //! `joint(q, damping = b, armature = Ia, motor = u, gear = n, rotor = Ir)`
 //! lowered: the damping and the motor as the generalized forces −b q̇ and
 //! n u on its coordinate (so that every output reading Q has them: both
-//! routes, the articulated q̈, the inverse dynamics and the derivatives), the
-//! armature Ia + n² Ir kept for `mechanics` to add to M's diagonal; each
-//! coefficient (and the friction's bound) also recorded as a parameter of
-//! the regressor.
+//! routes, the articulated q̈, the inverse dynamics and the derivatives);
+//! the coefficients b, Ia + n² Ir and fc recorded, for `mechanics` to add
+//! the armature to M's diagonal and for the regressor's parameters.
 
 use lagrange_symbolic::Expr as Sym;
 use syn::{Expr, Ident};
@@ -18,9 +17,7 @@ use crate::physical;
 pub(super) struct Joints {
     /// −b q̇ and n u, generalized forces.
     pub forces: Vec<(usize, Sym)>,
-    /// Ia + n² Ir.
-    pub armature: Vec<(usize, Sym)>,
-    /// b, Ia + n² Ir and fc, for the regressor.
+    /// b, Ia + n² Ir and fc.
     pub coefficients: Vec<JointCoefficient>,
 }
 
@@ -30,7 +27,6 @@ pub(super) struct Joints {
 pub(super) fn joints(lw: &mut Lowerer, system: &System, checks: &mut Vec<PhysicalCheck>) -> Joints {
     let mut out = Joints {
         forces: Vec::new(),
-        armature: Vec::new(),
         coefficients: Vec::new(),
     };
     let velocities = lw.ctx.velocities();
@@ -88,7 +84,6 @@ pub(super) fn joints(lw: &mut Lowerer, system: &System, checks: &mut Vec<Physica
             (Some(a), Some(r)) => Some(lw.ctx.add(a, r)),
             (a, r) => a.or(r),
         };
-        out.armature.extend(armature.map(|a| (i, a)));
         (out.coefficients).extend(armature.map(|a| record(JointTerm::Armature, a)));
     }
     out

@@ -91,7 +91,6 @@ pub fn lower(cx: &Ctxt, system: &System) -> Option<Lowered> {
         dissipation: applied.dissipation,
         forces: applied.forces,
         generalized_forces: applied.generalized_forces,
-        armature: joints.armature,
         joint_coefficients: joints.coefficients,
         holonomic,
         nonholonomic,

@@ -160,8 +160,9 @@ impl Tree {
     /// The same tree with each coordinate's rotor inertia (`joint(q,
     /// armature = Ia)`): Ia on M's diagonal, Ia q̈ in τ, Ia in the
     /// articulated pivot of the joint it drives.
-    pub fn set_armature(&mut self, armature: &[(usize, Sym)]) {
+    pub fn with_armature(mut self, armature: &[(usize, Sym)]) -> Self {
         self.armature = armature.to_vec();
+        self
     }
 
     /// Whether the tree has a spherical joint (a free orientation).

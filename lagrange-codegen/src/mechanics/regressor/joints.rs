@@ -15,35 +15,17 @@ use lagrange_symbolic::{Context, Expr as Sym};
 use super::super::base_parameters::OwnColumn;
 use crate::lowered::{JointCoefficient, JointTerm};
 
-/// One joint coefficient as a parameter of Y.
+/// One joint coefficient as a parameter of Y: its column (symbol, name,
+/// row and entry there: q̇ᵢ, q̈ᵢ or sign(q̇ᵢ)), as the base parameters read
+/// it, and what the other outputs take of it.
 pub(super) struct JointColumn {
-    /// π's symbol for it, and its name `<q>.damping` (`.armature`,
-    /// `.friction`).
-    pub symbol: Sym,
-    pub name: String,
+    pub column: OwnColumn,
     /// Its value in the struct's parameters.
     pub value: Sym,
-    /// The row it enters and its entry there: q̇ᵢ, q̈ᵢ or sign(q̇ᵢ).
-    pub row: usize,
-    pub entry: Sym,
     /// Its share of T + V (½ q̇ᵢ² for an armature, else zero) and of the
     /// momentum's row i (q̇ᵢ for an armature, else zero).
     pub energy: Sym,
     pub momentum: Sym,
-    pub term: JointTerm,
-}
-
-impl JointColumn {
-    /// The column as the base parameters' reduction reads it.
-    pub fn own(&self) -> OwnColumn {
-        OwnColumn {
-            symbol: self.symbol,
-            name: self.name.clone(),
-            row: self.row,
-            entry: self.entry,
-            armature: self.term == JointTerm::Armature,
-        }
-    }
 }
 
 /// The joints' columns, in the description's order of the joints (damping,
@@ -69,14 +51,16 @@ pub(super) fn columns(ctx: &mut Context, coefficients: &[JointCoefficient]) -> V
                 }
             };
             JointColumn {
-                symbol,
-                name,
+                column: OwnColumn {
+                    symbol,
+                    name,
+                    row,
+                    entry,
+                    armature: c.kind == JointTerm::Armature,
+                },
                 value: c.value,
-                row,
-                entry,
                 energy,
                 momentum,
-                term: c.kind,
             }
         })
         .collect()

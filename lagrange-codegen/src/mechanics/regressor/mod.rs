@@ -128,7 +128,7 @@ pub(super) fn regressor(
         }
     }
     let joints = joints::columns(ctx, joints);
-    let own: Vec<OwnColumn> = joints.iter().map(joints::JointColumn::own).collect();
+    let own: Vec<&OwnColumn> = joints.iter().map(|j| &j.column).collect();
     let tree_rows = match route {
         Route::Generic => Err("the generic route was asked for".to_string()),
         Route::Auto | Route::Recursive => on_tree(ctx, m, &p, &own).map_err(|why| why.to_string()),
@@ -161,13 +161,14 @@ impl Regressor {
     fn append(&mut self, ctx: &mut Context, joints: &[joints::JointColumn]) {
         let zero = ctx.zero();
         for j in joints {
+            let c = &j.column;
             for (i, row) in self.rows.iter_mut().enumerate() {
-                row.push(if i == j.row { j.entry } else { zero });
+                row.push(if i == c.row { c.entry } else { zero });
             }
             for (i, row) in self.momentum.iter_mut().enumerate() {
-                row.push(if i == j.row { j.momentum } else { zero });
+                row.push(if i == c.row { j.momentum } else { zero });
             }
-            self.names.push(j.name.clone());
+            self.names.push(c.name.clone());
             self.parameters.push(j.value);
             self.energy.push(j.energy);
         }
@@ -180,7 +181,7 @@ fn on_tree(
     ctx: &mut Context,
     m: MassModel,
     p: &Parametrised,
-    joints: &[OwnColumn],
+    joints: &[&OwnColumn],
 ) -> Result<(Vec<Vec<Sym>>, Option<BaseForm>), crate::tree::NotATree> {
     let spins: Vec<SpinModel> = (m.spins.iter().zip(&p.inertias))
         .map(|(s, &inertia)| SpinModel {
