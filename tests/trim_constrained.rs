@@ -227,3 +227,40 @@ fn a_ball_rolling_straight_is_a_steady_motion_of_its_rows() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A bob on a rod written with a square root, guessed where the root has
+/// no value: a typed error at the guess, not an answer with a NaN in it.
+#[derive(Lagrangian)]
+#[lagrange(
+    coordinates(x, y),
+    inputs(f),
+    point(bob, mass = m, at = [x, y]),
+    gravity = [0, -g],
+    force(bob, [f, 0]),
+    holonomic(rod = sqrt(l * l - x * x) + y),
+)]
+struct RootRod {
+    m: f64,
+    l: f64,
+    g: f64,
+}
+
+#[test]
+fn a_guess_where_a_constraint_has_no_value_is_refused() {
+    let rod = RootRod {
+        m: 1.0,
+        l: 1.0,
+        g: 9.81,
+    };
+    let guess = OperatingPoint::new(Vector2::new(1.5, -1.0), Vector2::zeros());
+    let err = Trim::new()
+        .hold(&["x"])
+        .solve_constrained(&rod, &guess)
+        .expect_err("no value at the guess");
+    eprintln!("{err}");
+    // The multiplier form refuses the point, naming it.
+    match err {
+        lagrange::Error::NonFiniteState { q, .. } => assert_eq!(q, [1.5, -1.0]),
+        other => panic!("{other:?}"),
+    }
+}

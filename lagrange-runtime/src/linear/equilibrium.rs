@@ -243,6 +243,12 @@ impl Trim {
     ) -> Result<Equilibrium<N, P, Q>, Error> {
         let guessed = best.u;
         let mut r = (problem.residual)(&best.q, &best.u)?;
+        if r.iter().any(|x| !x.is_finite()) {
+            best.residual = f64::NAN;
+            let why = "the residual is not finite at the guess (an acceleration or a constraint \
+                       the system cannot evaluate there)";
+            return Err(self.failed(&best, &r, problem, why));
+        }
         best.residual = r.amax();
         while best.residual > self.tolerance {
             if best.iterations == self.max_iterations {

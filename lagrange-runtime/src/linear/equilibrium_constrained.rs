@@ -35,7 +35,7 @@ use crate::error::{Error, check_finite_inputs, unit_quaternions};
 use crate::mechanics::constraint::ConstrainedDynamics;
 use crate::numeric::orientation;
 use crate::system::{Constrained, Driven};
-use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector, SymmetricEigen};
 use std::cell::RefCell;
 
 impl Trim {
@@ -136,10 +136,18 @@ impl Trim {
 /// An orthonormal basis of G's null space (the directions the constraints
 /// leave free), from the eigenvectors of Gᵀ G: those whose eigenvalue is
 /// below 1e-12 of the largest (a singular value below 1e-6 of G's largest).
-/// All of them where G is zero.
+/// All of them where G is zero, or not finite (a row the system cannot
+/// evaluate there: the residual then is not finite either, and the search
+/// refuses the point rather than iterate on it).
 fn free_directions<const N: usize, const K: usize>(g: &SMatrix<f64, K, N>) -> DMatrix<f64> {
     let gram = DMatrix::from_fn(N, N, |i, j| g.column(i).dot(&g.column(j)));
-    let eigen = gram.symmetric_eigen();
+    // Bounded: an iteration without a limit does not end on a NaN.
+    let Some(eigen) = (gram.iter().all(|x| x.is_finite()))
+        .then(|| SymmetricEigen::try_new(gram, f64::EPSILON, 1000))
+        .flatten()
+    else {
+        return DMatrix::identity(N, N);
+    };
     let largest = eigen.eigenvalues.amax();
     let free: Vec<DVector<f64>> = (0..N)
         .filter(|&k| eigen.eigenvalues[k] <= 1e-12 * largest)
