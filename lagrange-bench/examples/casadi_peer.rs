@@ -8,7 +8,7 @@
 //! matrix row-major) and one `time` line (ns per call), which
 //! `peer/casadi/compare.py` reads:
 //!
-//!     cargo run --release -p lagrange-bench --example casadi_peer
+//!     cargo run --release -p lagrange-bench --example casadi_peer [ARM ...]
 //!
 //! The quantities, each beside its CasADi function:
 //! - `crba_nle`: M and Q − h in one call (`mass_matrix_and_rhs`), beside
@@ -195,10 +195,24 @@ where
     println!("time {robot} rnea_derivatives {t:.1}");
 }
 
+/// Every arm, or those named on the command line (`casadi_peer xarm7`, for a
+/// profile of one).
 fn main() {
-    arm::<Ur5, Ur5Articulated, 6>("ur5");
-    arm::<Ur10, Ur10Articulated, 6>("ur10");
-    arm::<Kinova, KinovaArticulated, 6>("kinova");
-    arm::<Z1, Z1Articulated, 7>("z1");
-    arm::<Xarm7, Xarm7Articulated, 7>("xarm7");
+    let named: Vec<String> = std::env::args().skip(1).collect();
+    let run = |robot: &str| named.is_empty() || named.iter().any(|n| n == robot);
+    if run("ur5") {
+        arm::<Ur5, Ur5Articulated, 6>("ur5");
+    }
+    if run("ur10") {
+        arm::<Ur10, Ur10Articulated, 6>("ur10");
+    }
+    if run("kinova") {
+        arm::<Kinova, KinovaArticulated, 6>("kinova");
+    }
+    if run("z1") {
+        arm::<Z1, Z1Articulated, 7>("z1");
+    }
+    if run("xarm7") {
+        arm::<Xarm7, Xarm7Articulated, 7>("xarm7");
+    }
 }

@@ -1,4 +1,4 @@
-"""Reads run.sh's log and plans: per step method, the median over rounds of
+"""Reads run.sh's log and plans: per arm, the median over rounds of
 Crocoddyl's time over ours (per solve and per iteration, each round's two
 runs side by side), and how far apart the two plans' inputs are."""
 
@@ -12,23 +12,23 @@ def main(folder):
     rows = {}
     for line in open(f"{folder}/log"):
         f = line.split()
-        method, side = f[0], f[2]
+        arm, side = f[0], f[2]
         fields = dict(zip(f[3::2], f[4::2]))
-        rows.setdefault(method, {}).setdefault(side, []).append(fields)
-    for method, sides in rows.items():
+        rows.setdefault(arm, {}).setdefault(side, []).append(fields)
+    for arm, sides in rows.items():
         ours, theirs = sides["lagrange"], sides["crocoddyl"]
         for what in ["per_solve", "per_iteration"]:
             ratios = [float(t[what]) / float(o[what]) for o, t in zip(ours, theirs)]
             print(
-                f"{method:5} {what:13}: Crocoddyl / lagrange = {statistics.median(ratios):.2f} "
+                f"{arm:5} {what:13}: Crocoddyl / lagrange = {statistics.median(ratios):.2f} "
                 f"(rounds {min(ratios):.2f}–{max(ratios):.2f}); "
                 f"lagrange {float(ours[-1][what]) * 1e3:.3f} ms, {ours[-1]['iterations']} iterations, "
                 f"Crocoddyl {float(theirs[-1][what]) * 1e3:.3f} ms, {theirs[-1]['iterations']} iterations"
             )
-        a = np.loadtxt(f"{folder}/ours_{method}.csv", delimiter=",")
-        b = np.loadtxt(f"{folder}/crocoddyl_{method}.csv", delimiter=",")
+        a = np.loadtxt(f"{folder}/ours_{arm}.csv", delimiter=",")
+        b = np.loadtxt(f"{folder}/crocoddyl_{arm}.csv", delimiter=",")
         print(
-            f"{method:5} costs: lagrange {ours[-1]['cost']}, Crocoddyl {theirs[-1]['cost']}; "
+            f"{arm:5} costs: lagrange {ours[-1]['cost']}, Crocoddyl {theirs[-1]['cost']}; "
             f"inputs differ by at most {abs(a - b).max():.1e} N·m"
         )
 

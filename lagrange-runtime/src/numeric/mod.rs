@@ -1,7 +1,8 @@
 //! Scalar and small-matrix numerics, the bottom layer: the scalar type, the
 //! functions generated code calls (and their four-lane counterparts, `lanes`), the one Cholesky, the one saddle-point
 //! solve, the one elimination with complete pivoting, dense LU for the
-//! implicit integrators, root finding on a bracket and a wall clock. Nothing
+//! implicit integrators, products of small dynamically sized matrices that
+//! allocate nothing (`products`), root finding on a bracket and a wall clock. Nothing
 //! here knows about mechanics or integrators.
 
 pub(crate) mod cholesky;
@@ -12,6 +13,7 @@ pub mod func;
 pub mod lanes;
 pub(crate) mod lu;
 pub mod orientation;
+pub(crate) mod products;
 mod real;
 pub(crate) mod root;
 pub(crate) mod saddle;

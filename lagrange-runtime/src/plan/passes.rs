@@ -27,9 +27,11 @@
 //! the gaps are closed, where the plan converges).
 
 use super::box_qp;
+use super::cost::CostModel;
 use super::problem::{OptimalControl, split, state};
 use crate::error::{Error, SettingsError};
 use crate::linear::StepDerivatives;
+use crate::numeric::products::{gemm, gemv};
 use crate::system::Driven;
 use nalgebra::{DMatrix, DVector, SVector};
 
@@ -236,6 +238,124 @@ where
         .collect()
 }
 
+/// The products one step of the backward pass writes, allocated once a
+/// pass and overwritten step by step (`numeric::products` writes in place;
+/// a product Aᵀ B is taken as A B with Aᵀ copied out first, V_xx and Q_uu
+/// being symmetric).
+struct Scratch {
+    fx_t: DMatrix<f64>,
+    fu_t: DMatrix<f64>,
+    vxx_fx: DMatrix<f64>,
+    vxx_fu: DMatrix<f64>,
+    qx: DVector<f64>,
+    qu: DVector<f64>,
+    qxx: DMatrix<f64>,
+    quu: DMatrix<f64>,
+    qux: DMatrix<f64>,
+    reg_uu: DMatrix<f64>,
+    reg_ux: DMatrix<f64>,
+    gain_t: DMatrix<f64>,
+    qux_t: DMatrix<f64>,
+    /// Q_uu K + Q_ux.
+    closed: DMatrix<f64>,
+    /// Q_uu k + Q_u.
+    step_change: DVector<f64>,
+}
+
+impl Scratch {
+    fn new(n2: usize, p: usize) -> Self {
+        let (square, tall, wide) = (
+            DMatrix::zeros(n2, n2),
+            DMatrix::zeros(n2, p),
+            DMatrix::zeros(p, n2),
+        );
+        Scratch {
+            fx_t: square.clone(),
+            fu_t: wide.clone(),
+            vxx_fx: square.clone(),
+            vxx_fu: tall.clone(),
+            qx: DVector::zeros(n2),
+            qu: DVector::zeros(p),
+            qxx: square,
+            quu: DMatrix::zeros(p, p),
+            qux: wide.clone(),
+            reg_uu: DMatrix::zeros(p, p),
+            reg_ux: wide.clone(),
+            gain_t: tall.clone(),
+            qux_t: tall,
+            closed: wide,
+            step_change: DVector::zeros(p),
+        }
+    }
+
+    /// Q's derivatives at a step from the cost's model, the step's
+    /// derivatives and the value function (V_x, V_xx) after it; the
+    /// regularised Q̃_uu = Q_uu + μ f_uᵀf_u and Q̃_ux = Q_ux + μ f_uᵀf_x
+    /// (Tassa, Erez and Todorov 2012: V_xx + μI, which keeps the new states
+    /// near the nominal's).
+    fn expand(
+        &mut self,
+        l: &CostModel,
+        (fx, fu): (&DMatrix<f64>, &DMatrix<f64>),
+        (vx, vxx): (&DVector<f64>, &DMatrix<f64>),
+        mu: f64,
+    ) {
+        fx.transpose_to(&mut self.fx_t);
+        fu.transpose_to(&mut self.fu_t);
+        gemm(&mut self.vxx_fx, 1.0, vxx, fx, 0.0);
+        gemm(&mut self.vxx_fu, 1.0, vxx, fu, 0.0);
+        self.qx.copy_from(&l.lx);
+        gemv(&mut self.qx, 1.0, &self.fx_t, vx, 1.0);
+        self.qu.copy_from(&l.lu);
+        gemv(&mut self.qu, 1.0, &self.fu_t, vx, 1.0);
+        self.qxx.copy_from(&l.lxx);
+        gemm(&mut self.qxx, 1.0, &self.fx_t, &self.vxx_fx, 1.0);
+        self.quu.copy_from(&l.luu);
+        gemm(&mut self.quu, 1.0, &self.fu_t, &self.vxx_fu, 1.0);
+        self.qux.copy_from(&l.lux);
+        gemm(&mut self.qux, 1.0, &self.fu_t, &self.vxx_fx, 1.0);
+        self.reg_uu.copy_from(&self.quu);
+        self.reg_ux.copy_from(&self.qux);
+        if mu != 0.0 {
+            gemm(&mut self.reg_uu, mu, &self.fu_t, fu, 1.0);
+            gemm(&mut self.reg_ux, mu, &self.fu_t, fx, 1.0);
+        }
+    }
+
+    /// The value function before the step from the true Q (so that it
+    /// stays bounded as μ grows: with Q̃ in it, V_xx would lose μ f_xᵀ P f_x
+    /// a step, P a projection, and raising μ would make matters worse):
+    /// V_x = Q_x + Kᵀ(Q_uu k + Q_u) + Q_uxᵀ k and
+    /// V_xx = Q_xx + Kᵀ(Q_uu K + Q_ux) + Q_uxᵀ K, symmetrised.
+    fn value(
+        &mut self,
+        gain: &DMatrix<f64>,
+        kff: &DVector<f64>,
+        (vx, vxx): (&mut DVector<f64>, &mut DMatrix<f64>),
+    ) {
+        self.step_change.copy_from(&self.qu);
+        gemv(&mut self.step_change, 1.0, &self.quu, kff, 1.0);
+        gain.transpose_to(&mut self.gain_t);
+        self.qux.transpose_to(&mut self.qux_t);
+        vx.copy_from(&self.qx);
+        gemv(vx, 1.0, &self.gain_t, &self.step_change, 1.0);
+        gemv(vx, 1.0, &self.qux_t, kff, 1.0);
+        self.closed.copy_from(&self.qux);
+        gemm(&mut self.closed, 1.0, &self.quu, gain, 1.0);
+        vxx.copy_from(&self.qxx);
+        gemm(vxx, 1.0, &self.gain_t, &self.closed, 1.0);
+        gemm(vxx, 1.0, &self.qux_t, gain, 1.0);
+        let n = vxx.nrows();
+        for j in 0..n {
+            for i in 0..j {
+                let mean = 0.5 * (vxx[(i, j)] + vxx[(j, i)]);
+                vxx[(i, j)] = mean;
+                vxx[(j, i)] = mean;
+            }
+        }
+    }
+}
+
 /// The backward pass with regularisation μ, warm-starting each box QP from
 /// the last pass's feed-forward; `Ok(None)` if some Q_uu is not positive
 /// definite on its free inputs.
@@ -255,35 +375,25 @@ where
     let (mut vx, mut vxx) = (terminal.lx, terminal.lxx);
     let mut gap_terms = (0.0, 0.0);
     shift(&mut vx, &vxx, &nominal.gaps[steps], &mut gap_terms);
-    let mut hessians = vec![DMatrix::zeros(n2, n2); steps + 1];
+    let mut hessians = vec![DMatrix::zeros(0, 0); steps + 1];
     hessians[steps] = vxx.clone();
     let mut feedforward = vec![DVector::zeros(P); steps];
     let mut gains = vec![DMatrix::zeros(P, n2); steps];
     let mut expected = (0.0, 0.0);
+    let mut s = Scratch::new(n2, P);
     for k in (0..steps).rev() {
-        let (fx, fu) = (&derivatives[k].dx, &derivatives[k].du);
         let l = problem.running_model(k, &nominal.xs[k], &nominal.us[k])?;
-        let qx = &l.lx + fx.transpose() * &vx;
-        let qu = &l.lu + fu.transpose() * &vx;
-        let qxx = &l.lxx + fx.transpose() * &vxx * fx;
-        let quu = &l.luu + fu.transpose() * &vxx * fu;
-        let qux = &l.lux + fu.transpose() * &vxx * fx;
-        // The step and the gains from the regularised Q̃ (Tassa, Erez and
-        // Todorov 2012: V_xx + μI, which keeps the new states near the
-        // nominal's); the value function from the true Q, so that it stays
-        // bounded as μ grows (with Q̃ in it, V_xx would lose μ f_xᵀ P f_x a
-        // step, P a projection, and raising μ would make matters worse).
-        let reg_uu = &quu + fu.transpose() * fu * mu;
-        let reg_ux = &qux + fu.transpose() * fx * mu;
+        let fx_fu = (&derivatives[k].dx, &derivatives[k].du);
+        s.expand(&l, fx_fu, (&vx, &vxx), mu);
         let start = last.map_or_else(|| DVector::zeros(P), |b| b.feedforward[k].clone());
         let lower = &problem.lower - &nominal.us[k];
         let upper = &problem.upper - &nominal.us[k];
-        let Some(qp) = box_qp::solve(&reg_uu, &qu, &lower, &upper, &start) else {
+        let Some(qp) = box_qp::solve(&s.reg_uu, &s.qu, &lower, &upper, &start) else {
             return Ok(None);
         };
-        let mut gain = DMatrix::zeros(P, n2);
+        let gain = &mut gains[k];
         if let Some(chol) = &qp.factor {
-            let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| reg_ux[(qp.free[i], j)]);
+            let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| s.reg_ux[(qp.free[i], j)]);
             let free_gain = -chol.solve(&rows);
             qp.free
                 .iter()
@@ -291,16 +401,14 @@ where
                 .for_each(|(i, &r)| gain.set_row(r, &free_gain.row(i)));
         }
         let kff = qp.x;
-        expected.0 += kff.dot(&qu);
-        expected.1 += 0.5 * kff.dot(&(&quu * &kff));
-        vx = &qx + gain.transpose() * (&quu * &kff + &qu) + qux.transpose() * &kff;
-        let cross = gain.transpose() * &qux;
-        vxx = &qxx + gain.transpose() * &quu * &gain + &cross + cross.transpose();
-        vxx = (&vxx + vxx.transpose()) * 0.5;
+        s.value(gain, &kff, (&mut vx, &mut vxx));
+        // k·Q_u and ½ kᵀQ_uu k, the latter from Q_uu k + Q_u as `value` left it.
+        let along = kff.dot(&s.qu);
+        expected.0 += along;
+        expected.1 += 0.5 * (kff.dot(&s.step_change) - along);
         shift(&mut vx, &vxx, &nominal.gaps[k], &mut gap_terms);
         hessians[k] = vxx.clone();
         feedforward[k] = kff;
-        gains[k] = gain;
     }
     Ok(Some(Backward {
         feedforward,

@@ -1,12 +1,17 @@
-"""The UR5's tool drawn 20 cm in 0.6 s under torques within ±40 N·m, solved
-by Crocoddyl's box-constrained FDDP: the problem of `tests/planning.rs` and
-of `examples/ur5_reach.rs` here, term for term.
+"""An arm's tool drawn to a point under its torque limits, solved by
+Crocoddyl's box-constrained FDDP: the problems of `examples/arm_reach.rs`
+here, term for term (`--arm`):
 
-- 30 steps of RK4 (`IntegratedActionModelRK`, four stages, the input held
-  over the step) of 20 ms on the UR5 of `robots/ur5.urdf`, gravity −9.81 z;
-  or, with `--method euler`, of semi-implicit Euler
+- `ur5`: the problem of `tests/planning.rs`, the UR5's tool 20 cm away in
+  0.6 s, 30 steps of 20 ms, torques within ±40 N·m;
+- `xarm7`: the xArm7's tool 25 cm away in 1 s, 100 steps of 10 ms, torques
+  within the file's effort limits.
+
+- steps of semi-implicit Euler
   (`IntegratedActionModelEuler`: v⁺ = v + h q̈, q⁺ = q + h v⁺, our
-  `StepMethod::SemiImplicitEuler`). Crocoddyl's RK4 integrates the running
+  `StepMethod::SemiImplicitEuler`), gravity −9.81 z; or, with `--method
+  rk4`, of RK4 (`IntegratedActionModelRK`, four stages, the input held
+  over the step). Crocoddyl's RK4 integrates the running
   cost over the step with the stages' weights where ours takes it at the
   step's start, so the two RK4 problems differ in that term (their optima
   by 5e-3 of the cost); with Euler both take it at the start and the
@@ -22,7 +27,7 @@ Prints one line per run: iterations, cost, seconds per solve (median of
 `--repeats`), seconds per iteration, and writes the plan's inputs to
 `--out` (CSV) so that `compare.py` checks both sides found the same plan.
 
-    python3 ur5_reach.py --urdf ../../../robots/ur5.urdf [--iterations N] [--repeats R] [--out u.csv]
+    python3 arm_reach.py --urdf ../../../robots/ur5.urdf [--arm ur5|xarm7] [--method euler|rk4] [--iterations N] [--repeats R] [--out u.csv]
 """
 
 import argparse
@@ -33,26 +38,46 @@ import crocoddyl
 import numpy as np
 import pinocchio as pin
 
-DT, STEPS, LIMIT = 0.02, 30, 40.0
-HOME = np.array([0.0, -1.2, 1.5, -1.8, -1.57, 0.0])
+# Per arm: home, tool frame, the target's offset from the tool at home,
+# steps, step length, torque limits.
+ARMS = {
+    "ur5": dict(
+        home=[0.0, -1.2, 1.5, -1.8, -1.57, 0.0],
+        tool="tool0",
+        offset=[0.1, 0.15, -0.05],
+        steps=30,
+        dt=0.02,
+        limits=[40.0] * 6,
+    ),
+    "xarm7": dict(
+        home=[0.0, -0.3, 0.0, 0.6, 0.0, 0.9, 0.0],
+        tool="link_eef",
+        offset=[0.15, 0.15, -0.1],
+        steps=100,
+        dt=0.01,
+        limits=[50.0, 50.0, 30.0, 30.0, 30.0, 20.0, 20.0],
+    ),
+}
 
 
-def problem(urdf, method="rk4"):
+def problem(urdf, arm, method):
+    DT, STEPS, HOME = arm["dt"], arm["steps"], np.array(arm["home"])
+    limits = np.array(arm["limits"])
     model = pin.buildModelFromUrdf(urdf)
     model.gravity.linear = np.array([0.0, 0.0, -9.81])
     data = model.createData()
-    tool = model.getFrameId("tool0")
+    tool = model.getFrameId(arm["tool"])
     pin.framesForwardKinematics(model, data, HOME)
-    target = data.oMf[tool].translation + np.array([0.1, 0.15, -0.05])
+    target = data.oMf[tool].translation + np.array(arm["offset"])
     u_g = pin.computeGeneralizedGravity(model, data, HOME)
     state = crocoddyl.StateMultibody(model)
     actuation = crocoddyl.ActuationModelFull(state)
     nu = actuation.nu
-    speeds = np.array([0.0] * 6 + [1.0] * 6)
+    speeds = np.array([0.0] * model.nv + [1.0] * model.nv)
 
     def weighted_state(weights):
         activation = crocoddyl.ActivationModelWeightedQuad(weights)
-        residual = crocoddyl.ResidualModelState(state, np.zeros(12), nu)
+        residual = crocoddyl.ResidualModelState(state, np.zeros(2 * model.nv), nu)
         return crocoddyl.CostModelResidual(state, activation, residual)
 
     running = crocoddyl.CostModelSum(state, nu)
@@ -68,12 +93,12 @@ def problem(urdf, method="rk4"):
         step = crocoddyl.IntegratedActionModelRK(dynamics, crocoddyl.RKType.four, DT)
     else:
         step = crocoddyl.IntegratedActionModelEuler(dynamics, DT)
-    step.u_lb = -LIMIT * np.ones(nu)
-    step.u_ub = LIMIT * np.ones(nu)
+    step.u_lb = -limits
+    step.u_ub = limits
     end = crocoddyl.IntegratedActionModelEuler(
         crocoddyl.DifferentialActionModelFreeFwdDynamics(state, actuation, final), 0.0
     )
-    x0 = np.concatenate([HOME, np.zeros(6)])
+    x0 = np.concatenate([HOME, np.zeros(model.nv)])
     shooting = crocoddyl.ShootingProblem(x0, [step] * STEPS, end)
     # One thread, as the other side: on a shared two-core machine its
     # OpenMP threads made each pass twenty times slower.
@@ -84,7 +109,7 @@ def problem(urdf, method="rk4"):
 def solve(shooting, u_g, iterations):
     solver = crocoddyl.SolverBoxFDDP(shooting)
     solver.th_stop = 1e-12
-    us = [u_g.copy() for _ in range(STEPS)]
+    us = [u_g.copy() for _ in range(shooting.T)]
     xs = shooting.rollout(us)
     start = time.perf_counter()
     solver.solve(xs, us, iterations, True)
@@ -97,9 +122,10 @@ def main():
     parser.add_argument("--iterations", type=int, default=200)
     parser.add_argument("--repeats", type=int, default=20)
     parser.add_argument("--out")
-    parser.add_argument("--method", choices=["rk4", "euler"], default="rk4")
+    parser.add_argument("--method", choices=["rk4", "euler"], default="euler")
+    parser.add_argument("--arm", choices=sorted(ARMS), default="ur5")
     args = parser.parse_args()
-    shooting, u_g = problem(args.urdf, args.method)
+    shooting, u_g = problem(args.urdf, ARMS[args.arm], args.method)
     times = []
     for _ in range(args.repeats):
         solver, seconds = solve(shooting, u_g, args.iterations)
