@@ -14,6 +14,7 @@ mod atlas;
 mod configuration;
 mod constrained;
 mod contact;
+mod derivatives;
 mod form;
 pub mod physical;
 mod route;
@@ -22,6 +23,7 @@ pub use atlas::{Atlas, DrivenAtlas, EulerRotation, FreeVisitor};
 pub use configuration::Configuration;
 pub use constrained::{Constrained, Reduced};
 pub use contact::{ContactKind, ContactLaw, ContactRows, Contacts};
+pub use derivatives::AccelerationDerivatives;
 pub use form::FormVisitor;
 pub use route::{ForwardRoute, Route};
 
@@ -448,6 +450,23 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
         t: T,
     ) -> Option<(SMatrix<T, N, N>, SMatrix<T, N, N>)> {
         let _ = (q, v, a, t);
+        None
+    }
+
+    /// q̈ = M⁻¹(Q − h + τ), its derivatives and M's pivot ratio from the one
+    /// program `emit(jacobians)` emits, unchecked: the
+    /// [`Differentiable`](crate::Differentiable) trait's, reached from code
+    /// generic over any system (a `Transition`'s stages). `None` (the
+    /// default) where the system does not emit it.
+    #[doc(hidden)]
+    fn emitted_derivatives(
+        &self,
+        q: &SVector<T, Q>,
+        v: &SVector<T, N>,
+        tau: &SVector<T, N>,
+        t: T,
+    ) -> Option<(AccelerationDerivatives<T, N>, T)> {
+        let _ = (q, v, tau, t);
         None
     }
 

@@ -13,21 +13,8 @@ use super::forcing::{Forcing, NoForcing};
 use crate::error::{Error, check_finite_inputs};
 use crate::numeric::Real;
 use crate::numeric::cholesky::Cholesky;
+pub use crate::system::AccelerationDerivatives;
 use crate::system::{Driven, Lagrangian};
-
-/// q̈ = M⁻¹(Q − h + τ) at a state and its derivatives, N × N each.
-#[derive(Clone, Debug, PartialEq)]
-pub struct AccelerationDerivatives<T, const N: usize> {
-    /// q̈ itself, at the τ the derivatives were taken at.
-    pub acceleration: SVector<T, N>,
-    /// ∂q̈/∂δ: along q ⊕ δ (∂q̈/∂q without orientations), at fixed q̇.
-    pub dq: SMatrix<T, N, N>,
-    /// ∂q̈/∂q̇.
-    pub dv: SMatrix<T, N, N>,
-    /// ∂q̈/∂τ = M⁻¹, for generalized forces τ added to Q (joint torques of
-    /// a robot; for an orientation, a torque in its body axes).
-    pub dtau: SMatrix<T, N, N>,
-}
 
 /// q̈ of a driven system at (q, q̇, u, t) and its derivatives: what one
 /// stage of a discrete step needs, on the stack.
@@ -145,9 +132,12 @@ where
 impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
     /// q̈ = M⁻¹(Q − h + ΔQ(u)) of a driven system at (q, q̇, u, t) and
     /// ∂q̈/∂q (with orientations ∂q̈/∂δ, along q ⊕ δ, the inputs' own
-    /// Jacobians taken so by the derive), ∂q̈/∂q̇, ∂q̈/∂u, from one factorisation of M
-    /// and the system's emitted Jacobians ([`Lagrangian::rhs_jacobians`] and
-    /// [`Driven::input_jacobians`]), on the stack: nothing is allocated,
+    /// Jacobians taken so by the derive), ∂q̈/∂q̇, ∂q̈/∂u: from the one
+    /// program of q̈ and its derivatives where the system emits it
+    /// ([`Differentiable`]: M factorised in it, its M⁻¹ applied to the
+    /// inputs' Jacobians, [`Driven::input_jacobians`]), else from one
+    /// factorisation of M and the emitted Jacobians
+    /// ([`Lagrangian::rhs_jacobians`]); on the stack: nothing is allocated,
     /// named or checked beyond the state and the result (the parameters are
     /// not: check them once, before a loop). `Ok(None)` when the system
     /// does not emit its Jacobians (`emit(jacobians)`).
@@ -170,18 +160,39 @@ impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
         let (unit, _) = self.checked(t, q, v)?;
         let system = self.system();
         let tau = system.input_forces(&unit, v, u, t);
-        let (chol, acceleration) = self.factorised(t, &unit, v, tau)?;
-        let Some((jq, jv)) = system.rhs_jacobians(&unit, v, &acceleration, t) else {
-            return Ok(None);
-        };
         let (bu, fq, fv) = system.input_jacobians(&unit, v, u, t);
-        let d = InputDerivatives {
-            acceleration,
-            dq: chol.solve_columns(jq + fq),
-            dv: chol.solve_columns(jv + fv),
-            du: chol.solve_columns(bu),
+        let d = if let Some((d, ratio)) = system.emitted_derivatives(&unit, v, &tau, t) {
+            // The one program (M factorised in it): ∂q̈/∂(q, q̇) at fixed τ,
+            // and M⁻¹ for the inputs' own Jacobians.
+            if !ratio.is_finite() || ratio < self.singular_tolerance() {
+                let m = system.mass_matrix(&unit, t);
+                let names = (&S::VELOCITIES[..], S::ATLAS);
+                return Err(Error::singular_mass(t, q, ratio, &m, names));
+            }
+            InputDerivatives {
+                acceleration: d.acceleration,
+                dq: d.dq + d.dtau * fq,
+                dv: d.dv + d.dtau * fv,
+                du: d.dtau * bu,
+            }
+        } else {
+            let (chol, acceleration) = self.factorised(t, &unit, v, tau)?;
+            let Some((jq, jv)) = system.rhs_jacobians(&unit, v, &acceleration, t) else {
+                return Ok(None);
+            };
+            InputDerivatives {
+                acceleration,
+                dq: chol.solve_columns(jq + fq),
+                dv: chol.solve_columns(jv + fv),
+                du: chol.solve_columns(bu),
+            }
         };
-        let parts = [d.dq.as_slice(), d.dv.as_slice(), d.du.as_slice()];
+        let parts = [
+            d.acceleration.as_slice(),
+            d.dq.as_slice(),
+            d.dv.as_slice(),
+            d.du.as_slice(),
+        ];
         if !parts.iter().all(|p| all_finite(p)) {
             return Err(Error::non_finite(t, q, v));
         }

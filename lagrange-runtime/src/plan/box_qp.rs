@@ -20,6 +20,9 @@ pub(super) struct BoxSolution {
     pub factor: Option<Cholesky<f64, Dyn>>,
 }
 
+/// A free set and the Cholesky factor of H on it.
+type FreeFactor = (Vec<usize>, Option<Cholesky<f64, Dyn>>);
+
 /// Solves the box QP from `start` (clamped into the box); `None` if H is not
 /// positive definite on the free inputs (the caller raises the
 /// regularisation).
@@ -34,10 +37,15 @@ pub(super) fn solve(
     let clamp = |x: &DVector<f64>| DVector::from_fn(n, |i, _| x[i].clamp(lower[i], upper[i]));
     let value = |x: &DVector<f64>| 0.5 * x.dot(&(h * x)) + g.dot(x);
     let mut x = clamp(start);
+    // The last iterate's free set and factor, kept while the set stays.
+    let mut held: Option<FreeFactor> = None;
     for _ in 0..100 {
         let grad = g + h * &x;
         let free = free_at(&grad, lower, upper, &x);
-        let factor = factor_free(h, &free)?;
+        let factor = match held.take() {
+            Some((last, factor)) if last == free => factor,
+            _ => factor_free(h, &free)?,
+        };
         let Some(chol) = &factor else {
             return Some(BoxSolution { x, free, factor });
         };
@@ -68,10 +76,18 @@ pub(super) fn solve(
         let improvement = f0 - value(&next);
         x = next;
         if improvement <= 1e-14 * (1.0 + f0.abs()) {
-            let free = free_at(&(g + h * &x), lower, upper, &x);
-            let factor = factor_free(h, &free)?;
-            return Some(BoxSolution { x, free, factor });
+            let free_now = free_at(&(g + h * &x), lower, upper, &x);
+            let factor = match free_now == free {
+                true => factor,
+                false => factor_free(h, &free_now)?,
+            };
+            return Some(BoxSolution {
+                x,
+                free: free_now,
+                factor,
+            });
         }
+        held = Some((free, factor));
     }
     let free = free_at(&(g + h * &x), lower, upper, &x);
     let factor = factor_free(h, &free)?;

@@ -21,6 +21,7 @@ use super::passes::{
 use super::problem::{OptimalControl, split};
 use super::progress::Ticker;
 use crate::error::{Error, Failure, PlanError, Progress, SettingsError};
+use crate::linear::StepDerivatives;
 use crate::system::Driven;
 use nalgebra::{DMatrix, DVector, SVector};
 
@@ -118,6 +119,10 @@ impl Default for Ddp {
 const MU_MIN: f64 = 1e-9;
 const MU_MAX: f64 = 1e10;
 
+/// Below this fraction of the cost (and of 1) a change of the cost is
+/// round-off (see [`Ddp::tolerance`]).
+const COST_ROUND_OFF: f64 = 1e-13;
+
 impl Ddp {
     /// The default settings.
     pub fn new() -> Self {
@@ -138,7 +143,13 @@ impl Ddp {
     }
 
     /// Converged when no backward pass asks any input to change by more than
-    /// this (positive and finite).
+    /// this (positive and finite), or when no step of the line search
+    /// lowers the cost and a full one was predicted to lower it by no more
+    /// than its round-off (10⁻¹³ of it; with the gaps closed and the
+    /// regularisation at most its initial value): a tolerance tighter than
+    /// the cost can resolve ends there, where the line search can no longer
+    /// tell a better plan, rather than in regularisation raised until the
+    /// steps vanish.
     pub fn tolerance(mut self, tolerance: f64) -> Self {
         self.tolerance = tolerance;
         self
@@ -269,21 +280,20 @@ impl Ddp {
                 }
             };
             let stationarity = largest(&backward.feedforward);
-            if stationarity <= self.tolerance && nominal.gap() <= self.gap_tolerance {
+            let feasible = nominal.gap() <= self.gap_tolerance;
+            if feasible && stationarity <= self.tolerance {
                 log.push(self.record(&ticker, &nominal, stationarity, 0.0, mu, 0.0));
-                // The gains without the regularisation's bias where Q_uu allows.
-                let exact = (mu > 0.0)
-                    .then(|| backward_pass(problem, &nominal, &derivatives, 0.0, Some(&backward)))
-                    .and_then(Result::ok)
-                    .flatten();
-                let gains = exact.map_or(backward.gains, |b| b.gains);
-                return Ok(plan(problem, nominal, gains, log));
+                return Ok(finish(problem, nominal, (&derivatives, backward, mu), log));
             }
             match line_search(problem, &nominal, &backward) {
                 Some((next, alpha, expected)) => {
                     nominal = next;
                     log.push(self.record(&ticker, &nominal, stationarity, alpha, mu, expected));
                     mu = if mu / 10.0 < MU_MIN { 0.0 } else { mu / 10.0 };
+                }
+                None if feasible && self.settled(&nominal, &backward, mu) => {
+                    log.push(self.record(&ticker, &nominal, stationarity, 0.0, mu, 0.0));
+                    return Ok(finish(problem, nominal, (&derivatives, backward, mu), log));
                 }
                 None if mu * 10.0 > MU_MAX => {
                     let why = "no step of the line search lowers the cost";
@@ -305,6 +315,14 @@ impl Ddp {
             gap: nominal.gap(),
         };
         Err(self.fail(problem, &nominal, &last, &log, e.into()))
+    }
+
+    /// Whether a full step would change the cost by its round-off only (see
+    /// [`Ddp::tolerance`]), the regularisation at most its initial value.
+    fn settled(&self, nominal: &Nominal, backward: &Backward, mu: f64) -> bool {
+        let (along, curvature) = backward.expected;
+        let full_step = -(along + curvature);
+        mu <= self.regularization && full_step.abs() <= COST_ROUND_OFF * (1.0 + nominal.cost.abs())
     }
 
     fn check(&self, guesses: usize, steps: usize) -> Result<(), Error> {
@@ -442,6 +460,25 @@ where
         alpha *= 0.5;
     }
     None
+}
+
+/// The converged plan, with the gains of a backward pass without the
+/// regularisation's bias where Q_uu allows.
+fn finish<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
+    nominal: Nominal,
+    (derivatives, backward, mu): (&[StepDerivatives<N, Q>], Backward, f64),
+    log: Vec<Iteration>,
+) -> Plan<N, P, Q>
+where
+    S: Driven<f64, N, P, Q>,
+{
+    let exact = (mu > 0.0)
+        .then(|| backward_pass(problem, &nominal, derivatives, 0.0, Some(&backward)))
+        .and_then(Result::ok)
+        .flatten();
+    let gains = exact.map_or(backward.gains, |b| b.gains);
+    plan(problem, nominal, gains, log)
 }
 
 /// The plan of a nominal trajectory.

@@ -180,17 +180,29 @@ where
     // taken so, not measured, a full step leaves no round-off behind.
     let x0 = problem.plus(&nominal.xs[0], &(&nominal.gaps[0] * alpha));
     let mut gaps = vec![&nominal.gaps[0] * (1.0 - alpha)];
-    let mut xs = vec![x0];
+    let mut xs = Vec::with_capacity(problem.steps + 1);
+    xs.push(x0);
     let mut us = Vec::with_capacity(problem.steps);
+    let mut input = DVector::zeros(P);
     for k in 0..problem.steps {
         let x = &xs[k];
         let deviation = problem.minus(x, &nominal.xs[k]);
-        let shift = &backward.feedforward[k] * alpha + &backward.gains[k] * deviation;
-        let u = problem.clamp(&(&nominal.us[k] + shift));
+        // ū + α k + K (x − x̄), in place.
+        input.copy_from(&nominal.us[k]);
+        input.axpy(alpha, &backward.feedforward[k], 1.0);
+        gemv(&mut input, 1.0, &backward.gains[k], &deviation, 1.0);
+        let u = problem.clamp(&input);
         let next = step(problem, k, x, &u)?;
-        let left = &nominal.gaps[k + 1] * (1.0 - alpha);
-        xs.push(problem.plus(&next, &-&left));
-        gaps.push(left);
+        let gap = &nominal.gaps[k + 1];
+        // A closed gap (every step of a rollout) leaves the step's state as it is.
+        if gap.amax() == 0.0 {
+            xs.push(next);
+            gaps.push(DVector::zeros(gap.len()));
+        } else {
+            let left = gap * (1.0 - alpha);
+            xs.push(problem.plus(&next, &-&left));
+            gaps.push(left);
+        }
         us.push(u);
     }
     let cost = problem.cost(&xs, &us);
@@ -345,13 +357,19 @@ impl Scratch {
         vxx.copy_from(&self.qxx);
         gemm(vxx, 1.0, &self.gain_t, &self.closed, 1.0);
         gemm(vxx, 1.0, &self.qux_t, gain, 1.0);
-        let n = vxx.nrows();
-        for j in 0..n {
-            for i in 0..j {
-                let mean = 0.5 * (vxx[(i, j)] + vxx[(j, i)]);
-                vxx[(i, j)] = mean;
-                vxx[(j, i)] = mean;
-            }
+        symmetrise(vxx);
+    }
+}
+
+/// A square matrix replaced by the mean of it and its transpose.
+fn symmetrise(a: &mut DMatrix<f64>) {
+    let n = a.nrows();
+    let data = a.as_mut_slice();
+    for j in 0..n {
+        for i in 0..j {
+            let mean = 0.5 * (data[i + j * n] + data[j + i * n]);
+            data[i + j * n] = mean;
+            data[j + i * n] = mean;
         }
     }
 }
@@ -392,13 +410,18 @@ where
             return Ok(None);
         };
         let gain = &mut gains[k];
+        // K = −Q̃_uu⁻¹ Q̃_ux on the free inputs (zero on the clamped): the
+        // inverse of the free block (|free| solves) times Q̃_ux's rows.
         if let Some(chol) = &qp.factor {
-            let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| s.reg_ux[(qp.free[i], j)]);
-            let free_gain = -chol.solve(&rows);
-            qp.free
-                .iter()
-                .enumerate()
-                .for_each(|(i, &r)| gain.set_row(r, &free_gain.row(i)));
+            let inverse = chol.inverse();
+            if qp.free.len() == P {
+                gemm(gain, -1.0, &inverse, &s.reg_ux, 0.0);
+            } else {
+                let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| s.reg_ux[(qp.free[i], j)]);
+                let mut free_gain = DMatrix::zeros(qp.free.len(), n2);
+                gemm(&mut free_gain, -1.0, &inverse, &rows, 0.0);
+                (qp.free.iter().enumerate()).for_each(|(i, &r)| gain.set_row(r, &free_gain.row(i)));
+            }
         }
         let kff = qp.x;
         s.value(gain, &kff, (&mut vx, &mut vxx));

@@ -61,7 +61,14 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
             }
         }
     };
+    // The same program reached from code generic over any system.
+    let lagrangian = quote! {
+        fn emitted_derivatives(&self, q: &#qvec, v: &#vec_n, tau: &#vec_n, t: #s) -> ::core::option::Option<(#p::AccelerationDerivatives<#s, #n>, #s)> {
+            ::core::option::Option::Some(<Self as #p::Differentiable<#s, #sizes>>::acceleration_derivatives_unchecked(self, q, v, tau, t))
+        }
+    };
     Pieces {
+        lagrangian,
         items,
         // Beside M's pieces, in the impl that allows generated code's lints.
         hoisted: chunks,
