@@ -149,26 +149,39 @@ where
     .input_bounds(-limit, limit);
     let solver = Ddp::new().max_iterations(iterations).tolerance(1e-9);
     let guess = vec![hold.u; reach.steps];
-    let once = || -> (Plan<N, N>, f64) {
-        let clock = Instant::now();
-        let plan = match solver.solve(&problem, &guess) {
-            Ok(plan) => plan,
-            // Out of iterations (a fixed count asked for) or stalled: the
-            // best plan, as Crocoddyl returns its last iterate.
-            Err(failure) => *failure.partial,
-        };
-        (plan, clock.elapsed().as_secs_f64())
-    };
+    let (plan, median) = time_solves(repeats, || match solver.solve(&problem, &guess) {
+        Ok(plan) => plan,
+        // Out of iterations (a fixed count asked for) or stalled: the best
+        // plan, as Crocoddyl returns its last iterate.
+        Err(failure) => *failure.partial,
+    });
+    report(&plan, median)
+}
+
+/// The last of `repeats` solves and the median time of one, in seconds.
+fn time_solves<const N: usize>(
+    repeats: usize,
+    solve: impl Fn() -> Plan<N, N>,
+) -> (Plan<N, N>, f64) {
     let mut times = Vec::with_capacity(repeats);
     let mut last = None;
     for _ in 0..repeats.max(1) {
-        let (plan, seconds) = once();
-        times.push(seconds);
+        let clock = Instant::now();
+        let plan = solve();
+        times.push(clock.elapsed().as_secs_f64());
         last = Some(plan);
     }
     times.sort_by(f64::total_cmp);
     let median = times[times.len() / 2];
-    let plan = last.ok_or("no solve")?;
+    (last.expect("at least one solve"), median)
+}
+
+/// Prints the log (`--log yes`) and the line `arm_reach.py` prints, and
+/// writes the inputs to `--out`.
+fn report<const N: usize>(
+    plan: &Plan<N, N>,
+    median: f64,
+) -> Result<(), Box<dyn std::error::Error>> {
     if option("--log", "no") == "yes" {
         for (k, it) in plan.log.iter().enumerate() {
             eprintln!(
