@@ -254,6 +254,32 @@ impl<'a, S> Transition<'a, S> {
         })
     }
 
+    /// Semi-implicit Euler's one stage's q̈ derivatives in the plane, from
+    /// which ∂F/∂x = P + B [A_q A_v] and ∂F/∂u = B A_u
+    /// (B = [h² I; h I], P = [[I, h I], [0, I]]): what DDP's backward pass
+    /// multiplies by in place of the dense matrices, at half the work.
+    /// `None` for RK4, for orientations and through the linearizer, where
+    /// [`derivatives`](Self::derivatives) is the only form.
+    ///
+    /// # Errors
+    /// As [`derivatives`](Self::derivatives).
+    pub(crate) fn euler_stage<const N: usize, const P: usize, const Q: usize>(
+        &self,
+        q: &SVector<f64, Q>,
+        v: &SVector<f64, N>,
+        u: &SVector<f64, P>,
+        t: f64,
+    ) -> Result<Option<InputDerivatives<f64, N, P>>, Error>
+    where
+        S: Driven<f64, N, P, Q>,
+    {
+        let plane = S::ORIENTATIONS.is_empty();
+        if self.method != StepMethod::SemiImplicitEuler || !plane || self.through_linearizer {
+            return Ok(None);
+        }
+        self.stage_derivatives(q, v, u, t).map(Some)
+    }
+
     /// One stage's q̈ and ∂q̈/∂(q, q̇, u): the system's emitted Jacobians
     /// where it has them, else central differences of q̈ (the step rule of
     /// every numerical linearisation; along q ⊕ δ with orientations) and

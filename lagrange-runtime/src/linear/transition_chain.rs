@@ -104,8 +104,14 @@ pub(super) fn semi_implicit<const N: usize, const P: usize>(
     d: &InputDerivatives<f64, N, P>,
     h: f64,
 ) -> (DMatrix<f64>, DMatrix<f64>) {
-    let (x_q, x_v) = (Rows::identity(true), Rows::identity(false));
-    let dv = x_v.plus(h, &acceleration_rows(d, &x_q, &x_v));
-    let dq = x_q.plus(h, &dv);
+    // dq̈ = A_q dq + A_v dv + A_u du at the step's start: its rows are the
+    // derivatives themselves, with nothing to multiply.
+    let accel = Rows {
+        q: d.dq,
+        v: d.dv,
+        u: d.du,
+    };
+    let dv = Rows::identity(false).plus(h, &accel);
+    let dq = Rows::identity(true).plus(h, &dv);
     assemble(&dq, &dv)
 }

@@ -14,14 +14,14 @@
 //! need not satisfy the dynamics, and the passes carry its gaps until a
 //! full step closes them (see `passes`).
 
+use super::expansion::StepJacobian;
 use super::passes::{
-    Backward, Nominal, backward_pass, forward, from_guess, largest, linearise, predicted_decrease,
+    Backward, Nominal, backward_pass, forward, from_guess, jacobians, largest, predicted_decrease,
     rollout,
 };
 use super::problem::{OptimalControl, split};
 use super::progress::Ticker;
 use crate::error::{Error, Failure, PlanError, Progress, SettingsError};
-use crate::linear::StepDerivatives;
 use crate::system::Driven;
 use nalgebra::{DMatrix, DVector, SVector};
 
@@ -266,7 +266,7 @@ impl Ddp {
                 self.fail(problem, nominal, last, log, e)
             };
             let derivatives =
-                linearise(problem, &nominal).map_err(|e| fail(e, &last, &log, &nominal))?;
+                jacobians(problem, &nominal).map_err(|e| fail(e, &last, &log, &nominal))?;
             let backward = loop {
                 let pass = backward_pass(problem, &nominal, &derivatives, mu, last.as_ref());
                 match pass.map_err(|e| fail(e, &last, &log, &nominal))? {
@@ -467,7 +467,7 @@ where
 fn finish<S, const N: usize, const P: usize, const Q: usize>(
     problem: &OptimalControl<S, N, P, Q>,
     nominal: Nominal,
-    (derivatives, backward, mu): (&[StepDerivatives<N, Q>], Backward, f64),
+    (derivatives, backward, mu): (&[StepJacobian], Backward, f64),
     log: Vec<Iteration>,
 ) -> Plan<N, P, Q>
 where

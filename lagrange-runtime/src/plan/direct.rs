@@ -21,7 +21,9 @@
 
 use super::ddp::{Iteration, Plan};
 use super::direct_qp::{self, Linearised, Unsolved, offsets};
-use super::passes::{Nominal, backward_pass, from_guess, guessed, largest, linearise, rollout};
+use super::passes::{
+    Nominal, backward_pass, from_guess, guessed, jacobians, largest, linearise, rollout,
+};
 use super::problem::OptimalControl;
 use crate::error::{Error, Failure, PlanError, SettingsError};
 use crate::system::Driven;
@@ -505,7 +507,7 @@ where
     S: Driven<f64, N, P>,
 {
     let gains = (converged && !problem.constrains_states())
-        .then(|| linearise(problem, nominal).ok())
+        .then(|| jacobians(problem, nominal).ok())
         .flatten()
         .and_then(|d| {
             backward_pass(problem, nominal, &d, 0.0, None)

@@ -40,6 +40,7 @@ mod ddp;
 mod direct;
 #[cfg(feature = "direct")]
 mod direct_qp;
+mod expansion;
 mod mpc;
 mod passes;
 mod problem;

@@ -27,10 +27,9 @@
 //! the gaps are closed, where the plan converges).
 
 use super::box_qp;
-use super::cost::CostModel;
+use super::expansion::{Expansion, StepJacobian};
 use super::problem::{OptimalControl, split, state};
 use crate::error::{Error, SettingsError};
-use crate::linear::StepDerivatives;
 use crate::numeric::products::{gemm, gemv};
 use crate::system::Driven;
 use nalgebra::{DMatrix, DVector, SVector};
@@ -233,11 +232,39 @@ where
     -change
 }
 
-/// ∂F/∂x and ∂F/∂u at every step of the plan.
+/// ∂F/∂x and ∂F/∂u at every step of the plan, as the backward pass reads
+/// them: a semi-implicit Euler step in the plane by its stage's q̈
+/// derivatives (see `expansion`), any other dense.
+pub(super) fn jacobians<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
+    nominal: &Nominal,
+) -> Result<Vec<StepJacobian>, Error>
+where
+    S: Driven<f64, N, P, Q>,
+{
+    let transition = &problem.transition;
+    (0..problem.steps)
+        .map(|k| {
+            let (q, v) = split::<N, Q>(&nominal.xs[k]);
+            let u = SVector::from_column_slice(nominal.us[k].as_slice());
+            let t = problem.time(k);
+            Ok(match transition.euler_stage(&q, &v, &u, t)? {
+                Some(d) => StepJacobian::euler(transition.h(), &d),
+                None => {
+                    let d = transition.derivatives(&q, &v, &u, t)?;
+                    StepJacobian::dense(d.dx, d.du)
+                }
+            })
+        })
+        .collect()
+}
+
+/// ∂F/∂x and ∂F/∂u at every step of the plan, dense.
+#[cfg(feature = "direct")]
 pub(super) fn linearise<S, const N: usize, const P: usize, const Q: usize>(
     problem: &OptimalControl<S, N, P, Q>,
     nominal: &Nominal,
-) -> Result<Vec<StepDerivatives<N, Q>>, Error>
+) -> Result<Vec<crate::linear::StepDerivatives<N, Q>>, Error>
 where
     S: Driven<f64, N, P, Q>,
 {
@@ -250,137 +277,13 @@ where
         .collect()
 }
 
-/// The products one step of the backward pass writes, allocated once a
-/// pass and overwritten step by step (`numeric::products` writes in place;
-/// a product Aᵀ B is taken as A B with Aᵀ copied out first, V_xx and Q_uu
-/// being symmetric).
-struct Scratch {
-    fx_t: DMatrix<f64>,
-    fu_t: DMatrix<f64>,
-    vxx_fx: DMatrix<f64>,
-    vxx_fu: DMatrix<f64>,
-    qx: DVector<f64>,
-    qu: DVector<f64>,
-    qxx: DMatrix<f64>,
-    quu: DMatrix<f64>,
-    qux: DMatrix<f64>,
-    reg_uu: DMatrix<f64>,
-    reg_ux: DMatrix<f64>,
-    gain_t: DMatrix<f64>,
-    qux_t: DMatrix<f64>,
-    /// Q_uu K + Q_ux.
-    closed: DMatrix<f64>,
-    /// Q_uu k + Q_u.
-    step_change: DVector<f64>,
-}
-
-impl Scratch {
-    fn new(n2: usize, p: usize) -> Self {
-        let (square, tall, wide) = (
-            DMatrix::zeros(n2, n2),
-            DMatrix::zeros(n2, p),
-            DMatrix::zeros(p, n2),
-        );
-        Scratch {
-            fx_t: square.clone(),
-            fu_t: wide.clone(),
-            vxx_fx: square.clone(),
-            vxx_fu: tall.clone(),
-            qx: DVector::zeros(n2),
-            qu: DVector::zeros(p),
-            qxx: square,
-            quu: DMatrix::zeros(p, p),
-            qux: wide.clone(),
-            reg_uu: DMatrix::zeros(p, p),
-            reg_ux: wide.clone(),
-            gain_t: tall.clone(),
-            qux_t: tall,
-            closed: wide,
-            step_change: DVector::zeros(p),
-        }
-    }
-
-    /// Q's derivatives at a step from the cost's model, the step's
-    /// derivatives and the value function (V_x, V_xx) after it; the
-    /// regularised Q̃_uu = Q_uu + μ f_uᵀf_u and Q̃_ux = Q_ux + μ f_uᵀf_x
-    /// (Tassa, Erez and Todorov 2012: V_xx + μI, which keeps the new states
-    /// near the nominal's).
-    fn expand(
-        &mut self,
-        l: &CostModel,
-        (fx, fu): (&DMatrix<f64>, &DMatrix<f64>),
-        (vx, vxx): (&DVector<f64>, &DMatrix<f64>),
-        mu: f64,
-    ) {
-        fx.transpose_to(&mut self.fx_t);
-        fu.transpose_to(&mut self.fu_t);
-        gemm(&mut self.vxx_fx, 1.0, vxx, fx, 0.0);
-        gemm(&mut self.vxx_fu, 1.0, vxx, fu, 0.0);
-        self.qx.copy_from(&l.lx);
-        gemv(&mut self.qx, 1.0, &self.fx_t, vx, 1.0);
-        self.qu.copy_from(&l.lu);
-        gemv(&mut self.qu, 1.0, &self.fu_t, vx, 1.0);
-        self.qxx.copy_from(&l.lxx);
-        gemm(&mut self.qxx, 1.0, &self.fx_t, &self.vxx_fx, 1.0);
-        self.quu.copy_from(&l.luu);
-        gemm(&mut self.quu, 1.0, &self.fu_t, &self.vxx_fu, 1.0);
-        self.qux.copy_from(&l.lux);
-        gemm(&mut self.qux, 1.0, &self.fu_t, &self.vxx_fx, 1.0);
-        self.reg_uu.copy_from(&self.quu);
-        self.reg_ux.copy_from(&self.qux);
-        if mu != 0.0 {
-            gemm(&mut self.reg_uu, mu, &self.fu_t, fu, 1.0);
-            gemm(&mut self.reg_ux, mu, &self.fu_t, fx, 1.0);
-        }
-    }
-
-    /// The value function before the step from the true Q (so that it
-    /// stays bounded as μ grows: with Q̃ in it, V_xx would lose μ f_xᵀ P f_x
-    /// a step, P a projection, and raising μ would make matters worse):
-    /// V_x = Q_x + Kᵀ(Q_uu k + Q_u) + Q_uxᵀ k and
-    /// V_xx = Q_xx + Kᵀ(Q_uu K + Q_ux) + Q_uxᵀ K, symmetrised.
-    fn value(
-        &mut self,
-        gain: &DMatrix<f64>,
-        kff: &DVector<f64>,
-        (vx, vxx): (&mut DVector<f64>, &mut DMatrix<f64>),
-    ) {
-        self.step_change.copy_from(&self.qu);
-        gemv(&mut self.step_change, 1.0, &self.quu, kff, 1.0);
-        gain.transpose_to(&mut self.gain_t);
-        self.qux.transpose_to(&mut self.qux_t);
-        vx.copy_from(&self.qx);
-        gemv(vx, 1.0, &self.gain_t, &self.step_change, 1.0);
-        gemv(vx, 1.0, &self.qux_t, kff, 1.0);
-        self.closed.copy_from(&self.qux);
-        gemm(&mut self.closed, 1.0, &self.quu, gain, 1.0);
-        vxx.copy_from(&self.qxx);
-        gemm(vxx, 1.0, &self.gain_t, &self.closed, 1.0);
-        gemm(vxx, 1.0, &self.qux_t, gain, 1.0);
-        symmetrise(vxx);
-    }
-}
-
-/// A square matrix replaced by the mean of it and its transpose.
-fn symmetrise(a: &mut DMatrix<f64>) {
-    let n = a.nrows();
-    let data = a.as_mut_slice();
-    for j in 0..n {
-        for i in 0..j {
-            let mean = 0.5 * (data[i + j * n] + data[j + i * n]);
-            data[i + j * n] = mean;
-            data[j + i * n] = mean;
-        }
-    }
-}
-
 /// The backward pass with regularisation μ, warm-starting each box QP from
 /// the last pass's feed-forward; `Ok(None)` if some Q_uu is not positive
 /// definite on its free inputs.
 pub(super) fn backward_pass<S, const N: usize, const P: usize, const Q: usize>(
     problem: &OptimalControl<S, N, P, Q>,
     nominal: &Nominal,
-    derivatives: &[StepDerivatives<N, Q>],
+    jacobians: &[StepJacobian],
     mu: f64,
     last: Option<&Backward>,
 ) -> Result<Option<Backward>, Error>
@@ -398,11 +301,10 @@ where
     let mut feedforward = vec![DVector::zeros(P); steps];
     let mut gains = vec![DMatrix::zeros(P, n2); steps];
     let mut expected = (0.0, 0.0);
-    let mut s = Scratch::new(n2, P);
+    let mut s = Expansion::new(n2, P);
     for k in (0..steps).rev() {
         let l = problem.running_model(k, &nominal.xs[k], &nominal.us[k])?;
-        let fx_fu = (&derivatives[k].dx, &derivatives[k].du);
-        s.expand(&l, fx_fu, (&vx, &vxx), mu);
+        s.expand(&l, &jacobians[k], (&vx, &vxx), mu);
         let start = last.map_or_else(|| DVector::zeros(P), |b| b.feedforward[k].clone());
         let lower = &problem.lower - &nominal.us[k];
         let upper = &problem.upper - &nominal.us[k];

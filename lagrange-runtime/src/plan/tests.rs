@@ -345,11 +345,11 @@ fn a_speed_bound_is_active_as_a_penalty() {
 /// "Q_uu is not positive definite at the largest regularisation".)
 #[test]
 fn the_value_function_stays_bounded_as_the_regularisation_grows() {
-    use super::passes::{backward_pass, linearise, rollout};
+    use super::passes::{backward_pass, jacobians, rollout};
     let problem = swing_up();
     let us = vec![nalgebra::DVector::from_element(1, 1.0); problem.steps()];
     let nominal = rollout(&problem, &us).unwrap();
-    let derivatives = linearise(&problem, &nominal).unwrap();
+    let derivatives = jacobians(&problem, &nominal).unwrap();
     let size = |mu: f64| {
         let pass = backward_pass(&problem, &nominal, &derivatives, mu, None).unwrap();
         let pass = pass.unwrap_or_else(|| panic!("Q̃_uu indefinite at μ = {mu:e}"));
