@@ -91,8 +91,9 @@ pub(super) struct Expansion {
     pub(super) reg_ux: DMatrix<f64>,
     gain_t: DMatrix<f64>,
     qux_t: DMatrix<f64>,
-    /// Q_uu K + Q_ux.
+    /// ½ Q_uu K + Q_ux, and Kᵀ times it.
     closed: DMatrix<f64>,
+    half_value: DMatrix<f64>,
     /// Q_uu k + Q_u.
     pub(super) step_change: DVector<f64>,
 }
@@ -115,7 +116,8 @@ impl Expansion {
             b_fx: DMatrix::zeros(n, n2),
             qx: DVector::zeros(n2),
             qu: DVector::zeros(p),
-            qxx: square,
+            qxx: square.clone(),
+            half_value: square,
             quu: DMatrix::zeros(p, p),
             qux: wide.clone(),
             reg_uu: DMatrix::zeros(p, p),
@@ -243,7 +245,9 @@ impl Expansion {
     /// stays bounded as μ grows: with Q̃ in it, V_xx would lose μ f_xᵀ P f_x
     /// a step, P a projection, and raising μ would make matters worse):
     /// V_x = Q_x + Kᵀ(Q_uu k + Q_u) + Q_uxᵀ k and
-    /// V_xx = Q_xx + Kᵀ(Q_uu K + Q_ux) + Q_uxᵀ K, symmetrised.
+    /// V_xx = Q_xx + Kᵀ Q_uu K + Kᵀ Q_ux + Q_uxᵀ K = Q_xx + E + Eᵀ with
+    /// E = Kᵀ C, C = ½ Q_uu K + Q_ux (one product of 2N × P × 2N where the
+    /// three terms apart take two), symmetrised.
     pub(super) fn value(
         &mut self,
         gain: &DMatrix<f64>,
@@ -258,10 +262,16 @@ impl Expansion {
         gemv(vx, 1.0, &self.gain_t, &self.step_change, 1.0);
         gemv(vx, 1.0, &self.qux_t, kff, 1.0);
         self.closed.copy_from(&self.qux);
-        gemm(&mut self.closed, 1.0, &self.quu, gain, 1.0);
+        gemm(&mut self.closed, 0.5, &self.quu, gain, 1.0);
+        gemm(&mut self.half_value, 1.0, &self.gain_t, &self.closed, 0.0);
         vxx.copy_from(&self.qxx);
-        gemm(vxx, 1.0, &self.gain_t, &self.closed, 1.0);
-        gemm(vxx, 1.0, &self.qux_t, gain, 1.0);
+        *vxx += &self.half_value;
+        let n = vxx.nrows();
+        for j in 0..n {
+            for i in 0..n {
+                vxx[(i, j)] += self.half_value[(j, i)];
+            }
+        }
         symmetrise(vxx);
     }
 }
