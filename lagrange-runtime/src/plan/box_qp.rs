@@ -8,7 +8,9 @@
 //! control-limited DDP (2014) solves it: the inputs at a bound whose gradient
 //! pushes outward are clamped, Newton's step is taken on the others with an
 //! Armijo line search along the projection. The free block's Cholesky factor
-//! comes back for the feedback gains (zero on the clamped inputs).
+//! comes back for the feedback gains (zero on the clamped inputs). Where H
+//! is positive definite and its unconstrained minimiser lies in the box (no
+//! bound binds, the common case), that minimiser is returned at once.
 
 use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
 
@@ -36,9 +38,24 @@ pub(super) fn solve(
     let n = g.len();
     let clamp = |x: &DVector<f64>| DVector::from_fn(n, |i, _| x[i].clamp(lower[i], upper[i]));
     let value = |x: &DVector<f64>| 0.5 * x.dot(&(h * x)) + g.dot(x);
-    let mut x = clamp(start);
     // The last iterate's free set and factor, kept while the set stays.
     let mut held: Option<FreeFactor> = None;
+    // Where the bounds do not bind, the unconstrained minimiser −H⁻¹g is
+    // the answer: one factorisation and one solve, no iteration.
+    let all: Vec<usize> = (0..n).collect();
+    if let Some(chol) = h.clone().cholesky() {
+        let newton = -chol.solve(g);
+        if (0..n).all(|i| lower[i] <= newton[i] && newton[i] <= upper[i]) {
+            let factor = Some(chol);
+            return Some(BoxSolution {
+                x: newton,
+                free: all,
+                factor,
+            });
+        }
+        held = Some((all, Some(chol)));
+    }
+    let mut x = clamp(start);
     for _ in 0..100 {
         let grad = g + h * &x;
         let free = free_at(&grad, lower, upper, &x);

@@ -143,13 +143,14 @@ impl Ddp {
     }
 
     /// Converged when no backward pass asks any input to change by more than
-    /// this (positive and finite), or when no step of the line search
-    /// lowers the cost and a full one was predicted to lower it by no more
-    /// than its round-off (10⁻¹³ of it; with the gaps closed and the
-    /// regularisation at most its initial value): a tolerance tighter than
-    /// the cost can resolve ends there, where the line search can no longer
-    /// tell a better plan, rather than in regularisation raised until the
-    /// steps vanish.
+    /// this (positive and finite), or when a full step is predicted to
+    /// change the cost by no more than its round-off (10⁻¹³ of it; with the
+    /// gaps closed and the regularisation at most its initial value): that
+    /// step is taken without a line search, which could not tell it from
+    /// round-off, and the plan ends there. A tolerance tighter than the cost
+    /// can resolve ends at the cost's optimum this way, rather than in steps
+    /// accepted or refused by round-off, or in regularisation raised until
+    /// the steps vanish.
     pub fn tolerance(mut self, tolerance: f64) -> Self {
         self.tolerance = tolerance;
         self
@@ -285,15 +286,24 @@ impl Ddp {
                 log.push(self.record(&ticker, &nominal, stationarity, 0.0, mu, 0.0));
                 return Ok(finish(problem, nominal, (&derivatives, backward, mu), log));
             }
+            if feasible && self.settled(&nominal, &backward, mu) {
+                // The cost cannot judge a step this small, so no line search
+                // can: the model's full step is taken, and the plan ends.
+                let alpha = match full_step(problem, &nominal, &backward) {
+                    Some(next) => {
+                        nominal = next;
+                        1.0
+                    }
+                    None => 0.0,
+                };
+                log.push(self.record(&ticker, &nominal, stationarity, alpha, mu, 0.0));
+                return Ok(finish(problem, nominal, (&derivatives, backward, mu), log));
+            }
             match line_search(problem, &nominal, &backward) {
                 Some((next, alpha, expected)) => {
                     nominal = next;
                     log.push(self.record(&ticker, &nominal, stationarity, alpha, mu, expected));
                     mu = if mu / 10.0 < MU_MIN { 0.0 } else { mu / 10.0 };
-                }
-                None if feasible && self.settled(&nominal, &backward, mu) => {
-                    log.push(self.record(&ticker, &nominal, stationarity, 0.0, mu, 0.0));
-                    return Ok(finish(problem, nominal, (&derivatives, backward, mu), log));
                 }
                 None if mu * 10.0 > MU_MAX => {
                     let why = "no step of the line search lowers the cost";
@@ -317,8 +327,9 @@ impl Ddp {
         Err(self.fail(problem, &nominal, &last, &log, e.into()))
     }
 
-    /// Whether a full step would change the cost by its round-off only (see
-    /// [`Ddp::tolerance`]), the regularisation at most its initial value.
+    /// Whether a full step is predicted to change the cost by its round-off
+    /// only (see [`Ddp::tolerance`]), the regularisation at most its initial
+    /// value.
     fn settled(&self, nominal: &Nominal, backward: &Backward, mu: f64) -> bool {
         let (along, curvature) = backward.expected;
         let full_step = -(along + curvature);
@@ -460,6 +471,21 @@ where
         alpha *= 0.5;
     }
     None
+}
+
+/// The full step of a settled plan, if it stays finite and leaves the cost
+/// within its round-off of the nominal's.
+fn full_step<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
+    nominal: &Nominal,
+    backward: &Backward,
+) -> Option<Nominal>
+where
+    S: Driven<f64, N, P, Q>,
+{
+    let next = forward(problem, nominal, backward, 1.0).ok()?;
+    let round_off = COST_ROUND_OFF * (1.0 + nominal.cost.abs());
+    (next.cost.is_finite() && next.cost <= nominal.cost + round_off).then_some(next)
 }
 
 /// The converged plan, with the gains of a backward pass without the

@@ -132,18 +132,18 @@ fn a_pendulum_swings_up_under_a_torque_below_its_weight() {
     const { assert!(G > 3.0) };
 }
 
-/// A tolerance tighter than the cost can resolve: the solve ends where no
-/// step lowers the cost and a full one was predicted to change it by
-/// round-off only, converged, at the regularisation it started from (not
-/// raised tenfold an iteration until the input changes vanish), with the
-/// optimum a reachable tolerance gives.
+/// A tolerance tighter than the cost can resolve: the solve ends where a
+/// full step was predicted to change the cost by round-off only, that step
+/// taken without a line search, converged, at the regularisation it started
+/// from (not raised tenfold an iteration until the input changes vanish),
+/// with the optimum a reachable tolerance gives.
 #[test]
 fn a_tolerance_below_the_cost_s_round_off_ends_at_the_optimum() {
     let reachable = Ddp::new().tolerance(1e-7).solve(&swing_up(), &[]).unwrap();
     let plan = Ddp::new().tolerance(1e-15).solve(&swing_up(), &[]).unwrap();
     let last = plan.log.last().unwrap();
     assert!(last.stationarity > 1e-15, "the tolerance was met: {last:?}");
-    assert_eq!(last.step, 0.0, "the last iteration took a step: {last:?}");
+    assert_eq!(last.step, 1.0, "the last iteration's full step: {last:?}");
     assert!(
         last.regularization <= 1e-6,
         "regularisation raised: {last:?}"
