@@ -6,6 +6,7 @@
 //! every index. Here A B adds scaled columns of A (vector registers, no
 //! horizontal sums); a caller wanting Aᵀ B copies Aᵀ out first.
 
+use crate::numeric::func::mul_add;
 use nalgebra::{DMatrix, DVector};
 
 /// c ← α a b + β c (c is not read when β = 0), as c_j = Σ_l b_lj a_l: each
@@ -158,7 +159,8 @@ fn columns<const J: usize>(
 }
 
 /// Σ_l x_jl a[l stride ..][..4 B] for the J columns x_j (k entries each)
-/// of `x`, in B four-row blocks per column, held in registers across l.
+/// of `x`, in B four-row blocks per column, held in registers across l;
+/// each term one fused multiply–add where the build targets FMA.
 fn sums<const B: usize, const J: usize>(
     a: &[f64],
     stride: usize,
@@ -172,7 +174,7 @@ fn sums<const B: usize, const J: usize>(
             let xl = x[j * k + l];
             for (sum, rows) in blocks.iter_mut().zip(column) {
                 for i in 0..4 {
-                    sum[i] += xl * rows[i];
+                    sum[i] = mul_add(xl, rows[i], sum[i]);
                 }
             }
         }

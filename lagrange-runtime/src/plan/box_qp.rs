@@ -8,11 +8,67 @@
 //! control-limited DDP (2014) solves it: the inputs at a bound whose gradient
 //! pushes outward are clamped, Newton's step is taken on the others with an
 //! Armijo line search along the projection. The free block's Cholesky factor
-//! comes back for the feedback gains (zero on the clamped inputs). Where H
-//! is positive definite and its unconstrained minimiser lies in the box (no
-//! bound binds, the common case), that minimiser is returned at once.
+//! comes back for the feedback gains (zero on the clamped inputs).
+//!
+//! `solve_step` is what a step of the backward pass calls: where H is
+//! positive definite and its unconstrained minimiser −H⁻¹g lies in the box
+//! (no bound binds, the common case) that minimiser is the answer, found
+//! by a Cholesky factorisation on the stack with no iteration; otherwise
+//! projected Newton. Either way the free block's inverse comes back, which
+//! the gains K = −H_ff⁻¹ Q_ux read.
 
-use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
+use crate::numeric::cholesky::Cholesky as StackCholesky;
+use nalgebra::{Cholesky, DMatrix, DVector, Dyn, SMatrix, SVector};
+
+/// The minimiser, which inputs are free at it, and the inverse of H on the
+/// free ones (`None` when none is free).
+pub(super) struct StepSolution {
+    pub x: DVector<f64>,
+    pub free: Vec<usize>,
+    pub inverse: Option<DMatrix<f64>>,
+}
+
+/// The box QP of one step of P inputs (see the module notes); `None` if H
+/// is not positive definite on the free inputs.
+pub(super) fn solve_step<const P: usize>(
+    h: &DMatrix<f64>,
+    g: &DVector<f64>,
+    lower: &DVector<f64>,
+    upper: &DVector<f64>,
+    start: &DVector<f64>,
+) -> Option<StepSolution> {
+    if let Some(interior) = interior::<P>(h, g, lower, upper) {
+        return Some(interior);
+    }
+    let solution = solve(h, g, lower, upper, start)?;
+    Some(StepSolution {
+        inverse: solution.factor.map(|chol| chol.inverse()),
+        x: solution.x,
+        free: solution.free,
+    })
+}
+
+/// −H⁻¹g with every input free, if H is positive definite and that point
+/// lies in the box.
+fn interior<const P: usize>(
+    h: &DMatrix<f64>,
+    g: &DVector<f64>,
+    lower: &DVector<f64>,
+    upper: &DVector<f64>,
+) -> Option<StepSolution> {
+    let chol = StackCholesky::new(SMatrix::<f64, P, P>::from_column_slice(h.as_slice()), 0.0).ok()?;
+    let x = -chol.solve(SVector::<f64, P>::from_column_slice(g.as_slice()));
+    let inside = (0..P).all(|i| lower[i] <= x[i] && x[i] <= upper[i]);
+    if !inside {
+        return None;
+    }
+    let inverse = chol.solve_columns(SMatrix::<f64, P, P>::identity());
+    Some(StepSolution {
+        x: DVector::from_column_slice(x.as_slice()),
+        free: (0..P).collect(),
+        inverse: Some(DMatrix::from_column_slice(P, P, inverse.as_slice())),
+    })
+}
 
 /// The minimiser, which inputs are free at it, and the Cholesky factor of H
 /// on the free ones (`None` when none is free).
@@ -40,21 +96,6 @@ pub(super) fn solve(
     let value = |x: &DVector<f64>| 0.5 * x.dot(&(h * x)) + g.dot(x);
     // The last iterate's free set and factor, kept while the set stays.
     let mut held: Option<FreeFactor> = None;
-    // Where the bounds do not bind, the unconstrained minimiser −H⁻¹g is
-    // the answer: one factorisation and one solve, no iteration.
-    let all: Vec<usize> = (0..n).collect();
-    if let Some(chol) = h.clone().cholesky() {
-        let newton = -chol.solve(g);
-        if (0..n).all(|i| lower[i] <= newton[i] && newton[i] <= upper[i]) {
-            let factor = Some(chol);
-            return Some(BoxSolution {
-                x: newton,
-                free: all,
-                factor,
-            });
-        }
-        held = Some((all, Some(chol)));
-    }
     let mut x = clamp(start);
     for _ in 0..100 {
         let grad = g + h * &x;
@@ -185,6 +226,30 @@ mod tests {
                 _ => grad[i].abs() <= 1e-12,
             };
             assert!(ok, "input {i}: x = {}, gradient {}", s.x[i], grad[i]);
+        }
+    }
+
+    /// A step's QP: inside the box the stack factorisation's minimiser and
+    /// inverse; a binding bound goes to projected Newton, whose free block's
+    /// inverse comes back; both as `solve` finds them.
+    #[test]
+    fn a_step_s_qp_is_the_same_inside_and_at_the_bounds() {
+        let h = DMatrix::from_row_slice(3, 3, &[4.0, 1.0, 0.5, 1.0, 3.0, -1.0, 0.5, -1.0, 2.0]);
+        let g = vector(&[-1.0, 0.5, 0.2]);
+        let zero = vector(&[0.0; 3]);
+        for bound in [10.0, 0.43] {
+            let (lo, hi) = (vector(&[-bound; 3]), vector(&[bound; 3]));
+            let step = solve_step::<3>(&h, &g, &lo, &hi, &zero).unwrap();
+            let general = solve(&h, &g, &lo, &hi, &zero).unwrap();
+            assert!((&step.x - &general.x).amax() < 1e-14, "bound {bound}");
+            assert_eq!(step.free, general.free, "bound {bound}");
+            let free = &step.free;
+            let clamped = 3 - free.len();
+            assert_eq!(clamped, usize::from(bound < 1.0), "bound {bound}: free {free:?}");
+            let block = DMatrix::from_fn(free.len(), free.len(), |i, j| h[(free[i], free[j])]);
+            let inverse = step.inverse.unwrap();
+            let identity = DMatrix::identity(free.len(), free.len());
+            assert!((block * inverse - identity).amax() < 1e-14, "bound {bound}");
         }
     }
 

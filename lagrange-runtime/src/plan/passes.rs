@@ -308,20 +308,19 @@ where
         let start = last.map_or_else(|| DVector::zeros(P), |b| b.feedforward[k].clone());
         let lower = &problem.lower - &nominal.us[k];
         let upper = &problem.upper - &nominal.us[k];
-        let Some(qp) = box_qp::solve(&s.reg_uu, &s.qu, &lower, &upper, &start) else {
+        let Some(qp) = box_qp::solve_step::<P>(&s.reg_uu, &s.qu, &lower, &upper, &start) else {
             return Ok(None);
         };
         let gain = &mut gains[k];
         // K = −Q̃_uu⁻¹ Q̃_ux on the free inputs (zero on the clamped): the
-        // inverse of the free block (|free| solves) times Q̃_ux's rows.
-        if let Some(chol) = &qp.factor {
-            let inverse = chol.inverse();
+        // inverse of the free block times Q̃_ux's rows.
+        if let Some(inverse) = &qp.inverse {
             if qp.free.len() == P {
-                gemm(gain, -1.0, &inverse, &s.reg_ux, 0.0);
+                gemm(gain, -1.0, inverse, &s.reg_ux, 0.0);
             } else {
                 let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| s.reg_ux[(qp.free[i], j)]);
                 let mut free_gain = DMatrix::zeros(qp.free.len(), n2);
-                gemm(&mut free_gain, -1.0, &inverse, &rows, 0.0);
+                gemm(&mut free_gain, -1.0, inverse, &rows, 0.0);
                 (qp.free.iter().enumerate()).for_each(|(i, &r)| gain.set_row(r, &free_gain.row(i)));
             }
         }
