@@ -28,19 +28,23 @@ pub(super) struct StepSolution {
     pub inverse: Option<DMatrix<f64>>,
 }
 
-/// The box QP of one step of P inputs (see the module notes); `None` if H
-/// is not positive definite on the free inputs.
+/// The box QP of one step of P inputs (see the module notes), projected
+/// Newton starting from `start` (zero if none); `None` if H is not positive
+/// definite on the free inputs.
 pub(super) fn solve_step<const P: usize>(
     h: &DMatrix<f64>,
     g: &DVector<f64>,
     lower: &DVector<f64>,
     upper: &DVector<f64>,
-    start: &DVector<f64>,
+    start: Option<&DVector<f64>>,
 ) -> Option<StepSolution> {
     if let Some(interior) = interior::<P>(h, g, lower, upper) {
         return Some(interior);
     }
-    let solution = solve(h, g, lower, upper, start)?;
+    let solution = match start {
+        Some(start) => solve(h, g, lower, upper, start)?,
+        None => solve(h, g, lower, upper, &DVector::zeros(P))?,
+    };
     Some(StepSolution {
         inverse: solution.factor.map(|chol| chol.inverse()),
         x: solution.x,
@@ -56,7 +60,8 @@ fn interior<const P: usize>(
     lower: &DVector<f64>,
     upper: &DVector<f64>,
 ) -> Option<StepSolution> {
-    let chol = StackCholesky::new(SMatrix::<f64, P, P>::from_column_slice(h.as_slice()), 0.0).ok()?;
+    let chol =
+        StackCholesky::new(SMatrix::<f64, P, P>::from_column_slice(h.as_slice()), 0.0).ok()?;
     let x = -chol.solve(SVector::<f64, P>::from_column_slice(g.as_slice()));
     let inside = (0..P).all(|i| lower[i] <= x[i] && x[i] <= upper[i]);
     if !inside {
@@ -239,13 +244,17 @@ mod tests {
         let zero = vector(&[0.0; 3]);
         for bound in [10.0, 0.43] {
             let (lo, hi) = (vector(&[-bound; 3]), vector(&[bound; 3]));
-            let step = solve_step::<3>(&h, &g, &lo, &hi, &zero).unwrap();
+            let step = solve_step::<3>(&h, &g, &lo, &hi, Some(&zero)).unwrap();
             let general = solve(&h, &g, &lo, &hi, &zero).unwrap();
             assert!((&step.x - &general.x).amax() < 1e-14, "bound {bound}");
             assert_eq!(step.free, general.free, "bound {bound}");
             let free = &step.free;
             let clamped = 3 - free.len();
-            assert_eq!(clamped, usize::from(bound < 1.0), "bound {bound}: free {free:?}");
+            assert_eq!(
+                clamped,
+                usize::from(bound < 1.0),
+                "bound {bound}: free {free:?}"
+            );
             let block = DMatrix::from_fn(free.len(), free.len(), |i, j| h[(free[i], free[j])]);
             let inverse = step.inverse.unwrap();
             let identity = DMatrix::identity(free.len(), free.len());

@@ -262,12 +262,13 @@ impl Ddp {
         let mut mu = self.regularization;
         let mut log = Vec::new();
         let mut last: Option<Backward> = None;
+        let mut derivatives = Vec::new();
         for iteration in 1..=self.max_iterations {
             let fail = |e, last: &Option<Backward>, log: &[Iteration], nominal: &Nominal| {
                 self.fail(problem, nominal, last, log, e)
             };
-            let derivatives =
-                jacobians(problem, &nominal).map_err(|e| fail(e, &last, &log, &nominal))?;
+            jacobians(problem, &nominal, &mut derivatives)
+                .map_err(|e| fail(e, &last, &log, &nominal))?;
             let backward = loop {
                 let pass = backward_pass(problem, &nominal, &derivatives, mu, last.as_ref());
                 match pass.map_err(|e| fail(e, &last, &log, &nominal))? {

@@ -507,7 +507,10 @@ where
     S: Driven<f64, N, P>,
 {
     let gains = (converged && !problem.constrains_states())
-        .then(|| jacobians(problem, nominal).ok())
+        .then(|| {
+            let mut d = Vec::new();
+            jacobians(problem, nominal, &mut d).ok().map(|()| d)
+        })
         .flatten()
         .and_then(|d| {
             backward_pass(problem, nominal, &d, 0.0, None)

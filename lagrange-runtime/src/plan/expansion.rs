@@ -49,6 +49,32 @@ impl StepJacobian {
         Self::Dense { fx, fu, fx_t, fu_t }
     }
 
+    /// Euler's form written over `self` in place where it already is one
+    /// (the Jacobians of the last iteration's plan), with no allocation.
+    pub(super) fn set_euler<const N: usize, const P: usize>(
+        &mut self,
+        step: f64,
+        d: &InputDerivatives<f64, N, P>,
+    ) {
+        let Self::Euler {
+            h,
+            a,
+            au,
+            a_t,
+            au_t,
+        } = self
+        else {
+            *self = Self::euler(step, d);
+            return;
+        };
+        *h = step;
+        a.fixed_view_mut::<N, N>(0, 0).copy_from(&d.dq);
+        a.fixed_view_mut::<N, N>(0, N).copy_from(&d.dv);
+        au.fixed_view_mut::<N, P>(0, 0).copy_from(&d.du);
+        a.transpose_to(a_t);
+        au.transpose_to(au_t);
+    }
+
     pub(super) fn euler<const N: usize, const P: usize>(
         h: f64,
         d: &InputDerivatives<f64, N, P>,

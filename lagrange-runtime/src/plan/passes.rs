@@ -234,29 +234,36 @@ where
 
 /// ∂F/∂x and ∂F/∂u at every step of the plan, as the backward pass reads
 /// them: a semi-implicit Euler step in the plane by its stage's q̈
-/// derivatives (see `expansion`), any other dense.
+/// derivatives (see `expansion`), any other dense. Written into `into`,
+/// whose matrices of the last iteration are reused where they fit.
 pub(super) fn jacobians<S, const N: usize, const P: usize, const Q: usize>(
     problem: &OptimalControl<S, N, P, Q>,
     nominal: &Nominal,
-) -> Result<Vec<StepJacobian>, Error>
+    into: &mut Vec<StepJacobian>,
+) -> Result<(), Error>
 where
     S: Driven<f64, N, P, Q>,
 {
     let transition = &problem.transition;
-    (0..problem.steps)
-        .map(|k| {
-            let (q, v) = split::<N, Q>(&nominal.xs[k]);
-            let u = SVector::from_column_slice(nominal.us[k].as_slice());
-            let t = problem.time(k);
-            Ok(match transition.euler_stage(&q, &v, &u, t)? {
-                Some(d) => StepJacobian::euler(transition.h(), &d),
-                None => {
-                    let d = transition.derivatives(&q, &v, &u, t)?;
-                    StepJacobian::dense(d.dx, d.du)
+    into.truncate(problem.steps);
+    for k in 0..problem.steps {
+        let (q, v) = split::<N, Q>(&nominal.xs[k]);
+        let u = SVector::from_column_slice(nominal.us[k].as_slice());
+        let t = problem.time(k);
+        match transition.euler_stage(&q, &v, &u, t)? {
+            Some(d) if k < into.len() => into[k].set_euler(transition.h(), &d),
+            Some(d) => into.push(StepJacobian::euler(transition.h(), &d)),
+            None => {
+                let d = transition.derivatives(&q, &v, &u, t)?;
+                let dense = StepJacobian::dense(d.dx, d.du);
+                match k < into.len() {
+                    true => into[k] = dense,
+                    false => into.push(dense),
                 }
-            })
-        })
-        .collect()
+            }
+        }
+    }
+    Ok(())
 }
 
 /// ∂F/∂x and ∂F/∂u at every step of the plan, dense.
@@ -302,30 +309,21 @@ where
     let mut gains = vec![DMatrix::zeros(P, n2); steps];
     let mut expected = (0.0, 0.0);
     let mut s = Expansion::new(n2, P);
+    let (mut lower, mut upper) = (DVector::zeros(P), DVector::zeros(P));
     for k in (0..steps).rev() {
         let l = problem.running_model(k, &nominal.xs[k], &nominal.us[k])?;
         s.expand(&l, &jacobians[k], (&vx, &vxx), mu);
-        let start = last.map_or_else(|| DVector::zeros(P), |b| b.feedforward[k].clone());
-        let lower = &problem.lower - &nominal.us[k];
-        let upper = &problem.upper - &nominal.us[k];
-        let Some(qp) = box_qp::solve_step::<P>(&s.reg_uu, &s.qu, &lower, &upper, &start) else {
+        let start = last.map(|b| &b.feedforward[k]);
+        lower.copy_from(&problem.lower);
+        lower -= &nominal.us[k];
+        upper.copy_from(&problem.upper);
+        upper -= &nominal.us[k];
+        let Some(qp) = box_qp::solve_step::<P>(&s.reg_uu, &s.qu, &lower, &upper, start) else {
             return Ok(None);
         };
-        let gain = &mut gains[k];
-        // K = −Q̃_uu⁻¹ Q̃_ux on the free inputs (zero on the clamped): the
-        // inverse of the free block times Q̃_ux's rows.
-        if let Some(inverse) = &qp.inverse {
-            if qp.free.len() == P {
-                gemm(gain, -1.0, inverse, &s.reg_ux, 0.0);
-            } else {
-                let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| s.reg_ux[(qp.free[i], j)]);
-                let mut free_gain = DMatrix::zeros(qp.free.len(), n2);
-                gemm(&mut free_gain, -1.0, inverse, &rows, 0.0);
-                (qp.free.iter().enumerate()).for_each(|(i, &r)| gain.set_row(r, &free_gain.row(i)));
-            }
-        }
+        feedback(&qp, &s.reg_ux, &mut gains[k]);
         let kff = qp.x;
-        s.value(gain, &kff, (&mut vx, &mut vxx));
+        s.value(&gains[k], &kff, (&mut vx, &mut vxx));
         // k·Q_u and ½ kᵀQ_uu k, the latter from Q_uu k + Q_u as `value` left it.
         let along = kff.dot(&s.qu);
         expected.0 += along;
@@ -341,6 +339,23 @@ where
         expected,
         gap_terms,
     }))
+}
+
+/// K = −Q̃_uu⁻¹ Q̃_ux on the free inputs of the step's box QP, zero on the
+/// clamped ones: the inverse of the free block times Q̃_ux's rows.
+fn feedback(qp: &box_qp::StepSolution, reg_ux: &DMatrix<f64>, gain: &mut DMatrix<f64>) {
+    let Some(inverse) = &qp.inverse else {
+        return;
+    };
+    if qp.free.len() == gain.nrows() {
+        gemm(gain, -1.0, inverse, reg_ux, 0.0);
+        return;
+    }
+    let n2 = reg_ux.ncols();
+    let rows = DMatrix::from_fn(qp.free.len(), n2, |i, j| reg_ux[(qp.free[i], j)]);
+    let mut free_gain = DMatrix::zeros(qp.free.len(), n2);
+    gemm(&mut free_gain, -1.0, inverse, &rows, 0.0);
+    (qp.free.iter().enumerate()).for_each(|(i, &r)| gain.set_row(r, &free_gain.row(i)));
 }
 
 /// V_x at the state the dynamics lead to, V_x + V_xx f, and the gap's

@@ -87,6 +87,17 @@ pub(super) fn difference<const N: usize, const Q: usize>(
     d
 }
 
+/// eᵀ W e for e given entry by entry, without a temporary for W e (the
+/// cost is evaluated at every step of every forward pass).
+fn quadratic_form(w: &DMatrix<f64>, e: impl Fn(usize) -> f64) -> f64 {
+    let n = w.nrows();
+    let mut total = 0.0;
+    for (j, column) in w.as_slice().chunks_exact(n.max(1)).enumerate() {
+        total += e(j) * (0..n).map(|i| column[i] * e(i)).sum::<f64>();
+    }
+    total
+}
+
 /// x ⊕ d: q ⊕ d_q and v + d_v; x + d without orientations.
 pub(super) fn retract<const N: usize, const Q: usize>(
     layout: &[Orientation],
@@ -279,8 +290,10 @@ where
 
     /// The running cost of (x, u) at step k.
     pub(super) fn running(&self, k: usize, x: &DVector<f64>, u: &DVector<f64>) -> f64 {
-        let (dx, du) = (self.minus(x, &self.goal), u - &self.input_target);
-        let quadratic = 0.5 * (dx.dot(&(&self.weight_x * &dx)) + du.dot(&(&self.weight_u * &du)));
+        let dx = self.minus(x, &self.goal);
+        let du = |i: usize| u[i] - self.input_target[i];
+        let quadratic =
+            0.5 * (quadratic_form(&self.weight_x, |i| dx[i]) + quadratic_form(&self.weight_u, du));
         let (q, v) = split::<N, Q>(x);
         let u = SVector::<f64, P>::from_column_slice(u.as_slice());
         let t = self.time(k);
@@ -302,7 +315,7 @@ where
             .iter()
             .map(|c| c.value(t, &q, &v, None))
             .sum();
-        0.5 * dx.dot(&(self.final_weight_or_running() * &dx)) + terms
+        0.5 * quadratic_form(self.final_weight_or_running(), |i| dx[i]) + terms
     }
 
     /// The running cost's quadratic model at step k.

@@ -349,7 +349,8 @@ fn the_value_function_stays_bounded_as_the_regularisation_grows() {
     let problem = swing_up();
     let us = vec![nalgebra::DVector::from_element(1, 1.0); problem.steps()];
     let nominal = rollout(&problem, &us).unwrap();
-    let derivatives = jacobians(&problem, &nominal).unwrap();
+    let mut derivatives = Vec::new();
+    jacobians(&problem, &nominal, &mut derivatives).unwrap();
     let size = |mu: f64| {
         let pass = backward_pass(&problem, &nominal, &derivatives, mu, None).unwrap();
         let pass = pass.unwrap_or_else(|| panic!("Q̃_uu indefinite at μ = {mu:e}"));
