@@ -184,9 +184,14 @@ fn sums<const B: usize, const J: usize>(
 
 /// out ← α sums + β out (out not read when β = 0).
 fn write(out: &mut [f64], alpha: f64, sums: &[f64], beta: f64) {
-    for (o, s) in out.iter_mut().zip(sums) {
-        let old = if beta == 0.0 { 0.0 } else { beta * *o };
-        *o = old + alpha * s;
+    // One loop per case, so that each runs in vector registers.
+    let pairs = out.iter_mut().zip(sums);
+    if beta == 0.0 {
+        pairs.for_each(|(o, s)| *o = alpha * s);
+    } else if beta == 1.0 {
+        pairs.for_each(|(o, s)| *o += alpha * s);
+    } else {
+        pairs.for_each(|(o, s)| *o = beta * *o + alpha * s);
     }
 }
 

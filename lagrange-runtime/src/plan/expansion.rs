@@ -273,7 +273,7 @@ impl Expansion {
     /// V_x = Q_x + Kᵀ(Q_uu k + Q_u) + Q_uxᵀ k and
     /// V_xx = Q_xx + Kᵀ Q_uu K + Kᵀ Q_ux + Q_uxᵀ K = Q_xx + E + Eᵀ with
     /// E = Kᵀ C, C = ½ Q_uu K + Q_ux (one product of 2N × P × 2N where the
-    /// three terms apart take two), symmetrised.
+    /// three terms apart take two), Q_xx's round-off asymmetry averaged out.
     pub(super) fn value(
         &mut self,
         gain: &DMatrix<f64>,
@@ -290,15 +290,18 @@ impl Expansion {
         self.closed.copy_from(&self.qux);
         gemm(&mut self.closed, 0.5, &self.quu, gain, 1.0);
         gemm(&mut self.half_value, 1.0, &self.gain_t, &self.closed, 0.0);
-        vxx.copy_from(&self.qxx);
-        *vxx += &self.half_value;
+        // V_xx = sym(Q_xx) + E + Eᵀ, symmetric exactly, in one sweep.
         let n = vxx.nrows();
+        let (q, e) = (self.qxx.as_slice(), self.half_value.as_slice());
+        let v = vxx.as_mut_slice();
         for j in 0..n {
-            for i in 0..n {
-                vxx[(i, j)] += self.half_value[(j, i)];
+            for i in 0..=j {
+                let (ij, ji) = (i + j * n, j + i * n);
+                let entry = 0.5 * (q[ij] + q[ji]) + (e[ij] + e[ji]);
+                v[ij] = entry;
+                v[ji] = entry;
             }
         }
-        symmetrise(vxx);
     }
 }
 
@@ -342,19 +345,6 @@ fn add_p_t(out: &mut [f64], m: &[f64], rows: usize, h: f64) {
         for i in 0..n {
             o[i] += c[i];
             o[n + i] += h * c[i] + c[n + i];
-        }
-    }
-}
-
-/// A square matrix replaced by the mean of it and its transpose.
-fn symmetrise(a: &mut DMatrix<f64>) {
-    let n = a.nrows();
-    let data = a.as_mut_slice();
-    for j in 0..n {
-        for i in 0..j {
-            let mean = 0.5 * (data[i + j * n] + data[j + i * n]);
-            data[i + j * n] = mean;
-            data[j + i * n] = mean;
         }
     }
 }

@@ -182,10 +182,10 @@ where
     let mut xs = Vec::with_capacity(problem.steps + 1);
     xs.push(x0);
     let mut us = Vec::with_capacity(problem.steps);
-    let mut input = DVector::zeros(P);
+    let (mut input, mut deviation) = (DVector::zeros(P), DVector::zeros(2 * N));
     for k in 0..problem.steps {
         let x = &xs[k];
-        let deviation = problem.minus(x, &nominal.xs[k]);
+        problem.minus_into(x, &nominal.xs[k], &mut deviation);
         // ū + α k + K (x − x̄), in place.
         input.copy_from(&nominal.us[k]);
         input.axpy(alpha, &backward.feedforward[k], 1.0);

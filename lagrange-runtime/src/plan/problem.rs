@@ -278,6 +278,16 @@ where
         difference::<N, Q>(S::ORIENTATIONS, x0, x1)
     }
 
+    /// x₁ ⊖ x₀ written into `out` (2N), without allocating in the plane.
+    pub(super) fn minus_into(&self, x1: &DVector<f64>, x0: &DVector<f64>, out: &mut DVector<f64>) {
+        if S::ORIENTATIONS.is_empty() {
+            out.copy_from(x1);
+            *out -= x0;
+        } else {
+            out.copy_from(&self.minus(x1, x0));
+        }
+    }
+
     /// x ⊕ d of a state and a tangent vector.
     pub(super) fn plus(&self, x: &DVector<f64>, d: &DVector<f64>) -> DVector<f64> {
         retract::<N, Q>(S::ORIENTATIONS, x, d)
@@ -288,12 +298,20 @@ where
         weighted::<N>(S::ORIENTATIONS, w, e)
     }
 
+    /// (x ⊖ x*)ᵀ W (x ⊖ x*), with no temporary in the plane.
+    fn state_form(&self, w: &DMatrix<f64>, x: &DVector<f64>) -> f64 {
+        if S::ORIENTATIONS.is_empty() {
+            return quadratic_form(w, |i| x[i] - self.goal[i]);
+        }
+        let dx = self.minus(x, &self.goal);
+        quadratic_form(w, |i| dx[i])
+    }
+
     /// The running cost of (x, u) at step k.
     pub(super) fn running(&self, k: usize, x: &DVector<f64>, u: &DVector<f64>) -> f64 {
-        let dx = self.minus(x, &self.goal);
         let du = |i: usize| u[i] - self.input_target[i];
         let quadratic =
-            0.5 * (quadratic_form(&self.weight_x, |i| dx[i]) + quadratic_form(&self.weight_u, du));
+            0.5 * (self.state_form(&self.weight_x, x) + quadratic_form(&self.weight_u, du));
         let (q, v) = split::<N, Q>(x);
         let u = SVector::<f64, P>::from_column_slice(u.as_slice());
         let t = self.time(k);
@@ -307,7 +325,6 @@ where
 
     /// The terminal cost of x.
     pub(super) fn terminal(&self, x: &DVector<f64>) -> f64 {
-        let dx = self.minus(x, &self.goal);
         let (q, v) = split::<N, Q>(x);
         let t = self.time(self.steps);
         let terms: f64 = self
@@ -315,7 +332,7 @@ where
             .iter()
             .map(|c| c.value(t, &q, &v, None))
             .sum();
-        0.5 * quadratic_form(self.final_weight_or_running(), |i| dx[i]) + terms
+        0.5 * self.state_form(self.final_weight_or_running(), x) + terms
     }
 
     /// The running cost's quadratic model at step k.
