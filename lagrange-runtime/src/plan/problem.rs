@@ -87,15 +87,30 @@ pub(super) fn difference<const N: usize, const Q: usize>(
     d
 }
 
-/// eᵀ W e for e given entry by entry, without a temporary for W e (the
-/// cost is evaluated at every step of every forward pass).
-fn quadratic_form(w: &DMatrix<f64>, e: impl Fn(usize) -> f64) -> f64 {
-    let n = w.nrows();
-    let mut total = 0.0;
-    for (j, column) in w.as_slice().chunks_exact(n.max(1)).enumerate() {
-        total += e(j) * (0..n).map(|i| column[i] * e(i)).sum::<f64>();
+/// eᵀ W e, column by column (the cost is evaluated at every step of every
+/// forward pass, so without a temporary for W e).
+fn quadratic_form(w: &DMatrix<f64>, e: &[f64]) -> f64 {
+    let dot = |column: &[f64]| column.iter().zip(e).map(|(a, b)| a * b).sum::<f64>();
+    let columns = w.as_slice().chunks_exact(e.len().max(1));
+    columns.zip(e).map(|(column, &ej)| ej * dot(column)).sum()
+}
+
+/// (a − b)ᵀ W (a − b), the difference on the stack up to 32 entries.
+fn difference_form(w: &DMatrix<f64>, a: &[f64], b: &[f64]) -> f64 {
+    let fill = |e: &mut [f64]| {
+        for ((e, a), b) in e.iter_mut().zip(a).zip(b) {
+            *e = a - b;
+        }
+    };
+    let mut stack = [0.0; 32];
+    if a.len() <= stack.len() {
+        let e = &mut stack[..a.len()];
+        fill(e);
+        return quadratic_form(w, e);
     }
-    total
+    let mut e = vec![0.0; a.len()];
+    fill(&mut e);
+    quadratic_form(w, &e)
 }
 
 /// x ⊕ d: q ⊕ d_q and v + d_v; x + d without orientations.
@@ -298,20 +313,18 @@ where
         weighted::<N>(S::ORIENTATIONS, w, e)
     }
 
-    /// (x ⊖ x*)ᵀ W (x ⊖ x*), with no temporary in the plane.
+    /// (x ⊖ x*)ᵀ W (x ⊖ x*), in the plane with no temporary on the heap.
     fn state_form(&self, w: &DMatrix<f64>, x: &DVector<f64>) -> f64 {
         if S::ORIENTATIONS.is_empty() {
-            return quadratic_form(w, |i| x[i] - self.goal[i]);
+            return difference_form(w, x.as_slice(), self.goal.as_slice());
         }
-        let dx = self.minus(x, &self.goal);
-        quadratic_form(w, |i| dx[i])
+        quadratic_form(w, self.minus(x, &self.goal).as_slice())
     }
 
     /// The running cost of (x, u) at step k.
     pub(super) fn running(&self, k: usize, x: &DVector<f64>, u: &DVector<f64>) -> f64 {
-        let du = |i: usize| u[i] - self.input_target[i];
-        let quadratic =
-            0.5 * (self.state_form(&self.weight_x, x) + quadratic_form(&self.weight_u, du));
+        let du = difference_form(&self.weight_u, u.as_slice(), self.input_target.as_slice());
+        let quadratic = 0.5 * (self.state_form(&self.weight_x, x) + du);
         let (q, v) = split::<N, Q>(x);
         let u = SVector::<f64, P>::from_column_slice(u.as_slice());
         let t = self.time(k);
