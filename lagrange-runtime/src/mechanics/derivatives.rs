@@ -37,6 +37,27 @@ impl<S, T, F> Dynamics<'_, S, T, F>
 where
     T: Real,
 {
+    /// Refuses the pivot ratio of M's factorisation in an emitted program
+    /// (at most 1, −1 for a pivot that is not finite) below the singular
+    /// tolerance: [`Error::SingularMassMatrix`] at q as given, with M at its
+    /// unit-quaternion form.
+    fn check_pivots<const N: usize, const Q: usize>(
+        &self,
+        t: T,
+        (q, unit): (&SVector<T, Q>, &SVector<T, Q>),
+        ratio: T,
+    ) -> Result<(), Error>
+    where
+        S: Lagrangian<T, N, Q>,
+    {
+        if ratio.is_finite() && ratio >= self.singular_tolerance() {
+            return Ok(());
+        }
+        let m = self.system().mass_matrix(unit, t);
+        let names = (&S::VELOCITIES[..], S::ATLAS);
+        Err(Error::singular_mass(t, q, ratio, &m, names))
+    }
+
     /// ∂q̈/∂δ, ∂q̈/∂q̇ and ∂q̈/∂τ at (q, v, t), with the forcing's own
     /// Jacobians (∂ΔQ/∂δ, ∂ΔQ/∂v) added when it has any; `Ok(None)` when the
     /// system does not emit its Jacobians.
@@ -164,11 +185,7 @@ impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
         let d = if let Some((d, ratio)) = system.emitted_derivatives(&unit, v, &tau, t) {
             // The one program (M factorised in it): ∂q̈/∂(q, q̇) at fixed τ,
             // and M⁻¹ for the inputs' own Jacobians.
-            if !ratio.is_finite() || ratio < self.singular_tolerance() {
-                let m = system.mass_matrix(&unit, t);
-                let names = (&S::VELOCITIES[..], S::ATLAS);
-                return Err(Error::singular_mass(t, q, ratio, &m, names));
-            }
+            self.check_pivots(t, (q, &unit), ratio)?;
             InputDerivatives {
                 acceleration: d.acceleration,
                 dq: d.dq + d.dtau * fq,
@@ -250,12 +267,7 @@ impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
         let (d, ratio) = self
             .system()
             .acceleration_derivatives_unchecked(&unit, v, tau, t);
-        // The ratio is at most 1, and −1 for a pivot that is not finite.
-        if !ratio.is_finite() || ratio < self.singular_tolerance() {
-            let m = self.system().mass_matrix(&unit, t);
-            let names = (&S::VELOCITIES[..], S::ATLAS);
-            return Err(Error::singular_mass(t, q, ratio, &m, names));
-        }
+        self.check_pivots(t, (q, &unit), ratio)?;
         let parts = [d.acceleration.as_slice(), d.dq.as_slice(), d.dv.as_slice()];
         if !(parts.iter().all(|p| all_finite(p)) && all_finite(d.dtau.as_slice())) {
             return Err(Error::non_finite(t, q, v));
