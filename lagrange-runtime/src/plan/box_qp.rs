@@ -7,18 +7,17 @@
 //! by projected Newton (Bertsekas 1982), as Tassa, Mansard and Todorov's
 //! control-limited DDP (2014) solves it: the inputs at a bound whose gradient
 //! pushes outward are clamped, Newton's step is taken on the others with an
-//! Armijo line search along the projection. The free block's Cholesky factor
-//! comes back for the feedback gains (zero on the clamped inputs).
+//! Armijo line search along the projection. The inverse of H on the free
+//! inputs comes back for the feedback gains (zero on the clamped inputs).
 //!
-//! `solve_step` is what a step of the backward pass calls: where H is
-//! positive definite and its unconstrained minimiser −H⁻¹g lies in the box
-//! (no bound binds, the common case) that minimiser is the answer, found
-//! by a Cholesky factorisation on the stack with no iteration; otherwise
-//! projected Newton. Either way the free block's inverse comes back, which
-//! the gains K = −H_ff⁻¹ Q_ux read.
+//! Everything is on the stack, in P × P matrices (P the inputs, a const
+//! generic): the free block is factorised as the leading block of H with
+//! the free inputs permuted first. Where H is positive definite and its
+//! unconstrained minimiser −H⁻¹g lies in the box (no bound binds, the common
+//! case) that minimiser is the answer, with no iteration.
 
-use crate::numeric::cholesky::Cholesky as StackCholesky;
-use nalgebra::{Cholesky, DMatrix, DVector, Dyn, SMatrix, SVector};
+use crate::numeric::cholesky::Cholesky;
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 /// The minimiser, which inputs are free at it, and the inverse of H on the
 /// free ones (`None` when none is free).
@@ -28,9 +27,37 @@ pub(super) struct StepSolution {
     pub inverse: Option<DMatrix<f64>>,
 }
 
-/// The box QP of one step of P inputs (see the module notes), projected
-/// Newton starting from `start` (zero if none); `None` if H is not positive
-/// definite on the free inputs.
+/// The problem, on the stack.
+struct BoxQp<const P: usize> {
+    h: SMatrix<f64, P, P>,
+    g: SVector<f64, P>,
+    lower: SVector<f64, P>,
+    upper: SVector<f64, P>,
+}
+
+/// A set of inputs, in increasing order in `index[..len]`.
+#[derive(Clone, Copy, PartialEq)]
+struct Inputs<const P: usize> {
+    index: [usize; P],
+    len: usize,
+}
+
+impl<const P: usize> Inputs<P> {
+    fn all() -> Self {
+        Self {
+            index: std::array::from_fn(|i| i),
+            len: P,
+        }
+    }
+
+    fn as_slice(&self) -> &[usize] {
+        &self.index[..self.len]
+    }
+}
+
+/// Solves the box QP from `start` (zero if none; clamped into the box);
+/// `None` if H is not positive definite on the free inputs (the caller
+/// raises the regularisation).
 pub(super) fn solve_step<const P: usize>(
     h: &DMatrix<f64>,
     g: &DVector<f64>,
@@ -38,145 +65,141 @@ pub(super) fn solve_step<const P: usize>(
     upper: &DVector<f64>,
     start: Option<&DVector<f64>>,
 ) -> Option<StepSolution> {
-    if let Some(interior) = interior::<P>(h, g, lower, upper) {
-        return Some(interior);
-    }
-    let solution = match start {
-        Some(start) => solve(h, g, lower, upper, start)?,
-        None => solve(h, g, lower, upper, &DVector::zeros(P))?,
+    let stacked = |v: &DVector<f64>| SVector::<f64, P>::from_column_slice(v.as_slice());
+    let qp = BoxQp::<P> {
+        h: SMatrix::from_column_slice(h.as_slice()),
+        g: stacked(g),
+        lower: stacked(lower),
+        upper: stacked(upper),
+    };
+    let (x, free) = match interior(&qp) {
+        Some(x) => (x, Inputs::all()),
+        None => qp.projected_newton(start.map_or_else(SVector::zeros, stacked))?,
+    };
+    let inverse = match free.len {
+        0 => None,
+        n => {
+            let chol = factor(&qp.h, &free)?;
+            let inverse = chol.solve_columns(SMatrix::<f64, P, P>::identity());
+            Some(DMatrix::from_fn(n, n, |i, j| inverse[(i, j)]))
+        }
     };
     Some(StepSolution {
-        inverse: solution.factor.map(|chol| chol.inverse()),
-        x: solution.x,
-        free: solution.free,
-    })
-}
-
-/// −H⁻¹g with every input free, if H is positive definite and that point
-/// lies in the box.
-fn interior<const P: usize>(
-    h: &DMatrix<f64>,
-    g: &DVector<f64>,
-    lower: &DVector<f64>,
-    upper: &DVector<f64>,
-) -> Option<StepSolution> {
-    let chol =
-        StackCholesky::new(SMatrix::<f64, P, P>::from_column_slice(h.as_slice()), 0.0).ok()?;
-    let x = -chol.solve(SVector::<f64, P>::from_column_slice(g.as_slice()));
-    let inside = (0..P).all(|i| lower[i] <= x[i] && x[i] <= upper[i]);
-    if !inside {
-        return None;
-    }
-    let inverse = chol.solve_columns(SMatrix::<f64, P, P>::identity());
-    Some(StepSolution {
         x: DVector::from_column_slice(x.as_slice()),
-        free: (0..P).collect(),
-        inverse: Some(DMatrix::from_column_slice(P, P, inverse.as_slice())),
+        free: free.as_slice().to_vec(),
+        inverse,
     })
 }
 
-/// The minimiser, which inputs are free at it, and the Cholesky factor of H
-/// on the free ones (`None` when none is free).
-pub(super) struct BoxSolution {
-    pub x: DVector<f64>,
-    pub free: Vec<usize>,
-    pub factor: Option<Cholesky<f64, Dyn>>,
+/// −H⁻¹g, if H is positive definite and that point lies in the box.
+fn interior<const P: usize>(qp: &BoxQp<P>) -> Option<SVector<f64, P>> {
+    let x = -factor(&qp.h, &Inputs::all())?.solve(qp.g);
+    (0..P)
+        .all(|i| qp.lower[i] <= x[i] && x[i] <= qp.upper[i])
+        .then_some(x)
 }
 
-/// A free set and the Cholesky factor of H on it.
-type FreeFactor = (Vec<usize>, Option<Cholesky<f64, Dyn>>);
-
-/// Solves the box QP from `start` (clamped into the box); `None` if H is not
-/// positive definite on the free inputs (the caller raises the
-/// regularisation).
-pub(super) fn solve(
-    h: &DMatrix<f64>,
-    g: &DVector<f64>,
-    lower: &DVector<f64>,
-    upper: &DVector<f64>,
-    start: &DVector<f64>,
-) -> Option<BoxSolution> {
-    let n = g.len();
-    let clamp = |x: &DVector<f64>| DVector::from_fn(n, |i, _| x[i].clamp(lower[i], upper[i]));
-    let value = |x: &DVector<f64>| 0.5 * x.dot(&(h * x)) + g.dot(x);
-    // The last iterate's free set and factor, kept while the set stays.
-    let mut held: Option<FreeFactor> = None;
-    let mut x = clamp(start);
-    for _ in 0..100 {
-        let grad = g + h * &x;
-        let free = free_at(&grad, lower, upper, &x);
-        let factor = match held.take() {
-            Some((last, factor)) if last == free => factor,
-            _ => factor_free(h, &free)?,
-        };
-        let Some(chol) = &factor else {
-            return Some(BoxSolution { x, free, factor });
-        };
-        let grad_free = DVector::from_fn(free.len(), |i, _| grad[free[i]]);
-        if grad_free.amax() <= 1e-12 * (1.0 + g.amax()) {
-            return Some(BoxSolution { x, free, factor });
+/// The Cholesky factor of H on `free`, as the leading block of H with those
+/// rows and columns first; `None` if that block is not positive definite.
+fn factor<const P: usize>(h: &SMatrix<f64, P, P>, free: &Inputs<P>) -> Option<Cholesky<f64, P>> {
+    let f = free.as_slice();
+    let mut block = SMatrix::<f64, P, P>::zeros();
+    for (j, &c) in f.iter().enumerate() {
+        for (i, &r) in f.iter().enumerate() {
+            block[(i, j)] = h[(r, c)];
         }
-        let newton = -chol.solve(&grad_free);
-        let mut direction = DVector::zeros(n);
-        free.iter()
-            .enumerate()
-            .for_each(|(i, &j)| direction[j] = newton[i]);
-        let f0 = value(&x);
+    }
+    Cholesky::leading(block, f.len(), 0.0).ok()
+}
+
+impl<const P: usize> BoxQp<P> {
+    fn value(&self, x: &SVector<f64, P>) -> f64 {
+        0.5 * x.dot(&(self.h * x)) + self.g.dot(x)
+    }
+
+    fn clamp(&self, x: &SVector<f64, P>) -> SVector<f64, P> {
+        SVector::from_fn(|i, _| x[i].clamp(self.lower[i], self.upper[i]))
+    }
+
+    /// The inputs not held at a bound by the gradient at x.
+    fn free_at(&self, x: &SVector<f64, P>) -> Inputs<P> {
+        let grad = self.g + self.h * x;
+        let mut free = Inputs {
+            index: [0; P],
+            len: 0,
+        };
+        for i in 0..P {
+            let held =
+                x[i] <= self.lower[i] && grad[i] > 0.0 || x[i] >= self.upper[i] && grad[i] < 0.0;
+            if !held {
+                free.index[free.len] = i;
+                free.len += 1;
+            }
+        }
+        free
+    }
+
+    /// The minimiser and its free inputs by projected Newton from `start`;
+    /// `None` if H is not positive definite on a free set met on the way.
+    fn projected_newton(&self, start: SVector<f64, P>) -> Option<(SVector<f64, P>, Inputs<P>)> {
+        let mut x = self.clamp(&start);
+        // The last iterate's free set and factor, kept while the set stays.
+        let mut held: Option<(Inputs<P>, Cholesky<f64, P>)> = None;
+        for _ in 0..100 {
+            let grad = self.g + self.h * x;
+            let free = self.free_at(&x);
+            if free.len == 0 {
+                return Some((x, free));
+            }
+            let chol = match held.take() {
+                Some((last, chol)) if last == free => chol,
+                _ => factor(&self.h, &free)?,
+            };
+            let f = free.as_slice();
+            let mut grad_free = SVector::<f64, P>::zeros();
+            f.iter()
+                .enumerate()
+                .for_each(|(i, &j)| grad_free[i] = grad[j]);
+            if grad_free.amax() <= 1e-12 * (1.0 + self.g.amax()) {
+                return Some((x, free));
+            }
+            let newton = chol.solve(grad_free);
+            let mut direction = SVector::<f64, P>::zeros();
+            f.iter()
+                .enumerate()
+                .for_each(|(i, &j)| direction[j] = -newton[i]);
+            let Some(next) = self.armijo(&x, &grad, &direction) else {
+                return Some((x, free));
+            };
+            let f0 = self.value(&x);
+            let improvement = f0 - self.value(&next);
+            x = next;
+            if improvement <= 1e-14 * (1.0 + f0.abs()) {
+                return Some((x, self.free_at(&x)));
+            }
+            held = Some((free, chol));
+        }
+        Some((x, self.free_at(&x)))
+    }
+
+    /// The Armijo step along the projection of x + α d, halving α from 1.
+    fn armijo(
+        &self,
+        x: &SVector<f64, P>,
+        grad: &SVector<f64, P>,
+        direction: &SVector<f64, P>,
+    ) -> Option<SVector<f64, P>> {
+        let f0 = self.value(x);
         let mut alpha = 1.0;
-        let accepted = loop {
-            let candidate = clamp(&(&x + &direction * alpha));
-            if value(&candidate) <= f0 + 0.1 * grad.dot(&(&candidate - &x)) {
-                break Some(candidate);
+        while alpha >= 1e-20 {
+            let candidate = self.clamp(&(x + direction * alpha));
+            if self.value(&candidate) <= f0 + 0.1 * grad.dot(&(candidate - x)) {
+                return Some(candidate);
             }
             alpha *= 0.5;
-            if alpha < 1e-20 {
-                break None;
-            }
-        };
-        let Some(next) = accepted else {
-            return Some(BoxSolution { x, free, factor });
-        };
-        let improvement = f0 - value(&next);
-        x = next;
-        if improvement <= 1e-14 * (1.0 + f0.abs()) {
-            let free_now = free_at(&(g + h * &x), lower, upper, &x);
-            let factor = match free_now == free {
-                true => factor,
-                false => factor_free(h, &free_now)?,
-            };
-            return Some(BoxSolution {
-                x,
-                free: free_now,
-                factor,
-            });
         }
-        held = Some((free, factor));
+        None
     }
-    let free = free_at(&(g + h * &x), lower, upper, &x);
-    let factor = factor_free(h, &free)?;
-    Some(BoxSolution { x, free, factor })
-}
-
-/// The inputs not held at a bound by the gradient `grad` at x.
-fn free_at(
-    grad: &DVector<f64>,
-    lower: &DVector<f64>,
-    upper: &DVector<f64>,
-    x: &DVector<f64>,
-) -> Vec<usize> {
-    (0..grad.len())
-        .filter(|&i| !(x[i] <= lower[i] && grad[i] > 0.0 || x[i] >= upper[i] && grad[i] < 0.0))
-        .collect()
-}
-
-/// The Cholesky factor of H on `free` (`Some(None)` for no free input;
-/// `None` if that block is not positive definite).
-fn factor_free(h: &DMatrix<f64>, free: &[usize]) -> Option<Option<Cholesky<f64, Dyn>>> {
-    if free.is_empty() {
-        return Some(None);
-    }
-    let block = DMatrix::from_fn(free.len(), free.len(), |i, j| h[(free[i], free[j])]);
-    block.cholesky().map(Some)
 }
 
 #[cfg(test)]
@@ -193,7 +216,7 @@ mod tests {
         let h = DMatrix::from_row_slice(2, 2, &[2.0, 0.5, 0.5, 1.0]);
         let g = vector(&[1.0, -1.0]);
         let inf = vector(&[f64::INFINITY; 2]);
-        let s = solve(&h, &g, &-&inf, &inf, &vector(&[0.0, 0.0])).unwrap();
+        let s = solve_step::<2>(&h, &g, &-&inf, &inf, None).unwrap();
         let expected = -h.clone().lu().solve(&g).unwrap();
         assert!((&s.x - expected).amax() < 1e-14);
         assert_eq!(s.free, vec![0, 1]);
@@ -206,7 +229,7 @@ mod tests {
         let h = DMatrix::from_diagonal(&vector(&[1.0, 2.0, 4.0]));
         let g = vector(&[-3.0, 1.0, 0.4]);
         let (lo, hi) = (vector(&[-1.0, -1.0, -1.0]), vector(&[1.0, 1.0, 1.0]));
-        let s = solve(&h, &g, &lo, &hi, &vector(&[0.0; 3])).unwrap();
+        let s = solve_step::<3>(&h, &g, &lo, &hi, None).unwrap();
         assert!(
             (&s.x - vector(&[1.0, -0.5, -0.1])).amax() < 1e-14,
             "{}",
@@ -222,7 +245,7 @@ mod tests {
         let h = DMatrix::from_row_slice(3, 3, &[4.0, 1.0, 0.5, 1.0, 3.0, -1.0, 0.5, -1.0, 2.0]);
         let g = vector(&[-8.0, 3.0, -1.0]);
         let (lo, hi) = (vector(&[-0.5, -0.5, -0.5]), vector(&[0.5, 0.5, 0.5]));
-        let s = solve(&h, &g, &lo, &hi, &vector(&[0.0; 3])).unwrap();
+        let s = solve_step::<3>(&h, &g, &lo, &hi, None).unwrap();
         let grad = &g + &h * &s.x;
         for i in 0..3 {
             let ok = match () {
@@ -234,21 +257,32 @@ mod tests {
         }
     }
 
-    /// A step's QP: inside the box the stack factorisation's minimiser and
-    /// inverse; a binding bound goes to projected Newton, whose free block's
-    /// inverse comes back; both as `solve` finds them.
+    /// Inside the box the minimiser is −H⁻¹g at once; with a bound binding,
+    /// projected Newton's, from a start away from it, meets the optimality
+    /// conditions; either way the inverse of H's free block comes back.
     #[test]
-    fn a_step_s_qp_is_the_same_inside_and_at_the_bounds() {
+    fn the_free_block_s_inverse_comes_back_inside_and_at_the_bounds() {
         let h = DMatrix::from_row_slice(3, 3, &[4.0, 1.0, 0.5, 1.0, 3.0, -1.0, 0.5, -1.0, 2.0]);
         let g = vector(&[-1.0, 0.5, 0.2]);
-        let zero = vector(&[0.0; 3]);
+        // −H⁻¹g = (0.415, −0.448, −0.428): a bound of 0.43 holds input 1 only.
         for bound in [10.0, 0.43] {
             let (lo, hi) = (vector(&[-bound; 3]), vector(&[bound; 3]));
-            let step = solve_step::<3>(&h, &g, &lo, &hi, Some(&zero)).unwrap();
-            let general = solve(&h, &g, &lo, &hi, &zero).unwrap();
-            assert!((&step.x - &general.x).amax() < 1e-14, "bound {bound}");
-            assert_eq!(step.free, general.free, "bound {bound}");
-            let free = &step.free;
+            let start = vector(&[0.3, 0.3, -0.3]);
+            let s = solve_step::<3>(&h, &g, &lo, &hi, Some(&start)).unwrap();
+            let grad = &g + &h * &s.x;
+            for i in 0..3 {
+                let ok = match () {
+                    _ if s.x[i] >= hi[i] => grad[i] <= 1e-12,
+                    _ if s.x[i] <= lo[i] => grad[i] >= -1e-12,
+                    _ => grad[i].abs() <= 1e-12,
+                };
+                assert!(
+                    ok,
+                    "bound {bound}, input {i}: x {}, gradient {}",
+                    s.x[i], grad[i]
+                );
+            }
+            let free = &s.free;
             let clamped = 3 - free.len();
             assert_eq!(
                 clamped,
@@ -256,7 +290,7 @@ mod tests {
                 "bound {bound}: free {free:?}"
             );
             let block = DMatrix::from_fn(free.len(), free.len(), |i, j| h[(free[i], free[j])]);
-            let inverse = step.inverse.unwrap();
+            let inverse = s.inverse.unwrap();
             let identity = DMatrix::identity(free.len(), free.len());
             assert!((block * inverse - identity).amax() < 1e-14, "bound {bound}");
         }
@@ -268,6 +302,6 @@ mod tests {
         let h = DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, -1.0]);
         let g = vector(&[0.0, 0.1]);
         let inf = vector(&[f64::INFINITY; 2]);
-        assert!(solve(&h, &g, &-&inf, &inf, &vector(&[0.0, 0.0])).is_none());
+        assert!(solve_step::<2>(&h, &g, &-&inf, &inf, None).is_none());
     }
 }
