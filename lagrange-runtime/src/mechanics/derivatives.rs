@@ -186,11 +186,15 @@ impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
             // The one program (M factorised in it): ∂q̈/∂(q, q̇) at fixed τ,
             // and M⁻¹ for the inputs' own Jacobians.
             self.check_pivots(t, (q, &unit), ratio)?;
+            // Inputs that are forces on coordinates (∂Q/∂u = I, no
+            // dependence on the state, an arm's torques) leave the program's
+            // blocks as they are: the products by 0 and I are skipped.
+            let zero = |f: &SMatrix<T, N, N>| f.iter().all(|x| *x == T::zero());
             InputDerivatives {
                 acceleration: d.acceleration,
-                dq: d.dq + d.dtau * fq,
-                dv: d.dv + d.dtau * fv,
-                du: d.dtau * bu,
+                dq: if zero(&fq) { d.dq } else { d.dq + d.dtau * fq },
+                dv: if zero(&fv) { d.dv } else { d.dv + d.dtau * fv },
+                du: identity_or_product(&d.dtau, &bu),
             }
         } else {
             let (chol, acceleration) = self.factorised(t, &unit, v, tau)?;
@@ -214,6 +218,19 @@ impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
             return Err(Error::non_finite(t, q, v));
         }
         Ok(Some(d))
+    }
+}
+
+/// M⁻¹ ∂Q/∂u, which is M⁻¹ itself when ∂Q/∂u is the identity (P = N).
+fn identity_or_product<T: Real, const N: usize, const P: usize>(
+    inverse: &SMatrix<T, N, N>,
+    bu: &SMatrix<T, N, P>,
+) -> SMatrix<T, N, P> {
+    let identity = P == N
+        && (0..N).all(|j| (0..N).all(|i| bu[(i, j)] == if i == j { T::one() } else { T::zero() }));
+    match identity {
+        true => SMatrix::from_fn(|i, j| inverse[(i, j)]),
+        false => inverse * bu,
     }
 }
 
