@@ -17,5 +17,7 @@ pub(crate) mod products;
 mod real;
 pub(crate) mod root;
 pub(crate) mod saddle;
+#[cfg(test)]
+pub(crate) mod samples;
 
 pub use real::Real;

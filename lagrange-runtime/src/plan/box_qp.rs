@@ -246,14 +246,24 @@ mod tests {
         let g = vector(&[-8.0, 3.0, -1.0]);
         let (lo, hi) = (vector(&[-0.5, -0.5, -0.5]), vector(&[0.5, 0.5, 0.5]));
         let s = solve_step::<3>(&h, &g, &lo, &hi, None).unwrap();
-        let grad = &g + &h * &s.x;
-        for i in 0..3 {
+        assert_optimal((&h, &g), (&lo, &hi), &s.x);
+    }
+
+    /// A clamped input's gradient points out of the box, a free one's is
+    /// zero.
+    fn assert_optimal(
+        (h, g): (&DMatrix<f64>, &DVector<f64>),
+        (lo, hi): (&DVector<f64>, &DVector<f64>),
+        x: &DVector<f64>,
+    ) {
+        let grad = g + h * x;
+        for i in 0..x.len() {
             let ok = match () {
-                _ if s.x[i] >= hi[i] => grad[i] <= 1e-12,
-                _ if s.x[i] <= lo[i] => grad[i] >= -1e-12,
+                _ if x[i] >= hi[i] => grad[i] <= 1e-12,
+                _ if x[i] <= lo[i] => grad[i] >= -1e-12,
                 _ => grad[i].abs() <= 1e-12,
             };
-            assert!(ok, "input {i}: x = {}, gradient {}", s.x[i], grad[i]);
+            assert!(ok, "input {i}: x = {}, gradient {}", x[i], grad[i]);
         }
     }
 
@@ -269,19 +279,7 @@ mod tests {
             let (lo, hi) = (vector(&[-bound; 3]), vector(&[bound; 3]));
             let start = vector(&[0.3, 0.3, -0.3]);
             let s = solve_step::<3>(&h, &g, &lo, &hi, Some(&start)).unwrap();
-            let grad = &g + &h * &s.x;
-            for i in 0..3 {
-                let ok = match () {
-                    _ if s.x[i] >= hi[i] => grad[i] <= 1e-12,
-                    _ if s.x[i] <= lo[i] => grad[i] >= -1e-12,
-                    _ => grad[i].abs() <= 1e-12,
-                };
-                assert!(
-                    ok,
-                    "bound {bound}, input {i}: x {}, gradient {}",
-                    s.x[i], grad[i]
-                );
-            }
+            assert_optimal((&h, &g), (&lo, &hi), &s.x);
             let free = &s.free;
             let clamped = 3 - free.len();
             assert_eq!(

@@ -354,17 +354,6 @@ mod tests {
     use super::*;
     use nalgebra::SMatrix;
 
-    /// Numbers in (−1, 1) from a seed, reproducibly.
-    fn numbers(seed: u64) -> impl FnMut() -> f64 {
-        let mut state = seed;
-        move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        }
-    }
-
     /// Euler's form multiplies by P + B A and B A_u without forming them:
     /// Q's model, the regularised blocks and the value function after a
     /// feedback agree with the dense form's, F_x and F_u formed, to round-off.
@@ -372,7 +361,8 @@ mod tests {
     fn euler_s_form_agrees_with_the_dense_one() {
         const N: usize = 3;
         const P: usize = 2;
-        let mut r = numbers(7);
+        let mut uniform = crate::numeric::samples::uniform(7);
+        let mut r = move || 2.0 * uniform();
         let h = 0.05;
         let d = InputDerivatives::<f64, N, P> {
             acceleration: SVector::zeros(),

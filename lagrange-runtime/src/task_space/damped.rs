@@ -164,13 +164,8 @@ mod tests {
 
     /// A fixed pseudo-random matrix.
     fn sample<const R: usize, const N: usize>(seed: u64) -> SMatrix<f64, R, N> {
-        let mut state = seed;
-        SMatrix::from_fn(|_, _| {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        })
+        let mut next = crate::numeric::samples::uniform(seed);
+        SMatrix::from_fn(|_, _| next())
     }
 
     /// Undamped, the inverse is the Moore–Penrose pseudo-inverse (nalgebra's

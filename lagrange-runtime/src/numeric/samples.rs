@@ -1,0 +1,14 @@
+//! Reproducible pseudo-random numbers for the unit tests (a 64-bit linear
+//! congruential generator, Knuth's MMIX constants): no dependency, the same
+//! numbers on every machine.
+
+/// Numbers in [−½, ½) from `seed`, the same sequence every time.
+pub(crate) fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    }
+}
