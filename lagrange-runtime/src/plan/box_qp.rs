@@ -35,6 +35,9 @@ struct BoxQp<const P: usize> {
     upper: SVector<f64, P>,
 }
 
+/// A minimiser, its free inputs and, where at hand, H's factor on them.
+type Minimiser<const P: usize> = (SVector<f64, P>, Inputs<P>, Option<Cholesky<f64, P>>);
+
 /// A set of inputs, in increasing order in `index[..len]`.
 #[derive(Clone, Copy, PartialEq)]
 struct Inputs<const P: usize> {
@@ -72,14 +75,18 @@ pub(super) fn solve_step<const P: usize>(
         lower: stacked(lower),
         upper: stacked(upper),
     };
-    let (x, free) = match interior(&qp) {
-        Some(x) => (x, Inputs::all()),
+    let (x, free, chol) = match interior(&qp) {
+        Some((x, chol)) => (x, Inputs::all(), Some(chol)),
         None => qp.projected_newton(start.map_or_else(SVector::zeros, stacked))?,
     };
-    let inverse = match free.len {
-        0 => None,
-        n => {
-            let chol = factor(&qp.h, &free)?;
+    let inverse = match (free.len, chol) {
+        (0, _) => None,
+        (n, chol) => {
+            // The factor of the last iterate's free set, or of the final one.
+            let chol = match chol {
+                Some(chol) => chol,
+                None => factor(&qp.h, &free)?,
+            };
             let inverse = chol.solve_columns(SMatrix::<f64, P, P>::identity());
             Some(DMatrix::from_fn(n, n, |i, j| inverse[(i, j)]))
         }
@@ -91,12 +98,14 @@ pub(super) fn solve_step<const P: usize>(
     })
 }
 
-/// −H⁻¹g, if H is positive definite and that point lies in the box.
-fn interior<const P: usize>(qp: &BoxQp<P>) -> Option<SVector<f64, P>> {
-    let x = -factor(&qp.h, &Inputs::all())?.solve(qp.g);
+/// −H⁻¹g and H's factor, if H is positive definite and that point lies in
+/// the box.
+fn interior<const P: usize>(qp: &BoxQp<P>) -> Option<(SVector<f64, P>, Cholesky<f64, P>)> {
+    let chol = factor(&qp.h, &Inputs::all())?;
+    let x = -chol.solve(qp.g);
     (0..P)
         .all(|i| qp.lower[i] <= x[i] && x[i] <= qp.upper[i])
-        .then_some(x)
+        .then_some((x, chol))
 }
 
 /// The Cholesky factor of H on `free`, as the leading block of H with those
@@ -121,9 +130,12 @@ impl<const P: usize> BoxQp<P> {
         SVector::from_fn(|i, _| x[i].clamp(self.lower[i], self.upper[i]))
     }
 
-    /// The inputs not held at a bound by the gradient at x.
-    fn free_at(&self, x: &SVector<f64, P>) -> Inputs<P> {
-        let grad = self.g + self.h * x;
+    fn gradient(&self, x: &SVector<f64, P>) -> SVector<f64, P> {
+        self.g + self.h * x
+    }
+
+    /// The inputs not held at a bound by the gradient `grad` at x.
+    fn free_at(&self, x: &SVector<f64, P>, grad: &SVector<f64, P>) -> Inputs<P> {
         let mut free = Inputs {
             index: [0; P],
             len: 0,
@@ -139,17 +151,18 @@ impl<const P: usize> BoxQp<P> {
         free
     }
 
-    /// The minimiser and its free inputs by projected Newton from `start`;
-    /// `None` if H is not positive definite on a free set met on the way.
-    fn projected_newton(&self, start: SVector<f64, P>) -> Option<(SVector<f64, P>, Inputs<P>)> {
+    /// The minimiser and its free inputs by projected Newton from `start`,
+    /// with H's factor on them where the last iterate had it; `None` if H
+    /// is not positive definite on a free set met on the way.
+    fn projected_newton(&self, start: SVector<f64, P>) -> Option<Minimiser<P>> {
         let mut x = self.clamp(&start);
         // The last iterate's free set and factor, kept while the set stays.
         let mut held: Option<(Inputs<P>, Cholesky<f64, P>)> = None;
         for _ in 0..100 {
-            let grad = self.g + self.h * x;
-            let free = self.free_at(&x);
+            let grad = self.gradient(&x);
+            let free = self.free_at(&x, &grad);
             if free.len == 0 {
-                return Some((x, free));
+                return Some((x, free, None));
             }
             let chol = match held.take() {
                 Some((last, chol)) if last == free => chol,
@@ -161,40 +174,42 @@ impl<const P: usize> BoxQp<P> {
                 .enumerate()
                 .for_each(|(i, &j)| grad_free[i] = grad[j]);
             if grad_free.amax() <= 1e-12 * (1.0 + self.g.amax()) {
-                return Some((x, free));
+                return Some((x, free, Some(chol)));
             }
             let newton = chol.solve(grad_free);
             let mut direction = SVector::<f64, P>::zeros();
             f.iter()
                 .enumerate()
                 .for_each(|(i, &j)| direction[j] = -newton[i]);
-            let Some(next) = self.armijo(&x, &grad, &direction) else {
-                return Some((x, free));
-            };
             let f0 = self.value(&x);
-            let improvement = f0 - self.value(&next);
+            let Some((next, f1)) = self.armijo((&x, f0), &grad, &direction) else {
+                return Some((x, free, Some(chol)));
+            };
             x = next;
-            if improvement <= 1e-14 * (1.0 + f0.abs()) {
-                return Some((x, self.free_at(&x)));
+            if f0 - f1 <= 1e-14 * (1.0 + f0.abs()) {
+                let free_now = self.free_at(&x, &self.gradient(&x));
+                let chol = (free_now == free).then_some(chol);
+                return Some((x, free_now, chol));
             }
             held = Some((free, chol));
         }
-        Some((x, self.free_at(&x)))
+        Some((x, self.free_at(&x, &self.gradient(&x)), None))
     }
 
-    /// The Armijo step along the projection of x + α d, halving α from 1.
+    /// The Armijo step along the projection of x + α d, halving α from 1,
+    /// with the value there; f0 is the value at x.
     fn armijo(
         &self,
-        x: &SVector<f64, P>,
+        (x, f0): (&SVector<f64, P>, f64),
         grad: &SVector<f64, P>,
         direction: &SVector<f64, P>,
-    ) -> Option<SVector<f64, P>> {
-        let f0 = self.value(x);
+    ) -> Option<(SVector<f64, P>, f64)> {
         let mut alpha = 1.0;
         while alpha >= 1e-20 {
             let candidate = self.clamp(&(x + direction * alpha));
-            if self.value(&candidate) <= f0 + 0.1 * grad.dot(&(candidate - x)) {
-                return Some(candidate);
+            let f1 = self.value(&candidate);
+            if f1 <= f0 + 0.1 * grad.dot(&(candidate - x)) {
+                return Some((candidate, f1));
             }
             alpha *= 0.5;
         }
