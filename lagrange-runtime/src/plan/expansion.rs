@@ -18,8 +18,6 @@
 use super::cost::CostModel;
 use crate::mechanics::InputDerivatives;
 use crate::numeric::products::{gemm, gemv};
-#[cfg(test)]
-use nalgebra::SVector;
 use nalgebra::{DMatrix, DVector};
 
 /// ∂F/∂x and ∂F/∂u of one step, each with its transpose (the products
@@ -75,22 +73,20 @@ impl StepJacobian {
         au.transpose_to(au_t);
     }
 
+    /// Euler's form of a stage's derivatives (see the module notes).
     pub(super) fn euler<const N: usize, const P: usize>(
         h: f64,
         d: &InputDerivatives<f64, N, P>,
     ) -> Self {
-        let mut a = DMatrix::zeros(N, 2 * N);
-        a.fixed_view_mut::<N, N>(0, 0).copy_from(&d.dq);
-        a.fixed_view_mut::<N, N>(0, N).copy_from(&d.dv);
-        let au = DMatrix::from_column_slice(N, P, d.du.as_slice());
-        let (a_t, au_t) = (a.transpose(), au.transpose());
-        Self::Euler {
+        let mut form = Self::Euler {
             h,
-            a,
-            au,
-            a_t,
-            au_t,
-        }
+            a: DMatrix::zeros(N, 2 * N),
+            au: DMatrix::zeros(N, P),
+            a_t: DMatrix::zeros(2 * N, N),
+            au_t: DMatrix::zeros(P, N),
+        };
+        form.set_euler(h, d);
+        form
     }
 }
 
@@ -107,19 +103,19 @@ pub(super) struct Expansion {
     /// Bᵀ V_x, and μ's N × 2N factor Bᵀ P + (h⁴ + h²) A.
     b_vx: DVector<f64>,
     b_fx: DMatrix<f64>,
-    pub(super) qx: DVector<f64>,
+    qx: DVector<f64>,
     pub(super) qu: DVector<f64>,
     qxx: DMatrix<f64>,
-    pub(super) quu: DMatrix<f64>,
+    quu: DMatrix<f64>,
     qux: DMatrix<f64>,
     /// Q̃_uu and Q̃_ux, regularised.
     pub(super) reg_uu: DMatrix<f64>,
     pub(super) reg_ux: DMatrix<f64>,
     gain_t: DMatrix<f64>,
     qux_t: DMatrix<f64>,
-    /// ½ Q_uu K + Q_ux, and Kᵀ times it.
+    /// C = ½ Q_uu K + Q_ux, and E = Kᵀ C.
     closed: DMatrix<f64>,
-    half_value: DMatrix<f64>,
+    kt_closed: DMatrix<f64>,
     /// Q_uu k + Q_u.
     pub(super) step_change: DVector<f64>,
 }
@@ -143,7 +139,7 @@ impl Expansion {
             qx: DVector::zeros(n2),
             qu: DVector::zeros(p),
             qxx: square.clone(),
-            half_value: square,
+            kt_closed: square,
             quu: DMatrix::zeros(p, p),
             qux: wide.clone(),
             reg_uu: DMatrix::zeros(p, p),
@@ -175,12 +171,6 @@ impl Expansion {
         match jacobian {
             StepJacobian::Dense { fx, fu, fx_t, fu_t } => {
                 self.dense(fx, fu, (fx_t, fu_t), (vx, vxx));
-                self.reg_uu.copy_from(&self.quu);
-                self.reg_ux.copy_from(&self.qux);
-                if mu != 0.0 {
-                    gemm(&mut self.reg_uu, mu, fu_t, fu, 1.0);
-                    gemm(&mut self.reg_ux, mu, fu_t, fx, 1.0);
-                }
             }
             StepJacobian::Euler {
                 h,
@@ -188,13 +178,20 @@ impl Expansion {
                 au,
                 a_t,
                 au_t,
-            } => {
-                self.euler(*h, (a, au), (a_t, au_t), (vx, vxx));
-                self.reg_uu.copy_from(&self.quu);
-                self.reg_ux.copy_from(&self.qux);
-                if mu != 0.0 {
-                    self.euler_regularisation(*h, (a, au), au_t, mu);
-                }
+            } => self.euler(*h, (a, au), (a_t, au_t), (vx, vxx)),
+        }
+        self.reg_uu.copy_from(&self.quu);
+        self.reg_ux.copy_from(&self.qux);
+        if mu == 0.0 {
+            return;
+        }
+        match jacobian {
+            StepJacobian::Dense { fx, fu, fu_t, .. } => {
+                gemm(&mut self.reg_uu, mu, fu_t, fu, 1.0);
+                gemm(&mut self.reg_ux, mu, fu_t, fx, 1.0);
+            }
+            StepJacobian::Euler { h, a, au, au_t, .. } => {
+                self.euler_regularisation(*h, (a, au), au_t, mu);
             }
         }
     }
@@ -268,8 +265,8 @@ impl Expansion {
     }
 
     /// The value function before the step from the true Q (so that it
-    /// stays bounded as μ grows: with Q̃ in it, V_xx would lose μ f_xᵀ P f_x
-    /// a step, P a projection, and raising μ would make matters worse):
+    /// stays bounded as μ grows: with Q̃ in it, V_xx would lose μ F_xᵀ Π F_x
+    /// a step, Π a projection, and raising μ would make matters worse):
     /// V_x = Q_x + Kᵀ(Q_uu k + Q_u) + Q_uxᵀ k and
     /// V_xx = Q_xx + Kᵀ Q_uu K + Kᵀ Q_ux + Q_uxᵀ K = Q_xx + E + Eᵀ with
     /// E = Kᵀ C, C = ½ Q_uu K + Q_ux (one product of 2N × P × 2N where the
@@ -289,10 +286,10 @@ impl Expansion {
         gemv(vx, 1.0, &self.qux_t, kff, 1.0);
         self.closed.copy_from(&self.qux);
         gemm(&mut self.closed, 0.5, &self.quu, gain, 1.0);
-        gemm(&mut self.half_value, 1.0, &self.gain_t, &self.closed, 0.0);
+        gemm(&mut self.kt_closed, 1.0, &self.gain_t, &self.closed, 0.0);
         // V_xx = sym(Q_xx) + E + Eᵀ, symmetric exactly, in one sweep.
         let n = vxx.nrows();
-        let (q, e) = (self.qxx.as_slice(), self.half_value.as_slice());
+        let (q, e) = (self.qxx.as_slice(), self.kt_closed.as_slice());
         let v = vxx.as_mut_slice();
         for j in 0..n {
             for i in 0..=j {
@@ -352,7 +349,7 @@ fn add_p_t(out: &mut [f64], m: &[f64], rows: usize, h: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::SMatrix;
+    use nalgebra::{SMatrix, SVector};
 
     /// Euler's form multiplies by P + B A and B A_u without forming them:
     /// Q's model, the regularised blocks and the value function after a
