@@ -77,14 +77,29 @@ pub(super) fn difference<const N: usize, const Q: usize>(
     x0: &DVector<f64>,
     x1: &DVector<f64>,
 ) -> DVector<f64> {
-    if layout.is_empty() {
-        return x1 - x0;
-    }
     let mut d = DVector::zeros(2 * N);
-    let (q0, q1) = (&x0.as_slice()[..Q], &x1.as_slice()[..Q]);
-    orientation::difference(layout, q0, q1, &mut d.as_mut_slice()[..N]);
-    d.rows_mut(N, N).copy_from(&(x1.rows(Q, N) - x0.rows(Q, N)));
+    difference_into::<N, Q>(layout, x0, x1, d.as_mut_slice());
     d
+}
+
+/// [`difference`] written into `out` (2N entries), allocating nothing.
+fn difference_into<const N: usize, const Q: usize>(
+    layout: &[Orientation],
+    x0: &DVector<f64>,
+    x1: &DVector<f64>,
+    out: &mut [f64],
+) {
+    let (x0, x1) = (x0.as_slice(), x1.as_slice());
+    if layout.is_empty() {
+        out.iter_mut()
+            .zip(x1.iter().zip(x0))
+            .for_each(|(d, (a, b))| *d = a - b);
+        return;
+    }
+    orientation::difference(layout, &x0[..Q], &x1[..Q], &mut out[..N]);
+    for i in 0..N {
+        out[N + i] = x1[Q + i] - x0[Q + i];
+    }
 }
 
 /// eᵀ W e, column by column (the cost is evaluated at every step of every
@@ -95,22 +110,13 @@ fn quadratic_form(w: &DMatrix<f64>, e: &[f64]) -> f64 {
     columns.zip(e).map(|(column, &ej)| ej * dot(column)).sum()
 }
 
-/// (a − b)ᵀ W (a − b), the difference on the stack up to 32 entries.
-fn difference_form(w: &DMatrix<f64>, a: &[f64], b: &[f64]) -> f64 {
-    let fill = |e: &mut [f64]| {
-        for ((e, a), b) in e.iter_mut().zip(a).zip(b) {
-            *e = a - b;
-        }
-    };
+/// `f` of `len` numbers of scratch, on the stack up to 32 of them.
+fn with_scratch<R>(len: usize, f: impl FnOnce(&mut [f64]) -> R) -> R {
     let mut stack = [0.0; 32];
-    if a.len() <= stack.len() {
-        let e = &mut stack[..a.len()];
-        fill(e);
-        return quadratic_form(w, e);
+    match len <= stack.len() {
+        true => f(&mut stack[..len]),
+        false => f(&mut vec![0.0; len]),
     }
-    let mut e = vec![0.0; a.len()];
-    fill(&mut e);
-    quadratic_form(w, &e)
 }
 
 /// x ⊕ d: q ⊕ d_q and v + d_v; x + d without orientations.
@@ -293,14 +299,9 @@ where
         difference::<N, Q>(S::ORIENTATIONS, x0, x1)
     }
 
-    /// x₁ ⊖ x₀ written into `out` (2N), without allocating in the plane.
+    /// x₁ ⊖ x₀ written into `out` (2N), allocating nothing.
     pub(super) fn minus_into(&self, x1: &DVector<f64>, x0: &DVector<f64>, out: &mut DVector<f64>) {
-        if S::ORIENTATIONS.is_empty() {
-            out.copy_from(x1);
-            *out -= x0;
-        } else {
-            out.copy_from(&self.minus(x1, x0));
-        }
+        difference_into::<N, Q>(S::ORIENTATIONS, x0, x1, out.as_mut_slice());
     }
 
     /// x ⊕ d of a state and a tangent vector.
@@ -313,17 +314,22 @@ where
         weighted::<N>(S::ORIENTATIONS, w, e)
     }
 
-    /// (x ⊖ x*)ᵀ W (x ⊖ x*), in the plane with no temporary on the heap.
+    /// (x ⊖ x*)ᵀ W (x ⊖ x*), the error in scratch.
     fn state_form(&self, w: &DMatrix<f64>, x: &DVector<f64>) -> f64 {
-        if S::ORIENTATIONS.is_empty() {
-            return difference_form(w, x.as_slice(), self.goal.as_slice());
-        }
-        quadratic_form(w, self.minus(x, &self.goal).as_slice())
+        with_scratch(2 * N, |e| {
+            difference_into::<N, Q>(S::ORIENTATIONS, &self.goal, x, e);
+            quadratic_form(w, e)
+        })
     }
 
     /// The running cost of (x, u) at step k.
     pub(super) fn running(&self, k: usize, x: &DVector<f64>, u: &DVector<f64>) -> f64 {
-        let du = difference_form(&self.weight_u, u.as_slice(), self.input_target.as_slice());
+        let du = with_scratch(P, |e| {
+            for (i, d) in e.iter_mut().enumerate() {
+                *d = u[i] - self.input_target[i];
+            }
+            quadratic_form(&self.weight_u, e)
+        });
         let quadratic = 0.5 * (self.state_form(&self.weight_x, x) + du);
         let (q, v) = split::<N, Q>(x);
         let u = SVector::<f64, P>::from_column_slice(u.as_slice());
