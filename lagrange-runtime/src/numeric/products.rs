@@ -184,7 +184,8 @@ fn sums<const B: usize, const J: usize>(
 
 /// out ← α sums + β out (out not read when β = 0).
 fn write(out: &mut [f64], alpha: f64, sums: &[f64], beta: f64) {
-    // One loop per case, so that each runs in vector registers.
+    // One loop per case: no branch inside the loop (β = 1 is the usual
+    // accumulation).
     let pairs = out.iter_mut().zip(sums);
     if beta == 0.0 {
         pairs.for_each(|(o, s)| *o = alpha * s);
