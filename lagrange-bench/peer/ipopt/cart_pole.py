@@ -73,7 +73,7 @@ def problem(w=0.0):
             lbz.append(-FORCE)
             ubz.append(FORCE)
     nlp = {"x": z, "f": cost, "g": ca.vertcat(*g)}
-    options = {"ipopt.tol": 1e-10, "ipopt.print_level": 0, "print_time": False}
+    options = {"ipopt.tol": 1e-10, "ipopt.print_level": int(__import__("os").environ.get("IPOPT_PRINT", "0")), "print_time": False}
     solver = ca.nlpsol("direct", "ipopt", nlp, options)
     # The rollout of F = 0: hanging at rest throughout.
     guess = []

@@ -21,6 +21,7 @@
 
 use super::ddp::{Iteration, Plan};
 use super::direct_qp::{self, Linearised, Unsolved, offsets};
+use super::interior::{self, Interior, Outcome};
 use super::passes::{
     Nominal, backward_pass, from_guess, guessed, jacobians, largest, linearise, rollout,
 };
@@ -188,7 +189,8 @@ impl Direct {
         problem.check()
     }
 
-    /// The SQP iterations from a nominal.
+    /// The interior point's iterations from a nominal, then the elastic
+    /// SQP's if it finds no acceptable step.
     fn iterate<S, const N: usize, const P: usize>(
         &self,
         problem: &OptimalControl<S, N, P>,
@@ -197,13 +199,46 @@ impl Direct {
     where
         S: Driven<f64, N, P>,
     {
+        let settings = interior::Settings {
+            tolerance: self.tolerance,
+            gap_tolerance: self.gap_tolerance,
+            max_iterations: self.max_iterations,
+            verbose: self.verbose,
+        };
+        let mut log = Vec::new();
+        let outcome = Interior::new(problem).run(&settings, &nominal, &mut log);
+        match outcome {
+            Ok(Outcome::Converged(nominal)) => Ok(finish(problem, &nominal, log, true)),
+            Ok(Outcome::OutOfIterations(nominal, stationarity)) => {
+                let point = measured(problem, nominal);
+                Err(self.out_of_iterations(problem, &point, log, stationarity))
+            }
+            Ok(Outcome::Restore(nominal, why)) => {
+                if self.verbose {
+                    eprintln!("direct: {why}; the elastic SQP takes over");
+                }
+                self.elastic(problem, nominal, log)
+            }
+            Err(e) => Err(Failure::new(e, finish(problem, &nominal, log, false))),
+        }
+    }
+
+    /// The elastic SQP's iterations from a nominal, after those in `log`.
+    fn elastic<S, const N: usize, const P: usize>(
+        &self,
+        problem: &OptimalControl<S, N, P>,
+        nominal: Nominal,
+        mut log: Vec<Iteration>,
+    ) -> Result<Plan<N, P>, Failure<Plan<N, P>>>
+    where
+        S: Driven<f64, N, P>,
+    {
         let mut point = measured(problem, nominal);
         // The merit function's penalty ν, also the elastic constraints'
         // price: it only grows (`raised`).
         let (mut penalty, mut damping) = (ELASTIC_PRICE, 1e-8);
-        let mut log = Vec::new();
         let mut last_step = f64::NAN;
-        for iteration in 1..=self.max_iterations {
+        for iteration in log.len() + 1..=self.max_iterations {
             let fail = |e: Error, point: &Point, log: &[Iteration]| {
                 Failure::new(e, finish(problem, &point.nominal, log.to_vec(), false))
             };

@@ -39,7 +39,15 @@ mod ddp;
 #[cfg(feature = "direct")]
 mod direct;
 #[cfg(feature = "direct")]
+mod curvature;
+#[cfg(feature = "direct")]
 mod direct_qp;
+#[cfg(feature = "direct")]
+mod interior;
+#[cfg(feature = "direct")]
+mod interior_step;
+#[cfg(feature = "direct")]
+mod kkt;
 mod expansion;
 mod mpc;
 mod passes;

@@ -69,7 +69,7 @@ pub(super) fn largest(xs: &[DVector<f64>]) -> f64 {
 }
 
 /// One step of the problem's transition on a state vector.
-fn step<S, const N: usize, const P: usize, const Q: usize>(
+pub(super) fn step<S, const N: usize, const P: usize, const Q: usize>(
     problem: &OptimalControl<S, N, P, Q>,
     k: usize,
     x: &DVector<f64>,

@@ -1,0 +1,240 @@
+//! The Newton system of the direct method's interior point, sparse and
+//! factorised by Clarabel's QDLDL (an LDLᵀ factorisation of quasi-definite
+//! matrices with an AMD ordering, from the registry), with the inertia that
+//! tells whether the step is a descent direction.
+//!
+//! The unknowns are laid out as in `direct_qp`: (x₀, u₀, x₁, u₁, …, x_K)
+//! then the multipliers of the rows (the start, each step's dynamics, a
+//! final equality). The matrix is
+//!
+//! ```text
+//! [ W + Σ + δ_w I   Jᵀ    ]        W the Lagrangian's Hessian, block diagonal by step,
+//! [ J              −δ_c I ]        J the rows' Jacobian: I on x₀; I on x_{k+1}, −A_k on x_k,
+//!                                    −B_k on u_k; I on x_K for a final equality
+//! ```
+//!
+//! Its pattern is fixed by the problem's sizes, so the ordering and the
+//! symbolic factorisation are done once and each iteration refills the
+//! values in place. Factorised without pivoting or regularisation, the
+//! pivots' signs are the matrix's inertia: the step solves the barrier
+//! problem's Newton equations for a minimum (not a saddle or a maximum)
+//! exactly when there are as many positive pivots as primal unknowns
+//! (Wächter and Biegler 2006, §3.1). The small −δ_c keeps the dual
+//! pivots nonzero for any ordering; the solve refines against δ_c = 0.
+
+use super::direct_qp::offsets;
+use clarabel::algebra::CscMatrix;
+use clarabel::qdldl::{QDLDLFactorisation, QDLDLSettingsBuilder};
+use nalgebra::DMatrix;
+
+/// Where each stored entry's value comes from.
+#[derive(Clone, Copy)]
+enum Source {
+    /// Entry (i, j) of step k's Hessian block (k = K for the final state's).
+    Hessian { k: usize, i: usize, j: usize },
+    /// −∂F_k/∂(x, u) at (row i, column j): step k's dynamics row.
+    Jacobian { k: usize, i: usize, j: usize },
+    /// A +1 of a row on the state it sets.
+    One,
+    /// The multipliers' diagonal, −δ_c.
+    Dual,
+}
+
+/// The Newton matrix's pattern, values and factorisation.
+pub(super) struct Kkt {
+    primal: usize,
+    matrix: CscMatrix<f64>,
+    sources: Vec<Source>,
+    every: Vec<usize>,
+    factor: QDLDLFactorisation<f64>,
+    /// The dual diagonal of the matrix factorised, to refine against zero.
+    delta_c: f64,
+    residual: Vec<f64>,
+    correction: Vec<f64>,
+}
+
+/// The sizes: 2N state entries, P inputs, K steps, a final equality or not.
+#[derive(Clone, Copy)]
+pub(super) struct Layout {
+    pub n2: usize,
+    pub p: usize,
+    pub steps: usize,
+    pub final_equality: bool,
+}
+
+impl Layout {
+    /// The number of primal unknowns, (K + 1) 2N + K P.
+    pub fn primal(&self) -> usize {
+        (self.steps + 1) * self.n2 + self.steps * self.p
+    }
+
+    /// The number of rows: the start, K steps, and the final equality.
+    pub fn rows(&self) -> usize {
+        (self.steps + 1 + usize::from(self.final_equality)) * self.n2
+    }
+
+    /// The width of step k's block: 2N + P, or 2N for the final state.
+    pub fn block(&self, k: usize) -> usize {
+        match k < self.steps {
+            true => self.n2 + self.p,
+            false => self.n2,
+        }
+    }
+}
+
+/// The upper triangle's entries column by column, rows ascending.
+fn pattern(l: Layout) -> (Vec<usize>, Vec<usize>, Vec<Source>) {
+    let (n, n2) = (l.primal(), l.n2);
+    let (mut colptr, mut rowval, mut sources) = (vec![0], Vec::new(), Vec::new());
+    let mut push = |row: usize, source: Source| {
+        rowval.push(row);
+        sources.push(source);
+    };
+    for k in 0..=l.steps {
+        let (base, _) = offsets(n2, l.p, k);
+        for j in 0..l.block(k) {
+            for i in 0..=j {
+                push(base + i, Source::Hessian { k, i, j });
+            }
+            colptr.push(colptr.last().unwrap() + j + 1);
+        }
+    }
+    // The rows' columns: the start's, each step's, the final equality's.
+    let mut row = n;
+    for i in 0..n2 {
+        push(i, Source::One);
+        push(row, Source::Dual);
+        row += 1;
+        colptr.push(colptr.last().unwrap() + 2);
+    }
+    for k in 0..l.steps {
+        let (base, _) = offsets(n2, l.p, k);
+        let (next, _) = offsets(n2, l.p, k + 1);
+        for i in 0..n2 {
+            for j in 0..n2 + l.p {
+                push(base + j, Source::Jacobian { k, i, j });
+            }
+            push(next + i, Source::One);
+            push(row, Source::Dual);
+            row += 1;
+            colptr.push(colptr.last().unwrap() + n2 + l.p + 2);
+        }
+    }
+    if l.final_equality {
+        let (last, _) = offsets(n2, l.p, l.steps);
+        for i in 0..n2 {
+            push(last + i, Source::One);
+            push(row, Source::Dual);
+            row += 1;
+            colptr.push(colptr.last().unwrap() + 2);
+        }
+    }
+    (colptr, rowval, sources)
+}
+
+/// Why the matrix could not be factorised.
+pub(super) struct Singular;
+
+impl Kkt {
+    /// The pattern of a problem's Newton matrix, ordered and analysed.
+    pub fn new(layout: Layout) -> Self {
+        let (colptr, rowval, sources) = pattern(layout);
+        let size = layout.primal() + layout.rows();
+        let nnz = rowval.len();
+        let matrix = CscMatrix::new(size, size, colptr, rowval, vec![1.0; nnz]);
+        let settings = QDLDLSettingsBuilder::default()
+            .logical(true)
+            .regularize_enable(false)
+            .build()
+            .expect("the settings are complete");
+        let factor = QDLDLFactorisation::new(&matrix, Some(settings))
+            .expect("the pattern is upper triangular with every diagonal");
+        Self {
+            primal: layout.primal(),
+            matrix,
+            sources,
+            every: (0..nnz).collect(),
+            factor,
+            delta_c: 0.0,
+            residual: vec![0.0; size],
+            correction: vec![0.0; size],
+        }
+    }
+
+    /// Refills the values from the Hessian blocks (step by step, the final
+    /// state's last), the steps' ∂F/∂x and ∂F/∂u, and the shifts, then
+    /// factorises. Returns the number of positive pivots.
+    pub fn factorise(
+        &mut self,
+        hessians: &[DMatrix<f64>],
+        jacobians: &[(&DMatrix<f64>, &DMatrix<f64>)],
+        (delta_w, delta_c): (f64, f64),
+    ) -> Result<usize, Singular> {
+        for (value, source) in self.matrix.nzval.iter_mut().zip(&self.sources) {
+            *value = match *source {
+                Source::Hessian { k, i, j } => {
+                    hessians[k][(i, j)] + if i == j { delta_w } else { 0.0 }
+                }
+                Source::Jacobian { k, i, j } => {
+                    let (a, b) = jacobians[k];
+                    match j < a.ncols() {
+                        true => -a[(i, j)],
+                        false => -b[(i, j - a.ncols())],
+                    }
+                }
+                Source::One => 1.0,
+                Source::Dual => -delta_c,
+            };
+        }
+        self.delta_c = delta_c;
+        self.factor.update_values(&self.every, &self.matrix.nzval);
+        match self.factor.refactor() {
+            Ok(()) => Ok(self.factor.positive_inertia()),
+            Err(_) => Err(Singular),
+        }
+    }
+
+    /// The number of primal unknowns: the positive pivots a minimum has.
+    pub fn primal(&self) -> usize {
+        self.primal
+    }
+
+    /// Solves in place, with two rounds of refinement against the matrix
+    /// with no dual shift (δ_c only steadies the pivots).
+    pub fn solve(&mut self, rhs: &mut [f64]) {
+        let b = rhs.to_vec();
+        self.factor.solve(rhs);
+        for _ in 0..2 {
+            self.residual.copy_from_slice(&b);
+            self.subtract_product(rhs);
+            let size = self.residual.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+            if size == 0.0 {
+                return;
+            }
+            self.correction.copy_from_slice(&self.residual);
+            self.factor.solve(&mut self.correction);
+            for (x, d) in rhs.iter_mut().zip(&self.correction) {
+                *x += d;
+            }
+        }
+    }
+
+    /// residual −= K₀ x, K₀ the symmetric matrix from its upper triangle
+    /// with the dual shift taken out.
+    fn subtract_product(&mut self, x: &[f64]) {
+        let m = &self.matrix;
+        for j in 0..m.n {
+            for p in m.colptr[j]..m.colptr[j + 1] {
+                let (i, a) = (m.rowval[p], m.nzval[p]);
+                let a = match i == j && j >= self.primal {
+                    true => a + self.delta_c,
+                    false => a,
+                };
+                self.residual[i] -= a * x[j];
+                if i != j {
+                    self.residual[j] -= a * x[i];
+                }
+            }
+        }
+    }
+}
