@@ -50,7 +50,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         (Vector2::new(0.5, inf), Vector2::new(inf, inf)),
     );
     let solver = Direct::new()
-        .tolerance(1e-8)
+        .tolerance(1e-10)
         .max_iterations(option("--iterations", "100").parse()?)
         .verbose(option("--verbose", "no") == "yes");
     // `--guess u.csv`: the rollout of these forces instead of F = 0.

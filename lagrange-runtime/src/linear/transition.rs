@@ -38,6 +38,8 @@ use nalgebra::{DMatrix, SMatrix, SVector};
 
 #[path = "transition_chain.rs"]
 mod chain;
+#[path = "transition_curvature.rs"]
+mod curvature;
 #[path = "transition_group.rs"]
 mod group;
 

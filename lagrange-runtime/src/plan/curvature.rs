@@ -1,52 +1,40 @@
-//! The dynamics' curvature in the direct method's Lagrangian: for step k
-//! with multipliers y = λ_{k+1}, the Hessian of yᵀF_k(x, u) over (x, u),
-//! by forward differences of its gradient [∂F/∂x ∂F/∂u]ᵀ y, which the
-//! emitted step derivatives give exactly. One step derivative per state
-//! and input; the differences' error, about √ε of the curvature, slows
-//! the Newton steps' last digits only, since the gradients that decide
+//! The dynamics' derivatives and curvature for the direct method's Newton
+//! steps: for each step k, ∂F_k/∂(x, u) and, with multipliers y =
+//! λ_{k+1}, the Hessian of yᵀF_k over (x, u), from one sweep through the
+//! step's stages (`Transition::curvature`: the second-order chain rule,
+//! each stage's ∇²(μᵀq̈) by forward differences of the emitted
+//! ∂q̈/∂(q, v, u)). The differences' error, about √ε of the curvature,
+//! touches the Newton steps' last digits only: the gradients that decide
 //! the optimum are exact.
 
+use super::passes::Nominal;
 use super::problem::{OptimalControl, split};
 use crate::error::Error;
+use crate::linear::StepDerivatives;
 use crate::system::Driven;
-use nalgebra::{DMatrix, DVector, SVector};
+use nalgebra::{DMatrix, SVector};
 
-/// ∇²(yᵀF_k) at (x, u), symmetric, 2N + P square; `jacobian` is
-/// (∂F/∂x, ∂F/∂u) there. Zero when y is.
-pub(super) fn curvature<S, const N: usize, const P: usize>(
+/// Each step's derivatives and ∇²(λ_{k+1}ᵀF_k), 2N + P square, at the
+/// nominal; `lambda` holds the rows' multipliers (the start's first).
+#[allow(clippy::type_complexity)]
+pub(super) fn linearised<S, const N: usize, const P: usize>(
     problem: &OptimalControl<S, N, P>,
-    k: usize,
-    (x, u): (&DVector<f64>, &DVector<f64>),
-    y: &[f64],
-    jacobian: (&DMatrix<f64>, &DMatrix<f64>),
-) -> Result<DMatrix<f64>, Error>
+    nominal: &Nominal,
+    lambda: &[f64],
+) -> Result<(Vec<StepDerivatives<N>>, Vec<DMatrix<f64>>), Error>
 where
     S: Driven<f64, N, P>,
 {
-    let width = 2 * N + P;
-    let mut h = DMatrix::zeros(width, width);
-    if y.iter().all(|y| *y == 0.0) {
-        return Ok(h);
+    let (mut derivatives, mut curvatures) = (Vec::new(), Vec::new());
+    for k in 0..problem.steps {
+        let (q, v) = split::<N, N>(&nominal.xs[k]);
+        let u = SVector::<f64, P>::from_column_slice(nominal.us[k].as_slice());
+        let y = &lambda[(k + 1) * 2 * N..][..2 * N];
+        let (d, c) = problem
+            .transition
+            .curvature((&q, &v, &u), problem.time(k), y)?;
+        derivatives.push(d);
+        curvatures.push(c);
     }
-    let y = DVector::from_column_slice(y);
-    let gradient = |(a, b): (&DMatrix<f64>, &DMatrix<f64>)| {
-        let mut g = DVector::zeros(width);
-        g.rows_mut(0, 2 * N).copy_from(&a.tr_mul(&y));
-        g.rows_mut(2 * N, P).copy_from(&b.tr_mul(&y));
-        g
-    };
-    let here = gradient(jacobian);
-    let mut z = DVector::zeros(width);
-    z.rows_mut(0, 2 * N).copy_from(x);
-    z.rows_mut(2 * N, P).copy_from(u);
-    for j in 0..width {
-        let step = f64::EPSILON.sqrt() * z[j].abs().max(1.0);
-        let mut moved = z.clone();
-        moved[j] += step;
-        let (q, v) = split::<N, N>(&moved.rows(0, 2 * N).into_owned());
-        let input = SVector::<f64, P>::from_column_slice(moved.rows(2 * N, P).as_slice());
-        let d = problem.transition.derivatives(&q, &v, &input, problem.time(k))?;
-        h.set_column(j, &((gradient((&d.dx, &d.du)) - &here) / step));
-    }
-    Ok((&h + h.transpose()) * 0.5)
+    Ok((derivatives, curvatures))
 }

@@ -67,17 +67,19 @@ fn a_linear_problem_is_the_discrete_lqr_in_one_step() {
     assert!((plan.cost - ddp.cost).abs() < 1e-9 * ddp.cost);
 }
 
-/// From DDP's swing-up, states and inputs, the direct method finds nothing
-/// to change: both solve the same problem.
+/// From DDP's swing-up, states and inputs, the direct method comes back to
+/// the same plan: both solve the same problem. (The interior point starts
+/// inside the torque bounds and at its first barrier, as IPOPT does, so it
+/// takes a dozen iterations to return to the bounds the optimum rides.)
 #[test]
 fn from_ddps_optimum_it_stays() {
     let problem = swing_up();
     let ddp = Ddp::new().tolerance(1e-8).solve(&problem, &[]).unwrap();
     let plan = Direct::new()
-        .tolerance(1e-5)
+        .tolerance(1e-9)
         .solve_from(&problem, &ddp.q, &ddp.v, &ddp.u)
         .unwrap();
-    assert!(plan.log.len() <= 3, "{} iterations", plan.log.len());
+    assert!(plan.log.len() <= 20, "{} iterations", plan.log.len());
     assert!(
         (plan.cost - ddp.cost).abs() < 1e-8 * ddp.cost,
         "{} vs {}",

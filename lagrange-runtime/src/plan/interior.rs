@@ -24,11 +24,12 @@
 //! (`direct`), which either finds the feasible region or reports by how
 //! much the constraints are missed.
 
+use super::curvature::linearised;
 use super::ddp::Iteration;
 use super::direct_qp::offsets;
 use super::interior_step::{Direction, Residuals};
 use super::kkt::{Kkt, Layout};
-use super::passes::{Nominal, linearise, step};
+use super::passes::{Nominal, step};
 use super::problem::OptimalControl;
 use crate::error::Error;
 use crate::system::Driven;
@@ -62,7 +63,9 @@ const S_THETA: f64 = 1.1;
 const S_PHI: f64 = 2.3;
 const ETA_PHI: f64 = 1e-4;
 const GAMMA_ALPHA: f64 = 0.05;
-/// The relaxation of every bound, relative (IPOPT's `bound_relax_factor`).
+/// The relaxation of equal bounds, relative (IPOPT's `bound_relax_factor`,
+/// which IPOPT applies to every bound; here the others are kept exactly,
+/// so that a plan never crosses a limit).
 const RELAX: f64 = 1e-8;
 /// How far inside its bounds the first point is pushed (`bound_push`, `bound_frac`).
 const PUSH: f64 = 1e-2;
@@ -107,8 +110,8 @@ impl<'p, 'a, S, const N: usize, const P: usize> Interior<'p, 'a, S, N, P>
 where
     S: Driven<f64, N, P>,
 {
-    /// The iteration's state for a problem, with every bound relaxed by
-    /// 10⁻⁸ of itself (so that equal bounds still leave an interior).
+    /// The iteration's state for a problem, with equal bounds moved apart
+    /// by 10⁻⁸ of themselves (so that they still leave an interior).
     pub fn new(problem: &'p OptimalControl<'a, S, N, P>) -> Self {
         let layout = Layout {
             n2: 2 * N,
@@ -117,7 +120,11 @@ where
             final_equality: problem.final_equality,
         };
         let (lower, upper) = bounds(problem, layout);
-        let one_where = |b: &[f64]| b.iter().map(|b| f64::from(u8::from(b.is_finite()))).collect();
+        let one_where = |b: &[f64]| {
+            b.iter()
+                .map(|b| f64::from(u8::from(b.is_finite())))
+                .collect()
+        };
         Self {
             problem,
             layout,
@@ -146,9 +153,10 @@ where
         let mut point = self.evaluate(self.interior(unknowns(nominal)))?;
         self.theta_max = 1e4 * point.theta.max(1.0);
         self.theta_min = 1e-4 * point.theta.max(1.0);
+        self.first_multipliers(&point)?;
         loop {
             let models = self.models(&point.nominal)?;
-            let derivatives = linearise(self.problem, &point.nominal)?;
+            let (derivatives, curvatures) = linearised(self.problem, &point.nominal, &self.lambda)?;
             let jac: Vec<_> = derivatives.iter().map(|d| (&d.dx, &d.du)).collect();
             let r = self.residuals(&point, &models, &jac);
             if self.error(&point, &r, 0.0) <= settings.tolerance
@@ -161,7 +169,7 @@ where
                 return Ok(Outcome::OutOfIterations(point.nominal, r.stationarity));
             }
             self.lower_barrier(&point, &r, settings.tolerance);
-            let hessians = self.hessians(&point, &models, &jac)?;
+            let hessians = self.hessians(&point, &models, &curvatures);
             let Some(shift) = self.factorise(&hessians, &jac) else {
                 let why = "no shift of the Hessian gives a minimum's inertia";
                 return Ok(Outcome::Restore(point.nominal, why.into()));
@@ -183,7 +191,12 @@ where
     /// Biegler 2006, Algorithm A). The point, the direction taken (the
     /// correction's, if one was accepted) and its step; None when α falls
     /// below its floor.
-    fn search(&mut self, point: &Point, d: Direction, r: &Residuals) -> Result<Option<(Point, Direction, f64)>, Error> {
+    fn search(
+        &mut self,
+        point: &Point,
+        d: Direction,
+        r: &Residuals,
+    ) -> Result<Option<(Point, Direction, f64)>, Error> {
         let test = Test::new(self, point, &d, &r.gradient);
         // A step below round-off of every unknown is taken whole (IPOPT's
         // tiny step), so that the last iterations are not stopped by noise.
@@ -211,8 +224,16 @@ where
     /// Up to four second-order corrections of a rejected first trial: the
     /// step again with the rows' values c_soc ← α c_soc + c(trial), which
     /// steers it back to the constraints where their curvature took it off.
-    fn corrected(&mut self, point: &Point, r: &Residuals, test: &Test, (trial, alpha): (&Point, f64)) -> Result<Option<(Point, Direction, f64)>, Error> {
-        let mut c_soc: Vec<f64> = (point.c.iter().zip(&trial.c)).map(|(c, t)| alpha * c + t).collect();
+    fn corrected(
+        &mut self,
+        point: &Point,
+        r: &Residuals,
+        test: &Test,
+        (trial, alpha): (&Point, f64),
+    ) -> Result<Option<(Point, Direction, f64)>, Error> {
+        let mut c_soc: Vec<f64> = (point.c.iter().zip(&trial.c))
+            .map(|(c, t)| alpha * c + t)
+            .collect();
         let mut last_theta = trial.theta;
         for _ in 0..4 {
             let d = self.direction(point, r, &c_soc);
@@ -253,7 +274,8 @@ where
             false => trial.theta <= (1.0 - GAMMA_THETA) * theta || phi_t <= phi - GAMMA_PHI * theta,
         };
         if accepted && !(switching && armijo) {
-            self.filter.push(((1.0 - GAMMA_THETA) * theta, phi - GAMMA_PHI * theta));
+            self.filter
+                .push(((1.0 - GAMMA_THETA) * theta, phi - GAMMA_PHI * theta));
         }
         accepted
     }
@@ -297,7 +319,12 @@ where
         let cost = problem.cost(&xs, &us);
         let theta = c.iter().map(|c| c.abs()).sum();
         let nominal = Nominal { xs, us, gaps, cost };
-        Ok(Point { w, nominal, c, theta })
+        Ok(Point {
+            w,
+            nominal,
+            c,
+            theta,
+        })
     }
 }
 
@@ -330,7 +357,12 @@ impl Test {
                     .min(DELTA * theta.powf(S_THETA) / (-slope).powf(S_PHI)),
                 true => GAMMA_THETA.min(GAMMA_PHI * theta / -slope),
             };
-        Self { theta, phi, slope, alpha_min }
+        Self {
+            theta,
+            phi,
+            slope,
+            alpha_min,
+        }
     }
 }
 
@@ -373,8 +405,10 @@ where
             upper[u..u + l.p].copy_from_slice(problem.upper.as_slice());
         }
     }
-    let relax = |b: f64| RELAX * b.abs().max(1.0);
-    lower.iter_mut().for_each(|b| *b -= relax(*b));
-    upper.iter_mut().for_each(|b| *b += relax(*b));
+    for (l, u) in lower.iter_mut().zip(upper.iter_mut()) {
+        if l == u {
+            (*l, *u) = (*l - RELAX * l.abs().max(1.0), *u + RELAX * u.abs().max(1.0));
+        }
+    }
     (lower, upper)
 }

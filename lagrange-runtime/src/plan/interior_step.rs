@@ -4,7 +4,6 @@
 //! (`interior` has the iteration and the filter).
 
 use super::cost::CostModel;
-use super::curvature::curvature;
 use super::ddp::Iteration;
 use super::direct_qp::offsets;
 use super::interior::{Interior, Point, Settings};
@@ -60,8 +59,43 @@ where
         Ok(models)
     }
 
+    /// The rows' first multipliers: the least-squares fit of ∇f − z_L + z_U
+    /// + Jᵀλ = 0, from [I Jᵀ; J 0] (IPOPT's), or zero if any is beyond 10³.
+    pub(super) fn first_multipliers(&mut self, point: &Point) -> Result<(), Error> {
+        let l = self.layout;
+        let models = self.models(&point.nominal)?;
+        let (derivatives, _) =
+            super::curvature::linearised(self.problem, &point.nominal, &self.lambda)?;
+        let jac: Vec<_> = derivatives.iter().map(|d| (&d.dx, &d.du)).collect();
+        let r = self.residuals(point, &models, &jac);
+        let identities: Vec<_> = (0..=l.steps)
+            .map(|k| DMatrix::identity(l.block(k), l.block(k)))
+            .collect();
+        if self
+            .kkt
+            .factorise(&identities, &jac, (0.0, DUAL_SHIFT))
+            .is_err()
+        {
+            return Ok(());
+        }
+        // λ is zero here, so the Lagrangian's gradient is ∇f − z_L + z_U.
+        let mut rhs: Vec<f64> = r.dual.iter().map(|d| -d).collect();
+        rhs.resize(l.primal() + l.rows(), 0.0);
+        self.kkt.solve(&mut rhs);
+        let lambda = &rhs[l.primal()..];
+        if largest(lambda) <= 1e3 {
+            self.lambda.copy_from_slice(lambda);
+        }
+        Ok(())
+    }
+
     /// ∇f, the Lagrangian's gradient and their norms at `point`.
-    pub(super) fn residuals(&self, point: &Point, models: &[CostModel], jac: &Jacobians) -> Residuals {
+    pub(super) fn residuals(
+        &self,
+        point: &Point,
+        models: &[CostModel],
+        jac: &Jacobians,
+    ) -> Residuals {
         let l = self.layout;
         let mut gradient = vec![0.0; l.primal()];
         for (k, m) in models.iter().enumerate() {
@@ -126,14 +160,18 @@ where
         let mut complementarity = 0.0f64;
         for (i, w) in point.w.iter().enumerate() {
             if self.lower[i].is_finite() {
-                complementarity = complementarity.max(((w - self.lower[i]) * self.zl[i] - mu).abs());
+                complementarity =
+                    complementarity.max(((w - self.lower[i]) * self.zl[i] - mu).abs());
             }
             if self.upper[i].is_finite() {
-                complementarity = complementarity.max(((self.upper[i] - w) * self.zu[i] - mu).abs());
+                complementarity =
+                    complementarity.max(((self.upper[i] - w) * self.zu[i] - mu).abs());
             }
         }
         let (s_d, s_c) = r.scales;
-        (r.stationarity / s_d).max(r.violation).max(complementarity / s_c)
+        (r.stationarity / s_d)
+            .max(r.violation)
+            .max(complementarity / s_c)
     }
 
     /// μ lowered (and the filter cleared) while the barrier problem is
@@ -147,9 +185,14 @@ where
     }
 
     /// Each step's block of the barrier problem's Hessian: the cost's model,
-    /// less the dynamics' curvature λ_{k+1}ᵀ ∇²F_k, plus Σ = z_L/(w − l) +
+    /// less the dynamics' curvature ∇²(λ_{k+1}ᵀF_k) (`curvatures`), plus Σ = z_L/(w − l) +
     /// z_U/(u − w) on the diagonal.
-    pub(super) fn hessians(&self, point: &Point, models: &[CostModel], jac: &Jacobians) -> Result<Vec<DMatrix<f64>>, Error> {
+    pub(super) fn hessians(
+        &self,
+        point: &Point,
+        models: &[CostModel],
+        curvatures: &[DMatrix<f64>],
+    ) -> Vec<DMatrix<f64>> {
         let l = self.layout;
         let mut blocks = Vec::with_capacity(l.steps + 1);
         for (k, m) in models.iter().enumerate() {
@@ -159,10 +202,9 @@ where
             if k < l.steps {
                 h.view_mut((l.n2, l.n2), (l.p, l.p)).copy_from(&m.luu);
                 h.view_mut((l.n2, 0), (l.p, l.n2)).copy_from(&m.lux);
-                h.view_mut((0, l.n2), (l.n2, l.p)).copy_from(&m.lux.transpose());
-                let y = &self.lambda[(k + 1) * l.n2..][..l.n2];
-                let nominal = &point.nominal;
-                h -= curvature(self.problem, k, (&nominal.xs[k], &nominal.us[k]), y, jac[k])?;
+                h.view_mut((0, l.n2), (l.n2, l.p))
+                    .copy_from(&m.lux.transpose());
+                h -= &curvatures[k];
             }
             let (x, _) = offsets(l.n2, l.p, k);
             for j in 0..width {
@@ -171,7 +213,7 @@ where
             }
             blocks.push(h);
         }
-        Ok(blocks)
+        blocks
     }
 
     /// Factorises the Newton matrix, the Hessian shifted by the least δ_w
@@ -180,9 +222,7 @@ where
     /// unknowns. None if no shift up to 10⁴⁰ does.
     pub(super) fn factorise(&mut self, hessians: &[DMatrix<f64>], jac: &Jacobians) -> Option<f64> {
         let n = self.kkt.primal();
-        let fits = |kkt: &mut super::kkt::Kkt, shift: f64| {
-            matches!(kkt.factorise(hessians, jac, (shift, DUAL_SHIFT)), Ok(p) if p == n)
-        };
+        let fits = |kkt: &mut super::kkt::Kkt, shift: f64| matches!(kkt.factorise(hessians, jac, (shift, DUAL_SHIFT)), Ok(p) if p == n);
         if fits(&mut self.kkt, 0.0) {
             return Some(0.0);
         }
@@ -304,7 +344,14 @@ where
     }
 
     /// An iteration's record, printed when verbose.
-    pub(super) fn record(&self, settings: &Settings, point: &Point, stationarity: f64, alpha: f64, shift: f64) -> Iteration {
+    pub(super) fn record(
+        &self,
+        settings: &Settings,
+        point: &Point,
+        stationarity: f64,
+        alpha: f64,
+        shift: f64,
+    ) -> Iteration {
         let (cost, gap) = (point.nominal.cost, largest(&point.c));
         if settings.verbose {
             eprintln!(

@@ -199,16 +199,17 @@ impl Kkt {
         self.primal
     }
 
-    /// Solves in place, with two rounds of refinement against the matrix
-    /// with no dual shift (δ_c only steadies the pivots).
+    /// Solves in place, refined against the matrix with no dual shift (δ_c
+    /// only steadies the pivots) until the residual is at round-off of the
+    /// right-hand side, at most twice.
     pub fn solve(&mut self, rhs: &mut [f64]) {
         let b = rhs.to_vec();
+        let floor = 1e-14 * b.iter().fold(1.0f64, |m, b| m.max(b.abs()));
         self.factor.solve(rhs);
         for _ in 0..2 {
             self.residual.copy_from_slice(&b);
             self.subtract_product(rhs);
-            let size = self.residual.iter().fold(0.0f64, |m, r| m.max(r.abs()));
-            if size == 0.0 {
+            if self.residual.iter().all(|r| r.abs() <= floor) {
                 return;
             }
             self.correction.copy_from_slice(&self.residual);

@@ -35,20 +35,20 @@
 mod bounds;
 mod box_qp;
 mod cost;
+#[cfg(feature = "direct")]
+mod curvature;
 mod ddp;
 #[cfg(feature = "direct")]
 mod direct;
 #[cfg(feature = "direct")]
-mod curvature;
-#[cfg(feature = "direct")]
 mod direct_qp;
+mod expansion;
 #[cfg(feature = "direct")]
 mod interior;
 #[cfg(feature = "direct")]
 mod interior_step;
 #[cfg(feature = "direct")]
 mod kkt;
-mod expansion;
 mod mpc;
 mod passes;
 mod problem;
