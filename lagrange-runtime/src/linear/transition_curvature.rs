@@ -98,7 +98,11 @@ impl<S> Transition<'_, S> {
         let h = self.h;
         let mu = SVector::<f64, N>::from_column_slice(&y[..N]) * (h * h)
             + SVector::<f64, N>::from_column_slice(&y[N..2 * N]) * h;
-        self.stage_hessian((q, v, u), t, (&first, &mu), step)
+        let width = 2 * N + P;
+        let mut g = DMatrix::zeros(width, width);
+        self.stage_hessian(((q, v, u), t), (&first, &mu), step, &mut g)?;
+        symmetrise(&mut g);
+        Ok(g)
     }
 
     /// RK4 in the plane: forward, each stage's point, derivatives and
@@ -149,7 +153,10 @@ impl<S> Transition<'_, S> {
             SVector::<f64, N>::from_column_slice(&y[..N]),
             SVector::<f64, N>::from_column_slice(&y[N..2 * N]),
         );
-        let mut hessian = DMatrix::zeros(2 * N + P, 2 * N + P);
+        let width = 2 * N + P;
+        let mut hessian = DMatrix::zeros(width, width);
+        // Each stage's ∇²(μᵀq̈), W_s and their product, reused.
+        let (mut g, mut w, mut gw) = (hessian.clone(), hessian.clone(), hessian.clone());
         // The adjoint of the next stage's point (q̄, v̄), zero after the last.
         let (mut next_q, mut next_v) = (SVector::<f64, N>::zeros(), SVector::<f64, N>::zeros());
         for s in (0..4).rev() {
@@ -159,41 +166,47 @@ impl<S> Transition<'_, S> {
             let bar_v = y.0 * weight + next_q * c_next;
             let bar_a = y.1 * weight + next_v * c_next;
             let ((qs, vs), (tq, tv), d) = &stages[s];
-            let g = self.stage_hessian((qs, vs, u), t + RK4_NODES[s] * h, (d, &bar_a), step)?;
-            let w = tangent_matrix(tq, tv);
-            hessian.gemm_tr(1.0, &w, &(g * &w), 1.0);
+            let at = ((qs, vs, u), t + RK4_NODES[s] * h);
+            if self.stage_hessian(at, (d, &bar_a), step, &mut g)? {
+                tangent_matrix(tq, tv, &mut w);
+                g.mul_to(&w, &mut gw);
+                hessian.gemm_tr(1.0, &w, &gw, 1.0);
+            }
             // p̄_s = ∂k_s/∂p_sᵀ k̄_s, k = (v, q̈(q, v)).
             next_q = d.dq.tr_mul(&bar_a);
             next_v = bar_v + d.dv.tr_mul(&bar_a);
         }
-        // Symmetric in exact arithmetic; made so in floating point.
-        Ok((derivatives, (&hessian + hessian.transpose()) * 0.5))
+        // Σ W_sᵀ G_s W_s with each G_s as differenced: its symmetric part is
+        // the curvature, and the sum's is Σ W_sᵀ sym(G_s) W_s.
+        symmetrise(&mut hessian);
+        Ok((derivatives, hessian))
     }
 
-    /// ∇²(μᵀq̈) over (q, v, u) at one stage, 2N + P square: forward
-    /// differences of [∂q̈/∂q ∂q̈/∂v ∂q̈/∂u]ᵀ μ, each of `relative` times
-    /// its entry (at least 1), symmetrised.
+    /// ∇²(μᵀq̈) over (q, v, u) at one stage into `g` (2N + P square), as
+    /// forward differences of [∂q̈/∂q ∂q̈/∂v ∂q̈/∂u]ᵀ μ, each of `relative`
+    /// times its entry (at least 1): column j the difference along the j-th
+    /// unknown, not yet symmetrised. False (and `g` untouched) when μ = 0.
     fn stage_hessian<const N: usize, const P: usize>(
         &self,
-        (q, v, u): (&SVector<f64, N>, &SVector<f64, N>, &SVector<f64, P>),
-        t: f64,
+        ((q, v, u), t): StagePoint<N, P>,
         (here, mu): (&InputDerivatives<f64, N, P>, &SVector<f64, N>),
         relative: f64,
-    ) -> Result<DMatrix<f64>, Error>
+        g: &mut DMatrix<f64>,
+    ) -> Result<bool, Error>
     where
         S: Driven<f64, N, P, N>,
     {
-        let width = 2 * N + P;
-        let mut g = DMatrix::zeros(width, width);
         if mu.iter().all(|m| *m == 0.0) {
-            return Ok(g);
+            return Ok(false);
         }
         // [∂q̈/∂q ∂q̈/∂v ∂q̈/∂u]ᵀ μ, by blocks, on the stack.
         let contracted =
             |d: &InputDerivatives<f64, N, P>| (d.dq.tr_mul(mu), d.dv.tr_mul(mu), d.du.tr_mul(mu));
         let base = contracted(here);
-        for j in 0..width {
+        for j in 0..2 * N + P {
+            let mut column = g.column_mut(j);
             if j < N && S::CYCLIC[j] {
+                column.fill(0.0);
                 continue;
             }
             let (mut q1, mut v1, mut u1) = (*q, *v, *u);
@@ -205,7 +218,6 @@ impl<S> Transition<'_, S> {
             let step = relative * value.abs().max(1.0);
             *value += step;
             let (dq, dv, du) = contracted(&self.stage_derivatives(&q1, &v1, &u1, t)?);
-            let mut column = g.column_mut(j);
             for i in 0..N {
                 column[i] = (dq[i] - base.0[i]) / step;
                 column[N + i] = (dv[i] - base.1[i]) / step;
@@ -214,22 +226,42 @@ impl<S> Transition<'_, S> {
                 column[2 * N + i] = (du[i] - base.2[i]) / step;
             }
         }
-        Ok((&g + g.transpose()) * 0.5)
+        Ok(true)
     }
 }
 
-/// W_s = ∂(q_s, v_s, u)/∂(q, v, u) from a stage's tangent rows.
+/// A stage's (q, v, u) and time.
+type StagePoint<'a, const N: usize, const P: usize> = (
+    (
+        &'a SVector<f64, N>,
+        &'a SVector<f64, N>,
+        &'a SVector<f64, P>,
+    ),
+    f64,
+);
+
+/// m ← (m + mᵀ)/2, in place.
+fn symmetrise(m: &mut DMatrix<f64>) {
+    for j in 0..m.ncols() {
+        for i in 0..j {
+            let mean = 0.5 * (m[(i, j)] + m[(j, i)]);
+            (m[(i, j)], m[(j, i)]) = (mean, mean);
+        }
+    }
+}
+
+/// W_s = ∂(q_s, v_s, u)/∂(q, v, u) from a stage's tangent rows, into w.
 fn tangent_matrix<const N: usize, const P: usize>(
     tq: &Rows<N, P>,
     tv: &Rows<N, P>,
-) -> DMatrix<f64> {
-    let mut w = DMatrix::identity(2 * N + P, 2 * N + P);
+    w: &mut DMatrix<f64>,
+) {
+    w.fill_with_identity();
     for (r, rows) in [(0, tq), (N, tv)] {
         w.fixed_view_mut::<N, N>(r, 0).copy_from(&rows.q);
         w.fixed_view_mut::<N, N>(r, N).copy_from(&rows.v);
         w.fixed_view_mut::<N, P>(r, 2 * N).copy_from(&rows.u);
     }
-    w
 }
 
 #[cfg(test)]

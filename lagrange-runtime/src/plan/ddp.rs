@@ -46,21 +46,27 @@ pub struct Iteration {
     /// How far from stationary the plan is. For [`Ddp`], the largest
     /// feed-forward input change the backward pass asked for; for the
     /// direct method (`plan::Direct`), the largest entry of the
-    /// Lagrangian's gradient at the plan with the quadratic program's
-    /// multipliers (the KKT conditions' stationarity), before the step.
+    /// Lagrangian's gradient ∇J + Jᵀλ − z_L + z_U at the plan before the
+    /// step (the KKT conditions' stationarity; in its last record, at the
+    /// plan returned).
     pub stationarity: f64,
     /// The line search's step α taken (0 if none was).
     pub step: f64,
-    /// The regularisation μ the backward pass used.
+    /// The regularisation: for [`Ddp`], the μ the backward pass used; for
+    /// the direct method, the shift δ_w of the Hessian that gave its Newton
+    /// matrix a minimum's inertia (0 where none was needed), or, in the
+    /// elastic SQP's iterations, the program's damping.
     pub regularization: f64,
     /// The decrease of the cost the quadratic model predicted for the step
-    /// (DDP; NaN for the direct method, whose line search reads the merit
-    /// function's model instead).
+    /// (DDP; NaN for the direct method, whose line search reads a filter
+    /// or a merit function instead).
     pub expected: f64,
     /// Feasibility after the iteration: the largest |entry| of the gaps
     /// F(x_k, u_k) − x_{k+1} (and x₀ less the plan's first state). Zero
     /// throughout a solve from inputs; from a guess of the states, it
     /// shrinks by 1 − α with each step α and is zero after a full step.
+    /// For the direct method, the largest violation of any constraint (the
+    /// gaps, the final equality, the state limits).
     pub gap: f64,
 }
 

@@ -1,23 +1,31 @@
-//! The direct method: multiple shooting solved by sequential quadratic
-//! programming. Every state and input of the horizon is an unknown, the
-//! dynamics x_{k+1} = F(x_k, u_k) are equality constraints, and each
-//! iteration solves the quadratic program of the cost's Gauss–Newton model
-//! and the constraints linearised at the current plan (`direct_qp`, by
-//! Clarabel), then takes a step along it chosen by a line search on the ℓ₁
-//! merit function φ = cost + ν Σ |constraint violations|, ν above the
-//! largest multiplier of the programs that meet their constraints
-//! (Nocedal and Wright, §18.3).
+//! The direct method: multiple shooting. Every state and input of the
+//! horizon is an unknown and the dynamics x_{k+1} = F(x_k, u_k) are
+//! equality constraints, beside the bounds on inputs and states and a final
+//! equality.
 //!
-//! The programs' Hessian is the cost's Gauss–Newton model, without the
-//! dynamics' curvature −Σ λ ∇²F: where that curvature shapes the solution
-//! the iteration converges slowly (see `BENCHMARKS.md`, "The direct method
-//! against IPOPT"), and reports `NotConverged` when its budget runs out.
+//! The iteration is an interior point (`interior`: IPOPT's primal–dual
+//! barrier method and filter line search, with the Lagrangian's exact
+//! Hessian, the dynamics' curvature included, and its Newton matrix
+//! factorised by Clarabel's sparse LDLᵀ, `kkt`). It converges as IPOPT
+//! does, iteration for iteration on the IPOPT peer's cart-pole (see
+//! `BENCHMARKS.md`, "The direct method against IPOPT").
 //!
-//! What it adds to DDP is constraints on states: hard state limits and a
-//! final equality, which the program keeps exactly at every iterate (limits)
-//! or at convergence (equalities). A plan is converged when the step it asks
-//! for is below the tolerance and every constraint holds within the gap
-//! tolerance.
+//! Where the interior point finds no acceptable step (the constraints
+//! cannot all be met: a final equality out of reach), the elastic SQP below
+//! takes over from its point, as IPOPT's feasibility restoration would:
+//! each iteration solves the quadratic program of the cost's Gauss–Newton
+//! model and the constraints linearised at the current plan (`direct_qp`,
+//! by Clarabel), the final equality and the state limits elastic, and
+//! takes a step along it chosen by a line search on the ℓ₁ merit function
+//! φ = cost + ν Σ |constraint violations|, ν above the largest multiplier
+//! of the programs that meet their constraints (Nocedal and Wright,
+//! §18.3). It either finds the constraints again and converges, or settles
+//! on the plan that misses them least and says by how much.
+//!
+//! A plan is converged when IPOPT's optimality error (the Lagrangian's
+//! gradient and the complementarity, scaled as IPOPT scales them) is below
+//! the tolerance and every constraint holds within the gap tolerance; the
+//! state limits hold at every iterate.
 
 use super::ddp::{Iteration, Plan};
 use super::direct_qp::{self, Linearised, Unsolved, offsets};
@@ -30,9 +38,8 @@ use crate::error::{Error, Failure, PlanError, SettingsError};
 use crate::system::Driven;
 use nalgebra::{DVector, SVector};
 
-/// The direct method's settings: at most 100 iterations, tolerance 1e-6 on
-/// the step (the largest change of a state or input it asks for), 1e-9 on
-/// the constraints, quiet.
+/// The direct method's settings: at most 100 iterations, tolerance 1e-8 on
+/// the optimality error (IPOPT's default), 1e-9 on the constraints, quiet.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Direct {
     max_iterations: usize,
@@ -69,7 +76,7 @@ impl Direct {
     pub fn new() -> Self {
         Self {
             max_iterations: 100,
-            tolerance: 1e-6,
+            tolerance: 1e-8,
             gap_tolerance: 1e-9,
             verbose: false,
         }
@@ -81,8 +88,10 @@ impl Direct {
         self
     }
 
-    /// The tolerance on the step: converged when no state or input changes
-    /// by more.
+    /// The tolerance on the optimality error: converged when the largest
+    /// entry of the Lagrangian's gradient and of the bounds' complementarity
+    /// (each scaled down where the multipliers are large, as IPOPT's `tol`)
+    /// is below it, and the constraints hold within the gap tolerance.
     pub fn tolerance(mut self, tolerance: f64) -> Self {
         self.tolerance = tolerance;
         self

@@ -200,11 +200,12 @@ impl Kkt {
     }
 
     /// Solves in place, refined against the matrix with no dual shift (δ_c
-    /// only steadies the pivots) until the residual is at round-off of the
+    /// only steadies the pivots) until the residual is below 10⁻¹⁰ of the
     /// right-hand side, at most twice.
     pub fn solve(&mut self, rhs: &mut [f64]) {
         let b = rhs.to_vec();
-        let floor = 1e-14 * b.iter().fold(1.0f64, |m, b| m.max(b.abs()));
+        // IPOPT's `residual_ratio_max`.
+        let floor = 1e-10 * b.iter().fold(1.0f64, |m, b| m.max(b.abs()));
         self.factor.solve(rhs);
         for _ in 0..2 {
             self.residual.copy_from_slice(&b);
