@@ -240,3 +240,87 @@ impl Kkt {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::numeric::samples::uniform;
+    use nalgebra::SymmetricEigen;
+
+    /// A small problem's Newton matrix, dense, from the same blocks.
+    fn dense(
+        l: Layout,
+        hessians: &[DMatrix<f64>],
+        jac: &[(DMatrix<f64>, DMatrix<f64>)],
+    ) -> DMatrix<f64> {
+        let (n, m) = (l.primal(), l.rows());
+        let mut k = DMatrix::zeros(n + m, n + m);
+        for (s, h) in hessians.iter().enumerate() {
+            let (x, _) = offsets(l.n2, l.p, s);
+            k.view_mut((x, x), h.shape()).copy_from(h);
+        }
+        let mut set = |r: usize, c: usize, v: f64| {
+            k[(n + r, c)] = v;
+            k[(c, n + r)] = v;
+        };
+        for i in 0..l.n2 {
+            set(i, i, 1.0);
+        }
+        for (s, (a, b)) in jac.iter().enumerate() {
+            let (x, u) = offsets(l.n2, l.p, s);
+            let (next, _) = offsets(l.n2, l.p, s + 1);
+            for i in 0..l.n2 {
+                let r = (s + 1) * l.n2 + i;
+                (0..l.n2).for_each(|j| set(r, x + j, -a[(i, j)]));
+                (0..l.p).for_each(|j| set(r, u + j, -b[(i, j)]));
+                set(r, next + i, 1.0);
+            }
+        }
+        let (last, _) = offsets(l.n2, l.p, l.steps);
+        for i in 0..l.n2 {
+            set((l.steps + 1) * l.n2 + i, last + i, 1.0);
+        }
+        k
+    }
+
+    /// The solve against a dense one, and the positive pivots against the
+    /// dense matrix's positive eigenvalues, for a convex Hessian and for
+    /// one made indefinite on the constraints' null space.
+    #[test]
+    fn the_sparse_solve_and_inertia_match_the_dense_matrix() {
+        let l = Layout {
+            n2: 2,
+            p: 1,
+            steps: 3,
+            final_equality: true,
+        };
+        let mut sample = uniform(7);
+        let mut random = |r: usize, c: usize| DMatrix::from_fn(r, c, |_, _| sample());
+        let jac: Vec<_> = (0..l.steps).map(|_| (random(2, 2), random(2, 1))).collect();
+        let refs: Vec<_> = jac.iter().map(|(a, b)| (a, b)).collect();
+        for shift in [2.0, -2.0] {
+            let hessians: Vec<DMatrix<f64>> = (0..=l.steps)
+                .map(|k| {
+                    let r = random(l.block(k), l.block(k));
+                    &r * r.transpose() * 0.1 + DMatrix::identity(l.block(k), l.block(k)) * shift
+                })
+                .collect();
+            let mut kkt = Kkt::new(l);
+            let positive = kkt.factorise(&hessians, &refs, (0.0, 1e-9)).ok().unwrap();
+            let k = dense(l, &hessians, &jac);
+            let eigen = SymmetricEigen::new(k.clone()).eigenvalues;
+            let expected = eigen.iter().filter(|e| **e > 0.0).count();
+            assert_eq!(positive, expected, "shift {shift}: {eigen}");
+            assert_eq!(positive == l.primal(), shift > 0.0);
+            let b = random(l.primal() + l.rows(), 1);
+            let mut x = b.as_slice().to_vec();
+            kkt.solve(&mut x);
+            let residual = &k * DMatrix::from_vec(x.len(), 1, x) - b;
+            assert!(
+                residual.amax() < 1e-9,
+                "shift {shift}: residual {}",
+                residual.amax()
+            );
+        }
+    }
+}

@@ -16,9 +16,11 @@
 //! within an iteration budget.
 //!
 //! With the feature `direct`, `Direct` solves the same problem by
-//! multiple shooting and sequential quadratic programming (each program
-//! sparse, solved by Clarabel), and also holds constraints on states that
-//! DDP cannot: hard [`state_limits`](OptimalControl::state_limits) and a
+//! multiple shooting with an interior-point method (IPOPT's barrier method
+//! and filter line search, the Lagrangian's exact Hessian, each Newton
+//! system sparse and factorised by Clarabel's LDLᵀ), and also holds
+//! constraints on states that DDP cannot: hard
+//! [`state_limits`](OptimalControl::state_limits) and a
 //! [`final_equality`](OptimalControl::final_equality).
 //!
 //! The state is x = (q, v). A system with free orientations (unit
