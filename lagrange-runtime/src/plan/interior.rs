@@ -211,10 +211,12 @@ where
             if tiny || self.acceptable(&test, &trial, alpha) {
                 return Ok(Some((trial, d, alpha)));
             }
-            if alpha == first && trial.theta >= point.theta {
-                if let Some((trial, d, alpha)) = self.corrected(point, r, &test, (&trial, first))? {
-                    return Ok(Some((trial, d, alpha)));
-                }
+            // A first trial that made the constraints worse: corrected.
+            if alpha == first
+                && trial.theta >= point.theta
+                && let Some(found) = self.corrected(point, r, &test, (&trial, first))?
+            {
+                return Ok(Some(found));
             }
             alpha /= 2.0;
         }
