@@ -556,6 +556,13 @@ pub trait Driven<T: Real, const N: usize, const P: usize, const Q: usize = N>:
         [""; P]
     };
 
+    /// Whether Q is affine in u (∂Q/∂u does not depend on u: forces and
+    /// torques proportional to the inputs), so that q̈ is too and its second
+    /// derivative in u vanishes, which the direct method's curvature uses
+    /// to difference fewer columns. `#[derive(Lagrangian)]` sets it from the
+    /// derived ∂Q/∂u; the default, false, is always safe.
+    const INPUTS_AFFINE: bool = false;
+
     /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t): the generalized forces the inputs add.
     fn input_forces(
         &self,

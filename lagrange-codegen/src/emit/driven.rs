@@ -46,6 +46,7 @@ pub(super) fn impl_driven(e: &Emitter, f: &Frame, model: &Model) -> TokenStream 
         ("dv", &inputs.jacobian_v, mat_nn.clone()),
     ]);
     let names = &inputs.names;
+    let affine = inputs.affine;
     let ident = f.ident;
     let ig = &f.impl_generics;
     let tg = &f.ty_generics;
@@ -55,6 +56,7 @@ pub(super) fn impl_driven(e: &Emitter, f: &Frame, model: &Model) -> TokenStream 
         #[allow(unused_variables, unused_mut, unused_assignments, clippy::all)]
         impl #ig ::lagrange::__private::Driven<#s, #sizes> for #ident #tg #wc {
             const INPUTS: [&'static str; #pl] = [#(#names),*];
+            const INPUTS_AFFINE: bool = #affine;
 
             #[inline]
             fn input_forces(&self, q: &#qvec, v: &#vec_n, u: &#vec_p, t: #s) -> #vec_n {

@@ -105,12 +105,15 @@ pub(super) fn split_inputs(
     // a quadratic potential), ΔQ = Σ u_j ∂Q/∂u_j: the derivatives have already
     // dropped every term without an input, whereas Q(u) − Q(0) would keep them
     // nested in factored sums that only cancel numerically.
+    let affine_rows: Vec<bool> = (jacobian_u.iter())
+        .map(|row| {
+            row.iter()
+                .all(|&d| u.iter().all(|&x| !ctx.depends_on(d, x)))
+        })
+        .collect();
     let forces: Vec<Sym> = (0..total.len())
         .map(|i| {
-            let affine = jacobian_u[i]
-                .iter()
-                .all(|&d| u.iter().all(|&x| !ctx.depends_on(d, x)));
-            let d = if affine {
+            let d = if affine_rows[i] {
                 let terms: Vec<Sym> = jacobian_u[i]
                     .iter()
                     .zip(&u)
@@ -124,6 +127,7 @@ pub(super) fn split_inputs(
         })
         .collect();
     let model = InputModel {
+        affine: affine_rows.iter().all(|&a| a),
         names,
         jacobian_q: jacobian(ctx, &forces, &q),
         jacobian_v: jacobian(ctx, &forces, &qd),
@@ -140,6 +144,8 @@ pub struct InputModel {
     pub names: Vec<String>,
     /// The input symbols, in order (emitted as `u[i]`).
     pub symbols: Vec<Sym>,
+    /// Whether ∂Q/∂u depends on no input (Q affine in u).
+    pub affine: bool,
     /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t).
     pub forces: Vec<Sym>,
     /// ∂Q/∂u (N × P), row-major.

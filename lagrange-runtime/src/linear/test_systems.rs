@@ -167,6 +167,7 @@ impl Lagrangian<f64, 2> for Spherical {
 
 impl Driven<f64, 2, 2> for Spherical {
     const INPUTS: [&'static str; 2] = ["torque_theta", "torque_phi"];
+    const INPUTS_AFFINE: bool = true;
     fn input_forces(
         &self,
         _: &Vector2<f64>,

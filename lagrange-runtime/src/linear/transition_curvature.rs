@@ -14,7 +14,9 @@
 //! W_s its tangent (a forward sweep, as `chain::rk4`'s). Each stage's
 //! ∇²(μᵀq̈) is the forward difference of the exact ∂q̈/∂(q, v, u)ᵀ μ, one
 //! column per coordinate, velocity and input, skipping the cyclic
-//! coordinates, on which q̈ does not depend.
+//! coordinates, on which q̈ does not depend, and the inputs where they
+//! enter affinely (`Driven::INPUTS_AFFINE`): ∂²q̈/∂u² = 0 there, and the
+//! mixed terms are in the other columns.
 
 use super::chain::{Rows, acceleration_rows, assemble};
 use super::{RK4_NODES, RK4_WEIGHTS, StepDerivatives, StepMethod, Transition};
@@ -203,7 +205,10 @@ impl<S> Transition<'_, S> {
         let contracted =
             |d: &InputDerivatives<f64, N, P>| (d.dq.tr_mul(mu), d.dv.tr_mul(mu), d.du.tr_mul(mu));
         let base = contracted(here);
-        for j in 0..2 * N + P {
+        // Inputs that enter affinely have no curvature of their own: their
+        // columns are the other columns' input rows (g is symmetric).
+        let differenced = if S::INPUTS_AFFINE { 2 * N } else { 2 * N + P };
+        for j in 0..differenced {
             let mut column = g.column_mut(j);
             if j < N && S::CYCLIC[j] {
                 column.fill(0.0);
@@ -224,6 +229,11 @@ impl<S> Transition<'_, S> {
             }
             for i in 0..P {
                 column[2 * N + i] = (du[i] - base.2[i]) / step;
+            }
+        }
+        for j in differenced..2 * N + P {
+            for i in 0..2 * N + P {
+                g[(i, j)] = if i < 2 * N { g[(j, i)] } else { 0.0 };
             }
         }
         Ok(true)

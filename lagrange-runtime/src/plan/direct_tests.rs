@@ -256,6 +256,7 @@ impl Lagrangian<f64, 2> for CartPole {
 
 impl Driven<f64, 2, 1> for CartPole {
     const INPUTS: [&'static str; 1] = ["force"];
+    const INPUTS_AFFINE: bool = true;
     fn input_forces(
         &self,
         _: &Vector2<f64>,
