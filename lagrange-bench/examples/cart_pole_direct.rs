@@ -3,12 +3,14 @@
 //! within ±5 N and the cart within ±0.5 m of the rail's centre (state
 //! limits), 50 RK4 steps of 50 ms, cost ½ Σ 0.01 F² (and, with
 //! `--state-weight w`, ½ Σ w (x² + θ² + 0.1 ẋ² + 0.1 θ̇²)), from the rollout of
-//! F = 0 — solved by `plan::Direct` (multiple shooting, SQP on Clarabel) as
-//! `cart_pole.py` solves it by IPOPT through CasADi. Prints one line in the
-//! script's format (the median of `--repeats` solves) and writes the forces
-//! to `--out`.
+//! F = 0 — solved by `plan::Direct` (multiple shooting, an interior point
+//! with Clarabel's sparse LDLᵀ) as `cart_pole.py` solves it by IPOPT
+//! through CasADi, both to a tolerance of 1e-10. Prints one line in the
+//! script's format (the median of `--repeats` solves; `iterations` counts
+//! the log's records, one per Newton step and one at the plan) and writes
+//! the forces to `--out`. `--steps K` takes K steps of 2.5 s / K.
 //!
-//!     cargo run --release -p lagrange-bench --features direct --example cart_pole_direct -- [--state-weight w] [--repeats R] [--out u.csv] [--iterations n] [--guess u.csv]
+//!     cargo run --release -p lagrange-bench --features direct --example cart_pole_direct -- [--state-weight w] [--steps K] [--repeats R] [--out u.csv] [--iterations n] [--guess u.csv]
 
 // The catalog's file holds other systems this example does not use.
 #[allow(dead_code)]
@@ -33,11 +35,13 @@ fn option(name: &str, default: &str) -> String {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let repeats: usize = option("--repeats", "10").parse()?;
     let w: f64 = option("--state-weight", "0").parse()?;
+    // K steps of 2.5 s / K, as the script's `--steps`.
+    let steps: usize = option("--steps", "50").parse()?;
     let cart_pole = CartPole::standard();
     let inf = f64::INFINITY;
     let problem = OptimalControl::new(
-        Transition::new(&cart_pole, 0.05)?,
-        50,
+        Transition::new(&cart_pole, 2.5 / steps as f64)?,
+        steps,
         (Vector2::new(0.0, PI), Vector2::zeros()),
         DMatrix::from_diagonal(&DVector::from_column_slice(&[1.0, 1.0, 0.1, 0.1])) * w,
         DMatrix::from_element(1, 1, 0.01),
@@ -51,7 +55,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let solver = Direct::new()
         .tolerance(1e-10)
-        .max_iterations(option("--iterations", "100").parse()?)
+        .max_iterations(option("--iterations", "3000").parse()?)
         .verbose(option("--verbose", "no") == "yes");
     // `--guess u.csv`: the rollout of these forces instead of F = 0.
     let guess: Vec<Vector1<f64>> = match option("--guess", "").as_str() {

@@ -30,7 +30,9 @@ import casadi as ca
 import numpy as np
 
 MC, MP, L, G = 1.0, 0.1, 0.5, 9.81
-H, STEPS, FORCE, RAIL = 0.05, 50, 5.0, 0.5
+FORCE, RAIL, HORIZON = 5.0, 0.5, 2.5
+# Set by --steps: K steps of 2.5 s / K (50 of 50 ms by default).
+H, STEPS = 0.05, 50
 
 
 def acceleration(x, u):
@@ -89,7 +91,10 @@ def main():
     parser.add_argument("--repeats", type=int, default=10)
     parser.add_argument("--out")
     parser.add_argument("--state-weight", type=float, default=0.0)
+    parser.add_argument("--steps", type=int, default=50)
     args = parser.parse_args()
+    global H, STEPS
+    STEPS, H = args.steps, HORIZON / args.steps
     solver, data = problem(args.state_weight)
     times = []
     for _ in range(args.repeats):

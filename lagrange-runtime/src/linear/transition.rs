@@ -36,6 +36,8 @@ use crate::system::Driven;
 use group::{Chart, chart_rates};
 use nalgebra::{DMatrix, SMatrix, SVector};
 
+#[path = "transition_blocks.rs"]
+mod blocks;
 #[path = "transition_chain.rs"]
 mod chain;
 #[path = "transition_curvature.rs"]

@@ -18,6 +18,7 @@
 //! enter affinely (`Driven::INPUTS_AFFINE`): ∂²q̈/∂u² = 0 there, and the
 //! mixed terms are in the other columns.
 
+use super::blocks::Square;
 use super::chain::{Rows, acceleration_rows, assemble};
 use super::{RK4_NODES, RK4_WEIGHTS, StepDerivatives, StepMethod, Transition};
 use crate::error::{Error, SettingsError};
@@ -100,11 +101,9 @@ impl<S> Transition<'_, S> {
         let h = self.h;
         let mu = SVector::<f64, N>::from_column_slice(&y[..N]) * (h * h)
             + SVector::<f64, N>::from_column_slice(&y[N..2 * N]) * h;
-        let width = 2 * N + P;
-        let mut g = DMatrix::zeros(width, width);
+        let mut g = Square::zero();
         self.stage_hessian(((q, v, u), t), (&first, &mu), step, &mut g)?;
-        symmetrise(&mut g);
-        Ok(g)
+        Ok(g.symmetric())
     }
 
     /// RK4 in the plane: forward, each stage's point, derivatives and
@@ -155,10 +154,7 @@ impl<S> Transition<'_, S> {
             SVector::<f64, N>::from_column_slice(&y[..N]),
             SVector::<f64, N>::from_column_slice(&y[N..2 * N]),
         );
-        let width = 2 * N + P;
-        let mut hessian = DMatrix::zeros(width, width);
-        // Each stage's ∇²(μᵀq̈), W_s and their product, reused.
-        let (mut g, mut w, mut gw) = (hessian.clone(), hessian.clone(), hessian.clone());
+        let (mut hessian, mut g) = (Square::<N, P>::zero(), Square::zero());
         // The adjoint of the next stage's point (q̄, v̄), zero after the last.
         let (mut next_q, mut next_v) = (SVector::<f64, N>::zeros(), SVector::<f64, N>::zeros());
         for s in (0..4).rev() {
@@ -170,9 +166,7 @@ impl<S> Transition<'_, S> {
             let ((qs, vs), (tq, tv), d) = &stages[s];
             let at = ((qs, vs, u), t + RK4_NODES[s] * h);
             if self.stage_hessian(at, (d, &bar_a), step, &mut g)? {
-                tangent_matrix(tq, tv, &mut w);
-                g.mul_to(&w, &mut gw);
-                hessian.gemm_tr(1.0, &w, &gw, 1.0);
+                hessian.add_congruence(&g, (tq, tv));
             }
             // p̄_s = ∂k_s/∂p_sᵀ k̄_s, k = (v, q̈(q, v)).
             next_q = d.dq.tr_mul(&bar_a);
@@ -180,8 +174,7 @@ impl<S> Transition<'_, S> {
         }
         // Σ W_sᵀ G_s W_s with each G_s as differenced: its symmetric part is
         // the curvature, and the sum's is Σ W_sᵀ sym(G_s) W_s.
-        symmetrise(&mut hessian);
-        Ok((derivatives, hessian))
+        Ok((derivatives, hessian.symmetric()))
     }
 
     /// ∇²(μᵀq̈) over (q, v, u) at one stage into `g` (2N + P square), as
@@ -193,7 +186,7 @@ impl<S> Transition<'_, S> {
         ((q, v, u), t): StagePoint<N, P>,
         (here, mu): (&InputDerivatives<f64, N, P>, &SVector<f64, N>),
         relative: f64,
-        g: &mut DMatrix<f64>,
+        g: &mut Square<N, P>,
     ) -> Result<bool, Error>
     where
         S: Driven<f64, N, P, N>,
@@ -209,9 +202,8 @@ impl<S> Transition<'_, S> {
         // columns are the other columns' input rows (g is symmetric).
         let differenced = if S::INPUTS_AFFINE { 2 * N } else { 2 * N + P };
         for j in 0..differenced {
-            let mut column = g.column_mut(j);
             if j < N && S::CYCLIC[j] {
-                column.fill(0.0);
+                g.set_column(j, (&SVector::zeros(), &SVector::zeros(), &SVector::zeros()));
                 continue;
             }
             let (mut q1, mut v1, mut u1) = (*q, *v, *u);
@@ -223,18 +215,15 @@ impl<S> Transition<'_, S> {
             let step = relative * value.abs().max(1.0);
             *value += step;
             let (dq, dv, du) = contracted(&self.stage_derivatives(&q1, &v1, &u1, t)?);
-            for i in 0..N {
-                column[i] = (dq[i] - base.0[i]) / step;
-                column[N + i] = (dv[i] - base.1[i]) / step;
-            }
-            for i in 0..P {
-                column[2 * N + i] = (du[i] - base.2[i]) / step;
-            }
+            let column = (
+                (dq - base.0) / step,
+                (dv - base.1) / step,
+                (du - base.2) / step,
+            );
+            g.set_column(j, (&column.0, &column.1, &column.2));
         }
-        for j in differenced..2 * N + P {
-            for i in 0..2 * N + P {
-                g[(i, j)] = if i < 2 * N { g[(j, i)] } else { 0.0 };
-            }
+        if S::INPUTS_AFFINE {
+            g.mirror_inputs();
         }
         Ok(true)
     }
@@ -249,30 +238,6 @@ type StagePoint<'a, const N: usize, const P: usize> = (
     ),
     f64,
 );
-
-/// m ← (m + mᵀ)/2, in place.
-fn symmetrise(m: &mut DMatrix<f64>) {
-    for j in 0..m.ncols() {
-        for i in 0..j {
-            let mean = 0.5 * (m[(i, j)] + m[(j, i)]);
-            (m[(i, j)], m[(j, i)]) = (mean, mean);
-        }
-    }
-}
-
-/// W_s = ∂(q_s, v_s, u)/∂(q, v, u) from a stage's tangent rows, into w.
-fn tangent_matrix<const N: usize, const P: usize>(
-    tq: &Rows<N, P>,
-    tv: &Rows<N, P>,
-    w: &mut DMatrix<f64>,
-) {
-    w.fill_with_identity();
-    for (r, rows) in [(0, tq), (N, tv)] {
-        w.fixed_view_mut::<N, N>(r, 0).copy_from(&rows.q);
-        w.fixed_view_mut::<N, N>(r, N).copy_from(&rows.v);
-        w.fixed_view_mut::<N, P>(r, 2 * N).copy_from(&rows.u);
-    }
-}
 
 #[cfg(test)]
 #[path = "transition_curvature_tests.rs"]

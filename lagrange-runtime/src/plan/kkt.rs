@@ -27,24 +27,10 @@ use clarabel::algebra::CscMatrix;
 use clarabel::qdldl::{QDLDLFactorisation, QDLDLSettingsBuilder};
 use nalgebra::DMatrix;
 
-/// Where each stored entry's value comes from.
-#[derive(Clone, Copy)]
-enum Source {
-    /// Entry (i, j) of step k's Hessian block (k = K for the final state's).
-    Hessian { k: usize, i: usize, j: usize },
-    /// −∂F_k/∂(x, u) at (row i, column j): step k's dynamics row.
-    Jacobian { k: usize, i: usize, j: usize },
-    /// A +1 of a row on the state it sets.
-    One,
-    /// The multipliers' diagonal, −δ_c.
-    Dual,
-}
-
 /// The Newton matrix's pattern, values and factorisation.
 pub(super) struct Kkt {
-    primal: usize,
+    layout: Layout,
     matrix: CscMatrix<f64>,
-    sources: Vec<Source>,
     every: Vec<usize>,
     factor: QDLDLFactorisation<f64>,
     /// The dual diagonal of the matrix factorised, to refine against zero.
@@ -82,54 +68,47 @@ impl Layout {
     }
 }
 
-/// The upper triangle's entries column by column, rows ascending.
-fn pattern(l: Layout) -> (Vec<usize>, Vec<usize>, Vec<Source>) {
+/// The upper triangle's entries column by column, rows ascending, each
+/// column's diagonal last: the steps' Hessian blocks, then the rows'
+/// columns (the start's, each step's, the final equality's), each its
+/// Jacobian entries and its own diagonal. `Kkt::fill` writes the values in
+/// this order.
+fn pattern(l: Layout) -> (Vec<usize>, Vec<usize>) {
     let (n, n2) = (l.primal(), l.n2);
-    let (mut colptr, mut rowval, mut sources) = (vec![0], Vec::new(), Vec::new());
-    let mut push = |row: usize, source: Source| {
-        rowval.push(row);
-        sources.push(source);
-    };
+    let (mut colptr, mut rowval) = (vec![0], Vec::new());
     for k in 0..=l.steps {
         let (base, _) = offsets(n2, l.p, k);
         for j in 0..l.block(k) {
-            for i in 0..=j {
-                push(base + i, Source::Hessian { k, i, j });
-            }
-            colptr.push(colptr.last().unwrap() + j + 1);
+            rowval.extend(base..=base + j);
+            colptr.push(rowval.len());
         }
     }
-    // The rows' columns: the start's, each step's, the final equality's.
     let mut row = n;
-    for i in 0..n2 {
-        push(i, Source::One);
-        push(row, Source::Dual);
+    let mut close = |rowval: &mut Vec<usize>, colptr: &mut Vec<usize>| {
+        rowval.push(row);
         row += 1;
-        colptr.push(colptr.last().unwrap() + 2);
+        colptr.push(rowval.len());
+    };
+    for i in 0..n2 {
+        rowval.push(i);
+        close(&mut rowval, &mut colptr);
     }
     for k in 0..l.steps {
-        let (base, _) = offsets(n2, l.p, k);
-        let (next, _) = offsets(n2, l.p, k + 1);
+        let ((base, _), (next, _)) = (offsets(n2, l.p, k), offsets(n2, l.p, k + 1));
         for i in 0..n2 {
-            for j in 0..n2 + l.p {
-                push(base + j, Source::Jacobian { k, i, j });
-            }
-            push(next + i, Source::One);
-            push(row, Source::Dual);
-            row += 1;
-            colptr.push(colptr.last().unwrap() + n2 + l.p + 2);
+            rowval.extend(base..base + n2 + l.p);
+            rowval.push(next + i);
+            close(&mut rowval, &mut colptr);
         }
     }
     if l.final_equality {
         let (last, _) = offsets(n2, l.p, l.steps);
         for i in 0..n2 {
-            push(last + i, Source::One);
-            push(row, Source::Dual);
-            row += 1;
-            colptr.push(colptr.last().unwrap() + 2);
+            rowval.push(last + i);
+            close(&mut rowval, &mut colptr);
         }
     }
-    (colptr, rowval, sources)
+    (colptr, rowval)
 }
 
 /// Why the matrix could not be factorised.
@@ -138,7 +117,7 @@ pub(super) struct Singular;
 impl Kkt {
     /// The pattern of a problem's Newton matrix, ordered and analysed.
     pub fn new(layout: Layout) -> Self {
-        let (colptr, rowval, sources) = pattern(layout);
+        let (colptr, rowval) = pattern(layout);
         let size = layout.primal() + layout.rows();
         let nnz = rowval.len();
         let matrix = CscMatrix::new(size, size, colptr, rowval, vec![1.0; nnz]);
@@ -150,9 +129,8 @@ impl Kkt {
         let factor = QDLDLFactorisation::new(&matrix, Some(settings))
             .expect("the pattern is upper triangular with every diagonal");
         Self {
-            primal: layout.primal(),
+            layout,
             matrix,
-            sources,
             every: (0..nnz).collect(),
             factor,
             delta_c: 0.0,
@@ -170,22 +148,7 @@ impl Kkt {
         jacobians: &[(&DMatrix<f64>, &DMatrix<f64>)],
         (delta_w, delta_c): (f64, f64),
     ) -> Result<usize, Singular> {
-        for (value, source) in self.matrix.nzval.iter_mut().zip(&self.sources) {
-            *value = match *source {
-                Source::Hessian { k, i, j } => {
-                    hessians[k][(i, j)] + if i == j { delta_w } else { 0.0 }
-                }
-                Source::Jacobian { k, i, j } => {
-                    let (a, b) = jacobians[k];
-                    match j < a.ncols() {
-                        true => -a[(i, j)],
-                        false => -b[(i, j - a.ncols())],
-                    }
-                }
-                Source::One => 1.0,
-                Source::Dual => -delta_c,
-            };
-        }
+        self.fill(hessians, jacobians, (delta_w, delta_c));
         self.delta_c = delta_c;
         self.factor.update_values(&self.every, &self.matrix.nzval);
         match self.factor.refactor() {
@@ -194,9 +157,53 @@ impl Kkt {
         }
     }
 
+    /// The values in `pattern`'s order: each Hessian block's upper
+    /// triangle (δ_w on its diagonal), then each row's Jacobian entries and
+    /// −δ_c.
+    fn fill(
+        &mut self,
+        hessians: &[DMatrix<f64>],
+        jacobians: &[(&DMatrix<f64>, &DMatrix<f64>)],
+        (delta_w, delta_c): (f64, f64),
+    ) {
+        let (l, values) = (self.layout, &mut self.matrix.nzval);
+        let mut p = 0;
+        let mut put = |value: f64| {
+            values[p] = value;
+            p += 1;
+        };
+        // A row's own +1 on the state it sets, then its −δ_c.
+        let close = |put: &mut dyn FnMut(f64)| {
+            put(1.0);
+            put(-delta_c);
+        };
+        for h in hessians {
+            for j in 0..h.ncols() {
+                (0..j).for_each(|i| put(h[(i, j)]));
+                put(h[(j, j)] + delta_w);
+            }
+        }
+        for _ in 0..l.n2 {
+            close(&mut put);
+        }
+        for (a, b) in jacobians {
+            for i in 0..l.n2 {
+                (0..l.n2).for_each(|j| put(-a[(i, j)]));
+                (0..l.p).for_each(|j| put(-b[(i, j)]));
+                close(&mut put);
+            }
+        }
+        if l.final_equality {
+            for _ in 0..l.n2 {
+                close(&mut put);
+            }
+        }
+        debug_assert_eq!(p, values.len(), "the values follow the pattern");
+    }
+
     /// The number of primal unknowns: the positive pivots a minimum has.
     pub fn primal(&self) -> usize {
-        self.primal
+        self.layout.primal()
     }
 
     /// Solves in place, refined against the matrix with no dual shift (δ_c
@@ -222,21 +229,24 @@ impl Kkt {
     }
 
     /// residual −= K₀ x, K₀ the symmetric matrix from its upper triangle
-    /// with the dual shift taken out.
+    /// (each column's diagonal its last entry) with the dual shift taken
+    /// out: K₀ x = K x + δ_c x on the rows' unknowns.
     fn subtract_product(&mut self, x: &[f64]) {
         let m = &self.matrix;
+        let r = &mut self.residual;
         for j in 0..m.n {
-            for p in m.colptr[j]..m.colptr[j + 1] {
-                let (i, a) = (m.rowval[p], m.nzval[p]);
-                let a = match i == j && j >= self.primal {
-                    true => a + self.delta_c,
-                    false => a,
-                };
-                self.residual[i] -= a * x[j];
-                if i != j {
-                    self.residual[j] -= a * x[i];
-                }
+            let (first, diagonal) = (m.colptr[j], m.colptr[j + 1] - 1);
+            let (rows, values) = (&m.rowval[first..diagonal], &m.nzval[first..diagonal]);
+            let mut column = 0.0;
+            for (&i, &a) in rows.iter().zip(values) {
+                r[i] -= a * x[j];
+                column += a * x[i];
             }
+            r[j] -= column + m.nzval[diagonal] * x[j];
+        }
+        let primal = self.layout.primal();
+        for (r, x) in r[primal..].iter_mut().zip(&x[primal..]) {
+            *r -= self.delta_c * x;
         }
     }
 }
