@@ -36,10 +36,14 @@ use crate::system::Driven;
 use group::{Chart, chart_rates};
 use nalgebra::{DMatrix, SMatrix, SVector};
 
+// A step's curvature serves the direct method's Newton steps (feature
+// `direct`); its tests run in every build.
+#[cfg(any(feature = "direct", test))]
 #[path = "transition_blocks.rs"]
 mod blocks;
 #[path = "transition_chain.rs"]
 mod chain;
+#[cfg(any(feature = "direct", test))]
 #[path = "transition_curvature.rs"]
 mod curvature;
 #[path = "transition_group.rs"]
