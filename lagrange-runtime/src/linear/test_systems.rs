@@ -123,6 +123,26 @@ impl Driven<f64, 1, 2> for Thrusters {
     }
 }
 
+/// States (q, v, u) of the spherical pendulum away from its poles, for the
+/// tests of a step's derivatives and curvature: arbitrary, not chosen.
+pub const SPHERICAL_STATES: [(Vector2<f64>, Vector2<f64>, Vector2<f64>); 3] = [
+    (
+        Vector2::new(0.7, 0.2),
+        Vector2::new(0.3, 2.0),
+        Vector2::new(0.5, -0.2),
+    ),
+    (
+        Vector2::new(1.9, -1.0),
+        Vector2::new(-1.2, 0.4),
+        Vector2::new(0.0, 1.5),
+    ),
+    (
+        Vector2::new(0.4, 3.0),
+        Vector2::new(2.0, -3.0),
+        Vector2::new(-2.0, 0.3),
+    ),
+];
+
 /// A spherical pendulum of unit mass and length l (θ from the downward
 /// vertical, φ the azimuth): M = diag(l², l² sin²θ).
 pub struct Spherical {

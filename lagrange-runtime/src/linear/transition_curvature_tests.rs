@@ -5,8 +5,8 @@
 //! derivatives the same sweep gives against the step's own.
 
 use super::*;
-use crate::linear::test_systems::{Pendulum, Spherical};
-use nalgebra::{DVector, Vector1, Vector2};
+use crate::linear::test_systems::{Pendulum, SPHERICAL_STATES, Spherical};
+use nalgebra::{DVector, Vector1};
 
 const METHODS: [StepMethod; 2] = [StepMethod::Rk4, StepMethod::SemiImplicitEuler];
 
@@ -44,22 +44,11 @@ where
 #[test]
 fn a_steps_curvature_matches_differences_of_its_derivatives() {
     let sys = Spherical { l: 0.9 };
-    let states = [
-        (
-            Vector2::new(0.7, 0.2),
-            Vector2::new(0.3, 2.0),
-            Vector2::new(0.5, -0.2),
-        ),
-        (
-            Vector2::new(1.9, -1.0),
-            Vector2::new(-1.2, 0.4),
-            Vector2::new(0.0, 1.5),
-        ),
-    ];
+    let states = &SPHERICAL_STATES[..2];
     let y = [0.8, -1.3, 0.4, 2.1];
     for method in METHODS {
         let tr = Transition::new(&sys, 0.05).unwrap().method(method);
-        for (q, v, u) in states {
+        for &(q, v, u) in states {
             let (d, exact) = tr.curvature((&q, &v, &u), 0.3, &y).unwrap();
             let plain = tr.derivatives(&q, &v, &u, 0.3).unwrap();
             assert!((&d.dx - &plain.dx).amax() < 1e-15 && (&d.du - &plain.du).amax() < 1e-15);

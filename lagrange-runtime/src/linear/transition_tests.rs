@@ -3,7 +3,9 @@
 //! derivatives against central differences of the step itself.
 
 use super::*;
-use crate::linear::test_systems::{G, Oscillator, Pendulum, PivotedBody, Spherical, Thrusters};
+use crate::linear::test_systems::{
+    G, Oscillator, Pendulum, PivotedBody, SPHERICAL_STATES, Spherical, Thrusters,
+};
 use crate::orientation::tests::CartAndBall;
 use crate::system::Lagrangian;
 use nalgebra::{DVector, Matrix2, Vector1, Vector2};
@@ -122,23 +124,7 @@ fn rk4_on_a_linear_oscillator_is_the_taylor_polynomial() {
 #[test]
 fn derivatives_match_differences_of_the_step() {
     let sys = Spherical { l: 0.9 };
-    let states = [
-        (
-            Vector2::new(0.7, 0.2),
-            Vector2::new(0.3, 2.0),
-            Vector2::new(0.5, -0.2),
-        ),
-        (
-            Vector2::new(1.9, -1.0),
-            Vector2::new(-1.2, 0.4),
-            Vector2::new(0.0, 1.5),
-        ),
-        (
-            Vector2::new(0.4, 3.0),
-            Vector2::new(2.0, -3.0),
-            Vector2::new(-2.0, 0.3),
-        ),
-    ];
+    let states = SPHERICAL_STATES;
     for method in METHODS {
         let tr = Transition::new(&sys, 0.05).unwrap().method(method);
         for (q, v, u) in states {
