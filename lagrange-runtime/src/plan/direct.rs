@@ -146,11 +146,14 @@ impl Direct {
     /// # Errors
     /// [`Error::Settings`] for bad settings, a bad problem or guess;
     /// [`PlanError::NotConverged`] when the iterations run out,
-    /// [`PlanError::Stalled`] when no step lowers the merit function or a
-    /// quadratic program has no solution (the constraints cannot be met
-    /// together, a final equality out of reach within the input bounds: the
-    /// iteration converges to the plan that misses them least, and says by
-    /// how much), each with the best plan reached in the failure.
+    /// [`PlanError::Stalled`] when the restoration that takes over from
+    /// the interior point (where it finds no acceptable step) finds no step
+    /// either: the constraints cannot be met together (a final equality out
+    /// of reach within the input bounds: it converges to the plan that
+    /// misses them least, and says by how much), or a quadratic program
+    /// has no solution; the dynamics' errors (a singular mass matrix, a
+    /// non-finite state) as they arise; each with the best plan reached in
+    /// the failure.
     pub fn solve_from<S, const N: usize, const P: usize>(
         &self,
         problem: &OptimalControl<S, N, P>,

@@ -9,8 +9,9 @@
 //!
 //! Each iteration takes the Newton step of the barrier problem (the bounds
 //! as −μ Σ ln(w − l) − μ Σ ln(u − w)) with the Lagrangian's Hessian: the
-//! costs' models and the dynamics' curvature −Σ λ_{k+1}ᵀ ∇²F_k, by forward
-//! differences of the emitted step derivatives (`curvature`). Where that
+//! costs' models and the dynamics' curvature −Σ ∇²(λ_{k+1}ᵀF_k), by the
+//! second-order chain rule through each step's stages on forward
+//! differences of the emitted ∂q̈ (`curvature`). Where that
 //! Hessian is not positive definite on the constraints' null space (the
 //! Newton matrix's inertia says so, `kkt`), it is shifted by δ_w I until it
 //! is. The step is cut to keep every bound strictly inside (the fraction to
