@@ -16,6 +16,9 @@
 //! compensation at home), final cost ½ Σ 100 v² + ½ 1e5 |p_tool − p*|².
 //!
 //!     cargo run --release -p lagrange-bench --example arm_reach -- [--arm ur5|xarm7] [--method euler|rk4] [--iterations N] [--repeats R] [--out u.csv] [--log yes]
+//!
+//! `--solver direct` (with `--features direct`) solves the same problem by
+//! `plan::Direct` instead, which no peer here runs.
 
 use lagrange::linear::{OperatingPoint, StepMethod, Transition, Trim};
 use lagrange::nalgebra::{DMatrix, DVector, SVector, Vector3};
@@ -147,8 +150,11 @@ where
     .final_weight(weight(0.0, 100.0))
     .final_cost(FramePosition::new(arm, tool, target, 1e5))
     .input_bounds(-limit, limit);
-    let solver = Ddp::new().max_iterations(iterations).tolerance(1e-9);
     let guess = vec![hold.u; reach.steps];
+    if option("--solver", "ddp") == "direct" {
+        return solve_direct(&problem, &guess, (iterations, repeats));
+    }
+    let solver = Ddp::new().max_iterations(iterations).tolerance(1e-9);
     let (plan, median) = time_solves(repeats, || match solver.solve(&problem, &guess) {
         Ok(plan) => plan,
         // Out of iterations (a fixed count asked for) or stalled: the best
@@ -156,6 +162,44 @@ where
         Err(failure) => *failure.partial,
     });
     report(&plan, median)
+}
+
+/// `--solver direct`: the same problem by `plan::Direct` (the feature
+/// `direct`), for a look at the interior point on a seven-joint arm; no
+/// peer runs it.
+#[cfg(feature = "direct")]
+fn solve_direct<S, const N: usize>(
+    problem: &OptimalControl<S, N, N>,
+    guess: &[SVector<f64, N>],
+    (iterations, repeats): (usize, usize),
+) -> Result<(), Box<dyn std::error::Error>>
+where
+    S: Driven<f64, N, N>,
+{
+    let solver = lagrange::plan::Direct::new()
+        .max_iterations(iterations)
+        .tolerance(1e-9)
+        .verbose(option("--log", "no") == "yes");
+    let (plan, median) = time_solves(repeats, || match solver.solve(problem, guess) {
+        Ok(plan) => plan,
+        Err(failure) => {
+            eprintln!("direct: {}", failure.error);
+            *failure.partial
+        }
+    });
+    report(&plan, median)
+}
+
+#[cfg(not(feature = "direct"))]
+fn solve_direct<S, const N: usize>(
+    _: &OptimalControl<S, N, N>,
+    _: &[SVector<f64, N>],
+    _: (usize, usize),
+) -> Result<(), Box<dyn std::error::Error>>
+where
+    S: Driven<f64, N, N>,
+{
+    Err("--solver direct needs the feature direct".into())
 }
 
 /// The last of `repeats` solves and the median time of one, in seconds.

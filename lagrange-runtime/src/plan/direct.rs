@@ -11,8 +11,9 @@
 //! `BENCHMARKS.md`, "The direct method against IPOPT").
 //!
 //! Where the interior point finds no acceptable step (the constraints
-//! cannot all be met: a final equality out of reach), the elastic SQP below
-//! takes over from its point, as IPOPT's feasibility restoration would:
+//! cannot all be met: a final equality out of reach), or its steps stall
+//! (ten in a row cut below 5 %), the elastic SQP below takes over from its
+//! point, as IPOPT's feasibility restoration would:
 //! each iteration solves the quadratic program of the cost's Gauss–Newton
 //! model and the constraints linearised at the current plan (`direct_qp`,
 //! by Clarabel), the final equality and the state limits elastic, and

@@ -19,11 +19,19 @@
 //! (constraint violation, barrier objective) pairs accepts it; μ falls
 //! superlinearly as each barrier problem is solved to κ_ε μ.
 //!
+//! The cost is scaled, as IPOPT's gradient-based scaling does, so that its
+//! gradient at the first point is at most 100: a cost of large weights
+//! (a tool held to its target by 10⁵) would otherwise outweigh the
+//! constraints' violation in the filter.
+//!
 //! Where no step is acceptable (a constraint set the iteration cannot
 //! approach: a final equality out of reach) IPOPT enters its feasibility
 //! restoration; here the iteration hands its point to the elastic SQP
 //! (`direct`), which either finds the feasible region or reports by how
-//! much the constraints are missed.
+//! much the constraints are missed. It does the same after ten steps in a
+//! row cut below 5 % (where IPOPT would start its watchdog): on an arm's
+//! reach under a heavily weighted tool cost the Newton steps stall so,
+//! and the SQP then converges.
 
 use super::curvature::linearised;
 use super::ddp::Iteration;
@@ -64,6 +72,13 @@ const S_THETA: f64 = 1.1;
 const S_PHI: f64 = 2.3;
 const ETA_PHI: f64 = 1e-4;
 const GAMMA_ALPHA: f64 = 0.05;
+/// A step α below this is shortened; this many shortened steps in a row
+/// (IPOPT's `watchdog_shortened_iter_trigger`) hand the point to the
+/// restoration: the Newton steps are not converging from there (a seven-
+/// joint arm's reach under a heavily weighted tool cost, where the elastic
+/// SQP then converges).
+const SHORT_STEP: f64 = 0.05;
+const SHORTENED_TRIGGER: usize = 10;
 /// The relaxation of equal bounds, relative (IPOPT's `bound_relax_factor`,
 /// which IPOPT applies to every bound; here the others are kept exactly,
 /// so that a plan never crosses a limit).
@@ -105,6 +120,10 @@ where
     /// The lower and upper bounds' multipliers (zero where there is none).
     pub zl: Vec<f64>,
     pub zu: Vec<f64>,
+    /// The factor the cost is scaled by in the iteration (IPOPT's
+    /// gradient-based scaling): its gradient at the first point at most
+    /// 100.
+    pub objective_scale: f64,
 }
 
 impl<'p, 'a, S, const N: usize, const P: usize> Interior<'p, 'a, S, N, P>
@@ -138,6 +157,7 @@ where
             lambda: vec![0.0; layout.rows()],
             zl: one_where(&lower),
             zu: one_where(&upper),
+            objective_scale: 1.0,
             lower,
             upper,
         }
@@ -154,7 +174,10 @@ where
         let mut point = self.evaluate(self.interior(unknowns(nominal)))?;
         self.theta_max = 1e4 * point.theta.max(1.0);
         self.theta_min = 1e-4 * point.theta.max(1.0);
+        self.scale_objective(&point)?;
         self.first_multipliers(&point)?;
+        // Consecutive iterations whose step the line search cut short.
+        let mut shortened = 0;
         loop {
             let models = self.models(&point.nominal)?;
             let (derivatives, curvatures) = linearised(self.problem, &point.nominal, &self.lambda)?;
@@ -182,6 +205,12 @@ where
             };
             self.accept((&point.w, &next.w), &d, alpha);
             point = next;
+            shortened = if alpha < SHORT_STEP { shortened + 1 } else { 0 };
+            if shortened == SHORTENED_TRIGGER {
+                let why = "ten steps in a row shortened below 5 % by the filter";
+                log.push(self.record(settings, &point, r.stationarity, alpha, shift));
+                return Ok(Outcome::Restore(point.nominal, why.into()));
+            }
             log.push(self.record(settings, &point, r.stationarity, alpha, shift));
         }
     }

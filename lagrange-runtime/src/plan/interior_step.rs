@@ -17,6 +17,8 @@ const KAPPA_MU: f64 = 0.2;
 const THETA_MU: f64 = 1.5;
 const KAPPA_SIGMA: f64 = 1e10;
 const S_MAX: f64 = 100.0;
+/// IPOPT's `nlp_scaling_max_gradient`.
+const MAX_GRADIENT: f64 = 100.0;
 /// The multipliers' diagonal: it keeps every dual pivot nonzero whatever
 /// the ordering; the solve refines it away.
 const DUAL_SHIFT: f64 = 1e-9;
@@ -57,6 +59,20 @@ where
         }
         models.push(problem.final_model(&nominal.xs[problem.steps])?);
         Ok(models)
+    }
+
+    /// The cost's scale: 1, or less where its gradient at the first point
+    /// is above 100 (IPOPT's gradient-based scaling), so that the filter
+    /// weighs a cost of large weights against the constraints' violation
+    /// as it would a cost of moderate ones. The plan is the same; the log
+    /// reports the cost unscaled.
+    pub(super) fn scale_objective(&mut self, point: &Point) -> Result<(), Error> {
+        let models = self.models(&point.nominal)?;
+        let largest = (models.iter())
+            .flat_map(|m| m.lx.iter().chain(m.lu.iter()))
+            .fold(0.0f64, |g, x| g.max(x.abs()));
+        self.objective_scale = (MAX_GRADIENT / largest).min(1.0);
+        Ok(())
     }
 
     /// The rows' first multipliers: the least-squares fit of ∇f − z_L + z_U
@@ -105,6 +121,7 @@ where
                 gradient[u..u + l.p].copy_from_slice(m.lu.as_slice());
             }
         }
+        gradient.iter_mut().for_each(|g| *g *= self.objective_scale);
         let mut dual = gradient.clone();
         self.add_transposed(jac, &mut dual);
         for (i, d) in dual.iter_mut().enumerate() {
@@ -204,6 +221,9 @@ where
                 h.view_mut((l.n2, 0), (l.p, l.n2)).copy_from(&m.lux);
                 h.view_mut((0, l.n2), (l.n2, l.p))
                     .copy_from(&m.lux.transpose());
+            }
+            h *= self.objective_scale;
+            if k < l.steps {
                 h -= &curvatures[k];
             }
             let (x, _) = offsets(l.n2, l.p, k);
@@ -280,7 +300,7 @@ where
                 logs += (self.upper[i] - w).ln();
             }
         }
-        point.nominal.cost - self.mu * logs
+        self.objective_scale * point.nominal.cost - self.mu * logs
     }
 
     /// The largest α ≤ 1 that keeps w + α δw beyond (1 − τ) of its room to
@@ -353,6 +373,8 @@ where
         shift: f64,
     ) -> Iteration {
         let (cost, gap) = (point.nominal.cost, largest(&point.c));
+        // The Lagrangian's gradient of the cost as given, not as scaled.
+        let stationarity = stationarity / self.objective_scale;
         if settings.verbose {
             eprintln!(
                 "direct: cost {cost:.9e}  KKT {stationarity:.2e}  α {alpha:.3}  μ {:.1e}  \
