@@ -217,8 +217,7 @@ pub trait Lagrangian<T: Real, const N: usize, const Q: usize = N> {
     /// put in dependency order (a mass placed at another comes after it);
     /// then per `joint(q, ..)` item its coefficients, `q.damping` (b),
     /// `q.friction` (fc) and `q.armature` (Ia + n² Ir), those it has.
-    /// Empty unless the
-    /// description asks for `emit(regressor)`.
+    /// Empty unless the description asks for `emit(regressor)`.
     const REGRESSOR_PARAMETERS: &'static [&'static str] = &[];
 
     /// The dynamics regressor Y(q, q̇, q̈, t), N × π's length: M q̈ + h −
@@ -556,11 +555,8 @@ pub trait Driven<T: Real, const N: usize, const P: usize, const Q: usize = N>:
         [""; P]
     };
 
-    /// Whether Q is affine in u (∂Q/∂u does not depend on u: forces and
-    /// torques proportional to the inputs), so that q̈ is too and its second
-    /// derivative in u vanishes, which the direct method's curvature uses
-    /// to difference fewer columns. `#[derive(Lagrangian)]` sets it from the
-    /// derived ∂Q/∂u; the default, false, is always safe.
+    /// Whether ∂Q/∂u depends on no input (q̈ affine in u, as for torques):
+    /// the derive sets it; the default, false, is always safe.
     const INPUTS_AFFINE: bool = false;
 
     /// ΔQ = Q(q, q̇, u, t) − Q(q, q̇, 0, t): the generalized forces the inputs add.
