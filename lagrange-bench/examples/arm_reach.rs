@@ -151,8 +151,10 @@ where
     .final_cost(FramePosition::new(arm, tool, target, 1e5))
     .input_bounds(-limit, limit);
     let guess = vec![hold.u; reach.steps];
-    if option("--solver", "ddp") == "direct" {
-        return solve_direct(&problem, &guess, (iterations, repeats));
+    match option("--solver", "ddp").as_str() {
+        "ddp" => {}
+        "direct" => return solve_direct(&problem, &guess, (iterations, repeats)),
+        other => return Err(format!("--solver ddp or direct, not {other}").into()),
     }
     let solver = Ddp::new().max_iterations(iterations).tolerance(1e-9);
     let (plan, median) = time_solves(repeats, || match solver.solve(&problem, &guess) {

@@ -174,8 +174,9 @@ where
         let mut point = self.evaluate(self.interior(unknowns(nominal)))?;
         self.theta_max = 1e4 * point.theta.max(1.0);
         self.theta_min = 1e-4 * point.theta.max(1.0);
-        self.scale_objective(&point)?;
-        self.first_multipliers(&point)?;
+        let models = self.models(&point.nominal)?;
+        self.scale_objective(&models);
+        self.first_multipliers(&point, &models)?;
         // Consecutive iterations whose step the line search cut short.
         let mut shortened = 0;
         loop {
@@ -205,13 +206,12 @@ where
             };
             self.accept((&point.w, &next.w), &d, alpha);
             point = next;
+            log.push(self.record(settings, &point, r.stationarity, alpha, shift));
             shortened = if alpha < SHORT_STEP { shortened + 1 } else { 0 };
             if shortened == SHORTENED_TRIGGER {
                 let why = "ten steps in a row shortened below 5 % by the filter";
-                log.push(self.record(settings, &point, r.stationarity, alpha, shift));
                 return Ok(Outcome::Restore(point.nominal, why.into()));
             }
-            log.push(self.record(settings, &point, r.stationarity, alpha, shift));
         }
     }
 
@@ -232,13 +232,17 @@ where
         // tiny step), so that the last iterations are not stopped by noise.
         let tiny = (d.dw.iter().zip(&point.w)).all(|(d, w)| d.abs() <= 1e-15 * w.abs().max(1.0));
         let first = self.to_boundary(&point.w, &d.dw);
+        if tiny {
+            let trial = self.evaluate(moved(&point.w, &d.dw, first))?;
+            return Ok(Some((trial, d, first)));
+        }
         let mut alpha = first;
-        while alpha >= test.alpha_min || tiny {
+        while alpha >= test.alpha_min {
             let Ok(trial) = self.evaluate(moved(&point.w, &d.dw, alpha)) else {
                 alpha /= 2.0;
                 continue;
             };
-            if tiny || self.acceptable(&test, &trial, alpha) {
+            if self.acceptable(&test, &trial, alpha) {
                 return Ok(Some((trial, d, alpha)));
             }
             // A first trial that made the constraints worse: corrected.

@@ -66,24 +66,25 @@ where
     /// weighs a cost of large weights against the constraints' violation
     /// as it would a cost of moderate ones. The plan is the same; the log
     /// reports the cost unscaled.
-    pub(super) fn scale_objective(&mut self, point: &Point) -> Result<(), Error> {
-        let models = self.models(&point.nominal)?;
+    pub(super) fn scale_objective(&mut self, models: &[CostModel]) {
         let largest = (models.iter())
             .flat_map(|m| m.lx.iter().chain(m.lu.iter()))
             .fold(0.0f64, |g, x| g.max(x.abs()));
         self.objective_scale = (MAX_GRADIENT / largest).min(1.0);
-        Ok(())
     }
 
     /// The rows' first multipliers: the least-squares fit of ∇f − z_L + z_U
     /// + Jᵀλ = 0, from [I Jᵀ; J 0] (IPOPT's), or zero if any is beyond 10³.
-    pub(super) fn first_multipliers(&mut self, point: &Point) -> Result<(), Error> {
+    pub(super) fn first_multipliers(
+        &mut self,
+        point: &Point,
+        models: &[CostModel],
+    ) -> Result<(), Error> {
         let l = self.layout;
-        let models = self.models(&point.nominal)?;
         let (derivatives, _) =
             super::curvature::linearised(self.problem, &point.nominal, &self.lambda)?;
         let jac: Vec<_> = derivatives.iter().map(|d| (&d.dx, &d.du)).collect();
-        let r = self.residuals(point, &models, &jac);
+        let r = self.residuals(point, models, &jac);
         let identities: Vec<_> = (0..=l.steps)
             .map(|k| DMatrix::identity(l.block(k), l.block(k)))
             .collect();

@@ -19,8 +19,11 @@
 //! pivots' signs are the matrix's inertia: the step solves the barrier
 //! problem's Newton equations for a minimum (not a saddle or a maximum)
 //! exactly when there are as many positive pivots as primal unknowns
-//! (Wächter and Biegler 2006, §3.1). The small −δ_c keeps the dual
-//! pivots nonzero for any ordering; the solve refines against δ_c = 0.
+//! (Wächter and Biegler 2006, §3.1). The small −δ_c makes the matrix
+//! quasi-definite, so factorisable in any ordering, wherever the shifted
+//! Hessian is positive definite; elsewhere a zero pivot is reported as
+//! `Singular`, which the caller treats as a wrong inertia. The solve
+//! refines against δ_c = 0.
 
 use super::direct_qp::offsets;
 use clarabel::algebra::CscMatrix;
