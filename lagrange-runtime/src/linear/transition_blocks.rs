@@ -1,30 +1,14 @@
 //! A symmetric (2N + P)-square matrix over (q, v, u) in N × N, N × P and
-//! P × P blocks on the stack, and its congruence by a stage's tangent
-//! W = ∂(q_s, v_s, u)/∂(q, v, u), whose rows are `chain::Rows` and whose
-//! input rows are [0 0 I]: the step curvature's Σ_s W_sᵀ G_s W_s without
-//! a dynamically sized product (at 5 × 5 those cost more in dispatch than
-//! in arithmetic).
+//! P × P blocks on the stack (three `chain::Band`s of rows), and its
+//! congruence by a stage's tangent W = ∂(q_s, v_s, u)/∂(q, v, u), whose
+//! rows are `chain::Rows` and whose input rows are [0 0 I]: the step
+//! curvature's Σ_s W_sᵀ G_s W_s without a dynamically sized product (at
+//! 5 × 5 those cost more in dispatch than in arithmetic).
 
-use super::chain::Rows;
+use super::chain::{Band, Rows};
 use nalgebra::{DMatrix, SMatrix};
 
-/// R rows of a matrix over the columns (q, v, u).
-#[derive(Clone, Copy)]
-pub(super) struct Band<const R: usize, const N: usize, const P: usize> {
-    pub(super) q: SMatrix<f64, R, N>,
-    pub(super) v: SMatrix<f64, R, N>,
-    pub(super) u: SMatrix<f64, R, P>,
-}
-
 impl<const R: usize, const N: usize, const P: usize> Band<R, N, P> {
-    fn zero() -> Self {
-        Self {
-            q: SMatrix::zeros(),
-            v: SMatrix::zeros(),
-            u: SMatrix::zeros(),
-        }
-    }
-
     /// This band times W (columns (q, v, u) of the step's unknowns), given
     /// its blocks on the stage's q rows (`rq`), v rows (`rv`) and input rows
     /// (`ru`, multiplying W's identity).

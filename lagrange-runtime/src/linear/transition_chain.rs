@@ -7,26 +7,18 @@
 use crate::mechanics::InputDerivatives;
 use nalgebra::{DMatrix, SMatrix};
 
-/// N rows of a derivative over (dq, dv, du).
+/// R rows of a derivative over (dq, dv, du).
 #[derive(Clone, Copy)]
-pub(super) struct Rows<const N: usize, const P: usize> {
-    pub(super) q: SMatrix<f64, N, N>,
-    pub(super) v: SMatrix<f64, N, N>,
-    pub(super) u: SMatrix<f64, N, P>,
+pub(super) struct Band<const R: usize, const N: usize, const P: usize> {
+    pub(super) q: SMatrix<f64, R, N>,
+    pub(super) v: SMatrix<f64, R, N>,
+    pub(super) u: SMatrix<f64, R, P>,
 }
 
-impl<const N: usize, const P: usize> Rows<N, P> {
-    /// The rows of dq (`position`) or of dv in dx itself.
-    pub(super) fn identity(position: bool) -> Self {
-        let (i, z) = (SMatrix::identity(), SMatrix::zeros());
-        let (q, v) = if position { (i, z) } else { (z, i) };
-        Self {
-            q,
-            v,
-            u: SMatrix::zeros(),
-        }
-    }
+/// N rows: a stage's q or v over (dq, dv, du).
+pub(super) type Rows<const N: usize, const P: usize> = Band<N, N, P>;
 
+impl<const R: usize, const N: usize, const P: usize> Band<R, N, P> {
     /// No dependence at all.
     pub(super) fn zero() -> Self {
         Self {
@@ -42,6 +34,19 @@ impl<const N: usize, const P: usize> Rows<N, P> {
             q: self.q + other.q * c,
             v: self.v + other.v * c,
             u: self.u + other.u * c,
+        }
+    }
+}
+
+impl<const N: usize, const P: usize> Rows<N, P> {
+    /// The rows of dq (`position`) or of dv in dx itself.
+    pub(super) fn identity(position: bool) -> Self {
+        let (i, z) = (SMatrix::identity(), SMatrix::zeros());
+        let (q, v) = if position { (i, z) } else { (z, i) };
+        Self {
+            q,
+            v,
+            u: SMatrix::zeros(),
         }
     }
 }
