@@ -113,7 +113,7 @@ pub(super) struct Expansion {
     pub(super) reg_ux: DMatrix<f64>,
     gain_t: DMatrix<f64>,
     qux_t: DMatrix<f64>,
-    /// C = ½ Q_uu K + Q_ux, and E = Kᵀ C.
+    /// C = ½ Q_uu K + Q_ux, and E = Kᵀ C (then ½ Q_xx + E in place).
     closed: DMatrix<f64>,
     kt_closed: DMatrix<f64>,
     /// Q_uu k + Q_u.
@@ -163,11 +163,11 @@ impl Expansion {
         (vx, vxx): (&DVector<f64>, &DMatrix<f64>),
         mu: f64,
     ) {
-        self.qx.copy_from(&l.lx);
-        self.qu.copy_from(&l.lu);
-        self.qxx.copy_from(&l.lxx);
-        self.quu.copy_from(&l.luu);
-        self.qux.copy_from(&l.lux);
+        self.qx.as_mut_slice().copy_from_slice(l.lx.as_slice());
+        self.qu.as_mut_slice().copy_from_slice(l.lu.as_slice());
+        self.qxx.as_mut_slice().copy_from_slice(l.lxx.as_slice());
+        self.quu.as_mut_slice().copy_from_slice(l.luu.as_slice());
+        self.qux.as_mut_slice().copy_from_slice(l.lux.as_slice());
         match jacobian {
             StepJacobian::Dense { fx, fu, fx_t, fu_t } => {
                 self.dense(fx, fu, (fx_t, fu_t), (vx, vxx));
@@ -180,8 +180,12 @@ impl Expansion {
                 au_t,
             } => self.euler(*h, (a, au), (a_t, au_t), (vx, vxx)),
         }
-        self.reg_uu.copy_from(&self.quu);
-        self.reg_ux.copy_from(&self.qux);
+        self.reg_uu
+            .as_mut_slice()
+            .copy_from_slice(self.quu.as_slice());
+        self.reg_ux
+            .as_mut_slice()
+            .copy_from_slice(self.qux.as_slice());
         if mu == 0.0 {
             return;
         }
@@ -277,28 +281,32 @@ impl Expansion {
         kff: &DVector<f64>,
         (vx, vxx): (&mut DVector<f64>, &mut DMatrix<f64>),
     ) {
-        self.step_change.copy_from(&self.qu);
+        self.step_change
+            .as_mut_slice()
+            .copy_from_slice(self.qu.as_slice());
         gemv(&mut self.step_change, 1.0, &self.quu, kff, 1.0);
         gain.transpose_to(&mut self.gain_t);
         self.qux.transpose_to(&mut self.qux_t);
-        vx.copy_from(&self.qx);
+        vx.as_mut_slice().copy_from_slice(self.qx.as_slice());
         gemv(vx, 1.0, &self.gain_t, &self.step_change, 1.0);
         gemv(vx, 1.0, &self.qux_t, kff, 1.0);
-        self.closed.copy_from(&self.qux);
+        self.closed
+            .as_mut_slice()
+            .copy_from_slice(self.qux.as_slice());
         gemm(&mut self.closed, 0.5, &self.quu, gain, 1.0);
+        // V_xx = T + Tᵀ with T = ½ Q_xx + E: symmetric exactly (each pair
+        // of entries the same two numbers added), Q_xx's asymmetry
+        // averaged out.
         gemm(&mut self.kt_closed, 1.0, &self.gain_t, &self.closed, 0.0);
-        // V_xx = sym(Q_xx) + E + Eᵀ, symmetric exactly, in one sweep.
-        let n = vxx.nrows();
-        let (q, e) = (self.qxx.as_slice(), self.kt_closed.as_slice());
-        let v = vxx.as_mut_slice();
-        for j in 0..n {
-            for i in 0..=j {
-                let (ij, ji) = (i + j * n, j + i * n);
-                let entry = 0.5 * (q[ij] + q[ji]) + (e[ij] + e[ji]);
-                v[ij] = entry;
-                v[ji] = entry;
-            }
-        }
+        let halves = self.kt_closed.as_mut_slice().iter_mut();
+        halves
+            .zip(self.qxx.as_slice())
+            .for_each(|(e, q)| *e += 0.5 * q);
+        self.kt_closed.transpose_to(vxx);
+        let entries = vxx.as_mut_slice().iter_mut();
+        entries
+            .zip(self.kt_closed.as_slice())
+            .for_each(|(v, t)| *v += t);
     }
 }
 
@@ -307,30 +315,30 @@ impl Expansion {
 fn rows_b(out: &mut [f64], m: &[f64], n: usize, h: f64) {
     let h2 = h * h;
     for (o, c) in out.chunks_exact_mut(n).zip(m.chunks_exact(2 * n)) {
-        for i in 0..n {
-            o[i] = h2 * c[i] + h * c[n + i];
+        let (top, bottom) = c.split_at(n);
+        for ((o, t), b) in o.iter_mut().zip(top).zip(bottom) {
+            *o = h2 * t + h * b;
         }
     }
 }
 
 /// out (r × N) = m B = h² m_left + h m_right, for m (r × 2N).
 fn columns_b(out: &mut DMatrix<f64>, m: &DMatrix<f64>, h: f64) {
-    let (n, h2) = (out.ncols(), h * h);
-    for j in 0..n {
-        for i in 0..m.nrows() {
-            out[(i, j)] = h2 * m[(i, j)] + h * m[(i, n + j)];
-        }
+    let h2 = h * h;
+    let (left, right) = m.as_slice().split_at(out.len());
+    for ((o, l), r) in out.as_mut_slice().iter_mut().zip(left).zip(right) {
+        *o = h2 * l + h * r;
     }
 }
 
 /// out = m P = [m_left, h m_left + m_right], for m (r × 2N).
 fn times_p(out: &mut DMatrix<f64>, m: &DMatrix<f64>, h: f64) {
-    let n = m.ncols() / 2;
-    out.copy_from(m);
-    for j in 0..n {
-        for i in 0..m.nrows() {
-            out[(i, n + j)] += h * m[(i, j)];
-        }
+    let half = m.len() / 2;
+    let (left, right) = m.as_slice().split_at(half);
+    let (out_left, out_right) = out.as_mut_slice().split_at_mut(half);
+    out_left.copy_from_slice(left);
+    for ((o, l), r) in out_right.iter_mut().zip(left).zip(right) {
+        *o = h * l + r;
     }
 }
 
@@ -339,9 +347,13 @@ fn times_p(out: &mut DMatrix<f64>, m: &DMatrix<f64>, h: f64) {
 fn add_p_t(out: &mut [f64], m: &[f64], rows: usize, h: f64) {
     let n = rows / 2;
     for (o, c) in out.chunks_exact_mut(rows).zip(m.chunks_exact(rows)) {
-        for i in 0..n {
-            o[i] += c[i];
-            o[n + i] += h * c[i] + c[n + i];
+        let (o_top, o_bottom) = o.split_at_mut(n);
+        let (top, bottom) = c.split_at(n);
+        for (o, t) in o_top.iter_mut().zip(top) {
+            *o += t;
+        }
+        for ((o, t), b) in o_bottom.iter_mut().zip(top).zip(bottom) {
+            *o += h * t + b;
         }
     }
 }

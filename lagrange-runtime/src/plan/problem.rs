@@ -4,6 +4,7 @@ use super::cost::{Cost, CostModel};
 use crate::error::{Error, SettingsError, unit_quaternions};
 use crate::linear::Transition;
 use crate::numeric::orientation::{self, Orientation};
+use crate::numeric::products;
 use crate::system::Driven;
 use nalgebra::{DMatrix, DVector, Matrix3, SVector};
 
@@ -102,12 +103,13 @@ fn difference_into<const N: usize, const Q: usize>(
     }
 }
 
-/// eᵀ W e, column by column (the cost is evaluated at every step of every
-/// forward pass, so without a temporary for W e).
+/// eᵀ W e, with W e on the stack (the cost is evaluated at every step of
+/// every forward pass) by the vector kernel of `products`.
 fn quadratic_form(w: &DMatrix<f64>, e: &[f64]) -> f64 {
-    let dot = |column: &[f64]| column.iter().zip(e).map(|(a, b)| a * b).sum::<f64>();
-    let columns = w.as_slice().chunks_exact(e.len().max(1));
-    columns.zip(e).map(|(column, &ej)| ej * dot(column)).sum()
+    with_scratch(e.len(), |we| {
+        products::product(we, 1.0, (w.as_slice(), e.len()), (e, e.len()), 0.0);
+        we.iter().zip(e).map(|(a, b)| a * b).sum()
+    })
 }
 
 /// `f` of `len` numbers of scratch, on the stack up to 32 of them.
