@@ -269,6 +269,8 @@ impl Ddp {
         let mut log = Vec::new();
         let mut last: Option<Backward> = None;
         let mut derivatives = Vec::new();
+        // The line search's trials, in buffers of the nominal's shape.
+        let mut trial = nominal.clone();
         for iteration in 1..=self.max_iterations {
             let fail = |e, last: &Option<Backward>, log: &[Iteration], nominal: &Nominal| {
                 self.fail(problem, nominal, last, log, e)
@@ -306,9 +308,9 @@ impl Ddp {
                 log.push(self.record(&ticker, &nominal, stationarity, alpha, mu, 0.0));
                 return Ok(finish(problem, nominal, (&derivatives, backward, mu), log));
             }
-            match line_search(problem, &nominal, &backward) {
-                Some((next, alpha, expected)) => {
-                    nominal = next;
+            match line_search(problem, &nominal, &backward, &mut trial) {
+                Some((alpha, expected)) => {
+                    std::mem::swap(&mut nominal, &mut trial);
                     log.push(self.record(&ticker, &nominal, stationarity, alpha, mu, expected));
                     mu = if mu / 10.0 < MU_MIN { 0.0 } else { mu / 10.0 };
                 }
@@ -458,21 +460,22 @@ fn line_search<S, const N: usize, const P: usize, const Q: usize>(
     problem: &OptimalControl<S, N, P, Q>,
     nominal: &Nominal,
     backward: &Backward,
-) -> Option<(Nominal, f64, f64)>
+    trial: &mut Nominal,
+) -> Option<(f64, f64)>
 where
     S: Driven<f64, N, P, Q>,
 {
     let mut alpha = 1.0;
     for _ in 0..=10 {
-        if let Ok(next) = forward(problem, nominal, backward, alpha) {
-            let expected = predicted_decrease(problem, nominal, backward, &next, alpha);
-            let decrease = nominal.cost - next.cost;
+        if forward(problem, (nominal, backward), alpha, trial).is_ok() {
+            let expected = predicted_decrease(problem, nominal, backward, trial, alpha);
+            let decrease = nominal.cost - trial.cost;
             let accepted = match expected >= 0.0 {
                 true => decrease > 0.0 && decrease >= 1e-4 * expected,
                 false => decrease >= 2.0 * expected,
             };
-            if accepted && next.cost.is_finite() {
-                return Some((next, alpha, expected));
+            if accepted && trial.cost.is_finite() {
+                return Some((alpha, expected));
             }
         }
         alpha *= 0.5;
@@ -490,7 +493,8 @@ fn full_step<S, const N: usize, const P: usize, const Q: usize>(
 where
     S: Driven<f64, N, P, Q>,
 {
-    let next = forward(problem, nominal, backward, 1.0).ok()?;
+    let mut next = nominal.clone();
+    forward(problem, (nominal, backward), 1.0, &mut next).ok()?;
     let round_off = COST_ROUND_OFF * (1.0 + nominal.cost.abs());
     (next.cost.is_finite() && next.cost <= nominal.cost + round_off).then_some(next)
 }

@@ -27,6 +27,7 @@
 //! the gaps are closed, where the plan converges).
 
 use super::box_qp;
+use super::cost::CostModel;
 use super::expansion::{Expansion, StepJacobian};
 use super::problem::{OptimalControl, split, state};
 use crate::error::{Error, SettingsError};
@@ -164,48 +165,67 @@ where
 
 /// The forward pass with step α: from x̄₀ + α f₀, each input clamped at
 /// ū + α k + K (x − x̄), each state the step's less (1 − α) of its gap
-/// (x̄₀ ⊕ α f₀, x ⊖ x̄ and F ⊕ (−(1 − α) f) on the group).
+/// (x̄₀ ⊕ α f₀, x ⊖ x̄ and F ⊕ (−(1 − α) f) on the group). Written over
+/// `trial`, a plan of the same length (the line search's trials and the
+/// plan it replaces take turns in one pair of buffers: no allocation per
+/// step where no gap is open). On an error `trial` holds a partial pass.
 pub(super) fn forward<S, const N: usize, const P: usize, const Q: usize>(
     problem: &OptimalControl<S, N, P, Q>,
-    nominal: &Nominal,
-    backward: &Backward,
+    (nominal, backward): (&Nominal, &Backward),
     alpha: f64,
-) -> Result<Nominal, Error>
+    trial: &mut Nominal,
+) -> Result<(), Error>
 where
     S: Driven<f64, N, P, Q>,
 {
     // Each gap left is (1 − α) of the nominal's, exactly: x̄ ⊕ α f and
     // (x̄ ⊕ f) ⊖ (x̄ ⊕ α f) = (1 − α) f on the group as in the plane, and
     // taken so, not measured, a full step leaves no round-off behind.
-    let x0 = problem.plus(&nominal.xs[0], &(&nominal.gaps[0] * alpha));
-    let mut gaps = vec![&nominal.gaps[0] * (1.0 - alpha)];
-    let mut xs = Vec::with_capacity(problem.steps + 1);
-    xs.push(x0);
-    let mut us = Vec::with_capacity(problem.steps);
+    trial.xs[0] = problem.plus(&nominal.xs[0], &(&nominal.gaps[0] * alpha));
+    trial.gaps[0] = &nominal.gaps[0] * (1.0 - alpha);
     let (mut input, mut deviation) = (DVector::zeros(P), DVector::zeros(2 * N));
     for k in 0..problem.steps {
-        let x = &xs[k];
+        let (done, next) = trial.xs.split_at_mut(k + 1);
+        let (x, next) = (&done[k], &mut next[0]);
         problem.minus_into(x, &nominal.xs[k], &mut deviation);
         // ū + α k + K (x − x̄), in place.
         input.copy_from(&nominal.us[k]);
         input.axpy(alpha, &backward.feedforward[k], 1.0);
         gemv(&mut input, 1.0, &backward.gains[k], &deviation, 1.0);
-        let u = problem.clamp(&input);
-        let next = step(problem, k, x, &u)?;
-        let gap = &nominal.gaps[k + 1];
+        let u = &mut trial.us[k];
+        problem.clamp_into(&input, u);
+        step_into(problem, k, (x, u), next)?;
+        let (gap, left) = (&nominal.gaps[k + 1], &mut trial.gaps[k + 1]);
         // A closed gap (every step of a rollout) leaves the step's state as it is.
         if gap.amax() == 0.0 {
-            xs.push(next);
-            gaps.push(DVector::zeros(gap.len()));
+            left.fill(0.0);
         } else {
-            let left = gap * (1.0 - alpha);
-            xs.push(problem.plus(&next, &-&left));
-            gaps.push(left);
+            left.copy_from(gap);
+            *left *= 1.0 - alpha;
+            *next = problem.plus(next, &-&*left);
         }
-        us.push(u);
     }
-    let cost = problem.cost(&xs, &us);
-    Ok(Nominal { xs, us, gaps, cost })
+    trial.cost = problem.cost(&trial.xs, &trial.us);
+    Ok(())
+}
+
+/// One step of the problem's transition written into `next`.
+fn step_into<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
+    k: usize,
+    (x, u): (&DVector<f64>, &DVector<f64>),
+    next: &mut DVector<f64>,
+) -> Result<(), Error>
+where
+    S: Driven<f64, N, P, Q>,
+{
+    let (q, v) = split::<N, Q>(x);
+    let u = SVector::<f64, P>::from_column_slice(u.as_slice());
+    let (q1, v1) = problem.transition.step(&q, &v, &u, problem.time(k))?;
+    let (q_part, v_part) = next.as_mut_slice().split_at_mut(Q);
+    q_part.copy_from_slice(q1.as_slice());
+    v_part.copy_from_slice(v1.as_slice());
+    Ok(())
 }
 
 /// The decrease of the cost the model predicts for the step α that gave
@@ -310,8 +330,9 @@ where
     let mut expected = (0.0, 0.0);
     let mut s = Expansion::new(n2, P);
     let (mut lower, mut upper) = (DVector::zeros(P), DVector::zeros(P));
+    let mut l = CostModel::zero(n2, P);
     for k in (0..steps).rev() {
-        let l = problem.running_model(k, &nominal.xs[k], &nominal.us[k])?;
+        problem.running_model_into(k, &nominal.xs[k], &nominal.us[k], &mut l)?;
         s.expand(&l, &jacobians[k], (&vx, &vxx), mu);
         let start = last.map(|b| &b.feedforward[k]);
         lower.copy_from(&problem.lower);

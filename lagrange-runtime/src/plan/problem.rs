@@ -356,26 +356,56 @@ where
         0.5 * self.state_form(self.final_weight_or_running(), x) + terms
     }
 
-    /// The running cost's quadratic model at step k.
-    ///
-    /// # Errors
-    /// [`Error::Settings`] for a term whose model has the wrong sizes or is
-    /// not finite.
+    /// The running cost's quadratic model at step k
+    /// ([`running_model_into`](Self::running_model_into) in a new model).
+    #[cfg(feature = "direct")]
     pub(super) fn running_model(
         &self,
         k: usize,
         x: &DVector<f64>,
         u: &DVector<f64>,
     ) -> Result<CostModel, Error> {
-        let (lx, lxx) = self.quadratic(&self.weight_x, &self.minus(x, &self.goal));
-        let mut model = CostModel {
-            value: 0.0,
-            lx,
-            lu: &self.weight_u * (u - &self.input_target),
-            lxx,
-            luu: self.weight_u.clone(),
-            lux: DMatrix::zeros(P, 2 * N),
-        };
+        let mut model = CostModel::zero(2 * N, P);
+        self.running_model_into(k, x, u, &mut model)?;
+        Ok(model)
+    }
+
+    /// The running cost's quadratic model at step k, written over `model`
+    /// (2N states, P inputs): no allocation without orientations, where
+    /// the backward pass asks for one a step.
+    ///
+    /// # Errors
+    /// [`Error::Settings`] for a term whose model has the wrong sizes or is
+    /// not finite.
+    pub(super) fn running_model_into(
+        &self,
+        k: usize,
+        x: &DVector<f64>,
+        u: &DVector<f64>,
+        model: &mut CostModel,
+    ) -> Result<(), Error> {
+        model.value = 0.0;
+        if S::ORIENTATIONS.is_empty() {
+            // lx = W e and lxx = W for e = x − x*.
+            with_scratch(2 * N, |e| {
+                difference_into::<N, Q>(S::ORIENTATIONS, &self.goal, x, e);
+                let w = (self.weight_x.as_slice(), 2 * N);
+                products::product(model.lx.as_mut_slice(), 1.0, w, (e, 2 * N), 0.0);
+            });
+            (model.lxx.as_mut_slice()).copy_from_slice(self.weight_x.as_slice());
+        } else {
+            (model.lx, model.lxx) = self.quadratic(&self.weight_x, &self.minus(x, &self.goal));
+        }
+        with_scratch(P, |d| {
+            let pairs = d
+                .iter_mut()
+                .zip(u.as_slice().iter().zip(self.input_target.as_slice()));
+            pairs.for_each(|(d, (u, target))| *d = u - target);
+            let w = (self.weight_u.as_slice(), P);
+            products::product(model.lu.as_mut_slice(), 1.0, w, (d, P), 0.0);
+        });
+        (model.luu.as_mut_slice()).copy_from_slice(self.weight_u.as_slice());
+        model.lux.fill(0.0);
         let (q, v) = split::<N, Q>(x);
         let u = SVector::<f64, P>::from_column_slice(u.as_slice());
         for term in &self.running_terms {
@@ -383,13 +413,13 @@ where
             check_model(&m, 2 * N, P)?;
             model.add(&m);
         }
-        Ok(model)
+        Ok(())
     }
 
     /// The final cost's quadratic model (its u parts empty).
     ///
     /// # Errors
-    /// As [`running_model`](Self::running_model).
+    /// As [`running_model_into`](Self::running_model_into).
     pub(super) fn final_model(&self, x: &DVector<f64>) -> Result<CostModel, Error> {
         let w = self.final_weight_or_running();
         let (lx, lxx) = self.quadratic(w, &self.minus(x, &self.goal));
@@ -421,6 +451,15 @@ where
     /// u clamped into the bounds.
     pub(super) fn clamp(&self, u: &DVector<f64>) -> DVector<f64> {
         DVector::from_fn(P, |i, _| u[i].clamp(self.lower[i], self.upper[i]))
+    }
+
+    /// `u` clamped into the bounds, written into `out` (P).
+    pub(super) fn clamp_into(&self, u: &DVector<f64>, out: &mut DVector<f64>) {
+        let bounds = self.lower.as_slice().iter().zip(self.upper.as_slice());
+        let inputs = out.as_mut_slice().iter_mut().zip(u.as_slice());
+        for ((o, u), (lower, upper)) in inputs.zip(bounds) {
+            *o = u.clamp(*lower, *upper);
+        }
     }
 
     /// The problem's sizes, weights and bounds, checked before solving.
