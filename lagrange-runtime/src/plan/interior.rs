@@ -56,10 +56,10 @@ pub(super) enum Outcome {
 
 /// The settings the iteration reads.
 pub(super) struct Settings {
-    pub tolerance: f64,
-    pub gap_tolerance: f64,
-    pub max_iterations: usize,
-    pub verbose: bool,
+    pub(super) tolerance: f64,
+    pub(super) gap_tolerance: f64,
+    pub(super) max_iterations: usize,
+    pub(super) verbose: bool,
 }
 
 // IPOPT's constants for the first point and the filter line search
@@ -89,12 +89,12 @@ const PUSH: f64 = 1e-2;
 /// A point of the iteration: the unknowns, the plan they make, and what
 /// the line search reads.
 pub(super) struct Point {
-    pub w: Vec<f64>,
-    pub nominal: Nominal,
+    pub(super) w: Vec<f64>,
+    pub(super) nominal: Nominal,
     /// The rows' values c(w) (x₀ − x_start, x_{k+1} − F(x_k, u_k), x_K − x*).
-    pub c: Vec<f64>,
+    pub(super) c: Vec<f64>,
     /// Σ |c|.
-    pub theta: f64,
+    pub(super) theta: f64,
 }
 
 /// The interior point's state between iterations.
@@ -102,28 +102,28 @@ pub(super) struct Interior<'p, 'a, S, const N: usize, const P: usize>
 where
     S: Driven<f64, N, P>,
 {
-    pub problem: &'p OptimalControl<'a, S, N, P>,
-    pub layout: Layout,
-    pub lower: Vec<f64>,
-    pub upper: Vec<f64>,
-    pub kkt: Kkt,
+    pub(super) problem: &'p OptimalControl<'a, S, N, P>,
+    pub(super) layout: Layout,
+    pub(super) lower: Vec<f64>,
+    pub(super) upper: Vec<f64>,
+    pub(super) kkt: Kkt,
     /// The barrier parameter.
-    pub mu: f64,
+    pub(super) mu: f64,
     /// The (θ, φ) pairs no trial may be worse than in both.
-    pub filter: Vec<(f64, f64)>,
+    pub(super) filter: Vec<(f64, f64)>,
     theta_max: f64,
     theta_min: f64,
     /// The last nonzero shift of the Hessian.
-    pub last_shift: f64,
+    pub(super) last_shift: f64,
     /// The rows' multipliers.
-    pub lambda: Vec<f64>,
+    pub(super) lambda: Vec<f64>,
     /// The lower and upper bounds' multipliers (zero where there is none).
-    pub zl: Vec<f64>,
-    pub zu: Vec<f64>,
+    pub(super) zl: Vec<f64>,
+    pub(super) zu: Vec<f64>,
     /// The factor the cost is scaled by in the iteration (IPOPT's
     /// gradient-based scaling): its gradient at the first point at most
     /// 100.
-    pub objective_scale: f64,
+    pub(super) objective_scale: f64,
 }
 
 impl<'p, 'a, S, const N: usize, const P: usize> Interior<'p, 'a, S, N, P>
@@ -132,7 +132,7 @@ where
 {
     /// The iteration's state for a problem, with equal bounds moved apart
     /// by 10⁻⁸ of themselves (so that they still leave an interior).
-    pub fn new(problem: &'p OptimalControl<'a, S, N, P>) -> Self {
+    pub(super) fn new(problem: &'p OptimalControl<'a, S, N, P>) -> Self {
         let layout = Layout {
             n2: 2 * N,
             p: P,
@@ -165,7 +165,7 @@ where
 
     /// The iterations from a nominal, each recorded in `log`, until the log
     /// holds `max_iterations`.
-    pub fn run(
+    pub(super) fn run(
         &mut self,
         settings: &Settings,
         nominal: &Nominal,
