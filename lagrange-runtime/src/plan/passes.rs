@@ -79,10 +79,28 @@ pub(super) fn step<S, const N: usize, const P: usize, const Q: usize>(
 where
     S: Driven<f64, N, P, Q>,
 {
+    let mut next = DVector::zeros(Q + N);
+    step_into(problem, k, (x, u), &mut next)?;
+    Ok(next)
+}
+
+/// One step of the problem's transition written into `next`.
+fn step_into<S, const N: usize, const P: usize, const Q: usize>(
+    problem: &OptimalControl<S, N, P, Q>,
+    k: usize,
+    (x, u): (&DVector<f64>, &DVector<f64>),
+    next: &mut DVector<f64>,
+) -> Result<(), Error>
+where
+    S: Driven<f64, N, P, Q>,
+{
     let (q, v) = split::<N, Q>(x);
     let u = SVector::<f64, P>::from_column_slice(u.as_slice());
     let (q1, v1) = problem.transition.step(&q, &v, &u, problem.time(k))?;
-    Ok(state(&q1, &v1))
+    let (q_part, v_part) = next.as_mut_slice().split_at_mut(Q);
+    q_part.copy_from_slice(q1.as_slice());
+    v_part.copy_from_slice(v1.as_slice());
+    Ok(())
 }
 
 /// The rollout of `us` (clamped) from the start: no gaps.
@@ -206,25 +224,6 @@ where
         }
     }
     trial.cost = problem.cost(&trial.xs, &trial.us);
-    Ok(())
-}
-
-/// One step of the problem's transition written into `next`.
-fn step_into<S, const N: usize, const P: usize, const Q: usize>(
-    problem: &OptimalControl<S, N, P, Q>,
-    k: usize,
-    (x, u): (&DVector<f64>, &DVector<f64>),
-    next: &mut DVector<f64>,
-) -> Result<(), Error>
-where
-    S: Driven<f64, N, P, Q>,
-{
-    let (q, v) = split::<N, Q>(x);
-    let u = SVector::<f64, P>::from_column_slice(u.as_slice());
-    let (q1, v1) = problem.transition.step(&q, &v, &u, problem.time(k))?;
-    let (q_part, v_part) = next.as_mut_slice().split_at_mut(Q);
-    q_part.copy_from_slice(q1.as_slice());
-    v_part.copy_from_slice(v1.as_slice());
     Ok(())
 }
 
