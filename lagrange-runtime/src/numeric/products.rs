@@ -87,6 +87,13 @@ pub(crate) fn product(
     if m == 0 || c.is_empty() {
         return;
     }
+    if k == 0 {
+        // An empty sum: c ← β c.
+        let zeros = [0.0; 16];
+        c.chunks_mut(16)
+            .for_each(|c| write(c, alpha, &zeros[..c.len()], beta));
+        return;
+    }
     macro_rules! fixed {
         ($($rows:literal)*) => {
             match m {
@@ -305,6 +312,8 @@ mod tests {
             (9, 37, 3),
             (5, 64, 2),
             (8, 5, 9),
+            (0, 7, 3),
+            (0, 20, 2),
         ];
         // Every row count of a fixed kernel and two past them, with column
         // counts that leave a remainder of each group (four and two).
