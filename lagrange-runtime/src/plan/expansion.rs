@@ -18,10 +18,10 @@
 //! F_uᵀ V F_x = A_uᵀ (G + C A),          F_uᵀ V F_u = A_uᵀ C A_u,
 //! ```
 //!
-//! so that the products are C A (N × N × 2N), Aᵀ E (2N × N × 2N), and
-//! N × N × 2N and two N × N × P more: 10 N³ multiply–adds a step for an arm
-//! of N joints driven at each (3,430 for seven), where F_x formed would
-//! take 26 N³. Q_xx is held as l_xx + Pᵀ V P + 2 Aᵀ E, whose symmetric part
+//! so that the products are C A (N × N × 2N), Aᵀ E (2N × N × 2N),
+//! A_uᵀ (G + C A) (P × N × 2N), C A_u (N × N × P) and A_uᵀ (C A_u)
+//! (P × N × P): 10 N³ multiply–adds a step for an arm of N joints driven at
+//! each (3,430 for seven), where F_x and F_u formed would take 26 N³. Q_xx is held as l_xx + Pᵀ V P + 2 Aᵀ E, whose symmetric part
 //! is Q_xx: the value function reads only that part.
 
 use super::cost::CostModel;
@@ -106,9 +106,9 @@ pub(super) struct Expansion {
     vxx_fx: DMatrix<f64>,
     /// V_xx F_u in the dense form.
     vxx_fu: DMatrix<f64>,
-    /// Euler's form: R = Bᵀ V_xx, G = R P (then G + C A), C = R B, C A
-    /// (then E), C A_u.
-    rows: DMatrix<f64>,
+    /// Euler's form: Bᵀ V_xx, G = (Bᵀ V_xx) P (then G + C A),
+    /// C = (Bᵀ V_xx) B, C A (then E), C A_u.
+    b_vxx: DMatrix<f64>,
     g: DMatrix<f64>,
     c: DMatrix<f64>,
     ca: DMatrix<f64>,
@@ -144,7 +144,7 @@ impl Expansion {
         Expansion {
             vxx_fx: square.clone(),
             vxx_fu: tall.clone(),
-            rows: DMatrix::zeros(n, n2),
+            b_vxx: DMatrix::zeros(n, n2),
             g: DMatrix::zeros(n, n2),
             c: DMatrix::zeros(n, n),
             ca: DMatrix::zeros(n, n2),
@@ -248,10 +248,10 @@ impl Expansion {
         rows_b(self.b_vx.as_mut_slice(), vx.as_slice(), n, h);
         gemv(&mut self.qx, 1.0, a_t, &self.b_vx, 1.0);
         gemv(&mut self.qu, 1.0, au_t, &self.b_vx, 1.0);
-        // R = Bᵀ V, G = R P, C = R B; Q_xx += Pᵀ (V P).
-        rows_b(self.rows.as_mut_slice(), vxx.as_slice(), n, h);
-        times_p(&mut self.g, &self.rows, h);
-        columns_b(&mut self.c, &self.rows, h);
+        // G = (Bᵀ V) P, C = (Bᵀ V) B; Q_xx += Pᵀ (V P).
+        rows_b(self.b_vxx.as_mut_slice(), vxx.as_slice(), n, h);
+        times_p(&mut self.g, &self.b_vxx, h);
+        columns_b(&mut self.c, &self.b_vxx, h);
         times_p(&mut self.vxx_fx, vxx, h);
         add_p_t(self.qxx.as_mut_slice(), self.vxx_fx.as_slice(), n2, h);
         // C A; G + C A for Q_ux; E = (G + C A) − ½ C A for Q_xx += 2 Aᵀ E.

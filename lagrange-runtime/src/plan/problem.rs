@@ -450,7 +450,9 @@ where
 
     /// u clamped into the bounds.
     pub(super) fn clamp(&self, u: &DVector<f64>) -> DVector<f64> {
-        DVector::from_fn(P, |i, _| u[i].clamp(self.lower[i], self.upper[i]))
+        let mut out = DVector::zeros(P);
+        self.clamp_into(u, &mut out);
+        out
     }
 
     /// `u` clamped into the bounds, written into `out` (P).
