@@ -86,7 +86,7 @@ pub(crate) fn product(
     beta: f64,
 ) {
     assert!(
-        a.len() == m * k && (m == 0 || c.len() % m == 0) && b.len() * m == k * c.len(),
+        a.len() == m * k && c.len().is_multiple_of(m) && b.len() * m == k * c.len(),
         "product: {} numbers as {m} rows of a, {} numbers with {k} rows of b, {} of c",
         a.len(),
         b.len(),
