@@ -39,6 +39,7 @@ mod node;
 mod program;
 mod rational;
 mod reduce;
+mod subsums;
 mod trig;
 
 pub use context::Context;

@@ -14,6 +14,7 @@ use std::collections::HashMap;
 use crate::context::Context;
 use crate::node::{Expr, Func, Node, Symbol};
 use crate::rational::Num;
+use crate::subsums;
 
 /// Operation counts of a [`Program`], matching what [`Program::emit`] writes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -101,6 +102,9 @@ struct Lowering<'a> {
     memo: HashMap<Expr, (Value, bool)>,
     /// Sums by (added terms, subtracted terms, constant bits), sorted.
     sums: HashMap<(Vec<Value>, Vec<Value>, u64), Value>,
+    /// Each sum's largest part that is a reachable sum of its own
+    /// ([`subsums::bases`]): lowered, the sum starts from that part's value.
+    bases: HashMap<Expr, Expr>,
 }
 
 impl Lowering<'_> {
@@ -149,7 +153,7 @@ impl Lowering<'_> {
                 (self.constant(cx.as_f64(e).unwrap_or(f64::NAN)), false)
             }
             Node::Sym(s) => (self.push(Op::Sym(*s)), false),
-            Node::Add(terms) => self.lower_sum(terms),
+            Node::Add(terms) => self.lower_sum(e, terms),
             Node::Mul(fs) => match cx.num(fs[0]) {
                 Some(c) => self.lower_product(c, &fs[1..]),
                 None => self.lower_product(Num::ONE, fs),
@@ -175,12 +179,25 @@ impl Lowering<'_> {
         v
     }
 
-    fn lower_sum(&mut self, terms: &[Expr]) -> (Value, bool) {
+    fn lower_sum(&mut self, e: Expr, terms: &[Expr]) -> (Value, bool) {
         let cx = self.cx;
         let mut constant = 0.0;
         let mut pos = Vec::new();
         let mut neg = Vec::new();
+        // Start from the part that is a sum of its own, already computed or
+        // computed now for this sum and any other that holds it.
+        let mut held: &[Expr] = &[];
+        if let Some(&b) = self.bases.get(&e)
+            && let Node::Add(base_terms) = cx.node(b)
+        {
+            held = base_terms;
+            let (v, negated) = self.lower_signed(b);
+            if negated { neg.push(v) } else { pos.push(v) }
+        }
         for &t in terms {
+            if held.contains(&t) {
+                continue;
+            }
             if let Some(n) = cx.num(t) {
                 constant += n.to_f64();
                 continue;
@@ -353,6 +370,7 @@ impl Program {
             dedup: HashMap::new(),
             memo: HashMap::new(),
             sums: HashMap::new(),
+            bases: subsums::bases(ctx, outputs),
         };
         let outs: Vec<Value> = outputs.iter().map(|&o| lw.lower(o)).collect();
         Program {

@@ -307,3 +307,49 @@ fn with_one_symbol<R>(fused_multiply_add: bool, f: impl FnOnce(&EmitConfig) -> R
         fused_multiply_add,
     })
 }
+
+/// A subtree's composite gathered leaves first, c_k = x_k y_k + c_{k+1}, is
+/// stored flat: each c_k holds every term below it. Lowered, c_k starts from
+/// c_{k+1}'s value and adds one product, n − 1 additions for all n of them
+/// rather than n (n − 1) / 2; a negated part and a constant part are taken
+/// as well, and a part whose constant differs is not.
+#[test]
+fn a_sum_that_holds_another_adds_only_the_rest() {
+    let mut cx = Context::new();
+    let n = 12;
+    let xs: Vec<Expr> = (0..n).map(|k| cx.free_symbol(&format!("x{k}"))).collect();
+    let ys: Vec<Expr> = (0..n).map(|k| cx.free_symbol(&format!("y{k}"))).collect();
+    let mut composites = vec![cx.mul(xs[n - 1], ys[n - 1])];
+    for k in (0..n - 1).rev() {
+        let own = cx.mul(xs[k], ys[k]);
+        let below = *composites.last().expect("one composite");
+        composites.push(cx.add(own, below));
+    }
+    // The root first, as a depth-first walk from the outputs meets it.
+    composites.reverse();
+    let p = Program::new(&cx, &composites);
+    assert_eq!((p.op_count().add, p.op_count().mul), (n - 1, n));
+    for (a, &e) in p.eval(&cx, &env).into_iter().zip(&composites) {
+        assert_close(a, cx.eval(e, &env));
+    }
+
+    // −x₀ − x₁ − x₂ lowers as a negated sum, which −x₀ − x₁ − x₂ + y₀ holds.
+    let minus: Vec<Expr> = xs[..3].iter().map(|&x| cx.neg(x)).collect();
+    let falling = cx.sum(&minus);
+    let whole = cx.add(falling, ys[0]);
+    // x₀ + x₁ + 2 and x₀ + x₁ + x₂ + 2 share the constant; + 3 does not.
+    let two = cx.int(2);
+    let three = cx.int(3);
+    let small = cx.sum(&[xs[0], xs[1], two]);
+    let large = cx.sum(&[xs[0], xs[1], xs[2], two]);
+    let other = cx.sum(&[xs[0], xs[1], xs[2], three]);
+    let outputs = [falling, whole, small, large, other];
+    let p = Program::new(&cx, &outputs);
+    for (a, &e) in p.eval(&cx, &env).into_iter().zip(&outputs) {
+        assert_close(a, cx.eval(e, &env));
+    }
+    // falling: two additions and the negation; whole: y₀ − (x₀ + x₁ + x₂);
+    // small: its first addition falling's, then + 2; large: small + x₂;
+    // other: falling's two additions, then + 3.
+    assert_eq!(p.op_count().add, 3 + 1 + 1 + 1 + 1, "{:?}", p.op_count());
+}
