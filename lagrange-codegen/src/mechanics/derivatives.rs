@@ -23,6 +23,11 @@ pub struct RhsJacobians {
     pub position: Vec<Vec<Sym>>,
     /// J_v = ∂(Q − h)/∂q̇.
     pub velocity: Vec<Vec<Sym>>,
+    /// M and Q − h (at zero input) from the composites the closed form
+    /// gathers, for a program that takes both (`solved`); none where the
+    /// Jacobians came otherwise or the tree has a spherical joint (whose M
+    /// is the motion's, in ω).
+    pub dynamics: Option<(Vec<Vec<Sym>>, Vec<Sym>)>,
 }
 
 impl Expressions for RhsJacobians {
@@ -66,8 +71,16 @@ pub(super) fn rhs_jacobians(
 /// arms with general axes; the link-axes form can win on small trees whose
 /// axes are aligned, where its products by 0 and 1 vanish).
 fn of_the_tree(ctx: &mut Context, tree: &Tree, rest: &[Sym]) -> RhsJacobians {
-    let (tq, tv) = crate::tree::inverse_dynamics_derivatives(ctx, tree);
-    let closed = with_rest(ctx, tq, tv, rest);
+    let d = crate::tree::inverse_dynamics_derivatives(ctx, tree);
+    let mut closed = with_rest(ctx, d.position, d.velocity, rest);
+    if !tree.turns_freely() {
+        let rhs = rest
+            .iter()
+            .zip(&d.bias)
+            .map(|(&f, &b)| ctx.sub(f, b))
+            .collect();
+        closed.dynamics = Some((d.mass, rhs));
+    }
     let differentiated = of_the_link_axes_form(ctx, tree, rest);
     let cost = |ctx: &Context, j: &RhsJacobians| {
         let mut out = Vec::new();
@@ -110,7 +123,11 @@ fn with_rest(
     };
     let position = minus(ctx, tq, &q);
     let velocity = minus(ctx, tv, &qd);
-    RhsJacobians { position, velocity }
+    RhsJacobians {
+        position,
+        velocity,
+        dynamics: None,
+    }
 }
 
 /// −∂τ/∂q, −∂τ/∂q̇ by differentiating the link-axes recursion coordinate by
@@ -140,7 +157,11 @@ fn of_the_link_axes_form(ctx: &mut Context, tree: &Tree, rest: &[Sym]) -> RhsJac
     };
     let position = minus_d(ctx, &q);
     let velocity = minus_d(ctx, &qd);
-    RhsJacobians { position, velocity }
+    RhsJacobians {
+        position,
+        velocity,
+        dynamics: None,
+    }
 }
 
 /// J_q = ∂(Q − h)/∂q − [∂M/∂q_k q̈]_k and J_v = ∂(Q − h)/∂q̇, with q̈ left as the
@@ -176,7 +197,11 @@ fn of_the_generic_form(ctx: &mut Context, mass: &[Vec<Sym>], rhs: &[Sym]) -> Rhs
                 .collect()
         })
         .collect();
-    RhsJacobians { position, velocity }
+    RhsJacobians {
+        position,
+        velocity,
+        dynamics: None,
+    }
 }
 
 #[cfg(test)]

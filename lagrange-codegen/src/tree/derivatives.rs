@@ -67,14 +67,34 @@ struct Kinematic {
 }
 
 /// ∂τ/∂q and ∂τ/∂q̇ for τ = RNEA(q, q̇, q̈; gravity as a base acceleration),
-/// N × N row-major, in coordinate order.
-pub fn inverse_dynamics_derivatives(
-    ctx: &mut Context,
-    tree: &Tree,
-) -> (Vec<Vec<Sym>>, Vec<Vec<Sym>>) {
+/// and M and τ at q̈ = 0 read off the same composites; N × N row-major, in
+/// coordinate order.
+pub struct Derivatives {
+    /// ∂τ/∂q (∂τ/∂δ along a spherical joint's tangent).
+    pub position: Vec<Vec<Sym>>,
+    /// ∂τ/∂q̇.
+    pub velocity: Vec<Vec<Sym>>,
+    /// M, with M_ij = S_iᵀ Y^c_j S_j where i's joint is j's or its ancestor
+    /// (Y^c_j S_j is what the derivatives' rows already take), and the
+    /// rotors' inertias on the diagonal.
+    pub mass: Vec<Vec<Sym>>,
+    /// τ at q̈ = 0, h − Q_gravity: S_iᵀ F^c_i with the accelerations zero.
+    pub bias: Vec<Sym>,
+}
+
+/// The derivatives of recursive Newton–Euler and M and h from the same
+/// world-axes composites.
+pub fn inverse_dynamics_derivatives(ctx: &mut Context, tree: &Tree) -> Derivatives {
     let joints = joints(ctx, tree);
     let kinematics = forward(ctx, tree, &joints);
-    backward(ctx, &joints, &kinematics)
+    let mut d = backward(ctx, &joints, &kinematics);
+    for &(q, ia) in &tree.armature {
+        d.mass[q][q] = ctx.add(d.mass[q][q], ia);
+    }
+    let zero = ctx.zero();
+    let at_rest: Vec<(Sym, Sym)> = ctx.accelerations().into_iter().map(|a| (a, zero)).collect();
+    d.bias = ctx.substitute_all(&d.bias, &at_rest);
+    d
 }
 
 /// The joints in parent-first order with their world columns and inertias.
@@ -377,16 +397,15 @@ struct Column {
 }
 
 /// Backward pass: composites, then each joint's columns against its
-/// subtree's.
-fn backward(
-    ctx: &mut Context,
-    joints: &[Joint],
-    kin: &[Kinematic],
-) -> (Vec<Vec<Sym>>, Vec<Vec<Sym>>) {
+/// subtree's (τ and M at the accelerations' symbols; `inverse_dynamics_derivatives`
+/// adds the rotors and sets q̈ = 0 in τ).
+fn backward(ctx: &mut Context, joints: &[Joint], kin: &[Kinematic]) -> Derivatives {
     let n = ctx.coordinates().len();
     let zero = ctx.zero();
     let mut dq = vec![vec![zero; n]; n];
     let mut dv = vec![vec![zero; n]; n];
+    let mut mass = vec![vec![zero; n]; n];
+    let mut tau = vec![zero; n];
     let mut composite: Vec<Composite> = joints
         .iter()
         .zip(kin)
@@ -408,14 +427,22 @@ fn backward(
             descendant_rows(ctx, matrices, &descendants, (k, i), (coordinate, s));
             own.push(column(ctx, &c, (k, i), (coordinate, s)));
         }
-        // This joint's rows against its own columns and its subtree's.
+        // This joint's rows against its own columns and its subtree's; M's
+        // entries below this joint are symmetric, τ its columns' S ᵀ F^c.
         for r in &own {
-            for e in own.iter().chain(&descendants) {
+            for (k, e) in own.iter().chain(&descendants).enumerate() {
                 let x = dot6(ctx, r.s, e.df_dq);
                 accumulate(ctx, &mut dq, r.coordinate, e.coordinate, x);
                 let x = dot6(ctx, r.s, e.df_dv);
                 accumulate(ctx, &mut dv, r.coordinate, e.coordinate, x);
+                let x = dot6(ctx, r.s, e.ys);
+                accumulate(ctx, &mut mass, r.coordinate, e.coordinate, x);
+                if k >= own.len() {
+                    accumulate(ctx, &mut mass, e.coordinate, r.coordinate, x);
+                }
             }
+            let x = dot6(ctx, r.s, c.force);
+            tau[r.coordinate] = ctx.add(tau[r.coordinate], x);
         }
         // Turning this joint turns the subtree's force: S ×* F^c, for the
         // ancestors' rows (its own rows see none of it: Sᵀ (S ×* F) = 0 for
@@ -431,7 +458,12 @@ fn backward(
             below[p].extend(descendants);
         }
     }
-    (dq, dv)
+    Derivatives {
+        position: dq,
+        velocity: dv,
+        mass,
+        bias: tau,
+    }
 }
 
 /// Column `i` of joint `k` (`coordinate`, S) with the composites of its
