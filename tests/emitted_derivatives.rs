@@ -35,6 +35,8 @@ fn an_arm_at_a_torque<S: Differentiable<f64, N, N>, const N: usize>(name: &str, 
     let acc = inverse * (rhs + tau);
     assert!(worst(&d.acceleration, &acc) < 1e-12, "{name}: q''");
     assert!(worst(&d.dtau, &inverse) < 1e-11, "{name}: dq''/dtau");
+    // One triangle of M⁻¹ is solved and mirrored: symmetric to the bit.
+    assert_eq!(d.dtau, d.dtau.transpose(), "{name}: dq''/dtau symmetric");
     // Fourth-order central differences: truncation ~h⁴, round-off ~ε |q̈| / h,
     // 2e-8 on the xArm7 (at its ∂q̈₆/∂q₀, exactly 0 in the program). The
     // second-order stencil at h = 1e-5 left 1e-6 of round-off there: a

@@ -83,7 +83,8 @@ pub(super) fn solved(
     let identity: Vec<Vec<Sym>> = (0..n)
         .map(|i| (0..n).map(|k| if i == k { one } else { zero }).collect())
         .collect();
-    let inverse_mass = columns(ctx, &identity);
+    let solved = columns(ctx, &identity);
+    let inverse_mass = symmetric_half(ctx, solved);
     SolvedDerivatives {
         acceleration,
         position,
@@ -116,5 +117,35 @@ fn cheaper_dynamics(
         shared.clone()
     } else {
         motion
+    }
+}
+
+/// M⁻¹ from one triangle of its solved columns, mirrored: M⁻¹ is symmetric,
+/// and the triangle a column's back substitution reaches first needs none of
+/// the other's entries, which the program then leaves out (the cheaper
+/// triangle, by operation count).
+fn symmetric_half(ctx: &Context, full: Vec<Vec<Sym>>) -> Vec<Vec<Sym>> {
+    let n = full.len();
+    let mirrored = |upper: bool| -> Vec<Vec<Sym>> {
+        (0..n)
+            .map(|i| {
+                (0..n)
+                    .map(|k| {
+                        let (a, b) = (i.min(k), i.max(k));
+                        if upper { full[a][b] } else { full[b][a] }
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let cost = |m: &[Vec<Sym>]| {
+        let outputs: Vec<Sym> = m.iter().flatten().copied().collect();
+        super::generic::cost(ctx, &outputs)
+    };
+    let (upper, lower) = (mirrored(true), mirrored(false));
+    if cost(&lower) < cost(&upper) {
+        lower
+    } else {
+        upper
     }
 }
