@@ -9,7 +9,7 @@
 //! too, so e.g. `x·y` is shared between `x·y·z` and `x·y·w`, and a term that
 //! appears once added and once subtracted is computed once.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use crate::context::Context;
 use crate::node::{Expr, Func, Node, Symbol};
@@ -186,11 +186,11 @@ impl Lowering<'_> {
         let mut neg = Vec::new();
         // Start from the part that is a sum of its own, already computed or
         // computed now for this sum and any other that holds it.
-        let mut held: &[Expr] = &[];
+        let mut held: HashSet<Expr> = HashSet::new();
         if let Some(&b) = self.bases.get(&e)
             && let Node::Add(base_terms) = cx.node(b)
         {
-            held = base_terms;
+            held.extend(base_terms.iter());
             let (v, negated) = self.lower_signed(b);
             if negated { neg.push(v) } else { pos.push(v) }
         }
