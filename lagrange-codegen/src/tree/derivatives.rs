@@ -11,6 +11,10 @@
 //! once per joint (the composite inertia Y^c, the composite of
 //! B = v ×* Y − Y v× + (Y v) ×̄ and the composite force F^c).
 //!
+//! The same composites give M (M_ij = S_iᵀ Y^c S_j) and τ at q̈ = 0 (S_iᵀ F^c),
+//! which the program of q̈ and its derivatives takes where that is cheaper
+//! than the link-axes recursions.
+//!
 //! A spherical joint (a free orientation's three chart links) is one joint of
 //! three columns, differentiated along q ⊕ δ at fixed ω, which is the tangent
 //! space's derivative the rest of the library uses. A coordinate that drives
@@ -430,14 +434,14 @@ fn backward(ctx: &mut Context, joints: &[Joint], kin: &[Kinematic]) -> Derivativ
         // This joint's rows against its own columns and its subtree's; M's
         // entries below this joint are symmetric, τ its columns' S ᵀ F^c.
         for r in &own {
-            for (k, e) in own.iter().chain(&descendants).enumerate() {
+            for (index, e) in own.iter().chain(&descendants).enumerate() {
                 let x = dot6(ctx, r.s, e.df_dq);
                 accumulate(ctx, &mut dq, r.coordinate, e.coordinate, x);
                 let x = dot6(ctx, r.s, e.df_dv);
                 accumulate(ctx, &mut dv, r.coordinate, e.coordinate, x);
                 let x = dot6(ctx, r.s, e.ys);
                 accumulate(ctx, &mut mass, r.coordinate, e.coordinate, x);
-                if k >= own.len() {
+                if index >= own.len() {
                     accumulate(ctx, &mut mass, e.coordinate, r.coordinate, x);
                 }
             }
