@@ -12,8 +12,10 @@ use lagrange::identify::{BaseParameters, Sample, identify};
 use lagrange::{IdentifyError, Lagrangian};
 use nalgebra::{DVector, SVector};
 
+// The UR5's and the Kinova's numbers as written (`snap = 0`), as Pinocchio
+// reads them (`regressor_pinocchio`).
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/ur5.urdf", gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
+#[lagrange(urdf("robots/ur5.urdf", snap = 0), gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
 pub(crate) struct Ur5 {}
 
 #[derive(Lagrangian)]
@@ -21,7 +23,7 @@ pub(crate) struct Ur5 {}
 struct Panda {}
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/kinova.urdf", gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
+#[lagrange(urdf("robots/kinova.urdf", snap = 0), gravity = [0, 0, -9.81], emit(regressor, inverse_dynamics))]
 pub(crate) struct Kinova {}
 
 #[derive(Lagrangian)]

@@ -9,9 +9,11 @@ use lagrange::Route;
 use lagrange::prelude::*;
 use nalgebra::SVector;
 
+/// The file's numbers as written (`snap = 0`), as Pinocchio reads them: the
+/// references below were computed by Pinocchio on this file.
 #[derive(Lagrangian)]
 #[lagrange(
-    urdf = "robots/ur5.urdf",
+    urdf("robots/ur5.urdf", snap = 0),
     gravity = [0, 0, -9.81],
     emit(inverse_dynamics, kinematics)
 )]
@@ -242,7 +244,7 @@ fn panda_from_its_urdf_matches_pinocchio_on_the_arm() {
 /// The UR5 with a payload: a field named `<link>_mass` replaces that link's
 /// mass from the file.
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/ur5.urdf", gravity = [0, 0, -9.81])]
+#[lagrange(urdf("robots/ur5.urdf", snap = 0), gravity = [0, 0, -9.81])]
 struct Ur5Payload {
     wrist_3_link_mass: f64,
 }
@@ -263,17 +265,24 @@ fn a_field_named_for_a_link_overrides_its_mass() {
     assert!((heavy.0 - m).amax() > 1e-3 && (heavy.1 - f).amax() > 1e-2);
 }
 
-/// `snap` makes the file's `1.57079632679` an exact quarter turn and says so;
-/// the motion changes by the 1e-12 it moved.
+/// The file's `1.57079632679` (π/2 to twelve digits, 5e-12 off) is read as
+/// the exact quarter turn by default and listed; `snap = 0` (`Ur5`) keeps
+/// the file's numbers. The motion changes by the 5e-12 the angles moved.
 #[derive(Lagrangian)]
-#[lagrange(urdf("robots/ur5.urdf", snap = 1e-6), gravity = [0, 0, -9.81])]
-struct Ur5Snapped {}
+#[lagrange(urdf = "robots/ur5.urdf", gravity = [0, 0, -9.81])]
+struct Ur5Default {}
+
+/// The xArm7's `1.5708` is 3.7e-6 from π/2, beyond even the largest
+/// tolerance: kept.
+#[derive(Lagrangian)]
+#[lagrange(urdf("robots/xarm7.urdf", dynamics = ignore, snap = 1e-6), gravity = [0, 0, -9.81])]
+struct Xarm7Snapped {}
 
 #[test]
-fn snapping_reports_the_angles_it_made_exact() {
+fn quarter_turns_written_to_nine_decimals_or_more_are_made_exact() {
     assert!(Ur5::URDF_SNAPPED.is_empty());
     // Three quarter turns, a half turn and a negative quarter turn.
-    let snapped = Ur5Snapped::URDF_SNAPPED;
+    let snapped = Ur5Default::URDF_SNAPPED;
     assert_eq!(snapped.len(), 5, "{snapped:?}");
     for &(at, written, exact) in snapped {
         let k = exact / std::f64::consts::FRAC_PI_2;
@@ -285,8 +294,14 @@ fn snapping_reports_the_angles_it_made_exact() {
     }
     let (q, v) = state::<6>(6);
     let (m, f) = Ur5 {}.mass_matrix_and_rhs(&q, &v, 0.0);
-    let (ms, fs) = Ur5Snapped {}.mass_matrix_and_rhs(&q, &v, 0.0);
+    let (ms, fs) = Ur5Default {}.mass_matrix_and_rhs(&q, &v, 0.0);
     assert!((m - ms).amax() < 1e-9 && (f - fs).amax() < 1e-9);
+    assert!(
+        (m - ms).amax() > 0.0,
+        "the snapped angles change the motion"
+    );
+
+    assert!(Xarm7Snapped::URDF_SNAPPED.is_empty());
 }
 
 /// What Pinocchio gives for one frame and the centre of mass.

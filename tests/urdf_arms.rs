@@ -14,9 +14,11 @@ use lagrange::prelude::*;
 use lagrange::{Kinematics, Route};
 use nalgebra::SVector;
 
+// The files' numbers as written (`snap = 0`), as Pinocchio reads them for
+// the references below.
 #[derive(Lagrangian)]
 #[lagrange(
-    urdf = "robots/ur10.urdf",
+    urdf("robots/ur10.urdf", snap = 0),
     gravity = [0, 0, -9.81],
     emit(inverse_dynamics, kinematics)
 )]
@@ -24,7 +26,7 @@ struct Ur10 {}
 
 #[derive(Lagrangian)]
 #[lagrange(
-    urdf = "robots/kinova.urdf",
+    urdf("robots/kinova.urdf", snap = 0),
     gravity = [0, 0, -9.81],
     emit(inverse_dynamics, kinematics)
 )]

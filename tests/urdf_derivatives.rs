@@ -10,16 +10,17 @@ use lagrange::Differentiable;
 use lagrange::prelude::*;
 use nalgebra::SVector;
 
+// The files' numbers as written (`snap = 0`), as Pinocchio reads them.
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/ur5.urdf", gravity = [0, 0, -9.81], emit(jacobians))]
+#[lagrange(urdf("robots/ur5.urdf", snap = 0), gravity = [0, 0, -9.81], emit(jacobians))]
 pub(crate) struct Ur5 {}
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/ur10.urdf", gravity = [0, 0, -9.81], emit(jacobians))]
+#[lagrange(urdf("robots/ur10.urdf", snap = 0), gravity = [0, 0, -9.81], emit(jacobians))]
 struct Ur10 {}
 
 #[derive(Lagrangian)]
-#[lagrange(urdf = "robots/kinova.urdf", gravity = [0, 0, -9.81], emit(jacobians))]
+#[lagrange(urdf("robots/kinova.urdf", snap = 0), gravity = [0, 0, -9.81], emit(jacobians))]
 struct Kinova {}
 
 #[derive(Lagrangian)]

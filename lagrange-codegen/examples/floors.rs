@@ -7,8 +7,9 @@
 //! and constant folding (a robot's zero offsets and quarter turns vanish);
 //! theirs count a general chain, so a count below the floor is the file's
 //! structure, not a better algorithm. The UR5 and the Kinova are counted
-//! also with `snap = 1e-6` (their quarter turns, written to twelve digits,
-//! made exact), and every robot's regressor Y beside.
+//! also with `snap = 0` (their quarter turns, written to twelve digits, as
+//! written; by default they are made exact), and every robot's regressor
+//! Y beside.
 //!
 //!     cargo run --release -p lagrange-codegen --example floors
 
@@ -30,17 +31,39 @@ fn beside(c: OpCount, floor: Option<(i64, i64)>) -> String {
     }
 }
 
+/// The outputs of ∂τ/∂(q, q̇), of the one program of q̈ and ∂q̈/∂(q, q̇, τ),
+/// and of Y.
+fn derivatives_and_regressor(model: &Model) -> (Vec<Expr>, Vec<Expr>, Vec<Expr>) {
+    let j = model.outputs.jacobians.as_ref().expect("emitted");
+    let jac: Vec<Expr> = j
+        .position
+        .iter()
+        .chain(&j.velocity)
+        .flatten()
+        .copied()
+        .collect();
+    let s = model.outputs.solved.as_ref().expect("emitted");
+    let mut solved: Vec<Expr> = s.acceleration.clone();
+    for m in [&s.position, &s.velocity, &s.inverse_mass] {
+        solved.extend(m.iter().flatten());
+    }
+    let regressor = model.outputs.regressor.as_ref().expect("emitted");
+    let y: Vec<Expr> = regressor.rows.iter().flatten().copied().collect();
+    (jac, solved, y)
+}
+
 fn main() {
     println!(
         "| robot | n | derive (ms) | τ by RNEA (floor) | M by CRBA (floor) | q̈ by ABA (floor) | ∂τ/∂(q, q̇) | q̈ and ∂q̈/∂(q, q̇, τ), one program | Y |"
     );
     println!("|---|---|---|---|---|---|---|---|---|");
+    let mut depths = Vec::new();
     for (file, options) in [
         ("ur5.urdf", ""),
-        ("ur5.urdf", ", snap = 1e-6"),
+        ("ur5.urdf", ", snap = 0"),
         ("ur10.urdf", ""),
         ("kinova.urdf", ""),
-        ("kinova.urdf", ", snap = 1e-6"),
+        ("kinova.urdf", ", snap = 0"),
         ("z1.urdf", ", dynamics = ignore"),
         ("xarm7.urdf", ", dynamics = ignore"),
         ("solo12.urdf", ", base = floating"),
@@ -72,24 +95,13 @@ fn main() {
                 .expect("emitted")
                 .accelerations,
         );
-        let j = model.outputs.jacobians.as_ref().expect("emitted");
-        let jac: Vec<Expr> = j
-            .position
-            .iter()
-            .chain(&j.velocity)
-            .flatten()
-            .copied()
-            .collect();
-        let s = model.outputs.solved.as_ref().expect("emitted");
-        let mut solved: Vec<Expr> = s.acceleration.clone();
-        for m in [&s.position, &s.velocity, &s.inverse_mass] {
-            solved.extend(m.iter().flatten());
-        }
-        let y: Vec<Expr> = (model.outputs.regressor.as_ref().expect("emitted").rows)
-            .iter()
-            .flatten()
-            .copied()
-            .collect();
+        let (jac, solved, y) = derivatives_and_regressor(&model);
+        let depth = |outputs: &[Expr]| Program::new(&model.ctx, outputs).latency_depth();
+        depths.push(format!(
+            "| {file}{options} | {} | {} |",
+            depth(&jac),
+            depth(&solved)
+        ));
         println!(
             "| {file}{options} | {n} | {ms:.0} | {} | {} | {} | {} | {} | {} |",
             beside(rnea, floor((93 * n - 108, 81 * n - 100))),
@@ -102,5 +114,12 @@ fn main() {
             beside(count(&model, &solved), None),
             beside(count(&model, &y), None),
         );
+    }
+    // The longest chain of dependent operations, in cycles of latency
+    // (`Program::latency_depth`): what no width of processor runs faster.
+    println!("\n| robot | ∂τ/∂(q, q̇), latency depth | the one program, latency depth |");
+    println!("|---|---|---|");
+    for line in depths {
+        println!("{line}");
     }
 }

@@ -468,6 +468,53 @@ impl Program {
         c
     }
 
+    /// The longest chain of dependent operations, each weighted by a
+    /// typical latency in cycles (addition and multiplication 4, division 14,
+    /// a function call 40): a lower bound on the program's time however wide
+    /// the processor, beside [`Program::op_count`], which bounds it by
+    /// throughput. As the emitted code fuses (where the target has FMA), a
+    /// product read once, by a sum, adds no latency of its own to that sum,
+    /// one product per sum.
+    pub fn latency_depth(&self) -> usize {
+        let mut reads = vec![0usize; self.ops.len()];
+        for v in self
+            .ops
+            .iter()
+            .flat_map(Op::operands)
+            .chain(self.outputs.iter().copied())
+        {
+            reads[v as usize] += 1;
+        }
+        let mut depth = vec![0usize; self.ops.len()];
+        for (i, op) in self.ops.iter().enumerate() {
+            let cost = match op {
+                Op::Sym(_) | Op::Const(_) => 0,
+                Op::Add(..) | Op::Sub(..) | Op::Mul(..) | Op::Neg(_) | Op::Select(..) => 4,
+                Op::Div(..) => 14,
+                Op::Call(..) | Op::Atan2(..) | Op::Powf(..) | Op::Powi(..) => 40,
+            };
+            let ready = op.operands().map(|v| depth[v as usize]).max().unwrap_or(0);
+            // The best one product to fuse: the sum waits for the product's
+            // operands instead of the product.
+            let fused = match *op {
+                Op::Add(a, b) | Op::Sub(a, b) => [(a, b), (b, a)]
+                    .into_iter()
+                    .filter(|&(p, _)| {
+                        matches!(self.ops[p as usize], Op::Mul(..)) && reads[p as usize] == 1
+                    })
+                    .map(|(p, other)| (depth[p as usize] - 4).max(depth[other as usize]))
+                    .min(),
+                _ => None,
+            };
+            depth[i] = fused.unwrap_or(ready) + cost;
+        }
+        self.outputs
+            .iter()
+            .map(|&o| depth[o as usize])
+            .max()
+            .unwrap_or(0)
+    }
+
     /// Run the program in `f64`; one value per output.
     pub fn eval(&self, _ctx: &Context, env: &dyn Fn(Symbol) -> f64) -> Vec<f64> {
         let mut vals: Vec<f64> = Vec::with_capacity(self.ops.len());

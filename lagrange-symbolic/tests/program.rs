@@ -163,6 +163,30 @@ fn cost_model() {
     assert_eq!(p.op_count().total(), 0);
 }
 
+/// The latency-weighted depth follows the longest dependent chain: a sum of
+/// products is one multiplication and one fused multiply–add per further
+/// term in a row; a division and a function call cost more than a product.
+#[test]
+fn latency_depth_follows_the_longest_chain() {
+    let mut cx = Context::new();
+    let xs: Vec<Expr> = (0..6).map(|i| cx.free_symbol(&format!("x{i}"))).collect();
+    let p = Program::new(&cx, &[xs[0]]);
+    assert_eq!(p.latency_depth(), 0);
+    // x0 x1: one multiplication.
+    let prod = cx.mul(xs[0], xs[1]);
+    assert_eq!(Program::new(&cx, &[prod]).latency_depth(), 4);
+    // x0 x1 + x2 x3 + x4 x5: a product, then two fused additions.
+    let terms: Vec<Expr> = (0..3).map(|i| cx.mul(xs[2 * i], xs[2 * i + 1])).collect();
+    let sum = cx.sum(&terms);
+    assert_eq!(Program::new(&cx, &[sum]).latency_depth(), 4 + 4 + 4);
+    // sin(x0 x1) / x2: a product, a call and a division.
+    let s = cx.sin(prod);
+    let q = cx.div(s, xs[2]);
+    assert_eq!(Program::new(&cx, &[q]).latency_depth(), 4 + 40 + 14);
+    // The deepest output sets the depth; the others run beside it.
+    assert_eq!(Program::new(&cx, &[prod, q, sum]).latency_depth(), 58);
+}
+
 #[test]
 fn emission_is_deterministic_and_reads_well() {
     let build = || {

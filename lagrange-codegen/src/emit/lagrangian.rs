@@ -436,8 +436,10 @@ fn urdf_consts(system: &System) -> TokenStream {
         /// them to `Simulation::speed_limits` as the motors' no-load speeds.
         #[allow(clippy::approx_constant)] // as the file writes them: 3.1415 is not π
         pub const JOINT_VELOCITIES: [f64; #n] = [#(#velocities),*];
-        /// The angles `urdf(.., snap = tol)` made exact multiples of π/2:
-        /// (where, as the file writes it, as used). Empty without `snap`.
+        /// The angles made exact multiples of π/2, (where, as the file
+        /// writes it, as used): those within 1e-9 rad of one (π/2 written to
+        /// nine or more decimals), or within `urdf(.., snap = tol)`'s
+        /// tolerance. Empty with `snap = 0`, which keeps the file's numbers.
         #[allow(clippy::approx_constant)]
         pub const URDF_SNAPPED: &'static [(&'static str, f64, f64)] = &[#(#snapped),*];
         /// The inertias `urdf(.., inertia = repair)` made physical: (link,

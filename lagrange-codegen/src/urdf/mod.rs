@@ -119,8 +119,8 @@ pub fn load(
     })
 }
 
-/// [`load`] for the text of a file named `path`; with `options.snap`, angles
-/// that close to a multiple of π/2 become it (see `snap`). A struct field named
+/// [`load`] for the text of a file named `path`; angles within `options.snap`
+/// of a multiple of π/2 become it (see `snap`). A struct field named
 /// `<link>_mass` (among `fields`) replaces that link's mass.
 pub fn from_text(
     text: &str,
@@ -134,9 +134,7 @@ pub fn from_text(
     };
     let mut robot = model::parse(text).map_err(at)?;
     let repaired = inertia::apply(&mut robot, options.inertia).map_err(at)?;
-    let snapped = options
-        .snap
-        .map_or_else(Vec::new, |tol| snap(&mut robot, tol));
+    let snapped = snap(&mut robot, options.snap);
     let rules = (options.base, options.dynamics, options.limits);
     let d = describe::describe(&robot, fields, rules).map_err(at)?;
     Ok(Urdf {

@@ -2,6 +2,7 @@
 //! cannot hold: an unknown key, a key given twice, an unknown value, a snap
 //! tolerance that could move a real angle.
 
+use quote::ToTokens;
 use syn::parse::ParseStream;
 use syn::{Ident, Token};
 
@@ -9,6 +10,12 @@ use syn::{Ident, Token};
 /// more digits is within 1e-10 of it, while a real angle is never that close
 /// to a multiple of π/2 without being one.
 pub const SNAP_BOUND: f64 = 1e-6;
+
+/// The `snap` tolerance without the option, in radians: π/2 written to nine
+/// or more decimals (the UR and Kinova files' `1.57079632679`, 5e-12 off)
+/// is that quarter turn; fewer digits (the xArm7's `1.5708`) are kept as
+/// written unless `snap` asks for more. `snap = 0` keeps every angle.
+pub const DEFAULT_SNAP: f64 = 1e-9;
 
 /// Where the robot's base is (`base = ..`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -73,11 +80,12 @@ pub enum LimitRule {
 }
 
 /// The options of `urdf("path", ..)`.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 pub struct Options {
     /// `snap = tol`: angles within `tol` (at most [`SNAP_BOUND`]) of a
-    /// multiple of π/2 become it.
-    pub snap: Option<f64>,
+    /// multiple of π/2 become it; [`DEFAULT_SNAP`] without the option, none
+    /// with `snap = 0`.
+    pub snap: f64,
     /// `base = fixed | floating`.
     pub base: Base,
     /// `inertia = repair | as_written`.
@@ -88,8 +96,20 @@ pub struct Options {
     pub limits: LimitRule,
 }
 
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            snap: DEFAULT_SNAP,
+            base: Base::default(),
+            inertia: InertiaRule::default(),
+            dynamics: DynamicsRule::default(),
+            limits: LimitRule::default(),
+        }
+    }
+}
+
 const OPTIONS: &str = "the options are `snap = tolerance` (angles within it, at most 1e-6 rad, \
-     of a multiple of π/2 become it), `base = fixed | floating`, `inertia = repair | \
+     of a multiple of π/2 become it; 1e-9 without the option, none with `snap = 0`), `base = fixed | floating`, `inertia = repair | \
      as_written` (an inertia that is no rigid body's made the nearest physical one, or used \
      unchecked), `dynamics = read | ignore` (the joints' `<dynamics>` damping read as \
      `joint(..)` items, or left out) and `limits = stops` (the joints' `<limit>`s as plastic \
@@ -122,7 +142,7 @@ pub fn parse_attribute(input: ParseStream) -> syn::Result<(syn::LitStr, Options)
             ));
         }
         match name.as_str() {
-            "snap" => options.snap = Some(snap_tolerance(&content)?),
+            "snap" => options.snap = snap_tolerance(&content)?,
             "base" => options.base = base(&content)?,
             "inertia" => options.inertia = inertia(&content)?,
             "dynamics" => options.dynamics = dynamics(&content)?,
@@ -139,23 +159,31 @@ pub fn parse_attribute(input: ParseStream) -> syn::Result<(syn::LitStr, Options)
     Ok((path, options))
 }
 
-/// `snap = tol`: positive, finite and at most [`SNAP_BOUND`].
+/// `snap = tol`: finite, from 0 (every angle as written) to [`SNAP_BOUND`].
 fn snap_tolerance(content: ParseStream) -> syn::Result<f64> {
-    let tol: syn::LitFloat = content.parse()?;
-    let value: f64 = tol.base10_parse()?;
-    if !(value.is_finite() && value > 0.0) {
-        return Err(syn::Error::new(
-            tol.span(),
-            "`snap` needs a positive, finite tolerance, such as 1e-6",
-        ));
+    const RANGE: &str = "`snap` needs a tolerance in radians from 0 to 1e-6, such as \
+                         `snap = 1e-6`, or `snap = 0` for every angle as the file writes it";
+    if content.peek(Token![-]) {
+        let minus: Token![-] = content.parse()?;
+        return Err(syn::Error::new(minus.span, RANGE));
+    }
+    let tol: syn::Lit = content.parse()?;
+    let value: f64 = match &tol {
+        syn::Lit::Float(f) => f.base10_parse()?,
+        syn::Lit::Int(i) => i.base10_parse()?,
+        _ => f64::NAN,
+    };
+    if !value.is_finite() {
+        return Err(syn::Error::new(tol.span(), RANGE));
     }
     if value > SNAP_BOUND {
         return Err(syn::Error::new(
             tol.span(),
             format!(
-                "`snap = {tol}` could move a real angle onto a multiple of π/2: the tolerance is \
+                "`snap = {}` could move a real angle onto a multiple of π/2: the tolerance is \
                  at most 1e-6 rad (a file's π/2 written to ten digits is within 1e-10 of it); \
-                 write `snap = 1e-6`"
+                 write `snap = 1e-6`",
+                tol.to_token_stream()
             ),
         ));
     }
