@@ -15,7 +15,9 @@ mod model;
 mod options;
 mod tokens;
 
-pub use options::{Base, DynamicsRule, InertiaRule, Options, SNAP_BOUND, parse_attribute};
+pub use options::{
+    Base, DEFAULT_SNAP, DynamicsRule, InertiaRule, Options, SNAP_BOUND, parse_attribute,
+};
 
 use proc_macro2::{Group, Span, TokenStream, TokenTree};
 
