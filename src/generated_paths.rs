@@ -5,7 +5,7 @@ pub use lagrange_runtime::{
     AccelerationDerivatives, Atlas, Batched, BatchedDifferentiable, Constrained, ContactLaw,
     ContactRows, Contacts, Differentiable, Driven, DrivenAtlas, Error, EulerRotation, FormVisitor,
     ForwardRoute, FreeVisitor, JointLimit, Lagrangian, LaneDerivatives, Orientation, Real, Reduced,
-    Route, func,
+    Route, factored_derivatives, func,
     numeric::lanes,
     physical,
     pose::{Anchor, BodyInertia, BodyPose, Kinematics, Posed, Shape, Solid},

@@ -252,6 +252,8 @@ pub use linear::{
 pub use mechanics::constraint::{
     ConstrainedDynamics, Drift, Solution, check_consistency, project_consistent,
 };
+#[doc(hidden)]
+pub use mechanics::factored_derivatives;
 pub use mechanics::{
     AccelerationDerivatives, Batched, BatchedDifferentiable, DEFAULT_SINGULAR_TOLERANCE,
     Differentiable, Dynamics, Forcing, InputDerivatives, LaneDerivatives, NoForcing, Rattle,

@@ -238,7 +238,12 @@ fn identity_or_product<T: Real, const N: usize, const P: usize>(
 /// (`emit(jacobians)` on a system without constraints): M, Q − h, M's
 /// factorisation M = Lᵀ D L (in the tree's sparsity where M comes from a
 /// kinematic tree), q̈ = M⁻¹(Q − h + τ), the right-hand side's Jacobians at
-/// that q̈ and their solves, sharing their subexpressions. Read it through
+/// that q̈ and their solves, sharing their subexpressions. Where that
+/// program would pass 8,000 operations (a seven-joint arm with general
+/// axes, a floating base) and `emit(batched)` is not asked for, the derive
+/// emits this trait as the emitted M, Q − h and Jacobians around M's
+/// factorisation at run time instead (`factored_derivatives`), which
+/// runs faster than so long a straight-line program. Read it through
 /// [`acceleration_derivatives`], which checks the state and the result.
 #[diagnostic::on_unimplemented(
     message = "`{Self}` does not emit q̈ and its derivatives as one program",
@@ -314,4 +319,103 @@ where
     T: Real,
 {
     Dynamics::<S, T, NoForcing>::new(sys).emitted_derivatives(t, q, v, tau)
+}
+
+/// q̈ = M⁻¹ b and its derivatives, with M factorised at run time: M = L Lᵀ,
+/// M⁻¹ = L⁻ᵀ L⁻¹, q̈ = M⁻¹ b, then ∂q̈/∂δ = M⁻¹ J_q and ∂q̈/∂q̇ = M⁻¹ J_v
+/// from the right-hand side's Jacobians at that q̈ (as `computeABADerivatives`
+/// forms them from `Minv`). What `#[derive(Lagrangian)]` emits as
+/// [`Differentiable`] where the one program of q̈ and its derivatives would
+/// be long (the derive's `emit::output::solved` says how long): its solves
+/// then run from a few hundred bytes of loops instead of thousands of
+/// straight-line operations, which no instruction cache holds. Returns the
+/// pivot ratio beside (≤ 0 where M is not positive definite, and then every
+/// result NaN, as when `jacobians` gives none: the checked readers refuse
+/// both).
+#[doc(hidden)]
+pub fn factored_derivatives<T: Real, const N: usize>(
+    m: SMatrix<T, N, N>,
+    b: SVector<T, N>,
+    jacobians: impl FnOnce(&SVector<T, N>) -> Option<ForceJacobians<T, N>>,
+) -> (AccelerationDerivatives<T, N>, T) {
+    let not_a_number = T::zero() / T::zero();
+    let nan = || SMatrix::<T, N, N>::from_element(not_a_number);
+    let failed = |ratio: T| {
+        let d = AccelerationDerivatives {
+            acceleration: SVector::from_element(not_a_number),
+            dq: nan(),
+            dv: nan(),
+            dtau: nan(),
+        };
+        (d, ratio)
+    };
+    let chol = match Cholesky::new(m, T::zero()) {
+        Ok(chol) => chol,
+        Err(ratio) => return failed(ratio.min(T::zero())),
+    };
+    // q̈ as M⁻¹ b: seven short dot products side by side, where two
+    // triangular solves are one long chain that ∂(Q − h) at q̈ waits for.
+    let dtau = chol.inverse();
+    let acceleration = dtau * b;
+    let (jq, jv) = jacobians(&acceleration).unwrap_or_else(|| (nan(), nan()));
+    let d = AccelerationDerivatives {
+        acceleration,
+        dq: dtau * jq,
+        dv: dtau * jv,
+        dtau,
+    };
+    (d, chol.pivot_ratio())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Matrix3, Vector3};
+
+    fn jacobians() -> ForceJacobians<f64, 3> {
+        let jq = Matrix3::new(0.3, -1.0, 2.0, 0.0, 1.5, -0.2, 0.7, 0.1, -0.4);
+        (jq, jq.transpose() * 0.5)
+    }
+
+    /// q̈ = M⁻¹ b, the Jacobians taken at that q̈ and multiplied by M⁻¹, which
+    /// is symmetric to the bit; the pivot ratio positive.
+    #[test]
+    fn factored_derivatives_solve_with_m() {
+        let m = Matrix3::new(4.0, 1.0, 0.5, 1.0, 3.0, 0.2, 0.5, 0.2, 2.0);
+        let b = Vector3::new(1.0, -2.0, 0.5);
+        let inverse = m.try_inverse().unwrap();
+        let mut seen = None;
+        let (d, ratio) = factored_derivatives(m, b, |a| {
+            seen = Some(*a);
+            Some(jacobians())
+        });
+        let (jq, jv) = jacobians();
+        assert!((d.acceleration - inverse * b).amax() < 1e-15);
+        assert_eq!(seen, Some(d.acceleration), "the Jacobians at q̈");
+        assert!((d.dq - inverse * jq).amax() < 1e-14);
+        assert!((d.dv - inverse * jv).amax() < 1e-14);
+        assert_eq!(d.dtau, d.dtau.transpose());
+        assert!(ratio > 0.0 && ratio <= 1.0);
+    }
+
+    /// An M that is not positive definite gives a ratio of at most 0 and no
+    /// numbers; Jacobians that are not there give none either, so the
+    /// checked readers refuse both.
+    #[test]
+    fn factored_derivatives_refuse_what_they_cannot_solve() {
+        let m = Matrix3::new(1.0, 2.0, 0.0, 2.0, 1.0, 0.0, 0.0, 0.0, 1.0);
+        let b = Vector3::new(1.0, 0.0, 0.0);
+        let (d, ratio) = factored_derivatives(m, b, |_| Some(jacobians()));
+        assert!(ratio <= 0.0, "{ratio}");
+        assert!(
+            d.acceleration
+                .iter()
+                .chain(d.dtau.iter())
+                .all(|x| x.is_nan())
+        );
+        let m = Matrix3::identity();
+        let (d, ratio) = factored_derivatives(m, b, |_| None);
+        assert_eq!(ratio, 1.0);
+        assert!(d.dq.iter().chain(d.dv.iter()).all(|x| x.is_nan()));
+    }
 }

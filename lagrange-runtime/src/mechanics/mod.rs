@@ -29,7 +29,7 @@ pub use batched::{
 };
 pub use derivatives::{
     AccelerationDerivatives, Differentiable, ForceJacobians, InputDerivatives,
-    acceleration_derivatives,
+    acceleration_derivatives, factored_derivatives,
 };
 pub use dynamics::{DEFAULT_SINGULAR_TOLERANCE, Dynamics, accelerations};
 pub use forcing::{Forcing, NoForcing};

@@ -144,6 +144,40 @@ impl<T: Real, const N: usize> Cholesky<T, N> {
         }
         bt.transpose()
     }
+
+    /// M's smallest pivot L_ii² over its largest (all of M, `n` = N).
+    pub fn pivot_ratio(&self) -> T {
+        let pivots = (0..self.n).map(|i| self.l[(i, i)] * self.l[(i, i)]);
+        let start = T::max_value().unwrap_or(T::one() / T::default_epsilon());
+        let (lo, hi) = pivots.fold((start, T::zero()), |(lo, hi), d| (lo.min(d), hi.max(d)));
+        lo / hi
+    }
+
+    /// M⁻¹ = L⁻ᵀ L⁻¹ (all of M, `n` = N), symmetric to the bit: L⁻¹ by
+    /// forward substitution on the identity's columns, then the lower
+    /// triangle of the product, mirrored.
+    pub fn inverse(&self) -> SMatrix<T, N, N> {
+        let mut li = SMatrix::<T, N, N>::zeros();
+        for j in 0..self.n {
+            li[(j, j)] = T::one() / self.l[(j, j)];
+        }
+        for j in 0..self.n {
+            for i in j + 1..self.n {
+                let mut s = T::zero();
+                for k in j..i {
+                    s -= self.l[(i, k)] * li[(k, j)];
+                }
+                li[(i, j)] = s * li[(i, i)];
+            }
+        }
+        let mut inverse = li.transpose() * li;
+        for j in 0..self.n {
+            for i in j + 1..self.n {
+                inverse[(j, i)] = inverse[(i, j)];
+            }
+        }
+        inverse
+    }
 }
 
 /// P S Pᵀ = L Lᵀ with diagonal pivoting, for symmetric positive *semi*definite S
@@ -333,6 +367,21 @@ mod tests {
         let b = a * x;
         let got = cholesky_solve(a, b, 1e-12).unwrap();
         assert!((got - x).norm() < 1e-14, "{got}");
+    }
+
+    /// M⁻¹ from L is M's inverse, symmetric to the bit; the pivot ratio is
+    /// the smallest L_ii² over the largest.
+    #[test]
+    fn inverse_and_pivot_ratio_of_the_factor() {
+        let a: Matrix3<f64> = Matrix3::new(4.0, 1.0, 0.5, 1.0, 3.0, 0.2, 0.5, 0.2, 2.0);
+        let chol = Cholesky::new(a, 0.0).unwrap();
+        let inv = chol.inverse();
+        assert!((inv * a - Matrix3::identity()).amax() < 1e-15, "{inv}");
+        assert_eq!(inv, inv.transpose());
+        let pivots: Vec<f64> = (0..3).map(|i| chol.l[(i, i)].powi(2)).collect();
+        let (lo, hi) = (pivots.iter().copied().fold(f64::MAX, f64::min), 4.0);
+        assert_eq!(chol.pivot_ratio(), lo / hi);
+        assert!(lo < hi && lo > 0.0);
     }
 
     #[test]
