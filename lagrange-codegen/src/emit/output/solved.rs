@@ -20,10 +20,11 @@ use crate::mechanics::Model;
 /// `rhs_jacobians`. A straight-line program this long is tens of kilobytes
 /// of code, beyond an instruction cache, and its symbolic solves thousands
 /// of operations that the loops do from a few hundred bytes. Measured
-/// (BENCHMARKS, "The derivatives factored at run time"), one program /
-/// factored: the Z1's 8,591 operations 1.9× slower, the xArm7's 9,389 1.15×
-/// slower; the Kinova's 6,311 0.9× and the UR5's 3,671 0.7× (faster as one
-/// program). Not beside `emit(batched)`, whose lanes run the one program.
+/// (BENCHMARKS, "The derivatives factored at run time"), the factored form
+/// against the one program: the Z1's (8,591 operations) 1.9× as fast, the
+/// xArm7's (9,389) 1.15×; the Kinova's (6,311) 0.9× and the UR5's (3,671)
+/// 0.7×, so these stay one program. Not beside `emit(batched)`, whose lanes
+/// run the one program.
 pub const FACTORED_ABOVE_OPS: usize = 8000;
 
 pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, system: &System) -> Pieces {
