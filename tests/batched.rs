@@ -26,7 +26,7 @@ struct Xarm7 {}
     gravity = [0, 0, -9.81],
     emit(articulated, jacobians, batched)
 )]
-pub(crate) struct Solo12 {}
+struct Solo12 {}
 
 /// A double pendulum whose masses and length are parameters (splatted into
 /// the lanes); massless, M is singular.

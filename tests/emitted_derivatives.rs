@@ -76,15 +76,11 @@ fn arms_at_a_torque_match_their_own_differences() {
     an_arm_at_a_torque("UR5", &Ur5 {});
 }
 
-/// A floating base, whose ∂q̈/∂δ is along q ⊕ δ, at τ = 0 (the run-time
-/// path's): its one program (kept beside `emit(batched)`), the form that
-/// factorises M at run time (what `emit(jacobians)` alone gives Solo 12,
-/// whose one program passes `FACTORED_ABOVE_OPS`) and the run-time path
-/// (`Dynamics::acceleration_derivatives`) agree.
+/// The emitted program against the run-time path on a floating base, whose
+/// ∂q̈/∂δ is along q ⊕ δ, at τ = 0 (the run-time path's).
 #[test]
 fn a_floating_base_matches_the_run_time_path() {
     let sys = Solo12 {};
-    let one_program = crate::batched::Solo12 {};
     let mut q = SVector::<f64, 19>::from_fn(|k, _| 0.2 - 0.07 * k as f64);
     let quaternion = [0.9, 0.1, -0.3, 0.2];
     let norm = quaternion.iter().map(|x: &f64| x * x).sum::<f64>().sqrt();
@@ -94,16 +90,6 @@ fn a_floating_base_matches_the_run_time_path() {
     let v = SVector::<f64, 18>::from_fn(|k, _| 0.4 - 0.05 * k as f64);
     let emitted = lagrange::acceleration_derivatives(&sys, &q, &v, &SVector::zeros(), 0.0)
         .expect("a regular state");
-    let one = lagrange::acceleration_derivatives(&one_program, &q, &v, &SVector::zeros(), 0.0)
-        .expect("a regular state");
-    assert!(worst(&emitted.acceleration, &one.acceleration) < 1e-12);
-    for (what, a, b) in [
-        ("dq", emitted.dq, one.dq),
-        ("dv", emitted.dv, one.dv),
-        ("dtau", emitted.dtau, one.dtau),
-    ] {
-        assert!(worst(&a, &b) < 1e-10, "{what}: off by {}", worst(&a, &b));
-    }
     let run = Dynamics::new(&sys)
         .acceleration_derivatives(0.0, &q, &v, None)
         .expect("a regular state")

@@ -23,8 +23,10 @@ use crate::mechanics::Model;
 /// (BENCHMARKS, "The derivatives factored at run time"), the factored form
 /// against the one program: the Z1's (8,591 operations) 1.9× as fast, the
 /// xArm7's (9,389) 1.15×; the Kinova's (6,311) 0.9× and the UR5's (3,671)
-/// 0.7×, so these stay one program. Not beside `emit(batched)`, whose lanes
-/// run the one program.
+/// 0.7×, so these stay one program. Only where M has no zero entry (a
+/// chain): Solo 12's program (36,807 operations), whose M is sparse by its
+/// branches and its LᵀDL with it, ran 0.85–0.96× as fast factored. Not
+/// beside `emit(batched)`, whose lanes run the one program.
 pub const FACTORED_ABOVE_OPS: usize = 8000;
 
 pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, system: &System) -> Pieces {
@@ -32,10 +34,18 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, system: &System) -> 
         return Pieces::default();
     };
     // `emit(batched)` runs the one program in lanes, bit for bit the scalar
-    // one: beside it the scalar form stays that program.
+    // one: beside it the scalar form stays that program. A branched tree's
+    // M has zeros that the program's LᵀDL keeps (Solo 12's legs), which the
+    // run-time factorisation, dense, would not: it stays one program too.
     let batched = system.extras.iter().any(|(_, x)| *x == Extra::Batched);
+    let dense = model
+        .motion
+        .mass
+        .iter()
+        .flatten()
+        .all(|&m| !model.ctx.is_zero(m));
     let ops = lagrange_symbolic::Program::new(&model.ctx, &outputs(d)).op_count();
-    if !batched && ops.total() > FACTORED_ABOVE_OPS {
+    if !batched && dense && ops.total() > FACTORED_ABOVE_OPS {
         return factored(f);
     }
     let Frame { s, n, .. } = f;
