@@ -109,11 +109,12 @@ impl Default for Options {
 }
 
 const OPTIONS: &str = "the options are `snap = tolerance` (angles within it, at most 1e-6 rad, \
-     of a multiple of π/2 become it; 1e-9 without the option, none with `snap = 0`), `base = fixed | floating`, `inertia = repair | \
-     as_written` (an inertia that is no rigid body's made the nearest physical one, or used \
-     unchecked), `dynamics = read | ignore` (the joints' `<dynamics>` damping read as \
-     `joint(..)` items, or left out) and `limits = stops` (the joints' `<limit>`s as plastic \
-     `stop(..)` items, which `run_contacts` enforces)";
+     of a multiple of π/2 become it; 1e-9 without the option, none with `snap = 0`), \
+     `base = fixed | floating`, `inertia = repair | as_written` (an inertia that is no rigid \
+     body's made the nearest physical one, or used unchecked), `dynamics = read | ignore` \
+     (the joints' `<dynamics>` damping read as `joint(..)` items, or left out) and \
+     `limits = stops` (the joints' `<limit>`s as plastic `stop(..)` items, which \
+     `run_contacts` enforces)";
 
 /// The attribute's `urdf = "path"`, or `urdf("path", snap = 1e-6, base =
 /// floating, inertia = repair)`: the path and the options.

@@ -44,8 +44,12 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, system: &System) -> 
         .iter()
         .flatten()
         .all(|&m| !model.ctx.is_zero(m));
-    let ops = lagrange_symbolic::Program::new(&model.ctx, &outputs(d)).op_count();
-    if !batched && dense && ops.total() > FACTORED_ABOVE_OPS {
+    // Counted only where it can decide: the program is lowered again below.
+    let long = || {
+        let ops = lagrange_symbolic::Program::new(&model.ctx, &outputs(d)).op_count();
+        ops.total() > FACTORED_ABOVE_OPS
+    };
+    if !batched && dense && long() {
         return factored(f);
     }
     let Frame { s, n, .. } = f;
