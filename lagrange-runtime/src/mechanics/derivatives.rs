@@ -12,7 +12,7 @@ use super::dynamics::{Dynamics, all_finite};
 use super::forcing::{Forcing, NoForcing};
 use crate::error::{Error, check_finite_inputs};
 use crate::numeric::Real;
-use crate::numeric::cholesky::Cholesky;
+use crate::numeric::cholesky::{Cholesky, product, spd_inverse};
 pub use crate::system::AccelerationDerivatives;
 use crate::system::{Driven, Lagrangian};
 
@@ -322,17 +322,17 @@ where
     Dynamics::<S, T, NoForcing>::new(sys).emitted_derivatives(t, q, v, tau)
 }
 
-/// q̈ = M⁻¹ b and its derivatives, with M factorised at run time: M = L Lᵀ,
-/// M⁻¹ = L⁻ᵀ L⁻¹, q̈ = M⁻¹ b, then ∂q̈/∂δ = M⁻¹ J_q and ∂q̈/∂q̇ = M⁻¹ J_v
+/// q̈ = M⁻¹ b and its derivatives, with M factorised at run time: M = L D Lᵀ,
+/// M⁻¹ = L⁻ᵀ D⁻¹ L⁻¹, q̈ = M⁻¹ b, then ∂q̈/∂δ = M⁻¹ J_q and ∂q̈/∂q̇ = M⁻¹ J_v
 /// from the right-hand side's Jacobians at that q̈ (as `computeABADerivatives`
 /// forms them from `Minv`). What `#[derive(Lagrangian)]` emits as
 /// [`Differentiable`] where the one program of q̈ and its derivatives would
 /// be long (the derive's `emit::output::solved` says how long): its solves
 /// then run from a few hundred bytes of loops instead of thousands of
 /// straight-line operations, which no instruction cache holds. Returns the
-/// pivot ratio beside (≤ 0 where M is not positive definite, and then every
-/// result NaN, as when `jacobians` gives none: the checked readers refuse
-/// both).
+/// pivot ratio beside, min d / max d as the emitted programs give it (≤ 0
+/// where M is not positive definite or not finite, and then every result
+/// NaN, as when `jacobians` gives none: the checked readers refuse both).
 #[doc(hidden)]
 pub fn factored_derivatives<T: Real, const N: usize>(
     m: SMatrix<T, N, N>,
@@ -350,22 +350,22 @@ pub fn factored_derivatives<T: Real, const N: usize>(
         };
         (d, ratio)
     };
-    let chol = match Cholesky::new(m, T::zero()) {
-        Ok(chol) => chol,
-        Err(ratio) => return failed(ratio.min(T::zero())),
-    };
+    let (dtau, ratio) = spd_inverse(&m);
+    // Never NaN: −1 where a pivot is not finite.
+    if ratio <= T::zero() {
+        return failed(ratio);
+    }
     // q̈ as M⁻¹ b: seven short dot products side by side, where two
     // triangular solves are one long chain that ∂(Q − h) at q̈ waits for.
-    let dtau = chol.inverse();
-    let acceleration = dtau * b;
+    let acceleration = product(&dtau, &b);
     let (jq, jv) = jacobians(&acceleration).unwrap_or_else(|| (nan(), nan()));
     let d = AccelerationDerivatives {
         acceleration,
-        dq: dtau * jq,
-        dv: dtau * jv,
+        dq: product(&dtau, &jq),
+        dv: product(&dtau, &jv),
         dtau,
     };
-    (d, chol.pivot_ratio())
+    (d, ratio)
 }
 
 #[cfg(test)]
