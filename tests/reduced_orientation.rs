@@ -561,7 +561,10 @@ fn the_reduced_form_linearises_on_the_group_as_the_multiplier_form() {
         (reduced.b() - multipliers.b()).amax(),
     ];
     eprintln!("pushed sphere: A and B of the two forms within {gaps:?}");
-    assert!(gaps[0] < 1e-10 && gaps[1] < 1e-12, "{gaps:?}");
+    // Two computations that round differently: B agreed to the bit while the
+    // Cholesky solves divided by L_ii (and A to 2e-12); multiplying by 1/L_ii,
+    // 9e-12 and 1.1e-12, with B's entries of order one.
+    assert!(gaps[0] < 1e-10 && gaps[1] < 1e-11, "{gaps:?}");
     assert!(reduced.b().amax() > 0.1, "the push acts: {}", reduced.b());
 }
 

@@ -12,7 +12,8 @@ use super::dynamics::{Dynamics, all_finite};
 use super::forcing::{Forcing, NoForcing};
 use crate::error::{Error, check_finite_inputs};
 use crate::numeric::Real;
-use crate::numeric::cholesky::{Cholesky, product, spd_inverse};
+use crate::numeric::cholesky::Cholesky;
+use crate::numeric::inverse::{product, spd_inverse};
 pub use crate::system::AccelerationDerivatives;
 use crate::system::{Driven, Lagrangian};
 

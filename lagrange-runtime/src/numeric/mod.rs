@@ -1,5 +1,5 @@
 //! Scalar and small-matrix numerics, the bottom layer: the scalar type, the
-//! functions generated code calls (and their four-lane counterparts, `lanes`), the one Cholesky, the one saddle-point
+//! functions generated code calls (and their four-lane counterparts, `lanes`), the one Cholesky (and a whole small M⁻¹ by L D Lᵀ, `inverse`), the one saddle-point
 //! solve, the one elimination with complete pivoting, dense LU for the
 //! implicit integrators, products of small dynamically sized matrices that
 //! allocate nothing (`products`), root finding on a bracket and a wall clock. Nothing
@@ -10,6 +10,7 @@ pub(crate) mod clock;
 pub(crate) mod elimination;
 pub mod euler;
 pub mod func;
+pub(crate) mod inverse;
 pub mod lanes;
 pub(crate) mod lu;
 pub mod orientation;
