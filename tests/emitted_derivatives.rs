@@ -70,10 +70,21 @@ fn an_arm_at_a_torque<S: Differentiable<f64, N, N>, const N: usize>(name: &str, 
     );
 }
 
+/// The Panda with its mimic finger: eight coordinates, M with four zero
+/// entries, factorised at run time as the seven-joint chains are.
+#[derive(Lagrangian)]
+#[lagrange(
+    urdf("robots/panda.urdf", dynamics = ignore),
+    gravity = [0, 0, -9.81],
+    emit(jacobians)
+)]
+struct Panda {}
+
 #[test]
 fn arms_at_a_torque_match_their_own_differences() {
     an_arm_at_a_torque("xArm7", &Xarm7 {});
     an_arm_at_a_torque("UR5", &Ur5 {});
+    an_arm_at_a_torque("Panda", &Panda {});
 }
 
 /// The emitted program against the run-time path on a floating base, whose

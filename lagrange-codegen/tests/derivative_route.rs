@@ -26,10 +26,13 @@ fn long_chains_factor_at_run_time_and_the_rest_stay_one_program() {
     // Seven-joint chains with general axes: 8,591 and 9,389 operations.
     assert!(factored("z1.urdf\", dynamics = ignore", "jacobians"));
     assert!(factored("xarm7.urdf\", dynamics = ignore", "jacobians"));
+    // Eight coordinates (the mimic finger), M with four zero entries:
+    // mostly dense.
+    assert!(factored("panda.urdf\", dynamics = ignore", "jacobians"));
     // Shorter programs: the UR5's 3,671, the Kinova's 6,311.
     assert!(!factored("ur5.urdf\"", "jacobians"));
     assert!(!factored("kinova.urdf\"", "jacobians"));
-    // A branched tree: M's zeros are the one program's to keep.
+    // A branched tree: M's zeros (114 of 324) are the one program's to keep.
     assert!(!factored("solo12.urdf\", base = floating", "jacobians"));
     // Beside `batched`, whose lanes run the one program bit for bit.
     assert!(!factored(
