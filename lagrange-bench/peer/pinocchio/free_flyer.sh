@@ -10,13 +10,13 @@ out="${TMPDIR:-/tmp}/pinocchio_free_flyer"
 g++ -O3 -march=native -DNDEBUG -std=c++17 \
   -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS \
   -DBOOST_FUSION_INVOKE_MAX_ARITY=12 "$here/free_flyer.cpp" -o "$out" \
-  -I"$prefix/include" -I/usr/include/eigen3 \
+  -I"$prefix/include" -I"$prefix/include/eigen3" -I/usr/include/eigen3 \
   -L"$prefix/lib" -Wl,-rpath,"$prefix/lib" -lpinocchio_default -w
 "$out"
 # The quadruped and the satellite (floating.cpp), at the state the bench reads.
 g++ -O3 -march=native -DNDEBUG -std=c++17 \
   -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS \
   -DBOOST_FUSION_INVOKE_MAX_ARITY=12 "$here/floating.cpp" -o "$out-floating" \
-  -I"$prefix/include" -I/usr/include/eigen3 \
+  -I"$prefix/include" -I"$prefix/include/eigen3" -I/usr/include/eigen3 \
   -L"$prefix/lib" -Wl,-rpath,"$prefix/lib" -lpinocchio_default -w
 "$out-floating" "$here/../../../tests/data/floating_pinocchio.txt"

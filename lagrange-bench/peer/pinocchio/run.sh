@@ -10,6 +10,6 @@ out="${TMPDIR:-/tmp}/pinocchio_spatial_chain"
 g++ -O3 -march=native -DNDEBUG -std=c++17 \
   -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS \
   -DBOOST_FUSION_INVOKE_MAX_ARITY=12 "$here/spatial_chain.cpp" -o "$out" \
-  -I"$prefix/include" -I/usr/include/eigen3 \
+  -I"$prefix/include" -I"$prefix/include/eigen3" -I/usr/include/eigen3 \
   -L"$prefix/lib" -Wl,-rpath,"$prefix/lib" -lpinocchio_default -w
 "$out" "$@"

@@ -12,6 +12,6 @@ python3 "$here/urdf_model.py" "$robots" "$out.hpp"
 g++ -O3 -march=native -DNDEBUG -std=c++17 \
   -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS \
   -DBOOST_FUSION_INVOKE_MAX_ARITY=12 -DURDF_MODELS="\"$out.hpp\"" "$here/urdf.cpp" -o "$out" \
-  -I"$prefix/include" -I/usr/include/eigen3 \
+  -I"$prefix/include" -I"$prefix/include/eigen3" -I/usr/include/eigen3 \
   -L"$prefix/lib" -Wl,-rpath,"$prefix/lib" -lpinocchio_default -w
 "$out"
