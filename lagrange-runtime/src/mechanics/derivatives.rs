@@ -356,8 +356,9 @@ pub fn factored_derivatives<T: Real, const N: usize>(
     if ratio <= T::zero() {
         return failed(ratio);
     }
-    // q̈ as M⁻¹ b: seven short dot products side by side, where two
-    // triangular solves are one long chain that ∂(Q − h) at q̈ waits for.
+    // q̈ as M⁻¹ b, a sum of M⁻¹'s columns whose terms run side by side,
+    // where two triangular solves are one long chain that ∂(Q − h) at q̈
+    // waits for.
     let acceleration = product(&dtau, &b);
     let (jq, jv) = jacobians(&acceleration).unwrap_or_else(|| (nan(), nan()));
     let d = AccelerationDerivatives {
