@@ -22,13 +22,7 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
     let p = quote!(::lagrange::__private);
     let names = &regressor.names;
     let columns = Literal::usize_unsuffixed(names.len());
-    let (lets, y) = column_major(e, model, &regressor.rows);
-    let rows = regressor.rows.len();
-    let writes = (y.iter().enumerate()).map(|(k, value)| {
-        let (i, j) = (k % rows, k / rows);
-        let (i, j) = (Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(j));
-        quote!(y[(#i, #j)] = #value;)
-    });
+    let writes = written_column_major(e, model, &regressor.rows);
     let (m_lets, y_p) = column_major(e, model, &regressor.momentum);
     let (p_lets, p_outs) = e.program(&regressor.parameters);
     let (e_lets, e_outs) = e.program(&regressor.energy);
@@ -87,8 +81,7 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
         #[doc(hidden)]
         #[inline]
         fn __lagrange_regressor(&self, q: &#qvec, v: &#vec_n, a: &#vec_n, t: #s, y: &mut #p::DMatrixViewMut<'_, #s>) {
-            #lets
-            #(#writes)*
+            #writes
         }
     };
     Pieces {
@@ -96,6 +89,21 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, _: &System) -> Piece
         hoisted,
         ..Pieces::default()
     }
+}
+
+/// The program of a matrix's entries and each entry written into `y`,
+/// column-major, by an indexed write (see `__lagrange_regressor`).
+fn written_column_major(e: &Emitter, model: &Model, rows: &[Vec<Sym>]) -> TokenStream {
+    let (lets, y) = column_major(e, model, rows);
+    let n = rows.len();
+    let writes = (y.iter().enumerate()).map(|(k, value)| {
+        let (i, j) = (
+            Literal::usize_unsuffixed(k % n),
+            Literal::usize_unsuffixed(k / n),
+        );
+        quote!(y[(#i, #j)] = #value;)
+    });
+    quote!(#lets #(#writes)*)
 }
 
 /// The program of a matrix's entries that are not structurally zero, and
