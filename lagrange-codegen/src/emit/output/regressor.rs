@@ -109,8 +109,8 @@ fn written_column_major(e: &Emitter, model: &Model, rows: &[Vec<Sym>]) -> TokenS
 /// The program of a matrix's entries that are not structurally zero, and
 /// every entry column-major, a literal zero where it is structurally zero:
 /// most of Y and Y_p is zero (a joint feels no body above it), so only the
-/// other entries are computed, and the matrix is written from the list in
-/// one pass, with no zeroing before.
+/// other entries are computed, and the matrix is filled from the list in
+/// one pass (Y_p built from it, Y written entry by entry).
 fn column_major(e: &Emitter, model: &Model, rows: &[Vec<Sym>]) -> (TokenStream, Vec<TokenStream>) {
     let columns = rows.first().map_or(0, Vec::len);
     let mut at = Vec::new();
