@@ -8,7 +8,7 @@
 //! matrix row-major) and one `time` line (ns per call), which
 //! `peer/casadi/compare.py` reads:
 //!
-//!     cargo run --release -p lagrange-bench --example casadi_peer [ARM ...]
+//!     cargo run --release -p lagrange-bench --example casadi_peer [--wide] [ARM ...]
 //!
 //! The quantities, each beside its CasADi function:
 //! - `crba_nle`: M and Q − h in one call (`mass_matrix_and_rhs`), beside
@@ -30,7 +30,10 @@
 //! terms computed once (`parameter_terms`, `_with`; suffix `_terms`), as a
 //! loop of its own would call them. The values are the same.
 //!
-//! The state: q_k = 0.3 − 0.17 k, q̇_k = 0.5 − 0.21 k, q̈_k = τ_k = 0.1 k − 0.2.
+//! The state: q_k = 0.3 − 0.17 k (every angle within 0.55 rad, where the C
+//! library's sin and cos take their short path), or with `--wide`
+//! q_k = 2.8 − 0.93 k (spread over a turn, as a moving arm's are);
+//! q̇_k = 0.5 − 0.21 k, q̈_k = τ_k = 0.1 k − 0.2.
 
 use lagrange::nalgebra::{SMatrix, SVector};
 use lagrange::{Differentiable, Dynamics, Error, Forcing, Lagrangian};
@@ -113,14 +116,23 @@ fn value(robot: &str, quantity: &str, outputs: &[(&str, &[f64], usize)]) {
     }
 }
 
-/// Values and times of one arm.
-fn arm<S, A, const N: usize>(robot: &str)
+/// Joint angle k of the wide state (spread over a turn) or the small one
+/// (within 0.55 rad).
+fn angle(k: usize, wide: bool) -> f64 {
+    match wide {
+        true => 2.8 - 0.93 * k as f64,
+        false => 0.3 - 0.17 * k as f64,
+    }
+}
+
+/// Values and times of one arm, at the wide state or the small one.
+fn arm<S, A, const N: usize>(robot: &str, wide: bool)
 where
     S: Differentiable<f64, N> + Default,
     A: Lagrangian<f64, N> + Default,
 {
     let (sys, articulated) = (S::default(), A::default());
-    let q = SVector::<f64, N>::from_fn(|k, _| 0.3 - 0.17 * k as f64);
+    let q = SVector::<f64, N>::from_fn(|k, _| angle(k, wide));
     let v = SVector::<f64, N>::from_fn(|k, _| 0.5 - 0.21 * k as f64);
     let a = SVector::<f64, N>::from_fn(|k, _| 0.1 * k as f64 - 0.2);
     let tau = a;
@@ -196,23 +208,25 @@ where
 }
 
 /// Every arm, or those named on the command line (`casadi_peer xarm7`, for a
-/// profile of one).
+/// profile of one), at the small state or, with `--wide`, the wide one.
 fn main() {
-    let named: Vec<String> = std::env::args().skip(1).collect();
+    let (flags, named): (Vec<String>, Vec<String>) =
+        std::env::args().skip(1).partition(|a| a.starts_with("--"));
+    let wide = flags.iter().any(|f| f == "--wide");
     let run = |robot: &str| named.is_empty() || named.iter().any(|n| n == robot);
     if run("ur5") {
-        arm::<Ur5, Ur5Articulated, 6>("ur5");
+        arm::<Ur5, Ur5Articulated, 6>("ur5", wide);
     }
     if run("ur10") {
-        arm::<Ur10, Ur10Articulated, 6>("ur10");
+        arm::<Ur10, Ur10Articulated, 6>("ur10", wide);
     }
     if run("kinova") {
-        arm::<Kinova, KinovaArticulated, 6>("kinova");
+        arm::<Kinova, KinovaArticulated, 6>("kinova", wide);
     }
     if run("z1") {
-        arm::<Z1, Z1Articulated, 7>("z1");
+        arm::<Z1, Z1Articulated, 7>("z1", wide);
     }
     if run("xarm7") {
-        arm::<Xarm7, Xarm7Articulated, 7>("xarm7");
+        arm::<Xarm7, Xarm7Articulated, 7>("xarm7", wide);
     }
 }

@@ -12,9 +12,12 @@
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 
+mod angles;
+
 use crate::context::Context;
 use crate::node::Symbol;
 use crate::program::{Op, Program, Value};
+use angles::Angles;
 
 /// How [`Program::emit`] spells the pieces that depend on the generated code.
 ///
@@ -27,7 +30,10 @@ pub struct EmitConfig<'a> {
     /// How to write a numeric literal in the target scalar type.
     pub constant: &'a dyn Fn(f64) -> TokenStream,
     /// Path of a module with `sin, cos, tan, asin, acos, atan, sinh, cosh,
-    /// tanh, exp, ln, sqrt, abs, atan2(y, x), powi(x, i32), powf(x, y)`.
+    /// tanh, exp, ln, sqrt, abs, atan2(y, x), powi(x, i32), powf(x, y)`, and
+    /// `sin_cos_many([x; K]) -> ([sin; K], [cos; K])`, which a piece calls
+    /// once for the arguments of its sines and cosines that are known before
+    /// its first one (see [`Program::emit`]).
     pub function: &'a TokenStream,
     /// Prefix of temporaries: `_t` gives `_t0`, `_t1`, ...
     pub temp_prefix: &'a str,
@@ -41,6 +47,12 @@ pub struct EmitConfig<'a> {
 impl Program {
     /// The program as Rust: the declarations and assignments, and one expression
     /// per output (a variable, or an inlined symbol or constant).
+    ///
+    /// Sines and cosines whose arguments are known before the first of them
+    /// (the joint angles, read as symbols) are computed together, where that
+    /// first one was, by one `sin_cos_many` call over at least two distinct
+    /// arguments, each giving both its sine and its cosine: one SIMD kernel
+    /// for all the angles instead of a library call each.
     pub fn emit(&self, _ctx: &Context, cfg: &EmitConfig) -> (TokenStream, Vec<TokenStream>) {
         let piece = vec![0; self.ops.len()];
         let slot = vec![None; self.ops.len()];
@@ -122,6 +134,7 @@ impl Program {
     ) -> (Vec<TokenStream>, Vec<TokenStream>) {
         let fused = self.fused(cfg, piece, slot);
         let last_use = self.last_uses(piece, slot, &fused);
+        let angles = Angles::new(self, piece, cfg);
         let mut operand: Vec<TokenStream> = Vec::with_capacity(self.ops.len());
         let mut register_of: Vec<Option<usize>> = vec![None; self.ops.len()];
         let mut bodies = Vec::new();
@@ -144,12 +157,16 @@ impl Program {
                 operand.push(TokenStream::new());
                 continue;
             }
-            let expr = match self.expression(op, &spell, cfg, &fused) {
-                Ok(expr) => expr,
-                Err(inline) => {
-                    operand.push(inline);
-                    continue;
-                }
+            body.extend(angles.call_before(i, self, cfg, &spell));
+            let expr = match angles.read(i) {
+                Some(expr) => expr,
+                None => match self.expression(op, &spell, cfg, &fused) {
+                    Ok(expr) => expr,
+                    Err(inline) => {
+                        operand.push(inline);
+                        continue;
+                    }
+                },
             };
             // Operands read here for the last time give their registers back
             // before the result takes one: `_t3 = _t3 * _t5` is fine. A fused

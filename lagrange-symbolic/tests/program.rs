@@ -377,3 +377,57 @@ fn a_sum_that_holds_another_adds_only_the_rest() {
     // other: falling's two additions, then + 3.
     assert_eq!(p.op_count().add, 3 + 1 + 1 + 1 + 1, "{:?}", p.op_count());
 }
+
+/// The sines and cosines of two or more angles known before the first of
+/// them are computed by one `sin_cos_many` call where that first one was,
+/// each sine and cosine read from its arrays; one angle alone keeps its
+/// calls.
+#[test]
+fn sines_and_cosines_of_several_angles_are_computed_together() {
+    let emit = |two: bool| {
+        let mut cx = Context::new();
+        let (a, b) = (cx.coordinate("a"), cx.coordinate("b"));
+        let (sa, ca) = (cx.sin(a), cx.cos(a));
+        let mut outputs = vec![cx.mul(sa, ca), ca];
+        if two {
+            let cb = cx.cos(b);
+            outputs.push(cx.mul(sa, cb));
+        }
+        let prog = Program::new(&cx, &outputs);
+        let symbol = |s: Symbol| {
+            let i = s.index();
+            quote!(q[#i])
+        };
+        let constant = |v: f64| {
+            let lit = proc_macro2::Literal::f64_suffixed(v);
+            quote!(#lit)
+        };
+        let function: TokenStream = quote!(func);
+        let cfg = EmitConfig {
+            symbol: &symbol,
+            constant: &constant,
+            function: &function,
+            temp_prefix: "_t",
+            fused_multiply_add: false,
+        };
+        prog.emit(&cx, &cfg).0.to_string()
+    };
+    let together = emit(true);
+    assert_eq!(together.matches("sin_cos_many").count(), 1, "{together}");
+    // Before the first sine, a's and b's (b's symbol is not the second:
+    // coordinates come with their rates).
+    let call = together.find("let (_tsin , _tcos) = func :: sin_cos_many ([q [0usize] , q [");
+    assert!(
+        call.is_some_and(|at| at < together.find("_tsin [0]").unwrap()),
+        "{together}"
+    );
+    for read in ["_tsin [0]", "_tcos [0]", "_tcos [1]"] {
+        assert!(together.contains(read), "{read} in {together}");
+    }
+    assert!(!together.contains("func :: sin (") && !together.contains("func :: cos ("));
+    let alone = emit(false);
+    assert!(!alone.contains("sin_cos_many"), "{alone}");
+    assert!(
+        alone.contains("func :: sin (q [0usize])") && alone.contains("func :: cos (q [0usize])")
+    );
+}

@@ -23,6 +23,10 @@ Steps, into OUT (default $TMPDIR/casadi_peer):
     exit status is 1 if any exceeds it.
 
     python3 casadi_codegen.py [OUT]
+
+Both sides are timed at two states (ANGLES): "small", every joint angle
+within 0.55 rad, and "wide", spread over a turn (`harness [values] wide`,
+`casadi_peer --wide`).
 """
 import os
 import subprocess
@@ -71,10 +75,26 @@ def build(out):
              f"-L{prefix}/lib", f"-Wl,-rpath,{prefix}/lib", "-lpinocchio_default",
              f"-L{cas}", f"-Wl,-rpath,{cas}", "-lcasadi"])
     run([tracer, out])
+    write_wide_state(os.path.join(out, "casadi_wide.h"))
     harness = os.path.join(out, "harness")
     run(["gcc", "-O3", "-march=native", "-w", f"-I{out}", os.path.join(HERE, "harness.c"),
          os.path.join(out, "casadi_gen.c"), "-o", harness, "-lm"])
     return harness
+
+
+def write_wide_state(path):
+    """The wide state's q per arm, for `harness wide` (trace.cpp writes the
+    small state into the registry; v and a are the same in both)."""
+    rows = []
+    with open(path, "w") as f:
+        f.write("// Written by casadi_codegen.py: q of the wide state, per arm.\n")
+        for robot in ARMS:
+            model = pin.buildModelFromUrdf(os.path.join(ROBOTS_DIR, f"{robot}.urdf"))
+            q, _, _ = state(model, "wide")
+            f.write(f"static const double {robot}_q_wide[] = {{{', '.join(repr(float(x)) for x in q)}}};\n")
+            rows.append(f'  {{"{robot}", {robot}_q_wide}}')
+        f.write("static const struct { const char* robot; const double* q; } WIDE[] = {\n")
+        f.write(",\n".join(rows) + "\n};\n")
 
 
 def parse(text):
@@ -87,12 +107,21 @@ def parse(text):
     return values
 
 
-def state(model):
+# The joint angles of the two states the peers are timed at: "small", every
+# angle within 0.55 rad (where the C library's sin and cos take their short
+# path), and "wide", spread over a turn, as a moving arm's are.
+ANGLES = {
+    "small": lambda k: 0.3 - 0.17 * k,
+    "wide": lambda k: 2.8 - 0.93 * k,
+}
+
+
+def state(model, which="small"):
     """q (cos and sin of a continuous joint's angle), v, a = tau, as the peers' state."""
     q = np.zeros(model.nq)
     for j in range(1, model.njoints):
         joint = model.joints[j]
-        angle = 0.3 - 0.17 * joint.idx_v
+        angle = ANGLES[which](joint.idx_v)
         if joint.nq == 2:
             q[joint.idx_q], q[joint.idx_q + 1] = np.cos(angle), np.sin(angle)
         else:
@@ -101,11 +130,11 @@ def state(model):
     return q, 0.5 - 0.21 * k, 0.1 * k - 0.2
 
 
-def reference(robot):
+def reference(robot, which="small"):
     """Plain numeric Pinocchio at the state: {(quantity, output): array}, matrices row-major."""
     model = pin.buildModelFromUrdf(os.path.join(ROBOTS_DIR, f"{robot}.urdf"))
     data = model.createData()
-    q, v, a = state(model)
+    q, v, a = state(model, which)
     ref = {}
     M = pin.crba(model, data, q).copy()
     M = np.triu(M) + np.triu(M, 1).T
@@ -127,7 +156,7 @@ def reference(robot):
     return {key: np.asarray(x).reshape(-1) for key, x in ref.items()}
 
 
-def check(values, label):
+def check(values, label, which="small"):
     """Prints each output's max difference from numeric Pinocchio, absolute and
     relative to the output's largest entry (or 1); True if every relative one
     is within 1e-10 (M⁻¹ of an arm with a light wrist has entries in the
@@ -135,7 +164,7 @@ def check(values, label):
     ok = True
     print(f"| {label}: robot | quantity | output | max abs difference from pin | / max(1, max |pin|) |")
     print("|---|---|---|---|---|")
-    refs = {robot: reference(robot) for robot in ARMS}
+    refs = {robot: reference(robot, which) for robot in ARMS}
     for (robot, quantity, output), x in sorted(values.items()):
         ref = refs[robot].get((quantity, output))
         if ref is None:
@@ -151,8 +180,10 @@ def check(values, label):
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.environ.get("TMPDIR", "/tmp"), "casadi_peer")
     harness = build(out)
-    text = subprocess.run([harness, "values"], check=True, capture_output=True, text=True).stdout
-    ok = check(parse(text), "CasADi C")
+    ok = True
+    for which in ANGLES:
+        text = subprocess.run([harness, "values", which], check=True, capture_output=True, text=True).stdout
+        ok &= check(parse(text), f"CasADi C, {which} state", which)
     sys.exit(0 if ok else 1)
 
 

@@ -1,5 +1,5 @@
-"""Reads the rounds run.sh wrote (DIR/casadi_<i>.txt from the C harness,
-DIR/lagrange_<i>.txt from examples/casadi_peer.rs), checks both sides' values
+"""Reads the rounds run.sh wrote (DIR/casadi_STATE_<i>.txt from the C harness,
+DIR/lagrange_STATE_<i>.txt from examples/casadi_peer.rs), checks both sides' values
 against plain numeric Pinocchio to 1e-10, and prints the markdown table: per
 arm and quantity, the CasADi C and lagrange times (ns per call, the median
 over rounds) and their ratio (the median over rounds of each round's
@@ -7,7 +7,10 @@ CasADi / lagrange: above 1, lagrange is faster). "terms kept": our side with its
 computed once (`parameter_terms`, the `_with` methods), as a loop of its own
 calls it; CasADi's C has them folded in as constants.
 
-    python3 compare.py DIR
+    python3 compare.py DIR [STATE]
+
+STATE is `small` (the default) or `wide` (casadi_codegen.ANGLES); the rounds
+of that state are DIR/casadi_STATE_<i>.txt and DIR/lagrange_STATE_<i>.txt.
 """
 import glob
 import os
@@ -42,18 +45,19 @@ def times(text):
     return out
 
 
-def rounds(folder, side):
-    files = sorted(glob.glob(os.path.join(folder, f"{side}_*.txt")),
+def rounds(folder, side, which):
+    files = sorted(glob.glob(os.path.join(folder, f"{side}_{which}_*.txt")),
                    key=lambda f: int(re.findall(r"_(\d+)\.txt$", f)[0]))
     return [open(f).read() for f in files]
 
 
 def main():
     folder = sys.argv[1]
-    c_runs, r_runs = rounds(folder, "casadi"), rounds(folder, "lagrange")
-    ok = check(parse(c_runs[0]), "CasADi C")
+    which = sys.argv[2] if len(sys.argv) > 2 else "small"
+    c_runs, r_runs = rounds(folder, "casadi", which), rounds(folder, "lagrange", which)
+    ok = check(parse(c_runs[0]), f"CasADi C, {which} state", which)
     print()
-    ok &= check(parse(r_runs[0]), "lagrange")
+    ok &= check(parse(r_runs[0]), f"lagrange, {which} state", which)
     print()
     c_times, r_times = [times(t) for t in c_runs], [times(t) for t in r_runs]
     pairs = list(zip(c_times, r_times))

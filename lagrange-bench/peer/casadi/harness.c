@@ -3,7 +3,8 @@
  * `time` line: the median over batches of the mean ns of one call in a batch
  * (batches of about 2 ms, after one to warm up), the loop of
  * examples/casadi_peer.rs on our side. `harness values` prints the values
- * alone. Built by casadi_codegen.py with gcc -O3 -march=native. */
+ * alone; `harness [values] wide` uses the wide state (casadi_wide.h).
+ * Built by casadi_codegen.py with gcc -O3 -march=native. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,6 +31,14 @@ typedef struct {
 } Entry;
 
 #include "casadi_registry.h"
+#include "casadi_wide.h"
+
+/* The wide state's q of an arm (casadi_wide.h), or NULL. */
+static const double* wide_q(const char* robot) {
+  for (size_t i = 0; i < sizeof WIDE / sizeof WIDE[0]; ++i)
+    if (strcmp(WIDE[i].robot, robot) == 0) return WIDE[i].q;
+  return NULL;
+}
 
 #define BATCHES 31
 
@@ -48,7 +57,13 @@ static int compare(const void* x, const void* y) {
 static void clobber(void) { __asm__ volatile("" ::: "memory"); }
 
 int main(int argc, char** argv) {
-  const int time_them = !(argc > 1 && strcmp(argv[1], "values") == 0);
+  /* Arguments: `values` (print the values, time nothing) and `wide` (the
+   * wide state's q instead of the registry's small one), in any order. */
+  int time_them = 1, wide = 0;
+  for (int i = 1; i < argc; ++i) {
+    if (strcmp(argv[i], "values") == 0) time_them = 0;
+    if (strcmp(argv[i], "wide") == 0) wide = 1;
+  }
   for (size_t e = 0; e < sizeof ENTRIES / sizeof ENTRIES[0]; ++e) {
     const Entry* f = &ENTRIES[e];
     casadi_int sz_arg, sz_res, sz_iw, sz_w;
@@ -57,7 +72,11 @@ int main(int argc, char** argv) {
     casadi_real** res = calloc(sz_res > 3 ? sz_res : 3, sizeof *res);
     casadi_int* iw = calloc(sz_iw + 1, sizeof *iw);
     casadi_real* w = calloc(sz_w + 1, sizeof *w);
-    arg[0] = f->q;
+    arg[0] = wide ? wide_q(f->robot) : f->q;
+    if (!arg[0]) {
+      fprintf(stderr, "no wide state for %s\n", f->robot);
+      return 1;
+    }
     arg[1] = f->v;
     if (f->n_in > 2) arg[2] = f->a;
     double* outs[3];

@@ -5,7 +5,8 @@
 # and gcc/g++ and cargo. Generates, compiles and checks the C peer
 # (casadi_codegen.py), builds examples/casadi_peer.rs, then runs the C harness
 # and the Rust timing alternately, ROUNDS times (default 3), and prints the
-# values' check against numeric Pinocchio and the table (compare.py).
+# values' check against numeric Pinocchio and the table (compare.py), at
+# two states (compare.py STATE: "small" and "wide").
 #   lagrange-bench/peer/casadi/run.sh [ROUNDS]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -32,9 +33,19 @@ native="${CARGO_TARGET_DIR:-$root/target}/native"
   cargo build --release -p lagrange-bench --example casadi_peer)
 bin="$native/release/examples/casadi_peer"
 rm -f "$out"/casadi_*.txt "$out"/lagrange_*.txt
+# Both states: every joint angle within 0.55 rad ("small"), and spread over
+# a turn ("wide"), where the C library's sin and cos take their longer path.
 for i in $(seq 1 "$rounds"); do
   echo "round $i of $rounds" >&2
-  "$out/harness" > "$out/casadi_$i.txt"
-  "$bin" > "$out/lagrange_$i.txt"
+  "$out/harness" > "$out/casadi_small_$i.txt"
+  "$bin" > "$out/lagrange_small_$i.txt"
+  "$out/harness" wide > "$out/casadi_wide_$i.txt"
+  "$bin" --wide > "$out/lagrange_wide_$i.txt"
 done
-cd "$here" && python3 compare.py "$out"
+cd "$here"
+status=0
+for state in small wide; do
+  echo "## The $state state"
+  python3 compare.py "$out" "$state" || status=1
+done
+exit $status

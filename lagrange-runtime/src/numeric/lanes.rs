@@ -100,10 +100,11 @@ impl Neg for F64x4 {
 /// lane's `f64`, so a batched program's lane equals the scalar program's
 /// result bit for bit: +, −, ×, ÷, √ and |x| are correctly rounded in both
 /// (one SIMD instruction each); `mul_add` fuses exactly where the scalar one
-/// does (where the build targets FMA); the transcendental functions (sin, cos,
-/// atan2, exp, ...) and the powers call the scalar ones lane by lane, since
-/// SIMD approximations of them round differently (they are a few calls per
-/// program: the joints' sines and cosines).
+/// does (where the build targets FMA); the joint angles' sines and cosines
+/// (`sin_cos_many`) go through the same SIMD kernel as the scalar programs'
+/// (`numeric::sincos`); the other transcendental functions (sin, cos of
+/// other arguments, atan2, exp, ...) and the powers call the scalar ones lane
+/// by lane, since SIMD approximations of them would round differently.
 pub mod func {
     use super::F64x4;
     use crate::numeric::func as scalar;
@@ -141,6 +142,16 @@ pub mod func {
         exp;
         /// Natural logarithm, lane by lane.
         ln;
+    }
+
+    /// (sin xₖ, cos xₖ) of several angles, four states each: in every lane
+    /// what [`crate::numeric::func::sin_cos_many`] gives for that lane's
+    /// `f64`s, bit for bit (the same kernel, whose result does not depend on
+    /// the lane an angle sits in).
+    #[inline(always)]
+    pub fn sin_cos_many<const K: usize>(x: [F64x4; K]) -> ([F64x4; K], [F64x4; K]) {
+        let both = x.map(|x| crate::numeric::sincos::sin_cos_lanes(x.0));
+        (both.map(|(s, _)| F64x4(s)), both.map(|(_, c)| F64x4(c)))
     }
 
     /// Square root (correctly rounded, as `f64::sqrt`).
@@ -236,6 +247,17 @@ mod tests {
         check(func::select(y, x, y), &|k| {
             crate::numeric::func::select(y.lane(k), XS[k], y.lane(k))
         });
+        // Several angles at once, as the scalar programs take them: each
+        // lane's angles through the scalar call give that lane's bits.
+        let (s, c) = func::sin_cos_many([x, y, x * y]);
+        for (k, &xk) in XS.iter().enumerate() {
+            let angles = [xk, y.lane(k), xk * y.lane(k)];
+            let (s1, c1) = crate::numeric::func::sin_cos_many(angles);
+            for j in 0..3 {
+                assert_eq!(s[j].lane(k).to_bits(), s1[j].to_bits(), "sin, lane {k}");
+                assert_eq!(c[j].lane(k).to_bits(), c1[j].to_bits(), "cos, lane {k}");
+            }
+        }
     }
 
     #[test]
