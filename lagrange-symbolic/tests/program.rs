@@ -209,21 +209,7 @@ fn emission_is_deterministic_and_reads_well() {
                 quote!(self.#id)
             }
         };
-        let constant = |v: f64| {
-            let lit = proc_macro2::Literal::f64_suffixed(v);
-            quote!(#lit)
-        };
-        let function: TokenStream = quote!(::lagrange::__private::func);
-        let cfg = EmitConfig {
-            symbol: &symbol,
-            constant: &constant,
-            function: &function,
-            temp_prefix: "_t",
-            fused_multiply_add: false,
-        };
-        let (body, outs) = prog.emit(&cx, &cfg);
-        let outs: Vec<String> = outs.iter().map(|o| o.to_string()).collect();
-        (body.to_string(), outs)
+        emitted(&cx, &prog, &symbol, quote!(::lagrange::__private::func))
     };
     let (body, outs) = build();
     assert_eq!(build(), (body.clone(), outs.clone()));
@@ -314,6 +300,32 @@ fn pieces_declare_every_variable_they_use() {
     }
 }
 
+/// The program's body and outputs as text, its symbols spelled by `symbol`,
+/// its functions from `function`, literals suffixed `f64`, nothing fused.
+fn emitted(
+    cx: &Context,
+    prog: &Program,
+    symbol: &dyn Fn(Symbol) -> TokenStream,
+    function: TokenStream,
+) -> (String, Vec<String>) {
+    let constant = |v: f64| {
+        let lit = proc_macro2::Literal::f64_suffixed(v);
+        quote!(#lit)
+    };
+    let cfg = EmitConfig {
+        symbol,
+        constant: &constant,
+        function: &function,
+        temp_prefix: "_t",
+        fused_multiply_add: false,
+    };
+    let (body, outs) = prog.emit(cx, &cfg);
+    (
+        body.to_string(),
+        outs.iter().map(|o| o.to_string()).collect(),
+    )
+}
+
 /// `f` given an emission whose every symbol reads `q[0]`, with literals
 /// suffixed `f64` and functions from the module `func`.
 fn with_one_symbol<R>(fused_multiply_add: bool, f: impl FnOnce(&EmitConfig) -> R) -> R {
@@ -398,19 +410,7 @@ fn sines_and_cosines_of_several_angles_are_computed_together() {
             let i = s.index();
             quote!(q[#i])
         };
-        let constant = |v: f64| {
-            let lit = proc_macro2::Literal::f64_suffixed(v);
-            quote!(#lit)
-        };
-        let function: TokenStream = quote!(func);
-        let cfg = EmitConfig {
-            symbol: &symbol,
-            constant: &constant,
-            function: &function,
-            temp_prefix: "_t",
-            fused_multiply_add: false,
-        };
-        prog.emit(&cx, &cfg).0.to_string()
+        emitted(&cx, &prog, &symbol, quote!(func)).0
     };
     let together = emit(true);
     assert_eq!(together.matches("sin_cos_many").count(), 1, "{together}");

@@ -49,7 +49,8 @@ unary! {
 }
 
 /// (sin xₖ, cos xₖ) of several angles at once: what the emitted programs
-/// call for the angles they read (the joint coordinates), once, at the top.
+/// call for the angles they read (the joint coordinates), once per piece of
+/// a program, where its first sine or cosine is needed.
 /// For `f64` the angles go through one SIMD kernel
 /// ([`crate::numeric::sincos`]: within an ulp of the C library's `sin` and
 /// `cos`, equal to them on 97 % of angles, in about half the time of a
