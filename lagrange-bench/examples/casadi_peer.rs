@@ -212,7 +212,11 @@ where
 fn main() {
     let (flags, named): (Vec<String>, Vec<String>) =
         std::env::args().skip(1).partition(|a| a.starts_with("--"));
-    let wide = flags.iter().any(|f| f == "--wide");
+    if let Some(flag) = flags.iter().find(|f| *f != "--wide") {
+        eprintln!("casadi_peer: unknown option {flag} (the one option is --wide)");
+        std::process::exit(2);
+    }
+    let wide = !flags.is_empty();
     let run = |robot: &str| named.is_empty() || named.iter().any(|n| n == robot);
     if run("ur5") {
         arm::<Ur5, Ur5Articulated, 6>("ur5", wide);

@@ -61,8 +61,14 @@ int main(int argc, char** argv) {
    * wide state's q instead of the registry's small one), in any order. */
   int time_them = 1, wide = 0;
   for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "values") == 0) time_them = 0;
-    if (strcmp(argv[i], "wide") == 0) wide = 1;
+    if (strcmp(argv[i], "values") == 0) {
+      time_them = 0;
+    } else if (strcmp(argv[i], "wide") == 0) {
+      wide = 1;
+    } else {
+      fprintf(stderr, "harness: unknown argument %s (values, wide)\n", argv[i]);
+      return 2;
+    }
   }
   for (size_t e = 0; e < sizeof ENTRIES / sizeof ENTRIES[0]; ++e) {
     const Entry* f = &ENTRIES[e];

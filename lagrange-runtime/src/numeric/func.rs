@@ -53,9 +53,11 @@ unary! {
 /// a program, where its first sine or cosine is needed.
 /// For `f64` the angles go through one SIMD kernel
 /// ([`crate::numeric::sincos`]: within an ulp of the C library's `sin` and
-/// `cos`, equal to them on 97 % of angles, in about half the time of a
-/// `sincos` call per angle, whatever the angles); any other scalar takes
-/// [`sin`] and [`cos`] angle by angle.
+/// `cos`, at a cost that does not depend on the angles; six angles in a
+/// loop take about half the time of six `sincos` calls, and inside a
+/// program the gain depends on the code around the call, see
+/// `BENCHMARKS.md`); any other scalar takes [`sin`] and [`cos`] angle by
+/// angle.
 #[inline(always)]
 pub fn sin_cos_many<T: Real, const K: usize>(x: [T; K]) -> ([T; K], [T; K]) {
     if let Some(&angles) = (&x as &dyn core::any::Any).downcast_ref::<[f64; K]>() {

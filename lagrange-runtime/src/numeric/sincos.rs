@@ -8,8 +8,9 @@
 //! straight-line kernel in lanes of `wide::f64x4`: fdlibm's reduction by
 //! π/2 (π/2 in three parts of 33 bits and a tail, the remainder kept to
 //! first order in a tail of its own) and its kernels `__kernel_sin` and
-//! `__kernel_cos`. The result is within an ulp of the C library's (equal to
-//! it on 97 % of angles, `tests` below), costs the same at every angle, and
+//! `__kernel_cos`. The result is within an ulp of the C library's (the
+//! tests below check that; measured, it equals glibc's on 97 % of 2 million
+//! angles in |x| < 10), costs the same at every angle, and
 //! does not depend on the lane an angle sits in, so the batched programs
 //! (`lanes`) and the scalar ones agree to the bit. Products fuse where the
 //! build targets FMA, as [`crate::numeric::func::mul_add`] does.
@@ -53,6 +54,17 @@ const C6: f64 = f64::from_bits(0xbda8fae9be8838d4); // -1.1359647557788195e-11
 /// eight lanes (one 512-bit register) made the whole program around the
 /// call about twice as slow, since 512-bit instructions take over a port
 /// the scalar code runs on.
+///
+/// ```
+/// use lagrange_runtime::numeric::sincos::sin_cos_many;
+/// let x = [0.3, -2.0, 7.5, 1e6];
+/// let (s, c) = sin_cos_many(x);
+/// for k in 0..4 {
+///     // Within an ulp of the C library's values (1e6 is handed to it).
+///     assert!((s[k] - x[k].sin()).abs() <= f64::EPSILON);
+///     assert!((c[k] - x[k].cos()).abs() <= f64::EPSILON);
+/// }
+/// ```
 #[inline(always)]
 pub fn sin_cos_many<const K: usize>(x: [f64; K]) -> ([f64; K], [f64; K]) {
     let (mut s, mut c) = ([0.0; K], [0.0; K]);
@@ -72,7 +84,7 @@ pub fn sin_cos_many<const K: usize>(x: [f64; K]) -> ([f64; K], [f64; K]) {
 /// |x| ≤ [`REDUCED_BELOW`] (or x is not finite, which gives NaN as the C
 /// library does), the C library elsewhere.
 #[inline(always)]
-pub fn sin_cos_lanes(x: f64x4) -> (f64x4, f64x4) {
+pub(crate) fn sin_cos_lanes(x: f64x4) -> (f64x4, f64x4) {
     let (s, c) = reduced(x);
     let big = x.abs().simd_gt(f64x4::splat(REDUCED_BELOW)) & x.is_finite();
     if !big.any() {
