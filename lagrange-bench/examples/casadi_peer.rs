@@ -33,9 +33,13 @@
 //! The state: q_k = 0.3 − 0.17 k (every angle within 0.55 rad, where the C
 //! library's sin and cos take their short path), or with `--wide`
 //! q_k = 2.8 − 0.93 k (spread over a turn, as a moving arm's are);
-//! q̇_k = 0.5 − 0.21 k, q̈_k = τ_k = 0.1 k − 0.2.
+//! q̇_k = 0.5 − 0.21 k, q̈_k = τ_k = 0.1 k − 0.2. Solo 12 (`base = floating`)
+//! is at the same physical state as the C's Pinocchio free flyer, whose
+//! pattern (`casadi_codegen.state`) is mapped to this crate's coordinates
+//! ([`solo_state`]); its values are checked in this crate's convention
+//! (`floating_reference.py`).
 
-use lagrange::nalgebra::{SMatrix, SVector};
+use lagrange::nalgebra::{Quaternion, SMatrix, SVector, UnitQuaternion, Vector3};
 use lagrange::{Differentiable, Dynamics, Error, Forcing, Lagrangian};
 use std::hint::black_box;
 use std::time::Instant;
@@ -60,14 +64,23 @@ arm!(Kinova, KinovaArticulated, "../robots/kinova.urdf");
 arm!(Z1, Z1Articulated, "../robots/z1.urdf");
 arm!(Xarm7, Xarm7Articulated, "../robots/xarm7.urdf");
 
+/// Solo 12 on a free root, with the same outputs.
+#[derive(Lagrangian, Default)]
+#[lagrange(urdf("../robots/solo12.urdf", base = floating), gravity = [0, 0, -9.81], emit(jacobians, inverse_dynamics))]
+struct Solo12 {}
+
+#[derive(Lagrangian, Default)]
+#[lagrange(urdf("../robots/solo12.urdf", base = floating), gravity = [0, 0, -9.81], emit(articulated))]
+struct Solo12Articulated {}
+
 /// Constant joint torques τ, added to Q as a forcing.
 struct Torques<const N: usize>(SVector<f64, N>);
 
-impl<const N: usize> Forcing<f64, N> for Torques<N> {
+impl<const N: usize, const Q: usize> Forcing<f64, N, Q> for Torques<N> {
     fn force(
         &self,
         _: f64,
-        _: &SVector<f64, N>,
+        _: &SVector<f64, Q>,
         _: &SVector<f64, N>,
     ) -> Result<SVector<f64, N>, Error> {
         Ok(self.0)
@@ -125,17 +138,74 @@ fn angle(k: usize, wide: bool) -> f64 {
     }
 }
 
-/// Values and times of one arm, at the wide state or the small one.
-fn arm<S, A, const N: usize>(robot: &str, wide: bool)
+/// Where the quantities are taken: q̈ = `a` for the inverse dynamics and its
+/// derivatives, the joint forces `tau` for q̈ and its derivatives.
+struct State<const N: usize, const Q: usize> {
+    q: SVector<f64, Q>,
+    v: SVector<f64, N>,
+    a: SVector<f64, N>,
+    tau: SVector<f64, N>,
+}
+
+/// An arm's state: the same pattern as the C's.
+fn arm_state<const N: usize>(wide: bool) -> State<N, N> {
+    let a = SVector::from_fn(|k, _| 0.1 * k as f64 - 0.2);
+    State {
+        q: SVector::from_fn(|k, _| angle(k, wide)),
+        v: SVector::from_fn(|k, _| 0.5 - 0.21 * k as f64),
+        a,
+        tau: a,
+    }
+}
+
+/// Solo 12's state: the C's (Pinocchio's free flyer: q = (x, y, z, qx, qy,
+/// qz, qw, joints leg by leg), v = (root velocity and ω in root axes, joint
+/// rates), a = τ zero on the root) in this crate's coordinates (joints
+/// breadth-first, the quaternion last, scalar first; ẋ in world axes). With
+/// v_pin = P v: τ = Pᵀ τ_pin, and q̈ = Pᵀ (a_pin − Ṗ v), Ṗ v = (−ω × v_lin, 0).
+fn solo_state(wide: bool) -> State<18, 19> {
+    const LEGS: [&str; 4] = ["FL", "FR", "HL", "HR"];
+    const JOINTS: [&str; 3] = ["HAA", "HFE", "KFE"];
+    // Pinocchio's index (leg by leg) of our joint k, by its name.
+    let pinocchio = |k: usize| {
+        let name = <Solo12 as Lagrangian<f64, 18, 19>>::COORDINATES[3 + k];
+        let (leg, joint) = name.split_once('_').expect("LEG_JOINT");
+        let at = |list: &[&str], x: &str| list.iter().position(|y| *y == x).expect("a Solo joint");
+        3 * at(&LEGS, leg) + at(&JOINTS, joint)
+    };
+    // casadi_codegen.py's ROOT_POSITION and ROOT_QUATERNION (x, y, z, w).
+    let (x, y, z, w) = (0.1, -0.15, 0.25, 0.95);
+    let rotation = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
+    let v_pin = |k: usize| 0.5 - 0.21 * k as f64;
+    let v_lin = Vector3::new(v_pin(0), v_pin(1), v_pin(2));
+    let omega = Vector3::new(v_pin(3), v_pin(4), v_pin(5));
+    let (mut q, mut v) = (SVector::<f64, 19>::zeros(), SVector::<f64, 18>::zeros());
+    let (mut a, mut tau) = (SVector::<f64, 18>::zeros(), SVector::<f64, 18>::zeros());
+    q.fixed_rows_mut::<3>(0).copy_from_slice(&[0.1, -0.2, 0.3]);
+    q.fixed_rows_mut::<4>(15)
+        .copy_from_slice(&[rotation.w, rotation.i, rotation.j, rotation.k]);
+    v.fixed_rows_mut::<3>(0).copy_from(&(rotation * v_lin));
+    v.fixed_rows_mut::<3>(15).copy_from(&omega);
+    a.fixed_rows_mut::<3>(0)
+        .copy_from(&(rotation * omega.cross(&v_lin)));
+    for k in 0..12 {
+        let p = pinocchio(k);
+        q[3 + k] = angle(p, wide);
+        v[3 + k] = v_pin(6 + p);
+        (a[3 + k], tau[3 + k]) = (0.1 * p as f64 - 0.2, 0.1 * p as f64 - 0.2);
+    }
+    State { q, v, a, tau }
+}
+
+/// Values and times of one robot at a state.
+fn robot<S, A, const N: usize, const Q: usize>(robot: &str, at: &State<N, Q>)
 where
-    S: Differentiable<f64, N> + Default,
-    A: Lagrangian<f64, N> + Default,
+    S: Differentiable<f64, N, Q> + Default,
+    A: Lagrangian<f64, N, Q> + Default,
 {
     let (sys, articulated) = (S::default(), A::default());
-    let q = SVector::<f64, N>::from_fn(|k, _| angle(k, wide));
-    let v = SVector::<f64, N>::from_fn(|k, _| 0.5 - 0.21 * k as f64);
-    let a = SVector::<f64, N>::from_fn(|k, _| 0.1 * k as f64 - 0.2);
-    let tau = a;
+    let State { q, v, a, tau } = at;
+    let (q, v, a, tau) = (*q, *v, *a, *tau);
     let forced = Dynamics::new(&sys).with_forcing(Torques(tau));
     let forced_articulated = Dynamics::new(&articulated).with_forcing(Torques(tau));
     // The parameter-only terms computed once, as a loop of its own would.
@@ -176,8 +246,17 @@ where
     println!("time {robot} chol {t:.1}");
     let t = ns_per_call(|| kept.acceleration(0.0, black_box(&q), black_box(&v)));
     println!("time {robot} chol_terms {t:.1}");
+    derivatives(&sys, robot, at);
+}
 
-    let d = lagrange::acceleration_derivatives(&sys, &q, &v, &tau, 0.0).expect("derivatives");
+/// Values and times of the derivatives of q̈ and of τ.
+fn derivatives<S, const N: usize, const Q: usize>(sys: &S, robot: &str, at: &State<N, Q>)
+where
+    S: Differentiable<f64, N, Q>,
+{
+    let State { q, v, a, tau } = at;
+    let forced = Dynamics::new(sys).with_forcing(Torques(*tau));
+    let d = lagrange::acceleration_derivatives(sys, q, v, tau, 0.0).expect("derivatives");
     value(
         robot,
         "aba_derivatives",
@@ -188,22 +267,21 @@ where
         ],
     );
     let t = ns_per_call(|| {
-        lagrange::acceleration_derivatives(&sys, black_box(&q), black_box(&v), black_box(&tau), 0.0)
+        lagrange::acceleration_derivatives(sys, black_box(q), black_box(v), black_box(tau), 0.0)
     });
     println!("time {robot} aba_derivatives {t:.1}");
-    let t =
-        ns_per_call(|| forced.acceleration_derivatives(0.0, black_box(&q), black_box(&v), None));
+    let t = ns_per_call(|| forced.acceleration_derivatives(0.0, black_box(q), black_box(v), None));
     println!("time {robot} aba_derivatives_runtime {t:.1}");
 
     let (jq, jv): (SMatrix<f64, N, N>, SMatrix<f64, N, N>) =
-        sys.rhs_jacobians(&q, &v, &a, 0.0).expect("emit(jacobians)");
+        sys.rhs_jacobians(q, v, a, 0.0).expect("emit(jacobians)");
     let (dq, dv) = (-jq, -jv);
     value(
         robot,
         "rnea_derivatives",
         &[("dtau_dq", dq.as_slice(), N), ("dtau_dv", dv.as_slice(), N)],
     );
-    let t = ns_per_call(|| sys.rhs_jacobians(black_box(&q), black_box(&v), black_box(&a), 0.0));
+    let t = ns_per_call(|| sys.rhs_jacobians(black_box(q), black_box(v), black_box(a), 0.0));
     println!("time {robot} rnea_derivatives {t:.1}");
 }
 
@@ -219,18 +297,21 @@ fn main() {
     let wide = !flags.is_empty();
     let run = |robot: &str| named.is_empty() || named.iter().any(|n| n == robot);
     if run("ur5") {
-        arm::<Ur5, Ur5Articulated, 6>("ur5", wide);
+        robot::<Ur5, Ur5Articulated, 6, 6>("ur5", &arm_state(wide));
     }
     if run("ur10") {
-        arm::<Ur10, Ur10Articulated, 6>("ur10", wide);
+        robot::<Ur10, Ur10Articulated, 6, 6>("ur10", &arm_state(wide));
     }
     if run("kinova") {
-        arm::<Kinova, KinovaArticulated, 6>("kinova", wide);
+        robot::<Kinova, KinovaArticulated, 6, 6>("kinova", &arm_state(wide));
     }
     if run("z1") {
-        arm::<Z1, Z1Articulated, 7>("z1", wide);
+        robot::<Z1, Z1Articulated, 7, 7>("z1", &arm_state(wide));
     }
     if run("xarm7") {
-        arm::<Xarm7, Xarm7Articulated, 7>("xarm7", wide);
+        robot::<Xarm7, Xarm7Articulated, 7, 7>("xarm7", &arm_state(wide));
+    }
+    if run("solo12") {
+        robot::<Solo12, Solo12Articulated, 18, 19>("solo12", &solo_state(wide));
     }
 }

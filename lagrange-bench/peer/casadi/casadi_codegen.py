@@ -11,16 +11,19 @@ in C++ (trace.cpp), with the same templates that module wraps: Pinocchio's
 algorithms on the scalar casadi::SX, emitted by casadi::CodeGenerator.
 
 Steps, into OUT (default $TMPDIR/casadi_peer):
- 1. ../pinocchio/urdf_model.py writes the arms of robots/ as C++ Pinocchio
-    models (the wheel has no urdfdom headers for Pinocchio's parser);
+ 1. ../pinocchio/urdf_model.py writes the arms of robots/ and Solo 12 (on a
+    free flyer) as C++ Pinocchio models (the wheel has no urdfdom headers
+    for Pinocchio's parser);
  2. trace.cpp is compiled (g++ -O1: it only traces; minutes, so only when
     it or a model changed) and run: casadi_gen.c/.h
-    and casadi_registry.h;
+    and casadi_registry.h; every robot's states go into casadi_states.h;
  3. harness.c + casadi_gen.c are compiled with gcc -O3 -march=native;
  4. the harness's values (through the compiled C) are checked against plain
     numeric Pinocchio at the same state, to 1e-10 relative to each output's
     largest entry (or 1); the max difference per output is printed, and the
-    exit status is 1 if any exceeds it.
+    exit status is 1 if any exceeds it. (Our side's values, which compare.py
+    checks the same way, are in our coordinates: for Solo 12 the reference
+    is mapped to them by floating_reference.py.)
 
     python3 casadi_codegen.py [OUT]
 
@@ -35,9 +38,14 @@ import sys
 import numpy as np
 import pinocchio as pin
 
+from floating_reference import Mapped
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROBOTS_DIR = os.path.normpath(os.path.join(HERE, "../../../robots"))
 ARMS = ["ur5", "ur10", "kinova", "z1", "xarm7"]
+# On a free-flyer root (Pinocchio's JointModelFreeFlyer, our `base = floating`).
+FLOATING = ["solo12"]
+ROBOTS = ARMS + FLOATING
 TOLERANCE = 1e-10
 
 
@@ -64,7 +72,7 @@ def build(out):
     run([sys.executable, os.path.join(HERE, "../pinocchio/urdf_model.py"), ROBOTS_DIR, models])
     tracer = os.path.join(out, "trace")
     sources = [os.path.join(HERE, "trace.cpp"), os.path.join(HERE, "../pinocchio/urdf_model.py")]
-    sources += [os.path.join(ROBOTS_DIR, f"{robot}.urdf") for robot in ARMS]
+    sources += [os.path.join(ROBOTS_DIR, f"{robot}.urdf") for robot in ROBOTS]
     stale = not os.path.exists(tracer) or os.path.getmtime(tracer) < max(map(os.path.getmtime, sources))
     if stale:  # minutes: Pinocchio's templates on casadi::SX
         run(["g++", "-O1", "-std=c++17", "-DNDEBUG", "-w",
@@ -75,23 +83,35 @@ def build(out):
              f"-L{prefix}/lib", f"-Wl,-rpath,{prefix}/lib", "-lpinocchio_default",
              f"-L{cas}", f"-Wl,-rpath,{cas}", "-lcasadi"])
     run([tracer, out])
-    write_wide_state(os.path.join(out, "casadi_wide.h"))
+    write_states(os.path.join(out, "casadi_states.h"))
     harness = os.path.join(out, "harness")
     run(["gcc", "-O3", "-march=native", "-w", f"-I{out}", os.path.join(HERE, "harness.c"),
          os.path.join(out, "casadi_gen.c"), "-o", harness, "-lm"])
     return harness
 
 
-def write_wide_state(path):
-    """The wide state's q per arm, for `harness wide` (trace.cpp writes the
-    small state into the registry; v and a are the same in both)."""
+def load(robot):
+    """Pinocchio's model of a robot of robots/, on a free flyer if it floats."""
+    path = os.path.join(ROBOTS_DIR, f"{robot}.urdf")
+    if robot in FLOATING:
+        return pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
+    return pin.buildModelFromUrdf(path)
+
+
+def write_states(path):
+    """Each robot's state for the harness: <robot>_q, _v, _a (the small
+    state; a is also τ) and <robot>_q_wide, with the table WIDE."""
+    def array(name, x):
+        return f"static const double {name}[] = {{{', '.join(repr(float(v)) for v in x)}}};\n"
+
     rows = []
     with open(path, "w") as f:
-        f.write("// Written by casadi_codegen.py: q of the wide state, per arm.\n")
-        for robot in ARMS:
-            model = pin.buildModelFromUrdf(os.path.join(ROBOTS_DIR, f"{robot}.urdf"))
-            q, _, _ = state(model, "wide")
-            f.write(f"static const double {robot}_q_wide[] = {{{', '.join(repr(float(x)) for x in q)}}};\n")
+        f.write("// Written by casadi_codegen.py: each robot's state (casadi_codegen.state).\n")
+        for robot in ROBOTS:
+            model = load(robot)
+            q, v, a = state(model, "small")
+            f.write(array(f"{robot}_q", q) + array(f"{robot}_v", v) + array(f"{robot}_a", a))
+            f.write(array(f"{robot}_q_wide", state(model, "wide")[0]))
             rows.append(f'  {{"{robot}", {robot}_q_wide}}')
         f.write("static const struct { const char* robot; const double* q; } WIDE[] = {\n")
         f.write(",\n".join(rows) + "\n};\n")
@@ -116,25 +136,46 @@ ANGLES = {
 }
 
 
+# A free flyer's pose in both states: its position, and its orientation as
+# the unit quaternion (x, y, z, w) of these numbers.
+ROOT_POSITION = [0.1, -0.2, 0.3]
+ROOT_QUATERNION = [0.1, -0.15, 0.25, 0.95]
+
+
 def state(model, which="small"):
-    """q (cos and sin of a continuous joint's angle), v, a = tau, as the peers' state."""
+    """q (cos and sin of a continuous joint's angle), v, a = tau, as the peers' state.
+
+    On a free flyer, the joints after it count from k = 0 for their angles
+    and a = tau (zero on the root: forces on an unactuated base, and an
+    acceleration that, with these v, is not zero in our convention); v
+    counts over every velocity, the root's first."""
     q = np.zeros(model.nq)
+    root = 6 if model.joints[1].shortname() == "JointModelFreeFlyer" else 0
     for j in range(1, model.njoints):
         joint = model.joints[j]
-        angle = ANGLES[which](joint.idx_v)
+        if joint.shortname() == "JointModelFreeFlyer":
+            quat = np.array(ROOT_QUATERNION)
+            q[joint.idx_q:joint.idx_q + 7] = np.concatenate([ROOT_POSITION, quat / np.linalg.norm(quat)])
+            continue
+        angle = ANGLES[which](joint.idx_v - root)
         if joint.nq == 2:
             q[joint.idx_q], q[joint.idx_q + 1] = np.cos(angle), np.sin(angle)
         else:
             q[joint.idx_q] = angle
     k = np.arange(model.nv)
-    return q, 0.5 - 0.21 * k, 0.1 * k - 0.2
+    a = np.where(k < root, 0.0, 0.1 * (k - root) - 0.2)
+    return q, 0.5 - 0.21 * k, a
 
 
-def reference(robot, which="small"):
-    """Plain numeric Pinocchio at the state: {(quantity, output): array}, matrices row-major."""
-    model = pin.buildModelFromUrdf(os.path.join(ROBOTS_DIR, f"{robot}.urdf"))
+def reference(robot, which="small", side="casadi"):
+    """Plain numeric Pinocchio at the state: {(quantity, output): array},
+    matrices row-major; for our side of a floating robot, in our convention
+    (floating_reference)."""
+    model = load(robot)
     data = model.createData()
     q, v, a = state(model, which)
+    if side == "lagrange" and robot in FLOATING:
+        return Mapped(model).reference(q, v, a, a)
     ref = {}
     M = pin.crba(model, data, q).copy()
     M = np.triu(M) + np.triu(M, 1).T
@@ -156,7 +197,7 @@ def reference(robot, which="small"):
     return {key: np.asarray(x).reshape(-1) for key, x in ref.items()}
 
 
-def check(values, label, which="small"):
+def check(values, label, which="small", side="casadi"):
     """Prints each output's max difference from numeric Pinocchio, absolute and
     relative to the output's largest entry (or 1); True if every relative one
     is within 1e-10 (M⁻¹ of an arm with a light wrist has entries in the
@@ -164,7 +205,7 @@ def check(values, label, which="small"):
     ok = True
     print(f"| {label}: robot | quantity | output | max abs difference from pin | / max(1, max |pin|) |")
     print("|---|---|---|---|---|")
-    refs = {robot: reference(robot, which) for robot in ARMS}
+    refs = {robot: reference(robot, which, side) for robot in ROBOTS}
     for (robot, quantity, output), x in sorted(values.items()):
         ref = refs[robot].get((quantity, output))
         if ref is None:
@@ -183,7 +224,7 @@ def main():
     ok = True
     for which in ANGLES:
         text = subprocess.run([harness, "values", which], check=True, capture_output=True, text=True).stdout
-        ok &= check(parse(text), f"CasADi C, {which} state", which)
+        ok &= check(parse(text), f"CasADi C, {which} state", which, "casadi")
     sys.exit(0 if ok else 1)
 
 

@@ -18,7 +18,7 @@ import re
 import statistics
 import sys
 
-from casadi_codegen import ARMS, check, parse
+from casadi_codegen import ROBOTS, check, parse
 
 # (CasADi function, our quantity, what is compared)
 ROWS = [
@@ -55,9 +55,9 @@ def main():
     folder = sys.argv[1]
     which = sys.argv[2] if len(sys.argv) > 2 else "small"
     c_runs, r_runs = rounds(folder, "casadi", which), rounds(folder, "lagrange", which)
-    ok = check(parse(c_runs[0]), f"CasADi C, {which} state", which)
+    ok = check(parse(c_runs[0]), f"CasADi C, {which} state", which, "casadi")
     print()
-    ok &= check(parse(r_runs[0]), f"lagrange, {which} state", which)
+    ok &= check(parse(r_runs[0]), f"lagrange, {which} state", which, "lagrange")
     print()
     c_times, r_times = [times(t) for t in c_runs], [times(t) for t in r_runs]
     pairs = list(zip(c_times, r_times))
@@ -65,7 +65,7 @@ def main():
           "(median of the rounds' ratios; > 1: lagrange faster)\n")
     print("| arm | quantity (CasADi C / lagrange) | CasADi C (ns) | lagrange (ns) | ratio |")
     print("|---|---|---:|---:|---:|")
-    for robot in ARMS:
+    for robot in ROBOTS:
         for cq, rq, label in ROWS:
             cs = [c[robot, cq] for c, _ in pairs if (robot, cq) in c]
             rs = [r[robot, rq] for _, r in pairs if (robot, rq) in r]

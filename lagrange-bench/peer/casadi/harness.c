@@ -1,9 +1,10 @@
-/* Calls each function trace.cpp generated (casadi_gen.c) at its arm's state
- * and prints, per function, one `value` line per output (row-major) and one
+/* Calls each function trace.cpp generated (casadi_gen.c) at its robot's
+ * state and prints, per function, one `value` line per output (row-major) and one
  * `time` line: the median over batches of the mean ns of one call in a batch
  * (batches of about 2 ms, after one to warm up), the loop of
  * examples/casadi_peer.rs on our side. `harness values` prints the values
- * alone; `harness [values] wide` uses the wide state (casadi_wide.h).
+ * alone; `harness [values] wide` uses the wide state, `harness solo12`
+ * runs one robot. The states are casadi_codegen.py's (casadi_states.h).
  * Built by casadi_codegen.py with gcc -O3 -march=native. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,14 +31,28 @@ typedef struct {
   Output out[3];
 } Entry;
 
+#include "casadi_states.h"
 #include "casadi_registry.h"
-#include "casadi_wide.h"
 
-/* The wide state's q of an arm (casadi_wide.h), or NULL. */
+/* The wide state's q of a robot (casadi_states.h), or NULL. */
 static const double* wide_q(const char* robot) {
   for (size_t i = 0; i < sizeof WIDE / sizeof WIDE[0]; ++i)
     if (strcmp(WIDE[i].robot, robot) == 0) return WIDE[i].q;
   return NULL;
+}
+
+/* Whether a robot of the registry has this name. */
+static int known(const char* name) {
+  for (size_t e = 0; e < sizeof ENTRIES / sizeof ENTRIES[0]; ++e)
+    if (strcmp(ENTRIES[e].robot, name) == 0) return 1;
+  return 0;
+}
+
+/* Whether the command line names this robot. */
+static int listed(const char* robot, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (strcmp(argv[i], robot) == 0) return 1;
+  return 0;
 }
 
 #define BATCHES 31
@@ -57,21 +72,26 @@ static int compare(const void* x, const void* y) {
 static void clobber(void) { __asm__ volatile("" ::: "memory"); }
 
 int main(int argc, char** argv) {
-  /* Arguments: `values` (print the values, time nothing) and `wide` (the
-   * wide state's q instead of the registry's small one), in any order. */
-  int time_them = 1, wide = 0;
+  /* Arguments: `values` (print the values, time nothing), `wide` (the
+   * wide state's q instead of the small one) or `small` (the default), and
+   * robots' names (only those; every robot without one), in any order. */
+  int time_them = 1, wide = 0, named = 0;
   for (int i = 1; i < argc; ++i) {
     if (strcmp(argv[i], "values") == 0) {
       time_them = 0;
     } else if (strcmp(argv[i], "wide") == 0) {
       wide = 1;
-    } else {
-      fprintf(stderr, "harness: unknown argument %s (values, wide)\n", argv[i]);
-      return 2;
+    } else if (strcmp(argv[i], "small") != 0) {
+      if (!known(argv[i])) {
+        fprintf(stderr, "harness: unknown argument %s (values, small, wide or a robot)\n", argv[i]);
+        return 2;
+      }
+      named = 1;
     }
   }
   for (size_t e = 0; e < sizeof ENTRIES / sizeof ENTRIES[0]; ++e) {
     const Entry* f = &ENTRIES[e];
+    if (named && !listed(f->robot, argc, argv)) continue;
     casadi_int sz_arg, sz_res, sz_iw, sz_w;
     f->work(&sz_arg, &sz_res, &sz_iw, &sz_w);
     const casadi_real** arg = calloc(sz_arg > 3 ? sz_arg : 3, sizeof *arg);

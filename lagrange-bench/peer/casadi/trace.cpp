@@ -4,7 +4,8 @@
 // as C by CasADi's CodeGenerator, common subexpressions eliminated
 // (Function option `cse`). Per arm of robots/ (the models as
 // ../pinocchio/urdf_model.py writes them; not the Panda, whose mimic finger
-// Pinocchio reads as a second joint), the functions
+// Pinocchio reads as a second joint) and per robot on a free-flyer root
+// (its FLOATING: Solo 12), the functions
 //   <arm>_crba_nle(q, v)             -> M (CRBA, both triangles), h (NLE)
 //   <arm>_rnea(q, v, a)              -> tau
 //   <arm>_aba(q, v, tau)             -> ddq
@@ -15,10 +16,10 @@
 //                                       plugin is not defined for SX)
 //   <arm>_aba_derivatives(q, v, tau) -> ddq_dq, ddq_dv, Minv
 //   <arm>_rnea_derivatives(q, v, a)  -> dtau_dq, dtau_dv
-// in OUT/casadi_gen.c (with its header), and OUT/casadi_registry.h: the
-// table harness.c walks, with each arm's numeric state
-// q_k = 0.3 - 0.17 k (a continuous joint's q is their cos and sin),
-// v_k = 0.5 - 0.21 k, a_k = tau_k = 0.1 k - 0.2.
+// (chol_qr not on a floating root) in OUT/casadi_gen.c (with its header),
+// and OUT/casadi_registry.h: the table harness.c walks, each row naming its
+// robot's state arrays <robot>_q, _v, _a, which casadi_codegen.py writes
+// into casadi_states.h.
 // Built and run by casadi_codegen.py.
 #include <pinocchio/autodiff/casadi.hpp>
 #include <pinocchio/multibody.hpp>
@@ -95,11 +96,73 @@ static SX cholesky_solve(const SX& M, const SX& b) {
   return SX::vertcat(x);
 }
 
-struct Entry {
-  std::string function;
-  std::vector<std::string> outputs;
-  std::vector<std::pair<int, int>> shapes;
-};
+// Traces one robot's functions into `gen`, one registry row each. `full`
+// adds chol_qr (CasADi's symbolic QR solve, which on Solo 12's 18 × 18 M is
+// too large to be worth tracing).
+static void trace(const Robot& robot, bool full, casadi::CodeGenerator& gen,
+                  std::vector<std::string>& rows) {
+  const std::string name = robot.name;
+  casadi::Dict fopts{{"cse", true}};
+  const pin::Model model = robot.build();
+  const ADModel ad = model.cast<SX>();
+  const int nq = model.nq, nv = model.nv;
+  const SX cq = SX::sym("q", nq), cv = SX::sym("v", nv), ca = SX::sym("a", nv);
+  const VecX q_ad = from_sx(cq), v_ad = from_sx(cv), a_ad = from_sx(ca);
+
+  auto add = [&](const std::string& quantity, const std::vector<SX>& in,
+                 const std::vector<std::string>& in_names, const std::vector<SX>& outs,
+                 const std::vector<std::string>& out_names) {
+    const std::string fn = name + "_" + quantity;
+    casadi::Function f(fn, in, outs, in_names, out_names, fopts);
+    gen.add(f);
+    std::ostringstream row;
+    row << "  {\"" << name << "\", \"" << quantity << "\", " << fn << ", " << fn << "_work, "
+        << name << "_q, " << name << "_v, " << name << "_a, " << in.size() << ", " << outs.size()
+        << ", {";
+    for (size_t i = 0; i < outs.size(); ++i)
+      row << (i ? ", " : "") << "{\"" << out_names[i] << "\", " << outs[i].size1() << ", "
+          << outs[i].size2() << "}";
+    row << "}}";
+    rows.push_back(row.str());
+  };
+
+  {
+    ADData data(ad);
+    pin::crba(ad, data, q_ad);
+    const MatX M = symmetric(data.M);
+    const VecX h = pin::nonLinearEffects(ad, data, q_ad, v_ad);
+    add("crba_nle", {cq, cv}, {"q", "v"}, {to_sx(M), to_sx(h)}, {"M", "h"});
+    const SX b = ca - to_sx(h);
+    add("chol", {cq, cv, ca}, {"q", "v", "tau"}, {cholesky_solve(to_sx(M), b)}, {"ddq"});
+    if (full)
+      add("chol_qr", {cq, cv, ca}, {"q", "v", "tau"}, {SX::densify(SX::solve(to_sx(M), b))},
+          {"ddq"});
+  }
+  {
+    ADData data(ad);
+    const VecX tau = pin::rnea(ad, data, q_ad, v_ad, a_ad);
+    add("rnea", {cq, cv, ca}, {"q", "v", "a"}, {to_sx(tau)}, {"tau"});
+  }
+  {
+    ADData data(ad);
+    const VecX ddq = pin::aba(ad, data, q_ad, v_ad, a_ad);
+    add("aba", {cq, cv, ca}, {"q", "v", "tau"}, {to_sx(ddq)}, {"ddq"});
+  }
+  {
+    ADData data(ad);
+    pin::computeABADerivatives(ad, data, q_ad, v_ad, a_ad);
+    add("aba_derivatives", {cq, cv, ca}, {"q", "v", "tau"},
+        {to_sx(data.ddq_dq), to_sx(data.ddq_dv), to_sx(symmetric(data.Minv))},
+        {"ddq_dq", "ddq_dv", "Minv"});
+  }
+  {
+    ADData data(ad);
+    pin::computeRNEADerivatives(ad, data, q_ad, v_ad, a_ad);
+    add("rnea_derivatives", {cq, cv, ca}, {"q", "v", "a"},
+        {to_sx(data.dtau_dq), to_sx(data.dtau_dv)}, {"dtau_dq", "dtau_dv"});
+  }
+  std::fprintf(stderr, "traced %s (nq %d, nv %d)\n", name.c_str(), nq, nv);
+}
 
 int main(int argc, char** argv) {
   if (argc != 2) {
@@ -107,107 +170,16 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string out = argv[1];
-  casadi::Dict fopts{{"cse", true}};
   casadi::CodeGenerator gen("casadi_gen.c", casadi::Dict{{"with_header", true}});
-  std::ostringstream registry;
-  registry << "// Written by trace.cpp: one row per generated function.\n";
-  std::ostringstream states;
   std::vector<std::string> rows;
-  for (const Robot& robot : ROBOTS) {
-    const std::string name = robot.name;
-    if (name == "panda") continue;
-    const pin::Model model = robot.build();
-    const ADModel ad = model.cast<SX>();
-    const int nq = model.nq, nv = model.nv;
-
-    // The numeric state, written for the harness.
-    std::vector<double> q(nq), v(nv), a(nv);
-    for (pin::JointIndex j = 1; j < (pin::JointIndex)model.njoints; ++j) {
-      const auto& joint = model.joints[j];
-      const double angle = 0.3 - 0.17 * joint.idx_v();
-      if (joint.nq() == 2) {
-        q[joint.idx_q()] = std::cos(angle);
-        q[joint.idx_q() + 1] = std::sin(angle);
-      } else {
-        q[joint.idx_q()] = angle;
-      }
-    }
-    for (int k = 0; k < nv; ++k) {
-      v[k] = 0.5 - 0.21 * k;
-      a[k] = 0.1 * k - 0.2;
-    }
-    auto array = [&](const char* what, const std::vector<double>& x) {
-      states << "static const double " << name << "_" << what << "[] = {";
-      char buf[40];
-      for (size_t i = 0; i < x.size(); ++i) {
-        std::snprintf(buf, sizeof buf, "%.17g", x[i]);
-        states << (i ? ", " : "") << buf;
-      }
-      states << "};\n";
-    };
-    array("q", q);
-    array("v", v);
-    array("a", a);
-
-    const SX cq = SX::sym("q", nq), cv = SX::sym("v", nv), ca = SX::sym("a", nv);
-    const VecX q_ad = from_sx(cq), v_ad = from_sx(cv), a_ad = from_sx(ca);
-
-    auto add = [&](const std::string& quantity, const std::vector<SX>& in,
-                   const std::vector<std::string>& in_names, const std::vector<SX>& outs,
-                   const std::vector<std::string>& out_names) {
-      const std::string fn = name + "_" + quantity;
-      casadi::Function f(fn, in, outs, in_names, out_names, fopts);
-      gen.add(f);
-      std::ostringstream row;
-      row << "  {\"" << name << "\", \"" << quantity << "\", " << fn << ", " << fn << "_work, "
-          << name << "_q, " << name << "_v, " << name << "_a, " << in.size() << ", " << outs.size()
-          << ", {";
-      for (size_t i = 0; i < outs.size(); ++i)
-        row << (i ? ", " : "") << "{\"" << out_names[i] << "\", " << outs[i].size1() << ", "
-            << outs[i].size2() << "}";
-      row << "}}";
-      rows.push_back(row.str());
-    };
-
-    {
-      ADData data(ad);
-      pin::crba(ad, data, q_ad);
-      const MatX M = symmetric(data.M);
-      const VecX h = pin::nonLinearEffects(ad, data, q_ad, v_ad);
-      add("crba_nle", {cq, cv}, {"q", "v"}, {to_sx(M), to_sx(h)}, {"M", "h"});
-      const SX b = ca - to_sx(h);
-      add("chol", {cq, cv, ca}, {"q", "v", "tau"}, {cholesky_solve(to_sx(M), b)}, {"ddq"});
-      add("chol_qr", {cq, cv, ca}, {"q", "v", "tau"}, {SX::densify(SX::solve(to_sx(M), b))},
-          {"ddq"});
-    }
-    {
-      ADData data(ad);
-      const VecX tau = pin::rnea(ad, data, q_ad, v_ad, a_ad);
-      add("rnea", {cq, cv, ca}, {"q", "v", "a"}, {to_sx(tau)}, {"tau"});
-    }
-    {
-      ADData data(ad);
-      const VecX ddq = pin::aba(ad, data, q_ad, v_ad, a_ad);
-      add("aba", {cq, cv, ca}, {"q", "v", "tau"}, {to_sx(ddq)}, {"ddq"});
-    }
-    {
-      ADData data(ad);
-      pin::computeABADerivatives(ad, data, q_ad, v_ad, a_ad);
-      add("aba_derivatives", {cq, cv, ca}, {"q", "v", "tau"},
-          {to_sx(data.ddq_dq), to_sx(data.ddq_dv), to_sx(symmetric(data.Minv))},
-          {"ddq_dq", "ddq_dv", "Minv"});
-    }
-    {
-      ADData data(ad);
-      pin::computeRNEADerivatives(ad, data, q_ad, v_ad, a_ad);
-      add("rnea_derivatives", {cq, cv, ca}, {"q", "v", "a"},
-          {to_sx(data.dtau_dq), to_sx(data.dtau_dv)}, {"dtau_dq", "dtau_dv"});
-    }
-    std::fprintf(stderr, "traced %s (nq %d, nv %d)\n", name.c_str(), nq, nv);
-  }
+  for (const Robot& robot : ROBOTS)
+    if (std::string(robot.name) != "panda") trace(robot, true, gen, rows);
+  for (const Robot& robot : FLOATING) trace(robot, false, gen, rows);
   gen.generate(out + "/");
   std::ofstream reg(out + "/casadi_registry.h");
-  reg << registry.str() << states.str() << "static const Entry ENTRIES[] = {\n";
+  reg << "// Written by trace.cpp: one row per generated function (the states'\n"
+      << "// arrays are casadi_codegen.py's, in casadi_states.h).\n"
+      << "static const Entry ENTRIES[] = {\n";
   for (size_t i = 0; i < rows.size(); ++i) reg << rows[i] << (i + 1 < rows.size() ? ",\n" : "\n");
   reg << "};\n";
   return 0;

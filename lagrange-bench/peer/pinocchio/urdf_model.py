@@ -5,7 +5,8 @@ printed to 17 digits, and the tool frame (an operational frame on its joint at
 the file's placement). The PyPI wheel `pin` ships the URDF parser's library
 but not urdfdom's headers, so `urdf.cpp` builds the models this way. `ROBOTS`
 lists each model's function, its arm's coordinates (the Panda's fingers are
-not) and its tool frame.
+not) and its tool frame; `FLOATING` the same for robots on a free-flyer
+root (Solo 12), read with `pin.JointModelFreeFlyer()` as their root.
 
     python3 urdf_model.py ROBOTS_DIR OUT.hpp
 """
@@ -27,6 +28,8 @@ def joint(j):
               "JointModelRUBX", "JointModelRUBY", "JointModelRUBZ"}
     if name in simple:
         return f"pin::{name}()"
+    if name == "JointModelFreeFlyer":
+        return "pin::JointModelFreeFlyer()"
     if name in ("JointModelRevoluteUnaligned", "JointModelPrismaticUnaligned"):
         return f"pin::{name}(Eigen::Vector3d({vec(j.extract().axis)}))"
     raise SystemExit(f"joint type {name} not written")
@@ -65,12 +68,20 @@ ROBOTS = [
     ("z1", "z1.urdf", 7, "gripperStator"),
     ("xarm7", "xarm7.urdf", 7, "link_eef"),
 ]
+# The same for robots on a free-flyer root (their `arm`: the joints after it).
+FLOATING = [
+    ("solo12", "solo12.urdf", 12, "FL_FOOT"),
+]
 
 robots, target = sys.argv[1], sys.argv[2]
 with open(target, "w") as f:
     f.write("// Written by urdf_model.py from the URDF files in robots/.\n")
     for fn, file, _, frame in ROBOTS:
         f.write(model_function(fn, pin.buildModelFromUrdf(f"{robots}/{file}"), frame) + "\n\n")
+    for fn, file, _, frame in FLOATING:
+        model = pin.buildModelFromUrdf(f"{robots}/{file}", pin.JointModelFreeFlyer())
+        f.write(model_function(fn, model, frame) + "\n\n")
     f.write("struct Robot { const char* name; pin::Model (*build)(); int arm; const char* tool; };\n")
-    rows = ",\n".join(f'  {{"{fn}", {fn}, {arm}, "{frame}"}}' for fn, _, arm, frame in ROBOTS)
-    f.write(f"static const Robot ROBOTS[] = {{\n{rows}}};\n")
+    for table, robots_of in (("ROBOTS", ROBOTS), ("FLOATING", FLOATING)):
+        rows = ",\n".join(f'  {{"{fn}", {fn}, {arm}, "{frame}"}}' for fn, _, arm, frame in robots_of)
+        f.write(f"static const Robot {table}[] = {{\n{rows}}};\n")
