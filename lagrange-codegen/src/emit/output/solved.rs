@@ -21,12 +21,12 @@ use crate::mechanics::Model;
 /// long is tens of kilobytes of code, beyond an instruction cache, and its
 /// symbolic solves thousands of operations that the loops do from a few
 /// hundred bytes. Measured (BENCHMARKS, "The derivatives factored at run
-/// time"), the factored form against the one program: the Z1's (8,591
-/// operations) 1.9× as fast, the xArm7's (9,389) 1.15×, the Panda's 1.2×;
-/// the Kinova's (6,311) 0.9× and the UR5's (3,671) 0.7×, so these stay one
-/// program. Only where M has at most as many zero entries as it has rows
-/// (`mostly_dense`). Not beside `emit(batched)`, whose lanes run the one
-/// program.
+/// time" and "Solo 12 beside the traced C"), the factored form against the
+/// one program: the Z1's (8,591 operations) 1.9× as fast, the xArm7's
+/// (9,389) 1.15×, the Panda's 1.2×, Solo 12's (36,807, a branched M with
+/// 114 zeros of 324) 1.2×; the Kinova's (6,311) 0.9× and the UR5's (3,671)
+/// 0.7×, so these stay one program. Not beside `emit(batched)`, whose lanes
+/// run the one program.
 pub const FACTORED_ABOVE_OPS: usize = 8000;
 
 pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, system: &System) -> Pieces {
@@ -36,13 +36,12 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, system: &System) -> 
     // `emit(batched)` runs the one program in lanes, bit for bit the scalar
     // one: beside it the scalar form stays that program.
     let batched = system.extras.iter().any(|(_, x)| *x == Extra::Batched);
-    let dense = mostly_dense(model);
     // Counted only where it can decide: the program is lowered again below.
     let long = || {
         let ops = lagrange_symbolic::Program::new(&model.ctx, &outputs(d)).op_count();
         ops.total() > FACTORED_ABOVE_OPS
     };
-    if !batched && dense && long() {
+    if !batched && long() {
         return factored(f);
     }
     let Frame { s, n, .. } = f;
@@ -93,17 +92,6 @@ pub(super) fn pieces(e: &Emitter, f: &Frame, model: &Model, system: &System) -> 
         hoisted: chunks,
         ..Pieces::default()
     }
-}
-
-/// Whether M has at most as many zero entries as it has rows, so that a
-/// dense factorisation at run time gives up little: a chain's M has none,
-/// the Panda's four (of 64). A branched tree's M is sparse by its branches
-/// (Solo 12: 114 zeros of 324, the legs coupled only through the base),
-/// which the program's LᵀDL keeps and a dense factorisation would not:
-/// Solo 12's program (36,807 operations) ran 0.85–0.96× as fast factored.
-fn mostly_dense(model: &Model) -> bool {
-    let zeros = model.motion.mass.iter().flatten();
-    zeros.filter(|&&m| model.ctx.is_zero(m)).count() <= model.dof()
 }
 
 /// q̈, ∂q̈/∂q, ∂q̈/∂q̇, M⁻¹ and the pivots, in the program's order.
