@@ -246,3 +246,24 @@ fn the_unchecked_lanes_take_states_lane_by_lane() {
         assert_eq!(ratio.lane(k).to_bits(), r.to_bits());
     }
 }
+
+/// A setting that is not valid (a negative singular tolerance) is every
+/// state's error, as the scalar reading reports it.
+#[test]
+fn an_invalid_setting_is_every_state_s_error() {
+    let sys = Ur5 {};
+    let (q, v, tau) = states::<6, 6>();
+    let dynamics = lagrange::Dynamics::new(&sys).with_singular_tolerance(-1.0);
+    let batched = dynamics
+        .batched_accelerations(0.0, &q, &v, &tau)
+        .expect("one of each per state");
+    let scalar = dynamics
+        .acceleration(0.0, &q[0], &v[0])
+        .expect_err("refused");
+    assert_eq!(batched.len(), STATES);
+    for state in batched {
+        let error = state.expect_err("refused");
+        assert!(matches!(error, Error::Settings(_)), "{error:?}");
+        assert_eq!(error.to_string(), scalar.to_string());
+    }
+}

@@ -7,9 +7,9 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::derivatives::{AccelerationDerivatives, Differentiable};
-use super::dynamics::{Dynamics, all_finite, on_sphere};
+use super::dynamics::{Dynamics, all_finite, on_sphere, refuse_constrained};
 use super::forcing::NoForcing;
-use crate::error::{Error, SettingsError, check_finite_inputs};
+use crate::error::{Error, SettingsError, check_finite_inputs, check_tolerance};
 use crate::numeric::lanes::F64x4;
 use crate::system::Lagrangian;
 
@@ -55,7 +55,16 @@ pub struct LaneDerivatives<const N: usize> {
 impl<const N: usize> LaneDerivatives<N> {
     /// The derivatives in lane `k` (panics for `k ≥ 4`).
     pub fn lane(&self, k: usize) -> AccelerationDerivatives<f64, N> {
-        let matrix = |m: &[[F64x4; N]; N]| SMatrix::from_fn(|i, j| m[j][i].lane(k));
+        // Column by column into nalgebra's column-major storage.
+        let matrix = |m: &[[F64x4; N]; N]| {
+            let mut columns = [[0.0; N]; N];
+            for (column, lanes) in columns.iter_mut().zip(m) {
+                for (x, lanes) in column.iter_mut().zip(lanes) {
+                    *x = lanes.lane_in_place(k);
+                }
+            }
+            SMatrix::from_data(nalgebra::ArrayStorage(columns))
+        };
         AccelerationDerivatives {
             acceleration: unpack(&self.acceleration, k),
             dq: matrix(&self.dq),
@@ -151,11 +160,16 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
         self.in_lanes(t, (q, v, tau), program, |(d, ratio), k, (q, v)| {
             self.pivot_check(t, q, ratio.lane(k))?;
             let d = d.lane(k);
-            let parts = [d.acceleration.as_slice(), d.dq.as_slice(), d.dv.as_slice()];
-            for part in parts.into_iter().chain([d.dtau.as_slice()]) {
-                finite(part, t, q, v)?;
+            let parts = [d.dq.as_slice(), d.dv.as_slice(), d.dtau.as_slice()];
+            let all = parts
+                .into_iter()
+                .fold(all_finite(d.acceleration.as_slice()), |all, part| {
+                    all & all_finite(part)
+                });
+            match all {
+                true => Ok(d),
+                false => Err(Error::non_finite(t, q, v)),
             }
-            Ok(d)
         })
     }
 
@@ -182,33 +196,71 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
             let owner = "batched q̈";
             return Err(SettingsError::Lengths { owner, what }.into());
         }
+        // The checks that do not depend on the state, once (see `group`).
+        refuse_constrained::<S, f64, N, Q>();
+        let tolerance = self.singular_tolerance();
+        let settled =
+            t.is_finite() && check_tolerance("Dynamics", "singular tolerance", tolerance).is_ok();
         let mut out = Vec::with_capacity(q.len());
         for start in (0..q.len()).step_by(F64x4::LANES) {
             let end = (start + F64x4::LANES).min(q.len());
-            // Spare lanes repeat the last state; a failed state's lane runs
-            // on what it was given, and lanes do not mix.
-            let at = |k: usize| (start + k).min(end - 1);
-            let checked: [Option<Checked<N, Q>>; 4] = core::array::from_fn(|k| {
-                let i = start + k;
-                (i < end).then(|| self.check_state(t, &q[i], &v[i], &tau[i]))
-            });
-            let unit = |k: usize| match &checked[at(k) - start] {
-                Some(Ok(unit)) => *unit,
-                _ => q[at(k)],
-            };
-            let units: [SVector<f64, Q>; 4] = core::array::from_fn(unit);
-            let results = program(
-                &pack(|k| &units[k]),
-                &pack(|k| &v[at(k)]),
-                &pack(|k| &tau[at(k)]),
-                F64x4::splat(t),
-            );
-            for (k, state) in checked.into_iter().flatten().enumerate() {
-                let i = start + k;
-                out.push(state.and_then(|_| read(&results, k, (&q[i], &v[i]))));
-            }
+            let states = (&q[start..end], &v[start..end], &tau[start..end]);
+            self.group(t, states, settled, (&program, &read), &mut out);
         }
         Ok(out)
+    }
+
+    /// One call of `program` on at most four states, each state's result
+    /// read into `out`. Where the settings passed (`settled`) and every
+    /// entry of the group is finite, a state needs nothing more than the
+    /// scalar reading's quaternions put on the unit sphere, and the checks
+    /// cost a fraction of the program; otherwise each state is checked as
+    /// the scalar reading checks it (a per-state `Result` built and moved,
+    /// which had cost as much as the UR5's program), its error its own.
+    #[allow(clippy::type_complexity)]
+    fn group<const N: usize, const Q: usize, P, R>(
+        &self,
+        t: f64,
+        (q, v, tau): States<'_, N, Q>,
+        settled: bool,
+        (program, read): (
+            &impl Fn(&[F64x4; Q], &[F64x4; N], &[F64x4; N], F64x4) -> P,
+            &impl Fn(&P, usize, (&SVector<f64, Q>, &SVector<f64, N>)) -> Result<R, Error>,
+        ),
+        out: &mut Vec<Result<R, Error>>,
+    ) where
+        S: Lagrangian<f64, N, Q>,
+    {
+        // Spare lanes repeat the last state; a failed state's lane runs on
+        // what it was given, and lanes do not mix.
+        let at = |k: usize| k.min(q.len() - 1);
+        let run = |units: [SVector<f64, Q>; 4]| {
+            let (v, tau) = (pack(|k| &v[at(k)]), pack(|k| &tau[at(k)]));
+            program(&pack(|k| &units[k]), &v, &tau, F64x4::splat(t))
+        };
+        let finite = |(q, (v, tau)): (&SVector<f64, Q>, (&SVector<f64, N>, _))| {
+            let parts = [q.as_slice(), v.as_slice(), SVector::as_slice(tau)];
+            parts
+                .into_iter()
+                .fold(true, |all, part| all & all_finite(part))
+        };
+        if settled && q.iter().zip(v.iter().zip(tau)).all(finite) {
+            let results = run(core::array::from_fn(|k| {
+                on_sphere::<S, f64, N, Q>(&q[at(k)])
+            }));
+            out.extend((0..q.len()).map(|k| read(&results, k, (&q[k], &v[k]))));
+            return;
+        }
+        let checked: [Option<Checked<N, Q>>; 4] = core::array::from_fn(|k| {
+            (k < q.len()).then(|| self.check_state(t, &q[k], &v[k], &tau[k]))
+        });
+        let results = run(core::array::from_fn(|k| match &checked[at(k)] {
+            Some(Ok(unit)) => *unit,
+            _ => q[at(k)],
+        }));
+        for (k, state) in checked.into_iter().flatten().enumerate() {
+            out.push(state.and_then(|_| read(&results, k, (&q[k], &v[k]))));
+        }
     }
 
     /// The scalar reading's checks of one state, in its order: t, q and v
@@ -270,7 +322,7 @@ fn pack<'a, const K: usize>(lane: impl Fn(usize) -> &'a SVector<f64, K>) -> [F64
 
 /// Lane `k` of a vector of lanes.
 fn unpack<const K: usize>(lanes: &[F64x4; K], k: usize) -> SVector<f64, K> {
-    SVector::from_fn(|i, _| lanes[i].lane(k))
+    SVector::from_fn(|i, _| lanes[i].lane_in_place(k))
 }
 
 /// q̈ of `sys` at each state (`q[i]`, `v[i]`, `tau[i]`) at time `t`, four

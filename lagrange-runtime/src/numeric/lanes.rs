@@ -52,6 +52,14 @@ impl F64x4 {
         self.0.as_array()[k]
     }
 
+    /// The value in lane `k` read in place (panics for `k ≥ 4`): one load
+    /// from where the value lies, where [`lane`](Self::lane) of a copy goes
+    /// through a store and a load of the whole register.
+    #[inline(always)]
+    pub(crate) fn lane_in_place(&self, k: usize) -> f64 {
+        self.0.as_array()[k]
+    }
+
     /// `f` applied to each lane.
     #[inline(always)]
     pub fn map(self, f: impl Fn(f64) -> f64) -> Self {
@@ -150,8 +158,15 @@ pub mod func {
     /// the lane an angle sits in).
     #[inline(always)]
     pub fn sin_cos_many<const K: usize>(x: [F64x4; K]) -> ([F64x4; K], [F64x4; K]) {
-        let both = x.map(|x| crate::numeric::sincos::sin_cos_lanes(x.0));
-        (both.map(|(s, _)| F64x4(s)), both.map(|(_, c)| F64x4(c)))
+        // A plain loop: the arrays' `map` is a call the compiler may keep
+        // out of line inside a long program (three calls in the xArm7's,
+        // which ran 17 % slower so).
+        let (mut sin, mut cos) = ([F64x4::splat(0.0); K], [F64x4::splat(0.0); K]);
+        for k in 0..K {
+            let (s, c) = crate::numeric::sincos::sin_cos_lanes(x[k].0);
+            (sin[k], cos[k]) = (F64x4(s), F64x4(c));
+        }
+        (sin, cos)
     }
 
     /// Square root (correctly rounded, as `f64::sqrt`).
