@@ -370,10 +370,6 @@ pub(crate) fn on_sphere<S: Lagrangian<T, N, Q>, T: Real, const N: usize, const Q
     unit
 }
 
-/// Whether every entry is finite. Without a short cut at the first that is
-/// not: no branch per entry, and the compiler takes the entries a vector
-/// register at a time (these are checks of results that are almost always
-/// finite).
 pub(crate) fn all_finite<T: Real>(xs: &[T]) -> bool {
-    xs.iter().fold(true, |all, x| all & x.is_finite())
+    xs.iter().all(|x| x.is_finite())
 }
