@@ -240,9 +240,8 @@ fn identity_or_product<T: Real, const N: usize, const P: usize>(
 /// factorisation M = Lᵀ D L (in the tree's sparsity where M comes from a
 /// kinematic tree), q̈ = M⁻¹(Q − h + τ), the right-hand side's Jacobians at
 /// that q̈ and their solves, sharing their subexpressions. Where that
-/// program would pass 8,000 operations and M has at most as many zero
-/// entries as rows (a seven-joint arm with general axes, the Panda; not a
-/// branched tree) and `emit(batched)` is not asked for, the derive
+/// program would pass 8,000 operations (a seven-joint arm with general
+/// axes, the Panda, Solo 12) and `emit(batched)` is not asked for, the derive
 /// emits this trait as the emitted M, Q − h and Jacobians around M's
 /// factorisation at run time instead (`factored_derivatives`), which
 /// runs faster than so long a straight-line program. Read it through
