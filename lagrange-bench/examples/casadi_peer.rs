@@ -295,6 +295,14 @@ fn main() {
         std::process::exit(2);
     }
     let wide = !flags.is_empty();
+    const ROBOTS: [&str; 6] = ["ur5", "ur10", "kinova", "z1", "xarm7", "solo12"];
+    if let Some(unknown) = named.iter().find(|n| !ROBOTS.contains(&n.as_str())) {
+        eprintln!(
+            "casadi_peer: unknown robot {unknown} (one of {})",
+            ROBOTS.join(", ")
+        );
+        std::process::exit(2);
+    }
     let run = |robot: &str| named.is_empty() || named.iter().any(|n| n == robot);
     if run("ur5") {
         robot::<Ur5, Ur5Articulated, 6, 6>("ur5", &arm_state(wide));
