@@ -18,8 +18,14 @@ Pinocchio functions along δ and v, extrapolated (Richardson) to sixth order,
 which leaves about 1e-12 of the entries' scale: within the comparison's
 check of 1e-10.
 """
+import os
+import sys
+
 import numpy as np
 import pinocchio as pin
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "../pinocchio"))
+from floating import velocity_map  # noqa: E402  (the map tests/floating_bases.rs's data use)
 
 
 def breadth_first(model):
@@ -30,19 +36,6 @@ def breadth_first(model):
     for j in range(2, model.njoints):
         depth[j] = depth[model.parents[j]] + 1
     return sorted(range(model.njoints - 2), key=lambda k: (depth[k + 2], k))
-
-
-def skew(u):
-    return np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
-
-
-def exp_so3(w):
-    """The rotation exp([w]×) (Rodrigues)."""
-    theta = np.linalg.norm(w)
-    if theta < 1e-300:
-        return np.eye(3)
-    k = skew(w / theta)
-    return np.eye(3) + np.sin(theta) * k + (1 - np.cos(theta)) * k @ k
 
 
 class Mapped:
@@ -67,13 +60,7 @@ class Mapped:
         return q_pin, v_pin, pdot_v
 
     def P(self, R):
-        n, nj = self.model.nv, self.nj
-        P = np.zeros((n, n))
-        P[0:3, 0:3] = R.T
-        P[3:6, 3 + nj:] = np.eye(3)
-        for k, p in enumerate(self.order):
-            P[6 + p, 3 + k] = 1.0
-        return P
+        return velocity_map(R, self.order, self.model.nv)
 
     def acceleration(self, pos, R, joints, u, tau):
         q_pin, v_pin, pdot_v = self.to_pin(pos, R, joints, u)
@@ -90,7 +77,7 @@ class Mapped:
         nj, n = self.nj, self.model.nv
 
         def moved(delta, du):
-            return f(pos + delta[0:3], R @ exp_so3(delta[3 + nj:]), joints + delta[3:3 + nj],
+            return f(pos + delta[0:3], R @ pin.exp3(delta[3 + nj:]), joints + delta[3:3 + nj],
                      u + du, extra)
 
         def column(along):

@@ -70,17 +70,26 @@ def states(model, rng):
     return out
 
 
+def velocity_map(R, perm, nv):
+    """P with v_pin = P v: this crate's (ẋ in world axes, joints, ω) to
+    Pinocchio's (root velocity and ω in root axes, joints); this crate's
+    joint k is Pinocchio's `perm[k]`. P is orthogonal."""
+    nj = nv - 6
+    P = np.zeros((nv, nv))
+    P[0:3, 0:3] = R.T
+    P[3:6, 3 + nj:] = np.eye(3)
+    for k, p in enumerate(perm):
+        P[6 + p, 3 + k] = 1.0
+    return P
+
+
 def ours(model, q_pin, v_pin, a_ours, perm):
     """`perm[k]` is Pinocchio's index (after the root) of this crate's joint k."""
     data = model.createData()
     nv, nj = model.nv, model.nv - 6
     x, y, z, w = q_pin[3:7]
     R = pin.Quaternion(w, x, y, z).toRotationMatrix()
-    P = np.zeros((nv, nv))
-    P[0:3, 0:3] = R.T
-    P[3:6, 3 + nj:] = np.eye(3)
-    for k, p in enumerate(perm):
-        P[6 + p, 3 + k] = 1.0
+    P = velocity_map(R, perm, nv)
     v = np.linalg.solve(P, v_pin)
     pdot_v = np.zeros(nv)
     pdot_v[0:3] = -np.cross(v_pin[3:6], v_pin[0:3])
