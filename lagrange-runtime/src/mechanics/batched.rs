@@ -160,12 +160,11 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
         self.in_lanes(t, (q, v, tau), program, |(d, ratio), k, (q, v)| {
             self.pivot_check(t, q, ratio.lane(k))?;
             let d = d.lane(k);
-            let parts = [d.dq.as_slice(), d.dv.as_slice(), d.dtau.as_slice()];
-            let all = parts
-                .into_iter()
-                .fold(all_finite(d.acceleration.as_slice()), |all, part| {
-                    all & all_finite(part)
-                });
+            let (acceleration, dq, dv) =
+                (d.acceleration.as_slice(), d.dq.as_slice(), d.dv.as_slice());
+            let all = [acceleration, dq, dv, d.dtau.as_slice()]
+                .iter()
+                .all(|p| all_finite(p));
             match all {
                 true => Ok(d),
                 false => Err(Error::non_finite(t, q, v)),
@@ -240,9 +239,7 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
         };
         let finite = |(q, (v, tau)): (&SVector<f64, Q>, (&SVector<f64, N>, _))| {
             let parts = [q.as_slice(), v.as_slice(), SVector::as_slice(tau)];
-            parts
-                .into_iter()
-                .fold(true, |all, part| all & all_finite(part))
+            parts.iter().all(|part| all_finite(part))
         };
         if settled && q.iter().zip(v.iter().zip(tau)).all(finite) {
             let results = run(core::array::from_fn(|k| {
