@@ -1,11 +1,12 @@
 //! The program `emit(jacobians)` emits for a system without constraints
 //! (`lagrange::acceleration_derivatives`: M factorised as Lᵀ D L in it, q̈ at
-//! a given τ, its derivatives solved in it) against the run-time path (M's
-//! Cholesky factorisation at run time, `Dynamics::acceleration_derivatives`)
-//! and against central differences of its own q̈, at τ ≠ 0; and its errors.
+//! a given τ, its derivatives solved in it) against M's Cholesky
+//! factorisation here and against central differences of its own q̈, at
+//! τ ≠ 0; `Dynamics::acceleration_derivatives` with a forcing; and their
+//! errors.
 
 use lagrange::prelude::*;
-use lagrange::{Differentiable, Dynamics};
+use lagrange::{Differentiable, Dynamics, Forcing};
 use nalgebra::{SMatrix, SVector};
 
 use crate::floating_bases::Solo12;
@@ -87,10 +88,28 @@ fn arms_at_a_torque_match_their_own_differences() {
     an_arm_at_a_torque("Panda", &Panda {});
 }
 
-/// The emitted program against the run-time path on a floating base, whose
-/// ∂q̈/∂δ is along q ⊕ δ, at τ = 0 (the run-time path's).
+/// A spring on every velocity's direction, ΔQ = −k (v + c), with its own
+/// Jacobians: ∂ΔQ/∂δ = 0, ∂ΔQ/∂v = −k I.
+struct Damper(f64);
+
+impl Forcing<f64, 18, 19> for Damper {
+    fn force(
+        &self,
+        _: f64,
+        _: &SVector<f64, 19>,
+        v: &SVector<f64, 18>,
+    ) -> Result<SVector<f64, 18>, lagrange::Error> {
+        Ok(-(v.add_scalar(0.3)) * self.0)
+    }
+}
+
+/// `Dynamics::acceleration_derivatives` on a floating base (∂q̈/∂δ along
+/// q ⊕ δ), with a forcing and its Jacobians: against M, Q − h and the
+/// right-hand side's Jacobians solved here by nalgebra's Cholesky, an
+/// independent route to the same numbers (the method takes the emitted
+/// program, the forcing's Jacobians through its M⁻¹).
 #[test]
-fn a_floating_base_matches_the_run_time_path() {
+fn a_floating_base_with_a_forcing_matches_a_factorisation_here() {
     let sys = Solo12 {};
     let mut q = SVector::<f64, 19>::from_fn(|k, _| 0.2 - 0.07 * k as f64);
     let quaternion = [0.9, 0.1, -0.3, 0.2];
@@ -99,17 +118,24 @@ fn a_floating_base_matches_the_run_time_path() {
         q[15 + c] = x / norm;
     }
     let v = SVector::<f64, 18>::from_fn(|k, _| 0.4 - 0.05 * k as f64);
-    let emitted = lagrange::acceleration_derivatives(&sys, &q, &v, &SVector::zeros(), 0.0)
-        .expect("a regular state");
+    let k = 0.7;
+    let fv = SMatrix::<f64, 18, 18>::identity() * -k;
     let run = Dynamics::new(&sys)
-        .acceleration_derivatives(0.0, &q, &v, None)
+        .with_forcing(Damper(k))
+        .acceleration_derivatives(0.0, &q, &v, Some((SMatrix::zeros(), fv)))
         .expect("a regular state")
         .expect("emit(jacobians)");
-    assert!(worst(&emitted.acceleration, &run.acceleration) < 1e-12);
+    let (m, rhs) = sys.mass_matrix_and_rhs(&q, &v, 0.0);
+    let chol = m.cholesky().expect("M is positive definite");
+    let acceleration = chol.solve(&(rhs - v.add_scalar(0.3) * k));
+    let (jq, jv) = sys
+        .rhs_jacobians(&q, &v, &acceleration, 0.0)
+        .expect("emit(jacobians)");
+    assert!(worst(&run.acceleration, &acceleration) < 1e-12);
     for (what, a, b) in [
-        ("dq", emitted.dq, run.dq),
-        ("dv", emitted.dv, run.dv),
-        ("dtau", emitted.dtau, run.dtau),
+        ("dq", run.dq, chol.solve(&jq)),
+        ("dv", run.dv, chol.solve(&(jv + fv))),
+        ("dtau", run.dtau, chol.inverse()),
     ] {
         assert!(worst(&a, &b) < 1e-10, "{what}: off by {}", worst(&a, &b));
     }

@@ -61,7 +61,10 @@ where
 
     /// ∂q̈/∂δ, ∂q̈/∂q̇ and ∂q̈/∂τ at (q, v, t), with the forcing's own
     /// Jacobians (∂ΔQ/∂δ, ∂ΔQ/∂v) added when it has any; `Ok(None)` when the
-    /// system does not emit its Jacobians.
+    /// system does not emit its Jacobians. Where the system emits q̈ and its
+    /// derivatives as one program ([`Differentiable`]) they come from it,
+    /// at the forcing's τ, the forcing's Jacobians through its M⁻¹; else
+    /// from M's Cholesky factorisation and [`Lagrangian::rhs_jacobians`].
     ///
     /// # Errors
     /// As [`acceleration`](Self::acceleration); [`Error::NonFiniteState`] for
@@ -77,23 +80,24 @@ where
         S: Lagrangian<T, N, Q>,
         F: Forcing<T, N, Q>,
     {
-        let Some((chol, acceleration, dq, dv)) = self.derivatives(t, q, v, forced)? else {
-            return Ok(None);
+        let d = match self.derivatives(t, q, v, forced)? {
+            Some(Solved::Emitted(d)) => d,
+            Some(Solved::Factorised(chol, acceleration, dq, dv)) => AccelerationDerivatives {
+                acceleration,
+                dq,
+                dv,
+                dtau: chol.solve_columns(SMatrix::identity()),
+            },
+            None => return Ok(None),
         };
-        let dtau = chol.solve_columns(SMatrix::identity());
-        if !all_finite(dtau.as_slice()) {
+        if !all_finite(d.dtau.as_slice()) {
             return Err(Error::non_finite(t, q, v));
         }
-        Ok(Some(AccelerationDerivatives {
-            acceleration,
-            dq,
-            dv,
-            dtau,
-        }))
+        Ok(Some(d))
     }
 
     /// ∂q̈/∂δ and ∂q̈/∂q̇ alone: what a linearisation without inputs reads,
-    /// without forming M⁻¹.
+    /// without forming M⁻¹ where M is factorised at run time.
     ///
     /// # Errors
     /// As [`acceleration_derivatives`](Self::acceleration_derivatives).
@@ -108,47 +112,75 @@ where
         S: Lagrangian<T, N, Q>,
         F: Forcing<T, N, Q>,
     {
-        let found = self.derivatives(t, q, v, forced)?;
-        Ok(found.map(|(_, _, dq, dv)| (dq, dv)))
+        Ok(self.derivatives(t, q, v, forced)?.map(|found| match found {
+            Solved::Emitted(d) => (d.dq, d.dv),
+            Solved::Factorised(_, _, dq, dv) => (dq, dv),
+        }))
     }
 
-    /// M's factorisation (the one q̈ takes), q̈, M⁻¹ J_q and M⁻¹ J_v.
-    #[allow(clippy::type_complexity)]
+    /// q̈, M⁻¹ J_q and M⁻¹ J_v (the forcing's Jacobians added to J), by the
+    /// emitted program where there is one, else by M's factorisation, which
+    /// is handed back for M⁻¹.
     fn derivatives<const N: usize, const Q: usize>(
         &self,
         t: T,
         q: &SVector<T, Q>,
         v: &SVector<T, N>,
         forced: Option<ForceJacobians<T, N>>,
-    ) -> Result<
-        Option<(
-            Cholesky<T, N>,
-            SVector<T, N>,
-            SMatrix<T, N, N>,
-            SMatrix<T, N, N>,
-        )>,
-        Error,
-    >
+    ) -> Result<Option<Solved<T, N>>, Error>
     where
         S: Lagrangian<T, N, Q>,
         F: Forcing<T, N, Q>,
     {
         let (unit, tau) = self.checked(t, q, v)?;
-        let (chol, accel) = self.factorised(t, &unit, v, tau)?;
-        let Some((mut jq, mut jv)) = self.system().rhs_jacobians(&unit, v, &accel, t) else {
-            return Ok(None);
+        let found = match self.system().emitted_derivatives(&unit, v, &tau, t) {
+            Some((mut d, ratio)) => {
+                self.check_pivots(t, (q, &unit), ratio)?;
+                if !all_finite(d.acceleration.as_slice()) {
+                    return Err(Error::non_finite(t, q, v));
+                }
+                if let Some((fq, fv)) = forced {
+                    d.dq += d.dtau * fq;
+                    d.dv += d.dtau * fv;
+                }
+                Solved::Emitted(d)
+            }
+            None => {
+                let (chol, accel) = self.factorised(t, &unit, v, tau)?;
+                let Some((mut jq, mut jv)) = self.system().rhs_jacobians(&unit, v, &accel, t)
+                else {
+                    return Ok(None);
+                };
+                if let Some((fq, fv)) = forced {
+                    jq += fq;
+                    jv += fv;
+                }
+                let (dq, dv) = (chol.solve_columns(jq), chol.solve_columns(jv));
+                Solved::Factorised(chol, accel, dq, dv)
+            }
         };
-        if let Some((fq, fv)) = forced {
-            jq += fq;
-            jv += fv;
-        }
-        let dq = chol.solve_columns(jq);
-        let dv = chol.solve_columns(jv);
+        let (dq, dv) = match &found {
+            Solved::Emitted(d) => (&d.dq, &d.dv),
+            Solved::Factorised(_, _, dq, dv) => (dq, dv),
+        };
         if !(all_finite(dq.as_slice()) && all_finite(dv.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
-        Ok(Some((chol, accel, dq, dv)))
+        Ok(Some(found))
     }
+}
+
+/// q̈ and its derivatives as [`Dynamics::derivatives`] found them.
+enum Solved<T: Real, const N: usize> {
+    /// From the emitted program, M⁻¹ among them.
+    Emitted(AccelerationDerivatives<T, N>),
+    /// From M's factorisation at run time: the factor, q̈, M⁻¹ J_q, M⁻¹ J_v.
+    Factorised(
+        Cholesky<T, N>,
+        SVector<T, N>,
+        SMatrix<T, N, N>,
+        SMatrix<T, N, N>,
+    ),
 }
 
 impl<S, T: Real> Dynamics<'_, S, T, NoForcing> {
