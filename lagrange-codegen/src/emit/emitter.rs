@@ -187,6 +187,10 @@ impl<'a> Emitter<'a> {
         let program = Program::new(ctx, outputs);
         let params = &self.model.variables.parameters;
         let symbol = |s| match ctx.symbol_kind(s) {
+            SymbolKind::Coordinate(i) if !self.lanes => {
+                let i = Literal::usize_unsuffixed(i);
+                quote!(::lagrange::__private::func::apart(q[#i]))
+            }
             SymbolKind::Coordinate(i) => {
                 let i = Literal::usize_unsuffixed(i);
                 quote!(q[#i])

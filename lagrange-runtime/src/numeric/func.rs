@@ -67,6 +67,17 @@ pub fn sin_cos_many<T: Real, const K: usize>(x: [T; K]) -> ([T; K], [T; K]) {
     (x.map(sin), x.map(cos))
 }
 
+/// `x`, read on its own: for `f64`, through a register the compiler cannot
+/// see into, so that neighbouring coordinates stay separate loads (see
+/// [`crate::numeric::sincos`]'s `apart`); any other scalar as it is.
+#[inline(always)]
+pub fn apart<T: Real>(x: T) -> T {
+    if let Some(&value) = (&x as &dyn core::any::Any).downcast_ref::<f64>() {
+        return T::lit(crate::numeric::sincos::apart(value));
+    }
+    x
+}
+
 /// `if test > 0 { positive } else { otherwise }`: the piecewise form of the
 /// description language (comparisons, `sign`, `min`, `max`, `clamp`). Both
 /// values are computed before the choice, so a branch that is not finite

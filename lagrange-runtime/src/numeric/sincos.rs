@@ -110,7 +110,7 @@ fn four_at<const K: usize>(x: &[f64; K], at: usize, (s, c): (&mut [f64; K], &mut
 /// on x86-64 the value is passed on as is.
 #[inline(always)]
 #[cfg_attr(not(target_arch = "x86_64"), allow(unused_mut))]
-fn apart(mut x: f64) -> f64 {
+pub(crate) fn apart(mut x: f64) -> f64 {
     #[cfg(target_arch = "x86_64")]
     // SAFETY: the template is empty (a comment naming the register): no
     // instruction runs, no memory is touched, and the register holds `x`
