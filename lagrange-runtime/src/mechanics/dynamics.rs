@@ -127,7 +127,7 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
         S: Lagrangian<T, N, Q>,
         F: Forcing<T, N, Q>,
     {
-        let (mut unit, mut tau) = (*q, SVector::zeros());
+        let (mut unit, mut tau) = (SVector::zeros(), SVector::zeros());
         self.check_into(t, q, v, (&mut unit, &mut tau))?;
         if let Some(a) = self.articulated(t, &unit, v, &tau)? {
             return Ok(a);
@@ -171,15 +171,15 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
         S: Lagrangian<T, N, Q>,
         F: Forcing<T, N, Q>,
     {
-        let (mut unit, mut tau) = (*q, SVector::zeros());
+        let (mut unit, mut tau) = (SVector::zeros(), SVector::zeros());
         self.check_into(t, q, v, (&mut unit, &mut tau))?;
         Ok((unit, tau))
     }
 
-    /// [`checked`](Self::checked), into `unit` (q as given, on entry) and
-    /// `tau` (zero), where the caller keeps them: the state is not moved
-    /// through a `Result` (on Solo 12, a chain of copies of q, some of them
-    /// waiting for the stores just made, cost its q̈ 60 ns).
+    /// [`checked`](Self::checked), written over `unit` and `tau` where the
+    /// caller keeps them: the state is not moved through a `Result` (on
+    /// Solo 12, a chain of copies of q, some of them waiting for the stores
+    /// just made, cost its q̈ 60 ns).
     #[inline(always)]
     pub(super) fn check_into<const N: usize, const Q: usize>(
         &self,
@@ -196,15 +196,18 @@ impl<'a, S, T: Real, F> Dynamics<'a, S, T, F> {
         if !(t.is_finite() && all_finite(q.as_slice()) && all_finite(v.as_slice())) {
             return Err(Error::non_finite(t, q, v));
         }
+        *unit = *q;
         orientation::normalise(S::ORIENTATIONS, unit.as_mut_slice());
         check_tolerance(
             "Dynamics",
             "singular tolerance",
             self.singular_tolerance.to_f64(),
         )?;
-        if F::ACTIVE {
-            *tau = self.forcing.force(t, unit, v)?;
-        }
+        *tau = if F::ACTIVE {
+            self.forcing.force(t, unit, v)?
+        } else {
+            SVector::zeros()
+        };
         Ok(())
     }
 
