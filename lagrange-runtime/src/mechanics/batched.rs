@@ -160,11 +160,13 @@ impl<S> Dynamics<'_, S, f64, NoForcing> {
         self.in_lanes(t, (q, v, tau), program, |(d, ratio), k, (q, v)| {
             self.pivot_check(t, q, ratio.lane(k))?;
             let d = d.lane(k);
-            let (acceleration, dq, dv) =
-                (d.acceleration.as_slice(), d.dq.as_slice(), d.dv.as_slice());
-            let all = [acceleration, dq, dv, d.dtau.as_slice()]
-                .iter()
-                .all(|p| all_finite(p));
+            let parts = [
+                d.acceleration.as_slice(),
+                d.dq.as_slice(),
+                d.dv.as_slice(),
+                d.dtau.as_slice(),
+            ];
+            let all = parts.iter().all(|p| all_finite(p));
             match all {
                 true => Ok(d),
                 false => Err(Error::non_finite(t, q, v)),
