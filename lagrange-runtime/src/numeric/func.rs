@@ -69,7 +69,15 @@ pub fn sin_cos_many<T: Real, const K: usize>(x: [T; K]) -> ([T; K], [T; K]) {
 
 /// `x`, read on its own: for `f64`, through a register the compiler cannot
 /// see into, so that neighbouring coordinates stay separate loads (see
-/// [`crate::numeric::sincos`]'s `apart`); any other scalar as it is.
+/// [`crate::numeric::sincos`]'s `apart`); any other scalar as it is. The
+/// emitted scalar programs read every coordinate q[i] through it.
+///
+/// ```
+/// use lagrange_runtime::numeric::func::apart;
+/// // The value is never changed, only where the compiler may load it from.
+/// assert_eq!(apart(0.25f64).to_bits(), 0.25f64.to_bits());
+/// assert_eq!(apart(-3.5f32), -3.5f32);
+/// ```
 #[inline(always)]
 pub fn apart<T: Real>(x: T) -> T {
     if let Some(&value) = (&x as &dyn core::any::Any).downcast_ref::<f64>() {
