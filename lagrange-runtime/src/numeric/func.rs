@@ -70,7 +70,7 @@ pub fn sin_cos_many<T: Real, const K: usize>(x: [T; K]) -> ([T; K], [T; K]) {
 /// `x`, read on its own: for `f64`, through a register the compiler cannot
 /// see into, so that neighbouring coordinates stay separate loads (see
 /// [`crate::numeric::sincos`]'s `apart`); any other scalar as it is. The
-/// emitted scalar programs read every coordinate q[i] through it.
+/// emitted scalar programs read every coordinate `q[i]` through it.
 ///
 /// ```
 /// use lagrange_runtime::numeric::func::apart;
