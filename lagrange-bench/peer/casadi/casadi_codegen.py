@@ -17,7 +17,9 @@ Steps, into OUT (default $TMPDIR/casadi_peer):
  2. trace.cpp is compiled (g++ -O1: it only traces; minutes, so only when
     it or a model changed) and run: casadi_gen.c/.h
     and casadi_registry.h; every robot's states go into casadi_states.h;
- 3. harness.c + casadi_gen.c are compiled with gcc -O3 -march=native;
+ 3. harness.c + casadi_gen.c are compiled with gcc -O3 -march=native, as
+    the program `harness` and as `libharness.so` (for the interleaved
+    timing of examples/casadi_peer/);
  4. the harness's values (through the compiled C) are checked against plain
     numeric Pinocchio at the same state, to 1e-10 relative to each output's
     largest entry (or 1); the max difference per output is printed, and the
@@ -84,9 +86,15 @@ def build(out):
              f"-L{cas}", f"-Wl,-rpath,{cas}", "-lcasadi"])
     run([tracer, out])
     write_states(os.path.join(out, "casadi_states.h"))
+    # casadi_gen.c compiled once (gcc takes minutes on it), position
+    # independent, for the harness and for libharness.so.
+    cc = ["gcc", "-O3", "-march=native", "-w", "-fPIC", f"-I{out}"]
+    gen = os.path.join(out, "casadi_gen.o")
+    run(cc + ["-c", os.path.join(out, "casadi_gen.c"), "-o", gen])
     harness = os.path.join(out, "harness")
-    run(["gcc", "-O3", "-march=native", "-w", f"-I{out}", os.path.join(HERE, "harness.c"),
-         os.path.join(out, "casadi_gen.c"), "-o", harness, "-lm"])
+    run(cc + [os.path.join(HERE, "harness.c"), gen, "-o", harness, "-lm"])
+    run(cc + ["-shared", "-DCASADI_PEER_LIBRARY", os.path.join(HERE, "harness.c"), gen,
+              "-o", os.path.join(out, "libharness.so"), "-lm"])
     return harness
 
 

@@ -1,9 +1,13 @@
 """Reads the rounds run.sh wrote (DIR/casadi_STATE_<i>.txt from the C harness,
-DIR/lagrange_STATE_<i>.txt from examples/casadi_peer.rs), checks both sides' values
+DIR/lagrange_STATE_<i>.txt from examples/casadi_peer/), checks both sides' values
 against plain numeric Pinocchio to 1e-10, and prints the markdown table: per
 arm and quantity, the CasADi C and lagrange times (ns per call, the median
 over rounds) and their ratio (the median over rounds of each round's
-CasADi / lagrange: above 1, lagrange is faster). "terms kept": our side with its parameter-only terms
+CasADi / lagrange: above 1, lagrange is faster); and, where our rounds were
+run with `--interleave` (run.sh does), a second table from their `pair`
+lines, each ratio from batches of both sides alternated in one process,
+which a machine whose speed drifts between the programs' runs does not
+disturb. "terms kept": our side with its parameter-only terms
 computed once (`parameter_terms`, the `_with` methods), as a loop of its own
 calls it; CasADi's C has them folded in as constants.
 
@@ -74,7 +78,39 @@ def main():
                 continue
             print(f"| {robot} | {label} | {statistics.median(cs):.0f} | {statistics.median(rs):.0f} "
                   f"| {statistics.median(ratios):.2f} |")
+    interleaved([pairs_of(t) for t in r_runs])
     sys.exit(0 if ok else 1)
+
+
+def pairs_of(text):
+    """`pair ROBOT QUANTITY C_NS OURS_NS RATIO` lines (casadi_peer --interleave)."""
+    out = {}
+    for line in text.splitlines():
+        parts = line.split()
+        if len(parts) == 6 and parts[0] == "pair":
+            out[parts[1], parts[2]] = tuple(map(float, parts[3:]))
+    return out
+
+
+def interleaved(runs):
+    """The table of the rounds' `pair` lines, if there are any: each ratio is
+    the median over batches alternated in one process, then over rounds."""
+    runs = [r for r in runs if r]
+    if not runs:
+        return
+    print(f"\nInterleaved in one process ({len(runs)} rounds): the C's batches and ours "
+          "alternated; ns per call (median over batches, then rounds); ratio = the median "
+          "over rounds of the median of the batches' ratios C / lagrange, and its range\n")
+    print("| arm | quantity (CasADi C / lagrange) | CasADi C (ns) | lagrange (ns) | ratio | range |")
+    print("|---|---|---:|---:|---:|---|")
+    for robot in ROBOTS:
+        for _, rq, label in ROWS:
+            got = [r[robot, rq] for r in runs if (robot, rq) in r]
+            if not got or label.startswith("q̈: CRBA + NLE + SX QR"):
+                continue
+            c, o, ratio = (statistics.median(x) for x in zip(*got))
+            lo, hi = min(g[2] for g in got), max(g[2] for g in got)
+            print(f"| {robot} | {label} | {c:.0f} | {o:.0f} | {ratio:.2f} | {lo:.2f}–{hi:.2f} |")
 
 
 if __name__ == "__main__":

@@ -2,10 +2,13 @@
  * state and prints, per function, one `value` line per output (row-major) and one
  * `time` line: the median over batches of the mean ns of one call in a batch
  * (batches of about 2 ms, after one to warm up), the loop of
- * examples/casadi_peer.rs on our side. `harness values` prints the values
+ * examples/casadi_peer/ on our side. `harness values` prints the values
  * alone; `harness [values] wide` uses the wide state, `harness solo12`
  * runs one robot. The states are casadi_codegen.py's (casadi_states.h).
- * Built by casadi_codegen.py with gcc -O3 -march=native. */
+ * Built by casadi_codegen.py with gcc -O3 -march=native, as this program
+ * and, with CASADI_PEER_LIBRARY defined, as libharness.so without main,
+ * whose peer_open / peer_run / peer_close let examples/casadi_peer/
+ * alternate the C's batches with its own in one process. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,6 +74,65 @@ static int compare(const void* x, const void* y) {
 /* Keeps the compiler from dropping a call whose results are never read. */
 static void clobber(void) { __asm__ volatile("" ::: "memory"); }
 
+/* One function of the registry at one state, ready to run: what the
+ * interleaved timing (`casadi_peer --interleave libharness.so`) holds. */
+typedef struct {
+  const Entry* f;
+  const casadi_real** arg;
+  casadi_real** res;
+  casadi_int* iw;
+  casadi_real* w;
+  double* outs[3];
+} Bound;
+
+/* The robot's function for `quantity` at the small or the wide state, its
+ * work arrays and outputs allocated: a handle, or NULL if there is none. */
+void* peer_open(const char* robot, const char* quantity, int wide) {
+  for (size_t e = 0; e < sizeof ENTRIES / sizeof ENTRIES[0]; ++e) {
+    const Entry* f = &ENTRIES[e];
+    if (strcmp(f->robot, robot) != 0 || strcmp(f->quantity, quantity) != 0) continue;
+    const double* q = wide ? wide_q(robot) : f->q;
+    if (!q) return NULL;
+    Bound* b = calloc(1, sizeof *b);
+    casadi_int sz_arg, sz_res, sz_iw, sz_w;
+    f->work(&sz_arg, &sz_res, &sz_iw, &sz_w);
+    b->f = f;
+    b->arg = calloc(sz_arg > 3 ? sz_arg : 3, sizeof *b->arg);
+    b->res = calloc(sz_res > 3 ? sz_res : 3, sizeof *b->res);
+    b->iw = calloc(sz_iw + 1, sizeof *b->iw);
+    b->w = calloc(sz_w + 1, sizeof *b->w);
+    b->arg[0] = q;
+    b->arg[1] = f->v;
+    if (f->n_in > 2) b->arg[2] = f->a;
+    for (int o = 0; o < f->n_out; ++o)
+      b->res[o] = b->outs[o] = calloc(f->out[o].rows * f->out[o].cols, sizeof(double));
+    return b;
+  }
+  return NULL;
+}
+
+/* Seconds taken by `calls` calls, the loop of main below. */
+double peer_run(void* handle, long calls) {
+  Bound* b = handle;
+  const double start = now();
+  for (long i = 0; i < calls; ++i) {
+    b->f->eval(b->arg, b->res, b->iw, b->w, 0);
+    clobber();
+  }
+  return now() - start;
+}
+
+void peer_close(void* handle) {
+  Bound* b = handle;
+  for (int o = 0; o < b->f->n_out; ++o) free(b->outs[o]);
+  free(b->arg);
+  free(b->res);
+  free(b->iw);
+  free(b->w);
+  free(b);
+}
+
+#ifndef CASADI_PEER_LIBRARY
 int main(int argc, char** argv) {
   /* Arguments: `values` (print the values, time nothing), `wide` (the
    * wide state's q instead of the small one) or `small` (the default), and
@@ -147,3 +209,4 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+#endif

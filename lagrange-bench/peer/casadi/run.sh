@@ -3,10 +3,12 @@
 # Installs nothing; needs, from PyPI (the versions that worked):
 #   pip install pin==4.0.0 casadi==3.8.2 cmeel-eigen==3.4.1
 # and gcc/g++ and cargo. Generates, compiles and checks the C peer
-# (casadi_codegen.py), builds examples/casadi_peer.rs, then runs the C harness
-# and the Rust timing alternately, ROUNDS times (default 3), and prints the
-# values' check against numeric Pinocchio and the table (compare.py), at
-# two states (compare.py STATE: "small" and "wide").
+# (casadi_codegen.py), builds examples/casadi_peer/, then runs the C harness
+# and the Rust timing alternately, ROUNDS times (default 3), the Rust side
+# also timing the C's functions batch for batch beside its own
+# (`--interleave` the C harness built as a library), and prints the values'
+# check against numeric Pinocchio and the tables (compare.py), at two states
+# (compare.py STATE: "small" and "wide").
 #   lagrange-bench/peer/casadi/run.sh [ROUNDS]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -38,9 +40,9 @@ rm -f "$out"/casadi_*.txt "$out"/lagrange_*.txt
 for i in $(seq 1 "$rounds"); do
   echo "round $i of $rounds" >&2
   "$out/harness" > "$out/casadi_small_$i.txt"
-  "$bin" > "$out/lagrange_small_$i.txt"
+  "$bin" --interleave "$out/libharness.so" > "$out/lagrange_small_$i.txt"
   "$out/harness" wide > "$out/casadi_wide_$i.txt"
-  "$bin" --wide > "$out/lagrange_wide_$i.txt"
+  "$bin" --wide --interleave "$out/libharness.so" > "$out/lagrange_wide_$i.txt"
 done
 cd "$here"
 status=0

@@ -2,13 +2,19 @@
 //! `casadi_codegen.py` traces from Pinocchio into C, computed by the code
 //! `#[derive(Lagrangian)]` emits for the same URDF files, at the same state,
 //! timed with the same loop as the C harness (`peer/casadi/harness.c`): the
-//! median over batches of the mean time of one call in a batch.
+//! median over batches of the mean time of one call in a batch
+//! ([`timing`]).
 //!
 //! It prints, per arm and quantity, one `value` line (the outputs, each
 //! matrix row-major) and one `time` line (ns per call), which
 //! `peer/casadi/compare.py` reads:
 //!
-//!     cargo run --release -p lagrange-bench --example casadi_peer [--wide] [ARM ...]
+//!     cargo run --release -p lagrange-bench --example casadi_peer [--wide] [--interleave LIB] [ARM ...]
+//!
+//! With `--interleave` (`run.sh` passes the `libharness.so` that
+//! `casadi_codegen.py` builds), each quantity's batches alternate with
+//! those of the C's function in this process, and a `pair` line gives both
+//! times and the median of the batches' ratios ([`timing`]).
 //!
 //! The quantities, each beside its CasADi function:
 //! - `crba_nle`: M and Q − h in one call (`mass_matrix_and_rhs`), beside
@@ -42,7 +48,9 @@
 use lagrange::nalgebra::{Quaternion, SMatrix, SVector, UnitQuaternion, Vector3};
 use lagrange::{Differentiable, Dynamics, Error, Forcing, Lagrangian};
 use std::hint::black_box;
-use std::time::Instant;
+
+mod timing;
+use timing::{Peer, Timer};
 
 /// An arm with M + Cholesky q̈, the inverse dynamics and the Jacobians, and
 /// its twin with `emit(articulated)`, whose q̈ is the articulated one.
@@ -85,44 +93,6 @@ impl<const N: usize, const Q: usize> Forcing<f64, N, Q> for Torques<N> {
     ) -> Result<SVector<f64, N>, Error> {
         Ok(self.0)
     }
-}
-
-/// Batches per measurement (the median is reported).
-const BATCHES: usize = 31;
-
-/// The median over [`BATCHES`] batches of the mean ns of one call of `f`,
-/// after one batch to warm up; a batch is sized to last about 2 ms. Each
-/// result is left where the call wrote it and only its address is hidden
-/// from the optimiser, as the C's outputs stay in the buffers it writes:
-/// `black_box(f())` would move it first, and a copy of a matrix that was
-/// just stored entry by entry, read back a register at a time, waits for
-/// those stores to reach the cache (the UR5's M + (Q − h): 105 against
-/// 61 ns).
-fn ns_per_call<R>(mut f: impl FnMut() -> R) -> f64 {
-    let mut calls = 1usize;
-    loop {
-        let start = Instant::now();
-        for _ in 0..calls {
-            let result = f();
-            black_box(&result);
-        }
-        if start.elapsed().as_secs_f64() > 2e-3 {
-            break;
-        }
-        calls *= 2;
-    }
-    let mut times: Vec<f64> = (0..BATCHES)
-        .map(|_| {
-            let start = Instant::now();
-            for _ in 0..calls {
-                let result = f();
-                black_box(&result);
-            }
-            start.elapsed().as_secs_f64() * 1e9 / calls as f64
-        })
-        .collect();
-    times.sort_by(f64::total_cmp);
-    times[BATCHES / 2]
 }
 
 /// Prints one `value` line: the outputs, comma-separated, matrices row-major.
@@ -206,11 +176,12 @@ fn solo_state(wide: bool) -> State<18, 19> {
 }
 
 /// Values and times of one robot at a state.
-fn robot<S, A, const N: usize, const Q: usize>(robot: &str, at: &State<N, Q>)
+fn robot<S, A, const N: usize, const Q: usize>(timer: &Timer, at: &State<N, Q>)
 where
     S: Differentiable<f64, N, Q> + Default,
     A: Lagrangian<f64, N, Q> + Default,
 {
+    let robot = timer.robot;
     let (sys, articulated) = (S::default(), A::default());
     let State { q, v, a, tau } = at;
     let (q, v, a, tau) = (*q, *v, *a, *tau);
@@ -231,37 +202,45 @@ where
         "crba_nle",
         &[("M", m.as_slice(), N), ("rhs", rhs.as_slice(), N)],
     );
-    let t = ns_per_call(|| sys.mass_matrix_and_rhs(black_box(&q), black_box(&v), 0.0));
-    println!("time {robot} crba_nle {t:.1}");
-    let t = ns_per_call(|| sys.mass_matrix_and_rhs_with(&terms, black_box(&q), black_box(&v), 0.0));
-    println!("time {robot} crba_nle_terms {t:.1}");
+    timer.time("crba_nle", || {
+        sys.mass_matrix_and_rhs(black_box(&q), black_box(&v), 0.0)
+    });
+    timer.time("crba_nle_terms", || {
+        sys.mass_matrix_and_rhs_with(&terms, black_box(&q), black_box(&v), 0.0)
+    });
 
     let id = sys.inverse_dynamics(&q, &v, &a, 0.0);
     value(robot, "rnea", &[("tau", id.as_slice(), N)]);
-    let t = ns_per_call(|| sys.inverse_dynamics(black_box(&q), black_box(&v), black_box(&a), 0.0));
-    println!("time {robot} rnea {t:.1}");
+    timer.time("rnea", || {
+        sys.inverse_dynamics(black_box(&q), black_box(&v), black_box(&a), 0.0)
+    });
 
     let ddq = forced_articulated.acceleration(0.0, &q, &v).expect("q̈");
     value(robot, "aba", &[("ddq", ddq.as_slice(), N)]);
-    let t = ns_per_call(|| forced_articulated.acceleration(0.0, black_box(&q), black_box(&v)));
-    println!("time {robot} aba {t:.1}");
-    let t = ns_per_call(|| kept_articulated.acceleration(0.0, black_box(&q), black_box(&v)));
-    println!("time {robot} aba_terms {t:.1}");
+    timer.time("aba", || {
+        forced_articulated.acceleration(0.0, black_box(&q), black_box(&v))
+    });
+    timer.time("aba_terms", || {
+        kept_articulated.acceleration(0.0, black_box(&q), black_box(&v))
+    });
 
     let ddq = forced.acceleration(0.0, &q, &v).expect("q̈");
     value(robot, "chol", &[("ddq", ddq.as_slice(), N)]);
-    let t = ns_per_call(|| forced.acceleration(0.0, black_box(&q), black_box(&v)));
-    println!("time {robot} chol {t:.1}");
-    let t = ns_per_call(|| kept.acceleration(0.0, black_box(&q), black_box(&v)));
-    println!("time {robot} chol_terms {t:.1}");
-    derivatives(&sys, robot, at);
+    timer.time("chol", || {
+        forced.acceleration(0.0, black_box(&q), black_box(&v))
+    });
+    timer.time("chol_terms", || {
+        kept.acceleration(0.0, black_box(&q), black_box(&v))
+    });
+    derivatives(&sys, timer, at);
 }
 
 /// Values and times of the derivatives of q̈ and of τ.
-fn derivatives<S, const N: usize, const Q: usize>(sys: &S, robot: &str, at: &State<N, Q>)
+fn derivatives<S, const N: usize, const Q: usize>(sys: &S, timer: &Timer, at: &State<N, Q>)
 where
     S: Differentiable<f64, N, Q>,
 {
+    let robot = timer.robot;
     let State { q, v, a, tau } = at;
     let forced = Dynamics::new(sys).with_forcing(Torques(*tau));
     let d = lagrange::acceleration_derivatives(sys, q, v, tau, 0.0).expect("derivatives");
@@ -274,12 +253,12 @@ where
             ("Minv", d.dtau.as_slice(), N),
         ],
     );
-    let t = ns_per_call(|| {
+    timer.time("aba_derivatives", || {
         lagrange::acceleration_derivatives(sys, black_box(q), black_box(v), black_box(tau), 0.0)
     });
-    println!("time {robot} aba_derivatives {t:.1}");
-    let t = ns_per_call(|| forced.acceleration_derivatives(0.0, black_box(q), black_box(v), None));
-    println!("time {robot} aba_derivatives_runtime {t:.1}");
+    timer.time("aba_derivatives_runtime", || {
+        forced.acceleration_derivatives(0.0, black_box(q), black_box(v), None)
+    });
 
     let (jq, jv): (SMatrix<f64, N, N>, SMatrix<f64, N, N>) =
         sys.rhs_jacobians(q, v, a, 0.0).expect("emit(jacobians)");
@@ -289,45 +268,62 @@ where
         "rnea_derivatives",
         &[("dtau_dq", dq.as_slice(), N), ("dtau_dv", dv.as_slice(), N)],
     );
-    let t = ns_per_call(|| sys.rhs_jacobians(black_box(q), black_box(v), black_box(a), 0.0));
-    println!("time {robot} rnea_derivatives {t:.1}");
+    timer.time("rnea_derivatives", || {
+        sys.rhs_jacobians(black_box(q), black_box(v), black_box(a), 0.0)
+    });
 }
 
 /// Every arm, or those named on the command line (`casadi_peer xarm7`, for a
-/// profile of one), at the small state or, with `--wide`, the wide one.
+/// profile of one), at the small state or, with `--wide`, the wide one;
+/// with `--interleave path/to/libharness.so`, each measurement alternates
+/// its batches with the C's function's in this process and prints `pair`
+/// lines too.
 fn main() {
-    let (flags, named): (Vec<String>, Vec<String>) =
-        std::env::args().skip(1).partition(|a| a.starts_with("--"));
-    if let Some(flag) = flags.iter().find(|f| *f != "--wide") {
-        eprintln!("casadi_peer: unknown option {flag} (the one option is --wide)");
-        std::process::exit(2);
-    }
-    let wide = !flags.is_empty();
     const ROBOTS: [&str; 6] = ["ur5", "ur10", "kinova", "z1", "xarm7", "solo12"];
-    if let Some(unknown) = named.iter().find(|n| !ROBOTS.contains(&n.as_str())) {
-        eprintln!(
-            "casadi_peer: unknown robot {unknown} (one of {})",
-            ROBOTS.join(", ")
-        );
-        std::process::exit(2);
+    let (mut wide, mut library, mut named) = (false, None, Vec::new());
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--wide" => wide = true,
+            "--interleave" => library = args.next(),
+            _ if ROBOTS.contains(&arg.as_str()) => named.push(arg),
+            _ => {
+                eprintln!(
+                    "casadi_peer: unknown argument {arg} (--wide, --interleave LIBRARY, or one of {})",
+                    ROBOTS.join(", ")
+                );
+                std::process::exit(2);
+            }
+        }
     }
+    let peer = library.map(|path| {
+        Peer::load(&path).unwrap_or_else(|e| {
+            eprintln!("casadi_peer: {e}");
+            std::process::exit(2);
+        })
+    });
+    let timer = |robot| Timer {
+        robot,
+        wide,
+        peer: peer.as_ref(),
+    };
     let run = |robot: &str| named.is_empty() || named.iter().any(|n| n == robot);
     if run("ur5") {
-        robot::<Ur5, Ur5Articulated, 6, 6>("ur5", &arm_state(wide));
+        robot::<Ur5, Ur5Articulated, 6, 6>(&timer("ur5"), &arm_state(wide));
     }
     if run("ur10") {
-        robot::<Ur10, Ur10Articulated, 6, 6>("ur10", &arm_state(wide));
+        robot::<Ur10, Ur10Articulated, 6, 6>(&timer("ur10"), &arm_state(wide));
     }
     if run("kinova") {
-        robot::<Kinova, KinovaArticulated, 6, 6>("kinova", &arm_state(wide));
+        robot::<Kinova, KinovaArticulated, 6, 6>(&timer("kinova"), &arm_state(wide));
     }
     if run("z1") {
-        robot::<Z1, Z1Articulated, 7, 7>("z1", &arm_state(wide));
+        robot::<Z1, Z1Articulated, 7, 7>(&timer("z1"), &arm_state(wide));
     }
     if run("xarm7") {
-        robot::<Xarm7, Xarm7Articulated, 7, 7>("xarm7", &arm_state(wide));
+        robot::<Xarm7, Xarm7Articulated, 7, 7>(&timer("xarm7"), &arm_state(wide));
     }
     if run("solo12") {
-        robot::<Solo12, Solo12Articulated, 18, 19>("solo12", &solo_state(wide));
+        robot::<Solo12, Solo12Articulated, 18, 19>(&timer("solo12"), &solo_state(wide));
     }
 }
